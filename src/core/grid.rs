@@ -1,0 +1,150 @@
+//! The rectangular potential contact grid.
+//!
+//! Elements are `nx` by `ny` rectangles of size `dx` by `dy` [m]. Element (ix, iy)
+//! has its centre at x = x0 + (ix + 1/2) dx, y = y0 + (iy + 1/2) dy and is stored
+//! at index `iy * nx + ix` (x runs fastest: grid lines along the rolling
+//! direction are contiguous). x is the rolling direction; the leading edge of a
+//! rolling contact is at large x (see [`crate::core::problem`] for the sign
+//! conventions).
+
+use serde::Serialize;
+
+use crate::core::error::{require_finite, require_positive, ContactError};
+
+/// Smallest grid dimension accepted.
+pub const MIN_ELEMENTS: usize = 4;
+/// Largest number of elements accepted in one direction.
+pub const MAX_ELEMENTS_PER_DIRECTION: usize = 2048;
+
+/// A validated potential contact grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Grid {
+    /// Elements in x (rolling direction).
+    pub nx: usize,
+    /// Elements in y (lateral direction).
+    pub ny: usize,
+    /// Element size in x [m].
+    pub dx_m: f64,
+    /// Element size in y [m].
+    pub dy_m: f64,
+    /// x of the grid's lower-left corner [m].
+    pub x0_m: f64,
+    /// y of the grid's lower-left corner [m].
+    pub y0_m: f64,
+}
+
+impl Grid {
+    /// A grid of `nx` x `ny` elements covering `[x0, x0 + nx dx] x [y0, y0 + ny dy]`.
+    pub fn new(
+        nx: usize,
+        ny: usize,
+        dx_m: f64,
+        dy_m: f64,
+        x0_m: f64,
+        y0_m: f64,
+    ) -> Result<Self, ContactError> {
+        for (key, n) in [("grid.nx", nx), ("grid.ny", ny)] {
+            if !(MIN_ELEMENTS..=MAX_ELEMENTS_PER_DIRECTION).contains(&n) {
+                return Err(ContactError::invalid(
+                    key,
+                    format!(
+                        "must be between {MIN_ELEMENTS} and {MAX_ELEMENTS_PER_DIRECTION}, got {n}"
+                    ),
+                ));
+            }
+        }
+        require_positive("grid.dx_m", dx_m)?;
+        require_positive("grid.dy_m", dy_m)?;
+        require_finite("grid.x0_m", x0_m)?;
+        require_finite("grid.y0_m", y0_m)?;
+        Ok(Self {
+            nx,
+            ny,
+            dx_m,
+            dy_m,
+            x0_m,
+            y0_m,
+        })
+    }
+
+    /// A grid centred on the origin covering `window_x_m` by `window_y_m`.
+    pub fn centered(
+        nx: usize,
+        ny: usize,
+        window_x_m: f64,
+        window_y_m: f64,
+    ) -> Result<Self, ContactError> {
+        require_positive("grid.window_x_m", window_x_m)?;
+        require_positive("grid.window_y_m", window_y_m)?;
+        Self::new(
+            nx,
+            ny,
+            window_x_m / nx as f64,
+            window_y_m / ny as f64,
+            -0.5 * window_x_m,
+            -0.5 * window_y_m,
+        )
+    }
+
+    /// Number of elements.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// Always false: a grid has at least `MIN_ELEMENTS`² elements.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Element area [m²].
+    #[inline]
+    pub fn element_area_m2(&self) -> f64 {
+        self.dx_m * self.dy_m
+    }
+
+    /// x of the centre of column `ix` [m].
+    #[inline]
+    pub fn x_m(&self, ix: usize) -> f64 {
+        self.x0_m + (ix as f64 + 0.5) * self.dx_m
+    }
+
+    /// y of the centre of row `iy` [m].
+    #[inline]
+    pub fn y_m(&self, iy: usize) -> f64 {
+        self.y0_m + (iy as f64 + 0.5) * self.dy_m
+    }
+
+    /// Flat index of element (ix, iy).
+    #[inline]
+    pub fn index(&self, ix: usize, iy: usize) -> usize {
+        iy * self.nx + ix
+    }
+
+    /// True when element (ix, iy) lies on the outer ring of the grid.
+    #[inline]
+    pub fn on_border(&self, ix: usize, iy: usize) -> bool {
+        ix == 0 || iy == 0 || ix + 1 == self.nx || iy + 1 == self.ny
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centred_grid_is_symmetric() {
+        let g = Grid::centered(10, 4, 2.0e-3, 1.0e-3).unwrap();
+        assert!((g.x_m(0) + g.x_m(9)).abs() < 1e-18);
+        assert!((g.y_m(0) + g.y_m(3)).abs() < 1e-18);
+        assert_eq!(g.index(3, 2), 23);
+    }
+
+    #[test]
+    fn rejects_tiny_or_bad_grids() {
+        assert!(Grid::centered(2, 10, 1.0, 1.0).is_err());
+        assert!(Grid::centered(10, 10, f64::NAN, 1.0).is_err());
+        assert!(Grid::new(10, 10, 0.0, 1.0, 0.0, 0.0).is_err());
+    }
+}

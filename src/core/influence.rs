@@ -1,0 +1,268 @@
+//! Influence coefficients of the elastic half-space for uniform tractions on
+//! rectangular elements (Kalker 1990, §5.2; Johnson 1985, §3.2–3.5).
+//!
+//! Body 1 occupies the half-space on the +n side of the contact plane, body 2
+//! the other side. A traction `p = (p_x, p_y, p_n)` acts on body 1 (and `-p` on
+//! body 2), `p_n > 0` pressing the bodies together. The displacement
+//! difference `u = u(1) - u(2)` (tangential) and `u_n = u_n(1) - u_n(2)`
+//! (normal, opening the gap) at element I due to a unit uniform traction on
+//! element J depends only on the offset (X, Y) = centre(I) - centre(J):
+//!
+//! ```text
+//! A_xx = 1/(pi G) [ (1-nu) F_1 + nu F_xx ]     A_xy = A_yx = 1/(pi G) nu F_xy
+//! A_yy = 1/(pi G) [ (1-nu) F_1 + nu F_yy ]     A_nn = 1/(pi G) (1-nu) F_1
+//! A_nx = +K/(pi G) F_x   A_xn = -K/(pi G) F_x  A_ny = +K/(pi G) F_y   A_yn = -K/(pi G) F_y
+//! ```
+//!
+//! where F_* is the integral of the point-load kernel over the element
+//! rectangle [X-dx/2, X+dx/2] x [Y-dy/2, Y+dy/2]: 1/r, x²/r³, y²/r³, xy/r³, x/r²
+//! and y/r². The point-load kernels are the Boussinesq/Cerruti solutions
+//! (Johnson eqs. 3.19 and 3.86), summed over both bodies with Kalker's combined
+//! constants; the signs of the coupling terms follow from the Betti–Maxwell
+//! reciprocity, which makes the 3N x 3N matrix symmetric. The primitives used
+//! below differ from the textbook logarithms only by functions of one variable,
+//! which cancel in the four-corner difference; they stay finite at r = 0.
+
+use crate::core::material::CombinedMaterial;
+
+/// Traction / displacement components, in matrix order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Component {
+    /// Longitudinal (rolling) direction x.
+    X = 0,
+    /// Lateral direction y.
+    Y = 1,
+    /// Normal direction n.
+    N = 2,
+}
+
+#[inline]
+fn xasinh(x: f64, y: f64) -> f64 {
+    // x * asinh(y/|x|), continuous extension 0 at x = 0.
+    if x == 0.0 {
+        0.0
+    } else {
+        x * (y / x.abs()).asinh()
+    }
+}
+
+#[inline]
+fn prim_1_over_r(x: f64, y: f64) -> f64 {
+    xasinh(x, y) + xasinh(y, x)
+}
+
+#[inline]
+fn prim_x2_over_r3(x: f64, y: f64) -> f64 {
+    xasinh(y, x)
+}
+
+#[inline]
+fn prim_y2_over_r3(x: f64, y: f64) -> f64 {
+    xasinh(x, y)
+}
+
+#[inline]
+fn prim_xy_over_r3(x: f64, y: f64) -> f64 {
+    -(x * x + y * y).sqrt()
+}
+
+#[inline]
+fn prim_x_over_r2(x: f64, y: f64) -> f64 {
+    let r2 = x * x + y * y;
+    let a = if y == 0.0 { 0.0 } else { 0.5 * y * r2.ln() };
+    let b = if x == 0.0 { 0.0 } else { x * (y / x).atan() };
+    a + b
+}
+
+#[inline]
+fn corners(f: impl Fn(f64, f64) -> f64, x: f64, y: f64, hx: f64, hy: f64) -> f64 {
+    f(x + hx, y + hy) - f(x - hx, y + hy) - f(x + hx, y - hy) + f(x - hx, y - hy)
+}
+
+/// Closed-form influence coefficients for one grid spacing and material pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfSpaceInfluence {
+    dx: f64,
+    dy: f64,
+    inv_pi_g: f64,
+    nu: f64,
+    k: f64,
+}
+
+impl HalfSpaceInfluence {
+    /// Coefficients for elements of `dx_m` x `dy_m`.
+    pub fn new(dx_m: f64, dy_m: f64, material: &CombinedMaterial) -> Self {
+        Self {
+            dx: dx_m,
+            dy: dy_m,
+            inv_pi_g: 1.0 / (std::f64::consts::PI * material.shear_modulus_pa),
+            nu: material.poisson_ratio,
+            k: material.kalker_k,
+        }
+    }
+
+    /// Displacement difference component `i` [m] at offset (x, y) [m] from the
+    /// centre of an element loaded by a unit uniform traction [Pa] in `j`.
+    pub fn coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
+        use Component::*;
+        let (hx, hy) = (0.5 * self.dx, 0.5 * self.dy);
+        let c = self.inv_pi_g;
+        let nu = self.nu;
+        match (i, j) {
+            (X, X) => {
+                c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
+                    + nu * corners(prim_x2_over_r3, x, y, hx, hy))
+            }
+            (Y, Y) => {
+                c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
+                    + nu * corners(prim_y2_over_r3, x, y, hx, hy))
+            }
+            (X, Y) | (Y, X) => c * nu * corners(prim_xy_over_r3, x, y, hx, hy),
+            (N, N) => c * (1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy),
+            (N, X) => c * self.k * corners(prim_x_over_r2, x, y, hx, hy),
+            (X, N) => -c * self.k * corners(prim_x_over_r2, x, y, hx, hy),
+            // y/r² is x/r² with the axes swapped.
+            (N, Y) => c * self.k * corners(prim_x_over_r2, y, x, hy, hx),
+            (Y, N) => -c * self.k * corners(prim_x_over_r2, y, x, hy, hx),
+        }
+    }
+
+    /// Element size in x [m].
+    pub fn dx_m(&self) -> f64 {
+        self.dx
+    }
+
+    /// Element size in y [m].
+    pub fn dy_m(&self) -> f64 {
+        self.dy
+    }
+
+    /// True when the normal/tangential coupling coefficients are non-zero.
+    pub fn coupled(&self) -> bool {
+        self.k.abs() > 1e-12
+    }
+}
+
+/// Which operator a convolution kernel represents.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum KernelKind {
+    /// Displacement differences u = A p (static, transient and normal problems).
+    Displacement,
+    /// Steady rolling: the upwind difference (u(x) - u(x + dx)) / dx of
+    /// Kalker's discretisation of the slip s = w - du/dx, i.e. the kernel
+    /// (A(X) - A(X + dx)) / dx [1/Pa]. Material enters the grid at large x.
+    SteadyRolling,
+}
+
+impl HalfSpaceInfluence {
+    /// The value of kernel `kind`, component (i, j), at element offset (kx, ky).
+    pub fn kernel(&self, kind: KernelKind, i: Component, j: Component, kx: i64, ky: i64) -> f64 {
+        let x = kx as f64 * self.dx;
+        let y = ky as f64 * self.dy;
+        match kind {
+            KernelKind::Displacement => self.coefficient(i, j, x, y),
+            KernelKind::SteadyRolling => {
+                (self.coefficient(i, j, x, y) - self.coefficient(i, j, x + self.dx, y)) / self.dx
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::material::{CombinedMaterial, Material};
+
+    fn steel() -> CombinedMaterial {
+        CombinedMaterial::identical(Material {
+            shear_modulus_pa: 80e9,
+            poisson_ratio: 0.25,
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn self_coefficient_of_square_matches_love() {
+        // Centre deflection of a uniformly loaded square of side 2c on the
+        // half-space: w = 4 c p ln(1 + sqrt 2) (1 - nu^2) / (pi E) per body
+        // (Love 1929; Johnson 1985 §3.3). Combined: 8 c ln(1+sqrt2) / (pi E*).
+        let m = steel();
+        let d = 1e-4;
+        let ic = HalfSpaceInfluence::new(d, d, &m);
+        let estar = m.effective_modulus_pa();
+        let expect = 4.0 * d * (1.0 + 2f64.sqrt()).ln() / (std::f64::consts::PI * estar);
+        let got = ic.coefficient(Component::N, Component::N, 0.0, 0.0);
+        assert!((got / expect - 1.0).abs() < 1e-13, "{got} vs {expect}");
+    }
+
+    #[test]
+    fn far_field_tends_to_point_loads() {
+        // Far from the element the coefficients approach the point-load
+        // kernels times the element area (Johnson eqs. 3.19, 3.86).
+        let m = CombinedMaterial::new(
+            Material {
+                shear_modulus_pa: 80e9,
+                poisson_ratio: 0.28,
+            },
+            Material {
+                shear_modulus_pa: 40e9,
+                poisson_ratio: 0.2,
+            },
+        )
+        .unwrap();
+        let (dx, dy) = (1e-4, 2e-4);
+        let ic = HalfSpaceInfluence::new(dx, dy, &m);
+        let (x, y): (f64, f64) = (3e-2, -2e-2);
+        let r = (x * x + y * y).sqrt();
+        let c = dx * dy / (std::f64::consts::PI * m.shear_modulus_pa);
+        let (nu, k) = (m.poisson_ratio, m.kalker_k);
+        use Component::*;
+        let cases = [
+            (X, X, c * ((1.0 - nu) / r + nu * x * x / r.powi(3))),
+            (Y, Y, c * ((1.0 - nu) / r + nu * y * y / r.powi(3))),
+            (X, Y, c * nu * x * y / r.powi(3)),
+            (N, N, c * (1.0 - nu) / r),
+            (N, X, c * k * x / (r * r)),
+            (X, N, -c * k * x / (r * r)),
+            (N, Y, c * k * y / (r * r)),
+            (Y, N, -c * k * y / (r * r)),
+        ];
+        for (i, j, expect) in cases {
+            let got = ic.coefficient(i, j, x, y);
+            assert!(
+                (got / expect - 1.0).abs() < 1e-4,
+                "{i:?}{j:?}: {got} vs {expect}"
+            );
+        }
+    }
+
+    #[test]
+    fn matrix_is_symmetric_by_reciprocity() {
+        let m = CombinedMaterial::new(
+            Material {
+                shear_modulus_pa: 80e9,
+                poisson_ratio: 0.28,
+            },
+            Material {
+                shear_modulus_pa: 30e9,
+                poisson_ratio: 0.35,
+            },
+        )
+        .unwrap();
+        let ic = HalfSpaceInfluence::new(1e-4, 1.5e-4, &m);
+        use Component::*;
+        let comps = [X, Y, N];
+        for &(x, y) in &[(0.0, 0.0), (1e-4, 0.0), (3e-4, -4.5e-4), (-2e-4, 1.5e-4)] {
+            for &i in &comps {
+                for &j in &comps {
+                    let a = ic.coefficient(i, j, x, y);
+                    let b = ic.coefficient(j, i, -x, -y);
+                    assert!(
+                        (a - b).abs() <= 1e-12 * a.abs().max(1e-30),
+                        "{i:?}{j:?} at ({x},{y})"
+                    );
+                }
+            }
+        }
+    }
+}

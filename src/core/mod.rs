@@ -1,0 +1,18 @@
+//! The numeric core: one frictional contact patch on the elastic half-space.
+//! No network, no async, no logging: it counts and times, and returns that in
+//! its results.
+
+pub mod cache;
+pub mod creep;
+pub mod error;
+pub mod fastsim;
+pub mod fft;
+pub mod grid;
+pub mod hertz;
+pub mod influence;
+pub mod material;
+pub mod normal;
+pub mod problem;
+pub mod solution;
+pub mod solve;
+pub mod tangential;

@@ -1,0 +1,203 @@
+//! The contact problem as the solver sees it, in SI units.
+//!
+//! # Conventions (used everywhere in railcontact)
+//!
+//! * Axes: x is the rolling (longitudinal) direction, y lateral, n normal,
+//!   pointing into body 1. In wheel/rail contact body 1 is the **rail** and
+//!   body 2 the **wheel**.
+//! * Tractions and forces are those **acting on body 1** (exerted by body 2):
+//!   `p_n > 0` is compression; the wheel receives the opposite forces.
+//! * Creepages are the rigid velocity of body 1 relative to body 2 at the
+//!   contact reference point, divided by the rolling speed V: longitudinal
+//!   `creepage_long` (xi) [-], lateral `creepage_lat` (eta) [-], spin
+//!   `spin_per_m` (phi) [1/m]; rigid slip w_x = xi - phi y, w_y = eta + phi x.
+//!   With these signs Kalker's linear theory reads Fx = -G ab C11 xi.
+//! * Steady rolling: the contact patch travels in +x over both bodies;
+//!   material enters at the leading edge (large x) and leaves at the
+//!   trailing edge (small x).
+//! * Transient (shift) steps: `shift_x_m`, `shift_y_m` and `rotation_rad` are
+//!   the rigid displacement of body 1 relative to body 2 in the step (rotation
+//!   about the n axis through the origin).
+
+use serde::{Deserialize, Serialize};
+
+use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::grid::Grid;
+use crate::core::material::CombinedMaterial;
+use crate::core::normal::{NormalLoad, NormalSettings};
+use crate::core::tangential::TangentialSettings;
+
+/// Coulomb friction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Friction {
+    /// Static coefficient [-], bound for elements that were sticking.
+    pub static_coefficient: f64,
+    /// Kinetic coefficient [-], bound for elements that were sliding.
+    pub kinetic_coefficient: f64,
+}
+
+impl Friction {
+    /// Equal static and kinetic coefficients.
+    pub fn coulomb(mu: f64) -> Self {
+        Self {
+            static_coefficient: mu,
+            kinetic_coefficient: mu,
+        }
+    }
+
+    /// Checks both coefficients are finite and >= 0.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        for (k, v) in [
+            ("friction.static_coefficient", self.static_coefficient),
+            ("friction.kinetic_coefficient", self.kinetic_coefficient),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(ContactError::invalid(
+                    k,
+                    format!("must be finite and >= 0, got {v}"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Creepages of steady rolling (see the module conventions).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub struct Creepages {
+    /// Longitudinal creepage xi [-].
+    pub creepage_long: f64,
+    /// Lateral creepage eta [-].
+    pub creepage_lat: f64,
+    /// Spin creepage phi [1/m].
+    pub spin_per_m: f64,
+}
+
+/// One step of a transient (shift) problem.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ShiftStep {
+    /// Normal load during the step.
+    pub load: NormalLoad,
+    /// Rigid shift of body 1 relative to body 2 in x during the step [m].
+    pub shift_x_m: f64,
+    /// Rigid shift in y during the step [m].
+    pub shift_y_m: f64,
+    /// Rigid rotation about the n axis during the step [rad].
+    pub rotation_rad: f64,
+}
+
+/// What moves.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kinematics {
+    /// Normal problem only, no friction.
+    Frictionless,
+    /// Steady-state rolling with the given creepages.
+    SteadyRolling(Creepages),
+    /// A sequence of shift steps starting from the unloaded state; each step
+    /// starts from the previous step's tractions.
+    Transient(Vec<ShiftStep>),
+}
+
+/// Solver settings (tolerances and iteration limits).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SolverSettings {
+    /// Normal problem.
+    pub normal: NormalSettings,
+    /// Tangential problem.
+    pub tangential: TangentialSettings,
+    /// Relative change of the tractions between two normal/tangential
+    /// alternations that ends the coupling loop (default 1e-8 when 0).
+    pub coupling_tolerance: f64,
+    /// Alternation limit (default 30 when 0).
+    pub coupling_max_iterations: usize,
+}
+
+/// A complete, validated contact problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactProblem {
+    /// Materials of both bodies.
+    pub material: CombinedMaterial,
+    /// Friction.
+    pub friction: Friction,
+    /// Potential contact grid.
+    pub grid: Grid,
+    /// Undeformed distance h per element [m] (index `iy * nx + ix`).
+    pub gap_m: Vec<f64>,
+    /// Normal load (steady rolling and frictionless problems; transient steps
+    /// carry their own).
+    pub load: NormalLoad,
+    /// Kinematics.
+    pub kinematics: Kinematics,
+    /// Solver settings.
+    pub settings: SolverSettings,
+}
+
+/// Checks a normal load; `key` names it.
+pub fn validate_load(key: &str, load: &NormalLoad) -> Result<(), ContactError> {
+    match *load {
+        NormalLoad::NormalForce(f) => require_positive(&format!("{key}.normal_force_n"), f),
+        NormalLoad::Approach(d) => require_finite(&format!("{key}.approach_m"), d),
+    }
+}
+
+impl ContactProblem {
+    /// Validates everything a solve relies on.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        self.friction.validate()?;
+        if self.gap_m.len() != self.grid.len() {
+            return Err(ContactError::invalid(
+                "geometry.gap_m",
+                format!(
+                    "has {} values for a grid of {} elements",
+                    self.gap_m.len(),
+                    self.grid.len()
+                ),
+            ));
+        }
+        if let Some(i) = self.gap_m.iter().position(|v| !v.is_finite()) {
+            return Err(ContactError::invalid(
+                "geometry.gap_m",
+                format!("value {i} is not finite"),
+            ));
+        }
+        validate_load("load", &self.load)?;
+        match &self.kinematics {
+            Kinematics::Frictionless => {}
+            Kinematics::SteadyRolling(c) => {
+                require_finite("rolling.creepage_long", c.creepage_long)?;
+                require_finite("rolling.creepage_lat", c.creepage_lat)?;
+                require_finite("rolling.spin_per_m", c.spin_per_m)?;
+            }
+            Kinematics::Transient(steps) => {
+                if steps.is_empty() {
+                    return Err(ContactError::invalid(
+                        "transient.steps",
+                        "needs at least one step",
+                    ));
+                }
+                for (k, s) in steps.iter().enumerate() {
+                    let key = format!("transient.steps[{k}]");
+                    validate_load(&key, &s.load)?;
+                    require_finite(&format!("{key}.shift_x_m"), s.shift_x_m)?;
+                    require_finite(&format!("{key}.shift_y_m"), s.shift_y_m)?;
+                    require_finite(&format!("{key}.rotation_rad"), s.rotation_rad)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The quadratic undeformed distance h = A x² + B y² on `grid`.
+    pub fn quadratic_gap(grid: &Grid, a_per_m: f64, b_per_m: f64) -> Vec<f64> {
+        let mut h = vec![0.0; grid.len()];
+        for iy in 0..grid.ny {
+            let y = grid.y_m(iy);
+            for ix in 0..grid.nx {
+                let x = grid.x_m(ix);
+                h[grid.index(ix, iy)] = a_per_m * x * x + b_per_m * y * y;
+            }
+        }
+        h
+    }
+}

@@ -1,0 +1,494 @@
+//! The driver: normal and tangential solvers, their alternation for coupled
+//! problems (Panagiotopoulos process, Kalker 1990 §5.3), transient stepping
+//! and the evaluation of totals.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use crate::core::cache::KernelCache;
+use crate::core::error::ContactError;
+use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::grid::Grid;
+use crate::core::influence::{Component, KernelKind};
+use crate::core::normal::{solve_normal, NormalLoad, NormalScratch};
+use crate::core::problem::{ContactProblem, Kinematics};
+use crate::core::solution::{
+    ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
+};
+use crate::core::tangential::{
+    solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch, TangentialInput,
+    TangentialOutput, TangentialScratch,
+};
+
+/// A reusable solver for one grid and material pair. Keeps the tractions of
+/// the last solve, which warm-start the next one (the service keeps one per
+/// co-simulation session).
+pub struct ContactSolver {
+    grid: Grid,
+    displacement: Arc<KernelSet>,
+    steady: Option<Arc<KernelSet>>,
+    ows: OperatorWorkspace,
+    normal_scratch: NormalScratch,
+    tangential_scratch: TangentialScratch,
+    marching_scratch: MarchingScratch,
+    pn: Vec<f64>,
+    px: Vec<f64>,
+    py: Vec<f64>,
+    sx: Vec<f64>,
+    sy: Vec<f64>,
+    state: Vec<ElementState>,
+    prev_state: Vec<ElementState>,
+    h_eff: Vec<f64>,
+    cx: Vec<f64>,
+    cy: Vec<f64>,
+    tmp_x: Vec<f64>,
+    tmp_y: Vec<f64>,
+    old_ux: Vec<f64>,
+    old_uy: Vec<f64>,
+    last_pn: Vec<f64>,
+    last_px: Vec<f64>,
+    last_py: Vec<f64>,
+}
+
+impl ContactSolver {
+    /// A solver for `problem`'s grid and materials, with kernels from `cache`.
+    pub fn new(problem: &ContactProblem, cache: &KernelCache) -> Self {
+        let grid = problem.grid;
+        let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
+        let steady = if matches!(problem.kinematics, Kinematics::SteadyRolling(_)) {
+            Some(cache.get(&grid, &problem.material, KernelKind::SteadyRolling))
+        } else {
+            None
+        };
+        let n = grid.len();
+        let z = || vec![0.0; n];
+        Self {
+            grid,
+            ows: displacement.workspace(),
+            displacement,
+            steady,
+            normal_scratch: NormalScratch::new(n),
+            tangential_scratch: TangentialScratch::new(n),
+            marching_scratch: MarchingScratch::new(n),
+            pn: z(),
+            px: z(),
+            py: z(),
+            sx: z(),
+            sy: z(),
+            state: vec![ElementState::Exterior; n],
+            prev_state: vec![ElementState::Exterior; n],
+            h_eff: z(),
+            cx: z(),
+            cy: z(),
+            tmp_x: z(),
+            tmp_y: z(),
+            old_ux: z(),
+            old_uy: z(),
+            last_pn: z(),
+            last_px: z(),
+            last_py: z(),
+        }
+    }
+
+    /// Forgets the warm start.
+    pub fn reset(&mut self) {
+        for v in [&mut self.pn, &mut self.px, &mut self.py] {
+            v.fill(0.0);
+        }
+        self.state.fill(ElementState::Exterior);
+    }
+
+    /// Solves `problem` (which must have this solver's grid and materials):
+    /// one solution, or one per step of a transient problem.
+    pub fn solve(
+        &mut self,
+        problem: &ContactProblem,
+        cache: &KernelCache,
+    ) -> Result<Vec<ContactSolution>, ContactError> {
+        let t0 = Instant::now();
+        problem.validate()?;
+        if problem.grid != self.grid {
+            return Err(ContactError::invalid(
+                "grid",
+                "differs from the grid this solver was built for",
+            ));
+        }
+        if matches!(problem.kinematics, Kinematics::SteadyRolling(_)) && self.steady.is_none() {
+            self.steady = Some(cache.get(&self.grid, &problem.material, KernelKind::SteadyRolling));
+        }
+        match &problem.kinematics {
+            Kinematics::Frictionless | Kinematics::SteadyRolling(_) => {
+                let mut sol = self.solve_one(problem, problem.load, None)?;
+                sol.info.solve_time_s = t0.elapsed().as_secs_f64();
+                Ok(vec![sol])
+            }
+            Kinematics::Transient(steps) => {
+                self.reset();
+                self.prev_state.fill(ElementState::Exterior);
+                let mut out = Vec::with_capacity(steps.len());
+                for (k, step) in steps.iter().enumerate() {
+                    let ts = Instant::now();
+                    // Displacement difference of the previous state.
+                    if k == 0 {
+                        self.old_ux.fill(0.0);
+                        self.old_uy.fill(0.0);
+                    } else {
+                        self.displacement.apply(
+                            &mut self.ows,
+                            &[
+                                (Component::X, &self.px),
+                                (Component::Y, &self.py),
+                                (Component::N, &self.pn),
+                            ],
+                            &mut [
+                                (Component::X, &mut self.old_ux),
+                                (Component::Y, &mut self.old_uy),
+                            ],
+                        );
+                    }
+                    self.prev_state.copy_from_slice(&self.state);
+                    let mut sol = self.solve_one(
+                        problem,
+                        step.load,
+                        Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
+                    )?;
+                    sol.info.matvecs += usize::from(k > 0);
+                    sol.info.solve_time_s = if k == 0 {
+                        t0.elapsed().as_secs_f64()
+                    } else {
+                        ts.elapsed().as_secs_f64()
+                    };
+                    out.push(sol);
+                }
+                Ok(out)
+            }
+        }
+    }
+
+    fn solve_one(
+        &mut self,
+        problem: &ContactProblem,
+        load: NormalLoad,
+        shift: Option<(f64, f64, f64)>,
+    ) -> Result<ContactSolution, ContactError> {
+        let grid = self.grid;
+        let n = grid.len();
+        let area = grid.element_area_m2();
+        let coupled = problem.material.is_coupled();
+        let frictional = !matches!(problem.kinematics, Kinematics::Frictionless);
+        if let NormalLoad::Approach(d) = load {
+            if problem.gap_m.iter().all(|&h| h >= d) {
+                return Err(ContactError::NoContact {
+                    detail: format!(
+                        "the approach {d:e} m is smaller than the smallest undeformed distance {:e} m",
+                        problem.gap_m.iter().cloned().fold(f64::INFINITY, f64::min)
+                    ),
+                });
+            }
+        }
+        if !frictional {
+            self.px.fill(0.0);
+            self.py.fill(0.0);
+        }
+        let s = &problem.settings;
+        let ctol = if s.coupling_tolerance > 0.0 {
+            s.coupling_tolerance
+        } else {
+            1e-8
+        };
+        let cmax = if s.coupling_max_iterations > 0 {
+            s.coupling_max_iterations
+        } else {
+            30
+        };
+        let mut info = SolveInfo {
+            status: SolveStatus::Converged,
+            normal_iterations: 0,
+            tangential_iterations: 0,
+            coupling_iterations: 0,
+            matvecs: 0,
+            normal_residual: 0.0,
+            tangential_residual: 0.0,
+            solve_time_s: 0.0,
+        };
+        let mut approach = 0.0;
+        let mut normal_ok = true;
+        let mut tangential_ok = true;
+        let friction = FrictionBounds {
+            static_coefficient: problem.friction.static_coefficient,
+            kinetic_coefficient: problem.friction.kinetic_coefficient,
+        };
+        for c in 0..cmax {
+            info.coupling_iterations = c + 1;
+            self.last_pn.copy_from_slice(&self.pn);
+            self.last_px.copy_from_slice(&self.px);
+            self.last_py.copy_from_slice(&self.py);
+            // Normal problem with the normal displacement of the tangential tractions.
+            self.h_eff.copy_from_slice(&problem.gap_m);
+            if coupled && frictional {
+                self.displacement.apply(
+                    &mut self.ows,
+                    &[(Component::X, &self.px), (Component::Y, &self.py)],
+                    &mut [(Component::N, &mut self.tmp_x)],
+                );
+                info.matvecs += 1;
+                for i in 0..n {
+                    self.h_eff[i] += self.tmp_x[i];
+                }
+            }
+            let no = solve_normal(
+                &self.displacement,
+                &mut self.ows,
+                &self.h_eff,
+                area,
+                load,
+                &mut self.pn,
+                &mut self.normal_scratch,
+                &s.normal,
+            );
+            info.normal_iterations += no.iterations;
+            info.matvecs += no.matvecs;
+            info.normal_residual = no.residual;
+            normal_ok = no.converged;
+            approach = no.approach_m;
+            if !frictional {
+                break;
+            }
+            // Fixed part of the slip.
+            let input_prev: &[ElementState];
+            let outcome = match (&problem.kinematics, shift) {
+                (Kinematics::SteadyRolling(cr), _) => {
+                    let k = self.steady.as_ref().ok_or_else(|| {
+                        ContactError::invalid("kinematics", "internal: steady kernels missing")
+                    })?;
+                    for iy in 0..grid.ny {
+                        let y = grid.y_m(iy);
+                        for ix in 0..grid.nx {
+                            let x = grid.x_m(ix);
+                            let i = grid.index(ix, iy);
+                            self.cx[i] = cr.creepage_long - cr.spin_per_m * y;
+                            self.cy[i] = cr.creepage_lat + cr.spin_per_m * x;
+                        }
+                    }
+                    if coupled {
+                        k.apply(
+                            &mut self.ows,
+                            &[(Component::N, &self.pn)],
+                            &mut [
+                                (Component::X, &mut self.tmp_x),
+                                (Component::Y, &mut self.tmp_y),
+                            ],
+                        );
+                        info.matvecs += 1;
+                        for i in 0..n {
+                            self.cx[i] += self.tmp_x[i];
+                            self.cy[i] += self.tmp_y[i];
+                        }
+                    }
+                    input_prev = &self.prev_state;
+                    let input = TangentialInput {
+                        grid: &grid,
+                        pn: &self.pn,
+                        friction,
+                        cx: &self.cx,
+                        cy: &self.cy,
+                        previous_state: input_prev,
+                    };
+                    solve_steady_marching(
+                        &self.displacement,
+                        &mut self.ows,
+                        &input,
+                        TangentialOutput {
+                            px: &mut self.px,
+                            py: &mut self.py,
+                            sx: &mut self.sx,
+                            sy: &mut self.sy,
+                            state: &mut self.state,
+                        },
+                        &mut self.tangential_scratch,
+                        &mut self.marching_scratch,
+                        &s.tangential,
+                    )
+                }
+                (Kinematics::Transient(_), Some((shx, shy, rot))) => {
+                    for iy in 0..grid.ny {
+                        let y = grid.y_m(iy);
+                        for ix in 0..grid.nx {
+                            let x = grid.x_m(ix);
+                            let i = grid.index(ix, iy);
+                            self.cx[i] = shx - rot * y - self.old_ux[i];
+                            self.cy[i] = shy + rot * x - self.old_uy[i];
+                        }
+                    }
+                    if coupled {
+                        self.displacement.apply(
+                            &mut self.ows,
+                            &[(Component::N, &self.pn)],
+                            &mut [
+                                (Component::X, &mut self.tmp_x),
+                                (Component::Y, &mut self.tmp_y),
+                            ],
+                        );
+                        info.matvecs += 1;
+                        for i in 0..n {
+                            self.cx[i] += self.tmp_x[i];
+                            self.cy[i] += self.tmp_y[i];
+                        }
+                    }
+                    let input = TangentialInput {
+                        grid: &grid,
+                        pn: &self.pn,
+                        friction,
+                        cx: &self.cx,
+                        cy: &self.cy,
+                        previous_state: &self.prev_state,
+                    };
+                    solve_transient(
+                        &self.displacement,
+                        &mut self.ows,
+                        &input,
+                        TangentialOutput {
+                            px: &mut self.px,
+                            py: &mut self.py,
+                            sx: &mut self.sx,
+                            sy: &mut self.sy,
+                            state: &mut self.state,
+                        },
+                        &mut self.tangential_scratch,
+                        &s.tangential,
+                    )
+                }
+                _ => {
+                    return Err(ContactError::invalid(
+                        "kinematics",
+                        "internal: inconsistent kinematics",
+                    ))
+                }
+            };
+            info.tangential_iterations += outcome.iterations;
+            info.matvecs += outcome.matvecs;
+            info.tangential_residual = outcome.residual;
+            tangential_ok = outcome.converged;
+            if !coupled {
+                break;
+            }
+            let mut num = 0.0;
+            let mut den = 0.0;
+            for i in 0..n {
+                num += (self.pn[i] - self.last_pn[i]).abs()
+                    + (self.px[i] - self.last_px[i]).abs()
+                    + (self.py[i] - self.last_py[i]).abs();
+                den += self.pn[i].abs();
+            }
+            if den > 0.0 && num / den < ctol {
+                break;
+            }
+            if c + 1 == cmax {
+                info.status = SolveStatus::MaxIterations;
+            }
+        }
+        if !(normal_ok && tangential_ok) {
+            info.status = SolveStatus::MaxIterations;
+        }
+        if !frictional {
+            self.state
+                .iter_mut()
+                .zip(self.pn.iter())
+                .for_each(|(s, &p)| {
+                    *s = if p > 0.0 {
+                        ElementState::Slip
+                    } else {
+                        ElementState::Exterior
+                    }
+                });
+            self.sx.fill(0.0);
+            self.sy.fill(0.0);
+        }
+        // The patch must not touch the border of the grid.
+        for iy in 0..grid.ny {
+            for ix in 0..grid.nx {
+                if grid.on_border(ix, iy) && self.pn[grid.index(ix, iy)] > 0.0 {
+                    return Err(ContactError::GridTooSmall {
+                        detail: format!(
+                            "element ({ix}, {iy}) at x = {:.4e} m, y = {:.4e} m is loaded",
+                            grid.x_m(ix),
+                            grid.y_m(iy)
+                        ),
+                    });
+                }
+            }
+        }
+        let totals = self.totals(approach, frictional, shift.is_some());
+        Ok(ContactSolution {
+            totals,
+            info,
+            fields: ElementFields {
+                pressure_pa: self.pn.clone(),
+                traction_x_pa: self.px.clone(),
+                traction_y_pa: self.py.clone(),
+                slip_x: self.sx.clone(),
+                slip_y: self.sy.clone(),
+                state: self.state.clone(),
+                gap_m: problem.gap_m.clone(),
+            },
+        })
+    }
+
+    fn totals(&self, approach: f64, frictional: bool, transient: bool) -> Totals {
+        let g = &self.grid;
+        let area = g.element_area_m2();
+        let mut t = Totals {
+            approach_m: approach,
+            ..Default::default()
+        };
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0usize, usize::MAX, 0usize);
+        let (mut ncontact, mut nadh) = (0usize, 0usize);
+        let mut dissipation = 0.0;
+        for iy in 0..g.ny {
+            let y = g.y_m(iy);
+            for ix in 0..g.nx {
+                let x = g.x_m(ix);
+                let i = g.index(ix, iy);
+                let (pn, px, py) = (self.pn[i], self.px[i], self.py[i]);
+                t.normal_force_n += pn * area;
+                t.fx_n += px * area;
+                t.fy_n += py * area;
+                t.mz_nm += (x * py - y * px) * area;
+                t.max_pressure_pa = t.max_pressure_pa.max(pn);
+                t.max_traction_pa = t.max_traction_pa.max((px * px + py * py).sqrt());
+                if pn > 0.0 {
+                    ncontact += 1;
+                    xmin = xmin.min(ix);
+                    xmax = xmax.max(ix);
+                    ymin = ymin.min(iy);
+                    ymax = ymax.max(iy);
+                    if self.state[i] == ElementState::Adhesion {
+                        nadh += 1;
+                    }
+                    dissipation -= (px * self.sx[i] + py * self.sy[i]) * area;
+                }
+            }
+        }
+        t.contact_area_m2 = ncontact as f64 * area;
+        if ncontact > 0 {
+            t.patch_length_m = (xmax - xmin + 1) as f64 * g.dx_m;
+            t.patch_width_m = (ymax - ymin + 1) as f64 * g.dy_m;
+            t.adhesion_fraction = nadh as f64 / ncontact as f64;
+        }
+        if frictional {
+            if transient {
+                t.frictional_work_j = dissipation;
+            } else {
+                t.tgamma_n = dissipation;
+            }
+        }
+        t
+    }
+}
+
+/// Solves `problem` with the process-wide kernel cache.
+pub fn solve(problem: &ContactProblem) -> Result<Vec<ContactSolution>, ContactError> {
+    let cache = KernelCache::global();
+    let mut s = ContactSolver::new(problem, cache);
+    s.solve(problem, cache)
+}
