@@ -12,4 +12,5 @@
 //! half-space influence coefficients A, and the slip is s = w - du/dx in
 //! steady rolling or s = w + u - u' in a transient step.
 
+pub mod cli;
 pub mod core;

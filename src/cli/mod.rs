@@ -1,0 +1,283 @@
+//! The `railcontact` command line: `railcontact solve CASE.toml [--json]
+//! [--fields] [--plot FILE]`.
+//!
+//! [`Cli`] is the clap definition, [`run`] executes it and returns the
+//! process exit code: 0 on success, [`EXIT_BAD_INPUT`] (2) for bad input (the
+//! message on stderr names the offending key), [`EXIT_FAILURE`] (1) for any
+//! other failure.
+
+pub mod case;
+pub mod plot;
+pub mod report;
+
+mod reference_models;
+use reference_models as reference;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::core::error::ContactError;
+use crate::core::problem::Kinematics;
+use crate::core::solve::solve;
+
+use case::{Case, Model};
+use report::{FieldsReport, Report, StepReport};
+
+/// Exit code for bad input (case file, options).
+pub const EXIT_BAD_INPUT: i32 = 2;
+/// Exit code for any other failure.
+pub const EXIT_FAILURE: i32 = 1;
+
+/// Frictional wheel/rail contact: Kalker's exact theory, Hertz and FASTSIM.
+#[derive(Debug, Parser)]
+#[command(name = "railcontact", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Solve one contact case read from a TOML file (SI units; see
+    /// examples/cases/README.md for the keys).
+    ///
+    /// Prints a readable summary (mm, MPa), or with --json exactly one JSON
+    /// object in SI units. Exit code 2 on bad input (the message names the
+    /// key), 1 on other failures.
+    Solve(SolveArgs),
+}
+
+/// Options of `railcontact solve`.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// The case file (TOML).
+    #[arg(value_name = "CASE.toml")]
+    pub case: PathBuf,
+    /// Print one JSON object (SI units) on stdout instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// With --json: add the per-element fields (pressure_pa, traction_x_pa,
+    /// traction_y_pa, slip_x, slip_y, state, nx, ny, dx_m, dy_m, x0_m, y0_m)
+    /// of the (last) solution. Exact model only.
+    #[arg(long, requires = "json")]
+    pub fields: bool,
+    /// Write pressure and traction maps and a centre-line plot to FILE (.png
+    /// or .svg, by extension). Exact model only.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+/// A failure of the command, sorted by exit code.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CliError {
+    /// Bad input: the message names the key or option to fix (exit code 2).
+    BadInput(String),
+    /// Anything else (exit code 1).
+    Failure(String),
+}
+
+impl CliError {
+    /// The process exit code of this error.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::BadInput(_) => EXIT_BAD_INPUT,
+            CliError::Failure(_) => EXIT_FAILURE,
+        }
+    }
+}
+
+impl std::fmt::Display for CliError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CliError::BadInput(m) | CliError::Failure(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for CliError {}
+
+impl From<ContactError> for CliError {
+    fn from(e: ContactError) -> Self {
+        // Every core error is about the input: a key out of range, a grid
+        // too small for the patch, no contact, a rejected reference input.
+        CliError::BadInput(e.to_string())
+    }
+}
+
+/// Runs the parsed command line; returns the process exit code. Output goes
+/// to stdout, errors to stderr.
+pub fn run(cli: Cli) -> i32 {
+    let result = match cli.command {
+        Command::Solve(args) => run_solve(&args),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// The plot format chosen by `--plot`'s extension.
+fn plot_format(path: &Path) -> Result<plot::Format, CliError> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .as_deref()
+    {
+        Some("png") => Ok(plot::Format::Png),
+        Some("svg") => Ok(plot::Format::Svg),
+        _ => Err(CliError::BadInput(format!(
+            "invalid option `--plot`: {} must end in .png or .svg",
+            path.display()
+        ))),
+    }
+}
+
+fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
+    let format = args.plot.as_deref().map(plot_format).transpose()?;
+    let text = std::fs::read_to_string(&args.case).map_err(|e| {
+        CliError::BadInput(format!(
+            "cannot read case file {}: {e}",
+            args.case.display()
+        ))
+    })?;
+    let case = Case::from_toml(&text).map_err(|e| match e {
+        CliError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
+        other => other,
+    })?;
+    if case.model != Model::Exact {
+        if args.fields {
+            return Err(CliError::BadInput(format!(
+                "invalid option `--fields`: per-element fields come from model = \"exact\" only, not \"{}\"",
+                case.model.name()
+            )));
+        }
+        if args.plot.is_some() {
+            return Err(CliError::BadInput(format!(
+                "invalid option `--plot`: plots need the per-element fields of model = \"exact\", not \"{}\"",
+                case.model.name()
+            )));
+        }
+    }
+    let (mut report, last) = match case.model {
+        Model::Exact => {
+            let (r, s) = solve_exact(&case, args.fields)?;
+            (r, Some(s))
+        }
+        Model::Hertz => (reference::solve_hertz(&case)?, None),
+        Model::Fastsim => (reference::solve_fastsim(&case)?, None),
+    };
+    report.notes.extend(case.notes.iter().cloned());
+    let mut out = if args.json {
+        let mut s = serde_json::to_string(&report)
+            .map_err(|e| CliError::Failure(format!("cannot write JSON: {e}")))?;
+        s.push('\n');
+        s
+    } else {
+        report.human()
+    };
+    if let (Some(path), Some(format), Some((grid, sol))) = (&args.plot, format, &last) {
+        plot::write_plot(
+            path,
+            format,
+            grid,
+            sol,
+            case.friction.kinetic_coefficient,
+            &plot_title(&case),
+        )
+        .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
+        if !args.json {
+            out.push_str(&format!("  plot written to {}\n", path.display()));
+        }
+    }
+    write_stdout(&out)
+}
+
+/// Writes `text` to stdout; a closed pipe (`| head`) is not an error.
+fn write_stdout(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(CliError::Failure(format!("cannot write to stdout: {e}"))),
+    }
+}
+
+fn plot_title(case: &Case) -> String {
+    match &case.kinematics {
+        Kinematics::Frictionless => "static, frictionless".to_string(),
+        Kinematics::SteadyRolling(c) => format!(
+            "steady rolling: xi = {:.3e}, eta = {:.3e}, phi = {:.3e} 1/m, mu = {}",
+            c.creepage_long, c.creepage_lat, c.spin_per_m, case.friction.kinetic_coefficient
+        ),
+        Kinematics::Transient(s) => format!(
+            "transient, step {} of {}, mu = {}",
+            s.len(),
+            s.len(),
+            case.friction.kinetic_coefficient
+        ),
+    }
+}
+
+type LastSolution = (
+    crate::core::grid::Grid,
+    crate::core::solution::ContactSolution,
+);
+
+/// Solves `case` with the core (Kalker's exact theory).
+fn solve_exact(case: &Case, with_fields: bool) -> Result<(Report, LastSolution), CliError> {
+    let t0 = Instant::now();
+    let problem = case.problem()?;
+    let mut solutions = solve(&problem)?;
+    let elapsed = t0.elapsed().as_secs_f64();
+    let last = solutions
+        .pop()
+        .ok_or_else(|| CliError::Failure("the solver returned no solution".into()))?;
+    let mut steps: Vec<StepReport> = solutions.iter().map(StepReport::from_solution).collect();
+    steps.push(StepReport::from_solution(&last));
+    let mut totals = steps[steps.len() - 1].clone();
+    totals.solve_time_s = elapsed;
+    totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
+    totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
+    totals.iterations = steps.iter().map(|s| s.iterations).sum();
+    if let Some(s) = steps.iter().find(|s| s.status != "converged") {
+        totals.status = s.status.clone();
+    }
+    let transient = matches!(case.kinematics, Kinematics::Transient(_));
+    let mut notes = Vec::new();
+    if totals.status != "converged" {
+        notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+    }
+    let report = Report {
+        model: Model::Exact.name().to_string(),
+        totals,
+        friction_coefficient: if case.has_friction
+            && !matches!(case.kinematics, Kinematics::Frictionless)
+        {
+            case.friction.kinetic_coefficient
+        } else {
+            0.0
+        },
+        grid: Some([problem.grid.nx, problem.grid.ny]),
+        window_m: Some([case.window_x_m, case.window_y_m]),
+        notes,
+        steps: if transient { Some(steps) } else { None },
+        fields: if with_fields {
+            Some(FieldsReport::new(&problem.grid, &last))
+        } else {
+            None
+        },
+    };
+    Ok((report, (problem.grid, last)))
+}
