@@ -227,27 +227,18 @@ fn reversing_creepages_reverses_forces() {
         creepage_lat: -cr.creepage_lat,
         spin_per_m: 0.0,
     };
-    let p1 = quadratic(
-        mat,
-        1.0,
-        0.6,
-        1.0e4,
-        20,
-        20,
-        100.0,
-        Kinematics::SteadyRolling(cr),
-    );
-    let p2 = quadratic(
-        mat,
-        1.0,
-        0.6,
-        1.0e4,
-        20,
-        20,
-        100.0,
-        Kinematics::SteadyRolling(neg),
-    );
-    let (s1, s2) = (one(&p1), one(&p2));
+    let [s1, s2] = [cr, neg].map(|c| {
+        one(&quadratic(
+            mat,
+            1.0,
+            0.6,
+            1.0e4,
+            20,
+            20,
+            100.0,
+            Kinematics::SteadyRolling(c),
+        ))
+    });
     assert_antisymmetric(&s1, &s2, 1e-5);
     assert!(
         s1.totals.fx_n < 0.0 && s1.totals.fy_n > 0.0,

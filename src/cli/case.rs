@@ -5,12 +5,13 @@
 //! [`CaseFile`] for the schema; [`Case::from_toml`] parses and validates a
 //! file into a [`Case`] that the models can run without further checks.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
-use crate::cli::reference::hertz_semi_axes;
+use crate::cli::reference::hertz_of;
 use crate::cli::CliError;
-use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::error::{require_positive, ContactError};
 use crate::core::grid::Grid;
+use crate::core::hertz::HertzSolution;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
@@ -28,7 +29,7 @@ pub const DEFAULT_FASTSIM_ELEMENTS: usize = 40;
 pub const AUTO_WINDOW_PER_SEMI_AXIS: f64 = 2.4;
 
 /// The contact model a case is solved with.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Model {
     /// Hertz's closed-form normal solution; no tangential forces.
@@ -66,8 +67,10 @@ pub struct CaseFile {
     pub geometry: GeometrySection,
     /// Normal load (required; transient steps may override it).
     pub load: LoadSection,
-    /// Steady rolling creepages; omit for a static or transient case.
-    pub rolling: Option<RollingSection>,
+    /// Steady rolling creepages `creepage_long` [-], `creepage_lat` [-],
+    /// `spin_per_m` [1/m] (each defaults to 0); omit for a static or
+    /// transient case.
+    pub rolling: Option<Creepages>,
     /// Transient shift steps; alternative to `[rolling]`.
     pub transient: Option<TransientSection>,
     /// Potential contact grid (optional; defaults below).
@@ -86,20 +89,11 @@ pub struct MaterialSection {
     pub shear_modulus_pa: Option<f64>,
     /// Poisson ratio nu of both bodies [-], in [0, 0.5) (steel: 0.30).
     pub poisson_ratio: Option<f64>,
-    /// Body 1 (the rail; the body the tractions act on).
-    pub body1: Option<BodySection>,
-    /// Body 2 (the wheel).
-    pub body2: Option<BodySection>,
-}
-
-/// `[material.body1]` / `[material.body2]`: one body's elastic constants.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BodySection {
-    /// Shear modulus G [Pa], > 0.
-    pub shear_modulus_pa: f64,
-    /// Poisson ratio nu [-], in [0, 0.5).
-    pub poisson_ratio: f64,
+    /// Body 1 (the rail; the body the tractions act on): `shear_modulus_pa`
+    /// [Pa], `poisson_ratio` [-].
+    pub body1: Option<Material>,
+    /// Body 2 (the wheel), same keys.
+    pub body2: Option<Material>,
 }
 
 /// `[friction]`: `coefficient`, or `static_coefficient` + `kinetic_coefficient`.
@@ -143,22 +137,6 @@ pub struct LoadSection {
     pub normal_force_n: Option<f64>,
     /// Approach of the bodies [m], > 0.
     pub approach_m: Option<f64>,
-}
-
-/// `[rolling]`: steady-state rolling creepages (each defaults to 0).
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RollingSection {
-    /// Longitudinal creepage xi [-] (velocity of body 1 relative to body 2
-    /// over the rolling speed).
-    #[serde(default)]
-    pub creepage_long: f64,
-    /// Lateral creepage eta [-].
-    #[serde(default)]
-    pub creepage_lat: f64,
-    /// Spin creepage phi [1/m].
-    #[serde(default)]
-    pub spin_per_m: f64,
 }
 
 /// `[transient]`: a sequence of shift steps from the unloaded state.
@@ -213,15 +191,6 @@ pub struct SolverSection {
     /// Iteration limit of each solver, normal and tangential (default 1000
     /// normal, 2000 tangential).
     pub max_iterations: Option<usize>,
-}
-
-/// Hertz semi-axes of the quadratic geometry for one load.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SemiAxes {
-    /// Semi-axis in x [m].
-    pub x_m: f64,
-    /// Semi-axis in y [m].
-    pub y_m: f64,
 }
 
 /// A validated case, ready to be solved.
@@ -307,15 +276,7 @@ impl MaterialSection {
                     "missing: `[material.body1]` was given, give `[material.body2]` too",
                 )
             })?;
-            let m1 = Material {
-                shear_modulus_pa: b1.shear_modulus_pa,
-                poisson_ratio: b1.poisson_ratio,
-            };
-            let m2 = Material {
-                shear_modulus_pa: b2.shear_modulus_pa,
-                poisson_ratio: b2.poisson_ratio,
-            };
-            return Ok(CombinedMaterial::new(m1, m2)?);
+            return Ok(CombinedMaterial::new(b1, b2)?);
         }
         let g = self
             .shear_modulus_pa
@@ -413,14 +374,8 @@ impl Case {
                 ));
             }
             (Some(r), None) => {
-                require_finite("rolling.creepage_long", r.creepage_long)?;
-                require_finite("rolling.creepage_lat", r.creepage_lat)?;
-                require_finite("rolling.spin_per_m", r.spin_per_m)?;
-                Kinematics::SteadyRolling(Creepages {
-                    creepage_long: r.creepage_long,
-                    creepage_lat: r.creepage_lat,
-                    spin_per_m: r.spin_per_m,
-                })
+                r.validate()?;
+                Kinematics::SteadyRolling(*r)
             }
             (None, Some(t)) => {
                 if t.steps.is_empty() {
@@ -429,16 +384,14 @@ impl Case {
                 let mut steps = Vec::with_capacity(t.steps.len());
                 for (k, s) in t.steps.iter().enumerate() {
                     let key = format!("transient.steps[{k}]");
-                    require_finite(&format!("{key}.shift_x_m"), s.shift_x_m)?;
-                    require_finite(&format!("{key}.shift_y_m"), s.shift_y_m)?;
-                    require_finite(&format!("{key}.rotation_rad"), s.rotation_rad)?;
-                    let step_load = one_load(&key, s.normal_force_n, s.approach_m)?.unwrap_or(load);
-                    steps.push(ShiftStep {
-                        load: step_load,
+                    let step = ShiftStep {
+                        load: one_load(&key, s.normal_force_n, s.approach_m)?.unwrap_or(load),
                         shift_x_m: s.shift_x_m,
                         shift_y_m: s.shift_y_m,
                         rotation_rad: s.rotation_rad,
-                    });
+                    };
+                    step.validate(&key)?;
+                    steps.push(step);
                 }
                 Kinematics::Transient(steps)
             }
@@ -515,7 +468,7 @@ impl Case {
         // Hertz patch of the largest load: sizes the automatic window and
         // checks a given one.
         let e_star = material.effective_modulus_pa();
-        let mut patch = SemiAxes { x_m: 0.0, y_m: 0.0 };
+        let (mut patch_x_m, mut patch_y_m) = (0.0f64, 0.0f64);
         let loads: Vec<NormalLoad> = match &kinematics {
             Kinematics::Transient(steps) if model == Model::Exact => {
                 steps.iter().map(|s| s.load).collect()
@@ -523,20 +476,20 @@ impl Case {
             _ => vec![load],
         };
         for l in loads {
-            let s = hertz_semi_axes(geo.a_per_m, geo.b_per_m, e_star, l)?;
-            patch.x_m = patch.x_m.max(s.x_m);
-            patch.y_m = patch.y_m.max(s.y_m);
+            let h = hertz_of(geo.a_per_m, geo.b_per_m, e_star, l)?;
+            patch_x_m = patch_x_m.max(h.semi_axis_x_m);
+            patch_y_m = patch_y_m.max(h.semi_axis_y_m);
         }
         let window_x_m = grid
             .window_x_m
-            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch.x_m);
+            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch_x_m);
         let window_y_m = grid
             .window_y_m
-            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch.y_m);
+            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch_y_m);
         if model == Model::Exact {
             for (key, w, s) in [
-                ("grid.window_x_m", window_x_m, patch.x_m),
-                ("grid.window_y_m", window_y_m, patch.y_m),
+                ("grid.window_x_m", window_x_m, patch_x_m),
+                ("grid.window_y_m", window_y_m, patch_y_m),
             ] {
                 if w < 2.0 * s {
                     return Err(bad(
@@ -625,6 +578,16 @@ impl Case {
             kinematics: self.kinematics.clone(),
             settings: self.settings,
         })
+    }
+
+    /// The Hertz solution of the case's geometry and `[load]`.
+    pub fn hertz(&self) -> Result<HertzSolution, CliError> {
+        hertz_of(
+            self.a_per_m,
+            self.b_per_m,
+            self.material.effective_modulus_pa(),
+            self.load,
+        )
     }
 
     /// The creepages of a rolling case (zero otherwise).

@@ -19,7 +19,9 @@ use std::time::Instant;
 use clap::{Args, Parser, Subcommand};
 
 use crate::core::error::ContactError;
+use crate::core::grid::Grid;
 use crate::core::problem::Kinematics;
+use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::solve;
 
 use case::{Case, Model};
@@ -61,7 +63,8 @@ pub struct SolveArgs {
     #[arg(long)]
     pub json: bool,
     /// With --json: add the per-element fields (pressure_pa, traction_x_pa,
-    /// traction_y_pa, slip_x, slip_y, state, nx, ny, dx_m, dy_m, x0_m, y0_m)
+    /// traction_y_pa, slip_x, slip_y, state, gap_m, nx, ny, dx_m, dy_m, x0_m,
+    /// y0_m)
     /// of the (last) solution. Exact model only.
     #[arg(long, requires = "json")]
     pub fields: bool,
@@ -166,13 +169,14 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let (mut report, last) = match case.model {
-        Model::Exact => {
-            let (r, s) = solve_exact(&case, args.fields)?;
-            (r, Some(s))
-        }
-        Model::Hertz => (reference::solve_hertz(&case)?, None),
-        Model::Fastsim => (reference::solve_fastsim(&case)?, None),
+    let exact = match case.model {
+        Model::Exact => Some(ExactRun::solve(&case)?),
+        Model::Hertz | Model::Fastsim => None,
+    };
+    let mut report = match (&exact, case.model) {
+        (Some(run), _) => run.report(&case, args.fields),
+        (None, Model::Hertz) => reference::solve_hertz(&case)?,
+        (None, _) => reference::solve_fastsim(&case)?,
     };
     report.notes.extend(case.notes.iter().cloned());
     let mut out = if args.json {
@@ -183,12 +187,12 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     } else {
         report.human()
     };
-    if let (Some(path), Some(format), Some((grid, sol))) = (&args.plot, format, &last) {
+    if let (Some(path), Some(format), Some(run)) = (&args.plot, format, &exact) {
         plot::write_plot(
             path,
             format,
-            grid,
-            sol,
+            &run.grid,
+            run.last(),
             case.friction.kinetic_coefficient,
             &plot_title(&case),
         )
@@ -222,62 +226,79 @@ fn plot_title(case: &Case) -> String {
             c.creepage_long, c.creepage_lat, c.spin_per_m, case.friction.kinetic_coefficient
         ),
         Kinematics::Transient(s) => format!(
-            "transient, step {} of {}, mu = {}",
-            s.len(),
+            "transient, last of {} steps, mu = {}",
             s.len(),
             case.friction.kinetic_coefficient
         ),
     }
 }
 
-type LastSolution = (
-    crate::core::grid::Grid,
-    crate::core::solution::ContactSolution,
-);
+/// The exact model's solutions of one case.
+struct ExactRun {
+    grid: Grid,
+    /// One solution, or one per transient step (never empty).
+    solutions: Vec<ContactSolution>,
+    /// Wall time from the validated case to the solutions [s].
+    elapsed_s: f64,
+}
 
-/// Solves `case` with the core (Kalker's exact theory).
-fn solve_exact(case: &Case, with_fields: bool) -> Result<(Report, LastSolution), CliError> {
-    let t0 = Instant::now();
-    let problem = case.problem()?;
-    let mut solutions = solve(&problem)?;
-    let elapsed = t0.elapsed().as_secs_f64();
-    let last = solutions
-        .pop()
-        .ok_or_else(|| CliError::Failure("the solver returned no solution".into()))?;
-    let mut steps: Vec<StepReport> = solutions.iter().map(StepReport::from_solution).collect();
-    steps.push(StepReport::from_solution(&last));
-    let mut totals = steps[steps.len() - 1].clone();
-    totals.solve_time_s = elapsed;
-    totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
-    totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
-    totals.iterations = steps.iter().map(|s| s.iterations).sum();
-    if let Some(s) = steps.iter().find(|s| s.status != "converged") {
-        totals.status = s.status.clone();
+impl ExactRun {
+    /// Solves `case` with the core (Kalker's exact theory).
+    fn solve(case: &Case) -> Result<Self, CliError> {
+        let t0 = Instant::now();
+        let problem = case.problem()?;
+        let solutions = solve(&problem)?;
+        if solutions.is_empty() {
+            return Err(CliError::Failure("the solver returned no solution".into()));
+        }
+        Ok(ExactRun {
+            grid: problem.grid,
+            solutions,
+            elapsed_s: t0.elapsed().as_secs_f64(),
+        })
     }
-    let transient = matches!(case.kinematics, Kinematics::Transient(_));
-    let mut notes = Vec::new();
-    if totals.status != "converged" {
-        notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+
+    /// The (last) solution.
+    fn last(&self) -> &ContactSolution {
+        &self.solutions[self.solutions.len() - 1]
     }
-    let report = Report {
-        model: Model::Exact.name().to_string(),
-        totals,
-        friction_coefficient: if case.has_friction
-            && !matches!(case.kinematics, Kinematics::Frictionless)
-        {
-            case.friction.kinetic_coefficient
-        } else {
-            0.0
-        },
-        grid: Some([problem.grid.nx, problem.grid.ny]),
-        window_m: Some([case.window_x_m, case.window_y_m]),
-        notes,
-        steps: if transient { Some(steps) } else { None },
-        fields: if with_fields {
-            Some(FieldsReport::new(&problem.grid, &last))
-        } else {
-            None
-        },
-    };
-    Ok((report, (problem.grid, last)))
+
+    /// The report: the last step's totals with counters summed over steps.
+    fn report(&self, case: &Case, with_fields: bool) -> Report<'_> {
+        let steps: Vec<StepReport> = self
+            .solutions
+            .iter()
+            .map(StepReport::from_solution)
+            .collect();
+        let mut totals = StepReport::from_solution(self.last());
+        totals.solve_time_s = self.elapsed_s;
+        totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
+        totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
+        totals.iterations = steps.iter().map(|s| s.iterations).sum();
+        totals.status = steps
+            .iter()
+            .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
+        let mut notes = Vec::new();
+        if totals.status != SolveStatus::Converged {
+            notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+        }
+        let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
+        Report {
+            model: Model::Exact,
+            totals,
+            friction_coefficient: if frictional {
+                case.friction.kinetic_coefficient
+            } else {
+                0.0
+            },
+            grid: Some([self.grid.nx, self.grid.ny]),
+            window_m: Some([case.window_x_m, case.window_y_m]),
+            notes,
+            steps: matches!(case.kinematics, Kinematics::Transient(_)).then_some(steps),
+            fields: with_fields.then_some(FieldsReport {
+                grid: &self.grid,
+                fields: &self.last().fields,
+            }),
+        }
+    }
 }

@@ -5,12 +5,13 @@
 
 use std::time::Instant;
 
-use crate::cli::case::{Case, Model, SemiAxes};
+use crate::cli::case::{Case, Model};
 use crate::cli::report::{Report, StepReport};
 use crate::cli::CliError;
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::hertz::{hertz, HertzLoad, HertzSolution};
 use crate::core::normal::NormalLoad;
+use crate::core::solution::Totals;
 
 fn hertz_load(load: NormalLoad) -> HertzLoad {
     match load {
@@ -19,7 +20,8 @@ fn hertz_load(load: NormalLoad) -> HertzLoad {
     }
 }
 
-fn hertz_of(
+/// Hertz solution of h = A x² + B y² under `load`; errors name the model.
+pub(crate) fn hertz_of(
     a_per_m: f64,
     b_per_m: f64,
     e_star_pa: f64,
@@ -30,47 +32,26 @@ fn hertz_of(
         .map_err(|e| CliError::BadInput(format!("Hertz model: {e}")))
 }
 
-/// Hertz semi-axes of h = A x² + B y² under `load` (sizes the automatic window).
-pub(crate) fn hertz_semi_axes(
-    a_per_m: f64,
-    b_per_m: f64,
-    e_star_pa: f64,
-    load: NormalLoad,
-) -> Result<SemiAxes, CliError> {
-    let h = hertz_of(a_per_m, b_per_m, e_star_pa, load)?;
-    Ok(SemiAxes {
-        x_m: h.semi_axis_x_m,
-        y_m: h.semi_axis_y_m,
-    })
-}
-
 /// The totals of a Hertz solution; tangential quantities are 0.
-fn hertz_totals(h: &HertzSolution) -> StepReport {
-    StepReport {
+fn hertz_totals(h: &HertzSolution) -> Totals {
+    Totals {
         normal_force_n: h.normal_force_n,
         approach_m: h.approach_m,
         max_pressure_pa: h.max_pressure_pa,
         contact_area_m2: h.contact_area_m2,
         patch_length_m: 2.0 * h.semi_axis_x_m,
         patch_width_m: 2.0 * h.semi_axis_y_m,
-        status: "converged".to_string(),
-        ..StepReport::default()
+        ..Totals::default()
     }
 }
 
 /// Model `hertz`: Hertz's closed-form normal solution.
-pub(crate) fn solve_hertz(case: &Case) -> Result<Report, CliError> {
+pub(crate) fn solve_hertz(case: &Case) -> Result<Report<'static>, CliError> {
     let t0 = Instant::now();
-    let h = hertz_of(
-        case.a_per_m,
-        case.b_per_m,
-        case.material.effective_modulus_pa(),
-        case.load,
-    )?;
-    let mut totals = hertz_totals(&h);
-    totals.solve_time_s = t0.elapsed().as_secs_f64();
+    let h = case.hertz()?;
+    let totals = StepReport::closed_form(hertz_totals(&h), t0.elapsed().as_secs_f64());
     Ok(Report {
-        model: Model::Hertz.name().to_string(),
+        model: Model::Hertz,
         totals,
         friction_coefficient: 0.0,
         grid: None,
@@ -85,14 +66,9 @@ pub(crate) fn solve_hertz(case: &Case) -> Result<Report, CliError> {
 
 /// Model `fastsim`: the Hertz ellipse, then FASTSIM with the case's creepages
 /// on `nx` x `ny` elements.
-pub(crate) fn solve_fastsim(case: &Case) -> Result<Report, CliError> {
+pub(crate) fn solve_fastsim(case: &Case) -> Result<Report<'static>, CliError> {
     let t0 = Instant::now();
-    let h = hertz_of(
-        case.a_per_m,
-        case.b_per_m,
-        case.material.effective_modulus_pa(),
-        case.load,
-    )?;
+    let h = case.hertz()?;
     let c = case.creepages();
     let input = FastsimInput {
         semi_axis_x_m: h.semi_axis_x_m,
@@ -110,17 +86,18 @@ pub(crate) fn solve_fastsim(case: &Case) -> Result<Report, CliError> {
     let out = fastsim
         .solve(&input)
         .map_err(|e| CliError::BadInput(format!("FASTSIM model: {e}")))?;
-    let mut totals = hertz_totals(&h);
-    totals.fx_n = out.fx_n;
-    totals.fy_n = out.fy_n;
-    totals.mz_nm = out.mz_nm;
-    totals.adhesion_fraction = out.adhesion_fraction;
-    totals.tgamma_n = out.tgamma_n;
-    totals.max_traction_pa = out.max_traction_pa;
-    totals.solve_time_s = t0.elapsed().as_secs_f64();
+    let totals = Totals {
+        fx_n: out.fx_n,
+        fy_n: out.fy_n,
+        mz_nm: out.mz_nm,
+        adhesion_fraction: out.adhesion_fraction,
+        tgamma_n: out.tgamma_n,
+        max_traction_pa: out.max_traction_pa,
+        ..hertz_totals(&h)
+    };
     Ok(Report {
-        model: Model::Fastsim.name().to_string(),
-        totals,
+        model: Model::Fastsim,
+        totals: StepReport::closed_form(totals, t0.elapsed().as_secs_f64()),
         friction_coefficient: case.friction.kinetic_coefficient,
         grid: Some([case.nx, case.ny]),
         window_m: None,

@@ -5,38 +5,17 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::cli::case::Model;
 use crate::core::grid::Grid;
-use crate::core::solution::{ContactSolution, ElementState, SolveStatus};
+use crate::core::solution::{ContactSolution, ElementFields, SolveStatus, Totals};
 
-/// The totals of one solution (one step of a transient case).
-#[derive(Debug, Clone, Serialize, Default, PartialEq)]
+/// The totals of one solution (one step of a transient case): the core's
+/// [`Totals`] with the solver's counters.
+#[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct StepReport {
-    /// Normal force on body 1 [N].
-    pub normal_force_n: f64,
-    /// Longitudinal tangential force on body 1 [N].
-    pub fx_n: f64,
-    /// Lateral tangential force on body 1 [N].
-    pub fy_n: f64,
-    /// Spin moment about the normal axis through the origin [N m].
-    pub mz_nm: f64,
-    /// Approach of the bodies [m].
-    pub approach_m: f64,
-    /// Largest pressure [Pa].
-    pub max_pressure_pa: f64,
-    /// Largest tangential traction magnitude [Pa].
-    pub max_traction_pa: f64,
-    /// Contact area [m²].
-    pub contact_area_m2: f64,
-    /// Extent of the contact patch in x [m].
-    pub patch_length_m: f64,
-    /// Extent of the contact patch in y [m].
-    pub patch_width_m: f64,
-    /// Share of the contact area in adhesion [-].
-    pub adhesion_fraction: f64,
-    /// Frictional power per unit rolling speed [N] (steady rolling; else 0).
-    pub tgamma_n: f64,
-    /// Frictional work in the step [J] (transient; else 0).
-    pub frictional_work_j: f64,
+    /// Forces, moment, approach, pressures, areas (keys as in [`Totals`]).
+    #[serde(flatten)]
+    pub totals: Totals,
     /// Normal + tangential iterations.
     pub iterations: usize,
     /// Normal (conjugate-gradient) iterations.
@@ -46,93 +25,47 @@ pub struct StepReport {
     /// Wall time [s].
     pub solve_time_s: f64,
     /// `"converged"` or `"max_iterations"`.
-    pub status: String,
+    pub status: SolveStatus,
 }
 
 impl StepReport {
+    /// A converged report of `totals` without iterations (closed-form models).
+    pub fn closed_form(totals: Totals, solve_time_s: f64) -> Self {
+        StepReport {
+            totals,
+            iterations: 0,
+            normal_iterations: 0,
+            tangential_iterations: 0,
+            solve_time_s,
+            status: SolveStatus::Converged,
+        }
+    }
+
     /// The report of one core solution.
     pub fn from_solution(s: &ContactSolution) -> Self {
-        let t = &s.totals;
         let i = &s.info;
         StepReport {
-            normal_force_n: t.normal_force_n,
-            fx_n: t.fx_n,
-            fy_n: t.fy_n,
-            mz_nm: t.mz_nm,
-            approach_m: t.approach_m,
-            max_pressure_pa: t.max_pressure_pa,
-            max_traction_pa: t.max_traction_pa,
-            contact_area_m2: t.contact_area_m2,
-            patch_length_m: t.patch_length_m,
-            patch_width_m: t.patch_width_m,
-            adhesion_fraction: t.adhesion_fraction,
-            tgamma_n: t.tgamma_n,
-            frictional_work_j: t.frictional_work_j,
+            totals: s.totals,
             iterations: i.normal_iterations + i.tangential_iterations,
             normal_iterations: i.normal_iterations,
             tangential_iterations: i.tangential_iterations,
             solve_time_s: i.solve_time_s,
-            status: status_name(i.status).to_string(),
+            status: i.status,
         }
     }
 }
 
-/// The JSON name of a solver status.
-pub fn status_name(s: SolveStatus) -> &'static str {
-    match s {
-        SolveStatus::Converged => "converged",
-        SolveStatus::MaxIterations => "max_iterations",
-    }
-}
-
-/// Per-element fields of the exact model (`--fields`), index `iy * nx + ix`.
-#[derive(Debug, Clone, Serialize, PartialEq)]
-pub struct FieldsReport {
-    /// Elements in x.
-    pub nx: usize,
-    /// Elements in y.
-    pub ny: usize,
-    /// Element size in x [m].
-    pub dx_m: f64,
-    /// Element size in y [m].
-    pub dy_m: f64,
-    /// x of the grid's lower-left corner [m].
-    pub x0_m: f64,
-    /// y of the grid's lower-left corner [m].
-    pub y0_m: f64,
-    /// Normal pressure [Pa].
-    pub pressure_pa: Vec<f64>,
-    /// Longitudinal traction [Pa].
-    pub traction_x_pa: Vec<f64>,
-    /// Lateral traction [Pa].
-    pub traction_y_pa: Vec<f64>,
-    /// Slip in x (steady rolling: [-]; transient: [m]).
-    pub slip_x: Vec<f64>,
-    /// Slip in y (units as `slip_x`).
-    pub slip_y: Vec<f64>,
-    /// Element states: `"exterior"`, `"adhesion"` or `"slip"`.
-    pub state: Vec<ElementState>,
-}
-
-impl FieldsReport {
-    /// The fields of `s` on `grid`.
-    pub fn new(grid: &Grid, s: &ContactSolution) -> Self {
-        let f = &s.fields;
-        FieldsReport {
-            nx: grid.nx,
-            ny: grid.ny,
-            dx_m: grid.dx_m,
-            dy_m: grid.dy_m,
-            x0_m: grid.x0_m,
-            y0_m: grid.y0_m,
-            pressure_pa: f.pressure_pa.clone(),
-            traction_x_pa: f.traction_x_pa.clone(),
-            traction_y_pa: f.traction_y_pa.clone(),
-            slip_x: f.slip_x.clone(),
-            slip_y: f.slip_y.clone(),
-            state: f.state.clone(),
-        }
-    }
+/// Per-element fields of the exact model (`--fields`): the grid's `nx, ny,
+/// dx_m, dy_m, x0_m, y0_m` and the arrays of [`ElementFields`], index
+/// `iy * nx + ix`.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct FieldsReport<'a> {
+    /// The grid.
+    #[serde(flatten)]
+    pub grid: &'a Grid,
+    /// The fields of the (last) solution.
+    #[serde(flatten)]
+    pub fields: &'a ElementFields,
 }
 
 /// The whole result of `railcontact solve`. Serialised, it is the one JSON
@@ -142,9 +75,9 @@ impl FieldsReport {
 /// totals, and `status`, which is the worst of the steps), plus `model`,
 /// `friction_coefficient`, `notes`, and `steps` / `fields` where present.
 #[derive(Debug, Clone, Serialize)]
-pub struct Report {
+pub struct Report<'a> {
     /// `"hertz"`, `"fastsim"` or `"exact"`.
-    pub model: String,
+    pub model: Model,
     /// Totals (see the type's doc for transient cases).
     #[serde(flatten)]
     pub totals: StepReport,
@@ -163,7 +96,7 @@ pub struct Report {
     pub steps: Option<Vec<StepReport>>,
     /// Per-element fields of the (last) solution, with `--fields`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub fields: Option<FieldsReport>,
+    pub fields: Option<FieldsReport<'a>>,
 }
 
 fn mm(v: f64) -> f64 {
@@ -174,17 +107,22 @@ fn mpa(v: f64) -> f64 {
     v * 1e-6
 }
 
-impl Report {
+impl Report<'_> {
     /// The readable summary (mm, MPa, with units in the labels).
     pub fn human(&self) -> String {
         let mut o = String::new();
-        let t = &self.totals;
-        let title = match self.model.as_str() {
-            "hertz" => "Hertz (closed form)",
-            "fastsim" => "FASTSIM (Kalker's simplified theory)",
-            _ => "exact (Kalker's exact theory, half-space)",
+        let r = &self.totals;
+        let t = &r.totals;
+        let title = match self.model {
+            Model::Hertz => "Hertz (closed form)",
+            Model::Fastsim => "FASTSIM (Kalker's simplified theory)",
+            Model::Exact => "exact (Kalker's exact theory, half-space)",
         };
-        let _ = writeln!(o, "railcontact solve: model {title}, status {}", t.status);
+        let _ = writeln!(
+            o,
+            "railcontact solve: model {title}, status {}",
+            r.status.as_str()
+        );
         if let (Some([nx, ny]), Some([wx, wy])) = (self.grid, self.window_m) {
             let _ = writeln!(
                 o,
@@ -211,7 +149,8 @@ impl Report {
                 "iter",
                 "status"
             );
-            for (k, s) in steps.iter().enumerate() {
+            for (k, step) in steps.iter().enumerate() {
+                let s = &step.totals;
                 let _ = writeln!(
                     o,
                     "    {:>4} {:>11.2} {:>11.2} {:>11.2} {:>12.6} {:>10.2} {:>9.3} {:>12.4e} {:>6} {:>15}",
@@ -223,14 +162,14 @@ impl Report {
                     mpa(s.max_pressure_pa),
                     s.adhesion_fraction,
                     s.frictional_work_j,
-                    s.iterations,
-                    s.status
+                    step.iterations,
+                    step.status.as_str()
                 );
             }
             let _ = writeln!(o, "  last step:");
         }
         let mu = self.friction_coefficient;
-        let tangential = self.model != "hertz";
+        let tangential = self.model != Model::Hertz;
         let mut line = |label: &str, value: String| {
             let _ = writeln!(o, "  {label:<30} {value}");
         };
@@ -293,14 +232,14 @@ impl Report {
                 format!("{:.4e}", t.frictional_work_j),
             );
         }
-        if self.model == "exact" {
+        if self.model == Model::Exact {
             line(
                 "iterations",
                 format!(
                     "{} ({} normal + {} tangential){}",
-                    t.iterations,
-                    t.normal_iterations,
-                    t.tangential_iterations,
+                    r.iterations,
+                    r.normal_iterations,
+                    r.tangential_iterations,
                     if self.steps.is_some() {
                         ", all steps"
                     } else {
@@ -309,7 +248,7 @@ impl Report {
                 ),
             );
         }
-        line("solve time [s]", format!("{:.3}", t.solve_time_s));
+        line("solve time [s]", format!("{:.3}", r.solve_time_s));
         for n in &self.notes {
             let _ = writeln!(o, "  note: {n}");
         }

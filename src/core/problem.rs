@@ -62,8 +62,10 @@ impl Friction {
     }
 }
 
-/// Creepages of steady rolling (see the module conventions).
+/// Creepages of steady rolling (see the module conventions). Each defaults
+/// to 0 when deserialised.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[serde(default, deny_unknown_fields)]
 pub struct Creepages {
     /// Longitudinal creepage xi [-].
     pub creepage_long: f64,
@@ -71,6 +73,15 @@ pub struct Creepages {
     pub creepage_lat: f64,
     /// Spin creepage phi [1/m].
     pub spin_per_m: f64,
+}
+
+impl Creepages {
+    /// Checks that all creepages are finite; keys are named `rolling.*`.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        require_finite("rolling.creepage_long", self.creepage_long)?;
+        require_finite("rolling.creepage_lat", self.creepage_lat)?;
+        require_finite("rolling.spin_per_m", self.spin_per_m)
+    }
 }
 
 /// One step of a transient (shift) problem.
@@ -84,6 +95,17 @@ pub struct ShiftStep {
     pub shift_y_m: f64,
     /// Rigid rotation about the n axis during the step [rad].
     pub rotation_rad: f64,
+}
+
+impl ShiftStep {
+    /// Checks the load and that the shifts are finite; `key` names the step
+    /// (e.g. `transient.steps[3]`).
+    pub fn validate(&self, key: &str) -> Result<(), ContactError> {
+        validate_load(key, &self.load)?;
+        require_finite(&format!("{key}.shift_x_m"), self.shift_x_m)?;
+        require_finite(&format!("{key}.shift_y_m"), self.shift_y_m)?;
+        require_finite(&format!("{key}.rotation_rad"), self.rotation_rad)
+    }
 }
 
 /// What moves.
@@ -164,11 +186,7 @@ impl ContactProblem {
         validate_load("load", &self.load)?;
         match &self.kinematics {
             Kinematics::Frictionless => {}
-            Kinematics::SteadyRolling(c) => {
-                require_finite("rolling.creepage_long", c.creepage_long)?;
-                require_finite("rolling.creepage_lat", c.creepage_lat)?;
-                require_finite("rolling.spin_per_m", c.spin_per_m)?;
-            }
+            Kinematics::SteadyRolling(c) => c.validate()?,
             Kinematics::Transient(steps) => {
                 if steps.is_empty() {
                     return Err(ContactError::invalid(
@@ -177,11 +195,7 @@ impl ContactProblem {
                     ));
                 }
                 for (k, s) in steps.iter().enumerate() {
-                    let key = format!("transient.steps[{k}]");
-                    validate_load(&key, &s.load)?;
-                    require_finite(&format!("{key}.shift_x_m"), s.shift_x_m)?;
-                    require_finite(&format!("{key}.shift_y_m"), s.shift_y_m)?;
-                    require_finite(&format!("{key}.rotation_rad"), s.rotation_rad)?;
+                    s.validate(&format!("transient.steps[{k}]"))?;
                 }
             }
         }

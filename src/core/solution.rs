@@ -26,6 +26,25 @@ pub enum SolveStatus {
     MaxIterations,
 }
 
+impl SolveStatus {
+    /// The name used in JSON output: `"converged"` or `"max_iterations"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SolveStatus::Converged => "converged",
+            SolveStatus::MaxIterations => "max_iterations",
+        }
+    }
+
+    /// The worse of two statuses (for a sequence of steps).
+    pub fn worst(self, other: SolveStatus) -> SolveStatus {
+        if self == SolveStatus::Converged {
+            other
+        } else {
+            self
+        }
+    }
+}
+
 /// Counters and residuals of one solve (the core counts, it does not log).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SolveInfo {
