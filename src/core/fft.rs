@@ -436,6 +436,61 @@ mod tests {
     }
 
     #[test]
+    fn steady_kernel_is_the_upwind_difference_of_the_displacement_kernel() {
+        // (A(X) - A(X + dx))/dx p = (A p - A S p)/dx, S the shift by one
+        // element upstream, when p vanishes on the trailing column (the
+        // driver relies on this: loaded elements never touch the border).
+        let m = CombinedMaterial::new(
+            Material {
+                shear_modulus_pa: 80e9,
+                poisson_ratio: 0.28,
+            },
+            Material {
+                shear_modulus_pa: 50e9,
+                poisson_ratio: 0.33,
+            },
+        )
+        .unwrap();
+        let (nx, ny, dx) = (9, 7, 1e-4);
+        let ic = HalfSpaceInfluence::new(dx, 1.3e-4, &m);
+        let plan = Arc::new(ConvolutionPlan::new(nx, ny));
+        let steady = KernelSet::new(plan.clone(), ic, KernelKind::SteadyRolling);
+        let disp = KernelSet::new(plan, ic, KernelKind::Displacement);
+        let grid = crate::core::grid::Grid::new(nx, ny, dx, 1.3e-4, 0.0, 0.0).unwrap();
+        let mut seed = 3u64;
+        let mut p: Vec<f64> = (0..nx * ny).map(|_| 1e6 * lcg(&mut seed)).collect();
+        for iy in 0..ny {
+            p[iy * nx] = 0.0;
+        }
+        let mut sp = vec![0.0; nx * ny];
+        crate::core::tangential::shift_upstream(&grid, &p, &mut sp);
+        let (mut b, mut a, mut a_s) = (vec![0.0; nx * ny], vec![0.0; nx * ny], vec![0.0; nx * ny]);
+        let mut ws = steady.workspace();
+        steady.apply(
+            &mut ws,
+            &[(Component::N, &p)],
+            &mut [(Component::X, &mut b)],
+        );
+        disp.apply(
+            &mut ws,
+            &[(Component::N, &p)],
+            &mut [(Component::X, &mut a)],
+        );
+        disp.apply(
+            &mut ws,
+            &[(Component::N, &sp)],
+            &mut [(Component::X, &mut a_s)],
+        );
+        let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for i in 0..nx * ny {
+            assert!(
+                (b[i] - (a[i] - a_s[i]) / dx).abs() <= 1e-9 * scale,
+                "element {i}"
+            );
+        }
+    }
+
+    #[test]
     fn fast_sizes() {
         assert_eq!(fast_even_size(127), 128);
         assert_eq!(fast_even_size(87), 90);

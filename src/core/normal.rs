@@ -61,6 +61,7 @@ pub struct NormalScratch {
     t: Vec<f64>,
     r: Vec<f64>,
     g: Vec<f64>,
+    p_old: Vec<f64>,
 }
 
 impl NormalScratch {
@@ -71,6 +72,7 @@ impl NormalScratch {
             t: vec![0.0; n],
             r: vec![0.0; n],
             g: vec![0.0; n],
+            p_old: vec![0.0; n],
         }
     }
 }
@@ -94,7 +96,7 @@ pub fn solve_normal(
     settings: &NormalSettings,
 ) -> NormalOutcome {
     let n = h.len();
-    let NormalScratch { u, t, r, g } = scratch;
+    let NormalScratch { u, t, r, g, p_old } = scratch;
     let mut matvecs = 0;
     let force_control = matches!(load, NormalLoad::NormalForce(_));
     // Initial guess.
@@ -141,10 +143,20 @@ pub fn solve_normal(
     let mut residual = f64::INFINITY;
     let mut iterations = 0;
     t.fill(0.0);
+    // u = A p is carried along (u <- c (u - tau A t)) while the step is a
+    // plain CG step; it is recomputed after a projection or an entering
+    // element changed p otherwise, and every REFRESH iterations against drift.
+    const REFRESH: usize = 25;
+    let mut u_valid = false;
+    let mut since_refresh = 0;
     for it in 0..settings.max_iterations {
         iterations = it + 1;
-        matvec(k, ows, pn, u);
-        matvecs += 1;
+        if !u_valid || since_refresh >= REFRESH {
+            matvec(k, ows, pn, u);
+            matvecs += 1;
+            since_refresh = 0;
+        }
+        since_refresh += 1;
         for i in 0..n {
             g[i] = u[i] + h[i];
         }
@@ -178,32 +190,30 @@ pub fn solve_normal(
         g_old = gg;
         matvec(k, ows, t, r);
         matvecs += 1;
-        if force_control {
-            let mut rs = 0.0;
-            for i in 0..n {
-                if pn[i] > 0.0 {
-                    rs += r[i];
-                }
-            }
-            let rm = if nc > 0 { rs / nc as f64 } else { 0.0 };
-            r.iter_mut().for_each(|v| *v -= rm);
-        }
+        // Force control works with the gap relative to its mean over the
+        // contact set (the approach is unknown).
+        let rm = if force_control && nc > 0 {
+            (0..n).filter(|&i| pn[i] > 0.0).map(|i| r[i]).sum::<f64>() / nc as f64
+        } else {
+            0.0
+        };
         let (mut num, mut den) = (0.0, 0.0);
         for i in 0..n {
             if pn[i] > 0.0 {
                 num += g[i] * t[i];
-                den += r[i] * t[i];
+                den += (r[i] - rm) * t[i];
             }
         }
         let tau = if den > 0.0 { num / den } else { 0.0 };
-        // u is free now: keep the old pressures there to measure the change.
-        u.copy_from_slice(pn);
+        p_old.copy_from_slice(pn);
         let mut overlap = false;
+        let mut clamped = false;
         for i in 0..n {
-            let old = u[i];
+            let old = p_old[i];
             let mut v = if old > 0.0 { old - tau * t[i] } else { 0.0 };
             if v < 0.0 {
                 v = 0.0;
+                clamped = true;
             }
             if old <= 0.0 && g[i] < 0.0 {
                 // Overlapping element outside the contact set: enter with a
@@ -217,17 +227,24 @@ pub fn solve_normal(
             pn[i] = v;
         }
         conj = !overlap;
+        let mut scale = 1.0;
         if let NormalLoad::NormalForce(f) = load {
             let s: f64 = pn.iter().sum::<f64>() * area;
             if s > 0.0 {
-                let c = f / s;
-                pn.iter_mut().for_each(|p| *p *= c);
+                scale = f / s;
+                pn.iter_mut().for_each(|p| *p *= scale);
+            }
+        }
+        u_valid = !(overlap || clamped);
+        if u_valid {
+            for i in 0..n {
+                u[i] = scale * (u[i] - tau * r[i]);
             }
         }
         let mut change = 0.0;
         let mut total = 0.0;
         for i in 0..n {
-            change += (pn[i] - u[i]).abs();
+            change += (pn[i] - p_old[i]).abs();
             total += pn[i];
         }
         residual = if total > 0.0 {
@@ -241,8 +258,10 @@ pub fn solve_normal(
     }
     // Final approach from the converged pressures.
     if force_control {
-        matvec(k, ows, pn, u);
-        matvecs += 1;
+        if !u_valid {
+            matvec(k, ows, pn, u);
+            matvecs += 1;
+        }
         let (mut s, mut c) = (0.0, 0usize);
         for i in 0..n {
             if pn[i] > 0.0 {

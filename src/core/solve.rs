@@ -16,8 +16,8 @@ use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
 };
 use crate::core::tangential::{
-    solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch, TangentialInput,
-    TangentialOutput, TangentialScratch,
+    shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
+    TangentialInput, TangentialOutput, TangentialScratch,
 };
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
@@ -26,7 +26,6 @@ use crate::core::tangential::{
 pub struct ContactSolver {
     grid: Grid,
     displacement: Arc<KernelSet>,
-    steady: Option<Arc<KernelSet>>,
     ows: OperatorWorkspace,
     normal_scratch: NormalScratch,
     tangential_scratch: TangentialScratch,
@@ -55,18 +54,12 @@ impl ContactSolver {
     pub fn new(problem: &ContactProblem, cache: &KernelCache) -> Self {
         let grid = problem.grid;
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
-        let steady = if matches!(problem.kinematics, Kinematics::SteadyRolling(_)) {
-            Some(cache.get(&grid, &problem.material, KernelKind::SteadyRolling))
-        } else {
-            None
-        };
         let n = grid.len();
         let z = || vec![0.0; n];
         Self {
             grid,
             ows: displacement.workspace(),
             displacement,
-            steady,
             normal_scratch: NormalScratch::new(n),
             tangential_scratch: TangentialScratch::new(n),
             marching_scratch: MarchingScratch::new(n),
@@ -103,7 +96,6 @@ impl ContactSolver {
     pub fn solve(
         &mut self,
         problem: &ContactProblem,
-        cache: &KernelCache,
     ) -> Result<Vec<ContactSolution>, ContactError> {
         let t0 = Instant::now();
         problem.validate()?;
@@ -112,9 +104,6 @@ impl ContactSolver {
                 "grid",
                 "differs from the grid this solver was built for",
             ));
-        }
-        if matches!(problem.kinematics, Kinematics::SteadyRolling(_)) && self.steady.is_none() {
-            self.steady = Some(cache.get(&self.grid, &problem.material, KernelKind::SteadyRolling));
         }
         match &problem.kinematics {
             Kinematics::Frictionless | Kinematics::SteadyRolling(_) => {
@@ -133,13 +122,16 @@ impl ContactSolver {
                         self.old_ux.fill(0.0);
                         self.old_uy.fill(0.0);
                     } else {
+                        // The normal pressure displaces tangentially only when K != 0.
+                        let inputs: &[(Component, &[f64])] = &[
+                            (Component::X, &self.px),
+                            (Component::Y, &self.py),
+                            (Component::N, &self.pn),
+                        ];
+                        let used = if problem.material.is_coupled() { 3 } else { 2 };
                         self.displacement.apply(
                             &mut self.ows,
-                            &[
-                                (Component::X, &self.px),
-                                (Component::Y, &self.py),
-                                (Component::N, &self.pn),
-                            ],
+                            &inputs[..used],
                             &mut [
                                 (Component::X, &mut self.old_ux),
                                 (Component::Y, &mut self.old_uy),
@@ -258,9 +250,6 @@ impl ContactSolver {
             let input_prev: &[ElementState];
             let outcome = match (&problem.kinematics, shift) {
                 (Kinematics::SteadyRolling(cr), _) => {
-                    let k = self.steady.as_ref().ok_or_else(|| {
-                        ContactError::invalid("kinematics", "internal: steady kernels missing")
-                    })?;
                     for iy in 0..grid.ny {
                         let y = grid.y_m(iy);
                         for ix in 0..grid.nx {
@@ -271,7 +260,12 @@ impl ContactSolver {
                         }
                     }
                     if coupled {
-                        k.apply(
+                        // Steady-rolling slip of the normal pressure,
+                        // (A_tn p_n - A_tn S p_n)/dx with S the shift by one
+                        // element upstream (exact: the patch does not touch
+                        // the grid border).
+                        let dx = grid.dx_m;
+                        self.displacement.apply(
                             &mut self.ows,
                             &[(Component::N, &self.pn)],
                             &mut [
@@ -279,10 +273,23 @@ impl ContactSolver {
                                 (Component::Y, &mut self.tmp_y),
                             ],
                         );
-                        info.matvecs += 1;
                         for i in 0..n {
-                            self.cx[i] += self.tmp_x[i];
-                            self.cy[i] += self.tmp_y[i];
+                            self.cx[i] += self.tmp_x[i] / dx;
+                            self.cy[i] += self.tmp_y[i] / dx;
+                        }
+                        shift_upstream(&grid, &self.pn, &mut self.h_eff);
+                        self.displacement.apply(
+                            &mut self.ows,
+                            &[(Component::N, &self.h_eff)],
+                            &mut [
+                                (Component::X, &mut self.tmp_x),
+                                (Component::Y, &mut self.tmp_y),
+                            ],
+                        );
+                        info.matvecs += 2;
+                        for i in 0..n {
+                            self.cx[i] -= self.tmp_x[i] / dx;
+                            self.cy[i] -= self.tmp_y[i] / dx;
                         }
                     }
                     input_prev = &self.prev_state;
@@ -490,5 +497,5 @@ impl ContactSolver {
 pub fn solve(problem: &ContactProblem) -> Result<Vec<ContactSolution>, ContactError> {
     let cache = KernelCache::global();
     let mut s = ContactSolver::new(problem, cache);
-    s.solve(problem, cache)
+    s.solve(problem)
 }

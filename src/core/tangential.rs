@@ -282,19 +282,9 @@ pub fn solve_steady_marching(
     }
     for step in 0..=max_steps {
         // Shifted tractions: material at I was at I+1 (upstream) one step ago.
-        for iy in 0..ny {
-            let r = iy * nx;
-            for ix in 0..nx {
-                let (vx, vy, st) = if ix + 1 < nx {
-                    (px[r + ix + 1], py[r + ix + 1], state[r + ix + 1])
-                } else {
-                    (0.0, 0.0, ElementState::Exterior)
-                };
-                shx[r + ix] = vx;
-                shy[r + ix] = vy;
-                prev_state[r + ix] = st;
-            }
-        }
+        shift_upstream(grid, px, shx);
+        shift_upstream(grid, py, shy);
+        shift_upstream(grid, state, prev_state);
         tangential_matvec(k, ows, shx, shy, ashx, ashy);
         matvecs += 1;
         if step > 0 {
@@ -374,6 +364,17 @@ pub fn solve_steady_marching(
         matvecs,
         residual,
         converged: residual <= settings.tolerance,
+    }
+}
+
+/// `dst[I] = src[I + 1]` along every grid line (x), with the default value
+/// past the leading edge: the field one element upstream, where the material
+/// at I was one rolling step of dx ago.
+pub fn shift_upstream<T: Copy + Default>(grid: &Grid, src: &[T], dst: &mut [T]) {
+    let nx = grid.nx;
+    for (s, d) in src.chunks_exact(nx).zip(dst.chunks_exact_mut(nx)) {
+        d[..nx - 1].copy_from_slice(&s[1..]);
+        d[nx - 1] = T::default();
     }
 }
 
