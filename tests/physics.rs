@@ -267,3 +267,55 @@ fn assert_antisymmetric(s1: &ContactSolution, s2: &ContactSolution, rel: f64) {
         s2.totals.mz_nm
     );
 }
+
+#[test]
+fn dissimilar_compression_gives_self_equilibrated_tangential_tractions() {
+    // Dissimilar bodies (K != 0) pressed together with friction: the
+    // normal/tangential coupling produces radial tangential tractions whose
+    // resultant vanishes by symmetry (Johnson 1985, §5.4; Spence 1975), and
+    // which obey Coulomb's bound. The Panagiotopoulos loop must converge.
+    let mat = CombinedMaterial::new(
+        Material {
+            shear_modulus_pa: 80.0e9,
+            poisson_ratio: 0.28,
+        },
+        Material {
+            shear_modulus_pa: 26.0e9,
+            poisson_ratio: 0.33,
+        },
+    )
+    .unwrap();
+    assert!(mat.kalker_k.abs() > 0.05);
+    let step = ShiftStep {
+        load: NormalLoad::NormalForce(1.0e4),
+        shift_x_m: 0.0,
+        shift_y_m: 0.0,
+        rotation_rad: 0.0,
+    };
+    let p = quadratic(
+        mat,
+        1.0,
+        1.0,
+        1.0e4,
+        24,
+        24,
+        0.3,
+        Kinematics::Transient(vec![step]),
+    );
+    let s = one(&p);
+    assert!(s.info.coupling_iterations > 1);
+    assert!(
+        s.totals.max_traction_pa > 1e-3 * s.totals.max_pressure_pa,
+        "coupling produces tractions"
+    );
+    let f = s.totals.normal_force_n;
+    assert!(s.totals.fx_n.abs() < 1e-6 * f && s.totals.fy_n.abs() < 1e-6 * f);
+    let fl = &s.fields;
+    for i in 0..fl.pressure_pa.len() {
+        let t = fl.traction_x_pa[i].hypot(fl.traction_y_pa[i]);
+        assert!(
+            t <= 0.3 * fl.pressure_pa[i] * (1.0 + 1e-9) + 1e-6,
+            "element {i}"
+        );
+    }
+}

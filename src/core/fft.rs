@@ -373,8 +373,8 @@ mod tests {
         ((*seed >> 11) as f64) / ((1u64 << 53) as f64) - 0.5
     }
 
-    fn check_fft_equals_dense(nx: usize, ny: usize, kind: KernelKind) {
-        let m = CombinedMaterial::new(
+    fn dissimilar() -> CombinedMaterial {
+        CombinedMaterial::new(
             Material {
                 shear_modulus_pa: 80e9,
                 poisson_ratio: 0.28,
@@ -384,7 +384,11 @@ mod tests {
                 poisson_ratio: 0.33,
             },
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    fn check_fft_equals_dense(nx: usize, ny: usize, kind: KernelKind) {
+        let m = dissimilar();
         let ic = HalfSpaceInfluence::new(1e-4, 1.3e-4, &m);
         let plan = Arc::new(ConvolutionPlan::new(nx, ny));
         let set = KernelSet::new(plan, ic, kind);
@@ -440,17 +444,7 @@ mod tests {
         // (A(X) - A(X + dx))/dx p = (A p - A S p)/dx, S the shift by one
         // element upstream, when p vanishes on the trailing column (the
         // driver relies on this: loaded elements never touch the border).
-        let m = CombinedMaterial::new(
-            Material {
-                shear_modulus_pa: 80e9,
-                poisson_ratio: 0.28,
-            },
-            Material {
-                shear_modulus_pa: 50e9,
-                poisson_ratio: 0.33,
-            },
-        )
-        .unwrap();
+        let m = dissimilar();
         let (nx, ny, dx) = (9, 7, 1e-4);
         let ic = HalfSpaceInfluence::new(dx, 1.3e-4, &m);
         let plan = Arc::new(ConvolutionPlan::new(nx, ny));

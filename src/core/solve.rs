@@ -250,47 +250,31 @@ impl ContactSolver {
             let input_prev: &[ElementState];
             let outcome = match (&problem.kinematics, shift) {
                 (Kinematics::SteadyRolling(cr), _) => {
-                    for iy in 0..grid.ny {
-                        let y = grid.y_m(iy);
-                        for ix in 0..grid.nx {
-                            let x = grid.x_m(ix);
-                            let i = grid.index(ix, iy);
-                            self.cx[i] = cr.creepage_long - cr.spin_per_m * y;
-                            self.cy[i] = cr.creepage_lat + cr.spin_per_m * x;
-                        }
-                    }
+                    rigid_slip(
+                        &grid,
+                        [cr.creepage_long, cr.creepage_lat],
+                        cr.spin_per_m,
+                        &mut self.cx,
+                        &mut self.cy,
+                    );
                     if coupled {
                         // Steady-rolling slip of the normal pressure,
                         // (A_tn p_n - A_tn S p_n)/dx with S the shift by one
                         // element upstream (exact: the patch does not touch
                         // the grid border).
                         let dx = grid.dx_m;
-                        self.displacement.apply(
-                            &mut self.ows,
-                            &[(Component::N, &self.pn)],
-                            &mut [
-                                (Component::X, &mut self.tmp_x),
-                                (Component::Y, &mut self.tmp_y),
-                            ],
-                        );
-                        for i in 0..n {
-                            self.cx[i] += self.tmp_x[i] / dx;
-                            self.cy[i] += self.tmp_y[i] / dx;
-                        }
                         shift_upstream(&grid, &self.pn, &mut self.h_eff);
-                        self.displacement.apply(
-                            &mut self.ows,
-                            &[(Component::N, &self.h_eff)],
-                            &mut [
-                                (Component::X, &mut self.tmp_x),
-                                (Component::Y, &mut self.tmp_y),
-                            ],
-                        );
-                        info.matvecs += 2;
-                        for i in 0..n {
-                            self.cx[i] -= self.tmp_x[i] / dx;
-                            self.cy[i] -= self.tmp_y[i] / dx;
+                        for (p, f) in [(&self.pn, 1.0 / dx), (&self.h_eff, -1.0 / dx)] {
+                            add_tangential_of_normal(
+                                &self.displacement,
+                                &mut self.ows,
+                                p,
+                                f,
+                                [&mut self.tmp_x, &mut self.tmp_y],
+                                [&mut self.cx, &mut self.cy],
+                            );
                         }
+                        info.matvecs += 2;
                     }
                     input_prev = &self.prev_state;
                     let input = TangentialInput {
@@ -318,29 +302,21 @@ impl ContactSolver {
                     )
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
-                    for iy in 0..grid.ny {
-                        let y = grid.y_m(iy);
-                        for ix in 0..grid.nx {
-                            let x = grid.x_m(ix);
-                            let i = grid.index(ix, iy);
-                            self.cx[i] = shx - rot * y - self.old_ux[i];
-                            self.cy[i] = shy + rot * x - self.old_uy[i];
-                        }
+                    rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
+                    for i in 0..n {
+                        self.cx[i] -= self.old_ux[i];
+                        self.cy[i] -= self.old_uy[i];
                     }
                     if coupled {
-                        self.displacement.apply(
+                        add_tangential_of_normal(
+                            &self.displacement,
                             &mut self.ows,
-                            &[(Component::N, &self.pn)],
-                            &mut [
-                                (Component::X, &mut self.tmp_x),
-                                (Component::Y, &mut self.tmp_y),
-                            ],
+                            &self.pn,
+                            1.0,
+                            [&mut self.tmp_x, &mut self.tmp_y],
+                            [&mut self.cx, &mut self.cy],
                         );
                         info.matvecs += 1;
-                        for i in 0..n {
-                            self.cx[i] += self.tmp_x[i];
-                            self.cy[i] += self.tmp_y[i];
-                        }
                     }
                     let input = TangentialInput {
                         grid: &grid,
@@ -490,6 +466,41 @@ impl ContactSolver {
             }
         }
         t
+    }
+}
+
+/// Rigid slip of body 1 relative to body 2 at every element centre:
+/// w = (a_x - rot y, a_y + rot x), for creepages and spin (steady rolling) or
+/// shifts and rotation (transient step).
+fn rigid_slip(grid: &Grid, a: [f64; 2], rot: f64, wx: &mut [f64], wy: &mut [f64]) {
+    for iy in 0..grid.ny {
+        let y = grid.y_m(iy);
+        for ix in 0..grid.nx {
+            let i = grid.index(ix, iy);
+            wx[i] = a[0] - rot * y;
+            wy[i] = a[1] + rot * grid.x_m(ix);
+        }
+    }
+}
+
+/// `c += factor * A_tn p_n`: the tangential displacement difference of a
+/// normal pressure field (non-zero for dissimilar materials only).
+fn add_tangential_of_normal(
+    k: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    pn: &[f64],
+    factor: f64,
+    [tmp_x, tmp_y]: [&mut [f64]; 2],
+    [cx, cy]: [&mut [f64]; 2],
+) {
+    k.apply(
+        ows,
+        &[(Component::N, pn)],
+        &mut [(Component::X, tmp_x), (Component::Y, tmp_y)],
+    );
+    for i in 0..cx.len() {
+        cx[i] += factor * tmp_x[i];
+        cy[i] += factor * tmp_y[i];
     }
 }
 
