@@ -1,0 +1,193 @@
+//! Criterion benchmarks of the contact core. See benches/README.md for what
+//! each measures; run with `cargo bench --bench contact`.
+
+use std::hint::black_box;
+use std::sync::Arc;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+
+use railcontact::core::cache::KernelCache;
+use railcontact::core::fastsim::{Fastsim, FastsimInput};
+use railcontact::core::fft::{ConvolutionPlan, KernelSet};
+use railcontact::core::grid::Grid;
+use railcontact::core::hertz::{hertz, HertzLoad};
+use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
+use railcontact::core::material::{CombinedMaterial, Material};
+use railcontact::core::normal::NormalLoad;
+use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
+use railcontact::core::solve::ContactSolver;
+
+const SIZES: [usize; 3] = [32, 64, 128];
+
+fn steel() -> CombinedMaterial {
+    CombinedMaterial::identical(Material::STEEL).unwrap()
+}
+
+/// Hertz circle (A = B = 1/m, 10 kN) on an n x n grid 1.2 times the patch.
+fn circle(n: usize, kinematics: Kinematics) -> ContactProblem {
+    let m = steel();
+    let hz = hertz(
+        1.0,
+        1.0,
+        m.effective_modulus_pa(),
+        HertzLoad::NormalForce {
+            normal_force_n: 1e4,
+        },
+    )
+    .unwrap();
+    let w = 2.4 * hz.semi_axis_x_m;
+    let grid = Grid::centered(n, n, w, w).unwrap();
+    ContactProblem {
+        material: m,
+        friction: Friction::coulomb(0.3),
+        gap_m: ContactProblem::quadratic_gap(&grid, 1.0, 1.0),
+        grid,
+        load: NormalLoad::NormalForce(1e4),
+        kinematics,
+        settings: Default::default(),
+    }
+}
+
+fn kernels(c: &mut Criterion) {
+    let mut g = c.benchmark_group("kernel_build");
+    for n in SIZES {
+        let plan = Arc::new(ConvolutionPlan::new(n, n));
+        let ic = HalfSpaceInfluence::new(1e-4, 1e-4, &steel());
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| KernelSet::new(plan.clone(), ic, KernelKind::Displacement))
+        });
+    }
+    g.finish();
+}
+
+fn matvecs(c: &mut Criterion) {
+    let mut g = c.benchmark_group("matvec");
+    for n in SIZES {
+        let plan = Arc::new(ConvolutionPlan::new(n, n));
+        let set = KernelSet::new(
+            plan,
+            HalfSpaceInfluence::new(1e-4, 1e-4, &steel()),
+            KernelKind::Displacement,
+        );
+        let mut ws = set.workspace();
+        let p: Vec<f64> = (0..n * n).map(|i| (i % 7) as f64).collect();
+        let (mut ux, mut uy) = (vec![0.0; n * n], vec![0.0; n * n]);
+        g.bench_with_input(BenchmarkId::new("normal", n), &n, |b, _| {
+            b.iter(|| {
+                set.apply(
+                    &mut ws,
+                    &[(Component::N, &p)],
+                    &mut [(Component::N, &mut ux)],
+                )
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("tangential", n), &n, |b, _| {
+            b.iter(|| {
+                set.apply(
+                    &mut ws,
+                    &[(Component::X, &p), (Component::Y, &p)],
+                    &mut [(Component::X, &mut ux), (Component::Y, &mut uy)],
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
+fn normal_solve(c: &mut Criterion) {
+    let mut g = c.benchmark_group("normal_solve");
+    for n in SIZES {
+        let p = circle(n, Kinematics::Frictionless);
+        let cache = KernelCache::new(8);
+        let mut s = ContactSolver::new(&p, &cache);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| {
+                s.reset();
+                black_box(s.solve(&p).unwrap())
+            })
+        });
+    }
+    g.finish();
+}
+
+fn tangential_solves(c: &mut Criterion) {
+    let mut g = c.benchmark_group("tangential_solve");
+    g.sample_size(10);
+    // Steady rolling, partial slip (Fx about 0.8 mu Fn), cold start.
+    for n in [24, 32] {
+        let p = circle(
+            n,
+            Kinematics::SteadyRolling(Creepages {
+                creepage_long: 1e-3,
+                creepage_lat: 0.0,
+                spin_per_m: 0.0,
+            }),
+        );
+        let cache = KernelCache::new(8);
+        let mut s = ContactSolver::new(&p, &cache);
+        g.bench_with_input(BenchmarkId::new("steady_rolling", n), &n, |b, _| {
+            b.iter(|| {
+                s.reset();
+                black_box(s.solve(&p).unwrap())
+            })
+        });
+    }
+    // Transient: one loading step and one tangential shift step (Cattaneo).
+    for n in [32, 64] {
+        let step = |sx: f64| ShiftStep {
+            load: NormalLoad::NormalForce(1e4),
+            shift_x_m: sx,
+            shift_y_m: 0.0,
+            rotation_rad: 0.0,
+        };
+        let p = circle(n, Kinematics::Transient(vec![step(0.0), step(0.4e-6)]));
+        let cache = KernelCache::new(8);
+        let mut s = ContactSolver::new(&p, &cache);
+        g.bench_with_input(BenchmarkId::new("transient_2_steps", n), &n, |b, _| {
+            b.iter(|| black_box(s.solve(&p).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+fn reference_models(c: &mut Criterion) {
+    let e = steel().effective_modulus_pa();
+    c.bench_function("hertz", |b| {
+        b.iter(|| {
+            hertz(
+                black_box(1.0),
+                black_box(0.37),
+                e,
+                HertzLoad::NormalForce {
+                    normal_force_n: 1e4,
+                },
+            )
+            .unwrap()
+        })
+    });
+    let mut fs = Fastsim::new(40, 40).unwrap();
+    let input = FastsimInput {
+        semi_axis_x_m: 4e-3,
+        semi_axis_y_m: 6e-3,
+        normal_force_n: 1e5,
+        shear_modulus_pa: 81e9,
+        poisson_ratio: 0.3,
+        friction_coefficient: 0.3,
+        creepage_long: 1e-3,
+        creepage_lat: 5e-4,
+        spin_per_m: 0.2,
+    };
+    c.bench_function("fastsim_40x40", |b| {
+        b.iter(|| black_box(fs.solve(&input).unwrap()))
+    });
+}
+
+criterion_group!(
+    benches,
+    kernels,
+    matvecs,
+    normal_solve,
+    tangential_solves,
+    reference_models
+);
+criterion_main!(benches);
