@@ -127,6 +127,16 @@ impl HalfSpaceInfluence {
         }
     }
 
+    /// Combined shear modulus G [Pa].
+    pub fn shear_modulus_pa(&self) -> f64 {
+        1.0 / (std::f64::consts::PI * self.inv_pi_g)
+    }
+
+    /// Combined Poisson ratio [-].
+    pub fn poisson_ratio(&self) -> f64 {
+        self.nu
+    }
+
     /// Element size in x [m].
     pub fn dx_m(&self) -> f64 {
         self.dx

@@ -15,4 +15,5 @@ pub mod normal;
 pub mod problem;
 pub mod solution;
 pub mod solve;
+pub mod steady;
 pub mod tangential;

@@ -15,9 +15,10 @@ use crate::core::problem::{ContactProblem, Kinematics};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
 };
+use crate::core::steady::{solve_steady_newton, SteadyScratch};
 use crate::core::tangential::{
     shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
-    TangentialInput, TangentialOutput, TangentialScratch,
+    TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch,
 };
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
@@ -26,16 +27,14 @@ use crate::core::tangential::{
 pub struct ContactSolver {
     grid: Grid,
     displacement: Arc<KernelSet>,
+    /// Steady-rolling kernels, fetched when the first steady problem comes.
+    steady: Option<(Arc<KernelSet>, SteadyScratch)>,
     ows: OperatorWorkspace,
     normal_scratch: NormalScratch,
     tangential_scratch: TangentialScratch,
     marching_scratch: MarchingScratch,
     pn: Vec<f64>,
-    px: Vec<f64>,
-    py: Vec<f64>,
-    sx: Vec<f64>,
-    sy: Vec<f64>,
-    state: Vec<ElementState>,
+    tr: Tractions,
     prev_state: Vec<ElementState>,
     h_eff: Vec<f64>,
     cx: Vec<f64>,
@@ -55,20 +54,29 @@ impl ContactSolver {
         let grid = problem.grid;
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
         let n = grid.len();
+        let steady = matches!(problem.kinematics, Kinematics::SteadyRolling(_)).then(|| {
+            (
+                cache.get(&grid, &problem.material, KernelKind::SteadyRolling),
+                SteadyScratch::new(n),
+            )
+        });
         let z = || vec![0.0; n];
         Self {
             grid,
             ows: displacement.workspace(),
             displacement,
+            steady,
             normal_scratch: NormalScratch::new(n),
             tangential_scratch: TangentialScratch::new(n),
             marching_scratch: MarchingScratch::new(n),
             pn: z(),
-            px: z(),
-            py: z(),
-            sx: z(),
-            sy: z(),
-            state: vec![ElementState::Exterior; n],
+            tr: Tractions {
+                px: z(),
+                py: z(),
+                sx: z(),
+                sy: z(),
+                state: vec![ElementState::Exterior; n],
+            },
             prev_state: vec![ElementState::Exterior; n],
             h_eff: z(),
             cx: z(),
@@ -85,10 +93,10 @@ impl ContactSolver {
 
     /// Forgets the warm start.
     pub fn reset(&mut self) {
-        for v in [&mut self.pn, &mut self.px, &mut self.py] {
+        for v in [&mut self.pn, &mut self.tr.px, &mut self.tr.py] {
             v.fill(0.0);
         }
-        self.state.fill(ElementState::Exterior);
+        self.tr.state.fill(ElementState::Exterior);
     }
 
     /// Solves `problem` (which must have this solver's grid and materials):
@@ -124,8 +132,8 @@ impl ContactSolver {
                     } else {
                         // The normal pressure displaces tangentially only when K != 0.
                         let inputs: &[(Component, &[f64])] = &[
-                            (Component::X, &self.px),
-                            (Component::Y, &self.py),
+                            (Component::X, &self.tr.px),
+                            (Component::Y, &self.tr.py),
                             (Component::N, &self.pn),
                         ];
                         let used = if problem.material.is_coupled() { 3 } else { 2 };
@@ -138,7 +146,7 @@ impl ContactSolver {
                             ],
                         );
                     }
-                    self.prev_state.copy_from_slice(&self.state);
+                    self.prev_state.copy_from_slice(&self.tr.state);
                     let mut sol = self.solve_one(
                         problem,
                         step.load,
@@ -179,8 +187,8 @@ impl ContactSolver {
             }
         }
         if !frictional {
-            self.px.fill(0.0);
-            self.py.fill(0.0);
+            self.tr.px.fill(0.0);
+            self.tr.py.fill(0.0);
         }
         let s = &problem.settings;
         let ctol = if s.coupling_tolerance > 0.0 {
@@ -213,14 +221,14 @@ impl ContactSolver {
         for c in 0..cmax {
             info.coupling_iterations = c + 1;
             self.last_pn.copy_from_slice(&self.pn);
-            self.last_px.copy_from_slice(&self.px);
-            self.last_py.copy_from_slice(&self.py);
+            self.last_px.copy_from_slice(&self.tr.px);
+            self.last_py.copy_from_slice(&self.tr.py);
             // Normal problem with the normal displacement of the tangential tractions.
             self.h_eff.copy_from_slice(&problem.gap_m);
             if coupled && frictional {
                 self.displacement.apply(
                     &mut self.ows,
-                    &[(Component::X, &self.px), (Component::Y, &self.py)],
+                    &[(Component::X, &self.tr.px), (Component::Y, &self.tr.py)],
                     &mut [(Component::N, &mut self.tmp_x)],
                 );
                 info.matvecs += 1;
@@ -285,21 +293,46 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: input_prev,
                     };
-                    solve_steady_marching(
-                        &self.displacement,
+                    let (steady, steady_scratch) = self.steady.get_or_insert_with(|| {
+                        // A solver built for another kind of problem: build
+                        // the steady kernels here (not cached).
+                        let d = &self.displacement;
+                        (
+                            Arc::new(KernelSet::new(
+                                d.plan.clone(),
+                                d.influence,
+                                KernelKind::SteadyRolling,
+                            )),
+                            SteadyScratch::new(n),
+                        )
+                    });
+                    let newton = solve_steady_newton(
+                        steady,
                         &mut self.ows,
                         &input,
-                        TangentialOutput {
-                            px: &mut self.px,
-                            py: &mut self.py,
-                            sx: &mut self.sx,
-                            sy: &mut self.sy,
-                            state: &mut self.state,
-                        },
-                        &mut self.tangential_scratch,
-                        &mut self.marching_scratch,
+                        self.tr.output(),
+                        steady_scratch,
                         &s.tangential,
-                    )
+                    );
+                    if newton.converged {
+                        newton
+                    } else {
+                        // Fallback: time marching from Newton's last iterate.
+                        let m = solve_steady_marching(
+                            &self.displacement,
+                            &mut self.ows,
+                            &input,
+                            self.tr.output(),
+                            &mut self.tangential_scratch,
+                            &mut self.marching_scratch,
+                            &s.tangential,
+                        );
+                        TangentialOutcome {
+                            iterations: newton.iterations + m.iterations,
+                            matvecs: newton.matvecs + m.matvecs,
+                            ..m
+                        }
+                    }
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
@@ -330,13 +363,7 @@ impl ContactSolver {
                         &self.displacement,
                         &mut self.ows,
                         &input,
-                        TangentialOutput {
-                            px: &mut self.px,
-                            py: &mut self.py,
-                            sx: &mut self.sx,
-                            sy: &mut self.sy,
-                            state: &mut self.state,
-                        },
+                        self.tr.output(),
                         &mut self.tangential_scratch,
                         &s.tangential,
                     )
@@ -359,8 +386,8 @@ impl ContactSolver {
             let mut den = 0.0;
             for i in 0..n {
                 num += (self.pn[i] - self.last_pn[i]).abs()
-                    + (self.px[i] - self.last_px[i]).abs()
-                    + (self.py[i] - self.last_py[i]).abs();
+                    + (self.tr.px[i] - self.last_px[i]).abs()
+                    + (self.tr.py[i] - self.last_py[i]).abs();
                 den += self.pn[i].abs();
             }
             if den > 0.0 && num / den < ctol {
@@ -374,7 +401,8 @@ impl ContactSolver {
             info.status = SolveStatus::MaxIterations;
         }
         if !frictional {
-            self.state
+            self.tr
+                .state
                 .iter_mut()
                 .zip(self.pn.iter())
                 .for_each(|(s, &p)| {
@@ -384,8 +412,8 @@ impl ContactSolver {
                         ElementState::Exterior
                     }
                 });
-            self.sx.fill(0.0);
-            self.sy.fill(0.0);
+            self.tr.sx.fill(0.0);
+            self.tr.sy.fill(0.0);
         }
         // The patch must not touch the border of the grid.
         for iy in 0..grid.ny {
@@ -407,11 +435,11 @@ impl ContactSolver {
             info,
             fields: ElementFields {
                 pressure_pa: self.pn.clone(),
-                traction_x_pa: self.px.clone(),
-                traction_y_pa: self.py.clone(),
-                slip_x: self.sx.clone(),
-                slip_y: self.sy.clone(),
-                state: self.state.clone(),
+                traction_x_pa: self.tr.px.clone(),
+                traction_y_pa: self.tr.py.clone(),
+                slip_x: self.tr.sx.clone(),
+                slip_y: self.tr.sy.clone(),
+                state: self.tr.state.clone(),
                 gap_m: problem.gap_m.clone(),
             },
         })
@@ -432,7 +460,7 @@ impl ContactSolver {
             for ix in 0..g.nx {
                 let x = g.x_m(ix);
                 let i = g.index(ix, iy);
-                let (pn, px, py) = (self.pn[i], self.px[i], self.py[i]);
+                let (pn, px, py) = (self.pn[i], self.tr.px[i], self.tr.py[i]);
                 t.normal_force_n += pn * area;
                 t.fx_n += px * area;
                 t.fy_n += py * area;
@@ -445,10 +473,10 @@ impl ContactSolver {
                     xmax = xmax.max(ix);
                     ymin = ymin.min(iy);
                     ymax = ymax.max(iy);
-                    if self.state[i] == ElementState::Adhesion {
+                    if self.tr.state[i] == ElementState::Adhesion {
                         nadh += 1;
                     }
-                    dissipation -= (px * self.sx[i] + py * self.sy[i]) * area;
+                    dissipation -= (px * self.tr.sx[i] + py * self.tr.sy[i]) * area;
                 }
             }
         }
@@ -466,6 +494,27 @@ impl ContactSolver {
             }
         }
         t
+    }
+}
+
+/// Tangential tractions, slips and element states of the current solution.
+struct Tractions {
+    px: Vec<f64>,
+    py: Vec<f64>,
+    sx: Vec<f64>,
+    sy: Vec<f64>,
+    state: Vec<ElementState>,
+}
+
+impl Tractions {
+    fn output(&mut self) -> TangentialOutput<'_> {
+        TangentialOutput {
+            px: &mut self.px,
+            py: &mut self.py,
+            sx: &mut self.sx,
+            sy: &mut self.sy,
+            state: &mut self.state,
+        }
     }
 }
 

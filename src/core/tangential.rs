@@ -19,18 +19,14 @@
 //! * [`solve_steady_marching`]: steady rolling as the limit of transient
 //!   rolling with steps of one element, each step a convex problem as above,
 //!   stopped by the residual of Kalker's steady-state operator
-//!   (A(X) - A(X+dx))/dx. Robust but costly (hundreds to thousands of
-//!   matvecs). Known defect: in partial slip with lateral creepage or spin
-//!   the marching can stall at a residual of about 1e-3 (the status then
-//!   says `max_iterations`); to be replaced by a Newton/active-set solver.
-//!   Plain element Gauss–Seidel on the steady operator, with or
-//!   without FFT far field, diverges on smooth error modes (tested: the
-//!   operator is A(I - S)/dx, whose far field is of the same order as its
-//!   local part), so it is not offered.
+//!   (A(X) - A(X+dx))/dx. Robust but costly (hundreds of steps, thousands
+//!   of matvecs): the fallback of the fast steady solver,
+//!   [`crate::core::steady::solve_steady_newton`], and its reference in tests.
 //!
-//! Both stop when the natural residual max_I |p_I - P_I(p_I - s_I / d_I)| / max g,
-//! with P_I the projection on the disk of radius g_I and d_I the diagonal
-//! influence coefficient, is below the tolerance.
+//! All stop when the natural residual max_I |p_I - P_I(p_I - s_I / d)| / max g,
+//! with P_I the projection on the disk of radius g_I and d the mean of the
+//! two diagonal influence coefficients, is below the tolerance. It is zero
+//! exactly when Coulomb's law holds at every element.
 //!
 //! Static and kinetic friction: an element whose material was sliding just
 //! before (the upstream neighbour in steady rolling, the previous step in
@@ -132,10 +128,13 @@ pub fn local_coulomb(
     )
 }
 
-/// Natural residual of element I: |p - P(p - s/d)|.
+/// Natural residual of element I: |p - P(p - s/d)|, with one scalar d > 0
+/// for both components. (A per-component scaling would not do: p = P(p -
+/// D⁻¹s) makes p antiparallel to D⁻¹s, not to s, when D is not a multiple
+/// of the identity, so it is not Coulomb's law.)
 #[inline]
-fn natural_residual(p: [f64; 2], s: [f64; 2], d: [f64; 2], g: f64) -> f64 {
-    let mut z = [p[0] - s[0] / d[0], p[1] - s[1] / d[1]];
+pub(crate) fn natural_residual(p: [f64; 2], s: [f64; 2], d: f64, g: f64) -> f64 {
+    let mut z = [p[0] - s[0] / d, p[1] - s[1] / d];
     let zn = (z[0] * z[0] + z[1] * z[1]).sqrt();
     if zn > g {
         let c = if zn > 0.0 { g / zn } else { 0.0 };
@@ -255,10 +254,14 @@ pub fn solve_steady_marching(
         apx,
         apy,
     } = marching;
+    // Diagonal of the steady operator A(I - S)/dx.
     let d = [
-        k.value(Component::X, Component::X, 0, 0) / dx,
-        k.value(Component::Y, Component::Y, 0, 0) / dx,
+        (k.value(Component::X, Component::X, 0, 0) - k.value(Component::X, Component::X, 1, 0))
+            / dx,
+        (k.value(Component::Y, Component::Y, 0, 0) - k.value(Component::Y, Component::Y, 1, 0))
+            / dx,
     ];
+    let dbar = 0.5 * (d[0] + d[1]);
     let (mus, muk) = (
         input.friction.static_coefficient,
         input.friction.kinetic_coefficient,
@@ -302,7 +305,7 @@ pub fn solve_steady_marching(
                         input.cx[i] + (apx[i] - ashx[i]) / dx,
                         input.cy[i] + (apy[i] - ashy[i]) / dx,
                     ];
-                    res = res.max(natural_residual([px[i], py[i]], s, d, g));
+                    res = res.max(natural_residual([px[i], py[i]], s, dbar, g));
                 }
             }
             residual = if gmax > 0.0 { res / gmax } else { 0.0 };
@@ -488,6 +491,7 @@ pub fn solve_transient(
         k.value(Component::X, Component::X, 0, 0),
         k.value(Component::Y, Component::Y, 0, 0),
     ];
+    let dbar = 0.5 * (d[0] + d[1]);
     let TangentialOutput {
         px,
         py,
@@ -534,7 +538,7 @@ pub fn solve_transient(
         for i in 0..n {
             let g = bound(i);
             // Residual at y (cheap and a good proxy; exact check at the end).
-            res = res.max(natural_residual([yx[i], yy[i]], [ux[i], uy[i]], d, g));
+            res = res.max(natural_residual([yx[i], yy[i]], [ux[i], uy[i]], dbar, g));
             let mut zx = yx[i] - step * ux[i];
             let mut zy = yy[i] - step * uy[i];
             let m = (zx * zx + zy * zy).sqrt();
@@ -581,7 +585,7 @@ pub fn solve_transient(
         res = res.max(natural_residual(
             [px[i], py[i]],
             [ux[i], uy[i]],
-            d,
+            dbar,
             bound(i),
         ));
     }

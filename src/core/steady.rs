@@ -1,0 +1,866 @@
+//! Steady rolling by a semismooth (active-set) Newton method with
+//! right-preconditioned, restarted GMRES on FFT matvecs.
+//!
+//! The steady-state slip of body 1 relative to body 2 is s = w + B p with
+//! B = A(I - S)/dx, Kalker's discretisation of -du/dx (S takes the value one
+//! element upstream; see [`crate::core::influence::KernelKind::SteadyRolling`]).
+//! B is not symmetric, so the problem is not a minimisation and projected
+//! gradient methods do not apply; it is solved as the nonlinear system of
+//! Coulomb's law instead.
+//!
+//! Each Newton step:
+//!
+//! 1. Classify every loaded element by the natural map z = p - s/d (d the
+//!    diagonal of B): |z| <= g is adhesion, otherwise slip, and the slip
+//!    element's traction is put on the bound in the direction n = z/|z|.
+//! 2. Linearise Coulomb's law about that state, in reduced coordinates:
+//!    an adhesion element has two unknowns (dp) and the equations s = 0; a
+//!    slip element has one unknown, the traction's movement v along the
+//!    circle (tangent t = n rotated by +90°), and the equation t·s = 0 (slip
+//!    parallel to the traction). The Jacobian is P B P + E, with P the
+//!    projection on the free directions and E = diag(max(-n·s, 0)/g) on the
+//!    slip elements (the turning of t with the traction).
+//! 3. Solve it inexactly by GMRES (restart [`RESTART`]), right-preconditioned
+//!    by the exact inverse of the local upwind part of the operator,
+//!    diag(B)(I - S), restricted to the free directions: one sweep from the
+//!    leading edge along every grid line.
+//! 4. Update: adhesion tractions by dp, slip tractions by a rotation v/g.
+//!
+//! Near the solution the active set is fixed and the iteration is Newton's
+//! method for a smooth system, so it converges fast; a step that increases
+//! the residual is halved (at most [`MAX_HALVINGS`] times).
+
+use crate::core::creep::kalker_creep_coefficients;
+use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::influence::{Component, KernelKind};
+use crate::core::solution::ElementState;
+use crate::core::tangential::{
+    natural_residual, TangentialInput, TangentialOutcome, TangentialOutput, TangentialSettings,
+};
+
+/// GMRES restart length (Krylov vectors kept).
+pub const RESTART: usize = 40;
+/// Largest number of step halvings per Newton step.
+pub const MAX_HALVINGS: usize = 4;
+/// Largest number of Newton steps (also bounded by the settings' iteration
+/// limit); the caller falls back to time marching when they do not suffice.
+pub const MAX_NEWTON_STEPS: usize = 50;
+/// Largest number of FFT matvecs of one Newton solve.
+pub const MAX_NEWTON_MATVECS: usize = 4000;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    Exterior,
+    Adhesion,
+    Slip,
+}
+
+/// Buffers of [`solve_steady_newton`], allocated once per grid.
+pub struct SteadyScratch {
+    n: usize,
+    role: Vec<Role>,
+    g: Vec<f64>,
+    tx: Vec<f64>,
+    ty: Vec<f64>,
+    e: Vec<f64>,
+    ux: Vec<f64>,
+    uy: Vec<f64>,
+    sx: Vec<f64>,
+    sy: Vec<f64>,
+    px_old: Vec<f64>,
+    py_old: Vec<f64>,
+    rhs: Vec<f64>,
+    sol: Vec<f64>,
+    krylov: Krylov,
+}
+
+/// GMRES work space.
+struct Krylov {
+    work: Vec<f64>,
+    zvec: Vec<f64>,
+    basis: Vec<f64>,
+    hess: Vec<f64>,
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    gam: Vec<f64>,
+}
+
+impl SteadyScratch {
+    /// Buffers for `n` elements.
+    pub fn new(n: usize) -> Self {
+        let z = |m: usize| vec![0.0; m];
+        Self {
+            n,
+            role: vec![Role::Exterior; n],
+            g: z(n),
+            tx: z(n),
+            ty: z(n),
+            e: z(n),
+            ux: z(n),
+            uy: z(n),
+            sx: z(n),
+            sy: z(n),
+            px_old: z(n),
+            py_old: z(n),
+            rhs: z(2 * n),
+            sol: z(2 * n),
+            krylov: Krylov {
+                work: z(2 * n),
+                zvec: z(2 * n),
+                basis: z((RESTART + 1) * 2 * n),
+                hess: z((RESTART + 1) * RESTART),
+                cs: z(RESTART + 1),
+                sn: z(RESTART + 1),
+                gam: z(RESTART + 1),
+            },
+        }
+    }
+}
+
+/// The linearised problem of one Newton step (borrowed views of the scratch).
+struct Linear<'a> {
+    nx: usize,
+    ny: usize,
+    d: [f64; 2],
+    role: &'a [Role],
+    tx: &'a [f64],
+    ty: &'a [f64],
+    e: &'a [f64],
+}
+
+impl Linear<'_> {
+    /// y = (P B P + E) x for x in the range of P. One FFT matvec.
+    fn apply(
+        &self,
+        k: &KernelSet,
+        ows: &mut OperatorWorkspace,
+        x: &[f64],
+        y: &mut [f64],
+        ux: &mut [f64],
+        uy: &mut [f64],
+    ) {
+        let n = self.nx * self.ny;
+        let (xx, xy) = x.split_at(n);
+        k.apply(
+            ows,
+            &[(Component::X, xx), (Component::Y, xy)],
+            &mut [(Component::X, ux), (Component::Y, uy)],
+        );
+        let (yx, yy) = y.split_at_mut(n);
+        for i in 0..n {
+            match self.role[i] {
+                Role::Exterior => {
+                    yx[i] = 0.0;
+                    yy[i] = 0.0;
+                }
+                Role::Adhesion => {
+                    yx[i] = ux[i];
+                    yy[i] = uy[i];
+                }
+                Role::Slip => {
+                    let (t0, t1) = (self.tx[i], self.ty[i]);
+                    let c = t0 * ux[i] + t1 * uy[i] + self.e[i] * (t0 * xx[i] + t1 * xy[i]);
+                    yx[i] = c * t0;
+                    yy[i] = c * t1;
+                }
+            }
+        }
+    }
+
+    /// z = M⁻¹ r with M = P diag(B)(I - S) P + E: exact forward substitution
+    /// from the leading edge (large x) along every grid line. No matvec.
+    fn precondition(&self, r: &[f64], z: &mut [f64]) {
+        let n = self.nx * self.ny;
+        let (rx, ry) = r.split_at(n);
+        let (zx, zy) = z.split_at_mut(n);
+        let d = self.d;
+        for iy in 0..self.ny {
+            for ix in (0..self.nx).rev() {
+                let i = iy * self.nx + ix;
+                let (ax, ay) = if ix + 1 < self.nx && self.role[i + 1] != Role::Exterior {
+                    (zx[i + 1], zy[i + 1])
+                } else {
+                    (0.0, 0.0)
+                };
+                match self.role[i] {
+                    Role::Exterior => {
+                        zx[i] = 0.0;
+                        zy[i] = 0.0;
+                    }
+                    Role::Adhesion => {
+                        zx[i] = ax + rx[i] / d[0];
+                        zy[i] = ay + ry[i] / d[1];
+                    }
+                    Role::Slip => {
+                        let (t0, t1) = (self.tx[i], self.ty[i]);
+                        let num = t0 * rx[i] + t1 * ry[i] + d[0] * t0 * ax + d[1] * t1 * ay;
+                        let den = d[0] * t0 * t0 + d[1] * t1 * t1 + self.e[i];
+                        let v = num / den;
+                        zx[i] = v * t0;
+                        zy[i] = v * t1;
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Right-preconditioned restarted GMRES for `lin` x = rhs, from x = 0, to a
+/// residual `rel_tol`·|rhs| or `max_matvecs` products. Returns the matvecs used.
+#[allow(clippy::too_many_arguments)]
+fn gmres(
+    lin: &Linear<'_>,
+    k: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    rhs: &[f64],
+    x: &mut [f64],
+    sc: &mut Krylov,
+    [ux, uy]: [&mut [f64]; 2],
+    rel_tol: f64,
+    max_matvecs: usize,
+) -> usize {
+    let m2 = rhs.len();
+    x.fill(0.0);
+    let beta0 = dot(rhs, rhs).sqrt();
+    if beta0 == 0.0 {
+        return 0;
+    }
+    let target = rel_tol * beta0;
+    let mut matvecs = 0;
+    // Residual of the current x (x = 0 at the first cycle).
+    sc.work.copy_from_slice(rhs);
+    let mut beta = beta0;
+    loop {
+        let v0 = &mut sc.basis[..m2];
+        for (v, r) in v0.iter_mut().zip(sc.work.iter()) {
+            *v = r / beta;
+        }
+        sc.gam.fill(0.0);
+        sc.gam[0] = beta;
+        let mut used = 0;
+        let mut estimate = beta;
+        for j in 0..RESTART {
+            // w = A M⁻¹ v_j
+            lin.precondition(&sc.basis[j * m2..(j + 1) * m2], &mut sc.zvec);
+            let (head, tail) = sc.basis.split_at_mut((j + 1) * m2);
+            let w = &mut tail[..m2];
+            lin.apply(k, ows, &sc.zvec, w, ux, uy);
+            matvecs += 1;
+            // Modified Gram–Schmidt.
+            for i in 0..=j {
+                let vi = &head[i * m2..(i + 1) * m2];
+                let h = dot(w, vi);
+                sc.hess[i * RESTART + j] = h;
+                for (a, b) in w.iter_mut().zip(vi) {
+                    *a -= h * b;
+                }
+            }
+            let hn = dot(w, w).sqrt();
+            sc.hess[(j + 1) * RESTART + j] = hn;
+            if hn > 0.0 {
+                for a in w.iter_mut() {
+                    *a /= hn;
+                }
+            }
+            // Previous Givens rotations on column j, then a new one.
+            for i in 0..j {
+                let (a, b) = (sc.hess[i * RESTART + j], sc.hess[(i + 1) * RESTART + j]);
+                sc.hess[i * RESTART + j] = sc.cs[i] * a + sc.sn[i] * b;
+                sc.hess[(i + 1) * RESTART + j] = -sc.sn[i] * a + sc.cs[i] * b;
+            }
+            let (a, b) = (sc.hess[j * RESTART + j], sc.hess[(j + 1) * RESTART + j]);
+            let r = a.hypot(b);
+            let (c, s) = if r > 0.0 { (a / r, b / r) } else { (1.0, 0.0) };
+            sc.cs[j] = c;
+            sc.sn[j] = s;
+            sc.hess[j * RESTART + j] = r;
+            sc.hess[(j + 1) * RESTART + j] = 0.0;
+            sc.gam[j + 1] = -s * sc.gam[j];
+            sc.gam[j] *= c;
+            used = j + 1;
+            estimate = sc.gam[j + 1].abs();
+            if estimate <= target || matvecs >= max_matvecs || hn == 0.0 {
+                break;
+            }
+        }
+        // Back substitution H y = gam (y stored in gam).
+        for i in (0..used).rev() {
+            let mut acc = sc.gam[i];
+            for l in i + 1..used {
+                acc -= sc.hess[i * RESTART + l] * sc.gam[l];
+            }
+            let h = sc.hess[i * RESTART + i];
+            sc.gam[i] = if h != 0.0 { acc / h } else { 0.0 };
+        }
+        // x += M⁻¹ (V y)
+        sc.work.fill(0.0);
+        for i in 0..used {
+            let yi = sc.gam[i];
+            for (a, b) in sc.work.iter_mut().zip(&sc.basis[i * m2..(i + 1) * m2]) {
+                *a += yi * b;
+            }
+        }
+        lin.precondition(&sc.work, &mut sc.zvec);
+        for (a, b) in x.iter_mut().zip(sc.zvec.iter()) {
+            *a += b;
+        }
+        if matvecs >= max_matvecs || estimate <= target {
+            return matvecs;
+        }
+        // True residual for the restart.
+        lin.apply(k, ows, x, &mut sc.work, ux, uy);
+        matvecs += 1;
+        for (w, r) in sc.work.iter_mut().zip(rhs) {
+            *w = r - *w;
+        }
+        beta = dot(&sc.work, &sc.work).sqrt();
+        if beta <= target || matvecs >= max_matvecs {
+            return matvecs;
+        }
+    }
+}
+
+/// A cold start: Kalker's simplified theory (FASTSIM) on the grid, with the
+/// flexibilities L_i = 8a/(3 C_ii G) of the ellipse that has the contact
+/// area's length and width (spin uses the lateral one: only a start). Each
+/// grid line is integrated from the leading edge, p(x) = P_g(p(x + dx) - dx w / L).
+fn fastsim_guess(k: &KernelSet, input: &TangentialInput<'_>, px: &mut [f64], py: &mut [f64]) {
+    let grid = input.grid;
+    let (nx, ny) = (grid.nx, grid.ny);
+    let pn = input.pn;
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
+    for iy in 0..ny {
+        for ix in 0..nx {
+            if pn[iy * nx + ix] > 0.0 {
+                xmin = xmin.min(ix);
+                xmax = xmax.max(ix);
+                ymin = ymin.min(iy);
+                ymax = ymax.max(iy);
+            }
+        }
+    }
+    if xmin == usize::MAX {
+        return;
+    }
+    let a = 0.5 * (xmax - xmin + 1) as f64 * grid.dx_m;
+    let b = 0.5 * (ymax - ymin + 1) as f64 * grid.dy_m;
+    let g_mod = k.influence.shear_modulus_pa();
+    let nu = k.influence.poisson_ratio();
+    let c = kalker_creep_coefficients((a / b).clamp(0.05, 20.0), nu)
+        .map(|c| [c.c11, c.c22])
+        .unwrap_or([4.12, 3.67]);
+    let l1 = 8.0 * a / (3.0 * c[0] * g_mod);
+    let l2 = 8.0 * a / (3.0 * c[1] * g_mod);
+    let (mus, muk) = (
+        input.friction.static_coefficient,
+        input.friction.kinetic_coefficient,
+    );
+    let dx = grid.dx_m;
+    for iy in 0..ny {
+        let (mut ux, mut uy) = (0.0, 0.0);
+        for ix in (0..nx).rev() {
+            let i = iy * nx + ix;
+            if pn[i] <= 0.0 {
+                ux = 0.0;
+                uy = 0.0;
+                continue;
+            }
+            let (wx, wy) = (input.cx[i], input.cy[i]);
+            ux -= dx * wx / l1;
+            uy -= dx * wy / l2;
+            let g = pn[i] * mus.min(muk);
+            let m = ux.hypot(uy);
+            if m > g {
+                ux *= g / m;
+                uy *= g / m;
+            }
+            px[i] = ux;
+            py[i] = uy;
+        }
+    }
+}
+
+/// Steady rolling: `k` must be the [`KernelKind::SteadyRolling`] kernel set;
+/// `cx`, `cy` in `input` hold the rigid slip w (plus any normal coupling)
+/// [-]. `out.px`, `out.py` are the initial guess (warm start) on entry.
+pub fn solve_steady_newton(
+    k: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    input: &TangentialInput<'_>,
+    out: TangentialOutput<'_>,
+    scratch: &mut SteadyScratch,
+    settings: &TangentialSettings,
+) -> TangentialOutcome {
+    debug_assert_eq!(k.kind, KernelKind::SteadyRolling);
+    let grid = input.grid;
+    let (nx, ny) = (grid.nx, grid.ny);
+    let n = nx * ny;
+    debug_assert_eq!(scratch.n, n);
+    let TangentialOutput {
+        px,
+        py,
+        sx: sx_out,
+        sy: sy_out,
+        state,
+    } = out;
+    let SteadyScratch {
+        role,
+        g,
+        tx,
+        ty,
+        e,
+        ux,
+        uy,
+        sx,
+        sy,
+        px_old,
+        py_old,
+        rhs,
+        sol,
+        krylov,
+        ..
+    } = scratch;
+    let d = [
+        k.value(Component::X, Component::X, 0, 0),
+        k.value(Component::Y, Component::Y, 0, 0),
+    ];
+    let dbar = 0.5 * (d[0] + d[1]);
+    let (mus, muk) = (
+        input.friction.static_coefficient,
+        input.friction.kinetic_coefficient,
+    );
+    let pn = input.pn;
+    let gmax = pn.iter().fold(0.0f64, |a, &v| a.max(v)) * mus.max(muk);
+    // Start: the warm start, zero outside the contact area, within the bound.
+    for i in 0..n {
+        role[i] = if pn[i] > 0.0 {
+            Role::Adhesion
+        } else {
+            Role::Exterior
+        };
+        if pn[i] <= 0.0 {
+            px[i] = 0.0;
+            py[i] = 0.0;
+        }
+    }
+    if px.iter().chain(py.iter()).all(|&v| v == 0.0) {
+        fastsim_guess(k, input, px, py);
+    }
+    let bounds = |role: &[Role], g: &mut [f64]| {
+        for iy in 0..ny {
+            for ix in 0..nx {
+                let i = iy * nx + ix;
+                let up_slip = ix + 1 < nx && role[i + 1] == Role::Slip;
+                g[i] = if pn[i] > 0.0 {
+                    pn[i] * if up_slip { muk } else { mus }
+                } else {
+                    0.0
+                };
+            }
+        }
+    };
+    bounds(role, g);
+    for i in 0..n {
+        let m = px[i].hypot(py[i]);
+        if m > g[i] {
+            let c = if m > 0.0 { g[i] / m } else { 0.0 };
+            px[i] *= c;
+            py[i] *= c;
+        }
+    }
+    let slip = |k: &KernelSet,
+                ows: &mut OperatorWorkspace,
+                px: &[f64],
+                py: &[f64],
+                sx: &mut [f64],
+                sy: &mut [f64]| {
+        k.apply(
+            ows,
+            &[(Component::X, px), (Component::Y, py)],
+            &mut [(Component::X, sx), (Component::Y, sy)],
+        );
+        for i in 0..n {
+            sx[i] += input.cx[i];
+            sy[i] += input.cy[i];
+        }
+    };
+    // (max, root-sum-square) of the natural residual, relative to max g.
+    let residual_of = |px: &[f64], py: &[f64], sx: &[f64], sy: &[f64], g: &[f64]| -> (f64, f64) {
+        let mut r: f64 = 0.0;
+        let mut r2 = 0.0;
+        for i in 0..n {
+            if pn[i] > 0.0 {
+                let e = natural_residual([px[i], py[i]], [sx[i], sy[i]], dbar, g[i]);
+                r = r.max(e);
+                r2 += e * e;
+            }
+        }
+        if gmax > 0.0 {
+            (r / gmax, r2.sqrt() / gmax)
+        } else {
+            (0.0, 0.0)
+        }
+    };
+    let mut matvecs = 0;
+    slip(k, ows, px, py, sx, sy);
+    matvecs += 1;
+    let (mut residual, mut merit) = residual_of(px, py, sx, sy, g);
+    let mut iterations = 0;
+    let max_newton = settings.max_iterations.clamp(1, MAX_NEWTON_STEPS);
+    let matvec_budget = MAX_NEWTON_MATVECS;
+    while residual > settings.tolerance && iterations < max_newton && matvecs < matvec_budget {
+        iterations += 1;
+        // 1. Active set and slip directions from the natural map. A slip
+        // element already on its bound keeps its traction (its direction is
+        // a Newton unknown); others are projected on the bound along z.
+        let mut projected = false;
+        for i in 0..n {
+            if pn[i] <= 0.0 {
+                role[i] = Role::Exterior;
+                continue;
+            }
+            let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
+            let zn = z[0].hypot(z[1]);
+            role[i] = if zn <= g[i] || zn == 0.0 {
+                Role::Adhesion
+            } else {
+                Role::Slip
+            };
+        }
+        bounds(role, g);
+        for i in 0..n {
+            if role[i] != Role::Slip {
+                continue;
+            }
+            let m = px[i].hypot(py[i]);
+            let (n0, n1) = if m > 0.0 && (m - g[i]).abs() <= 1e-12 * g[i] {
+                (px[i] / m, py[i] / m)
+            } else {
+                let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
+                let zn = z[0].hypot(z[1]);
+                projected = true;
+                (z[0] / zn, z[1] / zn)
+            };
+            px[i] = g[i] * n0;
+            py[i] = g[i] * n1;
+            tx[i] = -n1;
+            ty[i] = n0;
+        }
+        if projected {
+            slip(k, ows, px, py, sx, sy);
+            matvecs += 1;
+        }
+        // 2. Linearised system.
+        for i in 0..n {
+            match role[i] {
+                Role::Exterior => {
+                    rhs[i] = 0.0;
+                    rhs[n + i] = 0.0;
+                }
+                Role::Adhesion => {
+                    rhs[i] = -sx[i];
+                    rhs[n + i] = -sy[i];
+                }
+                Role::Slip => {
+                    let (t0, t1) = (tx[i], ty[i]);
+                    // n = (t1, -t0): e = max(-n·s, 0)/g.
+                    let ns = t1 * sx[i] - t0 * sy[i];
+                    e[i] = (-ns).max(0.0) / g[i];
+                    let c = -(t0 * sx[i] + t1 * sy[i]);
+                    rhs[i] = c * t0;
+                    rhs[n + i] = c * t1;
+                }
+            }
+        }
+        let lin = Linear {
+            nx,
+            ny,
+            d,
+            role,
+            tx,
+            ty,
+            e,
+        };
+        let eta = (0.1 * residual.sqrt()).clamp(1e-4, 0.1);
+        matvecs += gmres(
+            &lin,
+            k,
+            ows,
+            rhs,
+            sol,
+            krylov,
+            [ux, uy],
+            eta,
+            matvec_budget.saturating_sub(matvecs).max(1),
+        );
+        // 3. Update with step halving on a residual increase.
+        px_old.copy_from_slice(px);
+        py_old.copy_from_slice(py);
+        let mut lambda = 1.0;
+        for halving in 0..=MAX_HALVINGS {
+            for i in 0..n {
+                match role[i] {
+                    Role::Exterior => {
+                        px[i] = 0.0;
+                        py[i] = 0.0;
+                    }
+                    Role::Adhesion => {
+                        px[i] = px_old[i] + lambda * sol[i];
+                        py[i] = py_old[i] + lambda * sol[n + i];
+                        let m = px[i].hypot(py[i]);
+                        if m > g[i] {
+                            px[i] *= g[i] / m;
+                            py[i] *= g[i] / m;
+                        }
+                    }
+                    Role::Slip => {
+                        let (t0, t1) = (tx[i], ty[i]);
+                        let v = lambda * (t0 * sol[i] + t1 * sol[n + i]);
+                        let ang = (v / g[i]).clamp(-1.0, 1.0);
+                        let (sa, ca) = ang.sin_cos();
+                        // n = (t1, -t0)
+                        let (n0, n1) = (t1, -t0);
+                        px[i] = g[i] * (n0 * ca + t0 * sa);
+                        py[i] = g[i] * (n1 * ca + t1 * sa);
+                    }
+                }
+            }
+            slip(k, ows, px, py, sx, sy);
+            matvecs += 1;
+            let (r, m) = residual_of(px, py, sx, sy, g);
+            if m < merit || halving == MAX_HALVINGS {
+                merit = m;
+                residual = r;
+                break;
+            }
+            lambda *= 0.5;
+        }
+    }
+    // States and slips of the answer.
+    for iy in 0..ny {
+        for ix in (0..nx).rev() {
+            let i = iy * nx + ix;
+            if pn[i] <= 0.0 {
+                state[i] = ElementState::Exterior;
+                px[i] = 0.0;
+                py[i] = 0.0;
+                sx_out[i] = 0.0;
+                sy_out[i] = 0.0;
+                continue;
+            }
+            let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
+            if z[0].hypot(z[1]) > g[i] {
+                state[i] = ElementState::Slip;
+                sx_out[i] = sx[i];
+                sy_out[i] = sy[i];
+            } else {
+                state[i] = ElementState::Adhesion;
+                sx_out[i] = 0.0;
+                sy_out[i] = 0.0;
+            }
+        }
+    }
+    TangentialOutcome {
+        iterations,
+        matvecs,
+        residual,
+        converged: residual <= settings.tolerance,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::fft::ConvolutionPlan;
+    use crate::core::grid::Grid;
+    use crate::core::influence::HalfSpaceInfluence;
+    use crate::core::material::{CombinedMaterial, Material};
+    use crate::core::tangential::{
+        solve_steady_marching, FrictionBounds, MarchingScratch, TangentialScratch,
+    };
+    use std::sync::Arc;
+
+    struct Case {
+        grid: Grid,
+        pn: Vec<f64>,
+        cx: Vec<f64>,
+        cy: Vec<f64>,
+        steady: KernelSet,
+        displacement: KernelSet,
+    }
+
+    /// Elliptic Hertz pressure (a = 4 mm, b = 3 mm, p0 = 1 GPa) on a grid
+    /// 1.25 times the patch, with rigid slip from creepages and spin.
+    fn case(n: usize, xi: f64, eta: f64, phi: f64) -> Case {
+        let (a, b, p0) = (4e-3, 3e-3, 1e9);
+        let grid = Grid::centered(n, n, 2.5 * a, 2.5 * b).unwrap();
+        let mut pn = vec![0.0; grid.len()];
+        let mut cx = vec![0.0; grid.len()];
+        let mut cy = vec![0.0; grid.len()];
+        for iy in 0..n {
+            for ix in 0..n {
+                let (x, y) = (grid.x_m(ix), grid.y_m(iy));
+                let i = grid.index(ix, iy);
+                let r = 1.0 - (x / a).powi(2) - (y / b).powi(2);
+                pn[i] = if r > 0.0 { p0 * r.sqrt() } else { 0.0 };
+                cx[i] = xi - phi * y;
+                cy[i] = eta + phi * x;
+            }
+        }
+        let mat = CombinedMaterial::identical(Material {
+            shear_modulus_pa: 80e9,
+            poisson_ratio: 0.28,
+        })
+        .unwrap();
+        let plan = Arc::new(ConvolutionPlan::new(n, n));
+        let inf = HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, &mat);
+        Case {
+            grid,
+            pn,
+            cx,
+            cy,
+            steady: KernelSet::new(plan.clone(), inf, KernelKind::SteadyRolling),
+            displacement: KernelSet::new(plan, inf, KernelKind::Displacement),
+        }
+    }
+
+    struct Answer {
+        px: Vec<f64>,
+        py: Vec<f64>,
+        sx: Vec<f64>,
+        sy: Vec<f64>,
+        state: Vec<ElementState>,
+        outcome: TangentialOutcome,
+    }
+
+    fn run(c: &Case, mu: f64, newton: bool) -> Answer {
+        let n = c.grid.len();
+        let prev = vec![ElementState::Exterior; n];
+        let input = TangentialInput {
+            grid: &c.grid,
+            pn: &c.pn,
+            friction: FrictionBounds {
+                static_coefficient: mu,
+                kinetic_coefficient: mu,
+            },
+            cx: &c.cx,
+            cy: &c.cy,
+            previous_state: &prev,
+        };
+        let mut a = Answer {
+            px: vec![0.0; n],
+            py: vec![0.0; n],
+            sx: vec![0.0; n],
+            sy: vec![0.0; n],
+            state: vec![ElementState::Exterior; n],
+            outcome: TangentialOutcome {
+                iterations: 0,
+                matvecs: 0,
+                residual: 0.0,
+                converged: false,
+            },
+        };
+        let out = TangentialOutput {
+            px: &mut a.px,
+            py: &mut a.py,
+            sx: &mut a.sx,
+            sy: &mut a.sy,
+            state: &mut a.state,
+        };
+        let settings = TangentialSettings {
+            tolerance: 1e-9,
+            max_iterations: 2000,
+        };
+        a.outcome = if newton {
+            let mut ows = c.steady.workspace();
+            let mut sc = SteadyScratch::new(n);
+            solve_steady_newton(&c.steady, &mut ows, &input, out, &mut sc, &settings)
+        } else {
+            let mut ows = c.displacement.workspace();
+            solve_steady_marching(
+                &c.displacement,
+                &mut ows,
+                &input,
+                out,
+                &mut TangentialScratch::new(n),
+                &mut MarchingScratch::new(n),
+                &settings,
+            )
+        };
+        a
+    }
+
+    /// Coulomb's law checked element by element on the returned fields:
+    /// |p| <= mu p_n; slip elements on the bound with the traction opposite
+    /// to the slip.
+    fn check_coulomb(c: &Case, a: &Answer, mu: f64) -> (usize, usize) {
+        let (mut nadh, mut nslip) = (0, 0);
+        for i in 0..c.grid.len() {
+            let g = mu * c.pn[i];
+            let m = a.px[i].hypot(a.py[i]);
+            assert!(
+                m <= g * (1.0 + 1e-12) + 1e-300,
+                "element {i}: |p| {m} > g {g}"
+            );
+            match a.state[i] {
+                ElementState::Slip => {
+                    nslip += 1;
+                    let s = a.sx[i].hypot(a.sy[i]);
+                    assert!((m - g).abs() <= 1e-9 * g, "slip element {i} off the bound");
+                    let cos = (a.px[i] * a.sx[i] + a.py[i] * a.sy[i]) / (m * s);
+                    assert!(
+                        cos < -1.0 + 1e-6,
+                        "element {i}: traction not opposite slip ({cos})"
+                    );
+                }
+                ElementState::Adhesion => nadh += 1,
+                ElementState::Exterior => assert_eq!(c.pn[i], 0.0),
+            }
+        }
+        (nadh, nslip)
+    }
+
+    #[test]
+    fn newton_agrees_with_time_marching_in_partial_slip_with_spin() {
+        // Two independent methods for the same discrete problem: the
+        // Newton/GMRES solution and the limit of transient rolling.
+        let mu = 0.3;
+        let c = case(24, 4e-4, 3e-4, 0.5);
+        let newton = run(&c, mu, true);
+        let march = run(&c, mu, false);
+        assert!(newton.outcome.converged, "{:?}", newton.outcome);
+        assert!(march.outcome.converged, "{:?}", march.outcome);
+        let (nadh, nslip) = check_coulomb(&c, &newton, mu);
+        assert!(
+            nadh > 20 && nslip > 20,
+            "not a mixed patch: {nadh} adhesion, {nslip} slip"
+        );
+        let fmax = c.pn.iter().fold(0.0f64, |m, &v| m.max(v)) * mu;
+        for i in 0..c.grid.len() {
+            let d = (newton.px[i] - march.px[i]).hypot(newton.py[i] - march.py[i]);
+            assert!(d <= 1e-6 * fmax, "element {i} differs by {d}");
+        }
+        // Far fewer products than marching.
+        assert!(newton.outcome.matvecs * 10 < march.outcome.matvecs);
+    }
+
+    #[test]
+    fn full_slip_and_full_adhesion_limits() {
+        // Large creepage: every loaded element slides, the traction is mu p_n
+        // opposite the (uniform) rigid slip where the elastic part is small.
+        let c = case(20, 0.05, 0.0, 0.0);
+        let a = run(&c, 0.3, true);
+        assert!(a.outcome.converged, "{:?}", a.outcome);
+        let (nadh, _) = check_coulomb(&c, &a, 0.3);
+        assert_eq!(nadh, 0);
+        // Huge friction: all adhesion, slip zero everywhere.
+        let a = run(&c, 1e6, true);
+        assert!(a.outcome.converged, "{:?}", a.outcome);
+        let (_, nslip) = check_coulomb(&c, &a, 1e6);
+        assert_eq!(nslip, 0);
+    }
+}
