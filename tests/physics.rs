@@ -79,7 +79,8 @@ fn exact_normal_solution_matches_hertz_for_three_aspect_ratios() {
     // itself checked against closed forms and Timoshenko & Goodier's table.
     // Acceptance (issue): within 2% with about 30 or more elements across.
     let mat = material(0.28);
-    for &(a, b) in &[(1.0, 1.0), (1.0, 3.9), (3.9, 1.0)] {
+    // Curvature ratio 5.3 gives a/b = 0.33 and 3.0.
+    for &(a, b) in &[(1.0, 1.0), (1.0, 5.3), (5.3, 1.0)] {
         let hz = hertz(
             a,
             b,
@@ -92,6 +93,11 @@ fn exact_normal_solution_matches_hertz_for_three_aspect_ratios() {
         let p = quadratic(mat, a, b, 1.0e4, 40, 40, 0.3, Kinematics::Frictionless);
         let s = one(&p);
         let ratio = hz.semi_axis_x_m / hz.semi_axis_y_m;
+        assert!(
+            (0.3..=0.35).contains(&ratio)
+                || (0.99..=1.01).contains(&ratio)
+                || (2.9..=3.1).contains(&ratio)
+        );
         let (ax, ay) = moment_semi_axes(&p, &s);
         let checks = [
             ("max pressure", s.totals.max_pressure_pa, hz.max_pressure_pa),
@@ -126,10 +132,10 @@ fn cattaneo_mindlin_stick_radius() {
     )
     .unwrap();
     // Shift steps of increasing size, monotonic loading.
-    let steps: Vec<ShiftStep> = (0..4)
+    let steps: Vec<ShiftStep> = (0..9)
         .map(|k| ShiftStep {
             load: NormalLoad::NormalForce(f),
-            shift_x_m: if k == 0 { 0.0 } else { 0.2e-6 },
+            shift_x_m: if k == 0 { 0.0 } else { 0.7e-6 },
             shift_y_m: 0.0,
             rotation_rad: 0.0,
         })
@@ -151,6 +157,7 @@ fn cattaneo_mindlin_stick_radius() {
         let c = (nadh as f64 * area / std::f64::consts::PI).sqrt();
         let want = (1.0 - q).cbrt();
         let got = c / hz.semi_axis_x_m;
+        eprintln!("Fx/muFn = {q:.3}: c/a = {got:.4} vs {want:.4}");
         assert!(
             (got / want - 1.0).abs() < 0.03,
             "Fx/muFn = {q:.3}: c/a = {got:.4} vs {want:.4}"
@@ -159,7 +166,7 @@ fn cattaneo_mindlin_stick_radius() {
         assert!(s.totals.fx_n < 0.0);
         checked += 1;
     }
-    assert_eq!(checked, 3);
+    assert_eq!(checked, 8);
 }
 
 #[test]
@@ -213,9 +220,8 @@ fn creep_coefficients_match_kalker_table() {
 #[test]
 fn reversing_creepages_reverses_forces() {
     // Identical bodies: the tangential problem is odd in the creepages
-    // (steady rolling in full adhesion, mu large). Partial slip is covered by
-    // the Cattaneo test; combined x/y shifts did not converge to 1e-7 within
-    // 2000 FISTA iterations (open defect).
+    // (steady rolling in full adhesion, mu large; partial slip with spin is
+    // the next test).
     let mat = material(0.28);
     let cr = Creepages {
         creepage_long: 5e-6,
@@ -318,4 +324,163 @@ fn dissimilar_compression_gives_self_equilibrated_tangential_tractions() {
             "element {i}"
         );
     }
+}
+
+/// Grid of the spin test. C33 converges slowly with the grid (a/b = 1,
+/// measured: 32x32 +8.2 %, 64x64 +3.2 %, 96x96 +2.2 %, 128x128 +1.5 %
+/// against Kalker's 1.19; C23 is within 2.5 % from 24x24 on).
+const NSPIN: usize = 128;
+
+#[test]
+fn spin_creep_coefficients_match_kalker_table() {
+    // Reference: Kalker 1990, Table E3 (core::creep::KALKER_TABLE), nu = 0.25;
+    // linear theory (Kalker 1967; Johnson 1985 eq. 8.110) with c = sqrt(ab):
+    // Fy = -G c^3 C23 phi, Mz = -G c^4 C33 phi for pure spin phi, and
+    // Mz = G c^3 C23 eta for pure lateral creepage (reciprocity).
+    // Small creepage, mu large: full adhesion.
+    let mat = material(0.25);
+    let g = mat.shear_modulus_pa;
+    for &(a, b) in &[(1.0, 1.0), (1.0, 0.4)] {
+        let hz = hertz(
+            a,
+            b,
+            mat.effective_modulus_pa(),
+            HertzLoad::NormalForce {
+                normal_force_n: 1.0e4,
+            },
+        )
+        .unwrap();
+        let c = (hz.semi_axis_x_m * hz.semi_axis_y_m).sqrt();
+        let k = kalker_creep_coefficients(hz.semi_axis_x_m / hz.semi_axis_y_m, 0.25).unwrap();
+        let run = |eta: f64, phi: f64| {
+            one(&quadratic(
+                mat,
+                a,
+                b,
+                1.0e4,
+                NSPIN,
+                NSPIN,
+                100.0,
+                Kinematics::SteadyRolling(Creepages {
+                    creepage_long: 0.0,
+                    creepage_lat: eta,
+                    spin_per_m: phi,
+                }),
+            ))
+        };
+        let phi = 1e-6 / c;
+        let s = run(0.0, phi);
+        let c23 = -s.totals.fy_n / (g * c.powi(3) * phi);
+        let c33 = -s.totals.mz_nm / (g * c.powi(4) * phi);
+        let eta = 1e-6;
+        let s2 = run(eta, 0.0);
+        let c23_recip = s2.totals.mz_nm / (g * c.powi(3) * eta);
+        eprintln!(
+            "a/b {:.3}: C23 {c23:.4} / {c23_recip:.4} vs {:.4}, C33 {c33:.4} vs {:.4}",
+            hz.semi_axis_x_m / hz.semi_axis_y_m,
+            k.c23,
+            k.c33
+        );
+        assert!((c23 / k.c23 - 1.0).abs() < 0.03, "C23 {c23} vs {}", k.c23);
+        assert!(
+            (c23_recip / k.c23 - 1.0).abs() < 0.03,
+            "C23 (Mz) {c23_recip} vs {}",
+            k.c23
+        );
+        assert!((c33 / k.c33 - 1.0).abs() < 0.03, "C33 {c33} vs {}", k.c33);
+    }
+}
+
+#[test]
+fn carter_creep_curve_on_a_long_strip() {
+    // Reference: Carter (1926); Johnson 1985 §8.2, eqs. 8.31-8.34. For 2-D
+    // rolling of identical cylinders the creep force per unit width is
+    // F/(mu N) = -(1 - (1 - xi/xi_sat)^2) below saturation, with
+    // xi_sat = 2 (1 - nu) mu p0 / G. A long flat-ended strip
+    // h = A x^2 + B max(0, |y| - w)^2 with w = 6a is two-dimensional at its
+    // centre; the test compares the centre line's force per width, with the
+    // line's own 2-D Hertz p0 = sqrt(N' E*/(pi R)), R = 1/(2A), E* = G/(1-nu).
+    let nu = 0.28;
+    let mat = material(nu);
+    let g = mat.shear_modulus_pa;
+    let estar = g / (1.0 - nu);
+    let (a_curv, b_curv, mu) = (1.0, 1.0, 0.3);
+    // Half-length of the strip's centre section for N' = 2e6 N/m:
+    // a = sqrt(4 N' R / (pi E*)).
+    let r = 1.0 / (2.0 * a_curv);
+    let half = (4.0 * 2.0e6 * r / (std::f64::consts::PI * estar)).sqrt();
+    let w = 6.0 * half;
+    let (nx, ny) = (36, 40);
+    let grid = Grid::centered(nx, ny, 2.7 * half, 2.0 * (w + 2.0 * half)).unwrap();
+    let mut gap = vec![0.0; grid.len()];
+    for iy in 0..ny {
+        let yy = (grid.y_m(iy).abs() - w).max(0.0);
+        for ix in 0..nx {
+            gap[grid.index(ix, iy)] = a_curv * grid.x_m(ix).powi(2) + b_curv * yy * yy;
+        }
+    }
+    let mid = ny / 2;
+    let line =
+        |f: &[f64]| -> f64 { (0..nx).map(|ix| f[grid.index(ix, mid)]).sum::<f64>() * grid.dx_m };
+    let mut worst: f64 = 0.0;
+    for q in [0.25, 0.5, 0.75] {
+        // xi_sat depends on the line load, known after the normal solve:
+        // iterate once (the normal problem does not depend on xi).
+        let make = |xi: f64| ContactProblem {
+            material: mat,
+            friction: Friction::coulomb(mu),
+            grid,
+            gap_m: gap.clone(),
+            load: NormalLoad::Approach(half * half * a_curv),
+            kinematics: Kinematics::SteadyRolling(Creepages {
+                creepage_long: xi,
+                creepage_lat: 0.0,
+                spin_per_m: 0.0,
+            }),
+            settings: SolverSettings::default(),
+        };
+        let probe = one(&make(1e-6));
+        let n_line = line(&probe.fields.pressure_pa);
+        let p0 = (n_line * estar / (std::f64::consts::PI * r)).sqrt();
+        let xi_sat = 2.0 * (1.0 - nu) * mu * p0 / g;
+        let s = one(&make(q * xi_sat));
+        let f_line = line(&s.fields.traction_x_pa);
+        let want = -(1.0 - (1.0 - q) * (1.0 - q));
+        let got = f_line / (mu * n_line);
+        eprintln!("xi/xi_sat {q}: F/muN {got:.4} vs Carter {want:.4}");
+        worst = worst.max((got / want - 1.0).abs());
+    }
+    assert!(worst < 0.03, "worst relative deviation {worst}");
+}
+
+#[test]
+fn reversing_creepages_reverses_forces_in_partial_slip_with_spin() {
+    // Identical bodies: Coulomb's law and the elastic operator are odd in
+    // the tractions, so reversing xi, eta and phi reverses Fx, Fy and Mz
+    // exactly (a mixed adhesion/slip patch here).
+    let mat = material(0.28);
+    let cr = Creepages {
+        creepage_long: 4e-4,
+        creepage_lat: -3e-4,
+        spin_per_m: 0.4,
+    };
+    let neg = Creepages {
+        creepage_long: -cr.creepage_long,
+        creepage_lat: -cr.creepage_lat,
+        spin_per_m: -cr.spin_per_m,
+    };
+    let [s1, s2] = [cr, neg].map(|c| {
+        one(&quadratic(
+            mat,
+            1.0,
+            0.6,
+            1.0e4,
+            24,
+            24,
+            0.3,
+            Kinematics::SteadyRolling(c),
+        ))
+    });
+    assert!(s1.totals.adhesion_fraction > 0.1 && s1.totals.adhesion_fraction < 0.9);
+    assert_antisymmetric(&s1, &s2, 1e-6);
 }
