@@ -13,4 +13,5 @@
 //! steady rolling or s = w + u - u' in a transient step.
 
 pub mod cli;
+pub mod conformal;
 pub mod core;

@@ -1,0 +1,573 @@
+//! Geometry of a conformal (laterally curved) contact patch: profile curves,
+//! the contact reference curve with its curvilinear coordinate s and local
+//! frames, the undeformed distance measured along local normals, and the
+//! rigid slip projected on local tangent planes (Blanco-Lorenzo et al.,
+//! Tribology International 2018, §2.2).
+//!
+//! # Frames and conventions
+//!
+//! * Global frame (x, y, z), right-handed: x the rolling direction, y
+//!   lateral, z **down**, into body 1 (the rail). Both profiles are curves in
+//!   the (y, z) plane x = 0, given with the rigid (first) contact point at
+//!   the origin.
+//! * The rail (body 1) is prismatic along x. The wheel (body 2) is a body
+//!   of revolution about an axis parallel to y at height z = -R_xw, R_xw the
+//!   wheel's rolling radius at the rigid contact point; its profile is its
+//!   section in the plane x = 0.
+//! * The contact reference curve lies midway between the profiles (each rail
+//!   point is paired with the wheel point on its normal); s is the arc length
+//!   along it, zero at the rigid contact point, increasing with y there.
+//!   Its tangent is t(s) = (0, cos delta, sin delta) and its normal
+//!   n(s) = (0, -sin delta, cos delta), pointing into the rail, so that
+//!   (x, t, n) is right-handed. The mean contact angle is delta(0).
+//! * Undeformed distance h(x, s): intersect both bodies with the plane x and
+//!   measure the distance between the rail and the wheel point on the normal
+//!   line through the reference point (x, s), positive when apart. A rigid
+//!   approach d of the wheel towards the rail along n(0) closes it by
+//!   d cos(delta(s) - delta(0)) (paper Eq. 1).
+//! * Rigid slip: the velocity of the rail relative to the wheel divided by
+//!   the rolling speed V, projected on (x, t(s)). In the frame of the contact
+//!   patch the rail moves at -V e_x; the wheel turns about its axis at the
+//!   rate that gives the longitudinal creepage xi at the rigid point
+//!   (omega = -V (1 + xi)/R_xw about +y). The lateral creepage eta is a
+//!   relative velocity eta V along t(0) and the spin phi a relative rotation
+//!   rate phi V about n(0) through the origin. The rigid velocities are
+//!   taken at the reference-surface point (x, c(s)), where the bodies touch.
+//!   Points farther from the wheel axis than the rigid point (larger rolling
+//!   radius) get a larger longitudinal rigid slip, and the wheel's velocity
+//!   component along z, -omega x, projects on t(s) as a lateral slip: the
+//!   geometric spin of conformal contact.
+
+use crate::core::error::ContactError;
+use crate::core::grid::Grid;
+
+/// A smooth profile curve in the (y, z) plane, parametrised by arc length t
+/// [m], through the origin at t = 0.
+pub trait Curve: Send + Sync {
+    /// Point (y, z) [m] and unit tangent (dy/dt, dz/dt) at arc length `t`.
+    fn eval(&self, t: f64) -> ([f64; 2], [f64; 2]);
+}
+
+/// A circular arc (or straight line) through the origin with tangent +y
+/// there. `curvature_per_m` > 0 bends it towards +z (down, into the rail).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Circle {
+    /// Signed curvature towards +z [1/m].
+    pub curvature_per_m: f64,
+}
+
+impl Circle {
+    /// A rail profile of lateral radius `radius_m` [m]: convex (a crown)
+    /// when positive, concave (a groove) when negative, straight when infinite.
+    pub fn rail(radius_m: f64) -> Self {
+        Self {
+            curvature_per_m: 1.0 / radius_m,
+        }
+    }
+
+    /// A wheel profile of lateral radius `radius_m` [m]: convex when
+    /// positive, concave (hollow, wrapping a rail crown) when negative.
+    pub fn wheel(radius_m: f64) -> Self {
+        Self {
+            curvature_per_m: -1.0 / radius_m,
+        }
+    }
+}
+
+impl Curve for Circle {
+    fn eval(&self, t: f64) -> ([f64; 2], [f64; 2]) {
+        let k = self.curvature_per_m;
+        let a = k * t;
+        let (sa, ca) = a.sin_cos();
+        if k.abs() * t.abs() < 1e-6 {
+            // Series for small angles (and straight lines).
+            let p = [t - k * k * t * t * t / 6.0, 0.5 * k * t * t];
+            return (p, [ca, sa]);
+        }
+        ([sa / k, (1.0 - ca) / k], [ca, sa])
+    }
+}
+
+/// A smooth curve through given points: natural cubic splines y(t), z(t)
+/// in the chord-length parameter, shifted so that t = 0 is the point
+/// nearest to the origin (the rigid contact point). Accurate for point
+/// spacings well below the radius of curvature.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointCurve {
+    t: Vec<f64>,
+    y: Spline,
+    z: Spline,
+}
+
+impl PointCurve {
+    /// A curve through `points` (y, z) [m], ordered along the curve, at
+    /// least 4, without repeated points.
+    pub fn new(points: &[[f64; 2]], key: &str) -> Result<Self, ContactError> {
+        if points.len() < 4 {
+            return Err(ContactError::invalid(
+                key,
+                format!("needs at least 4 points, got {}", points.len()),
+            ));
+        }
+        if let Some(i) = points
+            .iter()
+            .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        {
+            return Err(ContactError::invalid(
+                key,
+                format!("point {i} is not finite"),
+            ));
+        }
+        let mut t = vec![0.0; points.len()];
+        for i in 1..points.len() {
+            let d = (points[i][0] - points[i - 1][0]).hypot(points[i][1] - points[i - 1][1]);
+            if d <= 0.0 {
+                return Err(ContactError::invalid(
+                    key,
+                    format!("points {} and {i} coincide", i - 1),
+                ));
+            }
+            t[i] = t[i - 1] + d;
+        }
+        let nearest = (0..points.len())
+            .min_by(|&a, &b| {
+                let da = points[a][0].hypot(points[a][1]);
+                let db = points[b][0].hypot(points[b][1]);
+                da.total_cmp(&db)
+            })
+            .unwrap_or(0);
+        let t0 = t[nearest];
+        t.iter_mut().for_each(|v| *v -= t0);
+        let ys: Vec<f64> = points.iter().map(|p| p[0]).collect();
+        let zs: Vec<f64> = points.iter().map(|p| p[1]).collect();
+        Ok(Self {
+            y: Spline::natural(&t, &ys),
+            z: Spline::natural(&t, &zs),
+            t,
+        })
+    }
+}
+
+impl Curve for PointCurve {
+    fn eval(&self, t: f64) -> ([f64; 2], [f64; 2]) {
+        let (y, dy) = self.y.eval(&self.t, t);
+        let (z, dz) = self.z.eval(&self.t, t);
+        let n = dy.hypot(dz).max(f64::MIN_POSITIVE);
+        ([y, z], [dy / n, dz / n])
+    }
+}
+
+/// Natural cubic spline values and second derivatives on given knots.
+#[derive(Debug, Clone, PartialEq)]
+struct Spline {
+    v: Vec<f64>,
+    m: Vec<f64>,
+}
+
+impl Spline {
+    fn natural(t: &[f64], v: &[f64]) -> Self {
+        let n = t.len();
+        let mut m = vec![0.0; n];
+        // Tridiagonal system for the second derivatives (Thomas algorithm).
+        let mut c = vec![0.0; n];
+        let mut d = vec![0.0; n];
+        for i in 1..n - 1 {
+            let h0 = t[i] - t[i - 1];
+            let h1 = t[i + 1] - t[i];
+            let a = h0 / 6.0;
+            let b = (h0 + h1) / 3.0;
+            let cc = h1 / 6.0;
+            let r = (v[i + 1] - v[i]) / h1 - (v[i] - v[i - 1]) / h0;
+            let den = b - a * c[i - 1];
+            c[i] = cc / den;
+            d[i] = (r - a * d[i - 1]) / den;
+        }
+        for i in (1..n - 1).rev() {
+            m[i] = d[i] - c[i] * m[i + 1];
+        }
+        Self { v: v.to_vec(), m }
+    }
+
+    /// Value and derivative at `x` (linear extrapolation outside the knots).
+    fn eval(&self, t: &[f64], x: f64) -> (f64, f64) {
+        let n = t.len();
+        let i = match t.partition_point(|&k| k <= x) {
+            0 => 0,
+            k if k >= n => n - 2,
+            k => k - 1,
+        };
+        let h = t[i + 1] - t[i];
+        let a = (t[i + 1] - x) / h;
+        let b = (x - t[i]) / h;
+        let (m0, m1) = (self.m[i], self.m[i + 1]);
+        let v = a * self.v[i]
+            + b * self.v[i + 1]
+            + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
+        let dv = (self.v[i + 1] - self.v[i]) / h - (3.0 * a * a - 1.0) * h * m0 / 6.0
+            + (3.0 * b * b - 1.0) * h * m1 / 6.0;
+        (v, dv)
+    }
+}
+
+/// Longitudinal and lateral creepages and spin at the rigid contact point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ConformalCreepages {
+    /// Longitudinal creepage xi [-] (rail relative to wheel, over V).
+    pub creepage_long: f64,
+    /// Lateral creepage eta [-] along t(0).
+    pub creepage_lat: f64,
+    /// Spin phi [1/m] about n(0).
+    pub spin_per_m: f64,
+}
+
+/// The geometry of one conformal contact on a curvilinear grid: x along
+/// rolling, the grid's y coordinate is the curvilinear s.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConformalGeometry {
+    /// The (x, s) grid; `grid.y_m(iy)` is s.
+    pub grid: Grid,
+    /// Orientation delta(s) of each lateral grid line [rad].
+    pub delta_rad: Vec<f64>,
+    /// Reference-curve point (y, z) of each lateral grid line [m].
+    pub reference_yz_m: Vec<[f64; 2]>,
+    /// Undeformed distance per element [m] (before the approach).
+    pub gap_m: Vec<f64>,
+    /// cos(delta(s) - delta(0)) per element: the approach closes the gap
+    /// by d times this.
+    pub approach_weight: Vec<f64>,
+    /// Wheel rolling radius at the rigid contact point [m].
+    pub wheel_rolling_radius_m: f64,
+    /// Mean contact angle delta(0) [rad].
+    pub mean_contact_angle_rad: f64,
+}
+
+/// Arc-length sampling step of the reference curve relative to the grid's s step.
+const REFERENCE_SAMPLES_PER_ELEMENT: usize = 8;
+
+/// Finds t with (P(t) - c) x n = 0 (the curve point on the line c + lambda n)
+/// by Newton's method from `t0`; returns (t, lambda).
+fn intersect_normal(
+    eval: &dyn Fn(f64) -> ([f64; 2], [f64; 2]),
+    c: [f64; 2],
+    n: [f64; 2],
+    t0: f64,
+) -> Option<(f64, f64)> {
+    let mut t = t0;
+    for _ in 0..50 {
+        let (p, d) = eval(t);
+        let f = (p[0] - c[0]) * n[1] - (p[1] - c[1]) * n[0];
+        let df = d[0] * n[1] - d[1] * n[0];
+        if df.abs() < 1e-12 {
+            return None;
+        }
+        let step = f / df;
+        t -= step;
+        if step.abs() < 1e-15 + 1e-13 * t.abs() {
+            let (p, _) = eval(t);
+            return Some((t, (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1]));
+        }
+    }
+    None
+}
+
+impl ConformalGeometry {
+    /// Builds the geometry of `rail` and `wheel` profiles on `grid` (x, s).
+    pub fn new(
+        rail: &dyn Curve,
+        wheel: &dyn Curve,
+        wheel_rolling_radius_m: f64,
+        grid: Grid,
+    ) -> Result<Self, ContactError> {
+        crate::core::error::require_positive(
+            "geometry.wheel_rolling_radius_m",
+            wheel_rolling_radius_m,
+        )?;
+        let (nx, ny) = (grid.nx, grid.ny);
+        // 1. Reference curve: midpoints between each rail point and the wheel
+        // point on its normal, sampled finely on both sides of the origin.
+        let s_lo = grid.y_m(0) - grid.dy_m;
+        let s_hi = grid.y_m(ny - 1) + grid.dy_m;
+        let step = grid.dy_m / REFERENCE_SAMPLES_PER_ELEMENT as f64;
+        let reach = s_lo.abs().max(s_hi.abs()) * 1.2 + grid.dy_m;
+        let nsamp = (2.0 * reach / step).ceil() as usize + 1;
+        let mut mids: Vec<[f64; 2]> = Vec::with_capacity(nsamp);
+        let mut tw = 0.0;
+        let t_start = -reach;
+        let wheel_at = |t: f64| wheel.eval(t);
+        let mut k0 = 0;
+        for k in 0..nsamp {
+            let t = t_start + k as f64 * step;
+            let (p, d) = rail.eval(t);
+            let n = [-d[1], d[0]];
+            if k == 0 {
+                tw = t;
+            }
+            let (t_hit, lam) = intersect_normal(&wheel_at, p, n, tw).ok_or_else(|| {
+                ContactError::invalid(
+                    "geometry",
+                    format!(
+                        "the wheel profile does not cross the rail normal at rail arc length {t:.4e} m"
+                    ),
+                )
+            })?;
+            tw = t_hit;
+            mids.push([p[0] + 0.5 * lam * n[0], p[1] + 0.5 * lam * n[1]]);
+            if t <= 0.0 {
+                k0 = k;
+            }
+        }
+        // Arc length along the midpoints, zero at the origin sample.
+        let mut arc = vec![0.0; nsamp];
+        for k in 1..nsamp {
+            arc[k] = arc[k - 1] + (mids[k][0] - mids[k - 1][0]).hypot(mids[k][1] - mids[k - 1][1]);
+        }
+        // The origin lies between samples k0 and k0 + 1 (t = 0 exactly when step divides).
+        let t0 = t_start + k0 as f64 * step;
+        let a0 = arc[k0] + (arc[k0 + 1] - arc[k0]) * (-t0 / step);
+        arc.iter_mut().for_each(|a| *a -= a0);
+        let reference = |s: f64| -> ([f64; 2], f64) {
+            let k = arc.partition_point(|&a| a <= s).clamp(1, nsamp - 1) - 1;
+            let f = (s - arc[k]) / (arc[k + 1] - arc[k]);
+            let p = [
+                mids[k][0] + f * (mids[k + 1][0] - mids[k][0]),
+                mids[k][1] + f * (mids[k + 1][1] - mids[k][1]),
+            ];
+            // Tangent angle from central differences around the point.
+            let (ka, kb) = (k.saturating_sub(1), (k + 2).min(nsamp - 1));
+            let d0 = [mids[k + 1][0] - mids[ka][0], mids[k + 1][1] - mids[ka][1]];
+            let d1 = [mids[kb][0] - mids[k][0], mids[kb][1] - mids[k][1]];
+            let a_0 = d0[1].atan2(d0[0]);
+            let a_1 = d1[1].atan2(d1[0]);
+            (p, a_0 + f * (a_1 - a_0))
+        };
+        let (_, delta0) = reference(0.0);
+        // 2. Per lateral line: frame and intersections.
+        let mut delta_rad = vec![0.0; ny];
+        let mut reference_yz_m = vec![[0.0; 2]; ny];
+        let n = grid.len();
+        let mut gap_m = vec![0.0; n];
+        let mut approach_weight = vec![0.0; n];
+        let z_axis = -wheel_rolling_radius_m;
+        let (mut tr, mut tw0) = (grid.y_m(0), grid.y_m(0));
+        for iy in 0..ny {
+            let s = grid.y_m(iy);
+            let (c, delta) = reference(s);
+            delta_rad[iy] = delta;
+            reference_yz_m[iy] = c;
+            let nv = [-delta.sin(), delta.cos()];
+            let fail = |what: &str| {
+                ContactError::invalid(
+                    "geometry",
+                    format!("the {what} profile does not cross the normal at s = {s:.4e} m"),
+                )
+            };
+            let (t_r, lam_r) =
+                intersect_normal(&|t| rail.eval(t), c, nv, tr).ok_or_else(|| fail("rail"))?;
+            tr = t_r;
+            let (t_w, _) = intersect_normal(&wheel_at, c, nv, tw0).ok_or_else(|| fail("wheel"))?;
+            tw0 = t_w;
+            let mut tx = t_w;
+            for ix in 0..nx {
+                let x = grid.x_m(ix);
+                // The wheel's section in the plane x: every profile point
+                // keeps its distance rho from the axis.
+                let section = |t: f64| -> ([f64; 2], [f64; 2]) {
+                    let (p, d) = wheel.eval(t);
+                    let rho = p[1] - z_axis;
+                    let q = (rho * rho - x * x).max(0.0).sqrt();
+                    let dz = if q > 0.0 { rho * d[1] / q } else { 0.0 };
+                    let norm = d[0].hypot(dz);
+                    ([p[0], z_axis + q], [d[0] / norm, dz / norm])
+                };
+                let (t_x, lam_w) =
+                    intersect_normal(&section, c, nv, tx).ok_or_else(|| fail("wheel"))?;
+                tx = t_x;
+                let i = grid.index(ix, iy);
+                gap_m[i] = lam_r - lam_w;
+                approach_weight[i] = (delta - delta0).cos();
+            }
+        }
+        Ok(Self {
+            grid,
+            delta_rad,
+            reference_yz_m,
+            gap_m,
+            approach_weight,
+            wheel_rolling_radius_m,
+            mean_contact_angle_rad: delta0,
+        })
+    }
+
+    /// Rigid slip (w_x, w_s) per element [-] for creepages at the rigid point.
+    pub fn rigid_slip(&self, c: &ConformalCreepages, wx: &mut [f64], ws: &mut [f64]) {
+        let g = &self.grid;
+        let r = self.wheel_rolling_radius_m;
+        let z_axis = -r;
+        let d0 = self.mean_contact_angle_rad;
+        let (t0, n0) = ([d0.cos(), d0.sin()], [-d0.sin(), d0.cos()]);
+        for iy in 0..g.ny {
+            let d = self.delta_rad[iy];
+            let t = [d.cos(), d.sin()];
+            let [py, pz] = self.reference_yz_m[iy];
+            for ix in 0..g.nx {
+                let i = g.index(ix, iy);
+                let x = g.x_m(ix);
+                // Wheel rotation: w = -e_x + ((1 + xi)/R) ((z - z_a) e_x - x e_z).
+                let f = (1.0 + c.creepage_long) / r;
+                let mut w = [-1.0 + f * (pz - z_axis), 0.0, -f * x];
+                // Lateral creepage along t(0).
+                w[1] += c.creepage_lat * t0[0];
+                w[2] += c.creepage_lat * t0[1];
+                // Spin about n(0) = (0, n0y, n0z) through the origin: phi n0 x P.
+                let p = [x, py, pz];
+                let nn = [0.0, n0[0], n0[1]];
+                let cross = [
+                    nn[1] * p[2] - nn[2] * p[1],
+                    nn[2] * p[0] - nn[0] * p[2],
+                    nn[0] * p[1] - nn[1] * p[0],
+                ];
+                for k in 0..3 {
+                    w[k] += c.spin_per_m * cross[k];
+                }
+                wx[i] = w[0];
+                ws[i] = w[1] * t[0] + w[2] * t[1];
+            }
+        }
+    }
+
+    /// Total contact angle variation over the loaded elements [rad]:
+    /// max delta - min delta over the lateral lines with p_n > 0.
+    pub fn contact_angle_variation_rad(&self, pn: &[f64]) -> f64 {
+        let g = &self.grid;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for iy in 0..g.ny {
+            if (0..g.nx).any(|ix| pn[g.index(ix, iy)] > 0.0) {
+                lo = lo.min(self.delta_rad[iy]);
+                hi = hi.max(self.delta_rad[iy]);
+            }
+        }
+        if hi >= lo {
+            hi - lo
+        } else {
+            0.0
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(n: usize, half_x: f64, half_s: f64) -> Grid {
+        Grid::centered(n, n, 2.0 * half_x, 2.0 * half_s).unwrap()
+    }
+
+    #[test]
+    fn point_curve_through_circle_samples_stays_on_the_circle() {
+        let r = 0.01;
+        let c = Circle::rail(r);
+        let pts: Vec<[f64; 2]> = (-200..=200).map(|k| c.eval(k as f64 * 1e-4).0).collect();
+        let pc = PointCurve::new(&pts, "rail").unwrap();
+        for k in -40..=40 {
+            let (q, e) = pc.eval(k as f64 * 3.7e-4);
+            // Distance to the centre (0, r) and tangent perpendicular to the radius.
+            let (dy, dz) = (q[0], q[1] - r);
+            assert!((dy.hypot(dz) - r).abs() < 1e-9, "{k}");
+            assert!((dy * e[0] + dz * e[1]).abs() < 1e-5 * r, "{k}");
+        }
+        assert!(PointCurve::new(&pts[..3], "rail").is_err());
+        let mut dup = pts.clone();
+        dup[5] = dup[4];
+        assert!(PointCurve::new(&dup, "rail").is_err());
+    }
+
+    #[test]
+    fn gap_of_non_conformal_circles_is_the_quadratic_form() {
+        // Far from conformal (small angles), h = A x² + B s² with
+        // A = 1/(2 R_xw), B = (1/R_r + 1/R_w)/2 (paper Eq. 3), to third order.
+        let (rr, rw, rx) = (0.3, -0.5, 0.46);
+        let g = grid(16, 2e-3, 2e-3);
+        let geo = ConformalGeometry::new(&Circle::rail(rr), &Circle::wheel(rw), rx, g).unwrap();
+        let (a, b) = (0.5 / rx, 0.5 * (1.0 / rr + 1.0 / rw));
+        for iy in 0..g.ny {
+            for ix in 0..g.nx {
+                let (x, s) = (g.x_m(ix), g.y_m(iy));
+                let want = a * x * x + b * s * s;
+                let got = geo.gap_m[g.index(ix, iy)];
+                assert!(
+                    (got - want).abs() < 2e-3 * want + 1e-12,
+                    "({x}, {s}): {got} vs {want}"
+                );
+            }
+        }
+        assert!(geo.mean_contact_angle_rad.abs() < 1e-12);
+    }
+
+    #[test]
+    fn conformal_circles_have_the_papers_cosine_law() {
+        // Paper Eq. 2: h ≈ A cos(alpha) x² + B s² for constant curvatures. The
+        // x part is exact to O(x⁴): the wheel section drops by x²/(2 rho) at
+        // distance rho from the axis, seen along the normal as cos(delta)
+        // times that. The s part of two circles through the origin with
+        // centres e = |R_w| - R_r apart is e (1 - cos(s/r)) (B s² to first
+        // order), r the mean radius, which also gives delta = s/r.
+        let (rr, rw, rx) = (0.010, -0.0101, 0.5);
+        let g = grid(20, 3e-3, 9e-3);
+        let geo = ConformalGeometry::new(&Circle::rail(rr), &Circle::wheel(rw), rx, g).unwrap();
+        let r = 0.5 * (rr + rw.abs());
+        let e = rw.abs() - rr;
+        for iy in 0..g.ny {
+            let s = g.y_m(iy);
+            let d = geo.delta_rad[iy];
+            assert!(
+                (d - s / r).abs() < 2e-3 * (s / r).abs() + 1e-9,
+                "delta {d} at s {s}"
+            );
+            let h0 = e * (1.0 - (s / r).cos());
+            let z = geo.reference_yz_m[iy][1];
+            for ix in 0..g.nx {
+                let x = g.x_m(ix);
+                let want = h0 + d.cos() * x * x / (2.0 * (rx + z));
+                let got = geo.gap_m[g.index(ix, iy)];
+                assert!(
+                    (got - want).abs() < 1e-2 * want + 1e-10,
+                    "({x}, {s}): {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn rigid_slip_shows_geometric_spin() {
+        // Concave wheel on a convex rail: the lateral parts of the patch lie
+        // farther from the wheel axis, so w_x grows like z/R_xw, and the
+        // vertical wheel velocity -x/R_xw projects on t(s) as a spin-like
+        // lateral slip -x sin(delta)/R_xw.
+        let (rr, rw, rx) = (0.010, -0.0101, 0.5);
+        let g = grid(10, 3e-3, 8e-3);
+        let geo = ConformalGeometry::new(&Circle::rail(rr), &Circle::wheel(rw), rx, g).unwrap();
+        let n = g.len();
+        let (mut wx, mut ws) = (vec![0.0; n], vec![0.0; n]);
+        let xi = -1.5e-3;
+        geo.rigid_slip(
+            &ConformalCreepages {
+                creepage_long: xi,
+                ..Default::default()
+            },
+            &mut wx,
+            &mut ws,
+        );
+        for iy in 0..g.ny {
+            for ix in 0..g.nx {
+                let i = g.index(ix, iy);
+                let [_, z] = geo.reference_yz_m[iy];
+                let x = g.x_m(ix);
+                let d = geo.delta_rad[iy];
+                let want_x = -1.0 + (1.0 + xi) * (z + rx) / rx;
+                let want_s = -(1.0 + xi) * x / rx * d.sin();
+                assert!((wx[i] - want_x).abs() < 1e-12);
+                assert!((ws[i] - want_s).abs() < 1e-12);
+            }
+        }
+    }
+}
