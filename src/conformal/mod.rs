@@ -6,3 +6,4 @@
 //! combined by the orientation difference of the elements.
 
 pub mod geometry;
+pub mod operator;
