@@ -7,3 +7,4 @@
 
 pub mod geometry;
 pub mod operator;
+pub mod solve;

@@ -195,6 +195,16 @@ impl ConformalOperator {
     }
 }
 
+impl crate::core::normal::NormalOperator for ConformalOperator {
+    fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
+        ConformalOperator::apply_normal(self, p, out)
+    }
+
+    fn diagonal(&self) -> f64 {
+        self.normal_diagonal()
+    }
+}
+
 /// The dense Blanco or half-space matrix, built element by element from
 /// the closed-form coefficients (tests only): rows and columns ordered
 /// (x of all elements, s of all elements, n of all elements).

@@ -77,13 +77,39 @@ impl NormalScratch {
     }
 }
 
-fn matvec(k: &KernelSet, ows: &mut OperatorWorkspace, p: &[f64], out: &mut [f64]) {
-    k.apply(ows, &[(Component::N, p)], &mut [(Component::N, out)]);
+/// The linear map p_n -> u_n (normal displacement differences of normal
+/// pressures) that [`solve_normal_with`] works with. It must be symmetric
+/// positive definite on the pressures (a convex problem).
+pub trait NormalOperator {
+    /// `out = A p`.
+    fn apply_normal(&mut self, p: &[f64], out: &mut [f64]);
+    /// The self-influence coefficient A_II (> 0) [m/Pa].
+    fn diagonal(&self) -> f64;
 }
 
-/// Solves the normal problem. `h` is the undeformed distance [m] per element;
-/// `pn` [Pa] is the initial guess on entry (zeros allowed) and the solution
-/// on exit. `area` is the element area [m²]. No allocation.
+/// The planar half-space operator of a kernel set.
+pub struct PlanarNormal<'a> {
+    /// Displacement kernels.
+    pub kernels: &'a KernelSet,
+    /// Buffers.
+    pub ows: &'a mut OperatorWorkspace,
+}
+
+impl NormalOperator for PlanarNormal<'_> {
+    fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
+        self.kernels
+            .apply(self.ows, &[(Component::N, p)], &mut [(Component::N, out)]);
+    }
+
+    fn diagonal(&self) -> f64 {
+        self.kernels.value(Component::N, Component::N, 0, 0)
+    }
+}
+
+/// Solves the normal problem on a planar patch. `h` is the undeformed
+/// distance [m] per element; `pn` [Pa] is the initial guess on entry (zeros
+/// allowed) and the solution on exit. `area` is the element area [m²]. No
+/// allocation.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_normal(
     k: &KernelSet,
@@ -95,7 +121,29 @@ pub fn solve_normal(
     scratch: &mut NormalScratch,
     settings: &NormalSettings,
 ) -> NormalOutcome {
+    let mut op = PlanarNormal { kernels: k, ows };
+    solve_normal_with(&mut op, h, None, area, load, pn, scratch, settings)
+}
+
+/// The general normal solver: operator `op`, and per-element approach
+/// weights `w` (None: all 1). The gap is h - delta w + A p, and force
+/// control prescribes sum w p_n area = F: for a conformal patch w is
+/// cos(delta(s) - delta(0)), the approach is along the normal at the
+/// reference point and F the force along it (paper Eq. 1).
+#[allow(clippy::too_many_arguments)]
+pub fn solve_normal_with(
+    op: &mut dyn NormalOperator,
+    h: &[f64],
+    weights: Option<&[f64]>,
+    area: f64,
+    load: NormalLoad,
+    pn: &mut [f64],
+    scratch: &mut NormalScratch,
+    settings: &NormalSettings,
+) -> NormalOutcome {
     let n = h.len();
+    let w = |i: usize| weights.map_or(1.0, |w| w[i]);
+    let a_self = op.diagonal();
     let NormalScratch { u, t, r, g, p_old } = scratch;
     let mut matvecs = 0;
     let force_control = matches!(load, NormalLoad::NormalForce(_));
@@ -120,7 +168,8 @@ pub fn solve_normal(
                     };
                 }
             } else {
-                let s = f / (sum * area);
+                let ws: f64 = (0..n).map(|i| w(i) * pn[i]).sum();
+                let s = f / (ws.max(f64::MIN_POSITIVE) * area);
                 pn.iter_mut().for_each(|p| *p *= s);
             }
         }
@@ -132,9 +181,8 @@ pub fn solve_normal(
     };
     if !force_control && !(sum > 0.0) {
         // Start from the overlap scaled by the self-influence coefficient.
-        let a0 = k.value(Component::N, Component::N, 0, 0);
-        for (p, &hv) in pn.iter_mut().zip(h.iter()) {
-            *p = (delta_fixed - hv).max(0.0) / a0 * 0.5;
+        for i in 0..n {
+            pn[i] = (delta_fixed * w(i) - h[i]).max(0.0) / a_self * 0.5;
         }
     }
     let mut g_old = 1.0;
@@ -152,7 +200,7 @@ pub fn solve_normal(
     for it in 0..settings.max_iterations {
         iterations = it + 1;
         if !u_valid || since_refresh >= REFRESH {
-            matvec(k, ows, pn, u);
+            op.apply_normal(pn, u);
             matvecs += 1;
             since_refresh = 0;
         }
@@ -160,22 +208,25 @@ pub fn solve_normal(
         for i in 0..n {
             g[i] = u[i] + h[i];
         }
+        // Force control: the approach is the weighted least-squares fit of
+        // the gap over the contact set (its mean when all weights are 1).
         let mut nc = 0usize;
-        let mut gsum = 0.0;
+        let (mut gsum, mut wsum2) = (0.0, 0.0);
         for i in 0..n {
             if pn[i] > 0.0 {
                 nc += 1;
-                gsum += g[i];
+                gsum += w(i) * g[i];
+                wsum2 += w(i) * w(i);
             }
         }
         if force_control {
-            if nc == 0 {
+            if nc == 0 || wsum2 <= 0.0 {
                 break;
             }
-            approach = gsum / nc as f64;
+            approach = gsum / wsum2;
         }
-        for gi in g.iter_mut() {
-            *gi -= approach;
+        for (i, gi) in g.iter_mut().enumerate() {
+            *gi -= approach * w(i);
         }
         let mut gg = 0.0;
         for i in 0..n {
@@ -188,12 +239,16 @@ pub fn solve_normal(
             t[i] = if pn[i] > 0.0 { g[i] + beta * t[i] } else { 0.0 };
         }
         g_old = gg;
-        matvec(k, ows, t, r);
+        op.apply_normal(t, r);
         matvecs += 1;
-        // Force control works with the gap relative to its mean over the
-        // contact set (the approach is unknown).
-        let rm = if force_control && nc > 0 {
-            (0..n).filter(|&i| pn[i] > 0.0).map(|i| r[i]).sum::<f64>() / nc as f64
+        // Force control works with the gap relative to its weighted fit
+        // over the contact set (the approach is unknown).
+        let rm = if force_control && wsum2 > 0.0 {
+            (0..n)
+                .filter(|&i| pn[i] > 0.0)
+                .map(|i| w(i) * r[i])
+                .sum::<f64>()
+                / wsum2
         } else {
             0.0
         };
@@ -201,7 +256,7 @@ pub fn solve_normal(
         for i in 0..n {
             if pn[i] > 0.0 {
                 num += g[i] * t[i];
-                den += (r[i] - rm) * t[i];
+                den += (r[i] - rm * w(i)) * t[i];
             }
         }
         let tau = if den > 0.0 { num / den } else { 0.0 };
@@ -220,7 +275,7 @@ pub fn solve_normal(
                 // gradient step (Polonsky & Keer step 8).
                 v = -tau.max(0.0) * g[i];
                 if v == 0.0 {
-                    v = -g[i] / k.value(Component::N, Component::N, 0, 0);
+                    v = -g[i] / a_self;
                 }
                 overlap = true;
             }
@@ -229,7 +284,7 @@ pub fn solve_normal(
         conj = !overlap;
         let mut scale = 1.0;
         if let NormalLoad::NormalForce(f) = load {
-            let s: f64 = pn.iter().sum::<f64>() * area;
+            let s: f64 = (0..n).map(|i| w(i) * pn[i]).sum::<f64>() * area;
             if s > 0.0 {
                 scale = f / s;
                 pn.iter_mut().for_each(|p| *p *= scale);
@@ -259,18 +314,18 @@ pub fn solve_normal(
     // Final approach from the converged pressures.
     if force_control {
         if !u_valid {
-            matvec(k, ows, pn, u);
+            op.apply_normal(pn, u);
             matvecs += 1;
         }
-        let (mut s, mut c) = (0.0, 0usize);
+        let (mut s, mut c) = (0.0, 0.0);
         for i in 0..n {
             if pn[i] > 0.0 {
-                s += u[i] + h[i];
-                c += 1;
+                s += w(i) * (u[i] + h[i]);
+                c += w(i) * w(i);
             }
         }
-        if c > 0 {
-            approach = s / c as f64;
+        if c > 0.0 {
+            approach = s / c;
         }
     }
     NormalOutcome {
