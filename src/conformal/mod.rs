@@ -5,6 +5,7 @@
 //! geometry measured along local normals and the influence coefficients
 //! combined by the orientation difference of the elements.
 
+pub mod frictional;
 pub mod geometry;
 pub mod operator;
 pub mod solve;

@@ -25,7 +25,9 @@
 use std::sync::Arc;
 
 use crate::core::fft::{KernelSet, OperatorWorkspace};
-use crate::core::influence::{Component, KernelKind};
+use crate::core::influence::Component;
+#[cfg(test)]
+use crate::core::influence::KernelKind;
 
 /// Which influence coefficients a conformal solve uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -47,14 +49,16 @@ pub struct ConformalOperator {
     sin: Vec<f64>,
     ows: OperatorWorkspace,
     b: [Vec<f64>; 9],
+    zero: Vec<f64>,
+    un_scratch: Vec<f64>,
 }
 
 impl ConformalOperator {
     /// An operator for a grid whose lateral line `iy` has orientation
-    /// `delta_rad[iy]`. `kernels` must be the displacement kernels of the
-    /// (x, s) grid.
+    /// `delta_rad[iy]`. With the displacement kernels of the (x, s) grid it
+    /// gives displacement differences; with the steady-rolling kernels the
+    /// steady-state operator (A - S A)/dx (the rotations do not depend on x).
     pub fn new(kernels: Arc<KernelSet>, model: InfluenceModel, delta_rad: &[f64]) -> Self {
-        debug_assert_eq!(kernels.kind, KernelKind::Displacement);
         let (nx, ny) = (kernels.plan.nx, kernels.plan.ny);
         debug_assert_eq!(delta_rad.len(), ny);
         let n = nx * ny;
@@ -66,7 +70,14 @@ impl ConformalOperator {
             cos: delta_rad.iter().map(|d| d.cos()).collect(),
             sin: delta_rad.iter().map(|d| d.sin()).collect(),
             b: std::array::from_fn(|_| vec![0.0; n]),
+            zero: vec![0.0; n],
+            un_scratch: vec![0.0; n],
         }
+    }
+
+    /// The kernels.
+    pub fn kernels(&self) -> &KernelSet {
+        &self.kernels
     }
 
     /// The influence model.
@@ -192,6 +203,24 @@ impl ConformalOperator {
                 }
             }
         }
+    }
+}
+
+impl crate::core::steady::TangentialOperator for ConformalOperator {
+    /// The tangential block (p_n = 0).
+    fn apply_tangential(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
+        let zero = std::mem::take(&mut self.zero);
+        let mut un = std::mem::take(&mut self.un_scratch);
+        self.apply(px, ps, &zero, ux, us, &mut un);
+        self.zero = zero;
+        self.un_scratch = un;
+    }
+
+    fn diagonal(&self) -> [f64; 2] {
+        [
+            self.kernels.value(Component::X, Component::X, 0, 0),
+            self.kernels.value(Component::Y, Component::Y, 0, 0),
+        ]
     }
 }
 

@@ -1,0 +1,462 @@
+//! Frictional conformal contact: static compression in load steps and
+//! steady-state rolling, with the normal and tangential problems coupled
+//! as conformal contact requires even for identical materials (paper §3.2):
+//!
+//! * through the influence coefficients: lateral tractions displace along
+//!   the normal (B_ns) and pressures displace tangentially (B_sn, B_xn) once
+//!   the coefficients are combined by orientation (Blanco model);
+//! * through equilibrium: the load along the approach direction n(0) is
+//!   carried by the pressures (weight cos(delta - delta0)) and by the
+//!   lateral tractions (weight sin(delta - delta0));
+//! * through kinematics: in a load step the approach increment dd is a
+//!   rigid displacement of the wheel along n(0), which the curved surface
+//!   sees as a normal closure dd cos(delta - delta0) and a tangential shift
+//!   -dd sin(delta - delta0) of the rail relative to the wheel.
+//!
+//! The two problems alternate (Panagiotopoulos process) until the tractions
+//! change by less than the coupling tolerance. The tangential problem is
+//! solved by the Newton/GMRES Coulomb solver of the core
+//! ([`crate::core::steady::solve_coulomb_newton`]) on the conformal operator.
+//!
+//! Tractions are those on body 1 (the rail) in each element's local frame
+//! (x, s, n); slips are those of the rail relative to the wheel.
+
+use std::sync::Arc;
+
+use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry};
+use crate::conformal::operator::{ConformalOperator, InfluenceModel};
+use crate::core::cache::KernelCache;
+use crate::core::error::ContactError;
+use crate::core::influence::KernelKind;
+use crate::core::material::CombinedMaterial;
+use crate::core::normal::{solve_normal_with, NormalLoad, NormalScratch, NormalSettings};
+use crate::core::solution::{ElementState, SolveStatus};
+use crate::core::steady::{solve_coulomb_newton, LocalModel, SteadyScratch};
+use crate::core::tangential::{
+    FrictionBounds, TangentialInput, TangentialOutput, TangentialSettings,
+};
+
+/// What happens to the contact.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ConformalKinematics {
+    /// Static compression with friction: the force along n(0) rises through
+    /// these values [N] (monotonic loading), with no tangential shift.
+    StaticCompression(Vec<f64>),
+    /// Steady-state rolling at this force [N] and these creepages.
+    SteadyRolling {
+        /// Force along n(0) [N].
+        normal_force_n: f64,
+        /// Creepages at the rigid contact point.
+        creepages: ConformalCreepages,
+    },
+}
+
+/// Solver settings of a frictional conformal solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConformalSettings {
+    /// Normal solver.
+    pub normal: NormalSettings,
+    /// Tangential solver.
+    pub tangential: TangentialSettings,
+    /// Relative traction change that ends the alternation (default 1e-8).
+    pub coupling_tolerance: f64,
+    /// Alternation limit (default 50).
+    pub coupling_max_iterations: usize,
+}
+
+impl Default for ConformalSettings {
+    fn default() -> Self {
+        Self {
+            normal: NormalSettings::default(),
+            tangential: TangentialSettings::default(),
+            coupling_tolerance: 1e-8,
+            coupling_max_iterations: 50,
+        }
+    }
+}
+
+/// Totals of one frictional conformal solution.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct ConformalTotals {
+    /// Force on the rail along the approach direction n(0) [N] (pressures
+    /// and lateral tractions).
+    pub normal_force_n: f64,
+    /// Part of it carried by the lateral tractions [N].
+    pub normal_force_from_tractions_n: f64,
+    /// Resultant of the pressures alone along n(0) [N].
+    pub pressure_resultant_n: f64,
+    /// Longitudinal force on the rail [N].
+    pub fx_n: f64,
+    /// Lateral force on the rail along t(0) [N].
+    pub fs_n: f64,
+    /// Force on the rail in the global frame: y (lateral) and z (down) [N].
+    pub fy_global_n: f64,
+    /// See `fy_global_n`.
+    pub fz_global_n: f64,
+    /// Approach along n(0) [m].
+    pub approach_m: f64,
+    /// Largest pressure [Pa].
+    pub max_pressure_pa: f64,
+    /// Largest tangential traction [Pa].
+    pub max_traction_pa: f64,
+    /// Loaded area (curvilinear) [m²].
+    pub contact_area_m2: f64,
+    /// Extent along x [m].
+    pub patch_length_m: f64,
+    /// Extent along s [m].
+    pub patch_width_m: f64,
+    /// Total contact angle variation [deg].
+    pub contact_angle_variation_deg: f64,
+    /// Share of loaded elements in adhesion [-].
+    pub adhesion_fraction: f64,
+    /// Frictional power per unit rolling speed, sum of -p_t.s dA [N]
+    /// (steady rolling).
+    pub tgamma_n: f64,
+}
+
+/// One frictional conformal solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConformalSolution {
+    /// Totals.
+    pub totals: ConformalTotals,
+    /// Pressure [Pa], longitudinal and lateral traction [Pa] per element.
+    pub pressure_pa: Vec<f64>,
+    /// See `pressure_pa`.
+    pub traction_x_pa: Vec<f64>,
+    /// See `pressure_pa`.
+    pub traction_s_pa: Vec<f64>,
+    /// Slip of the rail relative to the wheel (steady: per rolling speed;
+    /// static: displacement in the step [m]), x and s.
+    pub slip_x: Vec<f64>,
+    /// See `slip_x`.
+    pub slip_s: Vec<f64>,
+    /// Element states.
+    pub state: Vec<ElementState>,
+    /// Frictional work per unit area of rail after one wheel passage,
+    /// W_fric(s) = sum over the line of -p_t.s dx [J/m²], per lateral line
+    /// (steady rolling; zeros for static compression).
+    pub wfric_lateral_j_per_m2: Vec<f64>,
+    /// Alternations, Newton steps and FFT products used; status.
+    pub coupling_iterations: usize,
+    /// See `coupling_iterations`.
+    pub tangential_iterations: usize,
+    /// See `coupling_iterations`.
+    pub status: SolveStatus,
+}
+
+/// Solves a frictional conformal problem: one solution per load step of a
+/// static compression, one for steady rolling.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_frictional(
+    geometry: &ConformalGeometry,
+    material: &CombinedMaterial,
+    friction_coefficient: f64,
+    model: InfluenceModel,
+    kinematics: &ConformalKinematics,
+    settings: &ConformalSettings,
+    cache: &KernelCache,
+) -> Result<Vec<ConformalSolution>, ContactError> {
+    if !(friction_coefficient.is_finite() && friction_coefficient >= 0.0) {
+        return Err(ContactError::invalid(
+            "friction.coefficient",
+            format!("must be finite and >= 0, got {friction_coefficient}"),
+        ));
+    }
+    let grid = geometry.grid;
+    let n = grid.len();
+    let disp: Arc<_> = cache.get(&grid, material, KernelKind::Displacement);
+    let g_mod = disp.influence.shear_modulus_pa();
+    let nu = disp.influence.poisson_ratio();
+    let mut a_op = ConformalOperator::new(disp, model, &geometry.delta_rad);
+    let steady = matches!(kinematics, ConformalKinematics::SteadyRolling { .. });
+    let mut b_op = steady.then(|| {
+        ConformalOperator::new(
+            cache.get(&grid, material, KernelKind::SteadyRolling),
+            model,
+            &geometry.delta_rad,
+        )
+    });
+    let d0 = geometry.mean_contact_angle_rad;
+    // Equilibrium weight of the lateral tractions along n(0).
+    let v: Vec<f64> = (0..n)
+        .map(|i| (geometry.delta_rad[i / grid.nx] - d0).sin())
+        .collect();
+    let w = &geometry.approach_weight;
+    let area = grid.element_area_m2();
+    let z = || vec![0.0; n];
+    let (mut pn, mut px, mut ps) = (z(), z(), z());
+    let (mut sx, mut ss) = (z(), z());
+    let mut state = vec![ElementState::Exterior; n];
+    let mut prev_state = vec![ElementState::Exterior; n];
+    let (mut h_eff, mut cx, mut cs) = (z(), z(), z());
+    let (mut t1, mut t2, mut t3) = (z(), z(), z());
+    let zeros = z();
+    let (mut old_ux, mut old_us) = (z(), z());
+    let (mut last_pn, mut last_px, mut last_ps) = (z(), z(), z());
+    let mut wx = z();
+    let mut ws = z();
+    let mut normal_scratch = NormalScratch::new(n);
+    let mut steady_scratch = SteadyScratch::new(n);
+    let friction = FrictionBounds {
+        static_coefficient: friction_coefficient,
+        kinetic_coefficient: friction_coefficient,
+    };
+    let steps: Vec<(f64, Option<ConformalCreepages>)> = match kinematics {
+        ConformalKinematics::StaticCompression(loads) => {
+            if loads.is_empty() {
+                return Err(ContactError::invalid(
+                    "static_compression.loads",
+                    "needs at least one load",
+                ));
+            }
+            loads.iter().map(|&f| (f, None)).collect()
+        }
+        ConformalKinematics::SteadyRolling {
+            normal_force_n,
+            creepages,
+        } => vec![(*normal_force_n, Some(*creepages))],
+    };
+    let mut out = Vec::with_capacity(steps.len());
+    // Approach of the previous load step (static compression starts unloaded).
+    let mut prev_approach = 0.0;
+    for (k, &(force, creep)) in steps.iter().enumerate() {
+        crate::core::error::require_positive("load.normal_force_n", force)?;
+        if let Some(c) = &creep {
+            geometry.rigid_slip(c, &mut wx, &mut ws);
+        } else if k > 0 {
+            // Displacement difference of the previous step's tractions.
+            a_op.apply(&px, &ps, &pn, &mut old_ux, &mut old_us, &mut t3);
+        }
+        prev_state.copy_from_slice(&state);
+        let mut status = SolveStatus::Converged;
+        let mut coupling = 0;
+        let mut newton_steps = 0;
+        let mut approach = 0.0;
+        for c in 0..settings.coupling_max_iterations.max(1) {
+            coupling = c + 1;
+            last_pn.copy_from_slice(&pn);
+            last_px.copy_from_slice(&px);
+            last_ps.copy_from_slice(&ps);
+            // Normal problem: gap with the normal displacement of the
+            // tangential tractions, load less the tractions' share.
+            a_op.apply(&px, &ps, &zeros, &mut t1, &mut t2, &mut h_eff);
+            let mut carried = 0.0;
+            for i in 0..n {
+                h_eff[i] += geometry.gap_m[i];
+                carried += v[i] * ps[i] * area;
+            }
+            let target = force - carried;
+            if target <= 0.0 {
+                return Err(ContactError::NoContact {
+                    detail: format!(
+                        "the lateral tractions carry {carried:.4e} N of the {force:.4e} N load"
+                    ),
+                });
+            }
+            let no = solve_normal_with(
+                &mut a_op,
+                &h_eff,
+                Some(w),
+                area,
+                NormalLoad::NormalForce(target),
+                &mut pn,
+                &mut normal_scratch,
+                &settings.normal,
+            );
+            if !no.converged {
+                status = SolveStatus::MaxIterations;
+            }
+            approach = no.approach_m;
+            // Tangential problem: fixed slip from the pressures (and, for a
+            // static step, minus the previous displacements).
+            let zero_t = &zeros;
+            let outcome = if let Some(b) = b_op.as_mut() {
+                b.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
+                for i in 0..n {
+                    cx[i] += wx[i];
+                    cs[i] += ws[i];
+                }
+                let input = TangentialInput {
+                    grid: &grid,
+                    pn: &pn,
+                    friction,
+                    cx: &cx,
+                    cy: &cs,
+                    previous_state: &prev_state,
+                };
+                solve_coulomb_newton(
+                    b,
+                    LocalModel::Upwind,
+                    Some([g_mod, nu]),
+                    &input,
+                    TangentialOutput {
+                        px: &mut px,
+                        py: &mut ps,
+                        sx: &mut sx,
+                        sy: &mut ss,
+                        state: &mut state,
+                    },
+                    &mut steady_scratch,
+                    &settings.tangential,
+                )
+            } else {
+                a_op.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
+                // The rigid approach increment moves the wheel along n(0):
+                // the rail shifts by -dd n(0) relative to it, which has the
+                // component -dd sin(delta - delta0) along t(s).
+                let dd = approach - prev_approach;
+                for i in 0..n {
+                    cx[i] -= old_ux[i];
+                    cs[i] -= old_us[i] + dd * v[i];
+                }
+                let input = TangentialInput {
+                    grid: &grid,
+                    pn: &pn,
+                    friction,
+                    cx: &cx,
+                    cy: &cs,
+                    previous_state: &prev_state,
+                };
+                solve_coulomb_newton(
+                    &mut a_op,
+                    LocalModel::Diagonal,
+                    None,
+                    &input,
+                    TangentialOutput {
+                        px: &mut px,
+                        py: &mut ps,
+                        sx: &mut sx,
+                        sy: &mut ss,
+                        state: &mut state,
+                    },
+                    &mut steady_scratch,
+                    &settings.tangential,
+                )
+            };
+            newton_steps += outcome.iterations;
+            if !outcome.converged {
+                status = SolveStatus::MaxIterations;
+            }
+            let (mut num, mut den) = (0.0, 0.0);
+            for i in 0..n {
+                num += (pn[i] - last_pn[i]).abs()
+                    + (px[i] - last_px[i]).abs()
+                    + (ps[i] - last_ps[i]).abs();
+                den += pn[i].abs();
+            }
+            if den > 0.0 && num / den < settings.coupling_tolerance {
+                break;
+            }
+            if c + 1 == settings.coupling_max_iterations.max(1) {
+                status = SolveStatus::MaxIterations;
+            }
+        }
+        prev_approach = approach;
+        out.push(finish(
+            geometry,
+            &pn,
+            &px,
+            &ps,
+            &sx,
+            &ss,
+            &state,
+            &v,
+            creep.is_some(),
+            approach,
+            coupling,
+            newton_steps,
+            status,
+        )?);
+    }
+    Ok(out)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    geometry: &ConformalGeometry,
+    pn: &[f64],
+    px: &[f64],
+    ps: &[f64],
+    sx: &[f64],
+    ss: &[f64],
+    state: &[ElementState],
+    v: &[f64],
+    steady: bool,
+    approach_m: f64,
+    coupling_iterations: usize,
+    tangential_iterations: usize,
+    status: SolveStatus,
+) -> Result<ConformalSolution, ContactError> {
+    let grid = geometry.grid;
+    let area = grid.element_area_m2();
+    let w = &geometry.approach_weight;
+    let mut t = ConformalTotals::default();
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
+    let (mut count, mut adh) = (0usize, 0usize);
+    let mut wfric = vec![0.0; grid.ny];
+    let d0 = geometry.mean_contact_angle_rad;
+    for iy in 0..grid.ny {
+        let d = geometry.delta_rad[iy];
+        // Local t and n in the global (y, z) plane.
+        let (ty, tz) = (d.cos(), d.sin());
+        let (ny_, nz_) = (-d.sin(), d.cos());
+        for ix in 0..grid.nx {
+            let i = grid.index(ix, iy);
+            if pn[i] <= 0.0 {
+                continue;
+            }
+            if grid.on_border(ix, iy) {
+                return Err(ContactError::GridTooSmall {
+                    detail: format!(
+                        "element ({ix}, {iy}) at x = {:.4e} m, s = {:.4e} m is loaded",
+                        grid.x_m(ix),
+                        grid.y_m(iy)
+                    ),
+                });
+            }
+            count += 1;
+            if state[i] == ElementState::Adhesion {
+                adh += 1;
+            }
+            xmin = xmin.min(ix);
+            xmax = xmax.max(ix);
+            ymin = ymin.min(iy);
+            ymax = ymax.max(iy);
+            t.pressure_resultant_n += w[i] * pn[i] * area;
+            t.normal_force_from_tractions_n += v[i] * ps[i] * area;
+            t.fx_n += px[i] * area;
+            t.fs_n += (ps[i] * (d - d0).cos() - pn[i] * (d - d0).sin()) * area;
+            t.fy_global_n += (ps[i] * ty + pn[i] * ny_) * area;
+            t.fz_global_n += (ps[i] * tz + pn[i] * nz_) * area;
+            t.max_pressure_pa = t.max_pressure_pa.max(pn[i]);
+            t.max_traction_pa = t.max_traction_pa.max(px[i].hypot(ps[i]));
+            if steady {
+                let p = -(px[i] * sx[i] + ps[i] * ss[i]);
+                t.tgamma_n += p * area;
+                wfric[iy] += p * grid.dx_m;
+            }
+        }
+    }
+    t.normal_force_n = t.pressure_resultant_n + t.normal_force_from_tractions_n;
+    t.approach_m = approach_m;
+    if count > 0 {
+        t.contact_area_m2 = count as f64 * area;
+        t.patch_length_m = (xmax - xmin + 1) as f64 * grid.dx_m;
+        t.patch_width_m = (ymax - ymin + 1) as f64 * grid.dy_m;
+        t.adhesion_fraction = adh as f64 / count as f64;
+    }
+    t.contact_angle_variation_deg = geometry.contact_angle_variation_rad(pn).to_degrees();
+    Ok(ConformalSolution {
+        totals: t,
+        pressure_pa: pn.to_vec(),
+        traction_x_pa: px.to_vec(),
+        traction_s_pa: ps.to_vec(),
+        slip_x: sx.to_vec(),
+        slip_s: ss.to_vec(),
+        state: state.to_vec(),
+        wfric_lateral_j_per_m2: wfric,
+        coupling_iterations,
+        tangential_iterations,
+        status,
+    })
+}
