@@ -44,8 +44,28 @@ fn hertz_of(c: &Case, force: f64, corrected: bool) -> (HertzSolution, f64) {
     conformal_hertz(c.rail, c.wheel, c.rolling, &steel(), force, corrected).unwrap()
 }
 
-/// Both exact conformal models on a grid of `d` [m] elements around the
-/// Hertz patch (1.6 a by 1.3 b, at most +-75 degrees laterally).
+/// Case geometry on a grid of `d` [m] elements around the Hertz patch
+/// (1.6 a by 1.3 b, at most +-75 degrees laterally).
+fn geometry(c: &Case, force: f64, d: f64) -> ConformalGeometry {
+    let (h, _) = hertz_of(c, force, false);
+    let r = 0.5 * (c.rail + c.wheel.abs());
+    let hx = 1.6 * h.semi_axis_x_m;
+    let hs = (1.3 * h.semi_axis_y_m).min(75f64.to_radians() * r);
+    let (nx, ns) = (
+        (2.0 * hx / d).ceil() as usize,
+        (2.0 * hs / d).ceil() as usize,
+    );
+    let grid = Grid::centered(nx, ns, nx as f64 * d, ns as f64 * d).unwrap();
+    ConformalGeometry::new(
+        &Circle::rail(c.rail),
+        &Circle::wheel(c.wheel),
+        c.rolling,
+        grid,
+    )
+    .unwrap()
+}
+
+/// Both exact conformal models on the case geometry.
 fn solve_both(c: &Case, force: f64, d: f64) -> [ConformalNormalSummary; 2] {
     solve_both_fields(c, force, d).map(|(s, _, _)| s)
 }
@@ -56,22 +76,8 @@ fn solve_both_fields(
     force: f64,
     d: f64,
 ) -> [(ConformalNormalSummary, Vec<f64>, Grid); 2] {
-    let (h, _) = hertz_of(c, force, false);
-    let r = 0.5 * (c.rail + c.wheel.abs());
-    let hx = 1.6 * h.semi_axis_x_m;
-    let hs = (1.3 * h.semi_axis_y_m).min(75f64.to_radians() * r);
-    let (nx, ns) = (
-        (2.0 * hx / d).ceil() as usize,
-        (2.0 * hs / d).ceil() as usize,
-    );
-    let grid = Grid::centered(nx, ns, nx as f64 * d, ns as f64 * d).unwrap();
-    let geo = ConformalGeometry::new(
-        &Circle::rail(c.rail),
-        &Circle::wheel(c.wheel),
-        c.rolling,
-        grid,
-    )
-    .unwrap();
+    let geo = geometry(c, force, d);
+    let grid = geo.grid;
     [InfluenceModel::HalfSpace, InfluenceModel::Blanco].map(|m| {
         let s = solve_frictionless(
             &geo,
@@ -202,25 +208,6 @@ mod frictional {
     use railcontact::core::solution::SolveStatus;
 
     const MU: f64 = 0.3;
-
-    fn geometry(c: &Case, force: f64, d: f64) -> ConformalGeometry {
-        let (h, _) = hertz_of(c, force, false);
-        let r = 0.5 * (c.rail + c.wheel.abs());
-        let hx = 1.6 * h.semi_axis_x_m;
-        let hs = (1.3 * h.semi_axis_y_m).min(75f64.to_radians() * r);
-        let (nx, ns) = (
-            (2.0 * hx / d).ceil() as usize,
-            (2.0 * hs / d).ceil() as usize,
-        );
-        let grid = Grid::centered(nx, ns, nx as f64 * d, ns as f64 * d).unwrap();
-        ConformalGeometry::new(
-            &Circle::rail(c.rail),
-            &Circle::wheel(c.wheel),
-            c.rolling,
-            grid,
-        )
-        .unwrap()
-    }
 
     fn run(geo: &ConformalGeometry, kin: ConformalKinematics) -> Vec<ConformalSolution> {
         let sols = solve_frictional(

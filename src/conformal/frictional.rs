@@ -25,13 +25,14 @@ use std::sync::Arc;
 
 use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry};
 use crate::conformal::operator::{ConformalOperator, InfluenceModel};
+use crate::conformal::solve::border_error;
 use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
 use crate::core::influence::KernelKind;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, NormalLoad, NormalScratch, NormalSettings};
 use crate::core::solution::{ElementState, SolveStatus};
-use crate::core::steady::{solve_coulomb_newton, LocalModel, SteadyScratch};
+use crate::core::steady::{solve_coulomb_newton, LocalModel, SteadyScratch, TangentialOperator};
 use crate::core::tangential::{
     FrictionBounds, TangentialInput, TangentialOutput, TangentialSettings,
 };
@@ -270,69 +271,49 @@ pub fn solve_frictional(
             // Tangential problem: fixed slip from the pressures (and, for a
             // static step, minus the previous displacements).
             let zero_t = &zeros;
-            let outcome = if let Some(b) = b_op.as_mut() {
-                b.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
-                for i in 0..n {
-                    cx[i] += wx[i];
-                    cs[i] += ws[i];
-                }
-                let input = TangentialInput {
-                    grid: &grid,
-                    pn: &pn,
-                    friction,
-                    cx: &cx,
-                    cy: &cs,
-                    previous_state: &prev_state,
+            let (op, local, start): (&mut dyn TangentialOperator, _, _) =
+                if let Some(b) = b_op.as_mut() {
+                    b.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
+                    for i in 0..n {
+                        cx[i] += wx[i];
+                        cs[i] += ws[i];
+                    }
+                    (b, LocalModel::Upwind, Some([g_mod, nu]))
+                } else {
+                    a_op.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
+                    // The rigid approach increment moves the wheel along
+                    // n(0): the rail shifts by -dd n(0) relative to it,
+                    // which has the component -dd sin(delta - delta0) along t(s).
+                    let dd = approach - prev_approach;
+                    for i in 0..n {
+                        cx[i] -= old_ux[i];
+                        cs[i] -= old_us[i] + dd * v[i];
+                    }
+                    (&mut a_op, LocalModel::Diagonal, None)
                 };
-                solve_coulomb_newton(
-                    b,
-                    LocalModel::Upwind,
-                    Some([g_mod, nu]),
-                    &input,
-                    TangentialOutput {
-                        px: &mut px,
-                        py: &mut ps,
-                        sx: &mut sx,
-                        sy: &mut ss,
-                        state: &mut state,
-                    },
-                    &mut steady_scratch,
-                    &settings.tangential,
-                )
-            } else {
-                a_op.apply(zero_t, zero_t, &pn, &mut cx, &mut cs, &mut t1);
-                // The rigid approach increment moves the wheel along n(0):
-                // the rail shifts by -dd n(0) relative to it, which has the
-                // component -dd sin(delta - delta0) along t(s).
-                let dd = approach - prev_approach;
-                for i in 0..n {
-                    cx[i] -= old_ux[i];
-                    cs[i] -= old_us[i] + dd * v[i];
-                }
-                let input = TangentialInput {
-                    grid: &grid,
-                    pn: &pn,
-                    friction,
-                    cx: &cx,
-                    cy: &cs,
-                    previous_state: &prev_state,
-                };
-                solve_coulomb_newton(
-                    &mut a_op,
-                    LocalModel::Diagonal,
-                    None,
-                    &input,
-                    TangentialOutput {
-                        px: &mut px,
-                        py: &mut ps,
-                        sx: &mut sx,
-                        sy: &mut ss,
-                        state: &mut state,
-                    },
-                    &mut steady_scratch,
-                    &settings.tangential,
-                )
+            let input = TangentialInput {
+                grid: &grid,
+                pn: &pn,
+                friction,
+                cx: &cx,
+                cy: &cs,
+                previous_state: &prev_state,
             };
+            let outcome = solve_coulomb_newton(
+                op,
+                local,
+                start,
+                &input,
+                TangentialOutput {
+                    px: &mut px,
+                    py: &mut ps,
+                    sx: &mut sx,
+                    sy: &mut ss,
+                    state: &mut state,
+                },
+                &mut steady_scratch,
+                &settings.tangential,
+            );
             newton_steps += outcome.iterations;
             if !outcome.converged {
                 status = SolveStatus::MaxIterations;
@@ -406,13 +387,7 @@ fn finish(
                 continue;
             }
             if grid.on_border(ix, iy) {
-                return Err(ContactError::GridTooSmall {
-                    detail: format!(
-                        "element ({ix}, {iy}) at x = {:.4e} m, s = {:.4e} m is loaded",
-                        grid.x_m(ix),
-                        grid.y_m(iy)
-                    ),
-                });
+                return Err(border_error(&grid, ix, iy));
             }
             count += 1;
             if state[i] == ElementState::Adhesion {

@@ -90,13 +90,7 @@ pub fn solve_frictionless(
             let i = grid.index(ix, iy);
             if pn[i] > 0.0 {
                 if grid.on_border(ix, iy) {
-                    return Err(ContactError::GridTooSmall {
-                        detail: format!(
-                            "element ({ix}, {iy}) at x = {:.4e} m, s = {:.4e} m is loaded",
-                            grid.x_m(ix),
-                            grid.y_m(iy)
-                        ),
-                    });
+                    return Err(border_error(&grid, ix, iy));
                 }
                 count += 1;
                 force += pn[i] * geometry.approach_weight[i] * area;
@@ -129,6 +123,17 @@ pub fn solve_frictionless(
         summary,
         pressure_pa: pn,
     })
+}
+
+/// The error for a loaded element (ix, iy) on the border of the (x, s) grid.
+pub fn border_error(grid: &crate::core::grid::Grid, ix: usize, iy: usize) -> ContactError {
+    ContactError::GridTooSmall {
+        detail: format!(
+            "element ({ix}, {iy}) at x = {:.4e} m, s = {:.4e} m is loaded",
+            grid.x_m(ix),
+            grid.y_m(iy)
+        ),
+    }
 }
 
 /// Hertz's solution for two circular profiles and a wheel rolling radius
