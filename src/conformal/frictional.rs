@@ -229,12 +229,27 @@ pub fn solve_frictional(
             a_op.apply(&px, &ps, &pn, &mut old_ux, &mut old_us, &mut t3);
         }
         prev_state.copy_from_slice(&state);
-        let mut status = SolveStatus::Converged;
+        // Converged only when the alternation ends with tight inner solves
+        // that met their tolerances.
+        let mut status = SolveStatus::MaxIterations;
         let mut coupling = 0;
         let mut newton_steps = 0;
         let mut approach = 0.0;
+        // Inner tolerances follow the alternation's progress: loose while
+        // the tractions still change a lot, the settings' at the end.
+        let mut change: f64 = 1.0;
         for c in 0..settings.coupling_max_iterations.max(1) {
             coupling = c + 1;
+            let normal_settings = NormalSettings {
+                tolerance: (1e-3 * change).clamp(settings.normal.tolerance, 1e-6),
+                ..settings.normal
+            };
+            let tangential_settings = TangentialSettings {
+                tolerance: (0.1 * change).clamp(settings.tangential.tolerance, 1e-3),
+                ..settings.tangential
+            };
+            let inner_final = normal_settings.tolerance == settings.normal.tolerance
+                && tangential_settings.tolerance == settings.tangential.tolerance;
             last_pn.copy_from_slice(&pn);
             last_px.copy_from_slice(&px);
             last_ps.copy_from_slice(&ps);
@@ -262,11 +277,9 @@ pub fn solve_frictional(
                 NormalLoad::NormalForce(target),
                 &mut pn,
                 &mut normal_scratch,
-                &settings.normal,
+                &normal_settings,
             );
-            if !no.converged {
-                status = SolveStatus::MaxIterations;
-            }
+            let mut inner_ok = no.converged;
             approach = no.approach_m;
             // Tangential problem: fixed slip from the pressures (and, for a
             // static step, minus the previous displacements).
@@ -312,12 +325,10 @@ pub fn solve_frictional(
                     state: &mut state,
                 },
                 &mut steady_scratch,
-                &settings.tangential,
+                &tangential_settings,
             );
             newton_steps += outcome.iterations;
-            if !outcome.converged {
-                status = SolveStatus::MaxIterations;
-            }
+            inner_ok &= outcome.converged;
             let (mut num, mut den) = (0.0, 0.0);
             for i in 0..n {
                 num += (pn[i] - last_pn[i]).abs()
@@ -325,11 +336,14 @@ pub fn solve_frictional(
                     + (ps[i] - last_ps[i]).abs();
                 den += pn[i].abs();
             }
-            if den > 0.0 && num / den < settings.coupling_tolerance {
+            change = if den > 0.0 { num / den } else { 0.0 };
+            if change < settings.coupling_tolerance && inner_final {
+                status = if inner_ok {
+                    SolveStatus::Converged
+                } else {
+                    SolveStatus::MaxIterations
+                };
                 break;
-            }
-            if c + 1 == settings.coupling_max_iterations.max(1) {
-                status = SolveStatus::MaxIterations;
             }
         }
         prev_approach = approach;

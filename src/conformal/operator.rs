@@ -209,11 +209,49 @@ impl ConformalOperator {
 impl crate::core::steady::TangentialOperator for ConformalOperator {
     /// The tangential block (p_n = 0).
     fn apply_tangential(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
-        let zero = std::mem::take(&mut self.zero);
-        let mut un = std::mem::take(&mut self.un_scratch);
-        self.apply(px, ps, &zero, ux, us, &mut un);
-        self.zero = zero;
-        self.un_scratch = un;
+        let k = &self.kernels;
+        if self.model == InfluenceModel::HalfSpace || k.has(Component::X, Component::N) {
+            // Planar, or dissimilar materials (the n components couple back):
+            // the general product.
+            let zero = std::mem::take(&mut self.zero);
+            let mut un = std::mem::take(&mut self.un_scratch);
+            self.apply(px, ps, &zero, ux, us, &mut un);
+            self.zero = zero;
+            self.un_scratch = un;
+            return;
+        }
+        // Identical materials, p_n = 0: Y = c_J p_s and Z = s_J p_s reach
+        // u_x, u_s only through A_xs, A_ss, so
+        // u_t = A_t(p_x, 0) + c_I A_t(0, Y) + s_I A_t(0, Z): 3 forward and
+        // 6 inverse transforms.
+        let nx = self.nx;
+        let [y, z, _, t2x, t2s, _, t3x, t3s, _] = &mut self.b;
+        for i in 0..px.len() {
+            let l = i / nx;
+            y[i] = self.cos[l] * ps[i];
+            z[i] = self.sin[l] * ps[i];
+        }
+        k.apply(
+            &mut self.ows,
+            &[(Component::X, px)],
+            &mut [(Component::X, ux), (Component::Y, us)],
+        );
+        k.apply(
+            &mut self.ows,
+            &[(Component::Y, &y[..])],
+            &mut [(Component::X, t2x), (Component::Y, t2s)],
+        );
+        k.apply(
+            &mut self.ows,
+            &[(Component::Y, &z[..])],
+            &mut [(Component::X, t3x), (Component::Y, t3s)],
+        );
+        for i in 0..px.len() {
+            let l = i / nx;
+            let (c, s) = (self.cos[l], self.sin[l]);
+            ux[i] += c * t2x[i] + s * t3x[i];
+            us[i] += c * t2s[i] + s * t3s[i];
+        }
     }
 
     fn diagonal(&self) -> [f64; 2] {
@@ -311,6 +349,18 @@ mod tests {
             assert!(
                 (got - want).abs() <= 1e-10 * scale,
                 "{model:?} row {r}: {got} vs {want}"
+            );
+        }
+        // The tangential block equals the full product with p_n = 0.
+        let z0 = vec![0.0; n];
+        op.apply(&px, &ps, &z0, &mut ux, &mut us, &mut un);
+        let (mut tx, mut ts) = (vec![0.0; n], vec![0.0; n]);
+        crate::core::steady::TangentialOperator::apply_tangential(
+            &mut op, &px, &ps, &mut tx, &mut ts,
+        );
+        for i in 0..n {
+            assert!(
+                (ux[i] - tx[i]).abs() <= 1e-12 * scale && (us[i] - ts[i]).abs() <= 1e-12 * scale
             );
         }
         // The normal-only product equals the full one with p_x = p_s = 0.

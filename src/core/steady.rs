@@ -943,7 +943,7 @@ mod tests {
             tolerance: 1e-9,
             max_iterations: 5000,
         };
-        let mut fields = |newton: bool| {
+        let fields = |newton: bool| {
             let (mut px, mut py, mut sx, mut sy) =
                 (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
             let mut state = vec![ElementState::Exterior; n];
