@@ -25,6 +25,11 @@ fn steel() -> CombinedMaterial {
 
 /// Hertz circle (A = B = 1/m, 10 kN) on an n x n grid 1.2 times the patch.
 fn circle(n: usize, kinematics: Kinematics) -> ContactProblem {
+    circle_on(n, n, kinematics)
+}
+
+/// Hertz circle on an nx x ny grid 1.2 times the patch.
+fn circle_on(nx: usize, ny: usize, kinematics: Kinematics) -> ContactProblem {
     let m = steel();
     let hz = hertz(
         1.0,
@@ -36,7 +41,7 @@ fn circle(n: usize, kinematics: Kinematics) -> ContactProblem {
     )
     .unwrap();
     let w = 2.4 * hz.semi_axis_x_m;
-    let grid = Grid::centered(n, n, w, w).unwrap();
+    let grid = Grid::centered(nx, ny, w, w).unwrap();
     ContactProblem {
         material: m,
         friction: Friction::coulomb(0.3),
@@ -113,22 +118,34 @@ fn normal_solve(c: &mut Criterion) {
 fn tangential_solves(c: &mut Criterion) {
     let mut g = c.benchmark_group("tangential_solve");
     g.sample_size(10);
-    // Steady rolling, partial slip (Fx about 0.8 mu Fn), cold start.
-    for n in [24, 32] {
-        let p = circle(
-            n,
-            Kinematics::SteadyRolling(Creepages {
-                creepage_long: 1e-3,
-                creepage_lat: 0.0,
-                spin_per_m: 0.0,
-            }),
-        );
+    // Steady rolling, mixed adhesion/slip with creepages and spin, cold
+    // start (normal + tangential), and warm (the previous step's solution,
+    // creepages changed by 2 %, as in an MBS time step).
+    let creep = |f: f64| {
+        Kinematics::SteadyRolling(Creepages {
+            creepage_long: 5e-4 * f,
+            creepage_lat: 3e-4 * f,
+            spin_per_m: 0.3 * f,
+        })
+    };
+    for (nx, ny) in [(32, 32), (48, 44), (64, 64), (128, 128)] {
+        let p = circle_on(nx, ny, creep(1.0));
+        let q = circle_on(nx, ny, creep(1.02));
         let cache = KernelCache::new(8);
         let mut s = ContactSolver::new(&p, &cache);
-        g.bench_with_input(BenchmarkId::new("steady_rolling", n), &n, |b, _| {
+        let id = format!("{nx}x{ny}");
+        g.bench_with_input(BenchmarkId::new("steady_rolling", &id), &nx, |b, _| {
             b.iter(|| {
                 s.reset();
                 black_box(s.solve(&p).unwrap())
+            })
+        });
+        let mut flip = false;
+        g.bench_with_input(BenchmarkId::new("steady_rolling_warm", &id), &nx, |b, _| {
+            b.iter(|| {
+                // Each solve starts from the other case's solution.
+                flip = !flip;
+                black_box(s.solve(if flip { &q } else { &p }).unwrap())
             })
         });
     }
