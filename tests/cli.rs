@@ -399,3 +399,398 @@ fn bad_plot_extension_is_rejected() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--plot"));
 }
+
+// ---------------------------------------------------------------------
+// Conformal contact (cect, cect_halfspace, hertz_corrected): paper Case 1
+// of Blanco-Lorenzo et al., Tribology International 2018; reference
+// numbers as in tests/conformal.rs.
+
+/// Keys every conformal `--json` report has in addition to [`KEYS`].
+const CONFORMAL_KEYS: [&str; 7] = [
+    "contact_angle_variation_deg",
+    "length_width_ratio",
+    "normal_force_from_tractions_n",
+    "pressure_resultant_n",
+    "fy_global_n",
+    "fz_global_n",
+    "friction_coefficient",
+];
+
+fn check_conformal_keys(v: &Value) {
+    for k in CONFORMAL_KEYS {
+        if k == "friction_coefficient" && v.get("model").is_none() {
+            continue; // per-step entries
+        }
+        assert!(
+            v.get(k).and_then(Value::as_f64).is_some_and(f64::is_finite),
+            "conformal key {k} missing or not finite in {v}"
+        );
+    }
+    let ratio = f(v, "patch_length_m") / f(v, "patch_width_m");
+    if v["model"] != "hertz" && v["model"] != "hertz_corrected" {
+        assert!((f(v, "length_width_ratio") / ratio - 1.0).abs() < 1e-12);
+    }
+}
+
+/// The frictionless Case 1 example with another model and grid.
+fn case1_with(model: &str, nx: usize, ny: usize) -> String {
+    let text = example_text("conformal_case1_frictionless.toml");
+    let out = text
+        .replace("model = \"cect\"", &format!("model = \"{model}\""))
+        .replacen("nx = 72", &format!("nx = {nx}"), 1)
+        .replacen("ny = 94", &format!("ny = {ny}"), 1);
+    assert!(out.contains(&format!("nx = {nx}")) && out.contains(&format!("ny = {ny}")));
+    out
+}
+
+#[test]
+fn conformal_frictionless_example_matches_the_paper() {
+    let v = solve_json(&example("conformal_case1_frictionless.toml"), &[]);
+    check_conformal_keys(&v);
+    assert_eq!(v["model"], "cect");
+    assert_eq!(v["status"], "converged");
+    let fn_ = f(&v, "normal_force_n");
+    assert!((fn_ / 80e3 - 1.0).abs() < 1e-9);
+    // §3.3: about 88° of contact angle variation at 80 kN (one element is
+    // about 1.4° here).
+    let var = f(&v, "contact_angle_variation_deg");
+    assert!((var - 88.0).abs() < 6.0, "variation {var}");
+    assert_eq!(f(&v, "fx_n"), 0.0);
+    assert_eq!(f(&v, "mz_nm"), 0.0);
+    assert_eq!(f(&v, "normal_force_from_tractions_n"), 0.0);
+    assert!((f(&v, "fz_global_n") / fn_ - 1.0).abs() < 1e-9);
+    assert!(f(&v, "fy_global_n").abs() < 1e-6 * fn_);
+    assert!(v.get("wfric_lateral").is_none() && v.get("steps").is_none());
+    assert_eq!(v["grid"], serde_json::json!([72, 94]));
+
+    // Hertz and corrected Hertz (closed form) on the same file: plain Hertz
+    // underestimates p0 and overestimates the angle variation; the
+    // corrected one is within a few percent above (paper §3.1).
+    let hertz = solve_json(
+        &case_file("c1_hertz.toml", &case1_with("hertz", 72, 94)),
+        &[],
+    );
+    let corr = solve_json(
+        &case_file("c1_hertz_corr.toml", &case1_with("hertz_corrected", 72, 94)),
+        &[],
+    );
+    for h in [&hertz, &corr] {
+        check_conformal_keys(h);
+        assert!(h.get("grid").is_none());
+    }
+    assert_eq!(corr["model"], "hertz_corrected");
+    let rel = |h: &Value, k: &str| f(h, k) / f(&v, k) - 1.0;
+    assert!(rel(&hertz, "max_pressure_pa") < -0.08);
+    assert!(rel(&hertz, "contact_angle_variation_deg") > 0.12);
+    let (ep, ed) = (rel(&corr, "max_pressure_pa"), rel(&corr, "approach_m"));
+    assert!(ep > 0.0 && ep < 0.05, "corrected Hertz p0 error {ep}");
+    assert!(ed > 0.0 && ed < 0.05, "corrected Hertz approach error {ed}");
+}
+
+#[test]
+fn conformal_rolling_example_gives_the_papers_tractive_force() {
+    let v = solve_json(&example("conformal_case1_rolling.toml"), &[]);
+    check_conformal_keys(&v);
+    assert_eq!(v["status"], "converged");
+    // Grid of about 0.25 mm, as the reference in tests/conformal.rs.
+    let (w, g) = (&v["window_m"], &v["grid"]);
+    for k in 0..2 {
+        let d = w[k].as_f64().unwrap() / g[k].as_f64().unwrap();
+        assert!((d / 2.5e-4 - 1.0).abs() < 0.03, "element size {d}");
+    }
+    // creepage_long = +0.086 %: the rail is driven backwards relative to
+    // the wheel, so the force on the rail is negative (braking sign on the
+    // rail, tractive on the wheel) at about 0.65 mu Fn.
+    let fn_ = f(&v, "normal_force_n");
+    assert!((fn_ / 80e3 - 1.0).abs() < 1e-6);
+    let fx = f(&v, "fx_n");
+    assert!(fx < 0.0, "fx_n on the rail {fx}");
+    let unit = fx.abs() / (0.3 * fn_);
+    assert!((0.62..=0.68).contains(&unit), "|Fx|/(mu Fn) = {unit}");
+    assert!(f(&v, "fy_n").abs() < 1e-6 * fn_, "laterally symmetric");
+    assert_eq!(f(&v, "friction_coefficient"), 0.3);
+    let adh = f(&v, "adhesion_fraction");
+    assert!(adh > 0.0 && adh < 1.0, "partial slip {adh}");
+    assert!(f(&v, "tgamma_n") > 0.0);
+    assert!(f(&v, "normal_force_from_tractions_n") > 0.0);
+    assert!(v["coupling_iterations"].as_u64().unwrap() >= 1);
+    // W_fric(s) on every lateral line, peaking at the sides (Fig. 13).
+    let wf = &v["wfric_lateral"];
+    let s: Vec<f64> = wf["s_m"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let wj: Vec<f64> = wf["w_j_per_m2"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(s.len(), 94);
+    assert_eq!(wj.len(), s.len());
+    assert!(s.windows(2).all(|p| p[1] > p[0]));
+    let mid = wj.len() / 2;
+    let peak = wj.iter().cloned().fold(0.0, f64::max);
+    assert!(peak > 0.0 && 0.5 * (wj[mid - 1] + wj[mid]) < 0.3 * peak);
+}
+
+#[test]
+fn conformal_static_compression_with_fields() {
+    let text = format!(
+        "{}\n[friction]\ncoefficient = 0.30\n\n[transient]\nsteps = [\n  {{ normal_force_n = 20000.0 }},\n  {{ normal_force_n = 40000.0, shift_x_m = 0.0 }},\n  {{ normal_force_n = 60000.0 }},\n]\n",
+        case1_with("cect", 32, 40)
+    );
+    let v = solve_json(&case_file("c1_static.toml", &text), &["--fields"]);
+    check_conformal_keys(&v);
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 3);
+    let mut last = 0.0;
+    for (k, s) in steps.iter().enumerate() {
+        check_keys(s);
+        check_conformal_keys(s);
+        let fn_ = f(s, "normal_force_n");
+        assert!((fn_ / (20e3 * (k + 1) as f64) - 1.0).abs() < 1e-6);
+        assert!(f(s, "approach_m") > last);
+        last = f(s, "approach_m");
+        // Lateral tractions carry part of the load; no net tangential force.
+        assert!(f(s, "normal_force_from_tractions_n") > 0.0);
+        assert!(f(s, "fx_n").abs() < 1e-6 * fn_ && f(s, "fy_n").abs() < 1e-6 * fn_);
+    }
+    assert!(v.get("wfric_lateral").is_none());
+    let fl = &v["fields"];
+    let (nx, ny) = (
+        fl["nx"].as_u64().unwrap() as usize,
+        fl["ny"].as_u64().unwrap() as usize,
+    );
+    assert_eq!((nx, ny), (32, 40));
+    for k in [
+        "pressure_pa",
+        "traction_x_pa",
+        "traction_s_pa",
+        "slip_x",
+        "slip_s",
+        "state",
+        "gap_m",
+    ] {
+        assert_eq!(fl[k].as_array().unwrap().len(), nx * ny, "{k}");
+    }
+    for k in ["delta_rad", "reference_yz_m"] {
+        assert_eq!(fl[k].as_array().unwrap().len(), ny, "{k}");
+    }
+    // delta(s) increases across the patch, antisymmetric about s = 0.
+    let d: Vec<f64> = fl["delta_rad"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert!(d.windows(2).all(|p| p[1] > p[0]));
+    assert!((d[0] + d[ny - 1]).abs() < 1e-9);
+    assert!(fl["state"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|s| s == "adhesion"));
+}
+
+#[test]
+fn conformal_influence_models_and_flattened_exact() {
+    let cect = solve_json(
+        &case_file("c1_cect32.toml", &case1_with("cect", 32, 40)),
+        &[],
+    );
+    let half = solve_json(
+        &case_file("c1_half32.toml", &case1_with("cect_halfspace", 32, 40)),
+        &[],
+    );
+    check_conformal_keys(&half);
+    assert_eq!(half["model"], "cect_halfspace");
+    // Half-space coefficients: higher max pressure and approach (§3.1).
+    assert!(f(&half, "max_pressure_pa") > f(&cect, "max_pressure_pa"));
+    assert!(f(&half, "approach_m") > f(&cect, "approach_m"));
+    // The planar exact model on the flattened gap is Hertz's problem.
+    let exact = solve_json(
+        &case_file("c1_exact32.toml", &case1_with("exact", 32, 32)),
+        &[],
+    );
+    let hertz = solve_json(
+        &case_file("c1_hertz32.toml", &case1_with("hertz", 32, 32)),
+        &[],
+    );
+    assert_eq!(exact["model"], "exact");
+    assert!((f(&exact, "max_pressure_pa") / f(&hertz, "max_pressure_pa") - 1.0).abs() < 0.03);
+    assert!(exact["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|n| n.as_str().unwrap().contains("flattened")));
+}
+
+/// `[[y, z], ...]` of a circular arc through the origin with tangent +y,
+/// bending towards +z with curvature `k` [1/m], every `step` m up to
+/// +-`half` m of arc.
+fn arc_points(k: f64, half: f64, step: f64) -> String {
+    let n = (half / step).round() as i64;
+    let pts: Vec<String> = (-n..=n)
+        .map(|i| {
+            let t = i as f64 * step;
+            format!("[{:e}, {:e}]", (k * t).sin() / k, (1.0 - (k * t).cos()) / k)
+        })
+        .collect();
+    format!("[{}]", pts.join(", "))
+}
+
+/// Case 1 text with the profiles given as points.
+fn case1_points(rail: &str, wheel: &str) -> String {
+    case1_with("cect", 32, 40).replace(
+        "rail_lateral_radius_m = 0.010     # R_yr, convex rail crown\nwheel_lateral_radius_m = -0.0101  # R_yw, concave wheel profile",
+        &format!("rail_points_m = {rail}\nwheel_points_m = {wheel}"),
+    ).replace("kind = \"conformal_circular\"", "kind = \"conformal_points\"")
+}
+
+#[test]
+fn conformal_points_reproduce_the_circles() {
+    // Circle::rail(R) bends towards +z with curvature 1/R,
+    // Circle::wheel(R) with -1/R (a concave wheel bends towards +z too).
+    let text = case1_points(
+        &arc_points(1.0 / 0.010, 0.016, 2e-4),
+        &arc_points(1.0 / 0.0101, 0.016, 2e-4),
+    );
+    assert!(text.contains("conformal_points") && !text.contains("lateral_radius"));
+    let pts = solve_json(&case_file("c1_points.toml", &text), &[]);
+    let circ = solve_json(
+        &case_file("c1_circ32.toml", &case1_with("cect", 32, 40)),
+        &[],
+    );
+    for k in [
+        "max_pressure_pa",
+        "approach_m",
+        "contact_area_m2",
+        "contact_angle_variation_deg",
+    ] {
+        let e = f(&pts, k) / f(&circ, k) - 1.0;
+        assert!(e.abs() < 0.005, "{k}: points vs circles {e}");
+    }
+}
+
+#[test]
+fn conformal_human_summary_has_units() {
+    let out = run(&[
+        "solve",
+        example("conformal_case1_frictionless.toml")
+            .to_str()
+            .unwrap(),
+    ]);
+    assert!(out.status.success());
+    let s = String::from_utf8(out.stdout).unwrap();
+    for label in [
+        "CECT",
+        "[N]",
+        "[MPa]",
+        "[mm]",
+        "[mm²]",
+        "contact angle variation [deg]",
+        "length/width ratio",
+        "R_yr = 10.0000 mm",
+        "converged",
+    ] {
+        assert!(s.contains(label), "{label} in {s}");
+    }
+}
+
+#[test]
+fn conformal_bad_input_names_the_key() {
+    let fr = example_text("conformal_case1_frictionless.toml");
+    expect_bad(
+        "c_no_rail_radius.toml",
+        &fr.replace("rail_lateral_radius_m = 0.010", ""),
+        "geometry.rail_lateral_radius_m",
+    );
+    expect_bad(
+        "c_cect_quadratic.toml",
+        &circle().replace("model = \"exact\"", "model = \"cect\""),
+        "`model`",
+    );
+    expect_bad(
+        "c_corrected_quadratic.toml",
+        &circle().replace("model = \"exact\"", "model = \"hertz_corrected\""),
+        "`model`",
+    );
+    let static_steps = |steps: &str| {
+        format!("{fr}\n[friction]\ncoefficient = 0.30\n\n[transient]\nsteps = [{steps}]\n")
+    };
+    expect_bad(
+        "c_shifted.toml",
+        &static_steps("{ normal_force_n = 1.0e4 }, { normal_force_n = 2.0e4, shift_x_m = 1.0e-6 }"),
+        "transient.steps[1].shift_x_m",
+    );
+    expect_bad(
+        "c_rotated.toml",
+        &static_steps("{ normal_force_n = 1.0e4, rotation_rad = 1.0e-4 }"),
+        "transient.steps[0].rotation_rad",
+    );
+    expect_bad(
+        "c_decreasing.toml",
+        &static_steps("{ normal_force_n = 2.0e4 }, { normal_force_n = 1.0e4 }"),
+        "transient.steps[1].normal_force_n",
+    );
+    expect_bad(
+        "c_a_per_m.toml",
+        &fr.replace(
+            "wheel_rolling_radius_m = 0.5",
+            "wheel_rolling_radius_m = 0.5\na_per_m = 1.0",
+        ),
+        "geometry.a_per_m",
+    );
+    expect_bad(
+        "c_not_touching.toml",
+        &fr.replace("-0.0101", "-0.0099"),
+        "geometry.wheel_lateral_radius_m",
+    );
+    let rolling = example_text("conformal_case1_rolling.toml");
+    expect_bad(
+        "c_no_friction.toml",
+        &rolling.replace("[friction]\ncoefficient = 0.30", ""),
+        "friction.coefficient",
+    );
+    expect_bad(
+        "c_rolling_approach.toml",
+        &rolling.replace("normal_force_n = 80000.0", "approach_m = 7.0e-5"),
+        "load.approach_m",
+    );
+    let arc = arc_points(1.0 / 0.010, 0.016, 1e-3);
+    let points = case1_points(&arc, &arc_points(1.0 / 0.0101, 0.016, 1e-3));
+    expect_bad(
+        "c_points_exact.toml",
+        &points.replace("model = \"cect\"", "model = \"exact\""),
+        "`model`",
+    );
+    let off_origin = points.replace("[0e0, 0e0]", "[1e-5, 0e0]");
+    assert_ne!(off_origin, points);
+    expect_bad(
+        "c_points_origin.toml",
+        &off_origin,
+        "geometry.rail_points_m",
+    );
+}
+
+#[test]
+fn conformal_plot_is_rejected() {
+    let out = run(&[
+        "solve",
+        example("conformal_case1_frictionless.toml")
+            .to_str()
+            .unwrap(),
+        "--plot",
+        "conformal.png",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--plot") && stderr.contains("conformal"),
+        "{stderr}"
+    );
+    assert!(!Path::new("conformal.png").exists());
+}

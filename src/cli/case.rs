@@ -9,6 +9,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::cli::reference::hertz_of;
 use crate::cli::CliError;
+use crate::conformal::frictional::{ConformalKinematics, ConformalSettings};
+use crate::conformal::geometry::{
+    Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve,
+};
+use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{require_positive, ContactError};
 use crate::core::grid::Grid;
 use crate::core::hertz::HertzSolution;
@@ -27,18 +32,45 @@ pub const DEFAULT_FASTSIM_ELEMENTS: usize = 40;
 /// The automatic window is this multiple of the Hertz semi-axis in each
 /// direction (1.2 times the Hertz patch).
 pub const AUTO_WINDOW_PER_SEMI_AXIS: f64 = 2.4;
+/// Conformal models: the automatic window in x is this multiple of the
+/// plain Hertz semi-axis in x (1.6 times the Hertz patch length: the
+/// conformal patch is longer than Hertz's).
+pub const CONFORMAL_WINDOW_X_PER_SEMI_AXIS: f64 = 3.2;
+/// Conformal models: the automatic window along s is this multiple of the
+/// plain Hertz semi-axis in y (1.3 times the Hertz patch width: Hertz
+/// overestimates the width of conformal patches) ...
+pub const CONFORMAL_WINDOW_S_PER_SEMI_AXIS: f64 = 2.6;
+/// ... but at most the arc of +- this angle [deg] on the mean lateral radius.
+pub const CONFORMAL_WINDOW_MAX_HALF_ANGLE_DEG: f64 = 75.0;
+/// Largest distance of a profile's nearest point from the origin (the rigid
+/// contact point) in `geometry.*_points_m` [m].
+pub const POINTS_ORIGIN_TOLERANCE_M: f64 = 1e-7;
+/// Largest angle between the rail and wheel tangents at the origin in
+/// `geometry.*_points_m` [deg]: the profiles must touch there.
+pub const POINTS_TANGENT_TOLERANCE_DEG: f64 = 1.0;
 
 /// The contact model a case is solved with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum Model {
-    /// Hertz's closed-form normal solution; no tangential forces.
+    /// Hertz's closed-form normal solution; no tangential forces. On
+    /// circular conformal profiles: the paper's Hertz on the flattened
+    /// curvatures.
     Hertz,
+    /// Hertz with the corrected lateral curvature of conformal contact
+    /// (Blanco-Lorenzo et al. 2018, Eq. 5); `conformal_circular` only.
+    HertzCorrected,
     /// Kalker's simplified theory (FASTSIM) on the Hertz ellipse.
     Fastsim,
     /// Kalker's exact theory on the half-space (the core solver).
     #[default]
     Exact,
+    /// Conformal exact theory (CECT) with Blanco's influence coefficients
+    /// (half-space coefficients combined by the orientation difference).
+    Cect,
+    /// Conformal exact theory with plain half-space coefficients on
+    /// curvilinear distances.
+    CectHalfspace,
 }
 
 impl Model {
@@ -46,9 +78,32 @@ impl Model {
     pub fn name(self) -> &'static str {
         match self {
             Model::Hertz => "hertz",
+            Model::HertzCorrected => "hertz_corrected",
             Model::Fastsim => "fastsim",
             Model::Exact => "exact",
+            Model::Cect => "cect",
+            Model::CectHalfspace => "cect_halfspace",
         }
+    }
+
+    /// The conformal solver's influence coefficients (`cect`,
+    /// `cect_halfspace`); `None` for the other models.
+    pub fn influence(self) -> Option<InfluenceModel> {
+        match self {
+            Model::Cect => Some(InfluenceModel::Blanco),
+            Model::CectHalfspace => Some(InfluenceModel::HalfSpace),
+            _ => None,
+        }
+    }
+
+    /// Whether the model is a conformal solver (`cect`, `cect_halfspace`).
+    pub fn is_cect(self) -> bool {
+        self.influence().is_some()
+    }
+
+    /// Whether the model iterates (and reads `[solver]`).
+    fn is_iterative(self) -> bool {
+        matches!(self, Model::Exact | Model::Cect | Model::CectHalfspace)
     }
 }
 
@@ -56,7 +111,8 @@ impl Model {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CaseFile {
-    /// Contact model: `"hertz"`, `"fastsim"` or `"exact"` (default `"exact"`).
+    /// Contact model: `"hertz"`, `"hertz_corrected"`, `"fastsim"`,
+    /// `"exact"`, `"cect"` or `"cect_halfspace"` (default `"exact"`).
     #[serde(default)]
     pub model: Model,
     /// Elastic materials (required).
@@ -110,23 +166,414 @@ pub struct FrictionSection {
 
 /// Kind of undeformed geometry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "snake_case")]
 pub enum GeometryKind {
     /// h = a_per_m x² + b_per_m y².
     Quadratic,
+    /// Circular lateral profiles of rail and wheel and a wheel rolling
+    /// radius (conformal contact).
+    ConformalCircular,
+    /// Rail and wheel profiles given as points (y, z) and a wheel rolling
+    /// radius (conformal contact).
+    ConformalPoints,
 }
 
-/// `[geometry]`: the undeformed distance of the bodies.
-#[derive(Debug, Clone, Copy, Deserialize)]
+impl GeometryKind {
+    /// The name used in the case file.
+    pub fn name(self) -> &'static str {
+        match self {
+            GeometryKind::Quadratic => "quadratic",
+            GeometryKind::ConformalCircular => "conformal_circular",
+            GeometryKind::ConformalPoints => "conformal_points",
+        }
+    }
+}
+
+/// `[geometry]`: the undeformed distance of the bodies. Which keys are
+/// required depends on `kind`; keys of another kind are rejected.
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GeometrySection {
-    /// Geometry kind; only `"quadratic"`: h = a_per_m x² + b_per_m y².
+    /// Geometry kind: `"quadratic"`, `"conformal_circular"` or
+    /// `"conformal_points"`.
     pub kind: GeometryKind,
-    /// Curvature coefficient A in x (rolling direction) [1/m], > 0
-    /// (A = 1/(2 R_x) for combined radius R_x).
-    pub a_per_m: f64,
-    /// Curvature coefficient B in y (lateral) [1/m], > 0.
-    pub b_per_m: f64,
+    /// `quadratic`: curvature coefficient A in x (rolling direction) [1/m],
+    /// > 0 (A = 1/(2 R_x) for combined radius R_x).
+    pub a_per_m: Option<f64>,
+    /// `quadratic`: curvature coefficient B in y (lateral) [1/m], > 0.
+    pub b_per_m: Option<f64>,
+    /// `conformal_circular`: lateral radius of the rail profile [m], convex
+    /// (crown) > 0, concave < 0, `inf` straight.
+    pub rail_lateral_radius_m: Option<f64>,
+    /// `conformal_circular`: lateral radius of the wheel profile [m],
+    /// convex > 0, concave (hollow, wrapping the rail) < 0.
+    pub wheel_lateral_radius_m: Option<f64>,
+    /// Conformal kinds: wheel rolling radius at the rigid contact point [m], > 0.
+    pub wheel_rolling_radius_m: Option<f64>,
+    /// `conformal_points`: rail profile points `[y, z]` [m] in the plane
+    /// x = 0, z down into the rail, ordered by increasing y, one of them
+    /// at the rigid contact point (the origin).
+    pub rail_points_m: Option<Vec<[f64; 2]>>,
+    /// `conformal_points`: wheel profile points `[y, z]` [m], same rules.
+    pub wheel_points_m: Option<Vec<[f64; 2]>>,
+}
+
+/// A validated geometry.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CaseGeometry {
+    /// h = A x² + B y² (the case's `a_per_m`, `b_per_m`).
+    Quadratic,
+    /// Circular lateral profiles.
+    ConformalCircular {
+        /// Rail lateral radius [m] (convex > 0).
+        rail_lateral_radius_m: f64,
+        /// Wheel lateral radius [m] (concave < 0).
+        wheel_lateral_radius_m: f64,
+        /// Wheel rolling radius [m].
+        wheel_rolling_radius_m: f64,
+    },
+    /// Profiles through points.
+    ConformalPoints {
+        /// Rail profile.
+        rail: Box<PointCurve>,
+        /// Wheel profile.
+        wheel: Box<PointCurve>,
+        /// Number of rail points.
+        rail_points: usize,
+        /// Number of wheel points.
+        wheel_points: usize,
+        /// Rail lateral radius at the origin estimated from the points [m]
+        /// (infinite for a straight profile).
+        rail_lateral_radius_m: f64,
+        /// Wheel lateral radius at the origin estimated from the points [m].
+        wheel_lateral_radius_m: f64,
+        /// Wheel rolling radius [m].
+        wheel_rolling_radius_m: f64,
+    },
+}
+
+impl CaseGeometry {
+    /// Whether the geometry is conformal (curved lateral profiles).
+    pub fn is_conformal(&self) -> bool {
+        !matches!(self, CaseGeometry::Quadratic)
+    }
+
+    /// Lateral radii of rail and wheel and the wheel rolling radius [m]
+    /// (given or, for points, estimated at the origin); `None` for
+    /// `quadratic`.
+    pub fn radii(&self) -> Option<(f64, f64, f64)> {
+        match *self {
+            CaseGeometry::Quadratic => None,
+            CaseGeometry::ConformalCircular {
+                rail_lateral_radius_m,
+                wheel_lateral_radius_m,
+                wheel_rolling_radius_m,
+            }
+            | CaseGeometry::ConformalPoints {
+                rail_lateral_radius_m,
+                wheel_lateral_radius_m,
+                wheel_rolling_radius_m,
+                ..
+            } => Some((
+                rail_lateral_radius_m,
+                wheel_lateral_radius_m,
+                wheel_rolling_radius_m,
+            )),
+        }
+    }
+
+    /// Mean lateral radius r = (|R_yr| + |R_yw|)/2 [m] (infinite for
+    /// `quadratic` or a straight profile).
+    pub fn mean_lateral_radius_m(&self) -> f64 {
+        match self.radii() {
+            Some((r, w, _)) => 0.5 * (r.abs() + w.abs()),
+            None => f64::INFINITY,
+        }
+    }
+
+    /// One line describing the geometry (mm) for the readable summary.
+    pub fn describe(&self) -> String {
+        match self {
+            CaseGeometry::Quadratic => "quadratic gap".to_string(),
+            CaseGeometry::ConformalCircular {
+                rail_lateral_radius_m: r,
+                wheel_lateral_radius_m: w,
+                wheel_rolling_radius_m: x,
+            } => format!(
+                "circular profiles R_yr = {:.4} mm, R_yw = {:.4} mm, R_xw = {:.2} mm",
+                r * 1e3,
+                w * 1e3,
+                x * 1e3
+            ),
+            CaseGeometry::ConformalPoints {
+                rail_points,
+                wheel_points,
+                rail_lateral_radius_m: r,
+                wheel_lateral_radius_m: w,
+                wheel_rolling_radius_m: x,
+                ..
+            } => format!(
+                "profiles through {rail_points} rail and {wheel_points} wheel points \
+                 (at the origin R_yr ≈ {:.4} mm, R_yw ≈ {:.4} mm), R_xw = {:.2} mm",
+                r * 1e3,
+                w * 1e3,
+                x * 1e3
+            ),
+        }
+    }
+
+    /// The conformal geometry on the (x, s) grid `grid`.
+    pub fn conformal(&self, grid: Grid) -> Result<ConformalGeometry, CliError> {
+        let g = match self {
+            CaseGeometry::Quadratic => return Err(bad(
+                "geometry.kind",
+                "the conformal models need `kind = \"conformal_circular\"` or \"conformal_points\"",
+            )),
+            CaseGeometry::ConformalCircular {
+                rail_lateral_radius_m,
+                wheel_lateral_radius_m,
+                wheel_rolling_radius_m,
+            } => ConformalGeometry::new(
+                &Circle::rail(*rail_lateral_radius_m),
+                &Circle::wheel(*wheel_lateral_radius_m),
+                *wheel_rolling_radius_m,
+                grid,
+            )?,
+            CaseGeometry::ConformalPoints {
+                rail,
+                wheel,
+                wheel_rolling_radius_m,
+                ..
+            } => ConformalGeometry::new(
+                rail.as_ref(),
+                wheel.as_ref(),
+                *wheel_rolling_radius_m,
+                grid,
+            )?,
+        };
+        Ok(g)
+    }
+}
+
+/// Signed curvature [1/m] of `curve` at the origin (t = 0), positive
+/// when it bends towards +z for a tangent along +y: the tangent angle's
+/// derivative by central differences over +-`h_m`.
+fn curvature_at_origin(curve: &dyn Curve, h_m: f64) -> f64 {
+    let angle = |t: f64| {
+        let (_, d) = curve.eval(t);
+        d[1].atan2(d[0])
+    };
+    (angle(h_m) - angle(-h_m)) / (2.0 * h_m)
+}
+
+/// A profile through `points` with the checks of `conformal_points`:
+/// the curve, its curvature at the origin [1/m] and its tangent there.
+fn profile_from_points(
+    points: &[[f64; 2]],
+    key: &str,
+) -> Result<(PointCurve, f64, [f64; 2]), CliError> {
+    let curve = PointCurve::new(points, key)?;
+    let dist = |p: &[f64; 2]| p[0].hypot(p[1]);
+    let nearest = (0..points.len())
+        .min_by(|&a, &b| dist(&points[a]).total_cmp(&dist(&points[b])))
+        .unwrap_or(0);
+    let p = points[nearest];
+    if dist(&p) > POINTS_ORIGIN_TOLERANCE_M {
+        return Err(bad(
+            key,
+            format!(
+                "the rigid contact point must be the origin and one of the points: the point \
+                 nearest to it is [{:e}, {:e}] m; shift the profile so that it passes through [0.0, 0.0]",
+                p[0], p[1]
+            ),
+        ));
+    }
+    if nearest == 0 || nearest + 1 == points.len() {
+        return Err(bad(
+            key,
+            "the origin (the rigid contact point) is an end point: give points on both sides of it",
+        ));
+    }
+    let (_, tangent) = curve.eval(0.0);
+    if tangent[0] <= 0.0 {
+        return Err(bad(
+            key,
+            "order the points by increasing y (the profile's tangent at the origin must point towards +y)",
+        ));
+    }
+    let spacing =
+        |a: usize, b: usize| (points[a][0] - points[b][0]).hypot(points[a][1] - points[b][1]);
+    let h = 0.5 * spacing(nearest - 1, nearest).min(spacing(nearest, nearest + 1));
+    let curvature = curvature_at_origin(&curve, h);
+    Ok((curve, curvature, tangent))
+}
+
+/// A lateral radius: non-zero and not NaN (`inf`: straight).
+fn lateral_radius(key: &str, v: f64) -> Result<f64, CliError> {
+    if v.is_nan() || v == 0.0 {
+        return Err(bad(
+            key,
+            format!(
+                "must be non-zero (convex > 0, concave < 0, inf for a straight profile), got {v}"
+            ),
+        ));
+    }
+    Ok(v)
+}
+
+impl GeometrySection {
+    /// Validates the section for its `kind`: the geometry and the
+    /// curvature coefficients A, B [1/m] of its (flattened) quadratic gap,
+    /// A = 1/(2 R_xw), B = (1/R_yr + 1/R_yw)/2 for the conformal kinds.
+    fn validate(&self) -> Result<(CaseGeometry, f64, f64), CliError> {
+        let kind = self.kind;
+        let keys: [(&str, bool, GeometryKind); 7] = [
+            ("a_per_m", self.a_per_m.is_some(), GeometryKind::Quadratic),
+            ("b_per_m", self.b_per_m.is_some(), GeometryKind::Quadratic),
+            (
+                "rail_lateral_radius_m",
+                self.rail_lateral_radius_m.is_some(),
+                GeometryKind::ConformalCircular,
+            ),
+            (
+                "wheel_lateral_radius_m",
+                self.wheel_lateral_radius_m.is_some(),
+                GeometryKind::ConformalCircular,
+            ),
+            (
+                "wheel_rolling_radius_m",
+                self.wheel_rolling_radius_m.is_some(),
+                kind,
+            ),
+            (
+                "rail_points_m",
+                self.rail_points_m.is_some(),
+                GeometryKind::ConformalPoints,
+            ),
+            (
+                "wheel_points_m",
+                self.wheel_points_m.is_some(),
+                GeometryKind::ConformalPoints,
+            ),
+        ];
+        for (key, given, owner) in keys {
+            if given && owner != kind {
+                return Err(bad(
+                    format!("geometry.{key}"),
+                    format!(
+                        "not used with `kind = \"{}\"` (it belongs to `kind = \"{}\"`)",
+                        kind.name(),
+                        owner.name()
+                    ),
+                ));
+            }
+        }
+        if kind == GeometryKind::Quadratic && self.wheel_rolling_radius_m.is_some() {
+            return Err(bad(
+                "geometry.wheel_rolling_radius_m",
+                "not used with `kind = \"quadratic\"` (it belongs to the conformal kinds)",
+            ));
+        }
+        let need = |key: &str, v: Option<f64>| {
+            v.ok_or_else(|| {
+                bad(
+                    format!("geometry.{key}"),
+                    format!("missing: required with `kind = \"{}\"`", kind.name()),
+                )
+            })
+        };
+        match kind {
+            GeometryKind::Quadratic => {
+                let a = need("a_per_m", self.a_per_m)?;
+                let b = need("b_per_m", self.b_per_m)?;
+                require_positive("geometry.a_per_m", a)?;
+                require_positive("geometry.b_per_m", b)?;
+                Ok((CaseGeometry::Quadratic, a, b))
+            }
+            GeometryKind::ConformalCircular => {
+                let r = need("rail_lateral_radius_m", self.rail_lateral_radius_m)?;
+                let w = need("wheel_lateral_radius_m", self.wheel_lateral_radius_m)?;
+                let x = need("wheel_rolling_radius_m", self.wheel_rolling_radius_m)?;
+                let r = lateral_radius("geometry.rail_lateral_radius_m", r)?;
+                let w = lateral_radius("geometry.wheel_lateral_radius_m", w)?;
+                require_positive("geometry.wheel_rolling_radius_m", x)?;
+                let b = 0.5 * (1.0 / r + 1.0 / w);
+                if b.is_nan() || b <= 0.0 {
+                    return Err(bad(
+                        "geometry.wheel_lateral_radius_m",
+                        format!(
+                            "the profiles do not touch in one point: 1/R_yr + 1/R_yw = {:.6e} 1/m must be > 0 \
+                             (a concave wheel, R_yw < 0, must be wider than a convex rail: |R_yw| > R_yr)",
+                            2.0 * b
+                        ),
+                    ));
+                }
+                let geometry = CaseGeometry::ConformalCircular {
+                    rail_lateral_radius_m: r,
+                    wheel_lateral_radius_m: w,
+                    wheel_rolling_radius_m: x,
+                };
+                Ok((geometry, 0.5 / x, b))
+            }
+            GeometryKind::ConformalPoints => {
+                let missing = |key: &str| {
+                    bad(
+                        format!("geometry.{key}"),
+                        "missing: required with `kind = \"conformal_points\"`",
+                    )
+                };
+                let rp = self
+                    .rail_points_m
+                    .as_deref()
+                    .ok_or_else(|| missing("rail_points_m"))?;
+                let wp = self
+                    .wheel_points_m
+                    .as_deref()
+                    .ok_or_else(|| missing("wheel_points_m"))?;
+                let x = need("wheel_rolling_radius_m", self.wheel_rolling_radius_m)?;
+                require_positive("geometry.wheel_rolling_radius_m", x)?;
+                let (rail, kr, tr) = profile_from_points(rp, "geometry.rail_points_m")?;
+                let (wheel, kw, tw) = profile_from_points(wp, "geometry.wheel_points_m")?;
+                let angle = (tr[0] * tw[1] - tr[1] * tw[0])
+                    .atan2(tr[0] * tw[0] + tr[1] * tw[1])
+                    .to_degrees();
+                if angle.abs() > POINTS_TANGENT_TOLERANCE_DEG {
+                    return Err(bad(
+                        "geometry.wheel_points_m",
+                        format!(
+                            "the profiles must touch at the origin with a common tangent: the wheel's \
+                             tangent there is {angle:.3}° off the rail's (at most {POINTS_TANGENT_TOLERANCE_DEG}°)"
+                        ),
+                    ));
+                }
+                // Rail: Circle::rail(R) bends towards +z with curvature 1/R;
+                // wheel: Circle::wheel(R) with -1/R.
+                let b = 0.5 * (kr - kw);
+                if b.is_nan() || b <= 0.0 {
+                    return Err(bad(
+                        "geometry.wheel_points_m",
+                        format!(
+                            "the profiles do not touch in one point at the origin: the estimated \
+                             curvatures (rail {kr:.4e} 1/m, wheel {:.4e} 1/m towards the rail) leave \
+                             1/R_yr + 1/R_yw = {:.4e} 1/m, which must be > 0",
+                            -kw,
+                            2.0 * b
+                        ),
+                    ));
+                }
+                let geometry = CaseGeometry::ConformalPoints {
+                    rail: Box::new(rail),
+                    wheel: Box::new(wheel),
+                    rail_points: rp.len(),
+                    wheel_points: wp.len(),
+                    rail_lateral_radius_m: 1.0 / kr,
+                    wheel_lateral_radius_m: -1.0 / kw,
+                    wheel_rolling_radius_m: x,
+                };
+                Ok((geometry, 0.5 / x, b))
+            }
+        }
+    }
 }
 
 /// `[load]`: exactly one of `normal_force_n` and `approach_m`.
@@ -151,8 +598,9 @@ pub struct TransientSection {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepSection {
-    /// Rigid shift of body 1 relative to body 2 in x during the step [m] (required).
-    pub shift_x_m: f64,
+    /// Rigid shift of body 1 relative to body 2 in x during the step [m]
+    /// (required, except for the conformal models, which take 0 only).
+    pub shift_x_m: Option<f64>,
     /// Rigid shift in y during the step [m] (default 0).
     #[serde(default)]
     pub shift_y_m: f64,
@@ -169,13 +617,17 @@ pub struct StepSection {
 #[derive(Debug, Clone, Copy, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct GridSection {
-    /// Elements in x (default 64 for `exact`, 40 strips for `fastsim`).
+    /// Elements in x (default 64 for `exact`, `cect`, `cect_halfspace`, 40
+    /// strips for `fastsim`).
     pub nx: Option<usize>,
-    /// Elements in y (default 64 for `exact`, 40 for `fastsim`).
+    /// Elements in y, along s for the conformal models (default 64; 40 for `fastsim`).
     pub ny: Option<usize>,
-    /// Window length in x [m] (default 2.4 x the Hertz semi-axis in x).
+    /// Window length in x [m] (default 2.4 x the Hertz semi-axis in x;
+    /// conformal models 3.2 x).
     pub window_x_m: Option<f64>,
-    /// Window width in y [m] (default 2.4 x the Hertz semi-axis in y).
+    /// Window width in y [m] (default 2.4 x the Hertz semi-axis in y);
+    /// conformal models: curvilinear width along s (default 2.6 x the plain
+    /// Hertz semi-axis, at most the arc of +-75° on the mean lateral radius).
     pub window_y_m: Option<f64>,
 }
 
@@ -191,6 +643,13 @@ pub struct SolverSection {
     /// Iteration limit of each solver, normal and tangential (default 1000
     /// normal, 2000 tangential).
     pub max_iterations: Option<usize>,
+    /// Relative traction change that ends the normal/tangential
+    /// alternation [-] (`exact` with dissimilar materials, `cect`,
+    /// `cect_halfspace`; default 1e-8).
+    pub coupling_tolerance: Option<f64>,
+    /// Limit of normal/tangential alternations (default 30 for `exact`, 50
+    /// for the conformal models).
+    pub coupling_max_iterations: Option<usize>,
 }
 
 /// A validated case, ready to be solved.
@@ -204,13 +663,19 @@ pub struct Case {
     pub friction: Friction,
     /// Whether `[friction]` was given.
     pub has_friction: bool,
-    /// Curvature coefficient A [1/m].
+    /// The geometry (kind and profiles).
+    pub geometry: CaseGeometry,
+    /// Curvature coefficient A [1/m] (conformal kinds: of the flattened
+    /// gap, A = 1/(2 R_xw)).
     pub a_per_m: f64,
-    /// Curvature coefficient B [1/m].
+    /// Curvature coefficient B [1/m] (conformal kinds: of the flattened
+    /// gap, B = (1/R_yr + 1/R_yw)/2).
     pub b_per_m: f64,
     /// The `[load]`.
     pub load: NormalLoad,
-    /// Kinematics (frictionless, steady rolling or transient).
+    /// Kinematics (frictionless, steady rolling or transient; for the
+    /// conformal models transient steps are static compression: zero
+    /// shifts, increasing forces).
     pub kinematics: Kinematics,
     /// Elements in x.
     pub nx: usize,
@@ -218,7 +683,7 @@ pub struct Case {
     pub ny: usize,
     /// Window in x [m] (given or automatic).
     pub window_x_m: f64,
-    /// Window in y [m] (given or automatic).
+    /// Window in y [m] (given or automatic; along s for the conformal models).
     pub window_y_m: f64,
     /// Solver settings.
     pub settings: SolverSettings,
@@ -354,9 +819,15 @@ impl Case {
         let model = file.model;
         let material = file.material.combine()?;
 
-        let geo = file.geometry;
-        require_positive("geometry.a_per_m", geo.a_per_m)?;
-        require_positive("geometry.b_per_m", geo.b_per_m)?;
+        let (geometry, a_per_m, b_per_m) = file.geometry.validate()?;
+        check_model_geometry(model, &geometry)?;
+        if geometry.is_conformal() && matches!(model, Model::Exact | Model::Fastsim) {
+            notes.push(format!(
+                "the {} model runs on the flattened quadratic gap h = A x² + B y², A = 1/(2 R_xw) = {a_per_m:.6} 1/m, \
+                 B = (1/R_yr + 1/R_yw)/2 = {b_per_m:.6} 1/m: no conformal effects",
+                model.name()
+            ));
+        }
 
         let load =
             one_load("load", file.load.normal_force_n, file.load.approach_m)?.ok_or_else(|| {
@@ -375,33 +846,53 @@ impl Case {
             }
             (Some(r), None) => {
                 r.validate()?;
+                if model.is_cect() {
+                    if let NormalLoad::Approach(_) = load {
+                        return Err(bad(
+                            "load.approach_m",
+                            format!(
+                                "the {} model rolls at a prescribed normal force: give `load.normal_force_n`",
+                                model.name()
+                            ),
+                        ));
+                    }
+                }
                 Kinematics::SteadyRolling(*r)
             }
             (None, Some(t)) => {
                 if t.steps.is_empty() {
                     return Err(bad("transient.steps", "needs at least one step"));
                 }
-                let mut steps = Vec::with_capacity(t.steps.len());
-                for (k, s) in t.steps.iter().enumerate() {
-                    let key = format!("transient.steps[{k}]");
-                    let step = ShiftStep {
-                        load: one_load(&key, s.normal_force_n, s.approach_m)?.unwrap_or(load),
-                        shift_x_m: s.shift_x_m,
-                        shift_y_m: s.shift_y_m,
-                        rotation_rad: s.rotation_rad,
-                    };
-                    step.validate(&key)?;
-                    steps.push(step);
+                if model.is_cect() {
+                    Kinematics::Transient(static_compression(model, &t.steps)?)
+                } else {
+                    let mut steps = Vec::with_capacity(t.steps.len());
+                    for (k, s) in t.steps.iter().enumerate() {
+                        let key = format!("transient.steps[{k}]");
+                        let shift_x_m = s
+                            .shift_x_m
+                            .ok_or_else(|| bad(format!("{key}.shift_x_m"), "missing"))?;
+                        let step = ShiftStep {
+                            load: one_load(&key, s.normal_force_n, s.approach_m)?.unwrap_or(load),
+                            shift_x_m,
+                            shift_y_m: s.shift_y_m,
+                            rotation_rad: s.rotation_rad,
+                        };
+                        step.validate(&key)?;
+                        steps.push(step);
+                    }
+                    Kinematics::Transient(steps)
                 }
-                Kinematics::Transient(steps)
             }
             (None, None) => Kinematics::Frictionless,
         };
 
         let needs_friction = match model {
-            Model::Hertz => false,
+            Model::Hertz | Model::HertzCorrected => false,
             Model::Fastsim => true,
-            Model::Exact => !matches!(kinematics, Kinematics::Frictionless),
+            Model::Exact | Model::Cect | Model::CectHalfspace => {
+                !matches!(kinematics, Kinematics::Frictionless)
+            }
         };
         let (friction, has_friction) = match (&file.friction, needs_friction) {
             (Some(f), _) => (f.friction()?, true),
@@ -415,9 +906,18 @@ impl Case {
         };
 
         match model {
-            Model::Hertz => {
+            Model::Hertz | Model::HertzCorrected => {
                 if file.rolling.is_some() || file.transient.is_some() {
-                    notes.push("the Hertz model solves the normal problem only: [rolling]/[transient] ignored".into());
+                    notes.push(format!(
+                        "the {} model solves the normal problem only: [rolling]/[transient] ignored",
+                        model.name()
+                    ));
+                }
+                if let (Model::HertzCorrected, NormalLoad::Approach(_)) = (model, load) {
+                    return Err(bad(
+                        "load.approach_m",
+                        "the hertz_corrected model (paper Eq. 5) starts from a normal force: give `load.normal_force_n`",
+                    ));
                 }
             }
             Model::Fastsim => {
@@ -434,9 +934,31 @@ impl Case {
                     ));
                 }
             }
-            Model::Exact => {
+            Model::Exact | Model::Cect | Model::CectHalfspace => {
                 if file.friction.is_some() && matches!(kinematics, Kinematics::Frictionless) {
                     notes.push("static case without [rolling]/[transient]: frictionless normal contact, [friction] unused".into());
+                }
+            }
+        }
+        if model.is_cect() && needs_friction {
+            if friction.static_coefficient != friction.kinetic_coefficient {
+                return Err(bad(
+                    "friction.static_coefficient",
+                    format!(
+                        "the {} model takes one Coulomb coefficient: give `friction.coefficient` \
+                         (or equal static and kinetic coefficients)",
+                        model.name()
+                    ),
+                ));
+            }
+            if let Kinematics::Transient(steps) = &kinematics {
+                if let Some(NormalLoad::NormalForce(last)) = steps.last().map(|s| s.load) {
+                    if load != NormalLoad::NormalForce(last) {
+                        notes.push(
+                            "static compression follows the steps' normal_force_n: [load] unused"
+                                .into(),
+                        );
+                    }
                 }
             }
         }
@@ -465,27 +987,37 @@ impl Case {
             require_positive("grid.window_y_m", w)?;
         }
 
-        // Hertz patch of the largest load: sizes the automatic window and
-        // checks a given one.
+        // Hertz patch of the largest load (on the flattened gap for the
+        // conformal kinds): sizes the automatic window and checks a given one.
         let e_star = material.effective_modulus_pa();
         let (mut patch_x_m, mut patch_y_m) = (0.0f64, 0.0f64);
         let loads: Vec<NormalLoad> = match &kinematics {
-            Kinematics::Transient(steps) if model == Model::Exact => {
+            Kinematics::Transient(steps) if model == Model::Exact || model.is_cect() => {
                 steps.iter().map(|s| s.load).collect()
             }
             _ => vec![load],
         };
         for l in loads {
-            let h = hertz_of(geo.a_per_m, geo.b_per_m, e_star, l)?;
+            let h = hertz_of(a_per_m, b_per_m, e_star, l)?;
             patch_x_m = patch_x_m.max(h.semi_axis_x_m);
             patch_y_m = patch_y_m.max(h.semi_axis_y_m);
         }
-        let window_x_m = grid
-            .window_x_m
-            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch_x_m);
-        let window_y_m = grid
-            .window_y_m
-            .unwrap_or(AUTO_WINDOW_PER_SEMI_AXIS * patch_y_m);
+        let (auto_x_m, auto_y_m) = if model.is_cect() {
+            let cap = 2.0
+                * CONFORMAL_WINDOW_MAX_HALF_ANGLE_DEG.to_radians()
+                * geometry.mean_lateral_radius_m();
+            (
+                CONFORMAL_WINDOW_X_PER_SEMI_AXIS * patch_x_m,
+                (CONFORMAL_WINDOW_S_PER_SEMI_AXIS * patch_y_m).min(cap),
+            )
+        } else {
+            (
+                AUTO_WINDOW_PER_SEMI_AXIS * patch_x_m,
+                AUTO_WINDOW_PER_SEMI_AXIS * patch_y_m,
+            )
+        };
+        let window_x_m = grid.window_x_m.unwrap_or(auto_x_m);
+        let window_y_m = grid.window_y_m.unwrap_or(auto_y_m);
         if model == Model::Exact {
             for (key, w, s) in [
                 ("grid.window_x_m", window_x_m, patch_x_m),
@@ -502,7 +1034,7 @@ impl Case {
                     ));
                 }
             }
-        } else if grid.window_x_m.is_some() || grid.window_y_m.is_some() {
+        } else if !model.is_cect() && (grid.window_x_m.is_some() || grid.window_y_m.is_some()) {
             notes.push(format!(
                 "the {} model uses the Hertz ellipse: grid.window_* ignored",
                 model.name()
@@ -528,9 +1060,19 @@ impl Case {
                 normal.max_iterations = m;
                 tangential.max_iterations = m;
             }
+            if let Some(t) = s.coupling_tolerance {
+                require_positive("solver.coupling_tolerance", t)?;
+                settings.coupling_tolerance = t;
+            }
+            if let Some(m) = s.coupling_max_iterations {
+                if m == 0 {
+                    return Err(bad("solver.coupling_max_iterations", "must be at least 1"));
+                }
+                settings.coupling_max_iterations = m;
+            }
             settings.normal = normal;
             settings.tangential = tangential;
-            if model != Model::Exact {
+            if !model.is_iterative() {
                 notes.push(format!(
                     "the {} model has no iterative solver: [solver] ignored",
                     model.name()
@@ -543,8 +1085,9 @@ impl Case {
             material,
             friction,
             has_friction,
-            a_per_m: geo.a_per_m,
-            b_per_m: geo.b_per_m,
+            geometry,
+            a_per_m,
+            b_per_m,
             load,
             kinematics,
             nx,
@@ -596,5 +1139,321 @@ impl Case {
             Kinematics::SteadyRolling(c) => *c,
             _ => Creepages::default(),
         }
+    }
+
+    /// The (x, s) grid and the conformal geometry of a conformal case.
+    pub fn conformal_geometry(&self) -> Result<ConformalGeometry, CliError> {
+        self.geometry.conformal(self.grid()?)
+    }
+
+    /// What the conformal models solve: `None` for frictionless normal
+    /// contact (no `[rolling]`, no `[transient]`), else static compression
+    /// through the steps' forces or steady rolling at the `[load]`'s force.
+    pub fn conformal_kinematics(&self) -> Result<Option<ConformalKinematics>, CliError> {
+        let force = |load: NormalLoad, key: &str| match load {
+            NormalLoad::NormalForce(f) => Ok(f),
+            NormalLoad::Approach(_) => Err(bad(
+                format!("{key}.approach_m"),
+                "the frictional conformal models need a normal force: give `normal_force_n`",
+            )),
+        };
+        Ok(match &self.kinematics {
+            Kinematics::Frictionless => None,
+            Kinematics::SteadyRolling(c) => Some(ConformalKinematics::SteadyRolling {
+                normal_force_n: force(self.load, "load")?,
+                creepages: ConformalCreepages {
+                    creepage_long: c.creepage_long,
+                    creepage_lat: c.creepage_lat,
+                    spin_per_m: c.spin_per_m,
+                },
+            }),
+            Kinematics::Transient(steps) => Some(ConformalKinematics::StaticCompression(
+                steps
+                    .iter()
+                    .enumerate()
+                    .map(|(k, s)| force(s.load, &format!("transient.steps[{k}]")))
+                    .collect::<Result<_, _>>()?,
+            )),
+        })
+    }
+
+    /// Solver settings of the frictional conformal models.
+    pub fn conformal_settings(&self) -> ConformalSettings {
+        let s = &self.settings;
+        let mut c = ConformalSettings {
+            normal: s.normal,
+            tangential: s.tangential,
+            ..ConformalSettings::default()
+        };
+        if s.coupling_tolerance > 0.0 {
+            c.coupling_tolerance = s.coupling_tolerance;
+        }
+        if s.coupling_max_iterations > 0 {
+            c.coupling_max_iterations = s.coupling_max_iterations;
+        }
+        c
+    }
+}
+
+/// Rejects a model that cannot run on the geometry; the error names `model`.
+fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CliError> {
+    match (model, geometry) {
+        (Model::Cect | Model::CectHalfspace | Model::HertzCorrected, CaseGeometry::Quadratic) => {
+            Err(bad(
+                "model",
+                format!(
+                    "model = \"{}\" is a conformal model: it needs `geometry.kind = \"conformal_circular\"` \
+                     or `\"conformal_points\"`, not \"quadratic\"",
+                    model.name()
+                ),
+            ))
+        }
+        (
+            Model::Hertz | Model::HertzCorrected | Model::Exact | Model::Fastsim,
+            CaseGeometry::ConformalPoints { .. },
+        ) => Err(bad(
+            "model",
+            format!(
+                "model = \"{}\" needs circular profiles (`geometry.kind = \"conformal_circular\"`) \
+                 or a quadratic gap; profiles given as points run with model = \"cect\" or \"cect_halfspace\"",
+                model.name()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The steps of a static compression (conformal models): every shift zero,
+/// every step with a `normal_force_n`, increasing.
+fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftStep>, CliError> {
+    let mut out: Vec<ShiftStep> = Vec::with_capacity(steps.len());
+    let mut previous = 0.0;
+    for (k, s) in steps.iter().enumerate() {
+        let key = format!("transient.steps[{k}]");
+        for (name, v) in [
+            ("shift_x_m", s.shift_x_m.unwrap_or(0.0)),
+            ("shift_y_m", s.shift_y_m),
+            ("rotation_rad", s.rotation_rad),
+        ] {
+            if v != 0.0 {
+                return Err(bad(
+                    format!("{key}.{name}"),
+                    format!(
+                        "the {} model runs static compression only: shifts and rotations must be 0, got {v}",
+                        model.name()
+                    ),
+                ));
+            }
+        }
+        if s.approach_m.is_some() {
+            return Err(bad(
+                format!("{key}.approach_m"),
+                format!(
+                    "the {} model's load steps are forces: give `normal_force_n` instead",
+                    model.name()
+                ),
+            ));
+        }
+        let f = s.normal_force_n.ok_or_else(|| {
+            bad(
+                format!("{key}.normal_force_n"),
+                "missing: every static compression step gives its normal force",
+            )
+        })?;
+        require_positive(&format!("{key}.normal_force_n"), f)?;
+        if f <= previous {
+            return Err(bad(
+                format!("{key}.normal_force_n"),
+                format!("static compression loads monotonically: {f} N must exceed the previous step's {previous} N"),
+            ));
+        }
+        previous = f;
+        out.push(ShiftStep {
+            load: NormalLoad::NormalForce(f),
+            shift_x_m: 0.0,
+            shift_y_m: 0.0,
+            rotation_rad: 0.0,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CASE_1: &str = r#"
+model = "cect"
+[material]
+shear_modulus_pa = 81.0e9
+poisson_ratio = 0.30
+[geometry]
+kind = "conformal_circular"
+rail_lateral_radius_m = 0.010
+wheel_lateral_radius_m = -0.0101
+wheel_rolling_radius_m = 0.5
+[load]
+normal_force_n = 80000.0
+"#;
+
+    fn bad_key(text: &str) -> String {
+        match Case::from_toml(text) {
+            Err(CliError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn model_names_round_trip() {
+        for m in [
+            Model::Hertz,
+            Model::HertzCorrected,
+            Model::Fastsim,
+            Model::Exact,
+            Model::Cect,
+            Model::CectHalfspace,
+        ] {
+            // With friction and rolling, which FASTSIM needs.
+            let text = format!(
+                "{}[friction]\ncoefficient = 0.3\n[rolling]\ncreepage_long = 1e-3\n",
+                CASE_1.replace("\"cect\"", &format!("\"{}\"", m.name()))
+            );
+            let model = match Case::from_toml(&text) {
+                Ok(c) => c.model,
+                // Every model parses; only its checks may fail.
+                Err(e) => panic!("{}: {e}", m.name()),
+            };
+            assert_eq!(model, m);
+        }
+        assert_eq!(
+            Model::CectHalfspace.influence(),
+            Some(InfluenceModel::HalfSpace)
+        );
+        assert_eq!(Model::Cect.influence(), Some(InfluenceModel::Blanco));
+        assert!(!Model::HertzCorrected.is_cect());
+    }
+
+    #[test]
+    fn circular_profiles_flatten_and_size_the_window() {
+        let c = Case::from_toml(CASE_1).unwrap();
+        assert!(c.geometry.is_conformal());
+        assert!((c.a_per_m - 1.0).abs() < 1e-12);
+        assert!((c.b_per_m - 0.5 * (100.0 - 1.0 / 0.0101)).abs() < 1e-12);
+        assert_eq!((c.nx, c.ny), (64, 64));
+        assert_eq!(c.conformal_kinematics().unwrap(), None);
+        let h = c.hertz().unwrap();
+        assert!((c.window_x_m / (3.2 * h.semi_axis_x_m) - 1.0).abs() < 1e-12);
+        assert!((c.window_y_m / (2.6 * h.semi_axis_y_m) - 1.0).abs() < 1e-12);
+        // A much heavier load: the lateral window stops at +-75° of arc.
+        let heavy = Case::from_toml(&CASE_1.replace("80000.0", "800000.0")).unwrap();
+        let cap = 2.0 * 75f64.to_radians() * 0.5 * (0.010 + 0.0101);
+        assert!((heavy.window_y_m / cap - 1.0).abs() < 1e-12);
+        let geo = c.conformal_geometry().unwrap();
+        assert_eq!(geo.delta_rad.len(), 64);
+    }
+
+    #[test]
+    fn kinematics_of_the_conformal_models() {
+        let rolling = format!(
+            "{CASE_1}[friction]\ncoefficient = 0.3\n[rolling]\ncreepage_long = 1e-3\nspin_per_m = 0.5\n"
+        );
+        let c = Case::from_toml(&rolling).unwrap();
+        match c.conformal_kinematics().unwrap() {
+            Some(ConformalKinematics::SteadyRolling {
+                normal_force_n,
+                creepages,
+            }) => {
+                assert_eq!(normal_force_n, 80e3);
+                assert_eq!(creepages.creepage_long, 1e-3);
+                assert_eq!(creepages.spin_per_m, 0.5);
+            }
+            other => panic!("{other:?}"),
+        }
+        let stat = format!(
+            "{CASE_1}[friction]\ncoefficient = 0.3\n[transient]\nsteps = [{{ normal_force_n = 1e4 }}, {{ normal_force_n = 3e4, shift_y_m = 0.0 }}]\n"
+        );
+        let c = Case::from_toml(&stat).unwrap();
+        assert_eq!(
+            c.conformal_kinematics().unwrap(),
+            Some(ConformalKinematics::StaticCompression(vec![1e4, 3e4]))
+        );
+        // The windows follow the largest step, and [load] is unused.
+        assert!(c.notes.iter().any(|n| n.contains("[load] unused")));
+        let m = bad_key(&stat.replace("3e4", "5e3"));
+        assert!(m.contains("`transient.steps[1].normal_force_n`"), "{m}");
+        let m = bad_key(&stat.replace("shift_y_m = 0.0", "shift_y_m = 1e-6"));
+        assert!(m.contains("`transient.steps[1].shift_y_m`"), "{m}");
+        let m = bad_key(&stat.replace("{ normal_force_n = 1e4 }", "{ approach_m = 1e-5 }"));
+        assert!(m.contains("`transient.steps[0].approach_m`"), "{m}");
+    }
+
+    #[test]
+    fn geometry_keys_are_checked_per_kind() {
+        let m = bad_key(&CASE_1.replace("wheel_rolling_radius_m = 0.5", ""));
+        assert!(m.contains("`geometry.wheel_rolling_radius_m`") && m.contains("missing"));
+        let m = bad_key(&CASE_1.replace("conformal_circular", "quadratic"));
+        assert!(m.contains("`geometry.rail_lateral_radius_m`"), "{m}");
+        let m = bad_key(&CASE_1.replace("conformal_circular", "conformal_points"));
+        assert!(m.contains("`geometry.rail_lateral_radius_m`"), "{m}");
+        let m = bad_key(&CASE_1.replace(
+            "rail_lateral_radius_m = 0.010",
+            "rail_lateral_radius_m = nan",
+        ));
+        assert!(m.contains("`geometry.rail_lateral_radius_m`"), "{m}");
+        let m = bad_key(
+            &CASE_1
+                .replace("\"cect\"", "\"hertz_corrected\"")
+                .replace("normal_force_n = 80000.0", "approach_m = 7e-5"),
+        );
+        assert!(m.contains("`load.approach_m`"), "{m}");
+    }
+
+    fn arc(k: f64, n: i64, step: f64) -> Vec<[f64; 2]> {
+        (-n..=n)
+            .map(|i| {
+                let t = i as f64 * step;
+                [(k * t).sin() / k, (1.0 - (k * t).cos()) / k]
+            })
+            .collect()
+    }
+
+    fn points_section(rail: &[[f64; 2]], wheel: &[[f64; 2]]) -> GeometrySection {
+        GeometrySection {
+            kind: GeometryKind::ConformalPoints,
+            a_per_m: None,
+            b_per_m: None,
+            rail_lateral_radius_m: None,
+            wheel_lateral_radius_m: None,
+            wheel_rolling_radius_m: Some(0.5),
+            rail_points_m: Some(rail.to_vec()),
+            wheel_points_m: Some(wheel.to_vec()),
+        }
+    }
+
+    #[test]
+    fn points_give_the_curvatures_at_the_origin() {
+        let (rail, wheel) = (arc(100.0, 60, 2.5e-4), arc(1.0 / 0.0101, 60, 2.5e-4));
+        let (g, a, b) = points_section(&rail, &wheel).validate().unwrap();
+        let (rr, rw, rx) = g.radii().unwrap();
+        assert!((rr / 0.010 - 1.0).abs() < 1e-3, "{rr}");
+        assert!((rw / -0.0101 - 1.0).abs() < 1e-3, "{rw}");
+        assert_eq!(rx, 0.5);
+        assert_eq!(a, 1.0);
+        assert!(
+            (b / (0.5 * (100.0 - 1.0 / 0.0101)) - 1.0).abs() < 0.05,
+            "{b}"
+        );
+        // Reversed order, a profile missing the origin, crossing profiles.
+        let rev: Vec<[f64; 2]> = rail.iter().rev().cloned().collect();
+        let err = |r: &[[f64; 2]], w: &[[f64; 2]]| match points_section(r, w).validate() {
+            Err(CliError::BadInput(m)) => m,
+            other => panic!("{other:?}"),
+        };
+        assert!(err(&rev, &wheel).contains("increasing y"));
+        let off: Vec<[f64; 2]> = rail.iter().map(|p| [p[0] + 1e-4, p[1]]).collect();
+        assert!(err(&off, &wheel).contains("`geometry.rail_points_m`"));
+        let tilted: Vec<[f64; 2]> = wheel.iter().map(|p| [p[0], p[1] + 0.1 * p[0]]).collect();
+        assert!(err(&rail, &tilted).contains("`geometry.wheel_points_m`"));
+        assert!(err(&wheel, &rail).contains("do not touch"));
     }
 }

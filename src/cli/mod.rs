@@ -10,6 +10,7 @@ pub mod case;
 pub mod plot;
 pub mod report;
 
+mod conformal_models;
 mod reference_models;
 use reference_models as reference;
 
@@ -25,14 +26,16 @@ use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::solve;
 
 use case::{Case, Model};
-use report::{FieldsReport, Report, StepReport};
+use conformal_models::ConformalRun;
+use report::{Fields, FieldsReport, Report, StepReport};
 
 /// Exit code for bad input (case file, options).
 pub const EXIT_BAD_INPUT: i32 = 2;
 /// Exit code for any other failure.
 pub const EXIT_FAILURE: i32 = 1;
 
-/// Frictional wheel/rail contact: Kalker's exact theory, Hertz and FASTSIM.
+/// Frictional wheel/rail contact: Kalker's exact theory, conformal contact
+/// (CECT), Hertz and FASTSIM.
 #[derive(Debug, Parser)]
 #[command(name = "railcontact", version, about, long_about = None)]
 pub struct Cli {
@@ -64,12 +67,13 @@ pub struct SolveArgs {
     pub json: bool,
     /// With --json: add the per-element fields (pressure_pa, traction_x_pa,
     /// traction_y_pa, slip_x, slip_y, state, gap_m, nx, ny, dx_m, dy_m, x0_m,
-    /// y0_m)
-    /// of the (last) solution. Exact model only.
+    /// y0_m) of the (last) solution. Models exact, cect and cect_halfspace
+    /// (these two: traction_s_pa, slip_s, and per lateral line delta_rad,
+    /// reference_yz_m).
     #[arg(long, requires = "json")]
     pub fields: bool,
     /// Write pressure and traction maps and a centre-line plot to FILE (.png
-    /// or .svg, by extension). Exact model only.
+    /// or .svg, by extension). Exact model only (not yet the conformal models).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
 }
@@ -155,10 +159,17 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         CliError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
         other => other,
     })?;
-    if case.model != Model::Exact {
+    if case.model.is_cect() && args.plot.is_some() {
+        return Err(CliError::BadInput(format!(
+            "invalid option `--plot`: plots of the conformal models are not available yet (model = \"{}\"); \
+             use --json --fields for the per-element fields",
+            case.model.name()
+        )));
+    }
+    if case.model != Model::Exact && !case.model.is_cect() {
         if args.fields {
             return Err(CliError::BadInput(format!(
-                "invalid option `--fields`: per-element fields come from model = \"exact\" only, not \"{}\"",
+                "invalid option `--fields`: per-element fields come from model = \"exact\", \"cect\" or \"cect_halfspace\" only, not \"{}\"",
                 case.model.name()
             )));
         }
@@ -171,13 +182,29 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     }
     let exact = match case.model {
         Model::Exact => Some(ExactRun::solve(&case)?),
-        Model::Hertz | Model::Fastsim => None,
+        _ => None,
     };
-    let mut report = match (&exact, case.model) {
-        (Some(run), _) => run.report(&case, args.fields),
-        (None, Model::Hertz) => reference::solve_hertz(&case)?,
-        (None, _) => reference::solve_fastsim(&case)?,
+    let conformal = match case.model {
+        Model::Cect | Model::CectHalfspace => Some(ConformalRun::solve(&case)?),
+        _ => None,
     };
+    let mut report = if let Some(run) = &exact {
+        run.report(&case, args.fields)
+    } else if let Some(run) = &conformal {
+        run.report(&case, args.fields)
+    } else {
+        match case.model {
+            Model::HertzCorrected => reference::solve_conformal_hertz(&case, true)?,
+            Model::Hertz if case.geometry.is_conformal() => {
+                reference::solve_conformal_hertz(&case, false)?
+            }
+            Model::Hertz => reference::solve_hertz(&case)?,
+            _ => reference::solve_fastsim(&case)?,
+        }
+    };
+    if report.geometry.is_none() && case.geometry.is_conformal() {
+        report.geometry = Some(case.geometry.describe());
+    }
     report.notes.extend(case.notes.iter().cloned());
     let mut out = if args.json {
         let mut s = serde_json::to_string(&report)
@@ -293,12 +320,14 @@ impl ExactRun {
             },
             grid: Some([self.grid.nx, self.grid.ny]),
             window_m: Some([case.window_x_m, case.window_y_m]),
+            wfric_lateral: None,
             notes,
             steps: matches!(case.kinematics, Kinematics::Transient(_)).then_some(steps),
-            fields: with_fields.then_some(FieldsReport {
+            fields: with_fields.then_some(Fields::Planar(FieldsReport {
                 grid: &self.grid,
                 fields: &self.last().fields,
-            }),
+            })),
+            geometry: None,
         }
     }
 }

@@ -1,13 +1,15 @@
 //! The reference models of `railcontact solve`: `model = "hertz"` (closed
-//! form, normal problem only) and `model = "fastsim"` (Kalker's simplified
-//! theory on the Hertz ellipse), and the Hertz semi-axes that size the
-//! automatic window of the exact model.
+//! form, normal problem only), `model = "hertz_corrected"` (Hertz with the
+//! corrected lateral curvature of conformal contact) and `model =
+//! "fastsim"` (Kalker's simplified theory on the Hertz ellipse), and the
+//! Hertz semi-axes that size the automatic windows.
 
 use std::time::Instant;
 
 use crate::cli::case::{Case, Model};
-use crate::cli::report::{Report, StepReport};
+use crate::cli::report::{ConformalKeys, Report, StepReport};
 use crate::cli::CliError;
+use crate::conformal::solve::conformal_hertz;
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::hertz::{hertz, HertzLoad, HertzSolution};
 use crate::core::normal::NormalLoad;
@@ -45,6 +47,9 @@ fn hertz_totals(h: &HertzSolution) -> Totals {
     }
 }
 
+/// What the Hertz models do not compute.
+const NOTE_HERTZ: &str = "the Hertz model solves the normal problem only: fx_n, fy_n, mz_nm, max_traction_pa, adhesion_fraction and tgamma_n are not computed (reported as 0)";
+
 /// Model `hertz`: Hertz's closed-form normal solution.
 pub(crate) fn solve_hertz(case: &Case) -> Result<Report<'static>, CliError> {
     let t0 = Instant::now();
@@ -56,11 +61,11 @@ pub(crate) fn solve_hertz(case: &Case) -> Result<Report<'static>, CliError> {
         friction_coefficient: 0.0,
         grid: None,
         window_m: None,
-        notes: vec![
-            "the Hertz model solves the normal problem only: fx_n, fy_n, mz_nm, max_traction_pa, adhesion_fraction and tgamma_n are not computed (reported as 0)".to_string(),
-        ],
+        wfric_lateral: None,
+        notes: vec![NOTE_HERTZ.to_string()],
         steps: None,
         fields: None,
+        geometry: None,
     })
 }
 
@@ -101,11 +106,86 @@ pub(crate) fn solve_fastsim(case: &Case) -> Result<Report<'static>, CliError> {
         friction_coefficient: case.friction.kinetic_coefficient,
         grid: Some([case.nx, case.ny]),
         window_m: None,
+        wfric_lateral: None,
         notes: vec![
             "normal quantities from Hertz; tangential from FASTSIM (Kalker's simplified theory)"
                 .to_string(),
         ],
         steps: None,
         fields: None,
+        geometry: None,
+    })
+}
+
+/// Models `hertz` (`corrected` false) and `hertz_corrected` on circular
+/// conformal profiles: the paper's Hertz solution on the flattened
+/// curvatures A = 1/(2 R_xw), B = (1/R_yr + 1/R_yw)/2, and with the
+/// corrected B_corr = B + d/(2 r²) (Blanco-Lorenzo et al. 2018, Eq. 5).
+/// The contact angle variation is 2 b / r, r the mean lateral radius.
+pub(crate) fn solve_conformal_hertz(
+    case: &Case,
+    corrected: bool,
+) -> Result<Report<'static>, CliError> {
+    let t0 = Instant::now();
+    let (rail, wheel, rolling) = case.geometry.radii().ok_or_else(|| {
+        CliError::BadInput(format!(
+            "invalid input `model`: \"{}\" on conformal profiles needs `geometry.kind = \"conformal_circular\"`",
+            case.model.name()
+        ))
+    })?;
+    let r = case.geometry.mean_lateral_radius_m();
+    let (h, variation_deg) = match case.load {
+        NormalLoad::NormalForce(f) => {
+            conformal_hertz(rail, wheel, rolling, &case.material, f, corrected)
+                .map_err(|e| CliError::BadInput(format!("Hertz model: {e}")))?
+        }
+        NormalLoad::Approach(_) if !corrected => {
+            let h = case.hertz()?;
+            let v = (2.0 * h.semi_axis_y_m / r).to_degrees();
+            (h, v)
+        }
+        NormalLoad::Approach(_) => {
+            return Err(CliError::BadInput(
+                "invalid input `load.approach_m`: the hertz_corrected model starts from a normal force: give `load.normal_force_n`".into(),
+            ))
+        }
+    };
+    let totals = hertz_totals(&h);
+    let mut step = StepReport::closed_form(totals, t0.elapsed().as_secs_f64());
+    step.conformal = Some(ConformalKeys {
+        contact_angle_variation_deg: variation_deg,
+        length_width_ratio: h.semi_axis_x_m / h.semi_axis_y_m,
+        normal_force_from_tractions_n: 0.0,
+        pressure_resultant_n: h.normal_force_n,
+        // Circular profiles touch with a lateral tangent: n(0) is +z.
+        fy_global_n: 0.0,
+        fz_global_n: h.normal_force_n,
+        coupling_iterations: None,
+    });
+    let flattened = format!(
+        "Hertz on the flattened curvatures A = 1/(2 R_xw) = {:.6} 1/m, B = (1/R_yr + 1/R_yw)/2 = {:.6} 1/m",
+        case.a_per_m, case.b_per_m
+    );
+    let mut notes = vec![NOTE_HERTZ.to_string()];
+    if corrected {
+        notes.push(format!(
+            "{flattened}, B corrected to B + d/(2 r²) with d the plain Hertz approach and r = {:.4} mm the mean lateral radius (Blanco-Lorenzo et al. 2018, Eq. 5)",
+            r * 1e3
+        ));
+    } else {
+        notes.push(flattened);
+    }
+    notes.push("contact_angle_variation_deg = 2 b / r (b the lateral semi-axis)".to_string());
+    Ok(Report {
+        model: case.model,
+        totals: step,
+        friction_coefficient: 0.0,
+        grid: None,
+        window_m: None,
+        wfric_lateral: None,
+        notes,
+        steps: None,
+        fields: None,
+        geometry: Some(case.geometry.describe()),
     })
 }

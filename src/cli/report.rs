@@ -7,7 +7,80 @@ use serde::Serialize;
 
 use crate::cli::case::Model;
 use crate::core::grid::Grid;
-use crate::core::solution::{ContactSolution, ElementFields, SolveStatus, Totals};
+use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+
+/// The quantities of the conformal models (`cect`, `cect_halfspace`,
+/// `hertz_corrected`, and `hertz` on conformal profiles) beyond
+/// [`Totals`]. Forces act on the rail.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq, Default)]
+pub struct ConformalKeys {
+    /// Total variation of the contact angle over the loaded lateral lines
+    /// [deg] (Hertz: 2 b / r, r the mean lateral radius).
+    pub contact_angle_variation_deg: f64,
+    /// Patch length in x over patch width along s [-] (Hertz: a/b).
+    pub length_width_ratio: f64,
+    /// Part of `normal_force_n` carried by the lateral tractions [N].
+    pub normal_force_from_tractions_n: f64,
+    /// Resultant of the pressures alone along n(0) [N].
+    pub pressure_resultant_n: f64,
+    /// Force on the rail along the global y (lateral) axis [N].
+    pub fy_global_n: f64,
+    /// Force on the rail along the global z axis (down, into the rail) [N].
+    pub fz_global_n: f64,
+    /// Normal/tangential alternations (frictional conformal solves).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coupling_iterations: Option<usize>,
+}
+
+/// Frictional work per unit rail area of one wheel passage along the
+/// lateral coordinate s (steady conformal rolling), one entry per lateral
+/// grid line.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct WfricReport {
+    /// s of each lateral grid line [m].
+    pub s_m: Vec<f64>,
+    /// W_fric(s) [J/m²].
+    pub w_j_per_m2: Vec<f64>,
+}
+
+/// Per-element fields of the conformal models (`--fields`): the (x, s)
+/// grid (its `y` is the curvilinear s) and arrays with index `iy * nx +
+/// ix`, plus per lateral line the orientation and the reference point.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct ConformalFieldsReport<'a> {
+    /// The (x, s) grid.
+    #[serde(flatten)]
+    pub grid: &'a Grid,
+    /// Pressure on the rail along the local normal [Pa].
+    pub pressure_pa: &'a [f64],
+    /// Longitudinal traction on the rail [Pa].
+    pub traction_x_pa: &'a [f64],
+    /// Lateral traction on the rail along the local tangent t(s) [Pa].
+    pub traction_s_pa: &'a [f64],
+    /// Slip of the rail relative to the wheel in x (steady: per rolling
+    /// speed [-]; static compression: in the step [m]).
+    pub slip_x: &'a [f64],
+    /// Slip along t(s), units as `slip_x`.
+    pub slip_s: &'a [f64],
+    /// Element states.
+    pub state: &'a [ElementState],
+    /// Undeformed distance along the local normals [m].
+    pub gap_m: &'a [f64],
+    /// Orientation delta(s) of each lateral line [rad] (length ny).
+    pub delta_rad: &'a [f64],
+    /// Reference-curve point (y, z) of each lateral line [m] (length ny).
+    pub reference_yz_m: &'a [[f64; 2]],
+}
+
+/// The `fields` of `--fields`: planar (exact) or conformal.
+#[derive(Debug, Clone, Copy, Serialize)]
+#[serde(untagged)]
+pub enum Fields<'a> {
+    /// Exact model.
+    Planar(FieldsReport<'a>),
+    /// Conformal models.
+    Conformal(ConformalFieldsReport<'a>),
+}
 
 /// The totals of one solution (one step of a transient case): the core's
 /// [`Totals`] with the solver's counters.
@@ -26,6 +99,9 @@ pub struct StepReport {
     pub solve_time_s: f64,
     /// `"converged"` or `"max_iterations"`.
     pub status: SolveStatus,
+    /// Conformal models: their additional quantities.
+    #[serde(flatten)]
+    pub conformal: Option<ConformalKeys>,
 }
 
 impl StepReport {
@@ -38,6 +114,7 @@ impl StepReport {
             tangential_iterations: 0,
             solve_time_s,
             status: SolveStatus::Converged,
+            conformal: None,
         }
     }
 
@@ -51,6 +128,7 @@ impl StepReport {
             tangential_iterations: i.tangential_iterations,
             solve_time_s: i.solve_time_s,
             status: i.status,
+            conformal: None,
         }
     }
 }
@@ -76,7 +154,8 @@ pub struct FieldsReport<'a> {
 /// `friction_coefficient`, `notes`, and `steps` / `fields` where present.
 #[derive(Debug, Clone, Serialize)]
 pub struct Report<'a> {
-    /// `"hertz"`, `"fastsim"` or `"exact"`.
+    /// `"hertz"`, `"hertz_corrected"`, `"fastsim"`, `"exact"`, `"cect"` or
+    /// `"cect_halfspace"`.
     pub model: Model,
     /// Totals (see the type's doc for transient cases).
     #[serde(flatten)]
@@ -86,9 +165,13 @@ pub struct Report<'a> {
     /// Grid used: `[nx, ny]` (elements of the exact model, strips x elements of FASTSIM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<[usize; 2]>,
-    /// Window of the exact model's grid `[x, y]` [m].
+    /// Window of the exact or conformal model's grid `[x, y]` [m] (y: along
+    /// s for the conformal models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub window_m: Option<[f64; 2]>,
+    /// Steady conformal rolling: W_fric(s) per lateral grid line.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wfric_lateral: Option<WfricReport>,
     /// Remarks: ignored sections, quantities a model does not compute.
     pub notes: Vec<String>,
     /// One entry per transient step.
@@ -96,7 +179,38 @@ pub struct Report<'a> {
     pub steps: Option<Vec<StepReport>>,
     /// Per-element fields of the (last) solution, with `--fields`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub fields: Option<FieldsReport<'a>>,
+    pub fields: Option<Fields<'a>>,
+    /// One line describing a conformal geometry (readable summary only).
+    #[serde(skip)]
+    pub geometry: Option<String>,
+}
+
+/// The summary lines shared by the planar and conformal reports: approach,
+/// max pressure (and traction), area and patch size.
+fn patch_lines(line: &mut dyn FnMut(&str, String), t: &Totals, traction: bool, width_note: &str) {
+    line("approach delta [mm]", format!("{:.6}", mm(t.approach_m)));
+    line(
+        "max pressure p0 [MPa]",
+        format!("{:.2}", mpa(t.max_pressure_pa)),
+    );
+    if traction {
+        line(
+            "max traction |p_t| [MPa]",
+            format!("{:.2}", mpa(t.max_traction_pa)),
+        );
+    }
+    line(
+        "contact area [mm²]",
+        format!("{:.4}", t.contact_area_m2 * 1e6),
+    );
+    line(
+        "patch length x width [mm]",
+        format!(
+            "{:.4} x {:.4}{width_note}",
+            mm(t.patch_length_m),
+            mm(t.patch_width_m)
+        ),
+    );
 }
 
 fn mm(v: f64) -> f64 {
@@ -107,9 +221,22 @@ fn mpa(v: f64) -> f64 {
     v * 1e-6
 }
 
+/// `v` with `decimals` decimals, without the sign of a value that rounds
+/// to zero (round-off of a symmetric patch prints as 0.00, not -0.00).
+fn fixed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
 impl Report<'_> {
     /// The readable summary (mm, MPa, with units in the labels).
     pub fn human(&self) -> String {
+        if self.totals.conformal.is_some() {
+            return self.human_conformal();
+        }
         let mut o = String::new();
         let r = &self.totals;
         let t = &r.totals;
@@ -117,12 +244,18 @@ impl Report<'_> {
             Model::Hertz => "Hertz (closed form)",
             Model::Fastsim => "FASTSIM (Kalker's simplified theory)",
             Model::Exact => "exact (Kalker's exact theory, half-space)",
+            Model::HertzCorrected => "Hertz with corrected lateral curvature (closed form)",
+            Model::Cect => "CECT (conformal, Blanco's influence coefficients)",
+            Model::CectHalfspace => "CECT (conformal, half-space influence coefficients)",
         };
         let _ = writeln!(
             o,
             "railcontact solve: model {title}, status {}",
             r.status.as_str()
         );
+        if let Some(g) = &self.geometry {
+            let _ = writeln!(o, "  geometry: {g}");
+        }
         if let (Some([nx, ny]), Some([wx, wy])) = (self.grid, self.window_m) {
             let _ = writeln!(
                 o,
@@ -195,25 +328,7 @@ impl Report<'_> {
         } else {
             line("tangential forces Fx, Fy, Mz", not_computed());
         }
-        line("approach delta [mm]", format!("{:.6}", mm(t.approach_m)));
-        line(
-            "max pressure p0 [MPa]",
-            format!("{:.2}", mpa(t.max_pressure_pa)),
-        );
-        if tangential {
-            line(
-                "max traction |p_t| [MPa]",
-                format!("{:.2}", mpa(t.max_traction_pa)),
-            );
-        }
-        line(
-            "contact area [mm²]",
-            format!("{:.4}", t.contact_area_m2 * 1e6),
-        );
-        line(
-            "patch length x width [mm]",
-            format!("{:.4} x {:.4}", mm(t.patch_length_m), mm(t.patch_width_m)),
-        );
+        patch_lines(&mut line, t, tangential, "");
         if tangential && mu > 0.0 {
             line(
                 "adhesion fraction [-]",
@@ -247,6 +362,180 @@ impl Report<'_> {
                     }
                 ),
             );
+        }
+        line("solve time [s]", format!("{:.3}", r.solve_time_s));
+        for n in &self.notes {
+            let _ = writeln!(o, "  note: {n}");
+        }
+        o
+    }
+}
+
+impl Report<'_> {
+    /// The readable summary of a conformal model (mm, MPa, degrees).
+    fn human_conformal(&self) -> String {
+        let mut o = String::new();
+        let r = &self.totals;
+        let t = &r.totals;
+        let c = r.conformal.unwrap_or_default();
+        let closed_form = matches!(self.model, Model::Hertz | Model::HertzCorrected);
+        let title = match self.model {
+            Model::Hertz => "Hertz on the flattened conformal profiles (closed form)",
+            Model::HertzCorrected => {
+                "Hertz with corrected lateral curvature (closed form, Blanco-Lorenzo et al. Eq. 5)"
+            }
+            Model::CectHalfspace => "CECT (conformal, half-space influence coefficients)",
+            _ => "CECT (conformal, Blanco's influence coefficients)",
+        };
+        let _ = writeln!(
+            o,
+            "railcontact solve: model {title}, status {}",
+            r.status.as_str()
+        );
+        if let Some(g) = &self.geometry {
+            let _ = writeln!(o, "  geometry: {g}");
+        }
+        if let (Some([nx, ny]), Some([wx, wy])) = (self.grid, self.window_m) {
+            let _ = writeln!(
+                o,
+                "  grid: {nx} x {ny} elements over x {:.4} mm by s {:.4} mm (s curvilinear)",
+                mm(wx),
+                mm(wy)
+            );
+        }
+        if let Some(steps) = &self.steps {
+            let _ = writeln!(o, "  static compression steps (forces on the rail):");
+            let _ = writeln!(
+                o,
+                "    {:>4} {:>11} {:>13} {:>12} {:>10} {:>9} {:>10} {:>6} {:>15}",
+                "step",
+                "Fn [N]",
+                "tractions[N]",
+                "approach[mm]",
+                "p0 [MPa]",
+                "adh. [-]",
+                "var [deg]",
+                "iter",
+                "status"
+            );
+            for (k, step) in steps.iter().enumerate() {
+                let s = &step.totals;
+                let sc = step.conformal.unwrap_or_default();
+                let _ = writeln!(
+                    o,
+                    "    {:>4} {:>11.2} {:>13.2} {:>12.6} {:>10.2} {:>9.3} {:>10.1} {:>6} {:>15}",
+                    k + 1,
+                    s.normal_force_n,
+                    sc.normal_force_from_tractions_n,
+                    mm(s.approach_m),
+                    mpa(s.max_pressure_pa),
+                    s.adhesion_fraction,
+                    sc.contact_angle_variation_deg,
+                    step.iterations,
+                    step.status.as_str()
+                );
+            }
+            let _ = writeln!(o, "  last step:");
+        }
+        let mu = self.friction_coefficient;
+        let frictional = mu > 0.0 && !closed_form;
+        let mut line = |label: &str, value: String| {
+            let _ = writeln!(o, "  {label:<34} {value}");
+        };
+        let of_mu_fn = |f: f64| {
+            if mu > 0.0 && t.normal_force_n > 0.0 {
+                let u = f / (mu * t.normal_force_n);
+                let sign = if fixed(u, 4).starts_with('-') {
+                    ""
+                } else {
+                    "+"
+                };
+                format!("   ({sign}{} mu Fn)", fixed(u, 4))
+            } else {
+                String::new()
+            }
+        };
+        line(
+            "normal force Fn [N]",
+            format!(
+                "{:.2}   (along n(0), the approach direction)",
+                t.normal_force_n
+            ),
+        );
+        if frictional {
+            line(
+                "  carried by lateral tractions [N]",
+                format!("{:.2}", c.normal_force_from_tractions_n),
+            );
+        }
+        if closed_form {
+            line(
+                "tangential forces Fx, Fs",
+                "not computed (Hertz: normal problem only)".to_string(),
+            );
+        } else {
+            line(
+                "long. force Fx [N]",
+                format!("{}{}", fixed(t.fx_n, 2), of_mu_fn(t.fx_n)),
+            );
+            line(
+                "lateral force Fs [N] (along t(0))",
+                format!("{}{}", fixed(t.fy_n, 2), of_mu_fn(t.fy_n)),
+            );
+        }
+        line(
+            "global force Fy, Fz [N] (z down)",
+            format!("{}, {}", fixed(c.fy_global_n, 2), fixed(c.fz_global_n, 2)),
+        );
+        patch_lines(&mut line, t, frictional, "   (width along s)");
+        line(
+            "length/width ratio [-]",
+            format!("{:.4}", c.length_width_ratio),
+        );
+        line(
+            "contact angle variation [deg]",
+            format!("{:.2}", c.contact_angle_variation_deg),
+        );
+        if frictional {
+            line(
+                "adhesion fraction [-]",
+                format!("{:.3}", t.adhesion_fraction),
+            );
+        }
+        if t.tgamma_n != 0.0 {
+            line(
+                "T-gamma (friction power/V) [N]",
+                format!("{:.4}", t.tgamma_n),
+            );
+        }
+        if let Some(w) = &self.wfric_lateral {
+            if let Some((k, peak)) = w
+                .w_j_per_m2
+                .iter()
+                .cloned()
+                .enumerate()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+            {
+                line(
+                    "max W_fric(s) [J/m²]",
+                    format!("{peak:.4} at s = {:.4} mm", mm(w.s_m[k])),
+                );
+            }
+        }
+        if !closed_form {
+            let it = match c.coupling_iterations {
+                Some(k) => format!(
+                    "{} tangential Newton steps in {k} normal/tangential alternations{}",
+                    r.tangential_iterations,
+                    if self.steps.is_some() {
+                        ", all steps"
+                    } else {
+                        ""
+                    }
+                ),
+                None => format!("{} (normal, conjugate gradient)", r.normal_iterations),
+            };
+            line("iterations", it);
         }
         line("solve time [s]", format!("{:.3}", r.solve_time_s));
         for n in &self.notes {
