@@ -15,7 +15,9 @@ use crate::core::problem::{ContactProblem, Kinematics};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
 };
-use crate::core::steady::{solve_steady_newton, SteadyScratch};
+use crate::core::steady::{
+    solve_coulomb_newton, solve_steady_newton, LocalModel, PlanarTangential, SteadyScratch,
+};
 use crate::core::tangential::{
     shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
     TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch,
@@ -28,7 +30,9 @@ pub struct ContactSolver {
     grid: Grid,
     displacement: Arc<KernelSet>,
     /// Steady-rolling kernels, fetched when the first steady problem comes.
-    steady: Option<(Arc<KernelSet>, SteadyScratch)>,
+    steady: Option<Arc<KernelSet>>,
+    /// Buffers of the Newton Coulomb solver, allocated on first use.
+    newton_scratch: Option<SteadyScratch>,
     ows: OperatorWorkspace,
     normal_scratch: NormalScratch,
     tangential_scratch: TangentialScratch,
@@ -54,18 +58,15 @@ impl ContactSolver {
         let grid = problem.grid;
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
         let n = grid.len();
-        let steady = matches!(problem.kinematics, Kinematics::SteadyRolling(_)).then(|| {
-            (
-                cache.get(&grid, &problem.material, KernelKind::SteadyRolling),
-                SteadyScratch::new(n),
-            )
-        });
+        let steady = matches!(problem.kinematics, Kinematics::SteadyRolling(_))
+            .then(|| cache.get(&grid, &problem.material, KernelKind::SteadyRolling));
         let z = || vec![0.0; n];
         Self {
             grid,
             ows: displacement.workspace(),
             displacement,
             steady,
+            newton_scratch: None,
             normal_scratch: NormalScratch::new(n),
             tangential_scratch: TangentialScratch::new(n),
             marching_scratch: MarchingScratch::new(n),
@@ -293,19 +294,19 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: input_prev,
                     };
-                    let (steady, steady_scratch) = self.steady.get_or_insert_with(|| {
+                    let steady = self.steady.get_or_insert_with(|| {
                         // A solver built for another kind of problem: build
                         // the steady kernels here (not cached).
                         let d = &self.displacement;
-                        (
-                            Arc::new(KernelSet::new(
-                                d.plan.clone(),
-                                d.influence,
-                                KernelKind::SteadyRolling,
-                            )),
-                            SteadyScratch::new(n),
-                        )
+                        Arc::new(KernelSet::new(
+                            d.plan.clone(),
+                            d.influence,
+                            KernelKind::SteadyRolling,
+                        ))
                     });
+                    let steady_scratch = self
+                        .newton_scratch
+                        .get_or_insert_with(|| SteadyScratch::new(n));
                     let newton = solve_steady_newton(
                         steady,
                         &mut self.ows,
@@ -359,14 +360,41 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: &self.prev_state,
                     };
-                    solve_transient(
-                        &self.displacement,
-                        &mut self.ows,
+                    // Newton on the step's Coulomb system (about half the
+                    // products of FISTA); FISTA from its iterate if it fails.
+                    let scratch = self
+                        .newton_scratch
+                        .get_or_insert_with(|| SteadyScratch::new(n));
+                    let mut op = PlanarTangential {
+                        kernels: &self.displacement,
+                        ows: &mut self.ows,
+                    };
+                    let newton = solve_coulomb_newton(
+                        &mut op,
+                        LocalModel::Diagonal,
+                        None,
                         &input,
                         self.tr.output(),
-                        &mut self.tangential_scratch,
+                        scratch,
                         &s.tangential,
-                    )
+                    );
+                    if newton.converged {
+                        newton
+                    } else {
+                        let f = solve_transient(
+                            &self.displacement,
+                            &mut self.ows,
+                            &input,
+                            self.tr.output(),
+                            &mut self.tangential_scratch,
+                            &s.tangential,
+                        );
+                        TangentialOutcome {
+                            iterations: newton.iterations + f.iterations,
+                            matvecs: newton.matvecs + f.matvecs,
+                            ..f
+                        }
+                    }
                 }
                 _ => {
                     return Err(ContactError::invalid(

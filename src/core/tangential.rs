@@ -15,6 +15,9 @@
 //!   gradient restart (O'Donoghue & Candès 2015) and step 1/L, L the spectral
 //!   bound of the FFT symbol. Convergence to the unique minimiser is
 //!   guaranteed for any convex problem; each iteration is one FFT matvec.
+//!   The driver ([`crate::core::solve`]) tries the Newton solver of
+//!   [`crate::core::steady`] first (about half the products) and falls back
+//!   to this one.
 //!
 //! * [`solve_steady_marching`]: steady rolling as the limit of transient
 //!   rolling with steps of one element, each step a convex problem as above,
