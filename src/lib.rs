@@ -15,3 +15,4 @@
 pub mod cli;
 pub mod conformal;
 pub mod core;
+pub mod wheelrail;
