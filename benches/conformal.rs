@@ -112,21 +112,20 @@ fn solves(c: &mut Criterion) {
         },
     };
     let settings = ConformalSettings::default();
+    let rolling = |geo: &ConformalGeometry| {
+        solve_frictional(
+            geo,
+            &mat,
+            0.3,
+            InfluenceModel::Blanco,
+            &roll,
+            &settings,
+            &cache,
+        )
+        .unwrap()
+    };
     g.bench_function("cect_steady_rolling_60x60", |b| {
-        b.iter(|| {
-            black_box(
-                solve_frictional(
-                    &geo,
-                    &mat,
-                    0.3,
-                    InfluenceModel::Blanco,
-                    &roll,
-                    &settings,
-                    &cache,
-                )
-                .unwrap(),
-            )
-        })
+        b.iter(|| black_box(rolling(&geo)))
     });
     let (rr, rw, rx) = CASE_1;
     let planar = ContactProblem {
@@ -173,22 +172,7 @@ fn solves(c: &mut Criterion) {
     g.bench_with_input(
         BenchmarkId::new("case1_80kN_steady_rolling", &id),
         &0,
-        |b, _| {
-            b.iter(|| {
-                black_box(
-                    solve_frictional(
-                        &fine,
-                        &mat,
-                        0.3,
-                        InfluenceModel::Blanco,
-                        &roll,
-                        &settings,
-                        &cache,
-                    )
-                    .unwrap(),
-                )
-            })
-        },
+        |b, _| b.iter(|| black_box(rolling(&fine))),
     );
     g.finish();
 }

@@ -222,34 +222,39 @@ fn reversing_creepages_reverses_forces() {
     // Identical bodies: the tangential problem is odd in the creepages
     // (steady rolling in full adhesion, mu large; partial slip with spin is
     // the next test).
-    let mat = material(0.28);
     let cr = Creepages {
         creepage_long: 5e-6,
         creepage_lat: -3e-6,
         spin_per_m: 0.0,
     };
-    let neg = Creepages {
-        creepage_long: -cr.creepage_long,
-        creepage_lat: -cr.creepage_lat,
-        spin_per_m: 0.0,
-    };
-    let [s1, s2] = [cr, neg].map(|c| {
-        one(&quadratic(
-            mat,
-            1.0,
-            0.6,
-            1.0e4,
-            20,
-            20,
-            100.0,
-            Kinematics::SteadyRolling(c),
-        ))
-    });
+    let [s1, s2] = rolling_and_reversed(cr, 20, 100.0);
     assert_antisymmetric(&s1, &s2, 1e-5);
     assert!(
         s1.totals.fx_n < 0.0 && s1.totals.fy_n > 0.0,
         "forces oppose the creepages"
     );
+}
+
+/// Steady rolling of the ellipse A = 1, B = 0.6 (nu = 0.28, 10 kN) on an
+/// n x n grid with creepages `cr` and with all of them reversed.
+fn rolling_and_reversed(cr: Creepages, n: usize, mu: f64) -> [ContactSolution; 2] {
+    let neg = Creepages {
+        creepage_long: -cr.creepage_long,
+        creepage_lat: -cr.creepage_lat,
+        spin_per_m: -cr.spin_per_m,
+    };
+    [cr, neg].map(|c| {
+        one(&quadratic(
+            material(0.28),
+            1.0,
+            0.6,
+            1.0e4,
+            n,
+            n,
+            mu,
+            Kinematics::SteadyRolling(c),
+        ))
+    })
 }
 
 fn assert_antisymmetric(s1: &ContactSolution, s2: &ContactSolution, rel: f64) {
@@ -458,29 +463,12 @@ fn reversing_creepages_reverses_forces_in_partial_slip_with_spin() {
     // Identical bodies: Coulomb's law and the elastic operator are odd in
     // the tractions, so reversing xi, eta and phi reverses Fx, Fy and Mz
     // exactly (a mixed adhesion/slip patch here).
-    let mat = material(0.28);
     let cr = Creepages {
         creepage_long: 4e-4,
         creepage_lat: -3e-4,
         spin_per_m: 0.4,
     };
-    let neg = Creepages {
-        creepage_long: -cr.creepage_long,
-        creepage_lat: -cr.creepage_lat,
-        spin_per_m: -cr.spin_per_m,
-    };
-    let [s1, s2] = [cr, neg].map(|c| {
-        one(&quadratic(
-            mat,
-            1.0,
-            0.6,
-            1.0e4,
-            24,
-            24,
-            0.3,
-            Kinematics::SteadyRolling(c),
-        ))
-    });
+    let [s1, s2] = rolling_and_reversed(cr, 24, 0.3);
     assert!(s1.totals.adhesion_fraction > 0.1 && s1.totals.adhesion_fraction < 0.9);
     assert_antisymmetric(&s1, &s2, 1e-6);
 }

@@ -386,7 +386,6 @@ fn finish(
     let area = grid.element_area_m2();
     let w = &geometry.approach_weight;
     let mut t = ConformalTotals::default();
-    let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
     let (mut count, mut adh) = (0usize, 0usize);
     let mut wfric = vec![0.0; grid.ny];
     let d0 = geometry.mean_contact_angle_rad;
@@ -407,10 +406,6 @@ fn finish(
             if state[i] == ElementState::Adhesion {
                 adh += 1;
             }
-            xmin = xmin.min(ix);
-            xmax = xmax.max(ix);
-            ymin = ymin.min(iy);
-            ymax = ymax.max(iy);
             t.pressure_resultant_n += w[i] * pn[i] * area;
             t.normal_force_from_tractions_n += v[i] * ps[i] * area;
             t.fx_n += px[i] * area;
@@ -428,10 +423,10 @@ fn finish(
     }
     t.normal_force_n = t.pressure_resultant_n + t.normal_force_from_tractions_n;
     t.approach_m = approach_m;
-    if count > 0 {
+    if let Some([length, width]) = grid.loaded_extent_m(pn) {
         t.contact_area_m2 = count as f64 * area;
-        t.patch_length_m = (xmax - xmin + 1) as f64 * grid.dx_m;
-        t.patch_width_m = (ymax - ymin + 1) as f64 * grid.dy_m;
+        t.patch_length_m = length;
+        t.patch_width_m = width;
         t.adhesion_fraction = adh as f64 / count as f64;
     }
     t.contact_angle_variation_deg = geometry.contact_angle_variation_rad(pn).to_degrees();

@@ -83,7 +83,6 @@ pub fn solve_frictionless(
         &mut scratch,
         settings,
     );
-    let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
     let (mut force, mut pmax, mut count) = (0.0, 0.0f64, 0usize);
     for iy in 0..grid.ny {
         for ix in 0..grid.nx {
@@ -95,25 +94,21 @@ pub fn solve_frictionless(
                 count += 1;
                 force += pn[i] * geometry.approach_weight[i] * area;
                 pmax = pmax.max(pn[i]);
-                xmin = xmin.min(ix);
-                xmax = xmax.max(ix);
-                ymin = ymin.min(iy);
-                ymax = ymax.max(iy);
             }
         }
     }
-    if count == 0 {
-        return Err(ContactError::NoContact {
+    let [length, width] = grid
+        .loaded_extent_m(&pn)
+        .ok_or_else(|| ContactError::NoContact {
             detail: "no element is loaded".into(),
-        });
-    }
+        })?;
     let summary = ConformalNormalSummary {
         normal_force_n: force,
         approach_m: out.approach_m,
         max_pressure_pa: pmax,
         contact_area_m2: count as f64 * area,
-        patch_length_m: (xmax - xmin + 1) as f64 * grid.dx_m,
-        patch_width_m: (ymax - ymin + 1) as f64 * grid.dy_m,
+        patch_length_m: length,
+        patch_width_m: width,
         contact_angle_variation_deg: geometry.contact_angle_variation_rad(&pn).to_degrees(),
         iterations: out.iterations,
         matvecs: out.matvecs,

@@ -35,6 +35,29 @@ pub struct Grid {
 
 impl Grid {
     /// A grid of `nx` x `ny` elements covering `[x0, x0 + nx dx] x [y0, y0 + ny dy]`.
+    /// Length along x and width along y [m] of the bounding box of the
+    /// elements where `field > 0` (the loaded patch), or None when there
+    /// are none.
+    pub fn loaded_extent_m(&self, field: &[f64]) -> Option<[f64; 2]> {
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
+        for iy in 0..self.ny {
+            for ix in 0..self.nx {
+                if field[self.index(ix, iy)] > 0.0 {
+                    xmin = xmin.min(ix);
+                    xmax = xmax.max(ix);
+                    ymin = ymin.min(iy);
+                    ymax = ymax.max(iy);
+                }
+            }
+        }
+        (xmin != usize::MAX).then(|| {
+            [
+                (xmax - xmin + 1) as f64 * self.dx_m,
+                (ymax - ymin + 1) as f64 * self.dy_m,
+            ]
+        })
+    }
+
     pub fn new(
         nx: usize,
         ny: usize,

@@ -480,7 +480,6 @@ impl ContactSolver {
             approach_m: approach,
             ..Default::default()
         };
-        let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0usize, usize::MAX, 0usize);
         let (mut ncontact, mut nadh) = (0usize, 0usize);
         let mut dissipation = 0.0;
         for iy in 0..g.ny {
@@ -497,10 +496,6 @@ impl ContactSolver {
                 t.max_traction_pa = t.max_traction_pa.max((px * px + py * py).sqrt());
                 if pn > 0.0 {
                     ncontact += 1;
-                    xmin = xmin.min(ix);
-                    xmax = xmax.max(ix);
-                    ymin = ymin.min(iy);
-                    ymax = ymax.max(iy);
                     if self.tr.state[i] == ElementState::Adhesion {
                         nadh += 1;
                     }
@@ -509,9 +504,9 @@ impl ContactSolver {
             }
         }
         t.contact_area_m2 = ncontact as f64 * area;
-        if ncontact > 0 {
-            t.patch_length_m = (xmax - xmin + 1) as f64 * g.dx_m;
-            t.patch_width_m = (ymax - ymin + 1) as f64 * g.dy_m;
+        if let Some([length, width]) = g.loaded_extent_m(&self.pn) {
+            t.patch_length_m = length;
+            t.patch_width_m = width;
             t.adhesion_fraction = nadh as f64 / ncontact as f64;
         }
         if frictional {

@@ -376,22 +376,10 @@ fn fastsim_guess(
     let grid = input.grid;
     let (nx, ny) = (grid.nx, grid.ny);
     let pn = input.pn;
-    let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
-    for iy in 0..ny {
-        for ix in 0..nx {
-            if pn[iy * nx + ix] > 0.0 {
-                xmin = xmin.min(ix);
-                xmax = xmax.max(ix);
-                ymin = ymin.min(iy);
-                ymax = ymax.max(iy);
-            }
-        }
-    }
-    if xmin == usize::MAX {
+    let Some([length, width]) = grid.loaded_extent_m(pn) else {
         return;
-    }
-    let a = 0.5 * (xmax - xmin + 1) as f64 * grid.dx_m;
-    let b = 0.5 * (ymax - ymin + 1) as f64 * grid.dy_m;
+    };
+    let (a, b) = (0.5 * length, 0.5 * width);
     let c = kalker_creep_coefficients((a / b).clamp(0.05, 20.0), nu)
         .map(|c| [c.c11, c.c22])
         .unwrap_or([4.12, 3.67]);
@@ -798,6 +786,23 @@ mod tests {
         }
     }
 
+    impl Case {
+        /// The tangential input with Coulomb friction `mu`.
+        fn input<'a>(&'a self, mu: f64, prev: &'a [ElementState]) -> TangentialInput<'a> {
+            TangentialInput {
+                grid: &self.grid,
+                pn: &self.pn,
+                friction: FrictionBounds {
+                    static_coefficient: mu,
+                    kinetic_coefficient: mu,
+                },
+                cx: &self.cx,
+                cy: &self.cy,
+                previous_state: prev,
+            }
+        }
+    }
+
     struct Answer {
         px: Vec<f64>,
         py: Vec<f64>,
@@ -810,17 +815,7 @@ mod tests {
     fn run(c: &Case, mu: f64, newton: bool) -> Answer {
         let n = c.grid.len();
         let prev = vec![ElementState::Exterior; n];
-        let input = TangentialInput {
-            grid: &c.grid,
-            pn: &c.pn,
-            friction: FrictionBounds {
-                static_coefficient: mu,
-                kinetic_coefficient: mu,
-            },
-            cx: &c.cx,
-            cy: &c.cy,
-            previous_state: &prev,
-        };
+        let input = c.input(mu, &prev);
         let mut a = Answer {
             px: vec![0.0; n],
             py: vec![0.0; n],
@@ -928,17 +923,7 @@ mod tests {
         let c = case(24, 5e-6, 4e-6, 1e-3);
         let n = c.grid.len();
         let prev = vec![ElementState::Exterior; n];
-        let input = TangentialInput {
-            grid: &c.grid,
-            pn: &c.pn,
-            friction: FrictionBounds {
-                static_coefficient: mu,
-                kinetic_coefficient: mu,
-            },
-            cx: &c.cx,
-            cy: &c.cy,
-            previous_state: &prev,
-        };
+        let input = c.input(mu, &prev);
         let settings = TangentialSettings {
             tolerance: 1e-9,
             max_iterations: 5000,
