@@ -6,7 +6,13 @@
 //! * [`readers`]: the Simpack, MiniProf and plain text formats and how each
 //!   is mapped to the profile frame;
 //! * [`spline`]: the smoothing spline [`ProfileSpline`] giving position,
-//!   inclination and curvature at any arc length, and z at a given y.
+//!   inclination and curvature at any arc length, and z at a given y;
+//! * [`wheelset`]: track and wheelset data, the placed profiles
+//!   ([`WheelRailPair`]), wheelset position and velocity, and the frames;
+//! * [`search`]: contact locus, rigid position (roll), contact patches and
+//!   their planar geometry;
+//! * [`contact`]: creepages, the per-patch contact problems and the load
+//!   iteration ([`solve_wheelset`]).
 //!
 //! # Profile frame and conventions (used by every reader and the spline)
 //!
@@ -53,16 +59,28 @@
 //!   repaired (with warnings), larger ones and gaps are errors that name the
 //!   file and line.
 
+pub mod contact;
 pub mod profile;
 pub mod readers;
+pub mod search;
 pub mod spline;
+pub mod wheelset;
 
+pub use contact::{
+    solve_wheelset, PatchResult, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
+    WheelRailSolution, WheelResult,
+};
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,
     LengthUnit, LoadOptions, MiniProfVariant, MirrorZ, Profile, ProfileChecks, ProfileError,
     ProfileFormat, ProfileKind, ProfileWarning, SourceLocation,
 };
 pub use readers::{parse_miniprof, parse_plain, parse_simpack};
+pub use search::{SearchScratch, SearchSettings};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
+};
+pub use wheelset::{
+    Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
 };

@@ -1,0 +1,976 @@
+//! Wheel/rail contact of a wheelset: contact search, per-patch geometry and
+//! creepages, and the per-patch contact problems under a vertical load per
+//! wheel.
+//!
+//! # Conventions
+//!
+//! Frames as in [`crate::wheelrail::wheelset`]. Per patch the contact
+//! problem of [`crate::core`] is posed in the patch frame (x along the
+//! track, s lateral in the tangent plane, n the contact normal into the
+//! rail), built in the side frame, so the two wheels of a symmetric case
+//! give mirror-image patches with equal values: `contact_angle_rad` > 0 for
+//! a rail surface facing the gauge side (flange contact on either wheel),
+//! `fs_n` and `creepage_lat` positive towards the field side. As in the
+//! core, body 1 is the rail: patch forces act **on the rail**, and
+//! creepages are the rigid velocity of the rail relative to the wheel at
+//! the reference point divided by the forward speed. Forces in the track
+//! frame (`force_track_n`: x forward, y to the right, z down) also act on
+//! the rail, so a wheel carrying its load has `fz` equal to the vertical
+//! force.
+//!
+//! # Load
+//!
+//! Each wheel is pressed onto its rail independently (as in CONTACT's
+//! wheel/rail module): the vertical approach Delta of the wheel (its
+//! downward displacement from the rigid position) is found such that the
+//! total vertical force on the rail, normal and tangential parts of every
+//! patch, equals the prescribed `vertical_force_n`; or Delta is given. A
+//! patch's normal approach is Delta times the vertical component of its
+//! normal.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::core::cache::KernelCache;
+use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::fastsim::{Fastsim, FastsimInput};
+use crate::core::grid::Grid;
+use crate::core::hertz::{hertz, HertzLoad};
+use crate::core::material::CombinedMaterial;
+use crate::core::normal::NormalLoad;
+use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, SolverSettings};
+use crate::core::solution::ContactSolution;
+use crate::core::solve::ContactSolver;
+use crate::wheelrail::search::{
+    gap_intervals, patch_geometry, rigid_position, split_intervals, PatchGeometry, RigidPosition,
+    SearchScratch, SearchSettings, SidePose, VerticalGap,
+};
+use crate::wheelrail::wheelset::{
+    Side, WheelRailError, WheelRailPair, WheelsetPosition, WheelsetVelocity,
+};
+
+/// Contact model per patch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WheelRailModel {
+    /// Kalker's exact theory on the half-space, non-Hertzian undeformed
+    /// distance from the profiles (planar contact approach).
+    Exact,
+    /// Hertz on the curvatures at each patch's reference point, FASTSIM for
+    /// the tangential forces: the fast path.
+    HertzFastsim,
+}
+
+/// Load of one wheel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WheelLoad {
+    /// Total vertical force on the rail [N], > 0.
+    VerticalForce(f64),
+    /// Vertical approach of the wheel from the rigid position [m].
+    Approach(f64),
+}
+
+/// Settings of the wheel/rail solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelRailSettings {
+    /// Contact model.
+    pub model: WheelRailModel,
+    /// Element size of the patch grids, along x and s [m].
+    pub element_size_m: f64,
+    /// Contact search.
+    pub search: SearchSettings,
+    /// Core solver settings.
+    pub solver: SolverSettings,
+    /// Relative tolerance on the vertical force [-].
+    pub load_tolerance: f64,
+    /// Iteration limit of the load iteration.
+    pub max_load_iterations: usize,
+}
+
+impl Default for WheelRailSettings {
+    fn default() -> Self {
+        Self {
+            model: WheelRailModel::Exact,
+            element_size_m: 2.0e-4,
+            search: SearchSettings::default(),
+            solver: SolverSettings::default(),
+            load_tolerance: 1e-6,
+            max_load_iterations: 40,
+        }
+    }
+}
+
+/// Everything a wheelset solution needs besides the profile pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WheelRailInput {
+    /// Wheelset position.
+    pub position: WheelsetPosition,
+    /// Wheelset velocity.
+    pub velocity: WheelsetVelocity,
+    /// Load per wheel.
+    pub load: WheelLoad,
+    /// Sides to solve.
+    pub sides: Vec<Side>,
+    /// Materials (body 1 rail, body 2 wheel).
+    pub material: CombinedMaterial,
+    /// Friction.
+    pub friction: Friction,
+    /// Settings.
+    pub settings: WheelRailSettings,
+}
+
+/// One contact patch of a wheel.
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchResult {
+    /// Contact angle [rad] (see the module conventions).
+    pub contact_angle_rad: f64,
+    /// Reference point in rail profile coordinates [m].
+    pub rail_y_m: f64,
+    /// Reference point in rail profile coordinates [m].
+    pub rail_z_m: f64,
+    /// Reference point in wheel profile coordinates (lateral) [m].
+    pub wheel_y_m: f64,
+    /// Reference point in the track frame (lateral) [m].
+    pub track_y_m: f64,
+    /// Reference point in the track frame (vertical, down) [m].
+    pub track_z_m: f64,
+    /// Longitudinal position of the reference point (ahead of the axle) [m].
+    pub track_x_m: f64,
+    /// Wheel rolling radius at the reference point [m].
+    pub rolling_radius_m: f64,
+    /// Longitudinal creepage [-].
+    pub creepage_long: f64,
+    /// Lateral creepage [-].
+    pub creepage_lat: f64,
+    /// Spin creepage [1/m].
+    pub spin_per_m: f64,
+    /// Normal force on the rail [N].
+    pub normal_force_n: f64,
+    /// Longitudinal force on the rail [N].
+    pub fx_n: f64,
+    /// Lateral force on the rail in the tangent plane [N].
+    pub fs_n: f64,
+    /// Spin moment about the normal through the reference point [N m].
+    pub mz_nm: f64,
+    /// Normal approach of the patch [m].
+    pub approach_m: f64,
+    /// Largest pressure [Pa].
+    pub max_pressure_pa: f64,
+    /// Contact area [m^2].
+    pub contact_area_m2: f64,
+    /// Share of the contact area in adhesion [-].
+    pub adhesion_fraction: f64,
+    /// Frictional power [W] (T-gamma times the forward speed).
+    pub frictional_power_w: f64,
+    /// Force on the rail in the track frame (x, y, z) [N].
+    pub force_track_n: [f64; 3],
+    /// Grid size (nx, ns) of the exact model; (0, 0) for Hertz+FASTSIM.
+    pub grid: [usize; 2],
+    /// The patch's exact solution (per-element fields), for plots.
+    #[serde(skip)]
+    pub solution: Option<ContactSolution>,
+    /// The patch's grid, for plots.
+    #[serde(skip)]
+    pub grid_geometry: Option<Grid>,
+}
+
+/// One wheel.
+#[derive(Debug, Clone, Serialize)]
+pub struct WheelResult {
+    /// Which wheel.
+    pub side: Side,
+    /// Vertical approach of the wheel from the rigid position [m].
+    pub vertical_approach_m: f64,
+    /// Smallest vertical gap at the rigid position [m].
+    pub min_gap_m: f64,
+    /// Its patches, from the field side to the gauge side.
+    pub patches: Vec<PatchResult>,
+    /// Total force on the rail in the track frame (x, y, z) [N].
+    pub force_track_n: [f64; 3],
+    /// Iterations of the load iteration.
+    pub load_iterations: usize,
+}
+
+/// Where the time went [s].
+#[derive(Debug, Clone, Copy, Default, Serialize)]
+pub struct Timing {
+    /// Rigid position and contact loci.
+    pub search_s: f64,
+    /// Patch geometry and grids.
+    pub geometry_s: f64,
+    /// Contact problems and load iteration.
+    pub solve_s: f64,
+}
+
+/// Solution for one wheelset position.
+#[derive(Debug, Clone, Serialize)]
+pub struct WheelRailSolution {
+    /// Wheelset centre height [m].
+    pub center_z_m: f64,
+    /// Roll angle used [rad].
+    pub roll_rad: f64,
+    /// Rotation rate about the axle used [rad/s].
+    pub pitch_rad_per_s: f64,
+    /// Wheels solved.
+    pub wheels: Vec<WheelResult>,
+    /// Timing.
+    pub timing: Timing,
+}
+
+/// Element-count ladder of patch grids: sizes with small prime factors, so
+/// that grids of similar patches share cached kernels.
+const GRID_LADDER: [usize; 22] = [
+    8, 10, 12, 16, 20, 24, 30, 32, 40, 48, 60, 64, 80, 96, 120, 128, 160, 192, 240, 256, 320, 384,
+];
+
+fn ladder(n: usize) -> Option<usize> {
+    GRID_LADDER.iter().copied().find(|&m| m >= n)
+}
+
+/// Margin of potential contact around the interpenetration, in elements.
+const MARGIN_ELEMENTS: f64 = 3.0;
+
+/// One patch being solved.
+struct PatchWork {
+    geom: PatchGeometry,
+    creep: Creepages,
+    /// Vertical component of the normal, of the lateral tangent.
+    nz: f64,
+    sz: f64,
+    /// Smallest normal undeformed distance.
+    hmin: f64,
+    kind: PatchKind,
+    out: PatchOutcome,
+}
+
+enum PatchKind {
+    Exact {
+        problem: ContactProblem,
+        solver: Box<ContactSolver>,
+    },
+    Hertz {
+        a_per_m: f64,
+        b_per_m: f64,
+    },
+}
+
+#[derive(Clone, Default)]
+struct PatchOutcome {
+    fn_n: f64,
+    fx_n: f64,
+    fs_n: f64,
+    mz_nm: f64,
+    approach_m: f64,
+    max_pressure_pa: f64,
+    area_m2: f64,
+    adhesion: f64,
+    tgamma_n: f64,
+    solution: Option<ContactSolution>,
+}
+
+impl PatchWork {
+    fn vertical_n(&self) -> f64 {
+        self.out.fn_n * self.nz + self.out.fs_n * self.sz
+    }
+
+    /// Solves at normal load `load`; `frictional` adds the creep forces.
+    fn solve(
+        &mut self,
+        load: NormalLoad,
+        frictional: bool,
+        input: &WheelRailInput,
+        fastsim: &mut Fastsim,
+    ) -> Result<(), ContactError> {
+        if let NormalLoad::Approach(d) = load {
+            if d <= self.hmin {
+                self.out = PatchOutcome {
+                    approach_m: d,
+                    ..PatchOutcome::default()
+                };
+                return Ok(());
+            }
+        }
+        match &mut self.kind {
+            PatchKind::Exact { problem, solver } => {
+                problem.load = load;
+                problem.kinematics = if frictional {
+                    Kinematics::SteadyRolling(self.creep)
+                } else {
+                    Kinematics::Frictionless
+                };
+                let sol = solver
+                    .solve(problem)?
+                    .pop()
+                    .ok_or(ContactError::NoContact {
+                        detail: "no solution".into(),
+                    })?;
+                let t = sol.totals;
+                self.out = PatchOutcome {
+                    fn_n: t.normal_force_n,
+                    fx_n: t.fx_n,
+                    fs_n: t.fy_n,
+                    mz_nm: t.mz_nm,
+                    approach_m: t.approach_m,
+                    max_pressure_pa: t.max_pressure_pa,
+                    area_m2: t.contact_area_m2,
+                    adhesion: t.adhesion_fraction,
+                    tgamma_n: t.tgamma_n,
+                    solution: frictional.then_some(sol),
+                };
+            }
+            PatchKind::Hertz { a_per_m, b_per_m } => {
+                let hl = match load {
+                    NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
+                    NormalLoad::Approach(d) => HertzLoad::Approach {
+                        approach_m: d - self.hmin,
+                    },
+                };
+                let h = hertz(
+                    *a_per_m,
+                    *b_per_m,
+                    input.material.effective_modulus_pa(),
+                    hl,
+                )
+                .map_err(|e| ContactError::invalid("hertz", e.to_string()))?;
+                let mut out = PatchOutcome {
+                    fn_n: h.normal_force_n,
+                    approach_m: h.approach_m + self.hmin,
+                    max_pressure_pa: h.max_pressure_pa,
+                    area_m2: h.contact_area_m2,
+                    ..PatchOutcome::default()
+                };
+                if frictional {
+                    let f = fastsim
+                        .solve(&FastsimInput {
+                            semi_axis_x_m: h.semi_axis_x_m,
+                            semi_axis_y_m: h.semi_axis_y_m,
+                            normal_force_n: h.normal_force_n,
+                            shear_modulus_pa: input.material.shear_modulus_pa,
+                            poisson_ratio: input.material.poisson_ratio,
+                            friction_coefficient: input.friction.kinetic_coefficient,
+                            creepage_long: self.creep.creepage_long,
+                            creepage_lat: self.creep.creepage_lat,
+                            spin_per_m: self.creep.spin_per_m,
+                        })
+                        .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
+                    out.fx_n = f.fx_n;
+                    out.fs_n = f.fy_n;
+                    out.mz_nm = f.mz_nm;
+                    out.adhesion = f.adhesion_fraction;
+                    out.tgamma_n = f.tgamma_n;
+                }
+                self.out = out;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Velocity and rotation rate (without the axle rotation) of the wheelset
+/// in the side frame.
+fn side_rates(side: Side, v: &WheelsetVelocity) -> ([f64; 3], [f64; 3]) {
+    let s = side.sign();
+    (
+        [v.forward_m_per_s, s * v.lateral_m_per_s, v.vertical_m_per_s],
+        [s * v.roll_rad_per_s, 0.0, s * v.yaw_rad_per_s],
+    )
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Creepages at a patch's reference point (side frame).
+fn creepages(
+    geom: &PatchGeometry,
+    pose: &SidePose,
+    side: Side,
+    velocity: &WheelsetVelocity,
+    omega: f64,
+) -> Creepages {
+    let (v, mut w) = side_rates(side, velocity);
+    let a = pose.axle();
+    for k in 0..3 {
+        w[k] += omega * a[k];
+    }
+    let c = pose.center();
+    let p = [geom.x_m, geom.reference_m[0], geom.reference_m[1]];
+    let r = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+    let wr = cross(w, r);
+    let vw = [v[0] + wr[0], v[1] + wr[1], v[2] + wr[2]];
+    let vel = velocity.forward_m_per_s;
+    let t = geom.tangent();
+    let n = [0.0, geom.normal[0], geom.normal[1]];
+    // Rail at rest: its velocity relative to the wheel is -vw.
+    Creepages {
+        creepage_long: -vw[0] / vel,
+        creepage_lat: -dot(vw, [0.0, t[0], t[1]]) / vel,
+        spin_per_m: -dot(w, n) / vel,
+    }
+}
+
+/// Curvature B of h(s) ~ h0 + B (s - s0)^2 about the patch minimum [1/m].
+fn lateral_curvature(geom: &PatchGeometry) -> (f64, f64) {
+    let l = &geom.lateral;
+    let (k, hmin) = l
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (k, p.gap_m))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, 0.0));
+    let m = 10.min(k).min(l.len().saturating_sub(k + 1)).max(1);
+    if l.len() < 3 || k < m || k + m >= l.len() {
+        return (hmin, 0.0);
+    }
+    let ds = l[k + m].s_m - l[k].s_m;
+    let b = (l[k + m].gap_m - 2.0 * l[k].gap_m + l[k - m].gap_m) / (2.0 * ds * ds);
+    (hmin, b)
+}
+
+/// Solves the wheel/rail contact of `input` on `pair`.
+pub fn solve_wheelset(
+    pair: &WheelRailPair,
+    input: &WheelRailInput,
+    cache: &KernelCache,
+    scratch: &mut SearchScratch,
+) -> Result<WheelRailSolution, WheelRailError> {
+    validate(input)?;
+    let t0 = Instant::now();
+    let rigid = rigid_position(pair, &input.position, &input.settings.search, scratch)?;
+    let mut timing = Timing {
+        search_s: t0.elapsed().as_secs_f64(),
+        ..Timing::default()
+    };
+    let omega = input
+        .velocity
+        .pitch_rad_per_s
+        .unwrap_or(-input.velocity.forward_m_per_s / pair.wheelset().nominal_radius_m);
+    let mut wheels = Vec::new();
+    for &side in &input.sides {
+        wheels.push(solve_wheel(
+            pair,
+            input,
+            &rigid,
+            side,
+            omega,
+            cache,
+            scratch,
+            &mut timing,
+        )?);
+    }
+    Ok(WheelRailSolution {
+        center_z_m: rigid.center_z_m,
+        roll_rad: rigid.roll_rad,
+        pitch_rad_per_s: omega,
+        wheels,
+        timing,
+    })
+}
+
+fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
+    let p = &input.position;
+    require_finite("position.lateral_m", p.lateral_m)?;
+    require_finite("position.yaw_rad", p.yaw_rad)?;
+    if let Some(r) = p.roll_rad {
+        require_finite("position.roll_rad", r)?;
+    }
+    if p.yaw_rad.abs() > 0.2 || p.roll_rad.is_some_and(|r| r.abs() > 0.2) {
+        return Err(WheelRailError::invalid(
+            "position",
+            "yaw and roll must be below 0.2 rad (a wheelset on its track)",
+        ));
+    }
+    let v = &input.velocity;
+    require_positive("velocity.forward_m_per_s", v.forward_m_per_s)?;
+    require_finite("velocity.lateral_m_per_s", v.lateral_m_per_s)?;
+    require_finite("velocity.vertical_m_per_s", v.vertical_m_per_s)?;
+    require_finite("velocity.roll_rad_per_s", v.roll_rad_per_s)?;
+    require_finite("velocity.yaw_rad_per_s", v.yaw_rad_per_s)?;
+    if let Some(w) = v.pitch_rad_per_s {
+        require_finite("velocity.pitch_rad_per_s", w)?;
+    }
+    match input.load {
+        WheelLoad::VerticalForce(f) => require_positive("load.vertical_force_n", f)?,
+        WheelLoad::Approach(d) => require_positive("load.approach_m", d)?,
+    }
+    let e = input.settings.element_size_m;
+    if !(e.is_finite() && e > 1e-6 && e < 5e-3) {
+        return Err(WheelRailError::invalid(
+            "grid.element_size_m",
+            format!("must be between 1e-6 and 5e-3 m, got {e}"),
+        ));
+    }
+    Ok(input.friction.validate()?)
+}
+
+/// A first estimate of the vertical approach that carries `force` on the
+/// patch around the smallest gap: Hertz on the local curvatures.
+fn approach_estimate(
+    gap: &VerticalGap,
+    locus: &[crate::wheelrail::search::LocusPoint],
+    material: &CombinedMaterial,
+    force: f64,
+) -> f64 {
+    let Some((k, _)) = gap.min() else {
+        return 1e-4;
+    };
+    // Contact angle at the minimum from the rail's slope there.
+    let slope = if k + 1 < gap.len() {
+        (gap.z_rail_m[k + 1] - gap.z_rail_m[k]) / gap.dq_m
+    } else {
+        0.0
+    };
+    let cos = 1.0 / slope.hypot(1.0);
+    let kx = locus[gap.locus_index[k]].kx_per_m.max(0.1);
+    let m = 10;
+    let b = if k >= m && k + m < gap.len() {
+        let d = m as f64 * gap.dq_m;
+        (gap.gap_m(k + m) - 2.0 * gap.gap_m(k) + gap.gap_m(k - m)) / (2.0 * d * d)
+    } else {
+        0.0
+    };
+    // Normal-plane curvatures: h_n(s) ~ g(q) cos with q = s cos.
+    let b = if b.is_finite() { b * cos.powi(3) } else { kx };
+    let b = b.max(0.05 * kx);
+    hertz(
+        0.5 * kx,
+        b,
+        material.effective_modulus_pa(),
+        HertzLoad::NormalForce {
+            normal_force_n: force / cos,
+        },
+    )
+    .map(|h| h.approach_m / cos)
+    .unwrap_or(1e-4)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn solve_wheel(
+    pair: &WheelRailPair,
+    input: &WheelRailInput,
+    rigid: &RigidPosition,
+    side: Side,
+    omega: f64,
+    cache: &KernelCache,
+    scratch: &mut SearchScratch,
+    timing: &mut Timing,
+) -> Result<WheelResult, WheelRailError> {
+    let i = side.index();
+    let gap = &scratch.gap[i];
+    let locus = &scratch.locus[i];
+    let gmin = rigid.min_gap_m[i];
+    let pose = SidePose::new(
+        side,
+        input.position.lateral_m,
+        rigid.center_z_m,
+        rigid.roll_rad,
+        input.position.yaw_rad,
+    );
+    let e = input.settings.element_size_m;
+    let mut cap = match input.load {
+        WheelLoad::VerticalForce(f) => {
+            gmin + 1.5 * approach_estimate(gap, locus, &input.material, f)
+        }
+        WheelLoad::Approach(d) => gmin + d,
+    };
+    let mut fastsim = Fastsim::new(40, 40).map_err(|err| WheelRailError::Geometry {
+        side: side.name(),
+        message: err.to_string(),
+    })?;
+    let merge = input.settings.search.merge_distance_m;
+    let mut intervals = gap_intervals(gap, cap, merge);
+    let mut split = false;
+    for attempt in 0..5 {
+        let tg = Instant::now();
+        let mut patches = Vec::new();
+        for &iv in &intervals {
+            let Some(geom) = patch_geometry(pair.rail(side), locus, gap, iv, MARGIN_ELEMENTS * e)
+            else {
+                continue;
+            };
+            patches.push(build_patch(geom, cap, &pose, side, input, omega, cache)?);
+        }
+        if patches.is_empty() {
+            return Err(WheelRailError::Geometry {
+                side: side.name(),
+                message: "no potential contact found".into(),
+            });
+        }
+        timing.geometry_s += tg.elapsed().as_secs_f64();
+        let ts = Instant::now();
+        let result = match load_iteration(&mut patches, input, cap, &mut fastsim) {
+            Ok(r) => r,
+            // The pressure reached the edge of a grid sized for `cap`.
+            Err((_, ContactError::GridTooSmall { .. })) => LoadResult::CapTooSmall,
+            Err((k, source)) => {
+                return Err(WheelRailError::Contact {
+                    side: side.name(),
+                    patch: k,
+                    source,
+                })
+            }
+        };
+        timing.solve_s += ts.elapsed().as_secs_f64();
+        match result {
+            LoadResult::Done { delta, iterations } => {
+                // Interpenetration that falls apart at the final approach
+                // makes separate patches, each with its own tangent plane.
+                if !split {
+                    split = true;
+                    let parts = split_intervals(gap, &intervals, delta, merge);
+                    if parts.len() > intervals.len() {
+                        intervals = parts;
+                        continue;
+                    }
+                }
+                return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+            }
+            LoadResult::CapTooSmall if attempt < 4 => {
+                cap = gmin + 2.0 * (cap - gmin);
+                intervals = gap_intervals(gap, cap, merge);
+                split = false;
+            }
+            LoadResult::CapTooSmall => break,
+        }
+    }
+    Err(WheelRailError::Geometry {
+        side: side.name(),
+        message: format!(
+            "the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
+            (cap - gmin) * 1e3
+        ),
+    })
+}
+
+fn build_patch(
+    geom: PatchGeometry,
+    cap: f64,
+    pose: &SidePose,
+    side: Side,
+    input: &WheelRailInput,
+    omega: f64,
+    cache: &KernelCache,
+) -> Result<PatchWork, WheelRailError> {
+    let creep = creepages(&geom, pose, side, &input.velocity, omega);
+    let nz = geom.normal[1];
+    let sz = geom.tangent()[1];
+    let (hmin, b) = lateral_curvature(&geom);
+    let kx0 = geom.lateral_at(0.0).kx_per_m;
+    let kind = match input.settings.model {
+        WheelRailModel::HertzFastsim => PatchKind::Hertz {
+            a_per_m: 0.5 * kx0.max(1e-3),
+            b_per_m: b.max(0.01 * kx0).max(1e-3),
+        },
+        WheelRailModel::Exact => {
+            let e = input.settings.element_size_m;
+            // Longitudinal extent: where h(x, s) < the cap's normal approach.
+            let dn = cap * nz;
+            let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for l in &geom.lateral {
+                if l.gap_m < dn && l.kx_per_m > 0.0 {
+                    let half = (2.0 * (dn - l.gap_m) / l.kx_per_m).sqrt();
+                    xlo = xlo.min(l.dx_m - half);
+                    xhi = xhi.max(l.dx_m + half);
+                }
+            }
+            if !xlo.is_finite() {
+                (xlo, xhi) = (-e, e);
+            }
+            let margin = MARGIN_ELEMENTS * e;
+            let (xlo, xhi) = (xlo - margin, xhi + margin);
+            let [slo, shi] = geom.s_range_m;
+            let too_big = |key: &str| {
+                WheelRailError::invalid(
+                    key,
+                    format!(
+                        "a potential contact area of {:.1} x {:.1} mm needs more than {} elements \
+                         per direction; use larger elements",
+                        (xhi - xlo) * 1e3,
+                        (shi - slo) * 1e3,
+                        GRID_LADDER[GRID_LADDER.len() - 1]
+                    ),
+                )
+            };
+            let nx = ladder(((xhi - xlo) / e).ceil() as usize)
+                .ok_or_else(|| too_big("grid.element_size_m"))?;
+            let ns = ladder(((shi - slo) / e).ceil() as usize)
+                .ok_or_else(|| too_big("grid.element_size_m"))?;
+            let x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
+            let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
+            let grid = Grid::new(nx, ns, e, e, x0, s0)
+                .map_err(|err| WheelRailError::invalid("grid", err.to_string()))?;
+            let mut gap_m = vec![0.0; grid.len()];
+            for is in 0..ns {
+                let s = grid.y_m(is);
+                for ix in 0..nx {
+                    gap_m[grid.index(ix, is)] = geom.gap_at(grid.x_m(ix), s);
+                }
+            }
+            let problem = ContactProblem {
+                material: input.material,
+                friction: input.friction,
+                grid,
+                gap_m,
+                load: NormalLoad::Approach(0.0),
+                kinematics: Kinematics::SteadyRolling(creep),
+                settings: input.settings.solver,
+            };
+            let solver = Box::new(ContactSolver::new(&problem, cache));
+            PatchKind::Exact { problem, solver }
+        }
+    };
+    let hmin = match &kind {
+        PatchKind::Exact { problem, .. } => {
+            problem.gap_m.iter().copied().fold(f64::INFINITY, f64::min)
+        }
+        PatchKind::Hertz { .. } => hmin,
+    };
+    Ok(PatchWork {
+        geom,
+        creep,
+        nz,
+        sz,
+        hmin,
+        kind,
+        out: PatchOutcome::default(),
+    })
+}
+
+enum LoadResult {
+    Done { delta: f64, iterations: usize },
+    CapTooSmall,
+}
+
+type PatchErr = (usize, ContactError);
+
+fn solve_all(
+    patches: &mut [PatchWork],
+    delta: f64,
+    frictional: bool,
+    input: &WheelRailInput,
+    fastsim: &mut Fastsim,
+) -> Result<f64, PatchErr> {
+    let mut fz = 0.0;
+    for (k, p) in patches.iter_mut().enumerate() {
+        p.solve(
+            NormalLoad::Approach(delta * p.nz),
+            frictional,
+            input,
+            fastsim,
+        )
+        .map_err(|e| (k, e))?;
+        fz += if frictional {
+            p.vertical_n()
+        } else {
+            p.out.fn_n * p.nz
+        };
+    }
+    Ok(fz)
+}
+
+/// Finds the wheel's vertical approach (or applies the given one).
+fn load_iteration(
+    patches: &mut [PatchWork],
+    input: &WheelRailInput,
+    cap: f64,
+    fastsim: &mut Fastsim,
+) -> Result<LoadResult, PatchErr> {
+    let target = match input.load {
+        WheelLoad::Approach(d) => {
+            solve_all(patches, d, true, input, fastsim)?;
+            return Ok(LoadResult::Done {
+                delta: d,
+                iterations: 1,
+            });
+        }
+        WheelLoad::VerticalForce(f) => f,
+    };
+    let tol = input.settings.load_tolerance * target;
+    let max_it = input.settings.max_load_iterations;
+    if let [p] = patches {
+        // One patch: force control of the core; secant steps on the normal
+        // force make the vertical force, creep force included, the target.
+        let mut fn_n = target / p.nz;
+        let mut last: Option<(f64, f64)> = None;
+        for it in 1..=max_it {
+            if !(fn_n > 0.0 && fn_n.is_finite()) {
+                return Err((
+                    0,
+                    ContactError::invalid(
+                        "load",
+                        "the creep force's vertical part exceeds the vertical load",
+                    ),
+                ));
+            }
+            p.solve(NormalLoad::NormalForce(fn_n), true, input, fastsim)
+                .map_err(|e| (0, e))?;
+            let r = p.vertical_n() - target;
+            if r.abs() <= tol || it == max_it {
+                let delta = p.out.approach_m / p.nz;
+                if delta > cap {
+                    return Ok(LoadResult::CapTooSmall);
+                }
+                return Ok(LoadResult::Done {
+                    delta,
+                    iterations: it,
+                });
+            }
+            let mut slope = match last {
+                Some((f0, r0)) if (fn_n - f0).abs() > 0.0 => (r - r0) / (fn_n - f0),
+                // Creep force proportional to the normal force.
+                _ => p.nz + p.sz * p.out.fs_n / p.out.fn_n.max(1e-12),
+            };
+            if !(slope.is_finite() && slope > 0.05 * p.nz) {
+                slope = p.nz;
+            }
+            last = Some((fn_n, r));
+            fn_n -= r / slope;
+        }
+        unreachable!("the loop returns at it == max_it");
+    }
+    // Several patches: regula falsi (Illinois) on F^(2/3), nearly linear
+    // in the approach, with frictionless solves; then secant steps on the
+    // full vertical force, creep forces included.
+    let gmin = patches
+        .iter()
+        .map(|p| p.hmin / p.nz)
+        .fold(f64::INFINITY, f64::min);
+    let mut iterations = 1;
+    let fz_hi = solve_all(patches, cap, false, input, fastsim)?;
+    if fz_hi < target {
+        return Ok(LoadResult::CapTooSmall);
+    }
+    let phi = |fz: f64| fz.max(0.0).powf(2.0 / 3.0) - target.powf(2.0 / 3.0);
+    let (mut lo, mut flo, mut fz_lo) = (gmin, phi(0.0), 0.0);
+    let (mut hi, mut fhi, mut fz_hi) = (cap, phi(fz_hi), fz_hi);
+    let mut delta = cap;
+    let mut side = 0;
+    // A coarse tolerance here: the creep forces move the target anyway.
+    let coarse = (1e3 * tol).min(1e-3 * target);
+    while iterations < max_it {
+        delta = hi - fhi * (hi - lo) / (fhi - flo);
+        let fz = solve_all(patches, delta, false, input, fastsim)?;
+        iterations += 1;
+        if (fz - target).abs() <= coarse {
+            break;
+        }
+        let f = phi(fz);
+        if f > 0.0 {
+            (hi, fhi, fz_hi) = (delta, f, fz);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        } else {
+            (lo, flo, fz_lo) = (delta, f, fz);
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    let mut slope = (fz_hi - fz_lo) / (hi - lo);
+    let mut last: Option<(f64, f64)> = None;
+    while iterations < max_it {
+        let fz = solve_all(patches, delta, true, input, fastsim)?;
+        iterations += 1;
+        if (fz - target).abs() <= tol {
+            break;
+        }
+        if let Some((d0, f0)) = last {
+            let s = (fz - f0) / (delta - d0);
+            if s.is_finite() && s > 0.0 {
+                slope = s;
+            }
+        }
+        last = Some((delta, fz));
+        delta -= (fz - target) / slope;
+        if delta > cap {
+            return Ok(LoadResult::CapTooSmall);
+        }
+    }
+    Ok(LoadResult::Done { delta, iterations })
+}
+
+fn finish(
+    pair: &WheelRailPair,
+    side: Side,
+    gmin: f64,
+    delta: f64,
+    iterations: usize,
+    patches: Vec<PatchWork>,
+    input: &WheelRailInput,
+) -> WheelResult {
+    let s = side.sign();
+    let rail = pair.rail(side);
+    let mut total = [0.0; 3];
+    let mut out = Vec::with_capacity(patches.len());
+    for p in patches {
+        let g = &p.geom;
+        let t = g.tangent();
+        let o = &p.out;
+        // Side frame (x, q, z) -> track frame (x, s q, z).
+        let f_side = [
+            o.fx_n,
+            o.fs_n * t[0] + o.fn_n * g.normal[0],
+            o.fs_n * t[1] + o.fn_n * g.normal[1],
+        ];
+        let f = [f_side[0], s * f_side[1], f_side[2]];
+        for k in 0..3 {
+            total[k] += f[k];
+        }
+        let [ry, rz] = rail.to_profile(g.reference_m[0], g.reference_m[1]);
+        let (grid_n, grid_geometry) = match &p.kind {
+            PatchKind::Exact { problem, .. } => {
+                ([problem.grid.nx, problem.grid.ny], Some(problem.grid))
+            }
+            PatchKind::Hertz { .. } => ([0, 0], None),
+        };
+        out.push(PatchResult {
+            contact_angle_rad: g.contact_angle_rad,
+            rail_y_m: ry,
+            rail_z_m: rz,
+            wheel_y_m: g.wheel_profile_y_m,
+            track_y_m: s * g.reference_m[0],
+            track_z_m: g.reference_m[1],
+            track_x_m: g.x_m,
+            rolling_radius_m: g.rolling_radius_m,
+            creepage_long: p.creep.creepage_long,
+            creepage_lat: p.creep.creepage_lat,
+            spin_per_m: p.creep.spin_per_m,
+            normal_force_n: o.fn_n,
+            fx_n: o.fx_n,
+            fs_n: o.fs_n,
+            mz_nm: o.mz_nm,
+            approach_m: o.approach_m,
+            max_pressure_pa: o.max_pressure_pa,
+            contact_area_m2: o.area_m2,
+            adhesion_fraction: o.adhesion,
+            frictional_power_w: o.tgamma_n * input.velocity.forward_m_per_s,
+            force_track_n: f,
+            grid: grid_n,
+            solution: o.solution.clone(),
+            grid_geometry,
+        });
+    }
+    // Field side first: decreasing q.
+    out.sort_by(|a, b| (s * b.track_y_m).total_cmp(&(s * a.track_y_m)));
+    out.retain(|p| p.normal_force_n > 0.0);
+    WheelResult {
+        side,
+        vertical_approach_m: delta,
+        min_gap_m: gmin,
+        patches: out,
+        force_track_n: total,
+        load_iterations: iterations,
+    }
+}

@@ -1,0 +1,723 @@
+//! Contact search: where the wheel's surface comes closest to the rail, the
+//! rigid position of the wheelset, and the contact patches with their local
+//! geometry.
+//!
+//! Method (the contact-locus approach, as in CONTACT's wheel/rail module,
+//! Vollebregt, VSD 2020, doi 10.1080/00423114.2020.1853180):
+//!
+//! 1. **Contact locus.** The rail is a prismatic body, so at a contact point
+//!    its normal lies in the (q, z) plane. On every circle of the wheel (one
+//!    per profile point) the point where the wheel's normal also lies in
+//!    that plane is the only candidate; with yaw it lies ahead of or behind
+//!    the axle (x != 0). These points form the locus curve, which is
+//!    compared with the rail profile in the (q, z) plane.
+//! 2. **Vertical gap.** g(q) = z_rail(q) - z_locus(q), sampled every
+//!    [`SAMPLE_SPACING_M`]; the wheelset height (and roll, when not given)
+//!    puts the smallest gap of each wheel at 0 (rigid contact).
+//! 3. **Patches.** The parts of the q axis where g is below a cap (the
+//!    expected approach with a margin) are the potential contact areas;
+//!    parts closer than `merge_distance_m` are combined, parts farther apart
+//!    are separate patches (tread, flange root, flange).
+//! 4. **Patch geometry.** Per patch: the reference point where g is
+//!    smallest, the contact angle there (angle of the rail normal from the
+//!    vertical, positive where the rail surface faces the gauge side, i.e.
+//!    flange contact), the tangent plane, and the undeformed distance
+//!    measured along the reference normal between rail and locus at lateral
+//!    coordinates s in the tangent plane, plus the wheel's curvature along
+//!    x: h(x, s) = h(s) + k_x(s) (x - dx(s))^2 / 2 (planar contact approach).
+
+use crate::wheelrail::wheelset::{
+    PlacedRail, PlacedWheel, Side, WheelRailError, WheelRailPair, WheelsetPosition,
+    SAMPLE_SPACING_M,
+};
+
+/// The wheelset seen from one side (side frame, see
+/// [`crate::wheelrail::wheelset`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SidePose {
+    /// Lateral position of the wheelset centre in the side frame [m].
+    pub center_q_m: f64,
+    /// Height of the wheelset centre [m] (z down, so negative).
+    pub center_z_m: f64,
+    /// Yaw angle in the side frame [rad].
+    pub yaw_rad: f64,
+    /// Roll angle in the side frame [rad].
+    pub roll_rad: f64,
+}
+
+impl SidePose {
+    /// The pose of `side` for the wheelset at track position (y, z, roll, yaw).
+    pub fn new(side: Side, lateral_m: f64, center_z_m: f64, roll_rad: f64, yaw_rad: f64) -> Self {
+        let s = side.sign();
+        Self {
+            center_q_m: s * lateral_m,
+            center_z_m,
+            yaw_rad: s * yaw_rad,
+            roll_rad: s * roll_rad,
+        }
+    }
+
+    /// Axle direction (x, q, z), outwards for this side's wheel.
+    pub fn axle(&self) -> [f64; 3] {
+        let (sy, cy) = self.yaw_rad.sin_cos();
+        let (sr, cr) = self.roll_rad.sin_cos();
+        [-sy * cr, cy * cr, sr]
+    }
+
+    /// Wheelset centre (x, q, z).
+    pub fn center(&self) -> [f64; 3] {
+        [0.0, self.center_q_m, self.center_z_m]
+    }
+}
+
+/// One point of the contact locus (side frame).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LocusPoint {
+    /// Longitudinal position [m] (ahead of the axle when > 0).
+    pub x_m: f64,
+    /// Lateral position [m].
+    pub q_m: f64,
+    /// Height [m].
+    pub z_m: f64,
+    /// Curvature of the wheel surface along its circle [1/m].
+    pub kx_per_m: f64,
+    /// Rolling radius [m].
+    pub radius_m: f64,
+    /// Wheel profile y of the point [m].
+    pub profile_y_m: f64,
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Largest tilt of the locus point round the wheel [rad]; beyond it the
+/// wheel surface is nearly parallel to the axle (flange back) and cannot
+/// touch a rail.
+const MAX_LOCUS_ANGLE_RAD: f64 = 0.5;
+
+/// Computes the contact locus of `wheel` in `pose` into `out`.
+pub fn wheel_locus(
+    wheel: &PlacedWheel,
+    nominal_radius_m: f64,
+    pose: &SidePose,
+    out: &mut Vec<LocusPoint>,
+) {
+    out.clear();
+    let a = pose.axle();
+    let c = pose.center();
+    // e1: "down" perpendicular to the axle; e2 = a x e1 (about +x).
+    let mut e1 = [-a[2] * a[0], -a[2] * a[1], 1.0 - a[2] * a[2]];
+    let n1 = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    e1.iter_mut().for_each(|v| *v /= n1);
+    let e2 = cross(a, e1);
+    let (ca, cb) = (e1[0], e2[0]);
+    let rm = ca.hypot(cb);
+    let theta0 = cb.atan2(ca);
+    let limit = MAX_LOCUS_ANGLE_RAD.sin();
+    for s in wheel.samples() {
+        let [ty, tz] = s.tangent;
+        // The outward wheel normal tz a - ty e_r(theta) (profile y along
+        // the axle, z along e_r) has no x part:
+        // ty (A cos theta + B sin theta) = tz a_x.
+        let rhs = if ty.abs() > 1e-12 {
+            (tz * a[0] / ty).clamp(-limit * rm, limit * rm)
+        } else {
+            0.0
+        };
+        let d = (rhs / rm).clamp(-1.0, 1.0).acos();
+        let (t1, t2) = (theta0 - d, theta0 + d);
+        let theta = if t1.cos() >= t2.cos() { t1 } else { t2 };
+        let (st, ct) = theta.sin_cos();
+        let er = [
+            ct * e1[0] + st * e2[0],
+            ct * e1[1] + st * e2[1],
+            ct * e1[2] + st * e2[2],
+        ];
+        let u = wheel.axial_offset_m() + s.q_m;
+        let r = nominal_radius_m + s.z_m;
+        out.push(LocusPoint {
+            x_m: c[0] + u * a[0] + r * er[0],
+            q_m: c[1] + u * a[1] + r * er[1],
+            z_m: c[2] + u * a[2] + r * er[2],
+            kx_per_m: -ty / r,
+            radius_m: r,
+            profile_y_m: s.q_m,
+        });
+    }
+}
+
+/// The vertical gap of one side, sampled in q.
+#[derive(Debug, Clone, Default)]
+pub struct VerticalGap {
+    /// First q [m] and spacing [m].
+    pub q0_m: f64,
+    /// Spacing [m].
+    pub dq_m: f64,
+    /// Rail surface height per sample [m] (NaN where no rail).
+    pub z_rail_m: Vec<f64>,
+    /// Locus height per sample [m] (NaN where no wheel).
+    pub z_wheel_m: Vec<f64>,
+    /// Index of the locus point nearest below each sample.
+    pub locus_index: Vec<usize>,
+}
+
+impl VerticalGap {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.z_rail_m.len()
+    }
+
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.z_rail_m.is_empty()
+    }
+
+    /// q of sample k [m].
+    pub fn q_m(&self, k: usize) -> f64 {
+        self.q0_m + k as f64 * self.dq_m
+    }
+
+    /// Gap at sample k [m] (+inf where either body is missing).
+    pub fn gap_m(&self, k: usize) -> f64 {
+        let g = self.z_rail_m[k] - self.z_wheel_m[k];
+        if g.is_nan() {
+            f64::INFINITY
+        } else {
+            g
+        }
+    }
+
+    /// Index and value of the smallest gap.
+    pub fn min(&self) -> Option<(usize, f64)> {
+        (0..self.len())
+            .map(|k| (k, self.gap_m(k)))
+            .filter(|(_, g)| g.is_finite())
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// Fills the gap between `rail` and `locus`.
+    pub fn compute(&mut self, rail: &PlacedRail, locus: &[LocusPoint]) {
+        let rs = rail.samples();
+        let (rlo, rhi) = range(rs.iter().map(|s| s.q_m));
+        let (wlo, whi) = range(locus.iter().map(|p| p.q_m));
+        let (lo, hi) = (rlo.max(wlo), rhi.min(whi));
+        self.dq_m = SAMPLE_SPACING_M;
+        self.q0_m = (lo / self.dq_m).ceil() * self.dq_m;
+        let n = if hi > self.q0_m {
+            ((hi - self.q0_m) / self.dq_m).floor() as usize + 1
+        } else {
+            0
+        };
+        self.z_rail_m.clear();
+        self.z_rail_m.resize(n, f64::NAN);
+        self.z_wheel_m.clear();
+        self.z_wheel_m.resize(n, f64::NAN);
+        self.locus_index.clear();
+        self.locus_index.resize(n, 0);
+        // Rail: segments running towards +q face up; keep the highest.
+        for w in rs.windows(2) {
+            if w[1].q_m > w[0].q_m {
+                self.raster(
+                    w[0].q_m,
+                    w[0].z_m,
+                    w[1].q_m,
+                    w[1].z_m,
+                    |old, new| old.is_nan() || new < old,
+                    None,
+                );
+            }
+        }
+        // Wheel locus (field face first): segments running towards -q face
+        // down; keep the lowest.
+        for (i, w) in locus.windows(2).enumerate() {
+            if w[1].q_m < w[0].q_m {
+                self.raster(
+                    w[1].q_m,
+                    w[1].z_m,
+                    w[0].q_m,
+                    w[0].z_m,
+                    |old, new| old.is_nan() || new > old,
+                    Some(i),
+                );
+            }
+        }
+    }
+
+    fn raster(
+        &mut self,
+        qa: f64,
+        za: f64,
+        qb: f64,
+        zb: f64,
+        better: impl Fn(f64, f64) -> bool,
+        locus: Option<usize>,
+    ) {
+        let n = self.len();
+        if n == 0 {
+            return;
+        }
+        let k0 = ((qa - self.q0_m) / self.dq_m).ceil().max(0.0) as usize;
+        let k1 = ((qb - self.q0_m) / self.dq_m).floor();
+        if k1 < 0.0 {
+            return;
+        }
+        let k1 = (k1 as usize).min(n - 1);
+        for k in k0..=k1 {
+            let q = self.q_m(k);
+            let z = za + (zb - za) * (q - qa) / (qb - qa);
+            let slot = match locus {
+                Some(_) => &mut self.z_wheel_m[k],
+                None => &mut self.z_rail_m[k],
+            };
+            if better(*slot, z) {
+                *slot = z;
+                if let Some(i) = locus {
+                    self.locus_index[k] = i;
+                }
+            }
+        }
+    }
+}
+
+fn range(it: impl Iterator<Item = f64>) -> (f64, f64) {
+    it.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    })
+}
+
+/// Buffers of the contact search, reused between calls.
+#[derive(Debug, Clone, Default)]
+pub struct SearchScratch {
+    /// Contact locus per side (left, right).
+    pub locus: [Vec<LocusPoint>; 2],
+    /// Vertical gap per side.
+    pub gap: [VerticalGap; 2],
+}
+
+/// The rigid position of the wheelset: both wheels touch their rails (or,
+/// with a given roll, the closer one touches).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidPosition {
+    /// Wheelset centre height [m].
+    pub center_z_m: f64,
+    /// Roll angle [rad].
+    pub roll_rad: f64,
+    /// Smallest vertical gap per side (left, right) at that position [m].
+    pub min_gap_m: [f64; 2],
+}
+
+/// Settings of the contact search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SearchSettings {
+    /// Potential contact parts closer than this along q are combined into
+    /// one patch [m].
+    pub merge_distance_m: f64,
+    /// Roll iteration: tolerance on the difference of the two smallest gaps [m].
+    pub roll_tolerance_m: f64,
+}
+
+impl Default for SearchSettings {
+    fn default() -> Self {
+        Self {
+            merge_distance_m: 1.0e-3,
+            roll_tolerance_m: 1.0e-10,
+        }
+    }
+}
+
+/// Smallest gaps (left, right) with the centre at `z` and roll `roll`.
+fn min_gaps(
+    pair: &WheelRailPair,
+    lateral_m: f64,
+    yaw_rad: f64,
+    roll_rad: f64,
+    center_z_m: f64,
+    scratch: &mut SearchScratch,
+) -> Result<[f64; 2], WheelRailError> {
+    let mut out = [0.0; 2];
+    for side in Side::BOTH {
+        let i = side.index();
+        let pose = SidePose::new(side, lateral_m, center_z_m, roll_rad, yaw_rad);
+        wheel_locus(
+            pair.wheel(side),
+            pair.wheelset().nominal_radius_m,
+            &pose,
+            &mut scratch.locus[i],
+        );
+        scratch.gap[i].compute(pair.rail(side), &scratch.locus[i]);
+        out[i] = scratch.gap[i]
+            .min()
+            .ok_or_else(|| WheelRailError::Geometry {
+                side: side.name(),
+                message: format!(
+                    "the wheel does not lie above its rail at lateral shift {:.2} mm: \
+                     the profiles do not overlap laterally (check gauge, flange-back distance \
+                     and profile origins)",
+                    lateral_m * 1e3
+                ),
+            })?
+            .1;
+    }
+    Ok(out)
+}
+
+/// Finds the rigid position for `position`; leaves the loci and gaps of that
+/// position in `scratch`.
+pub fn rigid_position(
+    pair: &WheelRailPair,
+    position: &WheelsetPosition,
+    settings: &SearchSettings,
+    scratch: &mut SearchScratch,
+) -> Result<RigidPosition, WheelRailError> {
+    let z0 = -pair.wheelset().nominal_radius_m;
+    let (y, yaw) = (position.lateral_m, position.yaw_rad);
+    let roll = match position.roll_rad {
+        Some(r) => r,
+        None => {
+            // D(roll) = gap_left - gap_right grows with roll (positive roll
+            // lowers the right wheel) at about the track width per radian.
+            let d = |r: f64, s: &mut SearchScratch| -> Result<f64, WheelRailError> {
+                let g = min_gaps(pair, y, yaw, r, z0, s)?;
+                Ok(g[0] - g[1])
+            };
+            let mut r0 = 0.0;
+            let mut d0 = d(r0, scratch)?;
+            let slope0 = pair.track().gauge_m;
+            let mut r1 = -d0 / slope0;
+            let mut d1 = d(r1, scratch)?;
+            let mut it = 0;
+            while d1.abs() > settings.roll_tolerance_m {
+                it += 1;
+                if it > 50 {
+                    return Err(WheelRailError::Geometry {
+                        side: "both",
+                        message: format!(
+                            "no roll angle puts both wheels on their rails at lateral shift \
+                             {:.2} mm (last difference of the gaps {:.3e} m)",
+                            y * 1e3,
+                            d1
+                        ),
+                    });
+                }
+                let slope = if (d1 - d0).abs() > 1e-15 && (r1 - r0).abs() > 1e-15 {
+                    (d1 - d0) / (r1 - r0)
+                } else {
+                    slope0
+                };
+                let slope = if slope > 0.1 * slope0 { slope } else { slope0 };
+                (r0, d0) = (r1, d1);
+                r1 -= d1 / slope;
+                d1 = d(r1, scratch)?;
+            }
+            r1
+        }
+    };
+    let g = min_gaps(pair, y, yaw, roll, z0, scratch)?;
+    // Translating the wheelset in z shifts every vertical gap equally.
+    let dz = g[0].min(g[1]);
+    let center_z_m = z0 + dz;
+    for i in 0..2 {
+        scratch.locus[i].iter_mut().for_each(|p| p.z_m += dz);
+        scratch.gap[i].z_wheel_m.iter_mut().for_each(|z| *z += dz);
+    }
+    let g = [g[0] - dz, g[1] - dz];
+    Ok(RigidPosition {
+        center_z_m,
+        roll_rad: roll,
+        min_gap_m: g,
+    })
+}
+
+/// One lateral sample of a patch's undeformed distance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LateralSample {
+    /// Lateral coordinate in the tangent plane [m].
+    pub s_m: f64,
+    /// Normal distance between rail and wheel at the rigid position [m].
+    pub gap_m: f64,
+    /// Longitudinal position of the wheel's closest point, relative to the
+    /// reference's [m].
+    pub dx_m: f64,
+    /// Wheel curvature along x [1/m].
+    pub kx_per_m: f64,
+}
+
+/// A potential contact patch and its planar geometry (side frame).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchGeometry {
+    /// Reference point on the rail surface (q, z) [m].
+    pub reference_m: [f64; 2],
+    /// Longitudinal position of the reference point [m].
+    pub x_m: f64,
+    /// Contact normal, into the rail, (q, z) components.
+    pub normal: [f64; 2],
+    /// Contact angle [rad]: angle of the normal from the vertical, positive
+    /// towards +q (rail surface facing the gauge side).
+    pub contact_angle_rad: f64,
+    /// Smallest vertical gap in the patch at the rigid position [m].
+    pub min_vertical_gap_m: f64,
+    /// Rolling radius of the wheel at the reference point [m].
+    pub rolling_radius_m: f64,
+    /// Wheel profile y of the reference point [m].
+    pub wheel_profile_y_m: f64,
+    /// Lateral extent of the potential contact area in the tangent plane [m].
+    pub s_range_m: [f64; 2],
+    /// Undeformed distance samples, increasing s.
+    pub lateral: Vec<LateralSample>,
+}
+
+impl PatchGeometry {
+    /// Unit lateral tangent (q, z): n x e_x.
+    pub fn tangent(&self) -> [f64; 2] {
+        [self.normal[1], -self.normal[0]]
+    }
+
+    /// Linear interpolation of the lateral samples at `s` (clamped).
+    pub fn lateral_at(&self, s_m: f64) -> LateralSample {
+        let l = &self.lateral;
+        let k = l.partition_point(|p| p.s_m < s_m);
+        if k == 0 {
+            return l[0];
+        }
+        if k >= l.len() {
+            return l[l.len() - 1];
+        }
+        let (a, b) = (l[k - 1], l[k]);
+        let f = (s_m - a.s_m) / (b.s_m - a.s_m);
+        let mix = |u: f64, v: f64| u + f * (v - u);
+        LateralSample {
+            s_m,
+            gap_m: mix(a.gap_m, b.gap_m),
+            dx_m: mix(a.dx_m, b.dx_m),
+            kx_per_m: mix(a.kx_per_m, b.kx_per_m),
+        }
+    }
+
+    /// Undeformed distance at (x, s) relative to the reference [m].
+    pub fn gap_at(&self, x_m: f64, s_m: f64) -> f64 {
+        let l = self.lateral_at(s_m);
+        let dx = x_m - l.dx_m;
+        l.gap_m + 0.5 * l.kx_per_m * dx * dx
+    }
+}
+
+/// The parts of the q axis where the vertical gap is below `cap_m`, merged
+/// when closer than `merge_m`: (first, last, index of the minimum).
+pub fn gap_intervals(gap: &VerticalGap, cap_m: f64, merge_m: f64) -> Vec<(usize, usize, usize)> {
+    gap_intervals_range(gap, 0, gap.len(), cap_m, merge_m)
+}
+
+fn gap_intervals_range(
+    gap: &VerticalGap,
+    first: usize,
+    n: usize,
+    cap_m: f64,
+    merge_m: f64,
+) -> Vec<(usize, usize, usize)> {
+    let mut out: Vec<(usize, usize, usize)> = Vec::new();
+    let mut k = first;
+    while k < n {
+        if gap.gap_m(k) < cap_m {
+            let start = k;
+            let mut kmin = k;
+            while k < n && gap.gap_m(k) < cap_m {
+                if gap.gap_m(k) < gap.gap_m(kmin) {
+                    kmin = k;
+                }
+                k += 1;
+            }
+            let end = k - 1;
+            match out.last_mut() {
+                Some(last) if (start - last.1) as f64 * gap.dq_m < merge_m => {
+                    last.1 = end;
+                    if gap.gap_m(kmin) < gap.gap_m(last.2) {
+                        last.2 = kmin;
+                    }
+                }
+                _ => out.push((start, end, kmin)),
+            }
+        } else {
+            k += 1;
+        }
+    }
+    out
+}
+
+/// Splits the intervals of [`gap_intervals`] where, at the vertical
+/// approach `delta_m`, the interpenetration inside one interval falls apart
+/// into parts farther apart than `merge_m`: the cut goes through the largest
+/// gap between the parts.
+pub fn split_intervals(
+    gap: &VerticalGap,
+    intervals: &[(usize, usize, usize)],
+    delta_m: f64,
+    merge_m: f64,
+) -> Vec<(usize, usize, usize)> {
+    let mut out = Vec::new();
+    for &iv in intervals {
+        let (k0, k1, _) = iv;
+        let mut parts = gap_intervals_range(gap, k0, k1 + 1, delta_m, merge_m);
+        if parts.len() < 2 {
+            out.push(iv);
+            continue;
+        }
+        // Cut at the largest gap between successive parts.
+        let mut start = k0;
+        for w in 0..parts.len() - 1 {
+            let (a, b) = (parts[w].1, parts[w + 1].0);
+            let cut = (a..=b)
+                .max_by(|&i, &j| gap.gap_m(i).total_cmp(&gap.gap_m(j)))
+                .unwrap_or(a);
+            parts[w].0 = start;
+            parts[w].1 = cut;
+            start = cut + 1;
+        }
+        if let Some(last) = parts.last_mut() {
+            last.0 = start;
+            last.1 = k1;
+        }
+        out.extend(parts);
+    }
+    out
+}
+
+/// Samples (s, lambda) of a curve in the patch frame, increasing s, within
+/// `s_lim`: the run of points through `points[start]` along which s is
+/// monotone (the part of the surface that faces the other body near the
+/// reference; a line along the normal may cross the profile again farther
+/// away, e.g. at the back of a flange).
+fn to_patch_frame<T: Copy>(
+    points: &[(f64, f64, T)],
+    start: usize,
+    origin: [f64; 2],
+    normal: [f64; 2],
+    s_lim: [f64; 2],
+) -> Vec<(f64, f64, T)> {
+    let t = [normal[1], -normal[0]];
+    let map = |&(q, z, p): &(f64, f64, T)| {
+        let d = [q - origin[0], z - origin[1]];
+        (
+            d[0] * t[0] + d[1] * t[1],
+            d[0] * normal[0] + d[1] * normal[1],
+            p,
+        )
+    };
+    let inside = |s: f64| s >= s_lim[0] && s <= s_lim[1];
+    let mut v = Vec::new();
+    if points.is_empty() {
+        return v;
+    }
+    let start = start.min(points.len() - 1);
+    let first = map(&points[start]);
+    v.push(first);
+    // Direction of s along increasing index, from the neighbours.
+    let dir = |a: f64, b: f64| (b - a).signum();
+    let up = if start + 1 < points.len() {
+        dir(first.0, map(&points[start + 1]).0)
+    } else {
+        -dir(first.0, map(&points[start - 1]).0)
+    };
+    let mut last = first.0;
+    for p in &points[start + 1..] {
+        let m = map(p);
+        if !inside(m.0) || dir(last, m.0) != up {
+            break;
+        }
+        last = m.0;
+        v.push(m);
+    }
+    last = first.0;
+    for p in points[..start].iter().rev() {
+        let m = map(p);
+        if !inside(m.0) || dir(last, m.0) != -up {
+            break;
+        }
+        last = m.0;
+        v.push(m);
+    }
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    v
+}
+
+fn interp<T: Copy>(v: &[(f64, f64, T)], s: f64) -> Option<(f64, T, T, f64)> {
+    let k = v.partition_point(|p| p.0 < s);
+    if k == 0 || k >= v.len() {
+        return None;
+    }
+    let (a, b) = (v[k - 1], v[k]);
+    let f = if b.0 > a.0 {
+        (s - a.0) / (b.0 - a.0)
+    } else {
+        0.0
+    };
+    Some((a.1 + f * (b.1 - a.1), a.2, b.2, f))
+}
+
+/// The geometry of the patch around the interval `[k0, k1]` of `gap` with
+/// its minimum at `kmin`, for an expected vertical approach up to `cap_m`.
+pub fn patch_geometry(
+    rail: &PlacedRail,
+    locus: &[LocusPoint],
+    gap: &VerticalGap,
+    (k0, k1, kmin): (usize, usize, usize),
+    margin_m: f64,
+) -> Option<PatchGeometry> {
+    let qref = gap.q_m(kmin);
+    let zref = gap.z_rail_m[kmin];
+    // Rail normal at the reference: from the rail samples around it.
+    let rs = rail.samples();
+    let j = rs
+        .windows(2)
+        .position(|w| w[0].q_m <= qref && w[1].q_m > qref)?;
+    let out = rs[j].outward_normal();
+    let normal = [-out[0], -out[1]];
+    let contact_angle_rad = normal[0].atan2(normal[1]);
+    let t = [normal[1], -normal[0]];
+    let proj = |k: usize| (gap.q_m(k) - qref) * t[0] + (gap.z_rail_m[k] - zref) * t[1];
+    let s_range_m = [proj(k0) - margin_m, proj(k1) + margin_m];
+    let lim = [s_range_m[0] - 1e-3, s_range_m[1] + 1e-3];
+    let origin = [qref, zref];
+    let rail_all: Vec<_> = rs.iter().map(|s| (s.q_m, s.z_m, ())).collect();
+    let rail_pts = to_patch_frame(&rail_all, j, origin, normal, lim);
+    let li = gap.locus_index[kmin];
+    let wheel_all: Vec<_> = locus.iter().map(|p| (p.q_m, p.z_m, *p)).collect();
+    let wheel_pts = to_patch_frame(&wheel_all, li, origin, normal, lim);
+    let lref = locus[li];
+    let ds = SAMPLE_SPACING_M;
+    let n = ((s_range_m[1] - s_range_m[0]) / ds).ceil() as usize + 1;
+    let mut lateral = Vec::with_capacity(n);
+    for i in 0..n {
+        let s = s_range_m[0] + i as f64 * ds;
+        let (Some((lr, _, _, _)), Some((lw, pa, pb, f))) =
+            (interp(&rail_pts, s), interp(&wheel_pts, s))
+        else {
+            continue;
+        };
+        let mix = |u: f64, v: f64| u + f * (v - u);
+        lateral.push(LateralSample {
+            s_m: s,
+            gap_m: lr - lw,
+            dx_m: mix(pa.x_m, pb.x_m) - lref.x_m,
+            kx_per_m: mix(pa.kx_per_m, pb.kx_per_m),
+        });
+    }
+    if lateral.len() < 2 {
+        return None;
+    }
+    Some(PatchGeometry {
+        reference_m: origin,
+        x_m: lref.x_m,
+        normal,
+        contact_angle_rad,
+        min_vertical_gap_m: gap.gap_m(kmin),
+        rolling_radius_m: lref.radius_m,
+        wheel_profile_y_m: lref.profile_y_m,
+        s_range_m,
+        lateral,
+    })
+}

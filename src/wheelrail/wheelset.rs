@@ -1,0 +1,495 @@
+//! Track and wheelset: where the rail and wheel profiles sit, and where the
+//! wheelset is and how it moves.
+//!
+//! # Frames (used by [`crate::wheelrail::search`] and
+//! [`crate::wheelrail::contact`])
+//!
+//! * **Track frame** (x, y, z): origin on the track centre line at the
+//!   height of the top of the rails, x along the track in the direction of
+//!   travel, y to the **right**, z **down**; right-handed. The right rail
+//!   lies at y > 0, the left rail at y < 0.
+//! * **Side frame** (x, q, z) of one wheel/rail side: the track frame for the
+//!   right side; for the left side its mirror image, q = -y. In its side
+//!   frame every side looks like the right-hand side of the profile
+//!   convention of [`crate::wheelrail`]: field side at +q, gauge side (track
+//!   centre) at -q, and the same profile files serve both sides. Vectors
+//!   map as v_side = (v_x, s v_y, v_z) and rotation rates (pseudo-vectors)
+//!   as w_side = (s w_x, w_y, s w_z), with s = +1 right, -1 left.
+//! * **Rail placement**: the rail profile is inclined by the track's
+//!   `cant_rad` (rail inclination, towards the track centre), then shifted
+//!   so that its highest point is at z = 0 and its gauge face, `gauge_height_m`
+//!   below that, lies at q = gauge/2.
+//! * **Wheel placement**: the wheel profile's y axis runs along the axle,
+//!   outwards; its point at y = `flange_back_y_m` (the back of the flange,
+//!   by default the profile's smallest y) lies at half the flange-back
+//!   distance from the wheelset centre. The rolling radius at profile
+//!   height z is `nominal_radius_m + z` (the profile's z = 0 is the
+//!   nominal rolling circle, z grows towards the rail).
+//! * **Wheelset position**: centre at (0, `lateral_m`, z), rotated by
+//!   `roll_rad` about x, then by `yaw_rad` about z (so the axle direction is
+//!   (-sin yaw cos roll, cos yaw cos roll, sin roll)). Positive roll lowers
+//!   the right wheel, positive yaw turns the wheelset's forward direction
+//!   towards the right.
+//! * **Wheelset velocity**: forward speed V along x, lateral and vertical
+//!   speeds, roll and yaw rates about x and z, and the rotation rate about
+//!   the axle `pitch_rad_per_s` (free rolling at the nominal radius is
+//!   -V / `nominal_radius_m`: negative, the bottom of the wheel moving
+//!   backwards).
+
+use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
+use crate::wheelrail::Profile;
+
+/// Errors of the wheel/rail geometry and solution.
+#[derive(Debug, thiserror::Error)]
+pub enum WheelRailError {
+    /// An input value is out of range; `key` names it as in the case file.
+    #[error("{key}: {message}")]
+    Invalid {
+        /// Input key.
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A profile could not be fitted.
+    #[error("{side} {what} profile: {source}")]
+    Spline {
+        /// "left" or "right".
+        side: &'static str,
+        /// "rail" or "wheel".
+        what: &'static str,
+        /// Cause.
+        #[source]
+        source: SplineError,
+    },
+    /// The wheel and rail profiles do not face each other.
+    #[error("{side} wheel: {message}")]
+    Geometry {
+        /// "left" or "right".
+        side: &'static str,
+        /// What is wrong.
+        message: String,
+    },
+    /// A contact patch could not be solved.
+    #[error("{side} wheel, patch {patch}: {source}")]
+    Contact {
+        /// "left" or "right".
+        side: &'static str,
+        /// Patch index.
+        patch: usize,
+        /// Cause.
+        #[source]
+        source: crate::core::error::ContactError,
+    },
+}
+
+/// Input errors of the core keep their key.
+impl From<ContactError> for WheelRailError {
+    fn from(e: ContactError) -> Self {
+        match e {
+            ContactError::InvalidInput { key, reason } => Self::Invalid {
+                key,
+                message: reason,
+            },
+            other => Self::invalid("input", other.to_string()),
+        }
+    }
+}
+
+impl WheelRailError {
+    pub(crate) fn invalid(key: &str, message: impl Into<String>) -> Self {
+        Self::Invalid {
+            key: key.to_string(),
+            message: message.into(),
+        }
+    }
+}
+
+/// One side of the track and wheelset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Side {
+    /// The left wheel and rail (y < 0).
+    Left,
+    /// The right wheel and rail (y > 0).
+    Right,
+}
+
+impl Side {
+    /// Both sides, left first.
+    pub const BOTH: [Side; 2] = [Side::Left, Side::Right];
+
+    /// +1 for the right side, -1 for the left side (q = sign y).
+    pub fn sign(self) -> f64 {
+        match self {
+            Side::Left => -1.0,
+            Side::Right => 1.0,
+        }
+    }
+
+    /// "left" or "right".
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+        }
+    }
+
+    /// Index into per-side arrays (left 0, right 1).
+    pub fn index(self) -> usize {
+        match self {
+            Side::Left => 0,
+            Side::Right => 1,
+        }
+    }
+}
+
+/// Track data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackData {
+    /// Track gauge between the gauge faces [m].
+    pub gauge_m: f64,
+    /// Depth below the top of the rail at which the gauge is measured [m].
+    pub gauge_height_m: f64,
+    /// Rail inclination towards the track centre [rad] (1:40 is 0.025),
+    /// applied to the rail profile as given; 0 for profiles already
+    /// inclined, like `MBench_UIC60_v3.prr`.
+    pub cant_rad: f64,
+}
+
+/// Wheelset data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetData {
+    /// Distance between the backs of the two flanges [m].
+    pub flange_back_distance_m: f64,
+    /// Rolling radius at the wheel profile's z = 0 [m].
+    pub nominal_radius_m: f64,
+    /// Profile y of the back of the flange [m]; `None` for the profile's
+    /// smallest y.
+    pub flange_back_y_m: Option<f64>,
+}
+
+/// Dense samples of a profile curve, in the side frame: point (q, z) and
+/// outward unit normal (pointing away from the body's material).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveSample {
+    /// Arc length along the fitted profile [m].
+    pub t_m: f64,
+    /// Lateral coordinate [m].
+    pub q_m: f64,
+    /// Vertical coordinate, down [m].
+    pub z_m: f64,
+    /// Unit tangent in CONTACT point order (dq/dt, dz/dt).
+    pub tangent: [f64; 2],
+}
+
+impl CurveSample {
+    /// The outward normal (away from the material) in (q, z): with the
+    /// material on the right-hand side of the walking direction (see the
+    /// profile conventions), (dz, -dq): up on a rail's crown, down on a
+    /// wheel's tread.
+    pub fn outward_normal(&self) -> [f64; 2] {
+        [self.tangent[1], -self.tangent[0]]
+    }
+}
+
+/// Spacing of the dense profile samples used by the contact search [m].
+pub const SAMPLE_SPACING_M: f64 = 5.0e-5;
+
+fn sample(spline: &ProfileSpline, map: impl Fn(f64, f64) -> [f64; 2]) -> Vec<CurveSample> {
+    let len = spline.length_m();
+    let n = (len / SAMPLE_SPACING_M).ceil().max(2.0) as usize;
+    (0..=n)
+        .map(|k| {
+            let t = len * k as f64 / n as f64;
+            let p = spline.eval(t);
+            let [q, z] = map(p.y_m, p.z_m);
+            let o = map(p.y_m + p.tangent[0], p.z_m + p.tangent[1]);
+            let tan = [o[0] - q, o[1] - z];
+            let norm = tan[0].hypot(tan[1]);
+            CurveSample {
+                t_m: t,
+                q_m: q,
+                z_m: z,
+                tangent: [tan[0] / norm, tan[1] / norm],
+            }
+        })
+        .collect()
+}
+
+/// A rail profile placed on the track (side frame).
+#[derive(Debug, Clone)]
+pub struct PlacedRail {
+    spline: ProfileSpline,
+    cant_rad: f64,
+    /// Shift from the inclined profile to the side frame (q, z) [m].
+    offset_m: [f64; 2],
+    samples: Vec<CurveSample>,
+}
+
+impl PlacedRail {
+    /// Side-frame point (q, z) of a profile point (y, z).
+    pub fn to_side(&self, y: f64, z: f64) -> [f64; 2] {
+        let (s, c) = self.cant_rad.sin_cos();
+        [
+            c * y + s * z + self.offset_m[0],
+            -s * y + c * z + self.offset_m[1],
+        ]
+    }
+
+    /// Profile point (y, z) of a side-frame point (q, z).
+    pub fn to_profile(&self, q: f64, z: f64) -> [f64; 2] {
+        let (s, c) = self.cant_rad.sin_cos();
+        let (a, b) = (q - self.offset_m[0], z - self.offset_m[1]);
+        [c * a - s * b, s * a + c * b]
+    }
+
+    /// Dense samples in the side frame, gauge face first.
+    pub fn samples(&self) -> &[CurveSample] {
+        &self.samples
+    }
+
+    /// The fitted profile (profile frame).
+    pub fn spline(&self) -> &ProfileSpline {
+        &self.spline
+    }
+}
+
+/// A wheel profile placed on the axle.
+#[derive(Debug, Clone)]
+pub struct PlacedWheel {
+    spline: ProfileSpline,
+    /// Axial coordinate (from the wheelset centre, outwards) of profile y = 0 [m].
+    axial_offset_m: f64,
+    /// Dense samples in the profile frame (q = profile y), field face first.
+    samples: Vec<CurveSample>,
+}
+
+impl PlacedWheel {
+    /// Axial coordinate of profile y = 0 [m] (the tape circle for S1002).
+    pub fn axial_offset_m(&self) -> f64 {
+        self.axial_offset_m
+    }
+
+    /// Dense samples in the profile frame.
+    pub fn samples(&self) -> &[CurveSample] {
+        &self.samples
+    }
+
+    /// The fitted profile.
+    pub fn spline(&self) -> &ProfileSpline {
+        &self.spline
+    }
+}
+
+/// The prepared geometry of a track and wheelset: both rails and wheels
+/// placed, fitted and sampled. Costly to build (a few ms), cheap to use; the
+/// service keeps one per profile pair.
+#[derive(Debug, Clone)]
+pub struct WheelRailPair {
+    rails: [PlacedRail; 2],
+    wheels: [PlacedWheel; 2],
+    track: TrackData,
+    wheelset: WheelsetData,
+}
+
+impl WheelRailPair {
+    /// Places the profiles (`[left, right]`, both in the right-hand profile
+    /// convention) with the smoothing `spline` options.
+    pub fn new(
+        rails: [&Profile; 2],
+        wheels: [&Profile; 2],
+        track: TrackData,
+        wheelset: WheelsetData,
+        spline: &SplineOptions,
+    ) -> Result<Self, WheelRailError> {
+        require_positive("track.gauge_m", track.gauge_m)?;
+        require_finite("track.gauge_height_m", track.gauge_height_m)?;
+        if track.gauge_height_m < 0.0 {
+            return Err(WheelRailError::invalid(
+                "track.gauge_height_m",
+                "must be >= 0 (a depth below the top of the rail)",
+            ));
+        }
+        require_finite("track.cant_rad", track.cant_rad)?;
+        if track.cant_rad.abs() > 0.2 {
+            return Err(WheelRailError::invalid(
+                "track.cant_rad",
+                format!("{} rad is not a rail inclination", track.cant_rad),
+            ));
+        }
+        require_positive(
+            "wheelset.flange_back_distance_m",
+            wheelset.flange_back_distance_m,
+        )?;
+        require_positive("wheelset.nominal_radius_m", wheelset.nominal_radius_m)?;
+        if let Some(y) = wheelset.flange_back_y_m {
+            require_finite("wheelset.flange_back_y_m", y)?;
+        }
+        let place = |side: Side| -> Result<(PlacedRail, PlacedWheel), WheelRailError> {
+            let i = side.index();
+            let rail = place_rail(rails[i], &track, spline, side)?;
+            let wheel = place_wheel(wheels[i], &wheelset, spline, side)?;
+            Ok((rail, wheel))
+        };
+        let (rl, wl) = place(Side::Left)?;
+        let (rr, wr) = place(Side::Right)?;
+        Ok(Self {
+            rails: [rl, rr],
+            wheels: [wl, wr],
+            track,
+            wheelset,
+        })
+    }
+
+    /// The placed rail of `side`.
+    pub fn rail(&self, side: Side) -> &PlacedRail {
+        &self.rails[side.index()]
+    }
+
+    /// The placed wheel of `side`.
+    pub fn wheel(&self, side: Side) -> &PlacedWheel {
+        &self.wheels[side.index()]
+    }
+
+    /// Track data.
+    pub fn track(&self) -> &TrackData {
+        &self.track
+    }
+
+    /// Wheelset data.
+    pub fn wheelset(&self) -> &WheelsetData {
+        &self.wheelset
+    }
+}
+
+fn fit(
+    profile: &Profile,
+    options: &SplineOptions,
+    side: Side,
+    what: &'static str,
+) -> Result<ProfileSpline, WheelRailError> {
+    profile
+        .spline(options)
+        .map_err(|source| WheelRailError::Spline {
+            side: side.name(),
+            what,
+            source,
+        })
+}
+
+fn place_rail(
+    profile: &Profile,
+    track: &TrackData,
+    options: &SplineOptions,
+    side: Side,
+) -> Result<PlacedRail, WheelRailError> {
+    let spline = fit(profile, options, side, "rail")?;
+    let mut rail = PlacedRail {
+        spline,
+        cant_rad: track.cant_rad,
+        offset_m: [0.0, 0.0],
+        samples: Vec::new(),
+    };
+    let inclined = sample(&rail.spline, |y, z| rail.to_side(y, z));
+    let top = inclined.iter().map(|s| s.z_m).fold(f64::INFINITY, f64::min);
+    // Gauge face: the first point, walking from the gauge side (CONTACT
+    // order for rails), that rises to the gauge height.
+    let level = top + track.gauge_height_m;
+    let gauge_q = inclined
+        .windows(2)
+        .find(|w| w[0].z_m > level && w[1].z_m <= level)
+        .map(|w| {
+            let f = (w[0].z_m - level) / (w[0].z_m - w[1].z_m);
+            w[0].q_m + f * (w[1].q_m - w[0].q_m)
+        })
+        .ok_or_else(|| WheelRailError::Geometry {
+            side: side.name(),
+            message: format!(
+                "the rail profile '{}' does not reach {:.1} mm below its top on the gauge side, \
+                 where the gauge is measured (track.gauge_height_m)",
+                profile.name(),
+                track.gauge_height_m * 1e3
+            ),
+        })?;
+    rail.offset_m = [0.5 * track.gauge_m - gauge_q, -top];
+    rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
+    Ok(rail)
+}
+
+fn place_wheel(
+    profile: &Profile,
+    ws: &WheelsetData,
+    options: &SplineOptions,
+    side: Side,
+) -> Result<PlacedWheel, WheelRailError> {
+    let spline = fit(profile, options, side, "wheel")?;
+    let back = ws.flange_back_y_m.unwrap_or_else(|| profile.y_range_m().0);
+    let (lo, hi) = profile.y_range_m();
+    if back < lo - 1e-3 || back > hi {
+        return Err(WheelRailError::invalid(
+            "wheelset.flange_back_y_m",
+            format!(
+                "{back} m lies outside the wheel profile '{}' (y from {lo} to {hi} m)",
+                profile.name()
+            ),
+        ));
+    }
+    let z_max = profile.z_range_m().1;
+    if ws.nominal_radius_m + z_max <= 0.0 || ws.nominal_radius_m + profile.z_range_m().0 <= 0.0 {
+        return Err(WheelRailError::invalid(
+            "wheelset.nominal_radius_m",
+            "gives a negative rolling radius on the wheel profile",
+        ));
+    }
+    let samples = sample(&spline, |y, z| [y, z]);
+    Ok(PlacedWheel {
+        spline,
+        axial_offset_m: 0.5 * ws.flange_back_distance_m - back,
+        samples,
+    })
+}
+
+/// Wheelset position relative to the track (see the module conventions).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelsetPosition {
+    /// Lateral displacement of the centre [m].
+    pub lateral_m: f64,
+    /// Yaw angle [rad].
+    pub yaw_rad: f64,
+    /// Roll angle [rad]; `None` to find it from the profiles (both wheels
+    /// touching their rails).
+    pub roll_rad: Option<f64>,
+}
+
+/// Wheelset velocity (see the module conventions).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetVelocity {
+    /// Forward speed V [m/s], > 0.
+    pub forward_m_per_s: f64,
+    /// Lateral speed [m/s].
+    pub lateral_m_per_s: f64,
+    /// Vertical speed [m/s].
+    pub vertical_m_per_s: f64,
+    /// Roll rate [rad/s].
+    pub roll_rad_per_s: f64,
+    /// Yaw rate [rad/s].
+    pub yaw_rad_per_s: f64,
+    /// Rotation rate about the axle [rad/s]; `None` for free rolling at the
+    /// nominal radius (-V / nominal radius).
+    pub pitch_rad_per_s: Option<f64>,
+}
+
+impl WheelsetVelocity {
+    /// Rolling at `forward_m_per_s` with free rolling at the nominal radius.
+    pub fn rolling(forward_m_per_s: f64) -> Self {
+        Self {
+            forward_m_per_s,
+            lateral_m_per_s: 0.0,
+            vertical_m_per_s: 0.0,
+            roll_rad_per_s: 0.0,
+            yaw_rad_per_s: 0.0,
+            pitch_rad_per_s: None,
+        }
+    }
+}

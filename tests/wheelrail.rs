@@ -1,0 +1,394 @@
+//! Wheel/rail contact of a wheelset on real profiles: the Manchester
+//! benchmark against CONTACT's published reference output, symmetry, load
+//! balance over sweeps with measured worn profiles, and errors.
+
+use railcontact::core::cache::KernelCache;
+use railcontact::core::material::{CombinedMaterial, Material};
+use railcontact::core::problem::Friction;
+use railcontact::wheelrail::{
+    load_profile, solve_wheelset, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetData,
+    WheelsetPosition, WheelsetVelocity,
+};
+
+fn path(name: &str) -> String {
+    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+}
+
+fn mbench_pair() -> WheelRailPair {
+    let rail = load_profile(path("MBench_UIC60_v3.prr")).unwrap();
+    let wheel = load_profile(path("MBench_S1002_v3.prw")).unwrap();
+    WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        TrackData {
+            gauge_m: 1.435,
+            gauge_height_m: 0.014,
+            cant_rad: 0.0,
+        },
+        WheelsetData {
+            flange_back_distance_m: 1.360,
+            nominal_radius_m: 0.460,
+            flange_back_y_m: Some(-0.070),
+        },
+        &SplineOptions::default(),
+    )
+    .unwrap()
+}
+
+/// The Manchester benchmark case at shift `y_mm` [mm]: yaw 2.4 mrad
+/// per mm, 10 kN per wheel, 2 m/s, G = 82 GPa, nu = 0.28, mu = 0.3, 0.2 mm
+/// elements (Shackleton & Iwnicki, VSD 46, 2008).
+fn a22_input(
+    y_mm: f64,
+    roll: Option<f64>,
+    pitch: Option<f64>,
+    model: WheelRailModel,
+) -> WheelRailInput {
+    WheelRailInput {
+        position: WheelsetPosition {
+            lateral_m: y_mm * 1e-3,
+            yaw_rad: 2.4e-3 * y_mm,
+            roll_rad: roll,
+        },
+        velocity: WheelsetVelocity {
+            pitch_rad_per_s: pitch,
+            ..WheelsetVelocity::rolling(2.0)
+        },
+        load: WheelLoad::VerticalForce(10_000.0),
+        sides: Side::BOTH.to_vec(),
+        material: CombinedMaterial::identical(Material {
+            shear_modulus_pa: 82e9,
+            poisson_ratio: 0.28,
+        })
+        .unwrap(),
+        friction: Friction::coulomb(0.3),
+        settings: WheelRailSettings {
+            model,
+            ..WheelRailSettings::default()
+        },
+    }
+}
+
+/// One patch of CONTACT's reference output for case, in the units of
+/// the file: rail y [mm], |contact angle| [rad], FN, FX, FS [N] (on the
+/// rail, patch frame), creepages xi, eta [-] and phi [1/mm].
+struct Ref {
+    y_mm: f64,
+    roll: f64,
+    pitch: f64,
+    right: [f64; 8],
+    left: [f64; 8],
+}
+
+/// CONTACT's reference results for case, from the public CONTACT
+/// distribution (github.com/eve70a/CONTACT, examples/mbench_a22_right.ref_out
+/// and mbench_a22_left.ref_out, commit 4cc09ad, revision 2447, 2023-11-04):
+/// YCP(R), |DELTCP|, FN, FX, FS, CKSI, CETA, CPHI. Roll and pitch rate are
+/// the inputs of mbench_a22_*.inp (roll from equal wheelset heights, pitch
+/// rate from zero rolling moment). CONTACT's lateral quantities on the left
+/// wheel and its right-wheel contact angle have the opposite sign of ours
+/// (we use each side's own profile frame); the comparison maps them.
+const A22: [Ref; 3] = [
+    Ref {
+        y_mm: 2.0,
+        roll: -0.00011280,
+        pitch: -4.34591970,
+        right: [
+            -19.6178, 0.0806, 9799.0, -517.3, -2893.0, 8.752e-4, 4.818e-3, 1.746e-4,
+        ],
+        left: [
+            4.0270, 0.0134, 10040.0, 546.3, -2961.0, -8.651e-4, 4.798e-3, -2.947e-5,
+        ],
+    },
+    Ref {
+        y_mm: 6.5,
+        roll: -0.00437600,
+        pitch: -4.27488340,
+        right: [
+            -42.0394, 1.1591, 15440.0, -1987.0, -4170.0, 1.828e-2, 3.905e-2, 1.937e-3,
+        ],
+        left: [
+            1.9083, 0.0064, 10010.0, 2260.0, -1979.0, -1.764e-2, 1.546e-2, -2.319e-5,
+        ],
+    },
+    Ref {
+        y_mm: 10.0,
+        roll: -0.01126431,
+        pitch: -4.24363750,
+        right: [
+            -39.4446, 0.7992, 11440.0, -1947.0, -2820.0, 2.378e-2, 3.445e-2, 1.486e-3,
+        ],
+        left: [
+            3.4351, 0.0115, 10020.0, 2196.0, -2054.0, -2.532e-2, 2.371e-2, -4.883e-5,
+        ],
+    },
+];
+
+fn close(what: &str, got: f64, want: f64, rel: f64, abs: f64) {
+    assert!(
+        (got - want).abs() <= rel * want.abs() + abs,
+        "{what}: got {got}, CONTACT {want} (tolerance {rel} relative + {abs})"
+    );
+}
+
+#[test]
+fn a22_single_patch_cases_match_contact() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    for r in &A22 {
+        let input = a22_input(r.y_mm, Some(r.roll), Some(r.pitch), WheelRailModel::Exact);
+        let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+        for w in &sol.wheels {
+            let (want, m) = match w.side {
+                Side::Right => (&r.right, 1.0),
+                // Our left-wheel values are in the left side's own (mirrored) frame.
+                Side::Left => (&r.left, -1.0),
+            };
+            let tag = |q: &str| format!("y = {} mm, {:?} wheel: {q}", r.y_mm, w.side);
+            assert_eq!(w.patches.len(), 1, "{}", tag("patch count"));
+            let p = &w.patches[0];
+            close(&tag("rail y [mm]"), m * p.rail_y_m * 1e3, want[0], 0.0, 0.3);
+            close(
+                &tag("|contact angle|"),
+                p.contact_angle_rad.abs(),
+                want[1],
+                0.0,
+                0.01,
+            );
+            close(&tag("FN"), p.normal_force_n, want[2], 0.01, 0.0);
+            close(&tag("FX"), p.fx_n, want[3], 0.03, 20.0);
+            close(&tag("FS"), m * p.fs_n, want[4], 0.03, 20.0);
+            close(&tag("xi"), p.creepage_long, want[5], 0.03, 2e-5);
+            close(&tag("eta"), m * p.creepage_lat, want[6], 0.03, 2e-5);
+            close(&tag("phi"), m * p.spin_per_m * 1e-3, want[7], 0.05, 5e-6);
+            // Vertical equilibrium: the rail carries the wheel load.
+            close(&tag("Fz"), w.force_track_n[2], 10_000.0, 1e-6, 0.0);
+        }
+    }
+}
+
+/// At 5 mm the right wheel touches at the flange root and on the tread, 8 mm
+/// apart; CONTACT reports the two regions together: FN 9619, FX -763.3, FS
+/// -2738 N (mbench_a22_right.ref_out, case 11).
+#[test]
+fn a22_two_point_contact_at_5mm() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut input = a22_input(
+        5.0,
+        Some(-0.00035540),
+        Some(-4.33536370),
+        WheelRailModel::Exact,
+    );
+    input.sides = vec![Side::Right];
+    let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+    let w = &sol.wheels[0];
+    assert_eq!(w.patches.len(), 2);
+    // Field side first: the tread patch, then the flange root.
+    assert!(w.patches[0].contact_angle_rad < w.patches[1].contact_angle_rad);
+    let sum =
+        |f: fn(&railcontact::wheelrail::PatchResult) -> f64| w.patches.iter().map(f).sum::<f64>();
+    close("sum FN", sum(|p| p.normal_force_n), 9619.0, 0.01, 0.0);
+    close("sum FX", sum(|p| p.fx_n), -763.3, 0.10, 0.0);
+    close("sum FS", sum(|p| p.fs_n), -2738.0, 0.03, 0.0);
+    close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
+}
+
+#[test]
+fn centred_wheelset_gives_mirror_image_wheels() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let input = a22_input(0.0, None, None, WheelRailModel::Exact);
+    let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+    assert!(sol.roll_rad.abs() < 1e-9, "roll {}", sol.roll_rad);
+    let (l, r) = (&sol.wheels[0], &sol.wheels[1]);
+    assert_eq!(l.patches.len(), r.patches.len());
+    for (a, b) in l.patches.iter().zip(&r.patches) {
+        close("FN", a.normal_force_n, b.normal_force_n, 1e-9, 1e-6);
+        close("FX", a.fx_n, b.fx_n, 1e-9, 1e-6);
+        close("FS", a.fs_n, b.fs_n, 1e-9, 1e-6);
+        close("track y", a.track_y_m, -b.track_y_m, 0.0, 1e-12);
+    }
+    close("Fy", l.force_track_n[1], -r.force_track_n[1], 1e-9, 1e-6);
+    close("Fz", l.force_track_n[2], r.force_track_n[2], 1e-12, 0.0);
+}
+
+#[test]
+fn hertz_fastsim_normal_forces_agree_with_exact_in_single_patches() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    for r in &A22 {
+        let exact = a22_input(r.y_mm, Some(r.roll), Some(r.pitch), WheelRailModel::Exact);
+        let fast = WheelRailInput {
+            settings: WheelRailSettings {
+                model: WheelRailModel::HertzFastsim,
+                ..exact.settings
+            },
+            ..exact.clone()
+        };
+        let e = solve_wheelset(&pair, &exact, &cache, &mut scratch).unwrap();
+        let f = solve_wheelset(&pair, &fast, &cache, &mut scratch).unwrap();
+        for (we, wf) in e.wheels.iter().zip(&f.wheels) {
+            let (pe, pf) = (&we.patches[0], &wf.patches[0]);
+            close("FN", pf.normal_force_n, pe.normal_force_n, 0.02, 0.0);
+            close("Fz", wf.force_track_n[2], 10_000.0, 1e-6, 0.0);
+            // Full slip in these cases: the creep force magnitude is mu FN.
+            let t = pf.fx_n.hypot(pf.fs_n);
+            close("|Ft|", t, 0.3 * pf.normal_force_n, 0.05, 0.0);
+        }
+    }
+}
+
+fn worn_pair() -> WheelRailPair {
+    let rail = railcontact::wheelrail::load_profile_with(
+        path("avg_HR.BAN"),
+        &railcontact::wheelrail::LoadOptions {
+            mirror_y: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let wheel = load_profile(path("Car7216_0001r.whl")).unwrap();
+    WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        TrackData {
+            gauge_m: 1.435,
+            gauge_height_m: 0.014,
+            cant_rad: 0.025,
+        },
+        WheelsetData {
+            flange_back_distance_m: 1.360,
+            nominal_radius_m: 0.46,
+            flange_back_y_m: None,
+        },
+        &SplineOptions::default(),
+    )
+    .unwrap()
+}
+
+/// Measured worn profiles over a sweep of lateral shifts with the roll
+/// found from the profiles: every step solves, both wheels carry their load,
+/// flange contact comes on the side the wheelset moves to.
+#[test]
+fn worn_profiles_sweep_balances_the_load() {
+    let pair = worn_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut flange = [false; 2];
+    for k in -8..=10 {
+        let y = k as f64;
+        let mut input = a22_input(y, None, None, WheelRailModel::Exact);
+        input.position.yaw_rad = 0.0;
+        let sol = solve_wheelset(&pair, &input, &cache, &mut scratch)
+            .unwrap_or_else(|e| panic!("y = {y} mm: {e}"));
+        for w in &sol.wheels {
+            assert!(!w.patches.is_empty(), "y = {y}: no patch on {:?}", w.side);
+            close(
+                &format!("y = {y} {:?} Fz", w.side),
+                w.force_track_n[2],
+                10_000.0,
+                1e-6,
+                0.0,
+            );
+            for p in &w.patches {
+                assert!(p.normal_force_n > 0.0 && p.max_pressure_pa.is_finite());
+                if p.contact_angle_rad > 0.5 {
+                    flange[w.side.index()] = true;
+                    // Flange contact only on the side the wheelset moved to.
+                    let toward = if w.side == Side::Right {
+                        y > 0.0
+                    } else {
+                        y < 0.0
+                    };
+                    assert!(toward, "y = {y}: flange contact on the {:?} wheel", w.side);
+                }
+            }
+        }
+    }
+    assert_eq!(flange, [true, true], "flange contact reached on both sides");
+}
+
+/// With the roll held, the geometry changes continuously with the shift, and
+/// so must the forces: a patch that appears carries little load at first.
+#[test]
+fn patches_appear_continuously_with_the_shift() {
+    let pair = worn_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut last: Option<(usize, f64)> = None;
+    let mut appeared = 0;
+    // The flange of this wheel comes into contact between 5.20 and 5.25 mm;
+    // its steep face (about 70 degrees) closes the gap 2.7 times faster
+    // than the shift, so the steps are fine.
+    for k in 0..=50 {
+        let y = 5.20 + 0.001 * k as f64;
+        let mut input = a22_input(y, Some(0.0), None, WheelRailModel::HertzFastsim);
+        input.position.yaw_rad = 0.0;
+        input.sides = vec![Side::Right];
+        let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+        let w = &sol.wheels[0];
+        let flange_fn: f64 = w
+            .patches
+            .iter()
+            .filter(|p| p.contact_angle_rad > 0.3)
+            .map(|p| p.normal_force_n)
+            .sum();
+        if let Some((n, f)) = last {
+            if w.patches.len() > n {
+                appeared += 1;
+            }
+            assert!(
+                (flange_fn - f).abs() < 0.1 * 10_000.0,
+                "y = {y}: flange force jumps from {f} to {flange_fn} N"
+            );
+        }
+        last = Some((w.patches.len(), flange_fn));
+    }
+    assert!(
+        appeared > 0,
+        "the sweep crosses the onset of flange contact"
+    );
+}
+
+#[test]
+fn bad_inputs_give_errors_naming_the_key() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut input = a22_input(0.0, None, None, WheelRailModel::Exact);
+    input.load = WheelLoad::VerticalForce(-1.0);
+    let e = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
+    assert!(e.to_string().contains("load.vertical_force_n"), "{e}");
+    let mut input = a22_input(0.0, None, None, WheelRailModel::Exact);
+    input.position.lateral_m = f64::NAN;
+    let e = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
+    assert!(e.to_string().contains("position.lateral_m"), "{e}");
+    // A gauge far too wide: the wheels hang inside the rails.
+    let rail = load_profile(path("MBench_UIC60_v3.prr")).unwrap();
+    let wheel = load_profile(path("MBench_S1002_v3.prw")).unwrap();
+    let wide = WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        TrackData {
+            gauge_m: 2.0,
+            gauge_height_m: 0.014,
+            cant_rad: 0.0,
+        },
+        WheelsetData {
+            flange_back_distance_m: 1.360,
+            nominal_radius_m: 0.460,
+            flange_back_y_m: None,
+        },
+        &SplineOptions::default(),
+    )
+    .unwrap();
+    let input = a22_input(0.0, None, None, WheelRailModel::Exact);
+    let e = solve_wheelset(&wide, &input, &cache, &mut scratch).unwrap_err();
+    assert!(e.to_string().contains("overlap"), "{e}");
+}
