@@ -794,3 +794,155 @@ fn conformal_plot_is_rejected() {
     );
     assert!(!Path::new("conformal.png").exists());
 }
+
+// ------------------------------------------------------------- wheelrail
+
+/// Runs `wheelrail CASE --json`, checks success and one JSON object.
+fn wheelrail_json(case: &Path) -> Value {
+    let out = run(&["wheelrail", case.to_str().unwrap(), "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{case:?} failed: {stderr}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(stdout.trim().lines().count(), 1, "one JSON line: {stdout}");
+    serde_json::from_str(stdout.trim()).unwrap()
+}
+
+#[test]
+fn wheelrail_example_reports_every_wheel_and_patch() {
+    let v = wheelrail_json(&example("wheelset_a22.toml"));
+    for side in ["left", "right"] {
+        let w = &v["wheels"][side];
+        let fz = w["force_track_n"][2].as_f64().unwrap();
+        assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
+        let patches = w["patches"].as_array().unwrap();
+        assert_eq!(patches.len(), 1, "{side}");
+        for k in [
+            "normal_force_n",
+            "fx_n",
+            "fs_n",
+            "contact_angle_rad",
+            "rail_y_m",
+            "rail_z_m",
+            "creepage_long",
+            "creepage_lat",
+            "spin_per_m",
+            "max_pressure_pa",
+        ] {
+            assert!(patches[0][k].is_number(), "{side} patch: key {k}");
+        }
+    }
+    // Shift 6.5 mm to the right: flange contact on the right wheel (CONTACT:
+    // contact angle 1.159 rad, mbench_a22_right.ref_out case 14).
+    let delta = f(&v["wheels"]["right"]["patches"][0], "contact_angle_rad");
+    assert!((delta - 1.159).abs() < 0.01, "right contact angle {delta}");
+}
+
+#[test]
+fn wheelrail_plot_and_summary() {
+    let png = Path::new(env!("CARGO_TARGET_TMPDIR")).join("wheelrail.png");
+    let _ = std::fs::remove_file(&png);
+    let out = run(&[
+        "wheelrail",
+        example("wheelset_a22.toml").to_str().unwrap(),
+        "--plot",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("right wheel: 1 patch(es)"), "{text}");
+    assert!(text.contains("Fz 10000.0 N"), "{text}");
+}
+
+/// A bad wheelrail case: exit code 2, stderr names `key`.
+fn expect_bad_wheelrail(name: &str, text: &str, key: &str) {
+    let p = case_file(name, text);
+    let out = run(&["wheelrail", p.to_str().unwrap(), "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: stderr {stderr}");
+    assert!(
+        stderr.contains(key),
+        "{name}: should name `{key}`: {stderr}"
+    );
+    assert!(out.stdout.is_empty(), "{name}: nothing on stdout");
+}
+
+#[test]
+fn wheelrail_bad_inputs_name_the_key() {
+    let good = example_text("wheelset_a22.toml");
+    expect_bad_wheelrail(
+        "wr_builtin.toml",
+        &good.replace("builtin:MBench_UIC60_v3.prr", "builtin:UIC54.prr"),
+        "track.rail_profile",
+    );
+    expect_bad_wheelrail(
+        "wr_missing.toml",
+        &good.replace(
+            "rail_profile = \"builtin:MBench_UIC60_v3.prr\"",
+            "rail_profile = \"no_such_file.prr\"",
+        ),
+        "track.rail_profile",
+    );
+    expect_bad_wheelrail(
+        "wr_load.toml",
+        &good.replace("vertical_force_n = 10000.0", ""),
+        "load",
+    );
+    expect_bad_wheelrail(
+        "wr_force.toml",
+        &good.replace("vertical_force_n = 10000.0", "vertical_force_n = -5.0"),
+        "load.vertical_force_n",
+    );
+    expect_bad_wheelrail(
+        "wr_model.toml",
+        &good.replace("model = \"exact\"", "model = \"kalker\""),
+        "model",
+    );
+    expect_bad_wheelrail(
+        "wr_gauge.toml",
+        &good.replace("gauge_m = 1.435", "gauge_m = 0.0"),
+        "track.gauge_m",
+    );
+    expect_bad_wheelrail(
+        "wr_unknown.toml",
+        &good.replace("[grid]", "[grid]\nelement_size = 0.1"),
+        "element_size",
+    );
+}
+
+/// Measured profiles read from files next to the case: a MiniProf wheel on a
+/// MiniProf rail (mirrored into the right-hand convention), hertz_fastsim.
+#[test]
+fn wheelrail_reads_measured_profiles_by_path() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles");
+    let text = example_text("wheelset_a22.toml")
+        .replace(
+            "rail_profile = \"builtin:MBench_UIC60_v3.prr\"",
+            &format!(
+                "rail_profile = \"{}\"\nrail_mirror_y = true",
+                shared.join("avg_HR.BAN").display()
+            ),
+        )
+        .replace("cant_rad = 0.0", "cant_rad = 0.025")
+        .replace(
+            "wheel_profile = \"builtin:MBench_S1002_v3.prw\"",
+            &format!(
+                "wheel_profile = \"{}\"",
+                shared.join("Car7216_0001r.whl").display()
+            ),
+        )
+        .replace("flange_back_y_m = -0.070\n", "")
+        .replace("roll_rad = -0.004376\n", "")
+        .replace("pitch_rad_per_s = -4.2748834\n", "")
+        .replace("model = \"exact\"", "model = \"hertz_fastsim\"");
+    let p = case_file("wr_measured.toml", &text);
+    let v = wheelrail_json(&p);
+    for side in ["left", "right"] {
+        let fz = v["wheels"][side]["force_track_n"][2].as_f64().unwrap();
+        assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
+    }
+}

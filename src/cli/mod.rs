@@ -1,5 +1,6 @@
 //! The `railcontact` command line: `railcontact solve CASE.toml [--json]
-//! [--fields] [--plot FILE]`.
+//! [--fields] [--plot FILE]` (one contact patch) and `railcontact wheelrail
+//! CASE.toml [--json] [--plot FILE]` (a wheelset on its track).
 //!
 //! [`Cli`] is the clap definition, [`run`] executes it and returns the
 //! process exit code: 0 on success, [`EXIT_BAD_INPUT`] (2) for bad input (the
@@ -9,6 +10,7 @@
 pub mod case;
 pub mod plot;
 pub mod report;
+pub mod wheelrail;
 
 mod conformal_models;
 mod reference_models;
@@ -54,6 +56,15 @@ pub enum Command {
     /// object in SI units. Exit code 2 on bad input (the message names the
     /// key), 1 on other failures.
     Solve(SolveArgs),
+    /// Solve a wheelset on its track read from a TOML file: profiles, track
+    /// and wheelset data, position, velocity and load per wheel (SI units;
+    /// see examples/cases/README.md). Finds every contact patch of each
+    /// wheel and solves it.
+    ///
+    /// Prints a readable summary, or with --json one JSON object in SI units
+    /// (per wheel: its patches and its total force on the rail in the track
+    /// frame). Exit code 2 on bad input, 1 on other failures.
+    Wheelrail(wheelrail::WheelrailArgs),
 }
 
 /// Options of `railcontact solve`.
@@ -120,6 +131,7 @@ impl From<ContactError> for CliError {
 pub fn run(cli: Cli) -> i32 {
     let result = match cli.command {
         Command::Solve(args) => run_solve(&args),
+        Command::Wheelrail(args) => wheelrail::run(&args),
     };
     match result {
         Ok(()) => 0,

@@ -28,10 +28,12 @@ pub enum Format {
 /// Size of the image [px].
 pub const SIZE: (u32, u32) = (1400, 1000);
 
-const FONT: &str = "sans-serif";
+/// Font family name of the bundled font.
+pub(crate) const FONT: &str = "sans-serif";
 static FONT_BYTES: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
-fn register_fonts() -> Result<(), String> {
+/// Registers the bundled font (once).
+pub(crate) fn register_fonts() -> Result<(), String> {
     static ONCE: Once = Once::new();
     let mut result = Ok(());
     ONCE.call_once(|| {

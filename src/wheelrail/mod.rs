@@ -59,6 +59,7 @@
 //!   repaired (with warnings), larger ones and gaps are errors that name the
 //!   file and line.
 
+pub mod builtin;
 pub mod contact;
 pub mod profile;
 pub mod readers;

@@ -1,0 +1,600 @@
+//! `railcontact wheelrail CASE.toml [--json] [--plot FILE]`: a wheelset on
+//! its track, from profile files, position, velocity and load, with every
+//! contact patch of each wheel solved. Keys: see `examples/cases/README.md`.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::cli::plot::{register_fonts, Format, FONT, SIZE};
+use crate::cli::{plot_format, CliError};
+use crate::core::cache::KernelCache;
+use crate::core::material::{CombinedMaterial, Material};
+use crate::core::problem::Friction;
+use crate::wheelrail::contact::Timing;
+use crate::wheelrail::{
+    builtin, load_profile_with, solve_wheelset, LoadOptions, PatchResult, Profile, SearchScratch,
+    Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
+    WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+};
+
+/// Options of `railcontact wheelrail`.
+#[derive(Debug, Args)]
+pub struct WheelrailArgs {
+    /// The case file (TOML).
+    #[arg(value_name = "CASE.toml")]
+    pub case: PathBuf,
+    /// Print one JSON object (SI units) on stdout instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Write a plot of the profiles, contact points and lateral pressure
+    /// distributions to FILE (.png or .svg).
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+}
+
+/// The case file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WheelrailCase {
+    /// "exact" (default) or "hertz_fastsim".
+    #[serde(default = "default_model")]
+    model: String,
+    /// "both" (default), "left" or "right".
+    #[serde(default = "default_side")]
+    side: String,
+    #[serde(default)]
+    material: MaterialKeys,
+    #[serde(default)]
+    friction: FrictionKeys,
+    track: TrackKeys,
+    wheelset: WheelsetKeys,
+    #[serde(default)]
+    position: PositionKeys,
+    velocity: VelocityKeys,
+    load: LoadKeys,
+    #[serde(default)]
+    grid: GridKeys,
+}
+
+fn default_model() -> String {
+    "exact".into()
+}
+
+fn default_side() -> String {
+    "both".into()
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialKeys {
+    shear_modulus_pa: f64,
+    poisson_ratio: f64,
+}
+
+impl Default for MaterialKeys {
+    fn default() -> Self {
+        Self {
+            shear_modulus_pa: 82.0e9,
+            poisson_ratio: 0.28,
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FrictionKeys {
+    coefficient: f64,
+}
+
+impl Default for FrictionKeys {
+    fn default() -> Self {
+        Self { coefficient: 0.3 }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrackKeys {
+    rail_profile: String,
+    rail_profile_left: Option<String>,
+    #[serde(default)]
+    rail_mirror_y: bool,
+    gauge_m: f64,
+    gauge_height_m: f64,
+    #[serde(default)]
+    cant_rad: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WheelsetKeys {
+    wheel_profile: String,
+    wheel_profile_left: Option<String>,
+    #[serde(default)]
+    wheel_mirror_y: bool,
+    flange_back_distance_m: f64,
+    flange_back_y_m: Option<f64>,
+    nominal_radius_m: f64,
+    smoothing_wavelength_m: Option<f64>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PositionKeys {
+    #[serde(default)]
+    lateral_m: f64,
+    #[serde(default)]
+    yaw_rad: f64,
+    roll_rad: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct VelocityKeys {
+    forward_m_per_s: f64,
+    #[serde(default)]
+    lateral_m_per_s: f64,
+    #[serde(default)]
+    vertical_m_per_s: f64,
+    #[serde(default)]
+    roll_rad_per_s: f64,
+    #[serde(default)]
+    yaw_rad_per_s: f64,
+    pitch_rad_per_s: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoadKeys {
+    vertical_force_n: Option<f64>,
+    approach_m: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GridKeys {
+    element_size_m: f64,
+}
+
+impl Default for GridKeys {
+    fn default() -> Self {
+        Self {
+            element_size_m: 2.0e-4,
+        }
+    }
+}
+
+fn bad(m: impl Into<String>) -> CliError {
+    CliError::BadInput(m.into())
+}
+
+impl From<WheelRailError> for CliError {
+    fn from(e: WheelRailError) -> Self {
+        match e {
+            WheelRailError::Invalid { .. }
+            | WheelRailError::Spline { .. }
+            | WheelRailError::Geometry { .. } => CliError::BadInput(e.to_string()),
+            WheelRailError::Contact { .. } => CliError::Failure(e.to_string()),
+        }
+    }
+}
+
+/// Reads `name` (a path relative to `dir`, or `builtin:NAME`).
+fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Profile, CliError> {
+    let options = LoadOptions {
+        mirror_y,
+        ..LoadOptions::default()
+    };
+    let result = match name.strip_prefix(builtin::PREFIX) {
+        Some(b) => builtin::profile(b, &options).ok_or_else(|| {
+            let names: Vec<&str> = builtin::FILES.iter().map(|(n, _)| *n).collect();
+            bad(format!(
+                "invalid input `{key}`: no built-in profile '{b}' (there are: {})",
+                names.join(", ")
+            ))
+        })?,
+        None => load_profile_with(dir.join(name), &options),
+    };
+    result.map_err(|e| bad(format!("invalid input `{key}`: {e}")))
+}
+
+/// A parsed and checked case: the pair and the solver input.
+pub struct WheelrailRun {
+    pair: WheelRailPair,
+    input: WheelRailInput,
+    model: &'static str,
+}
+
+impl WheelrailRun {
+    /// Parses `text` (TOML); profile paths are relative to `dir`.
+    pub fn from_toml(text: &str, dir: &Path) -> Result<Self, CliError> {
+        let c: WheelrailCase = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
+        let (model, model_name) = match c.model.as_str() {
+            "exact" => (WheelRailModel::Exact, "exact"),
+            "hertz_fastsim" => (WheelRailModel::HertzFastsim, "hertz_fastsim"),
+            "cect" | "auto" => {
+                return Err(bad(format!(
+                    "invalid input `model`: \"{}\" is not available for wheelsets yet; use \"exact\" \
+                     or \"hertz_fastsim\" (conformal patches: `railcontact solve` with model = \"cect\")",
+                    c.model
+                )))
+            }
+            other => {
+                return Err(bad(format!(
+                    "invalid input `model`: \"{other}\"; expected \"exact\" or \"hertz_fastsim\""
+                )))
+            }
+        };
+        let sides = match c.side.as_str() {
+            "both" => Side::BOTH.to_vec(),
+            "left" => vec![Side::Left],
+            "right" => vec![Side::Right],
+            other => {
+                return Err(bad(format!(
+                    "invalid input `side`: \"{other}\"; expected \"both\", \"left\" or \"right\""
+                )))
+            }
+        };
+        let load = match (c.load.vertical_force_n, c.load.approach_m) {
+            (Some(f), None) => WheelLoad::VerticalForce(f),
+            (None, Some(d)) => WheelLoad::Approach(d),
+            _ => {
+                return Err(bad(
+                    "invalid input `load`: give exactly one of vertical_force_n and approach_m",
+                ))
+            }
+        };
+        let t = &c.track;
+        let w = &c.wheelset;
+        let rail_r = read_profile(&t.rail_profile, dir, t.rail_mirror_y, "track.rail_profile")?;
+        let rail_l = match &t.rail_profile_left {
+            Some(n) => read_profile(n, dir, t.rail_mirror_y, "track.rail_profile_left")?,
+            None => rail_r.clone(),
+        };
+        let wheel_r = read_profile(
+            &w.wheel_profile,
+            dir,
+            w.wheel_mirror_y,
+            "wheelset.wheel_profile",
+        )?;
+        let wheel_l = match &w.wheel_profile_left {
+            Some(n) => read_profile(n, dir, w.wheel_mirror_y, "wheelset.wheel_profile_left")?,
+            None => wheel_r.clone(),
+        };
+        let wavelength = w
+            .smoothing_wavelength_m
+            .unwrap_or(DEFAULT_SMOOTHING_WAVELENGTH_M);
+        if !(wavelength.is_finite() && wavelength >= 0.0) {
+            return Err(bad(format!(
+                "invalid input `wheelset.smoothing_wavelength_m`: must be >= 0, got {wavelength}"
+            )));
+        }
+        let pair = WheelRailPair::new(
+            [&rail_l, &rail_r],
+            [&wheel_l, &wheel_r],
+            TrackData {
+                gauge_m: t.gauge_m,
+                gauge_height_m: t.gauge_height_m,
+                cant_rad: t.cant_rad,
+            },
+            WheelsetData {
+                flange_back_distance_m: w.flange_back_distance_m,
+                nominal_radius_m: w.nominal_radius_m,
+                flange_back_y_m: w.flange_back_y_m,
+            },
+            &SplineOptions::smoothing(wavelength),
+        )?;
+        let material = CombinedMaterial::identical(Material {
+            shear_modulus_pa: c.material.shear_modulus_pa,
+            poisson_ratio: c.material.poisson_ratio,
+        })
+        .map_err(|e| bad(e.to_string().replace("material.body1", "material")))?;
+        let v = &c.velocity;
+        let input = WheelRailInput {
+            position: WheelsetPosition {
+                lateral_m: c.position.lateral_m,
+                yaw_rad: c.position.yaw_rad,
+                roll_rad: c.position.roll_rad,
+            },
+            velocity: WheelsetVelocity {
+                forward_m_per_s: v.forward_m_per_s,
+                lateral_m_per_s: v.lateral_m_per_s,
+                vertical_m_per_s: v.vertical_m_per_s,
+                roll_rad_per_s: v.roll_rad_per_s,
+                yaw_rad_per_s: v.yaw_rad_per_s,
+                pitch_rad_per_s: v.pitch_rad_per_s,
+            },
+            load,
+            sides,
+            material,
+            friction: Friction::coulomb(c.friction.coefficient),
+            settings: WheelRailSettings {
+                model,
+                element_size_m: c.grid.element_size_m,
+                ..WheelRailSettings::default()
+            },
+        };
+        Ok(Self {
+            pair,
+            input,
+            model: model_name,
+        })
+    }
+}
+
+/// The JSON output.
+#[derive(Serialize)]
+struct JsonReport<'a> {
+    model: &'a str,
+    center_z_m: f64,
+    roll_rad: f64,
+    pitch_rad_per_s: f64,
+    wheels: serde_json::Map<String, serde_json::Value>,
+    timing: Timing,
+}
+
+fn human(sol: &WheelRailSolution, model: &str) -> String {
+    let mut s = format!(
+        "model {model}: wheelset centre z {:.4} mm, roll {:.4} mrad, rotation {:.4} rad/s\n",
+        sol.center_z_m * 1e3,
+        sol.roll_rad * 1e3,
+        sol.pitch_rad_per_s
+    );
+    for w in &sol.wheels {
+        let f = w.force_track_n;
+        s += &format!(
+            "{} wheel: {} patch(es), approach {:.4} mm, force on the rail (track frame) \
+             Fx {:.1} N, Fy {:.1} N, Fz {:.1} N\n",
+            w.side.name(),
+            w.patches.len(),
+            w.vertical_approach_m * 1e3,
+            f[0],
+            f[1],
+            f[2]
+        );
+        for (k, p) in w.patches.iter().enumerate() {
+            s += &format!(
+                "  patch {k}: rail y {:.2} mm, wheel y {:.2} mm, contact angle {:.2} deg, \
+                 rolling radius {:.2} mm\n    creepages {:.3e} {:.3e} {:.3e} 1/m; \
+                 FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, area {:.2} mm^2\n",
+                p.rail_y_m * 1e3,
+                p.wheel_y_m * 1e3,
+                p.contact_angle_rad.to_degrees(),
+                p.rolling_radius_m * 1e3,
+                p.creepage_long,
+                p.creepage_lat,
+                p.spin_per_m,
+                p.normal_force_n,
+                p.fx_n,
+                p.fs_n,
+                p.max_pressure_pa * 1e-6,
+                p.contact_area_m2 * 1e6
+            );
+        }
+    }
+    let t = sol.timing;
+    s += &format!(
+        "time: search {:.2} ms, geometry {:.2} ms, solve {:.2} ms\n",
+        t.search_s * 1e3,
+        t.geometry_s * 1e3,
+        t.solve_s * 1e3
+    );
+    s
+}
+
+/// Writes to stdout; a closed pipe (`| head`) is not an error.
+fn emit(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+}
+
+/// Runs `railcontact wheelrail`.
+pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
+    let format = args.plot.as_deref().map(plot_format).transpose()?;
+    let text = std::fs::read_to_string(&args.case).map_err(|e| {
+        bad(format!(
+            "cannot read case file {}: {e}",
+            args.case.display()
+        ))
+    })?;
+    let dir = args.case.parent().unwrap_or(Path::new("."));
+    let run = WheelrailRun::from_toml(&text, dir).map_err(|e| match e {
+        CliError::BadInput(m) => bad(format!("{}: {m}", args.case.display())),
+        other => other,
+    })?;
+    let mut scratch = SearchScratch::default();
+    let sol = solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch)?;
+    if let (Some(path), Some(format)) = (&args.plot, format) {
+        write_plot(path, format, &run, &sol, &scratch)
+            .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
+    }
+    if args.json {
+        let mut wheels = serde_json::Map::new();
+        for w in &sol.wheels {
+            let v = serde_json::to_value(w).map_err(|e| CliError::Failure(e.to_string()))?;
+            wheels.insert(w.side.name().to_string(), v);
+        }
+        let report = JsonReport {
+            model: run.model,
+            center_z_m: sol.center_z_m,
+            roll_rad: sol.roll_rad,
+            pitch_rad_per_s: sol.pitch_rad_per_s,
+            wheels,
+            timing: sol.timing,
+        };
+        let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
+        emit(&format!("{json}\n"));
+    } else {
+        emit(&human(&sol, run.model));
+    }
+    Ok(())
+}
+
+/// Lateral pressure distribution of a patch: (track y [mm], largest
+/// pressure along x [MPa]) per lateral grid line.
+fn lateral_pressure(p: &PatchResult, side: Side) -> Vec<(f64, f64)> {
+    let (Some(sol), Some(grid)) = (&p.solution, &p.grid_geometry) else {
+        return Vec::new();
+    };
+    let ca = p.contact_angle_rad.cos();
+    (0..grid.ny)
+        .map(|is| {
+            let pmax = (0..grid.nx)
+                .map(|ix| sol.fields.pressure_pa[grid.index(ix, is)])
+                .fold(0.0, f64::max);
+            // Lateral tangent (q, z) = (cos, -sin) of the contact angle.
+            let q = side.sign() * p.track_y_m + grid.y_m(is) * ca;
+            (side.sign() * q * 1e3, pmax * 1e-6)
+        })
+        .collect()
+}
+
+fn write_plot(
+    path: &Path,
+    format: Format,
+    run: &WheelrailRun,
+    sol: &WheelRailSolution,
+    scratch: &SearchScratch,
+) -> Result<(), String> {
+    register_fonts()?;
+    match format {
+        Format::Png => {
+            let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+            draw(&root, run, sol, scratch)?;
+            root.present().map_err(|e| e.to_string())
+        }
+        Format::Svg => {
+            let root = SVGBackend::new(path, SIZE).into_drawing_area();
+            draw(&root, run, sol, scratch)?;
+            root.present().map_err(|e| e.to_string())
+        }
+    }
+}
+
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    run: &WheelrailRun,
+    sol: &WheelRailSolution,
+    scratch: &SearchScratch,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    let cols = root.split_evenly((2, sol.wheels.len().max(1)));
+    for (k, w) in sol.wheels.iter().enumerate() {
+        let side = w.side;
+        let s = side.sign();
+        let i = side.index();
+        // Window: 60 mm around the patches, in track y.
+        let yc: f64 = w.patches.iter().map(|p| p.track_y_m).sum::<f64>()
+            / w.patches.len().max(1) as f64
+            * 1e3;
+        let (ylo, yhi) = (yc - 35.0, yc + 35.0);
+        let rail: Vec<(f64, f64)> = run
+            .pair
+            .rail(side)
+            .samples()
+            .iter()
+            .map(|p| (s * p.q_m * 1e3, -p.z_m * 1e3))
+            .filter(|p| p.0 >= ylo && p.0 <= yhi)
+            .collect();
+        let wheel: Vec<(f64, f64)> = scratch.locus[i]
+            .iter()
+            .map(|p| (s * p.q_m * 1e3, -(p.z_m + w.vertical_approach_m) * 1e3))
+            .filter(|p| p.0 >= ylo && p.0 <= yhi)
+            .collect();
+        let zs = rail.iter().chain(&wheel).map(|p| p.1);
+        let (zlo, zhi) = zs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| {
+            (a.min(z), b.max(z))
+        });
+        let (zlo, zhi) = if zlo.is_finite() {
+            (zlo.max(-40.0), zhi.min(30.0))
+        } else {
+            (-20.0, 20.0)
+        };
+        let mut chart = ChartBuilder::on(&cols[k])
+            .caption(
+                format!(
+                    "{} wheel ({}): profiles, contact points",
+                    side.name(),
+                    run.model
+                ),
+                (FONT, 22),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(ylo..yhi, zlo..zhi)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("track y [mm]")
+            .y_desc("height [mm]")
+            .label_style((FONT, 15))
+            .draw()
+            .map_err(err)?;
+        chart
+            .draw_series(LineSeries::new(rail, BLUE.stroke_width(2)))
+            .map_err(err)?
+            .label("rail")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE));
+        chart
+            .draw_series(LineSeries::new(wheel, RED.stroke_width(2)))
+            .map_err(err)?
+            .label("wheel (contact locus, pressed)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED));
+        chart
+            .draw_series(
+                w.patches.iter().map(|p| {
+                    Circle::new((p.track_y_m * 1e3, -p.track_z_m * 1e3), 6, BLACK.filled())
+                }),
+            )
+            .map_err(err)?;
+        chart
+            .configure_series_labels()
+            .label_font((FONT, 15))
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.8))
+            .draw()
+            .map_err(err)?;
+        // Lower row: lateral pressure distributions.
+        let curves: Vec<Vec<(f64, f64)>> = w
+            .patches
+            .iter()
+            .map(|p| lateral_pressure(p, side))
+            .collect();
+        let pmax = curves
+            .iter()
+            .flatten()
+            .map(|p| p.1)
+            .fold(0.0, f64::max)
+            .max(1.0);
+        let mut chart = ChartBuilder::on(&cols[k + sol.wheels.len()])
+            .caption("largest pressure across each lateral grid line", (FONT, 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(ylo..yhi, 0.0..pmax * 1.1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc("track y [mm]")
+            .y_desc("pressure [MPa]")
+            .label_style((FONT, 15))
+            .draw()
+            .map_err(err)?;
+        for (c, curve) in curves.into_iter().enumerate() {
+            let color = Palette99::pick(c).to_rgba();
+            chart
+                .draw_series(LineSeries::new(curve, color.stroke_width(2)))
+                .map_err(err)?;
+        }
+    }
+    Ok(())
+}

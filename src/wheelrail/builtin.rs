@@ -1,0 +1,60 @@
+//! Profiles compiled into the binary (see `builtin/README.md`): the S1002
+//! wheel and UIC60 rail of the Manchester Contact Benchmark, and the
+//! benchmark's track and wheelset data.
+
+use crate::wheelrail::profile::{parse_profile, LoadOptions, Profile, ProfileError};
+use crate::wheelrail::wheelset::{TrackData, WheelsetData};
+
+/// Prefix of built-in profile names in case files: `builtin:NAME`.
+pub const PREFIX: &str = "builtin:";
+
+/// Built-in profile files: (name, content).
+pub const FILES: [(&str, &str); 2] = [
+    (
+        "MBench_S1002_v3.prw",
+        include_str!("builtin/MBench_S1002_v3.prw"),
+    ),
+    (
+        "MBench_UIC60_v3.prr",
+        include_str!("builtin/MBench_UIC60_v3.prr"),
+    ),
+];
+
+/// The built-in profile `name` (without the prefix), parsed with `options`;
+/// `None` if there is no such profile.
+pub fn profile(name: &str, options: &LoadOptions) -> Option<Result<Profile, ProfileError>> {
+    FILES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(n, text)| parse_profile(text, n, options))
+}
+
+/// Track of the Manchester benchmark: gauge 1435 mm measured 14 mm below the
+/// top of rail; the rail profile is already inclined 1:40.
+pub const MBENCH_TRACK: TrackData = TrackData {
+    gauge_m: 1.435,
+    gauge_height_m: 0.014,
+    cant_rad: 0.0,
+};
+
+/// Wheelset of the Manchester benchmark: flange-back distance 1360 mm with
+/// the flange back at profile y = -70 mm, nominal rolling radius 460 mm.
+pub const MBENCH_WHEELSET: WheelsetData = WheelsetData {
+    flange_back_distance_m: 1.360,
+    nominal_radius_m: 0.460,
+    flange_back_y_m: Some(-0.070),
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_profiles_parse_and_unknown_names_are_none() {
+        for (name, _) in FILES {
+            let p = profile(name, &LoadOptions::default()).unwrap().unwrap();
+            assert!(p.len() > 50, "{name}: {} points", p.len());
+        }
+        assert!(profile("S1002.prw", &LoadOptions::default()).is_none());
+    }
+}
