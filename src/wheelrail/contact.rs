@@ -229,7 +229,11 @@ fn ladder(n: usize) -> Option<usize> {
 }
 
 /// Margin of potential contact around the interpenetration, in elements.
-const MARGIN_ELEMENTS: f64 = 3.0;
+const MARGIN_ELEMENTS: f64 = 2.0;
+
+/// Potential contact: where the vertical gap is below this multiple of the
+/// Hertz estimate of the approach (enlarged when the load needs more).
+const CAP_FACTOR: f64 = 1.15;
 
 /// One patch being solved.
 struct PatchWork {
@@ -578,7 +582,7 @@ fn solve_wheel(
     let e = input.settings.element_size_m;
     let mut cap = match input.load {
         WheelLoad::VerticalForce(f) => {
-            gmin + 1.5 * approach_estimate(gap, locus, &input.material, f)
+            gmin + CAP_FACTOR * approach_estimate(gap, locus, &input.material, f)
         }
         WheelLoad::Approach(d) => gmin + d,
     };

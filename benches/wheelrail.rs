@@ -1,0 +1,104 @@
+//! Criterion benchmarks of one wheelset time step (both wheels, every patch)
+//! at the Manchester benchmark settings (A-2.2: S1002/UIC60, 10 kN per
+//! wheel, 0.2 mm elements): tread contact (2 mm), two-point contact (5 mm),
+//! flange contact (6.5 mm, 10 mm), with the planar exact model and with
+//! Hertz+FASTSIM. Kernels are cached (a long-running service's steady
+//! state). See benches/README.md; run with `cargo bench --bench wheelrail`.
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+
+use railcontact::core::cache::KernelCache;
+use railcontact::core::material::{CombinedMaterial, Material};
+use railcontact::core::problem::Friction;
+use railcontact::wheelrail::builtin::{profile, MBENCH_TRACK, MBENCH_WHEELSET};
+use railcontact::wheelrail::{
+    solve_wheelset, LoadOptions, SearchScratch, Side, SplineOptions, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetPosition, WheelsetVelocity,
+};
+
+fn pair() -> WheelRailPair {
+    let o = LoadOptions::default();
+    let rail = profile("MBench_UIC60_v3.prr", &o).unwrap().unwrap();
+    let wheel = profile("MBench_S1002_v3.prw", &o).unwrap().unwrap();
+    WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        MBENCH_TRACK,
+        MBENCH_WHEELSET,
+        &SplineOptions::default(),
+    )
+    .unwrap()
+}
+
+/// Shift [mm], roll [rad] and wheel rotation [rad/s] of CONTACT's
+/// mbench_a22 inputs (docs/data/mbench_a22_contact.csv).
+const SHIFTS: [(f64, f64, f64); 4] = [
+    (2.0, -0.00011280, -4.34591970),
+    (5.0, -0.00035540, -4.33536370),
+    (6.5, -0.00437600, -4.27488340),
+    (10.0, -0.01126431, -4.24363750),
+];
+
+fn input(y_mm: f64, roll: f64, pitch: f64, model: WheelRailModel) -> WheelRailInput {
+    WheelRailInput {
+        position: WheelsetPosition {
+            lateral_m: y_mm * 1e-3,
+            yaw_rad: 2.4e-3 * y_mm,
+            roll_rad: Some(roll),
+        },
+        velocity: WheelsetVelocity {
+            pitch_rad_per_s: Some(pitch),
+            ..WheelsetVelocity::rolling(2.0)
+        },
+        load: WheelLoad::VerticalForce(10_000.0),
+        sides: Side::BOTH.to_vec(),
+        material: CombinedMaterial::identical(Material {
+            shear_modulus_pa: 82e9,
+            poisson_ratio: 0.28,
+        })
+        .unwrap(),
+        friction: Friction::coulomb(0.3),
+        settings: WheelRailSettings {
+            model,
+            ..WheelRailSettings::default()
+        },
+    }
+}
+
+fn wheelset_step(c: &mut Criterion) {
+    let pair = pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    for (name, model) in [
+        ("wheelset_step_exact", WheelRailModel::Exact),
+        ("wheelset_step_hertz_fastsim", WheelRailModel::HertzFastsim),
+    ] {
+        let mut g = c.benchmark_group(name);
+        g.sample_size(20);
+        for &(y, roll, pitch) in &SHIFTS {
+            let inp = input(y, roll, pitch, model);
+            // Where the time goes (printed once per case).
+            let sol = solve_wheelset(&pair, &inp, &cache, &mut scratch).unwrap();
+            let t = sol.timing;
+            eprintln!(
+                "{name} y = {y} mm: search {:.2} ms, geometry {:.2} ms, solve {:.2} ms, patches {:?}",
+                t.search_s * 1e3,
+                t.geometry_s * 1e3,
+                t.solve_s * 1e3,
+                sol.wheels
+                    .iter()
+                    .map(|w| w.patches.iter().map(|p| p.grid).collect::<Vec<_>>())
+                    .collect::<Vec<_>>()
+            );
+            g.bench_with_input(BenchmarkId::from_parameter(y), &inp, |b, inp| {
+                b.iter(|| black_box(solve_wheelset(&pair, inp, &cache, &mut scratch).unwrap()))
+            });
+        }
+        g.finish();
+    }
+}
+
+criterion_group!(benches, wheelset_step);
+criterion_main!(benches);
