@@ -10,12 +10,9 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
-use railcontact::core::material::{CombinedMaterial, Material};
-use railcontact::core::problem::Friction;
-use railcontact::wheelrail::builtin::{profile, MBENCH_TRACK, MBENCH_WHEELSET};
+use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    solve_wheelset, LoadOptions, SearchScratch, Side, SplineOptions, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetPosition, WheelsetVelocity,
+    solve_wheelset, LoadOptions, SearchScratch, SplineOptions, WheelRailModel, WheelRailPair,
 };
 
 fn pair() -> WheelRailPair {
@@ -41,32 +38,6 @@ const SHIFTS: [(f64, f64, f64); 4] = [
     (10.0, -0.01126431, -4.24363750),
 ];
 
-fn input(y_mm: f64, roll: f64, pitch: f64, model: WheelRailModel) -> WheelRailInput {
-    WheelRailInput {
-        position: WheelsetPosition {
-            lateral_m: y_mm * 1e-3,
-            yaw_rad: 2.4e-3 * y_mm,
-            roll_rad: Some(roll),
-        },
-        velocity: WheelsetVelocity {
-            pitch_rad_per_s: Some(pitch),
-            ..WheelsetVelocity::rolling(2.0)
-        },
-        load: WheelLoad::VerticalForce(10_000.0),
-        sides: Side::BOTH.to_vec(),
-        material: CombinedMaterial::identical(Material {
-            shear_modulus_pa: 82e9,
-            poisson_ratio: 0.28,
-        })
-        .unwrap(),
-        friction: Friction::coulomb(0.3),
-        settings: WheelRailSettings {
-            model,
-            ..WheelRailSettings::default()
-        },
-    }
-}
-
 fn wheelset_step(c: &mut Criterion) {
     let pair = pair();
     let cache = KernelCache::default();
@@ -78,7 +49,7 @@ fn wheelset_step(c: &mut Criterion) {
         let mut g = c.benchmark_group(name);
         g.sample_size(20);
         for &(y, roll, pitch) in &SHIFTS {
-            let inp = input(y, roll, pitch, model);
+            let inp = mbench_a22_input(y, Some(roll), Some(pitch), model);
             // Where the time goes (printed once per case).
             let sol = solve_wheelset(&pair, &inp, &cache, &mut scratch).unwrap();
             let t = sol.timing;

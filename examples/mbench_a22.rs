@@ -10,12 +10,10 @@
 use std::time::Instant;
 
 use railcontact::core::cache::KernelCache;
-use railcontact::core::material::{CombinedMaterial, Material};
-use railcontact::core::problem::Friction;
-use railcontact::wheelrail::builtin::{profile, MBENCH_TRACK, MBENCH_WHEELSET};
+use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    solve_wheelset, LoadOptions, SearchScratch, Side, SplineOptions, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetPosition, WheelsetVelocity,
+    solve_wheelset, LoadOptions, SearchScratch, Side, SplineOptions, WheelRailInput,
+    WheelRailModel, WheelRailPair,
 };
 
 /// One CONTACT row.
@@ -104,27 +102,8 @@ fn main() {
         println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
         for r in reference.iter().filter(|r| r.side == side) {
             let input = WheelRailInput {
-                position: WheelsetPosition {
-                    lateral_m: r.y_mm * 1e-3,
-                    yaw_rad: 2.4e-3 * r.y_mm,
-                    roll_rad: Some(r.roll),
-                },
-                velocity: WheelsetVelocity {
-                    pitch_rad_per_s: Some(r.pitch),
-                    ..WheelsetVelocity::rolling(2.0)
-                },
-                load: WheelLoad::VerticalForce(10_000.0),
                 sides: vec![side],
-                material: CombinedMaterial::identical(Material {
-                    shear_modulus_pa: 82e9,
-                    poisson_ratio: 0.28,
-                })
-                .unwrap(),
-                friction: Friction::coulomb(0.3),
-                settings: WheelRailSettings {
-                    model,
-                    ..WheelRailSettings::default()
-                },
+                ..mbench_a22_input(r.y_mm, Some(r.roll), Some(r.pitch), model)
             };
             let t = Instant::now();
             let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();

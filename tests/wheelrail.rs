@@ -3,12 +3,10 @@
 //! balance over sweeps with measured worn profiles, and errors.
 
 use railcontact::core::cache::KernelCache;
-use railcontact::core::material::{CombinedMaterial, Material};
-use railcontact::core::problem::Friction;
+use railcontact::wheelrail::builtin::mbench_a22_input;
 use railcontact::wheelrail::{
     load_profile, solve_wheelset, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
     WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetData,
-    WheelsetPosition, WheelsetVelocity,
 };
 
 fn path(name: &str) -> String {
@@ -36,38 +34,13 @@ fn mbench_pair() -> WheelRailPair {
     .unwrap()
 }
 
-/// The Manchester benchmark case at shift `y_mm` [mm]: yaw 2.4 mrad
-/// per mm, 10 kN per wheel, 2 m/s, G = 82 GPa, nu = 0.28, mu = 0.3, 0.2 mm
-/// elements (Shackleton & Iwnicki, VSD 46, 2008).
 fn a22_input(
     y_mm: f64,
     roll: Option<f64>,
     pitch: Option<f64>,
     model: WheelRailModel,
 ) -> WheelRailInput {
-    WheelRailInput {
-        position: WheelsetPosition {
-            lateral_m: y_mm * 1e-3,
-            yaw_rad: 2.4e-3 * y_mm,
-            roll_rad: roll,
-        },
-        velocity: WheelsetVelocity {
-            pitch_rad_per_s: pitch,
-            ..WheelsetVelocity::rolling(2.0)
-        },
-        load: WheelLoad::VerticalForce(10_000.0),
-        sides: Side::BOTH.to_vec(),
-        material: CombinedMaterial::identical(Material {
-            shear_modulus_pa: 82e9,
-            poisson_ratio: 0.28,
-        })
-        .unwrap(),
-        friction: Friction::coulomb(0.3),
-        settings: WheelRailSettings {
-            model,
-            ..WheelRailSettings::default()
-        },
-    }
+    mbench_a22_input(y_mm, roll, pitch, model)
 }
 
 /// One patch of CONTACT's reference output for case, in the units of

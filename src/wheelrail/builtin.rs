@@ -2,8 +2,13 @@
 //! wheel and UIC60 rail of the Manchester Contact Benchmark, and the
 //! benchmark's track and wheelset data.
 
+use crate::core::material::{CombinedMaterial, Material};
+use crate::core::problem::Friction;
+use crate::wheelrail::contact::{WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings};
 use crate::wheelrail::profile::{parse_profile, LoadOptions, Profile, ProfileError};
-use crate::wheelrail::wheelset::{TrackData, WheelsetData};
+use crate::wheelrail::wheelset::{
+    Side, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
+};
 
 /// Prefix of built-in profile names in case files: `builtin:NAME`.
 pub const PREFIX: &str = "builtin:";
@@ -44,6 +49,42 @@ pub const MBENCH_WHEELSET: WheelsetData = WheelsetData {
     nominal_radius_m: 0.460,
     flange_back_y_m: Some(-0.070),
 };
+
+/// The input of Manchester benchmark case at lateral shift `y_mm`
+/// [mm] (Shackleton & Iwnicki, VSD 46, 2008): yaw 2.4 mrad per mm, 10 kN per
+/// wheel, 2 m/s, G = 82 GPa, nu = 0.28, mu = 0.3, 0.2 mm elements, both
+/// wheels. `roll_rad` and `pitch_rad_per_s`: `None` to find the roll from
+/// the profiles and roll freely at the nominal radius.
+pub fn mbench_a22_input(
+    y_mm: f64,
+    roll_rad: Option<f64>,
+    pitch_rad_per_s: Option<f64>,
+    model: WheelRailModel,
+) -> WheelRailInput {
+    WheelRailInput {
+        position: WheelsetPosition {
+            lateral_m: y_mm * 1e-3,
+            yaw_rad: 2.4e-3 * y_mm,
+            roll_rad,
+        },
+        velocity: WheelsetVelocity {
+            pitch_rad_per_s,
+            ..WheelsetVelocity::rolling(2.0)
+        },
+        load: WheelLoad::VerticalForce(10_000.0),
+        sides: Side::BOTH.to_vec(),
+        material: CombinedMaterial::identical(Material {
+            shear_modulus_pa: 82e9,
+            poisson_ratio: 0.28,
+        })
+        .expect("valid steel"),
+        friction: Friction::coulomb(0.3),
+        settings: WheelRailSettings {
+            model,
+            ..WheelRailSettings::default()
+        },
+    }
+}
 
 #[cfg(test)]
 mod tests {
