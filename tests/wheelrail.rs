@@ -342,6 +342,16 @@ fn bad_inputs_give_errors_naming_the_key() {
     input.position.lateral_m = f64::NAN;
     let e = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
     assert!(e.to_string().contains("position.lateral_m"), "{e}");
+    // The conformal method takes wheels with one patch only.
+    let mut input = a22_input(
+        5.0,
+        Some(-0.00035540),
+        Some(-4.33536370),
+        WheelRailModel::Cect,
+    );
+    input.sides = vec![Side::Right];
+    let e = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
+    assert!(e.to_string().contains("one contact patch"), "{e}");
     // A gauge far too wide: the wheels hang inside the rails.
     let rail = load_profile(path("MBench_UIC60_v3.prr")).unwrap();
     let wheel = load_profile(path("MBench_S1002_v3.prw")).unwrap();
@@ -364,4 +374,53 @@ fn bad_inputs_give_errors_naming_the_key() {
     let input = a22_input(0.0, None, None, WheelRailModel::Exact);
     let e = solve_wheelset(&wide, &input, &cache, &mut scratch).unwrap_err();
     assert!(e.to_string().contains("overlap"), "{e}");
+}
+/// The conformal method on real profiles: a worn wheel's flange on a worn
+/// rail (contact angle about 60 degrees, varying by about 7 degrees over
+/// the patch). Forced with `cect`, and chosen by `auto` when its threshold is
+/// below the variation; the load is carried and the forces stay within a
+/// few percent of the planar solution (the patch is only mildly conformal).
+#[test]
+fn conformal_patches_through_the_same_interface() {
+    let pair = worn_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let run = |model: WheelRailModel, threshold: f64, scratch: &mut SearchScratch| {
+        let mut input = a22_input(6.0, None, None, model);
+        input.position.yaw_rad = 0.0;
+        input.sides = vec![Side::Right];
+        input.settings.auto_conformal_angle_rad = threshold;
+        let sol = solve_wheelset(&pair, &input, &cache, scratch).unwrap();
+        sol.wheels[0].clone()
+    };
+    let exact = run(WheelRailModel::Exact, 0.0, &mut scratch);
+    let pe = &exact.patches[0];
+    assert_eq!(pe.method, "exact");
+    let variation = pe.contact_angle_variation_rad;
+    assert!(
+        pe.contact_angle_rad > 0.9 && variation > 0.05,
+        "{variation}"
+    );
+    let cect = run(WheelRailModel::Cect, 0.0, &mut scratch);
+    let auto_low = run(WheelRailModel::Auto, 0.5 * variation, &mut scratch);
+    let auto_high = run(WheelRailModel::Auto, 2.0 * variation, &mut scratch);
+    assert_eq!(auto_high.patches[0].method, "exact");
+    for w in [&cect, &auto_low] {
+        let p = &w.patches[0];
+        assert_eq!(p.method, "cect");
+        close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
+        close("FN", p.normal_force_n, pe.normal_force_n, 0.05, 0.0);
+        close("FX", p.fx_n, pe.fx_n, 0.10, 0.0);
+        close(
+            "Fy track",
+            w.force_track_n[1],
+            exact.force_track_n[1],
+            0.05,
+            0.0,
+        );
+    }
+    assert_eq!(
+        cect.patches[0].normal_force_n,
+        auto_low.patches[0].normal_force_n
+    );
 }

@@ -40,7 +40,7 @@ pub struct WheelrailArgs {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WheelrailCase {
-    /// "exact" (default) or "hertz_fastsim".
+    /// "exact" (default), "hertz_fastsim", "cect" or "auto".
     #[serde(default = "default_model")]
     model: String,
     /// "both" (default), "left" or "right".
@@ -216,16 +216,11 @@ impl WheelrailRun {
         let (model, model_name) = match c.model.as_str() {
             "exact" => (WheelRailModel::Exact, "exact"),
             "hertz_fastsim" => (WheelRailModel::HertzFastsim, "hertz_fastsim"),
-            "cect" | "auto" => {
-                return Err(bad(format!(
-                    "invalid input `model`: \"{}\" is not available for wheelsets yet; use \"exact\" \
-                     or \"hertz_fastsim\" (conformal patches: `railcontact solve` with model = \"cect\")",
-                    c.model
-                )))
-            }
+            "cect" => (WheelRailModel::Cect, "cect"),
+            "auto" => (WheelRailModel::Auto, "auto"),
             other => {
                 return Err(bad(format!(
-                    "invalid input `model`: \"{other}\"; expected \"exact\" or \"hertz_fastsim\""
+                    "invalid input `model`: \"{other}\"; expected \"exact\", \"hertz_fastsim\", \"cect\" or \"auto\""
                 )))
             }
         };

@@ -32,6 +32,9 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::conformal::frictional::{solve_frictional, ConformalKinematics, ConformalSettings};
+use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCurve};
+use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput};
@@ -43,11 +46,12 @@ use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, Solv
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
 use crate::wheelrail::search::{
-    gap_intervals, patch_geometry, rigid_position, split_intervals, PatchGeometry, RigidPosition,
-    SearchScratch, SearchSettings, SidePose, VerticalGap,
+    gap_intervals, patch_geometry, rigid_position, split_intervals, LocusPoint, PatchGeometry,
+    RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
-    Side, WheelRailError, WheelRailPair, WheelsetPosition, WheelsetVelocity,
+    PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition, WheelsetVelocity,
+    SAMPLE_SPACING_M,
 };
 
 /// Contact model per patch.
@@ -60,7 +64,21 @@ pub enum WheelRailModel {
     /// Hertz on the curvatures at each patch's reference point, FASTSIM for
     /// the tangential forces: the fast path.
     HertzFastsim,
+    /// The conformal method (CECT with Blanco's influence coefficients) on
+    /// every patch: curved patch, undeformed distance along local normals,
+    /// normal and tangential problems coupled. Wheels with one patch only
+    /// (force control along the patch normal); the wheelset's yaw is
+    /// neglected in the patch geometry.
+    Cect,
+    /// Exact (planar) everywhere, then CECT where a wheel has one patch
+    /// whose contact angle varies by more than
+    /// [`WheelRailSettings::auto_conformal_angle_rad`] over the loaded area.
+    Auto,
 }
+
+/// Default of [`WheelRailSettings::auto_conformal_angle_rad`] [rad] (10
+/// degrees).
+pub const AUTO_CONFORMAL_ANGLE_RAD: f64 = 0.1745;
 
 /// Load of one wheel.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,6 +104,9 @@ pub struct WheelRailSettings {
     pub load_tolerance: f64,
     /// Iteration limit of the load iteration.
     pub max_load_iterations: usize,
+    /// Model `auto`: contact-angle variation over a loaded patch above which
+    /// it is solved again with the conformal method [rad].
+    pub auto_conformal_angle_rad: f64,
 }
 
 impl Default for WheelRailSettings {
@@ -97,6 +118,7 @@ impl Default for WheelRailSettings {
             solver: SolverSettings::default(),
             load_tolerance: 1e-6,
             max_load_iterations: 40,
+            auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
         }
     }
 }
@@ -123,6 +145,11 @@ pub struct WheelRailInput {
 /// One contact patch of a wheel.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchResult {
+    /// Method that solved the patch: "exact", "hertz_fastsim" or "cect".
+    pub method: &'static str,
+    /// Variation of the rail's contact angle over the loaded lateral extent
+    /// [rad] (0 for Hertz+FASTSIM).
+    pub contact_angle_variation_rad: f64,
     /// Contact angle [rad] (see the module conventions).
     pub contact_angle_rad: f64,
     /// Reference point in rail profile coordinates [m].
@@ -257,10 +284,17 @@ enum PatchKind {
         a_per_m: f64,
         b_per_m: f64,
     },
+    Conformal {
+        geometry: Box<ConformalGeometry>,
+    },
 }
 
 #[derive(Clone, Default)]
 struct PatchOutcome {
+    /// Lateral and vertical force on the rail in the side frame (q, z) when
+    /// the method computes them (CECT: from the tractions on the curved patch).
+    global_qz_n: Option<[f64; 2]>,
+    angle_variation_rad: f64,
     fn_n: f64,
     fx_n: f64,
     fs_n: f64,
@@ -275,7 +309,10 @@ struct PatchOutcome {
 
 impl PatchWork {
     fn vertical_n(&self) -> f64 {
-        self.out.fn_n * self.nz + self.out.fs_n * self.sz
+        match self.out.global_qz_n {
+            Some([_, z]) => z,
+            None => self.out.fn_n * self.nz + self.out.fs_n * self.sz,
+        }
     }
 
     /// Solves at normal load `load`; `frictional` adds the creep forces.
@@ -285,6 +322,7 @@ impl PatchWork {
         frictional: bool,
         input: &WheelRailInput,
         fastsim: &mut Fastsim,
+        cache: &KernelCache,
     ) -> Result<(), ContactError> {
         if let NormalLoad::Approach(d) = load {
             if d <= self.hmin {
@@ -321,6 +359,53 @@ impl PatchWork {
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
                     solution: frictional.then_some(sol),
+                    ..PatchOutcome::default()
+                };
+            }
+            PatchKind::Conformal { geometry } => {
+                let NormalLoad::NormalForce(f) = load else {
+                    return Err(ContactError::invalid(
+                        "model",
+                        "the conformal method (cect) solves wheels with one contact patch only; \
+                         this wheel has several (use model = \"auto\" or \"exact\")",
+                    ));
+                };
+                let kinematics = ConformalKinematics::SteadyRolling {
+                    normal_force_n: f,
+                    creepages: ConformalCreepages {
+                        creepage_long: self.creep.creepage_long,
+                        creepage_lat: self.creep.creepage_lat,
+                        spin_per_m: self.creep.spin_per_m,
+                    },
+                };
+                let sol = solve_frictional(
+                    geometry,
+                    &input.material,
+                    input.friction.kinetic_coefficient,
+                    InfluenceModel::Blanco,
+                    &kinematics,
+                    &ConformalSettings::default(),
+                    cache,
+                )?
+                .pop()
+                .ok_or(ContactError::NoContact {
+                    detail: "no solution".into(),
+                })?;
+                let t = &sol.totals;
+                self.out = PatchOutcome {
+                    global_qz_n: Some([t.fy_global_n, t.fz_global_n]),
+                    angle_variation_rad: t.contact_angle_variation_deg.to_radians(),
+                    fn_n: t.normal_force_n,
+                    fx_n: t.fx_n,
+                    fs_n: t.fs_n,
+                    // Approach from the rigid position: the curves were
+                    // put in touch at the reference.
+                    approach_m: t.approach_m + self.hmin,
+                    max_pressure_pa: t.max_pressure_pa,
+                    area_m2: t.contact_area_m2,
+                    adhesion: t.adhesion_fraction,
+                    tgamma_n: t.tgamma_n,
+                    ..PatchOutcome::default()
                 };
             }
             PatchKind::Hertz { a_per_m, b_per_m } => {
@@ -601,7 +686,9 @@ fn solve_wheel(
             else {
                 continue;
             };
-            patches.push(build_patch(geom, cap, &pose, side, input, omega, cache)?);
+            patches.push(build_patch(
+                pair, locus, geom, cap, &pose, side, input, omega, cache,
+            )?);
         }
         if patches.is_empty() {
             return Err(WheelRailError::Geometry {
@@ -611,7 +698,7 @@ fn solve_wheel(
         }
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
-        let result = match load_iteration(&mut patches, input, cap, &mut fastsim) {
+        let result = match load_iteration(&mut patches, input, cap, &mut fastsim, cache) {
             Ok(r) => r,
             // The pressure reached the edge of a grid sized for `cap`.
             Err((_, ContactError::GridTooSmall { .. })) => LoadResult::CapTooSmall,
@@ -636,6 +723,43 @@ fn solve_wheel(
                         continue;
                     }
                 }
+                if input.settings.model == WheelRailModel::Auto && patches.len() == 1 {
+                    let variation = exact_angle_variation(pair.rail(side), &patches[0]);
+                    if variation > input.settings.auto_conformal_angle_rad {
+                        // A strongly curved patch: solve it again with CECT
+                        // on the same grid.
+                        let tc = Instant::now();
+                        let p = patches.pop().expect("one patch");
+                        let PatchKind::Exact { problem, .. } = &p.kind else {
+                            unreachable!("model auto builds exact patches")
+                        };
+                        let geometry =
+                            conformal_geometry(pair, side, locus, &p.geom, problem.grid)?;
+                        let hmin = p.geom.min_vertical_gap_m * p.nz;
+                        patches.push(PatchWork {
+                            kind: PatchKind::Conformal {
+                                geometry: Box::new(geometry),
+                            },
+                            hmin,
+                            out: PatchOutcome::default(),
+                            ..p
+                        });
+                        let r = load_iteration(&mut patches, input, cap, &mut fastsim, cache)
+                            .map_err(|(k, source)| WheelRailError::Contact {
+                                side: side.name(),
+                                patch: k,
+                                source,
+                            })?;
+                        timing.solve_s += tc.elapsed().as_secs_f64();
+                        if let LoadResult::Done { delta, iterations } = r {
+                            return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+                        }
+                        return Err(WheelRailError::Geometry {
+                            side: side.name(),
+                            message: "the conformal solution needs a larger potential contact area than the planar one".into(),
+                        });
+                    }
+                }
                 return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
@@ -655,7 +779,10 @@ fn solve_wheel(
     })
 }
 
+#[allow(clippy::too_many_arguments)]
 fn build_patch(
+    pair: &WheelRailPair,
+    locus: &[LocusPoint],
     geom: PatchGeometry,
     cap: f64,
     pose: &SidePose,
@@ -674,48 +801,12 @@ fn build_patch(
             a_per_m: 0.5 * kx0.max(1e-3),
             b_per_m: b.max(0.01 * kx0).max(1e-3),
         },
-        WheelRailModel::Exact => {
-            let e = input.settings.element_size_m;
-            // Longitudinal extent: where h(x, s) < the cap's normal approach.
-            let dn = cap * nz;
-            let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
-            for l in &geom.lateral {
-                if l.gap_m < dn && l.kx_per_m > 0.0 {
-                    let half = (2.0 * (dn - l.gap_m) / l.kx_per_m).sqrt();
-                    xlo = xlo.min(l.dx_m - half);
-                    xhi = xhi.max(l.dx_m + half);
-                }
-            }
-            if !xlo.is_finite() {
-                (xlo, xhi) = (-e, e);
-            }
-            let margin = MARGIN_ELEMENTS * e;
-            let (xlo, xhi) = (xlo - margin, xhi + margin);
-            let [slo, shi] = geom.s_range_m;
-            let too_big = |key: &str| {
-                WheelRailError::invalid(
-                    key,
-                    format!(
-                        "a potential contact area of {:.1} x {:.1} mm needs more than {} elements \
-                         per direction; use larger elements",
-                        (xhi - xlo) * 1e3,
-                        (shi - slo) * 1e3,
-                        GRID_LADDER[GRID_LADDER.len() - 1]
-                    ),
-                )
-            };
-            let nx = ladder(((xhi - xlo) / e).ceil() as usize)
-                .ok_or_else(|| too_big("grid.element_size_m"))?;
-            let ns = ladder(((shi - slo) / e).ceil() as usize)
-                .ok_or_else(|| too_big("grid.element_size_m"))?;
-            let x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
-            let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
-            let grid = Grid::new(nx, ns, e, e, x0, s0)
-                .map_err(|err| WheelRailError::invalid("grid", err.to_string()))?;
+        WheelRailModel::Exact | WheelRailModel::Auto => {
+            let grid = patch_grid(&geom, cap, input)?;
             let mut gap_m = vec![0.0; grid.len()];
-            for is in 0..ns {
+            for is in 0..grid.ny {
                 let s = grid.y_m(is);
-                for ix in 0..nx {
+                for ix in 0..grid.nx {
                     gap_m[grid.index(ix, is)] = geom.gap_at(grid.x_m(ix), s);
                 }
             }
@@ -731,12 +822,20 @@ fn build_patch(
             let solver = Box::new(ContactSolver::new(&problem, cache));
             PatchKind::Exact { problem, solver }
         }
+        WheelRailModel::Cect => {
+            let grid = patch_grid(&geom, cap, input)?;
+            PatchKind::Conformal {
+                geometry: Box::new(conformal_geometry(pair, side, locus, &geom, grid)?),
+            }
+        }
     };
     let hmin = match &kind {
         PatchKind::Exact { problem, .. } => {
             problem.gap_m.iter().copied().fold(f64::INFINITY, f64::min)
         }
         PatchKind::Hertz { .. } => hmin,
+        // The curves are put in touch at the reference point.
+        PatchKind::Conformal { .. } => geom.min_vertical_gap_m * nz,
     };
     Ok(PatchWork {
         geom,
@@ -747,6 +846,94 @@ fn build_patch(
         kind,
         out: PatchOutcome::default(),
     })
+}
+
+/// The (x, s) grid of a patch: where h(x, s) is below the normal approach
+/// of `cap`, with a margin, rounded up to the grid ladder.
+fn patch_grid(
+    geom: &PatchGeometry,
+    cap: f64,
+    input: &WheelRailInput,
+) -> Result<Grid, WheelRailError> {
+    let e = input.settings.element_size_m;
+    let dn = cap * geom.normal[1];
+    let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for l in &geom.lateral {
+        if l.gap_m < dn && l.kx_per_m > 0.0 {
+            let half = (2.0 * (dn - l.gap_m) / l.kx_per_m).sqrt();
+            xlo = xlo.min(l.dx_m - half);
+            xhi = xhi.max(l.dx_m + half);
+        }
+    }
+    if !xlo.is_finite() {
+        (xlo, xhi) = (-e, e);
+    }
+    let margin = MARGIN_ELEMENTS * e;
+    let (xlo, xhi) = (xlo - margin, xhi + margin);
+    let [slo, shi] = geom.s_range_m;
+    let too_big = || {
+        WheelRailError::invalid(
+            "grid.element_size_m",
+            format!(
+                "a potential contact area of {:.1} x {:.1} mm needs more than {} elements \
+                 per direction; use larger elements",
+                (xhi - xlo) * 1e3,
+                (shi - slo) * 1e3,
+                GRID_LADDER[GRID_LADDER.len() - 1]
+            ),
+        )
+    };
+    let nx = ladder(((xhi - xlo) / e).ceil() as usize).ok_or_else(too_big)?;
+    let ns = ladder(((shi - slo) / e).ceil() as usize).ok_or_else(too_big)?;
+    let x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
+    let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
+    Ok(Grid::new(nx, ns, e, e, x0, s0)?)
+}
+
+/// Arc length of profile around the reference handed to the conformal
+/// geometry, beyond the patch's lateral extent [m].
+const CONFORMAL_CURVE_MARGIN_M: f64 = 4e-3;
+
+/// The conformal geometry of a patch: rail profile and wheel locus around
+/// the reference point, moved so that they touch at the origin (side frame,
+/// z down), the wheel rolling about an axis `rolling_radius_m` above.
+fn conformal_geometry(
+    pair: &WheelRailPair,
+    side: Side,
+    locus: &[LocusPoint],
+    geom: &PatchGeometry,
+    grid: Grid,
+) -> Result<ConformalGeometry, WheelRailError> {
+    let reach = geom.s_range_m[0].abs().max(geom.s_range_m[1].abs()) + CONFORMAL_CURVE_MARGIN_M;
+    let n = (reach / SAMPLE_SPACING_M).ceil() as usize;
+    let [q0, z0] = geom.reference_m;
+    let rs = pair.rail(side).samples();
+    let (a, b) = (
+        geom.rail_index.saturating_sub(n),
+        (geom.rail_index + n).min(rs.len() - 1),
+    );
+    let rail: Vec<[f64; 2]> = rs[a..=b].iter().map(|p| [p.q_m - q0, p.z_m - z0]).collect();
+    // The locus runs from the field side to the flange: reverse it so that
+    // both curves run towards +q; shift the wheel down by the vertical gap
+    // at the reference so that it touches the rail there.
+    let (a, b) = (
+        geom.locus_index.saturating_sub(n),
+        (geom.locus_index + n).min(locus.len() - 1),
+    );
+    let g = geom.min_vertical_gap_m;
+    let wheel: Vec<[f64; 2]> = locus[a..=b]
+        .iter()
+        .rev()
+        .map(|p| [p.q_m - q0, p.z_m + g - z0])
+        .collect();
+    let rail = PointCurve::new(&rail, "rail profile")?;
+    let wheel = PointCurve::new(&wheel, "wheel profile")?;
+    Ok(ConformalGeometry::new(
+        &rail,
+        &wheel,
+        geom.rolling_radius_m,
+        grid,
+    )?)
 }
 
 enum LoadResult {
@@ -762,6 +949,7 @@ fn solve_all(
     frictional: bool,
     input: &WheelRailInput,
     fastsim: &mut Fastsim,
+    cache: &KernelCache,
 ) -> Result<f64, PatchErr> {
     let mut fz = 0.0;
     for (k, p) in patches.iter_mut().enumerate() {
@@ -770,6 +958,7 @@ fn solve_all(
             frictional,
             input,
             fastsim,
+            cache,
         )
         .map_err(|e| (k, e))?;
         fz += if frictional {
@@ -787,10 +976,11 @@ fn load_iteration(
     input: &WheelRailInput,
     cap: f64,
     fastsim: &mut Fastsim,
+    cache: &KernelCache,
 ) -> Result<LoadResult, PatchErr> {
     let target = match input.load {
         WheelLoad::Approach(d) => {
-            solve_all(patches, d, true, input, fastsim)?;
+            solve_all(patches, d, true, input, fastsim, cache)?;
             return Ok(LoadResult::Done {
                 delta: d,
                 iterations: 1,
@@ -815,7 +1005,7 @@ fn load_iteration(
                     ),
                 ));
             }
-            p.solve(NormalLoad::NormalForce(fn_n), true, input, fastsim)
+            p.solve(NormalLoad::NormalForce(fn_n), true, input, fastsim, cache)
                 .map_err(|e| (0, e))?;
             let r = p.vertical_n() - target;
             if r.abs() <= tol || it == max_it {
@@ -849,7 +1039,7 @@ fn load_iteration(
         .map(|p| p.hmin / p.nz)
         .fold(f64::INFINITY, f64::min);
     let mut iterations = 1;
-    let fz_hi = solve_all(patches, cap, false, input, fastsim)?;
+    let fz_hi = solve_all(patches, cap, false, input, fastsim, cache)?;
     if fz_hi < target {
         return Ok(LoadResult::CapTooSmall);
     }
@@ -862,7 +1052,7 @@ fn load_iteration(
     let coarse = (1e3 * tol).min(1e-3 * target);
     while iterations < max_it {
         delta = hi - fhi * (hi - lo) / (fhi - flo);
-        let fz = solve_all(patches, delta, false, input, fastsim)?;
+        let fz = solve_all(patches, delta, false, input, fastsim, cache)?;
         iterations += 1;
         if (fz - target).abs() <= coarse {
             break;
@@ -885,7 +1075,7 @@ fn load_iteration(
     let mut slope = (fz_hi - fz_lo) / (hi - lo);
     let mut last: Option<(f64, f64)> = None;
     while iterations < max_it {
-        let fz = solve_all(patches, delta, true, input, fastsim)?;
+        let fz = solve_all(patches, delta, true, input, fastsim, cache)?;
         iterations += 1;
         if (fz - target).abs() <= tol {
             break;
@@ -903,6 +1093,35 @@ fn load_iteration(
         }
     }
     Ok(LoadResult::Done { delta, iterations })
+}
+
+/// Variation of the rail's contact angle over the loaded lateral lines of
+/// an exact (planar) patch solution [rad].
+fn exact_angle_variation(rail: &PlacedRail, p: &PatchWork) -> f64 {
+    let (PatchKind::Exact { problem, .. }, Some(sol)) = (&p.kind, &p.out.solution) else {
+        return 0.0;
+    };
+    let g = &problem.grid;
+    let rs = rail.samples();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for is in 0..g.ny {
+        if !(0..g.nx).any(|ix| sol.fields.pressure_pa[g.index(ix, is)] > 0.0) {
+            continue;
+        }
+        // Rail samples are equally spaced in arc length, close to s.
+        let k = (p.geom.rail_index as f64 + g.y_m(is) / SAMPLE_SPACING_M)
+            .round()
+            .clamp(0.0, (rs.len() - 1) as f64) as usize;
+        let o = rs[k].outward_normal();
+        let delta = (-o[0]).atan2(-o[1]);
+        lo = lo.min(delta);
+        hi = hi.max(delta);
+    }
+    if hi >= lo {
+        hi - lo
+    } else {
+        0.0
+    }
 }
 
 fn finish(
@@ -923,11 +1142,14 @@ fn finish(
         let t = g.tangent();
         let o = &p.out;
         // Side frame (x, q, z) -> track frame (x, s q, z).
-        let f_side = [
-            o.fx_n,
-            o.fs_n * t[0] + o.fn_n * g.normal[0],
-            o.fs_n * t[1] + o.fn_n * g.normal[1],
-        ];
+        let f_side = match o.global_qz_n {
+            Some([q, z]) => [o.fx_n, q, z],
+            None => [
+                o.fx_n,
+                o.fs_n * t[0] + o.fn_n * g.normal[0],
+                o.fs_n * t[1] + o.fn_n * g.normal[1],
+            ],
+        };
         let f = [f_side[0], s * f_side[1], f_side[2]];
         for k in 0..3 {
             total[k] += f[k];
@@ -938,8 +1160,18 @@ fn finish(
                 ([problem.grid.nx, problem.grid.ny], Some(problem.grid))
             }
             PatchKind::Hertz { .. } => ([0, 0], None),
+            PatchKind::Conformal { geometry } => {
+                ([geometry.grid.nx, geometry.grid.ny], Some(geometry.grid))
+            }
+        };
+        let (method, variation) = match &p.kind {
+            PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
+            PatchKind::Hertz { .. } => ("hertz_fastsim", 0.0),
+            PatchKind::Conformal { .. } => ("cect", o.angle_variation_rad),
         };
         out.push(PatchResult {
+            method,
+            contact_angle_variation_rad: variation,
             contact_angle_rad: g.contact_angle_rad,
             rail_y_m: ry,
             rail_z_m: rz,

@@ -469,6 +469,10 @@ pub struct PatchGeometry {
     pub s_range_m: [f64; 2],
     /// Undeformed distance samples, increasing s.
     pub lateral: Vec<LateralSample>,
+    /// Index of the rail sample at the reference point.
+    pub rail_index: usize,
+    /// Index of the locus point at the reference point.
+    pub locus_index: usize,
 }
 
 impl PatchGeometry {
@@ -719,5 +723,7 @@ pub fn patch_geometry(
         wheel_profile_y_m: lref.profile_y_m,
         s_range_m,
         lateral,
+        rail_index: j,
+        locus_index: li,
     })
 }
