@@ -419,25 +419,31 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
     }
 }
 
+/// Every value of a wire totals message, in field order.
+pub fn total_values(t: &pb::PatchTotals) -> [f64; 13] {
+    [
+        t.normal_force_n,
+        t.fx_n,
+        t.fy_n,
+        t.mz_nm,
+        t.approach_m,
+        t.max_pressure_pa,
+        t.max_traction_pa,
+        t.contact_area_m2,
+        t.patch_length_m,
+        t.patch_width_m,
+        t.adhesion_fraction,
+        t.tgamma_n,
+        t.frictional_work_j,
+    ]
+}
+
 /// Refuses a result with a non-finite total (a solver fault: never sent
 /// as silent NaN).
 pub fn check_finite(r: &pb::PatchResult) -> Result<(), ServiceError> {
     for s in r.result.iter().chain(r.steps.iter()) {
         let Some(t) = &s.totals else { continue };
-        let values = [
-            t.normal_force_n,
-            t.fx_n,
-            t.fy_n,
-            t.mz_nm,
-            t.approach_m,
-            t.max_pressure_pa,
-            t.max_traction_pa,
-            t.contact_area_m2,
-            t.adhesion_fraction,
-            t.tgamma_n,
-            t.frictional_work_j,
-        ];
-        if values.iter().any(|v| !v.is_finite()) {
+        if total_values(t).iter().any(|v| !v.is_finite()) {
             return Err(ServiceError::Internal(format!(
                 "the solver produced a non-finite total ({t:?}); please report this case"
             )));

@@ -129,7 +129,11 @@ pub fn deadline_of(metadata: &tonic::metadata::MetadataMap) -> Option<Instant> {
         "n" => Duration::from_nanos(n),
         _ => return None,
     };
-    let margin = (timeout / 20).min(Duration::from_millis(50));
+    // 10 % of the timeout, 2 ms to 100 ms (at most half of it): covers the
+    // time from the transport's timer start to here and a busy runtime.
+    let margin = (timeout / 10)
+        .clamp(Duration::from_millis(2), Duration::from_millis(100))
+        .min(timeout / 2);
     Some(Instant::now() + timeout.saturating_sub(margin))
 }
 

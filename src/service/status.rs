@@ -68,17 +68,20 @@ impl ServiceError {
     }
 
     /// The error with its field path put under `prefix` (`"case"`,
-    /// `"items[3]"`): `geometry.a_per_m` becomes `case.geometry.a_per_m`.
+    /// `"items[3]"`): `geometry.a_per_m` becomes `case.geometry.a_per_m`. An
+    /// empty prefix changes nothing.
     pub fn within(self, prefix: &str) -> Self {
         match self {
-            ServiceError::Invalid { field, reason } => ServiceError::Invalid {
-                field: if field.is_empty() {
-                    prefix.to_string()
-                } else {
-                    format!("{prefix}.{field}")
-                },
-                reason,
-            },
+            ServiceError::Invalid { field, reason } if !prefix.is_empty() => {
+                ServiceError::Invalid {
+                    field: if field.is_empty() {
+                        prefix.to_string()
+                    } else {
+                        format!("{prefix}.{field}")
+                    },
+                    reason,
+                }
+            }
             other => other,
         }
     }
