@@ -15,4 +15,5 @@
 pub mod cli;
 pub mod conformal;
 pub mod core;
+pub mod service;
 pub mod wheelrail;

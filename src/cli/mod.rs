@@ -12,8 +12,8 @@ pub mod plot;
 pub mod report;
 pub mod wheelrail;
 
-mod conformal_models;
-mod reference_models;
+pub(crate) mod conformal_models;
+pub(crate) mod reference_models;
 use reference_models as reference;
 
 use std::path::{Path, PathBuf};
@@ -65,6 +65,37 @@ pub enum Command {
     /// (per wheel: its patches and its total force on the rail in the track
     /// frame). Exit code 2 on bad input, 1 on other failures.
     Wheelrail(wheelrail::WheelrailArgs),
+    /// Serve the gRPC contact service (package railcontact.v1, see
+    /// proto/railcontact/v1/railcontact.proto) until SIGTERM or Ctrl-C.
+    ///
+    /// Runs with no configuration on 127.0.0.1:50051. Settings come in
+    /// layers: defaults, then --config FILE.toml, then the environment
+    /// (RAILCONTACT_LISTEN, RAILCONTACT_METRICS_LISTEN, RAILCONTACT_WORKERS,
+    /// RAILCONTACT_QUEUE_CAPACITY, RAILCONTACT_MAX_BATCH_ITEMS,
+    /// RAILCONTACT_MAX_CURVE_POINTS, RAILCONTACT_MAX_SESSIONS,
+    /// RAILCONTACT_MAX_GRID_ELEMENTS, RAILCONTACT_MAX_MESSAGE_BYTES,
+    /// RAILCONTACT_SHUTDOWN_GRACE_S; the file uses the same keys in lower
+    /// case), then these flags. Logs go to stderr, filtered by RUST_LOG
+    /// (default info).
+    Serve(ServeArgs),
+}
+
+/// Options of `railcontact serve`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// Settings file (TOML; keys as the RAILCONTACT_* variables, lower case,
+    /// without the prefix).
+    #[arg(long, value_name = "FILE.toml")]
+    pub config: Option<PathBuf>,
+    /// gRPC address (default 127.0.0.1:50051).
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub listen: Option<std::net::SocketAddr>,
+    /// Prometheus metrics address (GET /metrics); default: none.
+    #[arg(long, value_name = "ADDR:PORT")]
+    pub metrics_listen: Option<std::net::SocketAddr>,
+    /// Solves running at once (default: one per core).
+    #[arg(long)]
+    pub workers: Option<usize>,
 }
 
 /// Options of `railcontact solve`.
@@ -132,6 +163,7 @@ pub fn run(cli: Cli) -> i32 {
     let result = match cli.command {
         Command::Solve(args) => run_solve(&args),
         Command::Wheelrail(args) => wheelrail::run(&args),
+        Command::Serve(args) => run_serve(&args),
     };
     match result {
         Ok(()) => 0,
@@ -140,6 +172,19 @@ pub fn run(cli: Cli) -> i32 {
             e.exit_code()
         }
     }
+}
+
+fn run_serve(args: &ServeArgs) -> Result<(), CliError> {
+    use crate::service::config::{ServeConfig, ServeFlags};
+    let flags = ServeFlags {
+        listen: args.listen,
+        metrics_listen: args.metrics_listen,
+        workers: args.workers,
+    };
+    let env = |name: &str| std::env::var(name).ok();
+    let config = ServeConfig::load(args.config.as_deref(), &env, &flags)
+        .map_err(|e| CliError::BadInput(format!("serve settings: {e}")))?;
+    crate::service::server::serve(&config).map_err(|e| CliError::Failure(format!("serve: {e}")))
 }
 
 /// The plot format chosen by `--plot`'s extension.

@@ -99,6 +99,7 @@ impl std::fmt::Debug for ConvolutionPlan {
 }
 
 /// Scratch buffers for one thread using a [`ConvolutionPlan`].
+#[derive(Clone)]
 pub struct Workspace {
     /// A padded real row (kernel transforms).
     row: Vec<f64>,
@@ -723,6 +724,7 @@ impl KernelSet {
 }
 
 /// Buffers for [`KernelSet::apply`].
+#[derive(Clone)]
 pub struct OperatorWorkspace {
     ws: Workspace,
     /// Spectra of the inputs by component, in the blocked layout; the

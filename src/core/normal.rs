@@ -56,6 +56,7 @@ pub struct NormalOutcome {
 }
 
 /// Work arrays for [`solve_normal`] (allocated once per grid).
+#[derive(Clone)]
 pub struct NormalScratch {
     u: Vec<f64>,
     t: Vec<f64>,

@@ -11,7 +11,7 @@ use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch};
-use crate::core::problem::{ContactProblem, Kinematics};
+use crate::core::problem::{ContactProblem, Kinematics, ShiftStep};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
 };
@@ -25,7 +25,10 @@ use crate::core::tangential::{
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
 /// the last solve, which warm-start the next one (the service keeps one per
-/// co-simulation session).
+/// co-simulation session). A clone is an independent solver in the same
+/// state: solving the same inputs from it gives bit-identical results (the
+/// service's session marks).
+#[derive(Clone)]
 pub struct ContactSolver {
     grid: Grid,
     displacement: Arc<KernelSet>,
@@ -50,6 +53,9 @@ pub struct ContactSolver {
     last_pn: Vec<f64>,
     last_px: Vec<f64>,
     last_py: Vec<f64>,
+    /// Transient steps solved since `new` or `reset` (0: the next step
+    /// starts from the unloaded state).
+    transient_steps: usize,
 }
 
 impl ContactSolver {
@@ -89,6 +95,7 @@ impl ContactSolver {
             last_pn: z(),
             last_px: z(),
             last_py: z(),
+            transient_steps: 0,
         }
     }
 
@@ -98,6 +105,7 @@ impl ContactSolver {
             v.fill(0.0);
         }
         self.tr.state.fill(ElementState::Exterior);
+        self.transient_steps = 0;
     }
 
     /// Solves `problem` (which must have this solver's grid and materials):
@@ -122,48 +130,95 @@ impl ContactSolver {
             }
             Kinematics::Transient(steps) => {
                 self.reset();
-                self.prev_state.fill(ElementState::Exterior);
                 let mut out = Vec::with_capacity(steps.len());
-                for (k, step) in steps.iter().enumerate() {
+                for step in steps {
                     let ts = Instant::now();
-                    // Displacement difference of the previous state.
-                    if k == 0 {
-                        self.old_ux.fill(0.0);
-                        self.old_uy.fill(0.0);
-                    } else {
-                        // The normal pressure displaces tangentially only when K != 0.
-                        let inputs: &[(Component, &[f64])] = &[
-                            (Component::X, &self.tr.px),
-                            (Component::Y, &self.tr.py),
-                            (Component::N, &self.pn),
-                        ];
-                        let used = if problem.material.is_coupled() { 3 } else { 2 };
-                        self.displacement.apply(
-                            &mut self.ows,
-                            &inputs[..used],
-                            &mut [
-                                (Component::X, &mut self.old_ux),
-                                (Component::Y, &mut self.old_uy),
-                            ],
-                        );
-                    }
-                    self.prev_state.copy_from_slice(&self.tr.state);
-                    let mut sol = self.solve_one(
-                        problem,
-                        step.load,
-                        Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
-                    )?;
-                    sol.info.matvecs += usize::from(k > 0);
-                    sol.info.solve_time_s = if k == 0 {
-                        t0.elapsed().as_secs_f64()
-                    } else {
-                        ts.elapsed().as_secs_f64()
-                    };
+                    let mut sol = self.transient_step(problem, step)?;
+                    // The first step carries the set-up time.
+                    let since = if out.is_empty() { t0 } else { ts };
+                    sol.info.solve_time_s = since.elapsed().as_secs_f64();
                     out.push(sol);
                 }
                 Ok(out)
             }
         }
+    }
+
+    /// Solves one more step of a transient problem, continuing from the
+    /// tractions of the step this solver solved last (from the unloaded
+    /// state after [`ContactSolver::new`] or [`ContactSolver::reset`]).
+    /// `problem` supplies everything but the step and must be transient
+    /// (its own steps are not solved). This is how a co-simulation session
+    /// advances one time step at a time; [`ContactSolver::solve`] of a
+    /// transient problem is `reset` followed by one call per step.
+    ///
+    /// A step the solver rejects after it started (the patch reaches the
+    /// grid border) leaves the history changed: restore a clone taken
+    /// before the step to retry.
+    pub fn solve_next_step(
+        &mut self,
+        problem: &ContactProblem,
+        step: &ShiftStep,
+    ) -> Result<ContactSolution, ContactError> {
+        let t0 = Instant::now();
+        problem.validate()?;
+        step.validate("step")?;
+        if problem.grid != self.grid {
+            return Err(ContactError::invalid(
+                "grid",
+                "differs from the grid this solver was built for",
+            ));
+        }
+        if !matches!(problem.kinematics, Kinematics::Transient(_)) {
+            return Err(ContactError::invalid(
+                "kinematics",
+                "solve_next_step needs a transient problem",
+            ));
+        }
+        let mut sol = self.transient_step(problem, step)?;
+        sol.info.solve_time_s = t0.elapsed().as_secs_f64();
+        Ok(sol)
+    }
+
+    /// One transient step from the current history (Kalker 1990 §5.2: the
+    /// slip is the rigid shift plus the change of the displacement
+    /// difference since the previous step).
+    fn transient_step(
+        &mut self,
+        problem: &ContactProblem,
+        step: &ShiftStep,
+    ) -> Result<ContactSolution, ContactError> {
+        let first = self.transient_steps == 0;
+        // Displacement difference of the previous state.
+        if first {
+            self.old_ux.fill(0.0);
+            self.old_uy.fill(0.0);
+        } else {
+            // The normal pressure displaces tangentially only when K != 0.
+            let inputs: &[(Component, &[f64])] = &[
+                (Component::X, &self.tr.px),
+                (Component::Y, &self.tr.py),
+                (Component::N, &self.pn),
+            ];
+            let used = if problem.material.is_coupled() { 3 } else { 2 };
+            self.displacement.apply(
+                &mut self.ows,
+                &inputs[..used],
+                &mut [
+                    (Component::X, &mut self.old_ux),
+                    (Component::Y, &mut self.old_uy),
+                ],
+            );
+        }
+        self.prev_state.copy_from_slice(&self.tr.state);
+        let mut sol = self.solve_one(
+            problem,
+            step.load,
+            Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
+        )?;
+        sol.info.matvecs += usize::from(!first);
+        self.transient_steps += 1;
+        Ok(sol)
     }
 
     fn solve_one(
@@ -521,6 +576,7 @@ impl ContactSolver {
 }
 
 /// Tangential tractions, slips and element states of the current solution.
+#[derive(Clone)]
 struct Tractions {
     px: Vec<f64>,
     py: Vec<f64>,

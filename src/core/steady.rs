@@ -99,6 +99,7 @@ enum Role {
 }
 
 /// Buffers of [`solve_steady_newton`], allocated once per grid.
+#[derive(Clone)]
 pub struct SteadyScratch {
     n: usize,
     role: Vec<Role>,
@@ -118,6 +119,7 @@ pub struct SteadyScratch {
 }
 
 /// GMRES work space.
+#[derive(Clone)]
 struct Krylov {
     work: Vec<f64>,
     zvec: Vec<f64>,

@@ -147,6 +147,7 @@ pub(crate) fn natural_residual(p: [f64; 2], s: [f64; 2], d: f64, g: f64) -> f64 
 }
 
 /// Tangential state and buffers (allocated once per grid).
+#[derive(Clone)]
 pub struct TangentialScratch {
     sx: Vec<f64>,
     sy: Vec<f64>,
@@ -385,6 +386,7 @@ pub fn shift_upstream<T: Copy + Default>(grid: &Grid, src: &[T], dst: &mut [T]) 
 }
 
 /// Extra buffers of [`solve_steady_marching`].
+#[derive(Clone)]
 pub struct MarchingScratch {
     shx: Vec<f64>,
     shy: Vec<f64>,

@@ -1,0 +1,254 @@
+//! Settings of `railcontact serve`, in layers: compiled defaults, then a
+//! TOML file (`--config FILE.toml`), then environment variables
+//! `RAILCONTACT_<KEY>` (e.g. `RAILCONTACT_LISTEN=0.0.0.0:50051`), then
+//! command-line flags. Every key of [`ServeConfig`] can be set in each
+//! layer; the server runs with no file and no variables at all.
+//!
+//! All settings are parsed and every error reported before a port is
+//! bound. The environment is read through a function so that tests pass a
+//! map instead of changing the process environment.
+
+use std::net::SocketAddr;
+use std::path::Path;
+
+use serde::Deserialize;
+
+/// Prefix of the environment variables.
+pub const ENV_PREFIX: &str = "RAILCONTACT_";
+
+/// Server settings. The TOML file uses these keys at top level.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ServeConfig {
+    /// Address of the gRPC server (default `127.0.0.1:50051`; port 0: any
+    /// free port).
+    pub listen: SocketAddr,
+    /// Address of the Prometheus metrics endpoint (`GET /metrics`, plain
+    /// HTTP); not set: no endpoint (default).
+    pub metrics_listen: Option<SocketAddr>,
+    /// Solves running at once (default 0: one per core).
+    pub workers: usize,
+    /// Requests admitted at once, running plus waiting (default 0: 16 per
+    /// worker); more get RESOURCE_EXHAUSTED.
+    pub queue_capacity: usize,
+    /// Largest number of items of one SolvePatchBatch (default 1024).
+    pub max_batch_items: usize,
+    /// Largest number of points of one CreepCurve (default 1000).
+    pub max_curve_points: usize,
+    /// Sessions open at once (default 256); more get RESOURCE_EXHAUSTED.
+    pub max_sessions: usize,
+    /// Largest grid, nx * ny elements (default 65536 = 256 x 256).
+    pub max_grid_elements: usize,
+    /// Largest gRPC message, either direction [bytes] (default 16 MiB).
+    pub max_message_bytes: usize,
+    /// On SIGTERM or Ctrl-C: how long in-flight requests and open sessions
+    /// may take to finish before the server stops anyway [s] (default 30).
+    pub shutdown_grace_s: f64,
+}
+
+impl Default for ServeConfig {
+    fn default() -> Self {
+        Self {
+            listen: SocketAddr::from(([127, 0, 0, 1], 50051)),
+            metrics_listen: None,
+            workers: 0,
+            queue_capacity: 0,
+            max_batch_items: 1024,
+            max_curve_points: 1000,
+            max_sessions: 256,
+            max_grid_elements: 256 * 256,
+            max_message_bytes: 16 << 20,
+            shutdown_grace_s: 30.0,
+        }
+    }
+}
+
+/// Overrides from the command line (unset: keep the lower layers').
+#[derive(Debug, Clone, Default)]
+pub struct ServeFlags {
+    /// `--listen`.
+    pub listen: Option<SocketAddr>,
+    /// `--metrics-listen`.
+    pub metrics_listen: Option<SocketAddr>,
+    /// `--workers`.
+    pub workers: Option<usize>,
+}
+
+impl ServeConfig {
+    /// The layered settings: defaults, `file` (if any), the variables
+    /// `env` returns, `flags`. The error lists every problem found.
+    pub fn load(
+        file: Option<&Path>,
+        env: &dyn Fn(&str) -> Option<String>,
+        flags: &ServeFlags,
+    ) -> Result<Self, String> {
+        let mut c = match file {
+            Some(path) => {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| format!("cannot read config file {}: {e}", path.display()))?;
+                toml::from_str(&text).map_err(|e| {
+                    format!(
+                        "config file {}: {}",
+                        path.display(),
+                        e.to_string().trim_end()
+                    )
+                })?
+            }
+            None => ServeConfig::default(),
+        };
+        let mut errors = Vec::new();
+        c.apply_env(env, &mut errors);
+        if let Some(v) = flags.listen {
+            c.listen = v;
+        }
+        if let Some(v) = flags.metrics_listen {
+            c.metrics_listen = Some(v);
+        }
+        if let Some(v) = flags.workers {
+            c.workers = v;
+        }
+        if !(c.shutdown_grace_s.is_finite() && c.shutdown_grace_s >= 0.0) {
+            errors.push(format!(
+                "shutdown_grace_s must be finite and >= 0, got {}",
+                c.shutdown_grace_s
+            ));
+        }
+        for (key, v) in [
+            ("max_batch_items", c.max_batch_items),
+            ("max_curve_points", c.max_curve_points),
+            ("max_sessions", c.max_sessions),
+            ("max_grid_elements", c.max_grid_elements),
+            ("max_message_bytes", c.max_message_bytes),
+        ] {
+            if v == 0 {
+                errors.push(format!("{key} must be at least 1"));
+            }
+        }
+        if errors.is_empty() {
+            Ok(c)
+        } else {
+            Err(errors.join("; "))
+        }
+    }
+
+    fn apply_env(&mut self, env: &dyn Fn(&str) -> Option<String>, errors: &mut Vec<String>) {
+        let get = |key: &str| {
+            let name = format!("{ENV_PREFIX}{}", key.to_ascii_uppercase());
+            env(&name).map(|text| (name, text))
+        };
+        fn parse<T: std::str::FromStr>(
+            var: Option<(String, String)>,
+            slot: &mut T,
+            errors: &mut Vec<String>,
+        ) where
+            T::Err: std::fmt::Display,
+        {
+            if let Some((name, text)) = var {
+                match text.trim().parse() {
+                    Ok(v) => *slot = v,
+                    Err(e) => errors.push(format!("{name}={text:?}: {e}")),
+                }
+            }
+        }
+        parse(get("listen"), &mut self.listen, errors);
+        let mut metrics = self.metrics_listen.unwrap_or(self.listen);
+        let metrics_var = get("metrics_listen");
+        let metrics_given = metrics_var.is_some();
+        parse(metrics_var, &mut metrics, errors);
+        if metrics_given {
+            self.metrics_listen = Some(metrics);
+        }
+        parse(get("workers"), &mut self.workers, errors);
+        parse(get("queue_capacity"), &mut self.queue_capacity, errors);
+        parse(get("max_batch_items"), &mut self.max_batch_items, errors);
+        parse(get("max_curve_points"), &mut self.max_curve_points, errors);
+        parse(get("max_sessions"), &mut self.max_sessions, errors);
+        parse(
+            get("max_grid_elements"),
+            &mut self.max_grid_elements,
+            errors,
+        );
+        parse(
+            get("max_message_bytes"),
+            &mut self.max_message_bytes,
+            errors,
+        );
+        parse(get("shutdown_grace_s"), &mut self.shutdown_grace_s, errors);
+    }
+
+    /// Solve threads: `workers`, or the cores when 0.
+    pub fn worker_count(&self) -> usize {
+        if self.workers > 0 {
+            self.workers
+        } else {
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        }
+    }
+
+    /// Admission capacity: `queue_capacity`, or 16 per worker when 0.
+    pub fn queue_count(&self) -> usize {
+        if self.queue_capacity > 0 {
+            self.queue_capacity
+        } else {
+            16 * self.worker_count()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    fn env(pairs: &[(&str, &str)]) -> impl Fn(&str) -> Option<String> {
+        let map: HashMap<String, String> = pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+        move |k: &str| map.get(k).cloned()
+    }
+
+    #[test]
+    fn layers_apply_in_order_and_errors_are_collected() {
+        let none = env(&[]);
+        let c = ServeConfig::load(None, &none, &ServeFlags::default()).unwrap();
+        assert_eq!(c, ServeConfig::default());
+        assert_eq!(c.listen.to_string(), "127.0.0.1:50051");
+
+        let dir = std::env::temp_dir().join(format!("railcontact-config-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("serve.toml");
+        std::fs::write(
+            &file,
+            "listen = \"127.0.0.1:6000\"\nworkers = 3\nmax_sessions = 7\n",
+        )
+        .unwrap();
+        let e = env(&[
+            ("RAILCONTACT_WORKERS", "5"),
+            ("RAILCONTACT_METRICS_LISTEN", "127.0.0.1:9464"),
+        ]);
+        let flags = ServeFlags {
+            listen: Some("127.0.0.1:7000".parse().unwrap()),
+            ..Default::default()
+        };
+        let c = ServeConfig::load(Some(&file), &e, &flags).unwrap();
+        assert_eq!(c.listen.port(), 7000, "flag over file");
+        assert_eq!(c.workers, 5, "env over file");
+        assert_eq!(c.max_sessions, 7, "file over default");
+        assert_eq!(c.metrics_listen.map(|a| a.port()), Some(9464));
+
+        let bad = env(&[
+            ("RAILCONTACT_WORKERS", "many"),
+            ("RAILCONTACT_MAX_SESSIONS", "0"),
+        ]);
+        let err = ServeConfig::load(None, &bad, &ServeFlags::default()).unwrap_err();
+        assert!(
+            err.contains("RAILCONTACT_WORKERS") && err.contains("max_sessions"),
+            "{err}"
+        );
+        std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();
+        let err = ServeConfig::load(Some(&file), &none, &ServeFlags::default()).unwrap_err();
+        assert!(err.contains("worker"), "{err}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

@@ -1,0 +1,453 @@
+//! Wire <-> domain conversion: the only place that reads the proto types.
+//!
+//! A [`pb::PatchCase`] becomes the case file's [`CaseFile`] field by field
+//! and is validated by [`Case::from_file`], so the service and
+//! `railcontact solve` accept exactly the same cases with the same
+//! messages (one place for validation). Results go the other way: core
+//! solutions and the CLI's reports become [`pb::PatchResult`]s, and a
+//! non-finite total is refused here, never sent.
+
+use crate::cli::case::{
+    Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection,
+    MaterialSection, Model, SolverSection, StepSection, TransientSection,
+};
+use crate::cli::report::{ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport};
+use crate::core::grid::Grid;
+use crate::core::material::Material;
+use crate::core::normal::NormalLoad;
+use crate::core::problem::Creepages;
+use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+use crate::service::pb;
+use crate::service::status::ServiceError;
+
+/// A validated patch case and its per-element extra gap (empty: none).
+pub struct ValidCase {
+    /// The case, as `railcontact solve` would run it.
+    pub case: Case,
+    /// `geometry.extra_gap_m` [m], nx * ny values or none.
+    pub extra_gap_m: Vec<f64>,
+}
+
+/// Limits of the server that a case must respect.
+#[derive(Debug, Clone, Copy)]
+pub struct CaseLimits {
+    /// Largest nx * ny of a grid.
+    pub max_grid_elements: usize,
+}
+
+/// The case model of a wire model.
+pub fn model(m: i32) -> Result<Model, ServiceError> {
+    match pb::Model::try_from(m) {
+        Ok(pb::Model::Unspecified | pb::Model::Exact) => Ok(Model::Exact),
+        Ok(pb::Model::Hertz) => Ok(Model::Hertz),
+        Ok(pb::Model::HertzCorrected) => Ok(Model::HertzCorrected),
+        Ok(pb::Model::Fastsim) => Ok(Model::Fastsim),
+        Ok(pb::Model::Cect) => Ok(Model::Cect),
+        Ok(pb::Model::CectHalfspace) => Ok(Model::CectHalfspace),
+        Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
+    }
+}
+
+/// The wire model of a case model.
+pub fn wire_model(m: Model) -> pb::Model {
+    match m {
+        Model::Hertz => pb::Model::Hertz,
+        Model::HertzCorrected => pb::Model::HertzCorrected,
+        Model::Fastsim => pb::Model::Fastsim,
+        Model::Exact => pb::Model::Exact,
+        Model::Cect => pb::Model::Cect,
+        Model::CectHalfspace => pb::Model::CectHalfspace,
+    }
+}
+
+fn material(m: &pb::Material) -> Material {
+    Material {
+        shear_modulus_pa: m.shear_modulus_pa,
+        poisson_ratio: m.poisson_ratio,
+    }
+}
+
+fn points(p: &[pb::ProfilePoint]) -> Option<Vec<[f64; 2]>> {
+    (!p.is_empty()).then(|| p.iter().map(|q| [q.y_m, q.z_m]).collect())
+}
+
+fn geometry(g: &pb::GeometrySection) -> Result<GeometrySection, ServiceError> {
+    let kind =
+        match pb::GeometryKind::try_from(g.kind) {
+            Ok(pb::GeometryKind::Quadratic) => GeometryKind::Quadratic,
+            Ok(pb::GeometryKind::ConformalCircular) => GeometryKind::ConformalCircular,
+            Ok(pb::GeometryKind::ConformalPoints) => GeometryKind::ConformalPoints,
+            _ => return Err(ServiceError::invalid(
+                "geometry.kind",
+                "missing: give GEOMETRY_KIND_QUADRATIC, _CONFORMAL_CIRCULAR or _CONFORMAL_POINTS",
+            )),
+        };
+    Ok(GeometrySection {
+        kind,
+        a_per_m: g.a_per_m,
+        b_per_m: g.b_per_m,
+        rail_lateral_radius_m: g.rail_lateral_radius_m,
+        wheel_lateral_radius_m: g.wheel_lateral_radius_m,
+        wheel_rolling_radius_m: g.wheel_rolling_radius_m,
+        rail_points_m: points(&g.rail_points_m),
+        wheel_points_m: points(&g.wheel_points_m),
+    })
+}
+
+/// The normal load of a wire load, `None` when not set.
+pub fn load(l: Option<&pb::load_section::Load>) -> Option<NormalLoad> {
+    l.map(|l| match *l {
+        pb::load_section::Load::NormalForceN(f) => NormalLoad::NormalForce(f),
+        pb::load_section::Load::ApproachM(d) => NormalLoad::Approach(d),
+    })
+}
+
+/// The core creepages of wire creepages.
+pub fn creepages(c: &pb::Creepages) -> Creepages {
+    Creepages {
+        creepage_long: c.creepage_long,
+        creepage_lat: c.creepage_lat,
+        spin_per_m: c.spin_per_m,
+    }
+}
+
+/// The wire creepages of core creepages.
+pub fn wire_creepages(c: &Creepages) -> pb::Creepages {
+    pb::Creepages {
+        creepage_long: c.creepage_long,
+        creepage_lat: c.creepage_lat,
+        spin_per_m: c.spin_per_m,
+    }
+}
+
+fn step_section(s: &pb::ShiftStep) -> StepSection {
+    StepSection {
+        shift_x_m: s.shift_x_m,
+        shift_y_m: s.shift_y_m,
+        rotation_rad: s.rotation_rad,
+        normal_force_n: s.normal_force_n,
+        approach_m: s.approach_m,
+    }
+}
+
+/// The case file a wire case stands for (not yet validated).
+pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
+    let m = c
+        .material
+        .as_ref()
+        .ok_or_else(|| ServiceError::invalid("material", "missing"))?;
+    let g = c
+        .geometry
+        .as_ref()
+        .ok_or_else(|| ServiceError::invalid("geometry", "missing"))?;
+    let (normal_force_n, approach_m) = match load(c.load.as_ref().and_then(|l| l.load.as_ref())) {
+        Some(NormalLoad::NormalForce(f)) => (Some(f), None),
+        Some(NormalLoad::Approach(d)) => (None, Some(d)),
+        None => (None, None),
+    };
+    let size = |n: Option<u32>| n.map(|n| n as usize);
+    Ok(CaseFile {
+        model: model(c.model)?,
+        material: MaterialSection {
+            shear_modulus_pa: m.shear_modulus_pa,
+            poisson_ratio: m.poisson_ratio,
+            body1: m.body1.as_ref().map(material),
+            body2: m.body2.as_ref().map(material),
+        },
+        friction: c.friction.as_ref().map(|f| FrictionSection {
+            coefficient: f.coefficient,
+            static_coefficient: f.static_coefficient,
+            kinetic_coefficient: f.kinetic_coefficient,
+        }),
+        geometry: geometry(g)?,
+        load: LoadSection {
+            normal_force_n,
+            approach_m,
+        },
+        rolling: match &c.kinematics {
+            Some(pb::patch_case::Kinematics::Rolling(r)) => Some(creepages(r)),
+            _ => None,
+        },
+        transient: match &c.kinematics {
+            Some(pb::patch_case::Kinematics::Transient(t)) => Some(TransientSection {
+                steps: t.steps.iter().map(step_section).collect(),
+            }),
+            _ => None,
+        },
+        grid: c.grid.as_ref().map(|g| GridSection {
+            nx: size(g.nx),
+            ny: size(g.ny),
+            window_x_m: g.window_x_m,
+            window_y_m: g.window_y_m,
+        }),
+        solver: c.solver.as_ref().map(|s| SolverSection {
+            normal_tolerance: s.normal_tolerance,
+            tangential_tolerance: s.tangential_tolerance,
+            max_iterations: size(s.max_iterations),
+            coupling_tolerance: s.coupling_tolerance,
+            coupling_max_iterations: size(s.coupling_max_iterations),
+        }),
+    })
+}
+
+/// Validates a wire case: the case file's rules, the server's grid limit
+/// and the extra gap. Field paths are relative to the case.
+pub fn validate_case(c: &pb::PatchCase, limits: CaseLimits) -> Result<ValidCase, ServiceError> {
+    let case = Case::from_file(case_file(c)?)?;
+    let elements = case.nx * case.ny;
+    if elements > limits.max_grid_elements {
+        return Err(ServiceError::invalid(
+            "grid.nx",
+            format!(
+                "the grid has {} x {} = {elements} elements, more than this server's limit of {}",
+                case.nx, case.ny, limits.max_grid_elements
+            ),
+        ));
+    }
+    let extra = c
+        .geometry
+        .as_ref()
+        .map(|g| g.extra_gap_m.clone())
+        .unwrap_or_default();
+    if !extra.is_empty() {
+        let key = "geometry.extra_gap_m";
+        if case.model != Model::Exact || case.geometry.is_conformal() {
+            return Err(ServiceError::invalid(
+                key,
+                "only the exact model on a quadratic geometry takes a per-element gap",
+            ));
+        }
+        let given = c
+            .grid
+            .as_ref()
+            .is_some_and(|g| g.nx.is_some() && g.ny.is_some());
+        if !given {
+            return Err(ServiceError::invalid(
+                key,
+                "give grid.nx and grid.ny with a per-element gap",
+            ));
+        }
+        if extra.len() != elements {
+            return Err(ServiceError::invalid(
+                key,
+                format!(
+                    "has {} values for a grid of {} x {} = {elements} elements",
+                    extra.len(),
+                    case.nx,
+                    case.ny
+                ),
+            ));
+        }
+        if let Some(i) = extra.iter().position(|v| !v.is_finite()) {
+            return Err(ServiceError::invalid(
+                format!("{key}[{i}]"),
+                "must be finite",
+            ));
+        }
+    }
+    Ok(ValidCase {
+        case,
+        extra_gap_m: extra,
+    })
+}
+
+/// Refuses `include_fields` for models without per-element fields (all but
+/// exact, cect and cect_halfspace).
+pub fn check_fields(case: &Case, fields: bool) -> Result<(), ServiceError> {
+    if fields && !(case.model == Model::Exact || case.model.is_cect()) {
+        return Err(ServiceError::invalid(
+            "include_fields",
+            format!(
+                "per-element fields come from the exact, cect and cect_halfspace models, not {}",
+                case.model.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The wire grid.
+pub fn grid_info(g: &Grid) -> pb::GridInfo {
+    pb::GridInfo {
+        nx: g.nx as u32,
+        ny: g.ny as u32,
+        element_size_x_m: g.dx_m,
+        element_size_y_m: g.dy_m,
+        x0_m: g.x0_m,
+        y0_m: g.y0_m,
+    }
+}
+
+fn totals(t: &Totals) -> pb::PatchTotals {
+    pb::PatchTotals {
+        normal_force_n: t.normal_force_n,
+        fx_n: t.fx_n,
+        fy_n: t.fy_n,
+        mz_nm: t.mz_nm,
+        approach_m: t.approach_m,
+        max_pressure_pa: t.max_pressure_pa,
+        max_traction_pa: t.max_traction_pa,
+        contact_area_m2: t.contact_area_m2,
+        patch_length_m: t.patch_length_m,
+        patch_width_m: t.patch_width_m,
+        adhesion_fraction: t.adhesion_fraction,
+        tgamma_n: t.tgamma_n,
+        frictional_work_j: t.frictional_work_j,
+    }
+}
+
+fn status(s: SolveStatus) -> i32 {
+    match s {
+        SolveStatus::Converged => pb::SolveStatus::Converged as i32,
+        SolveStatus::MaxIterations => pb::SolveStatus::MaxIterations as i32,
+    }
+}
+
+fn conformal(c: &ConformalKeys) -> pb::ConformalTotals {
+    pb::ConformalTotals {
+        contact_angle_variation_deg: c.contact_angle_variation_deg,
+        length_width_ratio: c.length_width_ratio,
+        normal_force_from_tractions_n: c.normal_force_from_tractions_n,
+        pressure_resultant_n: c.pressure_resultant_n,
+        fy_global_n: c.fy_global_n,
+        fz_global_n: c.fz_global_n,
+    }
+}
+
+/// The wire result of one exact-model solution: the report's figures and
+/// the core's counters that the report does not carry.
+pub fn step_of_solution(s: &ContactSolution) -> pb::StepResult {
+    let mut step = step_of_report(&StepReport::from_solution(s));
+    if let Some(info) = step.info.as_mut() {
+        info.coupling_iterations = s.info.coupling_iterations as u64;
+        info.matvecs = s.info.matvecs as u64;
+        info.normal_residual = s.info.normal_residual;
+        info.tangential_residual = s.info.tangential_residual;
+    }
+    step
+}
+
+/// The wire result of one step of a CLI report.
+pub fn step_of_report(r: &StepReport) -> pb::StepResult {
+    pb::StepResult {
+        totals: Some(totals(&r.totals)),
+        info: Some(pb::SolverInfo {
+            status: status(r.status),
+            normal_iterations: r.normal_iterations as u64,
+            tangential_iterations: r.tangential_iterations as u64,
+            coupling_iterations: r.conformal.and_then(|c| c.coupling_iterations).unwrap_or(0)
+                as u64,
+            solve_time_s: r.solve_time_s,
+            ..Default::default()
+        }),
+        conformal: r.conformal.as_ref().map(conformal),
+    }
+}
+
+fn element_state(s: &ElementState) -> i32 {
+    match s {
+        ElementState::Exterior => pb::ElementState::Exterior as i32,
+        ElementState::Adhesion => pb::ElementState::Adhesion as i32,
+        ElementState::Slip => pb::ElementState::Slip as i32,
+    }
+}
+
+/// The wire fields of a planar (exact) solution.
+pub fn planar_fields(f: &ElementFields) -> pb::ElementFields {
+    pb::ElementFields {
+        pressure_pa: f.pressure_pa.clone(),
+        traction_x_pa: f.traction_x_pa.clone(),
+        traction_y_pa: f.traction_y_pa.clone(),
+        slip_x: f.slip_x.clone(),
+        slip_y: f.slip_y.clone(),
+        state: f.state.iter().map(element_state).collect(),
+        gap_m: f.gap_m.clone(),
+        ..Default::default()
+    }
+}
+
+fn conformal_fields(f: &ConformalFieldsReport<'_>) -> pb::ElementFields {
+    pb::ElementFields {
+        pressure_pa: f.pressure_pa.to_vec(),
+        traction_x_pa: f.traction_x_pa.to_vec(),
+        traction_y_pa: f.traction_s_pa.to_vec(),
+        slip_x: f.slip_x.to_vec(),
+        slip_y: f.slip_s.to_vec(),
+        state: f.state.iter().map(element_state).collect(),
+        gap_m: f.gap_m.to_vec(),
+        delta_rad: f.delta_rad.to_vec(),
+        reference_points_m: f
+            .reference_yz_m
+            .iter()
+            .map(|p| pb::ProfilePoint {
+                y_m: p[0],
+                z_m: p[1],
+            })
+            .collect(),
+        wfric_lateral_j_per_m2: Vec::new(),
+    }
+}
+
+/// The wire result of a CLI report (models hertz, hertz_corrected,
+/// fastsim, cect, cect_halfspace). Steps are sent for multi-step cases.
+pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
+    let grid = match &r.fields {
+        Some(Fields::Conformal(f)) => Some(grid_info(f.grid)),
+        Some(Fields::Planar(f)) => Some(grid_info(f.grid)),
+        None => None,
+    };
+    let mut fields = r.fields.as_ref().map(|f| match f {
+        Fields::Planar(p) => planar_fields(p.fields),
+        Fields::Conformal(c) => conformal_fields(c),
+    });
+    if let (Some(f), Some(w)) = (fields.as_mut(), &r.wfric_lateral) {
+        f.wfric_lateral_j_per_m2 = w.w_j_per_m2.clone();
+    }
+    let steps = r.steps.as_deref().unwrap_or_default();
+    pb::PatchResult {
+        model: wire_model(r.model) as i32,
+        result: Some(step_of_report(&r.totals)),
+        steps: if steps.len() > 1 {
+            steps.iter().map(step_of_report).collect()
+        } else {
+            Vec::new()
+        },
+        friction_coefficient: r.friction_coefficient,
+        grid,
+        notes: r.notes.clone(),
+        fields,
+    }
+}
+
+/// Every value of a wire totals message, in field order.
+pub fn total_values(t: &pb::PatchTotals) -> [f64; 13] {
+    [
+        t.normal_force_n,
+        t.fx_n,
+        t.fy_n,
+        t.mz_nm,
+        t.approach_m,
+        t.max_pressure_pa,
+        t.max_traction_pa,
+        t.contact_area_m2,
+        t.patch_length_m,
+        t.patch_width_m,
+        t.adhesion_fraction,
+        t.tgamma_n,
+        t.frictional_work_j,
+    ]
+}
+
+/// Refuses a result with a non-finite total (a solver fault: never sent
+/// as silent NaN).
+pub fn check_finite(r: &pb::PatchResult) -> Result<(), ServiceError> {
+    for s in r.result.iter().chain(r.steps.iter()) {
+        let Some(t) = &s.totals else { continue };
+        if total_values(t).iter().any(|v| !v.is_finite()) {
+            return Err(ServiceError::Internal(format!(
+                "the solver produced a non-finite total ({t:?}); please report this case"
+            )));
+        }
+    }
+    Ok(())
+}

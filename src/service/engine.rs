@@ -1,0 +1,200 @@
+//! One contact patch as the service runs it: a validated case and, for the
+//! exact model, the problem and the [`ContactSolver`] that keeps warm
+//! starts and the transient history between calls.
+//!
+//! The exact model runs on the core directly (the solver must outlive one
+//! request: creep curves and sessions warm-start from it). The other
+//! models run through the same functions as `railcontact solve`, so the
+//! service and the command line give the same numbers; they keep no state
+//! between calls.
+//!
+//! An engine is plain synchronous code: the server moves it onto a solve
+//! thread and back.
+
+use crate::cli::case::{Case, Model};
+use crate::cli::conformal_models::ConformalRun;
+use crate::cli::reference_models as reference;
+use crate::core::cache::KernelCache;
+use crate::core::error::ContactError;
+use crate::core::normal::NormalLoad;
+use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
+use crate::core::solution::ContactSolution;
+use crate::core::solve::ContactSolver;
+use crate::service::convert::{self, ValidCase};
+use crate::service::pb;
+use crate::service::status::ServiceError;
+
+/// The exact model's persistent state.
+#[derive(Clone)]
+struct Exact {
+    problem: ContactProblem,
+    solver: ContactSolver,
+}
+
+/// A contact patch ready to solve. Cloning gives an independent engine in
+/// the same state (session marks).
+#[derive(Clone)]
+pub struct PatchEngine {
+    case: Case,
+    exact: Option<Exact>,
+    /// False once the exact solver rejected a solve after it had started
+    /// (the patch reached the grid border): its warm start and transient
+    /// history are then no longer those of the last good step.
+    history_intact: bool,
+}
+
+impl PatchEngine {
+    /// An engine for a validated case; the exact model fetches its kernels
+    /// from `cache` (built on a miss).
+    pub fn new(valid: ValidCase, cache: &KernelCache) -> Result<Self, ServiceError> {
+        let ValidCase { case, extra_gap_m } = valid;
+        let exact = if case.model == Model::Exact {
+            let mut problem = case.problem()?;
+            for (h, e) in problem.gap_m.iter_mut().zip(&extra_gap_m) {
+                *h += e;
+            }
+            let solver = ContactSolver::new(&problem, cache);
+            Some(Exact { problem, solver })
+        } else {
+            None
+        };
+        Ok(Self {
+            case,
+            exact,
+            history_intact: true,
+        })
+    }
+
+    /// The validated case.
+    pub fn case(&self) -> &Case {
+        &self.case
+    }
+
+    /// The potential contact grid of the exact and conformal models.
+    pub fn grid(&self) -> Option<pb::GridInfo> {
+        match self.case.model {
+            Model::Exact | Model::Cect | Model::CectHalfspace => {
+                self.case.grid().ok().map(|g| convert::grid_info(&g))
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the solver state is that of the last successful solve (see
+    /// [`ContactSolver::solve_next_step`] on rejected steps).
+    pub fn history_intact(&self) -> bool {
+        self.history_intact
+    }
+
+    /// Replaces the normal load of the next solves.
+    pub fn set_load(&mut self, load: NormalLoad) {
+        self.case.load = load;
+        if let Some(e) = &mut self.exact {
+            e.problem.load = load;
+        }
+    }
+
+    /// Replaces the creepages of a steady-rolling case.
+    pub fn set_creepages(&mut self, c: Creepages) {
+        self.case.kinematics = Kinematics::SteadyRolling(c);
+        if let Some(e) = &mut self.exact {
+            e.problem.kinematics = Kinematics::SteadyRolling(c);
+        }
+    }
+
+    /// Solves the case: one solution, or one per transient step (which
+    /// then start from the unloaded state). Steady-rolling and static
+    /// solves of the exact model warm-start from the previous solve.
+    pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
+        let result = match &mut self.exact {
+            Some(e) => {
+                let solved = e.solver.solve(&e.problem);
+                let solutions = self.note_rejection(solved)?;
+                self.exact_result(&solutions, fields)
+            }
+            None => {
+                let mut r = self.reference_result(fields)?;
+                r.notes.extend(self.case.notes.iter().cloned());
+                r
+            }
+        };
+        convert::check_finite(&result)?;
+        Ok(result)
+    }
+
+    /// Solves one more transient step of the exact model, from the state
+    /// the previous step left.
+    pub fn solve_next_step(
+        &mut self,
+        step: &ShiftStep,
+        fields: bool,
+    ) -> Result<pb::PatchResult, ServiceError> {
+        let e = self.exact.as_mut().ok_or_else(|| {
+            ServiceError::invalid("model", "transient sessions run the exact model only")
+        })?;
+        let solved = e.solver.solve_next_step(&e.problem, step);
+        let solution = self.note_rejection(solved)?;
+        let result = self.exact_result(std::slice::from_ref(&solution), fields);
+        convert::check_finite(&result)?;
+        Ok(result)
+    }
+
+    /// Passes a solver outcome on, noting a rejection that changed the
+    /// solver's state.
+    fn note_rejection<T>(&mut self, r: Result<T, ContactError>) -> Result<T, ServiceError> {
+        if let Err(ContactError::GridTooSmall { .. }) = &r {
+            self.history_intact = false;
+        }
+        Ok(r?)
+    }
+
+    /// The result of a model other than exact, through the functions of
+    /// `railcontact solve`.
+    fn reference_result(&self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
+        let case = &self.case;
+        let report = match case.model {
+            Model::Cect | Model::CectHalfspace => {
+                let run = ConformalRun::solve(case)?;
+                return Ok(convert::result_of_report(&run.report(case, fields)));
+            }
+            Model::HertzCorrected => reference::solve_conformal_hertz(case, true)?,
+            Model::Hertz if case.geometry.is_conformal() => {
+                reference::solve_conformal_hertz(case, false)?
+            }
+            Model::Hertz => reference::solve_hertz(case)?,
+            Model::Fastsim => reference::solve_fastsim(case)?,
+            Model::Exact => {
+                return Err(ServiceError::Internal(
+                    "the exact model has no reference path".into(),
+                ))
+            }
+        };
+        Ok(convert::result_of_report(&report))
+    }
+
+    /// The wire result of exact-model solutions (the last is the result).
+    fn exact_result(&self, solutions: &[ContactSolution], fields: bool) -> pb::PatchResult {
+        let case = &self.case;
+        let last = solutions.last();
+        let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
+        pb::PatchResult {
+            model: pb::Model::Exact as i32,
+            result: last.map(convert::step_of_solution),
+            steps: if solutions.len() > 1 {
+                solutions.iter().map(convert::step_of_solution).collect()
+            } else {
+                Vec::new()
+            },
+            friction_coefficient: if frictional {
+                case.friction.kinetic_coefficient
+            } else {
+                0.0
+            },
+            grid: self.grid(),
+            notes: case.notes.clone(),
+            fields: last
+                .filter(|_| fields)
+                .map(|s| convert::planar_fields(&s.fields)),
+        }
+    }
+}

@@ -1,0 +1,511 @@
+//! The `railcontact.v1.ContactService` handlers. Each is short: validate
+//! the request (on the reactor: microseconds), admit it to the solve pool,
+//! run the engine there, map the result. Field paths in errors are those
+//! of the request (`case.`, `items[3].case.`, `open.case.`, `step.`).
+
+use std::pin::Pin;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::Instant as StdInstant;
+
+use tokio::sync::mpsc;
+use tokio_stream::wrappers::ReceiverStream;
+use tokio_stream::Stream;
+use tonic::{Request, Response, Status, Streaming};
+use tracing::Instrument;
+
+use crate::cli::case::Model;
+use crate::core::cache::KernelCache;
+use crate::core::problem::{Creepages, Kinematics};
+use crate::service::convert::{self, CaseLimits};
+use crate::service::engine::PatchEngine;
+use crate::service::metrics::Metrics;
+use crate::service::pb;
+use crate::service::pool::{deadline_of, Admission, SolvePool};
+use crate::service::session::Session;
+use crate::service::status::ServiceError;
+
+/// Limits of the requests, from the server settings.
+#[derive(Debug, Clone, Copy)]
+pub struct RequestLimits {
+    /// Grid size.
+    pub case: CaseLimits,
+    /// Items of a batch.
+    pub max_batch_items: usize,
+    /// Points of a creep curve.
+    pub max_curve_points: usize,
+    /// Open sessions.
+    pub max_sessions: usize,
+}
+
+/// The service: shared by all connections.
+#[derive(Clone)]
+pub struct ContactHandlers {
+    pool: SolvePool,
+    limits: RequestLimits,
+    metrics: Arc<Metrics>,
+    sessions: Arc<AtomicUsize>,
+    next_id: Arc<AtomicU64>,
+}
+
+/// Messages buffered per streaming response before the solver waits for
+/// the client.
+const STREAM_BUFFER: usize = 8;
+
+type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send>>;
+
+impl ContactHandlers {
+    /// Handlers solving on `pool` within `limits`, counting into `metrics`.
+    pub fn new(pool: SolvePool, limits: RequestLimits, metrics: Arc<Metrics>) -> Self {
+        Self {
+            pool,
+            limits,
+            metrics,
+            sessions: Arc::new(AtomicUsize::new(0)),
+            next_id: Arc::new(AtomicU64::new(1)),
+        }
+    }
+
+    /// The client's `x-request-id`, or a new server id.
+    fn request_id<T>(&self, req: &Request<T>) -> String {
+        req.metadata()
+            .get("x-request-id")
+            .and_then(|v| v.to_str().ok())
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("r{}", self.next_id.fetch_add(1, Ordering::Relaxed)))
+    }
+
+    /// Validates and solves one patch on an admitted slot; errors carry
+    /// field paths under `prefix`.
+    async fn solve_one(
+        &self,
+        admission: &Admission,
+        req: pb::SolvePatchRequest,
+        prefix: &str,
+    ) -> Result<pb::PatchResult, ServiceError> {
+        let case = req
+            .case
+            .as_ref()
+            .ok_or_else(|| ServiceError::invalid("case", "missing"))
+            .map_err(|e| e.within(prefix))?;
+        let valid = convert::validate_case(case, self.limits.case)
+            .map_err(|e| e.within(&join(prefix, "case")))?;
+        convert::check_fields(&valid.case, req.include_fields).map_err(|e| e.within(prefix))?;
+        let model = valid.case.model;
+        let fields = req.include_fields;
+        let t0 = StdInstant::now();
+        let result = admission
+            .run(move || PatchEngine::new(valid, KernelCache::global())?.solve(fields))
+            .await
+            .and_then(|r| r)
+            .map_err(|e| e.within(&join(prefix, "case")));
+        self.metrics
+            .solved(model, t0.elapsed().as_secs_f64(), result.is_ok());
+        result
+    }
+}
+
+/// `prefix.name`, or `name` without a prefix.
+fn join(prefix: &str, name: &str) -> String {
+    if prefix.is_empty() {
+        name.to_string()
+    } else {
+        format!("{prefix}.{name}")
+    }
+}
+
+/// Timing and outcome of one call, into the metrics.
+fn finish<T>(
+    metrics: &Metrics,
+    method: &'static str,
+    t0: StdInstant,
+    r: Result<T, ServiceError>,
+) -> Result<T, Status> {
+    metrics.request(
+        method,
+        t0.elapsed().as_secs_f64(),
+        r.as_ref().err().map(|e| e.code()),
+    );
+    if let Err(e) = &r {
+        tracing::info!(code = ?e.code(), error = %e, "request failed");
+    }
+    r.map_err(Status::from)
+}
+
+#[tonic::async_trait]
+impl pb::contact_service_server::ContactService for ContactHandlers {
+    async fn solve_patch(
+        &self,
+        req: Request<pb::SolvePatchRequest>,
+    ) -> Result<Response<pb::SolvePatchResponse>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("SolvePatch", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let r = async {
+            let admission = self.pool.admit(deadline)?;
+            let result = self.solve_one(&admission, req.into_inner(), "").await?;
+            Ok(pb::SolvePatchResponse {
+                result: Some(result),
+            })
+        }
+        .instrument(span)
+        .await;
+        finish(&self.metrics, "SolvePatch", t0, r).map(Response::new)
+    }
+
+    async fn solve_patch_batch(
+        &self,
+        req: Request<pb::SolvePatchBatchRequest>,
+    ) -> Result<Response<pb::SolvePatchBatchResponse>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("SolvePatchBatch", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let r = async {
+            let items = req.into_inner().items;
+            if items.len() > self.limits.max_batch_items {
+                return Err(ServiceError::invalid(
+                    "items",
+                    format!(
+                        "{} items, more than this server's limit of {} per batch: split the batch",
+                        items.len(),
+                        self.limits.max_batch_items
+                    ),
+                ));
+            }
+            // One queue slot for the batch; its items share the workers.
+            let admission = Arc::new(self.pool.admit(deadline)?);
+            let mut tasks = tokio::task::JoinSet::new();
+            for (i, item) in items.into_iter().enumerate() {
+                let this = self.clone();
+                let admission = admission.clone();
+                tasks.spawn(
+                    async move {
+                        let r = this
+                            .solve_one(&admission, item, &format!("items[{i}]"))
+                            .await;
+                        (i, r)
+                    }
+                    .in_current_span(),
+                );
+            }
+            let mut slots = Vec::with_capacity(tasks.len());
+            while let Some(done) = tasks.join_next().await {
+                let (i, r) =
+                    done.map_err(|e| ServiceError::Internal(format!("batch item: {e}")))?;
+                slots.push(pb::BatchItemResult {
+                    index: i as u32,
+                    outcome: Some(match r {
+                        Ok(result) => pb::batch_item_result::Outcome::Result(result),
+                        Err(e) => pb::batch_item_result::Outcome::Error(e.item_error()),
+                    }),
+                });
+            }
+            slots.sort_by_key(|s| s.index);
+            Ok(pb::SolvePatchBatchResponse { items: slots })
+        }
+        .instrument(span)
+        .await;
+        finish(&self.metrics, "SolvePatchBatch", t0, r).map(Response::new)
+    }
+
+    type CreepCurveStream = BoxStream<pb::CreepCurvePoint>;
+
+    async fn creep_curve(
+        &self,
+        req: Request<pb::CreepCurveRequest>,
+    ) -> Result<Response<Self::CreepCurveStream>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("CreepCurve", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let prepared = async {
+            let req = req.into_inner();
+            let points = sweep_points(&req, self.limits.max_curve_points)?;
+            let case = req
+                .case
+                .as_ref()
+                .ok_or_else(|| ServiceError::invalid("case", "missing"))?;
+            let valid = convert::validate_case(case, self.limits.case)
+                .map_err(|e| e.within("case"))?;
+            convert::check_fields(&valid.case, req.include_fields)?;
+            if !matches!(valid.case.kinematics, Kinematics::SteadyRolling(_)) {
+                return Err(ServiceError::invalid(
+                    "case.rolling",
+                    "missing: a creep curve is a steady-rolling sweep; set `rolling` (its creepages are replaced by the sweep's)",
+                ));
+            }
+            if matches!(valid.case.model, Model::Hertz | Model::HertzCorrected) {
+                return Err(ServiceError::invalid(
+                    "case.model",
+                    "the Hertz models compute no tangential forces: use exact, fastsim, cect or cect_halfspace",
+                ));
+            }
+            let admission = self.pool.admit(deadline)?;
+            Ok((valid, points, req.include_fields, admission))
+        }
+        .instrument(span.clone())
+        .await;
+        let (valid, points, fields, admission) = finish(&self.metrics, "CreepCurve", t0, prepared)?;
+        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let metrics = self.metrics.clone();
+        tokio::spawn(
+            async move {
+                let model = valid.case.model;
+                let built = admission
+                    .run(move || PatchEngine::new(valid, KernelCache::global()))
+                    .await
+                    .and_then(|r| r);
+                let mut engine = match built {
+                    Ok(e) => e,
+                    Err(e) => {
+                        let _ = tx.send(Err(Status::from(e.within("case")))).await;
+                        return;
+                    }
+                };
+                for (index, c) in points.into_iter().enumerate() {
+                    let t = StdInstant::now();
+                    let solved = admission
+                        .run(move || {
+                            engine.set_creepages(c);
+                            let r = engine.solve(fields);
+                            (engine, r)
+                        })
+                        .await;
+                    let r = match solved {
+                        Ok((e, r)) => {
+                            engine = e;
+                            r
+                        }
+                        Err(e) => {
+                            let _ = tx.send(Err(Status::from(e))).await;
+                            return;
+                        }
+                    };
+                    metrics.solved(model, t.elapsed().as_secs_f64(), r.is_ok());
+                    let msg = r
+                        .map(|result| pb::CreepCurvePoint {
+                            index: index as u32,
+                            creepages: Some(convert::wire_creepages(&c)),
+                            result: Some(result),
+                        })
+                        .map_err(|e| Status::from(e.within("case")));
+                    let failed = msg.is_err();
+                    if tx.send(msg).await.is_err() || failed {
+                        return;
+                    }
+                }
+            }
+            .instrument(span),
+        );
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+
+    type PatchSessionStream = BoxStream<pb::SessionResponse>;
+
+    async fn patch_session(
+        &self,
+        req: Request<Streaming<pb::SessionRequest>>,
+    ) -> Result<Response<Self::PatchSessionStream>, Status> {
+        let session_id = format!("s{}", self.next_id.fetch_add(1, Ordering::Relaxed));
+        let span = tracing::info_span!("PatchSession", request_id = %self.request_id(&req), session_id = %session_id);
+        let mut inbound = req.into_inner();
+        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let this = self.clone();
+        tokio::spawn(
+            async move {
+                if let Err(status) = this.run_session(&mut inbound, &tx, session_id).await {
+                    let _ = tx.send(Err(status)).await;
+                }
+            }
+            .instrument(span),
+        );
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+}
+
+/// Decrements the open-session count when a session ends, however it ends.
+struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>);
+
+impl Drop for SessionSlot {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::Relaxed);
+        self.1.session_closed();
+    }
+}
+
+type SessionTx = mpsc::Sender<Result<pb::SessionResponse, Status>>;
+
+fn reply(kind: pb::session_response::Kind) -> Result<pb::SessionResponse, Status> {
+    Ok(pb::SessionResponse { kind: Some(kind) })
+}
+
+impl ContactHandlers {
+    /// Runs one session until the client closes its stream. Refused steps
+    /// are answered in-band; an `Err` ends the stream with that status.
+    async fn run_session(
+        &self,
+        inbound: &mut Streaming<pb::SessionRequest>,
+        tx: &SessionTx,
+        session_id: String,
+    ) -> Result<(), Status> {
+        use pb::session_request::Kind;
+        use pb::session_response::Kind as Out;
+        let open = match inbound.message().await? {
+            Some(pb::SessionRequest {
+                kind: Some(Kind::Open(open)),
+            }) => open,
+            Some(_) => {
+                return Err(ServiceError::invalid(
+                    "open",
+                    "the first message of a session must be `open`",
+                )
+                .into())
+            }
+            None => return Ok(()),
+        };
+        if self.sessions.fetch_add(1, Ordering::Relaxed) >= self.limits.max_sessions {
+            self.sessions.fetch_sub(1, Ordering::Relaxed);
+            return Err(ServiceError::Exhausted(format!(
+                "{} sessions are open, this server's limit; close one or retry later",
+                self.limits.max_sessions
+            ))
+            .into());
+        }
+        self.metrics.session_opened();
+        let _slot = SessionSlot(self.sessions.clone(), self.metrics.clone());
+        let case = open
+            .case
+            .as_ref()
+            .ok_or_else(|| ServiceError::invalid("open.case", "missing"))?;
+        let valid =
+            convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
+        let model = valid.case.model;
+        let fields = open.include_fields;
+        let admission = self.pool.admit(None)?;
+        let mut session = admission
+            .run(move || {
+                let engine =
+                    PatchEngine::new(valid, KernelCache::global()).map_err(|e| e.within("case"))?;
+                Session::open(engine, fields)
+            })
+            .await
+            .and_then(|r| r)
+            .map_err(|e| e.within("open"))?;
+        drop(admission);
+        tracing::info!(label = %open.client_label, model = model.name(), kind = ?session.kind(), "session opened");
+        let opened = Out::Opened(pb::SessionOpened {
+            session_id,
+            model: convert::wire_model(model) as i32,
+            grid: session.engine().grid(),
+            notes: session.engine().case().notes.clone(),
+        });
+        if tx.send(reply(opened)).await.is_err() {
+            return Ok(());
+        }
+        while let Some(msg) = inbound.message().await? {
+            let out = match msg.kind {
+                Some(Kind::Step(step)) => {
+                    let t0 = StdInstant::now();
+                    let (s, r) = self.session_step(session, &step).await?;
+                    session = s;
+                    self.metrics
+                        .solved(model, t0.elapsed().as_secs_f64(), r.is_ok());
+                    r.map(Out::Step)
+                }
+                Some(Kind::Rollback(r)) => session.rollback(r.to_step_index).map(Out::RolledBack),
+                Some(Kind::Open(_)) => Err(ServiceError::Precondition(
+                    "the session is already open: send steps or a rollback".into(),
+                )),
+                None => Err(ServiceError::invalid("kind", "missing: step or rollback")),
+            };
+            let out = out.unwrap_or_else(|e| {
+                tracing::debug!(error = %e, "session request refused");
+                Out::Error(e.item_error())
+            });
+            if tx.send(reply(out)).await.is_err() {
+                break;
+            }
+        }
+        tracing::info!(next_step = session.next_step(), "session closed");
+        Ok(())
+    }
+
+    /// Checks and solves one step on the pool. The session comes back with
+    /// the step's outcome; an `Err` (a solve thread failed) ends the session.
+    async fn session_step(
+        &self,
+        mut session: Session,
+        step: &pb::SessionStep,
+    ) -> Result<(Session, Result<pb::SessionStepResult, ServiceError>), Status> {
+        let input = match session.check_step(step) {
+            Ok(i) => i,
+            Err(e) => return Ok((session, Err(e))),
+        };
+        let admission = match self.pool.admit(None) {
+            Ok(a) => a,
+            Err(e) => return Ok((session, Err(e))),
+        };
+        let (session, r) = admission
+            .run(move || {
+                let r = session.step(input);
+                (session, r)
+            })
+            .await?;
+        Ok((session, r))
+    }
+}
+
+/// The creepages of a sweep, checked; field paths relative to the request.
+fn sweep_points(req: &pb::CreepCurveRequest, max: usize) -> Result<Vec<Creepages>, ServiceError> {
+    use pb::creep_curve_request::Sweep;
+    let check = |c: &pb::Creepages, key: String| {
+        let c = convert::creepages(c);
+        c.validate()
+            .map_err(|e| ServiceError::from(e).rekey("rolling", &key))?;
+        Ok::<_, ServiceError>(c)
+    };
+    let points: Vec<Creepages> = match &req.sweep {
+        None => {
+            return Err(ServiceError::invalid(
+                "sweep",
+                "missing: give `linear` or `list`",
+            ))
+        }
+        Some(Sweep::List(l)) => {
+            if l.points.is_empty() || l.points.len() > max {
+                return Err(ServiceError::invalid(
+                    "list.points",
+                    format!("needs 1 to {max} points, got {}", l.points.len()),
+                ));
+            }
+            l.points
+                .iter()
+                .enumerate()
+                .map(|(k, c)| check(c, format!("list.points[{k}]")))
+                .collect::<Result<_, _>>()?
+        }
+        Some(Sweep::Linear(l)) => {
+            let n = l.points as usize;
+            if !(2..=max).contains(&n) {
+                return Err(ServiceError::invalid(
+                    "linear.points",
+                    format!("needs 2 to {max} points, got {n}"),
+                ));
+            }
+            let zero = pb::Creepages::default();
+            let a = check(l.from.as_ref().unwrap_or(&zero), "linear.from".into())?;
+            let b = check(l.to.as_ref().unwrap_or(&zero), "linear.to".into())?;
+            let at = |u: f64, p: f64, q: f64| p + u * (q - p);
+            (0..n)
+                .map(|k| {
+                    let u = k as f64 / (n - 1) as f64;
+                    Creepages {
+                        creepage_long: at(u, a.creepage_long, b.creepage_long),
+                        creepage_lat: at(u, a.creepage_lat, b.creepage_lat),
+                        spin_per_m: at(u, a.spin_per_m, b.spin_per_m),
+                    }
+                })
+                .collect()
+        }
+    };
+    Ok(points)
+}

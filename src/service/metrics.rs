@@ -1,0 +1,183 @@
+//! Prometheus metrics of the server, in the text exposition format, served
+//! on their own port (`metrics_listen`) by a minimal HTTP responder:
+//!
+//! | metric | labels | what |
+//! |---|---|---|
+//! | `railcontact_requests_total` | `method`, `code` | finished calls by gRPC status |
+//! | `railcontact_request_duration_seconds` | `method` | latency histogram of unary calls and stream set-up |
+//! | `railcontact_solve_duration_seconds` | `model`, `outcome` | histogram of each solve (batch items, curve points, session steps) |
+//! | `railcontact_sessions_active` | | open co-simulation sessions |
+//! | `railcontact_sessions_opened_total` | | sessions opened |
+//! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
+//! | `railcontact_kernel_cache_hits_total`, `..._misses_total` | | influence-kernel cache |
+//!
+//! The counters sit behind one short-held mutex (never held across a solve).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::sync::Mutex;
+
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::TcpListener;
+
+use crate::cli::case::Model;
+use crate::core::cache::KernelCache;
+use crate::service::pool::SolvePool;
+
+/// Upper bounds of the latency buckets [s].
+const BUCKETS_S: [f64; 14] = [
+    50e-6, 100e-6, 250e-6, 500e-6, 1e-3, 2.5e-3, 5e-3, 10e-3, 25e-3, 50e-3, 0.1, 0.5, 2.0, 10.0,
+];
+
+#[derive(Default, Clone)]
+struct Histogram {
+    counts: [u64; BUCKETS_S.len()],
+    count: u64,
+    sum_s: f64,
+}
+
+impl Histogram {
+    fn observe(&mut self, v: f64) {
+        for (c, b) in self.counts.iter_mut().zip(BUCKETS_S) {
+            if v <= b {
+                *c += 1;
+            }
+        }
+        self.count += 1;
+        self.sum_s += v;
+    }
+
+    fn render(&self, out: &mut String, name: &str, labels: &str) {
+        let sep = if labels.is_empty() { "" } else { "," };
+        for (c, b) in self.counts.iter().zip(BUCKETS_S) {
+            let _ = writeln!(out, "{name}_bucket{{{labels}{sep}le=\"{b}\"}} {c}");
+        }
+        let _ = writeln!(
+            out,
+            "{name}_bucket{{{labels}{sep}le=\"+Inf\"}} {}",
+            self.count
+        );
+        let _ = writeln!(out, "{name}_sum{{{labels}}} {}", self.sum_s);
+        let _ = writeln!(out, "{name}_count{{{labels}}} {}", self.count);
+    }
+}
+
+#[derive(Default)]
+struct Counters {
+    requests: BTreeMap<(&'static str, String), u64>,
+    latency: BTreeMap<&'static str, Histogram>,
+    solves: BTreeMap<(&'static str, &'static str), Histogram>,
+    sessions_active: u64,
+    sessions_opened: u64,
+}
+
+/// The server's metrics.
+#[derive(Default)]
+pub struct Metrics {
+    counters: Mutex<Counters>,
+}
+
+impl Metrics {
+    fn with<R>(&self, f: impl FnOnce(&mut Counters) -> R) -> R {
+        f(&mut self.counters.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+
+    /// A finished call of `method` that took `seconds`; `error` its code
+    /// when it failed.
+    pub fn request(&self, method: &'static str, seconds: f64, error: Option<tonic::Code>) {
+        let code = format!("{:?}", error.unwrap_or(tonic::Code::Ok));
+        self.with(|c| {
+            *c.requests.entry((method, code)).or_default() += 1;
+            c.latency.entry(method).or_default().observe(seconds);
+        });
+    }
+
+    /// One solve of `model` that took `seconds`.
+    pub fn solved(&self, model: Model, seconds: f64, ok: bool) {
+        let outcome = if ok { "ok" } else { "error" };
+        self.with(|c| {
+            c.solves
+                .entry((model.name(), outcome))
+                .or_default()
+                .observe(seconds)
+        });
+    }
+
+    /// A session was opened.
+    pub fn session_opened(&self) {
+        self.with(|c| {
+            c.sessions_active += 1;
+            c.sessions_opened += 1;
+        });
+    }
+
+    /// A session ended.
+    pub fn session_closed(&self) {
+        self.with(|c| c.sessions_active = c.sessions_active.saturating_sub(1));
+    }
+
+    /// The exposition text, with the pool's and the kernel cache's figures.
+    pub fn render(&self, pool: &SolvePool, cache: &KernelCache) -> String {
+        let mut o = String::new();
+        self.with(|c| {
+            o.push_str("# HELP railcontact_requests_total Finished gRPC calls.\n# TYPE railcontact_requests_total counter\n");
+            for ((m, code), n) in &c.requests {
+                let _ = writeln!(o, "railcontact_requests_total{{method=\"{m}\",code=\"{code}\"}} {n}");
+            }
+            o.push_str("# HELP railcontact_request_duration_seconds Latency of calls [s].\n# TYPE railcontact_request_duration_seconds histogram\n");
+            for (m, h) in &c.latency {
+                h.render(&mut o, "railcontact_request_duration_seconds", &format!("method=\"{m}\""));
+            }
+            o.push_str("# HELP railcontact_solve_duration_seconds Duration of single solves [s].\n# TYPE railcontact_solve_duration_seconds histogram\n");
+            for ((model, outcome), h) in &c.solves {
+                h.render(
+                    &mut o,
+                    "railcontact_solve_duration_seconds",
+                    &format!("model=\"{model}\",outcome=\"{outcome}\""),
+                );
+            }
+            let _ = writeln!(o, "# TYPE railcontact_sessions_active gauge\nrailcontact_sessions_active {}", c.sessions_active);
+            let _ = writeln!(o, "# TYPE railcontact_sessions_opened_total counter\nrailcontact_sessions_opened_total {}", c.sessions_opened);
+        });
+        let (hits, misses) = cache.stats();
+        let _ = writeln!(
+            o,
+            "# TYPE railcontact_solve_queue_admitted gauge\nrailcontact_solve_queue_admitted {}",
+            pool.admitted()
+        );
+        let _ = writeln!(o, "# TYPE railcontact_kernel_cache_hits_total counter\nrailcontact_kernel_cache_hits_total {hits}");
+        let _ = writeln!(o, "# TYPE railcontact_kernel_cache_misses_total counter\nrailcontact_kernel_cache_misses_total {misses}");
+        o
+    }
+}
+
+/// Serves `GET /metrics` on `listener` until the task is dropped.
+pub async fn serve_metrics(
+    listener: TcpListener,
+    metrics: std::sync::Arc<Metrics>,
+    pool: SolvePool,
+) {
+    loop {
+        let Ok((mut stream, _)) = listener.accept().await else {
+            continue;
+        };
+        let metrics = metrics.clone();
+        let pool = pool.clone();
+        tokio::spawn(async move {
+            let mut buf = vec![0u8; 4096];
+            let n = stream.read(&mut buf).await.unwrap_or(0);
+            let head = String::from_utf8_lossy(&buf[..n]);
+            let response = if head.starts_with("GET /metrics") {
+                let body = metrics.render(&pool, KernelCache::global());
+                format!(
+                    "HTTP/1.1 200 OK\r\ncontent-type: text/plain; version=0.0.4\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{body}",
+                    body.len()
+                )
+            } else {
+                "HTTP/1.1 404 Not Found\r\ncontent-length: 0\r\nconnection: close\r\n\r\n"
+                    .to_string()
+            };
+            let _ = stream.write_all(response.as_bytes()).await;
+        });
+    }
+}

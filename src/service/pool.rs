@@ -1,0 +1,182 @@
+//! Where the solves run: off the async runtime, on tokio's blocking
+//! threads, at most `workers` at a time, behind a bounded queue.
+//!
+//! Why this shape: a solve is CPU-bound for microseconds (Hertz) to
+//! seconds (large exact grids). Running it on the reactor would stall
+//! every other connection, so each goes to `spawn_blocking`; a semaphore
+//! of `workers` permits (default: the cores) keeps them from oversubscribing
+//! the CPU. Admission is a second semaphore of `queue_capacity` slots
+//! (running plus waiting): a request that finds it full is refused at
+//! once with RESOURCE_EXHAUSTED instead of queueing without bound. A batch
+//! or a creep curve takes one slot and runs its items on the worker
+//! permits. No lock is held across a solve.
+//!
+//! Deadlines: a request that waited past its deadline is not started; one
+//! that is running when the deadline passes is answered with
+//! DEADLINE_EXCEEDED at once, while its thread finishes in the background
+//! (the core has no cancellation hook yet) and keeps its permit until then.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::sync::{OwnedSemaphorePermit, Semaphore};
+use tokio::time::Instant;
+
+use crate::service::status::ServiceError;
+
+/// The solve pool (cheap to clone: shared semaphores).
+#[derive(Clone)]
+pub struct SolvePool {
+    workers: Arc<Semaphore>,
+    queue: Arc<Semaphore>,
+    capacity: usize,
+}
+
+/// An admitted request: holds a queue slot until dropped.
+pub struct Admission {
+    pool: SolvePool,
+    deadline: Option<Instant>,
+    _slot: OwnedSemaphorePermit,
+}
+
+impl SolvePool {
+    /// A pool running at most `workers` solves at once, with at most
+    /// `queue_capacity` requests admitted (at least `workers`).
+    pub fn new(workers: usize, queue_capacity: usize) -> Self {
+        let workers = workers.max(1);
+        let capacity = queue_capacity.max(workers);
+        Self {
+            workers: Arc::new(Semaphore::new(workers)),
+            queue: Arc::new(Semaphore::new(capacity)),
+            capacity,
+        }
+    }
+
+    /// Admits a request with an optional deadline, or refuses it when the
+    /// queue is full.
+    pub fn admit(&self, deadline: Option<Instant>) -> Result<Admission, ServiceError> {
+        let slot = self.queue.clone().try_acquire_owned().map_err(|_| {
+            ServiceError::Exhausted(format!(
+                "the solve queue is full ({} requests admitted); retry with backoff",
+                self.capacity
+            ))
+        })?;
+        Ok(Admission {
+            pool: self.clone(),
+            deadline,
+            _slot: slot,
+        })
+    }
+
+    /// Requests admitted now (running or waiting).
+    pub fn admitted(&self) -> usize {
+        self.capacity - self.queue.available_permits()
+    }
+}
+
+impl Admission {
+    /// Runs `f` on a solve thread when a worker is free; errors when the
+    /// deadline passes first, or when `f` panicked (a server fault).
+    pub async fn run<T, F>(&self, f: F) -> Result<T, ServiceError>
+    where
+        T: Send + 'static,
+        F: FnOnce() -> T + Send + 'static,
+    {
+        let workers = self.pool.workers.clone();
+        let deadline = self.deadline;
+        let work = async move {
+            let permit = workers
+                .acquire_owned()
+                .await
+                .map_err(|_| ServiceError::Unavailable("the solve pool is closed".into()))?;
+            if deadline.is_some_and(|d| Instant::now() >= d) {
+                return Err(expired());
+            }
+            tokio::task::spawn_blocking(move || {
+                let _permit = permit;
+                f()
+            })
+            .await
+            .map_err(|e| ServiceError::Internal(format!("a solve failed: {e}")))
+        };
+        match deadline {
+            Some(d) => tokio::time::timeout_at(d, work)
+                .await
+                .map_err(|_| expired())?,
+            None => work.await,
+        }
+    }
+}
+
+fn expired() -> ServiceError {
+    ServiceError::Deadline("the deadline passed before the solve finished".into())
+}
+
+/// The deadline of a request from its `grpc-timeout` header: a little
+/// before the client's own, so that DEADLINE_EXCEEDED reaches it in time
+/// (tonic's transport would otherwise answer CANCELLED when the header's
+/// time is up).
+pub fn deadline_of(metadata: &tonic::metadata::MetadataMap) -> Option<Instant> {
+    let v = metadata.get("grpc-timeout")?.to_str().ok()?;
+    let (digits, unit) = v.split_at(v.len().checked_sub(1)?);
+    let n: u64 = digits.parse().ok()?;
+    let timeout = match unit {
+        "H" => Duration::from_secs(n.saturating_mul(3600)),
+        "M" => Duration::from_secs(n.saturating_mul(60)),
+        "S" => Duration::from_secs(n),
+        "m" => Duration::from_millis(n),
+        "u" => Duration::from_micros(n),
+        "n" => Duration::from_nanos(n),
+        _ => return None,
+    };
+    // 10 % of the timeout, 2 ms to 100 ms (at most half of it): covers the
+    // time from the transport's timer start to here and a busy runtime.
+    let margin = (timeout / 10)
+        .clamp(Duration::from_millis(2), Duration::from_millis(100))
+        .min(timeout / 2);
+    Some(Instant::now() + timeout.saturating_sub(margin))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[tokio::test]
+    async fn a_full_queue_refuses_and_frees_its_slots() {
+        let pool = SolvePool::new(1, 2);
+        let a = pool.admit(None).unwrap();
+        let _b = pool.admit(None).unwrap();
+        let third = pool.admit(None);
+        assert!(matches!(third, Err(ServiceError::Exhausted(_))));
+        assert_eq!(a.run(|| 2 + 2).await.unwrap(), 4);
+        drop(a);
+        assert_eq!(pool.admitted(), 1);
+        assert!(pool.admit(None).is_ok());
+    }
+
+    #[tokio::test]
+    async fn a_passed_deadline_is_not_started_and_a_panic_is_internal() {
+        let pool = SolvePool::new(1, 4);
+        let late = pool.admit(Some(Instant::now())).unwrap();
+        let r = late.run(|| 1).await;
+        assert!(matches!(r, Err(ServiceError::Deadline(_))), "{r:?}");
+        let a = pool.admit(None).unwrap();
+        let r: Result<(), _> = a.run(|| panic!("boom")).await;
+        assert!(matches!(r, Err(ServiceError::Internal(_))), "{r:?}");
+    }
+
+    #[test]
+    fn grpc_timeout_header_units() {
+        let mut m = tonic::metadata::MetadataMap::new();
+        assert!(deadline_of(&m).is_none());
+        m.insert("grpc-timeout", "2S".parse().unwrap());
+        let d = deadline_of(&m).unwrap() - Instant::now();
+        // 2 s less the 100 ms margin (10 %, capped).
+        assert!(
+            d > Duration::from_millis(1800) && d <= Duration::from_millis(1900),
+            "{d:?}"
+        );
+        m.insert("grpc-timeout", "oops".parse().unwrap());
+        assert!(deadline_of(&m).is_none());
+    }
+}

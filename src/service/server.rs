@@ -1,0 +1,176 @@
+//! Starting, running and stopping the server: the gRPC service with health
+//! checking and reflection, and the optional metrics port.
+//!
+//! Shutdown is graceful: on SIGTERM or Ctrl-C (or [`RunningServer::shutdown`])
+//! the health service reports NOT_SERVING, the listener stops accepting,
+//! in-flight calls and open sessions get `shutdown_grace_s` to finish, and
+//! whatever is left is then dropped.
+
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+
+use tokio::net::TcpListener;
+use tokio::sync::oneshot;
+use tokio::task::JoinHandle;
+use tokio_stream::wrappers::TcpListenerStream;
+
+use crate::service::config::ServeConfig;
+use crate::service::convert::CaseLimits;
+use crate::service::handlers::{ContactHandlers, RequestLimits};
+use crate::service::metrics::{serve_metrics, Metrics};
+use crate::service::pb;
+use crate::service::pb::contact_service_server::ContactServiceServer;
+use crate::service::pool::SolvePool;
+
+/// A server running on the current tokio runtime.
+pub struct RunningServer {
+    /// The gRPC address it listens on (the real port when 0 was asked).
+    pub addr: SocketAddr,
+    /// The metrics address, if any.
+    pub metrics_addr: Option<SocketAddr>,
+    stop: oneshot::Sender<()>,
+    task: JoinHandle<Result<(), tonic::transport::Error>>,
+    metrics_task: Option<JoinHandle<()>>,
+    health: tonic_health::server::HealthReporter,
+    grace: Duration,
+}
+
+/// Binds the ports and starts serving `config` on the current runtime.
+pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
+    let workers = config.worker_count();
+    let pool = SolvePool::new(workers, config.queue_count());
+    let metrics = Arc::new(Metrics::default());
+    let limits = RequestLimits {
+        case: CaseLimits {
+            max_grid_elements: config.max_grid_elements,
+        },
+        max_batch_items: config.max_batch_items,
+        max_curve_points: config.max_curve_points,
+        max_sessions: config.max_sessions,
+    };
+    let handlers = ContactHandlers::new(pool.clone(), limits, metrics.clone());
+    let (health, health_service) = tonic_health::server::health_reporter();
+    health
+        .set_serving::<ContactServiceServer<ContactHandlers>>()
+        .await;
+    let reflection = |b: tonic_reflection::server::Builder<'static>| {
+        b.register_encoded_file_descriptor_set(pb::FILE_DESCRIPTOR_SET)
+            .register_encoded_file_descriptor_set(tonic_health::pb::FILE_DESCRIPTOR_SET)
+    };
+    let reflection_v1 = reflection(tonic_reflection::server::Builder::configure())
+        .build_v1()
+        .map_err(std::io::Error::other)?;
+    let reflection_v1alpha = reflection(tonic_reflection::server::Builder::configure())
+        .build_v1alpha()
+        .map_err(std::io::Error::other)?;
+    let service = ContactServiceServer::new(handlers)
+        .max_decoding_message_size(config.max_message_bytes)
+        .max_encoding_message_size(config.max_message_bytes);
+
+    let listener = TcpListener::bind(config.listen).await?;
+    let addr = listener.local_addr()?;
+    let (metrics_addr, metrics_task) = match config.metrics_listen {
+        Some(a) => {
+            let l = TcpListener::bind(a).await?;
+            let bound = l.local_addr()?;
+            let task = tokio::spawn(serve_metrics(l, metrics, pool));
+            (Some(bound), Some(task))
+        }
+        None => (None, None),
+    };
+    let (stop, stopped) = oneshot::channel::<()>();
+    let task = tokio::spawn(
+        tonic::transport::Server::builder()
+            .trace_fn(|req| tracing::info_span!("grpc", path = %req.uri().path()))
+            .add_service(health_service)
+            .add_service(reflection_v1)
+            .add_service(reflection_v1alpha)
+            .add_service(service)
+            .serve_with_incoming_shutdown(TcpListenerStream::new(listener), async {
+                let _ = stopped.await;
+            }),
+    );
+    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), "railcontact serving");
+    Ok(RunningServer {
+        addr,
+        metrics_addr,
+        stop,
+        task,
+        metrics_task,
+        health,
+        grace: Duration::from_secs_f64(config.shutdown_grace_s),
+    })
+}
+
+impl RunningServer {
+    /// Stops gracefully: NOT_SERVING, no new connections, in-flight work
+    /// finishes within the grace period.
+    pub async fn shutdown(self) {
+        self.health
+            .set_not_serving::<ContactServiceServer<ContactHandlers>>()
+            .await;
+        let _ = self.stop.send(());
+        let mut task = self.task;
+        match tokio::time::timeout(self.grace, &mut task).await {
+            Ok(Ok(Ok(()))) => tracing::info!("stopped"),
+            Ok(Ok(Err(e))) => tracing::warn!(error = %e, "server error while stopping"),
+            Ok(Err(e)) => tracing::warn!(error = %e, "server task failed"),
+            Err(_) => {
+                tracing::warn!(
+                    grace_s = self.grace.as_secs_f64(),
+                    "grace period over: dropping unfinished calls"
+                );
+                task.abort();
+            }
+        }
+        if let Some(m) = self.metrics_task {
+            m.abort();
+        }
+    }
+}
+
+/// Waits for SIGTERM or Ctrl-C.
+async fn termination() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        match signal(SignalKind::terminate()) {
+            Ok(mut term) => {
+                tokio::select! {
+                    _ = term.recv() => {}
+                    _ = tokio::signal::ctrl_c() => {}
+                }
+            }
+            Err(_) => {
+                let _ = tokio::signal::ctrl_c().await;
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = tokio::signal::ctrl_c().await;
+    }
+}
+
+/// `railcontact serve`: tracing from RUST_LOG (default `info`), a runtime,
+/// the server until SIGTERM or Ctrl-C, then a graceful stop.
+pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .try_init();
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .thread_name("railcontact-io")
+        .build()?;
+    runtime.block_on(async {
+        let server = start(config).await?;
+        termination().await;
+        tracing::info!("shutting down");
+        server.shutdown().await;
+        Ok(())
+    })
+}

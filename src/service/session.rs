@@ -1,0 +1,265 @@
+//! A co-simulation session on one contact patch: the state machine behind
+//! `PatchSession`, free of any transport.
+//!
+//! The session owns its [`PatchEngine`] (and so its exact solver: warm
+//! starts and the transient history) and nothing else; it shares no
+//! mutable state with other sessions, which is why a session's outputs do
+//! not depend on what other sessions run meanwhile. Steps must come in
+//! order. A marked step stores a clone of the engine after that step;
+//! rolling back restores the clone, so repeating the steps after it
+//! reproduces their outputs bit for bit.
+
+use std::collections::BTreeMap;
+
+use crate::cli::case::Model;
+use crate::core::error::require_positive;
+use crate::core::normal::NormalLoad;
+use crate::core::problem::{Creepages, Kinematics, ShiftStep};
+use crate::service::convert;
+use crate::service::engine::PatchEngine;
+use crate::service::pb;
+use crate::service::status::ServiceError;
+
+/// Marks kept per session; marking more drops the oldest.
+pub const MAX_MARKS: usize = 16;
+
+/// What the steps of a session prescribe, fixed by the opening case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SessionKind {
+    /// Frictionless normal contact: steps give loads.
+    Frictionless,
+    /// Steady rolling: steps give creepages (and loads).
+    SteadyRolling,
+    /// Transient shifts (exact model): steps give shifts (and loads).
+    Transient,
+}
+
+/// A validated step, ready to solve.
+#[derive(Debug, Clone, Copy)]
+pub struct StepInput {
+    index: u64,
+    time_s: f64,
+    load: NormalLoad,
+    motion: Motion,
+    mark: bool,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Motion {
+    Static,
+    Rolling(Creepages),
+    Shift(ShiftStep),
+}
+
+/// One open session.
+pub struct Session {
+    engine: PatchEngine,
+    kind: SessionKind,
+    fields: bool,
+    default_load: NormalLoad,
+    next_step: u64,
+    marks: BTreeMap<u64, PatchEngine>,
+}
+
+impl Session {
+    /// Opens a session on a validated case (field paths relative to `open`).
+    pub fn open(engine: PatchEngine, fields: bool) -> Result<Self, ServiceError> {
+        let case = engine.case();
+        convert::check_fields(case, fields)?;
+        let kind = match case.kinematics {
+            Kinematics::Frictionless => SessionKind::Frictionless,
+            Kinematics::SteadyRolling(_) => SessionKind::SteadyRolling,
+            Kinematics::Transient(_) if case.model == Model::Exact => SessionKind::Transient,
+            Kinematics::Transient(_) => {
+                return Err(ServiceError::invalid(
+                    "case.transient",
+                    format!(
+                        "transient sessions run the exact model only, not {}",
+                        case.model.name()
+                    ),
+                ))
+            }
+        };
+        Ok(Self {
+            default_load: case.load,
+            engine,
+            kind,
+            fields,
+            next_step: 0,
+            marks: BTreeMap::new(),
+        })
+    }
+
+    /// The session kind.
+    pub fn kind(&self) -> SessionKind {
+        self.kind
+    }
+
+    /// The engine (its case and grid).
+    pub fn engine(&self) -> &PatchEngine {
+        &self.engine
+    }
+
+    /// The index the next step must have.
+    pub fn next_step(&self) -> u64 {
+        self.next_step
+    }
+
+    /// Checks a step's order and inputs without solving; field paths are
+    /// relative to the request (`step.`).
+    pub fn check_step(&self, s: &pb::SessionStep) -> Result<StepInput, ServiceError> {
+        if s.step_index != self.next_step {
+            return Err(ServiceError::Precondition(format!(
+                "step_index {} is out of order: this session expects step {} next \
+                 (steps are consecutive from 0; to repeat earlier steps, roll back to a marked step{})",
+                s.step_index,
+                self.next_step,
+                self.marks_list()
+            )));
+        }
+        if !self.engine.history_intact() {
+            return Err(ServiceError::Precondition(format!(
+                "a previous step was rejected by the solver after it had started (the patch reached \
+                 the grid border), so the session's history is no longer that of step {}; roll back \
+                 to a marked step{} or open a new session with a larger grid window",
+                self.next_step.saturating_sub(1),
+                self.marks_list()
+            )));
+        }
+        if !s.time_s.is_finite() {
+            return Err(ServiceError::invalid(
+                "step.time_s",
+                format!("must be finite, got {}", s.time_s),
+            ));
+        }
+        let load = match s.load {
+            Some(pb::session_step::Load::NormalForceN(f)) => {
+                require_positive("step.normal_force_n", f)?;
+                NormalLoad::NormalForce(f)
+            }
+            Some(pb::session_step::Load::ApproachM(d)) => {
+                require_positive("step.approach_m", d)?;
+                NormalLoad::Approach(d)
+            }
+            None => self.default_load,
+        };
+        let unused = |field: &str, what: &str| {
+            ServiceError::invalid(
+                format!("step.{field}"),
+                format!("not used in a {what} session"),
+            )
+        };
+        let motion = match self.kind {
+            SessionKind::Frictionless => {
+                if s.creepages.is_some() {
+                    return Err(unused("creepages", "frictionless"));
+                }
+                if s.shift.is_some() {
+                    return Err(unused("shift", "frictionless"));
+                }
+                Motion::Static
+            }
+            SessionKind::SteadyRolling => {
+                if s.shift.is_some() {
+                    return Err(unused("shift", "steady-rolling"));
+                }
+                let c = s
+                    .creepages
+                    .as_ref()
+                    .map(convert::creepages)
+                    .unwrap_or_default();
+                c.validate()
+                    .map_err(|e| ServiceError::from(e).rekey("rolling.", "step.creepages."))?;
+                Motion::Rolling(c)
+            }
+            SessionKind::Transient => {
+                if s.creepages.is_some() {
+                    return Err(unused("creepages", "transient"));
+                }
+                let sh = s
+                    .shift
+                    .as_ref()
+                    .ok_or_else(|| ServiceError::invalid("step.shift", "missing"))?;
+                if sh.normal_force_n.is_some() || sh.approach_m.is_some() {
+                    return Err(ServiceError::invalid(
+                        "step.shift.normal_force_n",
+                        "give the step's load in step.normal_force_n or step.approach_m",
+                    ));
+                }
+                let shift = ShiftStep {
+                    load,
+                    shift_x_m: sh
+                        .shift_x_m
+                        .ok_or_else(|| ServiceError::invalid("step.shift.shift_x_m", "missing"))?,
+                    shift_y_m: sh.shift_y_m,
+                    rotation_rad: sh.rotation_rad,
+                };
+                shift.validate("step.shift")?;
+                Motion::Shift(shift)
+            }
+        };
+        Ok(StepInput {
+            index: s.step_index,
+            time_s: s.time_s,
+            load,
+            motion,
+            mark: s.mark,
+        })
+    }
+
+    /// Solves a checked step (CPU-bound: run it on the solve pool). A
+    /// failed step leaves the step counter where it was.
+    pub fn step(&mut self, input: StepInput) -> Result<pb::SessionStepResult, ServiceError> {
+        self.engine.set_load(input.load);
+        let result = match input.motion {
+            Motion::Static => self.engine.solve(self.fields),
+            Motion::Rolling(c) => {
+                self.engine.set_creepages(c);
+                self.engine.solve(self.fields)
+            }
+            Motion::Shift(shift) => self.engine.solve_next_step(&shift, self.fields),
+        }
+        .map_err(|e| e.rekey("load", "step").rekey("grid", "open.case.grid"))?;
+        self.next_step = input.index + 1;
+        if input.mark {
+            if self.marks.len() >= MAX_MARKS {
+                self.marks.pop_first();
+            }
+            self.marks.insert(input.index, self.engine.clone());
+        }
+        Ok(pb::SessionStepResult {
+            step_index: input.index,
+            time_s: input.time_s,
+            result: result.result,
+            fields: result.fields,
+            marked: input.mark,
+        })
+    }
+
+    /// Goes back to the state after marked step `to`; later marks are
+    /// dropped, the mark itself stays.
+    pub fn rollback(&mut self, to: u64) -> Result<pb::SessionRolledBack, ServiceError> {
+        let engine = self.marks.get(&to).ok_or_else(|| {
+            ServiceError::Precondition(format!(
+                "step {to} is not marked in this session{}; mark a step with `mark = true`",
+                self.marks_list()
+            ))
+        })?;
+        self.engine = engine.clone();
+        self.marks.split_off(&(to + 1));
+        self.next_step = to + 1;
+        Ok(pb::SessionRolledBack {
+            to_step_index: to,
+            next_step_index: self.next_step,
+        })
+    }
+
+    fn marks_list(&self) -> String {
+        if self.marks.is_empty() {
+            " (none is marked)".to_string()
+        } else {
+            let k: Vec<String> = self.marks.keys().map(|k| k.to_string()).collect();
+            format!(" (marked: {})", k.join(", "))
+        }
+    }
+}

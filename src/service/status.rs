@@ -1,0 +1,181 @@
+//! The service's errors and their gRPC status codes, in one place.
+//!
+//! Every failure a handler can meet becomes a [`ServiceError`]; the one
+//! `From<ServiceError> for tonic::Status` and [`ServiceError::item_error`]
+//! (batch slots, session steps) use the same [`ServiceError::code`]. Input
+//! errors carry the path of the offending field in the request, built up
+//! as the error travels outwards ([`ServiceError::within`]): the core
+//! names case-file keys (`geometry.a_per_m`), the handler adds where the
+//! case sits in its request (`items[3].case.`).
+
+use thiserror::Error;
+use tonic::Code;
+
+use crate::cli::CliError;
+use crate::core::error::ContactError;
+use crate::service::pb;
+
+/// Why a request (or one item or step of it) failed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ServiceError {
+    /// The request is invalid: fix `field` (INVALID_ARGUMENT).
+    #[error("invalid `{field}`: {reason}")]
+    Invalid {
+        /// Path of the field in the request (empty: the request as a whole).
+        field: String,
+        /// What is wrong and how to fix it.
+        reason: String,
+    },
+    /// The request does not fit the current state, e.g. a session step out
+    /// of order or a rollback to an unmarked step (FAILED_PRECONDITION).
+    #[error("{0}")]
+    Precondition(String),
+    /// The solve queue is full or too many sessions are open; retry later
+    /// (RESOURCE_EXHAUSTED).
+    #[error("{0}")]
+    Exhausted(String),
+    /// The client's deadline passed before the result was ready
+    /// (DEADLINE_EXCEEDED).
+    #[error("{0}")]
+    Deadline(String),
+    /// The server is shutting down (UNAVAILABLE).
+    #[error("{0}")]
+    Unavailable(String),
+    /// A fault of the server, not of the request (INTERNAL).
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
+impl ServiceError {
+    /// Shorthand for [`ServiceError::Invalid`].
+    pub fn invalid(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        ServiceError::Invalid {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+
+    /// The gRPC status code of this error.
+    pub fn code(&self) -> Code {
+        match self {
+            ServiceError::Invalid { .. } => Code::InvalidArgument,
+            ServiceError::Precondition(_) => Code::FailedPrecondition,
+            ServiceError::Exhausted(_) => Code::ResourceExhausted,
+            ServiceError::Deadline(_) => Code::DeadlineExceeded,
+            ServiceError::Unavailable(_) => Code::Unavailable,
+            ServiceError::Internal(_) => Code::Internal,
+        }
+    }
+
+    /// The error with its field path put under `prefix` (`"case"`,
+    /// `"items[3]"`): `geometry.a_per_m` becomes `case.geometry.a_per_m`. An
+    /// empty prefix changes nothing.
+    pub fn within(self, prefix: &str) -> Self {
+        match self {
+            ServiceError::Invalid { field, reason } if !prefix.is_empty() => {
+                ServiceError::Invalid {
+                    field: if field.is_empty() {
+                        prefix.to_string()
+                    } else {
+                        format!("{prefix}.{field}")
+                    },
+                    reason,
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// The error with a field path starting with `from` renamed to start
+    /// with `to` (`rolling.spin_per_m` -> `step.creepages.spin_per_m`).
+    pub fn rekey(self, from: &str, to: &str) -> Self {
+        match self {
+            ServiceError::Invalid { field, reason } if field.starts_with(from) => {
+                ServiceError::Invalid {
+                    field: format!("{to}{}", &field[from.len()..]),
+                    reason,
+                }
+            }
+            other => other,
+        }
+    }
+
+    /// The error in a batch slot or a session response.
+    pub fn item_error(&self) -> pb::ItemError {
+        pb::ItemError {
+            code: self.code() as i32,
+            message: self.to_string(),
+            field: match self {
+                ServiceError::Invalid { field, .. } => field.clone(),
+                _ => String::new(),
+            },
+        }
+    }
+}
+
+impl From<ContactError> for ServiceError {
+    fn from(e: ContactError) -> Self {
+        match e {
+            ContactError::InvalidInput { key, reason } => {
+                ServiceError::Invalid { field: key, reason }
+            }
+            ContactError::GridTooSmall { .. } => ServiceError::invalid("grid", e.to_string()),
+            ContactError::NoContact { .. } => ServiceError::invalid("load", e.to_string()),
+            ContactError::Reference(_) => ServiceError::invalid("", e.to_string()),
+        }
+    }
+}
+
+impl From<CliError> for ServiceError {
+    /// The case validation's errors are messages; those that name a key
+    /// (`invalid input `key`: reason`) keep it as the field.
+    fn from(e: CliError) -> Self {
+        match e {
+            CliError::BadInput(m) => {
+                let keyed = m
+                    .strip_prefix("invalid input `")
+                    .and_then(|rest| rest.split_once("`: "));
+                match keyed {
+                    Some((key, reason)) => ServiceError::invalid(key, reason),
+                    None => ServiceError::invalid("", m),
+                }
+            }
+            CliError::Failure(m) => ServiceError::Internal(m),
+        }
+    }
+}
+
+impl From<ServiceError> for tonic::Status {
+    fn from(e: ServiceError) -> Self {
+        tonic::Status::new(e.code(), e.to_string())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn case_errors_keep_their_key_under_the_request_path() {
+        let e = ServiceError::from(CliError::BadInput(
+            "invalid input `geometry.a_per_m`: must be finite and > 0, got NaN".into(),
+        ))
+        .within("case")
+        .within("items[2]");
+        assert_eq!(e.code(), Code::InvalidArgument);
+        let item = e.item_error();
+        assert_eq!(item.field, "items[2].case.geometry.a_per_m");
+        assert!(item.message.contains("must be finite"), "{}", item.message);
+        // A message without a key names the case as a whole.
+        let e = ServiceError::from(CliError::BadInput("Hertz model: bad".into())).within("case");
+        assert_eq!(e.item_error().field, "case");
+        let e = ServiceError::from(ContactError::invalid(
+            "rolling.spin_per_m",
+            "must be finite",
+        ))
+        .rekey("rolling.", "step.creepages.");
+        assert_eq!(e.item_error().field, "step.creepages.spin_per_m");
+        let s = tonic::Status::from(ServiceError::Exhausted("full".into()));
+        assert_eq!(s.code(), Code::ResourceExhausted);
+    }
+}

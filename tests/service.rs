@@ -1,0 +1,759 @@
+//! End-to-end tests of the gRPC service: the real server on an ephemeral
+//! loopback port, in-process, talked to through the generated tonic client.
+//! Grids are small so that the whole file runs in seconds.
+
+use std::time::Duration;
+
+use railcontact::cli::case::Case;
+use railcontact::core::solve::solve;
+use railcontact::service::config::ServeConfig;
+use railcontact::service::convert::total_values;
+use railcontact::service::pb;
+use railcontact::service::pb::contact_service_client::ContactServiceClient;
+use railcontact::service::server::{start, RunningServer};
+use tokio_stream::StreamExt;
+use tonic::transport::Channel;
+use tonic::Code;
+
+type Client = ContactServiceClient<Channel>;
+
+async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        ..config
+    })
+    .await
+    .expect("server starts");
+    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    (server, client)
+}
+
+async fn server() -> (RunningServer, Client) {
+    server_with(ServeConfig::default()).await
+}
+
+fn steel() -> pb::MaterialSection {
+    pb::MaterialSection {
+        shear_modulus_pa: Some(81.0e9),
+        poisson_ratio: Some(0.30),
+        ..Default::default()
+    }
+}
+
+/// h = x² + y² (R = 0.5 m), 10 kN, steel on steel.
+fn sphere(model: pb::Model, n: u32) -> pb::PatchCase {
+    pb::PatchCase {
+        model: model as i32,
+        material: Some(steel()),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Quadratic as i32,
+            a_per_m: Some(1.0),
+            b_per_m: Some(1.0),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(1.0e4)),
+        }),
+        grid: Some(pb::GridSection {
+            nx: Some(n),
+            ny: Some(n),
+            ..Default::default()
+        }),
+        ..Default::default()
+    }
+}
+
+/// `sphere` in steady rolling with mu = 0.3.
+fn rolling(model: pb::Model, n: u32, creepage_long: f64) -> pb::PatchCase {
+    pb::PatchCase {
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            creepage_long,
+            ..Default::default()
+        })),
+        ..sphere(model, n)
+    }
+}
+
+fn shift(x: f64) -> pb::ShiftStep {
+    pb::ShiftStep {
+        shift_x_m: Some(x),
+        ..Default::default()
+    }
+}
+
+/// `sphere` with transient shift steps of the rail in x [m].
+fn transient(n: u32, shifts: &[f64]) -> pb::PatchCase {
+    pb::PatchCase {
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Transient(
+            pb::TransientSection {
+                steps: shifts.iter().map(|&x| shift(x)).collect(),
+            },
+        )),
+        ..sphere(pb::Model::Exact, n)
+    }
+}
+
+fn request(case: pb::PatchCase) -> pb::SolvePatchRequest {
+    pb::SolvePatchRequest {
+        case: Some(case),
+        include_fields: false,
+    }
+}
+
+async fn solve_patch(client: &mut Client, case: pb::PatchCase) -> pb::PatchResult {
+    client
+        .solve_patch(request(case))
+        .await
+        .expect("solves")
+        .into_inner()
+        .result
+        .unwrap()
+}
+
+fn totals(r: &pb::StepResult) -> &pb::PatchTotals {
+    r.totals.as_ref().unwrap()
+}
+
+/// The bits of every total: results compare bit for bit.
+fn bits(t: &pb::PatchTotals) -> Vec<u64> {
+    total_values(t).iter().map(|v| v.to_bits()).collect()
+}
+
+/// The status of a failed call, with the message for assertions.
+fn failure<T: std::fmt::Debug>(r: Result<T, tonic::Status>) -> (Code, String) {
+    let s = r.expect_err("the call must fail");
+    (s.code(), s.message().to_string())
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn solve_patch_agrees_with_hertz_the_cli_path_and_the_fx_sign() {
+    let (server, mut client) = server().await;
+    // Hertz: a = (3 F R / (4 E*))^(1/3), p0 = 3 F / (2 pi a²), E* = G / (1 - nu).
+    let h = solve_patch(&mut client, sphere(pb::Model::Hertz, 32)).await;
+    let e_star: f64 = 81.0e9 / (1.0 - 0.30);
+    let a = (3.0 * 1.0e4 * 0.5 / (4.0 * e_star)).cbrt();
+    let p0 = 3.0 * 1.0e4 / (2.0 * std::f64::consts::PI * a * a);
+    let th = totals(h.result.as_ref().unwrap());
+    assert!(
+        (th.max_pressure_pa / p0 - 1.0).abs() < 1e-9,
+        "{} vs {p0}",
+        th.max_pressure_pa
+    );
+    assert!((th.patch_length_m / (2.0 * a) - 1.0).abs() < 1e-9);
+    assert_eq!(h.model, pb::Model::Hertz as i32);
+    assert!(h.fields.is_none() && h.grid.is_none());
+
+    // Exact: the same numbers as `railcontact solve` on the same case file,
+    // bit for bit, and close to Hertz.
+    let exact = solve_patch(&mut client, sphere(pb::Model::Exact, 32)).await;
+    let te = totals(exact.result.as_ref().unwrap());
+    let toml = "model = \"exact\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.30\n\
+                [geometry]\nkind = \"quadratic\"\na_per_m = 1.0\nb_per_m = 1.0\n\
+                [load]\nnormal_force_n = 10000.0\n[grid]\nnx = 32\nny = 32\n";
+    let cli = solve(&Case::from_toml(toml).unwrap().problem().unwrap()).unwrap();
+    assert_eq!(
+        te.max_pressure_pa.to_bits(),
+        cli[0].totals.max_pressure_pa.to_bits()
+    );
+    assert_eq!(te.approach_m.to_bits(), cli[0].totals.approach_m.to_bits());
+    assert!((te.normal_force_n / 1.0e4 - 1.0).abs() < 1e-9);
+    assert!(
+        (te.max_pressure_pa / p0 - 1.0).abs() < 0.05,
+        "{} vs {p0}",
+        te.max_pressure_pa
+    );
+    let grid = exact.grid.unwrap();
+    assert_eq!((grid.nx, grid.ny), (32, 32));
+
+    // Fx = -G a b C11 xi: a positive longitudinal creepage pulls the rail
+    // backwards, in the exact model and in FASTSIM.
+    for model in [pb::Model::Exact, pb::Model::Fastsim] {
+        let r = solve_patch(&mut client, rolling(model, 24, 2e-4)).await;
+        let t = totals(r.result.as_ref().unwrap());
+        assert!(t.fx_n < 0.0, "{model:?}: fx {}", t.fx_n);
+        assert!(-t.fx_n < 0.3 * t.normal_force_n, "{model:?}: partial slip");
+        assert_eq!(r.friction_coefficient, 0.3);
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn batch_keeps_request_order_and_reports_item_errors_in_their_slots() {
+    let (server, mut client) = server_with(ServeConfig {
+        max_batch_items: 4,
+        ..ServeConfig::default()
+    })
+    .await;
+    let mut bad = sphere(pb::Model::Hertz, 16);
+    bad.geometry.as_mut().unwrap().a_per_m = Some(f64::NAN);
+    let force = |f: f64| {
+        let mut c = sphere(pb::Model::Hertz, 16);
+        c.load = Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(f)),
+        });
+        request(c)
+    };
+    let items = vec![
+        force(1.0e4),
+        request(bad),
+        request(sphere(pb::Model::Exact, 16)),
+        force(3.0e4),
+    ];
+    let out = client
+        .solve_patch_batch(pb::SolvePatchBatchRequest { items })
+        .await
+        .unwrap()
+        .into_inner()
+        .items;
+    assert_eq!(out.len(), 4);
+    use pb::batch_item_result::Outcome;
+    let force_of = |i: usize| match &out[i].outcome {
+        Some(Outcome::Result(r)) => totals(r.result.as_ref().unwrap()).normal_force_n,
+        other => panic!("item {i}: {other:?}"),
+    };
+    assert_eq!(force_of(0), 1.0e4);
+    assert!((force_of(2) / 1.0e4 - 1.0).abs() < 1e-9);
+    assert_eq!(force_of(3), 3.0e4);
+    match &out[1].outcome {
+        Some(Outcome::Error(e)) => {
+            assert_eq!(e.code, Code::InvalidArgument as i32);
+            assert_eq!(e.field, "items[1].case.geometry.a_per_m");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(out.iter().enumerate().all(|(i, s)| s.index as usize == i));
+    // Over the batch limit: the whole call is refused.
+    let items = (0..5).map(|_| force(1.0e4)).collect();
+    let (code, msg) = failure(
+        client
+            .solve_patch_batch(pb::SolvePatchBatchRequest { items })
+            .await,
+    );
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(
+        msg.contains("`items`") && msg.contains("limit of 4"),
+        "{msg}"
+    );
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn creep_curve_streams_one_point_each_in_order_and_saturates() {
+    let (server, mut client) = server().await;
+    let req = pb::CreepCurveRequest {
+        case: Some(rolling(pb::Model::Exact, 20, 0.0)),
+        sweep: Some(pb::creep_curve_request::Sweep::Linear(pb::LinearSweep {
+            from: Some(pb::Creepages::default()),
+            to: Some(pb::Creepages {
+                creepage_long: 4e-3,
+                ..Default::default()
+            }),
+            points: 5,
+        })),
+        include_fields: false,
+    };
+    let mut stream = client.creep_curve(req).await.unwrap().into_inner();
+    let mut points = Vec::new();
+    while let Some(p) = stream.next().await {
+        points.push(p.unwrap());
+    }
+    assert_eq!(points.len(), 5);
+    let fx: Vec<f64> = points
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            assert_eq!(p.index as usize, k);
+            let c = p.creepages.as_ref().unwrap().creepage_long;
+            assert!((c - 1e-3 * k as f64).abs() < 1e-15, "{c}");
+            totals(p.result.as_ref().unwrap().result.as_ref().unwrap()).fx_n
+        })
+        .collect();
+    assert!(
+        fx[0].abs() < 1e-6 * 1.0e4,
+        "no creepage, no force: {}",
+        fx[0]
+    );
+    for w in fx.windows(2) {
+        assert!(w[1] < w[0], "|Fx| grows with the creepage: {fx:?}");
+    }
+    assert!(
+        -fx[4] <= 0.3 * 1.0e4 * (1.0 + 1e-6),
+        "Coulomb bound: {fx:?}"
+    );
+    // A warm-started point equals a cold solve within the solver tolerance.
+    let cold = solve_patch(&mut client, rolling(pb::Model::Exact, 20, 2e-3)).await;
+    let cold_fx = totals(cold.result.as_ref().unwrap()).fx_n;
+    assert!(
+        (fx[2] / cold_fx - 1.0).abs() < 1e-5,
+        "{} vs {cold_fx}",
+        fx[2]
+    );
+
+    // The Hertz model has no creep forces.
+    let req = pb::CreepCurveRequest {
+        case: Some(rolling(pb::Model::Hertz, 20, 0.0)),
+        sweep: Some(pb::creep_curve_request::Sweep::List(pb::CreepageList {
+            points: vec![pb::Creepages::default()],
+        })),
+        include_fields: false,
+    };
+    let (code, msg) = failure(client.creep_curve(req).await);
+    assert_eq!(
+        (code, msg.contains("`case.model`")),
+        (Code::InvalidArgument, true),
+        "{msg}"
+    );
+    server.shutdown().await;
+}
+
+fn open(case: pb::PatchCase, fields: bool) -> pb::SessionRequest {
+    pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Open(pb::SessionOpen {
+            case: Some(case),
+            include_fields: fields,
+            client_label: "test".into(),
+        })),
+    }
+}
+
+fn step(index: u64, motion: StepMotion, mark: bool) -> pb::SessionRequest {
+    let mut s = pb::SessionStep {
+        step_index: index,
+        time_s: index as f64 * 1e-3,
+        mark,
+        ..Default::default()
+    };
+    match motion {
+        StepMotion::Shift(x) => s.shift = Some(shift(x)),
+        StepMotion::Creep(c) => {
+            s.creepages = Some(pb::Creepages {
+                creepage_long: c,
+                creepage_lat: 0.5 * c,
+                ..Default::default()
+            })
+        }
+    }
+    pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Step(s)),
+    }
+}
+
+#[derive(Clone, Copy)]
+enum StepMotion {
+    Shift(f64),
+    Creep(f64),
+}
+
+fn rollback(to: u64) -> pb::SessionRequest {
+    pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Rollback(pb::SessionRollback {
+            to_step_index: to,
+        })),
+    }
+}
+
+/// Runs a whole session: sends `messages` (the first opens it) and returns
+/// every response (the first is `opened`).
+async fn session(
+    client: &mut Client,
+    messages: Vec<pb::SessionRequest>,
+) -> Vec<pb::SessionResponse> {
+    let n = messages.len();
+    let stream = tokio_stream::iter(messages);
+    let mut out = client.patch_session(stream).await.unwrap().into_inner();
+    let mut responses = Vec::new();
+    while let Some(r) = out.next().await {
+        responses.push(r.expect("no stream error"));
+    }
+    assert_eq!(responses.len(), n, "one response per request");
+    responses
+}
+
+fn step_result(r: &pb::SessionResponse) -> &pb::SessionStepResult {
+    match &r.kind {
+        Some(pb::session_response::Kind::Step(s)) => s,
+        other => panic!("expected a step, got {other:?}"),
+    }
+}
+
+fn error(r: &pb::SessionResponse) -> &pb::ItemError {
+    match &r.kind {
+        Some(pb::session_response::Kind::Error(e)) => e,
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn transient_session_matches_the_batch_solve_and_rolls_back_bit_for_bit() {
+    let (server, mut client) = server().await;
+    let shifts = [1e-6, 2e-6, 2e-6];
+    let case = transient(20, &shifts);
+    let whole = solve_patch(&mut client, case.clone()).await;
+    assert_eq!(whole.steps.len(), 3);
+
+    let mut msgs = vec![open(case, true)];
+    msgs.push(step(0, StepMotion::Shift(shifts[0]), true));
+    msgs.push(step(1, StepMotion::Shift(shifts[1]), false));
+    msgs.push(step(2, StepMotion::Shift(shifts[2]), false));
+    msgs.push(step(7, StepMotion::Shift(1e-6), false)); // out of order
+    msgs.push(rollback(1)); // never marked
+    msgs.push(rollback(0));
+    msgs.push(step(1, StepMotion::Shift(shifts[1]), false));
+    msgs.push(step(2, StepMotion::Shift(shifts[2]), false));
+    let first = msgs.remove(0);
+    let mut all = vec![first];
+    all.extend(msgs);
+    let stream = tokio_stream::iter(all);
+    let mut out = client.patch_session(stream).await.unwrap().into_inner();
+    let mut r = Vec::new();
+    while let Some(m) = out.next().await {
+        r.push(m.unwrap());
+    }
+    assert_eq!(r.len(), 9);
+    match &r[0].kind {
+        Some(pb::session_response::Kind::Opened(o)) => {
+            assert!(o.session_id.starts_with('s'));
+            assert_eq!(o.grid.as_ref().unwrap().nx, 20);
+        }
+        other => panic!("{other:?}"),
+    }
+    // Step by step equals the transient solve of all steps at once.
+    for k in 0..3 {
+        let s = step_result(&r[1 + k]);
+        assert_eq!(s.step_index, k as u64);
+        assert_eq!(
+            bits(totals(s.result.as_ref().unwrap())),
+            bits(totals(&whole.steps[k])),
+            "step {k}"
+        );
+    }
+    // History matters: steps 1 and 2 have the same shift, not the same result.
+    assert_ne!(
+        bits(totals(step_result(&r[2]).result.as_ref().unwrap())),
+        bits(totals(step_result(&r[3]).result.as_ref().unwrap()))
+    );
+    let e = error(&r[4]);
+    assert_eq!(e.code, Code::FailedPrecondition as i32);
+    assert!(
+        e.message.contains("step_index 7 is out of order") && e.message.contains("expects step 3"),
+        "{}",
+        e.message
+    );
+    let e = error(&r[5]);
+    assert_eq!(e.code, Code::FailedPrecondition as i32);
+    assert!(e.message.contains("marked: 0"), "{}", e.message);
+    match &r[6].kind {
+        Some(pb::session_response::Kind::RolledBack(b)) => assert_eq!(b.next_step_index, 1),
+        other => panic!("{other:?}"),
+    }
+    // After the rollback the same steps give the same bits, fields included.
+    for (again, first) in [(7, 2), (8, 3)] {
+        let (a, b) = (step_result(&r[again]), step_result(&r[first]));
+        assert_eq!(a.step_index, b.step_index);
+        assert_eq!(
+            bits(totals(a.result.as_ref().unwrap())),
+            bits(totals(b.result.as_ref().unwrap()))
+        );
+        let (fa, fb) = (a.fields.as_ref().unwrap(), b.fields.as_ref().unwrap());
+        assert_eq!(fa.traction_x_pa.len(), 400);
+        assert!(fa
+            .traction_x_pa
+            .iter()
+            .zip(&fb.traction_x_pa)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+        assert_eq!(fa.state, fb.state);
+    }
+    server.shutdown().await;
+}
+
+fn rolling_steps(seed: f64) -> Vec<pb::SessionRequest> {
+    let mut m = vec![open(rolling(pb::Model::Exact, 16, 0.0), false)];
+    for k in 0..4u64 {
+        m.push(step(k, StepMotion::Creep(seed * (1.0 + k as f64)), false));
+    }
+    m
+}
+
+fn step_bits(responses: &[pb::SessionResponse]) -> Vec<Vec<u64>> {
+    responses[1..]
+        .iter()
+        .map(|r| bits(totals(step_result(r).result.as_ref().unwrap())))
+        .collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn parallel_sessions_equal_sequential_ones_bit_for_bit() {
+    let (server, client) = server().await;
+    let seeds = [1e-4, 3e-4, 7e-4];
+    let mut sequential = Vec::new();
+    for s in seeds {
+        sequential.push(step_bits(
+            &session(&mut client.clone(), rolling_steps(s)).await,
+        ));
+    }
+    let runs = seeds.map(|s| {
+        let mut c = client.clone();
+        tokio::spawn(async move { step_bits(&session(&mut c, rolling_steps(s)).await) })
+    });
+    for (k, run) in runs.into_iter().enumerate() {
+        assert_eq!(run.await.unwrap(), sequential[k], "session {k}");
+    }
+    // Different inputs do give different outputs (the comparison can fail).
+    assert_ne!(sequential[0], sequential[1]);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bad_inputs_get_invalid_argument_naming_the_field() {
+    let (server, mut client) = server().await;
+    let mut cases: Vec<(pb::SolvePatchRequest, &str)> = Vec::new();
+    cases.push((pb::SolvePatchRequest::default(), "`case`"));
+    let mut c = rolling(pb::Model::Exact, 16, 1e-3);
+    c.friction.as_mut().unwrap().coefficient = Some(f64::NAN);
+    cases.push((request(c), "`case.friction.coefficient`"));
+    let mut c = sphere(pb::Model::Exact, 16);
+    c.load = Some(pb::LoadSection {
+        load: Some(pb::load_section::Load::NormalForceN(-5.0)),
+    });
+    cases.push((request(c), "`case.load.normal_force_n`"));
+    cases.push((request(sphere(pb::Model::Exact, 512)), "`case.grid.nx`"));
+    let mut c = sphere(pb::Model::Exact, 16);
+    c.grid.as_mut().unwrap().window_x_m = Some(1e-4);
+    cases.push((request(c), "`case.grid.window_x_m`"));
+    let mut c = sphere(pb::Model::Exact, 16);
+    c.geometry.as_mut().unwrap().kind = 0;
+    cases.push((request(c), "`case.geometry.kind`"));
+    let mut c = sphere(pb::Model::Exact, 16);
+    c.geometry.as_mut().unwrap().extra_gap_m = vec![0.0; 7];
+    cases.push((request(c), "`case.geometry.extra_gap_m`"));
+    cases.push((
+        pb::SolvePatchRequest {
+            case: Some(sphere(pb::Model::Hertz, 16)),
+            include_fields: true,
+        },
+        "`include_fields`",
+    ));
+    for (req, field) in cases {
+        let (code, msg) = failure(client.solve_patch(req).await);
+        assert_eq!(code, Code::InvalidArgument, "{field}: {msg}");
+        assert!(msg.contains(field), "{field}: {msg}");
+    }
+    // A session must start with `open`.
+    let stream = tokio_stream::iter(vec![step(0, StepMotion::Creep(0.0), false)]);
+    let mut out = client.patch_session(stream).await.unwrap().into_inner();
+    let (code, msg) = failure(out.next().await.unwrap());
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("`open`"), "{msg}");
+    // A bad step is refused in-band and names the field; the session goes on.
+    let mut msgs = rolling_steps(1e-4);
+    msgs.truncate(2);
+    if let Some(pb::session_request::Kind::Step(s)) = &mut msgs[1].kind {
+        s.creepages.as_mut().unwrap().spin_per_m = f64::INFINITY;
+    }
+    msgs.push(step(0, StepMotion::Creep(1e-4), false));
+    let r = session(&mut client, msgs).await;
+    let e = error(&r[1]);
+    assert_eq!(
+        (e.code, e.field.as_str()),
+        (Code::InvalidArgument as i32, "step.creepages.spin_per_m")
+    );
+    assert_eq!(step_result(&r[2]).step_index, 0);
+    server.shutdown().await;
+}
+
+/// Reads the metrics page.
+async fn metrics_page(addr: std::net::SocketAddr) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let mut s = tokio::net::TcpStream::connect(addr).await.unwrap();
+    s.write_all(b"GET /metrics HTTP/1.1\r\nhost: x\r\n\r\n")
+        .await
+        .unwrap();
+    let mut page = String::new();
+    s.read_to_string(&mut page).await.unwrap();
+    page
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_full_queue_is_resource_exhausted_and_a_passed_deadline_is_deadline_exceeded() {
+    let (server, mut client) = server_with(ServeConfig {
+        workers: 1,
+        queue_capacity: 1,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    // A creep curve holds its queue slot while its client does not read
+    // (per-element fields fill the stream's flow-control window quickly).
+    let points = (0..1000)
+        .map(|k| pb::Creepages {
+            creepage_long: 1e-6 * k as f64,
+            ..Default::default()
+        })
+        .collect();
+    let curve = pb::CreepCurveRequest {
+        case: Some(rolling(pb::Model::Exact, 16, 0.0)),
+        sweep: Some(pb::creep_curve_request::Sweep::List(pb::CreepageList {
+            points,
+        })),
+        include_fields: true,
+    };
+    let held = client.creep_curve(curve).await.unwrap();
+    let (code, msg) = failure(
+        client
+            .solve_patch(request(sphere(pb::Model::Hertz, 8)))
+            .await,
+    );
+    assert_eq!(code, Code::ResourceExhausted, "{msg}");
+    let page = metrics_page(server.metrics_addr.unwrap()).await;
+    assert!(
+        page.contains("railcontact_solve_queue_admitted 1"),
+        "{page}"
+    );
+    assert!(
+        page.contains("method=\"SolvePatch\",code=\"ResourceExhausted\"} 1"),
+        "{page}"
+    );
+    drop(held);
+    // The slot comes back once the curve's task sees the client gone.
+    let mut ok = None;
+    for _ in 0..200 {
+        match client
+            .solve_patch(request(sphere(pb::Model::Hertz, 8)))
+            .await
+        {
+            Ok(r) => {
+                ok = Some(r);
+                break;
+            }
+            Err(s) if s.code() == Code::ResourceExhausted => {
+                tokio::time::sleep(Duration::from_millis(10)).await
+            }
+            Err(s) => panic!("{s:?}"),
+        }
+    }
+    assert!(ok.is_some(), "the queue slot was never released");
+
+    // 200 ms is far less than this solve takes.
+    let mut slow = request(rolling(pb::Model::Exact, 128, 1e-3));
+    slow.include_fields = false;
+    let mut req = tonic::Request::new(slow);
+    req.set_timeout(Duration::from_millis(200));
+    let (code, msg) = failure(client.solve_patch(req).await);
+    assert_eq!(code, Code::DeadlineExceeded, "{msg}");
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn health_and_reflection_answer_without_our_protos() {
+    use tonic_health::pb::health_check_response::ServingStatus;
+    use tonic_health::pb::health_client::HealthClient;
+    use tonic_health::pb::HealthCheckRequest;
+    use tonic_reflection::pb::v1::server_reflection_client::ServerReflectionClient;
+    use tonic_reflection::pb::v1::server_reflection_request::MessageRequest;
+    use tonic_reflection::pb::v1::server_reflection_response::MessageResponse;
+    use tonic_reflection::pb::v1::ServerReflectionRequest;
+
+    let (server, _) = server().await;
+    let channel = Channel::from_shared(format!("http://{}", server.addr))
+        .unwrap()
+        .connect()
+        .await
+        .unwrap();
+    let mut health = HealthClient::new(channel.clone());
+    let status = health
+        .check(HealthCheckRequest {
+            service: "railcontact.v1.ContactService".into(),
+        })
+        .await
+        .unwrap()
+        .into_inner()
+        .status;
+    assert_eq!(status, ServingStatus::Serving as i32);
+
+    let mut reflection = ServerReflectionClient::new(channel);
+    let asks = [
+        MessageRequest::ListServices(String::new()),
+        MessageRequest::FileContainingSymbol("railcontact.v1.ContactService".into()),
+    ];
+    let requests = asks.map(|m| ServerReflectionRequest {
+        host: String::new(),
+        message_request: Some(m),
+    });
+    let mut answers = reflection
+        .server_reflection_info(tokio_stream::iter(requests))
+        .await
+        .unwrap()
+        .into_inner();
+    match answers.next().await.unwrap().unwrap().message_response {
+        Some(MessageResponse::ListServicesResponse(l)) => {
+            let names: Vec<&str> = l.service.iter().map(|s| s.name.as_str()).collect();
+            assert!(
+                names.contains(&"railcontact.v1.ContactService"),
+                "{names:?}"
+            );
+            assert!(names.contains(&"grpc.health.v1.Health"), "{names:?}");
+        }
+        other => panic!("{other:?}"),
+    }
+    match answers.next().await.unwrap().unwrap().message_response {
+        Some(MessageResponse::FileDescriptorResponse(f)) => {
+            assert!(!f.file_descriptor_proto.is_empty())
+        }
+        other => panic!("{other:?}"),
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn shutdown_finishes_the_call_in_flight() {
+    let (server, client) = server_with(ServeConfig {
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    let metrics = server.metrics_addr.unwrap();
+    let mut c = client.clone();
+    let call = tokio::spawn(async move {
+        c.solve_patch(request(rolling(pb::Model::Exact, 96, 1e-3)))
+            .await
+    });
+    // Wait until the solve is admitted, then stop the server.
+    let mut admitted = false;
+    for _ in 0..500 {
+        if metrics_page(metrics)
+            .await
+            .contains("railcontact_solve_queue_admitted 1")
+        {
+            admitted = true;
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(2)).await;
+    }
+    assert!(admitted, "the call never reached the solve pool");
+    server.shutdown().await;
+    let r = call.await.unwrap().expect("the call in flight completes");
+    assert!(
+        totals(
+            r.into_inner()
+                .result
+                .as_ref()
+                .unwrap()
+                .result
+                .as_ref()
+                .unwrap()
+        )
+        .fx_n
+            < 0.0
+    );
+}
