@@ -2,7 +2,7 @@
 //! at the Manchester benchmark settings (A-2.2: S1002/UIC60, 10 kN per
 //! wheel, 0.2 mm elements): tread contact (2 mm), two-point contact (5 mm),
 //! flange contact (6.5 mm, 10 mm), with the planar exact model and with
-//! Hertz+FASTSIM. Kernels are cached (a long-running service's steady
+//! Hertz+FASTSIM, direct and with contact tables. Kernels are cached (a long-running service's steady
 //! state). See benches/README.md; run with `cargo bench --bench wheelrail`.
 
 use std::hint::black_box;
@@ -12,7 +12,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use railcontact::core::cache::KernelCache;
 use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    solve_wheelset, LoadOptions, SearchScratch, SplineOptions, WheelRailModel, WheelRailPair,
+    solve_wheelset, solve_wheelset_tabulated, ContactTable, LoadOptions, SearchScratch,
+    SplineOptions, TableSettings, WheelRailModel, WheelRailPair,
 };
 
 fn pair() -> WheelRailPair {
@@ -69,6 +70,21 @@ fn wheelset_step(c: &mut Criterion) {
         }
         g.finish();
     }
+    // The fast path with contact tables (built once, as the service does at
+    // pair registration).
+    let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
+    eprintln!("contact table built in {:.2} s", table.build_time_s());
+    let mut g = c.benchmark_group("wheelset_step_hertz_fastsim_tabulated");
+    g.sample_size(20);
+    for &(y, roll, pitch) in &SHIFTS {
+        let inp = mbench_a22_input(y, Some(roll), Some(pitch), WheelRailModel::HertzFastsim);
+        g.bench_with_input(BenchmarkId::from_parameter(y), &inp, |b, inp| {
+            b.iter(|| {
+                black_box(solve_wheelset_tabulated(&table, inp, &cache, &mut scratch).unwrap())
+            })
+        });
+    }
+    g.finish();
 }
 
 criterion_group!(benches, wheelset_step);

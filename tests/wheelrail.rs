@@ -1,12 +1,14 @@
 //! Wheel/rail contact of a wheelset on real profiles: the Manchester
 //! benchmark against CONTACT's published reference output, symmetry, load
-//! balance over sweeps with measured worn profiles, and errors.
+//! balance over sweeps with measured worn profiles, errors, and contact
+//! tables against the direct search.
 
 use railcontact::core::cache::KernelCache;
 use railcontact::wheelrail::builtin::mbench_a22_input;
 use railcontact::wheelrail::{
-    load_profile, solve_wheelset, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelsetData,
+    load_profile, solve_wheelset, solve_wheelset_tabulated, ContactTable, PatchResult,
+    SearchScratch, Side, SplineOptions, TableSettings, TrackData, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
 };
 
 fn path(name: &str) -> String {
@@ -423,4 +425,193 @@ fn conformal_patches_through_the_same_interface() {
         cect.patches[0].normal_force_n,
         auto_low.patches[0].normal_force_n
     );
+}
+
+// Contact tables (railcontact::wheelrail::table): the tabulated
+// Hertz+FASTSIM path against the direct search, off the table's nodes.
+
+/// Largest differences, table minus direct, over a set of cases.
+#[derive(Debug, Default)]
+struct Errors {
+    roll_rad: f64,
+    rail_y_m: f64,
+    angle_rad: f64,
+    radius_m: f64,
+    /// Per patch, relative to the wheel load.
+    patch_force: f64,
+    /// Per wheel, track frame, relative to the wheel load.
+    wheel_force: f64,
+    /// Largest normal force of a patch that only one of the two has
+    /// (a contact at its onset), relative to the wheel load.
+    unmatched_force: f64,
+}
+
+fn compare(d: &WheelRailSolution, t: &WheelRailSolution, load: f64, e: &mut Errors) {
+    let up = |m: &mut f64, v: f64| *m = m.max(v.abs());
+    up(&mut e.roll_rad, d.roll_rad - t.roll_rad);
+    for (wd, wt) in d.wheels.iter().zip(&t.wheels) {
+        // Patches are matched by position on the rail.
+        let near = |p: &PatchResult, q: &[PatchResult]| {
+            q.iter()
+                .find(|o| (o.rail_y_m - p.rail_y_m).abs() < 1e-3)
+                .cloned()
+        };
+        for a in &wd.patches {
+            let Some(b) = near(a, &wt.patches) else {
+                up(&mut e.unmatched_force, a.normal_force_n / load);
+                continue;
+            };
+            up(&mut e.rail_y_m, a.rail_y_m - b.rail_y_m);
+            up(&mut e.angle_rad, a.contact_angle_rad - b.contact_angle_rad);
+            up(&mut e.radius_m, a.rolling_radius_m - b.rolling_radius_m);
+            for (u, v) in [
+                (a.normal_force_n, b.normal_force_n),
+                (a.fx_n, b.fx_n),
+                (a.fs_n, b.fs_n),
+            ] {
+                up(&mut e.patch_force, (u - v) / load);
+            }
+        }
+        for b in &wt.patches {
+            if near(b, &wd.patches).is_none() {
+                up(&mut e.unmatched_force, b.normal_force_n / load);
+            }
+        }
+        for k in 0..3 {
+            up(
+                &mut e.wheel_force,
+                (wd.force_track_n[k] - wt.force_track_n[k]) / load,
+            );
+        }
+    }
+}
+
+/// Runs `inputs` both ways and returns the largest differences.
+fn sweep(pair: &WheelRailPair, table: &ContactTable, inputs: &[WheelRailInput]) -> Errors {
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut e = Errors::default();
+    for input in inputs {
+        let d = solve_wheelset(pair, input, &cache, &mut scratch).unwrap();
+        let t = solve_wheelset_tabulated(table, input, &cache, &mut scratch).unwrap();
+        compare(&d, &t, 10_000.0, &mut e);
+    }
+    e
+}
+
+impl Errors {
+    /// Geometry within the direct search's sampling (0.05 mm): contact
+    /// position 0.05 mm, contact angle 0.015 rad and rolling radius 0.1 mm
+    /// (both move fast with the position at a flange root: measured 0.025
+    /// mm, 0.0061-0.0102 rad, 0.053-0.065 mm).
+    fn check_geometry(&self, what: &str) {
+        assert!(self.rail_y_m < 5e-5, "{what}: {self:?}");
+        assert!(self.angle_rad < 0.015, "{what}: {self:?}");
+        assert!(self.radius_m < 1e-4, "{what}: {self:?}");
+    }
+
+    /// Forces within 3 % of the wheel load per patch and per wheel, and a
+    /// patch at its onset seen by one path only within 1 % (measured with
+    /// the roll found from the profiles: MBench 0.9 % and 1.3 %, worn 2.2 %
+    /// and 2.7 %, onset 0.6 %); roll within 1 urad (measured 0.4 urad).
+    fn check_forces(&self, what: &str) {
+        assert!(self.roll_rad < 1e-6, "{what}: {self:?}");
+        assert!(self.patch_force < 0.03, "{what}: {self:?}");
+        assert!(self.wheel_force < 0.03, "{what}: {self:?}");
+        assert!(self.unmatched_force < 0.01, "{what}: {self:?}");
+    }
+}
+
+/// Shifts between the nodes (0.1 mm apart) over -12..12 mm.
+fn off_node_shifts_mm() -> impl Iterator<Item = f64> {
+    (0..=40).map(|k| -12.0 + 0.6 * k as f64 + 0.037)
+}
+
+#[test]
+fn mbench_lookup_agrees_with_the_direct_search() {
+    let pair = mbench_pair();
+    let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
+    eprintln!(
+        "MBench table: {} nodes per side, built in {:.2} s",
+        table.node_count(),
+        table.build_time_s()
+    );
+    // yaw (2.4 mrad per mm), roll found from the profiles.
+    let found: Vec<_> = off_node_shifts_mm()
+        .map(|y| mbench_a22_input(y, None, None, WheelRailModel::HertzFastsim))
+        .collect();
+    let e = sweep(&pair, &table, &found);
+    eprintln!("MBench, roll found, A-2.2 yaw: {e:?}");
+    e.check_geometry("MBench, roll found");
+    e.check_forces("MBench, roll found");
+    // Given roll off the roll nodes (2.5 mrad apart) and off the
+    // quasi-static roll, yaw 0.
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let given: Vec<_> = off_node_shifts_mm()
+        .flat_map(|y| {
+            let mut input = mbench_a22_input(y, None, None, WheelRailModel::HertzFastsim);
+            input.position.yaw_rad = 0.0;
+            let found = solve_wheelset(&pair, &input, &cache, &mut scratch)
+                .unwrap()
+                .roll_rad;
+            [-3.1e-3, 1.3e-3].map(|dr| {
+                let mut input = input.clone();
+                input.position.roll_rad = Some(found + dr);
+                input
+            })
+        })
+        .collect();
+    let e = sweep(&pair, &table, &given);
+    eprintln!("MBench, given roll, yaw 0: {e:?}");
+    // Forces are not checked here: measured up to 17 % of the wheel load
+    // per patch and 8 % per wheel with the roll 3.1 mrad off the
+    // quasi-static one (an open finding, see the table module).
+    e.check_geometry("MBench, given roll");
+}
+
+#[test]
+fn worn_lookup_agrees_with_the_direct_search() {
+    let pair = worn_pair();
+    let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
+    eprintln!(
+        "worn table: {} nodes per side, built in {:.2} s",
+        table.node_count(),
+        table.build_time_s()
+    );
+    let found: Vec<_> = off_node_shifts_mm()
+        .flat_map(|y| {
+            [0.0, 1e-3].map(|psi_per_mm| {
+                let mut input = mbench_a22_input(y, None, None, WheelRailModel::HertzFastsim);
+                input.position.yaw_rad = psi_per_mm * y;
+                input
+            })
+        })
+        .collect();
+    let e = sweep(&pair, &table, &found);
+    eprintln!("worn, roll found: {e:?}");
+    e.check_geometry("worn, roll found");
+    e.check_forces("worn, roll found");
+}
+
+/// Outside the table the direct search answers, unchanged.
+#[test]
+fn positions_outside_the_table_use_the_direct_search() {
+    let pair = mbench_pair();
+    let table = ContactTable::build(
+        &pair,
+        &TableSettings {
+            lateral_range_m: [-0.002, 0.002],
+            ..TableSettings::default()
+        },
+    )
+    .unwrap();
+    assert!(!table.covers(0.005, 0.0) && table.covers(0.001, 0.0));
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let input = mbench_a22_input(5.0, None, None, WheelRailModel::HertzFastsim);
+    let d = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+    let t = solve_wheelset_tabulated(&table, &input, &cache, &mut scratch).unwrap();
+    assert_eq!(d.roll_rad, t.roll_rad);
+    assert_eq!(d.wheels[1].force_track_n, t.wheels[1].force_track_n);
 }

@@ -260,10 +260,10 @@ const MARGIN_ELEMENTS: f64 = 2.0;
 
 /// Potential contact: where the vertical gap is below this multiple of the
 /// Hertz estimate of the approach (enlarged when the load needs more).
-const CAP_FACTOR: f64 = 1.15;
+pub(crate) const CAP_FACTOR: f64 = 1.15;
 
 /// One patch being solved.
-struct PatchWork {
+pub(crate) struct PatchWork {
     geom: PatchGeometry,
     creep: Creepages,
     /// Vertical component of the normal, of the lateral tangent.
@@ -508,7 +508,7 @@ fn creepages(
 }
 
 /// Curvature B of h(s) ~ h0 + B (s - s0)^2 about the patch minimum [1/m].
-fn lateral_curvature(geom: &PatchGeometry) -> (f64, f64) {
+pub(crate) fn lateral_curvature(geom: &PatchGeometry) -> (f64, f64) {
     let l = &geom.lateral;
     let (k, hmin) = l
         .iter()
@@ -539,10 +539,7 @@ pub fn solve_wheelset(
         search_s: t0.elapsed().as_secs_f64(),
         ..Timing::default()
     };
-    let omega = input
-        .velocity
-        .pitch_rad_per_s
-        .unwrap_or(-input.velocity.forward_m_per_s / pair.wheelset().nominal_radius_m);
+    let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
     for &side in &input.sides {
         wheels.push(solve_wheel(
@@ -565,7 +562,24 @@ pub fn solve_wheelset(
     })
 }
 
-fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
+/// The FASTSIM solver of one wheel (40 x 40 elements).
+pub(crate) fn wheel_fastsim(side: Side) -> Result<Fastsim, WheelRailError> {
+    Fastsim::new(40, 40).map_err(|err| WheelRailError::Geometry {
+        side: side.name(),
+        message: err.to_string(),
+    })
+}
+
+/// The wheelset's rotation rate about the axle: given, or free rolling at
+/// the nominal radius [rad/s].
+pub(crate) fn pitch_rate(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
+    input
+        .velocity
+        .pitch_rad_per_s
+        .unwrap_or(-input.velocity.forward_m_per_s / pair.wheelset().nominal_radius_m)
+}
+
+pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     let p = &input.position;
     require_finite("position.lateral_m", p.lateral_m)?;
     require_finite("position.yaw_rad", p.yaw_rad)?;
@@ -671,10 +685,7 @@ fn solve_wheel(
         }
         WheelLoad::Approach(d) => gmin + d,
     };
-    let mut fastsim = Fastsim::new(40, 40).map_err(|err| WheelRailError::Geometry {
-        side: side.name(),
-        message: err.to_string(),
-    })?;
+    let mut fastsim = wheel_fastsim(side)?;
     let merge = input.settings.search.merge_distance_m;
     let mut intervals = gap_intervals(gap, cap, merge);
     let mut split = false;
@@ -797,10 +808,7 @@ fn build_patch(
     let (hmin, b) = lateral_curvature(&geom);
     let kx0 = geom.lateral_at(0.0).kx_per_m;
     let kind = match input.settings.model {
-        WheelRailModel::HertzFastsim => PatchKind::Hertz {
-            a_per_m: 0.5 * kx0.max(1e-3),
-            b_per_m: b.max(0.01 * kx0).max(1e-3),
-        },
+        WheelRailModel::HertzFastsim => hertz_kind(kx0, b),
         WheelRailModel::Exact | WheelRailModel::Auto => {
             let grid = patch_grid(&geom, cap, input)?;
             let mut gap_m = vec![0.0; grid.len()];
@@ -846,6 +854,41 @@ fn build_patch(
         kind,
         out: PatchOutcome::default(),
     })
+}
+
+/// Hertz on the wheel's longitudinal curvature `kx` and the lateral
+/// curvature `b` of the undeformed distance [1/m], kept positive.
+fn hertz_kind(kx: f64, b: f64) -> PatchKind {
+    PatchKind::Hertz {
+        a_per_m: 0.5 * kx.max(1e-3),
+        b_per_m: b.max(0.01 * kx).max(1e-3),
+    }
+}
+
+/// Hook for contact tables ([`crate::wheelrail::table`]): a Hertz+FASTSIM
+/// patch from its reference geometry (`geom.lateral` may be empty), its
+/// smallest normal gap `hmin` [m], the wheel's longitudinal curvature `kx`
+/// and the lateral curvature `b` [1/m].
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn hertz_patch(
+    geom: PatchGeometry,
+    hmin: f64,
+    kx: f64,
+    b: f64,
+    pose: &SidePose,
+    side: Side,
+    input: &WheelRailInput,
+    omega: f64,
+) -> PatchWork {
+    PatchWork {
+        creep: creepages(&geom, pose, side, &input.velocity, omega),
+        nz: geom.normal[1],
+        sz: geom.tangent()[1],
+        hmin,
+        kind: hertz_kind(kx, b),
+        geom,
+        out: PatchOutcome::default(),
+    }
 }
 
 /// The (x, s) grid of a patch: where h(x, s) is below the normal approach
@@ -936,12 +979,12 @@ fn conformal_geometry(
     )?)
 }
 
-enum LoadResult {
+pub(crate) enum LoadResult {
     Done { delta: f64, iterations: usize },
     CapTooSmall,
 }
 
-type PatchErr = (usize, ContactError);
+pub(crate) type PatchErr = (usize, ContactError);
 
 fn solve_all(
     patches: &mut [PatchWork],
@@ -971,7 +1014,7 @@ fn solve_all(
 }
 
 /// Finds the wheel's vertical approach (or applies the given one).
-fn load_iteration(
+pub(crate) fn load_iteration(
     patches: &mut [PatchWork],
     input: &WheelRailInput,
     cap: f64,
@@ -1124,7 +1167,7 @@ fn exact_angle_variation(rail: &PlacedRail, p: &PatchWork) -> f64 {
     }
 }
 
-fn finish(
+pub(crate) fn finish(
     pair: &WheelRailPair,
     side: Side,
     gmin: f64,

@@ -12,7 +12,9 @@
 //! * [`search`]: contact locus, rigid position (roll), contact patches and
 //!   their planar geometry;
 //! * [`contact`]: creepages, the per-patch contact problems and the load
-//!   iteration ([`solve_wheelset`]).
+//!   iteration ([`solve_wheelset`]);
+//! * [`table`]: contact tables per profile pair for the Hertz+FASTSIM fast
+//!   path ([`ContactTable`], [`solve_wheelset_tabulated`]).
 //!
 //! # Profile frame and conventions (used by every reader and the spline)
 //!
@@ -65,6 +67,7 @@ pub mod profile;
 pub mod readers;
 pub mod search;
 pub mod spline;
+pub mod table;
 pub mod wheelset;
 
 pub use contact::{
@@ -81,6 +84,7 @@ pub use search::{SearchScratch, SearchSettings};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
+pub use table::{solve_wheelset_tabulated, ContactTable, TableSettings};
 pub use wheelset::{
     Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
     WheelsetVelocity,

@@ -27,7 +27,7 @@
 //!    x: h(x, s) = h(s) + k_x(s) (x - dx(s))^2 / 2 (planar contact approach).
 
 use crate::wheelrail::wheelset::{
-    PlacedRail, PlacedWheel, Side, WheelRailError, WheelRailPair, WheelsetPosition,
+    CurveSample, PlacedRail, PlacedWheel, Side, WheelRailError, WheelRailPair, WheelsetPosition,
     SAMPLE_SPACING_M,
 };
 
@@ -100,26 +100,46 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// touch a rail.
 const MAX_LOCUS_ANGLE_RAD: f64 = 0.5;
 
-/// Computes the contact locus of `wheel` in `pose` into `out`.
-pub fn wheel_locus(
-    wheel: &PlacedWheel,
+/// The contact-locus construction of one wheel in one pose: the locus
+/// point of any profile sample (see [`wheel_locus`]).
+#[derive(Debug, Clone, Copy)]
+pub struct LocusFrame {
+    axle: [f64; 3],
+    center: [f64; 3],
+    e1: [f64; 3],
+    e2: [f64; 3],
+    rm: f64,
+    theta0: f64,
+    axial_offset_m: f64,
     nominal_radius_m: f64,
-    pose: &SidePose,
-    out: &mut Vec<LocusPoint>,
-) {
-    out.clear();
-    let a = pose.axle();
-    let c = pose.center();
-    // e1: "down" perpendicular to the axle; e2 = a x e1 (about +x).
-    let mut e1 = [-a[2] * a[0], -a[2] * a[1], 1.0 - a[2] * a[2]];
-    let n1 = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
-    e1.iter_mut().for_each(|v| *v /= n1);
-    let e2 = cross(a, e1);
-    let (ca, cb) = (e1[0], e2[0]);
-    let rm = ca.hypot(cb);
-    let theta0 = cb.atan2(ca);
-    let limit = MAX_LOCUS_ANGLE_RAD.sin();
-    for s in wheel.samples() {
+}
+
+impl LocusFrame {
+    /// The frame of `wheel` in `pose`.
+    pub fn new(wheel: &PlacedWheel, nominal_radius_m: f64, pose: &SidePose) -> Self {
+        let a = pose.axle();
+        // e1: "down" perpendicular to the axle; e2 = a x e1 (about +x).
+        let mut e1 = [-a[2] * a[0], -a[2] * a[1], 1.0 - a[2] * a[2]];
+        let n1 = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+        e1.iter_mut().for_each(|v| *v /= n1);
+        let e2 = cross(a, e1);
+        let (ca, cb) = (e1[0], e2[0]);
+        Self {
+            axle: a,
+            center: pose.center(),
+            e1,
+            e2,
+            rm: ca.hypot(cb),
+            theta0: cb.atan2(ca),
+            axial_offset_m: wheel.axial_offset_m(),
+            nominal_radius_m,
+        }
+    }
+
+    /// The locus point of the wheel profile sample `s` (profile frame).
+    pub fn point(&self, s: &CurveSample) -> LocusPoint {
+        let (a, c, e1, e2, rm) = (self.axle, self.center, self.e1, self.e2, self.rm);
+        let limit = MAX_LOCUS_ANGLE_RAD.sin();
         let [ty, tz] = s.tangent;
         // The outward wheel normal tz a - ty e_r(theta) (profile y along
         // the axle, z along e_r) has no x part:
@@ -130,7 +150,7 @@ pub fn wheel_locus(
             0.0
         };
         let d = (rhs / rm).clamp(-1.0, 1.0).acos();
-        let (t1, t2) = (theta0 - d, theta0 + d);
+        let (t1, t2) = (self.theta0 - d, self.theta0 + d);
         let theta = if t1.cos() >= t2.cos() { t1 } else { t2 };
         let (st, ct) = theta.sin_cos();
         let er = [
@@ -138,17 +158,29 @@ pub fn wheel_locus(
             ct * e1[1] + st * e2[1],
             ct * e1[2] + st * e2[2],
         ];
-        let u = wheel.axial_offset_m() + s.q_m;
-        let r = nominal_radius_m + s.z_m;
-        out.push(LocusPoint {
+        let u = self.axial_offset_m + s.q_m;
+        let r = self.nominal_radius_m + s.z_m;
+        LocusPoint {
             x_m: c[0] + u * a[0] + r * er[0],
             q_m: c[1] + u * a[1] + r * er[1],
             z_m: c[2] + u * a[2] + r * er[2],
             kx_per_m: -ty / r,
             radius_m: r,
             profile_y_m: s.q_m,
-        });
+        }
     }
+}
+
+/// Computes the contact locus of `wheel` in `pose` into `out`.
+pub fn wheel_locus(
+    wheel: &PlacedWheel,
+    nominal_radius_m: f64,
+    pose: &SidePose,
+    out: &mut Vec<LocusPoint>,
+) {
+    out.clear();
+    let frame = LocusFrame::new(wheel, nominal_radius_m, pose);
+    out.extend(wheel.samples().iter().map(|s| frame.point(s)));
 }
 
 /// The vertical gap of one side, sampled in q.
@@ -202,10 +234,49 @@ impl VerticalGap {
 
     /// Fills the gap between `rail` and `locus`.
     pub fn compute(&mut self, rail: &PlacedRail, locus: &[LocusPoint]) {
-        let rs = rail.samples();
-        let (rlo, rhi) = range(rs.iter().map(|s| s.q_m));
+        let (rlo, rhi) = range(rail.samples().iter().map(|s| s.q_m));
         let (wlo, whi) = range(locus.iter().map(|p| p.q_m));
-        let (lo, hi) = (rlo.max(wlo), rhi.min(whi));
+        self.set_range(rlo.max(wlo), rhi.min(whi));
+        self.fill_rail(rail);
+        // Wheel locus (field face first): segments running towards -q face
+        // down; keep the lowest.
+        for (i, w) in locus.windows(2).enumerate() {
+            if w[1].q_m < w[0].q_m {
+                self.raster(
+                    w[1].q_m,
+                    w[1].z_m,
+                    w[0].q_m,
+                    w[0].z_m,
+                    |old, new| old.is_nan() || new > old,
+                    Some(i),
+                );
+            }
+        }
+    }
+
+    /// The rail surface alone, over the rail's whole lateral range (no
+    /// wheel: `z_wheel_m` is NaN).
+    pub fn rail_surface(rail: &PlacedRail) -> Self {
+        let (lo, hi) = range(rail.samples().iter().map(|s| s.q_m));
+        let mut g = Self::default();
+        g.set_range(lo, hi);
+        g.fill_rail(rail);
+        g
+    }
+
+    /// Rail surface height at `q_m` [m], linear between samples (NaN
+    /// outside the rail).
+    pub fn rail_z_at(&self, q_m: f64) -> f64 {
+        let f = (q_m - self.q0_m) / self.dq_m;
+        if self.len() < 2 || !(f >= 0.0 && f <= (self.len() - 1) as f64) {
+            return f64::NAN;
+        }
+        let k = (f as usize).min(self.len().saturating_sub(2));
+        let w = f - k as f64;
+        self.z_rail_m[k] + w * (self.z_rail_m[k + 1] - self.z_rail_m[k])
+    }
+
+    fn set_range(&mut self, lo: f64, hi: f64) {
         self.dq_m = SAMPLE_SPACING_M;
         self.q0_m = (lo / self.dq_m).ceil() * self.dq_m;
         let n = if hi > self.q0_m {
@@ -219,8 +290,11 @@ impl VerticalGap {
         self.z_wheel_m.resize(n, f64::NAN);
         self.locus_index.clear();
         self.locus_index.resize(n, 0);
+    }
+
+    fn fill_rail(&mut self, rail: &PlacedRail) {
         // Rail: segments running towards +q face up; keep the highest.
-        for w in rs.windows(2) {
+        for w in rail.samples().windows(2) {
             if w[1].q_m > w[0].q_m {
                 self.raster(
                     w[0].q_m,
@@ -229,20 +303,6 @@ impl VerticalGap {
                     w[1].z_m,
                     |old, new| old.is_nan() || new < old,
                     None,
-                );
-            }
-        }
-        // Wheel locus (field face first): segments running towards -q face
-        // down; keep the lowest.
-        for (i, w) in locus.windows(2).enumerate() {
-            if w[1].q_m < w[0].q_m {
-                self.raster(
-                    w[1].q_m,
-                    w[1].z_m,
-                    w[0].q_m,
-                    w[0].z_m,
-                    |old, new| old.is_nan() || new > old,
-                    Some(i),
                 );
             }
         }
@@ -366,6 +426,49 @@ fn min_gaps(
     Ok(out)
 }
 
+/// The roll angle at which `d(roll)`, the smallest vertical gap of the left
+/// wheel minus that of the right, vanishes (to `tolerance_m`): secant steps
+/// from roll 0. D grows with roll (positive roll lowers the right wheel) at
+/// about the track width `gauge_m` per radian. `lateral_m` names the
+/// position in the error.
+pub(crate) fn find_roll(
+    mut d: impl FnMut(f64) -> Result<f64, WheelRailError>,
+    gauge_m: f64,
+    tolerance_m: f64,
+    lateral_m: f64,
+) -> Result<f64, WheelRailError> {
+    let mut r0 = 0.0;
+    let mut d0 = d(r0)?;
+    let slope0 = gauge_m;
+    let mut r1 = -d0 / slope0;
+    let mut d1 = d(r1)?;
+    let mut it = 0;
+    while d1.abs() > tolerance_m {
+        it += 1;
+        if it > 50 {
+            return Err(WheelRailError::Geometry {
+                side: "both",
+                message: format!(
+                    "no roll angle puts both wheels on their rails at lateral shift \
+                     {:.2} mm (last difference of the gaps {:.3e} m)",
+                    lateral_m * 1e3,
+                    d1
+                ),
+            });
+        }
+        let slope = if (d1 - d0).abs() > 1e-15 && (r1 - r0).abs() > 1e-15 {
+            (d1 - d0) / (r1 - r0)
+        } else {
+            slope0
+        };
+        let slope = if slope > 0.1 * slope0 { slope } else { slope0 };
+        (r0, d0) = (r1, d1);
+        r1 -= d1 / slope;
+        d1 = d(r1)?;
+    }
+    Ok(r1)
+}
+
 /// Finds the rigid position for `position`; leaves the loci and gaps of that
 /// position in `scratch`.
 pub fn rigid_position(
@@ -378,44 +481,15 @@ pub fn rigid_position(
     let (y, yaw) = (position.lateral_m, position.yaw_rad);
     let roll = match position.roll_rad {
         Some(r) => r,
-        None => {
-            // D(roll) = gap_left - gap_right grows with roll (positive roll
-            // lowers the right wheel) at about the track width per radian.
-            let d = |r: f64, s: &mut SearchScratch| -> Result<f64, WheelRailError> {
-                let g = min_gaps(pair, y, yaw, r, z0, s)?;
+        None => find_roll(
+            |r| {
+                let g = min_gaps(pair, y, yaw, r, z0, scratch)?;
                 Ok(g[0] - g[1])
-            };
-            let mut r0 = 0.0;
-            let mut d0 = d(r0, scratch)?;
-            let slope0 = pair.track().gauge_m;
-            let mut r1 = -d0 / slope0;
-            let mut d1 = d(r1, scratch)?;
-            let mut it = 0;
-            while d1.abs() > settings.roll_tolerance_m {
-                it += 1;
-                if it > 50 {
-                    return Err(WheelRailError::Geometry {
-                        side: "both",
-                        message: format!(
-                            "no roll angle puts both wheels on their rails at lateral shift \
-                             {:.2} mm (last difference of the gaps {:.3e} m)",
-                            y * 1e3,
-                            d1
-                        ),
-                    });
-                }
-                let slope = if (d1 - d0).abs() > 1e-15 && (r1 - r0).abs() > 1e-15 {
-                    (d1 - d0) / (r1 - r0)
-                } else {
-                    slope0
-                };
-                let slope = if slope > 0.1 * slope0 { slope } else { slope0 };
-                (r0, d0) = (r1, d1);
-                r1 -= d1 / slope;
-                d1 = d(r1, scratch)?;
-            }
-            r1
-        }
+            },
+            pair.track().gauge_m,
+            settings.roll_tolerance_m,
+            y,
+        )?,
     };
     let g = min_gaps(pair, y, yaw, roll, z0, scratch)?;
     // Translating the wheelset in z shifts every vertical gap equally.

@@ -1,0 +1,844 @@
+//! Contact tables: the geometric part of the contact search precomputed per
+//! profile pair, so that a time step of the Hertz+FASTSIM fast path costs a
+//! look-up and a few point evaluations instead of a search.
+//!
+//! # What is tabulated
+//!
+//! [`ContactTable::build`] runs the search of [`crate::wheelrail::search`]
+//! on a grid of wheelset lateral shift y and roll angle (track frame, yaw 0,
+//! wheelset centre at the nominal radius above the top of rail), per side
+//! (once when the sides are mirror images). At every node it stores each
+//! **potential contact**: each local minimum of the vertical gap (the rail
+//! minus the wheel's contact locus) within [`CONTACT_LEVEL_M`] of the
+//! node's smallest gap; of two minima whose barrier is below
+//! [`PROMINENCE_M`] (rounding, not contacts), the deeper. Per contact:
+//!
+//! * where it lies on the wheel profile (arc length of the fitted profile);
+//! * the lateral curvature B of the normal undeformed distance, computed as
+//!   the direct Hertz path does ([`crate::wheelrail::contact`]: second
+//!   difference of the patch's lateral samples about their minimum) with
+//!   the wheel put in touch at that minimum, as at the rigid position.
+//!
+//! Default grid ([`TableSettings::default`]): y from -15 to +15 mm every
+//! 0.1 mm and roll from -25 to +25 mrad every 2.5 mrad: 301 x 21 nodes. The
+//! roll found from the profiles of S1002/UIC60 is -11.3 mrad at 10 mm shift
+//! (CONTACT's `mbench_a22` input has -11.26 mrad) and -15.1 mrad at 15 mm;
+//! the rest covers roll inputs away from the quasi-static one. The table
+//! only seeds the search (below), so its steps need not resolve the
+//! contact positions; 0.1 mm in y puts the onset of a contact within
+//! 0.05 mm of shift of a node. Build time: see `tests/wheelrail.rs`.
+//!
+//! # Look-up
+//!
+//! [`ContactTable`] interpolates bilinearly between the four nodes around
+//! (y, roll). The contacts of the node with the largest weight come first;
+//! each is matched at the other nodes with the contact nearest on the
+//! wheel profile, within [`MATCH_DISTANCE_M`] of arc length, and its
+//! position on the wheel and B are the weighted means over the nodes that
+//! have it (B over those where it is defined). Contacts of the other nodes
+//! left without a match follow (a contact that appears or disappears
+//! between the nodes), with the weights of the nodes that have them.
+//!
+//! Each of these is a **seed**: from it, the vertical gap is evaluated
+//! exactly at the actual position (lateral shift, roll **and yaw**: the
+//! contact-locus point of that wheel point, [`LocusFrame`], and the rail
+//! surface below it) and followed downhill along the wheel profile, sample
+//! by sample, to its local minimum, refined by a parabola. Seeds that end
+//! on the same minimum are one contact; seeds of a contact that does not
+//! exist at the actual position end on a neighbour. So the contact
+//! position, contact angle (from the rail slope), rolling radius, lead of
+//! the contact point and vertical gap are those of the direct search up to
+//! its 0.05 mm sampling, and whether a contact exists is decided at the
+//! actual position, not at a node. The barrier between neighbouring
+//! contacts (the largest vertical gap between them, for grouping) is
+//! evaluated the same way. The rigid position (and the roll, when it is
+//! not given) follows from these gaps as in the direct search.
+//!
+//! # Approximation of yaw
+//!
+//! Only B comes from the yaw-0 table. With yaw, the locus point of a wheel
+//! circle lies at an angle of about tan(contact angle) x yaw round the
+//! wheel, which changes the lateral shape of the locus: nothing on the
+//! tread, where B is mostly the rail's crown; at a flange at 15-24 mrad of
+//! yaw, a few percent of B, and so of the Hertz semi-axis ratio.
+//! `tests/wheelrail.rs` measures the forces against the direct search at the
+//! Manchester yaw angles (2.4 mrad per mm of shift).
+//!
+//! # Patches
+//!
+//! Per wheel, as the direct path: potential contacts with a vertical gap
+//! below a cap (1.15 times a Hertz estimate of the approach) are grouped,
+//! consecutive contacts closer than the merge distance, or whose barrier is
+//! below the level, forming one patch at the deepest; the load iteration
+//! gives the approach; contacts are grouped again at the approach (the
+//! direct path's split of interpenetration that falls apart) and solved
+//! again if the patches changed. The direct path merges on the distance
+//! between the parts below the level, the tables on the distance between
+//! the minima: they differ only for minima about the merge distance apart.
+//!
+//! Positions outside the table (lateral shift or roll), and models other
+//! than Hertz+FASTSIM, are solved with the direct search.
+
+use std::time::Instant;
+
+use crate::core::cache::KernelCache;
+use crate::core::error::ContactError;
+use crate::core::hertz::{hertz, HertzLoad};
+use crate::wheelrail::contact::{
+    finish, hertz_patch, lateral_curvature, load_iteration, pitch_rate, solve_wheelset, validate,
+    wheel_fastsim, LoadResult, PatchWork, Timing, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailSolution, WheelResult, CAP_FACTOR,
+};
+use crate::wheelrail::search::{
+    find_roll, patch_geometry, wheel_locus, LocusFrame, LocusPoint, PatchGeometry, SearchScratch,
+    SearchSettings, SidePose, VerticalGap,
+};
+use crate::wheelrail::wheelset::{CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair};
+
+/// Potential contacts are the minima of the vertical gap up to this far
+/// above a node's smallest gap [m]: far beyond the approach of any wheel
+/// load (about 0.1 mm at 100 kN on S1002/UIC60).
+pub const CONTACT_LEVEL_M: f64 = 2.0e-3;
+
+/// Minima of the vertical gap whose barrier to a neighbour is lower than
+/// this are one contact [m].
+pub const PROMINENCE_M: f64 = 1.0e-7;
+
+/// Largest distance along the wheel profile between the matched contacts
+/// of neighbouring nodes [m].
+pub const MATCH_DISTANCE_M: f64 = 2.0e-3;
+
+/// Half-width of the window of gap samples handed to the patch geometry
+/// for the lateral curvature (the curvature uses up to 10 samples either
+/// side of the minimum).
+const CURVATURE_WINDOW: usize = 20;
+
+/// Grid of a contact table (track frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableSettings {
+    /// Smallest and largest lateral shift [m].
+    pub lateral_range_m: [f64; 2],
+    /// Lateral step [m].
+    pub lateral_step_m: f64,
+    /// Smallest and largest roll angle [rad].
+    pub roll_range_rad: [f64; 2],
+    /// Roll step [rad].
+    pub roll_step_rad: f64,
+}
+
+impl Default for TableSettings {
+    /// See the module documentation for the choice.
+    fn default() -> Self {
+        Self {
+            lateral_range_m: [-0.015, 0.015],
+            lateral_step_m: 1.0e-4,
+            roll_range_rad: [-0.025, 0.025],
+            roll_step_rad: 2.5e-3,
+        }
+    }
+}
+
+/// One potential contact of a table node (side frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct NodeContact {
+    /// Arc length of the contact point along the fitted wheel profile [m].
+    wheel_t_m: f64,
+    /// Lateral curvature of the normal undeformed distance [1/m].
+    b_per_m: f64,
+}
+
+/// A uniform axis of the grid.
+#[derive(Debug, Clone, Copy)]
+struct Axis {
+    first: f64,
+    step: f64,
+    n: usize,
+}
+
+impl Axis {
+    fn new(range: [f64; 2], step: f64, key: &str) -> Result<Self, WheelRailError> {
+        if !(step > 0.0 && range[0].is_finite() && range[1] > range[0]) {
+            return Err(WheelRailError::invalid(
+                key,
+                format!("range {range:?} with step {step} is not a grid"),
+            ));
+        }
+        let n = ((range[1] - range[0]) / step).round() as usize + 1;
+        if !(2..=10_000).contains(&n) {
+            return Err(WheelRailError::invalid(key, format!("{n} nodes")));
+        }
+        Ok(Self {
+            first: range[0],
+            step,
+            n,
+        })
+    }
+
+    fn value(&self, i: usize) -> f64 {
+        self.first + i as f64 * self.step
+    }
+
+    /// Lower node and weight of the upper one; `None` outside.
+    fn locate(&self, v: f64) -> Option<(usize, f64)> {
+        let f = (v - self.first) / self.step;
+        let last = (self.n - 1) as f64;
+        if !(f >= -1e-9 && f <= last + 1e-9) {
+            return None;
+        }
+        let i = (f.max(0.0) as usize).min(self.n - 2);
+        Some((i, (f - i as f64).clamp(0.0, 1.0)))
+    }
+}
+
+/// A potential contact evaluated at an actual position (side frame).
+#[derive(Debug, Clone, Copy)]
+struct Evaluated {
+    /// Arc length along the wheel profile [m].
+    wheel_t_m: f64,
+    locus: LocusPoint,
+    rail_z_m: f64,
+    contact_angle_rad: f64,
+    /// Vertical gap [m].
+    gap_m: f64,
+    b_per_m: f64,
+    /// Largest vertical gap between this contact and the next (+q) [m].
+    barrier_m: f64,
+}
+
+/// Contact tables of one profile pair (both sides). Build once per pair
+/// ([`ContactTable::build`]); solve with [`solve_wheelset_tabulated`].
+#[derive(Debug, Clone)]
+pub struct ContactTable {
+    pair: WheelRailPair,
+    settings: TableSettings,
+    lateral: Axis,
+    roll: Axis,
+    /// Per side, per node (lateral-major): its contacts, increasing q. The
+    /// left side's is empty when it is the mirror image of the right's.
+    nodes: [Vec<Vec<NodeContact>>; 2],
+    /// The sides are mirror images: the left side at (y, roll) is the right
+    /// side at (-y, -roll).
+    mirrored: bool,
+    /// Per side, the rail surface.
+    rails: [VerticalGap; 2],
+    build_s: f64,
+}
+
+/// The nodes of `side` with roll index in `rolls` (lateral-major within
+/// each roll), each with its contacts.
+fn build_rolls(
+    pair: &WheelRailPair,
+    side: Side,
+    lateral: &Axis,
+    roll: &Axis,
+    rolls: std::ops::Range<usize>,
+) -> Vec<(usize, Vec<NodeContact>)> {
+    let z0 = -pair.wheelset().nominal_radius_m;
+    let (rail, wheel) = (pair.rail(side), pair.wheel(side));
+    let dt = wheel_step_m(wheel.samples());
+    let (mut locus0, mut locus) = (Vec::new(), Vec::new());
+    let mut gap = VerticalGap::default();
+    let mut out = Vec::with_capacity(rolls.len() * lateral.n);
+    for ir in rolls {
+        // At yaw 0 a lateral shift translates the locus along q.
+        let pose = SidePose::new(side, 0.0, z0, roll.value(ir), 0.0);
+        wheel_locus(wheel, -z0, &pose, &mut locus0);
+        for iy in 0..lateral.n {
+            let dq = side.sign() * lateral.value(iy);
+            locus.clear();
+            locus.extend(locus0.iter().map(|p| LocusPoint {
+                q_m: p.q_m + dq,
+                ..*p
+            }));
+            gap.compute(rail, &locus);
+            out.push((iy * roll.n + ir, node_contacts(rail, &gap, &locus, dt)));
+        }
+    }
+    out
+}
+
+/// Arc-length step of the (uniform) wheel samples [m].
+fn wheel_step_m(samples: &[CurveSample]) -> f64 {
+    samples[1].t_m - samples[0].t_m
+}
+
+impl ContactTable {
+    /// Runs the contact search on the grid of `settings` for `pair` (which
+    /// the table keeps a copy of), on all cores.
+    pub fn build(pair: &WheelRailPair, settings: &TableSettings) -> Result<Self, WheelRailError> {
+        let t0 = Instant::now();
+        let lateral = Axis::new(
+            settings.lateral_range_m,
+            settings.lateral_step_m,
+            "table.lateral",
+        )?;
+        let roll = Axis::new(
+            settings.roll_range_rad,
+            settings.roll_step_rad,
+            "table.roll",
+        )?;
+        let symmetric_grid = |r: [f64; 2]| (r[0] + r[1]).abs() < 1e-12;
+        let mirrored = symmetric_grid(settings.lateral_range_m)
+            && symmetric_grid(settings.roll_range_rad)
+            && pair.rail(Side::Left).samples() == pair.rail(Side::Right).samples()
+            && pair.wheel(Side::Left).samples() == pair.wheel(Side::Right).samples();
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let chunk = roll.n.div_ceil(threads);
+        let mut nodes: [Vec<Vec<NodeContact>>; 2] = Default::default();
+        for side in Side::BOTH {
+            if mirrored && side == Side::Left {
+                continue;
+            }
+            let out = &mut nodes[side.index()];
+            out.resize(lateral.n * roll.n, Vec::new());
+            let parts = std::thread::scope(|scope| {
+                let handles: Vec<_> = (0..roll.n)
+                    .step_by(chunk)
+                    .map(|first| {
+                        let rolls = first..(first + chunk).min(roll.n);
+                        scope.spawn(move || build_rolls(pair, side, &lateral, &roll, rolls))
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("table build thread"))
+                    .collect::<Vec<_>>()
+            });
+            for (k, contacts) in parts.into_iter().flatten() {
+                out[k] = contacts;
+            }
+        }
+        let rails = Side::BOTH.map(|s| VerticalGap::rail_surface(pair.rail(s)));
+        Ok(Self {
+            pair: pair.clone(),
+            settings: *settings,
+            lateral,
+            roll,
+            nodes,
+            mirrored,
+            rails,
+            build_s: t0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The profile pair of the table.
+    pub fn pair(&self) -> &WheelRailPair {
+        &self.pair
+    }
+
+    /// The grid.
+    pub fn settings(&self) -> &TableSettings {
+        &self.settings
+    }
+
+    /// Time the build took [s].
+    pub fn build_time_s(&self) -> f64 {
+        self.build_s
+    }
+
+    /// Number of nodes (per side).
+    pub fn node_count(&self) -> usize {
+        self.lateral.n * self.roll.n
+    }
+
+    /// True when (lateral shift, roll) lies inside the grid.
+    pub fn covers(&self, lateral_m: f64, roll_rad: f64) -> bool {
+        self.lateral.locate(lateral_m).is_some() && self.roll.locate(roll_rad).is_some()
+    }
+
+    /// The seeds of the potential contacts of `side` at (y, roll),
+    /// interpolated (see the module documentation), nearest node's first;
+    /// `None` outside the grid.
+    fn lookup(&self, side: Side, lateral_m: f64, roll_rad: f64) -> Option<Vec<NodeContact>> {
+        if self.mirrored && side == Side::Left {
+            return self.lookup(Side::Right, -lateral_m, -roll_rad);
+        }
+        let (iy, wy) = self.lateral.locate(lateral_m)?;
+        let (ir, wr) = self.roll.locate(roll_rad)?;
+        let nodes = &self.nodes[side.index()];
+        let at = |dy: usize, dr: usize| &nodes[(iy + dy) * self.roll.n + ir + dr];
+        let mut corners = [
+            (at(0, 0), (1.0 - wy) * (1.0 - wr)),
+            (at(1, 0), wy * (1.0 - wr)),
+            (at(0, 1), (1.0 - wy) * wr),
+            (at(1, 1), wy * wr),
+        ];
+        corners.sort_by(|a, b| b.1.total_cmp(&a.1));
+        let mut used: Vec<Vec<bool>> = corners.iter().map(|c| vec![false; c.0.len()]).collect();
+        let mut out = Vec::new();
+        // Contacts of the nearest node, matched at the others; then those
+        // of the others that found no match.
+        for first in 0..corners.len() {
+            for (i, c) in corners[first].0.iter().enumerate() {
+                if used[first][i] {
+                    continue;
+                }
+                let (mut t, mut w_sum) = (0.0, 0.0);
+                let (mut b, mut wb_sum) = (0.0, 0.0);
+                for (k, (contacts, w)) in corners.iter().enumerate().skip(first) {
+                    let near = |m: &NodeContact| (m.wheel_t_m - c.wheel_t_m).abs();
+                    let Some(j) = (0..contacts.len())
+                        .filter(|&j| !used[k][j] && near(&contacts[j]) < MATCH_DISTANCE_M)
+                        .min_by(|&a, &b| near(&contacts[a]).total_cmp(&near(&contacts[b])))
+                    else {
+                        continue;
+                    };
+                    used[k][j] = true;
+                    t += w * contacts[j].wheel_t_m;
+                    w_sum += w;
+                    // B is NaN where the node's patch geometry failed.
+                    if contacts[j].b_per_m.is_finite() {
+                        b += w * contacts[j].b_per_m;
+                        wb_sum += w;
+                    }
+                }
+                // Contacts of nodes of zero weight only keep their values.
+                out.push(NodeContact {
+                    wheel_t_m: if w_sum > 0.0 { t / w_sum } else { c.wheel_t_m },
+                    b_per_m: if wb_sum > 0.0 { b / wb_sum } else { c.b_per_m },
+                });
+            }
+        }
+        Some(out)
+    }
+
+    /// The potential contacts of `side` at (y, roll), evaluated in `pose`
+    /// (which carries the actual yaw and centre height): each seed of the
+    /// look-up refined to the local minimum of the vertical gap on the
+    /// wheel profile; seeds that end on the same minimum are one contact.
+    /// Increasing q.
+    fn evaluate(
+        &self,
+        side: Side,
+        lateral_m: f64,
+        roll_rad: f64,
+        pose: &SidePose,
+    ) -> Option<Vec<Evaluated>> {
+        let seeds = self.lookup(side, lateral_m, roll_rad)?;
+        let probe = Probe::new(self, side, pose);
+        let mut out: Vec<Evaluated> = Vec::with_capacity(seeds.len());
+        for c in seeds {
+            let Some(e) = probe.descend(c.wheel_t_m, c.b_per_m) else {
+                continue;
+            };
+            let same = |o: &Evaluated| (o.wheel_t_m - e.wheel_t_m).abs() < 2.0 * probe.dt;
+            if !out.iter().any(same) {
+                out.push(e);
+            }
+        }
+        out.sort_by(|a, b| a.locus.q_m.total_cmp(&b.locus.q_m));
+        (!out.is_empty()).then_some(out)
+    }
+}
+
+/// Point evaluation of the vertical gap of one side in one pose at any
+/// point of the wheel profile.
+struct Probe<'a> {
+    samples: &'a [CurveSample],
+    dt: f64,
+    frame: LocusFrame,
+    rail: &'a VerticalGap,
+}
+
+/// Most steps of the descent from a seed along the wheel profile (in
+/// sample spacings, 20 mm).
+const MAX_DESCENT_STEPS: usize = 400;
+
+impl<'a> Probe<'a> {
+    fn new(table: &'a ContactTable, side: Side, pose: &SidePose) -> Self {
+        let wheel = table.pair.wheel(side);
+        Self {
+            samples: wheel.samples(),
+            dt: wheel_step_m(wheel.samples()),
+            frame: LocusFrame::new(wheel, table.pair.wheelset().nominal_radius_m, pose),
+            rail: &table.rails[side.index()],
+        }
+    }
+
+    /// The contact evaluated at wheel arc length `t_m`; `None` off the
+    /// profiles.
+    fn at(&self, t_m: f64, b_per_m: f64) -> Option<Evaluated> {
+        let ws = self.samples;
+        let f = t_m / self.dt;
+        if !(f >= 0.0 && f <= (ws.len() - 1) as f64) {
+            return None;
+        }
+        let k = (f as usize).min(ws.len() - 2);
+        let w = f - k as f64;
+        let (a, b) = (&ws[k], &ws[k + 1]);
+        let mix = |u: f64, v: f64| u + w * (v - u);
+        let tan = [
+            mix(a.tangent[0], b.tangent[0]),
+            mix(a.tangent[1], b.tangent[1]),
+        ];
+        let norm = tan[0].hypot(tan[1]);
+        let locus = self.frame.point(&CurveSample {
+            t_m,
+            q_m: mix(a.q_m, b.q_m),
+            z_m: mix(a.z_m, b.z_m),
+            tangent: [tan[0] / norm, tan[1] / norm],
+        });
+        let rail = self.rail;
+        let h = 0.5 * rail.dq_m;
+        let rail_z_m = rail.rail_z_at(locus.q_m);
+        let slope = (rail.rail_z_at(locus.q_m + h) - rail.rail_z_at(locus.q_m - h)) / (2.0 * h);
+        (rail_z_m.is_finite() && slope.is_finite()).then_some(Evaluated {
+            wheel_t_m: t_m,
+            locus,
+            rail_z_m,
+            // Normal into the rail: (-dz/dq, 1) normalised.
+            contact_angle_rad: (-slope).atan2(1.0),
+            gap_m: rail_z_m - locus.z_m,
+            b_per_m,
+            barrier_m: f64::INFINITY,
+        })
+    }
+
+    /// From the seed `t_m`, downhill along the wheel profile in sample
+    /// steps to a local minimum of the vertical gap, then to the vertex of
+    /// the parabola through it and its neighbours.
+    fn descend(&self, t_m: f64, b_per_m: f64) -> Option<Evaluated> {
+        let g = |t: f64| self.at(t, b_per_m).map_or(f64::INFINITY, |e| e.gap_m);
+        let (mut t, mut g0) = (t_m, g(t_m));
+        if !g0.is_finite() {
+            return None;
+        }
+        for dir in [1.0, -1.0] {
+            for _ in 0..MAX_DESCENT_STEPS {
+                let g1 = g(t + dir * self.dt);
+                if g1 >= g0 {
+                    break;
+                }
+                (t, g0) = (t + dir * self.dt, g1);
+            }
+        }
+        let (gm, gp) = (g(t - self.dt), g(t + self.dt));
+        let curv = gm - 2.0 * g0 + gp;
+        if curv.is_finite() && curv > 0.0 {
+            t += (0.5 * (gm - gp) / curv).clamp(-1.0, 1.0) * self.dt;
+        }
+        self.at(t, b_per_m)
+    }
+
+    /// Largest vertical gap between contacts `a` and `b` (wheel samples in
+    /// between) [m].
+    fn barrier(&self, a: &Evaluated, b: &Evaluated) -> f64 {
+        let (ta, tb) = (a.wheel_t_m.min(b.wheel_t_m), a.wheel_t_m.max(b.wheel_t_m));
+        let n = ((tb - ta) / self.dt).ceil() as usize;
+        (0..=n)
+            .filter_map(|k| self.at((ta + k as f64 * self.dt).min(tb), 0.0))
+            .map(|e| e.gap_m)
+            .fold(a.gap_m.max(b.gap_m), f64::max)
+    }
+}
+
+/// The potential contacts of one node from its vertical gap.
+fn node_contacts(
+    rail: &PlacedRail,
+    gap: &VerticalGap,
+    locus: &[LocusPoint],
+    wheel_dt_m: f64,
+) -> Vec<NodeContact> {
+    let n = gap.len();
+    let g = |k: usize| gap.gap_m(k);
+    let Some((_, gmin)) = gap.min() else {
+        return Vec::new();
+    };
+    // Local minima (strict on the left so that a flat run counts once);
+    // of two with too low a barrier between them, the deeper.
+    let is_min = |k: usize| {
+        g(k) < gmin + CONTACT_LEVEL_M
+            && (k == 0 || g(k) < g(k - 1))
+            && (k + 1 == n || g(k) <= g(k + 1))
+    };
+    let mut minima: Vec<usize> = Vec::new();
+    // Largest gap since the last minimum kept.
+    let mut ridge = f64::NEG_INFINITY;
+    for k in 0..n {
+        ridge = ridge.max(g(k));
+        if !is_min(k) {
+            continue;
+        }
+        match minima.last_mut() {
+            Some(last) if ridge - g(*last).max(g(k)) < PROMINENCE_M => {
+                if g(k) < g(*last) {
+                    *last = k;
+                    ridge = g(k);
+                }
+            }
+            _ => {
+                minima.push(k);
+                ridge = g(k);
+            }
+        }
+    }
+    let mut touching = Vec::with_capacity(locus.len());
+    minima
+        .iter()
+        .map(|&k| {
+            // Wheel arc length: along the locus segment below sample k.
+            let li = gap.locus_index[k].min(locus.len() - 2);
+            let (p, q) = (locus[li], locus[li + 1]);
+            let f = ((gap.q_m(k) - p.q_m) / (q.q_m - p.q_m)).clamp(0.0, 1.0);
+            let iv = (
+                k.saturating_sub(CURVATURE_WINDOW),
+                (k + CURVATURE_WINDOW).min(n - 1),
+                k,
+            );
+            // B as the direct path has it at the rigid position: with the
+            // wheel lowered (or raised) onto the rail at this minimum.
+            touching.clear();
+            touching.extend(locus.iter().map(|p| LocusPoint {
+                z_m: p.z_m + g(k),
+                ..*p
+            }));
+            let b_per_m = patch_geometry(rail, &touching, gap, iv, 0.0)
+                .map(|geom| lateral_curvature(&geom).1)
+                .unwrap_or(f64::NAN);
+            NodeContact {
+                wheel_t_m: (li as f64 + f) * wheel_dt_m,
+                b_per_m,
+            }
+        })
+        .collect()
+}
+
+/// Groups the contacts (increasing q) with a gap below `cap_m` into
+/// patches: consecutive ones closer than `merge_m` along q, or with a
+/// barrier below `level_m`, form one patch; its deepest contact stands for
+/// it. Returns the indices of those.
+fn group(contacts: &[Evaluated], cap_m: f64, level_m: f64, merge_m: f64) -> Vec<usize> {
+    let mut out: Vec<usize> = Vec::new();
+    let mut last: Option<usize> = None;
+    // Largest barrier level since the last contact below the cap.
+    let mut ridge = f64::NEG_INFINITY;
+    for (i, c) in contacts.iter().enumerate() {
+        if let Some(j) = i.checked_sub(1) {
+            ridge = ridge.max(contacts[j].barrier_m);
+        }
+        if c.gap_m >= cap_m {
+            continue;
+        }
+        let joined = last.is_some_and(|l| {
+            ridge < level_m || (contacts[l].locus.q_m - c.locus.q_m).abs() < merge_m
+        });
+        match out.last_mut() {
+            Some(rep) if joined => {
+                if c.gap_m < contacts[*rep].gap_m {
+                    *rep = i;
+                }
+            }
+            _ => out.push(i),
+        }
+        last = Some(i);
+        ridge = f64::NEG_INFINITY;
+    }
+    out
+}
+
+/// A first estimate of the vertical approach that carries `force` on the
+/// deepest contact: Hertz on its curvatures.
+fn approach_estimate(c: &Evaluated, input: &WheelRailInput, force: f64) -> f64 {
+    let cos = c.contact_angle_rad.cos();
+    let kx = c.locus.kx_per_m.max(0.1);
+    hertz(
+        0.5 * kx,
+        c.b_per_m.max(0.05 * kx),
+        input.material.effective_modulus_pa(),
+        HertzLoad::NormalForce {
+            normal_force_n: force / cos,
+        },
+    )
+    .map(|h| h.approach_m / cos)
+    .unwrap_or(1e-4)
+}
+
+/// The patch of contact `c` at the rigid position.
+fn patch(
+    c: &Evaluated,
+    pose: &SidePose,
+    side: Side,
+    input: &WheelRailInput,
+    omega: f64,
+) -> PatchWork {
+    let (sin, cos) = c.contact_angle_rad.sin_cos();
+    let geom = PatchGeometry {
+        reference_m: [c.locus.q_m, c.rail_z_m],
+        x_m: c.locus.x_m,
+        normal: [sin, cos],
+        contact_angle_rad: c.contact_angle_rad,
+        min_vertical_gap_m: c.gap_m,
+        rolling_radius_m: c.locus.radius_m,
+        wheel_profile_y_m: c.locus.profile_y_m,
+        // Hertz needs no lateral samples or grid.
+        s_range_m: [0.0, 0.0],
+        lateral: Vec::new(),
+        rail_index: 0,
+        locus_index: 0,
+    };
+    hertz_patch(
+        geom,
+        c.gap_m * cos,
+        c.locus.kx_per_m,
+        c.b_per_m,
+        pose,
+        side,
+        input,
+        omega,
+    )
+}
+
+/// One wheel pressed onto its rail, its contacts evaluated at the rigid
+/// position (the structure of the direct path's wheel solution).
+#[allow(clippy::too_many_arguments)]
+fn solve_wheel_tabulated(
+    pair: &WheelRailPair,
+    contacts: &[Evaluated],
+    pose: &SidePose,
+    side: Side,
+    input: &WheelRailInput,
+    omega: f64,
+    cache: &KernelCache,
+    timing: &mut Timing,
+) -> Result<WheelResult, WheelRailError> {
+    let deepest = contacts
+        .iter()
+        .min_by(|a, b| a.gap_m.total_cmp(&b.gap_m))
+        .expect("a side without contacts is solved directly");
+    let gmin = deepest.gap_m;
+    let mut cap = match input.load {
+        WheelLoad::VerticalForce(f) => gmin + CAP_FACTOR * approach_estimate(deepest, input, f),
+        WheelLoad::Approach(d) => gmin + d,
+    };
+    let mut fastsim = wheel_fastsim(side)?;
+    let merge = input.settings.search.merge_distance_m;
+    let mut reps = group(contacts, cap, cap, merge);
+    let mut split = false;
+    for _ in 0..5 {
+        let tg = Instant::now();
+        let mut patches: Vec<_> = reps
+            .iter()
+            .map(|&i| patch(&contacts[i], pose, side, input, omega))
+            .collect();
+        timing.geometry_s += tg.elapsed().as_secs_f64();
+        let ts = Instant::now();
+        let result = load_iteration(&mut patches, input, cap, &mut fastsim, cache).map_err(
+            |(patch, source): (usize, ContactError)| WheelRailError::Contact {
+                side: side.name(),
+                patch,
+                source,
+            },
+        )?;
+        timing.solve_s += ts.elapsed().as_secs_f64();
+        match result {
+            LoadResult::Done { delta, iterations } => {
+                let parts = group(contacts, cap, delta, merge);
+                if !split && parts != reps {
+                    split = true;
+                    reps = parts;
+                    continue;
+                }
+                return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+            }
+            LoadResult::CapTooSmall => {
+                cap = gmin + 2.0 * (cap - gmin);
+                reps = group(contacts, cap, cap, merge);
+                split = false;
+            }
+        }
+    }
+    Err(WheelRailError::Geometry {
+        side: side.name(),
+        message: format!(
+            "the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
+            (cap - gmin) * 1e3
+        ),
+    })
+}
+
+/// Solves the wheel/rail contact of `input` on the table's pair with the
+/// contact geometry from `table` (see the module documentation) for the
+/// Hertz+FASTSIM model; other models, and positions outside the table, are
+/// solved by [`solve_wheelset`] with the direct search.
+pub fn solve_wheelset_tabulated(
+    table: &ContactTable,
+    input: &WheelRailInput,
+    cache: &KernelCache,
+    scratch: &mut SearchScratch,
+) -> Result<WheelRailSolution, WheelRailError> {
+    validate(input)?;
+    let direct = |scratch: &mut SearchScratch| solve_wheelset(&table.pair, input, cache, scratch);
+    if input.settings.model != WheelRailModel::HertzFastsim {
+        return direct(scratch);
+    }
+    let t0 = Instant::now();
+    let pair = &table.pair;
+    let p = &input.position;
+    let z0 = -pair.wheelset().nominal_radius_m;
+    let at = |roll: f64, z: f64| -> Option<[Vec<Evaluated>; 2]> {
+        let eval = |side: Side| {
+            let pose = SidePose::new(side, p.lateral_m, z, roll, p.yaw_rad);
+            table.evaluate(side, p.lateral_m, roll, &pose)
+        };
+        Some([eval(Side::Left)?, eval(Side::Right)?])
+    };
+    let min_gap = |c: &[Evaluated]| c.iter().map(|e| e.gap_m).fold(f64::INFINITY, f64::min);
+    let roll = match p.roll_rad {
+        Some(r) => Some(r),
+        None => find_roll(
+            |r| {
+                let c = at(r, z0).ok_or_else(|| WheelRailError::invalid("table", "outside"))?;
+                Ok(min_gap(&c[0]) - min_gap(&c[1]))
+            },
+            pair.track().gauge_m,
+            SearchSettings::default().roll_tolerance_m,
+            p.lateral_m,
+        )
+        .ok(),
+    };
+    let Some((roll, mut contacts)) = roll.and_then(|r| Some((r, at(r, z0)?))) else {
+        return direct(scratch);
+    };
+    // Translating the wheelset in z shifts every vertical gap equally.
+    let dz = min_gap(&contacts[0]).min(min_gap(&contacts[1]));
+    let center_z_m = z0 + dz;
+    for side in Side::BOTH {
+        let pose = SidePose::new(side, p.lateral_m, z0, roll, p.yaw_rad);
+        let probe = Probe::new(table, side, &pose);
+        let c = &mut contacts[side.index()];
+        for i in 0..c.len() {
+            if i + 1 < c.len() {
+                c[i].barrier_m = probe.barrier(&c[i], &c[i + 1]) - dz;
+            }
+            c[i].gap_m -= dz;
+            c[i].locus.z_m += dz;
+        }
+    }
+    let search_s = t0.elapsed().as_secs_f64();
+    let mut timing = Timing {
+        search_s,
+        ..Timing::default()
+    };
+    let omega = pitch_rate(pair, input);
+    let mut wheels = Vec::with_capacity(input.sides.len());
+    for &side in &input.sides {
+        let pose = SidePose::new(side, p.lateral_m, center_z_m, roll, p.yaw_rad);
+        wheels.push(solve_wheel_tabulated(
+            pair,
+            &contacts[side.index()],
+            &pose,
+            side,
+            input,
+            omega,
+            cache,
+            &mut timing,
+        )?);
+    }
+    Ok(WheelRailSolution {
+        center_z_m,
+        roll_rad: roll,
+        pitch_rad_per_s: omega,
+        wheels,
+        timing,
+    })
+}
