@@ -115,6 +115,8 @@ pub struct SteadyScratch {
     rhs: Vec<f64>,
     sol: Vec<f64>,
     krylov: Krylov,
+    /// Differenced tractions of [`PlanarSteady`].
+    diff: [Vec<f64>; 2],
 }
 
 /// GMRES work space.
@@ -147,6 +149,7 @@ impl SteadyScratch {
             py_old: z(n),
             rhs: z(2 * n),
             sol: z(2 * n),
+            diff: [z(n), z(n)],
             krylov: Krylov {
                 work: z(2 * n),
                 zvec: z(2 * n),
@@ -414,9 +417,57 @@ fn fastsim_guess(
     }
 }
 
-/// Steady rolling: `k` must be the [`KernelKind::SteadyRolling`] kernel set;
-/// `cx`, `cy` in `input` hold the rigid slip w (plus any normal coupling)
-/// [-]. `out.px`, `out.py` are the initial guess (warm start) on entry.
+/// The steady operator B = A_tt (I - S)/dx through the displacement
+/// kernels: the upwind difference of the tractions, then the displacement
+/// product, whose kernel spectra are real (a third of the arithmetic of
+/// the complex spectra of [`KernelKind::SteadyRolling`] in the spectral
+/// products). Equal to the steady kernels' product when the tractions
+/// vanish on the trailing column ix = 0, which S drops (the driver requires
+/// the loaded elements to stay off the grid border).
+pub struct PlanarSteady<'a> {
+    /// Displacement kernels.
+    pub kernels: &'a KernelSet,
+    /// Buffers.
+    pub ows: &'a mut OperatorWorkspace,
+    /// The differenced tractions.
+    pub diff: [&'a mut [f64]; 2],
+}
+
+impl TangentialOperator for PlanarSteady<'_> {
+    fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
+        let nx = self.kernels.plan.nx;
+        let inv_dx = 1.0 / self.kernels.influence.dx_m();
+        let [dxv, dyv] = &mut self.diff;
+        for (p, d) in [(px, &mut **dxv), (py, &mut **dyv)] {
+            for (s, t) in p.chunks_exact(nx).zip(d.chunks_exact_mut(nx)) {
+                for ix in 0..nx - 1 {
+                    t[ix] = (s[ix] - s[ix + 1]) * inv_dx;
+                }
+                t[nx - 1] = s[nx - 1] * inv_dx;
+            }
+        }
+        self.kernels.apply(
+            self.ows,
+            &[(Component::X, dxv), (Component::Y, dyv)],
+            &mut [(Component::X, ux), (Component::Y, uy)],
+        );
+    }
+
+    fn diagonal(&self) -> [f64; 2] {
+        let k = |c| {
+            self.kernels
+                .influence
+                .kernel(KernelKind::SteadyRolling, c, c, 0, 0)
+        };
+        [k(Component::X), k(Component::Y)]
+    }
+}
+
+/// Steady rolling: `k` is the [`KernelKind::Displacement`] kernel set (the
+/// operator is then [`PlanarSteady`]) or the [`KernelKind::SteadyRolling`]
+/// one; `cx`, `cy` in `input` hold the rigid slip w (plus any normal
+/// coupling) [-]. `out.px`, `out.py` are the initial guess (warm start) on
+/// entry.
 pub fn solve_steady_newton(
     k: &KernelSet,
     ows: &mut OperatorWorkspace,
@@ -425,18 +476,36 @@ pub fn solve_steady_newton(
     scratch: &mut SteadyScratch,
     settings: &TangentialSettings,
 ) -> TangentialOutcome {
-    debug_assert_eq!(k.kind, KernelKind::SteadyRolling);
     let material = [k.influence.shear_modulus_pa(), k.influence.poisson_ratio()];
-    let mut op = PlanarTangential { kernels: k, ows };
-    solve_coulomb_newton(
-        &mut op,
-        LocalModel::Upwind,
-        Some(material),
-        input,
-        out,
-        scratch,
-        settings,
-    )
+    let run = |op: &mut dyn TangentialOperator, scratch: &mut SteadyScratch| {
+        solve_coulomb_newton(
+            op,
+            LocalModel::Upwind,
+            Some(material),
+            input,
+            out,
+            scratch,
+            settings,
+        )
+    };
+    match k.kind {
+        KernelKind::SteadyRolling => run(&mut PlanarTangential { kernels: k, ows }, scratch),
+        KernelKind::Displacement => {
+            // Moved out and back: the operator and the solver both borrow
+            // the scratch.
+            let [mut a, mut b] = std::mem::take(&mut scratch.diff);
+            let outcome = run(
+                &mut PlanarSteady {
+                    kernels: k,
+                    ows,
+                    diff: [&mut a, &mut b],
+                },
+                scratch,
+            );
+            scratch.diff = [a, b];
+            outcome
+        }
+    }
 }
 
 /// The Newton solver for any tangential operator: steady rolling
@@ -568,6 +637,8 @@ pub fn solve_coulomb_newton(
     matvecs += 1;
     let (mut residual, mut merit) = residual_of(px, py, sx, sy, g);
     let mut iterations = 0;
+    let mut eta_prev = 0.5;
+    let mut merit_prev = merit;
     let max_newton = settings.max_iterations.clamp(1, MAX_NEWTON_STEPS);
     let matvec_budget = MAX_NEWTON_MATVECS;
     while residual > settings.tolerance && iterations < max_newton && matvecs < matvec_budget {
@@ -644,7 +715,23 @@ pub fn solve_coulomb_newton(
             ty,
             e,
         };
-        let eta = (0.1 * residual.sqrt()).clamp(1e-4, 0.1);
+        // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
+        // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²
+        // with their safeguard, loose while the active set settles and
+        // superlinear after; but no tighter than the tolerance needs: the
+        // step's linear residual, eta times the root-sum-square one, bounds
+        // its largest element.
+        let mut eta = if iterations == 1 {
+            0.5
+        } else {
+            0.9 * (merit / merit_prev).powi(2)
+        };
+        if 0.9 * eta_prev * eta_prev > 0.1 {
+            eta = eta.max(0.9 * eta_prev * eta_prev);
+        }
+        let eta = eta.max(0.3 * settings.tolerance / merit).clamp(1e-4, 0.5);
+        eta_prev = eta;
+        merit_prev = merit;
         matvecs += gmres(
             &lin,
             op,
@@ -813,6 +900,11 @@ mod tests {
     }
 
     fn run(c: &Case, mu: f64, newton: bool) -> Answer {
+        run_with(c, mu, newton.then_some(&c.steady))
+    }
+
+    /// Newton with the kernel set `newton`, or time marching when None.
+    fn run_with(c: &Case, mu: f64, newton: Option<&KernelSet>) -> Answer {
         let n = c.grid.len();
         let prev = vec![ElementState::Exterior; n];
         let input = c.input(mu, &prev);
@@ -840,10 +932,10 @@ mod tests {
             tolerance: 1e-9,
             max_iterations: 2000,
         };
-        a.outcome = if newton {
-            let mut ows = c.steady.workspace();
+        a.outcome = if let Some(k) = newton {
+            let mut ows = k.workspace();
             let mut sc = SteadyScratch::new(n);
-            solve_steady_newton(&c.steady, &mut ows, &input, out, &mut sc, &settings)
+            solve_steady_newton(k, &mut ows, &input, out, &mut sc, &settings)
         } else {
             let mut ows = c.displacement.workspace();
             solve_steady_marching(
@@ -984,6 +1076,22 @@ mod tests {
         eprintln!("transient step: Newton {nm} matvecs, FISTA {fm}");
     }
 
+    #[test]
+    fn steady_operator_through_displacement_kernels_gives_the_same_solution() {
+        // B = A (I - S)/dx by the displacement kernels (what the driver
+        // uses) against the steady-rolling kernels.
+        let mu = 0.3;
+        let c = case(24, 4e-4, 3e-4, 0.5);
+        let a = run_with(&c, mu, Some(&c.displacement));
+        let b = run_with(&c, mu, Some(&c.steady));
+        assert!(a.outcome.converged && b.outcome.converged);
+        assert_eq!(a.state, b.state);
+        let fmax = c.pn.iter().fold(0.0f64, |m, &v| m.max(v)) * mu;
+        for i in 0..c.grid.len() {
+            let d = (a.px[i] - b.px[i]).hypot(a.py[i] - b.py[i]);
+            assert!(d <= 1e-7 * fmax, "element {i} differs by {d}");
+        }
+    }
     #[test]
     fn full_slip_and_full_adhesion_limits() {
         // Large creepage: every loaded element slides, the traction is mu p_n
