@@ -117,6 +117,13 @@ pub struct SteadyScratch {
     krylov: Krylov,
     /// Differenced tractions of [`PlanarSteady`].
     diff: [Vec<f64>; 2],
+    /// The loaded elements (grid indices, in grid order) of the compressed
+    /// vectors, and the upwind neighbours (see [`Linear`]).
+    loaded: Vec<usize>,
+    up: Vec<usize>,
+    /// Full-grid inputs of the products of compressed vectors.
+    xin: Vec<f64>,
+    yin: Vec<f64>,
 }
 
 /// GMRES work space.
@@ -150,6 +157,10 @@ impl SteadyScratch {
             rhs: z(2 * n),
             sol: z(2 * n),
             diff: [z(n), z(n)],
+            loaded: Vec::with_capacity(n),
+            up: vec![NONE; n],
+            xin: z(n),
+            yin: z(n),
             krylov: Krylov {
                 work: z(2 * n),
                 zvec: z(2 * n),
@@ -163,12 +174,21 @@ impl SteadyScratch {
     }
 }
 
-/// The linearised problem of one Newton step (borrowed views of the scratch).
+/// No upwind neighbour in [`Linear::up`].
+const NONE: usize = usize::MAX;
+
+/// The linearised problem of one Newton step (borrowed views of the
+/// scratch), on compressed vectors: the loaded elements only, in grid
+/// order, element k at `loaded[k]` with its values at k and m + k (m the
+/// number of loaded elements): (dp_x, dp_y) for an adhesion element, (v, 0)
+/// for a slip element, v its traction's movement along t (the norm of the
+/// full vector (v t_x, v t_y)).
 struct Linear<'a> {
-    nx: usize,
-    ny: usize,
     d: [f64; 2],
     local: LocalModel,
+    loaded: &'a [usize],
+    /// Compressed index of the upwind neighbour (ix + 1) when loaded.
+    up: &'a [usize],
     role: &'a [Role],
     tx: &'a [f64],
     ty: &'a [f64],
@@ -176,80 +196,99 @@ struct Linear<'a> {
 }
 
 impl Linear<'_> {
-    /// y = (P B P + E) x for x in the range of P. One FFT matvec.
+    /// Length of a compressed vector.
+    fn len(&self) -> usize {
+        2 * self.loaded.len()
+    }
+
+    /// The full-grid tractions of compressed element k of `x`.
+    #[inline]
+    fn full(&self, x: &[f64], k: usize) -> (f64, f64) {
+        let (m, i) = (self.loaded.len(), self.loaded[k]);
+        match self.role[i] {
+            Role::Slip => (x[k] * self.tx[i], x[k] * self.ty[i]),
+            _ => (x[k], x[m + k]),
+        }
+    }
+
+    /// y = (P B P + E) x. One FFT matvec; `xin` are full-grid buffers, zero
+    /// outside the loaded elements.
     fn apply(
         &self,
         op: &mut dyn TangentialOperator,
         x: &[f64],
         y: &mut [f64],
-        ux: &mut [f64],
-        uy: &mut [f64],
+        [xin, yin]: [&mut [f64]; 2],
+        [ux, uy]: [&mut [f64]; 2],
     ) {
-        let n = self.nx * self.ny;
-        let (xx, xy) = x.split_at(n);
-        op.apply_tangential(xx, xy, ux, uy);
-        let (yx, yy) = y.split_at_mut(n);
-        for i in 0..n {
+        let m = self.loaded.len();
+        for (k, &i) in self.loaded.iter().enumerate() {
+            (xin[i], yin[i]) = self.full(x, k);
+        }
+        op.apply_tangential(xin, yin, ux, uy);
+        for (k, &i) in self.loaded.iter().enumerate() {
             match self.role[i] {
-                Role::Exterior => {
-                    yx[i] = 0.0;
-                    yy[i] = 0.0;
-                }
-                Role::Adhesion => {
-                    yx[i] = ux[i];
-                    yy[i] = uy[i];
-                }
                 Role::Slip => {
                     let (t0, t1) = (self.tx[i], self.ty[i]);
-                    let c = t0 * ux[i] + t1 * uy[i] + self.e[i] * (t0 * xx[i] + t1 * xy[i]);
-                    yx[i] = c * t0;
-                    yy[i] = c * t1;
+                    y[k] = t0 * ux[i] + t1 * uy[i] + self.e[i] * x[k];
+                    y[m + k] = 0.0;
+                }
+                _ => {
+                    y[k] = ux[i];
+                    y[m + k] = uy[i];
                 }
             }
         }
     }
 
     /// z = M⁻¹ r with M = P diag(B)(I - S) P + E: exact forward substitution
-    /// from the leading edge (large x) along every grid line. No matvec.
+    /// from the leading edge (large x) along every grid line (the loaded
+    /// elements in reverse grid order). No matvec.
     fn precondition(&self, r: &[f64], z: &mut [f64]) {
-        let n = self.nx * self.ny;
-        let (rx, ry) = r.split_at(n);
-        let (zx, zy) = z.split_at_mut(n);
+        let m = self.loaded.len();
         let d = self.d;
-        for iy in 0..self.ny {
-            for ix in (0..self.nx).rev() {
-                let i = iy * self.nx + ix;
-                let upwind = self.local == LocalModel::Upwind;
-                let (ax, ay) = if upwind && ix + 1 < self.nx && self.role[i + 1] != Role::Exterior {
-                    (zx[i + 1], zy[i + 1])
-                } else {
-                    (0.0, 0.0)
-                };
-                match self.role[i] {
-                    Role::Exterior => {
-                        zx[i] = 0.0;
-                        zy[i] = 0.0;
-                    }
-                    Role::Adhesion => {
-                        zx[i] = ax + rx[i] / d[0];
-                        zy[i] = ay + ry[i] / d[1];
-                    }
-                    Role::Slip => {
-                        let (t0, t1) = (self.tx[i], self.ty[i]);
-                        let num = t0 * rx[i] + t1 * ry[i] + d[0] * t0 * ax + d[1] * t1 * ay;
-                        let den = d[0] * t0 * t0 + d[1] * t1 * t1 + self.e[i];
-                        let v = num / den;
-                        zx[i] = v * t0;
-                        zy[i] = v * t1;
-                    }
+        let upwind = self.local == LocalModel::Upwind;
+        for k in (0..m).rev() {
+            let i = self.loaded[k];
+            let (ax, ay) = if upwind && self.up[k] != NONE {
+                self.full(z, self.up[k])
+            } else {
+                (0.0, 0.0)
+            };
+            match self.role[i] {
+                Role::Slip => {
+                    let (t0, t1) = (self.tx[i], self.ty[i]);
+                    let num = r[k] + d[0] * t0 * ax + d[1] * t1 * ay;
+                    let den = d[0] * t0 * t0 + d[1] * t1 * t1 + self.e[i];
+                    z[k] = num / den;
+                    z[m + k] = 0.0;
+                }
+                _ => {
+                    z[k] = ax + r[k] / d[0];
+                    z[m + k] = ay + r[m + k] / d[1];
                 }
             }
         }
     }
 }
 
+/// Dot product with eight independent partial sums (vectorised; a single
+/// running sum is bound by the latency of the addition).
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let mut acc = [0.0; 8];
+    let (ac, bc) = (a.chunks_exact(8), b.chunks_exact(8));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ac.zip(bc) {
+        for k in 0..8 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    acc.iter().sum::<f64>() + tail
 }
 
 /// Right-preconditioned restarted GMRES for `lin` x = rhs, from x = 0, to a
@@ -261,11 +300,13 @@ fn gmres(
     rhs: &[f64],
     x: &mut [f64],
     sc: &mut Krylov,
-    [ux, uy]: [&mut [f64]; 2],
+    [ux, uy, xin, yin]: [&mut [f64]; 4],
     rel_tol: f64,
     max_matvecs: usize,
 ) -> usize {
-    let m2 = rhs.len();
+    let m2 = lin.len();
+    let (rhs, x) = (&rhs[..m2], &mut x[..m2]);
+    let (work, zvec) = (&mut sc.work[..m2], &mut sc.zvec[..m2]);
     x.fill(0.0);
     let beta0 = dot(rhs, rhs).sqrt();
     if beta0 == 0.0 {
@@ -274,11 +315,11 @@ fn gmres(
     let target = rel_tol * beta0;
     let mut matvecs = 0;
     // Residual of the current x (x = 0 at the first cycle).
-    sc.work.copy_from_slice(rhs);
+    work.copy_from_slice(rhs);
     let mut beta = beta0;
     loop {
         let v0 = &mut sc.basis[..m2];
-        for (v, r) in v0.iter_mut().zip(sc.work.iter()) {
+        for (v, r) in v0.iter_mut().zip(work.iter()) {
             *v = r / beta;
         }
         sc.gam.fill(0.0);
@@ -287,10 +328,10 @@ fn gmres(
         let mut estimate = beta;
         for j in 0..RESTART {
             // w = A M⁻¹ v_j
-            lin.precondition(&sc.basis[j * m2..(j + 1) * m2], &mut sc.zvec);
+            lin.precondition(&sc.basis[j * m2..(j + 1) * m2], zvec);
             let (head, tail) = sc.basis.split_at_mut((j + 1) * m2);
             let w = &mut tail[..m2];
-            lin.apply(op, &sc.zvec, w, ux, uy);
+            lin.apply(op, zvec, w, [xin, yin], [ux, uy]);
             matvecs += 1;
             // Modified Gram–Schmidt.
             for i in 0..=j {
@@ -339,27 +380,27 @@ fn gmres(
             sc.gam[i] = if h != 0.0 { acc / h } else { 0.0 };
         }
         // x += M⁻¹ (V y)
-        sc.work.fill(0.0);
+        work.fill(0.0);
         for i in 0..used {
             let yi = sc.gam[i];
-            for (a, b) in sc.work.iter_mut().zip(&sc.basis[i * m2..(i + 1) * m2]) {
+            for (a, b) in work.iter_mut().zip(&sc.basis[i * m2..(i + 1) * m2]) {
                 *a += yi * b;
             }
         }
-        lin.precondition(&sc.work, &mut sc.zvec);
-        for (a, b) in x.iter_mut().zip(sc.zvec.iter()) {
+        lin.precondition(work, zvec);
+        for (a, b) in x.iter_mut().zip(zvec.iter()) {
             *a += b;
         }
         if matvecs >= max_matvecs || estimate <= target {
             return matvecs;
         }
         // True residual for the restart.
-        lin.apply(op, x, &mut sc.work, ux, uy);
+        lin.apply(op, x, work, [xin, yin], [ux, uy]);
         matvecs += 1;
-        for (w, r) in sc.work.iter_mut().zip(rhs) {
+        for (w, r) in work.iter_mut().zip(rhs) {
             *w = r - *w;
         }
-        beta = dot(&sc.work, &sc.work).sqrt();
+        beta = dot(work, work).sqrt();
         if beta <= target || matvecs >= max_matvecs {
             return matvecs;
         }
@@ -550,6 +591,10 @@ pub fn solve_coulomb_newton(
         rhs,
         sol,
         krylov,
+        loaded,
+        up,
+        xin,
+        yin,
         ..
     } = scratch;
     let d = op.diagonal();
@@ -683,33 +728,43 @@ pub fn solve_coulomb_newton(
             slip(op, px, py, sx, sy);
             matvecs += 1;
         }
-        // 2. Linearised system.
+        // 2. Linearised system on the loaded elements.
+        loaded.clear();
         for i in 0..n {
+            if role[i] != Role::Exterior {
+                loaded.push(i);
+            }
+        }
+        let m = loaded.len();
+        for k in 0..m {
+            let i = loaded[k];
+            up[k] = if k + 1 < m && loaded[k + 1] == i + 1 && (i + 1) % nx != 0 {
+                k + 1
+            } else {
+                NONE
+            };
             match role[i] {
-                Role::Exterior => {
-                    rhs[i] = 0.0;
-                    rhs[n + i] = 0.0;
-                }
-                Role::Adhesion => {
-                    rhs[i] = -sx[i];
-                    rhs[n + i] = -sy[i];
-                }
                 Role::Slip => {
                     let (t0, t1) = (tx[i], ty[i]);
                     // n = (t1, -t0): e = max(-n·s, 0)/g.
                     let ns = t1 * sx[i] - t0 * sy[i];
                     e[i] = (-ns).max(0.0) / g[i];
-                    let c = -(t0 * sx[i] + t1 * sy[i]);
-                    rhs[i] = c * t0;
-                    rhs[n + i] = c * t1;
+                    rhs[k] = -(t0 * sx[i] + t1 * sy[i]);
+                    rhs[m + k] = 0.0;
+                }
+                _ => {
+                    rhs[k] = -sx[i];
+                    rhs[m + k] = -sy[i];
                 }
             }
         }
+        xin.fill(0.0);
+        yin.fill(0.0);
         let lin = Linear {
-            nx,
-            ny,
             d,
             local,
+            loaded,
+            up,
             role,
             tx,
             ty,
@@ -738,7 +793,7 @@ pub fn solve_coulomb_newton(
             rhs,
             sol,
             krylov,
-            [ux, uy],
+            [ux, uy, xin, yin],
             eta,
             matvec_budget.saturating_sub(matvecs).max(1),
         );
@@ -747,38 +802,33 @@ pub fn solve_coulomb_newton(
         py_old.copy_from_slice(py);
         let mut lambda = 1.0;
         for halving in 0..=MAX_HALVINGS {
-            for i in 0..n {
+            for (k, &i) in loaded.iter().enumerate() {
                 match role[i] {
-                    Role::Exterior => {
-                        px[i] = 0.0;
-                        py[i] = 0.0;
-                    }
-                    Role::Adhesion => {
-                        px[i] = px_old[i] + lambda * sol[i];
-                        py[i] = py_old[i] + lambda * sol[n + i];
-                        let m = px[i].hypot(py[i]);
-                        if m > g[i] {
-                            px[i] *= g[i] / m;
-                            py[i] *= g[i] / m;
-                        }
-                    }
                     Role::Slip => {
                         let (t0, t1) = (tx[i], ty[i]);
-                        let v = lambda * (t0 * sol[i] + t1 * sol[n + i]);
-                        let ang = (v / g[i]).clamp(-1.0, 1.0);
+                        let ang = (lambda * sol[k] / g[i]).clamp(-1.0, 1.0);
                         let (sa, ca) = ang.sin_cos();
                         // n = (t1, -t0)
                         let (n0, n1) = (t1, -t0);
                         px[i] = g[i] * (n0 * ca + t0 * sa);
                         py[i] = g[i] * (n1 * ca + t1 * sa);
                     }
+                    _ => {
+                        px[i] = px_old[i] + lambda * sol[k];
+                        py[i] = py_old[i] + lambda * sol[m + k];
+                        let a = px[i].hypot(py[i]);
+                        if a > g[i] {
+                            px[i] *= g[i] / a;
+                            py[i] *= g[i] / a;
+                        }
+                    }
                 }
             }
             slip(op, px, py, sx, sy);
             matvecs += 1;
-            let (r, m) = residual_of(px, py, sx, sy, g);
-            if m < merit || halving == MAX_HALVINGS {
-                merit = m;
+            let (r, mr) = residual_of(px, py, sx, sy, g);
+            if mr < merit || halving == MAX_HALVINGS {
+                merit = mr;
                 residual = r;
                 break;
             }
