@@ -124,6 +124,8 @@ pub struct SteadyScratch {
     /// Full-grid inputs of the products of compressed vectors.
     xin: Vec<f64>,
     yin: Vec<f64>,
+    /// See [`Linear::slip_inv`].
+    slip_inv: Vec<f64>,
 }
 
 /// GMRES work space.
@@ -161,6 +163,7 @@ impl SteadyScratch {
             up: vec![NONE; n],
             xin: z(n),
             yin: z(n),
+            slip_inv: z(n),
             krylov: Krylov {
                 work: z(2 * n),
                 zvec: z(2 * n),
@@ -193,6 +196,8 @@ struct Linear<'a> {
     tx: &'a [f64],
     ty: &'a [f64],
     e: &'a [f64],
+    /// 1/(d_x t_x² + d_y t_y² + e) of the slip elements (full grid).
+    slip_inv: &'a [f64],
 }
 
 impl Linear<'_> {
@@ -202,7 +207,7 @@ impl Linear<'_> {
     }
 
     /// The full-grid tractions of compressed element k of `x`.
-    #[inline]
+    #[inline(always)]
     fn full(&self, x: &[f64], k: usize) -> (f64, f64) {
         let (m, i) = (self.loaded.len(), self.loaded[k]);
         match self.role[i] {
@@ -247,6 +252,7 @@ impl Linear<'_> {
     fn precondition(&self, r: &[f64], z: &mut [f64]) {
         let m = self.loaded.len();
         let d = self.d;
+        let dinv = [1.0 / d[0], 1.0 / d[1]];
         let upwind = self.local == LocalModel::Upwind;
         for k in (0..m).rev() {
             let i = self.loaded[k];
@@ -259,17 +265,23 @@ impl Linear<'_> {
                 Role::Slip => {
                     let (t0, t1) = (self.tx[i], self.ty[i]);
                     let num = r[k] + d[0] * t0 * ax + d[1] * t1 * ay;
-                    let den = d[0] * t0 * t0 + d[1] * t1 * t1 + self.e[i];
-                    z[k] = num / den;
+                    z[k] = num * self.slip_inv[i];
                     z[m + k] = 0.0;
                 }
                 _ => {
-                    z[k] = ax + r[k] / d[0];
-                    z[m + k] = ay + r[m + k] / d[1];
+                    z[k] = ax + r[k] * dinv[0];
+                    z[m + k] = ay + r[m + k] * dinv[1];
                 }
             }
         }
     }
+}
+
+/// |(a, b)| without the care of `f64::hypot` against overflow (tractions
+/// and slips are far from it), which costs several times as much.
+#[inline(always)]
+fn norm(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
 }
 
 /// Dot product with eight independent partial sums (vectorised; a single
@@ -447,7 +459,7 @@ fn fastsim_guess(
             ux -= dx * wx / l1;
             uy -= dx * wy / l2;
             let g = pn[i] * mus.min(muk);
-            let m = ux.hypot(uy);
+            let m = norm(ux, uy);
             if m > g {
                 ux *= g / m;
                 uy *= g / m;
@@ -595,6 +607,7 @@ pub fn solve_coulomb_newton(
         up,
         xin,
         yin,
+        slip_inv,
         ..
     } = scratch;
     let d = op.diagonal();
@@ -642,7 +655,7 @@ pub fn solve_coulomb_newton(
     };
     bounds(role, g);
     for i in 0..n {
-        let m = px[i].hypot(py[i]);
+        let m = norm(px[i], py[i]);
         if m > g[i] {
             let c = if m > 0.0 { g[i] / m } else { 0.0 };
             px[i] *= c;
@@ -698,7 +711,7 @@ pub fn solve_coulomb_newton(
                 continue;
             }
             let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
-            let zn = z[0].hypot(z[1]);
+            let zn = norm(z[0], z[1]);
             role[i] = if zn <= g[i] || zn == 0.0 {
                 Role::Adhesion
             } else {
@@ -710,12 +723,12 @@ pub fn solve_coulomb_newton(
             if role[i] != Role::Slip {
                 continue;
             }
-            let m = px[i].hypot(py[i]);
+            let m = norm(px[i], py[i]);
             let (n0, n1) = if m > 0.0 && (m - g[i]).abs() <= 1e-12 * g[i] {
                 (px[i] / m, py[i] / m)
             } else {
                 let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
-                let zn = z[0].hypot(z[1]);
+                let zn = norm(z[0], z[1]);
                 projected = true;
                 (z[0] / zn, z[1] / zn)
             };
@@ -749,6 +762,7 @@ pub fn solve_coulomb_newton(
                     // n = (t1, -t0): e = max(-n·s, 0)/g.
                     let ns = t1 * sx[i] - t0 * sy[i];
                     e[i] = (-ns).max(0.0) / g[i];
+                    slip_inv[i] = 1.0 / (d[0] * t0 * t0 + d[1] * t1 * t1 + e[i]);
                     rhs[k] = -(t0 * sx[i] + t1 * sy[i]);
                     rhs[m + k] = 0.0;
                 }
@@ -769,6 +783,7 @@ pub fn solve_coulomb_newton(
             tx,
             ty,
             e,
+            slip_inv,
         };
         // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
         // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²
@@ -784,7 +799,7 @@ pub fn solve_coulomb_newton(
         if 0.9 * eta_prev * eta_prev > 0.1 {
             eta = eta.max(0.9 * eta_prev * eta_prev);
         }
-        let eta = eta.max(0.3 * settings.tolerance / merit).clamp(1e-4, 0.5);
+        let eta = eta.max(0.7 * settings.tolerance / merit).clamp(1e-4, 0.5);
         eta_prev = eta;
         merit_prev = merit;
         matvecs += gmres(
@@ -816,7 +831,7 @@ pub fn solve_coulomb_newton(
                     _ => {
                         px[i] = px_old[i] + lambda * sol[k];
                         py[i] = py_old[i] + lambda * sol[m + k];
-                        let a = px[i].hypot(py[i]);
+                        let a = norm(px[i], py[i]);
                         if a > g[i] {
                             px[i] *= g[i] / a;
                             py[i] *= g[i] / a;
@@ -848,7 +863,7 @@ pub fn solve_coulomb_newton(
                 continue;
             }
             let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
-            if z[0].hypot(z[1]) > g[i] {
+            if norm(z[0], z[1]) > g[i] {
                 state[i] = ElementState::Slip;
                 sx_out[i] = sx[i];
                 sy_out[i] = sy[i];
