@@ -23,8 +23,14 @@
 //! 3. Solve it inexactly by GMRES (restart [`RESTART`]), right-preconditioned
 //!    by the exact inverse of the local upwind part of the operator,
 //!    diag(B)(I - S), restricted to the free directions: one sweep from the
-//!    leading edge along every grid line.
+//!    leading edge along every grid line. The Krylov vectors hold the loaded
+//!    elements only; the forcing term follows Eisenstat and Walker, bounded
+//!    by what the tolerance needs.
 //! 4. Update: adhesion tractions by dp, slip tractions by a rotation v/g.
+//!
+//! The planar driver applies B through the displacement kernels,
+//! A (I - S)/dx ([`PlanarSteady`]): real kernel spectra, cheaper than the
+//! complex ones of the steady-rolling kernels.
 //!
 //! Near the solution the active set is fixed and the iteration is Newton's
 //! method for a smooth system, so it converges fast; a step that increases
