@@ -99,12 +99,23 @@ fn matvecs(c: &mut Criterion) {
     g.finish();
 }
 
+/// Prints the iteration and product counts of one solve (deterministic,
+/// unlike the times), for benches/README.md.
+fn print_counts(id: &str, s: &mut ContactSolver, p: &ContactProblem) {
+    let i = &s.solve(p).unwrap()[0].info;
+    eprintln!(
+        "counts {id}: normal iterations {}, tangential (Newton) iterations {}, operator products {}",
+        i.normal_iterations, i.tangential_iterations, i.matvecs
+    );
+}
+
 fn normal_solve(c: &mut Criterion) {
     let mut g = c.benchmark_group("normal_solve");
     for n in SIZES {
         let p = circle(n, Kinematics::Frictionless);
         let cache = KernelCache::new(8);
         let mut s = ContactSolver::new(&p, &cache);
+        print_counts(&format!("normal_solve/{n}"), &mut s, &p);
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
             b.iter(|| {
                 s.reset();
@@ -134,6 +145,8 @@ fn tangential_solves(c: &mut Criterion) {
         let cache = KernelCache::new(8);
         let mut s = ContactSolver::new(&p, &cache);
         let id = format!("{nx}x{ny}");
+        print_counts(&format!("steady_rolling/{id} (cold)"), &mut s, &p);
+        print_counts(&format!("steady_rolling_warm/{id}"), &mut s, &q);
         g.bench_with_input(BenchmarkId::new("steady_rolling", &id), &nx, |b, _| {
             b.iter(|| {
                 s.reset();

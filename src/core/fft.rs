@@ -115,8 +115,20 @@ pub struct Workspace {
 impl ConvolutionPlan {
     /// Plans for an `nx` x `ny` grid.
     pub fn new(nx: usize, ny: usize) -> Self {
-        let px = fast_even_size(2 * nx - 1);
-        let py = fast_even_size(2 * ny - 1);
+        Self::with_padding(
+            nx,
+            ny,
+            fast_even_size(2 * nx - 1),
+            fast_even_size(2 * ny - 1),
+        )
+    }
+
+    /// Plans for an `nx` x `ny` grid embedded in a `px` x `py` array (`px`
+    /// even, `px >= nx`, `py >= ny`). Without `px >= 2 nx - 1`, `py >= 2 ny - 1`
+    /// the products are circular (wrap-around), which only the
+    /// preconditioner of [`KernelSet::apply_normal_inverse`] uses.
+    fn with_padding(nx: usize, ny: usize, px: usize, py: usize) -> Self {
+        debug_assert!(px % 2 == 0 && px >= nx && py >= ny);
         let nkx = px / 2 + 1;
         let mut rp = RealFftPlanner::<f64>::new();
         let mut cp = FftPlanner::<f64>::new();
@@ -472,6 +484,9 @@ pub struct KernelSet {
     /// Largest eigenvalue of the 2x2 tangential symbol over all frequencies:
     /// an upper bound of the spectral norm of the tangential block [m/Pa].
     pub tangential_norm_bound: f64,
+    /// The plan and the entry of `spectra` of the normal preconditioner
+    /// (displacement kernels only): see [`KernelSet::apply_normal_inverse`].
+    normal_inverse: Option<(Arc<ConvolutionPlan>, usize)>,
 }
 
 impl std::fmt::Debug for KernelSet {
@@ -521,6 +536,19 @@ impl KernelSet {
                 bound = bound.max(lam * s);
             }
         }
+        let mut normal_inverse = None;
+        if let (KernelKind::Displacement, Some(_)) = (kind, index[2][2]) {
+            let pc = Arc::new(ConvolutionPlan::with_padding(
+                plan.nx,
+                plan.ny,
+                fast_even_size(plan.nx),
+                fast_even_size(plan.ny),
+            ));
+            spectra.push(periodic_inverse(&pc, |ox, oy| {
+                influence.kernel(kind, Component::N, Component::N, ox, oy)
+            }));
+            normal_inverse = Some((pc, spectra.len() - 1));
+        }
         let spectra = spectra.into_iter().map(Spectrum::new).collect();
         Self {
             plan,
@@ -529,20 +557,18 @@ impl KernelSet {
             spectra,
             index,
             tangential_norm_bound: bound,
+            normal_inverse,
         }
     }
 
     /// Allocates the buffers to apply this operator (they depend on the plan
     /// only: any kernel set of the same plan may use them).
     pub fn workspace(&self) -> OperatorWorkspace {
-        let p = &*self.plan;
-        let z = Complex64::new(0.0, 0.0);
-        OperatorWorkspace {
-            ws: p.workspace(),
-            spec: std::array::from_fn(|_| vec![z; p.block_len]),
-            out: std::array::from_fn(|_| vec![z; p.block_len]),
-            block: std::array::from_fn(|_| vec![z; COLUMN_BLOCK * p.py]),
+        let mut ows = OperatorWorkspace::new(&self.plan);
+        if let Some((pc, _)) = &self.normal_inverse {
+            ows.pc = Some(Box::new(OperatorWorkspace::new(pc)));
         }
+        ows
     }
 
     /// The real-space kernel value (i, j) at element offset (ox, oy).
@@ -565,7 +591,47 @@ impl KernelSet {
         inputs: &[(Component, &[f64])],
         outputs: &mut [(Component, &mut [f64])],
     ) {
-        let plan = &*self.plan;
+        self.apply_indexed(&self.plan, &self.index, ows, inputs, outputs);
+    }
+
+    /// `z = C⁻¹ r` on the grid, with C the circulant extension of the normal
+    /// operator (the padded convolution whose leading block is A_nn), its
+    /// eigenvalues bounded below by the one at the highest frequency (the
+    /// truncated kernel's spectrum dips below it, and can even turn negative
+    /// for elongated elements, at a few frequencies). An FFT-based
+    /// preconditioner of the normal problem (Vollebregt, J. Comput. Phys.
+    /// 257 (2014) 333–351): symmetric positive definite, one product's cost.
+    /// Returns false (and leaves `z` alone) for kernel sets without it
+    /// (steady-rolling kernels).
+    pub fn apply_normal_inverse(
+        &self,
+        ows: &mut OperatorWorkspace,
+        r: &[f64],
+        z: &mut [f64],
+    ) -> bool {
+        let (Some((pc, k)), Some(pcws)) = (&self.normal_inverse, ows.pc.as_deref_mut()) else {
+            return false;
+        };
+        let mut index = [[None; 3]; 3];
+        index[2][2] = Some(*k);
+        self.apply_indexed(
+            pc,
+            &index,
+            pcws,
+            &[(Component::N, r)],
+            &mut [(Component::N, z)],
+        );
+        true
+    }
+
+    fn apply_indexed(
+        &self,
+        plan: &ConvolutionPlan,
+        index: &[[Option<usize>; 3]; 3],
+        ows: &mut OperatorWorkspace,
+        inputs: &[(Component, &[f64])],
+        outputs: &mut [(Component, &mut [f64])],
+    ) {
         let (ny, py, nkx) = (plan.ny, plan.py, plan.nkx);
         debug_assert!(inputs
             .iter()
@@ -580,6 +646,7 @@ impl KernelSet {
             spec,
             out: outspec,
             block,
+            ..
         } = ows;
         // used[c]: input c feeds a requested output; active[o]: output o has
         // at least one term; in_place[o]: its result goes to spec[o] (the
@@ -589,7 +656,7 @@ impl KernelSet {
         let mut active = [false; 3];
         for (o, _) in outputs.iter() {
             for (c, _) in inputs {
-                if self.index[*o as usize][*c as usize].is_some() {
+                if index[*o as usize][*c as usize].is_some() {
                     used[*c as usize] = true;
                     active[*o as usize] = true;
                 }
@@ -601,11 +668,11 @@ impl KernelSet {
         }
         // The tangential block (X, Y) -> (X, Y) with one shared K_xy = K_yx:
         // one pass for both outputs.
-        let xy = match (self.index[0][0], self.index[0][1], self.index[1][1]) {
+        let xy = match (index[0][0], index[0][1], index[1][1]) {
             (Some(xx), Some(xy), Some(yy))
                 if used == [true, true, false]
                     && active == [true, true, false]
-                    && self.index[1][0] == Some(xy) =>
+                    && index[1][0] == Some(xy) =>
             {
                 Some((xx, xy, yy))
             }
@@ -686,7 +753,7 @@ impl KernelSet {
                     let mut first = true;
                     for (c, _) in inputs {
                         let c = *c as usize;
-                        if let Some(k) = self.index[o][c] {
+                        if let Some(k) = index[o][c] {
                             self.spectra[k].apply(kat, &spec[c][at..at + len], dst, first);
                             first = false;
                         }
@@ -723,6 +790,48 @@ impl KernelSet {
     }
 }
 
+/// The spectrum, in the normalisation of [`ConvolutionPlan::kernel_spectrum`],
+/// of the inverse of the circulant of the symmetric kernel `k` on the
+/// periodic `px` x `py` array of `pc` (offsets wrapped to |o| <= p/2): its
+/// eigenvalues lambda are the kernel's transform, bounded below by the one
+/// at the highest frequency (both Nyquist indices; the truncated kernel's
+/// transform dips below it at a few frequencies, and can turn negative for
+/// elongated elements); the inverse's spectrum is 1/(lambda px py).
+fn periodic_inverse(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Complex64> {
+    let (px, py) = (pc.px, pc.py);
+    let wrap = |j: usize, p: usize| {
+        if 2 * j <= p {
+            j as i64
+        } else {
+            j as i64 - p as i64
+        }
+    };
+    let mut ws = pc.workspace();
+    let mut spec = vec![Complex64::new(0.0, 0.0); pc.spectrum_len()];
+    for jy in 0..py {
+        for jx in 0..px {
+            ws.row[jx] = k(wrap(jx, px), wrap(jy, py));
+        }
+        let _ = pc
+            .r2c
+            .process_with_scratch(&mut ws.row, &mut ws.rowspec, &mut ws.r2c_scratch);
+        for kx in 0..pc.nkx {
+            spec[kx * py + jy] = ws.rowspec[kx];
+        }
+    }
+    pc.fwd.process_with_scratch(&mut spec, &mut ws.scratch);
+    let s = (px * py) as f64;
+    let mut floor = spec[(pc.nkx - 1) * py + py / 2].re;
+    if !(floor > 0.0) {
+        // Not expected for a positive definite kernel; any positive bound will do.
+        floor = 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
+    }
+    for v in &mut spec {
+        *v = Complex64::new(1.0 / (v.re.max(floor) * s), 0.0);
+    }
+    spec
+}
+
 /// Buffers for [`KernelSet::apply`].
 #[derive(Clone)]
 pub struct OperatorWorkspace {
@@ -734,6 +843,21 @@ pub struct OperatorWorkspace {
     out: [Vec<Complex64>; 3],
     /// Spectral products of one block of columns, by output component.
     block: [Vec<Complex64>; 3],
+    /// Buffers of the normal preconditioner's plan.
+    pc: Option<Box<OperatorWorkspace>>,
+}
+
+impl OperatorWorkspace {
+    fn new(p: &ConvolutionPlan) -> Self {
+        let z = Complex64::new(0.0, 0.0);
+        Self {
+            ws: p.workspace(),
+            spec: std::array::from_fn(|_| vec![z; p.block_len]),
+            out: std::array::from_fn(|_| vec![z; p.block_len]),
+            block: std::array::from_fn(|_| vec![z; COLUMN_BLOCK * p.py]),
+            pc: None,
+        }
+    }
 }
 
 /// The dense influence matrix of `set` for the listed components, row

@@ -32,8 +32,6 @@ use crate::core::tangential::{
 pub struct ContactSolver {
     grid: Grid,
     displacement: Arc<KernelSet>,
-    /// Steady-rolling kernels, fetched when the first steady problem comes.
-    steady: Option<Arc<KernelSet>>,
     /// Buffers of the Newton Coulomb solver, allocated on first use.
     newton_scratch: Option<SteadyScratch>,
     ows: OperatorWorkspace,
@@ -64,14 +62,11 @@ impl ContactSolver {
         let grid = problem.grid;
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
         let n = grid.len();
-        let steady = matches!(problem.kinematics, Kinematics::SteadyRolling(_))
-            .then(|| cache.get(&grid, &problem.material, KernelKind::SteadyRolling));
         let z = || vec![0.0; n];
         Self {
             grid,
             ows: displacement.workspace(),
             displacement,
-            steady,
             newton_scratch: None,
             normal_scratch: NormalScratch::new(n),
             tangential_scratch: TangentialScratch::new(n),
@@ -349,21 +344,13 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: input_prev,
                     };
-                    let steady = self.steady.get_or_insert_with(|| {
-                        // A solver built for another kind of problem: build
-                        // the steady kernels here (not cached).
-                        let d = &self.displacement;
-                        Arc::new(KernelSet::new(
-                            d.plan.clone(),
-                            d.influence,
-                            KernelKind::SteadyRolling,
-                        ))
-                    });
                     let steady_scratch = self
                         .newton_scratch
                         .get_or_insert_with(|| SteadyScratch::new(n));
+                    // The steady operator through the displacement kernels
+                    // (real spectra; exact, the patch being off the border).
                     let newton = solve_steady_newton(
-                        steady,
+                        &self.displacement,
                         &mut self.ows,
                         &input,
                         self.tr.output(),
