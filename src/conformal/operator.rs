@@ -270,6 +270,13 @@ impl crate::core::normal::NormalOperator for ConformalOperator {
     fn diagonal(&self) -> f64 {
         self.normal_diagonal()
     }
+
+    /// The planar preconditioner of the half-space kernels: the conformal
+    /// normal block is the planar one scaled by the orientation differences,
+    /// close enough for the inverse of its periodic circulant to serve.
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
+        self.kernels.apply_normal_inverse(&mut self.ows, r, z)
+    }
 }
 
 /// The dense Blanco or half-space matrix, built element by element from
