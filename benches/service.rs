@@ -74,6 +74,7 @@ fn round_trips(c: &mut Criterion) {
     let server = rt
         .block_on(start(&ServeConfig {
             listen: "127.0.0.1:0".parse().unwrap(),
+            data_dir: Default::default(),
             ..ServeConfig::default()
         }))
         .unwrap();
