@@ -12,11 +12,11 @@ use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
 use railcontact::service::pb::contact_service_client::ContactServiceClient;
 use railcontact::service::server::{start, RunningServer};
+use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
     load_profile, load_profile_with, solve_wheelset, LoadOptions, SearchScratch, Side,
-    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSolution, WheelsetData,
+    SplineOptions, TrackData, WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
 };
 use tonic::transport::Channel;
 use tonic::Code;
@@ -167,46 +167,6 @@ async fn register_ready(
     last
 }
 
-/// The wire query of a library input on `pair_id`.
-fn query(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequest {
-    let p = input.position;
-    let v = input.velocity;
-    pb::SolveWheelRailRequest {
-        pair_id: pair_id.into(),
-        model: match input.settings.model {
-            WheelRailModel::Exact => pb::WheelRailModel::Exact,
-            WheelRailModel::HertzFastsim => pb::WheelRailModel::HertzFastsim,
-            WheelRailModel::Cect => pb::WheelRailModel::Cect,
-            WheelRailModel::Auto => pb::WheelRailModel::Auto,
-        } as i32,
-        sides: match input.sides.as_slice() {
-            [Side::Left] => pb::WheelSides::Left,
-            [Side::Right] => pb::WheelSides::Right,
-            _ => pb::WheelSides::Both,
-        } as i32,
-        position: Some(pb::WheelsetPosition {
-            lateral_m: p.lateral_m,
-            yaw_rad: p.yaw_rad,
-            roll_rad: p.roll_rad,
-        }),
-        velocity: Some(pb::WheelsetVelocity {
-            forward_m_per_s: v.forward_m_per_s,
-            lateral_m_per_s: v.lateral_m_per_s,
-            vertical_m_per_s: v.vertical_m_per_s,
-            roll_rad_per_s: v.roll_rad_per_s,
-            yaw_rad_per_s: v.yaw_rad_per_s,
-            pitch_rad_per_s: v.pitch_rad_per_s,
-        }),
-        load: Some(pb::WheelLoad {
-            load: Some(match input.load {
-                WheelLoad::VerticalForce(f) => pb::wheel_load::Load::VerticalForceN(f),
-                WheelLoad::Approach(d) => pb::wheel_load::Load::ApproachM(d),
-            }),
-        }),
-        ..Default::default()
-    }
-}
-
 async fn list(client: &mut Client) -> Vec<pb::ProfilePairInfo> {
     let req = pb::ListProfilePairsRequest {};
     client
@@ -352,10 +312,16 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
         let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
         // By name and by id.
-        let by_name = solve(&mut client, query(BUILTIN, &input)).await;
+        let by_name = solve(&mut client, query_of(BUILTIN, &input)).await;
         assert_same(&format!("{model:?} by name"), &by_name, &want);
-        let by_id = solve(&mut client, query(&builtin.pair_id, &input)).await;
+        let by_id = solve(&mut client, query_of(&builtin.pair_id, &input)).await;
         assert_eq!(untimed(by_id), untimed(by_name.clone()));
+        // The pair's own friction and element size are the benchmark's.
+        let mut defaults = query_of(BUILTIN, &input);
+        defaults.friction = None;
+        defaults.element_size_m = None;
+        let defaults = solve(&mut client, defaults).await;
+        assert_eq!(untimed(defaults), untimed(by_name.clone()));
         assert_eq!(by_name.pair_id, builtin.pair_id);
         let total: f64 = by_name
             .wheels
@@ -372,9 +338,9 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         Some(-4.2748834),
         WheelRailModel::Exact,
     );
-    let plain = solve(&mut client, query(BUILTIN, &input)).await;
+    let plain = solve(&mut client, query_of(BUILTIN, &input)).await;
     assert!(plain.wheels[0].patches.iter().all(|p| p.fields.is_none()));
-    let mut req = query(BUILTIN, &input);
+    let mut req = query_of(BUILTIN, &input);
     req.include_fields = true;
     let with = solve(&mut client, req).await;
     let p = &with.wheels[0].patches[0];
@@ -473,7 +439,7 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
         &mut SearchScratch::default(),
     )
     .unwrap();
-    let got = solve(&mut client, query(&id, &input)).await;
+    let got = solve(&mut client, query_of(&id, &input)).await;
     assert_same("worn pair", &got, &want);
 
     // Delete: gone for get, solve and a second delete; the built-in stays.
@@ -488,7 +454,7 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
         .unwrap_err();
     assert_eq!(e.code(), Code::NotFound, "{e:?}");
     assert_eq!(
-        solve_err(&mut client, query(&id, &input)).await.code(),
+        solve_err(&mut client, query_of(&id, &input)).await.code(),
         Code::NotFound
     );
     let e = client.delete_profile_pair(del(&id)).await.unwrap_err();
@@ -598,7 +564,7 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
     assert_eq!(list.len(), 1, "only the built-in pair: {list:?}");
 
     // Bad queries.
-    let good = query(
+    let good = query_of(
         BUILTIN,
         &mbench_a22_input(0.0, None, None, WheelRailModel::HertzFastsim),
     );
@@ -645,7 +611,7 @@ async fn wheel_rail_batches_answer_in_request_order_with_errors_in_their_slots()
     let (server, mut client) = server_in(dir.path()).await;
     let mut items: Vec<pb::SolveWheelRailRequest> = (0..4)
         .map(|k| {
-            query(
+            query_of(
                 BUILTIN,
                 &mbench_a22_input(2.0 * k as f64, None, None, WheelRailModel::HertzFastsim),
             )
@@ -690,7 +656,7 @@ async fn registered_pairs_survive_a_restart_and_deletions_too() {
         let (server, mut client) = server_in(dir.path()).await;
         let ready = register_ready(&mut client, spec_request(worn_spec(), "worn")).await;
         let id = ready.pair_id;
-        let before = solve(&mut client, query(&id, &input)).await;
+        let before = solve(&mut client, query_of(&id, &input)).await;
         server.shutdown().await;
         (id, before)
     };
@@ -706,7 +672,7 @@ async fn registered_pairs_survive_a_restart_and_deletions_too() {
     assert!(info.persisted);
     assert_eq!(info.label, "worn");
     // Prepared on first use: the same answer as before the restart.
-    let after = solve(&mut client, query(&id, &input)).await;
+    let after = solve(&mut client, query_of(&id, &input)).await;
     assert_eq!(untimed(after), untimed(before));
     let info = client
         .get_profile_pair(get(&id))

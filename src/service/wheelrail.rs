@@ -115,6 +115,50 @@ pub fn input(
     })
 }
 
+/// The wire query of a library input on the pair `pair_id` (the inverse
+/// of [`input`] for the input's own friction and element size, which it
+/// always sends): for clients written in Rust, tests and benchmarks.
+pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequest {
+    let p = input.position;
+    let v = input.velocity;
+    let f = input.friction;
+    pb::SolveWheelRailRequest {
+        pair_id: pair_id.into(),
+        model: wire_model(input.settings.model) as i32,
+        sides: match input.sides.as_slice() {
+            [Side::Left] => pb::WheelSides::Left,
+            [Side::Right] => pb::WheelSides::Right,
+            _ => pb::WheelSides::Both,
+        } as i32,
+        position: Some(pb::WheelsetPosition {
+            lateral_m: p.lateral_m,
+            yaw_rad: p.yaw_rad,
+            roll_rad: p.roll_rad,
+        }),
+        velocity: Some(pb::WheelsetVelocity {
+            forward_m_per_s: v.forward_m_per_s,
+            lateral_m_per_s: v.lateral_m_per_s,
+            vertical_m_per_s: v.vertical_m_per_s,
+            roll_rad_per_s: v.roll_rad_per_s,
+            yaw_rad_per_s: v.yaw_rad_per_s,
+            pitch_rad_per_s: v.pitch_rad_per_s,
+        }),
+        load: Some(pb::WheelLoad {
+            load: Some(match input.load {
+                WheelLoad::VerticalForce(f) => pb::wheel_load::Load::VerticalForceN(f),
+                WheelLoad::Approach(d) => pb::wheel_load::Load::ApproachM(d),
+            }),
+        }),
+        friction: Some(pb::FrictionSection {
+            static_coefficient: Some(f.static_coefficient),
+            kinetic_coefficient: Some(f.kinetic_coefficient),
+            ..Default::default()
+        }),
+        element_size_m: Some(input.settings.element_size_m),
+        include_fields: false,
+    }
+}
+
 fn force(f: [f64; 3]) -> pb::TrackForce {
     pb::TrackForce {
         x_n: f[0],
