@@ -10,8 +10,13 @@
 //! | `service/solve_patch/exact_40x40` | SolvePatch, exact model, 40 x 40 grid, steady rolling xi = 1e-3, cold solver (kernels cached) |
 //! | `service/session_step/exact_40x40` | one PatchSession step of the same case, warm-started, creepages changing every step |
 //!
+//! | `service/solve_wheel_rail/hertz_fastsim` | SolveWheelRail on the built-in pair `mbench_s1002_uic60`: Manchester at 6.5 mm (roll and pitch rate given), both wheels, Hertz+FASTSIM per patch |
+//! | `service/solve_wheel_rail/exact` | the same with the exact model at 0.2 mm elements |
+//! | `service/register_pair/builtin_new` | RegisterProfilePair round trip of the built-in pair's spec made new each time (smoothing wavelength changed by 1e-12 m): read, smooth, place, all progress messages |
+//! | `service/prepare_pair/builtin` | the preparation alone, in process: canonical form and id, profiles read, smoothed and placed |
+//!
 //! Targets (issue 5): Hertz+FASTSIM step under 150 µs, planar exact 40 x 40
-//! step under 5 ms.
+//! step under 5 ms, registration of the built-in pair under 2 s.
 
 use std::hint::black_box;
 
@@ -21,9 +26,13 @@ use tokio_stream::wrappers::ReceiverStream;
 use tokio_stream::StreamExt;
 
 use railcontact::service::config::ServeConfig;
+use railcontact::service::pairs;
 use railcontact::service::pb;
 use railcontact::service::pb::contact_service_client::ContactServiceClient;
 use railcontact::service::server::start;
+use railcontact::service::wheelrail::query_of;
+use railcontact::wheelrail::builtin::mbench_a22_input;
+use railcontact::wheelrail::WheelRailModel;
 
 fn case(model: pb::Model, n: Option<u32>) -> pb::PatchCase {
     pb::PatchCase {
@@ -74,6 +83,7 @@ fn round_trips(c: &mut Criterion) {
     let server = rt
         .block_on(start(&ServeConfig {
             listen: "127.0.0.1:0".parse().unwrap(),
+            data_dir: Default::default(),
             ..ServeConfig::default()
         }))
         .unwrap();
@@ -137,8 +147,69 @@ fn round_trips(c: &mut Criterion) {
             })
         });
     }
+    wheel_rail(&rt, &mut client, &mut group);
     group.finish();
     rt.block_on(server.shutdown());
+}
+
+type Group<'a> = criterion::BenchmarkGroup<'a, criterion::measurement::WallTime>;
+
+/// Wheel/rail round trips and the registration of a pair.
+fn wheel_rail(
+    rt: &tokio::runtime::Runtime,
+    client: &mut ContactServiceClient<tonic::transport::Channel>,
+    group: &mut Group<'_>,
+) {
+    group.sample_size(30);
+    for (name, model) in [
+        ("hertz_fastsim", WheelRailModel::HertzFastsim),
+        ("exact", WheelRailModel::Exact),
+    ] {
+        let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
+        let request = query_of(pairs::BUILTIN_PAIR, &input);
+        group.bench_function(format!("solve_wheel_rail/{name}"), |b| {
+            b.iter(|| {
+                let r = rt
+                    .block_on(client.solve_wheel_rail(request.clone()))
+                    .unwrap();
+                black_box(r);
+            })
+        });
+    }
+    let mut k = 0u64;
+    group.bench_function("register_pair/builtin_new", |b| {
+        b.iter(|| {
+            k += 1;
+            let mut spec = pairs::canonicalize(&pairs::builtin_registration())
+                .unwrap()
+                .canonical;
+            spec.smoothing_wavelength_m = Some(2e-3 + k as f64 * 1e-12);
+            let req = pb::RegisterProfilePairRequest {
+                pair: Some(pb::register_profile_pair_request::Pair::Spec(spec)),
+                label: String::new(),
+            };
+            rt.block_on(async {
+                let mut s = client
+                    .register_profile_pair(req)
+                    .await
+                    .unwrap()
+                    .into_inner();
+                let mut last = None;
+                while let Some(m) = s.message().await.unwrap() {
+                    last = Some(m);
+                }
+                let last = last.unwrap();
+                assert!(!last.already_registered);
+                black_box(last);
+            })
+        })
+    });
+    group.bench_function("prepare_pair/builtin", |b| {
+        b.iter(|| {
+            let spec = pairs::canonicalize(&pairs::builtin_registration()).unwrap();
+            black_box(pairs::prepare(&spec, &|_, _| {}).unwrap());
+        })
+    });
 }
 
 criterion_group!(benches, round_trips);

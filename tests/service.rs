@@ -17,10 +17,12 @@ use tonic::Code;
 
 type Client = ContactServiceClient<Channel>;
 
+/// A server on an ephemeral port; pairs in memory only (no store).
 async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
     let server = start(&ServeConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
         shutdown_grace_s: 10.0,
+        data_dir: Default::default(),
         ..config
     })
     .await

@@ -718,7 +718,8 @@ fn one_load(
 }
 
 impl MaterialSection {
-    fn combine(&self) -> Result<CombinedMaterial, CliError> {
+    /// The checked materials of the two bodies (errors name the key).
+    pub fn combine(&self) -> Result<CombinedMaterial, CliError> {
         let direct = self.shear_modulus_pa.is_some() || self.poisson_ratio.is_some();
         let bodies = self.body1.is_some() || self.body2.is_some();
         if direct && bodies {
@@ -759,7 +760,8 @@ impl MaterialSection {
 }
 
 impl FrictionSection {
-    fn friction(&self) -> Result<Friction, CliError> {
+    /// The checked friction coefficients (errors name the key).
+    pub fn friction(&self) -> Result<Friction, CliError> {
         let f = match (
             self.coefficient,
             self.static_coefficient,

@@ -96,6 +96,10 @@ pub struct ServeArgs {
     /// Solves running at once (default: one per core).
     #[arg(long)]
     pub workers: Option<usize>,
+    /// Directory of the store of registered profile pairs (default
+    /// railcontact-data; empty: memory only).
+    #[arg(long, value_name = "DIR")]
+    pub data_dir: Option<PathBuf>,
 }
 
 /// Options of `railcontact solve`.
@@ -180,6 +184,7 @@ fn run_serve(args: &ServeArgs) -> Result<(), CliError> {
         listen: args.listen,
         metrics_listen: args.metrics_listen,
         workers: args.workers,
+        data_dir: args.data_dir.clone(),
     };
     let env = |name: &str| std::env::var(name).ok();
     let config = ServeConfig::load(args.config.as_deref(), &env, &flags)

@@ -9,7 +9,7 @@
 //! map instead of changing the process environment.
 
 use std::net::SocketAddr;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
@@ -44,6 +44,11 @@ pub struct ServeConfig {
     /// On SIGTERM or Ctrl-C: how long in-flight requests and open sessions
     /// may take to finish before the server stops anyway [s] (default 30).
     pub shutdown_grace_s: f64,
+    /// Directory of the server's store (`pairs.redb`: the registered
+    /// profile pairs, which survive a restart); created if missing. Default
+    /// `railcontact-data`, relative to the working directory. Empty: no
+    /// store, pairs are kept in memory only.
+    pub data_dir: PathBuf,
 }
 
 impl Default for ServeConfig {
@@ -59,6 +64,7 @@ impl Default for ServeConfig {
             max_grid_elements: 256 * 256,
             max_message_bytes: 16 << 20,
             shutdown_grace_s: 30.0,
+            data_dir: PathBuf::from("railcontact-data"),
         }
     }
 }
@@ -72,6 +78,8 @@ pub struct ServeFlags {
     pub metrics_listen: Option<SocketAddr>,
     /// `--workers`.
     pub workers: Option<usize>,
+    /// `--data-dir`.
+    pub data_dir: Option<PathBuf>,
 }
 
 impl ServeConfig {
@@ -106,6 +114,9 @@ impl ServeConfig {
         }
         if let Some(v) = flags.workers {
             c.workers = v;
+        }
+        if let Some(v) = &flags.data_dir {
+            c.data_dir = v.clone();
         }
         if !(c.shutdown_grace_s.is_finite() && c.shutdown_grace_s >= 0.0) {
             errors.push(format!(
@@ -174,6 +185,12 @@ impl ServeConfig {
             errors,
         );
         parse(get("shutdown_grace_s"), &mut self.shutdown_grace_s, errors);
+        parse(get("data_dir"), &mut self.data_dir, errors);
+    }
+
+    /// The store's directory, if the pairs are to be persisted.
+    pub fn store_dir(&self) -> Option<&Path> {
+        (!self.data_dir.as_os_str().is_empty()).then_some(self.data_dir.as_path())
     }
 
     /// Solve threads: `workers`, or the cores when 0.
@@ -226,6 +243,7 @@ mod tests {
         let e = env(&[
             ("RAILCONTACT_WORKERS", "5"),
             ("RAILCONTACT_METRICS_LISTEN", "127.0.0.1:9464"),
+            ("RAILCONTACT_DATA_DIR", "/var/lib/railcontact"),
         ]);
         let flags = ServeFlags {
             listen: Some("127.0.0.1:7000".parse().unwrap()),
@@ -236,6 +254,7 @@ mod tests {
         assert_eq!(c.workers, 5, "env over file");
         assert_eq!(c.max_sessions, 7, "file over default");
         assert_eq!(c.metrics_listen.map(|a| a.port()), Some(9464));
+        assert_eq!(c.store_dir(), Some(Path::new("/var/lib/railcontact")));
 
         let bad = env(&[
             ("RAILCONTACT_WORKERS", "many"),

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use std::time::Instant as StdInstant;
 
 use tokio::sync::mpsc;
-use tokio_stream::wrappers::ReceiverStream;
+use tokio_stream::wrappers::{ReceiverStream, UnboundedReceiverStream};
 use tokio_stream::Stream;
 use tonic::{Request, Response, Status, Streaming};
 use tracing::Instrument;
@@ -20,10 +20,13 @@ use crate::core::problem::{Creepages, Kinematics};
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::PatchEngine;
 use crate::service::metrics::Metrics;
+use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
 use crate::service::pool::{deadline_of, Admission, SolvePool};
 use crate::service::session::Session;
 use crate::service::status::ServiceError;
+use crate::service::wheelrail;
+use crate::wheelrail::{solve_wheelset, SearchScratch};
 
 /// Limits of the requests, from the server settings.
 #[derive(Debug, Clone, Copy)]
@@ -46,6 +49,7 @@ pub struct ContactHandlers {
     metrics: Arc<Metrics>,
     sessions: Arc<AtomicUsize>,
     next_id: Arc<AtomicU64>,
+    pairs: Arc<PairRegistry>,
 }
 
 /// Messages buffered per streaming response before the solver waits for
@@ -55,14 +59,21 @@ const STREAM_BUFFER: usize = 8;
 type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send>>;
 
 impl ContactHandlers {
-    /// Handlers solving on `pool` within `limits`, counting into `metrics`.
-    pub fn new(pool: SolvePool, limits: RequestLimits, metrics: Arc<Metrics>) -> Self {
+    /// Handlers solving on `pool` within `limits` on the profile pairs of
+    /// `pairs`, counting into `metrics`.
+    pub fn new(
+        pool: SolvePool,
+        limits: RequestLimits,
+        metrics: Arc<Metrics>,
+        pairs: Arc<PairRegistry>,
+    ) -> Self {
         Self {
             pool,
             limits,
             metrics,
             sessions: Arc::new(AtomicUsize::new(0)),
             next_id: Arc::new(AtomicU64::new(1)),
+            pairs,
         }
     }
 
@@ -103,6 +114,164 @@ impl ContactHandlers {
             .solved(model, t0.elapsed().as_secs_f64(), result.is_ok());
         result
     }
+}
+
+impl ContactHandlers {
+    /// Solves one wheelset query on an admitted slot; errors carry field
+    /// paths under `prefix`.
+    async fn solve_wheel_rail_one(
+        &self,
+        admission: &Admission,
+        req: pb::SolveWheelRailRequest,
+        prefix: &str,
+    ) -> Result<pb::WheelRailResult, ServiceError> {
+        let entry = self.pairs.lookup(&req.pair_id)?;
+        let input = wheelrail::input(&req, &entry.spec.settings).map_err(|e| e.within(prefix))?;
+        let model = input.settings.model;
+        let prepared = self
+            .pairs
+            .prepared(&entry, admission, Arc::new(|_, _| {}))
+            .await?;
+        let t0 = StdInstant::now();
+        let solved = admission
+            .run(move || {
+                let mut scratch = SearchScratch::default();
+                solve_wheelset(&prepared.pair, &input, KernelCache::global(), &mut scratch)
+            })
+            .await?
+            .map_err(|e| {
+                ServiceError::from(e)
+                    .rekey("grid.element_size_m", "element_size_m")
+                    .within(prefix)
+            });
+        self.metrics.solved_as(
+            wheelrail::model_name(model),
+            t0.elapsed().as_secs_f64(),
+            solved.is_ok(),
+        );
+        wheelrail::result(&entry.spec.id, model, &solved?, req.include_fields)
+    }
+
+    /// Runs the items of a batch concurrently on one admission (one queue
+    /// slot; the items share the workers): `solve(handlers, admission,
+    /// item, "items[i]")`. Outcomes in request order.
+    async fn batch<T, R, F, Fut>(
+        &self,
+        items: Vec<T>,
+        deadline: Option<tokio::time::Instant>,
+        solve: F,
+    ) -> Result<Vec<(u32, Result<R, ServiceError>)>, ServiceError>
+    where
+        T: Send + 'static,
+        R: Send + 'static,
+        F: Fn(ContactHandlers, Arc<Admission>, T, String) -> Fut + Clone + Send + 'static,
+        Fut: std::future::Future<Output = Result<R, ServiceError>> + Send + 'static,
+    {
+        if items.len() > self.limits.max_batch_items {
+            return Err(ServiceError::invalid(
+                "items",
+                format!(
+                    "{} items, more than this server's limit of {} per batch: split the batch",
+                    items.len(),
+                    self.limits.max_batch_items
+                ),
+            ));
+        }
+        let admission = Arc::new(self.pool.admit(deadline)?);
+        let mut tasks = tokio::task::JoinSet::new();
+        for (i, item) in items.into_iter().enumerate() {
+            let (this, admission, solve) = (self.clone(), admission.clone(), solve.clone());
+            tasks.spawn(
+                async move { (i, solve(this, admission, item, format!("items[{i}]")).await) }
+                    .in_current_span(),
+            );
+        }
+        let mut slots = Vec::with_capacity(tasks.len());
+        while let Some(done) = tasks.join_next().await {
+            let (i, r) = done.map_err(|e| ServiceError::Internal(format!("batch item: {e}")))?;
+            slots.push((i as u32, r));
+        }
+        slots.sort_by_key(|s| s.0);
+        Ok(slots)
+    }
+}
+
+/// Progress messages of a registration.
+type ProgressTx = mpsc::UnboundedSender<Result<pb::RegistrationProgress, Status>>;
+
+/// Share of a registration done at each stage [-].
+fn fraction_done(stage: pb::RegistrationStage) -> f64 {
+    use pb::RegistrationStage as S;
+    match stage {
+        S::Unspecified => 0.0,
+        S::Validated => 0.05,
+        S::WheelParsed => 0.2,
+        S::RailParsed => 0.35,
+        S::Placed => 0.9,
+        S::Stored => 0.95,
+        S::Ready => 1.0,
+    }
+}
+
+/// Registers a checked pair, streaming its progress into `tx`.
+async fn register(
+    registry: &Arc<PairRegistry>,
+    spec: PairSpec,
+    admission: &Admission,
+    tx: &ProgressTx,
+    t0: StdInstant,
+) -> Result<(), ServiceError> {
+    let send = {
+        let (tx, id) = (tx.clone(), spec.id.clone());
+        move |stage: pb::RegistrationStage,
+              message: &str,
+              pair: Option<pb::ProfilePairInfo>,
+              already: bool| {
+            let _ = tx.send(Ok(pb::RegistrationProgress {
+                stage: stage as i32,
+                pair_id: id.clone(),
+                fraction_done: fraction_done(stage),
+                elapsed_s: t0.elapsed().as_secs_f64(),
+                message: message.to_string(),
+                pair,
+                already_registered: already,
+            }));
+        }
+    };
+    let (entry, existed) = registry.begin(spec);
+    send(
+        pb::RegistrationStage::Validated,
+        "request checked, id computed",
+        None,
+        false,
+    );
+    if !(existed && entry.is_ready()) {
+        let s = send.clone();
+        let progress: Arc<Progress> = Arc::new(move |stage, m: &str| s(stage, m, None, false));
+        if let Err(e) = registry.prepared(&entry, admission, progress).await {
+            if !existed {
+                registry.abandon(&entry);
+            }
+            return Err(e);
+        }
+        let (r, e) = (registry.clone(), entry.clone());
+        if admission.run(move || r.persist(&e)).await?? {
+            send(
+                pb::RegistrationStage::Stored,
+                "written to the store",
+                None,
+                false,
+            );
+        }
+    }
+    tracing::info!(pair_id = %entry.spec.id, existed, "profile pair registered");
+    send(
+        pb::RegistrationStage::Ready,
+        "ready",
+        Some(entry.info()),
+        existed,
+    );
+    Ok(())
 }
 
 /// `prefix.name`, or `name` without a prefix.
@@ -162,50 +331,148 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let deadline = deadline_of(req.metadata());
         let r = async {
             let items = req.into_inner().items;
-            if items.len() > self.limits.max_batch_items {
-                return Err(ServiceError::invalid(
-                    "items",
-                    format!(
-                        "{} items, more than this server's limit of {} per batch: split the batch",
-                        items.len(),
-                        self.limits.max_batch_items
-                    ),
-                ));
-            }
-            // One queue slot for the batch; its items share the workers.
-            let admission = Arc::new(self.pool.admit(deadline)?);
-            let mut tasks = tokio::task::JoinSet::new();
-            for (i, item) in items.into_iter().enumerate() {
-                let this = self.clone();
-                let admission = admission.clone();
-                tasks.spawn(
-                    async move {
-                        let r = this
-                            .solve_one(&admission, item, &format!("items[{i}]"))
-                            .await;
-                        (i, r)
-                    }
-                    .in_current_span(),
-                );
-            }
-            let mut slots = Vec::with_capacity(tasks.len());
-            while let Some(done) = tasks.join_next().await {
-                let (i, r) =
-                    done.map_err(|e| ServiceError::Internal(format!("batch item: {e}")))?;
-                slots.push(pb::BatchItemResult {
-                    index: i as u32,
+            let solve = |this: ContactHandlers, a: Arc<Admission>, item, prefix: String| async move {
+                this.solve_one(&a, item, &prefix).await
+            };
+            let slots = self
+                .batch(items, deadline, solve)
+                .await?
+                .into_iter()
+                .map(|(index, r)| pb::BatchItemResult {
+                    index,
                     outcome: Some(match r {
                         Ok(result) => pb::batch_item_result::Outcome::Result(result),
                         Err(e) => pb::batch_item_result::Outcome::Error(e.item_error()),
                     }),
-                });
-            }
-            slots.sort_by_key(|s| s.index);
+                })
+                .collect();
             Ok(pb::SolvePatchBatchResponse { items: slots })
         }
         .instrument(span)
         .await;
         finish(&self.metrics, "SolvePatchBatch", t0, r).map(Response::new)
+    }
+
+    type RegisterProfilePairStream = BoxStream<pb::RegistrationProgress>;
+
+    async fn register_profile_pair(
+        &self,
+        req: Request<pb::RegisterProfilePairRequest>,
+    ) -> Result<Response<Self::RegisterProfilePairStream>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("RegisterProfilePair", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let checked = async {
+            let spec = pairs::canonicalize(&req.into_inner())?;
+            let admission = self.pool.admit(deadline)?;
+            Ok((spec, admission))
+        }
+        .instrument(span.clone())
+        .await;
+        let (spec, admission) = finish(&self.metrics, "RegisterProfilePair", t0, checked)?;
+        let (tx, rx) = mpsc::unbounded_channel();
+        let registry = self.pairs.clone();
+        tokio::spawn(
+            async move {
+                if let Err(e) = register(&registry, spec, &admission, &tx, t0).await {
+                    tracing::info!(code = ?e.code(), error = %e, "registration failed");
+                    let _ = tx.send(Err(Status::from(e)));
+                }
+            }
+            .instrument(span),
+        );
+        Ok(Response::new(Box::pin(UnboundedReceiverStream::new(rx))))
+    }
+
+    async fn get_profile_pair(
+        &self,
+        req: Request<pb::GetProfilePairRequest>,
+    ) -> Result<Response<pb::ProfilePairInfo>, Status> {
+        let t0 = StdInstant::now();
+        let r = self.pairs.lookup(&req.get_ref().pair_id).map(|e| e.info());
+        finish(&self.metrics, "GetProfilePair", t0, r).map(Response::new)
+    }
+
+    async fn list_profile_pairs(
+        &self,
+        _req: Request<pb::ListProfilePairsRequest>,
+    ) -> Result<Response<pb::ListProfilePairsResponse>, Status> {
+        let t0 = StdInstant::now();
+        let pairs = self.pairs.list().iter().map(|e| e.info()).collect();
+        let r = Ok(pb::ListProfilePairsResponse { pairs });
+        finish(&self.metrics, "ListProfilePairs", t0, r).map(Response::new)
+    }
+
+    async fn delete_profile_pair(
+        &self,
+        req: Request<pb::DeleteProfilePairRequest>,
+    ) -> Result<Response<pb::DeleteProfilePairResponse>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("DeleteProfilePair", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let r = async {
+            let id = self.pairs.lookup(&req.get_ref().pair_id)?.spec.id.clone();
+            let admission = self.pool.admit(deadline)?;
+            let (registry, key) = (self.pairs.clone(), id.clone());
+            admission.run(move || registry.delete(&key)).await??;
+            tracing::info!(pair_id = %id, "profile pair deleted");
+            Ok(pb::DeleteProfilePairResponse { pair_id: id })
+        }
+        .instrument(span)
+        .await;
+        finish(&self.metrics, "DeleteProfilePair", t0, r).map(Response::new)
+    }
+
+    async fn solve_wheel_rail(
+        &self,
+        req: Request<pb::SolveWheelRailRequest>,
+    ) -> Result<Response<pb::SolveWheelRailResponse>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("SolveWheelRail", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let r = async {
+            let admission = self.pool.admit(deadline)?;
+            let result = self
+                .solve_wheel_rail_one(&admission, req.into_inner(), "")
+                .await?;
+            Ok(pb::SolveWheelRailResponse {
+                result: Some(result),
+            })
+        }
+        .instrument(span)
+        .await;
+        finish(&self.metrics, "SolveWheelRail", t0, r).map(Response::new)
+    }
+
+    async fn solve_wheel_rail_batch(
+        &self,
+        req: Request<pb::SolveWheelRailBatchRequest>,
+    ) -> Result<Response<pb::SolveWheelRailBatchResponse>, Status> {
+        let t0 = StdInstant::now();
+        let span = tracing::info_span!("SolveWheelRailBatch", request_id = %self.request_id(&req));
+        let deadline = deadline_of(req.metadata());
+        let r = async {
+            let items = req.into_inner().items;
+            let solve = |this: ContactHandlers, a: Arc<Admission>, item, prefix: String| async move {
+                this.solve_wheel_rail_one(&a, item, &prefix).await
+            };
+            let items = self
+                .batch(items, deadline, solve)
+                .await?
+                .into_iter()
+                .map(|(index, r)| pb::WheelRailBatchItem {
+                    index,
+                    outcome: Some(match r {
+                        Ok(result) => pb::wheel_rail_batch_item::Outcome::Result(result),
+                        Err(e) => pb::wheel_rail_batch_item::Outcome::Error(e.item_error()),
+                    }),
+                })
+                .collect();
+            Ok(pb::SolveWheelRailBatchResponse { items })
+        }
+        .instrument(span)
+        .await;
+        finish(&self.metrics, "SolveWheelRailBatch", t0, r).map(Response::new)
     }
 
     type CreepCurveStream = BoxStream<pb::CreepCurvePoint>;

@@ -94,10 +94,16 @@ impl Metrics {
 
     /// One solve of `model` that took `seconds`.
     pub fn solved(&self, model: Model, seconds: f64, ok: bool) {
+        self.solved_as(model.name(), seconds, ok);
+    }
+
+    /// One solve of the model named `model` (wheel/rail models:
+    /// `wheelrail_exact`, ...) that took `seconds`.
+    pub fn solved_as(&self, model: &'static str, seconds: f64, ok: bool) {
         let outcome = if ok { "ok" } else { "error" };
         self.with(|c| {
             c.solves
-                .entry((model.name(), outcome))
+                .entry((model, outcome))
                 .or_default()
                 .observe(seconds)
         });

@@ -8,6 +8,9 @@
 //! | [`convert`] | wire <-> case file and results (the only place wire types are read) |
 //! | [`engine`] | one patch: a validated case and its persistent exact solver |
 //! | [`session`] | co-simulation sessions: step order, marks, rollback |
+//! | [`pairs`] | wheel/rail profile pairs: canonical form, content id, preparation, registry |
+//! | [`store`] | the embedded store (redb) of registered pairs |
+//! | [`wheelrail`] | wire <-> wheel/rail queries and results |
 //! | [`pool`] | solve threads, bounded admission, deadlines |
 //! | [`status`] | errors and their gRPC codes, in one place |
 //! | [`handlers`] | the RPC handlers |
@@ -23,8 +26,11 @@ pub mod convert;
 pub mod engine;
 pub mod handlers;
 pub mod metrics;
+pub mod pairs;
 pub mod pb;
 pub mod pool;
 pub mod server;
 pub mod session;
 pub mod status;
+pub mod store;
+pub mod wheelrail;

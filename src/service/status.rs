@@ -14,6 +14,7 @@ use tonic::Code;
 use crate::cli::CliError;
 use crate::core::error::ContactError;
 use crate::service::pb;
+use crate::wheelrail::{ProfileError, WheelRailError};
 
 /// Why a request (or one item or step of it) failed.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -26,6 +27,10 @@ pub enum ServiceError {
         /// What is wrong and how to fix it.
         reason: String,
     },
+    /// The request names something that does not exist, e.g. an unknown
+    /// profile pair id (NOT_FOUND).
+    #[error("{0}")]
+    NotFound(String),
     /// The request does not fit the current state, e.g. a session step out
     /// of order or a rollback to an unmarked step (FAILED_PRECONDITION).
     #[error("{0}")]
@@ -59,6 +64,7 @@ impl ServiceError {
     pub fn code(&self) -> Code {
         match self {
             ServiceError::Invalid { .. } => Code::InvalidArgument,
+            ServiceError::NotFound(_) => Code::NotFound,
             ServiceError::Precondition(_) => Code::FailedPrecondition,
             ServiceError::Exhausted(_) => Code::ResourceExhausted,
             ServiceError::Deadline(_) => Code::DeadlineExceeded,
@@ -141,6 +147,41 @@ impl From<CliError> for ServiceError {
                 }
             }
             CliError::Failure(m) => ServiceError::Internal(m),
+        }
+    }
+}
+
+impl ServiceError {
+    /// A profile that could not be read, at `field` of the request; the
+    /// reader's message names the file and line.
+    pub fn profile(field: &str, e: &ProfileError) -> Self {
+        ServiceError::invalid(field, e.to_string())
+    }
+}
+
+impl From<WheelRailError> for ServiceError {
+    /// Keyed input errors keep their key (`position.yaw_rad`); profiles
+    /// that cannot be fitted or placed name the pair's `spec`; a patch that
+    /// cannot be solved is an input error of the query like the core's
+    /// (grid too small: `element_size_m`; no contact: `load`).
+    fn from(e: WheelRailError) -> Self {
+        match e {
+            WheelRailError::Invalid { key, message } => ServiceError::invalid(key, message),
+            WheelRailError::Spline { .. } => ServiceError::invalid("spec", e.to_string()),
+            WheelRailError::Geometry { .. } => ServiceError::invalid("position", e.to_string()),
+            WheelRailError::Contact {
+                side,
+                patch,
+                source,
+            } => {
+                let field = match &source {
+                    ContactError::InvalidInput { key, .. } => key.clone(),
+                    ContactError::GridTooSmall { .. } => "element_size_m".into(),
+                    ContactError::NoContact { .. } => "load".into(),
+                    ContactError::Reference(_) => String::new(),
+                };
+                ServiceError::invalid(field, format!("{side} wheel, patch {patch}: {source}"))
+            }
         }
     }
 }

@@ -1,0 +1,770 @@
+//! Registered wheel/rail profile pairs: canonical form and content-derived
+//! id, preparation (profiles parsed, checked, smoothed and placed: a
+//! [`WheelRailPair`]), the in-memory registry and its store.
+//!
+//! # Identity
+//!
+//! A registration is first made canonical ([`canonicalize`]): a built-in
+//! pair name is expanded to its full spec, built-in profiles are replaced
+//! by their file content, defaults are filled in (materials, friction,
+//! element size, smoothing), and a left profile equal to the right one is
+//! dropped. The id is the first 32 hex digits of the SHA-256 of a version
+//! tag and the protobuf encoding of that canonical spec (prost writes
+//! fields in tag order, so equal specs give equal bytes). Equal inputs
+//! therefore give equal ids, and registering twice prepares once.
+//!
+//! # Life of a pair
+//!
+//! Registering inserts an entry (state PREPARING), prepares it on the solve
+//! pool, writes the canonical registration to the store and marks it
+//! READY. A failed preparation removes the entry again. After a restart the
+//! stored registrations come back as entries in state STORED and are
+//! prepared on first use; the preparation of an entry runs once however
+//! many requests ask for it at the same time (a [`tokio::sync::OnceCell`]).
+//! No lock is held across an await or a preparation; store writes and the
+//! registry's map change together under the store's lock, so a delete and
+//! a registration of the same pair cannot leave them disagreeing.
+
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex, RwLock};
+use std::time::Instant;
+
+use prost::Message;
+use sha2::{Digest, Sha256};
+
+use crate::cli::case::{FrictionSection, MaterialSection};
+use crate::core::material::{CombinedMaterial, Material};
+use crate::core::problem::Friction;
+use crate::service::pb;
+use crate::service::pool::Admission;
+use crate::service::status::ServiceError;
+use crate::service::store::PairStore;
+use crate::wheelrail::{
+    builtin, parse_profile, LoadOptions, MiniProfVariant, Profile, ProfileFormat, ProfileKind,
+    SplineOptions, TrackData, WheelRailError, WheelRailPair, WheelsetData,
+    DEFAULT_SMOOTHING_WAVELENGTH_M,
+};
+
+/// Name of the built-in pair registered at every start.
+pub const BUILTIN_PAIR: &str = "mbench_s1002_uic60";
+
+/// Default shear modulus of wheel/rail pairs [Pa] (the case file's).
+const DEFAULT_SHEAR_MODULUS_PA: f64 = 82.0e9;
+/// Default Poisson ratio of wheel/rail pairs [-].
+const DEFAULT_POISSON_RATIO: f64 = 0.28;
+/// Default friction coefficient of wheel/rail pairs [-].
+const DEFAULT_FRICTION: f64 = 0.3;
+/// Default element size of the patch grids [m].
+pub const DEFAULT_ELEMENT_SIZE_M: f64 = 2.0e-4;
+
+/// Tag hashed before the canonical spec: changes when the canonical form
+/// does.
+const ID_TAG: &[u8] = b"railcontact.v1.ProfilePairSpec/1\n";
+
+/// The solve settings a pair brings (queries may override friction and
+/// element size).
+#[derive(Debug, Clone)]
+pub struct PairSettings {
+    /// Materials (body 1 rail, body 2 wheel).
+    pub material: CombinedMaterial,
+    /// Default friction.
+    pub friction: Friction,
+    /// Default element size [m].
+    pub element_size_m: f64,
+    /// Smoothing cut-off wavelength [m].
+    pub smoothing_wavelength_m: f64,
+    /// Track.
+    pub track: TrackData,
+    /// Wheelset.
+    pub wheelset: WheelsetData,
+}
+
+/// A checked registration in canonical form.
+#[derive(Debug, Clone)]
+pub struct PairSpec {
+    /// Content-derived id.
+    pub id: String,
+    /// The canonical spec (profile contents included).
+    pub canonical: pb::ProfilePairSpec,
+    /// Label of the registration.
+    pub label: String,
+    /// The built-in pair's name, for the built-in pair.
+    pub builtin_pair: Option<&'static str>,
+    /// Solve settings.
+    pub settings: PairSettings,
+}
+
+impl PairSpec {
+    /// The registration as stored.
+    pub fn registration(&self) -> pb::RegisterProfilePairRequest {
+        pb::RegisterProfilePairRequest {
+            pair: Some(pb::register_profile_pair_request::Pair::Spec(
+                self.canonical.clone(),
+            )),
+            label: self.label.clone(),
+        }
+    }
+}
+
+/// The spec of the built-in pair (Manchester benchmark, S1002 on UIC60).
+fn builtin_spec() -> pb::ProfilePairSpec {
+    let src = |name: &str| pb::ProfileSource {
+        source: Some(pb::profile_source::Source::BuiltinName(name.into())),
+        mirror_y: false,
+    };
+    let t = builtin::MBENCH_TRACK;
+    let w = builtin::MBENCH_WHEELSET;
+    pb::ProfilePairSpec {
+        wheel: Some(src("MBench_S1002_v3.prw")),
+        rail: Some(src("MBench_UIC60_v3.prr")),
+        track: Some(pb::TrackSpec {
+            gauge_m: t.gauge_m,
+            gauge_height_m: t.gauge_height_m,
+            cant_rad: t.cant_rad,
+        }),
+        wheelset: Some(pb::WheelsetSpec {
+            flange_back_distance_m: w.flange_back_distance_m,
+            nominal_radius_m: w.nominal_radius_m,
+            flange_back_y_m: w.flange_back_y_m,
+        }),
+        ..Default::default()
+    }
+}
+
+/// The built-in pair's registration.
+pub fn builtin_registration() -> pb::RegisterProfilePairRequest {
+    pb::RegisterProfilePairRequest {
+        pair: Some(pb::register_profile_pair_request::Pair::BuiltinPair(
+            BUILTIN_PAIR.into(),
+        )),
+        label: String::new(),
+    }
+}
+
+/// A profile source with built-in profiles replaced by their content;
+/// field paths under `field`.
+fn canonical_source(
+    src: Option<&pb::ProfileSource>,
+    field: &str,
+) -> Result<pb::ProfileSource, ServiceError> {
+    use pb::profile_source::Source;
+    let src = src.ok_or_else(|| ServiceError::invalid(field, "missing"))?;
+    let file = match &src.source {
+        None => {
+            return Err(ServiceError::invalid(
+                field,
+                "missing: give `file` or `builtin_name`",
+            ))
+        }
+        Some(Source::BuiltinName(name)) => {
+            let (n, content) = builtin::FILES
+                .iter()
+                .find(|(n, _)| n == name)
+                .ok_or_else(|| {
+                    let names: Vec<&str> = builtin::FILES.iter().map(|(n, _)| *n).collect();
+                    ServiceError::invalid(
+                        format!("{field}.builtin_name"),
+                        format!(
+                            "no built-in profile '{name}' (there are: {})",
+                            names.join(", ")
+                        ),
+                    )
+                })?;
+            pb::ProfileFile {
+                format: pb::ProfileFormat::Unspecified as i32,
+                content: content.to_string(),
+                file_name: n.to_string(),
+            }
+        }
+        Some(Source::File(f)) => {
+            if f.file_name.trim().is_empty() {
+                return Err(ServiceError::invalid(
+                    format!("{field}.file.file_name"),
+                    "missing: the file name tells rail from wheel and is named in messages",
+                ));
+            }
+            load_format(f.format, &format!("{field}.file.format"))?;
+            f.clone()
+        }
+    };
+    Ok(pb::ProfileSource {
+        source: Some(Source::File(file)),
+        mirror_y: src.mirror_y,
+    })
+}
+
+/// The reader format of a wire format (`None`: detect).
+fn load_format(format: i32, field: &str) -> Result<Option<ProfileFormat>, ServiceError> {
+    match pb::ProfileFormat::try_from(format) {
+        Ok(pb::ProfileFormat::Unspecified) => Ok(None),
+        Ok(pb::ProfileFormat::Simpack) => Ok(Some(ProfileFormat::Simpack)),
+        // The variant is always taken from the content.
+        Ok(pb::ProfileFormat::Miniprof) => Ok(Some(ProfileFormat::MiniProf(MiniProfVariant::Text))),
+        Ok(pb::ProfileFormat::Plain) => Ok(Some(ProfileFormat::Plain)),
+        Err(_) => Err(ServiceError::invalid(
+            field,
+            format!("unknown profile format {format}"),
+        )),
+    }
+}
+
+fn cli_material(m: &pb::MaterialSection) -> MaterialSection {
+    let body = |b: &pb::Material| Material {
+        shear_modulus_pa: b.shear_modulus_pa,
+        poisson_ratio: b.poisson_ratio,
+    };
+    MaterialSection {
+        shear_modulus_pa: m.shear_modulus_pa,
+        poisson_ratio: m.poisson_ratio,
+        body1: m.body1.as_ref().map(body),
+        body2: m.body2.as_ref().map(body),
+    }
+}
+
+/// The checked friction of a wire friction section; keys `friction.*`.
+pub fn friction(f: &pb::FrictionSection) -> Result<Friction, ServiceError> {
+    Ok(FrictionSection {
+        coefficient: f.coefficient,
+        static_coefficient: f.static_coefficient,
+        kinetic_coefficient: f.kinetic_coefficient,
+    }
+    .friction()?)
+}
+
+/// Checks an element size [m] (the wheel/rail solver's range).
+pub fn check_element_size(e: f64, field: &str) -> Result<(), ServiceError> {
+    if e.is_finite() && e > 1e-6 && e < 5e-3 {
+        Ok(())
+    } else {
+        Err(ServiceError::invalid(
+            field,
+            format!("must be between 1e-6 and 5e-3 m, got {e}"),
+        ))
+    }
+}
+
+/// Checks a registration and puts it in canonical form. Field paths are
+/// those of the request (`spec.track.gauge_m`, `builtin_pair`).
+pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, ServiceError> {
+    use pb::register_profile_pair_request::Pair;
+    let (spec, builtin_pair, prefix) = match &req.pair {
+        None => {
+            return Err(ServiceError::invalid(
+                "pair",
+                "missing: give `spec` or `builtin_pair`",
+            ))
+        }
+        Some(Pair::BuiltinPair(name)) if name == BUILTIN_PAIR => {
+            (builtin_spec(), Some(BUILTIN_PAIR), "builtin_pair")
+        }
+        Some(Pair::BuiltinPair(name)) => {
+            return Err(ServiceError::invalid(
+                "builtin_pair",
+                format!("no built-in pair '{name}' (there is: {BUILTIN_PAIR})"),
+            ))
+        }
+        Some(Pair::Spec(s)) => (s.clone(), None, "spec"),
+    };
+    let f = |name: &str| format!("{prefix}.{name}");
+    let wheel = canonical_source(spec.wheel.as_ref(), &f("wheel"))?;
+    let rail = canonical_source(spec.rail.as_ref(), &f("rail"))?;
+    let left = |s: Option<&pb::ProfileSource>, right: &pb::ProfileSource, name: &str| {
+        s.map(|s| canonical_source(Some(s), &f(name)))
+            .transpose()
+            .map(|l| l.filter(|l| l != right))
+    };
+    let wheel_left = left(spec.wheel_left.as_ref(), &wheel, "wheel_left")?;
+    let rail_left = left(spec.rail_left.as_ref(), &rail, "rail_left")?;
+    let material = spec.material.clone().unwrap_or(pb::MaterialSection {
+        shear_modulus_pa: Some(DEFAULT_SHEAR_MODULUS_PA),
+        poisson_ratio: Some(DEFAULT_POISSON_RATIO),
+        ..Default::default()
+    });
+    let combined = cli_material(&material)
+        .combine()
+        .map_err(|e| ServiceError::from(e).within(prefix))?;
+    let friction_section = spec.friction.clone().unwrap_or(pb::FrictionSection {
+        coefficient: Some(DEFAULT_FRICTION),
+        ..Default::default()
+    });
+    let friction = friction(&friction_section).map_err(|e| e.within(prefix))?;
+    let element_size_m = spec
+        .grid
+        .and_then(|g| g.element_size_m)
+        .unwrap_or(DEFAULT_ELEMENT_SIZE_M);
+    check_element_size(element_size_m, &f("grid.element_size_m"))?;
+    let smoothing_wavelength_m = spec
+        .smoothing_wavelength_m
+        .unwrap_or(DEFAULT_SMOOTHING_WAVELENGTH_M);
+    if !(smoothing_wavelength_m.is_finite() && smoothing_wavelength_m >= 0.0) {
+        return Err(ServiceError::invalid(
+            f("smoothing_wavelength_m"),
+            format!("must be finite and >= 0, got {smoothing_wavelength_m}"),
+        ));
+    }
+    let track = spec
+        .track
+        .ok_or_else(|| ServiceError::invalid(f("track"), "missing"))?;
+    let wheelset = spec
+        .wheelset
+        .ok_or_else(|| ServiceError::invalid(f("wheelset"), "missing"))?;
+    let canonical = pb::ProfilePairSpec {
+        wheel: Some(wheel),
+        rail: Some(rail),
+        material: Some(material),
+        friction: Some(friction_section),
+        grid: Some(pb::WheelRailGrid {
+            element_size_m: Some(element_size_m),
+        }),
+        wheel_left,
+        rail_left,
+        track: Some(track),
+        wheelset: Some(wheelset),
+        smoothing_wavelength_m: Some(smoothing_wavelength_m),
+    };
+    let mut hasher = Sha256::new();
+    hasher.update(ID_TAG);
+    hasher.update(canonical.encode_to_vec());
+    let digest = hasher.finalize();
+    let id: String = digest[..16].iter().map(|b| format!("{b:02x}")).collect();
+    let label = if req.label.is_empty() && builtin_pair.is_some() {
+        "Manchester benchmark: S1002 wheel on UIC60 rail".to_string()
+    } else {
+        req.label.clone()
+    };
+    Ok(PairSpec {
+        id,
+        canonical,
+        label,
+        builtin_pair,
+        settings: PairSettings {
+            material: combined,
+            friction,
+            element_size_m,
+            smoothing_wavelength_m,
+            track: TrackData {
+                gauge_m: track.gauge_m,
+                gauge_height_m: track.gauge_height_m,
+                cant_rad: track.cant_rad,
+            },
+            wheelset: WheelsetData {
+                flange_back_distance_m: wheelset.flange_back_distance_m,
+                nominal_radius_m: wheelset.nominal_radius_m,
+                flange_back_y_m: wheelset.flange_back_y_m,
+            },
+        },
+    })
+}
+
+/// A pair ready to solve on.
+pub struct PreparedPair {
+    /// The placed profiles.
+    pub pair: WheelRailPair,
+    /// Wheel, rail, left wheel, left rail (when different).
+    summaries: [Option<pb::ProfileSummary>; 4],
+    /// Preparation time [s].
+    prepare_time_s: f64,
+}
+
+/// Stages of a preparation, for progress messages.
+pub type Progress = dyn Fn(pb::RegistrationStage, &str) + Send + Sync;
+
+fn file_of(src: &pb::ProfileSource) -> Option<&pb::ProfileFile> {
+    match &src.source {
+        Some(pb::profile_source::Source::File(f)) => Some(f),
+        _ => None,
+    }
+}
+
+fn is_builtin(f: &pb::ProfileFile) -> bool {
+    builtin::FILES
+        .iter()
+        .any(|(n, c)| *n == f.file_name && *c == f.content)
+}
+
+/// The summary of a canonical source, with the profile's details when read.
+fn summary(src: &pb::ProfileSource, profile: Option<&Profile>) -> pb::ProfileSummary {
+    let file = file_of(src);
+    pb::ProfileSummary {
+        file_name: file.map(|f| f.file_name.clone()).unwrap_or_default(),
+        builtin: file.is_some_and(is_builtin),
+        mirror_y: src.mirror_y,
+        format: profile
+            .and_then(|p| p.format())
+            .map(|f| f.to_string())
+            .unwrap_or_default(),
+        point_count: profile.map_or(0, |p| p.len() as u32),
+        warnings: profile
+            .map(|p| {
+                p.warnings()
+                    .iter()
+                    .map(|w| format!("{}: {}", w.at, w.message))
+                    .collect()
+            })
+            .unwrap_or_default(),
+    }
+}
+
+/// Reads one canonical profile source as `kind`; errors at `field`.
+fn read(src: &pb::ProfileSource, kind: ProfileKind, field: &str) -> Result<Profile, ServiceError> {
+    let f = file_of(src)
+        .ok_or_else(|| ServiceError::Internal(format!("{field}: not in canonical form")))?;
+    let options = LoadOptions {
+        kind: Some(kind),
+        format: load_format(f.format, field)?,
+        mirror_y: src.mirror_y,
+        ..LoadOptions::default()
+    };
+    parse_profile(&f.content, &f.file_name, &options).map_err(|e| ServiceError::profile(field, &e))
+}
+
+/// Prepares a pair: reads the profiles, fits and places them. Field paths
+/// of errors are those of a `spec` registration.
+pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, ServiceError> {
+    let t0 = Instant::now();
+    let c = &spec.canonical;
+    let missing = || ServiceError::Internal("canonical spec without profiles".into());
+    let wheel_src = c.wheel.as_ref().ok_or_else(missing)?;
+    let rail_src = c.rail.as_ref().ok_or_else(missing)?;
+    let wheel = read(wheel_src, ProfileKind::Wheel, "spec.wheel")?;
+    let wheel_left = match &c.wheel_left {
+        Some(s) => Some(read(s, ProfileKind::Wheel, "spec.wheel_left")?),
+        None => None,
+    };
+    progress(pb::RegistrationStage::WheelParsed, "wheel profile read");
+    let rail = read(rail_src, ProfileKind::Rail, "spec.rail")?;
+    let rail_left = match &c.rail_left {
+        Some(s) => Some(read(s, ProfileKind::Rail, "spec.rail_left")?),
+        None => None,
+    };
+    progress(pb::RegistrationStage::RailParsed, "rail profile read");
+    let s = &spec.settings;
+    let pair = WheelRailPair::new(
+        [rail_left.as_ref().unwrap_or(&rail), &rail],
+        [wheel_left.as_ref().unwrap_or(&wheel), &wheel],
+        s.track,
+        s.wheelset,
+        &SplineOptions::smoothing(s.smoothing_wavelength_m),
+    )
+    .map_err(|e| match e {
+        WheelRailError::Invalid { key, message } => {
+            ServiceError::invalid(format!("spec.{key}"), message)
+        }
+        other => ServiceError::invalid("spec", other.to_string()),
+    })?;
+    let prepare_time_s = t0.elapsed().as_secs_f64();
+    progress(
+        pb::RegistrationStage::Placed,
+        &format!(
+            "profiles smoothed and placed in {:.1} ms",
+            prepare_time_s * 1e3
+        ),
+    );
+    let summaries = [
+        Some(summary(wheel_src, Some(&wheel))),
+        Some(summary(rail_src, Some(&rail))),
+        c.wheel_left
+            .as_ref()
+            .map(|s| summary(s, wheel_left.as_ref())),
+        c.rail_left.as_ref().map(|s| summary(s, rail_left.as_ref())),
+    ];
+    Ok(PreparedPair {
+        pair,
+        summaries,
+        prepare_time_s,
+    })
+}
+
+/// One registered pair.
+pub struct PairEntry {
+    /// Its registration.
+    pub spec: PairSpec,
+    prepared: tokio::sync::OnceCell<Arc<PreparedPair>>,
+    persisted: AtomicBool,
+    /// Restored from the store (not registered in this run).
+    restored: bool,
+    failure: Mutex<Option<String>>,
+}
+
+impl PairEntry {
+    fn new(spec: PairSpec, restored: bool) -> Self {
+        Self {
+            spec,
+            prepared: tokio::sync::OnceCell::new(),
+            persisted: AtomicBool::new(restored),
+            restored,
+            failure: Mutex::new(None),
+        }
+    }
+
+    /// Whether the pair is prepared.
+    pub fn is_ready(&self) -> bool {
+        self.prepared.initialized()
+    }
+
+    /// The wire description.
+    pub fn info(&self) -> pb::ProfilePairInfo {
+        let c = &self.spec.canonical;
+        let prepared = self.prepared.get();
+        let failure = self
+            .failure
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone();
+        let state = match (prepared, &failure) {
+            (Some(_), _) => pb::ProfilePairState::Ready,
+            (None, Some(_)) => pb::ProfilePairState::Failed,
+            (None, None) if self.restored => pb::ProfilePairState::Stored,
+            (None, None) => pb::ProfilePairState::Preparing,
+        };
+        let summaries = match prepared {
+            Some(p) => p.summaries.clone(),
+            None => [
+                c.wheel.as_ref().map(|s| summary(s, None)),
+                c.rail.as_ref().map(|s| summary(s, None)),
+                c.wheel_left.as_ref().map(|s| summary(s, None)),
+                c.rail_left.as_ref().map(|s| summary(s, None)),
+            ],
+        };
+        let [wheel, rail, wheel_left, rail_left] = summaries;
+        pb::ProfilePairInfo {
+            pair_id: self.spec.id.clone(),
+            label: self.spec.label.clone(),
+            builtin_pair: self.spec.builtin_pair.unwrap_or_default().to_string(),
+            state: state as i32,
+            error: failure.unwrap_or_default(),
+            wheel,
+            rail,
+            wheel_left,
+            rail_left,
+            track: c.track,
+            wheelset: c.wheelset,
+            material: c.material,
+            friction: c.friction,
+            element_size_m: self.spec.settings.element_size_m,
+            smoothing_wavelength_m: self.spec.settings.smoothing_wavelength_m,
+            prepare_time_s: prepared.map_or(0.0, |p| p.prepare_time_s),
+            persisted: self.persisted.load(Ordering::Relaxed),
+        }
+    }
+}
+
+/// The registered pairs and their store.
+pub struct PairRegistry {
+    entries: RwLock<BTreeMap<String, Arc<PairEntry>>>,
+    store: Mutex<Option<PairStore>>,
+}
+
+impl PairRegistry {
+    /// A registry persisting into `store` (none: memory only) with the
+    /// stored registrations restored (state STORED). Stored entries that
+    /// cannot be decoded or checked any more are logged and skipped.
+    pub fn open(store: Option<PairStore>) -> std::io::Result<Self> {
+        let mut entries = BTreeMap::new();
+        if let Some(s) = &store {
+            let (good, bad) = s.load_all()?;
+            for (id, e) in bad {
+                tracing::warn!(pair_id = %id, error = %e, "stored profile pair cannot be decoded; skipped");
+            }
+            for (id, reg) in good {
+                match canonicalize(&reg) {
+                    Ok(mut spec) => {
+                        if spec.id != id {
+                            tracing::warn!(pair_id = %id, now = %spec.id, "stored profile pair has another id under this version; kept under its stored id");
+                            spec.id = id.clone();
+                        }
+                        entries.insert(id, Arc::new(PairEntry::new(spec, true)));
+                    }
+                    Err(e) => {
+                        tracing::warn!(pair_id = %id, error = %e, "stored profile pair is no longer valid; skipped")
+                    }
+                }
+            }
+            tracing::info!(
+                pairs = entries.len(),
+                "profile pairs restored from the store"
+            );
+        }
+        Ok(Self {
+            entries: RwLock::new(entries),
+            store: Mutex::new(store),
+        })
+    }
+
+    fn read(&self) -> std::sync::RwLockReadGuard<'_, BTreeMap<String, Arc<PairEntry>>> {
+        self.entries.read().unwrap_or_else(|e| e.into_inner())
+    }
+
+    fn write(&self) -> std::sync::RwLockWriteGuard<'_, BTreeMap<String, Arc<PairEntry>>> {
+        self.entries.write().unwrap_or_else(|e| e.into_inner())
+    }
+
+    fn store(&self) -> std::sync::MutexGuard<'_, Option<PairStore>> {
+        self.store.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The pair with this id, or the built-in pair of this name.
+    pub fn lookup(&self, id: &str) -> Result<Arc<PairEntry>, ServiceError> {
+        let entries = self.read();
+        entries
+            .get(id)
+            .or_else(|| {
+                entries
+                    .values()
+                    .find(|e| e.spec.builtin_pair == Some(id))
+            })
+            .cloned()
+            .ok_or_else(|| {
+                ServiceError::NotFound(format!(
+                    "no profile pair '{id}' on this server: register it first (ListProfilePairs lists the pairs)"
+                ))
+            })
+    }
+
+    /// Every pair, by id.
+    pub fn list(&self) -> Vec<Arc<PairEntry>> {
+        self.read().values().cloned().collect()
+    }
+
+    /// The entry of `spec`: the existing one (true) or a new one in state
+    /// PREPARING (false).
+    pub fn begin(&self, spec: PairSpec) -> (Arc<PairEntry>, bool) {
+        let mut entries = self.write();
+        if let Some(e) = entries.get(&spec.id) {
+            return (e.clone(), true);
+        }
+        let e = Arc::new(PairEntry::new(spec, false));
+        entries.insert(e.spec.id.clone(), e.clone());
+        (e, false)
+    }
+
+    /// Removes an entry whose first preparation failed.
+    pub fn abandon(&self, entry: &Arc<PairEntry>) {
+        let mut entries = self.write();
+        if entries
+            .get(&entry.spec.id)
+            .is_some_and(|e| Arc::ptr_eq(e, entry) && !e.is_ready())
+        {
+            entries.remove(&entry.spec.id);
+        }
+    }
+
+    /// The prepared pair of `entry`, preparing it on `admission`'s worker
+    /// if nobody has yet (concurrent callers wait for the one preparation).
+    /// A restored pair whose preparation fails gets FAILED_PRECONDITION
+    /// (the request did nothing wrong) and state FAILED.
+    pub async fn prepared(
+        &self,
+        entry: &Arc<PairEntry>,
+        admission: &Admission,
+        progress: Arc<Progress>,
+    ) -> Result<Arc<PreparedPair>, ServiceError> {
+        let e = entry.clone();
+        let r = entry
+            .prepared
+            .get_or_try_init(|| async move {
+                let e2 = e.clone();
+                admission
+                    .run(move || prepare(&e2.spec, &*progress).map(Arc::new))
+                    .await
+                    .and_then(|r| r)
+            })
+            .await
+            .cloned();
+        match r {
+            Err(ServiceError::Invalid { field, reason }) if entry.restored => {
+                let m = format!(
+                    "profile pair {} was restored from the store but cannot be prepared: {field}: {reason}",
+                    entry.spec.id
+                );
+                *entry.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(m.clone());
+                Err(ServiceError::Precondition(m))
+            }
+            other => other,
+        }
+    }
+
+    /// Writes the registration of a prepared `entry` to the store (on the
+    /// calling thread: run it on the pool) if it is still registered and
+    /// not stored yet; whether it was written now.
+    pub fn persist(&self, entry: &Arc<PairEntry>) -> Result<bool, ServiceError> {
+        if entry.spec.builtin_pair.is_some() || entry.persisted.load(Ordering::Relaxed) {
+            return Ok(false);
+        }
+        let store = self.store();
+        let Some(s) = store.as_ref() else {
+            return Ok(false);
+        };
+        let current = self
+            .read()
+            .get(&entry.spec.id)
+            .is_some_and(|e| Arc::ptr_eq(e, entry));
+        if !current {
+            return Ok(false);
+        }
+        s.put(&entry.spec.id, &entry.spec.registration())
+            .map_err(|e| ServiceError::Internal(e.to_string()))?;
+        entry.persisted.store(true, Ordering::Relaxed);
+        Ok(true)
+    }
+
+    /// Removes the pair `id` from the registry and the store (on the
+    /// calling thread: run it on the pool).
+    pub fn delete(&self, id: &str) -> Result<(), ServiceError> {
+        let store = self.store();
+        let entry = self.lookup(id)?;
+        if let Some(name) = entry.spec.builtin_pair {
+            return Err(ServiceError::Precondition(format!(
+                "'{name}' is a built-in pair and cannot be deleted"
+            )));
+        }
+        self.write().remove(&entry.spec.id);
+        if let Some(s) = store.as_ref() {
+            s.remove(&entry.spec.id)
+                .map_err(|e| ServiceError::Internal(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// Closes the store (at shutdown): later registrations stay in memory.
+    pub fn close_store(&self) {
+        self.store().take();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_follow_the_canonical_content() {
+        let builtin = canonicalize(&builtin_registration()).unwrap();
+        assert_eq!(builtin.id.len(), 32);
+        // The same pair spelled out, with the defaults given explicitly and
+        // the left profiles repeated: the same id.
+        let mut spec = builtin_spec();
+        spec.friction = Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        });
+        spec.wheel_left = spec.wheel.clone();
+        let explicit = canonicalize(&pb::RegisterProfilePairRequest {
+            pair: Some(pb::register_profile_pair_request::Pair::Spec(spec.clone())),
+            label: "mine".into(),
+        })
+        .unwrap();
+        assert_eq!(explicit.id, builtin.id);
+        // Another friction coefficient: another pair.
+        spec.friction = Some(pb::FrictionSection {
+            coefficient: Some(0.25),
+            ..Default::default()
+        });
+        let other = canonicalize(&pb::RegisterProfilePairRequest {
+            pair: Some(pb::register_profile_pair_request::Pair::Spec(spec)),
+            label: String::new(),
+        })
+        .unwrap();
+        assert_ne!(other.id, builtin.id);
+    }
+}

@@ -1,0 +1,278 @@
+//! Wire <-> wheel/rail: a [`pb::SolveWheelRailRequest`] becomes the
+//! library's [`WheelRailInput`] (the keys of a `railcontact wheelrail`
+//! case file, with the pair's materials, friction and element size unless
+//! the query overrides them), and a [`WheelRailSolution`] becomes a
+//! [`pb::WheelRailResult`]. The numbers themselves are checked by
+//! [`solve_wheelset`](crate::wheelrail::solve_wheelset), whose keys
+//! (`position.yaw_rad`, `velocity.forward_m_per_s`, `load.approach_m`) are
+//! the request's field paths.
+
+use crate::service::convert::{grid_info, planar_fields};
+use crate::service::pairs::{self, PairSettings};
+use crate::service::pb;
+use crate::service::status::ServiceError;
+use crate::wheelrail::{
+    PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
+    WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
+};
+
+/// The library model of a wire model.
+pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
+    match pb::WheelRailModel::try_from(m) {
+        Ok(pb::WheelRailModel::Unspecified | pb::WheelRailModel::Exact) => {
+            Ok(WheelRailModel::Exact)
+        }
+        Ok(pb::WheelRailModel::HertzFastsim) => Ok(WheelRailModel::HertzFastsim),
+        Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
+        Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
+        Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
+    }
+}
+
+/// The wire model of a library model.
+pub fn wire_model(m: WheelRailModel) -> pb::WheelRailModel {
+    match m {
+        WheelRailModel::Exact => pb::WheelRailModel::Exact,
+        WheelRailModel::HertzFastsim => pb::WheelRailModel::HertzFastsim,
+        WheelRailModel::Cect => pb::WheelRailModel::Cect,
+        WheelRailModel::Auto => pb::WheelRailModel::Auto,
+    }
+}
+
+/// Name of a model in metrics.
+pub fn model_name(m: WheelRailModel) -> &'static str {
+    match m {
+        WheelRailModel::Exact => "wheelrail_exact",
+        WheelRailModel::HertzFastsim => "wheelrail_hertz_fastsim",
+        WheelRailModel::Cect => "wheelrail_cect",
+        WheelRailModel::Auto => "wheelrail_auto",
+    }
+}
+
+fn sides(s: i32) -> Result<Vec<Side>, ServiceError> {
+    match pb::WheelSides::try_from(s) {
+        Ok(pb::WheelSides::Unspecified | pb::WheelSides::Both) => Ok(Side::BOTH.to_vec()),
+        Ok(pb::WheelSides::Left) => Ok(vec![Side::Left]),
+        Ok(pb::WheelSides::Right) => Ok(vec![Side::Right]),
+        Err(_) => Err(ServiceError::invalid("sides", format!("unknown sides {s}"))),
+    }
+}
+
+/// The solver input of a query on a pair with `settings`. Field paths are
+/// relative to the query.
+pub fn input(
+    req: &pb::SolveWheelRailRequest,
+    settings: &PairSettings,
+) -> Result<WheelRailInput, ServiceError> {
+    let p = req.position.unwrap_or_default();
+    let v = req
+        .velocity
+        .ok_or_else(|| ServiceError::invalid("velocity", "missing (forward_m_per_s > 0)"))?;
+    let load = match req.load.and_then(|l| l.load) {
+        Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
+        Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
+        None => {
+            return Err(ServiceError::invalid(
+                "load",
+                "missing: give vertical_force_n or approach_m",
+            ))
+        }
+    };
+    let friction = match &req.friction {
+        Some(f) => pairs::friction(f)?,
+        None => settings.friction,
+    };
+    let element_size_m = match req.element_size_m {
+        Some(e) => {
+            pairs::check_element_size(e, "element_size_m")?;
+            e
+        }
+        None => settings.element_size_m,
+    };
+    Ok(WheelRailInput {
+        position: WheelsetPosition {
+            lateral_m: p.lateral_m,
+            yaw_rad: p.yaw_rad,
+            roll_rad: p.roll_rad,
+        },
+        velocity: WheelsetVelocity {
+            forward_m_per_s: v.forward_m_per_s,
+            lateral_m_per_s: v.lateral_m_per_s,
+            vertical_m_per_s: v.vertical_m_per_s,
+            roll_rad_per_s: v.roll_rad_per_s,
+            yaw_rad_per_s: v.yaw_rad_per_s,
+            pitch_rad_per_s: v.pitch_rad_per_s,
+        },
+        load,
+        sides: sides(req.sides)?,
+        material: settings.material,
+        friction,
+        settings: WheelRailSettings {
+            model: model(req.model)?,
+            element_size_m,
+            ..WheelRailSettings::default()
+        },
+    })
+}
+
+/// The wire query of a library input on the pair `pair_id` (the inverse
+/// of [`input`] for the input's own friction and element size, which it
+/// always sends): for clients written in Rust, tests and benchmarks.
+pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequest {
+    let p = input.position;
+    let v = input.velocity;
+    let f = input.friction;
+    pb::SolveWheelRailRequest {
+        pair_id: pair_id.into(),
+        model: wire_model(input.settings.model) as i32,
+        sides: match input.sides.as_slice() {
+            [Side::Left] => pb::WheelSides::Left,
+            [Side::Right] => pb::WheelSides::Right,
+            _ => pb::WheelSides::Both,
+        } as i32,
+        position: Some(pb::WheelsetPosition {
+            lateral_m: p.lateral_m,
+            yaw_rad: p.yaw_rad,
+            roll_rad: p.roll_rad,
+        }),
+        velocity: Some(pb::WheelsetVelocity {
+            forward_m_per_s: v.forward_m_per_s,
+            lateral_m_per_s: v.lateral_m_per_s,
+            vertical_m_per_s: v.vertical_m_per_s,
+            roll_rad_per_s: v.roll_rad_per_s,
+            yaw_rad_per_s: v.yaw_rad_per_s,
+            pitch_rad_per_s: v.pitch_rad_per_s,
+        }),
+        load: Some(pb::WheelLoad {
+            load: Some(match input.load {
+                WheelLoad::VerticalForce(f) => pb::wheel_load::Load::VerticalForceN(f),
+                WheelLoad::Approach(d) => pb::wheel_load::Load::ApproachM(d),
+            }),
+        }),
+        friction: Some(pb::FrictionSection {
+            static_coefficient: Some(f.static_coefficient),
+            kinetic_coefficient: Some(f.kinetic_coefficient),
+            ..Default::default()
+        }),
+        element_size_m: Some(input.settings.element_size_m),
+        include_fields: false,
+    }
+}
+
+fn force(f: [f64; 3]) -> pb::TrackForce {
+    pb::TrackForce {
+        x_n: f[0],
+        y_n: f[1],
+        z_n: f[2],
+    }
+}
+
+fn method(m: &str) -> pb::WheelRailModel {
+    match m {
+        "exact" => pb::WheelRailModel::Exact,
+        "hertz_fastsim" => pb::WheelRailModel::HertzFastsim,
+        "cect" => pb::WheelRailModel::Cect,
+        _ => pb::WheelRailModel::Unspecified,
+    }
+}
+
+fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
+    let with_fields = fields && p.solution.is_some() && p.grid_geometry.is_some();
+    pb::WheelRailPatch {
+        method: method(p.method) as i32,
+        contact_angle_rad: p.contact_angle_rad,
+        contact_angle_variation_rad: p.contact_angle_variation_rad,
+        rail_y_m: p.rail_y_m,
+        rail_z_m: p.rail_z_m,
+        wheel_y_m: p.wheel_y_m,
+        track_x_m: p.track_x_m,
+        track_y_m: p.track_y_m,
+        track_z_m: p.track_z_m,
+        rolling_radius_m: p.rolling_radius_m,
+        creepage_long: p.creepage_long,
+        creepage_lat: p.creepage_lat,
+        spin_per_m: p.spin_per_m,
+        normal_force_n: p.normal_force_n,
+        fx_n: p.fx_n,
+        fs_n: p.fs_n,
+        mz_nm: p.mz_nm,
+        approach_m: p.approach_m,
+        max_pressure_pa: p.max_pressure_pa,
+        contact_area_m2: p.contact_area_m2,
+        adhesion_fraction: p.adhesion_fraction,
+        frictional_power_w: p.frictional_power_w,
+        force_track_n: Some(force(p.force_track_n)),
+        grid_nx: p.grid[0] as u32,
+        grid_ns: p.grid[1] as u32,
+        grid: p
+            .grid_geometry
+            .as_ref()
+            .filter(|_| with_fields)
+            .map(grid_info),
+        fields: p
+            .solution
+            .as_ref()
+            .filter(|_| with_fields)
+            .map(|s| planar_fields(&s.fields)),
+    }
+}
+
+fn wheel(w: &WheelResult, fields: bool) -> pb::WheelRailWheel {
+    pb::WheelRailWheel {
+        side: match w.side {
+            Side::Left => pb::WheelSide::Left,
+            Side::Right => pb::WheelSide::Right,
+        } as i32,
+        vertical_approach_m: w.vertical_approach_m,
+        min_gap_m: w.min_gap_m,
+        patches: w.patches.iter().map(|p| patch(p, fields)).collect(),
+        force_track_n: Some(force(w.force_track_n)),
+        load_iterations: w.load_iterations as u32,
+    }
+}
+
+/// The wire result of a solution; a non-finite figure is refused (a solver
+/// fault, never sent as a silent NaN).
+pub fn result(
+    pair_id: &str,
+    model: WheelRailModel,
+    s: &WheelRailSolution,
+    fields: bool,
+) -> Result<pb::WheelRailResult, ServiceError> {
+    let finite = |v: f64| v.is_finite();
+    let bad = s.wheels.iter().any(|w| {
+        !w.force_track_n.iter().all(|&v| finite(v))
+            || w.patches.iter().any(|p| {
+                ![
+                    p.normal_force_n,
+                    p.fx_n,
+                    p.fs_n,
+                    p.mz_nm,
+                    p.creepage_long,
+                    p.creepage_lat,
+                    p.spin_per_m,
+                    p.contact_angle_rad,
+                ]
+                .iter()
+                .all(|&v| finite(v))
+            })
+    });
+    if bad || !finite(s.center_z_m) || !finite(s.roll_rad) {
+        return Err(ServiceError::Internal(
+            "the wheel/rail solution has a non-finite figure; please report this query".into(),
+        ));
+    }
+    Ok(pb::WheelRailResult {
+        pair_id: pair_id.to_string(),
+        model: wire_model(model) as i32,
+        center_z_m: s.center_z_m,
+        roll_rad: s.roll_rad,
+        pitch_rad_per_s: s.pitch_rad_per_s,
+        wheels: s.wheels.iter().map(|w| wheel(w, fields)).collect(),
+        timing: Some(pb::WheelRailTiming {
+            search_s: s.timing.search_s,
+            geometry_s: s.timing.geometry_s,
+            solve_s: s.timing.solve_s,
+        }),
+    })
+}

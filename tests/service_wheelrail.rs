@@ -1,0 +1,701 @@
+//! End-to-end tests of the wheel/rail part of the gRPC service: profile
+//! pairs (built-in, from file contents, idempotent ids, list/get/delete,
+//! persistence across a restart), SolveWheelRail against the library bit
+//! for bit, batches, and the errors of each kind of bad input. The real
+//! server runs on an ephemeral loopback port with its store in a temporary
+//! directory; profiles come from `../shared/profiles`.
+
+use std::path::Path;
+
+use railcontact::core::cache::KernelCache;
+use railcontact::service::config::ServeConfig;
+use railcontact::service::pb;
+use railcontact::service::pb::contact_service_client::ContactServiceClient;
+use railcontact::service::server::{start, RunningServer};
+use railcontact::service::wheelrail::query_of;
+use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
+use railcontact::wheelrail::{
+    load_profile, load_profile_with, solve_wheelset, LoadOptions, SearchScratch, Side,
+    SplineOptions, TrackData, WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
+};
+use tonic::transport::Channel;
+use tonic::Code;
+
+type Client = ContactServiceClient<Channel>;
+
+const BUILTIN: &str = "mbench_s1002_uic60";
+
+fn profile_path(name: &str) -> String {
+    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+}
+
+async fn server_in(dir: &Path) -> (RunningServer, Client) {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        data_dir: dir.to_path_buf(),
+        ..ServeConfig::default()
+    })
+    .await
+    .expect("server starts");
+    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    (server, client)
+}
+
+fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {
+    pb::ProfileSource {
+        source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+            format: pb::ProfileFormat::Unspecified as i32,
+            content: std::fs::read_to_string(profile_path(name)).unwrap(),
+            file_name: name.into(),
+        })),
+        mirror_y,
+    }
+}
+
+fn track(t: TrackData) -> pb::TrackSpec {
+    pb::TrackSpec {
+        gauge_m: t.gauge_m,
+        gauge_height_m: t.gauge_height_m,
+        cant_rad: t.cant_rad,
+    }
+}
+
+fn wheelset(w: WheelsetData) -> pb::WheelsetSpec {
+    pb::WheelsetSpec {
+        flange_back_distance_m: w.flange_back_distance_m,
+        nominal_radius_m: w.nominal_radius_m,
+        flange_back_y_m: w.flange_back_y_m,
+    }
+}
+
+const WORN_TRACK: TrackData = TrackData {
+    gauge_m: 1.435,
+    gauge_height_m: 0.014,
+    cant_rad: 0.025,
+};
+
+const WORN_WHEELSET: WheelsetData = WheelsetData {
+    flange_back_distance_m: 1.360,
+    nominal_radius_m: 0.46,
+    flange_back_y_m: None,
+};
+
+/// Measured worn profiles: MiniProf wheel, MiniProf rail measured from the
+/// gauge side (mirrored), rails inclined 1:40.
+fn worn_spec() -> pb::ProfilePairSpec {
+    pb::ProfilePairSpec {
+        wheel: Some(file_source("Car7216_0001r.whl", false)),
+        rail: Some(file_source("avg_HR.BAN", true)),
+        track: Some(track(WORN_TRACK)),
+        wheelset: Some(wheelset(WORN_WHEELSET)),
+        ..Default::default()
+    }
+}
+
+/// The library's pair of two profile files of `../shared/profiles`, read
+/// as `railcontact wheelrail` reads them, with the default smoothing.
+fn library_pair(
+    rail: &str,
+    rail_mirror_y: bool,
+    wheel: &str,
+    track: TrackData,
+    wheelset: WheelsetData,
+) -> WheelRailPair {
+    let options = LoadOptions {
+        mirror_y: rail_mirror_y,
+        ..Default::default()
+    };
+    let rail = load_profile_with(profile_path(rail), &options).unwrap();
+    let wheel = load_profile(profile_path(wheel)).unwrap();
+    let spline = SplineOptions::default();
+    WheelRailPair::new([&rail, &rail], [&wheel, &wheel], track, wheelset, &spline).unwrap()
+}
+
+fn worn_pair() -> WheelRailPair {
+    library_pair(
+        "avg_HR.BAN",
+        true,
+        "Car7216_0001r.whl",
+        WORN_TRACK,
+        WORN_WHEELSET,
+    )
+}
+
+fn mbench_pair() -> WheelRailPair {
+    library_pair(
+        "MBench_UIC60_v3.prr",
+        false,
+        "MBench_S1002_v3.prw",
+        MBENCH_TRACK,
+        MBENCH_WHEELSET,
+    )
+}
+
+fn spec_request(spec: pb::ProfilePairSpec, label: &str) -> pb::RegisterProfilePairRequest {
+    pb::RegisterProfilePairRequest {
+        pair: Some(pb::register_profile_pair_request::Pair::Spec(spec)),
+        label: label.into(),
+    }
+}
+
+/// All progress messages of a registration, or the status that ended it
+/// (at the call or in the stream).
+async fn register(
+    client: &mut Client,
+    req: pb::RegisterProfilePairRequest,
+) -> Result<Vec<pb::RegistrationProgress>, tonic::Status> {
+    let mut stream = client.register_profile_pair(req).await?.into_inner();
+    let mut out = Vec::new();
+    while let Some(m) = stream.message().await? {
+        out.push(m);
+    }
+    Ok(out)
+}
+
+/// Registers and returns the final (READY) message.
+async fn register_ready(
+    client: &mut Client,
+    req: pb::RegisterProfilePairRequest,
+) -> pb::RegistrationProgress {
+    let msgs = register(client, req).await.expect("registers");
+    let last = msgs.last().expect("progress").clone();
+    assert_eq!(last.stage, pb::RegistrationStage::Ready as i32, "{msgs:?}");
+    assert!(last.pair.is_some());
+    last
+}
+
+async fn list(client: &mut Client) -> Vec<pb::ProfilePairInfo> {
+    let req = pb::ListProfilePairsRequest {};
+    client
+        .list_profile_pairs(req)
+        .await
+        .unwrap()
+        .into_inner()
+        .pairs
+}
+
+async fn solve(client: &mut Client, req: pb::SolveWheelRailRequest) -> pb::WheelRailResult {
+    client
+        .solve_wheel_rail(req)
+        .await
+        .expect("solves")
+        .into_inner()
+        .result
+        .expect("result")
+}
+
+async fn solve_err(client: &mut Client, req: pb::SolveWheelRailRequest) -> tonic::Status {
+    client.solve_wheel_rail(req).await.expect_err("must fail")
+}
+
+/// The bits of a value; a negative zero counts as zero, since proto3 does
+/// not send zeros and the client decodes a missing field as +0.
+fn bits(v: f64) -> u64 {
+    if v == 0.0 {
+        0
+    } else {
+        v.to_bits()
+    }
+}
+
+/// Every figure of the wire result equals the library's, bit for bit
+/// (timings aside; the sign of zeros is not sent).
+fn assert_same(what: &str, got: &pb::WheelRailResult, want: &WheelRailSolution) {
+    assert_eq!(
+        bits(got.center_z_m),
+        bits(want.center_z_m),
+        "{what}: center_z_m"
+    );
+    assert_eq!(bits(got.roll_rad), bits(want.roll_rad), "{what}: roll_rad");
+    assert_eq!(
+        bits(got.pitch_rad_per_s),
+        bits(want.pitch_rad_per_s),
+        "{what}: pitch"
+    );
+    assert_eq!(got.wheels.len(), want.wheels.len(), "{what}: wheels");
+    for (g, w) in got.wheels.iter().zip(&want.wheels) {
+        let side = match w.side {
+            Side::Left => pb::WheelSide::Left,
+            Side::Right => pb::WheelSide::Right,
+        };
+        assert_eq!(g.side, side as i32);
+        assert_eq!(bits(g.vertical_approach_m), bits(w.vertical_approach_m));
+        assert_eq!(bits(g.min_gap_m), bits(w.min_gap_m));
+        assert_eq!(g.load_iterations as usize, w.load_iterations);
+        let f = g.force_track_n.unwrap();
+        assert_eq!([f.x_n, f.y_n, f.z_n].map(bits), w.force_track_n.map(bits));
+        assert_eq!(g.patches.len(), w.patches.len(), "{what}: patches");
+        for (gp, wp) in g.patches.iter().zip(&w.patches) {
+            let gv = [
+                gp.contact_angle_rad,
+                gp.contact_angle_variation_rad,
+                gp.rail_y_m,
+                gp.rail_z_m,
+                gp.wheel_y_m,
+                gp.track_x_m,
+                gp.track_y_m,
+                gp.track_z_m,
+                gp.rolling_radius_m,
+                gp.creepage_long,
+                gp.creepage_lat,
+                gp.spin_per_m,
+                gp.normal_force_n,
+                gp.fx_n,
+                gp.fs_n,
+                gp.mz_nm,
+                gp.approach_m,
+                gp.max_pressure_pa,
+                gp.contact_area_m2,
+                gp.adhesion_fraction,
+                gp.frictional_power_w,
+            ];
+            let wv = [
+                wp.contact_angle_rad,
+                wp.contact_angle_variation_rad,
+                wp.rail_y_m,
+                wp.rail_z_m,
+                wp.wheel_y_m,
+                wp.track_x_m,
+                wp.track_y_m,
+                wp.track_z_m,
+                wp.rolling_radius_m,
+                wp.creepage_long,
+                wp.creepage_lat,
+                wp.spin_per_m,
+                wp.normal_force_n,
+                wp.fx_n,
+                wp.fs_n,
+                wp.mz_nm,
+                wp.approach_m,
+                wp.max_pressure_pa,
+                wp.contact_area_m2,
+                wp.adhesion_fraction,
+                wp.frictional_power_w,
+            ];
+            assert_eq!(gv.map(bits), wv.map(bits), "{what}: patch figures");
+            let f = gp.force_track_n.unwrap();
+            assert_eq!([f.x_n, f.y_n, f.z_n].map(bits), wp.force_track_n.map(bits));
+            assert_eq!([gp.grid_nx as usize, gp.grid_ns as usize], wp.grid);
+        }
+    }
+}
+
+/// The wire result without its timings, for comparing two server results.
+fn untimed(mut r: pb::WheelRailResult) -> pb::WheelRailResult {
+    r.timing = None;
+    r
+}
+
+#[tokio::test]
+async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pairs = list(&mut client).await;
+    let builtin = pairs
+        .iter()
+        .find(|p| p.builtin_pair == BUILTIN)
+        .expect("built-in pair listed");
+    assert_eq!(builtin.state, pb::ProfilePairState::Ready as i32);
+    assert_eq!(builtin.pair_id.len(), 32);
+    assert!(!builtin.persisted);
+    let wheel = builtin.wheel.as_ref().unwrap();
+    assert_eq!(wheel.file_name, "MBench_S1002_v3.prw");
+    assert!(wheel.builtin && wheel.point_count > 50, "{wheel:?}");
+
+    // Manchester at 6.5 mm with CONTACT's roll and pitch rate.
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    for model in [WheelRailModel::Exact, WheelRailModel::HertzFastsim] {
+        let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
+        let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+        // By name and by id.
+        let by_name = solve(&mut client, query_of(BUILTIN, &input)).await;
+        assert_same(&format!("{model:?} by name"), &by_name, &want);
+        let by_id = solve(&mut client, query_of(&builtin.pair_id, &input)).await;
+        assert_eq!(untimed(by_id), untimed(by_name.clone()));
+        // The pair's own friction and element size are the benchmark's.
+        let mut defaults = query_of(BUILTIN, &input);
+        defaults.friction = None;
+        defaults.element_size_m = None;
+        let defaults = solve(&mut client, defaults).await;
+        assert_eq!(untimed(defaults), untimed(by_name.clone()));
+        assert_eq!(by_name.pair_id, builtin.pair_id);
+        let total: f64 = by_name
+            .wheels
+            .iter()
+            .map(|w| w.force_track_n.unwrap().z_n)
+            .sum();
+        assert!((total - 20_000.0).abs() < 1e-2, "{total}");
+    }
+
+    // Fields only when asked, for exact patches with friction.
+    let input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::Exact,
+    );
+    let plain = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert!(plain.wheels[0].patches.iter().all(|p| p.fields.is_none()));
+    let mut req = query_of(BUILTIN, &input);
+    req.include_fields = true;
+    let with = solve(&mut client, req).await;
+    let p = &with.wheels[0].patches[0];
+    let g = p.grid.expect("grid with the fields");
+    let f = p.fields.as_ref().expect("fields");
+    assert_eq!(f.pressure_pa.len(), (g.nx * g.ny) as usize);
+    assert_eq!((g.nx, g.ny), (p.grid_nx, p.grid_ns));
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+
+    // The benchmark's files with the benchmark's data: the built-in pair's
+    // content, so its id, already registered.
+    let mbench = pb::ProfilePairSpec {
+        wheel: Some(file_source("MBench_S1002_v3.prw", false)),
+        rail: Some(file_source("MBench_UIC60_v3.prr", false)),
+        track: Some(track(MBENCH_TRACK)),
+        wheelset: Some(wheelset(MBENCH_WHEELSET)),
+        ..Default::default()
+    };
+    let same = register_ready(&mut client, spec_request(mbench, "mine")).await;
+    assert!(same.already_registered);
+    assert_eq!(same.pair.unwrap().builtin_pair, BUILTIN);
+
+    // A new pair: its stages in order, then the same id again at once.
+    let msgs = register(&mut client, spec_request(worn_spec(), "worn"))
+        .await
+        .unwrap();
+    let stages: Vec<i32> = msgs.iter().map(|m| m.stage).collect();
+    use pb::RegistrationStage as S;
+    assert_eq!(
+        stages,
+        [
+            S::Validated,
+            S::WheelParsed,
+            S::RailParsed,
+            S::Placed,
+            S::Stored,
+            S::Ready
+        ]
+        .map(|s| s as i32)
+    );
+    let ready = msgs.last().unwrap();
+    assert!(!ready.already_registered);
+    assert!(msgs.iter().all(|m| m.pair_id == ready.pair_id));
+    assert!(msgs
+        .windows(2)
+        .all(|w| w[0].fraction_done < w[1].fraction_done));
+    let info = ready.pair.clone().unwrap();
+    assert_eq!(info.state, pb::ProfilePairState::Ready as i32);
+    assert!(info.persisted);
+    assert_eq!(info.label, "worn");
+    assert_eq!(info.rail.as_ref().unwrap().file_name, "avg_HR.BAN");
+    assert!(info.rail.as_ref().unwrap().mirror_y);
+    assert!(info.wheel.as_ref().unwrap().point_count > 50);
+    assert!(info.prepare_time_s > 0.0);
+    let id = ready.pair_id.clone();
+
+    let again = register_ready(&mut client, spec_request(worn_spec(), "other label")).await;
+    assert!(again.already_registered);
+    assert_eq!(again.pair_id, id);
+    assert_eq!(again.pair.unwrap().label, "worn", "first label kept");
+    let mut changed = worn_spec();
+    changed.friction = Some(pb::FrictionSection {
+        coefficient: Some(0.2),
+        ..Default::default()
+    });
+    let other = register_ready(&mut client, spec_request(changed, "")).await;
+    assert_ne!(other.pair_id, id, "other content, other id");
+
+    let list = list(&mut client).await;
+    let ids: Vec<&str> = list.iter().map(|p| p.pair_id.as_str()).collect();
+    assert_eq!(list.len(), 3, "{ids:?}");
+    assert!(ids.contains(&id.as_str()));
+    assert!(ids.windows(2).all(|w| w[0] < w[1]), "ordered by id");
+    let got = client
+        .get_profile_pair(pb::GetProfilePairRequest {
+            pair_id: id.clone(),
+        })
+        .await
+        .unwrap()
+        .into_inner();
+    assert_eq!(got, info);
+
+    // Solves on it as the library on the same profiles.
+    let mut input = mbench_a22_input(3.0, None, None, WheelRailModel::HertzFastsim);
+    input.position.yaw_rad = 0.0;
+    let want = solve_wheelset(
+        &worn_pair(),
+        &input,
+        &KernelCache::default(),
+        &mut SearchScratch::default(),
+    )
+    .unwrap();
+    let got = solve(&mut client, query_of(&id, &input)).await;
+    assert_same("worn pair", &got, &want);
+
+    // Delete: gone for get, solve and a second delete; the built-in stays.
+    let del = |id: &str| pb::DeleteProfilePairRequest { pair_id: id.into() };
+    let d = client.delete_profile_pair(del(&id)).await.unwrap();
+    assert_eq!(d.into_inner().pair_id, id);
+    let e = client
+        .get_profile_pair(pb::GetProfilePairRequest {
+            pair_id: id.clone(),
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::NotFound, "{e:?}");
+    assert_eq!(
+        solve_err(&mut client, query_of(&id, &input)).await.code(),
+        Code::NotFound
+    );
+    let e = client.delete_profile_pair(del(&id)).await.unwrap_err();
+    assert_eq!(e.code(), Code::NotFound);
+    let e = client.delete_profile_pair(del(BUILTIN)).await.unwrap_err();
+    assert_eq!(e.code(), Code::FailedPrecondition, "{e:?}");
+    server.shutdown().await;
+}
+
+fn assert_invalid(e: &tonic::Status, needles: &[&str]) {
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    for n in needles {
+        assert!(e.message().contains(n), "{n:?} not in {:?}", e.message());
+    }
+}
+
+#[tokio::test]
+async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+
+    // A plain wheel file with a bad third line.
+    let mut spec = worn_spec();
+    spec.wheel = Some(pb::ProfileSource {
+        source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+            format: pb::ProfileFormat::Plain as i32,
+            content: "0.000 0.000\n-0.001 0.0001\n-0.002 zero\n".into(),
+            file_name: "bad_wheel.txt".into(),
+        })),
+        mirror_y: false,
+    });
+    let e = register(&mut client, spec_request(spec, ""))
+        .await
+        .unwrap_err();
+    assert_invalid(&e, &["spec.wheel", "bad_wheel.txt line 3"]);
+
+    // A Simpack rail with one point line broken.
+    let text = std::fs::read_to_string(profile_path("MBench_UIC60_v3.prr")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let begin = lines
+        .iter()
+        .position(|l| l.trim() == "point.begin")
+        .unwrap();
+    let k = begin + 10;
+    let broken: Vec<String> = lines
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == k {
+                "1.0 two".to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    let mut spec = worn_spec();
+    spec.rail = Some(pb::ProfileSource {
+        source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+            format: pb::ProfileFormat::Unspecified as i32,
+            content: broken.join("\n"),
+            file_name: "broken.prr".into(),
+        })),
+        mirror_y: false,
+    });
+    let e = register(&mut client, spec_request(spec, ""))
+        .await
+        .unwrap_err();
+    assert_invalid(&e, &["spec.rail", &format!("broken.prr line {}", k + 1)]);
+
+    // Checks of the request itself fail the call.
+    let mut spec = worn_spec();
+    spec.track = None;
+    let e = client
+        .register_profile_pair(spec_request(spec, ""))
+        .await
+        .unwrap_err();
+    assert_invalid(&e, &["spec.track", "missing"]);
+    let mut spec = worn_spec();
+    spec.grid = Some(pb::WheelRailGrid {
+        element_size_m: Some(f64::NAN),
+    });
+    let e = register(&mut client, spec_request(spec, ""))
+        .await
+        .unwrap_err();
+    assert_invalid(&e, &["spec.grid.element_size_m"]);
+    let mut spec = worn_spec();
+    spec.track.as_mut().unwrap().gauge_m = -1.0;
+    let e = register(&mut client, spec_request(spec, ""))
+        .await
+        .unwrap_err();
+    assert_invalid(&e, &["spec.track.gauge_m"]);
+    let e = register(
+        &mut client,
+        pb::RegisterProfilePairRequest {
+            pair: Some(pb::register_profile_pair_request::Pair::BuiltinPair(
+                "s1002_on_nothing".into(),
+            )),
+            label: String::new(),
+        },
+    )
+    .await
+    .unwrap_err();
+    assert_invalid(&e, &["builtin_pair", BUILTIN]);
+
+    // Nothing of these was registered.
+    let list = list(&mut client).await;
+    assert_eq!(list.len(), 1, "only the built-in pair: {list:?}");
+
+    // Bad queries.
+    let good = query_of(
+        BUILTIN,
+        &mbench_a22_input(0.0, None, None, WheelRailModel::HertzFastsim),
+    );
+    let e = solve_err(
+        &mut client,
+        pb::SolveWheelRailRequest {
+            pair_id: "0123456789abcdef0123456789abcdef".into(),
+            ..good.clone()
+        },
+    )
+    .await;
+    assert_eq!(e.code(), Code::NotFound, "{e:?}");
+    let mut r = good.clone();
+    r.position.as_mut().unwrap().lateral_m = f64::NAN;
+    assert_invalid(&solve_err(&mut client, r).await, &["position.lateral_m"]);
+    let mut r = good.clone();
+    r.velocity = None;
+    assert_invalid(&solve_err(&mut client, r).await, &["velocity", "missing"]);
+    let mut r = good.clone();
+    r.load = Some(pb::WheelLoad {
+        load: Some(pb::wheel_load::Load::VerticalForceN(-5.0)),
+    });
+    assert_invalid(&solve_err(&mut client, r).await, &["load.vertical_force_n"]);
+    let mut r = good.clone();
+    r.element_size_m = Some(1.0);
+    assert_invalid(&solve_err(&mut client, r).await, &["element_size_m"]);
+    let mut r = good.clone();
+    r.friction = Some(pb::FrictionSection {
+        coefficient: Some(f64::INFINITY),
+        ..Default::default()
+    });
+    assert_invalid(&solve_err(&mut client, r).await, &["friction.coefficient"]);
+    let mut r = good.clone();
+    r.model = 42;
+    assert_invalid(&solve_err(&mut client, r).await, &["model"]);
+    // The server still answers.
+    solve(&mut client, good).await;
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn wheel_rail_batches_answer_in_request_order_with_errors_in_their_slots() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let mut items: Vec<pb::SolveWheelRailRequest> = (0..4)
+        .map(|k| {
+            query_of(
+                BUILTIN,
+                &mbench_a22_input(2.0 * k as f64, None, None, WheelRailModel::HertzFastsim),
+            )
+        })
+        .collect();
+    items[1].pair_id = "nope".into();
+    items[2].velocity.as_mut().unwrap().forward_m_per_s = 0.0;
+    let out = client
+        .solve_wheel_rail_batch(pb::SolveWheelRailBatchRequest {
+            items: items.clone(),
+        })
+        .await
+        .unwrap()
+        .into_inner()
+        .items;
+    assert_eq!(out.len(), 4);
+    use pb::wheel_rail_batch_item::Outcome;
+    for (k, slot) in out.iter().enumerate() {
+        assert_eq!(slot.index as usize, k);
+        match (k, slot.outcome.as_ref().unwrap()) {
+            (1, Outcome::Error(e)) => assert_eq!(e.code, Code::NotFound as i32, "{e:?}"),
+            (2, Outcome::Error(e)) => {
+                assert_eq!(e.code, Code::InvalidArgument as i32);
+                assert_eq!(e.field, "items[2].velocity.forward_m_per_s");
+            }
+            (0 | 3, Outcome::Result(r)) => {
+                let alone = solve(&mut client, items[k].clone()).await;
+                assert_eq!(untimed(r.clone()), untimed(alone), "item {k}");
+            }
+            other => panic!("unexpected slot {other:?}"),
+        }
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test]
+async fn registered_pairs_survive_a_restart_and_deletions_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut input = mbench_a22_input(4.0, None, None, WheelRailModel::Exact);
+    input.position.yaw_rad = 0.0;
+    let (id, before) = {
+        let (server, mut client) = server_in(dir.path()).await;
+        let ready = register_ready(&mut client, spec_request(worn_spec(), "worn")).await;
+        let id = ready.pair_id;
+        let before = solve(&mut client, query_of(&id, &input)).await;
+        server.shutdown().await;
+        (id, before)
+    };
+    assert!(dir.path().join("pairs.redb").exists());
+    let (server, mut client) = server_in(dir.path()).await;
+    let get = |id: &str| pb::GetProfilePairRequest { pair_id: id.into() };
+    let info = client
+        .get_profile_pair(get(&id))
+        .await
+        .unwrap()
+        .into_inner();
+    assert_eq!(info.state, pb::ProfilePairState::Stored as i32, "{info:?}");
+    assert!(info.persisted);
+    assert_eq!(info.label, "worn");
+    // Prepared on first use: the same answer as before the restart.
+    let after = solve(&mut client, query_of(&id, &input)).await;
+    assert_eq!(untimed(after), untimed(before));
+    let info = client
+        .get_profile_pair(get(&id))
+        .await
+        .unwrap()
+        .into_inner();
+    assert_eq!(info.state, pb::ProfilePairState::Ready as i32);
+    // Registering it again is idempotent.
+    let again = register_ready(&mut client, spec_request(worn_spec(), "")).await;
+    assert!(again.already_registered);
+    assert_eq!(again.pair_id, id);
+    client
+        .delete_profile_pair(pb::DeleteProfilePairRequest {
+            pair_id: id.clone(),
+        })
+        .await
+        .unwrap();
+    server.shutdown().await;
+
+    let (server, mut client) = server_in(dir.path()).await;
+    let e = client.get_profile_pair(get(&id)).await.unwrap_err();
+    assert_eq!(e.code(), Code::NotFound);
+    let list = list(&mut client).await;
+    assert_eq!(list.len(), 1, "the built-in pair only");
+    server.shutdown().await;
+}
