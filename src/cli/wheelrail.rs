@@ -9,7 +9,7 @@ use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cli::plot::{register_fonts, Format, FONT, SIZE};
-use crate::cli::{plot_format, CliError};
+use crate::cli::{plot_format, write_stdout, CliError};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
@@ -381,12 +381,6 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
     s
 }
 
-/// Writes to stdout; a closed pipe (`| head`) is not an error.
-fn emit(text: &str) {
-    use std::io::Write;
-    let _ = std::io::stdout().lock().write_all(text.as_bytes());
-}
-
 /// Runs `railcontact wheelrail`.
 pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
@@ -422,9 +416,9 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
             timing: sol.timing,
         };
         let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
-        emit(&format!("{json}\n"));
+        write_stdout(&format!("{json}\n"))?;
     } else {
-        emit(&human(&sol, run.model));
+        write_stdout(&human(&sol, run.model))?;
     }
     Ok(())
 }

@@ -1180,7 +1180,14 @@ pub(crate) fn finish(
     let rail = pair.rail(side);
     let mut total = [0.0; 3];
     let mut out = Vec::with_capacity(patches.len());
-    for p in patches {
+    for mut p in patches {
+        let (method, variation) = match &p.kind {
+            PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
+            PatchKind::Hertz { .. } => ("hertz_fastsim", 0.0),
+            PatchKind::Conformal { .. } => ("cect", p.out.angle_variation_rad),
+        };
+        // The patch is consumed: hand its per-element solution over.
+        let solution = p.out.solution.take();
         let g = &p.geom;
         let t = g.tangent();
         let o = &p.out;
@@ -1207,11 +1214,6 @@ pub(crate) fn finish(
                 ([geometry.grid.nx, geometry.grid.ny], Some(geometry.grid))
             }
         };
-        let (method, variation) = match &p.kind {
-            PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
-            PatchKind::Hertz { .. } => ("hertz_fastsim", 0.0),
-            PatchKind::Conformal { .. } => ("cect", o.angle_variation_rad),
-        };
         out.push(PatchResult {
             method,
             contact_angle_variation_rad: variation,
@@ -1237,7 +1239,7 @@ pub(crate) fn finish(
             frictional_power_w: o.tgamma_n * input.velocity.forward_m_per_s,
             force_track_n: f,
             grid: grid_n,
-            solution: o.solution.clone(),
+            solution,
             grid_geometry,
         });
     }
