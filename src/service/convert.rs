@@ -341,6 +341,7 @@ pub fn step_of_report(r: &StepReport) -> pb::StepResult {
             ..Default::default()
         }),
         conformal: r.conformal.as_ref().map(conformal),
+        sensitivities: None,
     }
 }
 

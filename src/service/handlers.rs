@@ -566,6 +566,17 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
 
+    type WheelRailSessionStream = BoxStream<pb::WheelRailSessionResponse>;
+
+    async fn wheel_rail_session(
+        &self,
+        _req: Request<Streaming<pb::WheelRailSessionRequest>>,
+    ) -> Result<Response<Self::WheelRailSessionStream>, Status> {
+        Err(Status::unimplemented(
+            "WheelRailSession lands in the next commit",
+        ))
+    }
+
     type PatchSessionStream = BoxStream<pb::SessionResponse>;
 
     async fn patch_session(
