@@ -200,6 +200,17 @@ pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
         .build()?;
     runtime.block_on(async {
         let server = start(config).await?;
+        // One stable line on stdout for scripts and test fixtures that
+        // listen on port 0 and need the port the system gave.
+        {
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "railcontact listening on {}", server.addr);
+            if let Some(m) = server.metrics_addr {
+                let _ = writeln!(out, "railcontact metrics on {m}");
+            }
+            let _ = out.flush();
+        }
         termination().await;
         tracing::info!("shutting down");
         server.shutdown().await;
