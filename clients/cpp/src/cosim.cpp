@@ -131,6 +131,17 @@ struct CoSimSession::Impl {
     throw Error(status.error_code(), status.error_message(), "", true);
   }
 
+  // Half-closes the stream, drops what the server still sends and returns
+  // its final status.
+  grpc::Status finish() {
+    open = false;
+    stream->WritesDone();
+    pb::WheelRailSessionResponse extra;
+    while (stream->Read(&extra)) {
+    }
+    return stream->Finish();
+  }
+
   void ensure_open() const {
     if (!open) {
       throw Error(grpc::StatusCode::FAILED_PRECONDITION, "the session is closed", "", true);
@@ -186,9 +197,7 @@ CoSimSession::CoSimSession(const SessionOptions& options) : impl_(std::make_uniq
   } catch (const Error& e) {
     // A refused open leaves no session behind, whatever the server says.
     if (s.open) {
-      s.open = false;
-      s.stream->WritesDone();
-      s.stream->Finish();
+      s.finish();
     }
     throw Error(e.code(), e.message(), e.field(), true);
   }
@@ -296,14 +305,7 @@ void CoSimSession::close() {
   if (!impl_ || !impl_->open) {
     return;
   }
-  Impl& s = *impl_;
-  s.open = false;
-  s.stream->WritesDone();
-  pb::WheelRailSessionResponse extra;
-  while (s.stream->Read(&extra)) {
-    // Nothing is outstanding; a late message is dropped.
-  }
-  grpc::Status status = s.stream->Finish();
+  grpc::Status status = impl_->finish();
   if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) {
     throw Error(status.error_code(), status.error_message(), "", true);
   }
