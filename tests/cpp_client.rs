@@ -101,6 +101,13 @@ fn ensure_packages() {
 fn build_client() -> PathBuf {
     let source = repo().join("clients/cpp");
     let build = repo().join("target/cpp-client");
+    // A build folder configured for another checkout (a copied target/)
+    // makes cmake refuse: start it afresh.
+    let cache = std::fs::read_to_string(build.join("CMakeCache.txt")).unwrap_or_default();
+    let home = format!("CMAKE_HOME_DIRECTORY:INTERNAL={}", source.display());
+    if !cache.is_empty() && !cache.lines().any(|l| l == home) {
+        std::fs::remove_dir_all(&build).expect("removes the stale C++ build folder");
+    }
     let configure = Command::new("cmake")
         .arg("-S")
         .arg(&source)
