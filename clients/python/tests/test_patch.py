@@ -141,3 +141,15 @@ def test_session_open_errors_raise(client):
         client.patch_session(case)
     assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
     assert "shear_modulus_pa" in e.value.field
+
+
+def test_sensitivities_of_a_rolling_patch(client):
+    r = client.solve_patch(rolling_case("fastsim", creepages=(1e-4, 0.0, 0.0)), include_sensitivities=True)
+    s = r.result.sensitivities
+    assert s is not None and s.solves > 0
+    # Fx = -G a b C11 xi in the linear range: dFx/dxi < 0, and dFn/d(approach) > 0.
+    assert s.per_creepage_long.fx < 0 and s.per_creepage_lat.fy < 0
+    assert s.per_approach_m.normal_force > 0
+    with client.patch_session(rolling_case("fastsim"), include_sensitivities=True) as session:
+        step = session.step((1e-4, 0.0, 0.0))
+        assert step.result.sensitivities == s
