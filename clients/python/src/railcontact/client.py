@@ -395,6 +395,7 @@ class _Session:
             raise RailcontactError(grpc.StatusCode.UNAVAILABLE, "the session stream ended") from None
         except grpc.RpcError as e:
             self._closed = True
+            self._requests.put(None)  # ends the request iterator's thread
             raise RailcontactError.from_rpc(e) from None
         kind = response.WhichOneof("kind")
         if kind == "error":
