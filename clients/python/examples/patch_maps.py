@@ -45,12 +45,12 @@ def main(argv=None):
     im = axes[1].imshow(traction, cmap="magma", **show)
     fig.colorbar(im, ax=axes[1], label="|traction| [MPa]")
     x, y = np.meshgrid(g.x_m() * 1e3, g.y_m() * 1e3)
-    step = max(1, args.n // 16)
+    step = max(1, args.n // 12)
     inside = (f.state != railcontact.EXTERIOR)[::step, ::step]
     axes[1].quiver(x[::step, ::step][inside], y[::step, ::step][inside],
                    f.traction_x_pa[::step, ::step][inside], f.traction_y_pa[::step, ::step][inside],
-                   color="white", angles="xy", scale_units="xy",
-                   scale=f.traction_pa.max() / (step * g.element_size_x_m * 1e3))
+                   color="tab:cyan", angles="xy", scale_units="xy", width=0.006,
+                   scale=f.traction_pa.max() / (2.0 * step * g.element_size_x_m * 1e3))
     axes[1].set_title("tangential traction on the rail")
 
     colours = plt.matplotlib.colors.ListedColormap(["white", "tab:blue", "tab:red"])
