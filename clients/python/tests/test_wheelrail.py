@@ -121,3 +121,43 @@ def test_wheelrail_session_on_an_unknown_pair_fails_at_open(client):
     with pytest.raises(railcontact.RailcontactError) as e:
         client.wheelrail_session("0" * 32)
     assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+def _mbench_spec(smoothing_wavelength_m):
+    """The built-in pair's profiles as a spec of its own (another smoothing
+    gives another id)."""
+    return {
+        "wheel": {"builtin_name": "MBench_S1002_v3.prw"},
+        "rail": {"builtin_name": "MBench_UIC60_v3.prr"},
+        "track": {"gauge_m": 1.435, "gauge_height_m": 0.014, "cant_rad": 0.0},
+        "wheelset": {"flange_back_distance_m": 1.360, "nominal_radius_m": 0.46, "flange_back_y_m": -0.070},
+        "smoothing_wavelength_m": smoothing_wavelength_m,
+    }
+
+
+def test_register_solve_and_delete_a_pair_of_its_own(client):
+    stages = []
+    info = client.register_pair(_mbench_spec(0.003), label="pytest", progress=stages.append)
+    names = [p.stage for p in stages]
+    assert names[0] == "validated" and names[-1] == "ready" and "placed" in names
+    assert [p.fraction_done for p in stages] == sorted(p.fraction_done for p in stages)
+    assert info.label == "pytest" and info.persisted and info.smoothing_wavelength_m == 0.003
+    again = []
+    assert client.register_pair(_mbench_spec(0.003), progress=again.append).pair_id == info.pair_id
+    assert again[-1].already_registered
+    r = client.solve_wheelrail(info.pair_id, velocity=V, load=LOAD, model="hertz_fastsim")
+    assert r.pair_id == info.pair_id and len(r.wheels) == 2
+    assert info.pair_id in [p.pair_id for p in client.list_pairs()]
+    client.delete_pair(info.pair_id)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.get_pair(info.pair_id)
+    assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+def test_register_rejects_a_bad_spec_with_its_field(client):
+    spec = _mbench_spec(0.003)
+    spec["track"]["gauge_m"] = -1.0
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.register_pair(spec)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "gauge_m" in e.value.field
