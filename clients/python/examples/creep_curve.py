@@ -63,7 +63,8 @@ def main(argv=None):
         ax.axhline(0.3, color="grey", lw=0.8, ls="--")
         ax.grid(alpha=0.3)
         ax.legend()
-    fig.suptitle(f"{railcontact.BUILTIN_PAIR}: centred wheelset, {args.load / 1e3:.0f} kN per wheel, V = {args.speed} m/s")
+    fig.suptitle(f"{railcontact.BUILTIN_PAIR}: centred wheelset, {args.load / 1e3:.0f} kN per wheel, "
+                 f"V = {args.speed} m/s")
     save(fig, args.out)
 
 

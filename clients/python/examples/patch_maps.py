@@ -55,7 +55,8 @@ def main(argv=None):
 
     colours = plt.matplotlib.colors.ListedColormap(["white", "tab:blue", "tab:red"])
     axes[2].imshow(f.state, cmap=colours, vmin=-0.5, vmax=2.5, **show)
-    handles = [plt.matplotlib.patches.Patch(color=c, label=n) for c, n in (("tab:blue", "adhesion"), ("tab:red", "slip"))]
+    legend = (("tab:blue", "adhesion"), ("tab:red", "slip"))
+    handles = [plt.matplotlib.patches.Patch(color=c, label=n) for c, n in legend]
     axes[2].legend(handles=handles, loc="upper right", fontsize=8)
     axes[2].set_title(f"adhesion / slip ({t.adhesion_fraction:.0%} adhesion)")
     for ax in axes:

@@ -125,13 +125,15 @@ def simulate(session, wheelset, dt, steps, jacobian_every):
 
 def main(argv=None):
     p = parser(__doc__, "wheelset_cosim.png")
-    p.add_argument("--model", default="hertz_fastsim", help="contact model: hertz_fastsim, exact, ... (default %(default)s)")
+    p.add_argument("--model", default="hertz_fastsim",
+                   help="contact model: hertz_fastsim, exact, ... (default %(default)s)")
     p.add_argument("--element-size", type=float, default=None,
                    help="patch element size [m] of the exact model (default: the pair's 2e-4; 5e-4 is much faster)")
     p.add_argument("--duration", type=float, default=1.0, help="simulated time [s] (default %(default)s)")
     p.add_argument("--dt", type=float, default=1e-3, help="time step [s] (default %(default)s)")
     p.add_argument("--steps", type=int, default=None, help="number of steps (overrides --duration)")
-    p.add_argument("--jacobian-every", type=int, default=50, help="steps between Jacobian updates (default %(default)s)")
+    p.add_argument("--jacobian-every", type=int, default=50,
+                   help="steps between Jacobian updates (default %(default)s)")
     p.add_argument("--speed", type=float, default=30.0, help="forward speed V [m/s] (default %(default)s)")
     p.add_argument("--load", type=float, default=1e5, help="vertical load per wheel Q [N] (default %(default)s)")
     p.add_argument("--y0", type=float, default=3e-3, help="initial lateral offset [m] (default %(default)s)")
@@ -145,8 +147,10 @@ def main(argv=None):
     steps = args.steps if args.steps is not None else int(round(args.duration / args.dt))
     wheelset = Wheelset(args)
     with connect(args.target) as client:
-        with client.wheelrail_session(railcontact.BUILTIN_PAIR, model=args.model, element_size_m=args.element_size,
-                                       label="wheelset_cosim") as session:
+        opened = client.wheelrail_session(
+            railcontact.BUILTIN_PAIR, model=args.model, element_size_m=args.element_size, label="wheelset_cosim"
+        )
+        with opened as session:
             h = simulate(session, wheelset, args.dt, steps, args.jacobian_every)
     print(f"{steps} steps of {args.dt * 1e3:g} ms ({args.model}): y from {h['y'][0] * 1e3:.2f} mm "
           f"to {h['y'][-1] * 1e3:.3f} mm, largest |F_y| {np.abs(h['fy_contact']).max() / 1e3:.1f} kN")

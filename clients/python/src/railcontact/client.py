@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import pathlib
 import queue
 import tomllib
 from collections.abc import Callable, Iterable, Iterator, Mapping
