@@ -161,3 +161,14 @@ def test_register_rejects_a_bad_spec_with_its_field(client):
         client.register_pair(spec)
     assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
     assert "gauge_m" in e.value.field
+
+
+def test_wheelrail_session_exact_with_fields(client):
+    with client.wheelrail_session(sides="right", element_size_m=5e-4, include_fields=True) as s:
+        assert s.model == "exact"
+        r = s.step(velocity={"forward_m_per_s": V, "lateral_m_per_s": -0.03}, load=LOAD)
+    (wheel,) = r.result.wheels
+    patch = wheel.patches[0]
+    assert wheel.side == "right" and patch.method == "exact"
+    assert patch.fields.pressure_pa.shape == (patch.grid.ny, patch.grid.nx)
+    assert patch.fields.pressure_pa.max() == pytest.approx(patch.max_pressure_pa)
