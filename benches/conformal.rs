@@ -98,7 +98,7 @@ fn matvecs(c: &mut Criterion) {
 fn solves(c: &mut Criterion) {
     let mut g = c.benchmark_group("conformal_solve");
     g.sample_size(10);
-    let cache = KernelCache::new(16);
+    let cache = KernelCache::default();
     let mat = steel();
     let creep = 0.86e-3;
     // cect steady rolling on 60 x 60 against the planar exact solve of the

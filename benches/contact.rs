@@ -15,6 +15,7 @@ use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use railcontact::core::material::{CombinedMaterial, Material};
 use railcontact::core::normal::NormalLoad;
 use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
+use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
 
 const SIZES: [usize; 3] = [32, 64, 128];
@@ -113,7 +114,7 @@ fn normal_solve(c: &mut Criterion) {
     let mut g = c.benchmark_group("normal_solve");
     for n in SIZES {
         let p = circle(n, Kinematics::Frictionless);
-        let cache = KernelCache::new(8);
+        let cache = KernelCache::default();
         let mut s = ContactSolver::new(&p, &cache);
         print_counts(&format!("normal_solve/{n}"), &mut s, &p);
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
@@ -142,7 +143,7 @@ fn tangential_solves(c: &mut Criterion) {
     for (nx, ny) in [(32, 32), (48, 44), (64, 64), (128, 128)] {
         let p = circle_on(nx, ny, creep(1.0));
         let q = circle_on(nx, ny, creep(1.02));
-        let cache = KernelCache::new(8);
+        let cache = KernelCache::default();
         let mut s = ContactSolver::new(&p, &cache);
         let id = format!("{nx}x{ny}");
         print_counts(&format!("steady_rolling/{id} (cold)"), &mut s, &p);
@@ -162,6 +163,18 @@ fn tangential_solves(c: &mut Criterion) {
             })
         });
     }
+    // The Jacobian of the forces (core::sensitivity: 8 perturbed solves
+    // warm-started from the converged solution) after a solve.
+    for (nx, ny) in [(32, 32), (48, 44)] {
+        let p = circle_on(nx, ny, creep(1.0));
+        let cache = KernelCache::default();
+        let mut s = ContactSolver::new(&p, &cache);
+        let base = s.solve(&p).unwrap().pop().unwrap();
+        let id = format!("{nx}x{ny}");
+        g.bench_with_input(BenchmarkId::new("steady_jacobian", &id), &nx, |b, _| {
+            b.iter(|| black_box(exact_jacobian(&s, &p, &base).unwrap()))
+        });
+    }
     // Transient: one loading step and one tangential shift step (Cattaneo).
     for n in [32, 64] {
         let step = |sx: f64| ShiftStep {
@@ -171,7 +184,7 @@ fn tangential_solves(c: &mut Criterion) {
             rotation_rad: 0.0,
         };
         let p = circle(n, Kinematics::Transient(vec![step(0.0), step(0.4e-6)]));
-        let cache = KernelCache::new(8);
+        let cache = KernelCache::default();
         let mut s = ContactSolver::new(&p, &cache);
         g.bench_with_input(BenchmarkId::new("transient_2_steps", n), &n, |b, _| {
             b.iter(|| black_box(s.solve(&p).unwrap()))
