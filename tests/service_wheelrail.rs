@@ -15,9 +15,9 @@ use railcontact::service::server::{start, RunningServer};
 use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    load_profile, load_profile_with, solve_wheelset, solve_wheelset_warm, LoadOptions,
-    SearchScratch, Side, SplineOptions, TrackData, WarmStart, WheelRailModel, WheelRailPair,
-    WheelRailSolution, WheelsetData,
+    load_profile, load_profile_with, solve_wheelset, solve_wheelset_tabulated, solve_wheelset_warm,
+    ContactTable, LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData,
+    WarmStart, WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
 };
 use tonic::transport::Channel;
 use tonic::Code;
@@ -870,5 +870,43 @@ async fn wheel_rail_session_warm_starts_as_the_library_and_rolls_back_bit_for_bi
         "{}",
         e.message()
     );
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_table_model_builds_the_pairs_contact_table_once_and_solves_as_the_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
+    let cache = KernelCache::default();
+    // Two queries at once: the first use builds the table once for both.
+    let queries: Vec<_> = [2.0, 6.5]
+        .iter()
+        .map(|&mm| {
+            let input = mbench_a22_input(mm, None, None, WheelRailModel::HertzFastsim);
+            let mut q = query_of(BUILTIN, &input);
+            q.model = pb::WheelRailModel::HertzFastsimTable as i32;
+            (input, q)
+        })
+        .collect();
+    let (mut c1, mut c2) = (client.clone(), client.clone());
+    let (r1, r2) = tokio::join!(
+        solve(&mut c1, queries[0].1.clone()),
+        solve(&mut c2, queries[1].1.clone())
+    );
+    for ((input, _), got) in queries.iter().zip([r1, r2]) {
+        let want =
+            solve_wheelset_tabulated(&table, input, &cache, &mut SearchScratch::default()).unwrap();
+        assert_same("tabulated", &got, &want);
+        assert_eq!(got.model, pb::WheelRailModel::HertzFastsimTable as i32);
+    }
+    // The table's geometry differs from the direct search's (by its stated
+    // tolerance), so the results do too: the table was used.
+    let mut direct = queries[1].1.clone();
+    direct.model = pb::WheelRailModel::HertzFastsim as i32;
+    let direct = solve(&mut client, direct).await;
+    let tabulated = solve(&mut client, queries[1].1.clone()).await;
+    assert_ne!(untimed(direct), untimed(tabulated));
     server.shutdown().await;
 }

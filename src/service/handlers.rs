@@ -27,7 +27,7 @@ use crate::service::session::Session;
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
-use crate::wheelrail::{solve_wheelset, SearchScratch};
+use crate::wheelrail::{solve_wheelset, solve_wheelset_tabulated, SearchScratch};
 
 /// Limits of the requests, from the server settings.
 #[derive(Debug, Clone, Copy)]
@@ -143,11 +143,20 @@ impl ContactHandlers {
             .pairs
             .prepared(&entry, admission, Arc::new(|_, _| {}))
             .await?;
+        let tabulated = wheelrail::tabulated(req.model);
+        let table = match tabulated {
+            true => Some(prepared.table(admission).await?),
+            false => None,
+        };
         let t0 = StdInstant::now();
         let solved = admission
             .run(move || {
                 let mut scratch = SearchScratch::default();
-                solve_wheelset(&prepared.pair, &input, KernelCache::global(), &mut scratch)
+                let cache = KernelCache::global();
+                match &table {
+                    Some(t) => solve_wheelset_tabulated(t, &input, cache, &mut scratch),
+                    None => solve_wheelset(&prepared.pair, &input, cache, &mut scratch),
+                }
             })
             .await?
             .map_err(|e| {
@@ -160,7 +169,11 @@ impl ContactHandlers {
             t0.elapsed().as_secs_f64(),
             solved.is_ok(),
         );
-        wheelrail::result(&entry.spec.id, model, &solved?, req.include_fields)
+        let mut result = wheelrail::result(&entry.spec.id, model, &solved?, req.include_fields)?;
+        if tabulated {
+            result.model = req.model;
+        }
+        Ok(result)
     }
 
     /// Runs the items of a batch concurrently on one admission (one queue
@@ -694,16 +707,20 @@ impl ContactHandlers {
             .pairs
             .prepared(&entry, &admission, Arc::new(|_, _| {}))
             .await?;
+        let table = match wheelrail::tabulated(open.model) {
+            true => Some(prepared.table(&admission).await?),
+            false => None,
+        };
         drop(admission);
         let label = open.client_label.clone();
-        let mut session = WheelRailSession::open(entry, prepared, open)
+        let mut session = WheelRailSession::open(entry, prepared, table, open)
             .map_err(|e| Status::from(e.within("open")))?;
         let model = session.model();
         tracing::info!(label = %label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
         let opened = Out::Opened(pb::WheelRailSessionOpened {
             session_id,
             pair_id: session.pair_id().to_string(),
-            model: wheelrail::wire_model(model) as i32,
+            model: session.wire_model() as i32,
         });
         if tx.send(reply(opened)).await.is_err() {
             return Ok(());

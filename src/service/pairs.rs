@@ -41,9 +41,9 @@ use crate::service::pool::Admission;
 use crate::service::status::ServiceError;
 use crate::service::store::PairStore;
 use crate::wheelrail::{
-    builtin, parse_profile, LoadOptions, MiniProfVariant, Profile, ProfileFormat, ProfileKind,
-    SplineOptions, TrackData, WheelRailError, WheelRailPair, WheelsetData,
-    DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile, ProfileFormat,
+    ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError, WheelRailPair,
+    WheelsetData, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Name of the built-in pair registered at every start.
@@ -365,6 +365,33 @@ pub struct PreparedPair {
     summaries: [Option<pb::ProfileSummary>; 4],
     /// Preparation time [s].
     prepare_time_s: f64,
+    /// The contact table, built on first use.
+    table: tokio::sync::OnceCell<Arc<ContactTable>>,
+}
+
+impl PreparedPair {
+    /// The pair's contact table (default grid), built on the pool on the
+    /// first call; concurrent first calls build it once.
+    pub async fn table(&self, admission: &Admission) -> Result<Arc<ContactTable>, ServiceError> {
+        self.table
+            .get_or_try_init(|| async {
+                let pair = self.pair.clone();
+                admission
+                    .run(move || {
+                        let t = ContactTable::build(&pair, &TableSettings::default())?;
+                        tracing::info!(
+                            seconds = t.build_time_s(),
+                            nodes = t.node_count(),
+                            "contact table built"
+                        );
+                        Ok::<_, ServiceError>(Arc::new(t))
+                    })
+                    .await
+                    .and_then(|r| r)
+            })
+            .await
+            .cloned()
+    }
 }
 
 /// Stages of a preparation, for progress messages.
@@ -473,6 +500,7 @@ pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, Ser
         pair,
         summaries,
         prepare_time_s,
+        table: tokio::sync::OnceCell::new(),
     })
 }
 

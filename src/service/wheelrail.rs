@@ -22,11 +22,18 @@ pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
         Ok(pb::WheelRailModel::Unspecified | pb::WheelRailModel::Exact) => {
             Ok(WheelRailModel::Exact)
         }
-        Ok(pb::WheelRailModel::HertzFastsim) => Ok(WheelRailModel::HertzFastsim),
+        Ok(pb::WheelRailModel::HertzFastsim | pb::WheelRailModel::HertzFastsimTable) => {
+            Ok(WheelRailModel::HertzFastsim)
+        }
         Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
         Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
         Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
     }
+}
+
+/// Whether a wire model asks for the pair's contact table.
+pub fn tabulated(m: i32) -> bool {
+    m == pb::WheelRailModel::HertzFastsimTable as i32
 }
 
 /// The wire model of a library model.

@@ -19,7 +19,8 @@ use crate::service::session::Marks;
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
 use crate::wheelrail::{
-    solve_wheelset_warm, SearchScratch, WarmStart, WheelRailInput, WheelRailModel,
+    solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, SearchScratch, WarmStart,
+    WheelRailInput, WheelRailModel,
 };
 
 /// A validated step, ready to solve.
@@ -35,6 +36,8 @@ pub struct WheelRailStep {
 pub struct WheelRailSession {
     entry: Arc<PairEntry>,
     prepared: Arc<PreparedPair>,
+    /// The pair's contact table (model hertz_fastsim_table).
+    table: Option<Arc<ContactTable>>,
     open: pb::WheelRailSessionOpen,
     model: WheelRailModel,
     scratch: SearchScratch,
@@ -48,6 +51,7 @@ impl WheelRailSession {
     pub fn open(
         entry: Arc<PairEntry>,
         prepared: Arc<PreparedPair>,
+        table: Option<Arc<ContactTable>>,
         open: pb::WheelRailSessionOpen,
     ) -> Result<Self, ServiceError> {
         // Checks model, sides, friction and element size once, with a
@@ -58,6 +62,7 @@ impl WheelRailSession {
             model: input.settings.model,
             entry,
             prepared,
+            table,
             open,
             scratch: SearchScratch::default(),
             warm: WarmStart::default(),
@@ -73,6 +78,14 @@ impl WheelRailSession {
     /// The model that runs.
     pub fn model(&self) -> WheelRailModel {
         self.model
+    }
+
+    /// The wire model of the session (as opened).
+    pub fn wire_model(&self) -> pb::WheelRailModel {
+        match &self.table {
+            Some(_) => pb::WheelRailModel::HertzFastsimTable,
+            None => wheelrail::wire_model(self.model),
+        }
     }
 
     /// The index the next step must have.
@@ -107,25 +120,31 @@ impl WheelRailSession {
         step: WheelRailStep,
     ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
         let mut warm = self.warm;
-        let solution = solve_wheelset_warm(
-            &self.prepared.pair,
-            &step.input,
-            KernelCache::global(),
-            &mut self.scratch,
-            &mut warm,
-        )
+        let cache = KernelCache::global();
+        let solution = match &self.table {
+            // Tabulated geometry needs no warm start.
+            Some(t) => solve_wheelset_tabulated(t, &step.input, cache, &mut self.scratch),
+            None => solve_wheelset_warm(
+                &self.prepared.pair,
+                &step.input,
+                cache,
+                &mut self.scratch,
+                &mut warm,
+            ),
+        }
         .map_err(|e| {
             ServiceError::from(e)
                 .within("step")
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
-        let result = wheelrail::result(
+        let mut result = wheelrail::result(
             self.pair_id(),
             self.model,
             &solution,
             self.open.include_fields,
         )
         .map_err(|e| e.within("step"))?;
+        result.model = self.wire_model() as i32;
         self.warm = warm;
         self.marks.done(step.index, step.mark, || warm);
         Ok(pb::WheelRailSessionStepResult {

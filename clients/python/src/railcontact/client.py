@@ -283,7 +283,7 @@ class Client:
         ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...), or a
         number: the forward speed; ``load``: of ``WheelLoad``, or a number:
         the vertical force per wheel [N]; ``model``: ``"exact"``,
-        ``"hertz_fastsim"``, ``"cect"`` or ``"auto"``; ``sides``:
+        ``"hertz_fastsim"``, ``"hertz_fastsim_table"``, ``"cect"`` or ``"auto"``; ``sides``:
         ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a
         ``FrictionSection`` mapping (default: the pair's).
         """

@@ -68,6 +68,7 @@ class WheelRailModel(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_MODEL_HERTZ_FASTSIM: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_CECT: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_AUTO: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: _ClassVar[WheelRailModel]
 
 class WheelSides(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -119,6 +120,7 @@ WHEEL_RAIL_MODEL_EXACT: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_FASTSIM: WheelRailModel
 WHEEL_RAIL_MODEL_CECT: WheelRailModel
 WHEEL_RAIL_MODEL_AUTO: WheelRailModel
+WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: WheelRailModel
 WHEEL_SIDES_UNSPECIFIED: WheelSides
 WHEEL_SIDES_BOTH: WheelSides
 WHEEL_SIDES_LEFT: WheelSides
