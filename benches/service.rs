@@ -100,7 +100,7 @@ fn round_trips(c: &mut Criterion) {
     ] {
         let request = pb::SolvePatchRequest {
             case: Some(case(model, n)),
-            include_fields: false,
+            ..Default::default()
         };
         group.bench_function(format!("solve_patch/{name}"), |b| {
             b.iter(|| {
@@ -113,8 +113,8 @@ fn round_trips(c: &mut Criterion) {
         let open = pb::SessionRequest {
             kind: Some(pb::session_request::Kind::Open(pb::SessionOpen {
                 case: Some(case(model, n)),
-                include_fields: false,
                 client_label: "bench".into(),
+                ..Default::default()
             })),
         };
         rt.block_on(tx.send(open)).unwrap();

@@ -109,7 +109,7 @@ fn transient(n: u32, shifts: &[f64]) -> pb::PatchCase {
 fn request(case: pb::PatchCase) -> pb::SolvePatchRequest {
     pb::SolvePatchRequest {
         case: Some(case),
-        include_fields: false,
+        ..Default::default()
     }
 }
 
@@ -325,6 +325,7 @@ fn open(case: pb::PatchCase, fields: bool) -> pb::SessionRequest {
             case: Some(case),
             include_fields: fields,
             client_label: "test".into(),
+            ..Default::default()
         })),
     }
 }
@@ -543,6 +544,7 @@ async fn bad_inputs_get_invalid_argument_naming_the_field() {
         pb::SolvePatchRequest {
             case: Some(sphere(pb::Model::Hertz, 16)),
             include_fields: true,
+            ..Default::default()
         },
         "`include_fields`",
     ));

@@ -15,8 +15,9 @@ use railcontact::service::server::{start, RunningServer};
 use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    load_profile, load_profile_with, solve_wheelset, LoadOptions, SearchScratch, Side,
-    SplineOptions, TrackData, WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
+    load_profile, load_profile_with, solve_wheelset, solve_wheelset_warm, LoadOptions,
+    SearchScratch, Side, SplineOptions, TrackData, WarmStart, WheelRailModel, WheelRailPair,
+    WheelRailSolution, WheelsetData,
 };
 use tonic::transport::Channel;
 use tonic::Code;
@@ -697,5 +698,177 @@ async fn registered_pairs_survive_a_restart_and_deletions_too() {
     assert_eq!(e.code(), Code::NotFound);
     let list = list(&mut client).await;
     assert_eq!(list.len(), 1, "the built-in pair only");
+    server.shutdown().await;
+}
+
+/// A wheel/rail session step at Manchester A-2.2's lateral shift `mm`
+/// (roll from the profiles, free rolling).
+fn wr_step(index: u64, mm: f64, mark: bool) -> pb::WheelRailSessionRequest {
+    let q = query_of(
+        BUILTIN,
+        &mbench_a22_input(mm, None, None, WheelRailModel::Exact),
+    );
+    pb::WheelRailSessionRequest {
+        kind: Some(pb::wheel_rail_session_request::Kind::Step(
+            pb::WheelRailSessionStep {
+                step_index: index,
+                time_s: index as f64 * 1e-3,
+                position: q.position,
+                velocity: q.velocity,
+                load: q.load,
+                mark,
+            },
+        )),
+    }
+}
+
+fn wr_request(kind: pb::wheel_rail_session_request::Kind) -> pb::WheelRailSessionRequest {
+    pb::WheelRailSessionRequest { kind: Some(kind) }
+}
+
+/// Runs a whole wheel/rail session; every response (the first is `opened`).
+async fn wr_session(
+    client: &mut Client,
+    messages: Vec<pb::WheelRailSessionRequest>,
+) -> Result<Vec<pb::wheel_rail_session_response::Kind>, tonic::Status> {
+    let mut out = client
+        .wheel_rail_session(tokio_stream::iter(messages))
+        .await?
+        .into_inner();
+    let mut responses = Vec::new();
+    while let Some(r) = tokio_stream::StreamExt::next(&mut out).await {
+        responses.push(r?.kind.expect("a response kind"));
+    }
+    Ok(responses)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn wheel_rail_session_warm_starts_as_the_library_and_rolls_back_bit_for_bit() {
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    // A wheelset drifting 0.05 mm a step: warm starts help where the
+    // previous step is close.
+    let shifts = [3.0, 3.05, 3.1, 3.15];
+    let open = In::Open(pb::WheelRailSessionOpen {
+        pair_id: BUILTIN.into(),
+        model: pb::WheelRailModel::Exact as i32,
+        client_label: "test".into(),
+        ..Default::default()
+    });
+    let mut msgs = vec![wr_request(open.clone())];
+    for (k, &mm) in shifts.iter().enumerate() {
+        msgs.push(wr_step(k as u64, mm, k == 1));
+    }
+    msgs.push(wr_step(9, 7.0, false)); // out of order
+    let mut no_velocity = wr_step(4, 7.0, false);
+    if let Some(In::Step(s)) = no_velocity.kind.as_mut() {
+        s.velocity = None;
+    }
+    msgs.push(no_velocity);
+    msgs.push(wr_request(In::Rollback(pb::SessionRollback {
+        to_step_index: 2,
+    })));
+    msgs.push(wr_request(In::Rollback(pb::SessionRollback {
+        to_step_index: 1,
+    })));
+    msgs.push(wr_step(2, shifts[2], false));
+    msgs.push(wr_step(3, shifts[3], false));
+    let r = wr_session(&mut client, msgs).await.unwrap();
+    assert_eq!(r.len(), 11, "one response per request");
+    match &r[0] {
+        Out::Opened(o) => {
+            assert!(o.session_id.starts_with('w'));
+            assert_eq!(o.pair_id.len(), 32);
+            assert_eq!(o.model, pb::WheelRailModel::Exact as i32);
+        }
+        other => panic!("{other:?}"),
+    }
+    let step = |k: usize| match &r[k] {
+        Out::Step(s) => s.clone(),
+        other => panic!("response {k}: expected a step, got {other:?}"),
+    };
+    let error = |k: usize| match &r[k] {
+        Out::Error(e) => e.clone(),
+        other => panic!("response {k}: expected an error, got {other:?}"),
+    };
+
+    // Step by step equals the library's warm-started sequence, bit for bit.
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut warm = WarmStart::default();
+    let (mut warm_iterations, mut cold_iterations) = (0, 0);
+    for (k, &mm) in shifts.iter().enumerate() {
+        let input = mbench_a22_input(mm, None, None, WheelRailModel::Exact);
+        let want = solve_wheelset_warm(&pair, &input, &cache, &mut scratch, &mut warm).unwrap();
+        let s = step(1 + k);
+        assert_eq!(s.step_index, k as u64);
+        assert_eq!(s.marked, k == 1);
+        assert_same(&format!("step {k}"), s.result.as_ref().unwrap(), &want);
+        // A warm start is only a starting point: the same solution to the
+        // load tolerance (1e-6 of the load, WheelRailSettings).
+        let cold = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+        for (w, c) in want.wheels.iter().zip(&cold.wheels) {
+            assert!(
+                (w.force_track_n[2] - c.force_track_n[2]).abs() <= 2e-6 * 10_000.0,
+                "step {k}: {} vs {}",
+                w.force_track_n[2],
+                c.force_track_n[2]
+            );
+            warm_iterations += w.load_iterations;
+            cold_iterations += c.load_iterations;
+        }
+    }
+    assert!(
+        warm_iterations <= cold_iterations,
+        "warm starts cost {warm_iterations} load iterations, cold solves {cold_iterations}"
+    );
+    // Refused in-band, state unchanged.
+    let e = error(5);
+    assert_eq!(e.code, Code::FailedPrecondition as i32, "{e:?}");
+    assert!(e.message.contains("expects step 4"), "{}", e.message);
+    let e = error(6);
+    assert_eq!(e.code, Code::InvalidArgument as i32, "{e:?}");
+    assert_eq!(e.field, "step.velocity");
+    let e = error(7);
+    assert_eq!(e.code, Code::FailedPrecondition as i32);
+    assert!(e.message.contains("marked: 1"), "{}", e.message);
+    match &r[8] {
+        Out::RolledBack(b) => assert_eq!((b.to_step_index, b.next_step_index), (1, 2)),
+        other => panic!("{other:?}"),
+    }
+    // The replay after the rollback repeats steps 2 and 3 bit for bit.
+    for (replay, first) in [(9, 3), (10, 4)] {
+        let (a, b) = (step(replay), step(first));
+        assert_eq!(a.step_index, b.step_index);
+        assert_eq!(untimed(a.result.unwrap()), untimed(b.result.unwrap()));
+    }
+
+    // An unknown pair ends the stream with NOT_FOUND; a bad setting with
+    // INVALID_ARGUMENT naming it under `open`.
+    let unknown = In::Open(pb::WheelRailSessionOpen {
+        pair_id: "no_such_pair".into(),
+        ..Default::default()
+    });
+    let e = wr_session(&mut client, vec![wr_request(unknown)])
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::NotFound, "{e:?}");
+    let bad = In::Open(pb::WheelRailSessionOpen {
+        pair_id: BUILTIN.into(),
+        element_size_m: Some(-1.0),
+        ..Default::default()
+    });
+    let e = wr_session(&mut client, vec![wr_request(bad)])
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    assert!(
+        e.message().contains("open.element_size_m"),
+        "{}",
+        e.message()
+    );
     server.shutdown().await;
 }

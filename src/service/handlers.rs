@@ -26,6 +26,7 @@ use crate::service::pool::{deadline_of, Admission, SolvePool};
 use crate::service::session::Session;
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
+use crate::service::wheelrail_session::WheelRailSession;
 use crate::wheelrail::{solve_wheelset, SearchScratch};
 
 /// Limits of the requests, from the server settings.
@@ -570,11 +571,25 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
 
     async fn wheel_rail_session(
         &self,
-        _req: Request<Streaming<pb::WheelRailSessionRequest>>,
+        req: Request<Streaming<pb::WheelRailSessionRequest>>,
     ) -> Result<Response<Self::WheelRailSessionStream>, Status> {
-        Err(Status::unimplemented(
-            "WheelRailSession lands in the next commit",
-        ))
+        let session_id = format!("w{}", self.next_id.fetch_add(1, Ordering::Relaxed));
+        let span = tracing::info_span!("WheelRailSession", request_id = %self.request_id(&req), session_id = %session_id);
+        let mut inbound = req.into_inner();
+        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let this = self.clone();
+        tokio::spawn(
+            async move {
+                if let Err(status) = this
+                    .run_wheelrail_session(&mut inbound, &tx, session_id)
+                    .await
+                {
+                    let _ = tx.send(Err(status)).await;
+                }
+            }
+            .instrument(span),
+        );
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
 
     type PatchSessionStream = BoxStream<pb::SessionResponse>;
@@ -610,6 +625,20 @@ impl Drop for SessionSlot {
     }
 }
 
+fn open_first() -> ServiceError {
+    ServiceError::invalid("open", "the first message of a session must be `open`")
+}
+
+fn already_open() -> ServiceError {
+    ServiceError::Precondition("the session is already open: send steps or a rollback".into())
+}
+
+/// A refused session request, answered in-band.
+fn refused(e: ServiceError) -> pb::ItemError {
+    tracing::debug!(error = %e, "session request refused");
+    e.item_error()
+}
+
 type SessionTx = mpsc::Sender<Result<pb::SessionResponse, Status>>;
 
 fn reply(kind: pb::session_response::Kind) -> Result<pb::SessionResponse, Status> {
@@ -617,6 +646,98 @@ fn reply(kind: pb::session_response::Kind) -> Result<pb::SessionResponse, Status
 }
 
 impl ContactHandlers {
+    /// Counts a session in, or RESOURCE_EXHAUSTED at the server's limit.
+    fn session_slot(&self) -> Result<SessionSlot, ServiceError> {
+        if self.sessions.fetch_add(1, Ordering::Relaxed) >= self.limits.max_sessions {
+            self.sessions.fetch_sub(1, Ordering::Relaxed);
+            return Err(ServiceError::Exhausted(format!(
+                "{} sessions are open, this server's limit; close one or retry later",
+                self.limits.max_sessions
+            )));
+        }
+        self.metrics.session_opened();
+        Ok(SessionSlot(self.sessions.clone(), self.metrics.clone()))
+    }
+
+    /// Runs one wheel/rail session until the client closes its stream.
+    /// Refused steps are answered in-band; an `Err` ends the stream.
+    async fn run_wheelrail_session(
+        &self,
+        inbound: &mut Streaming<pb::WheelRailSessionRequest>,
+        tx: &mpsc::Sender<Result<pb::WheelRailSessionResponse, Status>>,
+        session_id: String,
+    ) -> Result<(), Status> {
+        use pb::wheel_rail_session_request::Kind;
+        use pb::wheel_rail_session_response::Kind as Out;
+        let reply = |kind| Ok(pb::WheelRailSessionResponse { kind: Some(kind) });
+        let open = match inbound.message().await? {
+            Some(pb::WheelRailSessionRequest {
+                kind: Some(Kind::Open(open)),
+            }) => open,
+            Some(_) => return Err(open_first().into()),
+            None => return Ok(()),
+        };
+        let _slot = self.session_slot()?;
+        let entry = self.pairs.lookup(&open.pair_id)?;
+        let admission = self.pool.admit(None)?;
+        let prepared = self
+            .pairs
+            .prepared(&entry, &admission, Arc::new(|_, _| {}))
+            .await?;
+        drop(admission);
+        let label = open.client_label.clone();
+        let mut session = WheelRailSession::open(entry, prepared, open)
+            .map_err(|e| Status::from(e.within("open")))?;
+        let model = session.model();
+        tracing::info!(label = %label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
+        let opened = Out::Opened(pb::WheelRailSessionOpened {
+            session_id,
+            pair_id: session.pair_id().to_string(),
+            model: wheelrail::wire_model(model) as i32,
+        });
+        if tx.send(reply(opened)).await.is_err() {
+            return Ok(());
+        }
+        while let Some(msg) = inbound.message().await? {
+            let out = match msg.kind {
+                Some(Kind::Step(step)) => {
+                    let t0 = StdInstant::now();
+                    let r = match session.check_step(&step) {
+                        Ok(input) => match self.pool.admit(None) {
+                            Ok(admission) => {
+                                let (s, r) = admission
+                                    .run(move || {
+                                        let r = session.step(input);
+                                        (session, r)
+                                    })
+                                    .await?;
+                                session = s;
+                                r
+                            }
+                            Err(e) => Err(e),
+                        },
+                        Err(e) => Err(e),
+                    };
+                    self.metrics.solved_as(
+                        wheelrail::model_name(model),
+                        t0.elapsed().as_secs_f64(),
+                        r.is_ok(),
+                    );
+                    r.map(Out::Step)
+                }
+                Some(Kind::Rollback(r)) => session.rollback(r.to_step_index).map(Out::RolledBack),
+                Some(Kind::Open(_)) => Err(already_open()),
+                None => Err(ServiceError::invalid("kind", "missing: step or rollback")),
+            };
+            let out = out.unwrap_or_else(|e| Out::Error(refused(e)));
+            if tx.send(reply(out)).await.is_err() {
+                break;
+            }
+        }
+        tracing::info!(next_step = session.next_step(), "wheel/rail session closed");
+        Ok(())
+    }
+
     /// Runs one session until the client closes its stream. Refused steps
     /// are answered in-band; an `Err` ends the stream with that status.
     async fn run_session(
@@ -631,25 +752,10 @@ impl ContactHandlers {
             Some(pb::SessionRequest {
                 kind: Some(Kind::Open(open)),
             }) => open,
-            Some(_) => {
-                return Err(ServiceError::invalid(
-                    "open",
-                    "the first message of a session must be `open`",
-                )
-                .into())
-            }
+            Some(_) => return Err(open_first().into()),
             None => return Ok(()),
         };
-        if self.sessions.fetch_add(1, Ordering::Relaxed) >= self.limits.max_sessions {
-            self.sessions.fetch_sub(1, Ordering::Relaxed);
-            return Err(ServiceError::Exhausted(format!(
-                "{} sessions are open, this server's limit; close one or retry later",
-                self.limits.max_sessions
-            ))
-            .into());
-        }
-        self.metrics.session_opened();
-        let _slot = SessionSlot(self.sessions.clone(), self.metrics.clone());
+        let _slot = self.session_slot()?;
         let case = open
             .case
             .as_ref()
@@ -690,15 +796,10 @@ impl ContactHandlers {
                     r.map(Out::Step)
                 }
                 Some(Kind::Rollback(r)) => session.rollback(r.to_step_index).map(Out::RolledBack),
-                Some(Kind::Open(_)) => Err(ServiceError::Precondition(
-                    "the session is already open: send steps or a rollback".into(),
-                )),
+                Some(Kind::Open(_)) => Err(already_open()),
                 None => Err(ServiceError::invalid("kind", "missing: step or rollback")),
             };
-            let out = out.unwrap_or_else(|e| {
-                tracing::debug!(error = %e, "session request refused");
-                Out::Error(e.item_error())
-            });
+            let out = out.unwrap_or_else(|e| Out::Error(refused(e)));
             if tx.send(reply(out)).await.is_err() {
                 break;
             }

@@ -34,3 +34,4 @@ pub mod session;
 pub mod status;
 pub mod store;
 pub mod wheelrail;
+pub mod wheelrail_session;

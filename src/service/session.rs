@@ -51,14 +51,97 @@ enum Motion {
     Shift(ShiftStep),
 }
 
+/// The step order and the marked states of a session (of any kind): the
+/// index the next step must have, and a state per marked step.
+#[derive(Debug)]
+pub struct Marks<T> {
+    next_step: u64,
+    marks: BTreeMap<u64, T>,
+}
+
+impl<T: Clone> Marks<T> {
+    /// No step yet, nothing marked.
+    pub fn new() -> Self {
+        Self {
+            next_step: 0,
+            marks: BTreeMap::new(),
+        }
+    }
+
+    /// The index the next step must have.
+    pub fn next_step(&self) -> u64 {
+        self.next_step
+    }
+
+    /// FAILED_PRECONDITION unless `index` is the next step's.
+    pub fn check_order(&self, index: u64) -> Result<(), ServiceError> {
+        if index == self.next_step {
+            return Ok(());
+        }
+        Err(ServiceError::Precondition(format!(
+            "step_index {index} is out of order: this session expects step {} next \
+             (steps are consecutive from 0; to repeat earlier steps, roll back to a marked step{})",
+            self.next_step,
+            self.list()
+        )))
+    }
+
+    /// Step `index` succeeded; `state` (the state after it) is kept when
+    /// the step is marked (dropping the oldest mark beyond [`MAX_MARKS`]).
+    pub fn done(&mut self, index: u64, mark: bool, state: impl FnOnce() -> T) {
+        self.next_step = index + 1;
+        if mark {
+            if self.marks.len() >= MAX_MARKS {
+                self.marks.pop_first();
+            }
+            self.marks.insert(index, state());
+        }
+    }
+
+    /// Goes back to marked step `to`: its state; later marks are dropped,
+    /// the mark itself stays.
+    pub fn rollback(&mut self, to: u64) -> Result<(T, pb::SessionRolledBack), ServiceError> {
+        let state = self.marks.get(&to).cloned().ok_or_else(|| {
+            ServiceError::Precondition(format!(
+                "step {to} is not marked in this session{}; mark a step with `mark = true`",
+                self.list()
+            ))
+        })?;
+        self.marks.split_off(&(to + 1));
+        self.next_step = to + 1;
+        Ok((
+            state,
+            pb::SessionRolledBack {
+                to_step_index: to,
+                next_step_index: self.next_step,
+            },
+        ))
+    }
+
+    /// " (marked: 3, 7)" or " (none is marked)", for messages.
+    pub fn list(&self) -> String {
+        if self.marks.is_empty() {
+            " (none is marked)".to_string()
+        } else {
+            let k: Vec<String> = self.marks.keys().map(|k| k.to_string()).collect();
+            format!(" (marked: {})", k.join(", "))
+        }
+    }
+}
+
+impl<T: Clone> Default for Marks<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// One open session.
 pub struct Session {
     engine: PatchEngine,
     kind: SessionKind,
     fields: bool,
     default_load: NormalLoad,
-    next_step: u64,
-    marks: BTreeMap<u64, PatchEngine>,
+    marks: Marks<PatchEngine>,
 }
 
 impl Session {
@@ -85,8 +168,7 @@ impl Session {
             engine,
             kind,
             fields,
-            next_step: 0,
-            marks: BTreeMap::new(),
+            marks: Marks::new(),
         })
     }
 
@@ -102,28 +184,20 @@ impl Session {
 
     /// The index the next step must have.
     pub fn next_step(&self) -> u64 {
-        self.next_step
+        self.marks.next_step()
     }
 
     /// Checks a step's order and inputs without solving; field paths are
     /// relative to the request (`step.`).
     pub fn check_step(&self, s: &pb::SessionStep) -> Result<StepInput, ServiceError> {
-        if s.step_index != self.next_step {
-            return Err(ServiceError::Precondition(format!(
-                "step_index {} is out of order: this session expects step {} next \
-                 (steps are consecutive from 0; to repeat earlier steps, roll back to a marked step{})",
-                s.step_index,
-                self.next_step,
-                self.marks_list()
-            )));
-        }
+        self.marks.check_order(s.step_index)?;
         if !self.engine.history_intact() {
             return Err(ServiceError::Precondition(format!(
                 "a previous step was rejected by the solver after it had started (the patch reached \
                  the grid border), so the session's history is no longer that of step {}; roll back \
                  to a marked step{} or open a new session with a larger grid window",
-                self.next_step.saturating_sub(1),
-                self.marks_list()
+                self.marks.next_step().saturating_sub(1),
+                self.marks.list()
             )));
         }
         if !s.time_s.is_finite() {
@@ -220,13 +294,8 @@ impl Session {
             Motion::Shift(shift) => self.engine.solve_next_step(&shift, self.fields),
         }
         .map_err(|e| e.rekey("load", "step").rekey("grid", "open.case.grid"))?;
-        self.next_step = input.index + 1;
-        if input.mark {
-            if self.marks.len() >= MAX_MARKS {
-                self.marks.pop_first();
-            }
-            self.marks.insert(input.index, self.engine.clone());
-        }
+        let engine = &self.engine;
+        self.marks.done(input.index, input.mark, || engine.clone());
         Ok(pb::SessionStepResult {
             step_index: input.index,
             time_s: input.time_s,
@@ -239,27 +308,8 @@ impl Session {
     /// Goes back to the state after marked step `to`; later marks are
     /// dropped, the mark itself stays.
     pub fn rollback(&mut self, to: u64) -> Result<pb::SessionRolledBack, ServiceError> {
-        let engine = self.marks.get(&to).ok_or_else(|| {
-            ServiceError::Precondition(format!(
-                "step {to} is not marked in this session{}; mark a step with `mark = true`",
-                self.marks_list()
-            ))
-        })?;
-        self.engine = engine.clone();
-        self.marks.split_off(&(to + 1));
-        self.next_step = to + 1;
-        Ok(pb::SessionRolledBack {
-            to_step_index: to,
-            next_step_index: self.next_step,
-        })
-    }
-
-    fn marks_list(&self) -> String {
-        if self.marks.is_empty() {
-            " (none is marked)".to_string()
-        } else {
-            let k: Vec<String> = self.marks.keys().map(|k| k.to_string()).collect();
-            format!(" (marked: {})", k.join(", "))
-        }
+        let (engine, out) = self.marks.rollback(to)?;
+        self.engine = engine;
+        Ok(out)
     }
 }

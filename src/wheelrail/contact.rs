@@ -46,7 +46,7 @@ use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, Solv
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
 use crate::wheelrail::search::{
-    gap_intervals, patch_geometry, rigid_position, split_intervals, LocusPoint, PatchGeometry,
+    gap_intervals, patch_geometry, rigid_position_from, split_intervals, LocusPoint, PatchGeometry,
     RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
@@ -532,17 +532,56 @@ pub fn solve_wheelset(
     cache: &KernelCache,
     scratch: &mut SearchScratch,
 ) -> Result<WheelRailSolution, WheelRailError> {
+    solve_wheelset_warm(pair, input, cache, scratch, &mut WarmStart::default())
+}
+
+/// What a wheelset solve may start from: the previous time step of a
+/// co-simulation. Only starting points of iterations: a solve from a warm
+/// start converges to the same tolerances as a cold one (to within them,
+/// not bit for bit), and the same sequence of solves from the same warm
+/// start gives the same bits.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WarmStart {
+    /// Roll angle of the previous step [rad]: the roll search starts there
+    /// (positions that leave the roll free).
+    pub roll_rad: Option<f64>,
+    /// Per wheel (`Side::index()`): the previous single-patch solve's normal
+    /// force per vertical load [-], the load iteration's first normal force.
+    pub normal_per_vertical: [Option<f64>; 2],
+}
+
+/// [`solve_wheelset`] from a warm start, which it updates with this
+/// solve's figures for the next step (on success; left as it was on an
+/// error).
+pub fn solve_wheelset_warm(
+    pair: &WheelRailPair,
+    input: &WheelRailInput,
+    cache: &KernelCache,
+    scratch: &mut SearchScratch,
+    warm: &mut WarmStart,
+) -> Result<WheelRailSolution, WheelRailError> {
     validate(input)?;
     let t0 = Instant::now();
-    let rigid = rigid_position(pair, &input.position, &input.settings.search, scratch)?;
+    let rigid = rigid_position_from(
+        pair,
+        &input.position,
+        &input.settings.search,
+        scratch,
+        warm.roll_rad.unwrap_or(0.0),
+    )?;
     let mut timing = Timing {
         search_s: t0.elapsed().as_secs_f64(),
         ..Timing::default()
     };
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
+    let mut next = WarmStart {
+        roll_rad: Some(rigid.roll_rad),
+        ..*warm
+    };
     for &side in &input.sides {
-        wheels.push(solve_wheel(
+        let i = side.index();
+        let (wheel, ratio) = solve_wheel(
             pair,
             input,
             &rigid,
@@ -551,8 +590,12 @@ pub fn solve_wheelset(
             cache,
             scratch,
             &mut timing,
-        )?);
+            warm.normal_per_vertical[i],
+        )?;
+        next.normal_per_vertical[i] = ratio;
+        wheels.push(wheel);
     }
+    *warm = next;
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
@@ -666,7 +709,8 @@ fn solve_wheel(
     cache: &KernelCache,
     scratch: &mut SearchScratch,
     timing: &mut Timing,
-) -> Result<WheelResult, WheelRailError> {
+    start: Option<f64>,
+) -> Result<(WheelResult, Option<f64>), WheelRailError> {
     let i = side.index();
     let gap = &scratch.gap[i];
     let locus = &scratch.locus[i];
@@ -709,7 +753,7 @@ fn solve_wheel(
         }
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
-        let result = match load_iteration(&mut patches, input, cap, &mut fastsim, cache) {
+        let result = match load_iteration(&mut patches, input, cap, &mut fastsim, cache, start) {
             Ok(r) => r,
             // The pressure reached the edge of a grid sized for `cap`.
             Err((_, ContactError::GridTooSmall { .. })) => LoadResult::CapTooSmall,
@@ -755,7 +799,7 @@ fn solve_wheel(
                             out: PatchOutcome::default(),
                             ..p
                         });
-                        let r = load_iteration(&mut patches, input, cap, &mut fastsim, cache)
+                        let r = load_iteration(&mut patches, input, cap, &mut fastsim, cache, None)
                             .map_err(|(k, source)| WheelRailError::Contact {
                                 side: side.name(),
                                 patch: k,
@@ -763,7 +807,9 @@ fn solve_wheel(
                             })?;
                         timing.solve_s += tc.elapsed().as_secs_f64();
                         if let LoadResult::Done { delta, iterations } = r {
-                            return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+                            let ratio = normal_per_vertical(&patches, input);
+                            let wheel = finish(pair, side, gmin, delta, iterations, patches, input);
+                            return Ok((wheel, ratio));
                         }
                         return Err(WheelRailError::Geometry {
                             side: side.name(),
@@ -771,7 +817,9 @@ fn solve_wheel(
                         });
                     }
                 }
-                return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+                let ratio = normal_per_vertical(&patches, input);
+                let wheel = finish(pair, side, gmin, delta, iterations, patches, input);
+                return Ok((wheel, ratio));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
                 cap = gmin + 2.0 * (cap - gmin);
@@ -1014,12 +1062,28 @@ fn solve_all(
 }
 
 /// Finds the wheel's vertical approach (or applies the given one).
+/// The normal force per vertical load of a single-patch wheel under force
+/// control: where the next step's load iteration starts.
+fn normal_per_vertical(patches: &[PatchWork], input: &WheelRailInput) -> Option<f64> {
+    match (patches, input.load) {
+        ([p], WheelLoad::VerticalForce(f)) => {
+            let r = p.out.fn_n / f;
+            (r.is_finite() && r > 0.0).then_some(r)
+        }
+        _ => None,
+    }
+}
+
+/// Finds the approach that carries the wheel's load. `start`: the first
+/// normal force per vertical load of a single patch (a warm start; the
+/// default is 1 / n_z, the normal force without creep forces).
 pub(crate) fn load_iteration(
     patches: &mut [PatchWork],
     input: &WheelRailInput,
     cap: f64,
     fastsim: &mut Fastsim,
     cache: &KernelCache,
+    start: Option<f64>,
 ) -> Result<LoadResult, PatchErr> {
     let target = match input.load {
         WheelLoad::Approach(d) => {
@@ -1036,7 +1100,7 @@ pub(crate) fn load_iteration(
     if let [p] = patches {
         // One patch: force control of the core; secant steps on the normal
         // force make the vertical force, creep force included, the target.
-        let mut fn_n = target / p.nz;
+        let mut fn_n = target * start.unwrap_or(1.0 / p.nz);
         let mut last: Option<(f64, f64)> = None;
         for it in 1..=max_it {
             if !(fn_n > 0.0 && fn_n.is_finite()) {

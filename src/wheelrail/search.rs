@@ -428,7 +428,7 @@ fn min_gaps(
 
 /// The roll angle at which `d(roll)`, the smallest vertical gap of the left
 /// wheel minus that of the right, vanishes (to `tolerance_m`): secant steps
-/// from roll 0. D grows with roll (positive roll lowers the right wheel) at
+/// from roll `start` (0, or the previous time step's roll). D grows with roll (positive roll lowers the right wheel) at
 /// about the track width `gauge_m` per radian. `lateral_m` names the
 /// position in the error.
 pub(crate) fn find_roll(
@@ -436,11 +436,15 @@ pub(crate) fn find_roll(
     gauge_m: f64,
     tolerance_m: f64,
     lateral_m: f64,
+    start: f64,
 ) -> Result<f64, WheelRailError> {
-    let mut r0 = 0.0;
+    let mut r0 = start;
     let mut d0 = d(r0)?;
     let slope0 = gauge_m;
-    let mut r1 = -d0 / slope0;
+    if d0.abs() <= tolerance_m {
+        return Ok(r0);
+    }
+    let mut r1 = r0 - d0 / slope0;
     let mut d1 = d(r1)?;
     let mut it = 0;
     while d1.abs() > tolerance_m {
@@ -477,6 +481,18 @@ pub fn rigid_position(
     settings: &SearchSettings,
     scratch: &mut SearchScratch,
 ) -> Result<RigidPosition, WheelRailError> {
+    rigid_position_from(pair, position, settings, scratch, 0.0)
+}
+
+/// [`rigid_position`] with the roll search starting at `roll_start` [rad]
+/// (when the position leaves the roll free).
+pub(crate) fn rigid_position_from(
+    pair: &WheelRailPair,
+    position: &WheelsetPosition,
+    settings: &SearchSettings,
+    scratch: &mut SearchScratch,
+    roll_start: f64,
+) -> Result<RigidPosition, WheelRailError> {
     let z0 = -pair.wheelset().nominal_radius_m;
     let (y, yaw) = (position.lateral_m, position.yaw_rad);
     let roll = match position.roll_rad {
@@ -489,6 +505,7 @@ pub fn rigid_position(
             pair.track().gauge_m,
             settings.roll_tolerance_m,
             y,
+            roll_start,
         )?,
     };
     let g = min_gaps(pair, y, yaw, roll, z0, scratch)?;

@@ -722,7 +722,7 @@ fn solve_wheel_tabulated(
             .collect();
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
-        let result = load_iteration(&mut patches, input, cap, &mut fastsim, cache).map_err(
+        let result = load_iteration(&mut patches, input, cap, &mut fastsim, cache, None).map_err(
             |(patch, source): (usize, ContactError)| WheelRailError::Contact {
                 side: side.name(),
                 patch,
@@ -793,6 +793,7 @@ pub fn solve_wheelset_tabulated(
             pair.track().gauge_m,
             SearchSettings::default().roll_tolerance_m,
             p.lateral_m,
+            0.0,
         )
         .ok(),
     };
