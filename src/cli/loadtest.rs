@@ -1058,7 +1058,7 @@ fn bar(total: u64, hidden: bool, what: &str) -> ProgressBar {
     };
     let pb = ProgressBar::with_draw_target(Some(total), target);
     let style = ProgressStyle::with_template(&format!(
-        "{what} {{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} steps, {{per_sec}} {{msg}}"
+        "{what} {{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} steps, eta {{eta}}"
     ))
     .unwrap_or_else(|_| ProgressStyle::default_bar())
     .progress_chars("=> ");
