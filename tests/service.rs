@@ -5,6 +5,10 @@
 use std::time::Duration;
 
 use railcontact::cli::case::Case;
+use railcontact::core::creep::kalker_creep_coefficients;
+use railcontact::core::problem::Creepages;
+use railcontact::core::sensitivity::{central_differences, JacobianPoint, JacobianSteps};
+use railcontact::core::solution::Totals;
 use railcontact::core::solve::solve;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::convert::total_values;
@@ -760,4 +764,173 @@ async fn shutdown_finishes_the_call_in_flight() {
         .fx_n
             < 0.0
     );
+}
+
+/// SolvePatch with include_sensitivities: the solution.
+async fn solve_with_jacobian(client: &mut Client, case: pb::PatchCase) -> pb::StepResult {
+    let request = pb::SolvePatchRequest {
+        case: Some(case),
+        include_sensitivities: true,
+        ..Default::default()
+    };
+    let r = client.solve_patch(request).await.unwrap().into_inner();
+    r.result.unwrap().result.unwrap()
+}
+
+fn jacobian_columns(s: &pb::Sensitivities) -> [[f64; 4]; 4] {
+    [
+        s.per_approach_m,
+        s.per_creepage_long,
+        s.per_creepage_lat,
+        s.per_spin_per_m,
+    ]
+    .map(|c| {
+        let c = c.expect("column");
+        [c.normal_force, c.fx, c.fy, c.mz]
+    })
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sensitivities_match_finite_differences_over_the_wire_and_kalkers_linear_theory() {
+    let (server, mut client) = server().await;
+    let cr = pb::Creepages {
+        creepage_long: 6e-4,
+        creepage_lat: -3e-4,
+        spin_per_m: 0.05,
+    };
+    // A fixed window: the default one follows the load, and the finite
+    // differences below control the approach instead.
+    let case = |model, c: pb::Creepages| {
+        let mut case = pb::PatchCase {
+            kinematics: Some(pb::patch_case::Kinematics::Rolling(c)),
+            ..rolling(model, 24, 0.0)
+        };
+        if model == pb::Model::Exact {
+            let g = case.grid.as_mut().unwrap();
+            g.window_x_m = Some(0.014);
+            g.window_y_m = Some(0.014);
+        }
+        case
+    };
+    for model in [pb::Model::Exact, pb::Model::Fastsim] {
+        let solved = solve_with_jacobian(&mut client, case(model, cr)).await;
+        let t = solved.totals.unwrap();
+        let s = solved.sensitivities.expect("sensitivities asked for");
+        assert_eq!(s.solves, 8);
+        let got = jacobian_columns(&s);
+        // Cold central differences through the wire, approach-controlled
+        // at the solution's approach, with the core's steps: the same
+        // numbers to the solver's tolerances (1e-5 of each column).
+        let steps = JacobianSteps::for_solution(
+            &Totals {
+                normal_force_n: t.normal_force_n,
+                approach_m: t.approach_m,
+                contact_area_m2: t.contact_area_m2,
+                ..Default::default()
+            },
+            0.3,
+            81.0e9,
+        );
+        let point = JacobianPoint {
+            approach_m: t.approach_m,
+            creepages: Creepages {
+                creepage_long: cr.creepage_long,
+                creepage_lat: cr.creepage_lat,
+                spin_per_m: cr.spin_per_m,
+            },
+        };
+        let mut fd_client = client.clone();
+        let fd = {
+            let mut calls = Vec::new();
+            central_differences(point, steps, |d, c| {
+                calls.push((d, c));
+                Ok::<_, ()>([0.0; 4])
+            })
+            .unwrap();
+            let mut values = Vec::new();
+            for (d, c) in calls {
+                let mut q = case(
+                    model,
+                    pb::Creepages {
+                        creepage_long: c.creepage_long,
+                        creepage_lat: c.creepage_lat,
+                        spin_per_m: c.spin_per_m,
+                    },
+                );
+                q.load = Some(pb::LoadSection {
+                    load: Some(pb::load_section::Load::ApproachM(d)),
+                });
+                let r = solve_patch(&mut fd_client, q).await;
+                let t = r.result.unwrap().totals.unwrap();
+                values.push([t.normal_force_n, t.fx_n, t.fy_n, t.mz_nm]);
+            }
+            let mut it = values.into_iter();
+            central_differences(point, steps, |_, _| Ok::<_, ()>(it.next().unwrap())).unwrap()
+        };
+        let want = [
+            fd.per_approach_m,
+            fd.per_creepage_long,
+            fd.per_creepage_lat,
+            fd.per_spin_per_m,
+        ];
+        for (col, (g, w)) in got.iter().zip(&want).enumerate() {
+            let scale = w[..3].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for k in 0..4 {
+                let scale = if k == 3 { w[3].abs() } else { scale };
+                assert!(
+                    (g[k] - w[k]).abs() <= 1e-5 * scale,
+                    "{model:?} column {col}[{k}]: {g:?} vs {w:?}"
+                );
+            }
+        }
+    }
+
+    // FASTSIM at vanishing creepage is Kalker's linear theory by
+    // construction (flexibility 8a / (3 C11 G), Kalker 1982): dFx/dxi =
+    // -G ab C11 with Kalker 1990 Table E3 (core::creep), a/b = 1, and the
+    // steel() material, G = 81 GPa, nu = 0.3.
+    let solved =
+        solve_with_jacobian(&mut client, case(pb::Model::Fastsim, Default::default())).await;
+    let t = solved.totals.unwrap();
+    let ab = t.contact_area_m2 / std::f64::consts::PI;
+    let c11 = kalker_creep_coefficients(1.0, 0.30).unwrap().c11;
+    let got = jacobian_columns(&solved.sensitivities.unwrap());
+    let want = -81.0e9 * ab * c11;
+    assert!(
+        (got[1][1] / want - 1.0).abs() < 0.01,
+        "dFx/dxi {} vs {want}",
+        got[1][1]
+    );
+
+    // Not for other models or kinematics: INVALID_ARGUMENT naming the flag.
+    let e = client
+        .solve_patch(pb::SolvePatchRequest {
+            case: Some(sphere(pb::Model::Exact, 16)),
+            include_sensitivities: true,
+            ..Default::default()
+        })
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument);
+    assert!(
+        e.message().contains("include_sensitivities"),
+        "{}",
+        e.message()
+    );
+    // A session computes them with every step.
+    let mut open_msg = open(case(pb::Model::Exact, cr), false);
+    if let Some(pb::session_request::Kind::Open(o)) = open_msg.kind.as_mut() {
+        o.include_sensitivities = true;
+    }
+    let responses = session(
+        &mut client,
+        vec![
+            open_msg,
+            step(0, StepMotion::Creep(cr.creepage_long), false),
+        ],
+    )
+    .await;
+    let s = step_result(&responses[1]);
+    assert!(s.result.as_ref().unwrap().sensitivities.is_some());
+    server.shutdown().await;
 }

@@ -2,14 +2,25 @@
 //! grid dimensions, element size, both materials and the operator kind. The
 //! service keeps one per process; building a 64x64 set costs a few ms, a hit
 //! costs a hash lookup.
+//!
+//! Memory is capped: when the kernels held exceed `max_bytes`, the least
+//! recently used sets are dropped (solvers still holding one keep it alive
+//! until they finish; the cache only forgets it). The first use of a key
+//! builds its kernels once, however many threads ask at the same time: the
+//! others wait for that build instead of repeating it.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::core::fft::{ConvolutionPlan, KernelSet};
 use crate::core::grid::Grid;
 use crate::core::influence::{HalfSpaceInfluence, KernelKind};
 use crate::core::material::CombinedMaterial;
+
+/// Default memory cap of the kernels held [bytes]: 1 GiB, some 600 sets of
+/// 64 x 64 steady-rolling kernels.
+pub const DEFAULT_MAX_BYTES: usize = 1 << 30;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 struct Key {
@@ -21,57 +32,114 @@ struct Key {
     kind: KernelKind,
 }
 
-/// Thread-safe kernel cache. Entries are never evicted (bounded by
-/// `max_entries`: the oldest-inserted half is dropped when full).
+/// One entry: the kernels once built, when it was last used, its size.
+struct Entry {
+    cell: Arc<OnceLock<Arc<KernelSet>>>,
+    last_used: u64,
+    /// 0 until the build is accounted.
+    bytes: usize,
+}
+
+struct Inner {
+    map: HashMap<Key, Entry>,
+    plans: HashMap<(usize, usize), Arc<ConvolutionPlan>>,
+    clock: u64,
+    bytes: usize,
+    max_bytes: usize,
+}
+
+/// Figures of a cache, for metrics.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CacheStats {
+    /// Look-ups that found the kernels built (or being built).
+    pub hits: u64,
+    /// Look-ups that built them.
+    pub misses: u64,
+    /// Sets dropped to stay under the memory cap.
+    pub evictions: u64,
+    /// Sets held.
+    pub entries: usize,
+    /// Memory of the sets held [bytes].
+    pub bytes: usize,
+    /// The memory cap [bytes].
+    pub max_bytes: usize,
+}
+
+/// Thread-safe kernel cache with a memory cap and least-recently-used
+/// eviction. No lock is held while kernels are built.
 pub struct KernelCache {
-    map: Mutex<HashMap<Key, (u64, Arc<KernelSet>)>>,
-    plans: Mutex<HashMap<(usize, usize), Arc<ConvolutionPlan>>>,
-    counter: Mutex<u64>,
-    max_entries: usize,
-    hits: std::sync::atomic::AtomicU64,
-    misses: std::sync::atomic::AtomicU64,
+    inner: Mutex<Inner>,
+    hits: AtomicU64,
+    misses: AtomicU64,
+    evictions: AtomicU64,
 }
 
 impl Default for KernelCache {
     fn default() -> Self {
-        Self::new(256)
+        Self::new(DEFAULT_MAX_BYTES)
     }
 }
 
 impl KernelCache {
-    /// A cache holding at most `max_entries` kernel sets.
-    pub fn new(max_entries: usize) -> Self {
+    /// A cache holding kernels of at most `max_bytes` (at least the most
+    /// recently used set is always kept).
+    pub fn new(max_bytes: usize) -> Self {
         Self {
-            map: Mutex::new(HashMap::new()),
-            plans: Mutex::new(HashMap::new()),
-            counter: Mutex::new(0),
-            max_entries: max_entries.max(2),
-            hits: Default::default(),
-            misses: Default::default(),
+            inner: Mutex::new(Inner {
+                map: HashMap::new(),
+                plans: HashMap::new(),
+                clock: 0,
+                bytes: 0,
+                max_bytes,
+            }),
+            hits: AtomicU64::new(0),
+            misses: AtomicU64::new(0),
+            evictions: AtomicU64::new(0),
         }
     }
 
     /// The process-wide cache.
     pub fn global() -> &'static KernelCache {
-        static CACHE: std::sync::OnceLock<KernelCache> = std::sync::OnceLock::new();
+        static CACHE: OnceLock<KernelCache> = OnceLock::new();
         CACHE.get_or_init(KernelCache::default)
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Inner> {
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Changes the memory cap, evicting at once if needed.
+    pub fn set_max_bytes(&self, max_bytes: usize) {
+        let mut inner = self.lock();
+        inner.max_bytes = max_bytes;
+        self.evict(&mut inner, None);
     }
 
     /// (hits, misses) so far.
     pub fn stats(&self) -> (u64, u64) {
-        use std::sync::atomic::Ordering::Relaxed;
         (self.hits.load(Relaxed), self.misses.load(Relaxed))
     }
 
+    /// All figures.
+    pub fn figures(&self) -> CacheStats {
+        let inner = self.lock();
+        CacheStats {
+            hits: self.hits.load(Relaxed),
+            misses: self.misses.load(Relaxed),
+            evictions: self.evictions.load(Relaxed),
+            entries: inner.map.len(),
+            bytes: inner.bytes,
+            max_bytes: inner.max_bytes,
+        }
+    }
+
     /// The kernel set for this grid, material pair and kind, built on a miss.
-    /// The lock is not held while kernels are built.
     pub fn get(
         &self,
         grid: &Grid,
         material: &CombinedMaterial,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        use std::sync::atomic::Ordering::Relaxed;
         let key = Key {
             nx: grid.nx,
             ny: grid.ny,
@@ -85,35 +153,133 @@ impl KernelCache {
             ],
             kind,
         };
-        if let Some((_, k)) = self.map.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-            self.hits.fetch_add(1, Relaxed);
-            return k.clone();
-        }
-        self.misses.fetch_add(1, Relaxed);
-        let plan = {
-            let mut plans = self.plans.lock().unwrap_or_else(|e| e.into_inner());
-            plans
+        let (cell, plan) = {
+            let mut inner = self.lock();
+            inner.clock += 1;
+            let now = inner.clock;
+            let entry = inner.map.entry(key).or_insert_with(|| Entry {
+                cell: Arc::new(OnceLock::new()),
+                last_used: now,
+                bytes: 0,
+            });
+            entry.last_used = now;
+            let cell = entry.cell.clone();
+            if let Some(set) = cell.get() {
+                self.hits.fetch_add(1, Relaxed);
+                return set.clone();
+            }
+            let plan = inner
+                .plans
                 .entry((grid.nx, grid.ny))
                 .or_insert_with(|| Arc::new(ConvolutionPlan::new(grid.nx, grid.ny)))
-                .clone()
+                .clone();
+            (cell, plan)
         };
-        let set = Arc::new(KernelSet::new(
-            plan,
-            HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material),
-            kind,
-        ));
-        let stamp = {
-            let mut c = self.counter.lock().unwrap_or_else(|e| e.into_inner());
-            *c += 1;
-            *c
-        };
-        let mut map = self.map.lock().unwrap_or_else(|e| e.into_inner());
-        if map.len() >= self.max_entries {
-            let mut stamps: Vec<u64> = map.values().map(|(s, _)| *s).collect();
-            stamps.sort_unstable();
-            let cut = stamps[stamps.len() / 2];
-            map.retain(|_, (s, _)| *s > cut);
+        let mut built = false;
+        let set = cell
+            .get_or_init(|| {
+                built = true;
+                Arc::new(KernelSet::new(
+                    plan,
+                    HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material),
+                    kind,
+                ))
+            })
+            .clone();
+        if !built {
+            // Another thread built it while this one waited.
+            self.hits.fetch_add(1, Relaxed);
+            return set;
         }
-        map.entry(key).or_insert((stamp, set)).1.clone()
+        self.misses.fetch_add(1, Relaxed);
+        let mut inner = self.lock();
+        let bytes = set.bytes();
+        // The entry may have been evicted (and even re-created) meanwhile:
+        // account only the entry this build belongs to.
+        if let Some(e) = inner.map.get_mut(&key) {
+            if Arc::ptr_eq(&e.cell, &cell) && e.bytes == 0 {
+                e.bytes = bytes;
+                inner.bytes += bytes;
+            }
+        }
+        self.evict(&mut inner, Some(key));
+        set
+    }
+
+    /// Drops least recently used entries until the cap holds, never `keep`
+    /// and never an entry still being built.
+    fn evict(&self, inner: &mut Inner, keep: Option<Key>) {
+        while inner.bytes > inner.max_bytes {
+            let victim = inner
+                .map
+                .iter()
+                .filter(|(k, e)| Some(**k) != keep && e.bytes > 0)
+                .min_by_key(|(_, e)| e.last_used)
+                .map(|(k, _)| *k);
+            let Some(k) = victim else { break };
+            if let Some(e) = inner.map.remove(&k) {
+                inner.bytes -= e.bytes;
+                self.evictions.fetch_add(1, Relaxed);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::material::Material;
+
+    fn material() -> CombinedMaterial {
+        CombinedMaterial::identical(Material {
+            shear_modulus_pa: 80e9,
+            poisson_ratio: 0.28,
+        })
+        .unwrap()
+    }
+
+    fn grid(n: usize) -> Grid {
+        Grid::centered(n, n, 0.01, 0.01).unwrap()
+    }
+
+    #[test]
+    fn hits_share_one_set_and_the_memory_cap_evicts_the_least_recently_used() {
+        let m = material();
+        let k = KernelKind::Displacement;
+        let one = KernelCache::default().get(&grid(16), &m, k).bytes();
+        assert!(one > 0);
+        // Room for two sets of this size.
+        let cache = KernelCache::new(2 * one + one / 2);
+        let a = cache.get(&grid(16), &m, k);
+        let b = cache.get(&Grid::centered(16, 16, 0.02, 0.02).unwrap(), &m, k);
+        assert!(Arc::ptr_eq(&a, &cache.get(&grid(16), &m, k)));
+        // `a` was used last: the third set evicts `b`.
+        let _c = cache.get(&Grid::centered(16, 16, 0.03, 0.03).unwrap(), &m, k);
+        let f = cache.figures();
+        assert_eq!((f.entries, f.evictions), (2, 1), "{f:?}");
+        assert!(f.bytes <= f.max_bytes, "{f:?}");
+        assert!(Arc::ptr_eq(&a, &cache.get(&grid(16), &m, k)));
+        let b2 = cache.get(&Grid::centered(16, 16, 0.02, 0.02).unwrap(), &m, k);
+        assert!(!Arc::ptr_eq(&b, &b2), "b was evicted and rebuilt");
+        let f = cache.figures();
+        assert_eq!((f.hits, f.misses), (2, 4), "{f:?}");
+        // A cap below one set keeps the newest only.
+        cache.set_max_bytes(1);
+        let f = cache.figures();
+        assert_eq!(f.entries, 0, "{f:?}");
+    }
+
+    #[test]
+    fn concurrent_first_use_builds_once() {
+        let cache = Arc::new(KernelCache::default());
+        let m = material();
+        let sets: Vec<Arc<KernelSet>> = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..4)
+                .map(|_| s.spawn(|| cache.get(&grid(32), &m, KernelKind::SteadyRolling)))
+                .collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(sets.windows(2).all(|w| Arc::ptr_eq(&w[0], &w[1])));
+        assert_eq!(cache.stats(), (3, 1));
     }
 }

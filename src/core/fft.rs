@@ -421,6 +421,14 @@ enum Spectrum {
 }
 
 impl Spectrum {
+    /// Memory held [bytes].
+    fn bytes(&self) -> usize {
+        match self {
+            Spectrum::Complex(v) => std::mem::size_of_val(v.as_slice()),
+            Spectrum::Real(v) | Spectrum::Imag(v) => std::mem::size_of_val(v.as_slice()),
+        }
+    }
+
     fn new(k: Vec<Complex64>) -> Self {
         let (mut m, mut re, mut im) = (0.0f64, 0.0f64, 0.0f64);
         for v in &k {
@@ -496,6 +504,12 @@ impl std::fmt::Debug for KernelSet {
 }
 
 impl KernelSet {
+    /// Memory held by the transformed kernels [bytes] (the FFT plans are
+    /// shared and not counted).
+    pub fn bytes(&self) -> usize {
+        self.spectra.iter().map(Spectrum::bytes).sum()
+    }
+
     /// Builds and transforms all kernels (tangential block, normal, and the
     /// normal/tangential coupling when the materials differ).
     pub fn new(

@@ -13,6 +13,7 @@ pub mod influence;
 pub mod material;
 pub mod normal;
 pub mod problem;
+pub mod sensitivity;
 pub mod solution;
 pub mod solve;
 pub mod steady;

@@ -41,6 +41,9 @@ pub struct ServeConfig {
     pub max_grid_elements: usize,
     /// Largest gRPC message, either direction [bytes] (default 16 MiB).
     pub max_message_bytes: usize,
+    /// Memory cap of the influence-kernel cache [bytes] (default 1 GiB);
+    /// beyond it the least recently used kernel sets are dropped.
+    pub kernel_cache_max_bytes: usize,
     /// On SIGTERM or Ctrl-C: how long in-flight requests and open sessions
     /// may take to finish before the server stops anyway [s] (default 30).
     pub shutdown_grace_s: f64,
@@ -63,6 +66,7 @@ impl Default for ServeConfig {
             max_sessions: 256,
             max_grid_elements: 256 * 256,
             max_message_bytes: 16 << 20,
+            kernel_cache_max_bytes: crate::core::cache::DEFAULT_MAX_BYTES,
             shutdown_grace_s: 30.0,
             data_dir: PathBuf::from("railcontact-data"),
         }
@@ -182,6 +186,11 @@ impl ServeConfig {
         parse(
             get("max_message_bytes"),
             &mut self.max_message_bytes,
+            errors,
+        );
+        parse(
+            get("kernel_cache_max_bytes"),
+            &mut self.kernel_cache_max_bytes,
             errors,
         );
         parse(get("shutdown_grace_s"), &mut self.shutdown_grace_s, errors);

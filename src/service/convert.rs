@@ -16,6 +16,7 @@ use crate::core::grid::Grid;
 use crate::core::material::Material;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::Creepages;
+use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -325,6 +326,25 @@ pub fn step_of_solution(s: &ContactSolution) -> pb::StepResult {
         info.tangential_residual = s.info.tangential_residual;
     }
     step
+}
+
+/// The wire form of a force Jacobian.
+pub fn sensitivities(j: &ForceJacobian) -> pb::Sensitivities {
+    let column = |c: [f64; 4]| {
+        Some(pb::ForceDerivatives {
+            normal_force: c[0],
+            fx: c[1],
+            fy: c[2],
+            mz: c[3],
+        })
+    };
+    pb::Sensitivities {
+        per_approach_m: column(j.per_approach_m),
+        per_creepage_long: column(j.per_creepage_long),
+        per_creepage_lat: column(j.per_creepage_lat),
+        per_spin_per_m: column(j.per_spin_per_m),
+        solves: j.solves as u32,
+    }
 }
 
 /// The wire result of one step of a CLI report.

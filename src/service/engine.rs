@@ -18,11 +18,37 @@ use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
-use crate::core::solution::ContactSolution;
+use crate::core::sensitivity::{
+    central_differences, exact_jacobian, forces_of, ForceJacobian, JacobianPoint, JacobianSteps,
+};
+use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::ContactSolver;
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
+
+/// Whether the Jacobian of the forces can be computed for `case`: steady
+/// rolling with the exact or fastsim model; INVALID_ARGUMENT
+/// `include_sensitivities` otherwise.
+pub fn check_sensitivities(case: &Case) -> Result<(), ServiceError> {
+    let steady = matches!(case.kinematics, Kinematics::SteadyRolling(_));
+    if steady && matches!(case.model, Model::Exact | Model::Fastsim) {
+        return Ok(());
+    }
+    Err(ServiceError::invalid(
+        "include_sensitivities",
+        format!(
+            "the Jacobian of the forces is computed for steady rolling with the exact or \
+             fastsim model; this case is {} with model {}",
+            if steady {
+                "steady rolling"
+            } else {
+                "not steady rolling"
+            },
+            case.model.name()
+        ),
+    ))
+}
 
 /// The exact model's persistent state.
 #[derive(Clone)]
@@ -41,6 +67,8 @@ pub struct PatchEngine {
     /// (the patch reached the grid border): its warm start and transient
     /// history are then no longer those of the last good step.
     history_intact: bool,
+    /// Compute the Jacobian of the forces with every solve.
+    sensitivities: bool,
 }
 
 impl PatchEngine {
@@ -62,6 +90,7 @@ impl PatchEngine {
             case,
             exact,
             history_intact: true,
+            sensitivities: false,
         })
     }
 
@@ -86,6 +115,14 @@ impl PatchEngine {
         self.history_intact
     }
 
+    /// Computes the Jacobian of the forces with every solve from now on
+    /// (see [`check_sensitivities`]).
+    pub fn enable_sensitivities(&mut self) -> Result<(), ServiceError> {
+        check_sensitivities(&self.case)?;
+        self.sensitivities = true;
+        Ok(())
+    }
+
     /// Replaces the normal load of the next solves.
     pub fn set_load(&mut self, load: NormalLoad) {
         self.case.load = load;
@@ -106,18 +143,45 @@ impl PatchEngine {
     /// then start from the unloaded state). Steady-rolling and static
     /// solves of the exact model warm-start from the previous solve.
     pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
-        let result = match &mut self.exact {
+        let (mut result, jacobian) = match &mut self.exact {
             Some(e) => {
                 let solved = e.solver.solve(&e.problem);
                 let solutions = self.note_rejection(solved)?;
-                self.exact_result(&solutions, fields)
+                let jacobian = match (self.sensitivities, &self.exact, solutions.last()) {
+                    (true, Some(e), Some(base)) => {
+                        Some(exact_jacobian(&e.solver, &e.problem, base)?)
+                    }
+                    _ => None,
+                };
+                (self.exact_result(&solutions, fields), jacobian)
             }
             None => {
-                let mut r = self.reference_result(fields)?;
+                let (mut r, totals) = self.reference_result(fields)?;
                 r.notes.extend(self.case.notes.iter().cloned());
-                r
+                let jacobian = if self.sensitivities {
+                    Some(self.fastsim_jacobian(&totals)?)
+                } else {
+                    None
+                };
+                (r, jacobian)
             }
         };
+        if let Some(j) = &jacobian {
+            let all = [
+                j.per_approach_m,
+                j.per_creepage_long,
+                j.per_creepage_lat,
+                j.per_spin_per_m,
+            ];
+            if !all.iter().flatten().all(|v| v.is_finite()) {
+                return Err(ServiceError::Internal(format!(
+                    "the Jacobian of the forces is not finite: {j:?}"
+                )));
+            }
+        }
+        if let (Some(j), Some(step)) = (jacobian, result.result.as_mut()) {
+            step.sensitivities = Some(convert::sensitivities(&j));
+        }
         convert::check_finite(&result)?;
         Ok(result)
     }
@@ -148,14 +212,41 @@ impl PatchEngine {
         Ok(r?)
     }
 
+    /// The Jacobian of a FASTSIM solution with `totals`: central
+    /// differences of FASTSIM solves (each costs microseconds).
+    fn fastsim_jacobian(&self, totals: &Totals) -> Result<ForceJacobian, ServiceError> {
+        let Kinematics::SteadyRolling(creepages) = self.case.kinematics else {
+            return Err(ServiceError::Internal(
+                "sensitivities of a case that is not steady rolling".into(),
+            ));
+        };
+        let steps = JacobianSteps::for_solution(
+            totals,
+            self.case.friction.kinetic_coefficient,
+            self.case.material.shear_modulus_pa,
+        );
+        let point = JacobianPoint {
+            approach_m: totals.approach_m,
+            creepages,
+        };
+        let mut case = self.case.clone();
+        central_differences(point, steps, |approach_m, c| {
+            case.load = NormalLoad::Approach(approach_m);
+            case.kinematics = Kinematics::SteadyRolling(c);
+            let r = reference::solve_fastsim(&case)?;
+            Ok::<_, ServiceError>(forces_of(&r.totals.totals))
+        })
+    }
+
     /// The result of a model other than exact, through the functions of
-    /// `railcontact solve`.
-    fn reference_result(&self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
+    /// `railcontact solve`, with its totals.
+    fn reference_result(&self, fields: bool) -> Result<(pb::PatchResult, Totals), ServiceError> {
         let case = &self.case;
         let report = match case.model {
             Model::Cect | Model::CectHalfspace => {
                 let run = ConformalRun::solve(case)?;
-                return Ok(convert::result_of_report(&run.report(case, fields)));
+                let report = run.report(case, fields);
+                return Ok((convert::result_of_report(&report), report.totals.totals));
             }
             Model::HertzCorrected => reference::solve_conformal_hertz(case, true)?,
             Model::Hertz if case.geometry.is_conformal() => {
@@ -169,7 +260,7 @@ impl PatchEngine {
                 ))
             }
         };
-        Ok(convert::result_of_report(&report))
+        Ok((convert::result_of_report(&report), report.totals.totals))
     }
 
     /// The wire result of exact-model solutions (the last is the result).

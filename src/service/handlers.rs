@@ -18,7 +18,7 @@ use crate::cli::case::Model;
 use crate::core::cache::KernelCache;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::service::convert::{self, CaseLimits};
-use crate::service::engine::PatchEngine;
+use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
@@ -103,11 +103,21 @@ impl ContactHandlers {
         let valid = convert::validate_case(case, self.limits.case)
             .map_err(|e| e.within(&join(prefix, "case")))?;
         convert::check_fields(&valid.case, req.include_fields).map_err(|e| e.within(prefix))?;
+        let jacobian = req.include_sensitivities;
+        if jacobian {
+            check_sensitivities(&valid.case).map_err(|e| e.within(prefix))?;
+        }
         let model = valid.case.model;
         let fields = req.include_fields;
         let t0 = StdInstant::now();
         let result = admission
-            .run(move || PatchEngine::new(valid, KernelCache::global())?.solve(fields))
+            .run(move || {
+                let mut engine = PatchEngine::new(valid, KernelCache::global())?;
+                if jacobian {
+                    engine.enable_sensitivities()?;
+                }
+                engine.solve(fields)
+            })
             .await
             .and_then(|r| r)
             .map_err(|e| e.within(&join(prefix, "case")));
@@ -762,13 +772,20 @@ impl ContactHandlers {
             .ok_or_else(|| ServiceError::invalid("open.case", "missing"))?;
         let valid =
             convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
+        let jacobian = open.include_sensitivities;
+        if jacobian {
+            check_sensitivities(&valid.case).map_err(|e| e.within("open"))?;
+        }
         let model = valid.case.model;
         let fields = open.include_fields;
         let admission = self.pool.admit(None)?;
         let mut session = admission
             .run(move || {
-                let engine =
+                let mut engine =
                     PatchEngine::new(valid, KernelCache::global()).map_err(|e| e.within("case"))?;
+                if jacobian {
+                    engine.enable_sensitivities()?;
+                }
                 Session::open(engine, fields)
             })
             .await

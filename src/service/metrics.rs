@@ -9,7 +9,8 @@
 //! | `railcontact_sessions_active` | | open co-simulation sessions |
 //! | `railcontact_sessions_opened_total` | | sessions opened |
 //! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
-//! | `railcontact_kernel_cache_hits_total`, `..._misses_total` | | influence-kernel cache |
+//! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
+//! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
 //!
 //! The counters sit behind one short-held mutex (never held across a solve).
 
@@ -145,14 +146,25 @@ impl Metrics {
             let _ = writeln!(o, "# TYPE railcontact_sessions_active gauge\nrailcontact_sessions_active {}", c.sessions_active);
             let _ = writeln!(o, "# TYPE railcontact_sessions_opened_total counter\nrailcontact_sessions_opened_total {}", c.sessions_opened);
         });
-        let (hits, misses) = cache.stats();
+        let f = cache.figures();
         let _ = writeln!(
             o,
             "# TYPE railcontact_solve_queue_admitted gauge\nrailcontact_solve_queue_admitted {}",
             pool.admitted()
         );
-        let _ = writeln!(o, "# TYPE railcontact_kernel_cache_hits_total counter\nrailcontact_kernel_cache_hits_total {hits}");
-        let _ = writeln!(o, "# TYPE railcontact_kernel_cache_misses_total counter\nrailcontact_kernel_cache_misses_total {misses}");
+        for (name, kind, value) in [
+            ("hits_total", "counter", f.hits),
+            ("misses_total", "counter", f.misses),
+            ("evictions_total", "counter", f.evictions),
+            ("entries", "gauge", f.entries as u64),
+            ("bytes", "gauge", f.bytes as u64),
+            ("max_bytes", "gauge", f.max_bytes as u64),
+        ] {
+            let _ = writeln!(
+                o,
+                "# TYPE railcontact_kernel_cache_{name} {kind}\nrailcontact_kernel_cache_{name} {value}"
+            );
+        }
         o
     }
 }

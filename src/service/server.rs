@@ -62,6 +62,7 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
 pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let workers = config.worker_count();
     let pool = SolvePool::new(workers, config.queue_count());
+    crate::core::cache::KernelCache::global().set_max_bytes(config.kernel_cache_max_bytes);
     let metrics = Arc::new(Metrics::default());
     let limits = RequestLimits {
         case: CaseLimits {

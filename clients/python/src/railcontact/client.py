@@ -1,0 +1,550 @@
+"""The high-level client: :class:`Client` and its session objects."""
+
+from __future__ import annotations
+
+import os
+import queue
+import tomllib
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from typing import Any, Optional, Union
+
+import grpc
+
+from ._build import build, enum_name
+from ._proto import railcontact_pb2 as pb
+from ._proto import railcontact_pb2_grpc as pb_grpc
+from .errors import RailcontactError
+from .results import (
+    CreepCurvePoint,
+    Grid,
+    PatchResult,
+    ProfilePairInfo,
+    RegistrationProgress,
+    SessionStepResult,
+    WheelRailResult,
+    WheelRailStepResult,
+    fields_of,
+    from_pb,
+)
+
+#: A patch case: a ``PatchCase`` message, a mapping with the keys of a
+#: ``railcontact solve`` case file, or the path of such a TOML file.
+CaseLike = Union[pb.PatchCase, Mapping, str, os.PathLike]
+
+BUILTIN_PAIR = "mbench_s1002_uic60"
+"""The server's built-in profile pair (S1002 wheel on UIC60 rail)."""
+
+
+def load_case(path: Union[str, os.PathLike]) -> dict:
+    """A case file of ``railcontact solve`` (TOML) as a mapping."""
+    with open(path, "rb") as f:
+        return tomllib.load(f)
+
+
+def patch_case(case: CaseLike, path: str = "case") -> pb.PatchCase:
+    """A ``PatchCase`` message from a message, a mapping or a TOML file."""
+    if isinstance(case, (str, os.PathLike)):
+        case = load_case(case)
+    return build(pb.PatchCase, case, path)
+
+
+def _call(function, *args, **kwargs):
+    """Calls a stub method, raising RailcontactError for a failed status."""
+    try:
+        return function(*args, **kwargs)
+    except grpc.RpcError as e:
+        raise RailcontactError.from_rpc(e) from None
+
+
+def _stream(responses: Iterator) -> Iterator:
+    """The messages of a server stream, raising RailcontactError for a
+    failed status."""
+    try:
+        yield from responses
+    except grpc.RpcError as e:
+        raise RailcontactError.from_rpc(e) from None
+
+
+class Client:
+    """A connection to a railcontact server.
+
+    ``Client("127.0.0.1:50051")`` opens an insecure channel; use it as a
+    context manager (or call :meth:`close`). ``timeout_s`` is the deadline of
+    each unary call and server stream (None: none). ``client.stub`` is the
+    generated ``ContactServiceStub`` and ``railcontact.pb`` the message
+    module, for everything this API does not cover.
+
+    Every failure raises :class:`railcontact.RailcontactError`.
+    """
+
+    def __init__(
+        self,
+        target: str = "127.0.0.1:50051",
+        *,
+        timeout_s: Optional[float] = None,
+        options: Optional[list] = None,
+        channel: Optional[grpc.Channel] = None,
+    ):
+        max_message = 256 * 1024 * 1024
+        default_options = [
+            ("grpc.max_receive_message_length", max_message),
+            ("grpc.max_send_message_length", max_message),
+        ]
+        self.target = target
+        self.timeout_s = timeout_s
+        self.channel = channel or grpc.insecure_channel(target, options=options or default_options)
+        self.stub = pb_grpc.ContactServiceStub(self.channel)
+
+    def close(self) -> None:
+        """Closes the channel."""
+        self.channel.close()
+
+    def __enter__(self) -> "Client":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def wait_ready(self, timeout_s: float = 10.0) -> None:
+        """Blocks until the channel is connected (RailcontactError
+        UNAVAILABLE after ``timeout_s``)."""
+        try:
+            grpc.channel_ready_future(self.channel).result(timeout=timeout_s)
+        except grpc.FutureTimeoutError:
+            raise RailcontactError(
+                grpc.StatusCode.UNAVAILABLE, f"no server at {self.target} after {timeout_s} s"
+            ) from None
+
+    # -- patches -------------------------------------------------------
+
+    def solve_patch(
+        self, case: CaseLike, *, include_fields: bool = False, include_sensitivities: bool = False
+    ) -> PatchResult:
+        """Solves one contact patch (``SolvePatch``).
+
+        ``case`` mirrors the case file of ``railcontact solve`` (see
+        ``examples/cases/README.md``), e.g.::
+
+            {"model": "exact",
+             "material": {"shear_modulus_pa": 81e9, "poisson_ratio": 0.3},
+             "friction": {"coefficient": 0.3},
+             "geometry": {"kind": "quadratic", "a_per_m": 2.6, "b_per_m": 0.92},
+             "load": {"normal_force_n": 1e4},
+             "rolling": {"creepage_long": 1e-3},
+             "grid": {"nx": 24, "ny": 24}}
+
+        ``include_fields`` adds the per-element fields (exact and conformal
+        models) as ``result.fields``; ``include_sensitivities`` the force
+        Jacobian as ``result.result.sensitivities``.
+        """
+        request = pb.SolvePatchRequest(
+            case=patch_case(case),
+            include_fields=include_fields,
+            include_sensitivities=include_sensitivities,
+        )
+        response = _call(self.stub.SolvePatch, request, timeout=self.timeout_s)
+        return PatchResult.from_pb(response.result)
+
+    def solve_patch_batch(
+        self, cases: Iterable[CaseLike], *, include_fields: bool = False
+    ) -> list:
+        """Solves many patches in parallel (``SolvePatchBatch``). Returns one
+        entry per case in order: a :class:`PatchResult`, or the
+        :class:`RailcontactError` of a failed item (not raised)."""
+        items = [
+            pb.SolvePatchRequest(case=patch_case(c, f"items[{i}].case"), include_fields=include_fields)
+            for i, c in enumerate(cases)
+        ]
+        response = _call(self.stub.SolvePatchBatch, pb.SolvePatchBatchRequest(items=items), timeout=self.timeout_s)
+        return [
+            PatchResult.from_pb(item.result)
+            if item.WhichOneof("outcome") == "result"
+            else RailcontactError.from_item(item.error)
+            for item in response.items
+        ]
+
+    def creep_curve(
+        self,
+        case: CaseLike,
+        creepages: Optional[Iterable] = None,
+        *,
+        linear: Optional[tuple] = None,
+        include_fields: bool = False,
+    ) -> Iterator[CreepCurvePoint]:
+        """A steady-rolling creep-force curve (``CreepCurve``), one
+        :class:`CreepCurvePoint` per point, in order, as the server streams
+        them.
+
+        Give either ``creepages``, a list of points (each
+        ``(creepage_long, creepage_lat, spin_per_m)`` or a mapping), or
+        ``linear=(from, to, points)`` for evenly spaced points. ``case`` must
+        be a rolling case (models exact, fastsim, cect, cect_halfspace).
+        """
+        request = pb.CreepCurveRequest(case=patch_case(case), include_fields=include_fields)
+        if (creepages is None) == (linear is None):
+            raise ValueError("give exactly one of `creepages` and `linear`")
+        if creepages is not None:
+            for i, c in enumerate(creepages):
+                request.list.points.append(build(pb.Creepages, c, f"list.points[{i}]"))
+        else:
+            start, end, points = linear
+            request.linear.CopyFrom(build(pb.LinearSweep, {"from": start, "to": end, "points": points}, "linear"))
+        for point in _stream(_call(self.stub.CreepCurve, request, timeout=self.timeout_s)):
+            yield from_pb(CreepCurvePoint, point)
+
+    def patch_session(
+        self,
+        case: CaseLike,
+        *,
+        include_fields: bool = False,
+        include_sensitivities: bool = False,
+        label: str = "",
+    ) -> "PatchSession":
+        """Opens a co-simulation session on one patch (``PatchSession``); see
+        :class:`PatchSession`. The case's kinematics fix the session kind:
+        ``rolling`` (steps give creepages), ``transient`` (steps give
+        shifts) or neither (steps give loads)."""
+        request = pb.SessionRequest(
+            open=pb.SessionOpen(
+                case=patch_case(case, "open.case"),
+                include_fields=include_fields,
+                include_sensitivities=include_sensitivities,
+                client_label=label,
+            )
+        )
+        return PatchSession(self.stub.PatchSession, request)
+
+    # -- profile pairs ---------------------------------------------------
+
+    def register_pair(
+        self,
+        spec: Union[pb.ProfilePairSpec, Mapping, None] = None,
+        *,
+        builtin: str = "",
+        label: str = "",
+        progress: Optional[Callable[[RegistrationProgress], Any]] = None,
+    ) -> ProfilePairInfo:
+        """Registers a profile pair (``RegisterProfilePair``) and returns it
+        once READY. ``spec`` mirrors ``ProfilePairSpec`` (profiles as
+        ``{"builtin_name": ...}`` or ``{"file": {"content": ...,
+        "file_name": ...}}``, ``track``, ``wheelset``, ...), or ``builtin``
+        names a built-in pair. ``progress`` is called with every
+        :class:`RegistrationProgress`. Registering equal inputs again
+        returns the same pair at once."""
+        if (spec is None) == (not builtin):
+            raise ValueError("give exactly one of `spec` and `builtin`")
+        request = pb.RegisterProfilePairRequest(label=label)
+        if builtin:
+            request.builtin_pair = builtin
+        else:
+            request.spec.CopyFrom(build(pb.ProfilePairSpec, spec, "spec"))
+        last = None
+        for message in _stream(_call(self.stub.RegisterProfilePair, request, timeout=self.timeout_s)):
+            last = from_pb(RegistrationProgress, message)
+            if progress is not None:
+                progress(last)
+        if last is None or last.pair is None:
+            raise RailcontactError(grpc.StatusCode.INTERNAL, "registration ended without READY")
+        return last.pair
+
+    def get_pair(self, pair_id: str) -> ProfilePairInfo:
+        """Describes one pair (by id or built-in name)."""
+        message = _call(self.stub.GetProfilePair, pb.GetProfilePairRequest(pair_id=pair_id), timeout=self.timeout_s)
+        return from_pb(ProfilePairInfo, message)
+
+    def list_pairs(self) -> list:
+        """Every registered pair, ordered by id."""
+        response = _call(self.stub.ListProfilePairs, pb.ListProfilePairsRequest(), timeout=self.timeout_s)
+        return [from_pb(ProfilePairInfo, p) for p in response.pairs]
+
+    def delete_pair(self, pair_id: str) -> None:
+        """Removes a pair (not a built-in one)."""
+        _call(self.stub.DeleteProfilePair, pb.DeleteProfilePairRequest(pair_id=pair_id), timeout=self.timeout_s)
+
+    # -- wheelsets ---------------------------------------------------------
+
+    def solve_wheelrail(
+        self,
+        pair_id: str = BUILTIN_PAIR,
+        *,
+        velocity,
+        load,
+        position=None,
+        model="exact",
+        sides="both",
+        friction=None,
+        element_size_m: Optional[float] = None,
+        include_fields: bool = False,
+    ) -> WheelRailResult:
+        """Solves a wheelset on a registered pair (``SolveWheelRail``).
+
+        ``position``: mapping of ``WheelsetPosition`` (``lateral_m``,
+        ``yaw_rad``, ``roll_rad``; default centred); ``velocity``: of
+        ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...), or a
+        number: the forward speed; ``load``: of ``WheelLoad``, or a number:
+        the vertical force per wheel [N]; ``model``: ``"exact"``,
+        ``"hertz_fastsim"``, ``"cect"`` or ``"auto"``; ``sides``:
+        ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a
+        ``FrictionSection`` mapping (default: the pair's).
+        """
+        request = wheelrail_request(
+            pair_id,
+            position=position,
+            velocity=velocity,
+            load=load,
+            model=model,
+            sides=sides,
+            friction=friction,
+            element_size_m=element_size_m,
+            include_fields=include_fields,
+        )
+        response = _call(self.stub.SolveWheelRail, request, timeout=self.timeout_s)
+        return from_pb(WheelRailResult, response.result)
+
+    def solve_wheelrail_batch(self, queries: Iterable[Union[Mapping, pb.SolveWheelRailRequest]]) -> list:
+        """Solves many wheelset queries in parallel. Each query is a
+        mapping of :meth:`solve_wheelrail`'s keyword arguments (plus
+        ``pair_id``) or a ``SolveWheelRailRequest``. Returns one entry per
+        query: a :class:`WheelRailResult` or the item's
+        :class:`RailcontactError`."""
+        items = [
+            q if isinstance(q, pb.SolveWheelRailRequest) else wheelrail_request(path=f"items[{i}]", **q)
+            for i, q in enumerate(queries)
+        ]
+        response = _call(
+            self.stub.SolveWheelRailBatch, pb.SolveWheelRailBatchRequest(items=items), timeout=self.timeout_s
+        )
+        return [
+            from_pb(WheelRailResult, item.result)
+            if item.WhichOneof("outcome") == "result"
+            else RailcontactError.from_item(item.error)
+            for item in response.items
+        ]
+
+    def wheelrail_session(
+        self,
+        pair_id: str = BUILTIN_PAIR,
+        *,
+        model="exact",
+        sides="both",
+        friction=None,
+        element_size_m: Optional[float] = None,
+        include_fields: bool = False,
+        label: str = "",
+    ) -> "WheelRailSession":
+        """Opens a co-simulation session on a wheelset (``WheelRailSession``);
+        see :class:`WheelRailSession`. The settings hold for every step."""
+        values = _set_values(
+            pair_id=pair_id,
+            model=model,
+            sides=sides,
+            friction=friction,
+            element_size_m=element_size_m,
+            include_fields=include_fields,
+            client_label=label,
+        )
+        opening = build(pb.WheelRailSessionOpen, values, "open")
+        return WheelRailSession(self.stub.WheelRailSession, pb.WheelRailSessionRequest(open=opening))
+
+
+def wheelrail_request(
+    pair_id: str = BUILTIN_PAIR, *, path: str = "", velocity=None, load=None, **settings
+) -> pb.SolveWheelRailRequest:
+    """A ``SolveWheelRailRequest`` from :meth:`Client.solve_wheelrail`'s
+    arguments (``None`` values left unset)."""
+    values = _set_values(pair_id=pair_id, velocity=velocity, load=load, **settings)
+    return build(pb.SolveWheelRailRequest, values, path)
+
+
+def _set_values(**values) -> dict:
+    """The values that are not None (the others stay unset)."""
+    return {k: v for k, v in values.items() if v is not None}
+
+
+class _Session:
+    """A bidirectional stream driven one request, one response at a time."""
+
+    _request_class: Any = None
+    _response_class: Any = None
+
+    def __init__(self, method, opening):
+        self._requests: "queue.Queue" = queue.Queue()
+        self._requests.put(opening)
+        self._responses = method(self._request_iterator())
+        self._closed = False
+        self.next_step_index = 0
+        opened = self._receive("opened")
+        self.session_id: str = opened.session_id
+        self._opened(opened)
+
+    def _opened(self, opened) -> None:
+        """Keeps what the opening answer says (subclasses)."""
+
+    def _request_iterator(self):
+        while True:
+            request = self._requests.get()
+            if request is None:
+                return
+            yield request
+
+    def _receive(self, expected: str):
+        try:
+            response = next(self._responses)
+        except StopIteration:
+            raise RailcontactError(grpc.StatusCode.UNAVAILABLE, "the session stream ended") from None
+        except grpc.RpcError as e:
+            self._closed = True
+            self._requests.put(None)  # ends the request iterator's thread
+            raise RailcontactError.from_rpc(e) from None
+        kind = response.WhichOneof("kind")
+        if kind == "error":
+            raise RailcontactError.from_item(response.error)
+        if kind != expected:
+            raise RailcontactError(grpc.StatusCode.INTERNAL, f"expected `{expected}`, got `{kind}`")
+        return getattr(response, kind)
+
+    def _exchange(self, request, expected: str):
+        if self._closed:
+            raise RailcontactError(grpc.StatusCode.FAILED_PRECONDITION, "the session is closed")
+        self._requests.put(request)
+        return self._receive(expected)
+
+    def _step(self, step_class, step_index: Optional[int], **values):
+        """Sends one step (index: the next one unless given) and returns the
+        server's step result message."""
+        index = self.next_step_index if step_index is None else step_index
+        request = build(step_class, _set_values(step_index=index, **values), "step")
+        step = self._exchange(self._request_class(step=request), "step")
+        self.next_step_index = step.step_index + 1
+        return step
+
+    def rollback(self, to_step_index: int) -> int:
+        """Goes back to the state after the marked step ``to_step_index``
+        (marks after it are dropped); returns the next step's index,
+        ``to_step_index + 1``. An unknown mark raises RailcontactError
+        (FAILED_PRECONDITION) and leaves the session as it was."""
+        rolled = self._exchange(
+            self._request_class(rollback=pb.SessionRollback(to_step_index=to_step_index)), "rolled_back"
+        )
+        self.next_step_index = rolled.next_step_index
+        return rolled.next_step_index
+
+    def close(self) -> None:
+        """Ends the stream (the server closes the session)."""
+        if self._closed:
+            return
+        self._closed = True
+        self._requests.put(None)
+        try:
+            for _ in self._responses:
+                pass
+        except grpc.RpcError:
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, *exc) -> None:
+        if exc_type is not None:
+            self._responses.cancel()
+            self._closed = True
+        self.close()
+
+
+class PatchSession(_Session):
+    """A co-simulation session on one patch (from :meth:`Client.patch_session`).
+
+    Each :meth:`step` sends one ``SessionStep`` and returns its
+    :class:`SessionStepResult`; step indices are counted for you (after
+    ``rollback(k)`` the next one is ``k + 1``). A refused step or rollback
+    raises :class:`RailcontactError` and the session stays open.
+    Attributes after opening: ``session_id``, ``model``, ``grid``, ``notes``.
+    """
+
+    _request_class = pb.SessionRequest
+
+    def _opened(self, opened) -> None:
+        self.model: str = enum_name(pb.Model.DESCRIPTOR, opened.model)
+        self.grid: Optional[Grid] = from_pb(Grid, opened.grid) if opened.HasField("grid") else None
+        self.notes: tuple = tuple(opened.notes)
+
+    def step(
+        self,
+        creepages=None,
+        *,
+        normal_force_n: Optional[float] = None,
+        approach_m: Optional[float] = None,
+        shift=None,
+        time_s: float = 0.0,
+        mark: bool = False,
+        step_index: Optional[int] = None,
+    ) -> SessionStepResult:
+        """Solves the next step.
+
+        ``creepages`` (rolling sessions): ``(creepage_long, creepage_lat,
+        spin_per_m)`` or a mapping; ``normal_force_n`` or ``approach_m``: the
+        step's load (default: the case's); ``shift`` (transient sessions):
+        a ``ShiftStep`` mapping (``shift_x_m``, ``shift_y_m``,
+        ``rotation_rad``); ``mark``: remember the state after this step for
+        :meth:`rollback`; ``step_index``: default the next one.
+        """
+        step = self._step(
+            pb.SessionStep,
+            step_index,
+            time_s=time_s,
+            normal_force_n=normal_force_n,
+            approach_m=approach_m,
+            creepages=creepages,
+            shift=shift,
+            mark=mark,
+        )
+        return from_pb(SessionStepResult, step, fields=fields_of(step, self.grid))
+
+
+class WheelRailSession(_Session):
+    """A co-simulation session on a wheelset (from
+    :meth:`Client.wheelrail_session`).
+
+    ::
+
+        with client.wheelrail_session("mbench_s1002_uic60", model="hertz_fastsim") as s:
+            r = s.step(position={"lateral_m": 0.003},
+                       velocity={"forward_m_per_s": 30.0}, load=1e5, mark=True)
+            ...
+            s.rollback(0)
+
+    Attributes after opening: ``session_id``, ``pair_id`` (resolved),
+    ``model``.
+    """
+
+    _request_class = pb.WheelRailSessionRequest
+
+    def _opened(self, opened) -> None:
+        self.pair_id: str = opened.pair_id
+        self.model: str = enum_name(pb.WheelRailModel.DESCRIPTOR, opened.model)
+
+    def step(
+        self,
+        *,
+        velocity,
+        load,
+        position=None,
+        time_s: float = 0.0,
+        mark: bool = False,
+        step_index: Optional[int] = None,
+    ) -> WheelRailStepResult:
+        """Solves the next step: ``position`` (``WheelsetPosition`` mapping,
+        default centred), ``velocity`` (``WheelsetVelocity`` mapping or the
+        forward speed), ``load`` (``WheelLoad`` mapping or the vertical force
+        per wheel [N]); ``mark`` and ``step_index`` as in
+        :meth:`PatchSession.step`."""
+        step = self._step(
+            pb.WheelRailSessionStep,
+            step_index,
+            time_s=time_s,
+            position=position,
+            velocity=velocity,
+            load=load,
+            mark=mark,
+        )
+        return from_pb(WheelRailStepResult, step)

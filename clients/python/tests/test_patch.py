@@ -1,0 +1,157 @@
+"""Patch calls against the real server: SolvePatch, batches, creep curves,
+errors and PatchSession with marks and rollback."""
+
+import grpc
+import numpy as np
+import pytest
+
+import railcontact
+from conftest import REPO, rolling_case
+
+
+def test_server_lists_the_builtin_pair(client):
+    pairs = client.list_pairs()
+    builtin = [p for p in pairs if p.builtin_pair == railcontact.BUILTIN_PAIR]
+    assert len(builtin) == 1 and builtin[0].state == "ready"
+    assert len(builtin[0].pair_id) == 32
+    assert client.get_pair(railcontact.BUILTIN_PAIR).pair_id == builtin[0].pair_id
+
+
+def test_solve_patch_gives_totals_and_fields_shaped_ny_nx(client):
+    case = rolling_case("exact", n=20)
+    case["grid"] = {"nx": 16, "ny": 20}
+    r = client.solve_patch(case, include_fields=True)
+    assert r.model == "exact" and r.result.info.status == "converged"
+    assert r.friction_coefficient == 0.3
+    t = r.totals
+    assert t.normal_force_n == pytest.approx(1.0e4, rel=1e-9)
+    # Positive creepages pull the rail backwards and to the left.
+    assert t.fx_n < 0 and t.fy_n < 0 and -t.fx_n < 0.3 * t.normal_force_n
+    assert (r.grid.nx, r.grid.ny) == (16, 20)
+    f = r.fields
+    for name in ("pressure_pa", "traction_x_pa", "traction_y_pa", "slip_x", "slip_y", "state", "gap_m"):
+        assert getattr(f, name).shape == (20, 16), name
+    assert not f.pressure_pa.flags.writeable
+    assert set(np.unique(f.state)) <= {railcontact.EXTERIOR, railcontact.ADHESION, railcontact.SLIP}
+    assert (f.state == railcontact.ADHESION).any() and (f.state == railcontact.SLIP).any()
+    # The fields add up to the totals.
+    area = r.grid.element_size_x_m * r.grid.element_size_y_m
+    assert f.pressure_pa.sum() * area == pytest.approx(t.normal_force_n, rel=1e-6)
+    assert f.traction_x_pa.sum() * area == pytest.approx(t.fx_n, rel=1e-6)
+    assert f.pressure_pa.max() == pytest.approx(t.max_pressure_pa)
+    assert r.grid.x_m().shape == (16,) and r.grid.y_m().shape == (20,)
+
+
+def test_hertz_from_a_case_file(client):
+    path = REPO / "examples" / "cases" / "hertz_only.toml"
+    r = client.solve_patch(path)
+    assert r.model == "hertz" and r.fields is None and r.grid is None
+    assert r.totals.max_pressure_pa > 1e8 and r.totals.fx_n == 0
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(path, include_fields=True)  # Hertz has no grid
+    assert e.value.field == "include_fields"
+
+
+def test_batch_keeps_order_and_reports_item_errors(client):
+    good = rolling_case("fastsim")
+    bad = rolling_case("fastsim")
+    bad["load"] = {"normal_force_n": -1.0}
+    results = client.solve_patch_batch([good, bad, good])
+    assert isinstance(results[0], railcontact.PatchResult)
+    assert isinstance(results[1], railcontact.RailcontactError)
+    assert results[1].code == grpc.StatusCode.INVALID_ARGUMENT
+    assert results[1].field == "items[1].case.load.normal_force_n"
+    assert results[2].totals == results[0].totals
+
+
+def test_creep_curve_comes_in_order_and_saturates(client):
+    points = list(client.creep_curve(rolling_case("fastsim"), linear=((0, 0, 0), (0.01, 0, 0), 11)))
+    assert [p.index for p in points] == list(range(11))
+    xi = [p.creepages.creepage_long for p in points]
+    assert xi == sorted(xi) and xi[-1] == pytest.approx(0.01)
+    fx = [p.result.totals.fx_n for p in points]
+    assert fx[0] == 0 and all(b <= a + 1e-9 for a, b in zip(fx, fx[1:]))
+    assert -fx[-1] == pytest.approx(0.3 * 1.0e4, rel=1e-3)  # full sliding
+    # An explicit list, exact model, warm-started point to point.
+    listed = list(client.creep_curve(rolling_case("exact", n=12), [(1e-4, 0, 0), {"creepage_lat": 1e-3}]))
+    assert [p.creepages.creepage_lat for p in listed] == [0.0, 1e-3]
+    assert listed[1].result.totals.fy_n < 0
+
+
+def test_invalid_input_raises_with_code_and_field(client):
+    case = rolling_case("exact")
+    case["geometry"]["a_per_m"] = float("nan")
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(case)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert e.value.field == "case.geometry.a_per_m"
+    assert "a_per_m" in e.value.message
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_wheelrail("no-such-pair", velocity=30.0, load=1e5)
+    assert e.value.code == grpc.StatusCode.NOT_FOUND
+    # Caught in the client: unknown keys and enum names, with their path.
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(dict(case, model="exactly"))
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT and e.value.field == "case.model"
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(dict(case, grid={"nx": 8, "nz": 8}))
+    assert e.value.field == "case.grid.nz"
+
+
+def _run(session, creepages, mark_at=None):
+    out = []
+    for i, c in enumerate(creepages):
+        out.append(session.step(c, time_s=0.001 * i, mark=(i == mark_at)))
+    return out
+
+
+def test_patch_session_replays_identically_after_rollback(client):
+    case = rolling_case("exact", n=16)
+    sweep = [(1e-4 * k, 2e-4, 0.0) for k in range(6)]
+    with client.patch_session(case, include_fields=True, label="pytest") as s:
+        assert s.session_id and s.model == "exact" and s.grid.nx == 16
+        first = _run(s, sweep, mark_at=2)
+        assert [r.step_index for r in first] == list(range(6))
+        assert first[2].marked and not first[3].marked
+        assert first[3].fields.pressure_pa.shape == (16, 16)
+        assert s.rollback(2) == 3 and s.next_step_index == 3
+        again = [s.step(c, time_s=0.001 * (3 + i)) for i, c in enumerate(sweep[3:])]
+        for a, b in zip(first[3:], again):
+            assert a.step_index == b.step_index
+            assert a.totals == b.totals
+            assert np.array_equal(a.fields.traction_x_pa, b.fields.traction_x_pa)
+        # In-band errors raise and leave the session open.
+        with pytest.raises(railcontact.RailcontactError) as e:
+            s.step((1e-4, 0, 0), step_index=42)
+        assert e.value.code == grpc.StatusCode.FAILED_PRECONDITION
+        with pytest.raises(railcontact.RailcontactError) as e:
+            s.rollback(4)  # not marked
+        assert e.value.code == grpc.StatusCode.FAILED_PRECONDITION
+        with pytest.raises(railcontact.RailcontactError) as e:
+            s.step((float("nan"), 0, 0))
+        assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+        assert e.value.field.startswith("step.creepages.")
+        assert s.step(sweep[0]).step_index == 6
+
+
+def test_session_open_errors_raise(client):
+    case = rolling_case("exact")
+    case["material"] = {"shear_modulus_pa": -1.0, "poisson_ratio": 0.3}
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.patch_session(case)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "shear_modulus_pa" in e.value.field
+
+
+def test_sensitivities_of_a_rolling_patch(client):
+    r = client.solve_patch(rolling_case("fastsim", creepages=(1e-4, 0.0, 0.0)), include_sensitivities=True)
+    s = r.result.sensitivities
+    assert s is not None and s.solves > 0
+    # Fx = -G a b C11 xi in the linear range: dFx/dxi < 0, and dFn/d(approach) > 0.
+    assert s.per_creepage_long.fx < 0 and s.per_creepage_lat.fy < 0
+    assert s.per_approach_m.normal_force > 0
+    with client.patch_session(rolling_case("fastsim"), include_sensitivities=True) as session:
+        step = session.step((1e-4, 0.0, 0.0))
+        again = step.result.sensitivities
+        assert again.per_creepage_long.fx == pytest.approx(s.per_creepage_long.fx, rel=1e-6)
+        assert again.per_approach_m.normal_force == pytest.approx(s.per_approach_m.normal_force, rel=1e-6)

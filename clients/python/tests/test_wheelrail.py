@@ -1,0 +1,174 @@
+"""Wheel/rail calls against the real server: pairs, SolveWheelRail, its
+batch and WheelRailSession."""
+
+import grpc
+import numpy as np
+import pytest
+
+import railcontact
+
+V = 30.0  # forward speed [m/s]
+LOAD = 1.0e5  # vertical force per wheel [N]
+
+
+def test_register_the_builtin_pair_reports_progress(client):
+    seen = []
+    info = client.register_pair(builtin=railcontact.BUILTIN_PAIR, progress=seen.append)
+    assert seen and seen[-1].stage == "ready" and seen[-1].pair == info
+    assert info.builtin_pair == railcontact.BUILTIN_PAIR and info.state == "ready"
+    assert info.raw.wheel.file_name == "MBench_S1002_v3.prw"
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.delete_pair(info.pair_id)
+    assert e.value.code == grpc.StatusCode.FAILED_PRECONDITION
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.get_pair("0" * 32)
+    assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+def test_solve_wheelrail_both_wheels_carry_the_load(client):
+    r = client.solve_wheelrail(
+        position={"lateral_m": 0.003}, velocity=V, load=LOAD, model="hertz_fastsim"
+    )
+    assert r.model == "hertz_fastsim" and len(r.pair_id) == 32
+    assert [w.side for w in r.wheels] == ["left", "right"]
+    for w in r.wheels:
+        assert w.force_track_n.z_n == pytest.approx(LOAD, rel=1e-6)
+        assert w.patches and all(p.method == "hertz_fastsim" for p in w.patches)
+        assert sum(p.normal_force_n for p in w.patches) > 0.9 * LOAD
+    total = r.force_track_n
+    assert total.shape == (3,) and total[2] == pytest.approx(2 * LOAD, rel=1e-6)
+    # Shifted to the right, the wheelset is pushed back to the left: the
+    # rails are pushed to the right (gravitational stiffness).
+    assert total[1] > 0
+    right = r.wheel("right")
+    assert right.patches[0].rolling_radius_m > r.wheel("left").patches[0].rolling_radius_m
+
+
+def test_solve_wheelrail_exact_with_fields(client):
+    r = client.solve_wheelrail(
+        velocity={"forward_m_per_s": V, "lateral_m_per_s": -0.03},
+        load={"vertical_force_n": LOAD},
+        sides="right",
+        element_size_m=5e-4,
+        include_fields=True,
+    )
+    (wheel,) = r.wheels
+    patch = wheel.patches[0]
+    assert patch.method == "exact" and patch.grid is not None
+    assert patch.fields.pressure_pa.shape == (patch.grid.ny, patch.grid.nx)
+    # Moving to the left: the rail slides to the right relative to the wheel.
+    assert patch.creepage_lat > 0 and patch.fs_n < 0
+
+
+def test_wheelrail_batch_keeps_order_and_item_errors(client):
+    good = {"velocity": V, "load": LOAD, "model": "hertz_fastsim"}
+    bad = dict(good, velocity={"forward_m_per_s": 0.0})
+    out = client.solve_wheelrail_batch([good, bad, dict(good, position={"lateral_m": 0.002})])
+    assert isinstance(out[0], railcontact.WheelRailResult)
+    assert isinstance(out[1], railcontact.RailcontactError)
+    assert out[1].field == "items[1].velocity.forward_m_per_s"
+    assert out[2].force_track_n[1] > 0
+
+
+def _steps(session, lateral_m, mark_at=None):
+    return [
+        session.step(
+            position={"lateral_m": y},
+            velocity={"forward_m_per_s": V, "lateral_m_per_s": 0.01},
+            load=LOAD,
+            time_s=1e-3 * i,
+            mark=(i == mark_at),
+        )
+        for i, y in enumerate(lateral_m)
+    ]
+
+
+def test_wheelrail_session_steps_mark_and_roll_back(client):
+    path = np.linspace(0.0, 0.004, 6)
+    with client.wheelrail_session(model="hertz_fastsim", label="pytest") as s:
+        assert s.session_id and s.model == "hertz_fastsim" and len(s.pair_id) == 32
+        first = _steps(s, path, mark_at=2)
+        assert [r.step_index for r in first] == list(range(6)) and first[2].marked
+        # The same as independent solves of the same inputs.
+        alone = client.solve_wheelrail(
+            position={"lateral_m": path[4]},
+            velocity={"forward_m_per_s": V, "lateral_m_per_s": 0.01},
+            load=LOAD,
+            model="hertz_fastsim",
+        )
+        # (Warm starts change the iterations' path, not the solution.)
+        assert np.allclose(first[4].result.force_track_n, alone.force_track_n, rtol=1e-4, atol=1.0)
+        assert s.rollback(2) == 3
+        again = [
+            s.step(position={"lateral_m": y}, velocity={"forward_m_per_s": V, "lateral_m_per_s": 0.01}, load=LOAD)
+            for y in path[3:]
+        ]
+        for a, b in zip(first[3:], again):
+            assert a.step_index == b.step_index
+            assert np.array_equal(a.result.force_track_n, b.result.force_track_n)
+            assert a.result.wheels[0].patches == b.result.wheels[0].patches
+        with pytest.raises(railcontact.RailcontactError) as e:
+            s.step(velocity=0.0, load=LOAD)
+        assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+        assert e.value.field == "step.velocity.forward_m_per_s"
+        with pytest.raises(railcontact.RailcontactError) as e:
+            s.rollback(5)
+        assert e.value.code == grpc.StatusCode.FAILED_PRECONDITION
+        assert s.step(velocity=V, load=LOAD).step_index == 6
+
+
+def test_wheelrail_session_on_an_unknown_pair_fails_at_open(client):
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.wheelrail_session("0" * 32)
+    assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+def _mbench_spec(smoothing_wavelength_m):
+    """The built-in pair's profiles as a spec of its own (another smoothing
+    gives another id)."""
+    return {
+        "wheel": {"builtin_name": "MBench_S1002_v3.prw"},
+        "rail": {"builtin_name": "MBench_UIC60_v3.prr"},
+        "track": {"gauge_m": 1.435, "gauge_height_m": 0.014, "cant_rad": 0.0},
+        "wheelset": {"flange_back_distance_m": 1.360, "nominal_radius_m": 0.46, "flange_back_y_m": -0.070},
+        "smoothing_wavelength_m": smoothing_wavelength_m,
+    }
+
+
+def test_register_solve_and_delete_a_pair_of_its_own(client):
+    stages = []
+    info = client.register_pair(_mbench_spec(0.003), label="pytest", progress=stages.append)
+    names = [p.stage for p in stages]
+    assert names[0] == "validated" and names[-1] == "ready" and "placed" in names
+    assert [p.fraction_done for p in stages] == sorted(p.fraction_done for p in stages)
+    assert info.label == "pytest" and info.persisted and info.smoothing_wavelength_m == 0.003
+    again = []
+    assert client.register_pair(_mbench_spec(0.003), progress=again.append).pair_id == info.pair_id
+    assert again[-1].already_registered
+    r = client.solve_wheelrail(info.pair_id, velocity=V, load=LOAD, model="hertz_fastsim")
+    assert r.pair_id == info.pair_id and len(r.wheels) == 2
+    assert info.pair_id in [p.pair_id for p in client.list_pairs()]
+    client.delete_pair(info.pair_id)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.get_pair(info.pair_id)
+    assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+def test_register_rejects_a_bad_spec_with_its_field(client):
+    spec = _mbench_spec(0.003)
+    spec["track"]["gauge_m"] = -1.0
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.register_pair(spec)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "gauge_m" in e.value.field
+
+
+def test_wheelrail_session_exact_with_fields(client):
+    with client.wheelrail_session(sides="right", element_size_m=5e-4, include_fields=True) as s:
+        assert s.model == "exact"
+        r = s.step(velocity={"forward_m_per_s": V, "lateral_m_per_s": -0.03}, load=LOAD)
+    (wheel,) = r.result.wheels
+    patch = wheel.patches[0]
+    assert wheel.side == "right" and patch.method == "exact"
+    assert patch.fields.pressure_pa.shape == (patch.grid.ny, patch.grid.nx)
+    assert patch.fields.pressure_pa.max() == pytest.approx(patch.max_pressure_pa)

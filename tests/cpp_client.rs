@@ -1,0 +1,350 @@
+//! The C++ co-simulation client (clients/cpp) end to end: installs the
+//! Debian packages it builds with when any is missing, builds it with CMake
+//! into `target/cpp-client` (incremental on re-runs), starts the real server
+//! binary on an ephemeral loopback port and runs the example
+//! `cosim_wheelset` against it: a wheelset's lateral dynamics stepped
+//! through the C interface over a WheelRailSession, with one mark/rollback
+//! round whose forces must come back bit-identical (checked by the example
+//! itself, which exits non-zero otherwise). This test checks the exit
+//! status and that the printed trajectory is physically sound.
+
+use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// What the client's CMake project needs (Debian 12 names).
+const PACKAGES: &[&str] = &[
+    "cmake",
+    "make",
+    "pkg-config",
+    "protobuf-compiler",
+    "protobuf-compiler-grpc",
+    "libprotobuf-dev",
+    "libgrpc++-dev",
+];
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+        .unwrap_or(false)
+}
+
+fn installed(package: &str) -> bool {
+    Command::new("dpkg-query")
+        .args(["-W", "-f=${Status}", package])
+        .output()
+        .map(|o| o.status.success() && String::from_utf8_lossy(&o.stdout).contains("ok installed"))
+        .unwrap_or(false)
+}
+
+/// Runs `args` as root: directly when we are root, else through `sudo -n`.
+fn as_root(args: &[&str]) -> Output {
+    let mut command = if is_root() {
+        let mut c = Command::new(args[0]);
+        c.args(&args[1..]);
+        c
+    } else {
+        let mut c = Command::new("sudo");
+        c.arg("-n").args(args);
+        c
+    };
+    command
+        .env("DEBIAN_FRONTEND", "noninteractive")
+        .stdin(Stdio::null())
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {args:?} (as root or with sudo -n): {e}"))
+}
+
+fn check(what: &str, output: &Output) {
+    assert!(
+        output.status.success(),
+        "{what} failed ({}):\n--- stdout\n{}\n--- stderr\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// Installs the packages that are missing; fails the test when it cannot.
+fn ensure_packages() {
+    let missing: Vec<&str> = PACKAGES.iter().copied().filter(|p| !installed(p)).collect();
+    if missing.is_empty() {
+        return;
+    }
+    eprintln!("installing Debian packages for the C++ client: {missing:?}");
+    let how = "the C++ client test needs these Debian packages and could not install them \
+               (run as root or with passwordless sudo, with access to the Debian mirrors, \
+               or install them by hand)";
+    check(
+        &format!("apt-get update ({how})"),
+        &as_root(&["apt-get", "update", "-q"]),
+    );
+    let mut install = vec!["apt-get", "install", "-y", "-q", "--no-install-recommends"];
+    install.extend(&missing);
+    check(
+        &format!("apt-get install {missing:?} ({how})"),
+        &as_root(&install),
+    );
+    let still: Vec<&str> = missing.iter().copied().filter(|p| !installed(p)).collect();
+    assert!(still.is_empty(), "still missing after apt-get: {still:?}");
+}
+
+/// Configures and builds clients/cpp into target/cpp-client; returns the
+/// example's path.
+fn build_client() -> PathBuf {
+    let source = repo().join("clients/cpp");
+    let build = repo().join("target/cpp-client");
+    // A build folder configured for another checkout (a copied target/)
+    // makes cmake refuse: start it afresh.
+    let cache = std::fs::read_to_string(build.join("CMakeCache.txt")).unwrap_or_default();
+    let home = format!("CMAKE_HOME_DIRECTORY:INTERNAL={}", source.display());
+    if !cache.is_empty() && !cache.lines().any(|l| l == home) {
+        std::fs::remove_dir_all(&build).expect("removes the stale C++ build folder");
+    }
+    let configure = Command::new("cmake")
+        .arg("-S")
+        .arg(&source)
+        .arg("-B")
+        .arg(&build)
+        .arg("-DCMAKE_BUILD_TYPE=Release")
+        .stdin(Stdio::null())
+        .output()
+        .expect("cmake runs");
+    check("cmake configure", &configure);
+    let make = Command::new("cmake")
+        .arg("--build")
+        .arg(&build)
+        .args(["--parallel", "2"])
+        .stdin(Stdio::null())
+        .output()
+        .expect("cmake --build runs");
+    check("cmake --build", &make);
+    build.join("cosim_wheelset")
+}
+
+/// The server binary on 127.0.0.1:0 with its store in a temporary folder;
+/// killed when dropped.
+struct Server {
+    child: Child,
+    addr: String,
+    log: PathBuf,
+    _data: tempfile::TempDir,
+}
+
+impl Server {
+    fn start() -> Server {
+        let data = tempfile::tempdir().unwrap();
+        let log = data.path().join("server.log");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_railcontact"))
+            .args(["serve", "--listen", "127.0.0.1:0"])
+            .env("RAILCONTACT_DATA_DIR", data.path().join("store"))
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(std::fs::File::create(&log).unwrap())
+            .spawn()
+            .expect("server starts");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .expect("server prints its address");
+        let addr = line
+            .trim()
+            .strip_prefix("railcontact listening on ")
+            .unwrap_or_else(|| {
+                let _ = child.kill();
+                panic!(
+                    "unexpected first line {line:?}; server log:\n{}",
+                    std::fs::read_to_string(&log).unwrap_or_default()
+                )
+            })
+            .to_string();
+        Server {
+            child,
+            addr,
+            log,
+            _data: data,
+        }
+    }
+
+    fn log(&self) -> String {
+        std::fs::read_to_string(&self.log).unwrap_or_default()
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Runs `command`, killing it after `limit`.
+fn run_with_limit(command: &mut Command, limit: Duration) -> Output {
+    let mut child = command
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    let mut out_pipe = child.stdout.take().unwrap();
+    let mut err_pipe = child.stderr.take().unwrap();
+    let out_reader = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        out_pipe.read_to_end(&mut v).map(|_| v)
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut v = Vec::new();
+        err_pipe.read_to_end(&mut v).map(|_| v)
+    });
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("waits") {
+            break status;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{command:?} did not finish within {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    Output {
+        status,
+        stdout: out_reader.join().unwrap().unwrap(),
+        stderr: err_reader.join().unwrap().unwrap(),
+    }
+}
+
+struct Row {
+    time_s: f64,
+    lateral_m: f64,
+    lateral_m_per_s: f64,
+    contact_force_y_n: f64,
+    spring_force_y_n: f64,
+}
+
+fn parse_csv(text: &str) -> Vec<Row> {
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("step,time_s,lateral_m,lateral_m_per_s,contact_force_y_n,spring_force_y_n"),
+        "CSV header"
+    );
+    lines
+        .enumerate()
+        .map(|(i, line)| {
+            let cells: Vec<&str> = line.split(',').collect();
+            assert_eq!(cells.len(), 6, "row {i}: {line:?}");
+            assert_eq!(cells[0], i.to_string(), "row {i}: step index");
+            let v: Vec<f64> = cells[1..]
+                .iter()
+                .map(|c| {
+                    c.parse::<f64>()
+                        .unwrap_or_else(|e| panic!("row {i}: {c:?}: {e}"))
+                })
+                .collect();
+            assert!(v.iter().all(|x| x.is_finite()), "row {i}: {line:?}");
+            Row {
+                time_s: v[0],
+                lateral_m: v[1],
+                lateral_m_per_s: v[2],
+                contact_force_y_n: v[3],
+                spring_force_y_n: v[4],
+            }
+        })
+        .collect()
+}
+
+fn check_trajectory(rows: &[Row]) {
+    const STEPS: usize = 200;
+    const Y0: f64 = 3.0e-3;
+    assert_eq!(rows.len(), STEPS, "one row per step");
+    assert_eq!(rows[0].lateral_m, Y0);
+    assert_eq!(rows[0].lateral_m_per_s, 0.0);
+    for (i, r) in rows.iter().enumerate() {
+        assert!((r.time_s - i as f64 * 1e-3).abs() < 1e-9, "row {i}: time");
+        // Bounded: never beyond the initial offset, with a margin.
+        assert!(
+            r.lateral_m.abs() <= 1.2 * Y0,
+            "row {i}: |y| = {}",
+            r.lateral_m
+        );
+        assert!(r.contact_force_y_n.abs() < 1.0e5, "row {i}: contact force");
+    }
+    // At rest 3 mm to the right, the contact forces alone push the
+    // wheelset back to the centre (the profiles' gravitational stiffness).
+    assert!(
+        rows[0].contact_force_y_n < 0.0,
+        "restoring at rest: {} N",
+        rows[0].contact_force_y_n
+    );
+    // The creep forces damp it heavily (lateral creep coefficient over the
+    // speed, far above the critical damping of the spring): it creeps back
+    // to the centre without overshoot ...
+    for (i, pair) in rows.windows(2).enumerate() {
+        assert!(
+            pair[1].lateral_m <= pair[0].lateral_m && pair[1].lateral_m > 0.0,
+            "row {}: y = {} after {}",
+            i + 1,
+            pair[1].lateral_m,
+            pair[0].lateral_m
+        );
+    }
+    let last = rows.last().unwrap();
+    assert!(
+        last.lateral_m.abs() < 0.9 * Y0,
+        "the offset decays: {} m after {} s",
+        last.lateral_m,
+        last.time_s
+    );
+    // ... with the contact forces taking energy out (on balance over the
+    // run, so their power is negative).
+    let power: f64 = rows
+        .iter()
+        .map(|r| r.contact_force_y_n * r.lateral_m_per_s)
+        .sum();
+    assert!(
+        power < 0.0,
+        "contact forces damp the motion: sum F v = {power}"
+    );
+    // The spring's force is the one the example applied.
+    for r in rows {
+        assert!((r.spring_force_y_n + 2.0e6 * r.lateral_m).abs() <= 1e-6);
+    }
+}
+
+#[test]
+fn cpp_cosim_wheelset_against_the_server() {
+    let t0 = Instant::now();
+    ensure_packages();
+    let example = build_client();
+    eprintln!("C++ client ready in {:.1} s", t0.elapsed().as_secs_f64());
+    assert!(Path::new(&example).is_file(), "{example:?} was built");
+
+    let server = Server::start();
+    let output = run_with_limit(
+        Command::new(&example).args([server.addr.as_str(), "--model", "hertz_fastsim"]),
+        Duration::from_secs(300),
+    );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "cosim_wheelset failed ({}):\n--- stderr\n{stderr}\n--- server log\n{}",
+        output.status,
+        server.log()
+    );
+    assert!(
+        stderr.contains("forces bit-identical"),
+        "the rollback round ran: {stderr}"
+    );
+    check_trajectory(&parse_csv(&stdout));
+    drop(server);
+}

@@ -1,0 +1,90 @@
+//! The Python client's test suite (clients/python/tests) as part of
+//! `cargo test`: a virtual environment at `target/py-venv` (made with
+//! `python3 -m venv` if missing), the package installed into it with its
+//! test extras when its pyproject.toml changed (a stamp file holds the
+//! hash of the one installed), then pytest against this build's server
+//! binary. Anything missing (python3, pip, a package) fails the test.
+//!
+//! `RAILCONTACT_PYTHON` names another interpreter than `python3`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use sha2::{Digest, Sha256};
+
+const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `command`, failing the test with its output unless it succeeds.
+fn run(what: &str, command: &mut Command) -> Output {
+    let output = command
+        .output()
+        .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
+    assert!(
+        output.status.success(),
+        "{what} failed ({}):\n--- stdout\n{}\n--- stderr\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+/// The venv's interpreter, the venv made and the package installed as
+/// needed.
+fn python_with_client(venv: &Path) -> PathBuf {
+    let python = venv.join("bin").join("python");
+    if !python.is_file() {
+        let base = std::env::var("RAILCONTACT_PYTHON").unwrap_or_else(|_| "python3".into());
+        run(
+            "creating the venv",
+            Command::new(base).args(["-m", "venv"]).arg(venv),
+        );
+    }
+    let client = repo().join("clients").join("python");
+    let pyproject = std::fs::read(client.join("pyproject.toml")).expect("pyproject.toml");
+    let stamp = venv.join("railcontact-client.stamp");
+    let hash: String = Sha256::digest(&pyproject)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    let want = format!("{hash}\n");
+    if std::fs::read_to_string(&stamp).ok().as_deref() != Some(want.as_str()) {
+        run(
+            "installing clients/python[test]",
+            Command::new(&python)
+                .args([
+                    "-m",
+                    "pip",
+                    "install",
+                    "-q",
+                    "--disable-pip-version-check",
+                    "-e",
+                ])
+                .arg(format!("{}[test]", client.display())),
+        );
+        std::fs::write(&stamp, want).expect("stamp written");
+    }
+    python
+}
+
+#[test]
+fn python_client_tests_pass_against_this_server() {
+    let venv = repo().join("target").join("py-venv");
+    let python = python_with_client(&venv);
+    let output = run(
+        "pytest clients/python/tests",
+        Command::new(&python)
+            .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
+            .arg(repo().join("clients").join("python").join("tests"))
+            .current_dir(repo().join("clients").join("python"))
+            .env("RAILCONTACT_BIN", BIN)
+            .env("PYTHONDONTWRITEBYTECODE", "1"),
+    );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    println!("{stdout}");
+    assert!(stdout.contains(" passed"), "pytest ran no test:\n{stdout}");
+}
