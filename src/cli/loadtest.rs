@@ -70,7 +70,8 @@
 //! `steps`, `errors`, `mismatches`, `wall_s`, per kind in `kinds` and per
 //! target in `targets`); otherwise a table. The exit code is 1 when there
 //! were errors or mismatches, 2 for bad options, and 1 when a target cannot
-//! be reached (checked first, by gRPC health, before any load).
+//! be reached (checked first, by gRPC health of
+//! `railcontact.v1.ContactService`, before any load).
 
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
@@ -98,6 +99,10 @@ pub const DEFAULT_MIX: &str =
 /// Metadata key that names a co-simulation session (for proxies that pin a
 /// session to one replica by hashing it).
 pub const SESSION_HEADER: &str = "x-railcontact-session";
+
+/// The contact service's name in the gRPC health service: NOT_SERVING
+/// as soon as a server starts draining (the empty name stays SERVING).
+pub const CONTACT_SERVICE: &str = "railcontact.v1.ContactService";
 
 /// Simulated time step [s].
 const DT_S: f64 = 1e-3;
@@ -1096,12 +1101,13 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     for t in &targets {
         target_uri(t)?;
     }
-    // Every target reachable and serving before any load.
+    // Every target reachable and its contact service serving (not
+    // draining) before any load.
     let timeout = Duration::from_secs_f64(args.connect_timeout);
     for t in &targets {
         let channel = connect(t, timeout).await?;
         use tonic_health::pb::health_check_response::ServingStatus;
-        match health(channel, "", timeout).await {
+        match health(channel, CONTACT_SERVICE, timeout).await {
             Ok(ServingStatus::Serving) => {}
             Ok(s) => {
                 return Err(CliError::Failure(format!(
