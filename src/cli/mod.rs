@@ -1,6 +1,8 @@
 //! The `railcontact` command line: `railcontact solve CASE.toml [--json]
 //! [--fields] [--plot FILE]` (one contact patch) and `railcontact wheelrail
-//! CASE.toml [--json] [--plot FILE]` (a wheelset on its track).
+//! CASE.toml [--json] [--plot FILE]` (a wheelset on its track); `serve`
+//! (the gRPC service), `loadtest` (drives a running service, see
+//! [`loadtest`]) and `health` (asks its gRPC health service).
 //!
 //! [`Cli`] is the clap definition, [`run`] executes it and returns the
 //! process exit code: 0 on success, [`EXIT_BAD_INPUT`] (2) for bad input (the
@@ -8,6 +10,8 @@
 //! other failure.
 
 pub mod case;
+pub mod health;
+pub mod loadtest;
 pub mod plot;
 pub mod report;
 pub mod wheelrail;
@@ -78,6 +82,18 @@ pub enum Command {
     /// case), then these flags. Logs go to stderr, filtered by RUST_LOG
     /// (default info).
     Serve(ServeArgs),
+    /// Drive a running server (or several replicas) with concurrent
+    /// co-simulation sessions and batch clients; report latency
+    /// percentiles and throughput, and check every answer bit for bit
+    /// against a sequential replay (see docs/loadtest.md).
+    ///
+    /// Exit code 1 when any step failed or differed, or a target cannot be
+    /// reached; 2 for bad options.
+    Loadtest(loadtest::LoadtestArgs),
+    /// Ask a server's gRPC health service (grpc.health.v1) whether it is
+    /// serving: prints the status, exit code 0 when SERVING, 1 otherwise.
+    /// For container health checks and exec probes.
+    Health(health::HealthArgs),
 }
 
 /// Options of `railcontact serve`.
@@ -168,6 +184,8 @@ pub fn run(cli: Cli) -> i32 {
         Command::Solve(args) => run_solve(&args),
         Command::Wheelrail(args) => wheelrail::run(&args),
         Command::Serve(args) => run_serve(&args),
+        Command::Loadtest(args) => loadtest::run(&args),
+        Command::Health(args) => health::run(&args),
     };
     match result {
         Ok(()) => 0,

@@ -1,0 +1,125 @@
+//! `railcontact loadtest` and `railcontact health` as processes against a
+//! real `railcontact serve` on a loopback port.
+
+mod support;
+
+use support::{assert_clean, loadtest_json, num, run, Server};
+
+/// The mix of the tests: every kind of the default mix.
+const MIX: &str = "wheelrail:hertz_fastsim=2,wheelrail:exact=1,patch:exact40=1,patch:fastsim=1";
+
+#[test]
+fn loadtest_json_has_sane_percentiles_no_errors_and_no_mismatches() {
+    let server = Server::start();
+    let (v, out) = loadtest_json(&[
+        "--target",
+        &server.addr,
+        "--sessions",
+        "4",
+        "--steps",
+        "10",
+        "--batch-clients",
+        "2",
+        "--batch-items",
+        "4",
+        "--mix",
+        MIX,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_clean(&v);
+    // 4 sessions and 2 batch clients, 10 steps each.
+    assert_eq!(num(&v, "steps"), 60.0);
+    assert_eq!(v["kinds"].as_object().unwrap().len(), 6, "{}", v["kinds"]);
+    assert_eq!(num(&v["kinds"]["batch:patch:fastsim"], "steps"), 10.0);
+    // No progress bar without a terminal: stderr stays empty.
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn loadtest_table_and_time_limit() {
+    let server = Server::start();
+    let out = run(&[
+        "loadtest",
+        "--target",
+        &server.addr,
+        "--sessions",
+        "2",
+        "--steps",
+        "1000000",
+        "--seconds",
+        "1",
+        "--batch-clients",
+        "0",
+        "--mix",
+        "patch:fastsim",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    for needle in ["p50 ms", "patch:fastsim", "0 mismatches, 0 errors"] {
+        assert!(stdout.contains(needle), "{needle}: {stdout}");
+    }
+}
+
+/// A loopback port with nothing listening on it.
+fn closed_port() -> String {
+    let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = l.local_addr().unwrap();
+    drop(l);
+    addr.to_string()
+}
+
+#[test]
+fn a_wrong_target_is_a_clear_error_and_a_failure() {
+    let addr = closed_port();
+    let out = run(&["loadtest", "--target", &addr, "--steps", "5"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains(&format!("cannot connect to {addr}")),
+        "{stderr}"
+    );
+    assert!(out.stdout.is_empty());
+
+    let out = run(&["loadtest", "--target", "localhost", "--steps", "5"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("expected HOST:PORT"), "{stderr}");
+
+    let out = run(&["loadtest", "--target", &addr, "--mix", "patch:warp=1"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("patch:warp"), "{stderr}");
+}
+
+#[test]
+fn health_exits_zero_only_when_serving() {
+    let server = Server::start();
+    let out = run(&["health", "--target", &server.addr]);
+    assert!(out.status.success());
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "SERVING");
+    let out = run(&[
+        "health",
+        "--target",
+        &server.addr,
+        "--service",
+        "railcontact.v1.ContactService",
+    ]);
+    assert!(out.status.success());
+
+    let out = run(&["health", "--target", &server.addr, "--service", "nope"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("NotFound"));
+
+    let addr = closed_port();
+    let out = run(&["health", "--target", &addr, "--timeout", "2"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot connect"));
+}

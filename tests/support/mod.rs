@@ -1,0 +1,119 @@
+//! Fixtures of the process-level tests: `railcontact serve` as a child
+//! process on an ephemeral loopback port, and `railcontact` runs.
+
+#![allow(dead_code)]
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, ChildStdout, Command, Output, Stdio};
+
+use serde_json::Value;
+
+/// The built command.
+pub const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
+
+/// A `railcontact serve` child process, killed when dropped.
+pub struct Server {
+    /// HOST:PORT it listens on.
+    pub addr: String,
+    child: Child,
+    _stdout: BufReader<ChildStdout>,
+    _dir: tempfile::TempDir,
+}
+
+impl Server {
+    /// Starts a server on 127.0.0.1, port 0, with its store in a fresh
+    /// temporary directory; waits for its `listening on` line.
+    pub fn start() -> Server {
+        let dir = tempfile::tempdir().unwrap();
+        let mut child = Command::new(BIN)
+            .args(["serve", "--listen", "127.0.0.1:0"])
+            .env("RAILCONTACT_DATA_DIR", dir.path())
+            .env("RUST_LOG", "warn")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("start railcontact serve");
+        let mut stdout = BufReader::new(child.stdout.take().unwrap());
+        let mut line = String::new();
+        stdout
+            .read_line(&mut line)
+            .expect("read the listening line");
+        let addr = line
+            .trim()
+            .strip_prefix("railcontact listening on ")
+            .unwrap_or_else(|| {
+                let _ = child.kill();
+                panic!("unexpected first line: {line:?}")
+            })
+            .to_string();
+        Server {
+            addr,
+            child,
+            _stdout: stdout,
+            _dir: dir,
+        }
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Runs `railcontact ARGS`.
+pub fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .stdin(Stdio::null())
+        .output()
+        .expect("run railcontact")
+}
+
+/// Runs `railcontact loadtest --json ARGS`; the parsed report and the
+/// output.
+pub fn loadtest_json(args: &[&str]) -> (Value, Output) {
+    let mut all = vec!["loadtest", "--json"];
+    all.extend_from_slice(args);
+    let out = run(&all);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let report: Value = serde_json::from_str(stdout.trim()).unwrap_or_else(|e| {
+        panic!(
+            "not one JSON object ({e}): {stdout}\nstderr: {}",
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    (report, out)
+}
+
+/// A number of the report.
+pub fn num(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+/// Checks what every clean report must hold: no errors, no mismatches,
+/// ordered percentiles, positive throughput, every step verified.
+pub fn assert_clean(v: &Value) {
+    assert_eq!(num(v, "errors"), 0.0, "errors: {}", v["first_errors"]);
+    assert_eq!(num(v, "mismatches"), 0.0, "{}", v["first_errors"]);
+    let (p50, p90, p99, max) = (
+        num(v, "p50_s"),
+        num(v, "p90_s"),
+        num(v, "p99_s"),
+        num(v, "max_s"),
+    );
+    assert!(
+        0.0 < p50 && p50 <= p90 && p90 <= p99 && p99 <= max,
+        "{p50} {p90} {p99} {max}"
+    );
+    assert!(num(v, "throughput_per_s") > 0.0);
+    assert_eq!(num(v, "verified_steps"), num(v, "steps"));
+    for (kind, b) in v["kinds"].as_object().expect("kinds") {
+        assert!(num(b, "steps") > 0.0, "{kind}: no steps");
+        assert!(num(b, "p50_s") <= num(b, "max_s"), "{kind}");
+    }
+}
