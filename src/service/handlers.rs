@@ -22,12 +22,12 @@ use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
-use crate::service::pool::{deadline_of, Admission, SolvePool};
+use crate::service::pool::{deadline_of, Admission, Lane, SolvePool};
 use crate::service::session::Session;
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
-use crate::wheelrail::{solve_wheelset, solve_wheelset_tabulated, SearchScratch};
+use crate::wheelrail::{solve_wheelset, solve_wheelset_tabulated, SearchScratch, WheelRailModel};
 
 /// Limits of the requests, from the server settings.
 #[derive(Debug, Clone, Copy)]
@@ -111,7 +111,7 @@ impl ContactHandlers {
         let fields = req.include_fields;
         let t0 = StdInstant::now();
         let result = admission
-            .run(move || {
+            .run_on(patch_lane(model), move || {
                 let mut engine = PatchEngine::new(valid, KernelCache::global())?;
                 if jacobian {
                     engine.enable_sensitivities()?;
@@ -150,7 +150,7 @@ impl ContactHandlers {
         };
         let t0 = StdInstant::now();
         let solved = admission
-            .run(move || {
+            .run_on(wheelrail_lane(model), move || {
                 let mut scratch = SearchScratch::default();
                 let cache = KernelCache::global();
                 match &table {
@@ -541,8 +541,9 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         tokio::spawn(
             async move {
                 let model = valid.case.model;
+                let lane = patch_lane(model);
                 let built = admission
-                    .run(move || PatchEngine::new(valid, KernelCache::global()))
+                    .run_on(lane, move || PatchEngine::new(valid, KernelCache::global()))
                     .await
                     .and_then(|r| r);
                 let mut engine = match built {
@@ -555,7 +556,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                 for (index, c) in points.into_iter().enumerate() {
                     let t = StdInstant::now();
                     let solved = admission
-                        .run(move || {
+                        .run_on(lane, move || {
                             engine.set_creepages(c);
                             let r = engine.solve(fields);
                             (engine, r)
@@ -648,6 +649,19 @@ impl Drop for SessionSlot {
     }
 }
 
+/// The solve lane of a patch model: Hertz and FASTSIM are fast.
+fn patch_lane(model: Model) -> Lane {
+    Lane::of(matches!(
+        model,
+        Model::Hertz | Model::HertzCorrected | Model::Fastsim
+    ))
+}
+
+/// The solve lane of a wheel/rail model: Hertz+FASTSIM is fast.
+fn wheelrail_lane(model: WheelRailModel) -> Lane {
+    Lane::of(model == WheelRailModel::HertzFastsim)
+}
+
 fn open_first() -> ServiceError {
     ServiceError::invalid("open", "the first message of a session must be `open`")
 }
@@ -733,7 +747,7 @@ impl ContactHandlers {
                         Ok(input) => match self.pool.admit(None) {
                             Ok(admission) => {
                                 let (s, r) = admission
-                                    .run(move || {
+                                    .run_on(wheelrail_lane(model), move || {
                                         let r = session.step(input);
                                         (session, r)
                                     })
@@ -857,8 +871,9 @@ impl ContactHandlers {
             Ok(a) => a,
             Err(e) => return Ok((session, Err(e))),
         };
+        let lane = patch_lane(session.engine().case().model);
         let (session, r) = admission
-            .run(move || {
+            .run_on(lane, move || {
                 let r = session.step(input);
                 (session, r)
             })
