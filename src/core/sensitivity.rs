@@ -45,6 +45,19 @@ pub struct ForceJacobian {
     pub solves: usize,
 }
 
+impl ForceJacobian {
+    /// The columns: approach, longitudinal, lateral, spin creepage; each
+    /// (Fn, Fx, Fy, Mz).
+    pub fn columns(&self) -> [[f64; 4]; 4] {
+        [
+            self.per_approach_m,
+            self.per_creepage_long,
+            self.per_creepage_lat,
+            self.per_spin_per_m,
+        ]
+    }
+}
+
 /// The inputs a Jacobian is taken about.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobianPoint {

@@ -330,19 +330,19 @@ pub fn step_of_solution(s: &ContactSolution) -> pb::StepResult {
 
 /// The wire form of a force Jacobian.
 pub fn sensitivities(j: &ForceJacobian) -> pb::Sensitivities {
-    let column = |c: [f64; 4]| {
+    let [a, l, t, s] = j.columns().map(|c| {
         Some(pb::ForceDerivatives {
             normal_force: c[0],
             fx: c[1],
             fy: c[2],
             mz: c[3],
         })
-    };
+    });
     pb::Sensitivities {
-        per_approach_m: column(j.per_approach_m),
-        per_creepage_long: column(j.per_creepage_long),
-        per_creepage_lat: column(j.per_creepage_lat),
-        per_spin_per_m: column(j.per_spin_per_m),
+        per_approach_m: a,
+        per_creepage_long: l,
+        per_creepage_lat: t,
+        per_spin_per_m: s,
         solves: j.solves as u32,
     }
 }
@@ -463,11 +463,30 @@ pub fn total_values(t: &pb::PatchTotals) -> [f64; 13] {
 /// as silent NaN).
 pub fn check_finite(r: &pb::PatchResult) -> Result<(), ServiceError> {
     for s in r.result.iter().chain(r.steps.iter()) {
-        let Some(t) = &s.totals else { continue };
-        if total_values(t).iter().any(|v| !v.is_finite()) {
-            return Err(ServiceError::Internal(format!(
-                "the solver produced a non-finite total ({t:?}); please report this case"
-            )));
+        if let Some(t) = &s.totals {
+            if total_values(t).iter().any(|v| !v.is_finite()) {
+                return Err(ServiceError::Internal(format!(
+                    "the solver produced a non-finite total ({t:?}); please report this case"
+                )));
+            }
+        }
+        if let Some(j) = &s.sensitivities {
+            let columns = [
+                j.per_approach_m,
+                j.per_creepage_long,
+                j.per_creepage_lat,
+                j.per_spin_per_m,
+            ];
+            let finite = |d: &pb::ForceDerivatives| {
+                [d.normal_force, d.fx, d.fy, d.mz]
+                    .iter()
+                    .all(|v| v.is_finite())
+            };
+            if !columns.iter().flatten().all(finite) {
+                return Err(ServiceError::Internal(format!(
+                    "the Jacobian of the forces is not finite ({j:?}); please report this case"
+                )));
+            }
         }
     }
     Ok(())
