@@ -726,11 +726,10 @@ impl ContactHandlers {
             false => None,
         };
         drop(admission);
-        let label = open.client_label.clone();
-        let mut session = WheelRailSession::open(entry, prepared, table, open)
+        let mut session = WheelRailSession::open(entry, prepared, table, &open)
             .map_err(|e| Status::from(e.within("open")))?;
         let model = session.model();
-        tracing::info!(label = %label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
+        tracing::info!(label = %open.client_label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
         let opened = Out::Opened(pb::WheelRailSessionOpened {
             session_id,
             pair_id: session.pair_id().to_string(),

@@ -7,6 +7,8 @@
 //! (`position.yaw_rad`, `velocity.forward_m_per_s`, `load.approach_m`) are
 //! the request's field paths.
 
+use crate::core::material::CombinedMaterial;
+use crate::core::problem::Friction;
 use crate::service::convert::{grid_info, planar_fields};
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
@@ -65,61 +67,113 @@ fn sides(s: i32) -> Result<Vec<Side>, ServiceError> {
     }
 }
 
+/// What a query or a session fixes besides the wheelset's motion: the
+/// wheels, materials, friction and solver settings.
+#[derive(Debug, Clone)]
+pub struct QuerySettings {
+    sides: Vec<Side>,
+    material: CombinedMaterial,
+    friction: Friction,
+    settings: WheelRailSettings,
+}
+
+impl QuerySettings {
+    /// The settings of a query or session on a pair with `pair`: the
+    /// request's model and sides, its friction and element size or the
+    /// pair's. Field paths are those of the request.
+    pub fn new(
+        model_field: i32,
+        sides_field: i32,
+        friction: Option<&pb::FrictionSection>,
+        element_size_m: Option<f64>,
+        pair: &PairSettings,
+    ) -> Result<Self, ServiceError> {
+        let friction = match friction {
+            Some(f) => pairs::friction(f)?,
+            None => pair.friction,
+        };
+        let element_size_m = match element_size_m {
+            Some(e) => {
+                pairs::check_element_size(e, "element_size_m")?;
+                e
+            }
+            None => pair.element_size_m,
+        };
+        Ok(Self {
+            sides: sides(sides_field)?,
+            material: pair.material,
+            friction,
+            settings: WheelRailSettings {
+                model: model(model_field)?,
+                element_size_m,
+                ..WheelRailSettings::default()
+            },
+        })
+    }
+
+    /// The model.
+    pub fn model(&self) -> WheelRailModel {
+        self.settings.model
+    }
+
+    /// The solver input of a motion under these settings. Field paths are
+    /// `position`, `velocity` and `load`.
+    pub fn input(
+        &self,
+        position: Option<pb::WheelsetPosition>,
+        velocity: Option<pb::WheelsetVelocity>,
+        load: Option<pb::WheelLoad>,
+    ) -> Result<WheelRailInput, ServiceError> {
+        let p = position.unwrap_or_default();
+        let v = velocity
+            .ok_or_else(|| ServiceError::invalid("velocity", "missing (forward_m_per_s > 0)"))?;
+        let load = match load.and_then(|l| l.load) {
+            Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
+            Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
+            None => {
+                return Err(ServiceError::invalid(
+                    "load",
+                    "missing: give vertical_force_n or approach_m",
+                ))
+            }
+        };
+        Ok(WheelRailInput {
+            position: WheelsetPosition {
+                lateral_m: p.lateral_m,
+                yaw_rad: p.yaw_rad,
+                roll_rad: p.roll_rad,
+            },
+            velocity: WheelsetVelocity {
+                forward_m_per_s: v.forward_m_per_s,
+                lateral_m_per_s: v.lateral_m_per_s,
+                vertical_m_per_s: v.vertical_m_per_s,
+                roll_rad_per_s: v.roll_rad_per_s,
+                yaw_rad_per_s: v.yaw_rad_per_s,
+                pitch_rad_per_s: v.pitch_rad_per_s,
+            },
+            load,
+            sides: self.sides.clone(),
+            material: self.material,
+            friction: self.friction,
+            settings: self.settings,
+        })
+    }
+}
+
 /// The solver input of a query on a pair with `settings`. Field paths are
 /// relative to the query.
 pub fn input(
     req: &pb::SolveWheelRailRequest,
     settings: &PairSettings,
 ) -> Result<WheelRailInput, ServiceError> {
-    let p = req.position.unwrap_or_default();
-    let v = req
-        .velocity
-        .ok_or_else(|| ServiceError::invalid("velocity", "missing (forward_m_per_s > 0)"))?;
-    let load = match req.load.and_then(|l| l.load) {
-        Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
-        Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
-        None => {
-            return Err(ServiceError::invalid(
-                "load",
-                "missing: give vertical_force_n or approach_m",
-            ))
-        }
-    };
-    let friction = match &req.friction {
-        Some(f) => pairs::friction(f)?,
-        None => settings.friction,
-    };
-    let element_size_m = match req.element_size_m {
-        Some(e) => {
-            pairs::check_element_size(e, "element_size_m")?;
-            e
-        }
-        None => settings.element_size_m,
-    };
-    Ok(WheelRailInput {
-        position: WheelsetPosition {
-            lateral_m: p.lateral_m,
-            yaw_rad: p.yaw_rad,
-            roll_rad: p.roll_rad,
-        },
-        velocity: WheelsetVelocity {
-            forward_m_per_s: v.forward_m_per_s,
-            lateral_m_per_s: v.lateral_m_per_s,
-            vertical_m_per_s: v.vertical_m_per_s,
-            roll_rad_per_s: v.roll_rad_per_s,
-            yaw_rad_per_s: v.yaw_rad_per_s,
-            pitch_rad_per_s: v.pitch_rad_per_s,
-        },
-        load,
-        sides: sides(req.sides)?,
-        material: settings.material,
-        friction,
-        settings: WheelRailSettings {
-            model: model(req.model)?,
-            element_size_m,
-            ..WheelRailSettings::default()
-        },
-    })
+    let q = QuerySettings::new(
+        req.model,
+        req.sides,
+        req.friction.as_ref(),
+        req.element_size_m,
+        settings,
+    )?;
+    q.input(req.position, req.velocity, req.load)
 }
 
 /// The wire query of a library input on the pair `pair_id` (the inverse

@@ -17,7 +17,7 @@ use crate::service::pairs::{PairEntry, PreparedPair};
 use crate::service::pb;
 use crate::service::session::Marks;
 use crate::service::status::ServiceError;
-use crate::service::wheelrail;
+use crate::service::wheelrail::{self, QuerySettings};
 use crate::wheelrail::{
     solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, SearchScratch, WarmStart,
     WheelRailInput, WheelRailModel,
@@ -38,8 +38,9 @@ pub struct WheelRailSession {
     prepared: Arc<PreparedPair>,
     /// The pair's contact table (model hertz_fastsim_table).
     table: Option<Arc<ContactTable>>,
-    open: pb::WheelRailSessionOpen,
-    model: WheelRailModel,
+    /// Send per-element fields with every step.
+    fields: bool,
+    settings: QuerySettings,
     scratch: SearchScratch,
     warm: WarmStart,
     marks: Marks<WarmStart>,
@@ -52,18 +53,21 @@ impl WheelRailSession {
         entry: Arc<PairEntry>,
         prepared: Arc<PreparedPair>,
         table: Option<Arc<ContactTable>>,
-        open: pb::WheelRailSessionOpen,
+        open: &pb::WheelRailSessionOpen,
     ) -> Result<Self, ServiceError> {
-        // Checks model, sides, friction and element size once, with a
-        // placeholder motion.
-        let probe = query(&open, &placeholder_step());
-        let input = wheelrail::input(&probe, &entry.spec.settings)?;
+        let settings = QuerySettings::new(
+            open.model,
+            open.sides,
+            open.friction.as_ref(),
+            open.element_size_m,
+            &entry.spec.settings,
+        )?;
         Ok(Self {
-            model: input.settings.model,
+            settings,
             entry,
             prepared,
             table,
-            open,
+            fields: open.include_fields,
             scratch: SearchScratch::default(),
             warm: WarmStart::default(),
             marks: Marks::new(),
@@ -77,14 +81,14 @@ impl WheelRailSession {
 
     /// The model that runs.
     pub fn model(&self) -> WheelRailModel {
-        self.model
+        self.settings.model()
     }
 
     /// The wire model of the session (as opened).
     pub fn wire_model(&self) -> pb::WheelRailModel {
         match &self.table {
             Some(_) => pb::WheelRailModel::HertzFastsimTable,
-            None => wheelrail::wire_model(self.model),
+            None => wheelrail::wire_model(self.model()),
         }
     }
 
@@ -103,7 +107,9 @@ impl WheelRailSession {
                 format!("must be finite, got {}", s.time_s),
             ));
         }
-        let input = wheelrail::input(&query(&self.open, s), &self.entry.spec.settings)
+        let input = self
+            .settings
+            .input(s.position, s.velocity, s.load)
             .map_err(|e| e.within("step"))?;
         Ok(WheelRailStep {
             index: s.step_index,
@@ -137,13 +143,8 @@ impl WheelRailSession {
                 .within("step")
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
-        let mut result = wheelrail::result(
-            self.pair_id(),
-            self.model,
-            &solution,
-            self.open.include_fields,
-        )
-        .map_err(|e| e.within("step"))?;
+        let mut result = wheelrail::result(self.pair_id(), self.model(), &solution, self.fields)
+            .map_err(|e| e.within("step"))?;
         result.model = self.wire_model() as i32;
         self.warm = warm;
         self.marks.done(step.index, step.mark, || warm);
@@ -160,38 +161,5 @@ impl WheelRailSession {
         let (warm, out) = self.marks.rollback(to)?;
         self.warm = warm;
         Ok(out)
-    }
-}
-
-/// A step with the least motion the checks accept, to check an opening
-/// message's own settings.
-fn placeholder_step() -> pb::WheelRailSessionStep {
-    pb::WheelRailSessionStep {
-        velocity: Some(pb::WheelsetVelocity {
-            forward_m_per_s: 1.0,
-            ..Default::default()
-        }),
-        load: Some(pb::WheelLoad {
-            load: Some(pb::wheel_load::Load::ApproachM(1e-5)),
-        }),
-        ..Default::default()
-    }
-}
-
-/// The one-shot query of a step in a session opened with `open`.
-fn query(
-    open: &pb::WheelRailSessionOpen,
-    s: &pb::WheelRailSessionStep,
-) -> pb::SolveWheelRailRequest {
-    pb::SolveWheelRailRequest {
-        pair_id: open.pair_id.clone(),
-        model: open.model,
-        sides: open.sides,
-        position: s.position,
-        velocity: s.velocity,
-        load: s.load,
-        friction: open.friction,
-        element_size_m: open.element_size_m,
-        include_fields: open.include_fields,
     }
 }
