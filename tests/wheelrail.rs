@@ -4,6 +4,7 @@
 //! tables against the direct search.
 
 use railcontact::core::cache::KernelCache;
+use railcontact::core::solution::SolveStatus;
 use railcontact::wheelrail::builtin::mbench_a22_input;
 use railcontact::wheelrail::{
     load_profile, solve_wheelset, solve_wheelset_tabulated, ContactTable, PatchResult,
@@ -144,22 +145,22 @@ fn a22_single_patch_cases_match_contact() {
     }
 }
 
+/// The right wheel of at 5 mm (two patches) with `model`.
+fn right_wheel_at_5mm(model: WheelRailModel) -> WheelRailSolution {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut input = a22_input(5.0, Some(-0.00035540), Some(-4.33536370), model);
+    input.sides = vec![Side::Right];
+    solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap()
+}
+
 /// At 5 mm the right wheel touches at the flange root and on the tread, 8 mm
 /// apart; CONTACT reports the two regions together: FN 9619, FX -763.3, FS
 /// -2738 N (mbench_a22_right.ref_out, case 11).
 #[test]
 fn a22_two_point_contact_at_5mm() {
-    let pair = mbench_pair();
-    let cache = KernelCache::default();
-    let mut scratch = SearchScratch::default();
-    let mut input = a22_input(
-        5.0,
-        Some(-0.00035540),
-        Some(-4.33536370),
-        WheelRailModel::Exact,
-    );
-    input.sides = vec![Side::Right];
-    let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+    let sol = right_wheel_at_5mm(WheelRailModel::Exact);
     let w = &sol.wheels[0];
     assert_eq!(w.patches.len(), 2);
     // Field side first: the tread patch, then the flange root.
@@ -170,6 +171,39 @@ fn a22_two_point_contact_at_5mm() {
     close("sum FX", sum(|p| p.fx_n), -763.3, 0.10, 0.0);
     close("sum FS", sum(|p| p.fs_n), -2738.0, 0.03, 0.0);
     close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
+    // The load iteration solves its first patches to looser tolerances
+    // (estimates that steer it); the answer comes from solves at the
+    // default ones (normal 1e-10, tangential 1e-7).
+    for p in &w.patches {
+        let info = &p.solution.as_ref().expect("exact patches keep fields").info;
+        assert_eq!(info.status, SolveStatus::Converged);
+        assert!(info.normal_residual < 1e-10, "{info:?}");
+        assert!(info.tangential_residual <= 1e-7, "{info:?}");
+    }
+    // Two patches: frictionless estimates, then frictional ones. Before the
+    // Hertzian law per patch (`hertz_root`) steered the frictionless ones,
+    // this wheel took 9 solves of both patches.
+    assert!(
+        w.load_iterations <= 7,
+        "{} load iterations",
+        w.load_iterations
+    );
+}
+
+#[test]
+fn two_hertzian_patches_balance_the_load_in_few_iterations() {
+    // With Hertz+FASTSIM each patch's vertical force follows
+    // c (delta - g)^(3/2), the law the frictionless steps fit per patch:
+    // 6 solves of both patches in all (9 with regula falsi alone).
+    let sol = right_wheel_at_5mm(WheelRailModel::HertzFastsim);
+    let w = &sol.wheels[0];
+    assert_eq!(w.patches.len(), 2);
+    close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
+    assert!(
+        w.load_iterations <= 6,
+        "{} load iterations",
+        w.load_iterations
+    );
 }
 
 #[test]

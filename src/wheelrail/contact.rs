@@ -320,6 +320,7 @@ impl PatchWork {
         &mut self,
         load: NormalLoad,
         frictional: bool,
+        accuracy: Accuracy,
         input: &WheelRailInput,
         fastsim: &mut Fastsim,
         cache: &KernelCache,
@@ -341,6 +342,7 @@ impl PatchWork {
                 } else {
                     Kinematics::Frictionless
                 };
+                problem.settings = accuracy.settings(&input.settings.solver);
                 let sol = solver
                     .solve(problem)?
                     .pop()
@@ -1027,6 +1029,41 @@ fn conformal_geometry(
     )?)
 }
 
+/// How accurately the load iteration solves a patch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Accuracy {
+    /// With the input's solver settings: every solution the load iteration
+    /// returns comes from such a solve.
+    Final,
+    /// An iterate that only steers the load iteration (the bracket of the
+    /// approach, the creep force's vertical part): the normal and
+    /// tangential tolerances loosened to [`ESTIMATE_NORMAL_TOLERANCE`] and
+    /// [`ESTIMATE_TANGENTIAL_TOLERANCE`] (never tightened). The next solve
+    /// starts from it.
+    Estimate,
+}
+
+/// Normal tolerance of an [`Accuracy::Estimate`] solve (relative pressure
+/// change per iteration; the default of a final solve is 1e-10).
+pub(crate) const ESTIMATE_NORMAL_TOLERANCE: f64 = 1e-6;
+/// Tangential tolerance of an [`Accuracy::Estimate`] solve (natural
+/// residual relative to max mu p_n; the default of a final solve is 1e-7).
+/// Its force error, about 1e-5 of mu F_n, moves the vertical force of a
+/// tread contact (creep force's vertical share a few percent) by less than
+/// the default load tolerance, 1e-6 of the load.
+pub(crate) const ESTIMATE_TANGENTIAL_TOLERANCE: f64 = 1e-4;
+
+impl Accuracy {
+    fn settings(self, solver: &SolverSettings) -> SolverSettings {
+        let mut s = *solver;
+        if self == Accuracy::Estimate {
+            s.normal.tolerance = s.normal.tolerance.max(ESTIMATE_NORMAL_TOLERANCE);
+            s.tangential.tolerance = s.tangential.tolerance.max(ESTIMATE_TANGENTIAL_TOLERANCE);
+        }
+        s
+    }
+}
+
 pub(crate) enum LoadResult {
     Done { delta: f64, iterations: usize },
     CapTooSmall,
@@ -1038,6 +1075,7 @@ fn solve_all(
     patches: &mut [PatchWork],
     delta: f64,
     frictional: bool,
+    accuracy: Accuracy,
     input: &WheelRailInput,
     fastsim: &mut Fastsim,
     cache: &KernelCache,
@@ -1047,6 +1085,7 @@ fn solve_all(
         p.solve(
             NormalLoad::Approach(delta * p.nz),
             frictional,
+            accuracy,
             input,
             fastsim,
             cache,
@@ -1087,7 +1126,7 @@ pub(crate) fn load_iteration(
 ) -> Result<LoadResult, PatchErr> {
     let target = match input.load {
         WheelLoad::Approach(d) => {
-            solve_all(patches, d, true, input, fastsim, cache)?;
+            solve_all(patches, d, true, Accuracy::Final, input, fastsim, cache)?;
             return Ok(LoadResult::Done {
                 delta: d,
                 iterations: 1,
@@ -1112,10 +1151,18 @@ pub(crate) fn load_iteration(
                     ),
                 ));
             }
-            p.solve(NormalLoad::NormalForce(fn_n), true, input, fastsim, cache)
-                .map_err(|e| (0, e))?;
+            let accuracy = frictional_accuracy(last.is_none(), it, max_it);
+            p.solve(
+                NormalLoad::NormalForce(fn_n),
+                true,
+                accuracy,
+                input,
+                fastsim,
+                cache,
+            )
+            .map_err(|e| (0, e))?;
             let r = p.vertical_n() - target;
-            if r.abs() <= tol || it == max_it {
+            if accuracy == Accuracy::Final && (r.abs() <= tol || it == max_it) {
                 let delta = p.out.approach_m / p.nz;
                 if delta > cap {
                     return Ok(LoadResult::CapTooSmall);
@@ -1138,15 +1185,18 @@ pub(crate) fn load_iteration(
         }
         unreachable!("the loop returns at it == max_it");
     }
-    // Several patches: regula falsi (Illinois) on F^(2/3), nearly linear
-    // in the approach, with frictionless solves; then secant steps on the
-    // full vertical force, creep forces included.
+    // Several patches: with frictionless estimates, the root of the
+    // patches' Hertzian laws fitted to the last solve ([`hertz_root`]),
+    // safeguarded by regula falsi (Illinois) on F^(2/3), nearly linear in
+    // the approach; then secant steps on the full vertical force, creep
+    // forces included.
     let gmin = patches
         .iter()
         .map(|p| p.hmin / p.nz)
         .fold(f64::INFINITY, f64::min);
+    let estimate = Accuracy::Estimate;
     let mut iterations = 1;
-    let fz_hi = solve_all(patches, cap, false, input, fastsim, cache)?;
+    let fz_hi = solve_all(patches, cap, false, estimate, input, fastsim, cache)?;
     if fz_hi < target {
         return Ok(LoadResult::CapTooSmall);
     }
@@ -1155,12 +1205,18 @@ pub(crate) fn load_iteration(
     let (mut hi, mut fhi, mut fz_hi) = (cap, phi(fz_hi), fz_hi);
     let mut delta = cap;
     let mut side = 0;
+    let mut law = hertz_root(patches, delta, target, lo, hi);
     // A coarse tolerance here: the creep forces move the target anyway.
     let coarse = (1e3 * tol).min(1e-3 * target);
-    while iterations < max_it {
-        delta = hi - fhi * (hi - lo) / (fhi - flo);
-        let fz = solve_all(patches, delta, false, input, fastsim, cache)?;
+    // The last iteration is left to a final frictional solve.
+    while iterations + 1 < max_it {
+        delta = match law {
+            Some((root, _)) => root,
+            None => hi - fhi * (hi - lo) / (fhi - flo),
+        };
+        let fz = solve_all(patches, delta, false, estimate, input, fastsim, cache)?;
         iterations += 1;
+        law = hertz_root(patches, delta, target, lo.max(gmin), hi);
         if (fz - target).abs() <= coarse {
             break;
         }
@@ -1178,13 +1234,19 @@ pub(crate) fn load_iteration(
             }
             side = -1;
         }
+        // The law's root must stay inside the bracket.
+        law = law.filter(|&(root, _)| root > lo && root < hi);
     }
-    let mut slope = (fz_hi - fz_lo) / (hi - lo);
+    let mut slope = match law {
+        Some((_, s)) => s,
+        None => (fz_hi - fz_lo) / (hi - lo),
+    };
     let mut last: Option<(f64, f64)> = None;
-    while iterations < max_it {
-        let fz = solve_all(patches, delta, true, input, fastsim, cache)?;
+    loop {
+        let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it);
+        let fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
         iterations += 1;
-        if (fz - target).abs() <= tol {
+        if accuracy == Accuracy::Final && ((fz - target).abs() <= tol || iterations >= max_it) {
             break;
         }
         if let Some((d0, f0)) = last {
@@ -1200,6 +1262,62 @@ pub(crate) fn load_iteration(
         }
     }
     Ok(LoadResult::Done { delta, iterations })
+}
+
+/// The accuracy of frictional solve number `it` (from 1) of a load
+/// iteration: the first one (`first`) only estimates the creep forces'
+/// vertical part, when a final solve can follow; the rest are final.
+/// (Estimating until the vertical force is within the coarse tolerance
+/// was tried: single-patch wheels then took three solves instead of two,
+/// and the Manchester wheelset step was slower at every shift.)
+fn frictional_accuracy(first: bool, it: usize, max_it: usize) -> Accuracy {
+    if first && it < max_it {
+        Accuracy::Estimate
+    } else {
+        Accuracy::Final
+    }
+}
+
+/// Each patch's vertical force as a Hertzian law of the wheel's vertical
+/// approach, V_k = c_k (delta - g_k)^(3/2) (g_k its smallest vertical gap,
+/// c_k fitted to its last solve, at approach `at`): the approach in
+/// (`lo`, `hi`) where their sum is `target`, and the sum's slope there;
+/// None when the laws do not bracket the target there.
+fn hertz_root(patches: &[PatchWork], at: f64, target: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let law = |p: &PatchWork| {
+        let g = p.hmin / p.nz;
+        let v = p.out.fn_n * p.nz;
+        (v > 0.0 && at > g).then(|| (v / (at - g).powf(1.5), g))
+    };
+    let value = |d: f64| -> f64 {
+        patches
+            .iter()
+            .filter_map(law)
+            .map(|(c, g)| c * (d - g).max(0.0).powf(1.5))
+            .sum()
+    };
+    if !(value(lo) < target && value(hi) > target) {
+        return None;
+    }
+    let (mut a, mut b) = (lo, hi);
+    for _ in 0..100 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if value(m) < target {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    let root = 0.5 * (a + b);
+    let slope: f64 = patches
+        .iter()
+        .filter_map(law)
+        .map(|(c, g)| 1.5 * c * (root - g).max(0.0).sqrt())
+        .sum();
+    (slope > 0.0).then_some((root, slope))
 }
 
 /// Variation of the rail's contact angle over the loaded lateral lines of
