@@ -12,7 +12,7 @@
 //!
 //! | `service/solve_wheel_rail/hertz_fastsim` | SolveWheelRail on the built-in pair `mbench_s1002_uic60`: Manchester at 6.5 mm (roll and pitch rate given), both wheels, Hertz+FASTSIM per patch |
 //! | `service/solve_wheel_rail/exact` | the same with the exact model at 0.2 mm elements |
-//! | `service/register_pair/builtin_new` | RegisterProfilePair round trip of the built-in pair's spec made new each time (smoothing wavelength changed by 1e-12 m): read, smooth, place, all progress messages |
+//! | `service/register_pair/builtin_new` | RegisterProfilePair round trip of the built-in pair's spec made new each time (smoothing wavelength changed by 1e-12 m): read, smooth, place, build the contact table, all progress messages |
 //! | `service/prepare_pair/builtin` | the preparation alone, in process: canonical form and id, profiles read, smoothed and placed |
 //!
 //! Targets (issue 5): Hertz+FASTSIM step under 150 µs, planar exact 40 x 40

@@ -383,10 +383,17 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
             S::WheelParsed,
             S::RailParsed,
             S::Placed,
+            S::TableBuilt,
             S::Stored,
             S::Ready
         ]
         .map(|s| s as i32)
+    );
+    // Registration builds the contact table.
+    assert!(
+        msgs[4].message.starts_with("contact table built"),
+        "{}",
+        msgs[4].message
     );
     let ready = msgs.last().unwrap();
     assert!(!ready.already_registered);

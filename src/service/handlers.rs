@@ -228,11 +228,12 @@ fn fraction_done(stage: pb::RegistrationStage) -> f64 {
     use pb::RegistrationStage as S;
     match stage {
         S::Unspecified => 0.0,
-        S::Validated => 0.05,
-        S::WheelParsed => 0.2,
-        S::RailParsed => 0.35,
-        S::Placed => 0.9,
-        S::Stored => 0.95,
+        S::Validated => 0.01,
+        S::WheelParsed => 0.02,
+        S::RailParsed => 0.03,
+        S::Placed => 0.05,
+        S::TableBuilt => 0.95,
+        S::Stored => 0.97,
         S::Ready => 1.0,
     }
 }
@@ -272,12 +273,29 @@ async fn register(
     if !(existed && entry.is_ready()) {
         let s = send.clone();
         let progress: Arc<Progress> = Arc::new(move |stage, m: &str| s(stage, m, None, false));
-        if let Err(e) = registry.prepared(&entry, admission, progress).await {
-            if !existed {
-                registry.abandon(&entry);
+        let prepared = match registry.prepared(&entry, admission, progress).await {
+            Ok(p) => p,
+            Err(e) => {
+                if !existed {
+                    registry.abandon(&entry);
+                }
+                return Err(e);
             }
-            return Err(e);
-        }
+        };
+        // The contact table: only model hertz_fastsim_table needs it, so a
+        // pair whose table cannot be built is still registered.
+        let message = match prepared.table(admission).await {
+            Ok(t) => format!(
+                "contact table built: {} nodes in {:.2} s",
+                t.node_count(),
+                t.build_time_s()
+            ),
+            Err(e) => {
+                tracing::warn!(pair_id = %entry.spec.id, error = %e, "contact table not built");
+                format!("contact table not built ({e}); model hertz_fastsim_table will fail for this pair, the others do not need it")
+            }
+        };
+        send(pb::RegistrationStage::TableBuilt, &message, None, false);
         let (r, e) = (registry.clone(), entry.clone());
         if admission.run(move || r.persist(&e)).await?? {
             send(

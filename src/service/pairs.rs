@@ -16,10 +16,11 @@
 //! # Life of a pair
 //!
 //! Registering inserts an entry (state PREPARING), prepares it on the solve
-//! pool, writes the canonical registration to the store and marks it
-//! READY. A failed preparation removes the entry again. After a restart the
-//! stored registrations come back as entries in state STORED and are
-//! prepared on first use; the preparation of an entry runs once however
+//! pool, builds its contact table, writes the canonical registration to the
+//! store and marks it READY. A failed preparation removes the entry again
+//! (a table that cannot be built does not: only one model needs it). After
+//! a restart the stored registrations come back as entries in state STORED
+//! and are prepared, and their tables built, on first use; the preparation of an entry runs once however
 //! many requests ask for it at the same time (a [`tokio::sync::OnceCell`]).
 //! No lock is held across an await or a preparation; store writes and the
 //! registry's map change together under the store's lock, so a delete and
@@ -365,7 +366,8 @@ pub struct PreparedPair {
     summaries: [Option<pb::ProfileSummary>; 4],
     /// Preparation time [s].
     prepare_time_s: f64,
-    /// The contact table, built on first use.
+    /// The contact table: built at registration, or on first use (pairs
+    /// restored after a restart).
     table: tokio::sync::OnceCell<Arc<ContactTable>>,
 }
 

@@ -61,11 +61,12 @@ impl Lane {
     }
 }
 
-/// An admitted request: holds a queue slot until dropped.
+/// An admitted request: holds a queue slot until dropped (none for the
+/// server's own work, see [`SolvePool::internal`]).
 pub struct Admission {
     pool: SolvePool,
     deadline: Option<Instant>,
-    _slot: OwnedSemaphorePermit,
+    _slot: Option<OwnedSemaphorePermit>,
 }
 
 impl SolvePool {
@@ -94,8 +95,20 @@ impl SolvePool {
         Ok(Admission {
             pool: self.clone(),
             deadline,
-            _slot: slot,
+            _slot: Some(slot),
         })
+    }
+
+    /// An admission for the server's own background work (the built-in
+    /// pair's contact table at start): it runs on the workers like a
+    /// request, but takes no queue slot, so clients never find the queue
+    /// full because of it.
+    pub fn internal(&self) -> Admission {
+        Admission {
+            pool: self.clone(),
+            deadline: None,
+            _slot: None,
+        }
     }
 
     /// Requests admitted now (running or waiting).

@@ -8,7 +8,8 @@
 //!
 //! At start the store of profile pairs is opened (`data_dir`), its pairs
 //! restored (prepared on first use), and the built-in pair
-//! `mbench_s1002_uic60` registered and prepared.
+//! `mbench_s1002_uic60` registered and prepared; its contact table is built
+//! in the background once the server listens.
 
 use std::net::SocketAddr;
 use std::sync::Arc;
@@ -50,11 +51,20 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
         pairs::canonicalize(&pairs::builtin_registration()).map_err(std::io::Error::other)?;
     let (entry, _) = pairs.begin(spec);
     let admission = pool.admit(None).map_err(std::io::Error::other)?;
-    pairs
+    let prepared = pairs
         .prepared(&entry, &admission, Arc::new(|_, _| {}))
         .await
         .map_err(std::io::Error::other)?;
     tracing::info!(pair = pairs::BUILTIN_PAIR, pair_id = %entry.spec.id, seconds = t0.elapsed().as_secs_f64(), "built-in profile pair ready");
+    // Its contact table (about a second) is built in the background, so
+    // that the server listens at once; a hertz_fastsim_table request that
+    // comes first waits for the same build.
+    let background = pool.internal();
+    tokio::spawn(async move {
+        if let Err(e) = prepared.table(&background).await {
+            tracing::warn!(error = %e, "contact table of the built-in pair not built");
+        }
+    });
     Ok(())
 }
 

@@ -50,6 +50,7 @@ class RegistrationStage(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     REGISTRATION_STAGE_WHEEL_PARSED: _ClassVar[RegistrationStage]
     REGISTRATION_STAGE_RAIL_PARSED: _ClassVar[RegistrationStage]
     REGISTRATION_STAGE_PLACED: _ClassVar[RegistrationStage]
+    REGISTRATION_STAGE_TABLE_BUILT: _ClassVar[RegistrationStage]
     REGISTRATION_STAGE_STORED: _ClassVar[RegistrationStage]
     REGISTRATION_STAGE_READY: _ClassVar[RegistrationStage]
 
@@ -108,6 +109,7 @@ REGISTRATION_STAGE_VALIDATED: RegistrationStage
 REGISTRATION_STAGE_WHEEL_PARSED: RegistrationStage
 REGISTRATION_STAGE_RAIL_PARSED: RegistrationStage
 REGISTRATION_STAGE_PLACED: RegistrationStage
+REGISTRATION_STAGE_TABLE_BUILT: RegistrationStage
 REGISTRATION_STAGE_STORED: RegistrationStage
 REGISTRATION_STAGE_READY: RegistrationStage
 PROFILE_PAIR_STATE_UNSPECIFIED: ProfilePairState
