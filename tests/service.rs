@@ -457,9 +457,11 @@ async fn transient_session_matches_the_batch_solve_and_rolls_back_bit_for_bit() 
         "{}",
         e.message
     );
+    assert_eq!(e.field, "step.step_index");
     let e = error(&r[5]);
     assert_eq!(e.code, Code::FailedPrecondition as i32);
     assert!(e.message.contains("marked: 0"), "{}", e.message);
+    assert_eq!(e.field, "rollback.to_step_index");
     match &r[6].kind {
         Some(pb::session_response::Kind::RolledBack(b)) => assert_eq!(b.next_step_index, 1),
         other => panic!("{other:?}"),

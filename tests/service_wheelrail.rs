@@ -836,12 +836,14 @@ async fn wheel_rail_session_warm_starts_as_the_library_and_rolls_back_bit_for_bi
     let e = error(5);
     assert_eq!(e.code, Code::FailedPrecondition as i32, "{e:?}");
     assert!(e.message.contains("expects step 4"), "{}", e.message);
+    assert_eq!(e.field, "step.step_index");
     let e = error(6);
     assert_eq!(e.code, Code::InvalidArgument as i32, "{e:?}");
     assert_eq!(e.field, "step.velocity");
     let e = error(7);
     assert_eq!(e.code, Code::FailedPrecondition as i32);
     assert!(e.message.contains("marked: 1"), "{}", e.message);
+    assert_eq!(e.field, "rollback.to_step_index");
     match &r[8] {
         Out::RolledBack(b) => assert_eq!((b.to_step_index, b.next_step_index), (1, 2)),
         other => panic!("{other:?}"),

@@ -685,7 +685,10 @@ fn open_first() -> ServiceError {
 }
 
 fn already_open() -> ServiceError {
-    ServiceError::Precondition("the session is already open: send steps or a rollback".into())
+    ServiceError::precondition(
+        "open",
+        "the session is already open: send steps or a rollback",
+    )
 }
 
 /// A refused session request, answered in-band.

@@ -709,7 +709,7 @@ impl PairRegistry {
                     entry.spec.id
                 );
                 *entry.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(m.clone());
-                Err(ServiceError::Precondition(m))
+                Err(ServiceError::precondition("", m))
             }
             other => other,
         }
@@ -745,9 +745,10 @@ impl PairRegistry {
         let store = self.store();
         let entry = self.lookup(id)?;
         if let Some(name) = entry.spec.builtin_pair {
-            return Err(ServiceError::Precondition(format!(
-                "'{name}' is a built-in pair and cannot be deleted"
-            )));
+            return Err(ServiceError::precondition(
+                "pair_id",
+                format!("'{name}' is a built-in pair and cannot be deleted"),
+            ));
         }
         self.write().remove(&entry.spec.id);
         if let Some(s) = store.as_ref() {

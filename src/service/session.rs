@@ -78,12 +78,15 @@ impl<T: Clone> Marks<T> {
         if index == self.next_step {
             return Ok(());
         }
-        Err(ServiceError::Precondition(format!(
-            "step_index {index} is out of order: this session expects step {} next \
+        Err(ServiceError::precondition(
+            "step.step_index",
+            format!(
+                "step_index {index} is out of order: this session expects step {} next \
              (steps are consecutive from 0; to repeat earlier steps, roll back to a marked step{})",
-            self.next_step,
-            self.list()
-        )))
+                self.next_step,
+                self.list()
+            ),
+        ))
     }
 
     /// Step `index` succeeded; `state` (the state after it) is kept when
@@ -102,10 +105,13 @@ impl<T: Clone> Marks<T> {
     /// the mark itself stays.
     pub fn rollback(&mut self, to: u64) -> Result<(T, pb::SessionRolledBack), ServiceError> {
         let state = self.marks.get(&to).cloned().ok_or_else(|| {
-            ServiceError::Precondition(format!(
-                "step {to} is not marked in this session{}; mark a step with `mark = true`",
-                self.list()
-            ))
+            ServiceError::precondition(
+                "rollback.to_step_index",
+                format!(
+                    "step {to} is not marked in this session{}; mark a step with `mark = true`",
+                    self.list()
+                ),
+            )
         })?;
         self.marks.split_off(&(to + 1));
         self.next_step = to + 1;
@@ -192,7 +198,7 @@ impl Session {
     pub fn check_step(&self, s: &pb::SessionStep) -> Result<StepInput, ServiceError> {
         self.marks.check_order(s.step_index)?;
         if !self.engine.history_intact() {
-            return Err(ServiceError::Precondition(format!(
+            return Err(ServiceError::precondition("", format!(
                 "a previous step was rejected by the solver after it had started (the patch reached \
                  the grid border), so the session's history is no longer that of step {}; roll back \
                  to a marked step{} or open a new session with a larger grid window",

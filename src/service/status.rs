@@ -33,8 +33,15 @@ pub enum ServiceError {
     NotFound(String),
     /// The request does not fit the current state, e.g. a session step out
     /// of order or a rollback to an unmarked step (FAILED_PRECONDITION).
-    #[error("{0}")]
-    Precondition(String),
+    #[error("{reason}")]
+    Precondition {
+        /// Path of the request field that does not fit the state
+        /// (`step.step_index`); empty when no field of the request is at
+        /// fault.
+        field: String,
+        /// What does not fit and what to do.
+        reason: String,
+    },
     /// The solve queue is full or too many sessions are open; retry later
     /// (RESOURCE_EXHAUSTED).
     #[error("{0}")]
@@ -52,6 +59,14 @@ pub enum ServiceError {
 }
 
 impl ServiceError {
+    /// Shorthand for [`ServiceError::Precondition`].
+    pub fn precondition(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        ServiceError::Precondition {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+
     /// Shorthand for [`ServiceError::Invalid`].
     pub fn invalid(field: impl Into<String>, reason: impl Into<String>) -> Self {
         ServiceError::Invalid {
@@ -65,7 +80,7 @@ impl ServiceError {
         match self {
             ServiceError::Invalid { .. } => Code::InvalidArgument,
             ServiceError::NotFound(_) => Code::NotFound,
-            ServiceError::Precondition(_) => Code::FailedPrecondition,
+            ServiceError::Precondition { .. } => Code::FailedPrecondition,
             ServiceError::Exhausted(_) => Code::ResourceExhausted,
             ServiceError::Deadline(_) => Code::DeadlineExceeded,
             ServiceError::Unavailable(_) => Code::Unavailable,
@@ -112,7 +127,9 @@ impl ServiceError {
             code: self.code() as i32,
             message: self.to_string(),
             field: match self {
-                ServiceError::Invalid { field, .. } => field.clone(),
+                ServiceError::Invalid { field, .. } | ServiceError::Precondition { field, .. } => {
+                    field.clone()
+                }
                 _ => String::new(),
             },
         }
