@@ -172,3 +172,22 @@ def test_wheelrail_session_exact_with_fields(client):
     assert wheel.side == "right" and patch.method == "exact"
     assert patch.fields.pressure_pa.shape == (patch.grid.ny, patch.grid.nx)
     assert patch.fields.pressure_pa.max() == pytest.approx(patch.max_pressure_pa)
+
+
+def test_a_pair_the_server_lost_is_registered_again(client, server):
+    # Another client deletes the pair (as a replica that never saw the
+    # registration, or a server restarted without its store, would answer):
+    # this client registers it again and retries, once.
+    info = client.register_pair(_mbench_spec(0.0031), label="lost")
+    with railcontact.Client(server, timeout_s=120) as other:
+        other.delete_pair(info.pair_id)
+        r = client.solve_wheelrail(info.pair_id, velocity=V, load=LOAD, model="hertz_fastsim")
+        assert r.pair_id == info.pair_id and len(r.wheels) == 2
+        other.delete_pair(info.pair_id)
+        with client.wheelrail_session(info.pair_id, model="hertz_fastsim") as s:
+            assert s.pair_id == info.pair_id
+    # A pair this client deleted stays deleted.
+    client.delete_pair(info.pair_id)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_wheelrail(info.pair_id, velocity=V, load=LOAD, model="hertz_fastsim")
+    assert e.value.code == grpc.StatusCode.NOT_FOUND

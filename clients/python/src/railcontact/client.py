@@ -75,6 +75,11 @@ class Client:
     module, for everything this API does not cover.
 
     Every failure raises :class:`railcontact.RailcontactError`.
+
+    Pairs this client registered are registered again, once, when a
+    wheel/rail call on one of them answers NOT_FOUND (a registration reaches
+    one replica behind a balancer; a server restarted without its store),
+    and the call is retried; a pair this client deleted is not.
     """
 
     def __init__(
@@ -94,6 +99,8 @@ class Client:
         self.timeout_s = timeout_s
         self.channel = channel or grpc.insecure_channel(target, options=options or default_options)
         self.stub = pb_grpc.ContactServiceStub(self.channel)
+        # Pair id -> the RegisterProfilePairRequest that registered it.
+        self._registrations: dict = {}
 
     def close(self) -> None:
         """Closes the channel."""
@@ -238,6 +245,12 @@ class Client:
             request.builtin_pair = builtin
         else:
             request.spec.CopyFrom(build(pb.ProfilePairSpec, spec, "spec"))
+        info = self._register(request, progress)
+        self._registrations[info.pair_id] = request
+        return info
+
+    def _register(self, request: pb.RegisterProfilePairRequest, progress=None) -> ProfilePairInfo:
+        """Sends a registration; its READY pair."""
         last = None
         for message in _stream(_call(self.stub.RegisterProfilePair, request, timeout=self.timeout_s)):
             last = from_pb(RegistrationProgress, message)
@@ -259,6 +272,7 @@ class Client:
 
     def delete_pair(self, pair_id: str) -> None:
         """Removes a pair (not a built-in one)."""
+        self._registrations.pop(pair_id, None)
         _call(self.stub.DeleteProfilePair, pb.DeleteProfilePairRequest(pair_id=pair_id), timeout=self.timeout_s)
 
     # -- wheelsets ---------------------------------------------------------
@@ -298,8 +312,22 @@ class Client:
             element_size_m=element_size_m,
             include_fields=include_fields,
         )
-        response = _call(self.stub.SolveWheelRail, request, timeout=self.timeout_s)
+        response = self._on_pair(
+            pair_id, lambda: _call(self.stub.SolveWheelRail, request, timeout=self.timeout_s)
+        )
         return from_pb(WheelRailResult, response.result)
+
+    def _on_pair(self, pair_id: str, call: Callable[[], Any]) -> Any:
+        """``call()``; registers the pair again and retries once when it
+        answers NOT_FOUND for a pair this client registered."""
+        try:
+            return call()
+        except RailcontactError as e:
+            request = self._registrations.get(pair_id)
+            if e.code != grpc.StatusCode.NOT_FOUND or request is None:
+                raise
+            self._register(request)
+            return call()
 
     def solve_wheelrail_batch(self, queries: Iterable[Union[Mapping, pb.SolveWheelRailRequest]]) -> list:
         """Solves many wheelset queries in parallel. Each query is a
@@ -344,7 +372,10 @@ class Client:
             client_label=label,
         )
         opening = build(pb.WheelRailSessionOpen, values, "open")
-        return WheelRailSession(self.stub.WheelRailSession, pb.WheelRailSessionRequest(open=opening))
+        return self._on_pair(
+            pair_id,
+            lambda: WheelRailSession(self.stub.WheelRailSession, pb.WheelRailSessionRequest(open=opening)),
+        )
 
 
 def wheelrail_request(
