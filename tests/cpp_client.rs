@@ -8,10 +8,14 @@
 //! itself, which exits non-zero otherwise). This test checks the exit
 //! status and that the printed trajectory is physically sound.
 
-use std::io::{BufRead, BufReader, Read};
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
+
+mod support;
+
+use support::{check, Server};
 
 /// What the client's CMake project needs (Debian 12 names).
 const PACKAGES: &[&str] = &[
@@ -60,16 +64,6 @@ fn as_root(args: &[&str]) -> Output {
         .stdin(Stdio::null())
         .output()
         .unwrap_or_else(|e| panic!("cannot run {args:?} (as root or with sudo -n): {e}"))
-}
-
-fn check(what: &str, output: &Output) {
-    assert!(
-        output.status.success(),
-        "{what} failed ({}):\n--- stdout\n{}\n--- stderr\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
 }
 
 /// Installs the packages that are missing; fails the test when it cannot.
@@ -127,62 +121,6 @@ fn build_client() -> PathBuf {
         .expect("cmake --build runs");
     check("cmake --build", &make);
     build.join("cosim_wheelset")
-}
-
-/// The server binary on 127.0.0.1:0 with its store in a temporary folder;
-/// killed when dropped.
-struct Server {
-    child: Child,
-    addr: String,
-    log: PathBuf,
-    _data: tempfile::TempDir,
-}
-
-impl Server {
-    fn start() -> Server {
-        let data = tempfile::tempdir().unwrap();
-        let log = data.path().join("server.log");
-        let mut child = Command::new(env!("CARGO_BIN_EXE_railcontact"))
-            .args(["serve", "--listen", "127.0.0.1:0"])
-            .env("RAILCONTACT_DATA_DIR", data.path().join("store"))
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(std::fs::File::create(&log).unwrap())
-            .spawn()
-            .expect("server starts");
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut line)
-            .expect("server prints its address");
-        let addr = line
-            .trim()
-            .strip_prefix("railcontact listening on ")
-            .unwrap_or_else(|| {
-                let _ = child.kill();
-                panic!(
-                    "unexpected first line {line:?}; server log:\n{}",
-                    std::fs::read_to_string(&log).unwrap_or_default()
-                )
-            })
-            .to_string();
-        Server {
-            child,
-            addr,
-            log,
-            _data: data,
-        }
-    }
-
-    fn log(&self) -> String {
-        std::fs::read_to_string(&self.log).unwrap_or_default()
-    }
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
 }
 
 /// Runs `command`, killing it after `limit`.

@@ -12,7 +12,7 @@ use std::process::{Command, Output};
 
 use sha2::{Digest, Sha256};
 
-const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
+mod support;
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -23,13 +23,7 @@ fn run(what: &str, command: &mut Command) -> Output {
     let output = command
         .output()
         .unwrap_or_else(|e| panic!("{what}: cannot run {command:?}: {e}"));
-    assert!(
-        output.status.success(),
-        "{what} failed ({}):\n--- stdout\n{}\n--- stderr\n{}",
-        output.status,
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
+    support::check(what, &output);
     output
 }
 
@@ -81,7 +75,7 @@ fn python_client_tests_pass_against_this_server() {
             .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
             .arg(repo().join("clients").join("python").join("tests"))
             .current_dir(repo().join("clients").join("python"))
-            .env("RAILCONTACT_BIN", BIN)
+            .env("RAILCONTACT_BIN", support::BIN)
             .env("PYTHONDONTWRITEBYTECODE", "1"),
     );
     let stdout = String::from_utf8_lossy(&output.stdout);

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
 use std::process::{Child, ChildStdout, Command, Output, Stdio};
 
 use serde_json::Value;
@@ -17,21 +18,25 @@ pub struct Server {
     pub addr: String,
     child: Child,
     _stdout: BufReader<ChildStdout>,
+    /// Its standard error.
+    log: PathBuf,
     _dir: tempfile::TempDir,
 }
 
 impl Server {
     /// Starts a server on 127.0.0.1, port 0, with its store in a fresh
-    /// temporary directory; waits for its `listening on` line.
+    /// temporary directory and its log in a file there; waits for its
+    /// `listening on` line.
     pub fn start() -> Server {
         let dir = tempfile::tempdir().unwrap();
+        let log = dir.path().join("server.log");
         let mut child = Command::new(BIN)
             .args(["serve", "--listen", "127.0.0.1:0"])
-            .env("RAILCONTACT_DATA_DIR", dir.path())
+            .env("RAILCONTACT_DATA_DIR", dir.path().join("store"))
             .env("RUST_LOG", "warn")
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
+            .stderr(std::fs::File::create(&log).expect("create the server log"))
             .spawn()
             .expect("start railcontact serve");
         let mut stdout = BufReader::new(child.stdout.take().unwrap());
@@ -44,16 +49,36 @@ impl Server {
             .strip_prefix("railcontact listening on ")
             .unwrap_or_else(|| {
                 let _ = child.kill();
-                panic!("unexpected first line: {line:?}")
+                panic!(
+                    "unexpected first line {line:?}; server log:\n{}",
+                    std::fs::read_to_string(&log).unwrap_or_default()
+                )
             })
             .to_string();
         Server {
             addr,
             child,
             _stdout: stdout,
+            log,
             _dir: dir,
         }
     }
+
+    /// What the server wrote to its standard error so far.
+    pub fn log(&self) -> String {
+        std::fs::read_to_string(&self.log).unwrap_or_default()
+    }
+}
+
+/// Fails the test with `what`'s output unless it succeeded.
+pub fn check(what: &str, output: &Output) {
+    assert!(
+        output.status.success(),
+        "{what} failed ({}):\n--- stdout\n{}\n--- stderr\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
 }
 
 impl Drop for Server {
