@@ -1216,7 +1216,7 @@ pub(crate) fn load_iteration(
         };
         let fz = solve_all(patches, delta, false, estimate, input, fastsim, cache)?;
         iterations += 1;
-        law = hertz_root(patches, delta, target, lo.max(gmin), hi);
+        law = hertz_root(patches, delta, target, lo, hi);
         if (fz - target).abs() <= coarse {
             break;
         }
