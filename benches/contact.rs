@@ -18,7 +18,7 @@ use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics
 use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
 
-const SIZES: [usize; 3] = [32, 64, 128];
+const SIZES: [usize; 4] = [32, 48, 64, 128];
 
 fn steel() -> CombinedMaterial {
     CombinedMaterial::identical(Material::STEEL).unwrap()
@@ -90,6 +90,15 @@ fn matvecs(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::new("tangential", n), &n, |b, _| {
             b.iter(|| {
                 set.apply(
+                    &mut ws,
+                    &[(Component::X, &p), (Component::Y, &p)],
+                    &mut [(Component::X, &mut ux), (Component::Y, &mut uy)],
+                )
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("tangential_single", n), &n, |b, _| {
+            b.iter(|| {
+                set.apply_single(
                     &mut ws,
                     &[(Component::X, &p), (Component::Y, &p)],
                     &mut [(Component::X, &mut ux), (Component::Y, &mut uy)],

@@ -24,7 +24,7 @@
 
 use std::sync::Arc;
 
-use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::Component;
 #[cfg(test)]
 use crate::core::influence::KernelKind;
@@ -150,10 +150,26 @@ impl ConformalOperator {
         us: &mut [f64],
         un: &mut [f64],
     ) {
+        self.product(Precision::Double, px, ps, pn, ux, us, un)
+    }
+
+    /// [`ConformalOperator::apply`] in the given precision.
+    #[allow(clippy::too_many_arguments)]
+    fn product(
+        &mut self,
+        precision: Precision,
+        px: &[f64],
+        ps: &[f64],
+        pn: &[f64],
+        ux: &mut [f64],
+        us: &mut [f64],
+        un: &mut [f64],
+    ) {
         let k = &self.kernels;
         match self.model {
             InfluenceModel::HalfSpace => {
-                k.apply(
+                k.apply_with(
+                    precision,
                     &mut self.ows,
                     &[(Component::X, px), (Component::Y, ps), (Component::N, pn)],
                     &mut [(Component::X, ux), (Component::Y, us), (Component::N, un)],
@@ -170,13 +186,15 @@ impl ConformalOperator {
                     my[i] = -y[i];
                 }
                 // Term 1: A (p_x, 0, 0), straight into the outputs.
-                k.apply(
+                k.apply_with(
+                    precision,
                     &mut self.ows,
                     &[(Component::X, px)],
                     &mut [(Component::X, ux), (Component::Y, us), (Component::N, un)],
                 );
                 // Term c: A (0, Y, Z); term s: A (0, Z, -Y).
-                k.apply(
+                k.apply_with(
+                    precision,
                     &mut self.ows,
                     &[(Component::Y, y), (Component::N, z)],
                     &mut [
@@ -185,7 +203,8 @@ impl ConformalOperator {
                         (Component::N, t2n),
                     ],
                 );
-                k.apply(
+                k.apply_with(
+                    precision,
                     &mut self.ows,
                     &[(Component::Y, z), (Component::N, my)],
                     &mut [
@@ -206,16 +225,23 @@ impl ConformalOperator {
     }
 }
 
-impl crate::core::steady::TangentialOperator for ConformalOperator {
-    /// The tangential block (p_n = 0).
-    fn apply_tangential(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
+impl ConformalOperator {
+    /// The tangential block (p_n = 0) in the given precision.
+    fn tangential(
+        &mut self,
+        precision: Precision,
+        px: &[f64],
+        ps: &[f64],
+        ux: &mut [f64],
+        us: &mut [f64],
+    ) {
         let k = &self.kernels;
         if self.model == InfluenceModel::HalfSpace || k.has(Component::X, Component::N) {
             // Planar, or dissimilar materials (the n components couple back):
             // the general product.
             let zero = std::mem::take(&mut self.zero);
             let mut un = std::mem::take(&mut self.un_scratch);
-            self.apply(px, ps, &zero, ux, us, &mut un);
+            self.product(precision, px, ps, &zero, ux, us, &mut un);
             self.zero = zero;
             self.un_scratch = un;
             return;
@@ -231,17 +257,20 @@ impl crate::core::steady::TangentialOperator for ConformalOperator {
             y[i] = self.cos[l] * ps[i];
             z[i] = self.sin[l] * ps[i];
         }
-        k.apply(
+        k.apply_with(
+            precision,
             &mut self.ows,
             &[(Component::X, px)],
             &mut [(Component::X, ux), (Component::Y, us)],
         );
-        k.apply(
+        k.apply_with(
+            precision,
             &mut self.ows,
             &[(Component::Y, &y[..])],
             &mut [(Component::X, t2x), (Component::Y, t2s)],
         );
-        k.apply(
+        k.apply_with(
+            precision,
             &mut self.ows,
             &[(Component::Y, &z[..])],
             &mut [(Component::X, t3x), (Component::Y, t3s)],
@@ -252,6 +281,17 @@ impl crate::core::steady::TangentialOperator for ConformalOperator {
             ux[i] += c * t2x[i] + s * t3x[i];
             us[i] += c * t2s[i] + s * t3s[i];
         }
+    }
+}
+
+impl crate::core::steady::TangentialOperator for ConformalOperator {
+    /// The tangential block (p_n = 0).
+    fn apply_tangential(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
+        self.tangential(Precision::Double, px, ps, ux, us)
+    }
+
+    fn apply_tangential_approx(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
+        self.tangential(Precision::Single, px, ps, ux, us)
     }
 
     fn diagonal(&self) -> [f64; 2] {
