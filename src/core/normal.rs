@@ -14,8 +14,10 @@
 //! change of the pressures in one iteration, sum|p - p_old| / sum p, drops
 //! below `tolerance` (default 1e-10).
 
+use std::sync::Arc;
+
 use crate::core::fft::{KernelSet, OperatorWorkspace};
-use crate::core::influence::Component;
+use crate::core::influence::{Component, KernelKind};
 
 /// Normal load control.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -103,6 +105,72 @@ pub trait NormalOperator {
     /// alone) when the operator has none, and the solver runs without.
     fn precondition(&mut self, _r: &[f64], _z: &mut [f64]) -> bool {
         false
+    }
+}
+
+/// Several planar patches that do not interact elastically (as the
+/// patches of one wheel, each in its own frame) as one block-diagonal
+/// operator on their concatenated pressures: [`solve_normal_with`] then
+/// solves them together, with one approach and one force. All blocks must
+/// have the same self-influence (same element size and materials).
+pub struct BlockNormal {
+    /// Per block: kernels, buffers, and the block's element range.
+    blocks: Vec<(Arc<KernelSet>, OperatorWorkspace, std::ops::Range<usize>)>,
+}
+
+impl BlockNormal {
+    /// The operator of the displacement kernel sets `kernels`, in this
+    /// order; None when their self-influences differ (by more than 1e-12
+    /// relative) or a set is not of displacement kind.
+    pub fn new(kernels: Vec<Arc<KernelSet>>) -> Option<Self> {
+        let d0 = kernels.first()?.value(Component::N, Component::N, 0, 0);
+        let mut at = 0;
+        let mut blocks = Vec::with_capacity(kernels.len());
+        for k in kernels {
+            let d = k.value(Component::N, Component::N, 0, 0);
+            if k.kind != KernelKind::Displacement || (d - d0).abs() > 1e-12 * d0.abs() {
+                return None;
+            }
+            let n = k.plan.nx * k.plan.ny;
+            let ows = k.workspace();
+            blocks.push((k, ows, at..at + n));
+            at += n;
+        }
+        Some(Self { blocks })
+    }
+
+    /// Total number of elements.
+    pub fn len(&self) -> usize {
+        self.blocks.last().map_or(0, |b| b.2.end)
+    }
+
+    /// True without blocks.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl NormalOperator for BlockNormal {
+    fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
+        for (k, ows, r) in &mut self.blocks {
+            k.apply(
+                ows,
+                &[(Component::N, &p[r.clone()])],
+                &mut [(Component::N, &mut out[r.clone()])],
+            );
+        }
+    }
+
+    fn diagonal(&self) -> f64 {
+        self.blocks[0].0.value(Component::N, Component::N, 0, 0)
+    }
+
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
+        let mut all = true;
+        for (k, ows, range) in &mut self.blocks {
+            all &= k.apply_normal_inverse(ows, &r[range.clone()], &mut z[range.clone()]);
+        }
+        all
     }
 }
 
@@ -582,5 +650,93 @@ mod tests {
         );
         // Approach control.
         check(24, 1e-4, 1e-4, 0.5, 0.3, NormalLoad::Approach(2e-6));
+    }
+
+    /// Two patches that do not interact, solved as one block operator with
+    /// one approach delta (weighted per patch) and one force, give what each
+    /// patch gives alone at its approach w_k delta, and their weighted
+    /// forces add up to the load.
+    #[test]
+    fn block_operator_solves_patches_together() {
+        let mat = CombinedMaterial::identical(Material::STEEL).unwrap();
+        let (dx, dy) = (1e-4, 1.2e-4);
+        let ic = HalfSpaceInfluence::new(dx, dy, &mat);
+        // (nx, ny, rx, ry, offset of the gap [m], weight)
+        let patches = [(28, 20, 0.4, 0.3, 0.0, 1.0), (20, 30, 0.5, 0.1, 1e-6, 0.8)];
+        let sets: Vec<Arc<KernelSet>> = patches
+            .iter()
+            .map(|&(nx, ny, ..)| {
+                Arc::new(KernelSet::new(
+                    Arc::new(ConvolutionPlan::new(nx, ny)),
+                    ic,
+                    KernelKind::Displacement,
+                ))
+            })
+            .collect();
+        let gap = |&(nx, ny, rx, ry, h0, _): &(usize, usize, f64, f64, f64, f64)| -> Vec<f64> {
+            (0..nx * ny)
+                .map(|i| {
+                    let x = ((i % nx) as f64 - 0.5 * (nx - 1) as f64) * dx;
+                    let y = ((i / nx) as f64 - 0.5 * (ny - 1) as f64) * dy;
+                    h0 + x * x / (2.0 * rx) + y * y / (2.0 * ry)
+                })
+                .collect()
+        };
+        let h: Vec<f64> = patches.iter().flat_map(gap).collect();
+        let w: Vec<f64> = patches
+            .iter()
+            .flat_map(|p| std::iter::repeat_n(p.5, p.0 * p.1))
+            .collect();
+        let mut op = BlockNormal::new(sets.clone()).unwrap();
+        assert_eq!(op.len(), h.len());
+        let (area, force) = (dx * dy, 2000.0);
+        let settings = NormalSettings::default();
+        let mut pn = vec![0.0; h.len()];
+        let both = solve_normal_with(
+            &mut op,
+            &h,
+            Some(&w),
+            area,
+            NormalLoad::NormalForce(force),
+            &mut pn,
+            &mut NormalScratch::new(h.len()),
+            &settings,
+        );
+        assert!(
+            both.converged && both.preconditioner_applications > 0,
+            "{both:?}"
+        );
+        let mut at = 0;
+        let mut total = 0.0;
+        for (p, set) in patches.iter().zip(&sets) {
+            let n = p.0 * p.1;
+            let mut alone = vec![0.0; n];
+            let out = solve_normal(
+                set,
+                &mut set.workspace(),
+                &gap(p),
+                area,
+                NormalLoad::Approach(both.approach_m * p.5),
+                &mut alone,
+                &mut NormalScratch::new(n),
+                &settings,
+            );
+            assert!(out.converged);
+            let pmax = alone.iter().fold(0.0f64, |m, &v| m.max(v));
+            assert!(pmax > 0.0, "both patches carry load");
+            for (a, b) in alone.iter().zip(&pn[at..at + n]) {
+                assert!((a - b).abs() <= 1e-7 * pmax, "{a} vs {b}");
+            }
+            total += p.5 * alone.iter().sum::<f64>() * area;
+            at += n;
+        }
+        assert!((total - force).abs() <= 1e-6 * force, "{total} vs {force}");
+        // Different element sizes cannot share one approach solve.
+        let other = Arc::new(KernelSet::new(
+            Arc::new(ConvolutionPlan::new(8, 8)),
+            HalfSpaceInfluence::new(2e-4, dy, &mat),
+            KernelKind::Displacement,
+        ));
+        assert!(BlockNormal::new(vec![sets[0].clone(), other]).is_none());
     }
 }

@@ -94,6 +94,25 @@ impl ContactSolver {
         }
     }
 
+    /// Makes `pn` [Pa] the pressures the next solve starts from (the
+    /// tractions are kept): for a caller that solved this grid's normal
+    /// problem by other means, as the wheel/rail load iteration does for
+    /// several patches at once. `pn` must have one value per element.
+    pub fn set_pressure_warm_start(&mut self, pn: &[f64]) -> Result<(), ContactError> {
+        if pn.len() != self.pn.len() || pn.iter().any(|p| !p.is_finite()) {
+            return Err(ContactError::invalid(
+                "pressure_pa",
+                format!(
+                    "needs {} finite values, one per element, got {}",
+                    self.pn.len(),
+                    pn.len()
+                ),
+            ));
+        }
+        self.pn.copy_from_slice(pn);
+        Ok(())
+    }
+
     /// Forgets the warm start.
     pub fn reset(&mut self) {
         for v in [&mut self.pn, &mut self.tr.px, &mut self.tr.py] {

@@ -40,8 +40,9 @@ use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
+use crate::core::influence::KernelKind;
 use crate::core::material::CombinedMaterial;
-use crate::core::normal::NormalLoad;
+use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
 use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, SolverSettings};
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
@@ -1185,6 +1186,14 @@ pub(crate) fn load_iteration(
         }
         unreachable!("the loop returns at it == max_it");
     }
+    // Several exact patches: their frictionless problem at once, then the
+    // frictional secant steps.
+    if let Some((delta, slope)) = coupled_frictionless(patches, target, input, cache) {
+        if delta > cap {
+            return Ok(LoadResult::CapTooSmall);
+        }
+        return frictional_steps(patches, delta, slope, 1, target, input, cap, fastsim, cache);
+    }
     // Several patches: with frictionless estimates, the root of the
     // patches' Hertzian laws fitted to the last solve ([`hertz_root`]),
     // safeguarded by regula falsi (Illinois) on F^(2/3), nearly linear in
@@ -1237,10 +1246,33 @@ pub(crate) fn load_iteration(
         // The law's root must stay inside the bracket.
         law = law.filter(|&(root, _)| root > lo && root < hi);
     }
-    let mut slope = match law {
+    let slope = match law {
         Some((_, s)) => s,
         None => (fz_hi - fz_lo) / (hi - lo),
     };
+    frictional_steps(
+        patches, delta, slope, iterations, target, input, cap, fastsim, cache,
+    )
+}
+
+/// The frictional end of a multi-patch load iteration: solves with creep
+/// forces from approach `delta`, secant steps on the vertical force (first
+/// slope `slope` [N/m]) until it is within the load tolerance of `target`.
+/// `iterations`: the solves done so far.
+#[allow(clippy::too_many_arguments)]
+fn frictional_steps(
+    patches: &mut [PatchWork],
+    mut delta: f64,
+    mut slope: f64,
+    mut iterations: usize,
+    target: f64,
+    input: &WheelRailInput,
+    cap: f64,
+    fastsim: &mut Fastsim,
+    cache: &KernelCache,
+) -> Result<LoadResult, PatchErr> {
+    let tol = input.settings.load_tolerance * target;
+    let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
     loop {
         let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it);
@@ -1264,7 +1296,78 @@ pub(crate) fn load_iteration(
     Ok(LoadResult::Done { delta, iterations })
 }
 
-/// The accuracy of frictional solve number `it` (from 1) of a load
+/// The frictionless problem of several exact patches as one
+/// ([`BlockNormal`]: one vertical approach, the vertical load as the force,
+/// each element's approach weighted by its patch's n_z), at estimate
+/// accuracy: the approach [m] and the slope of the vertical force [N/m]
+/// there (from the patches' Hertzian laws, as [`hertz_root`]). Each
+/// patch's solver starts its next solve from these pressures. None when a
+/// patch is not exact, the element sizes differ, or the solve did not
+/// converge: the caller then iterates patch by patch.
+fn coupled_frictionless(
+    patches: &mut [PatchWork],
+    target: f64,
+    input: &WheelRailInput,
+    cache: &KernelCache,
+) -> Option<(f64, f64)> {
+    let (mut kernels, mut h, mut w) = (Vec::new(), Vec::new(), Vec::new());
+    let mut area: Option<f64> = None;
+    for p in patches.iter() {
+        let PatchKind::Exact { problem, .. } = &p.kind else {
+            return None;
+        };
+        let a = problem.grid.element_area_m2();
+        if area.is_some_and(|a0| (a - a0).abs() > 1e-12 * a0) {
+            return None;
+        }
+        area = Some(a);
+        kernels.push(cache.get(&problem.grid, &problem.material, KernelKind::Displacement));
+        h.extend_from_slice(&problem.gap_m);
+        w.extend(std::iter::repeat_n(p.nz, problem.gap_m.len()));
+    }
+    let (area, mut op) = (area?, BlockNormal::new(kernels)?);
+    let n = h.len();
+    let mut pn = vec![0.0; n];
+    let settings = Accuracy::Estimate.settings(&input.settings.solver).normal;
+    let outcome = solve_normal_with(
+        &mut op,
+        &h,
+        Some(&w),
+        area,
+        NormalLoad::NormalForce(target),
+        &mut pn,
+        &mut NormalScratch::new(n),
+        &settings,
+    );
+    if !outcome.converged {
+        return None;
+    }
+    let delta = outcome.approach_m;
+    let mut at = 0;
+    let mut slope = 0.0;
+    for p in patches.iter_mut() {
+        let PatchKind::Exact { problem, solver } = &mut p.kind else {
+            return None;
+        };
+        let part = &pn[at..at + problem.gap_m.len()];
+        at += part.len();
+        solver.set_pressure_warm_start(part).ok()?;
+        let fn_n = part.iter().sum::<f64>() * area;
+        p.out = PatchOutcome {
+            fn_n,
+            approach_m: delta * p.nz,
+            ..PatchOutcome::default()
+        };
+        // V = c (delta - g)^(3/2): dV/ddelta = 1.5 V / (delta - g).
+        let g = p.hmin / p.nz;
+        if fn_n > 0.0 && delta > g {
+            slope += 1.5 * fn_n * p.nz / (delta - g);
+        }
+    }
+    (slope > 0.0 && delta.is_finite()).then_some((delta, slope))
+}
+
+/// The accuracy of frictional solve number `it` (from 1) of a load/// The accuracy of frictional solve number `it` (from 1) of a load
 /// iteration: the first one (`first`) only estimates the creep forces'
 /// vertical part, when a final solve can follow; the rest are final.
 /// (Estimating until the vertical force is within the coarse tolerance
