@@ -42,11 +42,15 @@ pub fn fast_even_size(n: usize) -> usize {
     smallest_even_smooth(n, &[2, 3, 5])
 }
 
-/// Smallest even 3-smooth number >= n: fast FFT sizes in `f32`, where
-/// rustfft's vectorised factors of 5 are slow when combined with 3 or 5
-/// (lengths 90 or 100 take longer in `f32` than in `f64` on AVX machines).
+/// Smallest fast FFT size >= n in `f32`: an even 3-smooth number, or a
+/// power of two times 5 from 80 on. rustfft's vectorised `f32` transforms
+/// are slow for other factors of 5 (lengths 30, 40, 60, 90, 100, 120 take
+/// as long as, or longer than, the next 3-smooth length, some longer than
+/// in `f64`, on AVX machines; 80 and 160 are faster than 96 and 192).
 pub fn fast_even_size_single(n: usize) -> usize {
-    smallest_even_smooth(n, &[2, 3])
+    let three = smallest_even_smooth(n, &[2, 3]);
+    let five = smallest_even_smooth(n.div_ceil(5).max(16), &[2]) * 5;
+    three.min(five)
 }
 
 fn smallest_even_smooth(n: usize, primes: &[usize]) -> usize {
@@ -1367,5 +1371,10 @@ mod tests {
         assert_eq!(fast_even_size_single(127), 128);
         assert_eq!(fast_even_size_single(63), 64);
         assert_eq!(fast_even_size_single(129), 144);
+        assert_eq!(fast_even_size_single(79), 80);
+        assert_eq!(fast_even_size_single(39), 48);
+        assert_eq!(fast_even_size_single(119), 128);
+        assert_eq!(fast_even_size_single(150), 160);
+        assert_eq!(fast_even_size_single(3), 4);
     }
 }
