@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
 use railcontact::core::fastsim::{Fastsim, FastsimInput};
-use railcontact::core::fft::{ConvolutionPlan, KernelSet};
+use railcontact::core::fft::{ConvolutionPlan, KernelSet, Precision};
 use railcontact::core::grid::Grid;
 use railcontact::core::hertz::{hertz, HertzLoad};
 use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
@@ -98,7 +98,8 @@ fn matvecs(c: &mut Criterion) {
         });
         g.bench_with_input(BenchmarkId::new("tangential_single", n), &n, |b, _| {
             b.iter(|| {
-                set.apply_single(
+                set.apply_with(
+                    Precision::Single,
                     &mut ws,
                     &[(Component::X, &p), (Component::Y, &p)],
                     &mut [(Component::X, &mut ux), (Component::Y, &mut uy)],

@@ -225,9 +225,9 @@ impl ConformalOperator {
     }
 }
 
-impl ConformalOperator {
-    /// The tangential block (p_n = 0) in the given precision.
-    fn tangential(
+impl crate::core::steady::TangentialOperator for ConformalOperator {
+    /// The tangential block (p_n = 0).
+    fn tangential_product(
         &mut self,
         precision: Precision,
         px: &[f64],
@@ -281,17 +281,6 @@ impl ConformalOperator {
             ux[i] += c * t2x[i] + s * t3x[i];
             us[i] += c * t2s[i] + s * t3s[i];
         }
-    }
-}
-
-impl crate::core::steady::TangentialOperator for ConformalOperator {
-    /// The tangential block (p_n = 0).
-    fn apply_tangential(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
-        self.tangential(Precision::Double, px, ps, ux, us)
-    }
-
-    fn apply_tangential_approx(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
-        self.tangential(Precision::Single, px, ps, ux, us)
     }
 
     fn diagonal(&self) -> [f64; 2] {

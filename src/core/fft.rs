@@ -16,8 +16,8 @@
 //! again two per complex FFT.
 //!
 //! Plans, workspaces and spectra are generic over the floating-point type
-//! ([`Real`]): [`KernelSet::apply`] works in `f64`; [`KernelSet::apply_single`]
-//! runs the same product in `f32` (FFTs twice as wide per SIMD register, half
+//! ([`Real`]): [`KernelSet::apply`] works in `f64`; [`KernelSet::apply_with`]
+//! [`Precision::Single`] runs the same product in `f32` (FFTs twice as wide per SIMD register, half
 //! the memory traffic), for the Krylov products of the Newton solvers, whose
 //! accuracy needs are far looser than the rounding of single precision.
 //!
@@ -72,7 +72,7 @@ fn smallest_even_smooth(n: usize, primes: &[usize]) -> usize {
 }
 
 /// The floating-point types of the transforms: `f64` for the operator
-/// products, `f32` for the approximate ones of [`KernelSet::apply_single`].
+/// products, `f32` for the approximate ones of [`Precision::Single`] products.
 /// Fields on the grid stay `f64` in either case; they are narrowed on the
 /// way in and widened on the way out.
 pub trait Real: FftNum + NumAssign {
@@ -560,10 +560,15 @@ impl Spectrum<f64> {
 /// The floating-point precision of an operator product.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Precision {
-    /// `f64` transforms ([`KernelSet::apply`]).
+    /// `f64` transforms.
     Double,
-    /// `f32` transforms ([`KernelSet::apply_single`]): about 1e-6 of the
-    /// largest output, for Krylov products.
+    /// `f32` transforms: the fields are rounded to `f32`, transformed,
+    /// multiplied by the rounded kernel spectra and transformed back. The
+    /// result differs from the `f64` product by about 2e-7 of the largest
+    /// output value (grids 23x31 to 128x100; the tests bound it by 1e-6),
+    /// at 40 to 70 % of the cost. For products whose accuracy needs are
+    /// loose: the Krylov iterations of the Newton solvers, whose residuals
+    /// are then evaluated in `f64`.
     Single,
 }
 
@@ -587,7 +592,7 @@ pub struct KernelSet {
     spectra: Vec<Spectrum<f64>>,
     /// `index[i][j]`: the entry of `spectra` holding kernel (i, j), if present.
     index: [[Option<usize>; 3]; 3],
-    /// The same kernels in single precision ([`KernelSet::apply_single`]).
+    /// The same kernels in single precision ([`Precision::Single`]).
     single: SingleKernels,
     /// Largest eigenvalue of the 2x2 tangential symbol over all frequencies:
     /// an upper bound of the spectral norm of the tangential block [m/Pa].
@@ -758,17 +763,10 @@ impl KernelSet {
         inputs: &[(Component, &[f64])],
         outputs: &mut [(Component, &mut [f64])],
     ) {
-        apply_indexed(
-            &self.plan,
-            &self.spectra,
-            &self.index,
-            &mut ows.main,
-            inputs,
-            outputs,
-        );
+        self.apply_with(Precision::Double, ows, inputs, outputs)
     }
 
-    /// [`KernelSet::apply`] or [`KernelSet::apply_single`] by `precision`.
+    /// [`KernelSet::apply`] in the given precision (see [`Precision`]).
     pub fn apply_with(
         &self,
         precision: Precision,
@@ -776,33 +774,28 @@ impl KernelSet {
         inputs: &[(Component, &[f64])],
         outputs: &mut [(Component, &mut [f64])],
     ) {
+        let index = &self.index;
         match precision {
-            Precision::Double => self.apply(ows, inputs, outputs),
-            Precision::Single => self.apply_single(ows, inputs, outputs),
+            Precision::Double => apply_indexed(
+                &self.plan,
+                &self.spectra,
+                index,
+                &mut ows.main,
+                inputs,
+                outputs,
+            ),
+            Precision::Single => {
+                let single = &self.single;
+                apply_indexed(
+                    &single.plan,
+                    &single.spectra,
+                    index,
+                    &mut ows.single,
+                    inputs,
+                    outputs,
+                )
+            }
         }
-    }
-
-    /// [`KernelSet::apply`] in single precision: the fields are rounded to
-    /// `f32`, transformed, multiplied by the rounded kernel spectra and
-    /// transformed back. The result differs from the `f64` product by about
-    /// 2e-7 of the largest output value (grids 23x31 to 128x100; the tests
-    /// bound it by 1e-6), at 40 to 70 % of the cost. For products whose
-    /// accuracy needs are loose: the Krylov iterations of the Newton
-    /// solvers, whose residuals are then evaluated with [`KernelSet::apply`].
-    pub fn apply_single(
-        &self,
-        ows: &mut OperatorWorkspace,
-        inputs: &[(Component, &[f64])],
-        outputs: &mut [(Component, &mut [f64])],
-    ) {
-        apply_indexed(
-            &self.single.plan,
-            &self.single.spectra,
-            &self.index,
-            &mut ows.single,
-            inputs,
-            outputs,
-        );
     }
 
     /// `z = C⁻¹ r` on the grid, with C the circulant extension of the normal
@@ -1066,7 +1059,7 @@ impl<T: Real> Buffers<T> {
     }
 }
 
-/// Buffers for [`KernelSet::apply`], [`KernelSet::apply_single`] and
+/// Buffers for [`KernelSet::apply`], [`KernelSet::apply_with`] and
 /// [`KernelSet::apply_normal_inverse`] (from [`KernelSet::workspace`]).
 #[derive(Clone)]
 pub struct OperatorWorkspace {
@@ -1294,7 +1287,7 @@ mod tests {
                 };
                 let mut outs = [(X, &mut ux[..]), (Y, &mut uy[..]), (N, &mut un[..])];
                 if single {
-                    set.apply_single(&mut ows, &ins, &mut outs);
+                    set.apply_with(Precision::Single, &mut ows, &ins, &mut outs);
                 } else {
                     set.apply(&mut ows, &ins, &mut outs);
                 }

@@ -14,8 +14,6 @@
 //! change of the pressures in one iteration, sum|p - p_old| / sum p, drops
 //! below `tolerance` (default 1e-10).
 
-use std::sync::Arc;
-
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::influence::{Component, KernelKind};
 
@@ -111,29 +109,31 @@ pub trait NormalOperator {
 /// Several planar patches that do not interact elastically (as the
 /// patches of one wheel, each in its own frame) as one block-diagonal
 /// operator on their concatenated pressures: [`solve_normal_with`] then
-/// solves them together, with one approach and one force. All blocks must
-/// have the same self-influence (same element size and materials).
-pub struct BlockNormal {
-    /// Per block: kernels, buffers, and the block's element range.
-    blocks: Vec<(Arc<KernelSet>, OperatorWorkspace, std::ops::Range<usize>)>,
+/// solves them together, with one approach and one force. Each block is a
+/// [`PlanarNormal`] (its kernels and buffers, e.g. those of the patch's
+/// [`crate::core::solve::ContactSolver`]); all must have the same
+/// self-influence (same element size and materials).
+pub struct BlockNormal<'a> {
+    /// Per block: its operator and its element range.
+    blocks: Vec<(PlanarNormal<'a>, std::ops::Range<usize>)>,
 }
 
-impl BlockNormal {
-    /// The operator of the displacement kernel sets `kernels`, in this
-    /// order; None when their self-influences differ (by more than 1e-12
-    /// relative) or a set is not of displacement kind.
-    pub fn new(kernels: Vec<Arc<KernelSet>>) -> Option<Self> {
-        let d0 = kernels.first()?.value(Component::N, Component::N, 0, 0);
+impl<'a> BlockNormal<'a> {
+    /// The operator of `parts`, in this order; None when their
+    /// self-influences differ (by more than 1e-12 relative) or a part's
+    /// kernels are not of displacement kind.
+    pub fn new(parts: Vec<PlanarNormal<'a>>) -> Option<Self> {
+        let d0 = parts.first()?.diagonal();
         let mut at = 0;
-        let mut blocks = Vec::with_capacity(kernels.len());
-        for k in kernels {
-            let d = k.value(Component::N, Component::N, 0, 0);
-            if k.kind != KernelKind::Displacement || (d - d0).abs() > 1e-12 * d0.abs() {
+        let mut blocks = Vec::with_capacity(parts.len());
+        for part in parts {
+            let k = part.kernels;
+            if k.kind != KernelKind::Displacement || (part.diagonal() - d0).abs() > 1e-12 * d0.abs()
+            {
                 return None;
             }
             let n = k.plan.nx * k.plan.ny;
-            let ows = k.workspace();
-            blocks.push((k, ows, at..at + n));
+            blocks.push((part, at..at + n));
             at += n;
         }
         Some(Self { blocks })
@@ -141,7 +141,7 @@ impl BlockNormal {
 
     /// Total number of elements.
     pub fn len(&self) -> usize {
-        self.blocks.last().map_or(0, |b| b.2.end)
+        self.blocks.last().map_or(0, |b| b.1.end)
     }
 
     /// True without blocks.
@@ -150,25 +150,21 @@ impl BlockNormal {
     }
 }
 
-impl NormalOperator for BlockNormal {
+impl NormalOperator for BlockNormal<'_> {
     fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
-        for (k, ows, r) in &mut self.blocks {
-            k.apply(
-                ows,
-                &[(Component::N, &p[r.clone()])],
-                &mut [(Component::N, &mut out[r.clone()])],
-            );
+        for (op, r) in &mut self.blocks {
+            op.apply_normal(&p[r.clone()], &mut out[r.clone()]);
         }
     }
 
     fn diagonal(&self) -> f64 {
-        self.blocks[0].0.value(Component::N, Component::N, 0, 0)
+        self.blocks[0].0.diagonal()
     }
 
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
         let mut all = true;
-        for (k, ows, range) in &mut self.blocks {
-            all &= k.apply_normal_inverse(ows, &r[range.clone()], &mut z[range.clone()]);
+        for (op, range) in &mut self.blocks {
+            all &= op.precondition(&r[range.clone()], &mut z[range.clone()]);
         }
         all
     }
@@ -663,16 +659,17 @@ mod tests {
         let ic = HalfSpaceInfluence::new(dx, dy, &mat);
         // (nx, ny, rx, ry, offset of the gap [m], weight)
         let patches = [(28, 20, 0.4, 0.3, 0.0, 1.0), (20, 30, 0.5, 0.1, 1e-6, 0.8)];
-        let sets: Vec<Arc<KernelSet>> = patches
+        let sets: Vec<KernelSet> = patches
             .iter()
             .map(|&(nx, ny, ..)| {
-                Arc::new(KernelSet::new(
+                KernelSet::new(
                     Arc::new(ConvolutionPlan::new(nx, ny)),
                     ic,
                     KernelKind::Displacement,
-                ))
+                )
             })
             .collect();
+        let mut buffers: Vec<OperatorWorkspace> = sets.iter().map(KernelSet::workspace).collect();
         let gap = |&(nx, ny, rx, ry, h0, _): &(usize, usize, f64, f64, f64, f64)| -> Vec<f64> {
             (0..nx * ny)
                 .map(|i| {
@@ -687,7 +684,13 @@ mod tests {
             .iter()
             .flat_map(|p| std::iter::repeat_n(p.5, p.0 * p.1))
             .collect();
-        let mut op = BlockNormal::new(sets.clone()).unwrap();
+        let mut op = BlockNormal::new(
+            sets.iter()
+                .zip(buffers.iter_mut())
+                .map(|(kernels, ows)| PlanarNormal { kernels, ows })
+                .collect(),
+        )
+        .unwrap();
         assert_eq!(op.len(), h.len());
         let (area, force) = (dx * dy, 2000.0);
         let settings = NormalSettings::default();
@@ -732,11 +735,22 @@ mod tests {
         }
         assert!((total - force).abs() <= 1e-6 * force, "{total} vs {force}");
         // Different element sizes cannot share one approach solve.
-        let other = Arc::new(KernelSet::new(
+        let other = KernelSet::new(
             Arc::new(ConvolutionPlan::new(8, 8)),
             HalfSpaceInfluence::new(2e-4, dy, &mat),
             KernelKind::Displacement,
-        ));
-        assert!(BlockNormal::new(vec![sets[0].clone(), other]).is_none());
+        );
+        let (mut w0, mut w1) = (sets[0].workspace(), other.workspace());
+        let parts = vec![
+            PlanarNormal {
+                kernels: &sets[0],
+                ows: &mut w0,
+            },
+            PlanarNormal {
+                kernels: &other,
+                ows: &mut w1,
+            },
+        ];
+        assert!(BlockNormal::new(parts).is_none());
     }
 }

@@ -10,7 +10,7 @@ use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
-use crate::core::normal::{solve_normal, NormalLoad, NormalScratch};
+use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
 use crate::core::problem::{ContactProblem, Kinematics, ShiftStep};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
@@ -91,6 +91,16 @@ impl ContactSolver {
             last_px: z(),
             last_py: z(),
             transient_steps: 0,
+        }
+    }
+
+    /// The planar normal operator of this solver's kernels and buffers: for
+    /// a caller that solves this grid's normal problem together with
+    /// others ([`crate::core::normal::BlockNormal`]).
+    pub fn normal_operator(&mut self) -> PlanarNormal<'_> {
+        PlanarNormal {
+            kernels: &self.displacement,
+            ows: &mut self.ows,
         }
     }
 

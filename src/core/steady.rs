@@ -27,7 +27,7 @@
 //!    elements only; the forcing term follows Eisenstat and Walker, bounded
 //!    by what the tolerance needs.
 //!    Its products run in single precision
-//!    ([`TangentialOperator::apply_tangential_approx`], about 1e-6 of the
+//!    ([`TangentialOperator::tangential_product`], about 1e-6 of the
 //!    largest output): the forcing terms are 1e-4 or looser, and every
 //!    Newton residual, which decides convergence, uses the `f64` product.
 //! 4. Update: adhesion tractions by dp, slip tractions by a rotation v/g.
@@ -61,14 +61,20 @@ pub const MAX_NEWTON_MATVECS: usize = 4000;
 /// The tangential block of an influence operator, (p_x, p_y) -> (u_x, u_y)
 /// with the normal pressure held fixed: what the Newton solver multiplies by.
 pub trait TangentialOperator {
-    /// `(ux, uy) = A_tt (px, py)`.
-    fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]);
-    /// `(ux, uy) ≈ A_tt (px, py)` within about 1e-6 of the largest output
-    /// (single-precision transforms where the operator has them): the
-    /// products of the Krylov iterations, whose tolerances are looser.
-    /// Defaults to the exact product.
-    fn apply_tangential_approx(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
-        self.apply_tangential(px, py, ux, uy)
+    /// `(ux, uy) = A_tt (px, py)` with transforms in `precision`
+    /// ([`Precision::Single`]: within about 1e-6 of the largest output, for
+    /// the products of the Krylov iterations, whose tolerances are looser).
+    fn tangential_product(
+        &mut self,
+        precision: Precision,
+        px: &[f64],
+        py: &[f64],
+        ux: &mut [f64],
+        uy: &mut [f64],
+    );
+    /// `(ux, uy) = A_tt (px, py)` in `f64`.
+    fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
+        self.tangential_product(Precision::Double, px, py, ux, uy)
     }
     /// The self-influence coefficients (xx, yy) [m/Pa or 1/Pa].
     fn diagonal(&self) -> [f64; 2];
@@ -83,16 +89,16 @@ pub struct PlanarTangential<'a> {
 }
 
 impl TangentialOperator for PlanarTangential<'_> {
-    fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
-        self.kernels.apply(
-            self.ows,
-            &[(Component::X, px), (Component::Y, py)],
-            &mut [(Component::X, ux), (Component::Y, uy)],
-        );
-    }
-
-    fn apply_tangential_approx(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
-        self.kernels.apply_single(
+    fn tangential_product(
+        &mut self,
+        precision: Precision,
+        px: &[f64],
+        py: &[f64],
+        ux: &mut [f64],
+        uy: &mut [f64],
+    ) {
+        self.kernels.apply_with(
+            precision,
             self.ows,
             &[(Component::X, px), (Component::Y, py)],
             &mut [(Component::X, ux), (Component::Y, uy)],
@@ -257,7 +263,7 @@ impl Linear<'_> {
         for (k, &i) in self.loaded.iter().enumerate() {
             (xin[i], yin[i]) = self.full(x, k);
         }
-        op.apply_tangential_approx(xin, yin, ux, uy);
+        op.tangential_product(Precision::Single, xin, yin, ux, uy);
         for (k, &i) in self.loaded.iter().enumerate() {
             match self.role[i] {
                 Role::Slip => {
@@ -513,9 +519,9 @@ pub struct PlanarSteady<'a> {
     pub diff: [&'a mut [f64]; 2],
 }
 
-impl PlanarSteady<'_> {
+impl TangentialOperator for PlanarSteady<'_> {
     /// `(ux, uy) = A (I - S)/dx (px, py)`.
-    fn product(
+    fn tangential_product(
         &mut self,
         precision: Precision,
         px: &[f64],
@@ -540,16 +546,6 @@ impl PlanarSteady<'_> {
             &[(Component::X, dxv), (Component::Y, dyv)],
             &mut [(Component::X, ux), (Component::Y, uy)],
         );
-    }
-}
-
-impl TangentialOperator for PlanarSteady<'_> {
-    fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
-        self.product(Precision::Double, px, py, ux, uy)
-    }
-
-    fn apply_tangential_approx(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
-        self.product(Precision::Single, px, py, ux, uy)
     }
 
     fn diagonal(&self) -> [f64; 2] {

@@ -40,7 +40,6 @@ use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
-use crate::core::influence::KernelKind;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
 use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, SolverSettings};
@@ -1188,7 +1187,7 @@ pub(crate) fn load_iteration(
     }
     // Several exact patches: their frictionless problem at once, then the
     // frictional secant steps.
-    if let Some((delta, slope)) = coupled_frictionless(patches, target, input, cache) {
+    if let Some((delta, slope)) = coupled_frictionless(patches, target, input) {
         if delta > cap {
             return Ok(LoadResult::CapTooSmall);
         }
@@ -1300,7 +1299,7 @@ fn frictional_steps(
 /// ([`BlockNormal`]: one vertical approach, the vertical load as the force,
 /// each element's approach weighted by its patch's n_z), at estimate
 /// accuracy: the approach [m] and the slope of the vertical force [N/m]
-/// there (from the patches' Hertzian laws, as [`hertz_root`]). Each
+/// there (from the patches' Hertzian laws, [`laws_slope`]). Each
 /// patch's solver starts its next solve from these pressures. None when a
 /// patch is not exact, the element sizes differ, or the solve did not
 /// converge: the caller then iterates patch by patch.
@@ -1308,12 +1307,11 @@ fn coupled_frictionless(
     patches: &mut [PatchWork],
     target: f64,
     input: &WheelRailInput,
-    cache: &KernelCache,
 ) -> Option<(f64, f64)> {
-    let (mut kernels, mut h, mut w) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut parts, mut h, mut w) = (Vec::new(), Vec::new(), Vec::new());
     let mut area: Option<f64> = None;
-    for p in patches.iter() {
-        let PatchKind::Exact { problem, .. } = &p.kind else {
+    for p in patches.iter_mut() {
+        let PatchKind::Exact { problem, solver } = &mut p.kind else {
             return None;
         };
         let a = problem.grid.element_area_m2();
@@ -1321,11 +1319,12 @@ fn coupled_frictionless(
             return None;
         }
         area = Some(a);
-        kernels.push(cache.get(&problem.grid, &problem.material, KernelKind::Displacement));
         h.extend_from_slice(&problem.gap_m);
         w.extend(std::iter::repeat_n(p.nz, problem.gap_m.len()));
+        // The patch solver's own kernels and buffers.
+        parts.push(solver.normal_operator());
     }
-    let (area, mut op) = (area?, BlockNormal::new(kernels)?);
+    let (area, mut op) = (area?, BlockNormal::new(parts)?);
     let n = h.len();
     let mut pn = vec![0.0; n];
     let settings = Accuracy::Estimate.settings(&input.settings.solver).normal;
@@ -1344,7 +1343,6 @@ fn coupled_frictionless(
     }
     let delta = outcome.approach_m;
     let mut at = 0;
-    let mut slope = 0.0;
     for p in patches.iter_mut() {
         let PatchKind::Exact { problem, solver } = &mut p.kind else {
             return None;
@@ -1358,16 +1356,12 @@ fn coupled_frictionless(
             approach_m: delta * p.nz,
             ..PatchOutcome::default()
         };
-        // V = c (delta - g)^(3/2): dV/ddelta = 1.5 V / (delta - g).
-        let g = p.hmin / p.nz;
-        if fn_n > 0.0 && delta > g {
-            slope += 1.5 * fn_n * p.nz / (delta - g);
-        }
     }
+    let slope = laws_slope(patches, delta, delta);
     (slope > 0.0 && delta.is_finite()).then_some((delta, slope))
 }
 
-/// The accuracy of frictional solve number `it` (from 1) of a load/// The accuracy of frictional solve number `it` (from 1) of a load
+/// The accuracy of frictional solve number `it` (from 1) of a load
 /// iteration: the first one (`first`) only estimates the creep forces'
 /// vertical part, when a final solve can follow; the rest are final.
 /// (Estimating until the vertical force is within the coarse tolerance
@@ -1387,15 +1381,10 @@ fn frictional_accuracy(first: bool, it: usize, max_it: usize) -> Accuracy {
 /// (`lo`, `hi`) where their sum is `target`, and the sum's slope there;
 /// None when the laws do not bracket the target there.
 fn hertz_root(patches: &[PatchWork], at: f64, target: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
-    let law = |p: &PatchWork| {
-        let g = p.hmin / p.nz;
-        let v = p.out.fn_n * p.nz;
-        (v > 0.0 && at > g).then(|| (v / (at - g).powf(1.5), g))
-    };
     let value = |d: f64| -> f64 {
         patches
             .iter()
-            .filter_map(law)
+            .filter_map(|p| hertz_law(p, at))
             .map(|(c, g)| c * (d - g).max(0.0).powf(1.5))
             .sum()
     };
@@ -1415,12 +1404,27 @@ fn hertz_root(patches: &[PatchWork], at: f64, target: f64, lo: f64, hi: f64) -> 
         }
     }
     let root = 0.5 * (a + b);
-    let slope: f64 = patches
-        .iter()
-        .filter_map(law)
-        .map(|(c, g)| 1.5 * c * (root - g).max(0.0).sqrt())
-        .sum();
+    let slope = laws_slope(patches, at, root);
     (slope > 0.0).then_some((root, slope))
+}
+
+/// Patch `p`'s vertical force as a Hertzian law of the wheel's vertical
+/// approach fitted to its last solve at approach `at`: (c, g) of
+/// V = c (delta - g)^(3/2), g its smallest vertical gap; None without load.
+fn hertz_law(p: &PatchWork, at: f64) -> Option<(f64, f64)> {
+    let g = p.hmin / p.nz;
+    let v = p.out.fn_n * p.nz;
+    (v > 0.0 && at > g).then(|| (v / (at - g).powf(1.5), g))
+}
+
+/// The slope [N/m] at approach `d` of the sum of the patches' Hertzian
+/// laws fitted at `at` ([`hertz_law`]).
+fn laws_slope(patches: &[PatchWork], at: f64, d: f64) -> f64 {
+    patches
+        .iter()
+        .filter_map(|p| hertz_law(p, at))
+        .map(|(c, g)| 1.5 * c * (d - g).max(0.0).sqrt())
+        .sum()
 }
 
 /// Variation of the rail's contact angle over the loaded lateral lines of
