@@ -19,6 +19,8 @@ use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
 
 const SIZES: [usize; 4] = [32, 48, 64, 128];
+/// Steps per period of the warm-start benches' creepage path.
+const PATH_STEPS: usize = 100;
 
 fn steel() -> CombinedMaterial {
     CombinedMaterial::identical(Material::STEEL).unwrap()
@@ -141,8 +143,10 @@ fn tangential_solves(c: &mut Criterion) {
     let mut g = c.benchmark_group("tangential_solve");
     g.sample_size(10);
     // Steady rolling, mixed adhesion/slip with creepages and spin, cold
-    // start (normal + tangential), and warm (the previous step's solution,
-    // creepages changed by 2 %, as in an MBS time step).
+    // start (normal + tangential), and warm: consecutive steps of a smooth
+    // path (creepages 1 + 0.3 sin(2 pi k / 100) times the base values, up
+    // to 1.9 % a step, as MBS time steps), each from the previous steps'
+    // solutions.
     let creep = |f: f64| {
         Kinematics::SteadyRolling(Creepages {
             creepage_long: 5e-4 * f,
@@ -152,24 +156,31 @@ fn tangential_solves(c: &mut Criterion) {
     };
     for (nx, ny) in [(32, 32), (48, 44), (64, 64), (128, 128)] {
         let p = circle_on(nx, ny, creep(1.0));
-        let q = circle_on(nx, ny, creep(1.02));
+        let path: Vec<ContactProblem> = (0..PATH_STEPS)
+            .map(|k| {
+                let a = 2.0 * std::f64::consts::PI * k as f64 / PATH_STEPS as f64;
+                circle_on(nx, ny, creep(1.0 + 0.3 * a.sin()))
+            })
+            .collect();
         let cache = KernelCache::default();
         let mut s = ContactSolver::new(&p, &cache);
         let id = format!("{nx}x{ny}");
         print_counts(&format!("steady_rolling/{id} (cold)"), &mut s, &p);
-        print_counts(&format!("steady_rolling_warm/{id}"), &mut s, &q);
+        // Two steps of the path first: the third has its full warm start.
+        s.solve(&path[0]).unwrap();
+        s.solve(&path[1]).unwrap();
+        print_counts(&format!("steady_rolling_warm/{id}"), &mut s, &path[2]);
         g.bench_with_input(BenchmarkId::new("steady_rolling", &id), &nx, |b, _| {
             b.iter(|| {
                 s.reset();
                 black_box(s.solve(&p).unwrap())
             })
         });
-        let mut flip = false;
+        let mut k = 0;
         g.bench_with_input(BenchmarkId::new("steady_rolling_warm", &id), &nx, |b, _| {
             b.iter(|| {
-                // Each solve starts from the other case's solution.
-                flip = !flip;
-                black_box(s.solve(if flip { &q } else { &p }).unwrap())
+                k += 1;
+                black_box(s.solve(&path[k % PATH_STEPS]).unwrap())
             })
         });
     }

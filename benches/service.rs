@@ -6,9 +6,9 @@
 //! | bench | what it measures |
 //! |---|---|
 //! | `service/solve_patch/fastsim` | SolvePatch, model fastsim (Hertz ellipse + FASTSIM 40 x 40), steel circle 10 kN, xi = 1e-3, eta = 5e-4, phi = 0.1 /m |
-//! | `service/session_step/fastsim` | one PatchSession step of the same case, creepages changing every step |
+//! | `service/session_step/fastsim` | one PatchSession step of the same case, creepages along a smooth path (up to 1.9 % a step) |
 //! | `service/solve_patch/exact_40x40` | SolvePatch, exact model, 40 x 40 grid, steady rolling xi = 1e-3, cold solver (kernels cached) |
-//! | `service/session_step/exact_40x40` | one PatchSession step of the same case, warm-started, creepages changing every step |
+//! | `service/session_step/exact_40x40` | one PatchSession step of the same case, warm-started, creepages along the same path |
 //!
 //! | `service/solve_wheel_rail/hertz_fastsim` | SolveWheelRail on the built-in pair `mbench_s1002_uic60`: Manchester at 6.5 mm (roll and pitch rate given), both wheels, Hertz+FASTSIM per patch |
 //! | `service/solve_wheel_rail/exact` | the same with the exact model at 0.2 mm elements |
@@ -65,9 +65,10 @@ fn case(model: pb::Model, n: Option<u32>) -> pb::PatchCase {
     }
 }
 
-/// Creepages of step `k`: alternating by 10 %, as consecutive time steps.
+/// Creepages of step `k`: a smooth path, 1 + 0.3 sin(2 pi k / 100) times
+/// the base values (up to 1.9 % a step), as consecutive time steps.
 fn creepages(k: u64) -> pb::Creepages {
-    let f = if k % 2 == 0 { 1.0 } else { 1.1 };
+    let f = 1.0 + 0.3 * (2.0 * std::f64::consts::PI * k as f64 / 100.0).sin();
     pb::Creepages {
         creepage_long: 1e-3 * f,
         creepage_lat: 5e-4 * f,

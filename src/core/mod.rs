@@ -12,6 +12,7 @@ pub mod hertz;
 pub mod influence;
 pub mod material;
 pub mod normal;
+mod predict;
 pub mod problem;
 pub mod sensitivity;
 pub mod solution;

@@ -11,6 +11,7 @@ use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
+use crate::core::predict::{PathPoint, WarmPath};
 use crate::core::problem::{ContactProblem, Kinematics, ShiftStep};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
@@ -25,7 +26,11 @@ use crate::core::tangential::{
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
 /// the last solve, which warm-start the next one (the service keeps one per
-/// co-simulation session). A clone is an independent solver in the same
+/// co-simulation session). Frictionless and steady-rolling solves of the
+/// same geometry follow the path of their inputs: when the load and
+/// creepages move along a line, the start is extrapolated from the last two
+/// solutions (see `core::predict`); the result still meets the solve's own
+/// tolerance. A clone is an independent solver in the same
 /// state: solving the same inputs from it gives bit-identical results (the
 /// service's session marks).
 #[derive(Clone)]
@@ -54,6 +59,8 @@ pub struct ContactSolver {
     /// Transient steps solved since `new` or `reset` (0: the next step
     /// starts from the unloaded state).
     transient_steps: usize,
+    /// Inputs and solution before last, for the warm start's prediction.
+    path: WarmPath,
 }
 
 impl ContactSolver {
@@ -91,6 +98,7 @@ impl ContactSolver {
             last_px: z(),
             last_py: z(),
             transient_steps: 0,
+            path: WarmPath::default(),
         }
     }
 
@@ -120,6 +128,7 @@ impl ContactSolver {
             ));
         }
         self.pn.copy_from_slice(pn);
+        self.path.clear();
         Ok(())
     }
 
@@ -130,6 +139,7 @@ impl ContactSolver {
         }
         self.tr.state.fill(ElementState::Exterior);
         self.transient_steps = 0;
+        self.path.clear();
     }
 
     /// Solves `problem` (which must have this solver's grid and materials):
@@ -148,7 +158,15 @@ impl ContactSolver {
         }
         match &problem.kinematics {
             Kinematics::Frictionless | Kinematics::SteadyRolling(_) => {
-                let mut sol = self.solve_one(problem, problem.load, None)?;
+                let point = PathPoint::of(problem);
+                self.path
+                    .predict(&point, [&mut self.pn, &mut self.tr.px, &mut self.tr.py]);
+                let solved = self.solve_one(problem, problem.load, None);
+                match &solved {
+                    Ok(_) => self.path.push(point),
+                    Err(_) => self.path.clear(),
+                }
+                let mut sol = solved?;
                 sol.info.solve_time_s = t0.elapsed().as_secs_f64();
                 Ok(vec![sol])
             }
@@ -199,6 +217,7 @@ impl ContactSolver {
                 "solve_next_step needs a transient problem",
             ));
         }
+        self.path.clear();
         let mut sol = self.transient_step(problem, step)?;
         sol.info.solve_time_s = t0.elapsed().as_secs_f64();
         Ok(sol)
@@ -653,4 +672,92 @@ pub fn solve(problem: &ContactProblem) -> Result<Vec<ContactSolution>, ContactEr
     let cache = KernelCache::global();
     let mut s = ContactSolver::new(problem, cache);
     s.solve(problem)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::hertz::{hertz, HertzLoad};
+    use crate::core::material::{CombinedMaterial, Material};
+    use crate::core::problem::{Creepages, Friction};
+
+    /// Steel on steel, A = B = 1/m on a 32 x 32 grid, rolling with creepages
+    /// and load `f` times the base values (10 kN, xi = 5e-4, eta = 3e-4,
+    /// phi = 0.3/m: partial slip).
+    fn rolling(f_load: f64, f_creep: f64) -> ContactProblem {
+        let m = CombinedMaterial::identical(Material::STEEL).unwrap();
+        let e = m.effective_modulus_pa();
+        let hz = hertz(
+            1.0,
+            1.0,
+            e,
+            HertzLoad::NormalForce {
+                normal_force_n: 1.1e4,
+            },
+        )
+        .unwrap();
+        let w = 2.4 * hz.semi_axis_x_m;
+        let grid = Grid::centered(32, 32, w, w).unwrap();
+        ContactProblem {
+            material: m,
+            friction: Friction::coulomb(0.3),
+            gap_m: ContactProblem::quadratic_gap(&grid, 1.0, 1.0),
+            grid,
+            load: NormalLoad::NormalForce(1e4 * f_load),
+            kinematics: Kinematics::SteadyRolling(Creepages {
+                creepage_long: 5e-4 * f_creep,
+                creepage_lat: 3e-4 * f_creep,
+                spin_per_m: 0.3 * f_creep,
+            }),
+            settings: Default::default(),
+        }
+    }
+
+    fn solve_last(s: &mut ContactSolver, p: &ContactProblem) -> ContactSolution {
+        s.solve(p).unwrap().pop().unwrap()
+    }
+
+    #[test]
+    fn a_path_of_inputs_predicts_the_warm_start() {
+        let cache = KernelCache::default();
+        let mut s = ContactSolver::new(&rolling(1.0, 1.0), &cache);
+        // Steps of 1 % in load and 2 % in creepage, as consecutive time steps.
+        for k in 0..4 {
+            let k = f64::from(k);
+            solve_last(&mut s, &rolling(1.0 + 0.01 * k, 1.0 + 0.02 * k));
+        }
+        let next = rolling(1.04, 1.08);
+        // The same state without the path: the plain warm start.
+        let mut plain = s.clone();
+        plain.path.clear();
+        let a = solve_last(&mut s, &next);
+        let b = solve_last(&mut plain, &next);
+        assert!(
+            a.info.matvecs < b.info.matvecs,
+            "predicted {} products, plain warm start {}",
+            a.info.matvecs,
+            b.info.matvecs
+        );
+        // Both meet the tolerance: the same forces within it.
+        let (ta, tb) = (a.totals, b.totals);
+        let fmax = 0.3 * ta.normal_force_n;
+        for (x, y) in [(ta.fx_n, tb.fx_n), (ta.fy_n, tb.fy_n)] {
+            assert!((x - y).abs() < 1e-5 * fmax, "{x} against {y}");
+        }
+        // Back to the input before last: its own solution is the start.
+        let c = solve_last(&mut s, &rolling(1.03, 1.06));
+        assert!(
+            c.info.tangential_iterations <= 1 && c.info.matvecs < a.info.matvecs / 2,
+            "{:?}",
+            c.info
+        );
+        // Another geometry is another path: no prediction, and a reset
+        // forgets it.
+        s.reset();
+        assert_eq!(
+            s.path
+                .predict(&PathPoint::of(&next), [&mut [], &mut [], &mut []]),
+            0.0
+        );
+    }
 }

@@ -830,7 +830,11 @@ pub fn solve_coulomb_newton(
         // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
         // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²
         // with their safeguard, loose while the active set settles and
-        // superlinear after; but no tighter than the tolerance needs: the
+        // superlinear after; at most the merit itself (eta_k <= |F_k|:
+        // quadratic local convergence, Dembo, Eisenstat and Steihaug, SIAM
+        // J. Numer. Anal. 19 (1982) 400–408), without which a start close
+        // to the solution (a warm start) keeps eta near 0.5 and crawls one
+        // product per step; but no tighter than the tolerance needs: the
         // step's linear residual, eta times the root-sum-square one, bounds
         // its largest element.
         let mut eta = if iterations == 1 {
@@ -841,7 +845,10 @@ pub fn solve_coulomb_newton(
         if 0.9 * eta_prev * eta_prev > 0.1 {
             eta = eta.max(0.9 * eta_prev * eta_prev);
         }
-        let eta = eta.max(0.7 * settings.tolerance / merit).clamp(1e-4, 0.5);
+        let eta = eta
+            .min(merit)
+            .max(0.7 * settings.tolerance / merit)
+            .clamp(1e-4, 0.5);
         eta_prev = eta;
         merit_prev = merit;
         matvecs += gmres(
