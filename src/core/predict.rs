@@ -126,19 +126,16 @@ fn secant_factor(a: &PathPoint, b: &PathPoint, c: &PathPoint) -> f64 {
         ]
     };
     let (ua, ub, uc) = (scaled(a), scaled(b), scaled(c));
-    let d1: Vec<f64> = (0..4).map(|j| ub[j] - ua[j]).collect();
-    let d2: Vec<f64> = (0..4).map(|j| uc[j] - ub[j]).collect();
-    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
-    let (n1, n2) = (dot(&d1, &d1), dot(&d2, &d2));
+    let d1: [f64; 4] = std::array::from_fn(|j| ub[j] - ua[j]);
+    let d2: [f64; 4] = std::array::from_fn(|j| uc[j] - ub[j]);
+    let dot = |x: &[f64; 4], y: &[f64; 4]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+    let (n1, n2, d12) = (dot(&d1, &d1), dot(&d2, &d2), dot(&d1, &d2));
     if !(n1 > 0.0 && n2 > 0.0) {
         return 0.0;
     }
-    let theta = dot(&d1, &d2) / n1;
-    let misfit2: f64 = d1
-        .iter()
-        .zip(&d2)
-        .map(|(x, y)| (y - theta * x).powi(2))
-        .sum();
+    // Least squares: |d2 - theta d1|² = |d2|² - theta (d1.d2).
+    let theta = d12 / n1;
+    let misfit2 = n2 - theta * d12;
     if misfit2 > MAX_MISFIT * MAX_MISFIT * n2 || !theta.is_finite() {
         return 0.0;
     }
