@@ -535,25 +535,32 @@ fn sweep(pair: &WheelRailPair, table: &ContactTable, inputs: &[WheelRailInput]) 
 }
 
 impl Errors {
-    /// Geometry within the direct search's sampling (0.05 mm): contact
-    /// position 0.05 mm, contact angle 0.015 rad and rolling radius 0.1 mm
-    /// (both move fast with the position at a flange root: measured 0.025
-    /// mm, 0.0061-0.0102 rad, 0.053-0.065 mm).
+    /// Geometry: contact position 0.02 mm, contact angle 0.004 rad and
+    /// rolling radius 0.1 mm (it moves fast with the position at a flange
+    /// root). Measured: 0.011 mm, 0.0024 rad, 0.065 mm.
     fn check_geometry(&self, what: &str) {
-        assert!(self.rail_y_m < 5e-5, "{what}: {self:?}");
-        assert!(self.angle_rad < 0.015, "{what}: {self:?}");
+        assert!(self.rail_y_m < 2e-5, "{what}: {self:?}");
+        assert!(self.angle_rad < 0.004, "{what}: {self:?}");
         assert!(self.radius_m < 1e-4, "{what}: {self:?}");
     }
 
-    /// Forces within 3 % of the wheel load per patch and per wheel, and a
-    /// patch at its onset seen by one path only within 1 % (measured with
-    /// the roll found from the profiles: MBench 0.9 % and 1.3 %, worn 2.2 %
-    /// and 2.7 %, onset 0.6 %); roll within 1 urad (measured 0.4 urad).
-    fn check_forces(&self, what: &str) {
+    /// Forces within `limit` of the wheel load per patch, per wheel and for
+    /// a patch at its onset seen by one path only. Measured with the roll
+    /// found from the profiles: per patch MBench 0.10 %, worn 0.62 %; per
+    /// wheel 0.15 % and 0.24 %; onset 0.62 %. With a roll given 1.3 and
+    /// 3.1 mrad off the quasi-static one: 1.8 % and 1.9 %, where the
+    /// contact angle of a flank at 1.23 rad differs by 0.0024 rad (the
+    /// direct search's refined minimum against the table's descent along
+    /// the wheel profile: FN moves by FN tan(angle) d(angle)).
+    fn check_forces(&self, what: &str, limit: f64) {
+        assert!(self.patch_force < limit, "{what}: {self:?}");
+        assert!(self.wheel_force < limit, "{what}: {self:?}");
+        assert!(self.unmatched_force < limit, "{what}: {self:?}");
+    }
+
+    /// The roll found by both paths within 1 urad (measured 0.4 urad).
+    fn check_roll(&self, what: &str) {
         assert!(self.roll_rad < 1e-6, "{what}: {self:?}");
-        assert!(self.patch_force < 0.03, "{what}: {self:?}");
-        assert!(self.wheel_force < 0.03, "{what}: {self:?}");
-        assert!(self.unmatched_force < 0.01, "{what}: {self:?}");
     }
 }
 
@@ -578,7 +585,8 @@ fn mbench_lookup_agrees_with_the_direct_search() {
     let e = sweep(&pair, &table, &found);
     eprintln!("MBench, roll found, A-2.2 yaw: {e:?}");
     e.check_geometry("MBench, roll found");
-    e.check_forces("MBench, roll found");
+    e.check_roll("MBench, roll found");
+    e.check_forces("MBench, roll found", 0.01);
     // Given roll off the roll nodes (2.5 mrad apart) and off the
     // quasi-static roll, yaw 0.
     let cache = KernelCache::default();
@@ -599,10 +607,8 @@ fn mbench_lookup_agrees_with_the_direct_search() {
         .collect();
     let e = sweep(&pair, &table, &given);
     eprintln!("MBench, given roll, yaw 0: {e:?}");
-    // Forces are not checked here: measured up to 17 % of the wheel load
-    // per patch and 8 % per wheel with the roll 3.1 mrad off the
-    // quasi-static one (an open finding, see the table module).
     e.check_geometry("MBench, given roll");
+    e.check_forces("MBench, given roll", 0.03);
 }
 
 #[test]
@@ -626,7 +632,8 @@ fn worn_lookup_agrees_with_the_direct_search() {
     let e = sweep(&pair, &table, &found);
     eprintln!("worn, roll found: {e:?}");
     e.check_geometry("worn, roll found");
-    e.check_forces("worn, roll found");
+    e.check_roll("worn, roll found");
+    e.check_forces("worn, roll found", 0.01);
 }
 
 /// Outside the table the direct search answers, unchanged.

@@ -19,11 +19,13 @@
 //!    parts closer than `merge_distance_m` are combined, parts farther apart
 //!    are separate patches (tread, flange root, flange).
 //! 4. **Patch geometry.** Per patch: the reference point where g is
-//!    smallest, the contact angle there (angle of the rail normal from the
-//!    vertical, positive where the rail surface faces the gauge side, i.e.
-//!    flange contact), the tangent plane, and the undeformed distance
-//!    measured along the reference normal between rail and locus at lateral
-//!    coordinates s in the tangent plane, plus the wheel's curvature along
+//!    smallest (between the samples: the vertex of a parabola), the contact
+//!    angle there (angle of the rail normal from the vertical, positive
+//!    where the rail surface faces the gauge side, i.e. flange contact),
+//!    the tangent plane, and the undeformed distance measured along the
+//!    reference normal between rail and locus at lateral coordinates s in
+//!    the tangent plane, with the wheel moved vertically into touch at the
+//!    reference (as the load moves it), plus the wheel's curvature along
 //!    x: h(x, s) = h(s) + k_x(s) (x - dx(s))^2 / 2 (planar contact approach).
 
 use crate::wheelrail::wheelset::{
@@ -558,7 +560,9 @@ pub struct PatchGeometry {
     pub wheel_profile_y_m: f64,
     /// Lateral extent of the potential contact area in the tangent plane [m].
     pub s_range_m: [f64; 2],
-    /// Undeformed distance samples, increasing s.
+    /// Undeformed distance samples, increasing s: the normal distance with
+    /// the wheel moved vertically into touch at the minimum, plus the
+    /// normal part of the minimum's vertical gap (see [`patch_geometry`]).
     pub lateral: Vec<LateralSample>,
     /// Index of the rail sample at the reference point.
     pub rail_index: usize,
@@ -753,6 +757,40 @@ fn interp<T: Copy>(v: &[(f64, f64, T)], s: f64) -> Option<(f64, T, T, f64)> {
     Some((a.1 + f * (b.1 - a.1), a.2, b.2, f))
 }
 
+/// The vertex (q, gap) [m] of the parabola through the vertical gap at
+/// sample `k` and its neighbours, within half a sample of `k`; sample `k`
+/// itself at the ends of the samples or where the gap is not convex.
+pub(crate) fn refined_minimum(gap: &VerticalGap, k: usize) -> (f64, f64) {
+    let (q, g0) = (gap.q_m(k), gap.gap_m(k));
+    if k == 0 || k + 1 >= gap.len() {
+        return (q, g0);
+    }
+    let (gm, gp) = (gap.gap_m(k - 1), gap.gap_m(k + 1));
+    let curv = gm - 2.0 * g0 + gp;
+    if !(curv.is_finite() && curv > 0.0) {
+        return (q, g0);
+    }
+    let f = (0.5 * (gm - gp) / curv).clamp(-0.5, 0.5);
+    (
+        q + f * gap.dq_m,
+        g0 + 0.5 * (gp - gm) * f + 0.5 * curv * f * f,
+    )
+}
+
+/// The rail sample segment (index of its first sample) over `q_m` and the
+/// unit contact normal into the rail there, interpolated between the
+/// segment's sample normals; `None` off the rail.
+pub(crate) fn rail_normal_at(rs: &[CurveSample], q_m: f64) -> Option<(usize, [f64; 2])> {
+    let j = rs
+        .windows(2)
+        .position(|w| w[0].q_m <= q_m && w[1].q_m > q_m)?;
+    let f = (q_m - rs[j].q_m) / (rs[j + 1].q_m - rs[j].q_m);
+    let (a, b) = (rs[j].outward_normal(), rs[j + 1].outward_normal());
+    let n = [-(a[0] + f * (b[0] - a[0])), -(a[1] + f * (b[1] - a[1]))];
+    let len = n[0].hypot(n[1]);
+    Some((j, [n[0] / len, n[1] / len]))
+}
+
 /// The geometry of the patch around the interval `[k0, k1]` of `gap` with
 /// its minimum at `kmin`, for an expected vertical approach up to `cap_m`.
 pub fn patch_geometry(
@@ -762,15 +800,13 @@ pub fn patch_geometry(
     (k0, k1, kmin): (usize, usize, usize),
     margin_m: f64,
 ) -> Option<PatchGeometry> {
-    let qref = gap.q_m(kmin);
-    let zref = gap.z_rail_m[kmin];
-    // Rail normal at the reference: from the rail samples around it.
+    // The reference: the minimum between the samples, where the contact
+    // angle is taken (a sample of 0.05 mm in q is 0.15 mm of a flank at
+    // 1.2 rad, 0.006 rad of contact angle on a 13 mm flange root).
+    let (qref, g) = refined_minimum(gap, kmin);
+    let zref = gap.rail_z_at(qref);
     let rs = rail.samples();
-    let j = rs
-        .windows(2)
-        .position(|w| w[0].q_m <= qref && w[1].q_m > qref)?;
-    let out = rs[j].outward_normal();
-    let normal = [-out[0], -out[1]];
+    let (j, normal) = rail_normal_at(rs, qref)?;
     let contact_angle_rad = normal[0].atan2(normal[1]);
     let t = [normal[1], -normal[0]];
     let proj = |k: usize| (gap.q_m(k) - qref) * t[0] + (gap.z_rail_m[k] - zref) * t[1];
@@ -780,7 +816,14 @@ pub fn patch_geometry(
     let rail_all: Vec<_> = rs.iter().map(|s| (s.q_m, s.z_m, ())).collect();
     let rail_pts = to_patch_frame(&rail_all, j, origin, normal, lim);
     let li = gap.locus_index[kmin];
-    let wheel_all: Vec<_> = locus.iter().map(|p| (p.q_m, p.z_m, *p)).collect();
+    // The wheel as the load will place it: moved vertically into touch at
+    // the minimum (by its vertical gap g there), its distance to the rail
+    // then offset back by g's normal part. Sampled at the rigid position
+    // instead, the wheel's curve would sit g sin(angle) to the side of
+    // where it lands (0.5 mm for a flank 1.8 mm off at 0.29 rad, as a
+    // wheel lifted by a given roll is), which moves the minimum by tens of
+    // micrometres and changes the curvature B on real profiles.
+    let wheel_all: Vec<_> = locus.iter().map(|p| (p.q_m, p.z_m + g, *p)).collect();
     let wheel_pts = to_patch_frame(&wheel_all, li, origin, normal, lim);
     let lref = locus[li];
     let ds = SAMPLE_SPACING_M;
@@ -796,7 +839,7 @@ pub fn patch_geometry(
         let mix = |u: f64, v: f64| u + f * (v - u);
         lateral.push(LateralSample {
             s_m: s,
-            gap_m: lr - lw,
+            gap_m: lr - lw + g * normal[1],
             dx_m: mix(pa.x_m, pb.x_m) - lref.x_m,
             kx_per_m: mix(pa.kx_per_m, pb.kx_per_m),
         });
@@ -809,7 +852,7 @@ pub fn patch_geometry(
         x_m: lref.x_m,
         normal,
         contact_angle_rad,
-        min_vertical_gap_m: gap.gap_m(kmin),
+        min_vertical_gap_m: g,
         rolling_radius_m: lref.radius_m,
         wheel_profile_y_m: lref.profile_y_m,
         s_range_m,

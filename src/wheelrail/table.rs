@@ -13,11 +13,7 @@
 //! node's smallest gap; of two minima whose barrier is below
 //! [`PROMINENCE_M`] (rounding, not contacts), the deeper. Per contact:
 //!
-//! * where it lies on the wheel profile (arc length of the fitted profile);
-//! * the lateral curvature B of the normal undeformed distance, computed as
-//!   the direct Hertz path does ([`crate::wheelrail::contact`]: second
-//!   difference of the patch's lateral samples about their minimum) with
-//!   the wheel put in touch at that minimum, as at the rigid position.
+//! where it lies on the wheel profile (arc length of the fitted profile).
 //!
 //! Default grid ([`TableSettings::default`]): y from -15 to +15 mm every
 //! 0.1 mm and roll from -25 to +25 mrad every 2.5 mrad: 301 x 21 nodes. The
@@ -34,8 +30,8 @@
 //! (y, roll). The contacts of the node with the largest weight come first;
 //! each is matched at the other nodes with the contact nearest on the
 //! wheel profile, within [`MATCH_DISTANCE_M`] of arc length, and its
-//! position on the wheel and B are the weighted means over the nodes that
-//! have it (B over those where it is defined). Contacts of the other nodes
+//! position on the wheel is the weighted mean over the nodes that have it.
+//! Contacts of the other nodes
 //! left without a match follow (a contact that appears or disappears
 //! between the nodes), with the weights of the nodes that have them.
 //!
@@ -46,23 +42,26 @@
 //! by sample, to its local minimum, refined by a parabola. Seeds that end
 //! on the same minimum are one contact; seeds of a contact that does not
 //! exist at the actual position end on a neighbour. So the contact
-//! position, contact angle (from the rail slope), rolling radius, lead of
-//! the contact point and vertical gap are those of the direct search up to
-//! its 0.05 mm sampling, and whether a contact exists is decided at the
-//! actual position, not at a node. The barrier between neighbouring
+//! position, contact angle (from the rail's sample normals, as the direct
+//! search), rolling radius, lead of the contact point and vertical gap are
+//! those of the direct search up to how each refines the minimum between
+//! samples, and whether a contact exists is decided at the actual
+//! position, not at a node. The barrier between neighbouring
 //! contacts (the largest vertical gap between them, for grouping) is
 //! evaluated the same way. The rigid position (and the roll, when it is
 //! not given) follows from these gaps as in the direct search.
 //!
-//! # Approximation of yaw
-//!
-//! Only B comes from the yaw-0 table. With yaw, the locus point of a wheel
-//! circle lies at an angle of about tan(contact angle) x yaw round the
-//! wheel, which changes the lateral shape of the locus: nothing on the
-//! tread, where B is mostly the rail's crown; at a flange at 15-24 mrad of
-//! yaw, a few percent of B, and so of the Hertz semi-axis ratio.
-//! `tests/wheelrail.rs` measures the forces against the direct search at the
-//! Manchester yaw angles (2.4 mrad per mm of shift).
+//! The lateral curvature B of the normal undeformed distance (for Hertz)
+//! is evaluated at the actual position too, from the vertical gap G(q) at
+//! wheel points [`CURVATURE_SPAN_M`] either side of the minimum:
+//! B = G''(q) cos^3(angle) / 2, the curvature difference of two curves of
+//! slope tan(angle), over the span of the direct path's second difference
+//! ([`crate::wheelrail::contact`]). Interpolating B between nodes instead
+//! (as this module did first) missed its fast variation at flange roots and
+//! flanks: with a roll given 1-3 mrad off the quasi-static one, up to 60 %
+//! of B on a tread/flange-root pair. With B from the actual position, no
+//! part of the Hertz input comes from the yaw-0 table, so yaw needs no
+//! approximation.
 //!
 //! # Patches
 //!
@@ -85,15 +84,17 @@ use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::wheelrail::contact::{
-    finish, hertz_patch, lateral_curvature, load_iteration, pitch_rate, solve_wheelset, validate,
-    wheel_fastsim, LoadResult, PatchWork, Timing, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailSolution, WheelResult, CAP_FACTOR,
+    finish, hertz_patch, load_iteration, pitch_rate, solve_wheelset, validate, wheel_fastsim,
+    LoadResult, PatchWork, Timing, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSolution,
+    WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
-    find_roll, patch_geometry, wheel_locus, LocusFrame, LocusPoint, PatchGeometry, SearchScratch,
+    find_roll, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry, SearchScratch,
     SearchSettings, SidePose, VerticalGap,
 };
-use crate::wheelrail::wheelset::{CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair};
+use crate::wheelrail::wheelset::{
+    CurveSample, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
+};
 
 /// Potential contacts are the minima of the vertical gap up to this far
 /// above a node's smallest gap [m]: far beyond the approach of any wheel
@@ -108,10 +109,9 @@ pub const PROMINENCE_M: f64 = 1.0e-7;
 /// of neighbouring nodes [m].
 pub const MATCH_DISTANCE_M: f64 = 2.0e-3;
 
-/// Half-width of the window of gap samples handed to the patch geometry
-/// for the lateral curvature (the curvature uses up to 10 samples either
-/// side of the minimum).
-const CURVATURE_WINDOW: usize = 20;
+/// Half-span of the second difference for the lateral curvature B, along
+/// the wheel profile [m]: that of the direct path (10 lateral samples).
+pub const CURVATURE_SPAN_M: f64 = 10.0 * SAMPLE_SPACING_M;
 
 /// Grid of a contact table (track frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,8 +143,6 @@ impl Default for TableSettings {
 struct NodeContact {
     /// Arc length of the contact point along the fitted wheel profile [m].
     wheel_t_m: f64,
-    /// Lateral curvature of the normal undeformed distance [1/m].
-    b_per_m: f64,
 }
 
 /// A uniform axis of the grid.
@@ -200,6 +198,8 @@ struct Evaluated {
     contact_angle_rad: f64,
     /// Vertical gap [m].
     gap_m: f64,
+    /// Lateral curvature of the normal undeformed distance [1/m] (set
+    /// once the position is final: [`Probe::curvature`]).
     b_per_m: f64,
     /// Largest vertical gap between this contact and the next (+q) [m].
     barrier_m: f64,
@@ -251,7 +251,7 @@ fn build_rolls(
                 ..*p
             }));
             gap.compute(rail, &locus);
-            out.push((iy * roll.n + ir, node_contacts(rail, &gap, &locus, dt)));
+            out.push((iy * roll.n + ir, node_contacts(&gap, &locus, dt)));
         }
     }
     out
@@ -374,7 +374,6 @@ impl ContactTable {
                     continue;
                 }
                 let (mut t, mut w_sum) = (0.0, 0.0);
-                let (mut b, mut wb_sum) = (0.0, 0.0);
                 for (k, (contacts, w)) in corners.iter().enumerate().skip(first) {
                     let near = |m: &NodeContact| (m.wheel_t_m - c.wheel_t_m).abs();
                     let Some(j) = (0..contacts.len())
@@ -386,16 +385,10 @@ impl ContactTable {
                     used[k][j] = true;
                     t += w * contacts[j].wheel_t_m;
                     w_sum += w;
-                    // B is NaN where the node's patch geometry failed.
-                    if contacts[j].b_per_m.is_finite() {
-                        b += w * contacts[j].b_per_m;
-                        wb_sum += w;
-                    }
                 }
                 // Contacts of nodes of zero weight only keep their values.
                 out.push(NodeContact {
                     wheel_t_m: if w_sum > 0.0 { t / w_sum } else { c.wheel_t_m },
-                    b_per_m: if wb_sum > 0.0 { b / wb_sum } else { c.b_per_m },
                 });
             }
         }
@@ -418,7 +411,7 @@ impl ContactTable {
         let probe = Probe::new(self, side, pose);
         let mut out: Vec<Evaluated> = Vec::with_capacity(seeds.len());
         for c in seeds {
-            let Some(e) = probe.descend(c.wheel_t_m, c.b_per_m) else {
+            let Some(e) = probe.descend(c.wheel_t_m) else {
                 continue;
             };
             let same = |o: &Evaluated| (o.wheel_t_m - e.wheel_t_m).abs() < 2.0 * probe.dt;
@@ -438,6 +431,7 @@ struct Probe<'a> {
     dt: f64,
     frame: LocusFrame,
     rail: &'a VerticalGap,
+    rail_samples: &'a [CurveSample],
 }
 
 /// Most steps of the descent from a seed along the wheel profile (in
@@ -452,12 +446,13 @@ impl<'a> Probe<'a> {
             dt: wheel_step_m(wheel.samples()),
             frame: LocusFrame::new(wheel, table.pair.wheelset().nominal_radius_m, pose),
             rail: &table.rails[side.index()],
+            rail_samples: table.pair.rail(side).samples(),
         }
     }
 
     /// The contact evaluated at wheel arc length `t_m`; `None` off the
     /// profiles.
-    fn at(&self, t_m: f64, b_per_m: f64) -> Option<Evaluated> {
+    fn at(&self, t_m: f64) -> Option<Evaluated> {
         let ws = self.samples;
         let f = t_m / self.dt;
         if !(f >= 0.0 && f <= (ws.len() - 1) as f64) {
@@ -489,7 +484,7 @@ impl<'a> Probe<'a> {
             // Normal into the rail: (-dz/dq, 1) normalised.
             contact_angle_rad: (-slope).atan2(1.0),
             gap_m: rail_z_m - locus.z_m,
-            b_per_m,
+            b_per_m: 0.0,
             barrier_m: f64::INFINITY,
         })
     }
@@ -497,8 +492,8 @@ impl<'a> Probe<'a> {
     /// From the seed `t_m`, downhill along the wheel profile in sample
     /// steps to a local minimum of the vertical gap, then to the vertex of
     /// the parabola through it and its neighbours.
-    fn descend(&self, t_m: f64, b_per_m: f64) -> Option<Evaluated> {
-        let g = |t: f64| self.at(t, b_per_m).map_or(f64::INFINITY, |e| e.gap_m);
+    fn descend(&self, t_m: f64) -> Option<Evaluated> {
+        let g = |t: f64| self.at(t).map_or(f64::INFINITY, |e| e.gap_m);
         let (mut t, mut g0) = (t_m, g(t_m));
         if !g0.is_finite() {
             return None;
@@ -517,7 +512,35 @@ impl<'a> Probe<'a> {
         if curv.is_finite() && curv > 0.0 {
             t += (0.5 * (gm - gp) / curv).clamp(-1.0, 1.0) * self.dt;
         }
-        self.at(t, b_per_m)
+        self.at(t)
+    }
+
+    /// The contact angle at contact `e` from the rail's sample normals, as
+    /// the direct path has it ([`rail_normal_at`]); the rail slope's
+    /// central difference of [`Probe::at`], enough for the descent, is up
+    /// to 0.006 rad off on a flange.
+    fn contact_angle(&self, e: &Evaluated) -> f64 {
+        rail_normal_at(self.rail_samples, e.locus.q_m)
+            .map_or(e.contact_angle_rad, |(_, n)| n[0].atan2(n[1]))
+    }
+
+    /// The lateral curvature B of the normal undeformed distance at contact
+    /// `e` [1/m] (module documentation); 0 where the span leaves the
+    /// profiles (Hertz then takes its floor on B).
+    fn curvature(&self, e: &Evaluated) -> f64 {
+        let h = (CURVATURE_SPAN_M / self.dt).round().max(1.0) * self.dt;
+        let (Some(a), Some(b)) = (self.at(e.wheel_t_m - h), self.at(e.wheel_t_m + h)) else {
+            return 0.0;
+        };
+        let (qa, q0, qb) = (a.locus.q_m, e.locus.q_m, b.locus.q_m);
+        let d2 =
+            2.0 * ((b.gap_m - e.gap_m) / (qb - q0) - (e.gap_m - a.gap_m) / (q0 - qa)) / (qb - qa);
+        let b_per_m = 0.5 * d2 * e.contact_angle_rad.cos().powi(3);
+        if b_per_m.is_finite() {
+            b_per_m
+        } else {
+            0.0
+        }
     }
 
     /// Largest vertical gap between contacts `a` and `b` (wheel samples in
@@ -526,19 +549,14 @@ impl<'a> Probe<'a> {
         let (ta, tb) = (a.wheel_t_m.min(b.wheel_t_m), a.wheel_t_m.max(b.wheel_t_m));
         let n = ((tb - ta) / self.dt).ceil() as usize;
         (0..=n)
-            .filter_map(|k| self.at((ta + k as f64 * self.dt).min(tb), 0.0))
+            .filter_map(|k| self.at((ta + k as f64 * self.dt).min(tb)))
             .map(|e| e.gap_m)
             .fold(a.gap_m.max(b.gap_m), f64::max)
     }
 }
 
 /// The potential contacts of one node from its vertical gap.
-fn node_contacts(
-    rail: &PlacedRail,
-    gap: &VerticalGap,
-    locus: &[LocusPoint],
-    wheel_dt_m: f64,
-) -> Vec<NodeContact> {
+fn node_contacts(gap: &VerticalGap, locus: &[LocusPoint], wheel_dt_m: f64) -> Vec<NodeContact> {
     let n = gap.len();
     let g = |k: usize| gap.gap_m(k);
     let Some((_, gmin)) = gap.min() else {
@@ -572,7 +590,6 @@ fn node_contacts(
             }
         }
     }
-    let mut touching = Vec::with_capacity(locus.len());
     minima
         .iter()
         .map(|&k| {
@@ -580,24 +597,8 @@ fn node_contacts(
             let li = gap.locus_index[k].min(locus.len() - 2);
             let (p, q) = (locus[li], locus[li + 1]);
             let f = ((gap.q_m(k) - p.q_m) / (q.q_m - p.q_m)).clamp(0.0, 1.0);
-            let iv = (
-                k.saturating_sub(CURVATURE_WINDOW),
-                (k + CURVATURE_WINDOW).min(n - 1),
-                k,
-            );
-            // B as the direct path has it at the rigid position: with the
-            // wheel lowered (or raised) onto the rail at this minimum.
-            touching.clear();
-            touching.extend(locus.iter().map(|p| LocusPoint {
-                z_m: p.z_m + g(k),
-                ..*p
-            }));
-            let b_per_m = patch_geometry(rail, &touching, gap, iv, 0.0)
-                .map(|geom| lateral_curvature(&geom).1)
-                .unwrap_or(f64::NAN);
             NodeContact {
                 wheel_t_m: (li as f64 + f) * wheel_dt_m,
-                b_per_m,
             }
         })
         .collect()
@@ -811,6 +812,8 @@ pub fn solve_wheelset_tabulated(
             if i + 1 < c.len() {
                 c[i].barrier_m = probe.barrier(&c[i], &c[i + 1]) - dz;
             }
+            c[i].b_per_m = probe.curvature(&c[i]);
+            c[i].contact_angle_rad = probe.contact_angle(&c[i]);
             c[i].gap_m -= dz;
             c[i].locus.z_m += dz;
         }
