@@ -597,6 +597,11 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
     });
     assert_invalid(&solve_err(&mut client, r).await, &["load.vertical_force_n"]);
     let mut r = good.clone();
+    r.load = Some(pb::WheelLoad {
+        load: Some(pb::wheel_load::Load::CenterZM(f64::NAN)),
+    });
+    assert_invalid(&solve_err(&mut client, r).await, &["load.center_z_m"]);
+    let mut r = good.clone();
     r.element_size_m = Some(1.0);
     assert_invalid(&solve_err(&mut client, r).await, &["element_size_m"]);
     let mut r = good.clone();

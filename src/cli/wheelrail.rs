@@ -152,6 +152,7 @@ struct VelocityKeys {
 struct LoadKeys {
     vertical_force_n: Option<f64>,
     approach_m: Option<f64>,
+    center_z_m: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -234,15 +235,17 @@ impl WheelrailRun {
                 )))
             }
         };
-        let load = match (c.load.vertical_force_n, c.load.approach_m) {
-            (Some(f), None) => WheelLoad::VerticalForce(f),
-            (None, Some(d)) => WheelLoad::Approach(d),
-            _ => {
-                return Err(bad(
-                    "invalid input `load`: give exactly one of vertical_force_n and approach_m",
-                ))
-            }
-        };
+        let l = &c.load;
+        let load =
+            match (l.vertical_force_n, l.approach_m, l.center_z_m) {
+                (Some(f), None, None) => WheelLoad::VerticalForce(f),
+                (None, Some(d), None) => WheelLoad::Approach(d),
+                (None, None, Some(z)) => WheelLoad::CenterHeight(z),
+                _ => return Err(bad(
+                    "invalid input `load`: give exactly one of vertical_force_n, approach_m and \
+                     center_z_m",
+                )),
+            };
         let t = &c.track;
         let w = &c.wheelset;
         let rail_r = read_profile(&t.rail_profile, dir, t.rail_mirror_y, "track.rail_profile")?;

@@ -130,10 +130,11 @@ impl QuerySettings {
         let load = match load.and_then(|l| l.load) {
             Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
             Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
+            Some(pb::wheel_load::Load::CenterZM(z)) => WheelLoad::CenterHeight(z),
             None => {
                 return Err(ServiceError::invalid(
                     "load",
-                    "missing: give vertical_force_n or approach_m",
+                    "missing: give vertical_force_n, approach_m or center_z_m",
                 ))
             }
         };
@@ -208,6 +209,7 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
             load: Some(match input.load {
                 WheelLoad::VerticalForce(f) => pb::wheel_load::Load::VerticalForceN(f),
                 WheelLoad::Approach(d) => pb::wheel_load::Load::ApproachM(d),
+                WheelLoad::CenterHeight(z) => pb::wheel_load::Load::CenterZM(z),
             }),
         }),
         friction: Some(pb::FrictionSection {

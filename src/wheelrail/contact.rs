@@ -13,7 +13,14 @@
 //! `fs_n` and `creepage_lat` positive towards the field side. As in the
 //! core, body 1 is the rail: patch forces act **on the rail**, and
 //! creepages are the rigid velocity of the rail relative to the wheel at
-//! the reference point divided by the forward speed. Forces in the track
+//! the reference point divided by the rolling speed there,
+//! V = (|v_x| + |w r|) / 2: the mean of the speed of the wheel's point from
+//! the wheelset's motion without its rotation about the axle (v_x, about
+//! the forward speed) and of its circumferential speed from that rotation
+//! (w r, r the rolling radius at the point), as in Kalker's theory and
+//! CONTACT's wheel/rail module (`m_wr_rigslip.f90`). On the flange, where
+//! r is 3 % above the nominal radius, V is 1.6 % above the forward speed.
+//! Frictional power is T-gamma times V. Forces in the track
 //! frame (`force_track_n`: x forward, y to the right, z down) also act on
 //! the rail, so a wheel carrying its load has `fz` equal to the vertical
 //! force.
@@ -24,9 +31,14 @@
 //! wheel/rail module): the vertical approach Delta of the wheel (its
 //! downward displacement from the rigid position) is found such that the
 //! total vertical force on the rail, normal and tangential parts of every
-//! patch, equals the prescribed `vertical_force_n`; or Delta is given. A
-//! patch's normal approach is Delta times the vertical component of its
-//! normal.
+//! patch, equals the prescribed `vertical_force_n`; or Delta is given,
+//! directly or as the wheelset centre's height (Delta = that height minus
+//! the rigid position's, the same for both wheels: what an MBS integrator
+//! hands over; a wheel that does not reach its rail then has no patches).
+//! A patch's normal approach is Delta times the vertical component of its
+//! normal. The wheel is a body of revolution: its pitch angle does not
+//! change the geometry, so the position has none (its rate does enter the
+//! creepages).
 
 use std::time::Instant;
 
@@ -87,6 +99,23 @@ pub enum WheelLoad {
     VerticalForce(f64),
     /// Vertical approach of the wheel from the rigid position [m].
     Approach(f64),
+    /// The wheelset centre's height in the track frame [m] (z down, as
+    /// [`WheelRailSolution::center_z_m`]): the position an MBS integrator
+    /// hands over. Each wheel's vertical approach is this minus the rigid
+    /// position's centre height (the same for both wheels); a wheel that
+    /// does not reach its rail carries nothing and has no patches.
+    CenterHeight(f64),
+}
+
+impl WheelLoad {
+    /// The load with a centre height turned into the vertical approach
+    /// from the rigid position whose centre height is `rigid_center_z_m`.
+    pub(crate) fn resolved(self, rigid_center_z_m: f64) -> Self {
+        match self {
+            Self::CenterHeight(z) => Self::Approach(z - rigid_center_z_m),
+            load => load,
+        }
+    }
 }
 
 /// Settings of the wheel/rail solution.
@@ -172,6 +201,9 @@ pub struct PatchResult {
     pub creepage_lat: f64,
     /// Spin creepage [1/m].
     pub spin_per_m: f64,
+    /// Rolling speed the creepages are relative to [m/s] (see the module
+    /// conventions): slip velocity = creepage x this.
+    pub rolling_speed_m_per_s: f64,
     /// Normal force on the rail [N].
     pub normal_force_n: f64,
     /// Longitudinal force on the rail [N].
@@ -188,7 +220,7 @@ pub struct PatchResult {
     pub contact_area_m2: f64,
     /// Share of the contact area in adhesion [-].
     pub adhesion_fraction: f64,
-    /// Frictional power [W] (T-gamma times the forward speed).
+    /// Frictional power [W] (T-gamma times the rolling speed).
     pub frictional_power_w: f64,
     /// Force on the rail in the track frame (x, y, z) [N].
     pub force_track_n: [f64; 3],
@@ -266,6 +298,8 @@ pub(crate) const CAP_FACTOR: f64 = 1.15;
 pub(crate) struct PatchWork {
     geom: PatchGeometry,
     creep: Creepages,
+    /// Rolling speed the creepages are relative to [m/s].
+    speed: f64,
     /// Vertical component of the normal, of the lateral tangent.
     nz: f64,
     sz: f64,
@@ -480,33 +514,40 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Creepages at a patch's reference point (side frame).
+/// Creepages at a patch's reference point (side frame) and the rolling
+/// speed they are relative to [m/s] (see the module conventions).
 fn creepages(
     geom: &PatchGeometry,
     pose: &SidePose,
     side: Side,
     velocity: &WheelsetVelocity,
     omega: f64,
-) -> Creepages {
+) -> (Creepages, f64) {
     let (v, mut w) = side_rates(side, velocity);
-    let a = pose.axle();
-    for k in 0..3 {
-        w[k] += omega * a[k];
-    }
     let c = pose.center();
     let p = [geom.x_m, geom.reference_m[0], geom.reference_m[1]];
     let r = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
-    let wr = cross(w, r);
-    let vw = [v[0] + wr[0], v[1] + wr[1], v[2] + wr[2]];
-    let vel = velocity.forward_m_per_s;
+    let a = pose.axle();
+    let spin = cross([omega * a[0], omega * a[1], omega * a[2]], r);
+    let rest = cross(w, r);
+    let speed = 0.5 * ((v[0] + rest[0]).abs() + spin[0].abs());
+    for k in 0..3 {
+        w[k] += omega * a[k];
+    }
+    let vw = [
+        v[0] + rest[0] + spin[0],
+        v[1] + rest[1] + spin[1],
+        v[2] + rest[2] + spin[2],
+    ];
     let t = geom.tangent();
     let n = [0.0, geom.normal[0], geom.normal[1]];
     // Rail at rest: its velocity relative to the wheel is -vw.
-    Creepages {
-        creepage_long: -vw[0] / vel,
-        creepage_lat: -dot(vw, [0.0, t[0], t[1]]) / vel,
-        spin_per_m: -dot(w, n) / vel,
-    }
+    let creep = Creepages {
+        creepage_long: -vw[0] / speed,
+        creepage_lat: -dot(vw, [0.0, t[0], t[1]]) / speed,
+        spin_per_m: -dot(w, n) / speed,
+    };
+    (creep, speed)
 }
 
 /// Curvature B of h(s) ~ h0 + B (s - s0)^2 about the patch minimum [1/m].
@@ -574,6 +615,17 @@ pub fn solve_wheelset_warm(
     let mut timing = Timing {
         search_s: t0.elapsed().as_secs_f64(),
         ..Timing::default()
+    };
+    let resolved;
+    let input = match input.load {
+        WheelLoad::CenterHeight(_) => {
+            resolved = WheelRailInput {
+                load: input.load.resolved(rigid.center_z_m),
+                ..input.clone()
+            };
+            &resolved
+        }
+        _ => input,
     };
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
@@ -649,6 +701,7 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     match input.load {
         WheelLoad::VerticalForce(f) => require_positive("load.vertical_force_n", f)?,
         WheelLoad::Approach(d) => require_positive("load.approach_m", d)?,
+        WheelLoad::CenterHeight(z) => require_finite("load.center_z_m", z)?,
     }
     let e = input.settings.element_size_m;
     if !(e.is_finite() && e > 1e-6 && e < 5e-3) {
@@ -729,7 +782,13 @@ fn solve_wheel(
         WheelLoad::VerticalForce(f) => {
             gmin + CAP_FACTOR * approach_estimate(gap, locus, &input.material, f)
         }
+        // Not reaching the rail (a centre height above the rigid one, or a
+        // wheel lifted by a given roll): nothing to solve.
+        WheelLoad::Approach(d) if d <= gmin => {
+            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None))
+        }
         WheelLoad::Approach(d) => gmin + d,
+        WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_warm"),
     };
     let mut fastsim = wheel_fastsim(side)?;
     let merge = input.settings.search.merge_distance_m;
@@ -810,7 +869,7 @@ fn solve_wheel(
                         timing.solve_s += tc.elapsed().as_secs_f64();
                         if let LoadResult::Done { delta, iterations } = r {
                             let ratio = normal_per_vertical(&patches, input);
-                            let wheel = finish(pair, side, gmin, delta, iterations, patches, input);
+                            let wheel = finish(pair, side, gmin, delta, iterations, patches);
                             return Ok((wheel, ratio));
                         }
                         return Err(WheelRailError::Geometry {
@@ -820,7 +879,7 @@ fn solve_wheel(
                     }
                 }
                 let ratio = normal_per_vertical(&patches, input);
-                let wheel = finish(pair, side, gmin, delta, iterations, patches, input);
+                let wheel = finish(pair, side, gmin, delta, iterations, patches);
                 return Ok((wheel, ratio));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
@@ -852,7 +911,7 @@ fn build_patch(
     omega: f64,
     cache: &KernelCache,
 ) -> Result<PatchWork, WheelRailError> {
-    let creep = creepages(&geom, pose, side, &input.velocity, omega);
+    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
     let nz = geom.normal[1];
     let sz = geom.tangent()[1];
     let (hmin, b) = lateral_curvature(&geom);
@@ -898,6 +957,7 @@ fn build_patch(
     Ok(PatchWork {
         geom,
         creep,
+        speed,
         nz,
         sz,
         hmin,
@@ -930,8 +990,10 @@ pub(crate) fn hertz_patch(
     input: &WheelRailInput,
     omega: f64,
 ) -> PatchWork {
+    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
     PatchWork {
-        creep: creepages(&geom, pose, side, &input.velocity, omega),
+        creep,
+        speed,
         nz: geom.normal[1],
         sz: geom.tangent()[1],
         hmin,
@@ -1133,6 +1195,7 @@ pub(crate) fn load_iteration(
             });
         }
         WheelLoad::VerticalForce(f) => f,
+        WheelLoad::CenterHeight(_) => unreachable!("resolved by the callers"),
     };
     let tol = input.settings.load_tolerance * target;
     let max_it = input.settings.max_load_iterations;
@@ -1463,7 +1526,6 @@ pub(crate) fn finish(
     delta: f64,
     iterations: usize,
     patches: Vec<PatchWork>,
-    input: &WheelRailInput,
 ) -> WheelResult {
     let s = side.sign();
     let rail = pair.rail(side);
@@ -1525,7 +1587,8 @@ pub(crate) fn finish(
             max_pressure_pa: o.max_pressure_pa,
             contact_area_m2: o.area_m2,
             adhesion_fraction: o.adhesion,
-            frictional_power_w: o.tgamma_n * input.velocity.forward_m_per_s,
+            rolling_speed_m_per_s: p.speed,
+            frictional_power_w: o.tgamma_n * p.speed,
             force_track_n: f,
             grid: grid_n,
             solution,

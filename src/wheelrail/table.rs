@@ -709,7 +709,12 @@ fn solve_wheel_tabulated(
     let gmin = deepest.gap_m;
     let mut cap = match input.load {
         WheelLoad::VerticalForce(f) => gmin + CAP_FACTOR * approach_estimate(deepest, input, f),
+        // Not reaching the rail: nothing to solve (as the direct path).
+        WheelLoad::Approach(d) if d <= gmin => {
+            return Ok(finish(pair, side, gmin, d, 0, Vec::new()))
+        }
         WheelLoad::Approach(d) => gmin + d,
+        WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_tabulated"),
     };
     let mut fastsim = wheel_fastsim(side)?;
     let merge = input.settings.search.merge_distance_m;
@@ -739,7 +744,7 @@ fn solve_wheel_tabulated(
                     reps = parts;
                     continue;
                 }
-                return Ok(finish(pair, side, gmin, delta, iterations, patches, input));
+                return Ok(finish(pair, side, gmin, delta, iterations, patches));
             }
             LoadResult::CapTooSmall => {
                 cap = gmin + 2.0 * (cap - gmin);
@@ -822,6 +827,17 @@ pub fn solve_wheelset_tabulated(
     let mut timing = Timing {
         search_s,
         ..Timing::default()
+    };
+    let resolved;
+    let input = match input.load {
+        WheelLoad::CenterHeight(_) => {
+            resolved = WheelRailInput {
+                load: input.load.resolved(center_z_m),
+                ..input.clone()
+            };
+            &resolved
+        }
+        _ => input,
     };
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::with_capacity(input.sides.len());

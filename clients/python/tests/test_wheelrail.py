@@ -44,6 +44,22 @@ def test_solve_wheelrail_both_wheels_carry_the_load(client):
     assert right.patches[0].rolling_radius_m > r.wheel("left").patches[0].rolling_radius_m
 
 
+def test_solve_wheelrail_by_centre_height(client):
+    """The centre height of a force-loaded solve, handed back as the load,
+    gives the same forces (what an MBS integrator does)."""
+    kw = dict(position={"lateral_m": 0.003}, velocity=V, model="hertz_fastsim")
+    by_force = client.solve_wheelrail(load=LOAD, **kw)
+    approach = by_force.wheels[0].vertical_approach_m
+    z = by_force.center_z_m + approach
+    by_height = client.solve_wheelrail(load={"center_z_m": z}, **kw)
+    for a, b in zip(by_force.wheels, by_height.wheels):
+        assert b.vertical_approach_m == pytest.approx(approach, rel=1e-9)
+    left = by_height.wheel("left")
+    assert left.force_track_n.z_n == pytest.approx(LOAD, rel=1e-6)
+    lifted = client.solve_wheelrail(load={"center_z_m": by_force.center_z_m - 1e-4}, **kw)
+    assert all(not w.patches for w in lifted.wheels)
+
+
 def test_solve_wheelrail_exact_with_fields(client):
     r = client.solve_wheelrail(
         velocity={"forward_m_per_s": V, "lateral_m_per_s": -0.03},

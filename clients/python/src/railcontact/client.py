@@ -295,7 +295,9 @@ class Client:
         ``position``: mapping of ``WheelsetPosition`` (``lateral_m``,
         ``yaw_rad``, ``roll_rad``; default centred); ``velocity``: of
         ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...), or a
-        number: the forward speed; ``load``: of ``WheelLoad``, or a number:
+        number: the forward speed; ``load``: of ``WheelLoad``
+        (``vertical_force_n``, ``approach_m`` or ``center_z_m``, the
+        wheelset centre's height as an MBS integrator has it), or a number:
         the vertical force per wheel [N]; ``model``: ``"exact"``,
         ``"hertz_fastsim"``, ``"hertz_fastsim_table"``, ``"cect"`` or ``"auto"``; ``sides``:
         ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a

@@ -823,12 +823,14 @@ class WheelsetVelocity(_message.Message):
     def __init__(self, forward_m_per_s: _Optional[float] = ..., lateral_m_per_s: _Optional[float] = ..., vertical_m_per_s: _Optional[float] = ..., roll_rad_per_s: _Optional[float] = ..., yaw_rad_per_s: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ...) -> None: ...
 
 class WheelLoad(_message.Message):
-    __slots__ = ("vertical_force_n", "approach_m")
+    __slots__ = ("vertical_force_n", "approach_m", "center_z_m")
     VERTICAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     APPROACH_M_FIELD_NUMBER: _ClassVar[int]
+    CENTER_Z_M_FIELD_NUMBER: _ClassVar[int]
     vertical_force_n: float
     approach_m: float
-    def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ...) -> None: ...
+    center_z_m: float
+    def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
     __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields")
