@@ -851,8 +851,11 @@ fn auto_range(values: impl Iterator<Item = f64>, with_zero: bool) -> (f64, f64) 
     (if lo == 0.0 { 0.0 } else { lo - pad }, hi + pad)
 }
 
-/// The two strokes [pixels] and the width of a plus or cross marker.
-fn strokes(mark: Mark) -> ([(i32, i32); 2], [(i32, i32); 2], u32) {
+/// A marker stroke: its two ends [pixels].
+type Stroke = [(i32, i32); 2];
+
+/// The two strokes and the width of a plus or cross marker.
+fn strokes(mark: Mark) -> (Stroke, Stroke, u32) {
     if mark == Mark::Plus {
         ([(-6, 0), (6, 0)], [(0, -6), (0, 6)], 2)
     } else {
@@ -1020,7 +1023,8 @@ fn plot_normal(path: &Path, case: Case, pts: &[NormalPoint]) -> Result<()> {
         (DARK, 1, Dash::Dashed, Mark::No),
         (RED, 3, Dash::Solid, Mark::Dot),
     ];
-    let quantity: [(&str, &str, fn(&NormalValues) -> f64); 4] = [
+    type Quantity = (&'static str, &'static str, fn(&NormalValues) -> f64);
+    let quantity: [Quantity; 4] = [
         ("(a) maximum pressure", "p_max [MPa]", |v| v.p_max_pa * 1e-6),
         ("(b) total contact angle variation", "Δδ [deg]", |v| {
             v.variation_deg
@@ -1350,7 +1354,7 @@ const WFRIC_CREEPAGES: [f64; 10] = [
     -4.0e-3, -2.0e-3, -1.53e-3, -1.0e-3, -0.5e-3, 0.0, 0.5e-3, 0.86e-3, 2.0e-3, 4.0e-3,
 ];
 
-fn wfric_points<'a>(pts: &'a [RollPoint]) -> Vec<&'a RollPoint> {
+fn wfric_points(pts: &[RollPoint]) -> Vec<&RollPoint> {
     WFRIC_CREEPAGES
         .iter()
         .filter_map(|&xi| pts.iter().find(|p| (p.creepage - xi).abs() < 1e-9))
@@ -1474,8 +1478,7 @@ fn normal_table(md: &mut String, case: Case, pts: &[NormalPoint]) {
 /// Differences of each model against cect at one load.
 fn comparison_rows(md: &mut String, p: &NormalPoint) {
     let c = &p.models[3];
-    for m in 0..3 {
-        let v = &p.models[m];
+    for (m, v) in p.models.iter().enumerate().take(3) {
         let _ = writeln!(
             md,
             "| {:.1} | {:.1} | {} | {:+.1} | {:+.1} | {:+.1} ({:+.1}) | {:+.1} ({:+.1}) | {:+.1} |",

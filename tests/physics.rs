@@ -25,6 +25,7 @@ fn material(nu: f64) -> CombinedMaterial {
 }
 
 /// A problem with h = A x² + B y² on a grid 1.2 times the Hertz patch.
+#[allow(clippy::too_many_arguments)]
 fn quadratic(
     mat: CombinedMaterial,
     a: f64,

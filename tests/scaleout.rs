@@ -12,7 +12,7 @@ use support::{assert_clean, loadtest_json, num, Server};
 
 const MIX: &str = "wheelrail:hertz_fastsim=4,wheelrail:exact=1,patch:exact40=1";
 
-fn args<'a>(targets: &'a str) -> Vec<&'a str> {
+fn args(targets: &str) -> Vec<&str> {
     vec![
         "--target",
         targets,

@@ -389,7 +389,7 @@ fn finish(
     let (mut count, mut adh) = (0usize, 0usize);
     let mut wfric = vec![0.0; grid.ny];
     let d0 = geometry.mean_contact_angle_rad;
-    for iy in 0..grid.ny {
+    for (iy, wf) in wfric.iter_mut().enumerate() {
         let d = geometry.delta_rad[iy];
         // Local t and n in the global (y, z) plane.
         let (ty, tz) = (d.cos(), d.sin());
@@ -417,7 +417,7 @@ fn finish(
             if steady {
                 let p = -(px[i] * sx[i] + ps[i] * ss[i]);
                 t.tgamma_n += p * area;
-                wfric[iy] += p * grid.dx_m;
+                *wf += p * grid.dx_m;
             }
         }
     }

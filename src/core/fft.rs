@@ -56,10 +56,10 @@ pub fn fast_even_size_single(n: usize) -> usize {
 fn smallest_even_smooth(n: usize, primes: &[usize]) -> usize {
     let mut m = n.max(2);
     loop {
-        if m % 2 == 0 {
+        if m.is_multiple_of(2) {
             let mut k = m;
             for &p in primes {
-                while k % p == 0 {
+                while k.is_multiple_of(p) {
                     k /= p;
                 }
             }
@@ -192,7 +192,7 @@ impl<T: Real> ConvolutionPlan<T> {
     /// the products are circular (wrap-around), which only the
     /// preconditioner of [`KernelSet::apply_normal_inverse`] uses.
     fn with_padding(nx: usize, ny: usize, px: usize, py: usize) -> Self {
-        debug_assert!(px % 2 == 0 && px >= nx && py >= ny);
+        debug_assert!(px.is_multiple_of(2) && px >= nx && py >= ny);
         let nkx = px / 2 + 1;
         let mut rp = RealFftPlanner::<T>::new();
         let mut cp = FftPlanner::<T>::new();
@@ -1024,7 +1024,10 @@ fn periodic_inverse(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Co
     pc.fwd.process_with_scratch(&mut spec, &mut ws.scratch);
     let s = (px * py) as f64;
     let mut floor = spec[(pc.nkx - 1) * py + py / 2].re;
-    if !(floor > 0.0) {
+    // Negated so that NaN takes the fallback too.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    let unusable = !(floor > 0.0);
+    if unusable {
         // Not expected for a positive definite kernel; any positive bound will do.
         floor = 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
     }

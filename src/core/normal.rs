@@ -454,9 +454,12 @@ fn initial_guess(
 ) {
     let n = h.len();
     let sum: f64 = pn.iter().sum();
+    // Negated so that a NaN sum counts as no start too.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    let no_start = !(sum > 0.0);
     match load {
         NormalLoad::NormalForce(f) => {
-            if !(sum > 0.0) {
+            if no_start {
                 hertz_like_guess(h, f, area, a_self, pn);
             }
             let ws: f64 = (0..n).map(|i| w(i) * pn[i]).sum();
@@ -464,7 +467,7 @@ fn initial_guess(
             pn.iter_mut().for_each(|p| *p *= s);
         }
         NormalLoad::Approach(delta) => {
-            if !(sum > 0.0) {
+            if no_start {
                 // Hertz-like in the overlap o = delta w - h: p = p0
                 // sqrt(2 o/omax - 1), p0 = 2 omax / (c pi² a) (see
                 // hertz_like_guess).

@@ -785,11 +785,7 @@ pub fn solve_coulomb_newton(
         }
         // 2. Linearised system on the loaded elements.
         loaded.clear();
-        for i in 0..n {
-            if role[i] != Role::Exterior {
-                loaded.push(i);
-            }
-        }
+        loaded.extend((0..n).filter(|&i| role[i] != Role::Exterior));
         let m = loaded.len();
         for k in 0..m {
             let i = loaded[k];
@@ -1177,7 +1173,7 @@ mod tests {
         let (nx_, ny_, ns, nm) = fields(true);
         let (fx_, fy_, fs, fm) = fields(false);
         let slips = ns.iter().filter(|s| **s == ElementState::Slip).count();
-        assert!(slips > 20 && ns.iter().any(|s| *s == ElementState::Adhesion));
+        assert!(slips > 20 && ns.contains(&ElementState::Adhesion));
         let fmax = c.pn.iter().fold(0.0f64, |m, &v| m.max(v)) * mu;
         for i in 0..n {
             let d = (nx_[i] - fx_[i]).hypot(ny_[i] - fy_[i]);

@@ -277,7 +277,7 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
     };
     let wheel_left = left(spec.wheel_left.as_ref(), &wheel, "wheel_left")?;
     let rail_left = left(spec.rail_left.as_ref(), &rail, "rail_left")?;
-    let material = spec.material.clone().unwrap_or(pb::MaterialSection {
+    let material = spec.material.unwrap_or(pb::MaterialSection {
         shear_modulus_pa: Some(DEFAULT_SHEAR_MODULUS_PA),
         poisson_ratio: Some(DEFAULT_POISSON_RATIO),
         ..Default::default()
@@ -285,7 +285,7 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
     let combined = cli_material(&material)
         .combine()
         .map_err(|e| ServiceError::from(e).within(prefix))?;
-    let friction_section = spec.friction.clone().unwrap_or(pb::FrictionSection {
+    let friction_section = spec.friction.unwrap_or(pb::FrictionSection {
         coefficient: Some(DEFAULT_FRICTION),
         ..Default::default()
     });

@@ -18,6 +18,12 @@ const PAIRS: TableDefinition<&str, &[u8]> = TableDefinition::new("profile_pairs_
 /// File name of the store in the data directory.
 pub const FILE_NAME: &str = "pairs.redb";
 
+/// A stored registration: its id and request.
+pub type StoredPair = (String, pb::RegisterProfilePairRequest);
+
+/// A stored entry that could not be decoded: its id and the reason.
+pub type UndecodedPair = (String, String);
+
 /// An open store.
 pub struct PairStore {
     db: Database,
@@ -71,12 +77,7 @@ impl PairStore {
 
     /// Every stored registration, by id; entries that cannot be decoded are
     /// returned as errors (id, message) and left in place.
-    pub fn load_all(
-        &self,
-    ) -> std::io::Result<(
-        Vec<(String, pb::RegisterProfilePairRequest)>,
-        Vec<(String, String)>,
-    )> {
+    pub fn load_all(&self) -> std::io::Result<(Vec<StoredPair>, Vec<UndecodedPair>)> {
         let tx = self.db.begin_read().map_err(|e| io("read", e))?;
         let t = tx.open_table(PAIRS).map_err(|e| io("table", e))?;
         let mut good = Vec::new();

@@ -309,6 +309,9 @@ pub(crate) struct PatchWork {
     out: PatchOutcome,
 }
 
+// One per patch and few patches per wheel: the size of the exact variant
+// costs nothing worth a box.
+#[allow(clippy::large_enum_variant)]
 enum PatchKind {
     Exact {
         problem: ContactProblem,
