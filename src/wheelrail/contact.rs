@@ -40,6 +40,7 @@
 //! change the geometry, so the position has none (its rate does enter the
 //! creepages).
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -107,17 +108,6 @@ pub enum WheelLoad {
     CenterHeight(f64),
 }
 
-impl WheelLoad {
-    /// The load with a centre height turned into the vertical approach
-    /// from the rigid position whose centre height is `rigid_center_z_m`.
-    pub(crate) fn resolved(self, rigid_center_z_m: f64) -> Self {
-        match self {
-            Self::CenterHeight(z) => Self::Approach(z - rigid_center_z_m),
-            load => load,
-        }
-    }
-}
-
 /// Settings of the wheel/rail solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelRailSettings {
@@ -169,6 +159,21 @@ pub struct WheelRailInput {
     pub friction: Friction,
     /// Settings.
     pub settings: WheelRailSettings,
+}
+
+impl WheelRailInput {
+    /// This input with a centre height turned into the vertical approach
+    /// from the rigid position whose centre height is `rigid_center_z_m`
+    /// (borrowed as it is for the other loads).
+    pub(crate) fn with_load_resolved(&self, rigid_center_z_m: f64) -> Cow<'_, Self> {
+        match self.load {
+            WheelLoad::CenterHeight(z) => Cow::Owned(Self {
+                load: WheelLoad::Approach(z - rigid_center_z_m),
+                ..self.clone()
+            }),
+            _ => Cow::Borrowed(self),
+        }
+    }
 }
 
 /// One contact patch of a wheel.
@@ -619,17 +624,8 @@ pub fn solve_wheelset_warm(
         search_s: t0.elapsed().as_secs_f64(),
         ..Timing::default()
     };
-    let resolved;
-    let input = match input.load {
-        WheelLoad::CenterHeight(_) => {
-            resolved = WheelRailInput {
-                load: input.load.resolved(rigid.center_z_m),
-                ..input.clone()
-            };
-            &resolved
-        }
-        _ => input,
-    };
+    let resolved = input.with_load_resolved(rigid.center_z_m);
+    let input = &*resolved;
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
     let mut next = WarmStart {

@@ -757,24 +757,28 @@ fn interp<T: Copy>(v: &[(f64, f64, T)], s: f64) -> Option<(f64, T, T, f64)> {
     Some((a.1 + f * (b.1 - a.1), a.2, b.2, f))
 }
 
+/// The vertex of the parabola through (-1, `gm`), (0, `g0`), (1, `gp`),
+/// its abscissa clamped to [-`limit`, `limit`]: (abscissa, value); (0,
+/// `g0`) where the three are not convex (or not finite).
+pub(crate) fn parabola_vertex(gm: f64, g0: f64, gp: f64, limit: f64) -> (f64, f64) {
+    let curv = gm - 2.0 * g0 + gp;
+    if !(curv.is_finite() && curv > 0.0) {
+        return (0.0, g0);
+    }
+    let f = (0.5 * (gm - gp) / curv).clamp(-limit, limit);
+    (f, g0 + 0.5 * (gp - gm) * f + 0.5 * curv * f * f)
+}
+
 /// The vertex (q, gap) [m] of the parabola through the vertical gap at
 /// sample `k` and its neighbours, within half a sample of `k`; sample `k`
 /// itself at the ends of the samples or where the gap is not convex.
-pub(crate) fn refined_minimum(gap: &VerticalGap, k: usize) -> (f64, f64) {
+fn refined_minimum(gap: &VerticalGap, k: usize) -> (f64, f64) {
     let (q, g0) = (gap.q_m(k), gap.gap_m(k));
     if k == 0 || k + 1 >= gap.len() {
         return (q, g0);
     }
-    let (gm, gp) = (gap.gap_m(k - 1), gap.gap_m(k + 1));
-    let curv = gm - 2.0 * g0 + gp;
-    if !(curv.is_finite() && curv > 0.0) {
-        return (q, g0);
-    }
-    let f = (0.5 * (gm - gp) / curv).clamp(-0.5, 0.5);
-    (
-        q + f * gap.dq_m,
-        g0 + 0.5 * (gp - gm) * f + 0.5 * curv * f * f,
-    )
+    let (f, g) = parabola_vertex(gap.gap_m(k - 1), g0, gap.gap_m(k + 1), 0.5);
+    (q + f * gap.dq_m, g)
 }
 
 /// The rail sample segment (index of its first sample) over `q_m` and the

@@ -89,8 +89,8 @@ use crate::wheelrail::contact::{
     WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
-    find_roll, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry, SearchScratch,
-    SearchSettings, SidePose, VerticalGap,
+    find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
+    SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
     CurveSample, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
@@ -195,6 +195,8 @@ struct Evaluated {
     wheel_t_m: f64,
     locus: LocusPoint,
     rail_z_m: f64,
+    /// Contact angle [rad] (set once the position is final:
+    /// [`Probe::contact_angle`]).
     contact_angle_rad: f64,
     /// Vertical gap [m].
     gap_m: f64,
@@ -473,16 +475,12 @@ impl<'a> Probe<'a> {
             z_m: mix(a.z_m, b.z_m),
             tangent: [tan[0] / norm, tan[1] / norm],
         });
-        let rail = self.rail;
-        let h = 0.5 * rail.dq_m;
-        let rail_z_m = rail.rail_z_at(locus.q_m);
-        let slope = (rail.rail_z_at(locus.q_m + h) - rail.rail_z_at(locus.q_m - h)) / (2.0 * h);
-        (rail_z_m.is_finite() && slope.is_finite()).then_some(Evaluated {
+        let rail_z_m = self.rail.rail_z_at(locus.q_m);
+        rail_z_m.is_finite().then_some(Evaluated {
             wheel_t_m: t_m,
             locus,
             rail_z_m,
-            // Normal into the rail: (-dz/dq, 1) normalised.
-            contact_angle_rad: (-slope).atan2(1.0),
+            contact_angle_rad: 0.0,
             gap_m: rail_z_m - locus.z_m,
             b_per_m: 0.0,
             barrier_m: f64::INFINITY,
@@ -507,21 +505,26 @@ impl<'a> Probe<'a> {
                 (t, g0) = (t + dir * self.dt, g1);
             }
         }
-        let (gm, gp) = (g(t - self.dt), g(t + self.dt));
-        let curv = gm - 2.0 * g0 + gp;
-        if curv.is_finite() && curv > 0.0 {
-            t += (0.5 * (gm - gp) / curv).clamp(-1.0, 1.0) * self.dt;
-        }
-        self.at(t)
+        let (f, _) = parabola_vertex(g(t - self.dt), g0, g(t + self.dt), 1.0);
+        self.at(t + f * self.dt)
     }
 
     /// The contact angle at contact `e` from the rail's sample normals, as
-    /// the direct path has it ([`rail_normal_at`]); the rail slope's
-    /// central difference of [`Probe::at`], enough for the descent, is up
-    /// to 0.006 rad off on a flange.
+    /// the direct path has it ([`rail_normal_at`]); off the rail samples,
+    /// from the rail surface's slope (up to 0.006 rad off on a flange).
     fn contact_angle(&self, e: &Evaluated) -> f64 {
-        rail_normal_at(self.rail_samples, e.locus.q_m)
-            .map_or(e.contact_angle_rad, |(_, n)| n[0].atan2(n[1]))
+        if let Some((_, n)) = rail_normal_at(self.rail_samples, e.locus.q_m) {
+            return n[0].atan2(n[1]);
+        }
+        let (rail, q) = (self.rail, e.locus.q_m);
+        let h = 0.5 * rail.dq_m;
+        let slope = (rail.rail_z_at(q + h) - rail.rail_z_at(q - h)) / (2.0 * h);
+        // Normal into the rail: (-dz/dq, 1) normalised.
+        if slope.is_finite() {
+            (-slope).atan2(1.0)
+        } else {
+            0.0
+        }
     }
 
     /// The lateral curvature B of the normal undeformed distance at contact
@@ -817,8 +820,8 @@ pub fn solve_wheelset_tabulated(
             if i + 1 < c.len() {
                 c[i].barrier_m = probe.barrier(&c[i], &c[i + 1]) - dz;
             }
-            c[i].b_per_m = probe.curvature(&c[i]);
             c[i].contact_angle_rad = probe.contact_angle(&c[i]);
+            c[i].b_per_m = probe.curvature(&c[i]);
             c[i].gap_m -= dz;
             c[i].locus.z_m += dz;
         }
@@ -828,17 +831,8 @@ pub fn solve_wheelset_tabulated(
         search_s,
         ..Timing::default()
     };
-    let resolved;
-    let input = match input.load {
-        WheelLoad::CenterHeight(_) => {
-            resolved = WheelRailInput {
-                load: input.load.resolved(center_z_m),
-                ..input.clone()
-            };
-            &resolved
-        }
-        _ => input,
-    };
+    let resolved = input.with_load_resolved(center_z_m);
+    let input = &*resolved;
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::with_capacity(input.sides.len());
     for &side in &input.sides {
