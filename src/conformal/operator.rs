@@ -50,7 +50,6 @@ pub struct ConformalOperator {
     ows: OperatorWorkspace,
     b: [Vec<f64>; 9],
     zero: Vec<f64>,
-    un_scratch: Vec<f64>,
 }
 
 impl ConformalOperator {
@@ -71,7 +70,6 @@ impl ConformalOperator {
             sin: delta_rad.iter().map(|d| d.sin()).collect(),
             b: std::array::from_fn(|_| vec![0.0; n]),
             zero: vec![0.0; n],
-            un_scratch: vec![0.0; n],
         }
     }
 
@@ -95,47 +93,14 @@ impl ConformalOperator {
     /// u_n,I = sum_J A_nn(X_I - X_J) cos(delta_I - delta_J) p_J. Two FFT
     /// products.
     pub fn apply_normal(&mut self, pn: &[f64], un: &mut [f64]) {
-        match self.model {
-            InfluenceModel::HalfSpace => {
-                self.kernels.apply(
-                    &mut self.ows,
-                    &[(Component::N, pn)],
-                    &mut [(Component::N, un)],
-                );
-            }
-            InfluenceModel::Blanco => {
-                // Y = -s_J p, Z = c_J p; u_n = c_I [A (0, Y, Z)]_n + s_I [A (0, Z, -Y)]_n.
-                let nx = self.nx;
-                let [y, z, my, t2, t3, ..] = &mut self.b;
-                for (i, &p) in pn.iter().enumerate() {
-                    let l = i / nx;
-                    y[i] = -self.sin[l] * p;
-                    z[i] = self.cos[l] * p;
-                    my[i] = -y[i];
-                }
-                let k = &self.kernels;
-                // The lateral inputs act on u_n only for dissimilar materials.
-                let used = if k.has(Component::N, Component::Y) {
-                    2
-                } else {
-                    1
-                };
-                k.apply(
-                    &mut self.ows,
-                    &[(Component::N, &z[..]), (Component::Y, &y[..])][..used],
-                    &mut [(Component::N, t2)],
-                );
-                k.apply(
-                    &mut self.ows,
-                    &[(Component::N, &my[..]), (Component::Y, &z[..])][..used],
-                    &mut [(Component::N, t3)],
-                );
-                for i in 0..un.len() {
-                    let l = i / nx;
-                    un[i] = self.cos[l] * t2[i] + self.sin[l] * t3[i];
-                }
-            }
-        }
+        self.apply_parts(
+            Precision::Double,
+            Tractions {
+                n: Some(pn),
+                ..Tractions::default()
+            },
+            &mut [(Component::N, un)],
+        );
     }
 
     /// All three displacement components of all three traction components
@@ -150,83 +115,137 @@ impl ConformalOperator {
         us: &mut [f64],
         un: &mut [f64],
     ) {
-        self.product(Precision::Double, px, ps, pn, ux, us, un)
+        self.apply_parts(
+            Precision::Double,
+            Tractions {
+                x: Some(px),
+                s: Some(ps),
+                n: Some(pn),
+            },
+            &mut [(Component::X, ux), (Component::Y, us), (Component::N, un)],
+        )
     }
 
-    /// [`ConformalOperator::apply`] in the given precision.
-    #[allow(clippy::too_many_arguments)]
-    fn product(
+    /// The requested displacement components (`Component::Y` stands for s)
+    /// of the given traction components (absent ones are zero), in
+    /// `precision`. Only the transforms the request needs are made: for
+    /// identical materials the normal displacement of the tangential
+    /// tractions (or the tangential ones of the pressures) takes two
+    /// forward and two (four) inverse transforms instead of the full
+    /// product's three and nine.
+    pub fn apply_parts(
         &mut self,
         precision: Precision,
-        px: &[f64],
-        ps: &[f64],
-        pn: &[f64],
-        ux: &mut [f64],
-        us: &mut [f64],
-        un: &mut [f64],
+        p: Tractions<'_>,
+        outputs: &mut [(Component, &mut [f64])],
     ) {
         let k = &self.kernels;
-        match self.model {
-            InfluenceModel::HalfSpace => {
-                k.apply_with(
-                    precision,
-                    &mut self.ows,
-                    &[(Component::X, px), (Component::Y, ps), (Component::N, pn)],
-                    &mut [(Component::X, ux), (Component::Y, us), (Component::N, un)],
+        if self.model == InfluenceModel::HalfSpace {
+            let all = [
+                (Component::X, p.x),
+                (Component::Y, p.s),
+                (Component::N, p.n),
+            ];
+            let mut inputs: [(Component, &[f64]); 3] = [(Component::X, &[]); 3];
+            let mut len = 0;
+            for (c, f) in all {
+                if let Some(f) = f {
+                    inputs[len] = (c, f);
+                    len += 1;
+                }
+            }
+            k.apply_with(precision, &mut self.ows, &inputs[..len], outputs);
+            return;
+        }
+        // Term 1: A (p_x, 0, 0), straight into the outputs.
+        match p.x {
+            Some(px) => k.apply_with(precision, &mut self.ows, &[(Component::X, px)], outputs),
+            None => outputs.iter_mut().for_each(|(_, o)| o.fill(0.0)),
+        }
+        if p.s.is_none() && p.n.is_none() {
+            return;
+        }
+        let nx = self.nx;
+        let [y, z, my, t2x, t2s, t2n, t3x, t3s, t3n] = &mut self.b;
+        // Absent components read as zeros (the buffer stays zero).
+        let zero = &self.zero[..];
+        let (ps, pn) = (p.s.unwrap_or(zero), p.n.unwrap_or(zero));
+        let lines = y
+            .chunks_exact_mut(nx)
+            .zip(z.chunks_exact_mut(nx))
+            .zip(my.chunks_exact_mut(nx))
+            .zip(ps.chunks_exact(nx).zip(pn.chunks_exact(nx)));
+        for (l, (((y, z), my), (ps, pn))) in lines.enumerate() {
+            let (c, s) = (self.cos[l], self.sin[l]);
+            for j in 0..nx {
+                y[j] = c * ps[j] - s * pn[j];
+                z[j] = s * ps[j] + c * pn[j];
+                my[j] = -y[j];
+            }
+        }
+        // Term c: A (0, Y, Z); term s: A (0, Z, -Y); each on the requested
+        // components only.
+        let comps: [Component; 3] =
+            std::array::from_fn(|j| outputs.get(j).map_or(Component::X, |o| o.0));
+        let m = outputs.len();
+        for (inputs, t) in [
+            (
+                [(Component::Y, &y[..]), (Component::N, &z[..])],
+                [&mut *t2x, &mut *t2s, &mut *t2n],
+            ),
+            (
+                [(Component::Y, &z[..]), (Component::N, &my[..])],
+                [&mut *t3x, &mut *t3s, &mut *t3n],
+            ),
+        ] {
+            let mut t = t.map(Some);
+            let mut list: [(Component, &mut [f64]); 3] = [
+                (Component::X, &mut []),
+                (Component::X, &mut []),
+                (Component::X, &mut []),
+            ];
+            for j in 0..m {
+                list[j] = (
+                    comps[j],
+                    t[comps[j] as usize].take().expect("components repeat"),
                 );
             }
-            InfluenceModel::Blanco => {
-                let nx = self.nx;
-                let [y, z, my, t2x, t2s, t2n, t3x, t3s, t3n] = &mut self.b;
-                for i in 0..px.len() {
-                    let l = i / nx;
-                    let (c, s) = (self.cos[l], self.sin[l]);
-                    y[i] = c * ps[i] - s * pn[i];
-                    z[i] = s * ps[i] + c * pn[i];
-                    my[i] = -y[i];
-                }
-                // Term 1: A (p_x, 0, 0), straight into the outputs.
-                k.apply_with(
-                    precision,
-                    &mut self.ows,
-                    &[(Component::X, px)],
-                    &mut [(Component::X, ux), (Component::Y, us), (Component::N, un)],
-                );
-                // Term c: A (0, Y, Z); term s: A (0, Z, -Y).
-                k.apply_with(
-                    precision,
-                    &mut self.ows,
-                    &[(Component::Y, y), (Component::N, z)],
-                    &mut [
-                        (Component::X, t2x),
-                        (Component::Y, t2s),
-                        (Component::N, t2n),
-                    ],
-                );
-                k.apply_with(
-                    precision,
-                    &mut self.ows,
-                    &[(Component::Y, z), (Component::N, my)],
-                    &mut [
-                        (Component::X, t3x),
-                        (Component::Y, t3s),
-                        (Component::N, t3n),
-                    ],
-                );
-                for i in 0..px.len() {
-                    let l = i / nx;
-                    let (c, s) = (self.cos[l], self.sin[l]);
-                    ux[i] += c * t2x[i] + s * t3x[i];
-                    us[i] += c * t2s[i] + s * t3s[i];
-                    un[i] += c * t2n[i] + s * t3n[i];
+            k.apply_with(precision, &mut self.ows, &inputs, &mut list[..m]);
+        }
+        for (o, out) in outputs.iter_mut() {
+            let (a, b) = match o {
+                Component::X => (&t2x, &t3x),
+                Component::Y => (&t2s, &t3s),
+                Component::N => (&t2n, &t3n),
+            };
+            let lines = out
+                .chunks_exact_mut(nx)
+                .zip(a.chunks_exact(nx).zip(b.chunks_exact(nx)));
+            for (l, (out, (a, b))) in lines.enumerate() {
+                let (c, s) = (self.cos[l], self.sin[l]);
+                for j in 0..nx {
+                    out[j] += c * a[j] + s * b[j];
                 }
             }
         }
     }
 }
 
+/// Traction components of a [`ConformalOperator::apply_parts`] product
+/// (x, s, n in the elements' local frames; `None` = zero).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Tractions<'a> {
+    /// Longitudinal traction [Pa].
+    pub x: Option<&'a [f64]>,
+    /// Lateral traction along s [Pa].
+    pub s: Option<&'a [f64]>,
+    /// Pressure [Pa].
+    pub n: Option<&'a [f64]>,
+}
+
 impl crate::core::steady::TangentialOperator for ConformalOperator {
-    /// The tangential block (p_n = 0).
+    /// The tangential block (p_n = 0): for identical materials 3 forward
+    /// and 6 inverse transforms.
     fn tangential_product(
         &mut self,
         precision: Precision,
@@ -235,52 +254,15 @@ impl crate::core::steady::TangentialOperator for ConformalOperator {
         ux: &mut [f64],
         us: &mut [f64],
     ) {
-        let k = &self.kernels;
-        if self.model == InfluenceModel::HalfSpace || k.has(Component::X, Component::N) {
-            // Planar, or dissimilar materials (the n components couple back):
-            // the general product.
-            let zero = std::mem::take(&mut self.zero);
-            let mut un = std::mem::take(&mut self.un_scratch);
-            self.product(precision, px, ps, &zero, ux, us, &mut un);
-            self.zero = zero;
-            self.un_scratch = un;
-            return;
-        }
-        // Identical materials, p_n = 0: Y = c_J p_s and Z = s_J p_s reach
-        // u_x, u_s only through A_xs, A_ss, so
-        // u_t = A_t(p_x, 0) + c_I A_t(0, Y) + s_I A_t(0, Z): 3 forward and
-        // 6 inverse transforms.
-        let nx = self.nx;
-        let [y, z, _, t2x, t2s, _, t3x, t3s, _] = &mut self.b;
-        for i in 0..px.len() {
-            let l = i / nx;
-            y[i] = self.cos[l] * ps[i];
-            z[i] = self.sin[l] * ps[i];
-        }
-        k.apply_with(
+        self.apply_parts(
             precision,
-            &mut self.ows,
-            &[(Component::X, px)],
+            Tractions {
+                x: Some(px),
+                s: Some(ps),
+                n: None,
+            },
             &mut [(Component::X, ux), (Component::Y, us)],
         );
-        k.apply_with(
-            precision,
-            &mut self.ows,
-            &[(Component::Y, &y[..])],
-            &mut [(Component::X, t2x), (Component::Y, t2s)],
-        );
-        k.apply_with(
-            precision,
-            &mut self.ows,
-            &[(Component::Y, &z[..])],
-            &mut [(Component::X, t3x), (Component::Y, t3s)],
-        );
-        for i in 0..px.len() {
-            let l = i / nx;
-            let (c, s) = (self.cos[l], self.sin[l]);
-            ux[i] += c * t2x[i] + s * t3x[i];
-            us[i] += c * t2s[i] + s * t3s[i];
-        }
     }
 
     fn diagonal(&self) -> [f64; 2] {
@@ -404,6 +386,38 @@ mod tests {
         op.apply(&z, &z, &pn, &mut ux, &mut us, &mut un);
         let mut un2 = vec![0.0; n];
         op.apply_normal(&pn, &mut un2);
+        for i in 0..n {
+            assert!((un[i] - un2[i]).abs() <= 1e-12 * scale);
+        }
+        // Partial products (the conformal alternation's couplings): the
+        // tangential displacements of the pressures, in either order of
+        // the requested components, ...
+        let (mut sx, mut ss) = (vec![1.0; n], vec![1.0; n]);
+        op.apply_parts(
+            Precision::Double,
+            Tractions {
+                n: Some(&pn),
+                ..Tractions::default()
+            },
+            &mut [(Component::Y, &mut ss), (Component::X, &mut sx)],
+        );
+        for i in 0..n {
+            assert!(
+                (ux[i] - sx[i]).abs() <= 1e-12 * scale && (us[i] - ss[i]).abs() <= 1e-12 * scale
+            );
+        }
+        // ... and the normal displacement of the tangential tractions.
+        op.apply(&px, &ps, &z, &mut ux, &mut us, &mut un);
+        un2.fill(1.0);
+        op.apply_parts(
+            Precision::Double,
+            Tractions {
+                x: Some(&px),
+                s: Some(&ps),
+                n: None,
+            },
+            &mut [(Component::N, &mut un2)],
+        );
         for i in 0..n {
             assert!((un[i] - un2[i]).abs() <= 1e-12 * scale);
         }
