@@ -76,6 +76,15 @@ pub trait TangentialOperator {
     fn apply_tangential(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
         self.tangential_product(Precision::Double, px, py, ux, uy)
     }
+    /// The product of the Newton steps' linear systems (the GMRES
+    /// iterations): by default the [`Precision::Single`] product. An
+    /// operator may give a cheaper approximation of its Jacobian here
+    /// (inexact Newton): convergence is decided on residuals computed with
+    /// [`TangentialOperator::apply_tangential`] alone, so the answer and
+    /// its tolerance do not depend on it, only the number of steps.
+    fn jacobian_product(&mut self, px: &[f64], py: &[f64], ux: &mut [f64], uy: &mut [f64]) {
+        self.tangential_product(Precision::Single, px, py, ux, uy)
+    }
     /// The self-influence coefficients (xx, yy) [m/Pa or 1/Pa].
     fn diagonal(&self) -> [f64; 2];
 }
@@ -263,7 +272,7 @@ impl Linear<'_> {
         for (k, &i) in self.loaded.iter().enumerate() {
             (xin[i], yin[i]) = self.full(x, k);
         }
-        op.tangential_product(Precision::Single, xin, yin, ux, uy);
+        op.jacobian_product(xin, yin, ux, uy);
         for (k, &i) in self.loaded.iter().enumerate() {
             match self.role[i] {
                 Role::Slip => {
