@@ -4,6 +4,7 @@
 
 use std::hint::black_box;
 use std::sync::Arc;
+use std::time::Instant;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
@@ -141,6 +142,37 @@ fn solves(c: &mut Criterion) {
         settings: Default::default(),
     };
     let mut solver = ContactSolver::new(&planar, &cache);
+    // The target is a ratio, and this machine's speed changes by up to
+    // 1.7x between minutes: the two solves alternated, the ratio of the
+    // medians of 21 pairs (after one of each to warm the caches).
+    {
+        let mut planar_solve = || {
+            solver.reset();
+            black_box(solver.solve(&planar).unwrap());
+        };
+        black_box(rolling(&geo));
+        planar_solve();
+        let (mut tc, mut tp) = (Vec::new(), Vec::new());
+        for _ in 0..21 {
+            let t = Instant::now();
+            black_box(rolling(&geo));
+            tc.push(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            planar_solve();
+            tp.push(t.elapsed().as_secs_f64());
+        }
+        let median = |v: &mut Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        let (mc, mp) = (median(&mut tc), median(&mut tp));
+        eprintln!(
+            "ratio cect / planar steady rolling 60x60 (21 alternated pairs): {:.2} ({:.2} ms / {:.2} ms, medians)",
+            mc / mp,
+            mc * 1e3,
+            mp * 1e3
+        );
+    }
     g.bench_function("planar_exact_steady_rolling_60x60", |b| {
         b.iter(|| {
             solver.reset();
