@@ -328,28 +328,24 @@ pub fn solve_frictional(
             approach = no.approach_m;
             // Tangential problem: fixed slip from the pressures (and, for a
             // static step, minus the previous displacements).
-            let of_pressure = Tractions {
-                n: Some(&pn),
-                ..Tractions::default()
-            };
+            // The pressures' tangential displacements, through the operator
+            // of the tangential problem (steady-rolling kernels or not).
+            b_op.as_mut().unwrap_or(&mut a_op).apply_parts(
+                Precision::Double,
+                Tractions {
+                    n: Some(&pn),
+                    ..Tractions::default()
+                },
+                &mut [(Component::X, &mut cx), (Component::Y, &mut cs)],
+            );
             let (op, local, start): (&mut dyn TangentialOperator, _, _) =
                 if let Some(b) = b_op.as_mut() {
-                    b.apply_parts(
-                        Precision::Double,
-                        of_pressure,
-                        &mut [(Component::X, &mut cx), (Component::Y, &mut cs)],
-                    );
                     for i in 0..n {
                         cx[i] += wx[i];
                         cs[i] += ws[i];
                     }
                     (b, LocalModel::Upwind, Some([g_mod, nu]))
                 } else {
-                    a_op.apply_parts(
-                        Precision::Double,
-                        of_pressure,
-                        &mut [(Component::X, &mut cx), (Component::Y, &mut cs)],
-                    );
                     // The rigid approach increment moves the wheel along
                     // n(0): the rail shifts by -dd n(0) relative to it,
                     // which has the component -dd sin(delta - delta0) along t(s).

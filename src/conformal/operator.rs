@@ -33,6 +33,7 @@ use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::Component;
 #[cfg(test)]
 use crate::core::influence::KernelKind;
+use crate::core::steady::{PlanarTangential, TangentialOperator};
 
 /// Which influence coefficients a conformal solve uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -137,7 +138,9 @@ impl ConformalOperator {
     /// identical materials the normal displacement of the tangential
     /// tractions (or the tangential ones of the pressures) takes two
     /// forward and two (four) inverse transforms instead of the full
-    /// product's three and nine.
+    /// product's three and nine. Components must not repeat within
+    /// `outputs` (a repeated one panics: a caller's error, as for
+    /// [`KernelSet::apply`]).
     pub fn apply_parts(
         &mut self,
         precision: Precision,
@@ -248,7 +251,7 @@ pub struct Tractions<'a> {
     pub n: Option<&'a [f64]>,
 }
 
-impl crate::core::steady::TangentialOperator for ConformalOperator {
+impl TangentialOperator for ConformalOperator {
     /// The tangential block (p_n = 0): for identical materials 3 forward
     /// and 6 inverse transforms.
     fn tangential_product(
@@ -284,14 +287,12 @@ impl crate::core::steady::TangentialOperator for ConformalOperator {
     /// 0.086 % and 0.3 %): the same Newton steps or one more, the same
     /// forces to 7 digits, 7 to 28 % less time (benches/README.md).
     fn jacobian_product(&mut self, px: &[f64], ps: &[f64], ux: &mut [f64], us: &mut [f64]) {
-        let k = &self.kernels;
-        if self.model == InfluenceModel::Blanco && !k.has(Component::X, Component::N) {
-            k.apply_with(
-                Precision::Single,
-                &mut self.ows,
-                &[(Component::X, px), (Component::Y, ps)],
-                &mut [(Component::X, ux), (Component::Y, us)],
-            );
+        if self.model == InfluenceModel::Blanco && !self.kernels.has(Component::X, Component::N) {
+            PlanarTangential {
+                kernels: &self.kernels,
+                ows: &mut self.ows,
+            }
+            .tangential_product(Precision::Single, px, ps, ux, us);
         } else {
             self.tangential_product(Precision::Single, px, ps, ux, us);
         }
