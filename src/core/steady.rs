@@ -146,7 +146,6 @@ pub struct SteadyScratch {
     g: Vec<f64>,
     tx: Vec<f64>,
     ty: Vec<f64>,
-    e: Vec<f64>,
     ux: Vec<f64>,
     uy: Vec<f64>,
     sx: Vec<f64>,
@@ -159,14 +158,16 @@ pub struct SteadyScratch {
     /// Differenced tractions of [`PlanarSteady`].
     diff: [Vec<f64>; 2],
     /// The loaded elements (grid indices, in grid order) of the compressed
-    /// vectors, and the upwind neighbours (see [`Linear`]).
+    /// vectors, their coefficients and the order of the preconditioner's
+    /// sweep (see [`Linear`]).
     loaded: Vec<usize>,
-    up: Vec<usize>,
+    coef: Vec<Coef>,
+    order: Vec<usize>,
+    /// Loaded elements per grid column (counting sort of `order`).
+    column_count: Vec<usize>,
     /// Full-grid inputs of the products of compressed vectors.
     xin: Vec<f64>,
     yin: Vec<f64>,
-    /// See [`Linear::slip_inv`].
-    slip_inv: Vec<f64>,
 }
 
 /// GMRES work space.
@@ -191,7 +192,6 @@ impl SteadyScratch {
             g: z(n),
             tx: z(n),
             ty: z(n),
-            e: z(n),
             ux: z(n),
             uy: z(n),
             sx: z(n),
@@ -202,10 +202,11 @@ impl SteadyScratch {
             sol: z(2 * n),
             diff: [z(n), z(n)],
             loaded: Vec::with_capacity(n),
-            up: vec![NONE; n],
+            coef: Vec::with_capacity(n),
+            order: Vec::with_capacity(n),
+            column_count: Vec::with_capacity(n + 1),
             xin: z(n),
             yin: z(n),
-            slip_inv: z(n),
             krylov: Krylov {
                 work: z(2 * n),
                 zvec: z(2 * n),
@@ -219,7 +220,7 @@ impl SteadyScratch {
     }
 }
 
-/// No upwind neighbour in [`Linear::up`].
+/// No upwind neighbour in [`Coef::up`].
 const NONE: usize = usize::MAX;
 
 /// The linearised problem of one Newton step (borrowed views of the
@@ -229,17 +230,32 @@ const NONE: usize = usize::MAX;
 /// for a slip element, v its traction's movement along t (the norm of the
 /// full vector (v t_x, v t_y)).
 struct Linear<'a> {
-    d: [f64; 2],
-    local: LocalModel,
     loaded: &'a [usize],
-    /// Compressed index of the upwind neighbour (ix + 1) when loaded.
-    up: &'a [usize],
-    role: &'a [Role],
-    tx: &'a [f64],
-    ty: &'a [f64],
-    e: &'a [f64],
-    /// 1/(d_x t_x² + d_y t_y² + e) of the slip elements (full grid).
-    slip_inv: &'a [f64],
+    /// By compressed element.
+    coef: &'a [Coef],
+    /// The compressed elements in the order of the preconditioner's sweep.
+    order: &'a [usize],
+}
+
+/// The coefficients of one compressed element k of [`Linear`], written so
+/// that adhesion and slip elements take the same branch-free arithmetic.
+#[derive(Clone, Copy)]
+struct Coef {
+    /// Full-grid tractions from the compressed values (a, b) = (x[k],
+    /// x[m + k]): (f0 a + f1 b, f2 a + f3 b); (1, 0, 0, 1) for adhesion,
+    /// (t_x, 0, t_y, 0) for slip. The rows of the product take the
+    /// transpose: (f0 u_x + f2 u_y, f1 u_x + f3 u_y).
+    full: [f64; 4],
+    /// E, the turning of a slip element's direction (0 for adhesion).
+    e: f64,
+    /// The local inverse (see [`Linear::sweep`]): z0 = s0 (r0 + s1 a_x +
+    /// s2 a_y), z1 = s3 (r1 + s4 a_x + s5 a_y), with (a_x, a_y) the full
+    /// tractions of the upwind neighbour. Adhesion: (1/d_x, d_x, 0, 1/d_y,
+    /// 0, d_y); slip: (1/(d_x t_x² + d_y t_y² + e), d_x t_x, d_y t_y, 0, 0, 0).
+    sweep: [f64; 6],
+    /// Compressed index of the upwind neighbour (ix + 1) when loaded and
+    /// the local model is upwind, else [`NONE`].
+    up: usize,
 }
 
 impl Linear<'_> {
@@ -251,11 +267,10 @@ impl Linear<'_> {
     /// The full-grid tractions of compressed element k of `x`.
     #[inline(always)]
     fn full(&self, x: &[f64], k: usize) -> (f64, f64) {
-        let (m, i) = (self.loaded.len(), self.loaded[k]);
-        match self.role[i] {
-            Role::Slip => (x[k] * self.tx[i], x[k] * self.ty[i]),
-            _ => (x[k], x[m + k]),
-        }
+        let m = self.loaded.len();
+        let f = &self.coef[k].full;
+        let (a, b) = (x[k], x[m + k]);
+        (f[0] * a + f[1] * b, f[2] * a + f[3] * b)
     }
 
     /// y = (P B P + E) x. One FFT matvec; `xin` are full-grid buffers, zero
@@ -273,48 +288,38 @@ impl Linear<'_> {
             (xin[i], yin[i]) = self.full(x, k);
         }
         op.jacobian_product(xin, yin, ux, uy);
-        for (k, &i) in self.loaded.iter().enumerate() {
-            match self.role[i] {
-                Role::Slip => {
-                    let (t0, t1) = (self.tx[i], self.ty[i]);
-                    y[k] = t0 * ux[i] + t1 * uy[i] + self.e[i] * x[k];
-                    y[m + k] = 0.0;
-                }
-                _ => {
-                    y[k] = ux[i];
-                    y[m + k] = uy[i];
-                }
-            }
+        let (y0, y1) = y.split_at_mut(m);
+        for ((((&i, c), y0), y1), &x0) in self
+            .loaded
+            .iter()
+            .zip(self.coef)
+            .zip(y0)
+            .zip(&mut y1[..m])
+            .zip(&x[..m])
+        {
+            let (f, u0, u1) = (&c.full, ux[i], uy[i]);
+            *y0 = f[0] * u0 + f[2] * u1 + c.e * x0;
+            *y1 = f[1] * u0 + f[3] * u1;
         }
     }
 
     /// z = M⁻¹ r with M = P diag(B)(I - S) P + E: exact forward substitution
-    /// from the leading edge (large x) along every grid line (the loaded
-    /// elements in reverse grid order). No matvec.
+    /// from the leading edge (large x) along every grid line. The sweep
+    /// goes column by column ([`Linear::order`]), so that the elements in
+    /// flight are on different lines and independent (along a line, each
+    /// waits for its upwind neighbour). No matvec.
     fn precondition(&self, r: &[f64], z: &mut [f64]) {
         let m = self.loaded.len();
-        let d = self.d;
-        let dinv = [1.0 / d[0], 1.0 / d[1]];
-        let upwind = self.local == LocalModel::Upwind;
-        for k in (0..m).rev() {
-            let i = self.loaded[k];
-            let (ax, ay) = if upwind && self.up[k] != NONE {
-                self.full(z, self.up[k])
+        for &k in self.order {
+            let c = &self.coef[k];
+            let (ax, ay) = if c.up != NONE {
+                self.full(z, c.up)
             } else {
                 (0.0, 0.0)
             };
-            match self.role[i] {
-                Role::Slip => {
-                    let (t0, t1) = (self.tx[i], self.ty[i]);
-                    let num = r[k] + d[0] * t0 * ax + d[1] * t1 * ay;
-                    z[k] = num * self.slip_inv[i];
-                    z[m + k] = 0.0;
-                }
-                _ => {
-                    z[k] = ax + r[k] * dinv[0];
-                    z[m + k] = ay + r[m + k] * dinv[1];
-                }
-            }
+            let s = &c.sweep;
+            z[k] = s[0] * (r[k] + s[1] * ax + s[2] * ay);
+            z[m + k] = s[3] * (r[m + k] + s[4] * ax + s[5] * ay);
         }
     }
 }
@@ -644,7 +649,6 @@ pub fn solve_coulomb_newton(
         g,
         tx,
         ty,
-        e,
         ux,
         uy,
         sx,
@@ -655,10 +659,11 @@ pub fn solve_coulomb_newton(
         sol,
         krylov,
         loaded,
-        up,
+        coef,
+        order,
+        column_count,
         xin,
         yin,
-        slip_inv,
         ..
     } = scratch;
     let d = op.diagonal();
@@ -796,41 +801,75 @@ pub fn solve_coulomb_newton(
         loaded.clear();
         loaded.extend((0..n).filter(|&i| role[i] != Role::Exterior));
         let m = loaded.len();
+        coef.clear();
         for k in 0..m {
             let i = loaded[k];
-            up[k] = if k + 1 < m && loaded[k + 1] == i + 1 && (i + 1) % nx != 0 {
+            let up = if local == LocalModel::Upwind
+                && k + 1 < m
+                && loaded[k + 1] == i + 1
+                && (i + 1) % nx != 0
+            {
                 k + 1
             } else {
                 NONE
             };
-            match role[i] {
+            coef.push(match role[i] {
                 Role::Slip => {
                     let (t0, t1) = (tx[i], ty[i]);
                     // n = (t1, -t0): e = max(-n·s, 0)/g.
                     let ns = t1 * sx[i] - t0 * sy[i];
-                    e[i] = (-ns).max(0.0) / g[i];
-                    slip_inv[i] = 1.0 / (d[0] * t0 * t0 + d[1] * t1 * t1 + e[i]);
+                    let e = (-ns).max(0.0) / g[i];
                     rhs[k] = -(t0 * sx[i] + t1 * sy[i]);
                     rhs[m + k] = 0.0;
+                    Coef {
+                        full: [t0, 0.0, t1, 0.0],
+                        e,
+                        sweep: [
+                            1.0 / (d[0] * t0 * t0 + d[1] * t1 * t1 + e),
+                            d[0] * t0,
+                            d[1] * t1,
+                            0.0,
+                            0.0,
+                            0.0,
+                        ],
+                        up,
+                    }
                 }
                 _ => {
                     rhs[k] = -sx[i];
                     rhs[m + k] = -sy[i];
+                    Coef {
+                        full: [1.0, 0.0, 0.0, 1.0],
+                        e: 0.0,
+                        sweep: [1.0 / d[0], d[0], 0.0, 1.0 / d[1], 0.0, d[1]],
+                        up,
+                    }
                 }
-            }
+            });
+        }
+        // The sweep's order: by grid column from the leading edge (a
+        // counting sort on ix, descending).
+        column_count.clear();
+        column_count.resize(nx + 1, 0);
+        for &i in loaded.iter() {
+            column_count[nx - 1 - i % nx + 1] += 1;
+        }
+        for c in 1..=nx {
+            column_count[c] += column_count[c - 1];
+        }
+        order.clear();
+        order.resize(m, 0);
+        for (k, &i) in loaded.iter().enumerate() {
+            let slot = &mut column_count[nx - 1 - i % nx];
+            order[*slot] = k;
+            *slot += 1;
         }
         xin.fill(0.0);
         yin.fill(0.0);
         let lin = Linear {
-            d,
-            local,
             loaded,
-            up,
-            role,
-            tx,
-            ty,
-            e,
-            slip_inv,
+            coef,
+            order,
         };
         // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
         // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²
