@@ -36,6 +36,7 @@ use rustfft::num_traits::NumAssign;
 use rustfft::{Fft, FftNum, FftPlanner};
 
 use crate::core::influence::{Component, HalfSpaceInfluence, KernelKind};
+use crate::core::simd::dispatch;
 
 /// Smallest even 2-3-5-smooth number >= n (fast FFT sizes in `f64`).
 pub fn fast_even_size(n: usize) -> usize {
@@ -313,6 +314,7 @@ impl<T: Real> ConvolutionPlan<T> {
     /// `A[k] = (Z[k] + conj Z[-k]) / 2`, `B[k] = (Z[k] - conj Z[-k]) / 2i`.
     /// Rows go [`ROW_CHUNK`] at a time, so that each column receives
     /// consecutive values in one write.
+    #[inline(always)]
     fn rows_forward(
         &self,
         ws: &mut Workspace<T>,
@@ -387,6 +389,7 @@ impl<T: Real> ConvolutionPlan<T> {
     /// columns. Two rows per complex FFT of `Z = A + i B` (Hermitian
     /// extensions); the DC and Nyquist bins of a real row are taken as real
     /// (their imaginary parts are rounding noise).
+    #[inline(always)]
     fn rows_inverse(
         &self,
         ws: &mut Workspace<T>,
@@ -831,8 +834,35 @@ impl KernelSet {
 }
 
 /// The product of [`KernelSet::apply`] with the kernels `spectra` (entry
-/// `index[o][c]` for output o and input c) on `plan`, in precision `T`.
+/// `index[o][c]` for output o and input c) on `plan`, in precision `T`
+/// (with AVX2 and FMA when the CPU has them: [`crate::core::simd`]).
 fn apply_indexed<T: Real>(
+    plan: &ConvolutionPlan<T>,
+    spectra: &[Spectrum<T>],
+    index: &[[Option<usize>; 3]; 3],
+    bufs: &mut Buffers<T>,
+    inputs: &[(Component, &[f64])],
+    outputs: &mut [(Component, &mut [f64])],
+) {
+    dispatch!(apply_indexed_body, apply_indexed_avx2; plan, spectra, index, bufs, inputs, outputs)
+}
+
+/// [`apply_indexed`] with AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn apply_indexed_avx2<T: Real>(
+    plan: &ConvolutionPlan<T>,
+    spectra: &[Spectrum<T>],
+    index: &[[Option<usize>; 3]; 3],
+    bufs: &mut Buffers<T>,
+    inputs: &[(Component, &[f64])],
+    outputs: &mut [(Component, &mut [f64])],
+) {
+    apply_indexed_body(plan, spectra, index, bufs, inputs, outputs)
+}
+
+#[inline(always)]
+fn apply_indexed_body<T: Real>(
     plan: &ConvolutionPlan<T>,
     spectra: &[Spectrum<T>],
     index: &[[Option<usize>; 3]; 3],

@@ -15,6 +15,7 @@ pub mod normal;
 mod predict;
 pub mod problem;
 pub mod sensitivity;
+mod simd;
 pub mod solution;
 pub mod solve;
 pub mod steady;

@@ -1,0 +1,65 @@
+//! Run-time selection of wider vector instructions for the hot loops.
+//!
+//! The crate is built for the portable x86-64 baseline (SSE2), so that one
+//! binary runs on any x86-64 CPU. The loops that dominate a solve outside
+//! the FFTs (rustfft picks its own AVX kernels at run time) are compiled a
+//! second time with AVX2 and FMA enabled ([`dispatch!`]), and that copy runs
+//! when the CPU has both. The results are bit-identical either way: Rust
+//! neither fuses a multiply and an add nor reorders a sum unless the code
+//! says so, so only the width of the independent lanes changes.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Set by the tests that compare both copies ([`force_baseline`]).
+static BASELINE: AtomicBool = AtomicBool::new(false);
+
+/// Makes [`avx2_fma`] false (true) or restores detection (false): for tests
+/// that check that both copies give bit-identical results. Other threads
+/// see it too, which is harmless for that very reason.
+#[cfg(test)]
+pub(crate) fn force_baseline(on: bool) {
+    BASELINE.store(on, Ordering::Relaxed);
+}
+
+/// Whether the CPU runs AVX2 and FMA (detected once; always false off
+/// x86-64).
+#[inline]
+pub(crate) fn avx2_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::sync::OnceLock;
+        static HAS: OnceLock<bool> = OnceLock::new();
+        !BASELINE.load(Ordering::Relaxed)
+            && *HAS.get_or_init(|| {
+                std::arch::is_x86_feature_detected!("avx2")
+                    && std::arch::is_x86_feature_detected!("fma")
+            })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// `dispatch!(body_fn, avx2_fn; args...)`: calls `avx2_fn(args...)` (a
+/// `#[target_feature(enable = "avx2,fma")]` copy of the `#[inline(always)]`
+/// `body_fn`) when [`avx2_fma`] holds, `body_fn(args...)` otherwise.
+macro_rules! dispatch {
+    ($body:expr, $avx2:expr; $($arg:expr),* $(,)?) => {{
+        #[cfg(target_arch = "x86_64")]
+        {
+            if $crate::core::simd::avx2_fma() {
+                // SAFETY: the CPU has AVX2 and FMA (checked at run time),
+                // all the target features the function enables.
+                unsafe { $avx2($($arg),*) }
+            } else {
+                $body($($arg),*)
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            $body($($arg),*)
+        }
+    }};
+}
+pub(crate) use dispatch;
