@@ -499,7 +499,9 @@ impl<T: Real> Spectrum<T> {
 
     /// `dst (+)= K s` over the spectral range `at..at + dst.len()` of the
     /// kernel; assigns when `first`, accumulates otherwise.
+    #[inline(always)]
     fn apply(&self, at: usize, s: &[Complex<T>], dst: &mut [Complex<T>], first: bool) {
+        #[inline(always)]
         fn pass<K: Copy, T: Real>(
             k: &[K],
             s: &[Complex<T>],

@@ -16,6 +16,7 @@
 
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::influence::{Component, KernelKind};
+use crate::core::simd::dispatch;
 
 /// Normal load control.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -226,8 +227,45 @@ pub fn solve_normal(
 /// that keep the force, and combined with the previous direction while no
 /// element enters; the step is the exact minimiser along the direction,
 /// followed by the projection on p >= 0 and the force rescaling.
+/// With AVX2 and FMA when the CPU has them ([`crate::core::simd`]).
 #[allow(clippy::too_many_arguments)]
 pub fn solve_normal_with(
+    op: &mut dyn NormalOperator,
+    h: &[f64],
+    weights: Option<&[f64]>,
+    area: f64,
+    load: NormalLoad,
+    pn: &mut [f64],
+    scratch: &mut NormalScratch,
+    settings: &NormalSettings,
+) -> NormalOutcome {
+    dispatch!(
+        solve_normal_body,
+        solve_normal_avx2;
+        op, h, weights, area, load, pn, scratch, settings
+    )
+}
+
+/// [`solve_normal_with`] with AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[allow(clippy::too_many_arguments)]
+fn solve_normal_avx2(
+    op: &mut dyn NormalOperator,
+    h: &[f64],
+    weights: Option<&[f64]>,
+    area: f64,
+    load: NormalLoad,
+    pn: &mut [f64],
+    scratch: &mut NormalScratch,
+    settings: &NormalSettings,
+) -> NormalOutcome {
+    solve_normal_body(op, h, weights, area, load, pn, scratch, settings)
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn solve_normal_body(
     op: &mut dyn NormalOperator,
     h: &[f64],
     weights: Option<&[f64]>,
@@ -586,6 +624,25 @@ mod tests {
             &mut NormalScratch::new(n * n),
             &settings,
         );
+        // The portable copy of the solver and the products gives the same
+        // bits as the AVX2 one (core::simd).
+        crate::core::simd::force_baseline(true);
+        let mut p_base = vec![0.0; n * n];
+        solve_normal(
+            &set,
+            &mut ows,
+            &h,
+            area,
+            load,
+            &mut p_base,
+            &mut NormalScratch::new(n * n),
+            &settings,
+        );
+        crate::core::simd::force_baseline(false);
+        assert!(p_base
+            .iter()
+            .zip(&p_fft)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
         // Dense products, no preconditioner.
         let mut dense = Dense(dense_matrix(&set, &[Component::N]));
         let mut p_dense = vec![0.0; n * n];

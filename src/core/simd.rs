@@ -4,7 +4,10 @@
 //! binary runs on any x86-64 CPU. The loops that dominate a solve outside
 //! the FFTs (rustfft picks its own AVX kernels at run time) are compiled a
 //! second time with AVX2 and FMA enabled ([`dispatch!`]), and that copy runs
-//! when the CPU has both. The results are bit-identical either way: Rust
+//! when the CPU has both: the FFT products (`fft::apply_indexed`, with the
+//! row transforms' packing and the spectral products), GMRES of the Newton
+//! solvers (with the linearised system's product and preconditioner) and
+//! the normal solver (`normal::solve_normal_with`). The results are bit-identical either way: Rust
 //! neither fuses a multiply and an add nor reorders a sum unless the code
 //! says so, so only the width of the independent lanes changes.
 
