@@ -36,7 +36,7 @@ use rustfft::num_traits::NumAssign;
 use rustfft::{Fft, FftNum, FftPlanner};
 
 use crate::core::influence::{Component, HalfSpaceInfluence, KernelKind};
-use crate::core::simd::dispatch;
+use crate::core::simd::multiversion;
 
 /// Smallest even 2-3-5-smooth number >= n (fast FFT sizes in `f64`).
 pub fn fast_even_size(n: usize) -> usize {
@@ -835,32 +835,18 @@ impl KernelSet {
     }
 }
 
-/// The product of [`KernelSet::apply`] with the kernels `spectra` (entry
-/// `index[o][c]` for output o and input c) on `plan`, in precision `T`
-/// (with AVX2 and FMA when the CPU has them: [`crate::core::simd`]).
-fn apply_indexed<T: Real>(
-    plan: &ConvolutionPlan<T>,
-    spectra: &[Spectrum<T>],
-    index: &[[Option<usize>; 3]; 3],
-    bufs: &mut Buffers<T>,
-    inputs: &[(Component, &[f64])],
-    outputs: &mut [(Component, &mut [f64])],
-) {
-    dispatch!(apply_indexed_body, apply_indexed_avx2; plan, spectra, index, bufs, inputs, outputs)
-}
-
-/// [`apply_indexed`] with AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn apply_indexed_avx2<T: Real>(
-    plan: &ConvolutionPlan<T>,
-    spectra: &[Spectrum<T>],
-    index: &[[Option<usize>; 3]; 3],
-    bufs: &mut Buffers<T>,
-    inputs: &[(Component, &[f64])],
-    outputs: &mut [(Component, &mut [f64])],
-) {
-    apply_indexed_body(plan, spectra, index, bufs, inputs, outputs)
+multiversion! {
+    /// The product of [`KernelSet::apply`] with the kernels `spectra` (entry
+    /// `index[o][c]` for output o and input c) on `plan`, in precision `T`
+    /// (with AVX2 and FMA when the CPU has them: [`crate::core::simd`]).
+    fn apply_indexed<T: Real>(
+        plan: &ConvolutionPlan<T>,
+        spectra: &[Spectrum<T>],
+        index: &[[Option<usize>; 3]; 3],
+        bufs: &mut Buffers<T>,
+        inputs: &[(Component, &[f64])],
+        outputs: &mut [(Component, &mut [f64])],
+    ) => apply_indexed_body
 }
 
 #[inline(always)]

@@ -16,7 +16,7 @@
 
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::influence::{Component, KernelKind};
-use crate::core::simd::dispatch;
+use crate::core::simd::multiversion;
 
 /// Normal load control.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -213,54 +213,34 @@ pub fn solve_normal(
     solve_normal_with(&mut op, h, None, area, load, pn, scratch, settings)
 }
 
-/// The general normal solver: operator `op`, and per-element approach
-/// weights `w` (None: all 1). The gap is h - delta w + A p, and force
-/// control prescribes sum w p_n area = F: for a conformal patch w is
-/// cos(delta(s) - delta(0)), the approach is along the normal at the
-/// reference point and F the force along it (paper Eq. 1).
-///
-/// Projected, preconditioned conjugate gradients: the free set is the
-/// contact set plus the overlapping elements outside it; the residual (the
-/// gap less its weighted fit, under force control) on the free set is
-/// preconditioned by [`NormalOperator::precondition`] when the operator
-/// has one (plain Polonsky–Keer CG otherwise), projected on the directions
-/// that keep the force, and combined with the previous direction while no
-/// element enters; the step is the exact minimiser along the direction,
-/// followed by the projection on p >= 0 and the force rescaling.
-/// With AVX2 and FMA when the CPU has them ([`crate::core::simd`]).
-#[allow(clippy::too_many_arguments)]
-pub fn solve_normal_with(
-    op: &mut dyn NormalOperator,
-    h: &[f64],
-    weights: Option<&[f64]>,
-    area: f64,
-    load: NormalLoad,
-    pn: &mut [f64],
-    scratch: &mut NormalScratch,
-    settings: &NormalSettings,
-) -> NormalOutcome {
-    dispatch!(
-        solve_normal_body,
-        solve_normal_avx2;
-        op, h, weights, area, load, pn, scratch, settings
-    )
-}
-
-/// [`solve_normal_with`] with AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-fn solve_normal_avx2(
-    op: &mut dyn NormalOperator,
-    h: &[f64],
-    weights: Option<&[f64]>,
-    area: f64,
-    load: NormalLoad,
-    pn: &mut [f64],
-    scratch: &mut NormalScratch,
-    settings: &NormalSettings,
-) -> NormalOutcome {
-    solve_normal_body(op, h, weights, area, load, pn, scratch, settings)
+multiversion! {
+    /// The general normal solver: operator `op`, and per-element approach
+    /// weights `w` (None: all 1). The gap is h - delta w + A p, and force
+    /// control prescribes sum w p_n area = F: for a conformal patch w is
+    /// cos(delta(s) - delta(0)), the approach is along the normal at the
+    /// reference point and F the force along it (paper Eq. 1).
+    ///
+    /// Projected, preconditioned conjugate gradients: the free set is the
+    /// contact set plus the overlapping elements outside it; the residual (the
+    /// gap less its weighted fit, under force control) on the free set is
+    /// preconditioned by [`NormalOperator::precondition`] when the operator
+    /// has one (plain Polonsky–Keer CG otherwise), projected on the directions
+    /// that keep the force, and combined with the previous direction while no
+    /// element enters; the step is the exact minimiser along the direction,
+    /// followed by the projection on p >= 0 and the force rescaling.
+    ///
+    /// With AVX2 and FMA when the CPU has them ([`crate::core::simd`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_normal_with(
+        op: &mut dyn NormalOperator,
+        h: &[f64],
+        weights: Option<&[f64]>,
+        area: f64,
+        load: NormalLoad,
+        pn: &mut [f64],
+        scratch: &mut NormalScratch,
+        settings: &NormalSettings,
+    ) -> NormalOutcome => solve_normal_body
 }
 
 #[inline(always)]

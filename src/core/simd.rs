@@ -3,7 +3,7 @@
 //! The crate is built for the portable x86-64 baseline (SSE2), so that one
 //! binary runs on any x86-64 CPU. The loops that dominate a solve outside
 //! the FFTs (rustfft picks its own AVX kernels at run time) are compiled a
-//! second time with AVX2 and FMA enabled ([`dispatch!`]), and that copy runs
+//! second time with AVX2 and FMA enabled ([`multiversion!`]), and that copy runs
 //! when the CPU has both: the FFT products (`fft::apply_indexed`, with the
 //! row transforms' packing and the spectral products), GMRES of the Newton
 //! solvers (with the linearised system's product and preconditioner) and
@@ -66,3 +66,28 @@ macro_rules! dispatch {
     }};
 }
 pub(crate) use dispatch;
+
+/// `multiversion! { /// docs
+/// fn name<T: Bound>(a: A, b: B) -> R => body }` defines `name`, which
+/// runs the `#[inline(always)]` function `body` (same signature) compiled
+/// with AVX2 and FMA when the CPU has them ([`dispatch!`]), as compiled
+/// for the baseline otherwise.
+macro_rules! multiversion {
+    (
+        $(#[$meta:meta])*
+        $vis:vis fn $name:ident $(<$g:ident : $bound:path>)?
+        ($($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? => $body:ident
+    ) => {
+        $(#[$meta])*
+        $vis fn $name $(<$g: $bound>)? ($($arg: $ty),*) $(-> $ret)? {
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2,fma")]
+            #[allow(clippy::too_many_arguments)]
+            fn avx2 $(<$g: $bound>)? ($($arg: $ty),*) $(-> $ret)? {
+                $body($($arg),*)
+            }
+            $crate::core::simd::dispatch!($body, avx2; $($arg),*)
+        }
+    };
+}
+pub(crate) use multiversion;

@@ -43,7 +43,7 @@
 use crate::core::creep::kalker_creep_coefficients;
 use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::{Component, KernelKind};
-use crate::core::simd::dispatch;
+use crate::core::simd::multiversion;
 use crate::core::solution::ElementState;
 use crate::core::tangential::{
     natural_residual, TangentialInput, TangentialOutcome, TangentialOutput, TangentialSettings,
@@ -354,38 +354,22 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
-/// Right-preconditioned restarted GMRES for `lin` x = rhs, from x = 0, to a
-/// residual `rel_tol`·|rhs| or `max_matvecs` products. Returns the matvecs
-/// used. With AVX2 and FMA when the CPU has them ([`crate::core::simd`]).
-#[allow(clippy::too_many_arguments)]
-fn gmres(
-    lin: &Linear<'_>,
-    op: &mut dyn TangentialOperator,
-    rhs: &[f64],
-    x: &mut [f64],
-    sc: &mut Krylov,
-    bufs: [&mut [f64]; 4],
-    rel_tol: f64,
-    max_matvecs: usize,
-) -> usize {
-    dispatch!(gmres_body, gmres_avx2; lin, op, rhs, x, sc, bufs, rel_tol, max_matvecs)
-}
-
-/// [`gmres`] with AVX2 and FMA.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-#[allow(clippy::too_many_arguments)]
-fn gmres_avx2(
-    lin: &Linear<'_>,
-    op: &mut dyn TangentialOperator,
-    rhs: &[f64],
-    x: &mut [f64],
-    sc: &mut Krylov,
-    bufs: [&mut [f64]; 4],
-    rel_tol: f64,
-    max_matvecs: usize,
-) -> usize {
-    gmres_body(lin, op, rhs, x, sc, bufs, rel_tol, max_matvecs)
+multiversion! {
+    /// Right-preconditioned restarted GMRES for `lin` x = rhs, from x = 0,
+    /// to a residual `rel_tol`·|rhs| or `max_matvecs` products. Returns the
+    /// matvecs used. With AVX2 and FMA when the CPU has them
+    /// ([`crate::core::simd`]).
+    #[allow(clippy::too_many_arguments)]
+    fn gmres(
+        lin: &Linear<'_>,
+        op: &mut dyn TangentialOperator,
+        rhs: &[f64],
+        x: &mut [f64],
+        sc: &mut Krylov,
+        bufs: [&mut [f64]; 4],
+        rel_tol: f64,
+        max_matvecs: usize,
+    ) -> usize => gmres_body
 }
 
 #[inline(always)]
