@@ -3,13 +3,14 @@
 //! The crate is built for the portable x86-64 baseline (SSE2), so that one
 //! binary runs on any x86-64 CPU. The loops that dominate a solve outside
 //! the FFTs (rustfft picks its own AVX kernels at run time) are compiled a
-//! second time with AVX2 and FMA enabled ([`multiversion!`]), and that copy runs
-//! when the CPU has both: the FFT products (`fft::apply_indexed`, with the
-//! row transforms' packing and the spectral products), GMRES of the Newton
-//! solvers (with the linearised system's product and preconditioner) and
-//! the normal solver (`normal::solve_normal_with`). The results are bit-identical either way: Rust
-//! neither fuses a multiply and an add nor reorders a sum unless the code
-//! says so, so only the width of the independent lanes changes.
+//! second time with AVX2 and FMA enabled ([`multiversion!`]), and that copy
+//! runs when the CPU has both: the FFT products (`fft::apply_indexed`, with
+//! the row transforms' packing and the spectral products), GMRES of the
+//! Newton solvers (with the linearised system's product and
+//! preconditioner) and the normal solver (`normal::solve_normal_with`).
+//! The results are bit-identical either way: Rust neither fuses a multiply
+//! and an add nor reorders a sum unless the code says so, so only the width
+//! of the independent lanes changes.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -44,34 +45,11 @@ pub(crate) fn avx2_fma() -> bool {
     }
 }
 
-/// `dispatch!(body_fn, avx2_fn; args...)`: calls `avx2_fn(args...)` (a
-/// `#[target_feature(enable = "avx2,fma")]` copy of the `#[inline(always)]`
-/// `body_fn`) when [`avx2_fma`] holds, `body_fn(args...)` otherwise.
-macro_rules! dispatch {
-    ($body:expr, $avx2:expr; $($arg:expr),* $(,)?) => {{
-        #[cfg(target_arch = "x86_64")]
-        {
-            if $crate::core::simd::avx2_fma() {
-                // SAFETY: the CPU has AVX2 and FMA (checked at run time),
-                // all the target features the function enables.
-                unsafe { $avx2($($arg),*) }
-            } else {
-                $body($($arg),*)
-            }
-        }
-        #[cfg(not(target_arch = "x86_64"))]
-        {
-            $body($($arg),*)
-        }
-    }};
-}
-pub(crate) use dispatch;
-
 /// `multiversion! { /// docs
 /// fn name<T: Bound>(a: A, b: B) -> R => body }` defines `name`, which
 /// runs the `#[inline(always)]` function `body` (same signature) compiled
-/// with AVX2 and FMA when the CPU has them ([`dispatch!`]), as compiled
-/// for the baseline otherwise.
+/// with AVX2 and FMA when [`avx2_fma`] holds, as compiled for the baseline
+/// otherwise.
 macro_rules! multiversion {
     (
         $(#[$meta:meta])*
@@ -81,12 +59,19 @@ macro_rules! multiversion {
         $(#[$meta])*
         $vis fn $name $(<$g: $bound>)? ($($arg: $ty),*) $(-> $ret)? {
             #[cfg(target_arch = "x86_64")]
-            #[target_feature(enable = "avx2,fma")]
-            #[allow(clippy::too_many_arguments)]
-            fn avx2 $(<$g: $bound>)? ($($arg: $ty),*) $(-> $ret)? {
-                $body($($arg),*)
+            {
+                #[target_feature(enable = "avx2,fma")]
+                #[allow(clippy::too_many_arguments)]
+                fn avx2 $(<$g: $bound>)? ($($arg: $ty),*) $(-> $ret)? {
+                    $body($($arg),*)
+                }
+                if $crate::core::simd::avx2_fma() {
+                    // SAFETY: the CPU has AVX2 and FMA (checked at run
+                    // time), all the target features `avx2` enables.
+                    return unsafe { avx2($($arg),*) };
+                }
             }
-            $crate::core::simd::dispatch!($body, avx2; $($arg),*)
+            $body($($arg),*)
         }
     };
 }

@@ -869,19 +869,22 @@ pub fn solve_coulomb_newton(
             });
         }
         // The sweep's order: by grid column from the leading edge (a
-        // counting sort on ix, descending).
-        column_count.clear();
-        column_count.resize(nx + 1, 0);
+        // counting sort on the column's rank r = nx - 1 - ix; start[r] is
+        // where column r begins in `order`, then where its next goes).
+        let rank = |i: usize| nx - 1 - i % nx;
+        let start = &mut *column_count;
+        start.clear();
+        start.resize(nx + 1, 0);
         for &i in loaded.iter() {
-            column_count[nx - 1 - i % nx + 1] += 1;
+            start[rank(i) + 1] += 1;
         }
-        for c in 1..=nx {
-            column_count[c] += column_count[c - 1];
+        for r in 1..=nx {
+            start[r] += start[r - 1];
         }
         order.clear();
         order.resize(m, 0);
         for (k, &i) in loaded.iter().enumerate() {
-            let slot = &mut column_count[nx - 1 - i % nx];
+            let slot = &mut start[rank(i)];
             order[*slot] = k;
             *slot += 1;
         }
