@@ -123,6 +123,11 @@ impl PatchEngine {
         Ok(())
     }
 
+    /// Whether every solve computes the Jacobian of the forces.
+    pub fn sensitivities(&self) -> bool {
+        self.sensitivities
+    }
+
     /// Replaces the normal load of the next solves.
     pub fn set_load(&mut self, load: NormalLoad) {
         self.case.load = load;

@@ -14,7 +14,7 @@ use tokio_stream::Stream;
 use tonic::{Request, Response, Status, Streaming};
 use tracing::Instrument;
 
-use crate::cli::case::Model;
+use crate::cli::case::{Case, Model};
 use crate::core::cache::KernelCache;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::service::convert::{self, CaseLimits};
@@ -22,7 +22,7 @@ use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
-use crate::service::pool::{deadline_of, Admission, Lane, SolvePool};
+use crate::service::pool::{deadline_of, Admission, Lane, SolvePool, INLINE_FASTSIM_ELEMENTS};
 use crate::service::session::Session;
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
@@ -108,10 +108,11 @@ impl ContactHandlers {
             check_sensitivities(&valid.case).map_err(|e| e.within(prefix))?;
         }
         let model = valid.case.model;
+        let lane = patch_lane(&valid.case, jacobian);
         let fields = req.include_fields;
         let t0 = StdInstant::now();
         let result = admission
-            .run_on(patch_lane(model), move || {
+            .run_on(lane, move || {
                 let mut engine = PatchEngine::new(valid, KernelCache::global())?;
                 if jacobian {
                     engine.enable_sensitivities()?;
@@ -559,7 +560,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         tokio::spawn(
             async move {
                 let model = valid.case.model;
-                let lane = patch_lane(model);
+                let lane = patch_lane(&valid.case, false);
                 let built = admission
                     .run_on(lane, move || PatchEngine::new(valid, KernelCache::global()))
                     .await
@@ -667,12 +668,17 @@ impl Drop for SessionSlot {
     }
 }
 
-/// The solve lane of a patch model: Hertz and FASTSIM are fast.
-fn patch_lane(model: Model) -> Lane {
-    Lane::of(matches!(
-        model,
-        Model::Hertz | Model::HertzCorrected | Model::Fastsim
-    ))
+/// The solve lane of a patch: Hertz and FASTSIM are fast, and run inline
+/// on small grids without sensitivities (see [`Lane::Inline`]).
+fn patch_lane(case: &Case, sensitivities: bool) -> Lane {
+    match case.model {
+        Model::Hertz | Model::HertzCorrected if !sensitivities => Lane::Inline,
+        Model::Fastsim if !sensitivities && case.nx * case.ny <= INLINE_FASTSIM_ELEMENTS => {
+            Lane::Inline
+        }
+        Model::Hertz | Model::HertzCorrected | Model::Fastsim => Lane::Fast,
+        _ => Lane::Heavy,
+    }
 }
 
 /// The solve lane of a wheel/rail model: Hertz+FASTSIM is fast.
@@ -891,7 +897,8 @@ impl ContactHandlers {
             Ok(a) => a,
             Err(e) => return Ok((session, Err(e))),
         };
-        let lane = patch_lane(session.engine().case().model);
+        let engine = session.engine();
+        let lane = patch_lane(engine.case(), engine.sensitivities());
         let (session, r) = admission
             .run_on(lane, move || {
                 let r = session.step(input);
