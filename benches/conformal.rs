@@ -9,7 +9,7 @@ use std::time::Instant;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 use railcontact::conformal::frictional::{
-    solve_frictional, ConformalKinematics, ConformalSettings,
+    solve_frictional_in, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
 };
 use railcontact::conformal::geometry::{Circle, ConformalCreepages, ConformalGeometry};
 use railcontact::conformal::operator::{ConformalOperator, InfluenceModel};
@@ -113,8 +113,12 @@ fn solves(c: &mut Criterion) {
         },
     };
     let settings = ConformalSettings::default();
+    // Buffers kept from one solve to the next, as the planar solver below
+    // keeps its own.
+    let workspace = std::cell::RefCell::new(FrictionalWorkspace::default());
     let rolling = |geo: &ConformalGeometry| {
-        solve_frictional(
+        solve_frictional_in(
+            &mut workspace.borrow_mut(),
             geo,
             &mat,
             0.3,
@@ -125,6 +129,7 @@ fn solves(c: &mut Criterion) {
         )
         .unwrap()
     };
+
     g.bench_function("cect_steady_rolling_60x60", |b| {
         b.iter(|| black_box(rolling(&geo)))
     });

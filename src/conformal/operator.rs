@@ -64,18 +64,44 @@ impl ConformalOperator {
     /// gives displacement differences; with the steady-rolling kernels the
     /// steady-state operator (A - S A)/dx (the rotations do not depend on x).
     pub fn new(kernels: Arc<KernelSet>, model: InfluenceModel, delta_rad: &[f64]) -> Self {
+        Self::reusing(None, kernels, model, delta_rad)
+    }
+
+    /// [`ConformalOperator::new`], with the buffers of `old` when they fit
+    /// the new grid (a solve after another on a grid of the same size
+    /// allocates nothing then).
+    pub fn reusing(
+        old: Option<Self>,
+        kernels: Arc<KernelSet>,
+        model: InfluenceModel,
+        delta_rad: &[f64],
+    ) -> Self {
         let (nx, ny) = (kernels.plan.nx, kernels.plan.ny);
         debug_assert_eq!(delta_rad.len(), ny);
         let n = nx * ny;
+        let (ows, b, zero) = match old {
+            Some(o) if kernels.fits(&o.ows) && o.zero.len() == n => (o.ows, o.b, o.zero),
+            _ => (
+                kernels.workspace(),
+                std::array::from_fn(|_| vec![0.0; n]),
+                vec![0.0; n],
+            ),
+        };
+        let (mut cos, mut sin) = (Vec::with_capacity(ny), Vec::with_capacity(ny));
+        for d in delta_rad {
+            let (s, c) = d.sin_cos();
+            cos.push(c);
+            sin.push(s);
+        }
         Self {
-            ows: kernels.workspace(),
+            ows,
             kernels,
             model,
             nx,
-            cos: delta_rad.iter().map(|d| d.cos()).collect(),
-            sin: delta_rad.iter().map(|d| d.sin()).collect(),
-            b: std::array::from_fn(|_| vec![0.0; n]),
-            zero: vec![0.0; n],
+            cos,
+            sin,
+            b,
+            zero,
         }
     }
 

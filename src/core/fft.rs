@@ -739,6 +739,7 @@ impl KernelSet {
     /// only: any kernel set of the same plan may use them).
     pub fn workspace(&self) -> OperatorWorkspace {
         OperatorWorkspace {
+            shape: self.workspace_shape(),
             main: Buffers::new(&self.plan),
             pc: self
                 .normal_inverse
@@ -746,6 +747,18 @@ impl KernelSet {
                 .map(|(pc, _)| Box::new(Buffers::new(pc))),
             single: Box::new(Buffers::new(&self.single.plan)),
         }
+    }
+
+    /// Whether `ws` (from the [`KernelSet::workspace`] of this or another
+    /// set) serves this set: same grid, and a preconditioner's buffers if
+    /// this set has a preconditioner.
+    pub fn fits(&self, ws: &OperatorWorkspace) -> bool {
+        let (nx, ny, pc) = self.workspace_shape();
+        ws.shape.0 == nx && ws.shape.1 == ny && (ws.shape.2 || !pc)
+    }
+
+    fn workspace_shape(&self) -> (usize, usize, bool) {
+        (self.plan.nx, self.plan.ny, self.normal_inverse.is_some())
     }
 
     /// The real-space kernel value (i, j) at element offset (ox, oy).
@@ -1084,6 +1097,8 @@ impl<T: Real> Buffers<T> {
 /// [`KernelSet::apply_normal_inverse`] (from [`KernelSet::workspace`]).
 #[derive(Clone)]
 pub struct OperatorWorkspace {
+    /// Grid (nx, ny) of the plan, and whether `pc` is there.
+    shape: (usize, usize, bool),
     main: Buffers<f64>,
     /// Buffers of the normal preconditioner's plan.
     pc: Option<Box<Buffers<f64>>>,

@@ -74,6 +74,19 @@ pub struct NormalScratch {
     p_old: Vec<f64>,
     z: Vec<f64>,
     free: Vec<bool>,
+    /// Unit weights.
+    ones: Vec<f64>,
+    kept: Kept,
+}
+
+/// The last solve's pressures and the age of their product in `u` (see
+/// [`NormalScratch::keep_product`]).
+#[derive(Clone, Default)]
+struct Kept {
+    on: bool,
+    valid: bool,
+    p: Vec<f64>,
+    age: usize,
 }
 
 impl NormalScratch {
@@ -87,7 +100,21 @@ impl NormalScratch {
             p_old: vec![0.0; n],
             z: vec![0.0; n],
             free: vec![false; n],
+            ones: vec![1.0; n],
+            kept: Kept::default(),
         }
+    }
+
+    /// Keeps each solve's final pressures with their product A p, so that
+    /// a later solve started from those pressures (rescaled to its force,
+    /// any gap) starts from the rescaled product instead of a new one: one
+    /// FFT product less per warm solve, as in the conformal alternation.
+    /// Only for a scratch that serves one operator: the kept product is
+    /// that of the operator of the last solve. Forgets what was kept.
+    pub fn keep_product(&mut self) {
+        self.kept.on = true;
+        self.kept.valid = false;
+        self.kept.p.resize(self.u.len(), 0.0);
     }
 }
 
@@ -256,7 +283,6 @@ fn solve_normal_body(
     settings: &NormalSettings,
 ) -> NormalOutcome {
     let n = h.len();
-    let w = |i: usize| weights.map_or(1.0, |w| w[i]);
     let a_self = op.diagonal();
     let NormalScratch {
         u,
@@ -266,11 +292,18 @@ fn solve_normal_body(
         p_old,
         z,
         free,
+        ones,
+        kept,
     } = scratch;
+    // Unit weights are exact: w x = x, w w = 1.
+    let w: &[f64] = weights.unwrap_or(ones);
+    debug_assert_eq!(w.len(), n);
     let mut matvecs = 0;
     let mut preconditioner_applications = 0;
     let force_control = matches!(load, NormalLoad::NormalForce(_));
-    initial_guess(h, &w, area, load, a_self, pn);
+    // u holds A p of the kept pressures when the start is those pressures.
+    let same_start = kept.on && kept.valid && kept.p[..] == pn[..];
+    let start_scale = initial_guess(h, &|i| w[i], area, load, a_self, pn);
     let delta_fixed = match load {
         NormalLoad::Approach(d) => d,
         NormalLoad::NormalForce(_) => 0.0,
@@ -287,20 +320,26 @@ fn solve_normal_body(
     const REFRESH: usize = 25;
     let mut u_valid = false;
     let mut since_refresh = 0;
+    if let (true, Some(c)) = (same_start, start_scale) {
+        u.iter_mut().for_each(|v| *v *= c);
+        u_valid = true;
+        since_refresh = kept.age;
+    }
+    kept.valid = false;
     // Projection of v on the weights' orthogonal complement over the free
     // set (force control keeps sum w p fixed along such directions).
     let project = |v: &mut [f64], free: &[bool], wsum2: f64| {
         if force_control && wsum2 > 0.0 {
             let mut s = 0.0;
-            for i in 0..n {
-                if free[i] {
-                    s += w(i) * v[i];
+            for ((&v, &w), &f) in v.iter().zip(w).zip(free) {
+                if f {
+                    s += w * v;
                 }
             }
             let c = s / wsum2;
-            for i in 0..n {
-                if free[i] {
-                    v[i] -= c * w(i);
+            for ((v, &w), &f) in v.iter_mut().zip(w).zip(free) {
+                if f {
+                    *v -= c * w;
                 }
             }
         }
@@ -313,16 +352,14 @@ fn solve_normal_body(
             since_refresh = 0;
         }
         since_refresh += 1;
-        for i in 0..n {
-            g[i] = u[i] + h[i];
-        }
         // Force control: the approach is the weighted least-squares fit of
         // the gap over the contact set (its mean when all weights are 1).
         let (mut gsum, mut wsum2) = (0.0, 0.0);
-        for i in 0..n {
-            if pn[i] > 0.0 {
-                gsum += w(i) * g[i];
-                wsum2 += w(i) * w(i);
+        for ((g, (&u, &h)), (&p, &w)) in g.iter_mut().zip(u.iter().zip(h)).zip(pn.iter().zip(w)) {
+            *g = u + h;
+            if p > 0.0 {
+                gsum += w * *g;
+                wsum2 += w * w;
             }
         }
         if force_control {
@@ -334,38 +371,44 @@ fn solve_normal_body(
         // Free set and its residual.
         let mut entering = false;
         let mut fsum2 = 0.0;
-        for i in 0..n {
-            g[i] -= approach * w(i);
-            let f = pn[i] > 0.0 || g[i] < 0.0;
-            entering |= f && pn[i] <= 0.0;
-            free[i] = f;
+        for ((g, free), (&p, &w)) in g.iter_mut().zip(free.iter_mut()).zip(pn.iter().zip(w)) {
+            *g -= approach * w;
+            let f = p > 0.0 || *g < 0.0;
+            entering |= f && p <= 0.0;
+            *free = f;
             if f {
-                fsum2 += w(i) * w(i);
+                fsum2 += w * w;
             } else {
-                g[i] = 0.0;
+                *g = 0.0;
             }
         }
         project(g, free, fsum2);
         if op.precondition(g, z) {
             preconditioner_applications += 1;
-            for i in 0..n {
-                if !free[i] {
-                    z[i] = 0.0;
+            for (z, &f) in z.iter_mut().zip(free.iter()) {
+                if !f {
+                    *z = 0.0;
                 }
             }
             project(z, free, fsum2);
         } else {
             z.copy_from_slice(g);
         }
-        let rz: f64 = (0..n).filter(|&i| free[i]).map(|i| g[i] * z[i]).sum();
+        let rz: f64 = g
+            .iter()
+            .zip(z.iter())
+            .zip(free.iter())
+            .filter(|(_, &f)| f)
+            .map(|((&g, &z), _)| g * z)
+            .sum();
         let beta = if conj && !entering && rz_old > 0.0 {
             rz / rz_old
         } else {
             0.0
         };
         rz_old = rz;
-        for i in 0..n {
-            d[i] = if free[i] { z[i] + beta * d[i] } else { 0.0 };
+        for ((d, &z), &f) in d.iter_mut().zip(z.iter()).zip(free.iter()) {
+            *d = if f { z + beta * *d } else { 0.0 };
         }
         if beta != 0.0 {
             project(d, free, fsum2);
@@ -373,23 +416,27 @@ fn solve_normal_body(
         op.apply_normal(d, q);
         matvecs += 1;
         let (mut num, mut den) = (0.0, 0.0);
-        for i in 0..n {
-            if free[i] {
-                num += g[i] * d[i];
-                den += q[i] * d[i];
+        for (((&g, &d), &q), &f) in g.iter().zip(d.iter()).zip(q.iter()).zip(free.iter()) {
+            if f {
+                num += g * d;
+                den += q * d;
             }
         }
         let alpha = if den > 0.0 { num / den } else { 0.0 };
         p_old.copy_from_slice(pn);
         let mut clamped = false;
-        for i in 0..n {
-            if free[i] {
-                let v = p_old[i] - alpha * d[i];
+        for ((p, &p_old), (&d, &f)) in pn
+            .iter_mut()
+            .zip(p_old.iter())
+            .zip(d.iter().zip(free.iter()))
+        {
+            if f {
+                let v = p_old - alpha * d;
                 if v > 0.0 {
-                    pn[i] = v;
+                    *p = v;
                 } else {
-                    pn[i] = 0.0;
-                    clamped |= v < 0.0 || p_old[i] > 0.0;
+                    *p = 0.0;
+                    clamped |= v < 0.0 || p_old > 0.0;
                 }
             }
         }
@@ -406,7 +453,7 @@ fn solve_normal_body(
         conj = true;
         let mut scale = 1.0;
         if let NormalLoad::NormalForce(f) = load {
-            let s: f64 = (0..n).map(|i| w(i) * pn[i]).sum::<f64>() * area;
+            let s: f64 = w.iter().zip(pn.iter()).map(|(&w, &p)| w * p).sum::<f64>() * area;
             if s > 0.0 {
                 scale = f / s;
                 pn.iter_mut().for_each(|p| *p *= scale);
@@ -414,15 +461,15 @@ fn solve_normal_body(
         }
         u_valid = !clamped;
         if u_valid {
-            for i in 0..n {
-                u[i] = scale * (u[i] - alpha * q[i]);
+            for (u, &q) in u.iter_mut().zip(q.iter()) {
+                *u = scale * (*u - alpha * q);
             }
         }
         let mut change = 0.0;
         let mut total = 0.0;
-        for i in 0..n {
-            change += (pn[i] - p_old[i]).abs();
-            total += pn[i];
+        for (&p, &p_old) in pn.iter().zip(p_old.iter()) {
+            change += (p - p_old).abs();
+            total += p;
         }
         residual = if total > 0.0 {
             change / total
@@ -438,17 +485,24 @@ fn solve_normal_body(
         if !u_valid {
             op.apply_normal(pn, u);
             matvecs += 1;
+            u_valid = true;
+            since_refresh = 0;
         }
         let (mut s, mut c) = (0.0, 0.0);
-        for i in 0..n {
-            if pn[i] > 0.0 {
-                s += w(i) * (u[i] + h[i]);
-                c += w(i) * w(i);
+        for ((&p, &w), (&u, &h)) in pn.iter().zip(w).zip(u.iter().zip(h)) {
+            if p > 0.0 {
+                s += w * (u + h);
+                c += w * w;
             }
         }
         if c > 0.0 {
             approach = s / c;
         }
+    }
+    if kept.on && u_valid {
+        kept.p.copy_from_slice(pn);
+        kept.valid = true;
+        kept.age = since_refresh;
     }
     NormalOutcome {
         iterations,
@@ -461,7 +515,8 @@ fn solve_normal_body(
 }
 
 /// The initial pressures: a given guess (rescaled to the force under force
-/// control), or from zero a Hertz-like pressure.
+/// control), or from zero a Hertz-like pressure. Returns the factor that
+/// scaled a given guess, `None` for a new start.
 fn initial_guess(
     h: &[f64],
     w: &impl Fn(usize) -> f64,
@@ -469,7 +524,7 @@ fn initial_guess(
     load: NormalLoad,
     a_self: f64,
     pn: &mut [f64],
-) {
+) -> Option<f64> {
     let n = h.len();
     let sum: f64 = pn.iter().sum();
     // Negated so that a NaN sum counts as no start too.
@@ -483,6 +538,7 @@ fn initial_guess(
             let ws: f64 = (0..n).map(|i| w(i) * pn[i]).sum();
             let s = f / (ws.max(f64::MIN_POSITIVE) * area);
             pn.iter_mut().for_each(|p| *p *= s);
+            (!no_start).then_some(s)
         }
         NormalLoad::Approach(delta) => {
             if no_start {
@@ -500,6 +556,9 @@ fn initial_guess(
                 let c = a_self / (4.0 * area.sqrt() * 1f64.asinh());
                 let p0 = 2.0 * omax / (c * std::f64::consts::PI.powi(2) * a.max(f64::MIN_POSITIVE));
                 pn.iter_mut().for_each(|p| *p *= p0);
+                None
+            } else {
+                Some(1.0)
             }
         }
     }
@@ -692,6 +751,65 @@ mod tests {
     /// one approach delta (weighted per patch) and one force, give what each
     /// patch gives alone at its approach w_k delta, and their weighted
     /// forces add up to the load.
+    #[test]
+    fn a_kept_product_saves_the_first_product_of_a_warm_solve() {
+        let n = 32;
+        let (dx, r) = (1e-4, 0.5);
+        let mat = CombinedMaterial::identical(Material::STEEL).unwrap();
+        let set = KernelSet::new(
+            Arc::new(ConvolutionPlan::new(n, n)),
+            HalfSpaceInfluence::new(dx, dx, &mat),
+            KernelKind::Displacement,
+        );
+        let gap = |tilt: f64| -> Vec<f64> {
+            (0..n * n)
+                .map(|i| {
+                    let x = ((i % n) as f64 - 0.5 * (n - 1) as f64) * dx;
+                    let y = ((i / n) as f64 - 0.5 * (n - 1) as f64) * dx;
+                    (x * x + y * y) / (2.0 * r) + tilt * x
+                })
+                .collect()
+        };
+        let settings = NormalSettings::default();
+        let mut ows = set.workspace();
+        let mut solve = |h: &[f64], f: f64, p: &mut [f64], scratch: &mut NormalScratch| {
+            let load = NormalLoad::NormalForce(f);
+            solve_normal(&set, &mut ows, h, dx * dx, load, p, scratch, &settings)
+        };
+        let mut kept = NormalScratch::new(n * n);
+        kept.keep_product();
+        let mut p0 = vec![0.0; n * n];
+        solve(&gap(0.0), 400.0, &mut p0, &mut kept);
+        // A warm solve from the kept pressures (another force, another gap)
+        // against the same solve with a fresh scratch.
+        let h = gap(1e-5);
+        let mut p_kept = p0.clone();
+        let a = solve(&h, 440.0, &mut p_kept, &mut kept);
+        let mut p_fresh = p0.clone();
+        let b = solve(&h, 440.0, &mut p_fresh, &mut NormalScratch::new(n * n));
+        assert!(a.converged && b.converged);
+        assert_eq!(a.matvecs + 1, b.matvecs, "{a:?} {b:?}");
+        let pmax = p_fresh.iter().fold(0.0f64, |m, &v| m.max(v));
+        let diff = p_kept
+            .iter()
+            .zip(&p_fresh)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(diff <= 1e-8 * pmax, "{diff:e} of {pmax:e}");
+        assert!((a.approach_m - b.approach_m).abs() <= 1e-8 * b.approach_m.abs());
+        // A start other than the kept pressures takes its own product.
+        let mut p_other = p0.clone();
+        p_other[n * n / 2] *= 1.01;
+        let c = solve(&h, 440.0, &mut p_other, &mut kept);
+        let mut p_other2 = p0.clone();
+        p_other2[n * n / 2] *= 1.01;
+        let d = solve(&h, 440.0, &mut p_other2, &mut NormalScratch::new(n * n));
+        assert_eq!(c.matvecs, d.matvecs);
+        assert!(p_other
+            .iter()
+            .zip(&p_other2)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+
     #[test]
     fn block_operator_solves_patches_together() {
         let mat = CombinedMaterial::identical(Material::STEEL).unwrap();
