@@ -356,77 +356,58 @@ impl Fastsim {
 
         let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
         let (mut tgamma, mut adh_area, mut tot_area, mut pmax) = (0.0, 0.0, 0.0, 0.0_f64);
-        let phi_l3 = phi / l3;
-        let eta_l2 = eta / l2;
-        for j in 0..self.ny {
-            let y = -b + (j as f64 + 0.5) * dy;
-            let ay = strip_half_length(a, b, dy, j);
-            let dx = 2.0 * ay / nxf;
-            let da = dx * dy;
-            let wx = xi / l1 - phi_l3 * y;
-            let (mut px, mut py) = (0.0, 0.0);
-            let mut x_prev = ay;
-            let row = j * nx;
-            let xs = &mut self.x_m[row..row + nx];
-            let ys = &mut self.y_m[row..row + nx];
-            let das = &mut self.area_m2[row..row + nx];
-            let pns = &mut self.pn_pa[row..row + nx];
-            let pxs = &mut self.px_pa[row..row + nx];
-            let pys = &mut self.py_pa[row..row + nx];
-            let sxs = &mut self.slip_x[row..row + nx];
-            let sys = &mut self.slip_y[row..row + nx];
-            let sts = &mut self.state[row..row + nx];
-            for i in 0..nx {
-                let x = ay - (i as f64 + 0.5) * dx;
-                let step = x_prev - x;
-                let wy = eta_l2 + phi_l3 * 0.5 * (x_prev + x);
-                let (px_prev, py_prev) = (px, py);
-                let hx = px - wx * step;
-                let hy = py - wy * step;
-                let pn = (pn_scale * (ay - x) * (ay + x) * inv_a2).max(0.0);
-                let bound = mu * pn;
-                let mag2 = hx * hx + hy * hy;
-                let (sx, sy, st);
-                if mag2 <= bound * bound {
-                    px = hx;
-                    py = hy;
-                    sx = 0.0;
-                    sy = 0.0;
-                    st = ElementState::Adhesion;
-                    adh_area += da;
-                } else {
-                    let f = bound / mag2.sqrt();
-                    px = hx * f;
-                    py = hy * f;
-                    sx = l_slip * (px - hx) / step;
-                    sy = l_slip * (py - hy) / step;
-                    st = ElementState::Slip;
-                    // Mean traction over the step times slip times step.
-                    tgamma -= 0.5 * ((px_prev + px) * sx + (py_prev + py) * sy) * step * dy;
+        let k = StripConstants {
+            pn_scale,
+            inv_a2,
+            mu,
+            eta_l2: eta / l2,
+            phi_l3: phi / l3,
+            l_slip,
+            dy,
+        };
+        // LANES strips at a time, element by element (see [`LANES`]).
+        for j0 in (0..self.ny).step_by(LANES) {
+            let lanes = LANES.min(self.ny - j0);
+            let mut strips: [Strip; LANES] = std::array::from_fn(|l| {
+                let j = j0 + l.min(lanes - 1);
+                let y = -b + (j as f64 + 0.5) * dy;
+                let ay = strip_half_length(a, b, dy, j);
+                let dx = 2.0 * ay / nxf;
+                Strip {
+                    y,
+                    ay,
+                    dx,
+                    da: dx * dy,
+                    wx: xi / l1 - k.phi_l3 * y,
+                    x_prev: ay,
+                    ..Strip::default()
                 }
-                fx += px * da;
-                fy += py * da;
-                mz += (x * py - y * px) * da;
-                tot_area += da;
-                pmax = pmax.max(px * px + py * py);
-                xs[i] = x;
-                ys[i] = y;
-                das[i] = da;
-                pns[i] = pn;
-                pxs[i] = px;
-                pys[i] = py;
-                sxs[i] = sx;
-                sys[i] = sy;
-                sts[i] = st;
-                x_prev = x;
+            });
+            for i in 0..nx {
+                for (l, strip) in strips[..lanes].iter_mut().enumerate() {
+                    let e = strip.advance(i, &k);
+                    let at = (j0 + l) * nx + i;
+                    self.x_m[at] = e.x;
+                    self.y_m[at] = strip.y;
+                    self.area_m2[at] = strip.da;
+                    self.pn_pa[at] = e.pn;
+                    self.px_pa[at] = strip.px;
+                    self.py_pa[at] = strip.py;
+                    self.slip_x[at] = e.sx;
+                    self.slip_y[at] = e.sy;
+                    self.state[at] = e.state;
+                }
             }
-            // Release step from the last centre to the trailing edge, where
-            // the bound vanishes: p -> 0, slip Lbar (0 - p_H)/h.
-            let step = x_prev + ay;
-            let wy = eta_l2 + phi_l3 * 0.5 * (x_prev - ay);
-            let hx = px - wx * step;
-            let hy = py - wy * step;
-            tgamma += 0.5 * l_slip * (px * hx + py * hy) * dy;
+            for strip in &mut strips[..lanes] {
+                strip.release(&k);
+                fx += strip.fx;
+                fy += strip.fy;
+                mz += strip.mz;
+                tgamma += strip.tgamma;
+                adh_area += strip.adhesion_area;
+                tot_area += strip.area;
+                pmax = pmax.max(strip.pmax2);
+            }
         }
         Ok(FastsimOutput {
             fx_n: fx,
@@ -437,6 +418,118 @@ impl Fastsim {
             max_traction_pa: pmax.sqrt(),
             coefficients: coef,
         })
+    }
+}
+
+/// Strips integrated together, element by element. Along a strip each
+/// element's traction waits on the previous one's (a square root and a
+/// division on the way in slip); the strips are independent, so the
+/// processor overlaps their recurrences (40 x 40: 12.7 -> 10.6 µs on the development
+/// machine, criterion medians; 2 strips 11.6 µs, 8 strips 10.7 µs). The
+/// totals are summed strip by strip, so they differ from a single running
+/// sum in the last bits.
+const LANES: usize = 4;
+
+/// What every strip of one solve shares.
+struct StripConstants {
+    pn_scale: f64,
+    inv_a2: f64,
+    mu: f64,
+    eta_l2: f64,
+    phi_l3: f64,
+    l_slip: f64,
+    dy: f64,
+}
+
+/// One strip in integration: its geometry, the traction carried from the
+/// last element, and its share of the totals.
+#[derive(Clone, Copy, Default)]
+struct Strip {
+    y: f64,
+    ay: f64,
+    dx: f64,
+    da: f64,
+    wx: f64,
+    px: f64,
+    py: f64,
+    x_prev: f64,
+    fx: f64,
+    fy: f64,
+    mz: f64,
+    tgamma: f64,
+    adhesion_area: f64,
+    area: f64,
+    pmax2: f64,
+}
+
+/// The values of one element besides the strip's traction.
+struct ElementValues {
+    x: f64,
+    pn: f64,
+    sx: f64,
+    sy: f64,
+    state: ElementState,
+}
+
+impl Strip {
+    /// Integrates from the last element to element `i` (from the leading
+    /// edge): the traction moves by the rigid slip over the step and is
+    /// projected on the traction bound.
+    #[inline(always)]
+    fn advance(&mut self, i: usize, k: &StripConstants) -> ElementValues {
+        let (ay, dx, da, y) = (self.ay, self.dx, self.da, self.y);
+        let x = ay - (i as f64 + 0.5) * dx;
+        let step = self.x_prev - x;
+        let wy = k.eta_l2 + k.phi_l3 * 0.5 * (self.x_prev + x);
+        let (px_prev, py_prev) = (self.px, self.py);
+        let hx = self.px - self.wx * step;
+        let hy = self.py - wy * step;
+        let pn = (k.pn_scale * (ay - x) * (ay + x) * k.inv_a2).max(0.0);
+        let bound = k.mu * pn;
+        let mag2 = hx * hx + hy * hy;
+        let (sx, sy, state);
+        if mag2 <= bound * bound {
+            self.px = hx;
+            self.py = hy;
+            sx = 0.0;
+            sy = 0.0;
+            state = ElementState::Adhesion;
+            self.adhesion_area += da;
+        } else {
+            let f = bound / mag2.sqrt();
+            self.px = hx * f;
+            self.py = hy * f;
+            sx = k.l_slip * (self.px - hx) / step;
+            sy = k.l_slip * (self.py - hy) / step;
+            state = ElementState::Slip;
+            // Mean traction over the step times slip times step.
+            self.tgamma -=
+                0.5 * ((px_prev + self.px) * sx + (py_prev + self.py) * sy) * step * k.dy;
+        }
+        let (px, py) = (self.px, self.py);
+        self.fx += px * da;
+        self.fy += py * da;
+        self.mz += (x * py - y * px) * da;
+        self.area += da;
+        self.pmax2 = self.pmax2.max(px * px + py * py);
+        self.x_prev = x;
+        ElementValues {
+            x,
+            pn,
+            sx,
+            sy,
+            state,
+        }
+    }
+
+    /// The release step from the last centre to the trailing edge, where
+    /// the bound vanishes: p -> 0, slip Lbar (0 - p_H)/h.
+    fn release(&mut self, k: &StripConstants) {
+        let step = self.x_prev + self.ay;
+        let wy = k.eta_l2 + k.phi_l3 * 0.5 * (self.x_prev - self.ay);
+        let hx = self.px - self.wx * step;
+        let hy = self.py - wy * step;
+        self.tgamma += 0.5 * k.l_slip * (self.px * hx + self.py * hy) * k.dy;
     }
 }
 
