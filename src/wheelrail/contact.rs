@@ -45,7 +45,9 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::conformal::frictional::{solve_frictional, ConformalKinematics, ConformalSettings};
+use crate::conformal::frictional::{
+    solve_frictional_in, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
+};
 use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCurve};
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
@@ -328,6 +330,8 @@ enum PatchKind {
     },
     Conformal {
         geometry: Box<ConformalGeometry>,
+        /// Buffers kept over the load iteration's solves.
+        workspace: Box<FrictionalWorkspace>,
     },
 }
 
@@ -406,7 +410,10 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
             }
-            PatchKind::Conformal { geometry } => {
+            PatchKind::Conformal {
+                geometry,
+                workspace,
+            } => {
                 let NormalLoad::NormalForce(f) = load else {
                     return Err(ContactError::invalid(
                         "model",
@@ -422,7 +429,8 @@ impl PatchWork {
                         spin_per_m: self.creep.spin_per_m,
                     },
                 };
-                let sol = solve_frictional(
+                let sol = solve_frictional_in(
+                    workspace,
                     geometry,
                     &input.material,
                     input.friction.kinetic_coefficient,
@@ -854,6 +862,7 @@ fn solve_wheel(
                         patches.push(PatchWork {
                             kind: PatchKind::Conformal {
                                 geometry: Box::new(geometry),
+                                workspace: Box::default(),
                             },
                             hmin,
                             out: PatchOutcome::default(),
@@ -942,6 +951,7 @@ fn build_patch(
             let grid = patch_grid(&geom, cap, input)?;
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, grid)?),
+                workspace: Box::default(),
             }
         }
     };
@@ -1560,7 +1570,7 @@ pub(crate) fn finish(
                 ([problem.grid.nx, problem.grid.ny], Some(problem.grid))
             }
             PatchKind::Hertz { .. } => ([0, 0], None),
-            PatchKind::Conformal { geometry } => {
+            PatchKind::Conformal { geometry, .. } => {
                 ([geometry.grid.nx, geometry.grid.ny], Some(geometry.grid))
             }
         };
