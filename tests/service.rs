@@ -486,6 +486,66 @@ async fn transient_session_matches_the_batch_solve_and_rolls_back_bit_for_bit() 
     server.shutdown().await;
 }
 
+/// The paper's Case 1 (R_yr 10 mm, R_yw -10.1 mm, R_xw 0.5 m) at 80 kN
+/// with the cect model, rolling with the creepages of `step`'s Creep
+/// motion, on a coarse grid.
+fn cect_rolling(c: f64) -> pb::PatchCase {
+    pb::PatchCase {
+        model: pb::Model::Cect as i32,
+        material: Some(steel()),
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::ConformalCircular as i32,
+            rail_lateral_radius_m: Some(0.010),
+            wheel_lateral_radius_m: Some(-0.0101),
+            wheel_rolling_radius_m: Some(0.5),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(8.0e4)),
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            creepage_long: c,
+            creepage_lat: 0.5 * c,
+            ..Default::default()
+        })),
+        grid: Some(pb::GridSection {
+            nx: Some(24),
+            ny: Some(24),
+            ..Default::default()
+        }),
+        ..Default::default()
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cect_session_equals_single_solves_bit_for_bit() {
+    // The session keeps its conformal buffers from step to step; a single
+    // solve starts with new ones. The answers must not tell them apart.
+    let (server, mut client) = server().await;
+    let creep = [0.86e-3, -1.53e-3, 0.3e-3];
+    let mut msgs = vec![open(cect_rolling(0.0), false)];
+    for (k, &c) in creep.iter().enumerate() {
+        msgs.push(step(k as u64, StepMotion::Creep(c), false));
+    }
+    let r = session(&mut client, msgs).await;
+    for (k, &c) in creep.iter().enumerate() {
+        let alone = solve_patch(&mut client, cect_rolling(c)).await;
+        let s = step_result(&r[1 + k]);
+        let t = totals(s.result.as_ref().unwrap());
+        assert!(t.fx_n.abs() > 0.0 && t.adhesion_fraction < 1.0, "{t:?}");
+        assert_eq!(
+            bits(t),
+            bits(totals(alone.result.as_ref().unwrap())),
+            "step {k}"
+        );
+    }
+    server.shutdown().await;
+}
+
 fn rolling_steps(seed: f64) -> Vec<pb::SessionRequest> {
     let mut m = vec![open(rolling(pb::Model::Exact, 16, 0.0), false)];
     for k in 0..4u64 {

@@ -17,7 +17,8 @@ use crate::cli::report::{
 };
 use crate::cli::CliError;
 use crate::conformal::frictional::{
-    solve_frictional, ConformalKinematics, ConformalSolution, ConformalTotals,
+    solve_frictional_in, ConformalKinematics, ConformalSolution, ConformalTotals,
+    FrictionalWorkspace,
 };
 use crate::conformal::geometry::ConformalGeometry;
 use crate::conformal::solve::{solve_frictionless, ConformalNormalSolution};
@@ -132,6 +133,12 @@ fn length_width_ratio(length_m: f64, width_m: f64) -> f64 {
 impl ConformalRun {
     /// Solves a `cect` or `cect_halfspace` case.
     pub fn solve(case: &Case) -> Result<Self, CliError> {
+        Self::solve_in(&mut FrictionalWorkspace::default(), case)
+    }
+
+    /// [`ConformalRun::solve`] on the buffers of `workspace` (see
+    /// [`solve_frictional_in`]).
+    pub fn solve_in(workspace: &mut FrictionalWorkspace, case: &Case) -> Result<Self, CliError> {
         let t0 = Instant::now();
         let model = case.model.influence().ok_or_else(|| {
             CliError::Failure(format!(
@@ -157,7 +164,8 @@ impl ConformalRun {
                 (vec![frictionless_solution(&geometry, s)], Some(iterations))
             }
             Some(k) => (
-                solve_frictional(
+                solve_frictional_in(
+                    workspace,
                     &geometry,
                     &case.material,
                     case.friction.kinetic_coefficient,

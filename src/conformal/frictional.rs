@@ -176,6 +176,14 @@ pub struct FrictionalWorkspace {
     fields: Option<Fields>,
 }
 
+/// A clone is an empty workspace: it holds buffers, no state (answers do
+/// not depend on it), so a copy of its contents would only cost memory.
+impl Clone for FrictionalWorkspace {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
 /// The per-element arrays of a solve.
 struct Fields {
     pn: Vec<f64>,

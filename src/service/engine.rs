@@ -14,6 +14,7 @@
 use crate::cli::case::{Case, Model};
 use crate::cli::conformal_models::ConformalRun;
 use crate::cli::reference_models as reference;
+use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
 use crate::core::normal::NormalLoad;
@@ -69,6 +70,8 @@ pub struct PatchEngine {
     history_intact: bool,
     /// Compute the Jacobian of the forces with every solve.
     sensitivities: bool,
+    /// Buffers of the conformal models' solves, kept between steps.
+    conformal: FrictionalWorkspace,
 }
 
 impl PatchEngine {
@@ -91,6 +94,7 @@ impl PatchEngine {
             exact,
             history_intact: true,
             sensitivities: false,
+            conformal: FrictionalWorkspace::default(),
         })
     }
 
@@ -231,11 +235,14 @@ impl PatchEngine {
 
     /// The result of a model other than exact, through the functions of
     /// `railcontact solve`, with its totals.
-    fn reference_result(&self, fields: bool) -> Result<(pb::PatchResult, Totals), ServiceError> {
+    fn reference_result(
+        &mut self,
+        fields: bool,
+    ) -> Result<(pb::PatchResult, Totals), ServiceError> {
         let case = &self.case;
         let report = match case.model {
             Model::Cect | Model::CectHalfspace => {
-                let run = ConformalRun::solve(case)?;
+                let run = ConformalRun::solve_in(&mut self.conformal, case)?;
                 let report = run.report(case, fields);
                 return Ok((convert::result_of_report(&report), report.totals.totals));
             }
