@@ -9,7 +9,7 @@ use std::time::Instant;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 use railcontact::conformal::frictional::{
-    solve_frictional_in, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
+    solve_frictional, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
 };
 use railcontact::conformal::geometry::{Circle, ConformalCreepages, ConformalGeometry};
 use railcontact::conformal::operator::{ConformalOperator, InfluenceModel};
@@ -115,10 +115,10 @@ fn solves(c: &mut Criterion) {
     let settings = ConformalSettings::default();
     // Buffers kept from one solve to the next, as the planar solver below
     // keeps its own.
-    let workspace = std::cell::RefCell::new(FrictionalWorkspace::default());
-    let rolling = |geo: &ConformalGeometry| {
-        solve_frictional_in(
-            &mut workspace.borrow_mut(),
+    let mut workspace = FrictionalWorkspace::default();
+    let mut rolling = |geo: &ConformalGeometry| {
+        solve_frictional(
+            &mut workspace,
             geo,
             &mat,
             0.3,

@@ -38,6 +38,7 @@ use plotters::style::{register_font, FontStyle};
 
 use railcontact::conformal::frictional::{
     solve_frictional, ConformalKinematics, ConformalSettings, ConformalSolution,
+    FrictionalWorkspace,
 };
 use railcontact::conformal::geometry::{Circle as Profile, ConformalCreepages, ConformalGeometry};
 use railcontact::conformal::operator::InfluenceModel;
@@ -557,6 +558,7 @@ fn static_run(
         .collect();
     let (mut sols, geo) = case.with_grid(max_load, n_lat, |geo| {
         solve_frictional(
+            &mut FrictionalWorkspace::default(),
             geo,
             &material,
             MU,
@@ -706,6 +708,7 @@ fn rolling_study(creepages: &[f64], n_lat: f64) -> Result<(Vec<RollPoint>, Confo
         };
         let solve = |geo: &ConformalGeometry| {
             solve_frictional(
+                &mut FrictionalWorkspace::default(),
                 geo,
                 &material,
                 MU,

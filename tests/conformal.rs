@@ -203,6 +203,7 @@ mod frictional {
     use super::*;
     use railcontact::conformal::frictional::{
         solve_frictional, ConformalKinematics, ConformalSettings, ConformalSolution,
+        FrictionalWorkspace,
     };
     use railcontact::conformal::geometry::ConformalCreepages;
     use railcontact::core::solution::SolveStatus;
@@ -211,6 +212,7 @@ mod frictional {
 
     fn run(geo: &ConformalGeometry, kin: ConformalKinematics) -> Vec<ConformalSolution> {
         let sols = solve_frictional(
+            &mut FrictionalWorkspace::default(),
             geo,
             &steel(),
             MU,

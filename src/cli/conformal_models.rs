@@ -17,8 +17,7 @@ use crate::cli::report::{
 };
 use crate::cli::CliError;
 use crate::conformal::frictional::{
-    solve_frictional_in, ConformalKinematics, ConformalSolution, ConformalTotals,
-    FrictionalWorkspace,
+    solve_frictional, ConformalKinematics, ConformalSolution, ConformalTotals, FrictionalWorkspace,
 };
 use crate::conformal::geometry::ConformalGeometry;
 use crate::conformal::solve::{solve_frictionless, ConformalNormalSolution};
@@ -131,14 +130,9 @@ fn length_width_ratio(length_m: f64, width_m: f64) -> f64 {
 }
 
 impl ConformalRun {
-    /// Solves a `cect` or `cect_halfspace` case.
-    pub fn solve(case: &Case) -> Result<Self, CliError> {
-        Self::solve_in(&mut FrictionalWorkspace::default(), case)
-    }
-
-    /// [`ConformalRun::solve`] on the buffers of `workspace` (see
-    /// [`solve_frictional_in`]).
-    pub fn solve_in(workspace: &mut FrictionalWorkspace, case: &Case) -> Result<Self, CliError> {
+    /// Solves a `cect` or `cect_halfspace` case on the buffers of
+    /// `workspace` (see [`solve_frictional`]).
+    pub fn solve(workspace: &mut FrictionalWorkspace, case: &Case) -> Result<Self, CliError> {
         let t0 = Instant::now();
         let model = case.model.influence().ok_or_else(|| {
             CliError::Failure(format!(
@@ -164,7 +158,7 @@ impl ConformalRun {
                 (vec![frictionless_solution(&geometry, s)], Some(iterations))
             }
             Some(k) => (
-                solve_frictional_in(
+                solve_frictional(
                     workspace,
                     &geometry,
                     &case.material,

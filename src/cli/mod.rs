@@ -25,6 +25,7 @@ use std::time::Instant;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::error::ContactError;
 use crate::core::grid::Grid;
 use crate::core::problem::Kinematics;
@@ -265,7 +266,10 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         _ => None,
     };
     let conformal = match case.model {
-        Model::Cect | Model::CectHalfspace => Some(ConformalRun::solve(&case)?),
+        Model::Cect | Model::CectHalfspace => Some(ConformalRun::solve(
+            &mut FrictionalWorkspace::default(),
+            &case,
+        )?),
         _ => None,
     };
     let mut report = if let Some(run) = &exact {

@@ -165,7 +165,7 @@ pub struct ConformalSolution {
 }
 
 /// Buffers of frictional conformal solves, kept from one solve to the next
-/// by [`solve_frictional_in`]: a solve on a grid of the size of the last
+/// by [`solve_frictional`]: a solve on a grid of the size of the last
 /// one allocates nothing but its answer (a fresh 60 x 60 solve spends
 /// about 4 % of its time allocating and first touching its buffers, the
 /// GMRES basis above all).
@@ -264,33 +264,11 @@ impl Fields {
 }
 
 /// Solves a frictional conformal problem: one solution per load step of a
-/// static compression, one for steady rolling.
+/// static compression, one for steady rolling, on the buffers of
+/// `workspace` (the same answer, bit for bit, whatever it held; pass
+/// `&mut FrictionalWorkspace::default()` for a single solve).
 #[allow(clippy::too_many_arguments)]
 pub fn solve_frictional(
-    geometry: &ConformalGeometry,
-    material: &CombinedMaterial,
-    friction_coefficient: f64,
-    model: InfluenceModel,
-    kinematics: &ConformalKinematics,
-    settings: &ConformalSettings,
-    cache: &KernelCache,
-) -> Result<Vec<ConformalSolution>, ContactError> {
-    solve_frictional_in(
-        &mut FrictionalWorkspace::default(),
-        geometry,
-        material,
-        friction_coefficient,
-        model,
-        kinematics,
-        settings,
-        cache,
-    )
-}
-
-/// [`solve_frictional`] with the buffers of `workspace` (the same answer,
-/// bit for bit, whatever the workspace held).
-#[allow(clippy::too_many_arguments)]
-pub fn solve_frictional_in(
     workspace: &mut FrictionalWorkspace,
     geometry: &ConformalGeometry,
     material: &CombinedMaterial,
@@ -675,7 +653,7 @@ mod tests {
         };
         let settings = ConformalSettings::default();
         let solve = |ws: &mut FrictionalWorkspace, geo: &ConformalGeometry, k| {
-            solve_frictional_in(
+            solve_frictional(
                 ws,
                 geo,
                 &mat,

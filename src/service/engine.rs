@@ -242,7 +242,7 @@ impl PatchEngine {
         let case = &self.case;
         let report = match case.model {
             Model::Cect | Model::CectHalfspace => {
-                let run = ConformalRun::solve_in(&mut self.conformal, case)?;
+                let run = ConformalRun::solve(&mut self.conformal, case)?;
                 let report = run.report(case, fields);
                 return Ok((convert::result_of_report(&report), report.totals.totals));
             }

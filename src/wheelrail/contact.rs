@@ -46,7 +46,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::conformal::frictional::{
-    solve_frictional_in, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
+    solve_frictional, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
 };
 use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCurve};
 use crate::conformal::operator::InfluenceModel;
@@ -429,7 +429,7 @@ impl PatchWork {
                         spin_per_m: self.creep.spin_per_m,
                     },
                 };
-                let sol = solve_frictional_in(
+                let sol = solve_frictional(
                     workspace,
                     geometry,
                     &input.material,
