@@ -403,6 +403,7 @@ pub fn solve_frictional(
                     .tangential
                     .max_iterations
                     .min(NEWTON_STEPS_PER_ALTERNATION),
+                ..settings.tangential
             };
             let inner_final = normal_settings.tolerance == settings.normal.tolerance
                 && tangential_settings.tolerance == settings.tangential.tolerance;

@@ -605,6 +605,17 @@ pub struct KernelSet {
     /// The plan and the entry of `spectra` of the normal preconditioner
     /// (displacement kernels only): see [`KernelSet::apply_normal_inverse`].
     normal_inverse: Option<(Arc<ConvolutionPlan>, usize)>,
+    /// The tangential block's periodic inverse (displacement kernels only):
+    /// see [`KernelSet::apply_tangential_inverse`].
+    tangential_inverse: Option<TangentialInverse>,
+}
+
+/// The inverse of the circulant extension of the tangential block, in
+/// single precision, on the periodic array of a fast size that holds the
+/// grid: spectra (xx, xy, yy) of [`periodic_inverse_2x2`].
+struct TangentialInverse {
+    plan: ConvolutionPlan<f32>,
+    spectra: Vec<Spectrum<f32>>,
 }
 
 impl std::fmt::Debug for KernelSet {
@@ -650,6 +661,7 @@ impl KernelSet {
                 .single
                 .spectra
                 .iter()
+                .chain(self.tangential_inverse.iter().flat_map(|t| &t.spectra))
                 .map(Spectrum::bytes)
                 .sum::<usize>()
     }
@@ -707,6 +719,7 @@ impl KernelSet {
             }
         }
         let mut normal_inverse = None;
+        let mut tangential_inverse = None;
         if let (KernelKind::Displacement, Some(_)) = (kind, index[2][2]) {
             let pc = Arc::new(ConvolutionPlan::with_padding(
                 nx,
@@ -718,6 +731,20 @@ impl KernelSet {
                 influence.kernel(kind, Component::N, Component::N, ox, oy)
             }));
             normal_inverse = Some((pc, spectra.len() - 1));
+            let (px, py) = (fast_even_size_single(nx), fast_even_size_single(ny));
+            // Inverted in f64 on a plan of the single-precision sizes, then
+            // rounded (as the single-precision kernels).
+            let wide_pc = ConvolutionPlan::<f64>::with_padding(nx, ny, px, py);
+            let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
+                influence.kernel(kind, i, j, ox, oy)
+            });
+            tangential_inverse = Some(TangentialInverse {
+                plan: ConvolutionPlan::with_padding(nx, ny, px, py),
+                spectra: inverse
+                    .into_iter()
+                    .map(|k| Spectrum::new(k).narrow())
+                    .collect(),
+            });
         }
         let spectra = spectra.into_iter().map(Spectrum::new).collect();
         Self {
@@ -732,6 +759,7 @@ impl KernelSet {
             },
             tangential_norm_bound: bound,
             normal_inverse,
+            tangential_inverse,
         }
     }
 
@@ -746,6 +774,10 @@ impl KernelSet {
                 .as_ref()
                 .map(|(pc, _)| Box::new(Buffers::new(pc))),
             single: Box::new(Buffers::new(&self.single.plan)),
+            tangential_pc: self
+                .tangential_inverse
+                .as_ref()
+                .map(|t| Box::new(Buffers::new(&t.plan))),
         }
     }
 
@@ -843,6 +875,46 @@ impl KernelSet {
             pcws,
             &[(Component::N, r)],
             &mut [(Component::N, z)],
+        );
+        true
+    }
+
+    /// Whether [`KernelSet::apply_tangential_inverse`] is available
+    /// (displacement kernels).
+    pub fn has_tangential_inverse(&self) -> bool {
+        self.tangential_inverse.is_some()
+    }
+
+    /// `(zx, zy) = C⁻¹ (rx, ry)` on the grid, with C the circulant extension
+    /// of the tangential block A_tt on a periodic array that holds the grid
+    /// (its 2x2 symbol inverted at each frequency, see
+    /// [`periodic_inverse_2x2`]), in single precision (about 1e-6 of the
+    /// largest output): a global preconditioner of the tangential problems,
+    /// about a quarter of a single-precision product. Returns false (and
+    /// leaves `z` alone) for kernel sets without it (steady-rolling
+    /// kernels).
+    pub fn apply_tangential_inverse(
+        &self,
+        ows: &mut OperatorWorkspace,
+        [rx, ry]: [&[f64]; 2],
+        [zx, zy]: [&mut [f64]; 2],
+    ) -> bool {
+        let (Some(t), Some(bufs)) = (&self.tangential_inverse, ows.tangential_pc.as_deref_mut())
+        else {
+            return false;
+        };
+        let index = [
+            [Some(0), Some(1), None],
+            [Some(1), Some(2), None],
+            [None, None, None],
+        ];
+        apply_indexed(
+            &t.plan,
+            &t.spectra,
+            &index,
+            bufs,
+            &[(Component::X, rx), (Component::Y, ry)],
+            &mut [(Component::X, zx), (Component::Y, zy)],
         );
         true
     }
@@ -1031,6 +1103,26 @@ fn apply_indexed_body<T: Real>(
 /// transform dips below it at a few frequencies, and can turn negative for
 /// elongated elements); the inverse's spectrum is 1/(lambda px py).
 fn periodic_inverse(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Complex64> {
+    let mut spec = periodic_symbol(pc, k);
+    let s = (pc.px * pc.py) as f64;
+    let mut floor = spec[(pc.nkx - 1) * pc.py + pc.py / 2].re;
+    // Negated so that NaN takes the fallback too.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    let unusable = !(floor > 0.0);
+    if unusable {
+        // Not expected for a positive definite kernel; any positive bound will do.
+        floor = 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
+    }
+    for v in &mut spec {
+        *v = Complex64::new(1.0 / (v.re.max(floor) * s), 0.0);
+    }
+    spec
+}
+
+/// The transform of the kernel `k` wrapped on the periodic `px` x `py`
+/// array of `pc` (offsets wrapped to |o| <= p/2): the eigenvalues of its
+/// circulant (real for kernels even in (ox, oy) together).
+fn periodic_symbol(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Complex64> {
     let (px, py) = (pc.px, pc.py);
     let wrap = |j: usize, p: usize| {
         if 2 * j <= p {
@@ -1053,19 +1145,42 @@ fn periodic_inverse(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Co
         }
     }
     pc.fwd.process_with_scratch(&mut spec, &mut ws.scratch);
-    let s = (px * py) as f64;
-    let mut floor = spec[(pc.nkx - 1) * py + py / 2].re;
-    // Negated so that NaN takes the fallback too.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    let unusable = !(floor > 0.0);
-    if unusable {
-        // Not expected for a positive definite kernel; any positive bound will do.
-        floor = 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
-    }
-    for v in &mut spec {
-        *v = Complex64::new(1.0 / (v.re.max(floor) * s), 0.0);
-    }
     spec
+}
+
+/// The spectra (xx, xy, yy), in the normalisation of
+/// [`ConvolutionPlan::kernel_spectrum`], of the inverse of the circulant of
+/// the 2x2 tangential block (kernels `k(i, j, ox, oy)`, each even in (ox,
+/// oy) together, so that the symbols are real) on the periodic array of
+/// `pc`. At each frequency the real symmetric 2x2 symbol is inverted, its
+/// diagonal first bounded below by its value at the highest frequency (as
+/// in [`periodic_inverse`]) and its off-diagonal term bounded by 0.9 of the
+/// diagonal's geometric mean, which keeps the symbol positive definite.
+fn periodic_inverse_2x2(
+    pc: &ConvolutionPlan,
+    k: impl Fn(Component, Component, i64, i64) -> f64,
+) -> [Vec<Complex64>; 3] {
+    let (x, y) = (Component::X, Component::Y);
+    let mut a = periodic_symbol(pc, |ox, oy| k(x, x, ox, oy));
+    let mut b = periodic_symbol(pc, |ox, oy| k(x, y, ox, oy));
+    let mut c = periodic_symbol(pc, |ox, oy| k(y, y, ox, oy));
+    let s = (pc.px * pc.py) as f64;
+    let top = (pc.nkx - 1) * pc.py + pc.py / 2;
+    let fa = a[top]
+        .re
+        .max(1e-3 * a.iter().fold(0.0f64, |m, v| m.max(v.re)));
+    let fc = c[top]
+        .re
+        .max(1e-3 * c.iter().fold(0.0f64, |m, v| m.max(v.re)));
+    for ((va, vb), vc) in a.iter_mut().zip(b.iter_mut()).zip(c.iter_mut()) {
+        let (aa, cc) = (va.re.max(fa), vc.re.max(fc));
+        let bb = vb.re.clamp(-0.9 * (aa * cc).sqrt(), 0.9 * (aa * cc).sqrt());
+        let det = (aa * cc - bb * bb) * s;
+        *va = Complex64::new(cc / det, 0.0);
+        *vb = Complex64::new(-bb / det, 0.0);
+        *vc = Complex64::new(aa / det, 0.0);
+    }
+    [a, b, c]
 }
 
 /// Buffers of one plan for [`apply_indexed`].
@@ -1104,6 +1219,8 @@ pub struct OperatorWorkspace {
     pc: Option<Box<Buffers<f64>>>,
     /// Buffers of the single-precision plan.
     single: Box<Buffers<f32>>,
+    /// Buffers of the tangential preconditioner's plan.
+    tangential_pc: Option<Box<Buffers<f32>>>,
 }
 
 /// The dense influence matrix of `set` for the listed components, row

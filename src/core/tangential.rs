@@ -48,6 +48,12 @@ pub struct TangentialSettings {
     pub tolerance: f64,
     /// Outer iteration limit (default 2000).
     pub max_iterations: usize,
+    /// Steady rolling on planar displacement kernels: precondition the
+    /// Newton steps' GMRES with the inverse of the circulant tangential
+    /// operator as well as the local upwind sweep (default true; see
+    /// `core::steady`). It changes the number of products, not the answer
+    /// beyond the tolerance; false is for comparisons.
+    pub global_preconditioner: bool,
 }
 
 impl Default for TangentialSettings {
@@ -55,6 +61,7 @@ impl Default for TangentialSettings {
         Self {
             tolerance: 1e-7,
             max_iterations: 2000,
+            global_preconditioner: true,
         }
     }
 }
@@ -279,7 +286,7 @@ pub fn solve_steady_marching(
     let max_steps = settings.max_iterations.min(10 * nx);
     let mut inner = TangentialSettings {
         tolerance: 0.25 * settings.tolerance,
-        max_iterations: settings.max_iterations,
+        ..*settings
     };
     for i in 0..n {
         if input.pn[i] <= 0.0 {
