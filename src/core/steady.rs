@@ -92,16 +92,37 @@ pub trait TangentialOperator {
     }
     /// The self-influence coefficients (xx, yy) [m/Pa or 1/Pa].
     fn diagonal(&self) -> [f64; 2];
-    /// Whether [`TangentialOperator::upwind_complement`] is available.
-    fn has_upwind_complement(&self) -> bool {
+    /// Whether [`TangentialOperator::global_preconditioner`] is available.
+    fn has_global_preconditioner(&self) -> bool {
         false
     }
-    /// `z = W r` on the full grid, W an approximation of (B M⁻¹)⁻¹, the
-    /// inverse of the operator after the preconditioner's local upwind model
-    /// M = diag(B)(I - S) (which on an unbounded grid is dx diag(B) A⁻¹,
-    /// A the displacement operator). Only called when
-    /// [`TangentialOperator::has_upwind_complement`] is true.
-    fn upwind_complement(&mut self, _r: [&[f64]; 2], _z: [&mut [f64]; 2]) {}
+    /// `z = W r` on the full grid, W an approximation of (K M⁻¹)⁻¹, the
+    /// inverse of this operator K after the local model M of the Newton
+    /// solver's preconditioner that goes with it: for the steady operator
+    /// B = A(I - S)/dx the upwind model diag(B)(I - S), which leaves
+    /// W = dx diag(B) A⁻¹; for the displacement operator A the diagonal
+    /// model diag(A), which leaves W = diag(A) A⁻¹ (on an unbounded grid;
+    /// A⁻¹ is approximated by a circulant inverse). Only called when
+    /// [`TangentialOperator::has_global_preconditioner`] is true.
+    fn global_preconditioner(&mut self, _r: [&[f64]; 2], _z: [&mut [f64]; 2]) {}
+}
+
+/// `z = s_x C⁻¹ r` (x component), `s_y C⁻¹ r` (y), C the circulant
+/// extension of the tangential block of `kernels`
+/// ([`KernelSet::apply_tangential_inverse`]).
+fn scaled_tangential_inverse(
+    kernels: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    r: [&[f64]; 2],
+    [zx, zy]: [&mut [f64]; 2],
+    [sx, sy]: [f64; 2],
+) {
+    kernels.apply_tangential_inverse(ows, r, [&mut *zx, &mut *zy]);
+    for (z, s) in [(zx, sx), (zy, sy)] {
+        for v in z.iter_mut() {
+            *v *= s;
+        }
+    }
 }
 
 /// The tangential block of a planar kernel set.
@@ -113,6 +134,17 @@ pub struct PlanarTangential<'a> {
 }
 
 impl TangentialOperator for PlanarTangential<'_> {
+    /// With displacement kernels (the operator of transient steps).
+    fn has_global_preconditioner(&self) -> bool {
+        self.kernels.kind == KernelKind::Displacement && self.kernels.has_tangential_inverse()
+    }
+
+    /// `z = diag(A) C⁻¹ r`.
+    fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
+        let d = self.diagonal();
+        scaled_tangential_inverse(self.kernels, self.ows, r, z, d);
+    }
+
     fn tangential_product(
         &mut self,
         precision: Precision,
@@ -254,7 +286,7 @@ struct Linear<'a> {
     /// The compressed elements in the order of the preconditioner's sweep.
     order: &'a [usize],
     /// Whether the preconditioner applies the operator's global part
-    /// ([`TangentialOperator::upwind_complement`]) before the sweep.
+    /// ([`TangentialOperator::global_preconditioner`]) before the sweep.
     global: bool,
 }
 
@@ -331,25 +363,26 @@ impl Linear<'_> {
     /// z = M⁻¹ r, the preconditioner, without a product of the operator.
     ///
     /// Without the global part, M = P diag(B)(I - S) P + E, the local
-    /// upwind model, inverted exactly by [`Linear::sweep`]. That leaves to
-    /// GMRES the operator after it, B M⁻¹, which on an adhesion area is
-    /// A/(dx diag(B)): the conditioning of the displacement operator, which
-    /// grows with the grid (its low frequencies have the large
-    /// eigenvalues), so that GMRES needed twice the products per Newton
-    /// step at 128x128 as at 32x32. With the global part, `r` first goes
-    /// through W ≈ (B M⁻¹)⁻¹ = dx diag(B) A⁻¹ of the operator
-    /// ([`TangentialOperator::upwind_complement`]: the inverse of the
+    /// upwind model (or P diag(A) P + E, the diagonal one, for a transient
+    /// step), inverted exactly by [`Linear::sweep`]. That leaves to GMRES
+    /// the operator after it, B M⁻¹, which on an adhesion area is
+    /// A/(dx diag(B)) (A/diag(A) for a transient step): the conditioning of
+    /// the displacement operator, which grows with the grid (its low
+    /// frequencies have the large eigenvalues), so that GMRES needed twice
+    /// the products per Newton step at 128x128 as at 32x32. With the global
+    /// part, `r` first goes through W ≈ (B M⁻¹)⁻¹ = dx diag(B) A⁻¹
+    /// (diag(A) A⁻¹) of the operator
+    /// ([`TangentialOperator::global_preconditioner`]: the inverse of the
     /// circulant extension of A, a quarter of a product in single
-    /// precision), projected on the free directions P, as Vollebregt's
-    /// FFT preconditioner of the normal problem (J. Comput. Phys. 257
-    /// (2014) 333–351) but on the tangential block: z = M⁻¹ (w P W P r +
-    /// (1 - w) r) element by element. A slip element's row is the
-    /// operator's plus E, which keeps its low frequencies bounded where E
-    /// is large next to the element's diagonal d_t = t·diag(B) t; there
-    /// W would overshoot, so its weight is w = (d_t/(d_t + e))^(3/4) (1 on
-    /// adhesion). The exponent was chosen on the bench case (creepages
-    /// 5e-4, 3e-4, spin 0.3/m): 1/2 and 1 took 10–20 % more products at
-    /// 128x128.
+    /// precision), projected on the free directions P, as Vollebregt's FFT
+    /// preconditioner of the normal problem (J. Comput. Phys. 257 (2014)
+    /// 333–351) but on the tangential block: z = M⁻¹ (w P W P r + (1 - w) r)
+    /// element by element. A slip element's row is the operator's plus E,
+    /// which keeps its low frequencies bounded where E is large next to the
+    /// element's diagonal d_t = t·diag(B) t; there W would overshoot, so
+    /// its weight is w = (d_t/(d_t + e))^(3/4) (1 on adhesion). The
+    /// exponent was chosen on the steady bench case (creepages 5e-4, 3e-4,
+    /// spin 0.3/m): 1/2 and 1 took 10–20 % more products at 128x128.
     #[inline(always)]
     fn precondition(
         &self,
@@ -368,7 +401,7 @@ impl Linear<'_> {
         for (k, &i) in self.loaded.iter().enumerate() {
             (xin[i], yin[i]) = self.full(r, k);
         }
-        op.upwind_complement([xin, yin], [ux, uy]);
+        op.global_preconditioner([xin, yin], [ux, uy]);
         let (t0, t1) = tmp[..2 * m].split_at_mut(m);
         for (((((&i, c), a), b), &r0), &r1) in self
             .loaded
@@ -680,22 +713,15 @@ impl TangentialOperator for PlanarSteady<'_> {
         [k(Component::X), k(Component::Y)]
     }
 
-    fn has_upwind_complement(&self) -> bool {
+    fn has_global_preconditioner(&self) -> bool {
         self.kernels.has_tangential_inverse()
     }
 
-    /// `z = dx diag(B) C⁻¹ r`, C the circulant extension of A_tt
-    /// ([`KernelSet::apply_tangential_inverse`]).
-    fn upwind_complement(&mut self, r: [&[f64]; 2], [zx, zy]: [&mut [f64]; 2]) {
+    /// `z = dx diag(B) C⁻¹ r`.
+    fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
         let d = self.diagonal();
         let dx = self.kernels.influence.dx_m();
-        self.kernels
-            .apply_tangential_inverse(self.ows, r, [&mut *zx, &mut *zy]);
-        for (z, s) in [(zx, dx * d[0]), (zy, dx * d[1])] {
-            for v in z.iter_mut() {
-                *v *= s;
-            }
-        }
+        scaled_tangential_inverse(self.kernels, self.ows, r, z, [dx * d[0], dx * d[1]]);
     }
 }
 
@@ -794,8 +820,7 @@ pub fn solve_coulomb_newton(
         ..
     } = scratch;
     let d = op.diagonal();
-    let global =
-        local == LocalModel::Upwind && settings.global_preconditioner && op.has_upwind_complement();
+    let global = settings.global_preconditioner && op.has_global_preconditioner();
     let dbar = 0.5 * (d[0] + d[1]);
     let (mus, muk) = (
         input.friction.static_coefficient,
@@ -1327,12 +1352,14 @@ mod tests {
         let n = c.grid.len();
         let prev = vec![ElementState::Exterior; n];
         let input = c.input(mu, &prev);
-        let settings = TangentialSettings {
-            tolerance: 1e-9,
-            max_iterations: 5000,
-            ..Default::default()
-        };
-        let fields = |newton: bool| {
+        // Newton with (Some(true)) or without (Some(false)) the global
+        // preconditioner, or FISTA (None).
+        let fields = |newton: Option<bool>| {
+            let settings = TangentialSettings {
+                tolerance: 1e-9,
+                max_iterations: 5000,
+                global_preconditioner: newton.unwrap_or(false),
+            };
             let (mut px, mut py, mut sx, mut sy) =
                 (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
             let mut state = vec![ElementState::Exterior; n];
@@ -1344,7 +1371,7 @@ mod tests {
                 state: &mut state,
             };
             let mut ows = c.displacement.workspace();
-            let o = if newton {
+            let o = if newton.is_some() {
                 let mut op = PlanarTangential {
                     kernels: &c.displacement,
                     ows: &mut ows,
@@ -1369,23 +1396,35 @@ mod tests {
                     &settings,
                 )
             };
-            assert!(o.converged, "newton {newton}: {o:?}");
+            assert!(o.converged, "newton {newton:?}: {o:?}");
             (px, py, state, o.matvecs)
         };
-        let (nx_, ny_, ns, nm) = fields(true);
-        let (fx_, fy_, fs, fm) = fields(false);
+        let (nx_, ny_, ns, nm) = fields(Some(true));
+        let (fx_, fy_, fs, fm) = fields(None);
+        let (gx_, gy_, _, gm) = fields(Some(false));
         let slips = ns.iter().filter(|s| **s == ElementState::Slip).count();
         assert!(slips > 20 && ns.contains(&ElementState::Adhesion));
         let fmax = c.pn.iter().fold(0.0f64, |m, &v| m.max(v)) * mu;
         for i in 0..n {
             let d = (nx_[i] - fx_[i]).hypot(ny_[i] - fy_[i]);
             assert!(d <= 1e-6 * fmax, "element {i} differs by {d}");
+            let d = (nx_[i] - gx_[i]).hypot(ny_[i] - gy_[i]);
+            assert!(
+                d <= 1e-7 * fmax,
+                "element {i}: the preconditioners differ by {d}"
+            );
         }
         assert_eq!(
             ns.iter().filter(|s| **s == ElementState::Slip).count(),
             fs.iter().filter(|s| **s == ElementState::Slip).count()
         );
-        eprintln!("transient step: Newton {nm} matvecs, FISTA {fm}");
+        eprintln!(
+            "transient step: Newton {nm} matvecs ({gm} without the global preconditioner), FISTA {fm}"
+        );
+        assert!(
+            nm < gm,
+            "{nm} products with the global preconditioner, {gm} without"
+        );
     }
 
     #[test]
