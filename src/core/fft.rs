@@ -605,9 +605,14 @@ pub struct KernelSet {
     /// The plan and the entry of `spectra` of the normal preconditioner
     /// (displacement kernels only): see [`KernelSet::apply_normal_inverse`].
     normal_inverse: Option<(Arc<ConvolutionPlan>, usize)>,
-    /// The tangential block's periodic inverse (displacement kernels only):
-    /// see [`KernelSet::apply_tangential_inverse`].
-    tangential_inverse: Option<TangentialInverse>,
+    /// The periodic inverse of the displacement operator's tangential
+    /// block: see [`KernelSet::apply_tangential_inverse`].
+    tangential_inverse: TangentialInverse,
+    /// Self-influence coefficients (x, y, n) of this kind, and (x, y) of
+    /// the steady-rolling kind (evaluated once: the closed forms cost
+    /// several logarithms).
+    diagonal: [f64; 3],
+    steady_diagonal: [f64; 2],
 }
 
 /// The inverse of the circulant extension of the tangential block, in
@@ -661,7 +666,7 @@ impl KernelSet {
                 .single
                 .spectra
                 .iter()
-                .chain(self.tangential_inverse.iter().flat_map(|t| &t.spectra))
+                .chain(&self.tangential_inverse.spectra)
                 .map(Spectrum::bytes)
                 .sum::<usize>()
     }
@@ -719,7 +724,6 @@ impl KernelSet {
             }
         }
         let mut normal_inverse = None;
-        let mut tangential_inverse = None;
         if let (KernelKind::Displacement, Some(_)) = (kind, index[2][2]) {
             let pc = Arc::new(ConvolutionPlan::with_padding(
                 nx,
@@ -731,21 +735,22 @@ impl KernelSet {
                 influence.kernel(kind, Component::N, Component::N, ox, oy)
             }));
             normal_inverse = Some((pc, spectra.len() - 1));
-            let (px, py) = (fast_even_size_single(nx), fast_even_size_single(ny));
-            // Inverted in f64 on a plan of the single-precision sizes, then
-            // rounded (as the single-precision kernels).
-            let wide_pc = ConvolutionPlan::<f64>::with_padding(nx, ny, px, py);
-            let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
-                influence.kernel(kind, i, j, ox, oy)
-            });
-            tangential_inverse = Some(TangentialInverse {
-                plan: ConvolutionPlan::with_padding(nx, ny, px, py),
-                spectra: inverse
-                    .into_iter()
-                    .map(|k| Spectrum::new(k).narrow())
-                    .collect(),
-            });
         }
+        // The displacement operator's, whatever this set's kind. Inverted
+        // in f64 on a plan of the single-precision sizes, then rounded (as
+        // the single-precision kernels).
+        let (px, py) = (fast_even_size_single(nx), fast_even_size_single(ny));
+        let wide_pc = ConvolutionPlan::<f64>::with_padding(nx, ny, px, py);
+        let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
+            influence.kernel(KernelKind::Displacement, i, j, ox, oy)
+        });
+        let tangential_inverse = TangentialInverse {
+            plan: ConvolutionPlan::with_padding(nx, ny, px, py),
+            spectra: inverse
+                .into_iter()
+                .map(|k| Spectrum::new(k).narrow())
+                .collect(),
+        };
         let spectra = spectra.into_iter().map(Spectrum::new).collect();
         Self {
             plan,
@@ -760,6 +765,9 @@ impl KernelSet {
             tangential_norm_bound: bound,
             normal_inverse,
             tangential_inverse,
+            diagonal: COMPONENTS.map(|c| influence.kernel(kind, c, c, 0, 0)),
+            steady_diagonal: [Component::X, Component::Y]
+                .map(|c| influence.kernel(KernelKind::SteadyRolling, c, c, 0, 0)),
         }
     }
 
@@ -774,10 +782,7 @@ impl KernelSet {
                 .as_ref()
                 .map(|(pc, _)| Box::new(Buffers::new(pc))),
             single: Box::new(Buffers::new(&self.single.plan)),
-            tangential_pc: self
-                .tangential_inverse
-                .as_ref()
-                .map(|t| Box::new(Buffers::new(&t.plan))),
+            tangential_pc: Box::new(Buffers::new(&self.tangential_inverse.plan)),
         }
     }
 
@@ -795,7 +800,16 @@ impl KernelSet {
 
     /// The real-space kernel value (i, j) at element offset (ox, oy).
     pub fn value(&self, i: Component, j: Component, ox: i64, oy: i64) -> f64 {
+        if i == j && ox == 0 && oy == 0 {
+            return self.diagonal[i as usize];
+        }
         self.influence.kernel(self.kind, i, j, ox, oy)
+    }
+
+    /// The self-influence coefficients (xx, yy) of the steady-rolling
+    /// kernels of this set's grid and materials, whatever its kind [1/Pa].
+    pub fn steady_diagonal(&self) -> [f64; 2] {
+        self.steady_diagonal
     }
 
     /// True when kernel (i, j) is present (coupling kernels only for K != 0).
@@ -879,44 +893,32 @@ impl KernelSet {
         true
     }
 
-    /// Whether [`KernelSet::apply_tangential_inverse`] is available
-    /// (displacement kernels).
-    pub fn has_tangential_inverse(&self) -> bool {
-        self.tangential_inverse.is_some()
-    }
-
     /// `(zx, zy) = C⁻¹ (rx, ry)` on the grid, with C the circulant extension
-    /// of the tangential block A_tt on a periodic array that holds the grid
-    /// (its 2x2 symbol inverted at each frequency, see
-    /// [`periodic_inverse_2x2`]), in single precision (about 1e-6 of the
-    /// largest output): a global preconditioner of the tangential problems,
-    /// about a quarter of a single-precision product. Returns false (and
-    /// leaves `z` alone) for kernel sets without it (steady-rolling
-    /// kernels).
+    /// of the tangential block of the displacement operator, A_tt (for sets
+    /// of either kind), on a periodic array that holds the grid (its 2x2
+    /// symbol inverted at each frequency, see [`periodic_inverse_2x2`]), in
+    /// single precision (about 1e-6 of the largest output): a global
+    /// preconditioner of the tangential problems, about a quarter of a
+    /// single-precision product.
     pub fn apply_tangential_inverse(
         &self,
         ows: &mut OperatorWorkspace,
         [rx, ry]: [&[f64]; 2],
         [zx, zy]: [&mut [f64]; 2],
-    ) -> bool {
-        let (Some(t), Some(bufs)) = (&self.tangential_inverse, ows.tangential_pc.as_deref_mut())
-        else {
-            return false;
-        };
+    ) {
         let index = [
             [Some(0), Some(1), None],
             [Some(1), Some(2), None],
             [None, None, None],
         ];
         apply_indexed(
-            &t.plan,
-            &t.spectra,
+            &self.tangential_inverse.plan,
+            &self.tangential_inverse.spectra,
             &index,
-            bufs,
+            &mut ows.tangential_pc,
             &[(Component::X, rx), (Component::Y, ry)],
             &mut [(Component::X, zx), (Component::Y, zy)],
         );
-        true
     }
 }
 
@@ -1220,7 +1222,7 @@ pub struct OperatorWorkspace {
     /// Buffers of the single-precision plan.
     single: Box<Buffers<f32>>,
     /// Buffers of the tangential preconditioner's plan.
-    tangential_pc: Option<Box<Buffers<f32>>>,
+    tangential_pc: Box<Buffers<f32>>,
 }
 
 /// The dense influence matrix of `set` for the listed components, row

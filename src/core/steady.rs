@@ -107,10 +107,24 @@ pub trait TangentialOperator {
     fn global_preconditioner(&mut self, _r: [&[f64]; 2], _z: [&mut [f64]; 2]) {}
 }
 
+/// The scale of [`TangentialOperator::global_preconditioner`] for an
+/// operator that is the product of the kernels `k`: dx diag(B) for
+/// steady-rolling kernels (B), diag(A) for displacement kernels (A).
+pub fn global_preconditioner_scale(k: &KernelSet) -> [f64; 2] {
+    let d = [
+        k.value(Component::X, Component::X, 0, 0),
+        k.value(Component::Y, Component::Y, 0, 0),
+    ];
+    match k.kind {
+        KernelKind::SteadyRolling => d.map(|v| v * k.influence.dx_m()),
+        KernelKind::Displacement => d,
+    }
+}
+
 /// `z = s_x C⁻¹ r` (x component), `s_y C⁻¹ r` (y), C the circulant
-/// extension of the tangential block of `kernels`
+/// extension of the displacement operator's tangential block
 /// ([`KernelSet::apply_tangential_inverse`]).
-fn scaled_tangential_inverse(
+pub fn scaled_tangential_inverse(
     kernels: &KernelSet,
     ows: &mut OperatorWorkspace,
     r: [&[f64]; 2],
@@ -134,15 +148,13 @@ pub struct PlanarTangential<'a> {
 }
 
 impl TangentialOperator for PlanarTangential<'_> {
-    /// With displacement kernels (the operator of transient steps).
     fn has_global_preconditioner(&self) -> bool {
-        self.kernels.kind == KernelKind::Displacement && self.kernels.has_tangential_inverse()
+        true
     }
 
-    /// `z = diag(A) C⁻¹ r`.
     fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
-        let d = self.diagonal();
-        scaled_tangential_inverse(self.kernels, self.ows, r, z, d);
+        let scale = global_preconditioner_scale(self.kernels);
+        scaled_tangential_inverse(self.kernels, self.ows, r, z, scale);
     }
 
     fn tangential_product(
@@ -705,16 +717,11 @@ impl TangentialOperator for PlanarSteady<'_> {
     }
 
     fn diagonal(&self) -> [f64; 2] {
-        let k = |c| {
-            self.kernels
-                .influence
-                .kernel(KernelKind::SteadyRolling, c, c, 0, 0)
-        };
-        [k(Component::X), k(Component::Y)]
+        self.kernels.steady_diagonal()
     }
 
     fn has_global_preconditioner(&self) -> bool {
-        self.kernels.has_tangential_inverse()
+        true
     }
 
     /// `z = dx diag(B) C⁻¹ r`.
@@ -981,7 +988,11 @@ pub fn solve_coulomb_newton(
                         e,
                         sweep: [1.0 / (dt + e), d[0] * t0, d[1] * t1, 0.0, 0.0, 0.0],
                         up,
-                        global: (dt / (dt + e)).powf(0.75),
+                        global: {
+                            // (d_t/(d_t + e))^(3/4) without powf.
+                            let r = (dt / (dt + e)).sqrt();
+                            r * r.sqrt()
+                        },
                     }
                 }
                 _ => {
