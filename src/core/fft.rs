@@ -691,6 +691,9 @@ impl KernelSet {
         let mut spectra = Vec::new();
         let mut single = Vec::new();
         let mut index = [[None; 3]; 3];
+        // The displacement kind's tangential tables (xx, xy, yy), kept for
+        // the periodic inverse: the closed forms cost several logarithms.
+        let mut tangential_tables: [Option<KernelTable>; 3] = [None, None, None];
         for (a, &i) in COMPONENTS.iter().enumerate() {
             for (b, &j) in COMPONENTS.iter().enumerate() {
                 let needed = (a < 2 && b < 2) || (a == 2 && b == 2) || coupled;
@@ -708,6 +711,9 @@ impl KernelSet {
                     Spectrum::new(wide.kernel_spectrum(&mut wide_ws, |ox, oy| t.at(ox, oy)))
                         .narrow(),
                 );
+                if kind == KernelKind::Displacement && a < 2 && b < 2 {
+                    tangential_tables[a + b] = Some(t);
+                }
             }
         }
         index[1][0] = index[0][1];
@@ -741,8 +747,12 @@ impl KernelSet {
         // the single-precision kernels).
         let (px, py) = (fast_even_size_single(nx), fast_even_size_single(ny));
         let wide_pc = ConvolutionPlan::<f64>::with_padding(nx, ny, px, py);
+        // Wrapped offsets stay within the tables: |o| <= p/2 < n.
         let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
-            influence.kernel(KernelKind::Displacement, i, j, ox, oy)
+            match &tangential_tables[i as usize + j as usize] {
+                Some(t) => t.at(ox, oy),
+                None => influence.kernel(KernelKind::Displacement, i, j, ox, oy),
+            }
         });
         let tangential_inverse = TangentialInverse {
             plan: ConvolutionPlan::with_padding(nx, ny, px, py),
