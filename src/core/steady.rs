@@ -67,6 +67,8 @@ pub const MAX_NEWTON_STEPS: usize = 50;
 /// inverse costs a quarter of a product per GMRES iteration (32x32: 0.56
 /// ms with it, 0.50 ms without).
 pub const GLOBAL_MIN_SHARE: f64 = 0.25;
+/// Tolerances from this one up are checked on single-precision products.
+pub const SINGLE_RESIDUAL_TOLERANCE: f64 = 1e-4;
 /// Largest number of FFT matvecs of one Newton solve.
 pub const MAX_NEWTON_MATVECS: usize = 4000;
 
@@ -886,12 +888,20 @@ pub fn solve_coulomb_newton(
             py[i] *= c;
         }
     }
+    // A loose tolerance (the conformal alternation's early inner solves)
+    // takes its residuals from single-precision products, whose error,
+    // about 1e-6 of the largest slip, is a hundredth of it.
+    let residual_precision = if settings.tolerance >= SINGLE_RESIDUAL_TOLERANCE {
+        Precision::Single
+    } else {
+        Precision::Double
+    };
     let slip = |op: &mut dyn TangentialOperator,
                 px: &[f64],
                 py: &[f64],
                 sx: &mut [f64],
                 sy: &mut [f64]| {
-        op.apply_tangential(px, py, sx, sy);
+        op.tangential_product(residual_precision, px, py, sx, sy);
         for i in 0..n {
             sx[i] += input.cx[i];
             sy[i] += input.cy[i];
