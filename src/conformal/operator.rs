@@ -33,9 +33,7 @@ use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::Component;
 #[cfg(test)]
 use crate::core::influence::KernelKind;
-use crate::core::steady::{
-    global_preconditioner_scale, scaled_tangential_inverse, PlanarTangential, TangentialOperator,
-};
+use crate::core::steady::{PlanarTangential, TangentialOperator};
 
 /// Which influence coefficients a conformal solve uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -336,13 +334,8 @@ impl TangentialOperator for ConformalOperator {
     /// The planar operator's (the half-space circulant inverse): the
     /// conformal one differs from it by the factors cos(delta_I - delta_J),
     /// 1 between neighbours.
-    fn has_global_preconditioner(&self) -> bool {
-        true
-    }
-
-    fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
-        let scale = global_preconditioner_scale(&self.kernels);
-        scaled_tangential_inverse(&self.kernels, &mut self.ows, r, z, scale);
+    fn circulant_inverse(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
+        self.kernels.apply_tangential_inverse(&mut self.ows, r, z);
     }
 }
 

@@ -1117,18 +1117,25 @@ fn apply_indexed_body<T: Real>(
 fn periodic_inverse(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Complex64> {
     let mut spec = periodic_symbol(pc, k);
     let s = (pc.px * pc.py) as f64;
-    let mut floor = spec[(pc.nkx - 1) * pc.py + pc.py / 2].re;
-    // Negated so that NaN takes the fallback too.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
-    let unusable = !(floor > 0.0);
-    if unusable {
-        // Not expected for a positive definite kernel; any positive bound will do.
-        floor = 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
-    }
+    let floor = symbol_floor(pc, &spec);
     for v in &mut spec {
         *v = Complex64::new(1.0 / (v.re.max(floor) * s), 0.0);
     }
     spec
+}
+
+/// The lower bound of a periodic symbol `spec` of `pc`: its value at the
+/// highest frequency (both Nyquist indices), or, should that not be
+/// positive (not expected for a positive definite kernel), 1e-3 of its
+/// largest value.
+fn symbol_floor(pc: &ConvolutionPlan, spec: &[Complex64]) -> f64 {
+    let top = spec[(pc.nkx - 1) * pc.py + pc.py / 2].re;
+    // Negated so that NaN takes the fallback too.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    if !(top > 0.0) {
+        return 1e-3 * spec.iter().fold(0.0f64, |m, v| m.max(v.re));
+    }
+    top
 }
 
 /// The transform of the kernel `k` wrapped on the periodic `px` x `py`
@@ -1165,8 +1172,8 @@ fn periodic_symbol(pc: &ConvolutionPlan, k: impl Fn(i64, i64) -> f64) -> Vec<Com
 /// the 2x2 tangential block (kernels `k(i, j, ox, oy)`, each even in (ox,
 /// oy) together, so that the symbols are real) on the periodic array of
 /// `pc`. At each frequency the real symmetric 2x2 symbol is inverted, its
-/// diagonal first bounded below by its value at the highest frequency (as
-/// in [`periodic_inverse`]) and its off-diagonal term bounded by 0.9 of the
+/// diagonal first bounded below by [`symbol_floor`] (as in
+/// [`periodic_inverse`]) and its off-diagonal term bounded by 0.9 of the
 /// diagonal's geometric mean, which keeps the symbol positive definite.
 fn periodic_inverse_2x2(
     pc: &ConvolutionPlan,
@@ -1177,13 +1184,7 @@ fn periodic_inverse_2x2(
     let mut b = periodic_symbol(pc, |ox, oy| k(x, y, ox, oy));
     let mut c = periodic_symbol(pc, |ox, oy| k(y, y, ox, oy));
     let s = (pc.px * pc.py) as f64;
-    let top = (pc.nkx - 1) * pc.py + pc.py / 2;
-    let fa = a[top]
-        .re
-        .max(1e-3 * a.iter().fold(0.0f64, |m, v| m.max(v.re)));
-    let fc = c[top]
-        .re
-        .max(1e-3 * c.iter().fold(0.0f64, |m, v| m.max(v.re)));
+    let (fa, fc) = (symbol_floor(pc, &a), symbol_floor(pc, &c));
     for ((va, vb), vc) in a.iter_mut().zip(b.iter_mut()).zip(c.iter_mut()) {
         let (aa, cc) = (va.re.max(fa), vc.re.max(fc));
         let bb = vb.re.clamp(-0.9 * (aa * cc).sqrt(), 0.9 * (aa * cc).sqrt());

@@ -23,8 +23,8 @@
 //! 3. Solve it inexactly by GMRES (restart [`RESTART`]), right-preconditioned
 //!    by the exact inverse of the local upwind part of the operator,
 //!    diag(B)(I - S), restricted to the free directions: one sweep from the
-//!    leading edge along every grid line; before the sweep, when the
-//!    operator has it, by the inverse of the circulant extension of the
+//!    leading edge along every grid line; before the sweep, by the inverse
+//!    of the circulant extension of the
 //!    displacement operator, which takes care of the low frequencies that
 //!    the sweep leaves (see `Linear::precondition`: the products per
 //!    Newton step then hardly grow with the grid). The Krylov vectors hold
@@ -101,51 +101,12 @@ pub trait TangentialOperator {
     }
     /// The self-influence coefficients (xx, yy) [m/Pa or 1/Pa].
     fn diagonal(&self) -> [f64; 2];
-    /// Whether [`TangentialOperator::global_preconditioner`] is available.
-    fn has_global_preconditioner(&self) -> bool {
-        false
-    }
-    /// `z = W r` on the full grid, W an approximation of (K M⁻¹)⁻¹, the
-    /// inverse of this operator K after the local model M of the Newton
-    /// solver's preconditioner that goes with it: for the steady operator
-    /// B = A(I - S)/dx the upwind model diag(B)(I - S), which leaves
-    /// W = dx diag(B) A⁻¹; for the displacement operator A the diagonal
-    /// model diag(A), which leaves W = diag(A) A⁻¹ (on an unbounded grid;
-    /// A⁻¹ is approximated by a circulant inverse). Only called when
-    /// [`TangentialOperator::has_global_preconditioner`] is true.
-    fn global_preconditioner(&mut self, _r: [&[f64]; 2], _z: [&mut [f64]; 2]) {}
-}
-
-/// The scale of [`TangentialOperator::global_preconditioner`] for an
-/// operator that is the product of the kernels `k`: dx diag(B) for
-/// steady-rolling kernels (B), diag(A) for displacement kernels (A).
-pub fn global_preconditioner_scale(k: &KernelSet) -> [f64; 2] {
-    let d = [
-        k.value(Component::X, Component::X, 0, 0),
-        k.value(Component::Y, Component::Y, 0, 0),
-    ];
-    match k.kind {
-        KernelKind::SteadyRolling => d.map(|v| v * k.influence.dx_m()),
-        KernelKind::Displacement => d,
-    }
-}
-
-/// `z = s_x C⁻¹ r` (x component), `s_y C⁻¹ r` (y), C the circulant
-/// extension of the displacement operator's tangential block
-/// ([`KernelSet::apply_tangential_inverse`]).
-pub fn scaled_tangential_inverse(
-    kernels: &KernelSet,
-    ows: &mut OperatorWorkspace,
-    r: [&[f64]; 2],
-    [zx, zy]: [&mut [f64]; 2],
-    [sx, sy]: [f64; 2],
-) {
-    kernels.apply_tangential_inverse(ows, r, [&mut *zx, &mut *zy]);
-    for (z, s) in [(zx, sx), (zy, sy)] {
-        for v in z.iter_mut() {
-            *v *= s;
-        }
-    }
+    /// `z = C⁻¹ r` on the full grid, C the circulant extension of the
+    /// displacement operator's tangential block A_tt
+    /// ([`KernelSet::apply_tangential_inverse`]): the global part of the
+    /// Newton solver's preconditioner (see `Linear::precondition`), which
+    /// scales it by the local model.
+    fn circulant_inverse(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]);
 }
 
 /// The tangential block of a planar kernel set.
@@ -157,13 +118,8 @@ pub struct PlanarTangential<'a> {
 }
 
 impl TangentialOperator for PlanarTangential<'_> {
-    fn has_global_preconditioner(&self) -> bool {
-        true
-    }
-
-    fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
-        let scale = global_preconditioner_scale(self.kernels);
-        scaled_tangential_inverse(self.kernels, self.ows, r, z, scale);
+    fn circulant_inverse(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
+        self.kernels.apply_tangential_inverse(self.ows, r, z);
     }
 
     fn tangential_product(
@@ -306,9 +262,9 @@ struct Linear<'a> {
     coef: &'a [Coef],
     /// The compressed elements in the order of the preconditioner's sweep.
     order: &'a [usize],
-    /// Whether the preconditioner applies the operator's global part
-    /// ([`TangentialOperator::global_preconditioner`]) before the sweep.
-    global: bool,
+    /// The scale (x, y) of the preconditioner's global part before the
+    /// sweep (see [`Linear::precondition`]), None without it.
+    global: Option<[f64; 2]>,
 }
 
 /// The coefficients of one compressed element k of [`Linear`], written so
@@ -392,10 +348,9 @@ impl Linear<'_> {
     /// frequencies have the large eigenvalues), so that GMRES needed twice
     /// the products per Newton step at 128x128 as at 32x32. With the global
     /// part, `r` first goes through W ≈ (B M⁻¹)⁻¹ = dx diag(B) A⁻¹
-    /// (diag(A) A⁻¹) of the operator
-    /// ([`TangentialOperator::global_preconditioner`]: the inverse of the
-    /// circulant extension of A, a quarter of a product in single
-    /// precision), projected on the free directions P, as Vollebregt's FFT
+    /// (diag(A) A⁻¹), with A⁻¹ the inverse of the circulant extension of A
+    /// ([`TangentialOperator::circulant_inverse`], a quarter of a product in
+    /// single precision), projected on the free directions P, as Vollebregt's FFT
     /// preconditioner of the normal problem (J. Comput. Phys. 257 (2014)
     /// 333–351) but on the tangential block: z = M⁻¹ (w P W P r + (1 - w) r)
     /// element by element. A slip element's row is the operator's plus E,
@@ -414,15 +369,15 @@ impl Linear<'_> {
         [xin, yin]: [&mut [f64]; 2],
         [ux, uy]: [&mut [f64]; 2],
     ) {
-        if !self.global {
+        let Some([s0, s1]) = self.global else {
             self.sweep(r, z);
             return;
-        }
+        };
         let m = self.loaded.len();
         for (k, &i) in self.loaded.iter().enumerate() {
             (xin[i], yin[i]) = self.full(r, k);
         }
-        op.global_preconditioner([xin, yin], [ux, uy]);
+        op.circulant_inverse([xin, yin], [ux, uy]);
         let (t0, t1) = tmp[..2 * m].split_at_mut(m);
         for (((((&i, c), a), b), &r0), &r1) in self
             .loaded
@@ -433,7 +388,7 @@ impl Linear<'_> {
             .zip(&r[..m])
             .zip(&r[m..2 * m])
         {
-            let (f, u0, u1, w) = (&c.full, ux[i], uy[i], c.global);
+            let (f, u0, u1, w) = (&c.full, ux[i] * s0, uy[i] * s1, c.global);
             *a = w * (f[0] * u0 + f[2] * u1) + (1.0 - w) * r0;
             *b = w * (f[1] * u0 + f[3] * u1) + (1.0 - w) * r1;
         }
@@ -729,15 +684,8 @@ impl TangentialOperator for PlanarSteady<'_> {
         self.kernels.steady_diagonal()
     }
 
-    fn has_global_preconditioner(&self) -> bool {
-        true
-    }
-
-    /// `z = dx diag(B) C⁻¹ r`.
-    fn global_preconditioner(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
-        let d = self.diagonal();
-        let dx = self.kernels.influence.dx_m();
-        scaled_tangential_inverse(self.kernels, self.ows, r, z, [dx * d[0], dx * d[1]]);
+    fn circulant_inverse(&mut self, r: [&[f64]; 2], z: [&mut [f64]; 2]) {
+        self.kernels.apply_tangential_inverse(self.ows, r, z);
     }
 }
 
@@ -836,7 +784,12 @@ pub fn solve_coulomb_newton(
         ..
     } = scratch;
     let d = op.diagonal();
-    let global = settings.global_preconditioner && op.has_global_preconditioner();
+    // The global preconditioner's scale: W = dx diag(B) C⁻¹ after the
+    // upwind model, diag(A) C⁻¹ after the diagonal one.
+    let global = settings.global_preconditioner.then(|| match local {
+        LocalModel::Upwind => d.map(|v| v * grid.dx_m),
+        LocalModel::Diagonal => d,
+    });
     let dbar = 0.5 * (d[0] + d[1]);
     let (mus, muk) = (
         input.friction.static_coefficient,
@@ -1053,7 +1006,7 @@ pub fn solve_coulomb_newton(
             loaded,
             coef,
             order,
-            global: global && share >= GLOBAL_MIN_SHARE,
+            global: global.filter(|_| share >= GLOBAL_MIN_SHARE),
         };
         // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
         // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²

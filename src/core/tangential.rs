@@ -48,11 +48,11 @@ pub struct TangentialSettings {
     pub tolerance: f64,
     /// Outer iteration limit (default 2000).
     pub max_iterations: usize,
-    /// Planar steady rolling and transient steps (displacement kernels):
-    /// precondition the Newton steps' GMRES with the inverse of the
-    /// circulant tangential operator as well as the local model (default
-    /// true; see `core::steady`). It changes the number of products, not
-    /// the answer beyond the tolerance; false is for comparisons.
+    /// Precondition the Newton steps' GMRES (steady rolling and transient
+    /// steps, planar and conformal) with the inverse of the circulant
+    /// tangential operator as well as the local model (default true; see
+    /// `core::steady`). It changes the number of products, not the answer
+    /// beyond the tolerance; false is for comparisons.
     pub global_preconditioner: bool,
 }
 
