@@ -643,9 +643,11 @@ pub struct SolverSection {
     /// Iteration limit of each solver, normal and tangential (default 1000
     /// normal, 2000 tangential).
     pub max_iterations: Option<usize>,
-    /// Relative traction change that ends the normal/tangential
+    /// Estimated distance of the tractions to the coupled solution,
+    /// relative to the pressures' L1 norm, that ends the normal/tangential
     /// alternation [-] (`exact` with dissimilar materials, `cect`,
-    /// `cect_halfspace`; default 1e-8).
+    /// `cect_halfspace`; default 1e-8): the last change times q/(1 - q),
+    /// q the alternation's contraction.
     pub coupling_tolerance: Option<f64>,
     /// Limit of normal/tangential alternations (default 30 for `exact`, 50
     /// for the conformal models).

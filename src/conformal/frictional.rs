@@ -13,8 +13,9 @@
 //!   sees as a normal closure dd cos(delta - delta0) and a tangential shift
 //!   -dd sin(delta - delta0) of the rail relative to the wheel.
 //!
-//! The two problems alternate (Panagiotopoulos process) until the tractions
-//! change by less than the coupling tolerance. The tangential problem is
+//! The two problems alternate (Panagiotopoulos process) until the
+//! tractions' estimated distance to the coupled solution is below the
+//! coupling tolerance ([`CouplingMonitor`]). The tangential problem is
 //! solved by the Newton/GMRES Coulomb solver of the core
 //! ([`crate::core::steady::solve_coulomb_newton`]) on the conformal operator,
 //! at most [`NEWTON_STEPS_PER_ALTERNATION`] Newton steps per alternation;
@@ -32,6 +33,7 @@ use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry};
 use crate::conformal::operator::{ConformalOperator, InfluenceModel, Tractions};
 use crate::conformal::solve::border_error;
 use crate::core::cache::KernelCache;
+use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::Precision;
 use crate::core::influence::Component;
@@ -78,7 +80,10 @@ pub struct ConformalSettings {
     pub normal: NormalSettings,
     /// Tangential solver.
     pub tangential: TangentialSettings,
-    /// Relative traction change that ends the alternation (default 1e-8).
+    /// Ends the alternation when the tractions' estimated distance to the
+    /// coupled solution (the last change, relative to the pressures' L1
+    /// norm, times q/(1 - q) with q the contraction per alternation; see
+    /// [`CouplingMonitor`]) is below it (default 1e-8).
     pub coupling_tolerance: f64,
     /// Alternation limit (default 50).
     pub coupling_max_iterations: usize,
@@ -388,11 +393,10 @@ pub fn solve_frictional(
         // meets the coupling tolerance already runs at the final inner
         // tolerances: one or two alternations fewer than scheduling from
         // the last change, on Cases 1 and 2 from 20 to 162 kN.
-        let mut change: f64 = 1.0;
-        let mut contraction: f64 = 1.0;
+        let mut monitor = CouplingMonitor::default();
         for c in 0..settings.coupling_max_iterations.max(1) {
             coupling = c + 1;
-            let expected = change * contraction;
+            let expected = monitor.change() * monitor.contraction();
             let normal_settings = NormalSettings {
                 tolerance: (1e-3 * expected).clamp(settings.normal.tolerance, 1e-6),
                 ..settings.normal
@@ -501,21 +505,10 @@ pub fn solve_frictional(
             );
             newton_steps += outcome.iterations;
             inner_ok &= outcome.converged;
-            let (mut num, mut den) = (0.0, 0.0);
-            for i in 0..n {
-                num += (pn[i] - last_pn[i]).abs()
-                    + (px[i] - last_px[i]).abs()
-                    + (ps[i] - last_ps[i]).abs();
-                den += pn[i].abs();
-            }
-            let new_change = if den > 0.0 { num / den } else { 0.0 };
-            if c > 0 && change > 0.0 {
-                contraction = (new_change / change).min(1.0);
-            }
-            change = new_change;
+            monitor.record([pn, px, ps], [last_pn, last_px, last_ps]);
             // The Newton solve may stop at its step cap short of its
             // tolerance: the alternation goes on from where it stopped.
-            if change < settings.coupling_tolerance && inner_final && inner_ok {
+            if monitor.converged(settings.coupling_tolerance) && inner_final && inner_ok {
                 status = SolveStatus::Converged;
                 break;
             }

@@ -128,8 +128,10 @@ pub struct SolverSettings {
     pub normal: NormalSettings,
     /// Tangential problem.
     pub tangential: TangentialSettings,
-    /// Relative change of the tractions between two normal/tangential
-    /// alternations that ends the coupling loop (default 1e-8 when 0).
+    /// Ends the normal/tangential alternation when the tractions'
+    /// estimated distance to the coupled solution, relative to the
+    /// pressures' L1 norm, is below it (default 1e-8 when 0; see
+    /// [`crate::core::coupling::CouplingMonitor`]).
     pub coupling_tolerance: f64,
     /// Alternation limit (default 30 when 0).
     pub coupling_max_iterations: usize,

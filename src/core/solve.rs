@@ -6,6 +6,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use crate::core::cache::KernelCache;
+use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
@@ -317,6 +318,7 @@ impl ContactSolver {
             static_coefficient: problem.friction.static_coefficient,
             kinetic_coefficient: problem.friction.kinetic_coefficient,
         };
+        let mut monitor = CouplingMonitor::default();
         for c in 0..cmax {
             info.coupling_iterations = c + 1;
             self.last_pn.copy_from_slice(&self.pn);
@@ -500,15 +502,11 @@ impl ContactSolver {
             if !coupled {
                 break;
             }
-            let mut num = 0.0;
-            let mut den = 0.0;
-            for i in 0..n {
-                num += (self.pn[i] - self.last_pn[i]).abs()
-                    + (self.tr.px[i] - self.last_px[i]).abs()
-                    + (self.tr.py[i] - self.last_py[i]).abs();
-                den += self.pn[i].abs();
-            }
-            if den > 0.0 && num / den < ctol {
+            monitor.record(
+                [&self.pn, &self.tr.px, &self.tr.py],
+                [&self.last_pn, &self.last_px, &self.last_py],
+            );
+            if monitor.converged(ctol) {
                 break;
             }
             if c + 1 == cmax {
