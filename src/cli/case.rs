@@ -40,13 +40,13 @@ pub const CONFORMAL_WINDOW_X_PER_SEMI_AXIS: f64 = 3.2;
 /// plain Hertz semi-axis in y (1.3 times the Hertz patch width: Hertz
 /// overestimates the width of conformal patches) ...
 pub const CONFORMAL_WINDOW_S_PER_SEMI_AXIS: f64 = 2.6;
-/// ... but at most the arc of +- this angle [deg] on the mean lateral radius.
+/// ... but at most the arc of +- this angle \[deg\] on the mean lateral radius.
 pub const CONFORMAL_WINDOW_MAX_HALF_ANGLE_DEG: f64 = 75.0;
 /// Largest distance of a profile's nearest point from the origin (the rigid
-/// contact point) in `geometry.*_points_m` [m].
+/// contact point) in `geometry.*_points_m` \[m\].
 pub const POINTS_ORIGIN_TOLERANCE_M: f64 = 1e-7;
 /// Largest angle between the rail and wheel tangents at the origin in
-/// `geometry.*_points_m` [deg]: the profiles must touch there.
+/// `geometry.*_points_m` \[deg\]: the profiles must touch there.
 pub const POINTS_TANGENT_TOLERANCE_DEG: f64 = 1.0;
 
 /// The contact model a case is solved with.
@@ -141,12 +141,12 @@ pub struct CaseFile {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSection {
-    /// Shear modulus G of both bodies [Pa], > 0 (steel: 81.0e9).
+    /// Shear modulus G of both bodies \[Pa\], > 0 (steel: 81.0e9).
     pub shear_modulus_pa: Option<f64>,
     /// Poisson ratio nu of both bodies [-], in [0, 0.5) (steel: 0.30).
     pub poisson_ratio: Option<f64>,
     /// Body 1 (the rail; the body the tractions act on): `shear_modulus_pa`
-    /// [Pa], `poisson_ratio` [-].
+    /// \[Pa\], `poisson_ratio` [-].
     pub body1: Option<Material>,
     /// Body 2 (the wheel), same keys.
     pub body2: Option<Material>,
@@ -202,19 +202,19 @@ pub struct GeometrySection {
     pub a_per_m: Option<f64>,
     /// `quadratic`: curvature coefficient B in y (lateral) [1/m], > 0.
     pub b_per_m: Option<f64>,
-    /// `conformal_circular`: lateral radius of the rail profile [m], convex
+    /// `conformal_circular`: lateral radius of the rail profile \[m\], convex
     /// (crown) > 0, concave < 0, `inf` straight.
     pub rail_lateral_radius_m: Option<f64>,
-    /// `conformal_circular`: lateral radius of the wheel profile [m],
+    /// `conformal_circular`: lateral radius of the wheel profile \[m\],
     /// convex > 0, concave (hollow, wrapping the rail) < 0.
     pub wheel_lateral_radius_m: Option<f64>,
-    /// Conformal kinds: wheel rolling radius at the rigid contact point [m], > 0.
+    /// Conformal kinds: wheel rolling radius at the rigid contact point \[m\], > 0.
     pub wheel_rolling_radius_m: Option<f64>,
-    /// `conformal_points`: rail profile points `[y, z]` [m] in the plane
+    /// `conformal_points`: rail profile points `[y, z]` \[m\] in the plane
     /// x = 0, z down into the rail, ordered by increasing y, one of them
     /// at the rigid contact point (the origin).
     pub rail_points_m: Option<Vec<[f64; 2]>>,
-    /// `conformal_points`: wheel profile points `[y, z]` [m], same rules.
+    /// `conformal_points`: wheel profile points `[y, z]` \[m\], same rules.
     pub wheel_points_m: Option<Vec<[f64; 2]>>,
 }
 
@@ -225,11 +225,11 @@ pub enum CaseGeometry {
     Quadratic,
     /// Circular lateral profiles.
     ConformalCircular {
-        /// Rail lateral radius [m] (convex > 0).
+        /// Rail lateral radius \[m\] (convex > 0).
         rail_lateral_radius_m: f64,
-        /// Wheel lateral radius [m] (concave < 0).
+        /// Wheel lateral radius \[m\] (concave < 0).
         wheel_lateral_radius_m: f64,
-        /// Wheel rolling radius [m].
+        /// Wheel rolling radius \[m\].
         wheel_rolling_radius_m: f64,
     },
     /// Profiles through points.
@@ -242,12 +242,12 @@ pub enum CaseGeometry {
         rail_points: usize,
         /// Number of wheel points.
         wheel_points: usize,
-        /// Rail lateral radius at the origin estimated from the points [m]
+        /// Rail lateral radius at the origin estimated from the points \[m\]
         /// (infinite for a straight profile).
         rail_lateral_radius_m: f64,
-        /// Wheel lateral radius at the origin estimated from the points [m].
+        /// Wheel lateral radius at the origin estimated from the points \[m\].
         wheel_lateral_radius_m: f64,
-        /// Wheel rolling radius [m].
+        /// Wheel rolling radius \[m\].
         wheel_rolling_radius_m: f64,
     },
 }
@@ -258,7 +258,7 @@ impl CaseGeometry {
         !matches!(self, CaseGeometry::Quadratic)
     }
 
-    /// Lateral radii of rail and wheel and the wheel rolling radius [m]
+    /// Lateral radii of rail and wheel and the wheel rolling radius \[m\]
     /// (given or, for points, estimated at the origin); `None` for
     /// `quadratic`.
     pub fn radii(&self) -> Option<(f64, f64, f64)> {
@@ -282,7 +282,7 @@ impl CaseGeometry {
         }
     }
 
-    /// Mean lateral radius r = (|R_yr| + |R_yw|)/2 [m] (infinite for
+    /// Mean lateral radius r = (|R_yr| + |R_yw|)/2 \[m\] (infinite for
     /// `quadratic` or a straight profile).
     pub fn mean_lateral_radius_m(&self) -> f64 {
         match self.radii() {
@@ -580,9 +580,9 @@ impl GeometrySection {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSection {
-    /// Total normal force [N], > 0.
+    /// Total normal force \[N\], > 0.
     pub normal_force_n: Option<f64>,
-    /// Approach of the bodies [m], > 0.
+    /// Approach of the bodies \[m\], > 0.
     pub approach_m: Option<f64>,
 }
 
@@ -598,18 +598,18 @@ pub struct TransientSection {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepSection {
-    /// Rigid shift of body 1 relative to body 2 in x during the step [m]
+    /// Rigid shift of body 1 relative to body 2 in x during the step \[m\]
     /// (required, except for the conformal models, which take 0 only).
     pub shift_x_m: Option<f64>,
-    /// Rigid shift in y during the step [m] (default 0).
+    /// Rigid shift in y during the step \[m\] (default 0).
     #[serde(default)]
     pub shift_y_m: f64,
-    /// Rigid rotation about the normal axis during the step [rad] (default 0).
+    /// Rigid rotation about the normal axis during the step \[rad\] (default 0).
     #[serde(default)]
     pub rotation_rad: f64,
-    /// Normal force in the step [N], > 0 (default: the `[load]`).
+    /// Normal force in the step \[N\], > 0 (default: the `[load]`).
     pub normal_force_n: Option<f64>,
-    /// Approach in the step [m], > 0 (default: the `[load]`).
+    /// Approach in the step \[m\], > 0 (default: the `[load]`).
     pub approach_m: Option<f64>,
 }
 
@@ -622,10 +622,10 @@ pub struct GridSection {
     pub nx: Option<usize>,
     /// Elements in y, along s for the conformal models (default 64; 40 for `fastsim`).
     pub ny: Option<usize>,
-    /// Window length in x [m] (default 2.4 x the Hertz semi-axis in x;
+    /// Window length in x \[m\] (default 2.4 x the Hertz semi-axis in x;
     /// conformal models 3.2 x).
     pub window_x_m: Option<f64>,
-    /// Window width in y [m] (default 2.4 x the Hertz semi-axis in y);
+    /// Window width in y \[m\] (default 2.4 x the Hertz semi-axis in y);
     /// conformal models: curvilinear width along s (default 2.6 x the plain
     /// Hertz semi-axis, at most the arc of +-75° on the mean lateral radius).
     pub window_y_m: Option<f64>,
@@ -683,9 +683,9 @@ pub struct Case {
     pub nx: usize,
     /// Elements in y.
     pub ny: usize,
-    /// Window in x [m] (given or automatic).
+    /// Window in x \[m\] (given or automatic).
     pub window_x_m: f64,
-    /// Window in y [m] (given or automatic; along s for the conformal models).
+    /// Window in y \[m\] (given or automatic; along s for the conformal models).
     pub window_y_m: f64,
     /// Solver settings.
     pub settings: SolverSettings,

@@ -122,7 +122,7 @@ pub struct LoadtestArgs {
     /// Steps per session at most (and batches per batch client).
     #[arg(long, default_value_t = 200)]
     pub steps: u64,
-    /// Time limit of the concurrent run [s]: no step starts after it.
+    /// Time limit of the concurrent run \[s\]: no step starts after it.
     #[arg(long, default_value_t = 60.0)]
     pub seconds: f64,
     /// Batch clients besides the sessions (even: SolveWheelRailBatch of
@@ -140,7 +140,7 @@ pub struct LoadtestArgs {
     /// Print one JSON object instead of the table (no progress bar).
     #[arg(long)]
     pub json: bool,
-    /// Time limit to connect to each target and get its health [s].
+    /// Time limit to connect to each target and get its health \[s\].
     #[arg(long, default_value_t = 10.0)]
     pub connect_timeout: f64,
 }
@@ -528,7 +528,7 @@ pub struct Track {
     pub kind: Kind,
     /// Index of its target.
     pub target: usize,
-    /// Round trip of every completed step [s].
+    /// Round trip of every completed step \[s\].
     pub latencies_s: Vec<f64>,
     /// Fingerprint of every completed step's answer.
     pub digests: Vec<Digest32>,
@@ -884,7 +884,7 @@ async fn batch_client(
 // Statistics and the report
 // ---------------------------------------------------------------------
 
-/// Latency figures of a set of samples [s].
+/// Latency figures of a set of samples \[s\].
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Latency {
     /// Median.
@@ -949,11 +949,11 @@ pub struct Report {
     pub batch_items: usize,
     /// Step limit per session.
     pub steps_per_session: u64,
-    /// Time limit [s].
+    /// Time limit \[s\].
     pub seconds_limit: f64,
     /// The mix asked for.
     pub mix: String,
-    /// Wall time of the concurrent run [s].
+    /// Wall time of the concurrent run \[s\].
     pub wall_s: f64,
     /// Completed steps and batch calls.
     pub steps: usize,
@@ -968,7 +968,7 @@ pub struct Report {
     pub mismatches: usize,
     /// Steps compared with the baseline.
     pub verified_steps: usize,
-    /// Wall time of the sequential baseline [s].
+    /// Wall time of the sequential baseline \[s\].
     pub baseline_s: f64,
     /// Per kind.
     pub kinds: BTreeMap<String, Breakdown>,

@@ -25,7 +25,7 @@ pub enum Format {
     Svg,
 }
 
-/// Size of the image [px].
+/// Size of the image \[px\].
 pub const SIZE: (u32, u32) = (1400, 1000);
 
 /// Font family name of the bundled font.

@@ -15,17 +15,17 @@ use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveS
 #[derive(Debug, Clone, Copy, Serialize, PartialEq, Default)]
 pub struct ConformalKeys {
     /// Total variation of the contact angle over the loaded lateral lines
-    /// [deg] (Hertz: 2 b / r, r the mean lateral radius).
+    /// \[deg\] (Hertz: 2 b / r, r the mean lateral radius).
     pub contact_angle_variation_deg: f64,
     /// Patch length in x over patch width along s [-] (Hertz: a/b).
     pub length_width_ratio: f64,
-    /// Part of `normal_force_n` carried by the lateral tractions [N].
+    /// Part of `normal_force_n` carried by the lateral tractions \[N\].
     pub normal_force_from_tractions_n: f64,
-    /// Resultant of the pressures alone along n(0) [N].
+    /// Resultant of the pressures alone along n(0) \[N\].
     pub pressure_resultant_n: f64,
-    /// Force on the rail along the global y (lateral) axis [N].
+    /// Force on the rail along the global y (lateral) axis \[N\].
     pub fy_global_n: f64,
-    /// Force on the rail along the global z axis (down, into the rail) [N].
+    /// Force on the rail along the global z axis (down, into the rail) \[N\].
     pub fz_global_n: f64,
     /// Normal/tangential alternations (frictional conformal solves).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -37,7 +37,7 @@ pub struct ConformalKeys {
 /// grid line.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct WfricReport {
-    /// s of each lateral grid line [m].
+    /// s of each lateral grid line \[m\].
     pub s_m: Vec<f64>,
     /// W_fric(s) [J/m²].
     pub w_j_per_m2: Vec<f64>,
@@ -51,24 +51,24 @@ pub struct ConformalFieldsReport<'a> {
     /// The (x, s) grid.
     #[serde(flatten)]
     pub grid: &'a Grid,
-    /// Pressure on the rail along the local normal [Pa].
+    /// Pressure on the rail along the local normal \[Pa\].
     pub pressure_pa: &'a [f64],
-    /// Longitudinal traction on the rail [Pa].
+    /// Longitudinal traction on the rail \[Pa\].
     pub traction_x_pa: &'a [f64],
-    /// Lateral traction on the rail along the local tangent t(s) [Pa].
+    /// Lateral traction on the rail along the local tangent t(s) \[Pa\].
     pub traction_s_pa: &'a [f64],
     /// Slip of the rail relative to the wheel in x (steady: per rolling
-    /// speed [-]; static compression: in the step [m]).
+    /// speed [-]; static compression: in the step \[m\]).
     pub slip_x: &'a [f64],
     /// Slip along t(s), units as `slip_x`.
     pub slip_s: &'a [f64],
     /// Element states.
     pub state: &'a [ElementState],
-    /// Undeformed distance along the local normals [m].
+    /// Undeformed distance along the local normals \[m\].
     pub gap_m: &'a [f64],
-    /// Orientation delta(s) of each lateral line [rad] (length ny).
+    /// Orientation delta(s) of each lateral line \[rad\] (length ny).
     pub delta_rad: &'a [f64],
-    /// Reference-curve point (y, z) of each lateral line [m] (length ny).
+    /// Reference-curve point (y, z) of each lateral line \[m\] (length ny).
     pub reference_yz_m: &'a [[f64; 2]],
 }
 
@@ -95,7 +95,7 @@ pub struct StepReport {
     pub normal_iterations: usize,
     /// Tangential iterations.
     pub tangential_iterations: usize,
-    /// Wall time [s].
+    /// Wall time \[s\].
     pub solve_time_s: f64,
     /// `"converged"` or `"max_iterations"`.
     pub status: SolveStatus,
@@ -165,7 +165,7 @@ pub struct Report<'a> {
     /// Grid used: `[nx, ny]` (elements of the exact model, strips x elements of FASTSIM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<[usize; 2]>,
-    /// Window of the exact or conformal model's grid `[x, y]` [m] (y: along
+    /// Window of the exact or conformal model's grid `[x, y]` \[m\] (y: along
     /// s for the conformal models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub window_m: Option<[f64; 2]>,

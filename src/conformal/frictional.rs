@@ -18,7 +18,7 @@
 //! coupling tolerance ([`CouplingMonitor`]). The tangential problem is
 //! solved by the Newton/GMRES Coulomb solver of the core
 //! ([`crate::core::steady::solve_coulomb_newton`]) on the conformal operator,
-//! at most [`NEWTON_STEPS_PER_ALTERNATION`] Newton steps per alternation;
+//! at most `NEWTON_STEPS_PER_ALTERNATION` (2) Newton steps per alternation;
 //! the inner tolerances tighten with the alternation's progress and the
 //! answer comes from an alternation whose inner solves met the final
 //! tolerances. The coupling products take only the components they need
@@ -62,11 +62,11 @@ const NEWTON_STEPS_PER_ALTERNATION: usize = 2;
 #[derive(Debug, Clone, PartialEq)]
 pub enum ConformalKinematics {
     /// Static compression with friction: the force along n(0) rises through
-    /// these values [N] (monotonic loading), with no tangential shift.
+    /// these values \[N\] (monotonic loading), with no tangential shift.
     StaticCompression(Vec<f64>),
-    /// Steady-state rolling at this force [N] and these creepages.
+    /// Steady-state rolling at this force \[N\] and these creepages.
     SteadyRolling {
-        /// Force along n(0) [N].
+        /// Force along n(0) \[N\].
         normal_force_n: f64,
         /// Creepages at the rigid contact point.
         creepages: ConformalCreepages,
@@ -103,38 +103,38 @@ impl Default for ConformalSettings {
 /// Totals of one frictional conformal solution.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct ConformalTotals {
-    /// Force on the rail along the approach direction n(0) [N] (pressures
+    /// Force on the rail along the approach direction n(0) \[N\] (pressures
     /// and lateral tractions).
     pub normal_force_n: f64,
-    /// Part of it carried by the lateral tractions [N].
+    /// Part of it carried by the lateral tractions \[N\].
     pub normal_force_from_tractions_n: f64,
-    /// Resultant of the pressures alone along n(0) [N].
+    /// Resultant of the pressures alone along n(0) \[N\].
     pub pressure_resultant_n: f64,
-    /// Longitudinal force on the rail [N].
+    /// Longitudinal force on the rail \[N\].
     pub fx_n: f64,
-    /// Lateral force on the rail along t(0) [N].
+    /// Lateral force on the rail along t(0) \[N\].
     pub fs_n: f64,
-    /// Force on the rail in the global frame: y (lateral) and z (down) [N].
+    /// Force on the rail in the global frame: y (lateral) and z (down) \[N\].
     pub fy_global_n: f64,
     /// See `fy_global_n`.
     pub fz_global_n: f64,
-    /// Approach along n(0) [m].
+    /// Approach along n(0) \[m\].
     pub approach_m: f64,
-    /// Largest pressure [Pa].
+    /// Largest pressure \[Pa\].
     pub max_pressure_pa: f64,
-    /// Largest tangential traction [Pa].
+    /// Largest tangential traction \[Pa\].
     pub max_traction_pa: f64,
-    /// Loaded area (curvilinear) [m²].
+    /// Loaded area (curvilinear) \[m²\].
     pub contact_area_m2: f64,
-    /// Extent along x [m].
+    /// Extent along x \[m\].
     pub patch_length_m: f64,
-    /// Extent along s [m].
+    /// Extent along s \[m\].
     pub patch_width_m: f64,
-    /// Total contact angle variation [deg].
+    /// Total contact angle variation \[deg\].
     pub contact_angle_variation_deg: f64,
     /// Share of loaded elements in adhesion [-].
     pub adhesion_fraction: f64,
-    /// Frictional power per unit rolling speed, sum of -p_t.s dA [N]
+    /// Frictional power per unit rolling speed, sum of -p_t.s dA \[N\]
     /// (steady rolling).
     pub tgamma_n: f64,
 }
@@ -144,14 +144,14 @@ pub struct ConformalTotals {
 pub struct ConformalSolution {
     /// Totals.
     pub totals: ConformalTotals,
-    /// Pressure [Pa], longitudinal and lateral traction [Pa] per element.
+    /// Pressure \[Pa\], longitudinal and lateral traction \[Pa\] per element.
     pub pressure_pa: Vec<f64>,
     /// See `pressure_pa`.
     pub traction_x_pa: Vec<f64>,
     /// See `pressure_pa`.
     pub traction_s_pa: Vec<f64>,
     /// Slip of the rail relative to the wheel (steady: per rolling speed;
-    /// static: displacement in the step [m]), x and s.
+    /// static: displacement in the step \[m\]), x and s.
     pub slip_x: Vec<f64>,
     /// See `slip_x`.
     pub slip_s: Vec<f64>,

@@ -42,9 +42,9 @@ use crate::core::error::ContactError;
 use crate::core::grid::Grid;
 
 /// A smooth profile curve in the (y, z) plane, parametrised by arc length t
-/// [m], through the origin at t = 0.
+/// \[m\], through the origin at t = 0.
 pub trait Curve: Send + Sync {
-    /// Point (y, z) [m] and unit tangent (dy/dt, dz/dt) at arc length `t`.
+    /// Point (y, z) \[m\] and unit tangent (dy/dt, dz/dt) at arc length `t`.
     fn eval(&self, t: f64) -> ([f64; 2], [f64; 2]);
 }
 
@@ -57,7 +57,7 @@ pub struct Circle {
 }
 
 impl Circle {
-    /// A rail profile of lateral radius `radius_m` [m]: convex (a crown)
+    /// A rail profile of lateral radius `radius_m` \[m\]: convex (a crown)
     /// when positive, concave (a groove) when negative, straight when infinite.
     pub fn rail(radius_m: f64) -> Self {
         Self {
@@ -65,7 +65,7 @@ impl Circle {
         }
     }
 
-    /// A wheel profile of lateral radius `radius_m` [m]: convex when
+    /// A wheel profile of lateral radius `radius_m` \[m\]: convex when
     /// positive, concave (hollow, wrapping a rail crown) when negative.
     pub fn wheel(radius_m: f64) -> Self {
         Self {
@@ -100,7 +100,7 @@ pub struct PointCurve {
 }
 
 impl PointCurve {
-    /// A curve through `points` (y, z) [m], ordered along the curve, at
+    /// A curve through `points` (y, z) \[m\], ordered along the curve, at
     /// least 4, without repeated points.
     pub fn new(points: &[[f64; 2]], key: &str) -> Result<Self, ContactError> {
         if points.len() < 4 {
@@ -226,18 +226,18 @@ pub struct ConformalCreepages {
 pub struct ConformalGeometry {
     /// The (x, s) grid; `grid.y_m(iy)` is s.
     pub grid: Grid,
-    /// Orientation delta(s) of each lateral grid line [rad].
+    /// Orientation delta(s) of each lateral grid line \[rad\].
     pub delta_rad: Vec<f64>,
-    /// Reference-curve point (y, z) of each lateral grid line [m].
+    /// Reference-curve point (y, z) of each lateral grid line \[m\].
     pub reference_yz_m: Vec<[f64; 2]>,
-    /// Undeformed distance per element [m] (before the approach).
+    /// Undeformed distance per element \[m\] (before the approach).
     pub gap_m: Vec<f64>,
     /// cos(delta(s) - delta(0)) per element: the approach closes the gap
     /// by d times this.
     pub approach_weight: Vec<f64>,
-    /// Wheel rolling radius at the rigid contact point [m].
+    /// Wheel rolling radius at the rigid contact point \[m\].
     pub wheel_rolling_radius_m: f64,
-    /// Mean contact angle delta(0) [rad].
+    /// Mean contact angle delta(0) \[rad\].
     pub mean_contact_angle_rad: f64,
 }
 
@@ -435,7 +435,7 @@ impl ConformalGeometry {
         }
     }
 
-    /// Total contact angle variation over the loaded elements [rad]:
+    /// Total contact angle variation over the loaded elements \[rad\]:
     /// max delta - min delta over the lateral lines with p_n > 0.
     pub fn contact_angle_variation_rad(&self, pn: &[f64]) -> f64 {
         let g = &self.grid;

@@ -9,7 +9,7 @@
 //! * [`InfluenceModel::Blanco`] (`cect`): the traction on element J is
 //!   decomposed along element I's directions, p' = R(delta_I - delta_J) p_J,
 //!   and each component acts through the half-space coefficients (Blanco-
-//!   Lorenzo et al. 2018, §2.2, and their Ref. [23]):
+//!   Lorenzo et al. 2018, §2.2, and their Ref. \[23\]):
 //!   u_I = sum_J A(X_I - X_J) R(delta_I - delta_J) p_J, where R rotates the
 //!   (s, n) components: p'_s = cos D p_s + sin D p_n, p'_n = -sin D p_s +
 //!   cos D p_n, D = delta_I - delta_J.
@@ -269,11 +269,11 @@ impl ConformalOperator {
 /// (x, s, n in the elements' local frames; `None` = zero).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Tractions<'a> {
-    /// Longitudinal traction [Pa].
+    /// Longitudinal traction \[Pa\].
     pub x: Option<&'a [f64]>,
-    /// Lateral traction along s [Pa].
+    /// Lateral traction along s \[Pa\].
     pub s: Option<&'a [f64]>,
-    /// Pressure [Pa].
+    /// Pressure \[Pa\].
     pub n: Option<&'a [f64]>,
 }
 

@@ -16,19 +16,19 @@ use crate::core::normal::{solve_normal_with, NormalLoad, NormalScratch, NormalSe
 /// Summary of a conformal normal solution. Lengths are curvilinear.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ConformalNormalSummary {
-    /// Resultant of the pressures along the approach direction n(0) [N].
+    /// Resultant of the pressures along the approach direction n(0) \[N\].
     pub normal_force_n: f64,
-    /// Rigid approach along n(0) [m].
+    /// Rigid approach along n(0) \[m\].
     pub approach_m: f64,
-    /// Largest pressure [Pa].
+    /// Largest pressure \[Pa\].
     pub max_pressure_pa: f64,
-    /// Loaded area (curvilinear) [m²].
+    /// Loaded area (curvilinear) \[m²\].
     pub contact_area_m2: f64,
-    /// Extent of the loaded elements along x [m].
+    /// Extent of the loaded elements along x \[m\].
     pub patch_length_m: f64,
-    /// Extent of the loaded elements along s [m].
+    /// Extent of the loaded elements along s \[m\].
     pub patch_width_m: f64,
-    /// Total variation of the contact angle over the patch [deg].
+    /// Total variation of the contact angle over the patch \[deg\].
     pub contact_angle_variation_deg: f64,
     /// CG iterations.
     pub iterations: usize,
@@ -43,7 +43,7 @@ pub struct ConformalNormalSummary {
 pub struct ConformalNormalSolution {
     /// Totals.
     pub summary: ConformalNormalSummary,
-    /// Pressure per element [Pa].
+    /// Pressure per element \[Pa\].
     pub pressure_pa: Vec<f64>,
 }
 
@@ -137,7 +137,7 @@ pub fn border_error(grid: &crate::core::grid::Grid, ix: usize, iy: usize) -> Con
 /// `corrected`, B_corr = B + d/(2 r²) (Eq. 5) with d the plain Hertz
 /// approach and r = (|R_yr| + |R_yw|)/2 the mean lateral radius. The
 /// contact angle variation is 2b/r. Returns the solution and the variation
-/// [deg].
+/// \[deg\].
 pub fn conformal_hertz(
     rail_lateral_radius_m: f64,
     wheel_lateral_radius_m: f64,

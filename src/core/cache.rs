@@ -18,7 +18,7 @@ use crate::core::grid::Grid;
 use crate::core::influence::{HalfSpaceInfluence, KernelKind};
 use crate::core::material::CombinedMaterial;
 
-/// Default memory cap of the kernels held [bytes]: 1 GiB, some 600 sets of
+/// Default memory cap of the kernels held \[bytes\]: 1 GiB, some 600 sets of
 /// 64 x 64 steady-rolling kernels.
 pub const DEFAULT_MAX_BYTES: usize = 1 << 30;
 
@@ -59,9 +59,9 @@ pub struct CacheStats {
     pub evictions: u64,
     /// Sets held.
     pub entries: usize,
-    /// Memory of the sets held [bytes].
+    /// Memory of the sets held \[bytes\].
     pub bytes: usize,
-    /// The memory cap [bytes].
+    /// The memory cap \[bytes\].
     pub max_bytes: usize,
 }
 

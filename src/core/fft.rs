@@ -658,7 +658,7 @@ impl KernelTable {
 }
 
 impl KernelSet {
-    /// Memory held by the transformed kernels [bytes] (the FFT plans are
+    /// Memory held by the transformed kernels \[bytes\] (the FFT plans are
     /// shared and not counted).
     pub fn bytes(&self) -> usize {
         self.spectra.iter().map(Spectrum::bytes).sum::<usize>()
@@ -906,7 +906,7 @@ impl KernelSet {
     /// `(zx, zy) = C⁻¹ (rx, ry)` on the grid, with C the circulant extension
     /// of the tangential block of the displacement operator, A_tt (for sets
     /// of either kind), on a periodic array that holds the grid (its 2x2
-    /// symbol inverted at each frequency, see [`periodic_inverse_2x2`]), in
+    /// symbol inverted at each frequency, see `periodic_inverse_2x2`), in
     /// single precision (about 1e-6 of the largest output): a global
     /// preconditioner of the tangential problems, about a quarter of a
     /// single-precision product.
@@ -935,7 +935,7 @@ impl KernelSet {
 multiversion! {
     /// The product of [`KernelSet::apply`] with the kernels `spectra` (entry
     /// `index[o][c]` for output o and input c) on `plan`, in precision `T`
-    /// (with AVX2 and FMA when the CPU has them: [`crate::core::simd`]).
+    /// (with AVX2 and FMA when the CPU has them: `core::simd`).
     fn apply_indexed<T: Real>(
         plan: &ConvolutionPlan<T>,
         spectra: &[Spectrum<T>],

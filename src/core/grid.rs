@@ -1,6 +1,6 @@
 //! The rectangular potential contact grid.
 //!
-//! Elements are `nx` by `ny` rectangles of size `dx` by `dy` [m]. Element (ix, iy)
+//! Elements are `nx` by `ny` rectangles of size `dx` by `dy` \[m\]. Element (ix, iy)
 //! has its centre at x = x0 + (ix + 1/2) dx, y = y0 + (iy + 1/2) dy and is stored
 //! at index `iy * nx + ix` (x runs fastest: grid lines along the rolling
 //! direction are contiguous). x is the rolling direction; the leading edge of a
@@ -23,19 +23,19 @@ pub struct Grid {
     pub nx: usize,
     /// Elements in y (lateral direction).
     pub ny: usize,
-    /// Element size in x [m].
+    /// Element size in x \[m\].
     pub dx_m: f64,
-    /// Element size in y [m].
+    /// Element size in y \[m\].
     pub dy_m: f64,
-    /// x of the grid's lower-left corner [m].
+    /// x of the grid's lower-left corner \[m\].
     pub x0_m: f64,
-    /// y of the grid's lower-left corner [m].
+    /// y of the grid's lower-left corner \[m\].
     pub y0_m: f64,
 }
 
 impl Grid {
     /// A grid of `nx` x `ny` elements covering `[x0, x0 + nx dx] x [y0, y0 + ny dy]`.
-    /// Length along x and width along y [m] of the bounding box of the
+    /// Length along x and width along y \[m\] of the bounding box of the
     /// elements where `field > 0` (the loaded patch), or None when there
     /// are none.
     pub fn loaded_extent_m(&self, field: &[f64]) -> Option<[f64; 2]> {
@@ -121,19 +121,19 @@ impl Grid {
         false
     }
 
-    /// Element area [m²].
+    /// Element area \[m²\].
     #[inline]
     pub fn element_area_m2(&self) -> f64 {
         self.dx_m * self.dy_m
     }
 
-    /// x of the centre of column `ix` [m].
+    /// x of the centre of column `ix` \[m\].
     #[inline]
     pub fn x_m(&self, ix: usize) -> f64 {
         self.x0_m + (ix as f64 + 0.5) * self.dx_m
     }
 
-    /// y of the centre of row `iy` [m].
+    /// y of the centre of row `iy` \[m\].
     #[inline]
     pub fn y_m(&self, iy: usize) -> f64 {
         self.y0_m + (iy as f64 + 0.5) * self.dy_m

@@ -101,8 +101,8 @@ impl HalfSpaceInfluence {
         }
     }
 
-    /// Displacement difference component `i` [m] at offset (x, y) [m] from the
-    /// centre of an element loaded by a unit uniform traction [Pa] in `j`.
+    /// Displacement difference component `i` \[m\] at offset (x, y) \[m\] from the
+    /// centre of an element loaded by a unit uniform traction \[Pa\] in `j`.
     pub fn coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
         use Component::*;
         let (hx, hy) = (0.5 * self.dx, 0.5 * self.dy);
@@ -127,7 +127,7 @@ impl HalfSpaceInfluence {
         }
     }
 
-    /// Combined shear modulus G [Pa].
+    /// Combined shear modulus G \[Pa\].
     pub fn shear_modulus_pa(&self) -> f64 {
         1.0 / (std::f64::consts::PI * self.inv_pi_g)
     }
@@ -137,12 +137,12 @@ impl HalfSpaceInfluence {
         self.nu
     }
 
-    /// Element size in x [m].
+    /// Element size in x \[m\].
     pub fn dx_m(&self) -> f64 {
         self.dx
     }
 
-    /// Element size in y [m].
+    /// Element size in y \[m\].
     pub fn dy_m(&self) -> f64 {
         self.dy
     }

@@ -19,7 +19,7 @@ use crate::core::error::ContactError;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
-    /// Shear modulus G [Pa], > 0. Steel: about 80e9.
+    /// Shear modulus G \[Pa\], > 0. Steel: about 80e9.
     pub shear_modulus_pa: f64,
     /// Poisson ratio nu [-], in [0, 0.5). Steel: about 0.28–0.30.
     pub poisson_ratio: f64,
@@ -60,7 +60,7 @@ pub struct CombinedMaterial {
     pub body1: Material,
     /// Body 2 (the wheel in wheel/rail contact).
     pub body2: Material,
-    /// Combined shear modulus G [Pa].
+    /// Combined shear modulus G \[Pa\].
     pub shear_modulus_pa: f64,
     /// Combined Poisson ratio nu [-].
     pub poisson_ratio: f64,
@@ -92,7 +92,7 @@ impl CombinedMaterial {
         Self::new(m, m)
     }
 
-    /// Effective (plane-strain) modulus E* = G/(1-nu) [Pa].
+    /// Effective (plane-strain) modulus E* = G/(1-nu) \[Pa\].
     pub fn effective_modulus_pa(&self) -> f64 {
         self.shear_modulus_pa / (1.0 - self.poisson_ratio)
     }

@@ -22,9 +22,9 @@ use crate::core::simd::multiversion;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum NormalLoad {
-    /// Prescribed total normal force [N], > 0.
+    /// Prescribed total normal force \[N\], > 0.
     NormalForce(f64),
-    /// Prescribed approach [m] (the rigid-body approach of the bodies).
+    /// Prescribed approach \[m\] (the rigid-body approach of the bodies).
     Approach(f64),
 }
 
@@ -56,7 +56,7 @@ pub struct NormalOutcome {
     /// Preconditioner applications used (FFT products on the unpadded
     /// grid, about a quarter of an operator product each).
     pub preconditioner_applications: usize,
-    /// Approach [m].
+    /// Approach \[m\].
     pub approach_m: f64,
     /// Final relative pressure change.
     pub residual: f64,
@@ -222,8 +222,8 @@ impl NormalOperator for PlanarNormal<'_> {
 }
 
 /// Solves the normal problem on a planar patch. `h` is the undeformed
-/// distance [m] per element; `pn` [Pa] is the initial guess on entry (zeros
-/// allowed) and the solution on exit. `area` is the element area [m²]. No
+/// distance \[m\] per element; `pn` \[Pa\] is the initial guess on entry (zeros
+/// allowed) and the solution on exit. `area` is the element area \[m²\]. No
 /// allocation.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_normal(
@@ -256,7 +256,7 @@ multiversion! {
     /// element enters; the step is the exact minimiser along the direction,
     /// followed by the projection on p >= 0 and the force rescaling.
     ///
-    /// With AVX2 and FMA when the CPU has them ([`crate::core::simd`]).
+    /// With AVX2 and FMA when the CPU has them (`core::simd`).
     #[allow(clippy::too_many_arguments)]
     pub fn solve_normal_with(
         op: &mut dyn NormalOperator,

@@ -89,11 +89,11 @@ impl Creepages {
 pub struct ShiftStep {
     /// Normal load during the step.
     pub load: NormalLoad,
-    /// Rigid shift of body 1 relative to body 2 in x during the step [m].
+    /// Rigid shift of body 1 relative to body 2 in x during the step \[m\].
     pub shift_x_m: f64,
-    /// Rigid shift in y during the step [m].
+    /// Rigid shift in y during the step \[m\].
     pub shift_y_m: f64,
-    /// Rigid rotation about the n axis during the step [rad].
+    /// Rigid rotation about the n axis during the step \[rad\].
     pub rotation_rad: f64,
 }
 
@@ -146,7 +146,7 @@ pub struct ContactProblem {
     pub friction: Friction,
     /// Potential contact grid.
     pub grid: Grid,
-    /// Undeformed distance h per element [m] (index `iy * nx + ix`).
+    /// Undeformed distance h per element \[m\] (index `iy * nx + ix`).
     pub gap_m: Vec<f64>,
     /// Normal load (steady rolling and frictionless problems; transient steps
     /// carry their own).

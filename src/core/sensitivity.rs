@@ -61,7 +61,7 @@ impl ForceJacobian {
 /// The inputs a Jacobian is taken about.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobianPoint {
-    /// Approach [m].
+    /// Approach \[m\].
     pub approach_m: f64,
     /// Creepages.
     pub creepages: Creepages,
@@ -70,7 +70,7 @@ pub struct JacobianPoint {
 /// Step sizes of the central differences (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JacobianSteps {
-    /// Approach step [m].
+    /// Approach step \[m\].
     pub approach_m: f64,
     /// Longitudinal and lateral creepage step [-].
     pub creepage: f64,

@@ -62,59 +62,59 @@ pub struct SolveInfo {
     pub normal_residual: f64,
     /// Final natural residual of the friction law, relative to max mu p_n [-].
     pub tangential_residual: f64,
-    /// Wall time of the solve [s], kernel construction included.
+    /// Wall time of the solve \[s\], kernel construction included.
     pub solve_time_s: f64,
 }
 
 /// Per-element results on the potential contact grid (index `iy * nx + ix`).
 #[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct ElementFields {
-    /// Normal pressure p_n on body 1 [Pa], >= 0.
+    /// Normal pressure p_n on body 1 \[Pa\], >= 0.
     pub pressure_pa: Vec<f64>,
-    /// Longitudinal traction p_x on body 1 [Pa].
+    /// Longitudinal traction p_x on body 1 \[Pa\].
     pub traction_x_pa: Vec<f64>,
-    /// Lateral traction p_y on body 1 [Pa].
+    /// Lateral traction p_y on body 1 \[Pa\].
     pub traction_y_pa: Vec<f64>,
     /// Slip of body 1 relative to body 2, x. Steady rolling: slip velocity
-    /// divided by the rolling speed [-]; transient: slip distance in the step [m].
+    /// divided by the rolling speed [-]; transient: slip distance in the step \[m\].
     pub slip_x: Vec<f64>,
     /// Slip of body 1 relative to body 2, y (units as `slip_x`).
     pub slip_y: Vec<f64>,
     /// Element states.
     pub state: Vec<ElementState>,
-    /// Undeformed distance used [m] (after any approach-independent offsets).
+    /// Undeformed distance used \[m\] (after any approach-independent offsets).
     pub gap_m: Vec<f64>,
 }
 
 /// Totals of one contact solution. Forces and moment act on body 1.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
 pub struct Totals {
-    /// Normal force [N].
+    /// Normal force \[N\].
     pub normal_force_n: f64,
-    /// Longitudinal tangential force [N].
+    /// Longitudinal tangential force \[N\].
     pub fx_n: f64,
-    /// Lateral tangential force [N].
+    /// Lateral tangential force \[N\].
     pub fy_n: f64,
     /// Spin moment about the n axis through the grid origin [N m].
     pub mz_nm: f64,
-    /// Approach of the bodies [m].
+    /// Approach of the bodies \[m\].
     pub approach_m: f64,
-    /// Largest pressure [Pa].
+    /// Largest pressure \[Pa\].
     pub max_pressure_pa: f64,
-    /// Largest tangential traction magnitude [Pa].
+    /// Largest tangential traction magnitude \[Pa\].
     pub max_traction_pa: f64,
-    /// Contact area [m²] (elements with p_n > 0).
+    /// Contact area \[m²\] (elements with p_n > 0).
     pub contact_area_m2: f64,
-    /// Extent of the contact elements in x [m] (resolution: one element).
+    /// Extent of the contact elements in x \[m\] (resolution: one element).
     pub patch_length_m: f64,
-    /// Extent of the contact elements in y [m] (resolution: one element).
+    /// Extent of the contact elements in y \[m\] (resolution: one element).
     pub patch_width_m: f64,
     /// Share of the contact area in adhesion [-].
     pub adhesion_fraction: f64,
-    /// T-gamma: frictional power per unit rolling speed, -sum p_t . s dA [N]
+    /// T-gamma: frictional power per unit rolling speed, -sum p_t . s dA \[N\]
     /// (steady rolling; 0 otherwise).
     pub tgamma_n: f64,
-    /// Frictional work dissipated in the step, -sum p_t . s dA [J] (transient; 0 otherwise).
+    /// Frictional work dissipated in the step, -sum p_t . s dA \[J\] (transient; 0 otherwise).
     pub frictional_work_j: f64,
 }
 

@@ -113,7 +113,7 @@ impl ContactSolver {
         }
     }
 
-    /// Makes `pn` [Pa] the pressures the next solve starts from (the
+    /// Makes `pn` \[Pa\] the pressures the next solve starts from (the
     /// tractions are kept): for a caller that solved this grid's normal
     /// problem by other means, as the wheel/rail load iteration does for
     /// several patches at once. `pn` must have one value per element.

@@ -452,7 +452,7 @@ multiversion! {
     /// Right-preconditioned restarted GMRES for `lin` x = rhs, from x = 0,
     /// to a residual `rel_tol`·|rhs| or `max_matvecs` products. Returns the
     /// matvecs used. With AVX2 and FMA when the CPU has them
-    /// ([`crate::core::simd`]).
+    /// (`core::simd`).
     #[allow(clippy::too_many_arguments)]
     fn gmres(
         lin: &Linear<'_>,

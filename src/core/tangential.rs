@@ -182,7 +182,7 @@ impl TangentialScratch {
 pub struct TangentialInput<'a> {
     /// The grid.
     pub grid: &'a Grid,
-    /// Normal pressure [Pa] (fixed during the tangential solve).
+    /// Normal pressure \[Pa\] (fixed during the tangential solve).
     pub pn: &'a [f64],
     /// Friction coefficients.
     pub friction: FrictionBounds,
@@ -198,9 +198,9 @@ pub struct TangentialInput<'a> {
 
 /// Output buffers of a tangential solve.
 pub struct TangentialOutput<'a> {
-    /// Traction x [Pa]: initial guess in, solution out.
+    /// Traction x \[Pa\]: initial guess in, solution out.
     pub px: &'a mut [f64],
-    /// Traction y [Pa]: initial guess in, solution out.
+    /// Traction y \[Pa\]: initial guess in, solution out.
     pub py: &'a mut [f64],
     /// Slip x out.
     pub sx: &'a mut [f64],
@@ -474,7 +474,7 @@ fn finish_states(
 
 /// Transient (shift) problem: `k` must be the displacement kernel set; `cx`,
 /// `cy` hold the rigid shift minus the previous displacement difference plus
-/// any normal-coupling displacement [m].
+/// any normal-coupling displacement \[m\].
 pub fn solve_transient(
     k: &KernelSet,
     ows: &mut OperatorWorkspace,

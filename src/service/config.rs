@@ -39,13 +39,13 @@ pub struct ServeConfig {
     pub max_sessions: usize,
     /// Largest grid, nx * ny elements (default 65536 = 256 x 256).
     pub max_grid_elements: usize,
-    /// Largest gRPC message, either direction [bytes] (default 16 MiB).
+    /// Largest gRPC message, either direction \[bytes\] (default 16 MiB).
     pub max_message_bytes: usize,
-    /// Memory cap of the influence-kernel cache [bytes] (default 1 GiB);
+    /// Memory cap of the influence-kernel cache \[bytes\] (default 1 GiB);
     /// beyond it the least recently used kernel sets are dropped.
     pub kernel_cache_max_bytes: usize,
     /// On SIGTERM or Ctrl-C: how long in-flight requests and open sessions
-    /// may take to finish before the server stops anyway [s] (default 30).
+    /// may take to finish before the server stops anyway \[s\] (default 30).
     pub shutdown_grace_s: f64,
     /// Directory of the server's store (`pairs.redb`: the registered
     /// profile pairs, which survive a restart); created if missing. Default

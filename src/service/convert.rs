@@ -25,7 +25,7 @@ use crate::service::status::ServiceError;
 pub struct ValidCase {
     /// The case, as `railcontact solve` would run it.
     pub case: Case,
-    /// `geometry.extra_gap_m` [m], nx * ny values or none.
+    /// `geometry.extra_gap_m` \[m\], nx * ny values or none.
     pub extra_gap_m: Vec<f64>,
 }
 

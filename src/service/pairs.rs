@@ -56,7 +56,7 @@ const DEFAULT_SHEAR_MODULUS_PA: f64 = 82.0e9;
 const DEFAULT_POISSON_RATIO: f64 = 0.28;
 /// Default friction coefficient of wheel/rail pairs [-].
 const DEFAULT_FRICTION: f64 = 0.3;
-/// Default element size of the patch grids [m].
+/// Default element size of the patch grids \[m\].
 pub const DEFAULT_ELEMENT_SIZE_M: f64 = 2.0e-4;
 
 /// Tag hashed before the canonical spec: changes when the canonical form
@@ -71,9 +71,9 @@ pub struct PairSettings {
     pub material: CombinedMaterial,
     /// Default friction.
     pub friction: Friction,
-    /// Default element size [m].
+    /// Default element size \[m\].
     pub element_size_m: f64,
-    /// Smoothing cut-off wavelength [m].
+    /// Smoothing cut-off wavelength \[m\].
     pub smoothing_wavelength_m: f64,
     /// Track.
     pub track: TrackData,
@@ -233,7 +233,7 @@ pub fn friction(f: &pb::FrictionSection) -> Result<Friction, ServiceError> {
     .friction()?)
 }
 
-/// Checks an element size [m] (the wheel/rail solver's range).
+/// Checks an element size \[m\] (the wheel/rail solver's range).
 pub fn check_element_size(e: f64, field: &str) -> Result<(), ServiceError> {
     if e.is_finite() && e > 1e-6 && e < 5e-3 {
         Ok(())

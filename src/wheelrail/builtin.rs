@@ -51,7 +51,7 @@ pub const MBENCH_WHEELSET: WheelsetData = WheelsetData {
 };
 
 /// The input of Manchester benchmark case at lateral shift `y_mm`
-/// [mm] (Shackleton & Iwnicki, VSD 46, 2008): yaw 2.4 mrad per mm, 10 kN per
+/// \[mm\] (Shackleton & Iwnicki, VSD 46, 2008): yaw 2.4 mrad per mm, 10 kN per
 /// wheel, 2 m/s, G = 82 GPa, nu = 0.28, mu = 0.3, 0.2 mm elements, both
 /// wheels. `roll_rad` and `pitch_rad_per_s`: `None` to find the roll from
 /// the profiles and roll freely at the nominal radius.

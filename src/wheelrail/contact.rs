@@ -91,18 +91,18 @@ pub enum WheelRailModel {
     Auto,
 }
 
-/// Default of [`WheelRailSettings::auto_conformal_angle_rad`] [rad] (10
+/// Default of [`WheelRailSettings::auto_conformal_angle_rad`] \[rad\] (10
 /// degrees).
 pub const AUTO_CONFORMAL_ANGLE_RAD: f64 = 0.1745;
 
 /// Load of one wheel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum WheelLoad {
-    /// Total vertical force on the rail [N], > 0.
+    /// Total vertical force on the rail \[N\], > 0.
     VerticalForce(f64),
-    /// Vertical approach of the wheel from the rigid position [m].
+    /// Vertical approach of the wheel from the rigid position \[m\].
     Approach(f64),
-    /// The wheelset centre's height in the track frame [m] (z down, as
+    /// The wheelset centre's height in the track frame \[m\] (z down, as
     /// [`WheelRailSolution::center_z_m`]): the position an MBS integrator
     /// hands over. Each wheel's vertical approach is this minus the rigid
     /// position's centre height (the same for both wheels); a wheel that
@@ -115,7 +115,7 @@ pub enum WheelLoad {
 pub struct WheelRailSettings {
     /// Contact model.
     pub model: WheelRailModel,
-    /// Element size of the patch grids, along x and s [m].
+    /// Element size of the patch grids, along x and s \[m\].
     pub element_size_m: f64,
     /// Contact search.
     pub search: SearchSettings,
@@ -126,7 +126,7 @@ pub struct WheelRailSettings {
     /// Iteration limit of the load iteration.
     pub max_load_iterations: usize,
     /// Model `auto`: contact-angle variation over a loaded patch above which
-    /// it is solved again with the conformal method [rad].
+    /// it is solved again with the conformal method \[rad\].
     pub auto_conformal_angle_rad: f64,
 }
 
@@ -184,23 +184,23 @@ pub struct PatchResult {
     /// Method that solved the patch: "exact", "hertz_fastsim" or "cect".
     pub method: &'static str,
     /// Variation of the rail's contact angle over the loaded lateral extent
-    /// [rad] (0 for Hertz+FASTSIM).
+    /// \[rad\] (0 for Hertz+FASTSIM).
     pub contact_angle_variation_rad: f64,
-    /// Contact angle [rad] (see the module conventions).
+    /// Contact angle \[rad\] (see the module conventions).
     pub contact_angle_rad: f64,
-    /// Reference point in rail profile coordinates [m].
+    /// Reference point in rail profile coordinates \[m\].
     pub rail_y_m: f64,
-    /// Reference point in rail profile coordinates [m].
+    /// Reference point in rail profile coordinates \[m\].
     pub rail_z_m: f64,
-    /// Reference point in wheel profile coordinates (lateral) [m].
+    /// Reference point in wheel profile coordinates (lateral) \[m\].
     pub wheel_y_m: f64,
-    /// Reference point in the track frame (lateral) [m].
+    /// Reference point in the track frame (lateral) \[m\].
     pub track_y_m: f64,
-    /// Reference point in the track frame (vertical, down) [m].
+    /// Reference point in the track frame (vertical, down) \[m\].
     pub track_z_m: f64,
-    /// Longitudinal position of the reference point (ahead of the axle) [m].
+    /// Longitudinal position of the reference point (ahead of the axle) \[m\].
     pub track_x_m: f64,
-    /// Wheel rolling radius at the reference point [m].
+    /// Wheel rolling radius at the reference point \[m\].
     pub rolling_radius_m: f64,
     /// Longitudinal creepage [-].
     pub creepage_long: f64,
@@ -211,25 +211,25 @@ pub struct PatchResult {
     /// Rolling speed the creepages are relative to [m/s] (see the module
     /// conventions): slip velocity = creepage x this.
     pub rolling_speed_m_per_s: f64,
-    /// Normal force on the rail [N].
+    /// Normal force on the rail \[N\].
     pub normal_force_n: f64,
-    /// Longitudinal force on the rail [N].
+    /// Longitudinal force on the rail \[N\].
     pub fx_n: f64,
-    /// Lateral force on the rail in the tangent plane [N].
+    /// Lateral force on the rail in the tangent plane \[N\].
     pub fs_n: f64,
     /// Spin moment about the normal through the reference point [N m].
     pub mz_nm: f64,
-    /// Normal approach of the patch [m].
+    /// Normal approach of the patch \[m\].
     pub approach_m: f64,
-    /// Largest pressure [Pa].
+    /// Largest pressure \[Pa\].
     pub max_pressure_pa: f64,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
     /// Share of the contact area in adhesion [-].
     pub adhesion_fraction: f64,
-    /// Frictional power [W] (T-gamma times the rolling speed).
+    /// Frictional power \[W\] (T-gamma times the rolling speed).
     pub frictional_power_w: f64,
-    /// Force on the rail in the track frame (x, y, z) [N].
+    /// Force on the rail in the track frame (x, y, z) \[N\].
     pub force_track_n: [f64; 3],
     /// Grid size (nx, ns) of the exact model; (0, 0) for Hertz+FASTSIM.
     pub grid: [usize; 2],
@@ -246,19 +246,19 @@ pub struct PatchResult {
 pub struct WheelResult {
     /// Which wheel.
     pub side: Side,
-    /// Vertical approach of the wheel from the rigid position [m].
+    /// Vertical approach of the wheel from the rigid position \[m\].
     pub vertical_approach_m: f64,
-    /// Smallest vertical gap at the rigid position [m].
+    /// Smallest vertical gap at the rigid position \[m\].
     pub min_gap_m: f64,
     /// Its patches, from the field side to the gauge side.
     pub patches: Vec<PatchResult>,
-    /// Total force on the rail in the track frame (x, y, z) [N].
+    /// Total force on the rail in the track frame (x, y, z) \[N\].
     pub force_track_n: [f64; 3],
     /// Iterations of the load iteration.
     pub load_iterations: usize,
 }
 
-/// Where the time went [s].
+/// Where the time went \[s\].
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct Timing {
     /// Rigid position and contact loci.
@@ -272,9 +272,9 @@ pub struct Timing {
 /// Solution for one wheelset position.
 #[derive(Debug, Clone, Serialize)]
 pub struct WheelRailSolution {
-    /// Wheelset centre height [m].
+    /// Wheelset centre height \[m\].
     pub center_z_m: f64,
-    /// Roll angle used [rad].
+    /// Roll angle used \[rad\].
     pub roll_rad: f64,
     /// Rotation rate about the axle used [rad/s].
     pub pitch_rad_per_s: f64,
@@ -601,7 +601,7 @@ pub fn solve_wheelset(
 /// start gives the same bits.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WarmStart {
-    /// Roll angle of the previous step [rad]: the roll search starts there
+    /// Roll angle of the previous step \[rad\]: the roll search starts there
     /// (positions that leave the roll free).
     pub roll_rad: Option<f64>,
     /// Per wheel (`Side::index()`): the previous single-patch solve's normal

@@ -109,24 +109,24 @@ pub enum MirrorZ {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProfileChecks {
     /// Successive points closer than this are merged (the first is kept,
-    /// with a warning) [m]. Default 1e-7 m = 0.1 µm, CONTACT's default
+    /// with a warning) \[m\]. Default 1e-7 m = 0.1 µm, CONTACT's default
     /// minimum point distance. Exactly coincident points are always merged.
     pub merge_distance_m: f64,
-    /// Largest distance between successive points [m]; a larger gap is an
+    /// Largest distance between successive points \[m\]; a larger gap is an
     /// error (missing data). Default 5 mm; `f64::INFINITY` disables the check.
     pub max_gap_m: f64,
     /// A turn of the profile by more than this angle at one point is a
     /// reversal of direction: a spike or a backtracking pair of points
-    /// [rad]. Default 120 degrees (real profiles turn by less than 15
+    /// \[rad\]. Default 120 degrees (real profiles turn by less than 15
     /// degrees between points; sharp designed corners by at most 90).
     pub reversal_angle_rad: f64,
-    /// Largest defect repaired automatically [m]: a spike that sticks out
+    /// Largest defect repaired automatically \[m\]: a spike that sticks out
     /// at most this far from its neighbours is removed, a pair of points
     /// out of order that goes back at most this far is replaced by its
     /// mean, each with a warning. Larger defects are errors. Default 1 mm
     /// (the measured flange tip of `Car7216_0001r.whl` goes back 0.6 mm).
     pub max_repair_m: f64,
-    /// Largest extent of the profile in y or z [m]; a larger profile is an
+    /// Largest extent of the profile in y or z \[m\]; a larger profile is an
     /// error, usually a wrong length unit. Default 1 m.
     pub max_extent_m: f64,
 }
@@ -322,7 +322,7 @@ pub struct Profile {
 }
 
 impl Profile {
-    /// Builds a checked profile from points (y, z) [m] in the profile frame.
+    /// Builds a checked profile from points (y, z) \[m\] in the profile frame.
     ///
     /// If `kind` is given the points are put in CONTACT order (reversed if
     /// needed). Then, with the limits in `checks`:
@@ -398,7 +398,7 @@ impl Profile {
         self.description.as_deref()
     }
 
-    /// The points (y, z) [m].
+    /// The points (y, z) \[m\].
     pub fn points(&self) -> &[[f64; 2]] {
         &self.points
     }
@@ -431,12 +431,12 @@ impl Profile {
         &self.warnings
     }
 
-    /// Range (min, max) of y [m].
+    /// Range (min, max) of y \[m\].
     pub fn y_range_m(&self) -> (f64, f64) {
         range(self.points.iter().map(|p| p[0]))
     }
 
-    /// Range (min, max) of z [m].
+    /// Range (min, max) of z \[m\].
     pub fn z_range_m(&self) -> (f64, f64) {
         range(self.points.iter().map(|p| p[1]))
     }
@@ -455,7 +455,7 @@ impl Profile {
         p
     }
 
-    /// The profile shifted by `dy_m`, `dz_m` [m], e.g. to put a MiniProf
+    /// The profile shifted by `dy_m`, `dz_m` \[m\], e.g. to put a MiniProf
     /// wheel's origin (the flange back) at the tape circle.
     pub fn translated(&self, dy_m: f64, dz_m: f64) -> Profile {
         let mut p = self.clone();

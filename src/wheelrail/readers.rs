@@ -56,7 +56,7 @@
 //!   A angle, C curvature, N, K; exactly that many numbers), or without
 //!   `ColumnDef` at least two numbers of which the first two are X and Y
 //!   (the text variants carry a third column that is ignored). Values are
-//!   in mm; `XOffset`/`YOffset` [mm] are added. A count different from
+//!   in mm; `XOffset`/`YOffset` \[mm\] are added. A count different from
 //!   `XYPoints` is an error (truncated file).
 //! * Orientation: MiniProf's X is taken as y as it is; wheels have X = 0
 //!   at the back of the flange, growing towards the field side, which is

@@ -37,13 +37,13 @@ use crate::wheelrail::wheelset::{
 /// [`crate::wheelrail::wheelset`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SidePose {
-    /// Lateral position of the wheelset centre in the side frame [m].
+    /// Lateral position of the wheelset centre in the side frame \[m\].
     pub center_q_m: f64,
-    /// Height of the wheelset centre [m] (z down, so negative).
+    /// Height of the wheelset centre \[m\] (z down, so negative).
     pub center_z_m: f64,
-    /// Yaw angle in the side frame [rad].
+    /// Yaw angle in the side frame \[rad\].
     pub yaw_rad: f64,
-    /// Roll angle in the side frame [rad].
+    /// Roll angle in the side frame \[rad\].
     pub roll_rad: f64,
 }
 
@@ -75,17 +75,17 @@ impl SidePose {
 /// One point of the contact locus (side frame).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LocusPoint {
-    /// Longitudinal position [m] (ahead of the axle when > 0).
+    /// Longitudinal position \[m\] (ahead of the axle when > 0).
     pub x_m: f64,
-    /// Lateral position [m].
+    /// Lateral position \[m\].
     pub q_m: f64,
-    /// Height [m].
+    /// Height \[m\].
     pub z_m: f64,
     /// Curvature of the wheel surface along its circle [1/m].
     pub kx_per_m: f64,
-    /// Rolling radius [m].
+    /// Rolling radius \[m\].
     pub radius_m: f64,
-    /// Wheel profile y of the point [m].
+    /// Wheel profile y of the point \[m\].
     pub profile_y_m: f64,
 }
 
@@ -188,13 +188,13 @@ pub fn wheel_locus(
 /// The vertical gap of one side, sampled in q.
 #[derive(Debug, Clone, Default)]
 pub struct VerticalGap {
-    /// First q [m] and spacing [m].
+    /// First q \[m\] and spacing \[m\].
     pub q0_m: f64,
-    /// Spacing [m].
+    /// Spacing \[m\].
     pub dq_m: f64,
-    /// Rail surface height per sample [m] (NaN where no rail).
+    /// Rail surface height per sample \[m\] (NaN where no rail).
     pub z_rail_m: Vec<f64>,
-    /// Locus height per sample [m] (NaN where no wheel).
+    /// Locus height per sample \[m\] (NaN where no wheel).
     pub z_wheel_m: Vec<f64>,
     /// Index of the locus point nearest below each sample.
     pub locus_index: Vec<usize>,
@@ -211,12 +211,12 @@ impl VerticalGap {
         self.z_rail_m.is_empty()
     }
 
-    /// q of sample k [m].
+    /// q of sample k \[m\].
     pub fn q_m(&self, k: usize) -> f64 {
         self.q0_m + k as f64 * self.dq_m
     }
 
-    /// Gap at sample k [m] (+inf where either body is missing).
+    /// Gap at sample k \[m\] (+inf where either body is missing).
     pub fn gap_m(&self, k: usize) -> f64 {
         let g = self.z_rail_m[k] - self.z_wheel_m[k];
         if g.is_nan() {
@@ -266,7 +266,7 @@ impl VerticalGap {
         g
     }
 
-    /// Rail surface height at `q_m` [m], linear between samples (NaN
+    /// Rail surface height at `q_m` \[m\], linear between samples (NaN
     /// outside the rail).
     pub fn rail_z_at(&self, q_m: f64) -> f64 {
         let f = (q_m - self.q0_m) / self.dq_m;
@@ -365,11 +365,11 @@ pub struct SearchScratch {
 /// with a given roll, the closer one touches).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidPosition {
-    /// Wheelset centre height [m].
+    /// Wheelset centre height \[m\].
     pub center_z_m: f64,
-    /// Roll angle [rad].
+    /// Roll angle \[rad\].
     pub roll_rad: f64,
-    /// Smallest vertical gap per side (left, right) at that position [m].
+    /// Smallest vertical gap per side (left, right) at that position \[m\].
     pub min_gap_m: [f64; 2],
 }
 
@@ -377,9 +377,9 @@ pub struct RigidPosition {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SearchSettings {
     /// Potential contact parts closer than this along q are combined into
-    /// one patch [m].
+    /// one patch \[m\].
     pub merge_distance_m: f64,
-    /// Roll iteration: tolerance on the difference of the two smallest gaps [m].
+    /// Roll iteration: tolerance on the difference of the two smallest gaps \[m\].
     pub roll_tolerance_m: f64,
 }
 
@@ -529,12 +529,12 @@ pub(crate) fn rigid_position_from(
 /// One lateral sample of a patch's undeformed distance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LateralSample {
-    /// Lateral coordinate in the tangent plane [m].
+    /// Lateral coordinate in the tangent plane \[m\].
     pub s_m: f64,
-    /// Normal distance between rail and wheel at the rigid position [m].
+    /// Normal distance between rail and wheel at the rigid position \[m\].
     pub gap_m: f64,
     /// Longitudinal position of the wheel's closest point, relative to the
-    /// reference's [m].
+    /// reference's \[m\].
     pub dx_m: f64,
     /// Wheel curvature along x [1/m].
     pub kx_per_m: f64,
@@ -543,22 +543,22 @@ pub struct LateralSample {
 /// A potential contact patch and its planar geometry (side frame).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PatchGeometry {
-    /// Reference point on the rail surface (q, z) [m].
+    /// Reference point on the rail surface (q, z) \[m\].
     pub reference_m: [f64; 2],
-    /// Longitudinal position of the reference point [m].
+    /// Longitudinal position of the reference point \[m\].
     pub x_m: f64,
     /// Contact normal, into the rail, (q, z) components.
     pub normal: [f64; 2],
-    /// Contact angle [rad]: angle of the normal from the vertical, positive
+    /// Contact angle \[rad\]: angle of the normal from the vertical, positive
     /// towards +q (rail surface facing the gauge side).
     pub contact_angle_rad: f64,
-    /// Smallest vertical gap in the patch at the rigid position [m].
+    /// Smallest vertical gap in the patch at the rigid position \[m\].
     pub min_vertical_gap_m: f64,
-    /// Rolling radius of the wheel at the reference point [m].
+    /// Rolling radius of the wheel at the reference point \[m\].
     pub rolling_radius_m: f64,
-    /// Wheel profile y of the reference point [m].
+    /// Wheel profile y of the reference point \[m\].
     pub wheel_profile_y_m: f64,
-    /// Lateral extent of the potential contact area in the tangent plane [m].
+    /// Lateral extent of the potential contact area in the tangent plane \[m\].
     pub s_range_m: [f64; 2],
     /// Undeformed distance samples, increasing s: the normal distance with
     /// the wheel moved vertically into touch at the minimum, plus the
@@ -597,7 +597,7 @@ impl PatchGeometry {
         }
     }
 
-    /// Undeformed distance at (x, s) relative to the reference [m].
+    /// Undeformed distance at (x, s) relative to the reference \[m\].
     pub fn gap_at(&self, x_m: f64, s_m: f64) -> f64 {
         let l = self.lateral_at(s_m);
         let dx = x_m - l.dx_m;

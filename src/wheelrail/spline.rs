@@ -28,7 +28,7 @@
 //!
 //! On a uniformly sampled curve the smoothing spline acts as the low-pass
 //! filter `H(k) = 1 / (1 + lambda k^4)` on wavenumber `k`. The parameter is
-//! given as the **cut-off wavelength** `l` [m] where `H = 1/2`, so
+//! given as the **cut-off wavelength** `l` \[m\] where `H = 1/2`, so
 //! `lambda = (l / 2 pi)^4` (the same definition as CONTACT's `l_filt`):
 //! undulations shorter than `l` are removed, longer ones kept (a wavelength
 //! of `2 l` keeps 94 %, `4 l` keeps 99.6 %). `l = 0` interpolates the
@@ -51,7 +51,7 @@
 //!
 //! # Arc length
 //!
-//! The spline is evaluated by the arc length `t` [m] of the *fitted* curve,
+//! The spline is evaluated by the arc length `t` \[m\] of the *fitted* curve,
 //! `t = 0` at its first point, `t = L` at its last: `t(u)` is integrated with
 //! 5-point Gauss–Legendre per interval and inverted by safeguarded Newton
 //! iteration. Beyond the ends, `t < 0` or `t > L`, the curve continues as
@@ -81,14 +81,14 @@
 
 use thiserror::Error;
 
-/// Default cut-off wavelength of the smoothing [m]: 2 mm. See the module
+/// Default cut-off wavelength of the smoothing \[m\]: 2 mm. See the module
 /// documentation for the choice.
 pub const DEFAULT_SMOOTHING_WAVELENGTH_M: f64 = 2e-3;
 
 /// Options for [`ProfileSpline::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplineOptions {
-    /// Cut-off wavelength `l` of the smoothing [m]: undulations shorter than
+    /// Cut-off wavelength `l` of the smoothing \[m\]: undulations shorter than
     /// this are filtered out. `0` interpolates the points exactly. Must be
     /// finite and `>= 0`. Default [`DEFAULT_SMOOTHING_WAVELENGTH_M`].
     pub smoothing_wavelength_m: f64,
@@ -110,7 +110,7 @@ impl SplineOptions {
         }
     }
 
-    /// Options with the given cut-off wavelength [m].
+    /// Options with the given cut-off wavelength \[m\].
     pub fn smoothing(wavelength_m: f64) -> Self {
         Self {
             smoothing_wavelength_m: wavelength_m,
@@ -132,9 +132,9 @@ pub enum SplineError {
     NotFinite {
         /// Index of the point.
         index: usize,
-        /// Its y [m].
+        /// Its y \[m\].
         y_m: f64,
-        /// Its z [m].
+        /// Its z \[m\].
         z_m: f64,
     },
     /// Two successive points coincide (or lie closer than 1e-12 times the
@@ -147,7 +147,7 @@ pub enum SplineError {
     /// The smoothing wavelength is negative or not finite.
     #[error("smoothing_wavelength_m must be finite and >= 0, got {value}")]
     InvalidSmoothing {
-        /// The offending value [m].
+        /// The offending value \[m\].
         value: f64,
     },
     /// Point weights are not one per point, or one is not finite and > 0.
@@ -168,15 +168,15 @@ pub enum SplineError {
 /// Value of the spline at one arc length, see [`ProfileSpline::eval`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SplinePoint {
-    /// Arc length along the fitted curve [m].
+    /// Arc length along the fitted curve \[m\].
     pub t_m: f64,
-    /// Lateral coordinate [m].
+    /// Lateral coordinate \[m\].
     pub y_m: f64,
-    /// Vertical coordinate, positive down [m].
+    /// Vertical coordinate, positive down \[m\].
     pub z_m: f64,
     /// Unit tangent `(dy/dt, dz/dt)` [-].
     pub tangent: [f64; 2],
-    /// Surface inclination `atan(dz/dy)`, continuous [rad]; see the module
+    /// Surface inclination `atan(dz/dy)`, continuous \[rad\]; see the module
     /// documentation.
     pub inclination_rad: f64,
     /// Signed curvature `d(theta)/dt` [1/m], positive where the curve turns
@@ -251,12 +251,12 @@ fn cubic(h: f64, g0: f64, g1: f64, c0: f64, c1: f64, du: f64) -> (f64, f64, f64)
 }
 
 impl ProfileSpline {
-    /// Fits the spline through `points` (y, z) [m], all with weight 1.
+    /// Fits the spline through `points` (y, z) \[m\], all with weight 1.
     pub fn new(points: &[[f64; 2]], options: &SplineOptions) -> Result<Self, SplineError> {
         Self::with_weights(points, None, options)
     }
 
-    /// Fits the spline through `points` (y, z) [m] with relative point
+    /// Fits the spline through `points` (y, z) \[m\] with relative point
     /// weights (one per point, finite and > 0; `None` for all 1). A larger
     /// weight pulls the smoothed curve closer to that point; weights do not
     /// matter when interpolating.
@@ -363,18 +363,18 @@ impl ProfileSpline {
         self.u.len()
     }
 
-    /// Arc length of the fitted curve at each input point [m], one per
+    /// Arc length of the fitted curve at each input point \[m\], one per
     /// point, starting at 0.
     pub fn knot_arc_lengths_m(&self) -> &[f64] {
         &self.s
     }
 
-    /// Total arc length `L` of the fitted curve [m].
+    /// Total arc length `L` of the fitted curve \[m\].
     pub fn length_m(&self) -> f64 {
         self.s[self.s.len() - 1]
     }
 
-    /// The smoothing wavelength the spline was built with [m].
+    /// The smoothing wavelength the spline was built with \[m\].
     pub fn smoothing_wavelength_m(&self) -> f64 {
         self.smoothing_wavelength_m
     }
@@ -385,7 +385,7 @@ impl ProfileSpline {
         self.direction
     }
 
-    /// Position, tangent, inclination and curvature at arc length `t` [m].
+    /// Position, tangent, inclination and curvature at arc length `t` \[m\].
     /// Outside `[0, L]` the curve continues along its end tangents.
     pub fn eval(&self, t_m: f64) -> SplinePoint {
         let len = self.length_m();
@@ -412,18 +412,18 @@ impl ProfileSpline {
         self.point_at(t_m, i, uu)
     }
 
-    /// Position (y, z) at arc length `t` [m].
+    /// Position (y, z) at arc length `t` \[m\].
     pub fn position(&self, t_m: f64) -> [f64; 2] {
         let p = self.eval(t_m);
         [p.y_m, p.z_m]
     }
 
-    /// Unit tangent (dy/dt, dz/dt) at arc length `t` [m].
+    /// Unit tangent (dy/dt, dz/dt) at arc length `t` \[m\].
     pub fn tangent(&self, t_m: f64) -> [f64; 2] {
         self.eval(t_m).tangent
     }
 
-    /// Surface inclination `atan(dz/dy)` at arc length `t` [rad],
+    /// Surface inclination `atan(dz/dy)` at arc length `t` \[rad\],
     /// continuous along the profile (see the module documentation).
     pub fn inclination_rad(&self, t_m: f64) -> f64 {
         self.eval(t_m).inclination_rad
@@ -435,8 +435,8 @@ impl ProfileSpline {
         self.eval(t_m).curvature_per_m
     }
 
-    /// Arc length [m] of the point of the surface at lateral position `y`
-    /// [m] that faces the opposite body, or `None` if the profile does not
+    /// Arc length \[m\] of the point of the surface at lateral position `y`
+    /// \[m\] that faces the opposite body, or `None` if the profile does not
     /// reach `y`.
     ///
     /// Only parts of the curve that run in the profile's overall direction
@@ -451,14 +451,14 @@ impl ProfileSpline {
         self.locate_y(y_m).map(|(t, _)| t)
     }
 
-    /// Height z [m] of the surface at lateral position `y` [m], chosen as
+    /// Height z \[m\] of the surface at lateral position `y` \[m\], chosen as
     /// in [`ProfileSpline::t_at_y`]; `None` if the profile does not reach
     /// `y`.
     pub fn z_at_y(&self, y_m: f64) -> Option<f64> {
         self.locate_y(y_m).map(|(_, z)| z)
     }
 
-    /// Lateral range (min y, max y) of the fitted curve [m], taken from its
+    /// Lateral range (min y, max y) of the fitted curve \[m\], taken from its
     /// samples (four per interval).
     pub fn y_range_m(&self) -> (f64, f64) {
         let mut lo = f64::INFINITY;

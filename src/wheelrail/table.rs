@@ -97,32 +97,32 @@ use crate::wheelrail::wheelset::{
 };
 
 /// Potential contacts are the minima of the vertical gap up to this far
-/// above a node's smallest gap [m]: far beyond the approach of any wheel
+/// above a node's smallest gap \[m\]: far beyond the approach of any wheel
 /// load (about 0.1 mm at 100 kN on S1002/UIC60).
 pub const CONTACT_LEVEL_M: f64 = 2.0e-3;
 
 /// Minima of the vertical gap whose barrier to a neighbour is lower than
-/// this are one contact [m].
+/// this are one contact \[m\].
 pub const PROMINENCE_M: f64 = 1.0e-7;
 
 /// Largest distance along the wheel profile between the matched contacts
-/// of neighbouring nodes [m].
+/// of neighbouring nodes \[m\].
 pub const MATCH_DISTANCE_M: f64 = 2.0e-3;
 
 /// Half-span of the second difference for the lateral curvature B, along
-/// the wheel profile [m]: that of the direct path (10 lateral samples).
+/// the wheel profile \[m\]: that of the direct path (10 lateral samples).
 pub const CURVATURE_SPAN_M: f64 = 10.0 * SAMPLE_SPACING_M;
 
 /// Grid of a contact table (track frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TableSettings {
-    /// Smallest and largest lateral shift [m].
+    /// Smallest and largest lateral shift \[m\].
     pub lateral_range_m: [f64; 2],
-    /// Lateral step [m].
+    /// Lateral step \[m\].
     pub lateral_step_m: f64,
-    /// Smallest and largest roll angle [rad].
+    /// Smallest and largest roll angle \[rad\].
     pub roll_range_rad: [f64; 2],
-    /// Roll step [rad].
+    /// Roll step \[rad\].
     pub roll_step_rad: f64,
 }
 
@@ -333,7 +333,7 @@ impl ContactTable {
         &self.settings
     }
 
-    /// Time the build took [s].
+    /// Time the build took \[s\].
     pub fn build_time_s(&self) -> f64 {
         self.build_s
     }

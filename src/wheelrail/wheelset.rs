@@ -147,11 +147,11 @@ impl Side {
 /// Track data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrackData {
-    /// Track gauge between the gauge faces [m].
+    /// Track gauge between the gauge faces \[m\].
     pub gauge_m: f64,
-    /// Depth below the top of the rail at which the gauge is measured [m].
+    /// Depth below the top of the rail at which the gauge is measured \[m\].
     pub gauge_height_m: f64,
-    /// Rail inclination towards the track centre [rad] (1:40 is 0.025),
+    /// Rail inclination towards the track centre \[rad\] (1:40 is 0.025),
     /// applied to the rail profile as given; 0 for profiles already
     /// inclined, like `MBench_UIC60_v3.prr`.
     pub cant_rad: f64,
@@ -160,11 +160,11 @@ pub struct TrackData {
 /// Wheelset data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelsetData {
-    /// Distance between the backs of the two flanges [m].
+    /// Distance between the backs of the two flanges \[m\].
     pub flange_back_distance_m: f64,
-    /// Rolling radius at the wheel profile's z = 0 [m].
+    /// Rolling radius at the wheel profile's z = 0 \[m\].
     pub nominal_radius_m: f64,
-    /// Profile y of the back of the flange [m]; `None` for the profile's
+    /// Profile y of the back of the flange \[m\]; `None` for the profile's
     /// smallest y.
     pub flange_back_y_m: Option<f64>,
 }
@@ -173,11 +173,11 @@ pub struct WheelsetData {
 /// outward unit normal (pointing away from the body's material).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CurveSample {
-    /// Arc length along the fitted profile [m].
+    /// Arc length along the fitted profile \[m\].
     pub t_m: f64,
-    /// Lateral coordinate [m].
+    /// Lateral coordinate \[m\].
     pub q_m: f64,
-    /// Vertical coordinate, down [m].
+    /// Vertical coordinate, down \[m\].
     pub z_m: f64,
     /// Unit tangent in CONTACT point order (dq/dt, dz/dt).
     pub tangent: [f64; 2],
@@ -193,7 +193,7 @@ impl CurveSample {
     }
 }
 
-/// Spacing of the dense profile samples used by the contact search [m].
+/// Spacing of the dense profile samples used by the contact search \[m\].
 pub const SAMPLE_SPACING_M: f64 = 5.0e-5;
 
 fn sample(spline: &ProfileSpline, map: impl Fn(f64, f64) -> [f64; 2]) -> Vec<CurveSample> {
@@ -266,7 +266,7 @@ pub struct PlacedWheel {
 }
 
 impl PlacedWheel {
-    /// Axial coordinate of profile y = 0 [m] (the tape circle for S1002).
+    /// Axial coordinate of profile y = 0 \[m\] (the tape circle for S1002).
     pub fn axial_offset_m(&self) -> f64 {
         self.axial_offset_m
     }
@@ -453,11 +453,11 @@ fn place_wheel(
 /// Wheelset position relative to the track (see the module conventions).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct WheelsetPosition {
-    /// Lateral displacement of the centre [m].
+    /// Lateral displacement of the centre \[m\].
     pub lateral_m: f64,
-    /// Yaw angle [rad].
+    /// Yaw angle \[rad\].
     pub yaw_rad: f64,
-    /// Roll angle [rad]; `None` to find it from the profiles (both wheels
+    /// Roll angle \[rad\]; `None` to find it from the profiles (both wheels
     /// touching their rails).
     pub roll_rad: Option<f64>,
 }
