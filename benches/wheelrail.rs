@@ -2,8 +2,10 @@
 //! at the Manchester benchmark settings (A-2.2: S1002/UIC60, 10 kN per
 //! wheel, 0.2 mm elements): tread contact (2 mm), two-point contact (5 mm),
 //! flange contact (6.5 mm, 10 mm), with the planar exact model and with
-//! Hertz+FASTSIM, direct and with contact tables. Kernels are cached (a long-running service's steady
-//! state). See benches/README.md; run with `cargo bench --bench wheelrail`.
+//! Hertz+FASTSIM, direct and with contact tables; and a co-simulation's
+//! exact steps along a smooth path, with and without the tangential
+//! tractions carried from step to step. Kernels are cached (a long-running
+//! service's steady state). See benches/README.md; run with `cargo bench --bench wheelrail`.
 
 use std::hint::black_box;
 
@@ -12,8 +14,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use railcontact::core::cache::KernelCache;
 use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    solve_wheelset, solve_wheelset_tabulated, ContactTable, LoadOptions, SearchScratch,
-    SplineOptions, TableSettings, WheelRailModel, WheelRailPair,
+    solve_wheelset, solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, LoadOptions,
+    SearchScratch, SplineOptions, TableSettings, WarmStart, WheelRailModel, WheelRailPair,
 };
 
 fn pair() -> WheelRailPair {
@@ -80,6 +82,52 @@ fn wheelset_step(c: &mut Criterion) {
         }
         g.finish();
     }
+    // A co-simulation's steps with the exact model: the lateral shift along
+    // a smooth path (2 mm + 0.05 mm sin(2 pi k / 100), tread contact), each
+    // step from the previous one's warm start (roll, load, and the
+    // tangential tractions), against the same without the tractions.
+    let path: Vec<_> = (0..100)
+        .map(|k| {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / 100.0;
+            let (_, roll, pitch) = SHIFTS[0];
+            mbench_a22_input(
+                2.0 + 0.05 * a.sin(),
+                Some(roll),
+                Some(pitch),
+                WheelRailModel::Exact,
+            )
+        })
+        .collect();
+    let mut g = c.benchmark_group("wheelset_path_exact");
+    g.sample_size(20);
+    for carry in [true, false] {
+        let mut warm = WarmStart::default();
+        let mut k = 0;
+        let id = if carry {
+            "tractions_carried"
+        } else {
+            "tractions_dropped"
+        };
+        g.bench_function(id, |b| {
+            b.iter(|| {
+                k += 1;
+                if !carry {
+                    warm.tractions = Default::default();
+                }
+                black_box(
+                    solve_wheelset_warm(
+                        &pair,
+                        &path[k % path.len()],
+                        &cache,
+                        &mut scratch,
+                        &mut warm,
+                    )
+                    .unwrap(),
+                )
+            })
+        });
+    }
+    g.finish();
     // The fast path with contact tables (built once, as the service does at
     // pair registration).
     let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();

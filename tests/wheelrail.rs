@@ -7,9 +7,10 @@ use railcontact::core::cache::KernelCache;
 use railcontact::core::solution::SolveStatus;
 use railcontact::wheelrail::builtin::mbench_a22_input;
 use railcontact::wheelrail::{
-    load_profile, solve_wheelset, solve_wheelset_tabulated, ContactTable, PatchResult,
-    SearchScratch, Side, SplineOptions, TableSettings, TrackData, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
+    load_profile, solve_wheelset, solve_wheelset_tabulated, solve_wheelset_warm, ContactTable,
+    PatchResult, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelsetData,
 };
 
 fn path(name: &str) -> String {
@@ -162,6 +163,47 @@ fn right_wheel_at_5mm(model: WheelRailModel) -> WheelRailSolution {
 /// At 5 mm the right wheel touches at the flange root and on the tread, 8 mm
 /// apart; CONTACT reports the two regions together: FN 9619, FX -763.3, FS
 /// -2738 N (mbench_a22_right.ref_out, case 11).
+#[test]
+fn exact_time_steps_start_from_the_last_steps_tractions() {
+    // A smooth path of lateral shifts in tread contact (one patch a wheel,
+    // the grid's shape unchanged): each step's first frictional solve
+    // starts from the previous step's tractions (WarmStart::tractions),
+    // and ends at the same solution, to the load tolerance (1e-6 of the
+    // load, WheelRailSettings), as a start without them. (What it saves is
+    // in the bench wheelset_path_exact.)
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let (mut carried, mut dropped) = (WarmStart::default(), WarmStart::default());
+    let (mut s1, mut s2) = (SearchScratch::default(), SearchScratch::default());
+    for k in 0..10 {
+        let y = 2.0 + 0.05 * (0.5 * k as f64).sin();
+        let input = a22_input(y, None, None, WheelRailModel::Exact);
+        dropped.tractions = Default::default();
+        let a = solve_wheelset_warm(&pair, &input, &cache, &mut s1, &mut carried).unwrap();
+        let b = solve_wheelset_warm(&pair, &input, &cache, &mut s2, &mut dropped).unwrap();
+        for (w, t) in a.wheels.iter().zip(&carried.tractions) {
+            let t = t
+                .as_ref()
+                .expect("a single exact patch carries its tractions");
+            assert_eq!(Some(t.grid), w.patches[0].grid_geometry, "step {k}");
+        }
+        for (wa, wb) in a.wheels.iter().zip(&b.wheels) {
+            assert_eq!(wa.patches.len(), 1);
+            let (pa, pb) = (&wa.patches[0], &wb.patches[0]);
+            for (what, x, y) in [
+                ("fx", pa.fx_n, pb.fx_n),
+                ("fs", pa.fs_n, pb.fs_n),
+                ("fn", pa.normal_force_n, pb.normal_force_n),
+            ] {
+                assert!(
+                    (x - y).abs() <= 2e-6 * 10_000.0,
+                    "step {k} {what}: {x} vs {y}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn a22_two_point_contact_at_5mm() {
     let sol = right_wheel_at_5mm(WheelRailModel::Exact);

@@ -133,6 +133,28 @@ impl ContactSolver {
         Ok(())
     }
 
+    /// Makes (`px`, `py`) \[Pa\] the tangential tractions the next
+    /// frictional solve starts from (the pressures are kept): for a caller
+    /// that carries them over from a solve on another solver of the same
+    /// grid, as a wheel/rail session does from one time step to the next.
+    /// One finite value per element each. A frictionless solve in between
+    /// clears them.
+    pub fn set_traction_warm_start(&mut self, px: &[f64], py: &[f64]) -> Result<(), ContactError> {
+        let n = self.tr.px.len();
+        for (key, v) in [("traction_x_pa", px), ("traction_y_pa", py)] {
+            if v.len() != n || v.iter().any(|p| !p.is_finite()) {
+                return Err(ContactError::invalid(
+                    key,
+                    format!("needs {n} finite values, one per element, got {}", v.len()),
+                ));
+            }
+        }
+        self.tr.px.copy_from_slice(px);
+        self.tr.py.copy_from_slice(py);
+        self.path.clear();
+        Ok(())
+    }
+
     /// Forgets the warm start.
     pub fn reset(&mut self) {
         for v in [&mut self.pn, &mut self.tr.px, &mut self.tr.py] {

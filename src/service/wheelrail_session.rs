@@ -4,7 +4,8 @@
 //! The session holds its prepared pair (kept alive even if the pair is
 //! deleted meanwhile), the settings of its opening message, a search
 //! scratch and the warm start of the previous step ([`WarmStart`]: roll
-//! angle and each wheel's normal force per vertical load). It shares no
+//! angle, each wheel's normal force per vertical load, and a single exact
+//! patch's tangential tractions). It shares no
 //! mutable state with other sessions, so its outputs depend only on its own
 //! sequence of requests. A marked step keeps a copy of the warm start after
 //! it; a rollback restores it, so repeating the steps after the mark
@@ -125,7 +126,7 @@ impl WheelRailSession {
         &mut self,
         step: WheelRailStep,
     ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
-        let mut warm = self.warm;
+        let mut warm = self.warm.clone();
         let cache = KernelCache::global();
         let solution = match &self.table {
             // Tabulated geometry needs no warm start.
@@ -146,8 +147,8 @@ impl WheelRailSession {
         let mut result = wheelrail::result(self.pair_id(), self.model(), &solution, self.fields)
             .map_err(|e| e.within("step"))?;
         result.model = self.wire_model() as i32;
+        self.marks.done(step.index, step.mark, || warm.clone());
         self.warm = warm;
-        self.marks.done(step.index, step.mark, || warm);
         Ok(pb::WheelRailSessionStepResult {
             step_index: step.index,
             time_s: step.time_s,

@@ -314,6 +314,9 @@ pub(crate) struct PatchWork {
     hmin: f64,
     kind: PatchKind,
     out: PatchOutcome,
+    /// Tangential tractions \[Pa\] on this patch's grid from the previous
+    /// time step, for the first frictional solve (exact patches).
+    warm_tractions: Option<[Vec<f64>; 2]>,
 }
 
 // One per patch and few patches per wheel: the size of the exact variant
@@ -382,6 +385,11 @@ impl PatchWork {
         }
         match &mut self.kind {
             PatchKind::Exact { problem, solver } => {
+                if frictional {
+                    if let Some([px, py]) = self.warm_tractions.take() {
+                        solver.set_traction_warm_start(&px, &py)?;
+                    }
+                }
                 problem.load = load;
                 problem.kinematics = if frictional {
                     Kinematics::SteadyRolling(self.creep)
@@ -599,7 +607,7 @@ pub fn solve_wheelset(
 /// start converges to the same tolerances as a cold one (to within them,
 /// not bit for bit), and the same sequence of solves from the same warm
 /// start gives the same bits.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct WarmStart {
     /// Roll angle of the previous step \[rad\]: the roll search starts there
     /// (positions that leave the roll free).
@@ -607,6 +615,54 @@ pub struct WarmStart {
     /// Per wheel (`Side::index()`): the previous single-patch solve's normal
     /// force per vertical load [-], the load iteration's first normal force.
     pub normal_per_vertical: [Option<f64>; 2],
+    /// Per wheel: the previous single-patch exact solve's tangential
+    /// tractions, the first frictional solve's start when this step's patch
+    /// has a grid of the same shape and element size (shifted by whole
+    /// elements to the same place).
+    pub tractions: [Option<PatchTractions>; 2],
+}
+
+/// Tangential tractions on a patch grid (see [`WarmStart::tractions`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchTractions {
+    /// The grid they are on.
+    pub grid: Grid,
+    /// Longitudinal and lateral traction per element \[Pa\].
+    pub traction_pa: [Vec<f64>; 2],
+}
+
+impl PatchTractions {
+    /// These tractions on `grid`: None unless it has the same shape and
+    /// element size; shifted by the whole elements between the two grids'
+    /// corners (zero where they do not overlap).
+    fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 2]> {
+        let old = &self.grid;
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
+        if old.nx != grid.nx
+            || old.ny != grid.ny
+            || !same(old.dx_m, grid.dx_m)
+            || !same(old.dy_m, grid.dy_m)
+        {
+            return None;
+        }
+        // Element (ix, iy) of `grid` is element (ix + sx, iy + sy) of `old`.
+        let sx = ((grid.x0_m - old.x0_m) / grid.dx_m).round() as i64;
+        let sy = ((grid.y0_m - old.y0_m) / grid.dy_m).round() as i64;
+        let (nx, ny) = (grid.nx as i64, grid.ny as i64);
+        let mut out = [vec![0.0; grid.len()], vec![0.0; grid.len()]];
+        for iy in 0..ny {
+            for ix in 0..nx {
+                let (ox, oy) = (ix + sx, iy + sy);
+                if (0..nx).contains(&ox) && (0..ny).contains(&oy) {
+                    let (i, o) = ((iy * nx + ix) as usize, (oy * nx + ox) as usize);
+                    for (to, from) in out.iter_mut().zip(&self.traction_pa) {
+                        to[i] = from[o];
+                    }
+                }
+            }
+        }
+        Some(out)
+    }
 }
 
 /// [`solve_wheelset`] from a warm start, which it updates with this
@@ -636,13 +692,12 @@ pub fn solve_wheelset_warm(
     let input = &*resolved;
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
-    let mut next = WarmStart {
-        roll_rad: Some(rigid.roll_rad),
-        ..*warm
-    };
+    let mut normal_per_vertical = warm.normal_per_vertical;
+    let mut tractions: [Option<PatchTractions>; 2] = Default::default();
+    let mut solved = [false; 2];
     for &side in &input.sides {
         let i = side.index();
-        let (wheel, ratio) = solve_wheel(
+        let (wheel, ratio, carried) = solve_wheel(
             pair,
             input,
             &rigid,
@@ -652,11 +707,23 @@ pub fn solve_wheelset_warm(
             scratch,
             &mut timing,
             warm.normal_per_vertical[i],
+            warm.tractions[i].as_ref(),
         )?;
-        next.normal_per_vertical[i] = ratio;
+        normal_per_vertical[i] = ratio;
+        tractions[i] = carried;
+        solved[i] = true;
         wheels.push(wheel);
     }
-    *warm = next;
+    for i in 0..2 {
+        if !solved[i] {
+            tractions[i] = warm.tractions[i].clone();
+        }
+    }
+    *warm = WarmStart {
+        roll_rad: Some(rigid.roll_rad),
+        normal_per_vertical,
+        tractions,
+    };
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
@@ -772,7 +839,8 @@ fn solve_wheel(
     scratch: &mut SearchScratch,
     timing: &mut Timing,
     start: Option<f64>,
-) -> Result<(WheelResult, Option<f64>), WheelRailError> {
+    warm_tractions: Option<&PatchTractions>,
+) -> Result<(WheelResult, Option<f64>, Option<PatchTractions>), WheelRailError> {
     let i = side.index();
     let gap = &scratch.gap[i];
     let locus = &scratch.locus[i];
@@ -792,7 +860,7 @@ fn solve_wheel(
         // Not reaching the rail (a centre height above the rigid one, or a
         // wheel lifted by a given roll): nothing to solve.
         WheelLoad::Approach(d) if d <= gmin => {
-            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None))
+            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None, None))
         }
         WheelLoad::Approach(d) => gmin + d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_warm"),
@@ -818,6 +886,11 @@ fn solve_wheel(
                 side: side.name(),
                 message: "no potential contact found".into(),
             });
+        }
+        if let ([p], Some(t)) = (patches.as_mut_slice(), warm_tractions) {
+            if let PatchKind::Exact { problem, .. } = &p.kind {
+                p.warm_tractions = t.on(&problem.grid);
+            }
         }
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
@@ -878,7 +951,7 @@ fn solve_wheel(
                         if let LoadResult::Done { delta, iterations } = r {
                             let ratio = normal_per_vertical(&patches, input);
                             let wheel = finish(pair, side, gmin, delta, iterations, patches);
-                            return Ok((wheel, ratio));
+                            return Ok((wheel, ratio, None));
                         }
                         return Err(WheelRailError::Geometry {
                             side: side.name(),
@@ -887,8 +960,9 @@ fn solve_wheel(
                     }
                 }
                 let ratio = normal_per_vertical(&patches, input);
+                let carried = carried_tractions(&patches);
                 let wheel = finish(pair, side, gmin, delta, iterations, patches);
-                return Ok((wheel, ratio));
+                return Ok((wheel, ratio, carried));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
                 cap = gmin + 2.0 * (cap - gmin);
@@ -904,6 +978,19 @@ fn solve_wheel(
             "the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
             (cap - gmin) * 1e3
         ),
+    })
+}
+
+/// The tractions a single exact patch hands to the next time step.
+fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
+    let [p] = patches else { return None };
+    let PatchKind::Exact { problem, .. } = &p.kind else {
+        return None;
+    };
+    let f = &p.out.solution.as_ref()?.fields;
+    Some(PatchTractions {
+        grid: problem.grid,
+        traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
     })
 }
 
@@ -972,6 +1059,7 @@ fn build_patch(
         hmin,
         kind,
         out: PatchOutcome::default(),
+        warm_tractions: None,
     })
 }
 
@@ -1009,6 +1097,7 @@ pub(crate) fn hertz_patch(
         kind: hertz_kind(kx, b),
         geom,
         out: PatchOutcome::default(),
+        warm_tractions: None,
     }
 }
 
@@ -1614,5 +1703,46 @@ pub(crate) fn finish(
         patches: out,
         force_track_n: total,
         load_iterations: iterations,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tractions move with the grid by whole elements, and only to a grid
+    /// of the same shape and element size.
+    #[test]
+    fn carried_tractions_shift_with_the_grid() {
+        let e = 2e-4;
+        let old = Grid::new(4, 4, e, e, 0.0, 0.0).unwrap();
+        let t = PatchTractions {
+            grid: old,
+            traction_pa: [
+                (0..16).map(|i| i as f64).collect(),
+                (0..16).map(|i| -(i as f64)).collect(),
+            ],
+        };
+        assert_eq!(t.on(&old).unwrap(), t.traction_pa);
+        // One element further in x and 0.4 of one in y: element (ix, iy)
+        // is the old (ix + 1, iy); the last column has no old element.
+        let moved = Grid::new(4, 4, e, e, e, 0.4 * e).unwrap();
+        let [px, py] = t.on(&moved).unwrap();
+        for iy in 0..4 {
+            for ix in 0..4 {
+                let want = if ix < 3 {
+                    (4 * iy + ix + 1) as f64
+                } else {
+                    0.0
+                };
+                assert_eq!((px[4 * iy + ix], py[4 * iy + ix]), (want, -want));
+            }
+        }
+        for other in [
+            Grid::new(5, 4, e, e, 0.0, 0.0).unwrap(),
+            Grid::new(4, 4, 1.5 * e, e, 0.0, 0.0).unwrap(),
+        ] {
+            assert!(t.on(&other).is_none());
+        }
     }
 }

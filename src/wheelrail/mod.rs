@@ -71,8 +71,8 @@ pub mod table;
 pub mod wheelset;
 
 pub use contact::{
-    solve_wheelset, solve_wheelset_warm, PatchResult, WarmStart, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
+    solve_wheelset, solve_wheelset_warm, PatchResult, PatchTractions, WarmStart, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,

@@ -207,8 +207,9 @@ class ContactServiceServicer:
         """A co-simulation session on a wheelset: the first request opens it on a
         registered pair (WheelRailSessionOpen); then one step per time step
         (wheelset position, velocity and load), each answered by one response
-        with all patches and totals. The session keeps warm starts (roll angle
-        and each wheel's approach of the previous step), so a slowly moving
+        with all patches and totals. The session keeps warm starts (roll angle,
+        each wheel's approach of the previous step, and with the exact model a
+        single patch's tangential tractions), so a slowly moving
         wheelset costs fewer iterations than independent SolveWheelRail calls.
         Steps must come in order; a client can mark steps and roll back to a
         marked one (the warm starts go back with it). The same sequence of
