@@ -300,7 +300,7 @@ pub fn solve_frictional(
     let mut b_op = steady.then(|| {
         ConformalOperator::reusing(
             workspace.b_op.take(),
-            cache.get(&grid, material, KernelKind::SteadyRolling),
+            cache.get_sharing_inverse(&grid, material, KernelKind::SteadyRolling, a_op.kernels()),
             model,
             &geometry.delta_rad,
         )

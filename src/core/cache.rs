@@ -140,6 +140,30 @@ impl KernelCache {
         material: &CombinedMaterial,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
+        self.get_with(grid, material, kind, None)
+    }
+
+    /// [`KernelCache::get`] for a caller that holds the other kind's set of
+    /// the same grid and materials: a miss takes the tangential inverse,
+    /// the same for both kinds, from `other`
+    /// ([`KernelSet::sharing_inverse_of`]) instead of building it again.
+    pub fn get_sharing_inverse(
+        &self,
+        grid: &Grid,
+        material: &CombinedMaterial,
+        kind: KernelKind,
+        other: &KernelSet,
+    ) -> Arc<KernelSet> {
+        self.get_with(grid, material, kind, Some(other))
+    }
+
+    fn get_with(
+        &self,
+        grid: &Grid,
+        material: &CombinedMaterial,
+        kind: KernelKind,
+        other: Option<&KernelSet>,
+    ) -> Arc<KernelSet> {
         let key = Key {
             nx: grid.nx,
             ny: grid.ny,
@@ -179,11 +203,11 @@ impl KernelCache {
         let set = cell
             .get_or_init(|| {
                 built = true;
-                Arc::new(KernelSet::new(
-                    plan,
-                    HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material),
-                    kind,
-                ))
+                let influence = HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material);
+                Arc::new(match other {
+                    Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
+                    None => KernelSet::new(plan, influence, kind),
+                })
             })
             .clone();
         if !built {
