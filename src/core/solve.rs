@@ -64,6 +64,18 @@ pub struct ContactSolver {
     path: WarmPath,
 }
 
+/// A warm start's field `v`, named `key`, must hold one finite value per
+/// element (`n`).
+fn per_element(key: &str, v: &[f64], n: usize) -> Result<(), ContactError> {
+    if v.len() != n || v.iter().any(|p| !p.is_finite()) {
+        return Err(ContactError::invalid(
+            key,
+            format!("needs {n} finite values, one per element, got {}", v.len()),
+        ));
+    }
+    Ok(())
+}
+
 impl ContactSolver {
     /// A solver for `problem`'s grid and materials, with kernels from `cache`.
     pub fn new(problem: &ContactProblem, cache: &KernelCache) -> Self {
@@ -118,16 +130,7 @@ impl ContactSolver {
     /// problem by other means, as the wheel/rail load iteration does for
     /// several patches at once. `pn` must have one value per element.
     pub fn set_pressure_warm_start(&mut self, pn: &[f64]) -> Result<(), ContactError> {
-        if pn.len() != self.pn.len() || pn.iter().any(|p| !p.is_finite()) {
-            return Err(ContactError::invalid(
-                "pressure_pa",
-                format!(
-                    "needs {} finite values, one per element, got {}",
-                    self.pn.len(),
-                    pn.len()
-                ),
-            ));
-        }
+        per_element("pressure_pa", pn, self.pn.len())?;
         self.pn.copy_from_slice(pn);
         self.path.clear();
         Ok(())
@@ -140,15 +143,8 @@ impl ContactSolver {
     /// One finite value per element each. A frictionless solve in between
     /// clears them.
     pub fn set_traction_warm_start(&mut self, px: &[f64], py: &[f64]) -> Result<(), ContactError> {
-        let n = self.tr.px.len();
-        for (key, v) in [("traction_x_pa", px), ("traction_y_pa", py)] {
-            if v.len() != n || v.iter().any(|p| !p.is_finite()) {
-                return Err(ContactError::invalid(
-                    key,
-                    format!("needs {n} finite values, one per element, got {}", v.len()),
-                ));
-            }
-        }
+        per_element("traction_x_pa", px, self.tr.px.len())?;
+        per_element("traction_y_pa", py, self.tr.py.len())?;
         self.tr.px.copy_from_slice(px);
         self.tr.py.copy_from_slice(py);
         self.path.clear();

@@ -693,8 +693,14 @@ pub fn solve_wheelset_warm(
     let omega = pitch_rate(pair, input);
     let mut wheels = Vec::new();
     let mut normal_per_vertical = warm.normal_per_vertical;
-    let mut tractions: [Option<PatchTractions>; 2] = Default::default();
-    let mut solved = [false; 2];
+    // A wheel left out of this step keeps its tractions.
+    let mut tractions: [Option<PatchTractions>; 2] = std::array::from_fn(|i| {
+        if input.sides.iter().any(|s| s.index() == i) {
+            None
+        } else {
+            warm.tractions[i].clone()
+        }
+    });
     for &side in &input.sides {
         let i = side.index();
         let (wheel, ratio, carried) = solve_wheel(
@@ -711,13 +717,7 @@ pub fn solve_wheelset_warm(
         )?;
         normal_per_vertical[i] = ratio;
         tractions[i] = carried;
-        solved[i] = true;
         wheels.push(wheel);
-    }
-    for i in 0..2 {
-        if !solved[i] {
-            tractions[i] = warm.tractions[i].clone();
-        }
     }
     *warm = WarmStart {
         roll_rad: Some(rigid.roll_rad),
