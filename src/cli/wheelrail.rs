@@ -179,7 +179,9 @@ impl From<WheelRailError> for CliError {
             WheelRailError::Invalid { .. }
             | WheelRailError::Spline { .. }
             | WheelRailError::Geometry { .. } => CliError::BadInput(e.to_string()),
-            WheelRailError::Contact { .. } => CliError::Failure(e.to_string()),
+            WheelRailError::Contact { .. } | WheelRailError::Cancelled => {
+                CliError::Failure(e.to_string())
+            }
         }
     }
 }

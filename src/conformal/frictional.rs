@@ -33,6 +33,7 @@ use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry};
 use crate::conformal::operator::{ConformalOperator, InfluenceModel, Tractions};
 use crate::conformal::solve::border_error;
 use crate::core::cache::KernelCache;
+use crate::core::cancel;
 use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::Precision;
@@ -395,6 +396,7 @@ pub fn solve_frictional(
         // the last change, on Cases 1 and 2 from 20 to 162 kN.
         let mut monitor = CouplingMonitor::default();
         for c in 0..settings.coupling_max_iterations.max(1) {
+            cancel::check()?;
             coupling = c + 1;
             let expected = monitor.change() * monitor.contraction();
             let normal_settings = NormalSettings {
@@ -554,6 +556,8 @@ fn finish(
     tangential_iterations: usize,
     status: SolveStatus,
 ) -> Result<ConformalSolution, ContactError> {
+    // The loops stop early once cancelled: no answer then.
+    cancel::check()?;
     let grid = geometry.grid;
     let area = grid.element_area_m2();
     let w = &geometry.approach_weight;

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use crate::conformal::geometry::ConformalGeometry;
 use crate::conformal::operator::{ConformalOperator, InfluenceModel};
 use crate::core::cache::KernelCache;
+use crate::core::cancel;
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad, HertzSolution};
 use crate::core::influence::KernelKind;
@@ -83,6 +84,7 @@ pub fn solve_frictionless(
         &mut scratch,
         settings,
     );
+    cancel::check()?;
     let (mut force, mut pmax, mut count) = (0.0, 0.0f64, 0usize);
     for iy in 0..grid.ny {
         for ix in 0..grid.nx {

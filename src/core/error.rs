@@ -23,6 +23,10 @@ pub enum ContactError {
     /// A reference model (Hertz, FASTSIM, creep table) rejected its input.
     #[error("{0}")]
     Reference(String),
+    /// The caller cancelled the solve before it finished (see
+    /// [`crate::core::cancel`]); there is no answer.
+    #[error("the solve was cancelled before it finished")]
+    Cancelled,
 }
 
 impl ContactError {

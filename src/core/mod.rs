@@ -3,6 +3,7 @@
 //! its results.
 
 pub mod cache;
+pub mod cancel;
 pub mod coupling;
 pub mod creep;
 pub mod error;

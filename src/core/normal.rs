@@ -14,6 +14,7 @@
 //! change of the pressures in one iteration, sum|p - p_old| / sum p, drops
 //! below `tolerance` (default 1e-10).
 
+use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::influence::{Component, KernelKind};
 use crate::core::simd::multiversion;
@@ -345,6 +346,9 @@ fn solve_normal_body(
         }
     };
     for it in 0..settings.max_iterations {
+        if cancel::requested() {
+            break;
+        }
         iterations = it + 1;
         if !u_valid || since_refresh >= REFRESH {
             op.apply_normal(pn, u);
@@ -629,6 +633,75 @@ mod tests {
         fn diagonal(&self) -> f64 {
             self.0[(0, 0)]
         }
+    }
+
+    /// An operator that cancels its thread's solve after `left` products.
+    struct CancelAfter {
+        inner: Dense,
+        left: usize,
+    }
+
+    impl NormalOperator for CancelAfter {
+        fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
+            self.left = self.left.saturating_sub(1);
+            if self.left == 0 {
+                crate::core::cancel::CancelToken::current()
+                    .expect("a token")
+                    .cancel();
+            }
+            self.inner.apply_normal(p, out)
+        }
+
+        fn diagonal(&self) -> f64 {
+            self.inner.diagonal()
+        }
+    }
+
+    #[test]
+    fn a_cancelled_solve_stops_at_its_next_iteration() {
+        let n = 16;
+        let mat = CombinedMaterial::identical(Material::STEEL).unwrap();
+        let dx = 1e-4;
+        let set = KernelSet::new(
+            Arc::new(ConvolutionPlan::new(n, n)),
+            HalfSpaceInfluence::new(dx, dx, &mat),
+            KernelKind::Displacement,
+        );
+        let h: Vec<f64> = (0..n * n)
+            .map(|i| {
+                let x = ((i % n) as f64 - 7.5) * dx;
+                let y = ((i / n) as f64 - 7.5) * dx;
+                0.5 * (x * x + y * y)
+            })
+            .collect();
+        let run = |left: usize| {
+            let mut op = CancelAfter {
+                inner: Dense(dense_matrix(&set, &[Component::N])),
+                left,
+            };
+            let mut p = vec![0.0; n * n];
+            let token = crate::core::cancel::CancelToken::new();
+            token.scope(|| {
+                solve_normal_with(
+                    &mut op,
+                    &h,
+                    None,
+                    dx * dx,
+                    NormalLoad::NormalForce(100.0),
+                    &mut p,
+                    &mut NormalScratch::new(n * n),
+                    &NormalSettings::default(),
+                )
+            })
+        };
+        let whole = run(usize::MAX);
+        assert!(whole.converged);
+        assert!(whole.iterations > 3, "{} iterations", whole.iterations);
+        // Cancelled at the second product: the iteration that made it ends,
+        // the next one does not start.
+        let cut = run(2);
+        assert!(!cut.converged);
+        assert!(cut.iterations <= 2, "{} iterations", cut.iterations);
     }
 
     /// The normal problem of a paraboloid h = x²/(2 rx) + y²/(2 ry) on an

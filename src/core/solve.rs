@@ -6,6 +6,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use crate::core::cache::KernelCache;
+use crate::core::cancel;
 use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
@@ -338,6 +339,7 @@ impl ContactSolver {
         };
         let mut monitor = CouplingMonitor::default();
         for c in 0..cmax {
+            cancel::check()?;
             info.coupling_iterations = c + 1;
             self.last_pn.copy_from_slice(&self.pn);
             self.last_px.copy_from_slice(&self.tr.px);
@@ -531,6 +533,8 @@ impl ContactSolver {
                 info.status = SolveStatus::MaxIterations;
             }
         }
+        // The loops above stop early once cancelled: no answer then.
+        cancel::check()?;
         if !(normal_ok && tangential_ok) {
             info.status = SolveStatus::MaxIterations;
         }
@@ -731,6 +735,28 @@ mod tests {
 
     fn solve_last(s: &mut ContactSolver, p: &ContactProblem) -> ContactSolution {
         s.solve(p).unwrap().pop().unwrap()
+    }
+
+    #[test]
+    fn a_cancelled_solve_has_no_answer_and_leaves_the_solver_usable() {
+        let cache = KernelCache::default();
+        let p = rolling(1.0, 1.0);
+        let mut s = ContactSolver::new(&p, &cache);
+        let token = crate::core::cancel::CancelToken::new();
+        token.cancel();
+        assert_eq!(token.scope(|| s.solve(&p)), Err(ContactError::Cancelled));
+        // The same answer as a solver that was never cancelled, to the
+        // solver's tolerances (different starts: the cancelled solve left
+        // its prediction in place).
+        let a = solve_last(&mut s, &p);
+        let b = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        assert_eq!(a.info.status, SolveStatus::Converged);
+        for (x, y) in [
+            (a.totals.fx_n, b.totals.fx_n),
+            (a.totals.fy_n, b.totals.fy_n),
+        ] {
+            assert!((x - y).abs() <= 1e-6 * y.abs(), "{x} against {y}");
+        }
     }
 
     #[test]

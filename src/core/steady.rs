@@ -44,6 +44,7 @@
 //! method for a smooth system, so it converges fast; a step that increases
 //! the residual is halved (at most [`MAX_HALVINGS`] times).
 
+use crate::core::cancel;
 use crate::core::creep::kalker_creep_coefficients;
 use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::{Component, KernelKind};
@@ -890,7 +891,11 @@ pub fn solve_coulomb_newton(
     let mut merit_prev = merit;
     let max_newton = settings.max_iterations.clamp(1, MAX_NEWTON_STEPS);
     let matvec_budget = MAX_NEWTON_MATVECS;
-    while residual > settings.tolerance && iterations < max_newton && matvecs < matvec_budget {
+    while residual > settings.tolerance
+        && iterations < max_newton
+        && matvecs < matvec_budget
+        && !cancel::requested()
+    {
         iterations += 1;
         // Forcing term: Eisenstat and Walker's choice 2 (SIAM J. Sci.
         // Comput. 17 (1996) 16–32), eta = 0.9 (merit / previous merit)²
@@ -1447,6 +1452,22 @@ mod tests {
             assert!(d <= 1e-7 * fmax, "element {i} differs by {d}");
         }
     }
+    #[test]
+    fn cancelled_solves_take_no_step() {
+        // core::cancel: the Newton loop and the time marching look at the
+        // thread's token before each step.
+        let c = case(24, 4e-4, 3e-4, 0.5);
+        let token = crate::core::cancel::CancelToken::new();
+        token.cancel();
+        for newton in [Some(&c.displacement), None] {
+            let whole = run_with(&c, 0.3, newton, true);
+            assert!(whole.outcome.converged && whole.outcome.iterations > 0);
+            let cut = token.scope(|| run_with(&c, 0.3, newton, true));
+            assert!(!cut.outcome.converged);
+            assert_eq!(cut.outcome.iterations, 0);
+        }
+    }
+
     #[test]
     fn the_global_preconditioner_saves_products_and_keeps_the_answer() {
         // The circulant inverse in the preconditioner (Linear::precondition)

@@ -36,6 +36,7 @@
 //! transient problems) is bounded by the kinetic coefficient, others by the
 //! static one.
 
+use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::Component;
@@ -295,6 +296,9 @@ pub fn solve_steady_marching(
         }
     }
     for step in 0..=max_steps {
+        if cancel::requested() {
+            break;
+        }
         // Shifted tractions: material at I was at I+1 (upstream) one step ago.
         shift_upstream(grid, px, shx);
         shift_upstream(grid, py, shy);
@@ -536,6 +540,9 @@ pub fn solve_transient(
     let mut matvecs = 0;
     let mut iterations = 0;
     for it in 0..=settings.max_iterations {
+        if cancel::requested() {
+            break;
+        }
         // Gradient at the extrapolated point y.
         tangential_matvec(k, ows, yx, yy, ux, uy);
         matvecs += 1;

@@ -30,8 +30,12 @@
 //!
 //! Deadlines: a request that waited past its deadline is not started; one
 //! that is running when the deadline passes is answered with
-//! DEADLINE_EXCEEDED at once, while its thread finishes in the background
-//! (the core has no cancellation hook yet) and keeps its permit until then.
+//! DEADLINE_EXCEEDED at once. Its thread is told to stop
+//! ([`crate::core::cancel`]: the solve runs under a token that is
+//! cancelled when the request's future ends, by the deadline or because
+//! the client went away) and gives its permit back at the solver's next
+//! check, within one iteration (a Newton or CG step, an alternation, a
+//! load iteration), instead of finishing a solve that nobody waits for.
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -39,6 +43,7 @@ use std::time::Duration;
 use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 use tokio::time::Instant;
 
+use crate::core::cancel::CancelToken;
 use crate::service::status::ServiceError;
 
 /// The solve pool (cheap to clone: shared semaphores).
@@ -157,7 +162,13 @@ impl Admission {
             Lane::Fast | Lane::Inline => self.pool.fast_workers.clone(),
         };
         let deadline = self.deadline;
+        // Cancelled when this future ends, whichever way: the solve thread
+        // stops at its next check once the deadline's timeout or a
+        // client that went away has dropped the future.
+        let token = CancelToken::new();
+        let stop = CancelOnDrop(token.clone());
         let work = async move {
+            let _stop = stop;
             let permit = workers
                 .acquire_owned()
                 .await
@@ -167,12 +178,12 @@ impl Admission {
             }
             if lane == Lane::Inline {
                 let _permit = permit;
-                return std::panic::catch_unwind(std::panic::AssertUnwindSafe(f))
+                return std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| token.scope(f)))
                     .map_err(|_| ServiceError::Internal("a solve failed: it panicked".into()));
             }
             tokio::task::spawn_blocking(move || {
                 let _permit = permit;
-                f()
+                token.scope(f)
             })
             .await
             .map_err(|e| ServiceError::Internal(format!("a solve failed: {e}")))
@@ -183,6 +194,15 @@ impl Admission {
                 .map_err(|_| expired())?,
             None => work.await,
         }
+    }
+}
+
+/// Cancels its token when dropped.
+struct CancelOnDrop(CancelToken);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.cancel();
     }
 }
 
@@ -266,6 +286,50 @@ mod tests {
         assert_eq!(r.unwrap(), 7);
         release.send(()).unwrap();
         assert!(running.await.unwrap().unwrap());
+    }
+
+    /// A solve that runs until its thread's token is cancelled (at most
+    /// 60 s), and says whether the token stopped it.
+    fn until_cancelled() -> bool {
+        let t0 = std::time::Instant::now();
+        while !crate::core::cancel::requested() && t0.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        crate::core::cancel::requested()
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_solve_nobody_waits_for_is_told_to_stop_and_frees_its_worker() {
+        let pool = SolvePool::new(1, 4);
+        let (tx, rx) = std::sync::mpsc::channel::<bool>();
+        // The deadline passes while it runs.
+        let a = pool
+            .admit(Some(Instant::now() + Duration::from_millis(50)))
+            .unwrap();
+        let t = tx.clone();
+        let r = a.run(move || t.send(until_cancelled())).await;
+        assert!(matches!(r, Err(ServiceError::Deadline(_))), "{r:?}");
+        // The client goes away while it runs (its request's future is
+        // dropped).
+        let b = pool.admit(None).unwrap();
+        let (started, running) = tokio::sync::oneshot::channel::<()>();
+        let task = tokio::spawn(async move {
+            b.run(move || {
+                let _ = started.send(());
+                tx.send(until_cancelled())
+            })
+            .await
+        });
+        running.await.unwrap();
+        task.abort();
+        assert!(task.await.unwrap_err().is_cancelled());
+        // Both threads saw their token cancelled, and the only worker is
+        // free again.
+        let c = pool.admit(None).unwrap();
+        assert_eq!(c.run(|| 5).await.unwrap(), 5);
+        assert!(rx.recv().unwrap() && rx.recv().unwrap());
+        // A solve that ends normally was never cancelled.
+        assert!(!c.run(crate::core::cancel::requested).await.unwrap());
     }
 
     #[tokio::test]

@@ -50,6 +50,12 @@ pub enum ServiceError {
     /// (DEADLINE_EXCEEDED).
     #[error("{0}")]
     Deadline(String),
+    /// The solve was stopped before it finished, because the request's
+    /// deadline passed or its client went away (CANCELLED). The client has
+    /// normally stopped listening by then; the code shows in the logs and
+    /// in batch items that a stop cut short.
+    #[error("{0}")]
+    Cancelled(String),
     /// The server is shutting down (UNAVAILABLE).
     #[error("{0}")]
     Unavailable(String),
@@ -65,6 +71,15 @@ impl ServiceError {
             field: field.into(),
             reason: reason.into(),
         }
+    }
+
+    /// A solve stopped by [`crate::core::cancel`] (see
+    /// [`ServiceError::Cancelled`]).
+    pub fn cancelled() -> Self {
+        ServiceError::Cancelled(
+            "the solve was stopped before it finished: its deadline passed or its client went away"
+                .into(),
+        )
     }
 
     /// Shorthand for [`ServiceError::Invalid`].
@@ -83,6 +98,7 @@ impl ServiceError {
             ServiceError::Precondition { .. } => Code::FailedPrecondition,
             ServiceError::Exhausted(_) => Code::ResourceExhausted,
             ServiceError::Deadline(_) => Code::DeadlineExceeded,
+            ServiceError::Cancelled(_) => Code::Cancelled,
             ServiceError::Unavailable(_) => Code::Unavailable,
             ServiceError::Internal(_) => Code::Internal,
         }
@@ -145,6 +161,7 @@ impl From<ContactError> for ServiceError {
             ContactError::GridTooSmall { .. } => ServiceError::invalid("grid", e.to_string()),
             ContactError::NoContact { .. } => ServiceError::invalid("load", e.to_string()),
             ContactError::Reference(_) => ServiceError::invalid("", e.to_string()),
+            ContactError::Cancelled => ServiceError::cancelled(),
         }
     }
 }
@@ -186,6 +203,11 @@ impl From<WheelRailError> for ServiceError {
             WheelRailError::Invalid { key, message } => ServiceError::invalid(key, message),
             WheelRailError::Spline { .. } => ServiceError::invalid("spec", e.to_string()),
             WheelRailError::Geometry { .. } => ServiceError::invalid("position", e.to_string()),
+            WheelRailError::Cancelled
+            | WheelRailError::Contact {
+                source: ContactError::Cancelled,
+                ..
+            } => ServiceError::cancelled(),
             WheelRailError::Contact {
                 side,
                 patch,
@@ -195,7 +217,7 @@ impl From<WheelRailError> for ServiceError {
                     ContactError::InvalidInput { key, .. } => key.clone(),
                     ContactError::GridTooSmall { .. } => "element_size_m".into(),
                     ContactError::NoContact { .. } => "load".into(),
-                    ContactError::Reference(_) => String::new(),
+                    ContactError::Reference(_) | ContactError::Cancelled => String::new(),
                 };
                 ServiceError::invalid(field, format!("{side} wheel, patch {patch}: {source}"))
             }

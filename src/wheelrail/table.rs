@@ -81,6 +81,7 @@
 use std::time::Instant;
 
 use crate::core::cache::KernelCache;
+use crate::core::cancel::{self, CancelToken};
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::wheelrail::contact::{
@@ -242,6 +243,9 @@ fn build_rolls(
     let mut gap = VerticalGap::default();
     let mut out = Vec::with_capacity(rolls.len() * lateral.n);
     for ir in rolls {
+        if cancel::requested() {
+            break;
+        }
         // At yaw 0 a lateral shift translates the locus along q.
         let pose = SidePose::new(side, 0.0, z0, roll.value(ir), 0.0);
         wheel_locus(wheel, -z0, &pose, &mut locus0);
@@ -285,6 +289,8 @@ impl ContactTable {
             && pair.rail(Side::Left).samples() == pair.rail(Side::Right).samples()
             && pair.wheel(Side::Left).samples() == pair.wheel(Side::Right).samples();
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        // The build threads stop with the caller's solve (core::cancel).
+        let token = CancelToken::current();
         let chunk = roll.n.div_ceil(threads);
         let mut nodes: [Vec<Vec<NodeContact>>; 2] = Default::default();
         for side in Side::BOTH {
@@ -298,7 +304,14 @@ impl ContactTable {
                     .step_by(chunk)
                     .map(|first| {
                         let rolls = first..(first + chunk).min(roll.n);
-                        scope.spawn(move || build_rolls(pair, side, &lateral, &roll, rolls))
+                        let token = token.clone();
+                        scope.spawn(move || {
+                            let build = || build_rolls(pair, side, &lateral, &roll, rolls);
+                            match token {
+                                Some(t) => t.scope(build),
+                                None => build(),
+                            }
+                        })
                     })
                     .collect();
                 handles
@@ -309,6 +322,9 @@ impl ContactTable {
             for (k, contacts) in parts.into_iter().flatten() {
                 out[k] = contacts;
             }
+        }
+        if cancel::requested() {
+            return Err(WheelRailError::Cancelled);
         }
         let rails = Side::BOTH.map(|s| VerticalGap::rail_surface(pair.rail(s)));
         Ok(Self {

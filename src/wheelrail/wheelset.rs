@@ -81,6 +81,10 @@ pub enum WheelRailError {
         #[source]
         source: crate::core::error::ContactError,
     },
+    /// The caller cancelled the work before it finished (see
+    /// [`crate::core::cancel`]).
+    #[error("cancelled before it finished")]
+    Cancelled,
 }
 
 /// Input errors of the core keep their key.
