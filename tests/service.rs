@@ -654,6 +654,15 @@ async fn metrics_page(addr: std::net::SocketAddr) -> String {
     page
 }
 
+/// The server's `railcontact_solves_cancelled_total`.
+async fn cancelled_solves(server: &RunningServer) -> u64 {
+    let page = metrics_page(server.metrics_addr.unwrap()).await;
+    page.lines()
+        .find_map(|l| l.strip_prefix("railcontact_solves_cancelled_total "))
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no cancelled-solves counter in {page}"))
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_full_queue_is_resource_exhausted_and_a_passed_deadline_is_deadline_exceeded() {
     let (server, mut client) = server_with(ServeConfig {
@@ -721,12 +730,24 @@ async fn a_full_queue_is_resource_exhausted_and_a_passed_deadline_is_deadline_ex
     // (0.09 s) left it 4 ms; that version failed here once in about 20
     // runs with another code (the message was not kept), most likely
     // that race.
+    let before = cancelled_solves(&server).await;
     let mut slow = request(rolling(pb::Model::Exact, 256, 1e-3));
     slow.include_fields = false;
     let mut req = tonic::Request::new(slow);
     req.set_timeout(Duration::from_millis(100));
     let (code, msg) = failure(client.solve_patch(req).await);
     assert_eq!(code, Code::DeadlineExceeded, "{msg}");
+    // The abandoned solve is told to stop (core::cancel) and counted once
+    // its thread has ended.
+    let mut counted = false;
+    for _ in 0..1000 {
+        if cancelled_solves(&server).await > before {
+            counted = true;
+            break;
+        }
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    assert!(counted, "the abandoned solve was never counted");
     server.shutdown().await;
 }
 

@@ -9,6 +9,7 @@
 //! | `railcontact_sessions_active` | | open co-simulation sessions |
 //! | `railcontact_sessions_opened_total` | | sessions opened |
 //! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
+//! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
 //!
@@ -151,6 +152,11 @@ impl Metrics {
             o,
             "# TYPE railcontact_solve_queue_admitted gauge\nrailcontact_solve_queue_admitted {}",
             pool.admitted()
+        );
+        let _ = writeln!(
+            o,
+            "# TYPE railcontact_solves_cancelled_total counter\nrailcontact_solves_cancelled_total {}",
+            pool.cancelled()
         );
         for (name, kind, value) in [
             ("hits_total", "counter", f.hits),

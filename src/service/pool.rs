@@ -37,6 +37,7 @@
 //! check, within one iteration (a Newton or CG step, an alternation, a
 //! load iteration), instead of finishing a solve that nobody waits for.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -53,6 +54,8 @@ pub struct SolvePool {
     fast_workers: Arc<Semaphore>,
     queue: Arc<Semaphore>,
     capacity: usize,
+    /// Solves whose request ended while they ran (see [`SolvePool::cancelled`]).
+    cancelled: Arc<AtomicU64>,
 }
 
 /// Which workers a solve runs on (see the module docs).
@@ -103,6 +106,7 @@ impl SolvePool {
             fast_workers: Arc::new(Semaphore::new(workers)),
             queue: Arc::new(Semaphore::new(capacity)),
             capacity,
+            cancelled: Arc::new(AtomicU64::new(0)),
         }
     }
 
@@ -138,6 +142,12 @@ impl SolvePool {
     pub fn admitted(&self) -> usize {
         self.capacity - self.queue.available_permits()
     }
+
+    /// Solves told to stop so far: their request ended (deadline passed,
+    /// client gone, shutdown) while they ran on a solve thread.
+    pub fn cancelled(&self) -> u64 {
+        self.cancelled.load(Ordering::Relaxed)
+    }
 }
 
 impl Admission {
@@ -167,6 +177,7 @@ impl Admission {
         // client that went away has dropped the future.
         let token = CancelToken::new();
         let stop = CancelOnDrop(token.clone());
+        let cancelled = self.pool.cancelled.clone();
         let work = async move {
             let _stop = stop;
             let permit = workers
@@ -183,7 +194,11 @@ impl Admission {
             }
             tokio::task::spawn_blocking(move || {
                 let _permit = permit;
-                token.scope(f)
+                let out = token.scope(f);
+                if token.is_cancelled() {
+                    cancelled.fetch_add(1, Ordering::Relaxed);
+                }
+                out
             })
             .await
             .map_err(|e| ServiceError::Internal(format!("a solve failed: {e}")))
@@ -328,6 +343,7 @@ mod tests {
         let c = pool.admit(None).unwrap();
         assert_eq!(c.run(|| 5).await.unwrap(), 5);
         assert!(rx.recv().unwrap() && rx.recv().unwrap());
+        assert_eq!(pool.cancelled(), 2);
         // A solve that ends normally was never cancelled.
         assert!(!c.run(crate::core::cancel::requested).await.unwrap());
     }
