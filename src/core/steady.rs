@@ -1452,6 +1452,7 @@ mod tests {
             assert!(d <= 1e-7 * fmax, "element {i} differs by {d}");
         }
     }
+
     #[test]
     fn cancelled_solves_take_no_step() {
         // core::cancel: the Newton loop and the time marching look at the

@@ -50,12 +50,15 @@ pub enum ServiceError {
     /// (DEADLINE_EXCEEDED).
     #[error("{0}")]
     Deadline(String),
-    /// The solve was stopped before it finished, because the request's
-    /// deadline passed or its client went away (CANCELLED). The client has
-    /// normally stopped listening by then; the code shows in the logs and
-    /// in batch items that a stop cut short.
-    #[error("{0}")]
-    Cancelled(String),
+    /// The solve was stopped before it finished, because its request
+    /// ended while it ran (CANCELLED; see [`crate::core::cancel`]). No
+    /// client receives it: by then the request was answered with
+    /// DEADLINE_EXCEEDED or its client is gone, and the solve's result is
+    /// dropped. `railcontact_solves_cancelled_total` counts these solves.
+    #[error(
+        "the solve was stopped before it finished: its deadline passed or its client went away"
+    )]
+    Cancelled,
     /// The server is shutting down (UNAVAILABLE).
     #[error("{0}")]
     Unavailable(String),
@@ -71,15 +74,6 @@ impl ServiceError {
             field: field.into(),
             reason: reason.into(),
         }
-    }
-
-    /// A solve stopped by [`crate::core::cancel`] (see
-    /// [`ServiceError::Cancelled`]).
-    pub fn cancelled() -> Self {
-        ServiceError::Cancelled(
-            "the solve was stopped before it finished: its deadline passed or its client went away"
-                .into(),
-        )
     }
 
     /// Shorthand for [`ServiceError::Invalid`].
@@ -98,7 +92,7 @@ impl ServiceError {
             ServiceError::Precondition { .. } => Code::FailedPrecondition,
             ServiceError::Exhausted(_) => Code::ResourceExhausted,
             ServiceError::Deadline(_) => Code::DeadlineExceeded,
-            ServiceError::Cancelled(_) => Code::Cancelled,
+            ServiceError::Cancelled => Code::Cancelled,
             ServiceError::Unavailable(_) => Code::Unavailable,
             ServiceError::Internal(_) => Code::Internal,
         }
@@ -161,7 +155,7 @@ impl From<ContactError> for ServiceError {
             ContactError::GridTooSmall { .. } => ServiceError::invalid("grid", e.to_string()),
             ContactError::NoContact { .. } => ServiceError::invalid("load", e.to_string()),
             ContactError::Reference(_) => ServiceError::invalid("", e.to_string()),
-            ContactError::Cancelled => ServiceError::cancelled(),
+            ContactError::Cancelled => ServiceError::Cancelled,
         }
     }
 }
@@ -207,7 +201,7 @@ impl From<WheelRailError> for ServiceError {
             | WheelRailError::Contact {
                 source: ContactError::Cancelled,
                 ..
-            } => ServiceError::cancelled(),
+            } => ServiceError::Cancelled,
             WheelRailError::Contact {
                 side,
                 patch,
