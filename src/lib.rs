@@ -13,7 +13,6 @@
 //! steady rolling or s = w + u - u' in a transient step.
 
 pub mod cli;
-pub mod conformal;
-pub mod core;
 pub mod service;
-pub mod wheelrail;
+
+pub use railcontact_solver::{conformal, core, problem, wheelrail};

@@ -4,12 +4,12 @@
 
 use std::time::Duration;
 
-use railcontact::cli::case::Case;
 use railcontact::core::creep::kalker_creep_coefficients;
 use railcontact::core::problem::Creepages;
 use railcontact::core::sensitivity::{central_differences, JacobianPoint, JacobianSteps};
 use railcontact::core::solution::Totals;
 use railcontact::core::solve::solve;
+use railcontact::problem::case::Case;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::convert::total_values;
 use railcontact::service::pb;

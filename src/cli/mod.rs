@@ -9,32 +9,19 @@
 //! message on stderr names the offending key), [`EXIT_FAILURE`] (1) for any
 //! other failure.
 
-pub mod case;
 pub mod health;
 pub mod loadtest;
 pub mod plot;
-pub mod report;
 pub mod wheelrail;
 
-pub(crate) mod conformal_models;
-pub(crate) mod reference_models;
-use reference_models as reference;
-
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use clap::{Args, Parser, Subcommand};
 
 use crate::conformal::frictional::FrictionalWorkspace;
-use crate::core::error::ContactError;
-use crate::core::grid::Grid;
 use crate::core::problem::Kinematics;
-use crate::core::solution::{ContactSolution, SolveStatus};
-use crate::core::solve::solve;
-
-use case::{Case, Model};
-use conformal_models::ConformalRun;
-use report::{Fields, FieldsReport, Report, StepReport};
+use crate::problem::case::{Case, Model};
+use crate::problem::{CaseError, ModelRun};
 
 /// Exit code for bad input (case file, options).
 pub const EXIT_BAD_INPUT: i32 = 2;
@@ -170,11 +157,12 @@ impl std::fmt::Display for CliError {
 
 impl std::error::Error for CliError {}
 
-impl From<ContactError> for CliError {
-    fn from(e: ContactError) -> Self {
-        // Every core error is about the input: a key out of range, a grid
-        // too small for the patch, no contact, a rejected reference input.
-        CliError::BadInput(e.to_string())
+impl From<CaseError> for CliError {
+    fn from(e: CaseError) -> Self {
+        match e {
+            CaseError::BadInput(m) => CliError::BadInput(m),
+            e @ (CaseError::Failure(_) | CaseError::Cancelled) => CliError::Failure(e.to_string()),
+        }
     }
 }
 
@@ -237,8 +225,8 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         ))
     })?;
     let case = Case::from_toml(&text).map_err(|e| match e {
-        CliError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
-        other => other,
+        CaseError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
+        other => other.into(),
     })?;
     if case.model.is_cect() && args.plot.is_some() {
         return Err(CliError::BadInput(format!(
@@ -261,31 +249,8 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let exact = match case.model {
-        Model::Exact => Some(ExactRun::solve(&case)?),
-        _ => None,
-    };
-    let conformal = match case.model {
-        Model::Cect | Model::CectHalfspace => Some(ConformalRun::solve(
-            &mut FrictionalWorkspace::default(),
-            &case,
-        )?),
-        _ => None,
-    };
-    let mut report = if let Some(run) = &exact {
-        run.report(&case, args.fields)
-    } else if let Some(run) = &conformal {
-        run.report(&case, args.fields)
-    } else {
-        match case.model {
-            Model::HertzCorrected => reference::solve_conformal_hertz(&case, true)?,
-            Model::Hertz if case.geometry.is_conformal() => {
-                reference::solve_conformal_hertz(&case, false)?
-            }
-            Model::Hertz => reference::solve_hertz(&case)?,
-            _ => reference::solve_fastsim(&case)?,
-        }
-    };
+    let run = ModelRun::solve(&case, &mut FrictionalWorkspace::default())?;
+    let mut report = run.report(&case, args.fields);
     if report.geometry.is_none() && case.geometry.is_conformal() {
         report.geometry = Some(case.geometry.describe());
     }
@@ -298,7 +263,7 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     } else {
         report.human()
     };
-    if let (Some(path), Some(format), Some(run)) = (&args.plot, format, &exact) {
+    if let (Some(path), Some(format), ModelRun::Exact(run)) = (&args.plot, format, &run) {
         plot::write_plot(
             path,
             format,
@@ -341,77 +306,5 @@ fn plot_title(case: &Case) -> String {
             s.len(),
             case.friction.kinetic_coefficient
         ),
-    }
-}
-
-/// The exact model's solutions of one case.
-struct ExactRun {
-    grid: Grid,
-    /// One solution, or one per transient step (never empty).
-    solutions: Vec<ContactSolution>,
-    /// Wall time from the validated case to the solutions [s].
-    elapsed_s: f64,
-}
-
-impl ExactRun {
-    /// Solves `case` with the core (Kalker's exact theory).
-    fn solve(case: &Case) -> Result<Self, CliError> {
-        let t0 = Instant::now();
-        let problem = case.problem()?;
-        let solutions = solve(&problem)?;
-        if solutions.is_empty() {
-            return Err(CliError::Failure("the solver returned no solution".into()));
-        }
-        Ok(ExactRun {
-            grid: problem.grid,
-            solutions,
-            elapsed_s: t0.elapsed().as_secs_f64(),
-        })
-    }
-
-    /// The (last) solution.
-    fn last(&self) -> &ContactSolution {
-        &self.solutions[self.solutions.len() - 1]
-    }
-
-    /// The report: the last step's totals with counters summed over steps.
-    fn report(&self, case: &Case, with_fields: bool) -> Report<'_> {
-        let steps: Vec<StepReport> = self
-            .solutions
-            .iter()
-            .map(StepReport::from_solution)
-            .collect();
-        let mut totals = StepReport::from_solution(self.last());
-        totals.solve_time_s = self.elapsed_s;
-        totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
-        totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
-        totals.iterations = steps.iter().map(|s| s.iterations).sum();
-        totals.status = steps
-            .iter()
-            .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
-        let mut notes = Vec::new();
-        if totals.status != SolveStatus::Converged {
-            notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
-        }
-        let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
-        Report {
-            model: Model::Exact,
-            totals,
-            friction_coefficient: if frictional {
-                case.friction.kinetic_coefficient
-            } else {
-                0.0
-            },
-            grid: Some([self.grid.nx, self.grid.ny]),
-            window_m: Some([case.window_x_m, case.window_y_m]),
-            wfric_lateral: None,
-            notes,
-            steps: matches!(case.kinematics, Kinematics::Transient(_)).then_some(steps),
-            fields: with_fields.then_some(Fields::Planar(FieldsReport {
-                grid: &self.grid,
-                fields: &self.last().fields,
-            })),
-            geometry: None,
-        }
     }
 }

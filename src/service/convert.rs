@@ -7,17 +7,17 @@
 //! solutions and the CLI's reports become [`pb::PatchResult`]s, and a
 //! non-finite total is refused here, never sent.
 
-use crate::cli::case::{
-    Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection,
-    MaterialSection, Model, SolverSection, StepSection, TransientSection,
-};
-use crate::cli::report::{ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport};
 use crate::core::grid::Grid;
 use crate::core::material::Material;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::Creepages;
 use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+use crate::problem::case::{
+    Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection,
+    MaterialSection, Model, SolverSection, StepSection, TransientSection,
+};
+use crate::problem::report::{ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport};
 use crate::service::pb;
 use crate::service::status::ServiceError;
 

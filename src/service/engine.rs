@@ -11,9 +11,6 @@
 //! An engine is plain synchronous code: the server moves it onto a solve
 //! thread and back.
 
-use crate::cli::case::{Case, Model};
-use crate::cli::conformal_models::ConformalRun;
-use crate::cli::reference_models as reference;
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
@@ -24,6 +21,9 @@ use crate::core::sensitivity::{
 };
 use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::ContactSolver;
+use crate::problem::case::{Case, Model};
+use crate::problem::conformal_models::ConformalRun;
+use crate::problem::reference_models as reference;
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;

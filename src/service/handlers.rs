@@ -14,9 +14,9 @@ use tokio_stream::Stream;
 use tonic::{Request, Response, Status, Streaming};
 use tracing::Instrument;
 
-use crate::cli::case::{Case, Model};
 use crate::core::cache::KernelCache;
 use crate::core::problem::{Creepages, Kinematics};
+use crate::problem::case::{Case, Model};
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::metrics::Metrics;

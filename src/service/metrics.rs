@@ -22,8 +22,8 @@ use std::sync::Mutex;
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpListener;
 
-use crate::cli::case::Model;
 use crate::core::cache::KernelCache;
+use crate::problem::case::Model;
 use crate::service::pool::SolvePool;
 
 /// Upper bounds of the latency buckets [s].

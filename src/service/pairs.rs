@@ -34,9 +34,9 @@ use std::time::Instant;
 use prost::Message;
 use sha2::{Digest, Sha256};
 
-use crate::cli::case::{FrictionSection, MaterialSection};
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
+use crate::problem::case::{FrictionSection, MaterialSection};
 use crate::service::pb;
 use crate::service::pool::Admission;
 use crate::service::status::ServiceError;

@@ -11,10 +11,10 @@
 
 use std::collections::BTreeMap;
 
-use crate::cli::case::Model;
 use crate::core::error::require_positive;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics, ShiftStep};
+use crate::problem::case::Model;
 use crate::service::convert;
 use crate::service::engine::PatchEngine;
 use crate::service::pb;

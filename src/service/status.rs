@@ -11,8 +11,8 @@
 use thiserror::Error;
 use tonic::Code;
 
-use crate::cli::CliError;
 use crate::core::error::ContactError;
+use crate::problem::CaseError;
 use crate::service::pb;
 use crate::wheelrail::{ProfileError, WheelRailError};
 
@@ -160,12 +160,12 @@ impl From<ContactError> for ServiceError {
     }
 }
 
-impl From<CliError> for ServiceError {
+impl From<CaseError> for ServiceError {
     /// The case validation's errors are messages; those that name a key
     /// (`invalid input `key`: reason`) keep it as the field.
-    fn from(e: CliError) -> Self {
+    fn from(e: CaseError) -> Self {
         match e {
-            CliError::BadInput(m) => {
+            CaseError::BadInput(m) => {
                 let keyed = m
                     .strip_prefix("invalid input `")
                     .and_then(|rest| rest.split_once("`: "));
@@ -174,7 +174,8 @@ impl From<CliError> for ServiceError {
                     None => ServiceError::invalid("", m),
                 }
             }
-            CliError::Failure(m) => ServiceError::Internal(m),
+            CaseError::Failure(m) => ServiceError::Internal(m),
+            CaseError::Cancelled => ServiceError::Cancelled,
         }
     }
 }
@@ -231,7 +232,7 @@ mod tests {
 
     #[test]
     fn case_errors_keep_their_key_under_the_request_path() {
-        let e = ServiceError::from(CliError::BadInput(
+        let e = ServiceError::from(CaseError::BadInput(
             "invalid input `geometry.a_per_m`: must be finite and > 0, got NaN".into(),
         ))
         .within("case")
@@ -241,7 +242,7 @@ mod tests {
         assert_eq!(item.field, "items[2].case.geometry.a_per_m");
         assert!(item.message.contains("must be finite"), "{}", item.message);
         // A message without a key names the case as a whole.
-        let e = ServiceError::from(CliError::BadInput("Hertz model: bad".into())).within("case");
+        let e = ServiceError::from(CaseError::BadInput("Hertz model: bad".into())).within("case");
         assert_eq!(e.item_error().field, "case");
         let e = ServiceError::from(ContactError::invalid(
             "rolling.spin_per_m",

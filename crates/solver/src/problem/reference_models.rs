@@ -6,14 +6,14 @@
 
 use std::time::Instant;
 
-use crate::cli::case::{Case, Model};
-use crate::cli::report::{ConformalKeys, Report, StepReport};
-use crate::cli::CliError;
 use crate::conformal::solve::conformal_hertz;
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::hertz::{hertz, HertzLoad, HertzSolution};
 use crate::core::normal::NormalLoad;
 use crate::core::solution::Totals;
+use crate::problem::case::{Case, Model};
+use crate::problem::report::{ConformalKeys, Report, StepReport};
+use crate::problem::CaseError;
 
 fn hertz_load(load: NormalLoad) -> HertzLoad {
     match load {
@@ -23,15 +23,15 @@ fn hertz_load(load: NormalLoad) -> HertzLoad {
 }
 
 /// Hertz solution of h = A x² + B y² under `load`; errors name the model.
-pub(crate) fn hertz_of(
+pub fn hertz_of(
     a_per_m: f64,
     b_per_m: f64,
     e_star_pa: f64,
     load: NormalLoad,
-) -> Result<HertzSolution, CliError> {
+) -> Result<HertzSolution, CaseError> {
     // Hertz rejects only inputs: name the model in the message.
     hertz(a_per_m, b_per_m, e_star_pa, hertz_load(load))
-        .map_err(|e| CliError::BadInput(format!("Hertz model: {e}")))
+        .map_err(|e| CaseError::BadInput(format!("Hertz model: {e}")))
 }
 
 /// The totals of a Hertz solution; tangential quantities are 0.
@@ -51,7 +51,7 @@ fn hertz_totals(h: &HertzSolution) -> Totals {
 const NOTE_HERTZ: &str = "the Hertz model solves the normal problem only: fx_n, fy_n, mz_nm, max_traction_pa, adhesion_fraction and tgamma_n are not computed (reported as 0)";
 
 /// Model `hertz`: Hertz's closed-form normal solution.
-pub(crate) fn solve_hertz(case: &Case) -> Result<Report<'static>, CliError> {
+pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
     let t0 = Instant::now();
     let h = case.hertz()?;
     let totals = StepReport::closed_form(hertz_totals(&h), t0.elapsed().as_secs_f64());
@@ -71,7 +71,7 @@ pub(crate) fn solve_hertz(case: &Case) -> Result<Report<'static>, CliError> {
 
 /// Model `fastsim`: the Hertz ellipse, then FASTSIM with the case's creepages
 /// on `nx` x `ny` elements.
-pub(crate) fn solve_fastsim(case: &Case) -> Result<Report<'static>, CliError> {
+pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
     let t0 = Instant::now();
     let h = case.hertz()?;
     let c = case.creepages();
@@ -87,10 +87,10 @@ pub(crate) fn solve_fastsim(case: &Case) -> Result<Report<'static>, CliError> {
         spin_per_m: c.spin_per_m,
     };
     let mut fastsim = Fastsim::new(case.nx, case.ny)
-        .map_err(|e| CliError::BadInput(format!("invalid input `grid`: FASTSIM: {e}")))?;
+        .map_err(|e| CaseError::BadInput(format!("invalid input `grid`: FASTSIM: {e}")))?;
     let out = fastsim
         .solve(&input)
-        .map_err(|e| CliError::BadInput(format!("FASTSIM model: {e}")))?;
+        .map_err(|e| CaseError::BadInput(format!("FASTSIM model: {e}")))?;
     let totals = Totals {
         fx_n: out.fx_n,
         fy_n: out.fy_n,
@@ -122,13 +122,10 @@ pub(crate) fn solve_fastsim(case: &Case) -> Result<Report<'static>, CliError> {
 /// curvatures A = 1/(2 R_xw), B = (1/R_yr + 1/R_yw)/2, and with the
 /// corrected B_corr = B + d/(2 r²) (Blanco-Lorenzo et al. 2018, Eq. 5).
 /// The contact angle variation is 2 b / r, r the mean lateral radius.
-pub(crate) fn solve_conformal_hertz(
-    case: &Case,
-    corrected: bool,
-) -> Result<Report<'static>, CliError> {
+pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'static>, CaseError> {
     let t0 = Instant::now();
     let (rail, wheel, rolling) = case.geometry.radii().ok_or_else(|| {
-        CliError::BadInput(format!(
+        CaseError::BadInput(format!(
             "invalid input `model`: \"{}\" on conformal profiles needs `geometry.kind = \"conformal_circular\"`",
             case.model.name()
         ))
@@ -137,7 +134,7 @@ pub(crate) fn solve_conformal_hertz(
     let (h, variation_deg) = match case.load {
         NormalLoad::NormalForce(f) => {
             conformal_hertz(rail, wheel, rolling, &case.material, f, corrected)
-                .map_err(|e| CliError::BadInput(format!("Hertz model: {e}")))?
+                .map_err(|e| CaseError::BadInput(format!("Hertz model: {e}")))?
         }
         NormalLoad::Approach(_) if !corrected => {
             let h = case.hertz()?;
@@ -145,7 +142,7 @@ pub(crate) fn solve_conformal_hertz(
             (h, v)
         }
         NormalLoad::Approach(_) => {
-            return Err(CliError::BadInput(
+            return Err(CaseError::BadInput(
                 "invalid input `load.approach_m`: the hertz_corrected model starts from a normal force: give `load.normal_force_n`".into(),
             ))
         }

@@ -5,9 +5,9 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::cli::case::Model;
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+use crate::problem::case::Model;
 
 /// The quantities of the conformal models (`cect`, `cect_halfspace`,
 /// `hertz_corrected`, and `hertz` on conformal profiles) beyond

@@ -7,8 +7,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::cli::reference::hertz_of;
-use crate::cli::CliError;
 use crate::conformal::frictional::{ConformalKinematics, ConformalSettings};
 use crate::conformal::geometry::{
     Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve,
@@ -24,6 +22,8 @@ use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
 };
 use crate::core::tangential::TangentialSettings;
+use crate::problem::reference_models::hertz_of;
+use crate::problem::CaseError;
 
 /// Default grid of the exact model in each direction (elements).
 pub const DEFAULT_EXACT_ELEMENTS: usize = 64;
@@ -323,7 +323,7 @@ impl CaseGeometry {
     }
 
     /// The conformal geometry on the (x, s) grid `grid`.
-    pub fn conformal(&self, grid: Grid) -> Result<ConformalGeometry, CliError> {
+    pub fn conformal(&self, grid: Grid) -> Result<ConformalGeometry, CaseError> {
         let g = match self {
             CaseGeometry::Quadratic => return Err(bad(
                 "geometry.kind",
@@ -371,7 +371,7 @@ fn curvature_at_origin(curve: &dyn Curve, h_m: f64) -> f64 {
 fn profile_from_points(
     points: &[[f64; 2]],
     key: &str,
-) -> Result<(PointCurve, f64, [f64; 2]), CliError> {
+) -> Result<(PointCurve, f64, [f64; 2]), CaseError> {
     let curve = PointCurve::new(points, key)?;
     let dist = |p: &[f64; 2]| p[0].hypot(p[1]);
     let nearest = (0..points.len())
@@ -409,7 +409,7 @@ fn profile_from_points(
 }
 
 /// A lateral radius: non-zero and not NaN (`inf`: straight).
-fn lateral_radius(key: &str, v: f64) -> Result<f64, CliError> {
+fn lateral_radius(key: &str, v: f64) -> Result<f64, CaseError> {
     if v.is_nan() || v == 0.0 {
         return Err(bad(
             key,
@@ -425,7 +425,7 @@ impl GeometrySection {
     /// Validates the section for its `kind`: the geometry and the
     /// curvature coefficients A, B [1/m] of its (flattened) quadratic gap,
     /// A = 1/(2 R_xw), B = (1/R_yr + 1/R_yw)/2 for the conformal kinds.
-    fn validate(&self) -> Result<(CaseGeometry, f64, f64), CliError> {
+    fn validate(&self) -> Result<(CaseGeometry, f64, f64), CaseError> {
         let kind = self.kind;
         let keys: [(&str, bool, GeometryKind); 7] = [
             ("a_per_m", self.a_per_m.is_some(), GeometryKind::Quadratic),
@@ -693,15 +693,15 @@ pub struct Case {
     pub notes: Vec<String>,
 }
 
-fn bad(key: impl Into<String>, reason: impl Into<String>) -> CliError {
-    CliError::from(ContactError::invalid(key, reason))
+fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
+    CaseError::from(ContactError::invalid(key, reason))
 }
 
 fn one_load(
     key: &str,
     force: Option<f64>,
     approach: Option<f64>,
-) -> Result<Option<NormalLoad>, CliError> {
+) -> Result<Option<NormalLoad>, CaseError> {
     match (force, approach) {
         (Some(_), Some(_)) => Err(bad(
             format!("{key}.normal_force_n"),
@@ -721,7 +721,7 @@ fn one_load(
 
 impl MaterialSection {
     /// The checked materials of the two bodies (errors name the key).
-    pub fn combine(&self) -> Result<CombinedMaterial, CliError> {
+    pub fn combine(&self) -> Result<CombinedMaterial, CaseError> {
         let direct = self.shear_modulus_pa.is_some() || self.poisson_ratio.is_some();
         let bodies = self.body1.is_some() || self.body2.is_some();
         if direct && bodies {
@@ -763,7 +763,7 @@ impl MaterialSection {
 
 impl FrictionSection {
     /// The checked friction coefficients (errors name the key).
-    pub fn friction(&self) -> Result<Friction, CliError> {
+    pub fn friction(&self) -> Result<Friction, CaseError> {
         let f = match (
             self.coefficient,
             self.static_coefficient,
@@ -810,15 +810,15 @@ impl FrictionSection {
 
 impl Case {
     /// Parses and validates a case file's text. Errors are
-    /// [`CliError::BadInput`] and name the offending key.
-    pub fn from_toml(text: &str) -> Result<Case, CliError> {
+    /// [`CaseError::BadInput`] and name the offending key.
+    pub fn from_toml(text: &str) -> Result<Case, CaseError> {
         let file: CaseFile = toml::from_str(text)
-            .map_err(|e| CliError::BadInput(format!("case file: {}", e.to_string().trim_end())))?;
+            .map_err(|e| CaseError::BadInput(format!("case file: {}", e.to_string().trim_end())))?;
         Case::from_file(file)
     }
 
     /// Validates a parsed case file.
-    pub fn from_file(file: CaseFile) -> Result<Case, CliError> {
+    pub fn from_file(file: CaseFile) -> Result<Case, CaseError> {
         let mut notes = Vec::new();
         let model = file.model;
         let material = file.material.combine()?;
@@ -1104,7 +1104,7 @@ impl Case {
     }
 
     /// The potential contact grid of the exact model.
-    pub fn grid(&self) -> Result<Grid, CliError> {
+    pub fn grid(&self) -> Result<Grid, CaseError> {
         Ok(Grid::centered(
             self.nx,
             self.ny,
@@ -1114,7 +1114,7 @@ impl Case {
     }
 
     /// The core contact problem (exact model).
-    pub fn problem(&self) -> Result<ContactProblem, CliError> {
+    pub fn problem(&self) -> Result<ContactProblem, CaseError> {
         let grid = self.grid()?;
         Ok(ContactProblem {
             material: self.material,
@@ -1128,7 +1128,7 @@ impl Case {
     }
 
     /// The Hertz solution of the case's geometry and `[load]`.
-    pub fn hertz(&self) -> Result<HertzSolution, CliError> {
+    pub fn hertz(&self) -> Result<HertzSolution, CaseError> {
         hertz_of(
             self.a_per_m,
             self.b_per_m,
@@ -1146,14 +1146,14 @@ impl Case {
     }
 
     /// The (x, s) grid and the conformal geometry of a conformal case.
-    pub fn conformal_geometry(&self) -> Result<ConformalGeometry, CliError> {
+    pub fn conformal_geometry(&self) -> Result<ConformalGeometry, CaseError> {
         self.geometry.conformal(self.grid()?)
     }
 
     /// What the conformal models solve: `None` for frictionless normal
     /// contact (no `[rolling]`, no `[transient]`), else static compression
     /// through the steps' forces or steady rolling at the `[load]`'s force.
-    pub fn conformal_kinematics(&self) -> Result<Option<ConformalKinematics>, CliError> {
+    pub fn conformal_kinematics(&self) -> Result<Option<ConformalKinematics>, CaseError> {
         let force = |load: NormalLoad, key: &str| match load {
             NormalLoad::NormalForce(f) => Ok(f),
             NormalLoad::Approach(_) => Err(bad(
@@ -1200,7 +1200,7 @@ impl Case {
 }
 
 /// Rejects a model that cannot run on the geometry; the error names `model`.
-fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CliError> {
+fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CaseError> {
     match (model, geometry) {
         (Model::Cect | Model::CectHalfspace | Model::HertzCorrected, CaseGeometry::Quadratic) => {
             Err(bad(
@@ -1229,7 +1229,7 @@ fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), Cli
 
 /// The steps of a static compression (conformal models): every shift zero,
 /// every step with a `normal_force_n`, increasing.
-fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftStep>, CliError> {
+fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftStep>, CaseError> {
     let mut out: Vec<ShiftStep> = Vec::with_capacity(steps.len());
     let mut previous = 0.0;
     for (k, s) in steps.iter().enumerate() {
@@ -1302,7 +1302,7 @@ normal_force_n = 80000.0
 
     fn bad_key(text: &str) -> String {
         match Case::from_toml(text) {
-            Err(CliError::BadInput(m)) => m,
+            Err(CaseError::BadInput(m)) => m,
             other => panic!("expected bad input, got {other:?}"),
         }
     }
@@ -1450,7 +1450,7 @@ normal_force_n = 80000.0
         // Reversed order, a profile missing the origin, crossing profiles.
         let rev: Vec<[f64; 2]> = rail.iter().rev().cloned().collect();
         let err = |r: &[[f64; 2]], w: &[[f64; 2]]| match points_section(r, w).validate() {
-            Err(CliError::BadInput(m)) => m,
+            Err(CaseError::BadInput(m)) => m,
             other => panic!("{other:?}"),
         };
         assert!(err(&rev, &wheel).contains("increasing y"));

@@ -11,11 +11,6 @@
 
 use std::time::Instant;
 
-use crate::cli::case::Case;
-use crate::cli::report::{
-    ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport, WfricReport,
-};
-use crate::cli::CliError;
 use crate::conformal::frictional::{
     solve_frictional, ConformalKinematics, ConformalSolution, ConformalTotals, FrictionalWorkspace,
 };
@@ -23,6 +18,11 @@ use crate::conformal::geometry::ConformalGeometry;
 use crate::conformal::solve::{solve_frictionless, ConformalNormalSolution};
 use crate::core::cache::KernelCache;
 use crate::core::solution::{ElementState, SolveStatus, Totals};
+use crate::problem::case::Case;
+use crate::problem::report::{
+    ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport, WfricReport,
+};
+use crate::problem::CaseError;
 
 /// Note added to every conformal report.
 const NOTE_NO_SPIN_MOMENT: &str =
@@ -33,7 +33,7 @@ const NOTE_FY: &str =
      fy_global_n, fz_global_n are its global components (z down)";
 
 /// The solutions of a conformal case.
-pub(crate) struct ConformalRun {
+pub struct ConformalRun {
     /// Geometry on the (x, s) grid.
     pub geometry: ConformalGeometry,
     /// One solution, or one per static compression step (never empty).
@@ -132,10 +132,10 @@ fn length_width_ratio(length_m: f64, width_m: f64) -> f64 {
 impl ConformalRun {
     /// Solves a `cect` or `cect_halfspace` case on the buffers of
     /// `workspace` (see [`solve_frictional`]).
-    pub fn solve(workspace: &mut FrictionalWorkspace, case: &Case) -> Result<Self, CliError> {
+    pub fn solve(workspace: &mut FrictionalWorkspace, case: &Case) -> Result<Self, CaseError> {
         let t0 = Instant::now();
         let model = case.model.influence().ok_or_else(|| {
-            CliError::Failure(format!(
+            CaseError::Failure(format!(
                 "model \"{}\" is not a conformal solver",
                 case.model.name()
             ))
@@ -172,7 +172,7 @@ impl ConformalRun {
             ),
         };
         if solutions.is_empty() {
-            return Err(CliError::Failure("the solver returned no solution".into()));
+            return Err(CaseError::Failure("the solver returned no solution".into()));
         }
         Ok(ConformalRun {
             geometry,

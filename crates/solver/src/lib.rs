@@ -1,0 +1,29 @@
+//! railcontact: frictional wheel/rail contact after Kalker's exact theory.
+//!
+//! The numeric core ([`core`]) solves one contact patch: given the undeformed
+//! distance h on a grid of elements, the materials, friction and kinematics,
+//! find the pressures p_n >= 0 and tangential tractions p_t such that
+//!
+//! * h - delta + u_n(p) >= 0 with equality where p_n > 0 (normal problem),
+//! * |p_t| <= mu p_n, with slip s = 0 where |p_t| < mu p_n and p_t = -mu p_n s/|s|
+//!   where the element slips (Coulomb),
+//!
+//! where u = A p are the elastic displacement differences given by the
+//! half-space influence coefficients A, and the slip is s = w - du/dx in
+//! steady rolling or s = w + u - u' in a transient step.
+//!
+//! The crate is transport-free: no network, async, logging, storage or
+//! command line. Layers, each using only those below it:
+//!
+//! * [`problem`]: a contact case as a user states it (materials, friction,
+//!   geometry, load, kinematics, grid; validated, SI units), the choice of
+//!   model, and the reports the models give;
+//! * [`wheelrail`]: profiles, track and wheelset placement, contact search,
+//!   patches, creepages, the load iteration, contact tables;
+//! * [`conformal`]: curved patches with Blanco's influence coefficients;
+//! * [`core`]: the half-space solver of one planar patch.
+
+pub mod conformal;
+pub mod core;
+pub mod problem;
+pub mod wheelrail;

@@ -1,0 +1,173 @@
+//! The problem layer: one contact patch as a user states it, solved with
+//! the model the user chose, reported in SI units.
+//!
+//! * [`case`]: the case description (materials, friction, geometry, load,
+//!   kinematics, grid, solver settings), read from TOML and validated
+//!   ([`case::Case`]), and the model names ([`case::Model`]);
+//! * [`report`]: what a solve gives back ([`report::Report`]);
+//! * [`ModelRun`]: "solve this case with its model": the exact model on
+//!   the core, the conformal models ([`conformal_models`]) and the
+//!   closed-form and FASTSIM models ([`reference_models`]).
+//!
+//! The command line and the service both stand on this layer, so they give
+//! the same numbers for the same case.
+
+pub mod case;
+pub mod conformal_models;
+pub mod reference_models;
+pub mod report;
+
+use std::time::Instant;
+
+use thiserror::Error;
+
+use crate::conformal::frictional::FrictionalWorkspace;
+use crate::core::error::ContactError;
+use crate::core::grid::Grid;
+use crate::core::problem::Kinematics;
+use crate::core::solution::{ContactSolution, SolveStatus};
+use crate::core::solve::solve;
+
+use case::{Case, Model};
+use conformal_models::ConformalRun;
+use report::{Fields, FieldsReport, Report, StepReport};
+
+/// Why a case could not be solved.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CaseError {
+    /// The input is wrong: the message names the key to fix and says how.
+    #[error("{0}")]
+    BadInput(String),
+    /// The case is valid but could not be solved.
+    #[error("{0}")]
+    Failure(String),
+    /// The solve was stopped before it finished ([`crate::core::cancel`]).
+    #[error("the solve was cancelled before it finished")]
+    Cancelled,
+}
+
+impl From<ContactError> for CaseError {
+    fn from(e: ContactError) -> Self {
+        match e {
+            ContactError::Cancelled => CaseError::Cancelled,
+            // Every other core error is about the input: a key out of
+            // range, a grid too small for the patch, no contact, a
+            // rejected reference input.
+            e => CaseError::BadInput(e.to_string()),
+        }
+    }
+}
+
+/// One case solved with its model.
+pub enum ModelRun {
+    /// Kalker's exact theory on the planar half-space.
+    Exact(ExactRun),
+    /// The conformal models (`cect`, `cect_halfspace`).
+    Conformal(ConformalRun),
+    /// The closed-form and FASTSIM models: their report is the whole result.
+    Reference(Report<'static>),
+}
+
+impl ModelRun {
+    /// Solves `case` with `case.model`; the conformal models keep their
+    /// buffers in `workspace` (reused between solves).
+    pub fn solve(case: &Case, workspace: &mut FrictionalWorkspace) -> Result<Self, CaseError> {
+        Ok(match case.model {
+            Model::Exact => ModelRun::Exact(ExactRun::solve(case)?),
+            Model::Cect | Model::CectHalfspace => {
+                ModelRun::Conformal(ConformalRun::solve(workspace, case)?)
+            }
+            Model::HertzCorrected => {
+                ModelRun::Reference(reference_models::solve_conformal_hertz(case, true)?)
+            }
+            Model::Hertz if case.geometry.is_conformal() => {
+                ModelRun::Reference(reference_models::solve_conformal_hertz(case, false)?)
+            }
+            Model::Hertz => ModelRun::Reference(reference_models::solve_hertz(case)?),
+            Model::Fastsim => ModelRun::Reference(reference_models::solve_fastsim(case)?),
+        })
+    }
+
+    /// The report of the run, with the per-element fields when `fields`
+    /// (exact and conformal models only).
+    pub fn report(&self, case: &Case, fields: bool) -> Report<'_> {
+        match self {
+            ModelRun::Exact(run) => run.report(case, fields),
+            ModelRun::Conformal(run) => run.report(case, fields),
+            ModelRun::Reference(report) => report.clone(),
+        }
+    }
+}
+
+/// The exact model's solutions of one case.
+pub struct ExactRun {
+    /// The potential contact grid.
+    pub grid: Grid,
+    /// One solution, or one per transient step (never empty).
+    solutions: Vec<ContactSolution>,
+    /// Wall time from the validated case to the solutions \[s\].
+    elapsed_s: f64,
+}
+
+impl ExactRun {
+    /// Solves `case` with the core (Kalker's exact theory).
+    pub fn solve(case: &Case) -> Result<Self, CaseError> {
+        let t0 = Instant::now();
+        let problem = case.problem()?;
+        let solutions = solve(&problem)?;
+        if solutions.is_empty() {
+            return Err(CaseError::Failure("the solver returned no solution".into()));
+        }
+        Ok(ExactRun {
+            grid: problem.grid,
+            solutions,
+            elapsed_s: t0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The (last) solution.
+    pub fn last(&self) -> &ContactSolution {
+        &self.solutions[self.solutions.len() - 1]
+    }
+
+    /// The report: the last step's totals with counters summed over steps.
+    pub fn report(&self, case: &Case, with_fields: bool) -> Report<'_> {
+        let steps: Vec<StepReport> = self
+            .solutions
+            .iter()
+            .map(StepReport::from_solution)
+            .collect();
+        let mut totals = StepReport::from_solution(self.last());
+        totals.solve_time_s = self.elapsed_s;
+        totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
+        totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
+        totals.iterations = steps.iter().map(|s| s.iterations).sum();
+        totals.status = steps
+            .iter()
+            .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
+        let mut notes = Vec::new();
+        if totals.status != SolveStatus::Converged {
+            notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+        }
+        let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
+        Report {
+            model: Model::Exact,
+            totals,
+            friction_coefficient: if frictional {
+                case.friction.kinetic_coefficient
+            } else {
+                0.0
+            },
+            grid: Some([self.grid.nx, self.grid.ny]),
+            window_m: Some([case.window_x_m, case.window_y_m]),
+            wfric_lateral: None,
+            notes,
+            steps: matches!(case.kinematics, Kinematics::Transient(_)).then_some(steps),
+            fields: with_fields.then_some(Fields::Planar(FieldsReport {
+                grid: &self.grid,
+                fields: &self.last().fields,
+            })),
+            geometry: None,
+        }
+    }
+}

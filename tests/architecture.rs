@@ -1,0 +1,104 @@
+//! The dependency boundary: the solver crate (`crates/solver`, everything
+//! transport-free) depends on no network, async, protocol, storage,
+//! command-line or plotting crate, so that it can be embedded in-process
+//! with `cargo add railcontact-solver` alone. Asked of cargo itself
+//! (`cargo tree`), so a dependency added to the solver's manifest, directly
+//! or through another crate, fails this test.
+
+use std::collections::BTreeSet;
+use std::process::Command;
+
+/// Crates the solver must never depend on, directly or transitively.
+const FORBIDDEN: &[&str] = &[
+    "tonic",
+    "tokio",
+    "prost",
+    "hyper",
+    "h2",
+    "axum",
+    "redb",
+    "clap",
+    "plotters",
+    "tracing",
+    "indicatif",
+];
+
+/// The names of the crates `package` depends on with `edges` (`cargo tree
+/// -e EDGES`), itself included.
+fn dependencies(package: &str, edges: &str) -> BTreeSet<String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let out = Command::new(cargo)
+        .args([
+            "tree",
+            "--manifest-path",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"),
+            "-p",
+            package,
+            "-e",
+            edges,
+            "--prefix",
+            "none",
+            "--format",
+            "{p}",
+        ])
+        .output()
+        .expect("run cargo tree");
+    assert!(
+        out.status.success(),
+        "cargo tree failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .expect("cargo tree prints UTF-8")
+        .lines()
+        .filter_map(|l| l.split_whitespace().next())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn the_solver_crate_depends_on_no_transport_storage_or_front_end_crate() {
+    let deps = dependencies("railcontact-solver", "normal,build");
+    // The listing is real: the solver's own FFT and linear-algebra crates
+    // are in it.
+    for needed in ["railcontact-solver", "rustfft", "faer", "serde"] {
+        assert!(deps.contains(needed), "{needed} missing from {deps:?}");
+    }
+    let bad: Vec<&str> = FORBIDDEN
+        .iter()
+        .copied()
+        .filter(|f| deps.contains(*f))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "railcontact-solver depends on {bad:?}; keep transport, storage and front ends in the root package"
+    );
+}
+
+#[test]
+fn the_front_ends_stand_on_the_solver_crate() {
+    let deps = dependencies("railcontact", "normal");
+    for needed in ["railcontact-solver", "tonic", "clap"] {
+        assert!(deps.contains(needed), "{needed} missing from {deps:?}");
+    }
+}
+
+#[test]
+fn the_service_does_not_import_the_command_line() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/service");
+    let mut offenders = Vec::new();
+    for entry in std::fs::read_dir(dir).expect("read src/service") {
+        let path = entry.expect("a directory entry").path();
+        let text = std::fs::read_to_string(&path).expect("read a service source");
+        for (i, line) in text.lines().enumerate() {
+            if line.contains("crate::cli") || line.contains("super::cli") {
+                offenders.push(format!("{}:{}: {}", path.display(), i + 1, line.trim()));
+            }
+        }
+    }
+    assert!(
+        offenders.is_empty(),
+        "the service imports the command line:\n{}",
+        offenders.join("\n")
+    );
+}
