@@ -403,7 +403,7 @@ fn bad_plot_extension_is_rejected() {
 // ---------------------------------------------------------------------
 // Conformal contact (cect, cect_halfspace, hertz_corrected): paper Case 1
 // of Blanco-Lorenzo et al., Tribology International 2018; reference
-// numbers as in tests/conformal.rs.
+// numbers as in crates/solver/tests/validation/conformal.rs.
 
 /// Keys every conformal `--json` report has in addition to [`KEYS`].
 const CONFORMAL_KEYS: [&str; 7] = [
@@ -492,7 +492,7 @@ fn conformal_rolling_example_gives_the_papers_tractive_force() {
     let v = solve_json(&example("conformal_case1_rolling.toml"), &[]);
     check_conformal_keys(&v);
     assert_eq!(v["status"], "converged");
-    // Grid of about 0.25 mm, as the reference in tests/conformal.rs.
+    // Grid of about 0.25 mm, as the reference in crates/solver/tests/validation/conformal.rs.
     let (w, g) = (&v["window_m"], &v["grid"]);
     for k in 0..2 {
         let d = w[k].as_f64().unwrap() / g[k].as_f64().unwrap();

@@ -22,8 +22,8 @@ use crate::core::sensitivity::{
 use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::ContactSolver;
 use crate::problem::case::{Case, Model};
-use crate::problem::conformal_models::ConformalRun;
 use crate::problem::reference_models as reference;
+use crate::problem::ModelRun;
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -233,31 +233,15 @@ impl PatchEngine {
         })
     }
 
-    /// The result of a model other than exact, through the functions of
-    /// `railcontact solve`, with its totals.
+    /// The result of a model other than exact, through the problem layer's
+    /// model dispatch (as `railcontact solve`), with its totals.
     fn reference_result(
         &mut self,
         fields: bool,
     ) -> Result<(pb::PatchResult, Totals), ServiceError> {
         let case = &self.case;
-        let report = match case.model {
-            Model::Cect | Model::CectHalfspace => {
-                let run = ConformalRun::solve(&mut self.conformal, case)?;
-                let report = run.report(case, fields);
-                return Ok((convert::result_of_report(&report), report.totals.totals));
-            }
-            Model::HertzCorrected => reference::solve_conformal_hertz(case, true)?,
-            Model::Hertz if case.geometry.is_conformal() => {
-                reference::solve_conformal_hertz(case, false)?
-            }
-            Model::Hertz => reference::solve_hertz(case)?,
-            Model::Fastsim => reference::solve_fastsim(case)?,
-            Model::Exact => {
-                return Err(ServiceError::Internal(
-                    "the exact model has no reference path".into(),
-                ))
-            }
-        };
+        let run = ModelRun::solve(case, &mut self.conformal)?;
+        let report = run.report(case, fields);
         Ok((convert::result_of_report(&report), report.totals.totals))
     }
 

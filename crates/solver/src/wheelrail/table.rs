@@ -22,7 +22,7 @@
 //! the rest covers roll inputs away from the quasi-static one. The table
 //! only seeds the search (below), so its steps need not resolve the
 //! contact positions; 0.1 mm in y puts the onset of a contact within
-//! 0.05 mm of shift of a node. Build time: see `tests/wheelrail.rs`.
+//! 0.05 mm of shift of a node. Build time: see `crates/solver/tests/validation/wheelrail.rs`.
 //!
 //! # Look-up
 //!

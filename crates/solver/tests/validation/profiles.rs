@@ -2,14 +2,18 @@
 //! malformed files give errors naming file and line, and the smoothing
 //! spline reproduces known curvatures.
 
-use railcontact::wheelrail::{
+use railcontact_solver::wheelrail::{
     load_profile, load_profile_with, parse_miniprof, parse_plain, parse_profile, parse_simpack,
     CheckKind, LengthUnit, LoadOptions, MiniProfVariant, Profile, ProfileError, ProfileFormat,
     ProfileKind, ProfileSpline, SplineOptions,
 };
 
 fn path(name: &str) -> String {
-    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+    format!(
+        "{}/../../../shared/profiles/{}",
+        env!("CARGO_MANIFEST_DIR"),
+        name
+    )
 }
 
 fn text(name: &str) -> String {

@@ -1,20 +1,20 @@
 //! Physics validation of the exact (Kalker) solver against analytic and
 //! published results. Each reference number names its source.
 
-use railcontact::core::cache::KernelCache;
-use railcontact::core::creep::kalker_creep_coefficients;
-use railcontact::core::grid::Grid;
-use railcontact::core::hertz::{hertz, HertzLoad};
-use railcontact::core::material::{CombinedMaterial, Material};
-use railcontact::core::normal::NormalLoad;
-use railcontact::core::problem::{
+use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::creep::kalker_creep_coefficients;
+use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::hertz::{hertz, HertzLoad};
+use railcontact_solver::core::material::{CombinedMaterial, Material};
+use railcontact_solver::core::normal::NormalLoad;
+use railcontact_solver::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
 };
-use railcontact::core::sensitivity::{
+use railcontact_solver::core::sensitivity::{
     central_differences, exact_jacobian, ForceJacobian, JacobianPoint, JacobianSteps,
 };
-use railcontact::core::solution::{ContactSolution, ElementState, SolveStatus};
-use railcontact::core::solve::{solve, ContactSolver};
+use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
+use railcontact_solver::core::solve::{solve, ContactSolver};
 
 fn material(nu: f64) -> CombinedMaterial {
     CombinedMaterial::identical(Material {

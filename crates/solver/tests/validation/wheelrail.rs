@@ -3,10 +3,10 @@
 //! balance over sweeps with measured worn profiles, errors, and contact
 //! tables against the direct search.
 
-use railcontact::core::cache::KernelCache;
-use railcontact::core::solution::SolveStatus;
-use railcontact::wheelrail::builtin::mbench_a22_input;
-use railcontact::wheelrail::{
+use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::solution::SolveStatus;
+use railcontact_solver::wheelrail::builtin::mbench_a22_input;
+use railcontact_solver::wheelrail::{
     load_profile, solve_wheelset, solve_wheelset_tabulated, solve_wheelset_warm, ContactTable,
     PatchResult, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
     WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
@@ -14,7 +14,11 @@ use railcontact::wheelrail::{
 };
 
 fn path(name: &str) -> String {
-    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+    format!(
+        "{}/../../../shared/profiles/{}",
+        env!("CARGO_MANIFEST_DIR"),
+        name
+    )
 }
 
 fn mbench_pair() -> WheelRailPair {
@@ -211,8 +215,9 @@ fn a22_two_point_contact_at_5mm() {
     assert_eq!(w.patches.len(), 2);
     // Field side first: the tread patch, then the flange root.
     assert!(w.patches[0].contact_angle_rad < w.patches[1].contact_angle_rad);
-    let sum =
-        |f: fn(&railcontact::wheelrail::PatchResult) -> f64| w.patches.iter().map(f).sum::<f64>();
+    let sum = |f: fn(&railcontact_solver::wheelrail::PatchResult) -> f64| {
+        w.patches.iter().map(f).sum::<f64>()
+    };
     close("sum FN", sum(|p| p.normal_force_n), 9619.0, 0.01, 0.0);
     close("sum FX", sum(|p| p.fx_n), -763.3, 0.10, 0.0);
     close("sum FS", sum(|p| p.fs_n), -2738.0, 0.03, 0.0);
@@ -301,9 +306,9 @@ fn hertz_fastsim_normal_forces_agree_with_exact_in_single_patches() {
 }
 
 fn worn_pair() -> WheelRailPair {
-    let rail = railcontact::wheelrail::load_profile_with(
+    let rail = railcontact_solver::wheelrail::load_profile_with(
         path("avg_HR.BAN"),
-        &railcontact::wheelrail::LoadOptions {
+        &railcontact_solver::wheelrail::LoadOptions {
             mirror_y: true,
             ..Default::default()
         },
@@ -585,7 +590,7 @@ fn conformal_patches_through_the_same_interface() {
     );
 }
 
-// Contact tables (railcontact::wheelrail::table): the tabulated
+// Contact tables (railcontact_solver::wheelrail::table): the tabulated
 // Hertz+FASTSIM path against the direct search, off the table's nodes.
 
 /// Largest differences, table minus direct, over a set of cases.

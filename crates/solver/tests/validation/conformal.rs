@@ -6,14 +6,16 @@
 //! nu = 0.30). The paper's numbers compare against its FEM reference; the
 //! assertions here check the findings that concern the models themselves.
 
-use railcontact::conformal::geometry::{Circle, ConformalGeometry};
-use railcontact::conformal::operator::InfluenceModel;
-use railcontact::conformal::solve::{conformal_hertz, solve_frictionless, ConformalNormalSummary};
-use railcontact::core::cache::KernelCache;
-use railcontact::core::grid::Grid;
-use railcontact::core::hertz::HertzSolution;
-use railcontact::core::material::{CombinedMaterial, Material};
-use railcontact::core::normal::{NormalLoad, NormalSettings};
+use railcontact_solver::conformal::geometry::{Circle, ConformalGeometry};
+use railcontact_solver::conformal::operator::InfluenceModel;
+use railcontact_solver::conformal::solve::{
+    conformal_hertz, solve_frictionless, ConformalNormalSummary,
+};
+use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::hertz::HertzSolution;
+use railcontact_solver::core::material::{CombinedMaterial, Material};
+use railcontact_solver::core::normal::{NormalLoad, NormalSettings};
 
 struct Case {
     rail: f64,
@@ -201,12 +203,12 @@ fn coefficient_effect_is_stronger_for_the_elongated_case_2() {
 
 mod frictional {
     use super::*;
-    use railcontact::conformal::frictional::{
+    use railcontact_solver::conformal::frictional::{
         solve_frictional, ConformalKinematics, ConformalSettings, ConformalSolution,
         FrictionalWorkspace,
     };
-    use railcontact::conformal::geometry::ConformalCreepages;
-    use railcontact::core::solution::SolveStatus;
+    use railcontact_solver::conformal::geometry::ConformalCreepages;
+    use railcontact_solver::core::solution::SolveStatus;
 
     const MU: f64 = 0.3;
 
@@ -342,7 +344,7 @@ mod frictional {
         let centre = g.index(g.nx / 2, g.ny / 2);
         assert_eq!(
             s.state[centre],
-            railcontact::core::solution::ElementState::Adhesion
+            railcontact_solver::core::solution::ElementState::Adhesion
         );
         assert!(t.adhesion_fraction > 0.2 && t.adhesion_fraction < 0.9);
     }

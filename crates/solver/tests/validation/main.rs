@@ -1,0 +1,9 @@
+//! Validation of the solver crate against analytic and published results,
+//! one test binary: the physics of the planar core (`physics`), conformal
+//! contact (`conformal`), the profile readers (`profiles`) and wheel/rail
+//! contact (`wheelrail`). Each reference number names its source.
+
+mod conformal;
+mod physics;
+mod profiles;
+mod wheelrail;
