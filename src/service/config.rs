@@ -16,6 +16,10 @@ use serde::Deserialize;
 /// Prefix of the environment variables.
 pub const ENV_PREFIX: &str = "RAILCONTACT_";
 
+/// Longest duration any setting in seconds may take (one week): beyond it
+/// `Duration` arithmetic is no longer meaningful for a server.
+const MAX_SECONDS: f64 = 7.0 * 86400.0;
+
 /// Server settings. The TOML file uses these keys at top level.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -52,6 +56,26 @@ pub struct ServeConfig {
     /// `railcontact-data`, relative to the working directory. Empty: no
     /// store, pairs are kept in memory only.
     pub data_dir: PathBuf,
+    /// Longest one solve may run on a worker \[s\] (default 120): a unary
+    /// solve, one item of a batch or creep curve, one session step, a
+    /// pair's preparation. A solve still running then is stopped and
+    /// answered with RESOURCE_EXHAUSTED, whatever its solver settings ask
+    /// for; a client's deadline can only shorten it.
+    pub max_solve_time_s: f64,
+    /// How long a session stream (PatchSession, WheelRailSession) may take
+    /// to send its first message \[s\] (default 10); a stream still silent
+    /// then is ended with DEADLINE_EXCEEDED and costs nothing more.
+    pub stream_first_message_timeout_s: f64,
+    /// HTTP/2 keepalive: the server pings each connection that has been
+    /// quiet this long \[s\] (default 30; 0: no pings) ...
+    pub http2_keepalive_interval_s: f64,
+    /// ... and closes it when the ping is not answered within this time
+    /// \[s\] (default 20): a client that vanished without closing its
+    /// connection (power loss, a stopped process) frees its calls.
+    pub http2_keepalive_timeout_s: f64,
+    /// Calls open at once on one HTTP/2 connection (default 256); a client
+    /// needing more opens another connection.
+    pub max_streams_per_connection: u32,
 }
 
 impl Default for ServeConfig {
@@ -69,6 +93,11 @@ impl Default for ServeConfig {
             kernel_cache_max_bytes: crate::core::cache::DEFAULT_MAX_BYTES,
             shutdown_grace_s: 30.0,
             data_dir: PathBuf::from("railcontact-data"),
+            max_solve_time_s: 120.0,
+            stream_first_message_timeout_s: 10.0,
+            http2_keepalive_interval_s: 30.0,
+            http2_keepalive_timeout_s: 20.0,
+            max_streams_per_connection: 256,
         }
     }
 }
@@ -122,11 +151,36 @@ impl ServeConfig {
         if let Some(v) = &flags.data_dir {
             c.data_dir = v.clone();
         }
-        if !(c.shutdown_grace_s.is_finite() && c.shutdown_grace_s >= 0.0) {
-            errors.push(format!(
-                "shutdown_grace_s must be finite and >= 0, got {}",
-                c.shutdown_grace_s
-            ));
+        for (key, v, least) in [
+            ("shutdown_grace_s", c.shutdown_grace_s, 0.0),
+            (
+                "http2_keepalive_interval_s",
+                c.http2_keepalive_interval_s,
+                0.0,
+            ),
+        ] {
+            if !(v.is_finite() && v >= least && v <= MAX_SECONDS) {
+                errors.push(format!(
+                    "{key} must be from {least} to {MAX_SECONDS} s, got {v}"
+                ));
+            }
+        }
+        for (key, v) in [
+            ("max_solve_time_s", c.max_solve_time_s),
+            (
+                "stream_first_message_timeout_s",
+                c.stream_first_message_timeout_s,
+            ),
+            ("http2_keepalive_timeout_s", c.http2_keepalive_timeout_s),
+        ] {
+            if !(v.is_finite() && v >= 0.001 && v <= MAX_SECONDS) {
+                errors.push(format!(
+                    "{key} must be from 0.001 to {MAX_SECONDS} s, got {v}"
+                ));
+            }
+        }
+        if c.max_streams_per_connection == 0 {
+            errors.push("max_streams_per_connection must be at least 1".into());
         }
         for (key, v) in [
             ("max_batch_items", c.max_batch_items),
@@ -195,6 +249,27 @@ impl ServeConfig {
         );
         parse(get("shutdown_grace_s"), &mut self.shutdown_grace_s, errors);
         parse(get("data_dir"), &mut self.data_dir, errors);
+        parse(get("max_solve_time_s"), &mut self.max_solve_time_s, errors);
+        parse(
+            get("stream_first_message_timeout_s"),
+            &mut self.stream_first_message_timeout_s,
+            errors,
+        );
+        parse(
+            get("http2_keepalive_interval_s"),
+            &mut self.http2_keepalive_interval_s,
+            errors,
+        );
+        parse(
+            get("http2_keepalive_timeout_s"),
+            &mut self.http2_keepalive_timeout_s,
+            errors,
+        );
+        parse(
+            get("max_streams_per_connection"),
+            &mut self.max_streams_per_connection,
+            errors,
+        );
     }
 
     /// The store's directory, if the pairs are to be persisted.

@@ -178,8 +178,10 @@ impl ContactHandlers {
     }
 
     /// Runs the items of a batch concurrently on one admission (one queue
-    /// slot; the items share the workers): `solve(handlers, admission,
-    /// item, "items[i]")`. Outcomes in request order.
+    /// slot; at most one item per worker in flight, so that other requests
+    /// do not wait for the whole batch, see [`SolvePool::run_items`]):
+    /// `solve(handlers, admission, item, "items[i]")`. Outcomes in request
+    /// order.
     async fn batch<T, R, F, Fut>(
         &self,
         items: Vec<T>,
@@ -203,21 +205,18 @@ impl ContactHandlers {
             ));
         }
         let admission = Arc::new(self.pool.admit(deadline)?);
-        let mut tasks = tokio::task::JoinSet::new();
-        for (i, item) in items.into_iter().enumerate() {
-            let (this, admission, solve) = (self.clone(), admission.clone(), solve.clone());
-            tasks.spawn(
-                async move { (i, solve(this, admission, item, format!("items[{i}]")).await) }
-                    .in_current_span(),
-            );
-        }
-        let mut slots = Vec::with_capacity(tasks.len());
-        while let Some(done) = tasks.join_next().await {
-            let (i, r) = done.map_err(|e| ServiceError::Internal(format!("batch item: {e}")))?;
-            slots.push((i as u32, r));
-        }
-        slots.sort_by_key(|s| s.0);
-        Ok(slots)
+        self.pool
+            .run_items(items, |i, item| {
+                let (this, admission, solve) = (self.clone(), admission.clone(), solve.clone());
+                async move {
+                    (
+                        i as u32,
+                        solve(this, admission, item, format!("items[{i}]")).await,
+                    )
+                }
+                .in_current_span()
+            })
+            .await
     }
 }
 

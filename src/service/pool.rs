@@ -54,8 +54,14 @@ pub struct SolvePool {
     fast_workers: Arc<Semaphore>,
     queue: Arc<Semaphore>,
     capacity: usize,
+    /// Solve permits per lane.
+    worker_count: usize,
     /// Solves whose request ended while they ran (see [`SolvePool::cancelled`]).
     cancelled: Arc<AtomicU64>,
+    /// Longest a solve may run on a worker (see [`SolvePool::with_max_solve_time`]).
+    max_solve_time: Option<Duration>,
+    /// Solves stopped at [`SolvePool::with_max_solve_time`]'s limit.
+    timed_out: Arc<AtomicU64>,
 }
 
 /// Which workers a solve runs on (see the module docs).
@@ -106,8 +112,68 @@ impl SolvePool {
             fast_workers: Arc::new(Semaphore::new(workers)),
             queue: Arc::new(Semaphore::new(capacity)),
             capacity,
+            worker_count: workers,
             cancelled: Arc::new(AtomicU64::new(0)),
+            max_solve_time: None,
+            timed_out: Arc::new(AtomicU64::new(0)),
         }
+    }
+
+    /// The same pool with a server-side limit on how long one solve may run
+    /// on a worker (not counting the wait for one): a solve still running
+    /// then is told to stop ([`crate::core::cancel`]) and answered with
+    /// RESOURCE_EXHAUSTED. A client's deadline can only shorten it. The
+    /// inline lane (solves of microseconds) is not timed.
+    pub fn with_max_solve_time(mut self, limit: Duration) -> Self {
+        self.max_solve_time = Some(limit);
+        self
+    }
+
+    /// Runs the items of one request (a batch) concurrently, `solve(i,
+    /// item)`, with at most one item per worker in flight at a time; the
+    /// outcomes in item order. Fair to other requests: the workers'
+    /// semaphore is first come, first served, and a batch keeps at most
+    /// `workers` items waiting there, so a request that arrives while a
+    /// batch of 1,024 items runs waits for at most one item per worker,
+    /// not for the whole batch.
+    pub async fn run_items<T, R, F, Fut>(
+        &self,
+        items: Vec<T>,
+        solve: F,
+    ) -> Result<Vec<R>, ServiceError>
+    where
+        T: Send + 'static,
+        R: Send + 'static,
+        F: Fn(usize, T) -> Fut,
+        Fut: std::future::Future<Output = R> + Send + 'static,
+    {
+        let in_flight = Arc::new(Semaphore::new(self.worker_count));
+        let mut tasks = tokio::task::JoinSet::new();
+        let n = items.len();
+        for (i, item) in items.into_iter().enumerate() {
+            let permit = in_flight
+                .clone()
+                .acquire_owned()
+                .await
+                .map_err(|_| ServiceError::Unavailable("the solve pool is closed".into()))?;
+            let item = solve(i, item);
+            tasks.spawn(async move {
+                let out = item.await;
+                drop(permit);
+                (i, out)
+            });
+        }
+        let mut slots: Vec<Option<R>> = (0..n).map(|_| None).collect();
+        while let Some(done) = tasks.join_next().await {
+            let (i, r) = done.map_err(|e| ServiceError::Internal(format!("batch item: {e}")))?;
+            slots[i] = Some(r);
+        }
+        Ok(slots.into_iter().flatten().collect())
+    }
+
+    /// Solves stopped at the server's time limit so far.
+    pub fn timed_out(&self) -> u64 {
+        self.timed_out.load(Ordering::Relaxed)
     }
 
     /// Admits a request with an optional deadline, or refuses it when the
@@ -178,6 +244,7 @@ impl Admission {
         let token = CancelToken::new();
         let stop = CancelOnDrop(token.clone());
         let cancelled = self.pool.cancelled.clone();
+        let (limit, timed_out) = (self.pool.max_solve_time, self.pool.timed_out.clone());
         let work = async move {
             let _stop = stop;
             let permit = workers
@@ -192,16 +259,28 @@ impl Admission {
                 return std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| token.scope(f)))
                     .map_err(|_| ServiceError::Internal("a solve failed: it panicked".into()));
             }
-            tokio::task::spawn_blocking(move || {
+            let solve = tokio::task::spawn_blocking(move || {
                 let _permit = permit;
                 let out = token.scope(f);
                 if token.is_cancelled() {
                     cancelled.fetch_add(1, Ordering::Relaxed);
                 }
                 out
-            })
-            .await
-            .map_err(|e| ServiceError::Internal(format!("a solve failed: {e}")))
+            });
+            let joined = match limit {
+                // Returning drops `_stop`, which tells the thread to stop.
+                Some(limit) => tokio::time::timeout(limit, solve).await.map_err(|_| {
+                    timed_out.fetch_add(1, Ordering::Relaxed);
+                    ServiceError::Exhausted(format!(
+                        "the solve ran longer than this server's limit of {} s per solve \
+                         (max_solve_time_s) and was stopped: use a coarser grid, fewer \
+                         steps or looser solver settings, or split the work",
+                        limit.as_secs_f64()
+                    ))
+                })?,
+                None => solve.await,
+            };
+            joined.map_err(|e| ServiceError::Internal(format!("a solve failed: {e}")))
         };
         match deadline {
             Some(d) => tokio::time::timeout_at(d, work)
@@ -346,6 +425,68 @@ mod tests {
         assert_eq!(pool.cancelled(), 2);
         // A solve that ends normally was never cancelled.
         assert!(!c.run(crate::core::cancel::requested).await.unwrap());
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_solve_past_the_server_limit_is_stopped_and_refused() {
+        let pool = SolvePool::new(1, 4).with_max_solve_time(Duration::from_millis(50));
+        let a = pool.admit(None).unwrap();
+        let (tx, rx) = std::sync::mpsc::channel::<bool>();
+        let r = a.run(move || tx.send(until_cancelled())).await;
+        match r {
+            Err(ServiceError::Exhausted(m)) => assert!(m.contains("max_solve_time_s"), "{m}"),
+            other => panic!("expected RESOURCE_EXHAUSTED, got {other:?}"),
+        }
+        // The thread was told to stop, and the only worker is free again.
+        assert!(rx.recv().unwrap());
+        assert_eq!(a.run(|| 6).await.unwrap(), 6);
+        assert_eq!(pool.timed_out(), 1);
+        assert_eq!(pool.cancelled(), 1);
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_request_waits_for_one_item_of_a_batch_not_for_the_batch() {
+        let pool = SolvePool::new(1, 4);
+        let done = Arc::new(std::sync::Mutex::new(Vec::<String>::new()));
+        let batch = {
+            let (pool, done) = (pool.clone(), done.clone());
+            tokio::spawn(async move {
+                let admission = Arc::new(pool.admit(None).unwrap());
+                pool.run_items((0..50).collect(), |i, _: u32| {
+                    let (admission, done) = (admission.clone(), done.clone());
+                    async move {
+                        admission
+                            .run(move || {
+                                std::thread::sleep(Duration::from_millis(5));
+                                done.lock().unwrap().push(format!("item {i}"));
+                            })
+                            .await
+                    }
+                })
+                .await
+            })
+        };
+        // Let the batch start, then ask for one small solve.
+        while done.lock().unwrap().is_empty() {
+            tokio::time::sleep(Duration::from_millis(1)).await;
+        }
+        let small = pool.admit(None).unwrap();
+        let d = done.clone();
+        small
+            .run(move || d.lock().unwrap().push("small".into()))
+            .await
+            .unwrap();
+        let results = batch.await.unwrap().unwrap();
+        assert_eq!(results.len(), 50);
+        assert!(results.iter().all(|r| r.is_ok()));
+        let order = done.lock().unwrap().clone();
+        let at = order.iter().position(|s| s == "small").unwrap();
+        // One worker: the small solve comes after at most the item that
+        // was running and the one already waiting when it arrived (and
+        // the items that finished while it was being admitted).
+        assert!(at <= 4, "the small solve came {at}th: {order:?}");
+        // The items come back in order.
+        assert_eq!(order.len(), 51);
     }
 
     #[tokio::test]

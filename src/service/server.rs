@@ -71,7 +71,8 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
 /// Binds the ports and starts serving `config` on the current runtime.
 pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let workers = config.worker_count();
-    let pool = SolvePool::new(workers, config.queue_count());
+    let pool = SolvePool::new(workers, config.queue_count())
+        .with_max_solve_time(Duration::from_secs_f64(config.max_solve_time_s));
     crate::core::cache::KernelCache::global().set_max_bytes(config.kernel_cache_max_bytes);
     let metrics = Arc::new(Metrics::default());
     let limits = RequestLimits {
@@ -118,6 +119,17 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let (stop, stopped) = oneshot::channel::<()>();
     let task = tokio::spawn(
         tonic::transport::Server::builder()
+            .layer(tower::util::MapResponseLayer::new(
+                oversize_request_is_resource_exhausted,
+            ))
+            .http2_keepalive_interval(
+                (config.http2_keepalive_interval_s > 0.0)
+                    .then(|| Duration::from_secs_f64(config.http2_keepalive_interval_s)),
+            )
+            .http2_keepalive_timeout(Some(Duration::from_secs_f64(
+                config.http2_keepalive_timeout_s,
+            )))
+            .max_concurrent_streams(config.max_streams_per_connection)
             .trace_fn(|req| tracing::info_span!("grpc", path = %req.uri().path()))
             .add_service(health_service)
             .add_service(reflection_v1)
@@ -171,6 +183,42 @@ impl RunningServer {
         }
         self.pairs.close_store();
     }
+}
+
+/// The message of tonic's refusal of a request larger than
+/// `max_message_bytes`.
+const OVERSIZE_REQUEST: &str = "Error, decoded message length too large";
+
+/// tonic refuses a request message larger than `max_message_bytes` with
+/// OUT_OF_RANGE before any handler sees it; gRPC's status table has
+/// RESOURCE_EXHAUSTED for it, which clients retry differently (split the
+/// request rather than fix a value). Such a refusal is a trailers-only
+/// response, its status in the headers, which this rewrites.
+fn oversize_request_is_resource_exhausted(
+    mut res: tonic::codegen::http::Response<tonic::body::Body>,
+) -> tonic::codegen::http::Response<tonic::body::Body> {
+    use tonic::codegen::http::HeaderValue;
+    let headers = res.headers_mut();
+    let out_of_range = headers
+        .get("grpc-status")
+        .is_some_and(|v| v.as_bytes() == b"11");
+    let oversize = headers
+        .get("grpc-message")
+        .and_then(|v| v.to_str().ok())
+        .map(|m| m.replace("%20", " "))
+        .filter(|m| m.starts_with(OVERSIZE_REQUEST));
+    if let (true, Some(message)) = (out_of_range, oversize) {
+        let status = tonic::Status::resource_exhausted(format!(
+            "the request is larger than this server accepts (max_message_bytes): {}; \
+             split it into smaller requests",
+            message.trim_start_matches("Error, ")
+        ));
+        headers.insert("grpc-status", HeaderValue::from_static("8"));
+        if let Ok(v) = HeaderValue::from_str(status.message()) {
+            headers.insert("grpc-message", v);
+        }
+    }
+    res
 }
 
 /// Waits for SIGTERM or Ctrl-C.
