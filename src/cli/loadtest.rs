@@ -620,6 +620,23 @@ struct Protocol<'a, Req, Call, Step, Read> {
     answer: Read,
 }
 
+/// Opens refused with RESOURCE_EXHAUSTED (the server's session or queue
+/// limit) are tried again this many times.
+const OPEN_RETRIES: u64 = 12;
+/// The first pause before opening again; it doubles up to [`OPEN_MAX_PAUSE`].
+const OPEN_FIRST_PAUSE: Duration = Duration::from_millis(20);
+/// The longest pause between two opens (about 20 s in all over the retries).
+const OPEN_MAX_PAUSE: Duration = Duration::from_secs(2);
+
+/// A number in [0, 1) from `seed` (splitmix64): spreads the retries of
+/// many sessions without a random-number crate.
+fn unit_jitter(seed: u64) -> f64 {
+    let mut z = seed.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    (z ^ (z >> 31)) as f64 / (u64::MAX as f64 + 1.0)
+}
+
 /// The step loop shared by both kinds of session.
 async fn drive_session<Req, Resp, Call, Fut, Step, Read>(
     t: &mut Track,
@@ -628,8 +645,8 @@ async fn drive_session<Req, Resp, Call, Fut, Step, Read>(
     p: Protocol<'_, Req, Call, Step, Read>,
 ) -> Result<(), String>
 where
-    Req: Send + 'static,
-    Call: FnOnce(tonic::Request<ReceiverStream<Req>>) -> Fut,
+    Req: Clone + Send + 'static,
+    Call: Fn(tonic::Request<ReceiverStream<Req>>) -> Fut,
     Fut: std::future::Future<
         Output = Result<tonic::Response<tonic::Streaming<Resp>>, tonic::Status>,
     >,
@@ -643,21 +660,39 @@ where
         step,
         answer,
     } = p;
-    let (tx, rx) = mpsc::channel(2);
-    let _ = tx.send(open).await;
-    let opened = call(with_session_header(ReceiverStream::new(rx), label)).await;
-    let mut stream = opened
-        .map_err(|s| format!("open: {}", status_text(&s)))?
-        .into_inner();
-    match stream.message().await {
-        Ok(Some(r)) => match answer(r) {
-            Answer::Opened => {}
-            Answer::Refused(e) | Answer::Unexpected(e) => return Err(format!("open: {e}")),
-            Answer::Step(_) => return Err("open: answered with a step".into()),
-        },
-        Ok(None) => return Err("open: the server ended the stream".into()),
-        Err(s) => return Err(format!("open: {}", status_text(&s))),
-    }
+    // A server at its session or queue limit answers RESOURCE_EXHAUSTED:
+    // open again after a pause that doubles, with jitter, up to
+    // OPEN_RETRIES times.
+    let mut pause = OPEN_FIRST_PAUSE;
+    let mut tries = 0;
+    let (tx, mut stream) = loop {
+        let (tx, rx) = mpsc::channel(2);
+        let _ = tx.send(open.clone()).await;
+        let refusal = match call(with_session_header(ReceiverStream::new(rx), label)).await {
+            Ok(response) => {
+                let mut stream = response.into_inner();
+                match stream.message().await {
+                    Ok(Some(r)) => match answer(r) {
+                        Answer::Opened => break (tx, stream),
+                        Answer::Refused(e) | Answer::Unexpected(e) => {
+                            return Err(format!("open: {e}"))
+                        }
+                        Answer::Step(_) => return Err("open: answered with a step".into()),
+                    },
+                    Ok(None) => return Err("open: the server ended the stream".into()),
+                    Err(s) => s,
+                }
+            }
+            Err(s) => s,
+        };
+        tries += 1;
+        if refusal.code() != tonic::Code::ResourceExhausted || tries > OPEN_RETRIES {
+            return Err(format!("open: {}", status_text(&refusal)));
+        }
+        let jitter = 0.5 + 0.5 * unit_jitter(t.index as u64 * 31 + tries);
+        tokio::time::sleep(pause.mul_f64(jitter)).await;
+        pause = (pause * 2).min(OPEN_MAX_PAUSE);
+    };
     let mut k = 0;
     while limits.go_on(k) {
         let t0 = Instant::now();
@@ -726,10 +761,9 @@ async fn wheelrail_session(
         Some(Out::Error(e)) => Answer::Refused(item_error(&e)),
         other => Answer::Unexpected(format!("unexpected answer {other:?}")),
     };
-    // Moves `client` in: FnOnce, so the call may borrow it.
-    let call = move |req| {
-        let c = client;
-        c.wheel_rail_session(req)
+    let call = |req| {
+        let mut c = client.clone();
+        async move { c.wheel_rail_session(req).await }
     };
     let p = Protocol {
         label,
@@ -779,10 +813,9 @@ async fn patch_session(
         Some(Out::Error(e)) => Answer::Refused(item_error(&e)),
         other => Answer::Unexpected(format!("unexpected answer {other:?}")),
     };
-    // Moves `client` in: FnOnce, so the call may borrow it.
-    let call = move |req| {
-        let c = client;
-        c.patch_session(req)
+    let call = |req| {
+        let mut c = client.clone();
+        async move { c.patch_session(req).await }
     };
     let p = Protocol {
         label,
