@@ -742,7 +742,7 @@ impl ContactHandlers {
         };
         let _slot = self.session_slot()?;
         let entry = self.pairs.lookup(&open.pair_id)?;
-        let admission = self.pool.admit(None)?;
+        let admission = self.pool.session();
         let prepared = self
             .pairs
             .prepared(&entry, &admission, Arc::new(|_, _| {}))
@@ -769,19 +769,18 @@ impl ContactHandlers {
                 Some(Kind::Step(step)) => {
                     let t0 = StdInstant::now();
                     let r = match session.check_step(&step) {
-                        Ok(input) => match self.pool.admit(None) {
-                            Ok(admission) => {
-                                let (s, r) = admission
-                                    .run_on(wheelrail_lane(model), move || {
-                                        let r = session.step(input);
-                                        (session, r)
-                                    })
-                                    .await?;
-                                session = s;
-                                r
-                            }
-                            Err(e) => Err(e),
-                        },
+                        Ok(input) => {
+                            let (s, r) = self
+                                .pool
+                                .session()
+                                .run_on(wheelrail_lane(model), move || {
+                                    let r = session.step(input);
+                                    (session, r)
+                                })
+                                .await?;
+                            session = s;
+                            r
+                        }
                         Err(e) => Err(e),
                     };
                     self.metrics.solved_as(
@@ -834,7 +833,7 @@ impl ContactHandlers {
         }
         let model = valid.case.model;
         let fields = open.include_fields;
-        let admission = self.pool.admit(None)?;
+        let admission = self.pool.session();
         let mut session = admission
             .run(move || {
                 let mut engine =
@@ -892,10 +891,7 @@ impl ContactHandlers {
             Ok(i) => i,
             Err(e) => return Ok((session, Err(e))),
         };
-        let admission = match self.pool.admit(None) {
-            Ok(a) => a,
-            Err(e) => return Ok((session, Err(e))),
-        };
+        let admission = self.pool.session();
         let engine = session.engine();
         let lane = patch_lane(engine.case(), engine.sensitivities());
         let (session, r) = admission

@@ -197,6 +197,21 @@ impl SolvePool {
     /// request, but takes no queue slot, so clients never find the queue
     /// full because of it.
     pub fn internal(&self) -> Admission {
+        self.unqueued()
+    }
+
+    /// An admission for a session's work: its opening (a pair's
+    /// preparation, a patch's kernels) and each of its steps. It takes no
+    /// queue slot: the sessions are bounded by `max_sessions` and each has
+    /// at most one solve in flight, so a server that admitted a session
+    /// always has room for its steps (they wait for a worker like every
+    /// solve). The queue bounds the unary requests and batches alone.
+    pub fn session(&self) -> Admission {
+        self.unqueued()
+    }
+
+    /// An admission without a queue slot or deadline.
+    fn unqueued(&self) -> Admission {
         Admission {
             pool: self.clone(),
             deadline: None,

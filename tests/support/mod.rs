@@ -142,3 +142,14 @@ pub fn assert_clean(v: &Value) {
         assert!(num(b, "p50_s") <= num(b, "max_s"), "{kind}");
     }
 }
+
+impl Server {
+    /// The server process's peak resident memory so far (VmHWM) \[bytes\];
+    /// None where /proc is not there.
+    pub fn peak_rss_bytes(&self) -> Option<u64> {
+        let status = std::fs::read_to_string(format!("/proc/{}/status", self.child.id())).ok()?;
+        let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+        let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kib * 1024)
+    }
+}
