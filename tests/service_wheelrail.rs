@@ -5,6 +5,8 @@
 //! server runs on an ephemeral loopback port with its store in a temporary
 //! directory; profiles come from `../shared/profiles`.
 
+mod support;
+
 use std::path::Path;
 
 use railcontact::core::cache::KernelCache;
@@ -168,16 +170,6 @@ async fn register_ready(
     last
 }
 
-async fn list(client: &mut Client) -> Vec<pb::ProfilePairInfo> {
-    let req = pb::ListProfilePairsRequest {};
-    client
-        .list_profile_pairs(req)
-        .await
-        .unwrap()
-        .into_inner()
-        .pairs
-}
-
 async fn solve(client: &mut Client, req: pb::SolveWheelRailRequest) -> pb::WheelRailResult {
     client
         .solve_wheel_rail(req)
@@ -294,7 +286,7 @@ fn untimed(mut r: pb::WheelRailResult) -> pb::WheelRailResult {
 async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
     let (server, mut client) = server_in(dir.path()).await;
-    let pairs = list(&mut client).await;
+    let pairs = support::list_pairs(&mut client).await;
     let builtin = pairs
         .iter()
         .find(|p| p.builtin_pair == BUILTIN)
@@ -423,7 +415,7 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
     let other = register_ready(&mut client, spec_request(changed, "")).await;
     assert_ne!(other.pair_id, id, "other content, other id");
 
-    let list = list(&mut client).await;
+    let list = support::list_pairs(&mut client).await;
     let ids: Vec<&str> = list.iter().map(|p| p.pair_id.as_str()).collect();
     assert_eq!(list.len(), 3, "{ids:?}");
     assert!(ids.contains(&id.as_str()));
@@ -568,7 +560,7 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
     assert_invalid(&e, &["builtin_pair", BUILTIN]);
 
     // Nothing of these was registered.
-    let list = list(&mut client).await;
+    let list = support::list_pairs(&mut client).await;
     assert_eq!(list.len(), 1, "only the built-in pair: {list:?}");
 
     // Bad queries.
@@ -708,7 +700,7 @@ async fn registered_pairs_survive_a_restart_and_deletions_too() {
     let (server, mut client) = server_in(dir.path()).await;
     let e = client.get_profile_pair(get(&id)).await.unwrap_err();
     assert_eq!(e.code(), Code::NotFound);
-    let list = list(&mut client).await;
+    let list = support::list_pairs(&mut client).await;
     assert_eq!(list.len(), 1, "the built-in pair only");
     server.shutdown().await;
 }

@@ -56,6 +56,26 @@ pub struct ServeConfig {
     /// `railcontact-data`, relative to the working directory. Empty: no
     /// store, pairs are kept in memory only.
     pub data_dir: PathBuf,
+    /// What a start does with records of the store that are damaged (they
+    /// cannot be decoded, or their content no longer hashes to their id):
+    /// `start` (default) serves the other pairs and lists each damaged one
+    /// as FAILED with the reason (logged as an error, counted in
+    /// `railcontact_store_damaged_records`) until it is registered again
+    /// or deleted; `fail` refuses to start, naming the records. A damaged
+    /// record is never served either way.
+    pub store_damaged: StoreDamaged,
+    /// Largest number of registered profile pairs, the built-in one not
+    /// counted (default 256); more registrations get RESOURCE_EXHAUSTED.
+    pub max_profile_pairs: usize,
+    /// Largest number of points of one profile of a registration (default
+    /// 20000; measured profiles have a few hundred to a few thousand); more
+    /// get INVALID_ARGUMENT naming the profile's field.
+    pub max_profile_points: usize,
+    /// Largest size of the registrations in the store, their encoded bytes
+    /// summed \[bytes\] (default 256 MiB); a registration beyond it gets
+    /// RESOURCE_EXHAUSTED. The file itself is somewhat larger (redb's
+    /// pages and free space).
+    pub max_store_bytes: u64,
     /// Longest one solve may run on a worker \[s\] (default 120): a unary
     /// solve, one item of a batch or creep curve, one session step, a
     /// pair's preparation. A solve still running then is stopped and
@@ -78,6 +98,30 @@ pub struct ServeConfig {
     pub max_streams_per_connection: u32,
 }
 
+/// What to do at start with damaged records of the store; see
+/// [`ServeConfig::store_damaged`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StoreDamaged {
+    /// Start; the damaged records are FAILED pairs.
+    #[default]
+    Start,
+    /// Refuse to start.
+    Fail,
+}
+
+impl std::str::FromStr for StoreDamaged {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "start" => Ok(Self::Start),
+            "fail" => Ok(Self::Fail),
+            other => Err(format!("expected \"start\" or \"fail\", got {other:?}")),
+        }
+    }
+}
+
 impl Default for ServeConfig {
     fn default() -> Self {
         Self {
@@ -98,6 +142,10 @@ impl Default for ServeConfig {
             http2_keepalive_interval_s: 30.0,
             http2_keepalive_timeout_s: 20.0,
             max_streams_per_connection: 256,
+            store_damaged: StoreDamaged::Start,
+            max_profile_pairs: 256,
+            max_profile_points: 20_000,
+            max_store_bytes: 256 << 20,
         }
     }
 }
@@ -188,6 +236,9 @@ impl ServeConfig {
             ("max_sessions", c.max_sessions),
             ("max_grid_elements", c.max_grid_elements),
             ("max_message_bytes", c.max_message_bytes),
+            ("max_profile_pairs", c.max_profile_pairs),
+            ("max_profile_points", c.max_profile_points),
+            ("max_store_bytes", c.max_store_bytes as usize),
         ] {
             if v == 0 {
                 errors.push(format!("{key} must be at least 1"));
@@ -270,6 +321,18 @@ impl ServeConfig {
             &mut self.max_streams_per_connection,
             errors,
         );
+        parse(get("store_damaged"), &mut self.store_damaged, errors);
+        parse(
+            get("max_profile_pairs"),
+            &mut self.max_profile_pairs,
+            errors,
+        );
+        parse(
+            get("max_profile_points"),
+            &mut self.max_profile_points,
+            errors,
+        );
+        parse(get("max_store_bytes"), &mut self.max_store_bytes, errors);
     }
 
     /// The store's directory, if the pairs are to be persisted.
@@ -328,6 +391,8 @@ mod tests {
             ("RAILCONTACT_WORKERS", "5"),
             ("RAILCONTACT_METRICS_LISTEN", "127.0.0.1:9464"),
             ("RAILCONTACT_DATA_DIR", "/var/lib/railcontact"),
+            ("RAILCONTACT_STORE_DAMAGED", "fail"),
+            ("RAILCONTACT_MAX_PROFILE_POINTS", "5000"),
         ]);
         let flags = ServeFlags {
             listen: Some("127.0.0.1:7000".parse().unwrap()),
@@ -339,14 +404,19 @@ mod tests {
         assert_eq!(c.max_sessions, 7, "file over default");
         assert_eq!(c.metrics_listen.map(|a| a.port()), Some(9464));
         assert_eq!(c.store_dir(), Some(Path::new("/var/lib/railcontact")));
+        assert_eq!(c.store_damaged, StoreDamaged::Fail);
+        assert_eq!(c.max_profile_points, 5000);
 
         let bad = env(&[
             ("RAILCONTACT_WORKERS", "many"),
             ("RAILCONTACT_MAX_SESSIONS", "0"),
+            ("RAILCONTACT_STORE_DAMAGED", "ignore"),
         ]);
         let err = ServeConfig::load(None, &bad, &ServeFlags::default()).unwrap_err();
         assert!(
-            err.contains("RAILCONTACT_WORKERS") && err.contains("max_sessions"),
+            err.contains("RAILCONTACT_WORKERS")
+                && err.contains("max_sessions")
+                && err.contains("RAILCONTACT_STORE_DAMAGED"),
             "{err}"
         );
         std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();

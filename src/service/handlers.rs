@@ -263,7 +263,7 @@ async fn register(
             }));
         }
     };
-    let (entry, existed) = registry.begin(spec);
+    let (entry, existed) = registry.begin(spec)?;
     send(
         pb::RegistrationStage::Validated,
         "request checked, id computed",

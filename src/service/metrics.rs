@@ -12,6 +12,8 @@
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
+//! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
+//! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
 //!
 //! The counters sit behind one short-held mutex (never held across a solve).
 
@@ -71,6 +73,8 @@ struct Counters {
     solves: BTreeMap<(&'static str, &'static str), Histogram>,
     sessions_active: u64,
     sessions_opened: u64,
+    store_damaged_records: u64,
+    registrations_refused: BTreeMap<&'static str, u64>,
 }
 
 /// The server's metrics.
@@ -119,6 +123,16 @@ impl Metrics {
         });
     }
 
+    /// The number of damaged records in the profile pair store.
+    pub fn store_damaged_records(&self, n: u64) {
+        self.with(|c| c.store_damaged_records = n);
+    }
+
+    /// A registration was refused by the limit `limit` (its config key).
+    pub fn registration_refused(&self, limit: &'static str) {
+        self.with(|c| *c.registrations_refused.entry(limit).or_default() += 1);
+    }
+
     /// A session ended.
     pub fn session_closed(&self) {
         self.with(|c| c.sessions_active = c.sessions_active.saturating_sub(1));
@@ -146,6 +160,11 @@ impl Metrics {
             }
             let _ = writeln!(o, "# TYPE railcontact_sessions_active gauge\nrailcontact_sessions_active {}", c.sessions_active);
             let _ = writeln!(o, "# TYPE railcontact_sessions_opened_total counter\nrailcontact_sessions_opened_total {}", c.sessions_opened);
+            let _ = writeln!(o, "# TYPE railcontact_store_damaged_records gauge\nrailcontact_store_damaged_records {}", c.store_damaged_records);
+            o.push_str("# TYPE railcontact_registrations_refused_total counter\n");
+            for (limit, n) in &c.registrations_refused {
+                let _ = writeln!(o, "railcontact_registrations_refused_total{{limit=\"{limit}\"}} {n}");
+            }
         });
         let f = cache.figures();
         let _ = writeln!(

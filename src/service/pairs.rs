@@ -34,17 +34,25 @@ use std::time::Instant;
 use prost::Message;
 use sha2::{Digest, Sha256};
 
+use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
 use crate::problem::case::{FrictionSection, MaterialSection};
+use crate::service::config::{ServeConfig, StoreDamaged};
+use crate::service::metrics::Metrics;
 use crate::service::pb;
 use crate::service::pool::Admission;
 use crate::service::status::ServiceError;
 use crate::service::store::PairStore;
+use crate::wheelrail::profile::quote;
 use crate::wheelrail::{
     builtin, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile, ProfileFormat,
     ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError, WheelRailPair,
     WheelsetData, DEFAULT_SMOOTHING_WAVELENGTH_M,
+};
+use crate::wheelrail::{
+    solve_wheelset, SearchScratch, Side, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailSettings, WheelsetPosition, WheelsetVelocity,
 };
 
 /// Name of the built-in pair registered at every start.
@@ -62,6 +70,127 @@ pub const DEFAULT_ELEMENT_SIZE_M: f64 = 2.0e-4;
 /// Tag hashed before the canonical spec: changes when the canonical form
 /// does.
 const ID_TAG: &[u8] = b"railcontact.v1.ProfilePairSpec/1\n";
+
+/// Range of the track gauge \[m\]: narrow gauges (0.6 m) to broad (1.676
+/// m) with room on both sides.
+pub const GAUGE_RANGE_M: [f64; 2] = [0.3, 3.0];
+/// Range of the depth below the top of rail where the gauge is measured
+/// \[m\] (commonly 0.014).
+pub const GAUGE_HEIGHT_RANGE_M: [f64; 2] = [0.0, 0.05];
+/// Range of the rail inclination \[rad\] (1:40 is 0.025).
+pub const CANT_RANGE_RAD: [f64; 2] = [-0.2, 0.2];
+/// Range of the flange-back distance \[m\] (commonly 1.360).
+pub const FLANGE_BACK_DISTANCE_RANGE_M: [f64; 2] = [0.2, 3.0];
+/// Range of the nominal rolling radius \[m\] (commonly 0.3 to 0.6).
+pub const NOMINAL_RADIUS_RANGE_M: [f64; 2] = [0.05, 2.0];
+/// Range of the flange back's profile y \[m\]: that of profile points.
+pub const FLANGE_BACK_Y_RANGE_M: [f64; 2] = [-10.0, 10.0];
+/// Range of the shear moduli \[Pa\] (steel: about 80e9).
+pub const SHEAR_MODULUS_RANGE_PA: [f64; 2] = [1e9, 1e12];
+/// Range of the Poisson ratios \[-\].
+pub const POISSON_RATIO_RANGE: [f64; 2] = [0.0, 0.5];
+/// Range of the friction coefficients \[-\].
+pub const FRICTION_RANGE: [f64; 2] = [0.0, 2.0];
+/// Range of the smoothing cut-off wavelength \[m\].
+pub const SMOOTHING_WAVELENGTH_RANGE_M: [f64; 2] = [0.0, 0.05];
+/// Most characters of a profile's file name.
+pub const MAX_FILE_NAME_CHARS: usize = 255;
+/// Vertical force per wheel of the trial solve at registration \[N\]: a
+/// static wheel load of a 10 t axle.
+pub const TRIAL_WHEEL_LOAD_N: f64 = 50e3;
+
+/// Checks that `v` lies in `[lo, hi]` (NaN does not), naming `field`, the
+/// range and the value.
+fn check_range(field: &str, v: f64, [lo, hi]: [f64; 2], unit: &str) -> Result<(), ServiceError> {
+    if v >= lo && v <= hi {
+        Ok(())
+    } else {
+        Err(ServiceError::invalid(
+            field,
+            format!("must be from {lo:e} to {hi:e}{unit}, got {v:e}"),
+        ))
+    }
+}
+
+/// Checks the numeric fields of a registration's track, wheelset,
+/// material and friction against their physical ranges; `f` makes the
+/// field path.
+fn check_ranges(
+    spec: &pb::ProfilePairSpec,
+    f: &dyn Fn(&str) -> String,
+) -> Result<(), ServiceError> {
+    if let Some(t) = &spec.track {
+        check_range(&f("track.gauge_m"), t.gauge_m, GAUGE_RANGE_M, " m")?;
+        check_range(
+            &f("track.gauge_height_m"),
+            t.gauge_height_m,
+            GAUGE_HEIGHT_RANGE_M,
+            " m",
+        )?;
+        check_range(&f("track.cant_rad"), t.cant_rad, CANT_RANGE_RAD, " rad")?;
+    }
+    if let Some(w) = &spec.wheelset {
+        check_range(
+            &f("wheelset.flange_back_distance_m"),
+            w.flange_back_distance_m,
+            FLANGE_BACK_DISTANCE_RANGE_M,
+            " m",
+        )?;
+        check_range(
+            &f("wheelset.nominal_radius_m"),
+            w.nominal_radius_m,
+            NOMINAL_RADIUS_RANGE_M,
+            " m",
+        )?;
+        if let Some(y) = w.flange_back_y_m {
+            check_range(
+                &f("wheelset.flange_back_y_m"),
+                y,
+                FLANGE_BACK_Y_RANGE_M,
+                " m",
+            )?;
+        }
+    }
+    if let Some(m) = &spec.material {
+        let body = |prefix: &str, g: Option<f64>, nu: Option<f64>| {
+            if let Some(g) = g {
+                let field = f(&format!("{prefix}.shear_modulus_pa"));
+                check_range(&field, g, SHEAR_MODULUS_RANGE_PA, " Pa")?;
+            }
+            if let Some(nu) = nu {
+                let field = f(&format!("{prefix}.poisson_ratio"));
+                check_range(&field, nu, POISSON_RATIO_RANGE, "")?;
+            }
+            Ok::<_, ServiceError>(())
+        };
+        body("material", m.shear_modulus_pa, m.poisson_ratio)?;
+        for (name, b) in [("material.body1", &m.body1), ("material.body2", &m.body2)] {
+            if let Some(b) = b {
+                body(name, Some(b.shear_modulus_pa), Some(b.poisson_ratio))?;
+            }
+        }
+    }
+    if let Some(fr) = &spec.friction {
+        for (name, v) in [
+            ("friction.coefficient", fr.coefficient),
+            ("friction.static_coefficient", fr.static_coefficient),
+            ("friction.kinetic_coefficient", fr.kinetic_coefficient),
+        ] {
+            if let Some(v) = v {
+                check_range(&f(name), v, FRICTION_RANGE, "")?;
+            }
+        }
+    }
+    if let Some(w) = spec.smoothing_wavelength_m {
+        check_range(
+            &f("smoothing_wavelength_m"),
+            w,
+            SMOOTHING_WAVELENGTH_RANGE_M,
+            " m",
+        )?;
+    }
+    Ok(())
+}
 
 /// The solve settings a pair brings (queries may override friction and
 /// element size).
@@ -167,7 +296,8 @@ fn canonical_source(
                     ServiceError::invalid(
                         format!("{field}.builtin_name"),
                         format!(
-                            "no built-in profile '{name}' (there are: {})",
+                            "no built-in profile '{}' (there are: {})",
+                            quote(name),
                             names.join(", ")
                         ),
                     )
@@ -183,6 +313,13 @@ fn canonical_source(
                 return Err(ServiceError::invalid(
                     format!("{field}.file.file_name"),
                     "missing: the file name tells rail from wheel and is named in messages",
+                ));
+            }
+            let chars = f.file_name.chars().count();
+            if chars > MAX_FILE_NAME_CHARS {
+                return Err(ServiceError::invalid(
+                    format!("{field}.file.file_name"),
+                    format!("has {chars} characters, more than {MAX_FILE_NAME_CHARS}"),
                 ));
             }
             load_format(f.format, &format!("{field}.file.format"))?;
@@ -262,12 +399,16 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
         Some(Pair::BuiltinPair(name)) => {
             return Err(ServiceError::invalid(
                 "builtin_pair",
-                format!("no built-in pair '{name}' (there is: {BUILTIN_PAIR})"),
+                format!(
+                    "no built-in pair '{}' (there is: {BUILTIN_PAIR})",
+                    quote(name)
+                ),
             ))
         }
         Some(Pair::Spec(s)) => (s.clone(), None, "spec"),
     };
     let f = |name: &str| format!("{prefix}.{name}");
+    check_ranges(&spec, &f)?;
     let wheel = canonical_source(spec.wheel.as_ref(), &f("wheel"))?;
     let rail = canonical_source(spec.rail.as_ref(), &f("rail"))?;
     let left = |s: Option<&pb::ProfileSource>, right: &pb::ProfileSource, name: &str| {
@@ -298,12 +439,6 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
     let smoothing_wavelength_m = spec
         .smoothing_wavelength_m
         .unwrap_or(DEFAULT_SMOOTHING_WAVELENGTH_M);
-    if !(smoothing_wavelength_m.is_finite() && smoothing_wavelength_m >= 0.0) {
-        return Err(ServiceError::invalid(
-            f("smoothing_wavelength_m"),
-            format!("must be finite and >= 0, got {smoothing_wavelength_m}"),
-        ));
-    }
     let track = spec
         .track
         .ok_or_else(|| ServiceError::invalid(f("track"), "missing"))?;
@@ -324,11 +459,7 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
         wheelset: Some(wheelset),
         smoothing_wavelength_m: Some(smoothing_wavelength_m),
     };
-    let mut hasher = Sha256::new();
-    hasher.update(ID_TAG);
-    hasher.update(canonical.encode_to_vec());
-    let digest = hasher.finalize();
-    let id: String = digest[..16].iter().map(|b| format!("{b:02x}")).collect();
+    let id = id_of(&canonical);
     let label = if req.label.is_empty() && builtin_pair.is_some() {
         "Manchester benchmark: S1002 wheel on UIC60 rail".to_string()
     } else {
@@ -356,6 +487,16 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
             },
         },
     })
+}
+
+/// The id of a canonical spec: 32 hex digits of the SHA-256 of the tag and
+/// its encoding.
+fn id_of(canonical: &pb::ProfilePairSpec) -> String {
+    let mut hasher = Sha256::new();
+    hasher.update(ID_TAG);
+    hasher.update(canonical.encode_to_vec());
+    let digest = hasher.finalize();
+    digest[..16].iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// A pair ready to solve on.
@@ -435,8 +576,22 @@ fn summary(src: &pb::ProfileSource, profile: Option<&Profile>) -> pb::ProfileSum
     }
 }
 
+/// The limit on the points of one profile, for [`prepare_with`].
+#[derive(Clone, Copy)]
+pub struct PointLimit<'a> {
+    /// Most points of one profile (`max_profile_points`).
+    pub max_points: usize,
+    /// Told when the limit refuses a profile.
+    pub metrics: Option<&'a Metrics>,
+}
+
 /// Reads one canonical profile source as `kind`; errors at `field`.
-fn read(src: &pb::ProfileSource, kind: ProfileKind, field: &str) -> Result<Profile, ServiceError> {
+fn read(
+    src: &pb::ProfileSource,
+    kind: ProfileKind,
+    field: &str,
+    limit: PointLimit,
+) -> Result<Profile, ServiceError> {
     let f = file_of(src)
         .ok_or_else(|| ServiceError::Internal(format!("{field}: not in canonical form")))?;
     let options = LoadOptions {
@@ -445,26 +600,109 @@ fn read(src: &pb::ProfileSource, kind: ProfileKind, field: &str) -> Result<Profi
         mirror_y: src.mirror_y,
         ..LoadOptions::default()
     };
-    parse_profile(&f.content, &f.file_name, &options).map_err(|e| ServiceError::profile(field, &e))
+    let p = parse_profile(&f.content, &f.file_name, &options)
+        .map_err(|e| ServiceError::profile(field, &e))?;
+    if p.len() > limit.max_points {
+        if let Some(m) = limit.metrics {
+            m.registration_refused("max_profile_points");
+        }
+        return Err(ServiceError::invalid(
+            field,
+            format!(
+                "{}: {} points, more than this server's limit of {} a profile \
+                 (max_profile_points)",
+                quote(&f.file_name),
+                p.len(),
+                limit.max_points
+            ),
+        ));
+    }
+    Ok(p)
 }
 
-/// Prepares a pair: reads the profiles, fits and places them. Field paths
-/// of errors are those of a `spec` registration.
+/// Solves the pair once, Hertz+FASTSIM on both wheels at the centred
+/// position (no shift, yaw or roll given) with [`TRIAL_WHEEL_LOAD_N`] on
+/// each: a pair whose profiles do not touch there, or that the contact
+/// search cannot solve, is refused before it is called ready.
+fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceError> {
+    let input = WheelRailInput {
+        position: WheelsetPosition::default(),
+        velocity: WheelsetVelocity::rolling(1.0),
+        load: WheelLoad::VerticalForce(TRIAL_WHEEL_LOAD_N),
+        sides: Side::BOTH.to_vec(),
+        material: s.material,
+        friction: s.friction,
+        settings: WheelRailSettings {
+            model: WheelRailModel::HertzFastsim,
+            element_size_m: s.element_size_m,
+            ..WheelRailSettings::default()
+        },
+    };
+    let mut scratch = SearchScratch::default();
+    let solution =
+        solve_wheelset(pair, &input, KernelCache::global(), &mut scratch).map_err(|e| match e {
+            WheelRailError::Cancelled => ServiceError::Cancelled,
+            e => ServiceError::invalid(
+                "spec",
+                format!(
+                    "the wheels do not make contact with their rails at the centred position \
+                     (gauge {} m, flange backs {} m apart, flange back at wheel profile y = \
+                     {}): {e}; check spec.track, spec.wheelset and the profiles' origins",
+                    s.track.gauge_m,
+                    s.wheelset.flange_back_distance_m,
+                    s.wheelset
+                        .flange_back_y_m
+                        .map_or("the profile's smallest y".into(), |y| format!("{y} m")),
+                ),
+            ),
+        })?;
+    let carried = solution.wheels.iter().all(|w| {
+        w.vertical_approach_m.is_finite()
+            && w.patches.iter().map(|p| p.normal_force_n).sum::<f64>() > 0.0
+    });
+    if carried && solution.center_z_m.is_finite() {
+        Ok(())
+    } else {
+        Err(ServiceError::invalid(
+            "spec",
+            "the trial solve at the centred position carries no load on a wheel: the profiles \
+             do not touch there; check spec.track, spec.wheelset and the profiles' origins",
+        ))
+    }
+}
+
+/// [`prepare_with`] with the default limit on the points of a profile.
 pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, ServiceError> {
+    let limit = PointLimit {
+        max_points: ServeConfig::default().max_profile_points,
+        metrics: None,
+    };
+    prepare_with(spec, progress, limit)
+}
+
+/// Prepares a pair: reads the profiles (at most `limit` points each),
+/// fits and places them, and solves it once at the centred position
+/// ([`trial_solve`]). Field paths of errors are those of a `spec`
+/// registration.
+pub fn prepare_with(
+    spec: &PairSpec,
+    progress: &Progress,
+    limit: PointLimit,
+) -> Result<PreparedPair, ServiceError> {
     let t0 = Instant::now();
     let c = &spec.canonical;
     let missing = || ServiceError::Internal("canonical spec without profiles".into());
     let wheel_src = c.wheel.as_ref().ok_or_else(missing)?;
     let rail_src = c.rail.as_ref().ok_or_else(missing)?;
-    let wheel = read(wheel_src, ProfileKind::Wheel, "spec.wheel")?;
+    let wheel = read(wheel_src, ProfileKind::Wheel, "spec.wheel", limit)?;
     let wheel_left = match &c.wheel_left {
-        Some(s) => Some(read(s, ProfileKind::Wheel, "spec.wheel_left")?),
+        Some(s) => Some(read(s, ProfileKind::Wheel, "spec.wheel_left", limit)?),
         None => None,
     };
     progress(pb::RegistrationStage::WheelParsed, "wheel profile read");
-    let rail = read(rail_src, ProfileKind::Rail, "spec.rail")?;
+    let rail = read(rail_src, ProfileKind::Rail, "spec.rail", limit)?;
     let rail_left = match &c.rail_left {
-        Some(s) => Some(read(s, ProfileKind::Rail, "spec.rail_left")?),
+        Some(s) => Some(read(s, ProfileKind::Rail, "spec.rail_left", limit)?),
         None => None,
     };
     progress(pb::RegistrationStage::RailParsed, "rail profile read");
@@ -482,6 +720,7 @@ pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, Ser
         }
         other => ServiceError::invalid("spec", other.to_string()),
     })?;
+    trial_solve(&pair, s)?;
     let prepare_time_s = t0.elapsed().as_secs_f64();
     progress(
         pb::RegistrationStage::Placed,
@@ -508,13 +747,19 @@ pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, Ser
 
 /// One registered pair.
 pub struct PairEntry {
-    /// Its registration.
+    /// Its registration (for a damaged record, a placeholder with the
+    /// record's id: see [`PairEntry::damage`]).
     pub spec: PairSpec,
     prepared: tokio::sync::OnceCell<Arc<PreparedPair>>,
     persisted: AtomicBool,
     /// Restored from the store (not registered in this run).
     restored: bool,
     failure: Mutex<Option<String>>,
+    /// Why its stored record cannot be used (damaged, or invalid in this
+    /// version): it is FAILED, never prepared and never served.
+    broken: Option<String>,
+    /// Whether its stored record is damaged.
+    damaged: bool,
 }
 
 impl PairEntry {
@@ -525,12 +770,38 @@ impl PairEntry {
             persisted: AtomicBool::new(restored),
             restored,
             failure: Mutex::new(None),
+            broken: None,
+            damaged: false,
         }
+    }
+
+    /// The entry of a stored record under `id` that cannot be used, or is
+    /// damaged (`damaged`), for `reason`: FAILED, never served, listed with
+    /// the reason until it is registered again or deleted.
+    fn failed(id: &str, reason: String, damaged: bool) -> Result<Self, ServiceError> {
+        // The placeholder's settings are the built-in pair's; they are never
+        // used, since the entry is never prepared.
+        let mut spec = canonicalize(&builtin_registration())?;
+        spec.id = id.to_string();
+        spec.canonical = pb::ProfilePairSpec::default();
+        spec.label = String::new();
+        spec.builtin_pair = None;
+        Ok(Self {
+            failure: Mutex::new(Some(reason.clone())),
+            broken: Some(reason),
+            damaged,
+            ..Self::new(spec, true)
+        })
     }
 
     /// Whether the pair is prepared.
     pub fn is_ready(&self) -> bool {
         self.prepared.initialized()
+    }
+
+    /// Whether its stored record is damaged.
+    pub fn is_damaged(&self) -> bool {
+        self.damaged
     }
 
     /// The wire description.
@@ -580,45 +851,126 @@ impl PairEntry {
     }
 }
 
+/// Limits and policies of the registry, from the server settings.
+#[derive(Debug, Clone, Copy)]
+pub struct RegistryLimits {
+    /// Most registered pairs, the built-in one not counted.
+    pub max_pairs: usize,
+    /// Most points of one profile.
+    pub max_profile_points: usize,
+    /// Most encoded bytes of the registrations in the store.
+    pub max_store_bytes: u64,
+    /// What a start does with damaged records.
+    pub store_damaged: StoreDamaged,
+}
+
+impl RegistryLimits {
+    /// The limits of `config`.
+    pub fn of(config: &ServeConfig) -> Self {
+        Self {
+            max_pairs: config.max_profile_pairs,
+            max_profile_points: config.max_profile_points,
+            max_store_bytes: config.max_store_bytes,
+            store_damaged: config.store_damaged,
+        }
+    }
+}
+
 /// The registered pairs and their store.
 pub struct PairRegistry {
     entries: RwLock<BTreeMap<String, Arc<PairEntry>>>,
     store: Mutex<Option<PairStore>>,
+    limits: RegistryLimits,
+    metrics: Arc<Metrics>,
+}
+
+/// Why a stored record under `id` cannot be served: it cannot be decoded,
+/// it is not a canonical registration, or its content no longer hashes to
+/// its id. `None`: intact.
+fn damage(id: &str, record: &Result<pb::RegisterProfilePairRequest, String>) -> Option<String> {
+    use pb::register_profile_pair_request::Pair;
+    match record {
+        Err(e) => Some(e.clone()),
+        Ok(r) => match &r.pair {
+            Some(Pair::Spec(c)) if id_of(c) == id => None,
+            Some(Pair::Spec(c)) => Some(format!(
+                "its content no longer matches its id (the content hashes to {}): the record \
+                 was damaged or edited",
+                id_of(c)
+            )),
+            _ => Some("not a canonical registration".into()),
+        },
+    }
 }
 
 impl PairRegistry {
     /// A registry persisting into `store` (none: memory only) with the
-    /// stored registrations restored (state STORED). Stored entries that
-    /// cannot be decoded or checked any more are logged and skipped.
-    pub fn open(store: Option<PairStore>) -> std::io::Result<Self> {
+    /// stored registrations restored (state STORED). Each record is checked:
+    /// one that cannot be decoded, or whose content does not hash to its id,
+    /// is damaged; one that is no longer valid cannot be used. Both become
+    /// FAILED entries with the reason (logged as errors; damaged ones
+    /// counted in `railcontact_store_damaged_records`), never served; with
+    /// `store_damaged = "fail"` a damaged record stops the start instead.
+    pub fn open(
+        store: Option<PairStore>,
+        limits: RegistryLimits,
+        metrics: Arc<Metrics>,
+    ) -> std::io::Result<Self> {
         let mut entries = BTreeMap::new();
+        let mut damaged = Vec::new();
         if let Some(s) = &store {
-            let (good, bad) = s.load_all()?;
-            for (id, e) in bad {
-                tracing::warn!(pair_id = %id, error = %e, "stored profile pair cannot be decoded; skipped");
-            }
-            for (id, reg) in good {
-                match canonicalize(&reg) {
-                    Ok(mut spec) => {
-                        if spec.id != id {
-                            tracing::warn!(pair_id = %id, now = %spec.id, "stored profile pair has another id under this version; kept under its stored id");
-                            spec.id = id.clone();
+            let path = s.path().display().to_string();
+            for (id, record) in s.load_all().map_err(std::io::Error::other)? {
+                let entry = match (damage(&id, &record), record) {
+                    (Some(reason), _) => {
+                        tracing::error!(pair_id = %quote(&id), store = %path, %reason, "stored profile pair is damaged: listed as FAILED, never served; register it again or delete it");
+                        damaged.push(format!("{}: {reason}", quote(&id)));
+                        let reason = format!("the stored record is damaged: {reason}; register the pair again or delete it");
+                        PairEntry::failed(&id, reason, true)
+                    }
+                    (None, Ok(reg)) => match canonicalize(&reg) {
+                        Ok(mut spec) => {
+                            if spec.id != id {
+                                tracing::warn!(pair_id = %id, now = %spec.id, "stored profile pair has another id under this version; kept under its stored id");
+                                spec.id = id.clone();
+                            }
+                            Ok(PairEntry::new(spec, true))
                         }
-                        entries.insert(id, Arc::new(PairEntry::new(spec, true)));
-                    }
-                    Err(e) => {
-                        tracing::warn!(pair_id = %id, error = %e, "stored profile pair is no longer valid; skipped")
-                    }
-                }
+                        Err(e) => {
+                            tracing::error!(pair_id = %id, error = %e, "stored profile pair is not valid in this version: listed as FAILED, never served");
+                            let reason = format!("the stored registration is not valid in this version: {e}; register the pair again or delete it");
+                            PairEntry::failed(&id, reason, false)
+                        }
+                    },
+                    (None, Err(_)) => unreachable!("an undecodable record is damaged"),
+                };
+                entries.insert(id, Arc::new(entry.map_err(std::io::Error::other)?));
+            }
+            if !damaged.is_empty() && limits.store_damaged == StoreDamaged::Fail {
+                return Err(std::io::Error::other(format!(
+                    "profile pair store {path}: {} damaged record{} ({}); not starting \
+                     (store_damaged = \"fail\"). Restore the file from a backup, or start with \
+                     store_damaged = \"start\" to serve the other pairs and then delete or \
+                     register again the damaged ones",
+                    damaged.len(),
+                    if damaged.len() == 1 { "" } else { "s" },
+                    damaged.join("; ")
+                )));
             }
             tracing::info!(
+                store = %path,
                 pairs = entries.len(),
+                damaged = damaged.len(),
+                bytes = s.bytes(),
                 "profile pairs restored from the store"
             );
         }
+        metrics.store_damaged_records(damaged.len() as u64);
         Ok(Self {
             entries: RwLock::new(entries),
             store: Mutex::new(store),
+            limits,
+            metrics,
         })
     }
 
@@ -634,6 +986,12 @@ impl PairRegistry {
         self.store.lock().unwrap_or_else(|e| e.into_inner())
     }
 
+    /// Tells the metrics how many damaged records the registry holds.
+    fn count_damaged(&self, entries: &BTreeMap<String, Arc<PairEntry>>) {
+        let n = entries.values().filter(|e| e.damaged).count();
+        self.metrics.store_damaged_records(n as u64);
+    }
+
     /// The pair with this id, or the built-in pair of this name.
     pub fn lookup(&self, id: &str) -> Result<Arc<PairEntry>, ServiceError> {
         let entries = self.read();
@@ -647,7 +1005,8 @@ impl PairRegistry {
             .cloned()
             .ok_or_else(|| {
                 ServiceError::NotFound(format!(
-                    "no profile pair '{id}' on this server: register it first (ListProfilePairs lists the pairs)"
+                    "no profile pair '{}' on this server: register it first (ListProfilePairs lists the pairs)",
+                    quote(id)
                 ))
             })
     }
@@ -657,16 +1016,74 @@ impl PairRegistry {
         self.read().values().cloned().collect()
     }
 
+    fn refuse(&self, limit: &'static str, message: String) -> ServiceError {
+        self.metrics.registration_refused(limit);
+        ServiceError::Exhausted(message)
+    }
+
     /// The entry of `spec`: the existing one (true) or a new one in state
-    /// PREPARING (false).
-    pub fn begin(&self, spec: PairSpec) -> (Arc<PairEntry>, bool) {
+    /// PREPARING (false). A stored record that could not be used is
+    /// replaced by the new registration. A new pair beyond
+    /// `max_profile_pairs`, or whose registration would take the store
+    /// beyond `max_store_bytes`, gets RESOURCE_EXHAUSTED (the built-in pair
+    /// is not counted).
+    pub fn begin(&self, spec: PairSpec) -> Result<(Arc<PairEntry>, bool), ServiceError> {
+        let store = self.store();
         let mut entries = self.write();
-        if let Some(e) = entries.get(&spec.id) {
-            return (e.clone(), true);
+        if let Some(e) = entries.get(&spec.id).filter(|e| e.broken.is_none()) {
+            return Ok((e.clone(), true));
+        }
+        let replaced = entries.remove(&spec.id);
+        let limits = self.limits;
+        let refused = if spec.builtin_pair.is_some() {
+            None
+        } else if entries
+            .values()
+            .filter(|e| e.spec.builtin_pair.is_none())
+            .count()
+            >= limits.max_pairs
+        {
+            Some(self.refuse(
+                "max_profile_pairs",
+                format!(
+                    "this server holds its limit of {} registered profile pairs \
+                     (max_profile_pairs): delete one first (DeleteProfilePair)",
+                    limits.max_pairs
+                ),
+            ))
+        } else if let Some(s) = store.as_ref() {
+            // The store's records plus the registrations not written yet.
+            let pending: u64 = entries
+                .values()
+                .filter(|e| e.spec.builtin_pair.is_none() && !e.persisted.load(Ordering::Relaxed))
+                .map(|e| e.spec.registration().encoded_len() as u64)
+                .sum();
+            let size = spec.registration().encoded_len() as u64;
+            let total = s.bytes() + pending + size;
+            (total > limits.max_store_bytes).then(|| {
+                self.refuse(
+                    "max_store_bytes",
+                    format!(
+                        "the registration ({size} bytes) would take the profile pair store to \
+                         {total} bytes, more than its limit of {} (max_store_bytes): delete \
+                         pairs first (DeleteProfilePair)",
+                        limits.max_store_bytes
+                    ),
+                )
+            })
+        } else {
+            None
+        };
+        if let Some(e) = refused {
+            if let Some(old) = replaced {
+                entries.insert(old.spec.id.clone(), old);
+            }
+            return Err(e);
         }
         let e = Arc::new(PairEntry::new(spec, false));
         entries.insert(e.spec.id.clone(), e.clone());
-        (e, false)
+        self.count_damaged(&entries);
+        Ok((e, false))
     }
 
     /// Removes an entry whose first preparation failed.
@@ -683,20 +1100,34 @@ impl PairRegistry {
     /// The prepared pair of `entry`, preparing it on `admission`'s worker
     /// if nobody has yet (concurrent callers wait for the one preparation).
     /// A restored pair whose preparation fails gets FAILED_PRECONDITION
-    /// (the request did nothing wrong) and state FAILED.
+    /// (the request did nothing wrong) and state FAILED; so does a stored
+    /// record that cannot be used, at once.
     pub async fn prepared(
         &self,
         entry: &Arc<PairEntry>,
         admission: &Admission,
         progress: Arc<Progress>,
     ) -> Result<Arc<PreparedPair>, ServiceError> {
+        if let Some(reason) = &entry.broken {
+            return Err(ServiceError::precondition(
+                "",
+                format!("profile pair {}: {reason}", entry.spec.id),
+            ));
+        }
         let e = entry.clone();
+        let (max_points, metrics) = (self.limits.max_profile_points, self.metrics.clone());
         let r = entry
             .prepared
             .get_or_try_init(|| async move {
                 let e2 = e.clone();
                 admission
-                    .run(move || prepare(&e2.spec, &*progress).map(Arc::new))
+                    .run(move || {
+                        let limit = PointLimit {
+                            max_points,
+                            metrics: Some(&metrics),
+                        };
+                        prepare_with(&e2.spec, &*progress, limit).map(Arc::new)
+                    })
                     .await
                     .and_then(|r| r)
             })
@@ -750,7 +1181,11 @@ impl PairRegistry {
                 format!("'{name}' is a built-in pair and cannot be deleted"),
             ));
         }
-        self.write().remove(&entry.spec.id);
+        {
+            let mut entries = self.write();
+            entries.remove(&entry.spec.id);
+            self.count_damaged(&entries);
+        }
         if let Some(s) = store.as_ref() {
             s.remove(&entry.spec.id)
                 .map_err(|e| ServiceError::Internal(e.to_string()))?;

@@ -24,7 +24,7 @@ use crate::service::config::ServeConfig;
 use crate::service::convert::CaseLimits;
 use crate::service::handlers::{ContactHandlers, RequestLimits};
 use crate::service::metrics::{serve_metrics, Metrics};
-use crate::service::pairs::{self, PairRegistry};
+use crate::service::pairs::{self, PairRegistry, RegistryLimits};
 use crate::service::pb;
 use crate::service::pb::contact_service_server::ContactServiceServer;
 use crate::service::pool::SolvePool;
@@ -49,7 +49,7 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
     let t0 = std::time::Instant::now();
     let spec =
         pairs::canonicalize(&pairs::builtin_registration()).map_err(std::io::Error::other)?;
-    let (entry, _) = pairs.begin(spec);
+    let (entry, _) = pairs.begin(spec).map_err(std::io::Error::other)?;
     let admission = pool.admit(None).map_err(std::io::Error::other)?;
     let prepared = pairs
         .prepared(&entry, &admission, Arc::new(|_, _| {}))
@@ -83,8 +83,22 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         max_curve_points: config.max_curve_points,
         max_sessions: config.max_sessions,
     };
-    let store = config.store_dir().map(PairStore::open).transpose()?;
-    let pairs = Arc::new(PairRegistry::open(store)?);
+    let store = match config.store_dir() {
+        Some(dir) => {
+            let s = PairStore::open(dir).map_err(std::io::Error::other)?;
+            tracing::info!(path = %s.path().display(), "profile pair store opened");
+            Some(s)
+        }
+        None => {
+            tracing::info!("no data_dir: profile pairs are kept in memory only");
+            None
+        }
+    };
+    let pairs = Arc::new(PairRegistry::open(
+        store,
+        RegistryLimits::of(config),
+        metrics.clone(),
+    )?);
     register_builtin(&pairs, &pool).await?;
     let handlers = ContactHandlers::new(pool.clone(), limits, metrics.clone(), pairs.clone());
     let (health, health_service) = tonic_health::server::health_reporter();

@@ -88,6 +88,21 @@ impl Drop for Server {
     }
 }
 
+/// Every profile pair the server at `client` lists.
+pub async fn list_pairs(
+    client: &mut railcontact::service::pb::contact_service_client::ContactServiceClient<
+        tonic::transport::Channel,
+    >,
+) -> Vec<railcontact::service::pb::ProfilePairInfo> {
+    let req = railcontact::service::pb::ListProfilePairsRequest {};
+    client
+        .list_profile_pairs(req)
+        .await
+        .unwrap()
+        .into_inner()
+        .pairs
+}
+
 /// Runs `railcontact ARGS`.
 pub fn run(args: &[&str]) -> Output {
     Command::new(BIN)

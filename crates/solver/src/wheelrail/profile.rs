@@ -180,14 +180,36 @@ pub struct SourceLocation {
 }
 
 impl SourceLocation {
-    /// Location in `file`, optionally at `line`.
+    /// Location in `file` (shortened to [`MAX_QUOTE_CHARS`] characters:
+    /// see [`quote`]), optionally at `line`.
     pub fn new(file: &str, line: Option<usize>) -> Self {
         Self {
-            file: file.to_string(),
+            file: quote(file),
             line,
         }
     }
 }
+
+/// Most characters of any input text (a line, a key, a file name) that a
+/// message or warning quotes; longer text is cut there (see [`quote`]).
+pub const MAX_QUOTE_CHARS: usize = 100;
+
+/// `text` as quoted in messages: whole when it has at most
+/// [`MAX_QUOTE_CHARS`] characters, else its first ones followed by
+/// `... (N characters)`, so that an error about a 10 kB line stays short.
+pub fn quote(text: &str) -> String {
+    match text.char_indices().nth(MAX_QUOTE_CHARS) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}... ({} characters)", &text[..end], text.chars().count()),
+    }
+}
+
+/// Largest magnitude of a profile coordinate, y or z, after the file's
+/// shifts, offsets and unit factors \[m\]: profiles are a few centimetres
+/// from their origin; 10 m leaves room for any origin convention and
+/// keeps the points' rounding far below a micrometre. Larger values are
+/// a wrong offset or unit, and are rejected with the line of the point.
+pub const MAX_COORDINATE_M: f64 = 10.0;
 
 impl fmt::Display for SourceLocation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -212,6 +234,9 @@ pub enum CheckKind {
     Spike,
     /// The profile is larger than `max_extent_m` (wrong length unit?).
     Extent,
+    /// A point lies farther than [`MAX_COORDINATE_M`] from the origin
+    /// (wrong offset or unit factor?).
+    Coordinate,
 }
 
 /// Everything that can go wrong when reading or checking a profile. Every
@@ -562,6 +587,21 @@ pub(crate) fn finish(
     checks: &ProfileChecks,
 ) -> Result<Profile, ProfileError> {
     let at = |line: Option<usize>| SourceLocation::new(name, line);
+    if let Some(p) = raw
+        .points
+        .iter()
+        .find(|p| !(p.y.abs() <= MAX_COORDINATE_M && p.z.abs() <= MAX_COORDINATE_M))
+    {
+        return Err(ProfileError::Check {
+            at: at(p.line),
+            kind: CheckKind::Coordinate,
+            message: format!(
+                "point (y = {:e} m, z = {:e} m) lies outside +-{MAX_COORDINATE_M} m, after the \
+                 file's offsets, shifts and unit factor; wrong offset or length unit?",
+                p.y, p.z
+            ),
+        });
+    }
     let pts = &mut raw.points;
     if pts.len() < 2 {
         return Err(ProfileError::Check {

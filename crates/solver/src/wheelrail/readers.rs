@@ -89,9 +89,17 @@
 //!   automatic flip of z); the kind comes only from [`LoadOptions::kind`].
 
 use super::profile::{
-    LengthUnit, LoadOptions, MiniProfVariant, MirrorZ, Profile, ProfileError, ProfileFormat,
-    ProfileKind, ProfileWarning, RawPoint, RawProfile, SourceLocation,
+    quote, LengthUnit, LoadOptions, MiniProfVariant, MirrorZ, Profile, ProfileError, ProfileFormat,
+    ProfileKind, ProfileWarning, RawPoint, RawProfile, SourceLocation, MAX_COORDINATE_M,
 };
+
+/// Largest Simpack point weight (third column) \[-\]; weights are
+/// relative, commonly 1.
+pub const MAX_POINT_WEIGHT: f64 = 1e6;
+
+/// Range of Simpack's unit factors `units.len.f` and `units.ang.f` (user
+/// units per SI unit): 1e-3 (kilometres) to 1e6 (micrometres).
+pub const UNIT_FACTOR_RANGE: [f64; 2] = [1e-3, 1e6];
 
 /// Parses Simpack profile text (default options; the kind from the
 /// extension of `file_name` and the header's `type`).
@@ -128,7 +136,7 @@ fn syntax(file: &str, line: usize, expected: &str, found: &str) -> ProfileError 
     ProfileError::Syntax {
         at: SourceLocation::new(file, Some(line)),
         expected: expected.to_string(),
-        found: found.to_string(),
+        found: quote(found),
     }
 }
 
@@ -267,8 +275,8 @@ enum Section {
 
 struct SimpackKeys {
     point_dist_min: f64,
-    shift_y: f64,
-    shift_z: f64,
+    shift_y: (f64, usize),
+    shift_z: (f64, usize),
     rotate: (f64, usize),
     bound_y: (f64, f64),
     bound_z: (f64, f64),
@@ -310,8 +318,8 @@ pub(crate) fn read_simpack(
     let mut points: Vec<RawPoint> = Vec::new();
     let mut keys = SimpackKeys {
         point_dist_min: 0.0,
-        shift_y: 0.0,
-        shift_z: 0.0,
+        shift_y: (0.0, 0),
+        shift_z: (0.0, 0),
         rotate: (0.0, 0),
         bound_y: (1.0, 0.0),
         bound_z: (1.0, 0.0),
@@ -334,7 +342,7 @@ pub(crate) fn read_simpack(
                 warnings.push(warn(
                     file,
                     Some(line),
-                    format!("ignored content after spline.end: '{content}'"),
+                    format!("ignored content after spline.end: '{}'", quote(content)),
                 ));
                 ignored_after = true;
             }
@@ -402,8 +410,9 @@ pub(crate) fn read_simpack(
                         Some(line),
                         format!(
                             "expected point.end to close the point block opened at line {}, \
-                             found '{content}'",
-                            points_at.unwrap_or(0)
+                             found '{}'",
+                            points_at.unwrap_or(0),
+                            quote(content)
                         ),
                     ))
                 }
@@ -412,7 +421,8 @@ pub(crate) fn read_simpack(
                         file,
                         Some(line),
                         format!(
-                            "badly nested sections: expected {expected_here}, found '{content}'"
+                            "badly nested sections: expected {expected_here}, found '{}'",
+                            quote(content)
                         ),
                     ))
                 }
@@ -429,11 +439,11 @@ pub(crate) fn read_simpack(
                 return Err(syntax(file, line, expected, content));
             }
             let weight = if v.len() == 3 { v[2] } else { 1.0 };
-            if weight <= 0.0 {
+            if !(weight > 0.0 && weight <= MAX_POINT_WEIGHT) {
                 return Err(syntax(
                     file,
                     line,
-                    "a weight > 0 in the third column",
+                    &format!("a weight > 0 and <= {MAX_POINT_WEIGHT:e} in the third column"),
                     content,
                 ));
             }
@@ -472,7 +482,7 @@ pub(crate) fn read_simpack(
                 _ => warnings.push(warn(
                     file,
                     Some(line),
-                    format!("unknown header key `{}` ignored", k.trim()),
+                    format!("unknown header key `{}` ignored", quote(k.trim())),
                 )),
             },
             Section::Spline => match key.as_str() {
@@ -494,8 +504,8 @@ pub(crate) fn read_simpack(
                 "point.dist.min" => {
                     keys.point_dist_min = simpack_number(file, line, "point.dist.min", value)?
                 }
-                "shift.y" => keys.shift_y = simpack_number(file, line, "shift.y", value)?,
-                "shift.z" => keys.shift_z = simpack_number(file, line, "shift.z", value)?,
+                "shift.y" => keys.shift_y = (simpack_number(file, line, "shift.y", value)?, line),
+                "shift.z" => keys.shift_z = (simpack_number(file, line, "shift.z", value)?, line),
                 "rotate" => keys.rotate = (simpack_number(file, line, "rotate", value)?, line),
                 "bound.y.min" => keys.bound_y.0 = simpack_number(file, line, "bound.y.min", value)?,
                 "bound.y.max" => keys.bound_y.1 = simpack_number(file, line, "bound.y.max", value)?,
@@ -506,11 +516,15 @@ pub(crate) fn read_simpack(
                 "inversion" => keys.inversion = simpack_flag(file, line, "inversion", value)?,
                 "units.len.f" | "units.ang.f" => {
                     let f = simpack_number(file, line, &key, value)?;
-                    if f <= 0.0 {
+                    let [lo, hi] = UNIT_FACTOR_RANGE;
+                    if !(lo..=hi).contains(&f) {
                         return Err(syntax(
                             file,
                             line,
-                            &format!("a unit factor > 0 for `{key}` (user units per SI unit)"),
+                            &format!(
+                                "a unit factor from {lo:e} to {hi:e} for `{key}` (user units \
+                                 per SI unit: 1000 for mm)"
+                            ),
                             value,
                         ));
                     }
@@ -523,7 +537,7 @@ pub(crate) fn read_simpack(
                 _ => warnings.push(warn(
                     file,
                     Some(line),
-                    format!("unknown spline key `{}` ignored", k.trim()),
+                    format!("unknown spline key `{}` ignored", quote(k.trim())),
                 )),
             },
         }
@@ -593,9 +607,23 @@ pub(crate) fn read_simpack(
             ),
         ));
     }
+    let f = keys.units_len_f.0;
+    for (key, (shift, at)) in [("shift.y", keys.shift_y), ("shift.z", keys.shift_z)] {
+        if (shift / f).abs() > MAX_COORDINATE_M {
+            return Err(format_err(
+                file,
+                Some(at),
+                format!(
+                    "{key} = {shift} is {:e} m (units.len.f = {f}), more than \
+                     {MAX_COORDINATE_M} m; expected a shift of the profile's origin",
+                    shift / f
+                ),
+            ));
+        }
+    }
     for p in &mut points {
-        p.y += keys.shift_y;
-        p.z += keys.shift_z;
+        p.y += keys.shift_y.0;
+        p.z += keys.shift_z.0;
     }
     let (ylo, yhi) = keys.bound_y;
     if ylo < yhi {
@@ -631,7 +659,6 @@ pub(crate) fn read_simpack(
     if keys.inversion {
         points.reverse();
     }
-    let f = keys.units_len_f.0;
     for p in &mut points {
         p.y /= f;
         p.z /= f;
@@ -648,6 +675,21 @@ pub(crate) fn read_simpack(
 }
 
 // ----------------------------------------------------------------- MiniProf
+
+/// A MiniProf offset key's value \[mm\], at most [`MAX_COORDINATE_M`].
+fn miniprof_offset(file: &str, line: usize, key: &str, value: &str) -> Result<f64, ProfileError> {
+    let limit_mm = MAX_COORDINATE_M * 1e3;
+    parse_number(value)
+        .filter(|v| v.abs() <= limit_mm)
+        .ok_or_else(|| {
+            syntax(
+                file,
+                line,
+                &format!("a number [mm] from -{limit_mm} to {limit_mm} for {key}"),
+                value,
+            )
+        })
+}
 
 fn is_miniprof_comment(t: &str) -> bool {
     t.starts_with(['#', '!', '%', '"'])
@@ -697,7 +739,8 @@ pub(crate) fn read_miniprof(
                         format!(
                             "missing header: expected a MiniProf header (a line `MINIPROF ...`, \
                              `#MINIWHEELPROF` or `Key=Value` lines, then a blank line) before \
-                             the data, found '{t}'"
+                             the data, found '{}'",
+                            quote(t)
                         ),
                     ));
                 }
@@ -762,14 +805,10 @@ pub(crate) fn read_miniprof(
                             columns = Some((letters, value.to_string()));
                         }
                         "xoffset" if !value.is_empty() => {
-                            x_offset = parse_number(value).ok_or_else(|| {
-                                syntax(file, line, "a number [mm] for XOffset", value)
-                            })?
+                            x_offset = miniprof_offset(file, line, "XOffset", value)?
                         }
                         "yoffset" if !value.is_empty() => {
-                            y_offset = parse_number(value).ok_or_else(|| {
-                                syntax(file, line, "a number [mm] for YOffset", value)
-                            })?
+                            y_offset = miniprof_offset(file, line, "YOffset", value)?
                         }
                         "filename" if !value.is_empty() => description = Some(value.to_string()),
                         _ => {}
@@ -795,7 +834,7 @@ pub(crate) fn read_miniprof(
                 format!(
                     "found header key `{}` after the data started at line {}; expected data lines \
                      (the header ends at the first blank line)",
-                    k.trim(),
+                    quote(k.trim()),
                     data_start.unwrap_or(line)
                 ),
             ));
@@ -1101,6 +1140,78 @@ mod tests {
             "comment = 'a ! b'"
         );
         assert_eq!(fields("1.0;2.0\t3, 4"), vec!["1.0", "2.0", "3", "4"]);
+    }
+
+    /// A MiniProf rail in the key=value variant with the given offsets and
+    /// one data line replaced by `line3`.
+    fn miniprof(x_offset: &str, y_offset: &str, line3: &str) -> String {
+        let mut s = format!("XYPoints=5\nXOffset={x_offset}\nYOffset={y_offset}\n\n");
+        for k in 0..5 {
+            if k == 2 {
+                s.push_str(line3);
+            } else {
+                s.push_str(&format!("{} {}", k as f64, 0.01 * (k as f64 - 2.0).powi(2)));
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    #[test]
+    fn absurd_offsets_scales_and_points_are_errors_with_file_and_line() {
+        use crate::wheelrail::profile::MAX_QUOTE_CHARS;
+        let ok = parse_miniprof(&miniprof("1.5", "-2", "2 0"), "r.ban").unwrap();
+        assert_eq!(ok.len(), 5);
+        for (x, y, at) in [
+            ("1e20", "0", "r.ban line 2"),
+            ("0", "1e300", "r.ban line 3"),
+        ] {
+            let e = parse_miniprof(&miniprof(x, y, "2 0"), "r.ban").unwrap_err();
+            let m = e.to_string();
+            assert!(m.starts_with(at) && m.contains("10000"), "{m}");
+        }
+        // A point 1e15 mm out: the coordinate check names its line.
+        let e = parse_miniprof(&miniprof("0", "0", "1e15 0"), "r.ban").unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ProfileError::Check {
+                    kind: crate::wheelrail::CheckKind::Coordinate,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().starts_with("r.ban line 7"), "{e}");
+        // Simpack: a shift of 1e20 m, a unit factor of 1e-300, a weight of
+        // 1e300.
+        let simpack = |key: &str, point: &str| {
+            format!(
+                "header.begin\nversion = 1\ntype = 0\nheader.end\nspline.begin\n{key}\n\
+                 point.begin\n0 0\n0.001 0\n{point}\npoint.end\nspline.end\n"
+            )
+        };
+        for (key, point, line) in [
+            ("shift.y = 1e20", "0.002 0", 6),
+            ("units.len.f = 1e-300", "0.002 0", 6),
+            ("units.len.f = 1", "0.002 0 1e300", 10),
+        ] {
+            let e = parse_simpack(&simpack(key, point), "r.prr").unwrap_err();
+            assert!(
+                e.to_string().starts_with(&format!("r.prr line {line}")),
+                "{key}: {e}"
+            );
+        }
+        parse_simpack(&simpack("shift.y = 0.5", "0.002 0"), "r.prr").unwrap();
+        // A 10 kB line is quoted with its first characters only.
+        let long = "7".repeat(10_000) + " x";
+        let e = parse_miniprof(&miniprof("0", "0", &long), "r.ban").unwrap_err();
+        let m = e.to_string();
+        assert!(m.len() < 300 && m.contains("(10002 characters)"), "{m}");
+        assert!(m.contains(&"7".repeat(MAX_QUOTE_CHARS)), "{m}");
+        // So is a long file name.
+        let e = parse_plain("1 2 3\n", &"f".repeat(5000)).unwrap_err();
+        assert!(e.to_string().len() < 300, "{e}");
     }
 
     #[test]
