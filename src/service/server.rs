@@ -4,7 +4,8 @@
 //! Shutdown is graceful: on SIGTERM or Ctrl-C (or [`RunningServer::shutdown`])
 //! the health service reports NOT_SERVING, the listener stops accepting,
 //! in-flight calls and open sessions get `shutdown_grace_s` to finish, and
-//! whatever is left is then dropped; then the store is closed.
+//! whatever is left is then dropped; then the metrics endpoint stops (the
+//! scrapes being answered finish) and the store is closed.
 //!
 //! At start the store of profile pairs is opened (`data_dir`), its pairs
 //! restored (prepared on first use), and the built-in pair
@@ -38,7 +39,7 @@ pub struct RunningServer {
     pub metrics_addr: Option<SocketAddr>,
     stop: oneshot::Sender<()>,
     task: JoinHandle<Result<(), tonic::transport::Error>>,
-    metrics_task: Option<JoinHandle<()>>,
+    metrics_task: Option<(oneshot::Sender<()>, JoinHandle<std::io::Result<()>>)>,
     health: tonic_health::server::HealthReporter,
     grace: Duration,
     pairs: Arc<PairRegistry>,
@@ -110,8 +111,11 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         Some(a) => {
             let l = TcpListener::bind(a).await?;
             let bound = l.local_addr()?;
-            let task = tokio::spawn(serve_metrics(l, metrics, pool));
-            (Some(bound), Some(task))
+            let (stop, stopped) = oneshot::channel::<()>();
+            let task = tokio::spawn(serve_metrics(l, metrics, pool, async {
+                let _ = stopped.await;
+            }));
+            (Some(bound), Some((stop, task)))
         }
         None => (None, None),
     };
@@ -166,8 +170,18 @@ impl RunningServer {
                 task.abort();
             }
         }
-        if let Some(m) = self.metrics_task {
-            m.abort();
+        if let Some((stop, mut task)) = self.metrics_task {
+            let _ = stop.send(());
+            // A scrape takes milliseconds; idle keep-alive connections
+            // close at once.
+            match tokio::time::timeout(Duration::from_secs(2), &mut task).await {
+                Ok(Ok(Ok(()))) => {}
+                Ok(Ok(Err(e))) => {
+                    tracing::warn!(error = %e, "metrics endpoint error while stopping")
+                }
+                Ok(Err(e)) => tracing::warn!(error = %e, "metrics task failed"),
+                Err(_) => task.abort(),
+            }
         }
         self.pairs.close_store();
     }
