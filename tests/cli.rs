@@ -1,10 +1,13 @@
-//! End-to-end tests of `railcontact solve`: the built binary on the example
-//! cases (grids <= 32 x 32) and on bad input.
+//! End-to-end tests of the command line: `railcontact solve` and
+//! `wheelrail` (the built binary on the example cases, grids <= 32 x 32, and
+//! on bad input), the flags and logs of `serve`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
+
+mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
@@ -945,4 +948,25 @@ fn wheelrail_reads_measured_profiles_by_path() {
         let fz = v["wheels"][side]["force_track_n"][2].as_f64().unwrap();
         assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
     }
+}
+
+#[test]
+fn serve_logs_plain_text_off_a_terminal_and_says_where_the_store_is() {
+    let server = support::Server::start_with(&[], &[("RUST_LOG", "info")]);
+    let store = server.dir().join("store").join("pairs.redb");
+    let log = server.log();
+    assert!(!log.contains('\x1b'), "ANSI codes in a log file:\n{log}");
+    let serving = log
+        .lines()
+        .find(|l| l.contains("railcontact serving"))
+        .unwrap_or_else(|| panic!("no start-up line:\n{log}"));
+    assert!(
+        serving.contains(&format!("store={}", store.display())),
+        "{serving}"
+    );
+    drop(server);
+    let memory =
+        support::Server::start_with(&[], &[("RUST_LOG", "info"), ("RAILCONTACT_DATA_DIR", "")]);
+    let log = memory.log();
+    assert!(log.contains("store=memory only"), "{log}");
 }

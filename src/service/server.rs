@@ -136,7 +136,14 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
                 },
             ),
     );
-    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), "railcontact serving");
+    let store = match config.store_dir() {
+        Some(dir) => dir
+            .join(crate::service::store::FILE_NAME)
+            .display()
+            .to_string(),
+        None => "memory only".to_string(),
+    };
+    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), %store, "railcontact serving");
     Ok(RunningServer {
         addr,
         metrics_addr,
@@ -210,14 +217,29 @@ async fn termination() {
     }
 }
 
-/// `railcontact serve`: tracing from RUST_LOG (default `info`), a runtime,
-/// the server until SIGTERM or Ctrl-C, then a graceful stop.
+/// Whether log lines on stderr get ANSI colours: only on a terminal, and
+/// not when `NO_COLOR` is set to anything but the empty string
+/// (<https://no-color.org>). journald, `docker logs` and files get plain
+/// text.
+pub fn log_colours(no_color: Option<&std::ffi::OsStr>, stderr_is_terminal: bool) -> bool {
+    stderr_is_terminal && no_color.is_none_or(|v| v.is_empty())
+}
+
+/// `railcontact serve`: tracing from RUST_LOG (default `info`) to stderr
+/// (coloured as [`log_colours`] says), a runtime, the server until SIGTERM
+/// or Ctrl-C, then a graceful stop.
 pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
+    use std::io::IsTerminal;
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()
         .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    let colours = log_colours(
+        std::env::var_os("NO_COLOR").as_deref(),
+        std::io::stderr().is_terminal(),
+    );
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(std::io::stderr)
+        .with_ansi(colours)
         .try_init();
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -241,4 +263,19 @@ pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
         server.shutdown().await;
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_colours;
+    use std::ffi::OsStr;
+
+    #[test]
+    fn logs_are_coloured_only_on_a_terminal_without_no_color() {
+        assert!(log_colours(None, true));
+        assert!(log_colours(Some(OsStr::new("")), true));
+        assert!(!log_colours(Some(OsStr::new("1")), true));
+        assert!(!log_colours(None, false));
+        assert!(!log_colours(Some(OsStr::new("1")), false));
+    }
 }

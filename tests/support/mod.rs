@@ -25,15 +25,24 @@ pub struct Server {
 
 impl Server {
     /// Starts a server on 127.0.0.1, port 0, with its store in a fresh
-    /// temporary directory and its log in a file there; waits for its
-    /// `listening on` line.
+    /// temporary directory and its log (`RUST_LOG=warn`) in a file there;
+    /// waits for its `listening on` line.
     pub fn start() -> Server {
+        Server::start_with(&[], &[])
+    }
+
+    /// [`Server::start`] with more arguments after `serve --listen
+    /// 127.0.0.1:0` and more environment variables (set after, so they
+    /// override, `RAILCONTACT_DATA_DIR` and `RUST_LOG`).
+    pub fn start_with(args: &[&str], env: &[(&str, &str)]) -> Server {
         let dir = tempfile::tempdir().unwrap();
         let log = dir.path().join("server.log");
         let mut child = Command::new(BIN)
             .args(["serve", "--listen", "127.0.0.1:0"])
+            .args(args)
             .env("RAILCONTACT_DATA_DIR", dir.path().join("store"))
             .env("RUST_LOG", "warn")
+            .envs(env.iter().copied())
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
             .stderr(std::fs::File::create(&log).expect("create the server log"))
@@ -62,6 +71,11 @@ impl Server {
             log,
             _dir: dir,
         }
+    }
+
+    /// The temporary directory of its store and log.
+    pub fn dir(&self) -> &std::path::Path {
+        self._dir.path()
     }
 
     /// What the server wrote to its standard error so far.
