@@ -286,6 +286,53 @@ fn help_documents_the_options() {
     }
 }
 
+#[test]
+fn no_help_shows_rustdoc_escapes() {
+    for command in ["solve", "wheelrail", "serve", "loadtest", "health"] {
+        let out = run(&[command, "--help"]);
+        assert!(out.status.success(), "{command} --help");
+        let s = String::from_utf8_lossy(&out.stdout);
+        assert!(!s.contains('\\'), "{command} --help:\n{s}");
+    }
+}
+
+#[test]
+fn serve_help_lists_every_settings_key_and_its_variable() {
+    let keys = railcontact::cli::serve_keys();
+    assert!(keys.contains(&"data_dir") && keys.contains(&"kernel_cache_max_bytes"));
+    let out = run(&["serve", "--help"]);
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    for key in keys {
+        let var = railcontact::cli::serve_env_var(key);
+        assert!(
+            s.lines()
+                .any(|l| l.split_whitespace().eq([*key, var.as_str()])),
+            "no line `{key} {var}` in\n{s}"
+        );
+    }
+    assert!(s.contains("deploy/serve.toml"), "{s}");
+}
+
+#[test]
+fn the_sample_settings_file_names_every_key_at_its_default() {
+    use railcontact::service::config::{ServeConfig, ServeFlags};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("deploy/serve.toml");
+    let loaded = ServeConfig::load(Some(&path), &|_| None, &ServeFlags::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded, ServeConfig::default());
+    let text = std::fs::read_to_string(&path).unwrap();
+    for key in railcontact::cli::serve_keys() {
+        // Set, or shown commented out where the default is "not set".
+        let set = format!("{key} = ");
+        assert!(
+            text.lines().any(|l| l.starts_with(&set)
+                || l.strip_prefix("# ").is_some_and(|l| l.starts_with(&set))),
+            "deploy/serve.toml has no line for `{key}`"
+        );
+    }
+}
+
 /// Runs a bad case and checks exit code 2 and that stderr names `key`.
 fn expect_bad(name: &str, text: &str, key: &str) {
     let p = case_file(name, text);
