@@ -1017,3 +1017,23 @@ fn serve_logs_plain_text_off_a_terminal_and_says_where_the_store_is() {
     let log = memory.log();
     assert!(log.contains("store=memory only"), "{log}");
 }
+
+#[test]
+fn a_case_file_given_to_the_other_command_names_the_right_one() {
+    let wheelset = example("wheelset_a22.toml");
+    let out = run(&["solve", wheelset.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("this is a wheelset case") && err.contains("use `railcontact wheelrail "),
+        "{err}"
+    );
+    let patch = example("hertz_circle.toml");
+    let out = run(&["wheelrail", patch.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("this is a contact-patch case") && err.contains("use `railcontact solve "),
+        "{err}"
+    );
+}

@@ -244,14 +244,56 @@ fn plot_format(path: &Path) -> Result<plot::Format, CliError> {
     }
 }
 
+/// The two kinds of case file, told apart by their top-level sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum CaseKind {
+    /// One contact patch (`railcontact solve`): has `[geometry]`.
+    Patch,
+    /// A wheelset on its track (`railcontact wheelrail`): has `[track]` or
+    /// `[wheelset]`.
+    Wheelset,
+}
+
+impl CaseKind {
+    /// The kind `text` looks like; None when it is not TOML or has neither
+    /// kind's sections (the case reader then says what is wrong).
+    fn of(text: &str) -> Option<Self> {
+        let table: toml::Table = text.parse().ok()?;
+        if table.contains_key("track") || table.contains_key("wheelset") {
+            Some(CaseKind::Wheelset)
+        } else if table.contains_key("geometry") {
+            Some(CaseKind::Patch)
+        } else {
+            None
+        }
+    }
+
+    /// Reads the case file `path`; bad input when it is a case of the other
+    /// kind than `want`, with the command that reads it.
+    fn read(path: &Path, want: CaseKind) -> Result<String, CliError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            CliError::BadInput(format!("cannot read case file {}: {e}", path.display()))
+        })?;
+        match CaseKind::of(&text) {
+            Some(kind) if kind != want => {
+                let (what, sections, command) = match kind {
+                    CaseKind::Wheelset => ("a wheelset case", "[track], [wheelset]", "wheelrail"),
+                    CaseKind::Patch => ("a contact-patch case", "[geometry]", "solve"),
+                };
+                Err(CliError::BadInput(format!(
+                    "{}: this is {what} ({sections}): use `railcontact {command} {}`",
+                    path.display(),
+                    path.display()
+                )))
+            }
+            _ => Ok(text),
+        }
+    }
+}
+
 fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
-    let text = std::fs::read_to_string(&args.case).map_err(|e| {
-        CliError::BadInput(format!(
-            "cannot read case file {}: {e}",
-            args.case.display()
-        ))
-    })?;
+    let text = CaseKind::read(&args.case, CaseKind::Patch)?;
     let case = Case::from_toml(&text).map_err(|e| match e {
         CaseError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
         other => other.into(),

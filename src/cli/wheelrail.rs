@@ -389,12 +389,7 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
 /// Runs `railcontact wheelrail`.
 pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
-    let text = std::fs::read_to_string(&args.case).map_err(|e| {
-        bad(format!(
-            "cannot read case file {}: {e}",
-            args.case.display()
-        ))
-    })?;
+    let text = super::CaseKind::read(&args.case, super::CaseKind::Wheelset)?;
     let dir = args.case.parent().unwrap_or(Path::new("."));
     let run = WheelrailRun::from_toml(&text, dir).map_err(|e| match e {
         CliError::BadInput(m) => bad(format!("{}: {m}", args.case.display())),
