@@ -12,6 +12,21 @@ use serde_json::Value;
 /// The built command.
 pub const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
+/// Set to anything but "" or "0", skips the tests that install things
+/// beyond the Rust toolchain: the Python client's (a venv and PyPI
+/// packages) and the C++ client's (Debian packages).
+pub const SKIP_CLIENT_TESTS: &str = "RAILCONTACT_SKIP_CLIENT_TESTS";
+
+/// Whether [`SKIP_CLIENT_TESTS`] asks to skip `what`; says so on stderr
+/// (`cargo test -- --nocapture` shows it).
+pub fn skip_client_test(what: &str) -> bool {
+    let skip = std::env::var(SKIP_CLIENT_TESTS).is_ok_and(|v| !v.is_empty() && v != "0");
+    if skip {
+        eprintln!("skipped: {what} ({SKIP_CLIENT_TESTS} is set)");
+    }
+    skip
+}
+
 /// A `railcontact serve` child process, killed when dropped.
 pub struct Server {
     /// HOST:PORT it listens on.
