@@ -906,6 +906,20 @@ fn wheelrail_plot_and_summary() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("right wheel: 1 patch(es)"), "{text}");
     assert!(text.contains("Fz 10000.0 N"), "{text}");
+    for label in [
+        "xi ",
+        "[-], eta ",
+        "[-], phi ",
+        "[1/m]",
+        "track frame",
+        "mirrored for the left wheel",
+    ] {
+        assert!(text.contains(label), "{label:?} in {text}");
+    }
+    assert!(
+        text.contains(&format!("plot written to {}", png.display())),
+        "{text}"
+    );
 }
 
 /// A bad wheelrail case: exit code 2, stderr names `key`.

@@ -344,10 +344,13 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
         sol.roll_rad * 1e3,
         sol.pitch_rad_per_s
     );
+    s += "wheel forces act on the rail, in the track frame (x forward, y to the right, z down); \
+          per patch: rail y and wheel y in profile coordinates, creepages and forces in the \
+          patch's side frame (eta, FS positive towards the field side: mirrored for the left wheel)\n";
     for w in &sol.wheels {
         let f = w.force_track_n;
         s += &format!(
-            "{} wheel: {} patch(es), approach {:.4} mm, force on the rail (track frame) \
+            "{} wheel: {} patch(es), approach {:.4} mm, force on the rail \
              Fx {:.1} N, Fy {:.1} N, Fz {:.1} N\n",
             w.side.name(),
             w.patches.len(),
@@ -359,8 +362,9 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
         for (k, p) in w.patches.iter().enumerate() {
             s += &format!(
                 "  patch {k}: rail y {:.2} mm, wheel y {:.2} mm, contact angle {:.2} deg, \
-                 rolling radius {:.2} mm\n    creepages {:.3e} {:.3e} {:.3e} 1/m; \
-                 FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, area {:.2} mm^2\n",
+                 rolling radius {:.2} mm\n    creepages xi {:.3e} [-], eta {:.3e} [-], \
+                 phi {:.3e} [1/m]; FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, \
+                 area {:.2} mm^2\n",
                 p.rail_y_m * 1e3,
                 p.wheel_y_m * 1e3,
                 p.contact_angle_rad.to_degrees(),
@@ -418,7 +422,11 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
         let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
         write_stdout(&format!("{json}\n"))?;
     } else {
-        write_stdout(&human(&sol, run.model))?;
+        let mut out = human(&sol, run.model);
+        if let Some(path) = &args.plot {
+            out.push_str(&format!("plot written to {}\n", path.display()));
+        }
+        write_stdout(&out)?;
     }
     Ok(())
 }
