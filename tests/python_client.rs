@@ -1,8 +1,9 @@
 //! The Python client's test suite (clients/python/tests) as part of
 //! `cargo test`: a virtual environment at `target/py-venv` (made with
 //! `python3 -m venv` if missing), the package installed into it with its
-//! test extras when its pyproject.toml changed (a stamp file holds the
-//! hash of the one installed), then pytest against this build's server
+//! test extras (editable, from this checkout) when its pyproject.toml or
+//! the checkout changed (a stamp file holds the hash of the one installed
+//! and its path), then pytest against this build's server
 //! binary. Anything missing (python3, pip, a package) fails the test. What
 //! it creates and installs is said on stderr (`cargo test -- --nocapture`,
 //! and in the output of a failure).
@@ -55,7 +56,10 @@ fn python_with_client(venv: &Path) -> PathBuf {
         .iter()
         .map(|b| format!("{b:02x}"))
         .collect();
-    let want = format!("{hash}\n");
+    // The checkout is part of the stamp: an editable install points at one
+    // checkout's sources, and a venv copied with target/ from another
+    // checkout would test that one's client.
+    let want = format!("{hash} {}\n", client.display());
     if std::fs::read_to_string(&stamp).ok().as_deref() != Some(want.as_str()) {
         eprintln!(
             "Python client test: installing clients/python[test] and its dependencies \
