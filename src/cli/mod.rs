@@ -339,8 +339,11 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             format,
             &run.grid,
             run.last(),
-            case.friction.kinetic_coefficient,
-            &plot_title(&case),
+            plot::PlotCase {
+                title: &plot_title(&case),
+                mu: case.friction.kinetic_coefficient,
+                rolling: matches!(case.kinematics, Kinematics::SteadyRolling(_)),
+            },
         )
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
         if !args.json {
