@@ -155,21 +155,30 @@ fn draw<DB: DrawingBackend>(
         } else {
             "no tangential traction: frictionless"
         };
-        let area = right
-            .titled("traction |p_t| [MPa]", (FONT, 17))
-            .map_err(err)?;
-        let (w, h) = area.dim_in_pixel();
-        area.draw(&Text::new(
-            note,
-            ((w / 2) as i32, (h / 2) as i32),
-            TextStyle::from((FONT, 17).into_font())
-                .color(&BLACK.mix(0.7))
-                .pos(Pos::new(HPos::Center, VPos::Center)),
-        ))
-        .map_err(err)?;
+        panel_note(&right, "traction |p_t| [MPa]", 17, note)?;
     }
     centre_line(&bottom, grid, sol, case)?;
     Ok(())
+}
+
+/// A panel with nothing to plot: its caption (font size `caption_px`) and
+/// a centred note that says why.
+pub(crate) fn panel_note<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    caption: &str,
+    caption_px: u32,
+    note: &str,
+) -> Result<(), String> {
+    let area = area.titled(caption, (FONT, caption_px)).map_err(err)?;
+    let (w, h) = area.dim_in_pixel();
+    area.draw(&Text::new(
+        note,
+        ((w / 2) as i32, (h / 2) as i32),
+        TextStyle::from((FONT, 17).into_font())
+            .color(&BLACK.mix(0.7))
+            .pos(Pos::new(HPos::Center, VPos::Center)),
+    ))
+    .map_err(err)
 }
 
 /// One colour map of `values` [Pa] on the grid, with a colour bar; with

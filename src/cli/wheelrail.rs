@@ -8,7 +8,7 @@ use clap::Args;
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::cli::plot::{register_fonts, Format, FONT, SIZE};
+use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
@@ -450,6 +450,9 @@ fn lateral_pressure(p: &PatchResult, side: Side) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// Caption of the lower panels.
+const PRESSURE_CAPTION: &str = "largest pressure across each lateral grid line";
+
 fn write_plot(
     path: &Path,
     format: Format,
@@ -488,11 +491,20 @@ where
         let side = w.side;
         let s = side.sign();
         let i = side.index();
-        // Window: 60 mm around the patches, in track y.
-        let yc: f64 = w.patches.iter().map(|p| p.track_y_m).sum::<f64>()
+        // Window, in the side frame (gauge side at -q): at least 70 mm
+        // around the patches, reaching 15 mm beyond the flange tip (the
+        // wheel's lowest point) so that gauge face and flange show on
+        // either wheel; then in track y.
+        let qc: f64 = w.patches.iter().map(|p| s * p.track_y_m).sum::<f64>()
             / w.patches.len().max(1) as f64
             * 1e3;
-        let (ylo, yhi) = (yc - 35.0, yc + 35.0);
+        let tip_q = scratch.locus[i]
+            .iter()
+            .max_by(|a, b| a.z_m.total_cmp(&b.z_m))
+            .map_or(qc, |p| p.q_m * 1e3);
+        let qlo = (qc - 35.0).min(tip_q - 15.0);
+        let qhi = (qlo + 70.0).max(qc + 25.0);
+        let (ylo, yhi) = if s > 0.0 { (qlo, qhi) } else { (-qhi, -qlo) };
         let rail: Vec<(f64, f64)> = run
             .pair
             .rail(side)
@@ -526,7 +538,7 @@ where
             )
             .margin(12)
             .x_label_area_size(40)
-            .y_label_area_size(55)
+            .y_label_area_size(70)
             .build_cartesian_2d(ylo..yhi, zlo..zhi)
             .map_err(err)?;
         chart
@@ -553,8 +565,16 @@ where
                 }),
             )
             .map_err(err)?;
+        // Away from the flange: lower left on the left wheel (flange to the
+        // right), middle right on the right wheel (flange to the left).
+        let legend = if s > 0.0 {
+            SeriesLabelPosition::MiddleRight
+        } else {
+            SeriesLabelPosition::LowerLeft
+        };
         chart
             .configure_series_labels()
+            .position(legend)
             .label_font((FONT, 15))
             .border_style(BLACK)
             .background_style(WHITE.mix(0.8))
@@ -572,17 +592,28 @@ where
             .map(|p| p.1)
             .fold(0.0, f64::max)
             .max(1.0);
-        let mut chart = ChartBuilder::on(&cols[k + sol.wheels.len()])
-            .caption("largest pressure across each lateral grid line", (FONT, 20))
+        let lower = &cols[k + sol.wheels.len()];
+        if curves.iter().all(|c| c.is_empty()) {
+            // Closed-form models give no per-element pressures.
+            let note = format!(
+                "no pressure distribution from model {}: pmax per patch in the summary",
+                run.model
+            );
+            panel_note(lower, PRESSURE_CAPTION, 20, &note)?;
+            continue;
+        }
+        let mut chart = ChartBuilder::on(lower)
+            .caption(PRESSURE_CAPTION, (FONT, 20))
             .margin(12)
             .x_label_area_size(40)
-            .y_label_area_size(55)
+            .y_label_area_size(70)
             .build_cartesian_2d(ylo..yhi, 0.0..pmax * 1.1)
             .map_err(err)?;
         chart
             .configure_mesh()
             .x_desc("track y [mm]")
             .y_desc("pressure [MPa]")
+            .y_label_formatter(&|v| format!("{v:.0}"))
             .label_style((FONT, 15))
             .draw()
             .map_err(err)?;
