@@ -1,10 +1,13 @@
-//! End-to-end tests of `railcontact solve`: the built binary on the example
-//! cases (grids <= 32 x 32) and on bad input.
+//! End-to-end tests of the command line: `railcontact solve` and
+//! `wheelrail` (the built binary on the example cases, grids <= 32 x 32, and
+//! on bad input), the flags and logs of `serve`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
+
+mod support;
 
 const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
@@ -280,6 +283,53 @@ fn help_documents_the_options() {
     let s = String::from_utf8_lossy(&out.stdout);
     for opt in ["--json", "--fields", "--plot", "CASE.toml"] {
         assert!(s.contains(opt), "{opt} in {s}");
+    }
+}
+
+#[test]
+fn no_help_shows_rustdoc_escapes() {
+    for command in ["solve", "wheelrail", "serve", "loadtest", "health"] {
+        let out = run(&[command, "--help"]);
+        assert!(out.status.success(), "{command} --help");
+        let s = String::from_utf8_lossy(&out.stdout);
+        assert!(!s.contains('\\'), "{command} --help:\n{s}");
+    }
+}
+
+#[test]
+fn serve_help_lists_every_settings_key_and_its_variable() {
+    let keys = railcontact::cli::serve_keys();
+    assert!(keys.contains(&"data_dir") && keys.contains(&"kernel_cache_max_bytes"));
+    let out = run(&["serve", "--help"]);
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    for key in keys {
+        let var = railcontact::cli::serve_env_var(key);
+        assert!(
+            s.lines()
+                .any(|l| l.split_whitespace().eq([*key, var.as_str()])),
+            "no line `{key} {var}` in\n{s}"
+        );
+    }
+    assert!(s.contains("deploy/serve.toml"), "{s}");
+}
+
+#[test]
+fn the_sample_settings_file_names_every_key_at_its_default() {
+    use railcontact::service::config::{ServeConfig, ServeFlags};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("deploy/serve.toml");
+    let loaded = ServeConfig::load(Some(&path), &|_| None, &ServeFlags::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(loaded, ServeConfig::default());
+    let text = std::fs::read_to_string(&path).unwrap();
+    for key in railcontact::cli::serve_keys() {
+        // Set, or shown commented out where the default is "not set".
+        let set = format!("{key} = ");
+        assert!(
+            text.lines().any(|l| l.starts_with(&set)
+                || l.strip_prefix("# ").is_some_and(|l| l.starts_with(&set))),
+            "deploy/serve.toml has no line for `{key}`"
+        );
     }
 }
 
@@ -856,6 +906,20 @@ fn wheelrail_plot_and_summary() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("right wheel: 1 patch(es)"), "{text}");
     assert!(text.contains("Fz 10000.0 N"), "{text}");
+    for label in [
+        "xi ",
+        "[-], eta ",
+        "[-], phi ",
+        "[1/m]",
+        "track frame",
+        "mirrored for the left wheel",
+    ] {
+        assert!(text.contains(label), "{label:?} in {text}");
+    }
+    assert!(
+        text.contains(&format!("plot written to {}", png.display())),
+        "{text}"
+    );
 }
 
 /// A bad wheelrail case: exit code 2, stderr names `key`.
@@ -945,4 +1009,45 @@ fn wheelrail_reads_measured_profiles_by_path() {
         let fz = v["wheels"][side]["force_track_n"][2].as_f64().unwrap();
         assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
     }
+}
+
+#[test]
+fn serve_logs_plain_text_off_a_terminal_and_says_where_the_store_is() {
+    let server = support::Server::start_with(&[], &[("RUST_LOG", "info")]);
+    let store = server.dir().join("store").join("pairs.redb");
+    let log = server.log();
+    assert!(!log.contains('\x1b'), "ANSI codes in a log file:\n{log}");
+    let serving = log
+        .lines()
+        .find(|l| l.contains("railcontact serving"))
+        .unwrap_or_else(|| panic!("no start-up line:\n{log}"));
+    assert!(
+        serving.contains(&format!("store={}", store.display())),
+        "{serving}"
+    );
+    drop(server);
+    let memory =
+        support::Server::start_with(&[], &[("RUST_LOG", "info"), ("RAILCONTACT_DATA_DIR", "")]);
+    let log = memory.log();
+    assert!(log.contains("store=memory only"), "{log}");
+}
+
+#[test]
+fn a_case_file_given_to_the_other_command_names_the_right_one() {
+    let wheelset = example("wheelset_a22.toml");
+    let out = run(&["solve", wheelset.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("this is a wheelset case") && err.contains("use `railcontact wheelrail "),
+        "{err}"
+    );
+    let patch = example("hertz_circle.toml");
+    let out = run(&["wheelrail", patch.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("this is a contact-patch case") && err.contains("use `railcontact solve "),
+        "{err}"
+    );
 }

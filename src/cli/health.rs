@@ -21,7 +21,7 @@ pub struct HealthArgs {
     /// service is `railcontact.v1.ContactService`.
     #[arg(long, default_value = "")]
     pub service: String,
-    /// Time limit to connect and to get the answer \[s\].
+    /// Time limit to connect and to get the answer, in seconds.
     #[arg(long, default_value_t = 5.0)]
     pub timeout: f64,
 }

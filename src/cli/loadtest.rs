@@ -122,7 +122,7 @@ pub struct LoadtestArgs {
     /// Steps per session at most (and batches per batch client).
     #[arg(long, default_value_t = 200)]
     pub steps: u64,
-    /// Time limit of the concurrent run \[s\]: no step starts after it.
+    /// Time limit of the concurrent run, in seconds: no step starts after it.
     #[arg(long, default_value_t = 60.0)]
     pub seconds: f64,
     /// Batch clients besides the sessions (even: SolveWheelRailBatch of
@@ -140,7 +140,7 @@ pub struct LoadtestArgs {
     /// Print one JSON object instead of the table (no progress bar).
     #[arg(long)]
     pub json: bool,
-    /// Time limit to connect to each target and get its health \[s\].
+    /// Time limit to connect to each target and get its health, in seconds.
     #[arg(long, default_value_t = 10.0)]
     pub connect_timeout: f64,
 }

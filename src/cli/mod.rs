@@ -16,6 +16,7 @@ pub mod wheelrail;
 
 use std::path::{Path, PathBuf};
 
+use clap::builder::{OsStringValueParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 
 use crate::conformal::frictional::FrictionalWorkspace;
@@ -62,13 +63,10 @@ pub enum Command {
     ///
     /// Runs with no configuration on 127.0.0.1:50051. Settings come in
     /// layers: defaults, then --config FILE.toml, then the environment
-    /// (RAILCONTACT_LISTEN, RAILCONTACT_METRICS_LISTEN, RAILCONTACT_WORKERS,
-    /// RAILCONTACT_QUEUE_CAPACITY, RAILCONTACT_MAX_BATCH_ITEMS,
-    /// RAILCONTACT_MAX_CURVE_POINTS, RAILCONTACT_MAX_SESSIONS,
-    /// RAILCONTACT_MAX_GRID_ELEMENTS, RAILCONTACT_MAX_MESSAGE_BYTES,
-    /// RAILCONTACT_SHUTDOWN_GRACE_S; the file uses the same keys in lower
-    /// case), then these flags. Logs go to stderr, filtered by RUST_LOG
-    /// (default info).
+    /// variables RAILCONTACT_<KEY>, then these flags; every key is listed
+    /// below. Logs go to stderr, filtered by RUST_LOG (default info), in
+    /// colour only on a terminal and without NO_COLOR.
+    #[command(after_help = serve_settings_help())]
     Serve(ServeArgs),
     /// Drive a running server (or several replicas) with concurrent
     /// co-simulation sessions and batch clients; report latency
@@ -84,11 +82,41 @@ pub enum Command {
     Health(health::HealthArgs),
 }
 
+/// The keys of the settings file of `serve`, in the order of
+/// [`ServeConfig`](crate::service::config::ServeConfig)'s fields (read
+/// from its deserializer, so the list follows the struct). Each has the
+/// environment variable `RAILCONTACT_` + the key in upper case.
+pub fn serve_keys() -> &'static [&'static str] {
+    serde_aux::serde_introspection::serde_introspect::<crate::service::config::ServeConfig>()
+}
+
+/// The environment variable of a settings key.
+pub fn serve_env_var(key: &str) -> String {
+    format!(
+        "{}{}",
+        crate::service::config::ENV_PREFIX,
+        key.to_ascii_uppercase()
+    )
+}
+
+/// The list of settings at the end of `serve --help`.
+fn serve_settings_help() -> String {
+    let width = serve_keys().iter().map(|k| k.len()).max().unwrap_or(0);
+    let mut text = String::from(
+        "Settings: every key of the settings file and its environment variable \
+         (meanings and defaults: deploy/serve.toml):\n",
+    );
+    for key in serve_keys() {
+        text.push_str(&format!("  {key:<width$}  {}\n", serve_env_var(key)));
+    }
+    text
+}
+
 /// Options of `railcontact serve`.
 #[derive(Debug, Args)]
 pub struct ServeArgs {
-    /// Settings file (TOML; keys as the RAILCONTACT_* variables, lower case,
-    /// without the prefix).
+    /// Settings file (TOML, the keys listed below; a sample with every key
+    /// at its default: deploy/serve.toml).
     #[arg(long, value_name = "FILE.toml")]
     pub config: Option<PathBuf>,
     /// gRPC address (default 127.0.0.1:50051).
@@ -101,8 +129,8 @@ pub struct ServeArgs {
     #[arg(long)]
     pub workers: Option<usize>,
     /// Directory of the store of registered profile pairs (default
-    /// railcontact-data; empty: memory only).
-    #[arg(long, value_name = "DIR")]
+    /// railcontact-data; "": memory only).
+    #[arg(long, value_name = "DIR", value_parser = OsStringValueParser::new().map(PathBuf::from))]
     pub data_dir: Option<PathBuf>,
 }
 
@@ -216,14 +244,56 @@ fn plot_format(path: &Path) -> Result<plot::Format, CliError> {
     }
 }
 
+/// The two kinds of case file, told apart by their top-level sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum CaseKind {
+    /// One contact patch (`railcontact solve`): has `[geometry]`.
+    Patch,
+    /// A wheelset on its track (`railcontact wheelrail`): has `[track]` or
+    /// `[wheelset]`.
+    Wheelset,
+}
+
+impl CaseKind {
+    /// The kind `text` looks like; None when it is not TOML or has neither
+    /// kind's sections (the case reader then says what is wrong).
+    fn of(text: &str) -> Option<Self> {
+        let table: toml::Table = text.parse().ok()?;
+        if table.contains_key("track") || table.contains_key("wheelset") {
+            Some(CaseKind::Wheelset)
+        } else if table.contains_key("geometry") {
+            Some(CaseKind::Patch)
+        } else {
+            None
+        }
+    }
+
+    /// Reads the case file `path`; bad input when it is a case of the other
+    /// kind than `want`, with the command that reads it.
+    fn read(path: &Path, want: CaseKind) -> Result<String, CliError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            CliError::BadInput(format!("cannot read case file {}: {e}", path.display()))
+        })?;
+        match CaseKind::of(&text) {
+            Some(kind) if kind != want => {
+                let (what, sections, command) = match kind {
+                    CaseKind::Wheelset => ("a wheelset case", "[track], [wheelset]", "wheelrail"),
+                    CaseKind::Patch => ("a contact-patch case", "[geometry]", "solve"),
+                };
+                Err(CliError::BadInput(format!(
+                    "{}: this is {what} ({sections}): use `railcontact {command} {}`",
+                    path.display(),
+                    path.display()
+                )))
+            }
+            _ => Ok(text),
+        }
+    }
+}
+
 fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
-    let text = std::fs::read_to_string(&args.case).map_err(|e| {
-        CliError::BadInput(format!(
-            "cannot read case file {}: {e}",
-            args.case.display()
-        ))
-    })?;
+    let text = CaseKind::read(&args.case, CaseKind::Patch)?;
     let case = Case::from_toml(&text).map_err(|e| match e {
         CaseError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
         other => other.into(),
@@ -269,8 +339,11 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             format,
             &run.grid,
             run.last(),
-            case.friction.kinetic_coefficient,
-            &plot_title(&case),
+            plot::PlotCase {
+                title: &plot_title(&case),
+                mu: case.friction.kinetic_coefficient,
+                rolling: matches!(case.kinematics, Kinematics::SteadyRolling(_)),
+            },
         )
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
         if !args.json {

@@ -11,6 +11,7 @@ use std::sync::Once;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{register_font, FontStyle};
 
 use crate::core::grid::Grid;
@@ -43,26 +44,47 @@ pub(crate) fn register_fonts() -> Result<(), String> {
     result
 }
 
-/// Writes the plot of `solution` on `grid` to `path`. `mu` is the kinetic
-/// friction coefficient (0: no mu p_n line); `title` describes the case.
+/// What a plot shows besides the fields: the case's title, its kinetic
+/// friction coefficient and whether x is the rolling direction.
+#[derive(Debug, Clone, Copy)]
+pub struct PlotCase<'a> {
+    /// Describes the case (the plot's title).
+    pub title: &'a str,
+    /// Kinetic friction coefficient (0: no mu p_n line).
+    pub mu: f64,
+    /// Steady rolling: the x axis is labelled as the rolling direction.
+    pub rolling: bool,
+}
+
+impl PlotCase<'_> {
+    fn x_desc(&self) -> &'static str {
+        if self.rolling {
+            "x (rolling) [mm]"
+        } else {
+            "x [mm]"
+        }
+    }
+}
+
+/// Writes the plot of `solution` on `grid` to `path`. The maps are at equal
+/// scale in x and y.
 pub fn write_plot(
     path: &Path,
     format: Format,
     grid: &Grid,
     solution: &ContactSolution,
-    mu: f64,
-    title: &str,
+    case: PlotCase,
 ) -> Result<(), String> {
     register_fonts()?;
     match format {
         Format::Png => {
             let root = BitMapBackend::new(path, SIZE).into_drawing_area();
-            draw(&root, grid, solution, mu, title)?;
+            draw(&root, grid, solution, case)?;
             root.present().map_err(|e| e.to_string())
         }
         Format::Svg => {
             let root = SVGBackend::new(path, SIZE).into_drawing_area();
-            draw(&root, grid, solution, mu, title)?;
+            draw(&root, grid, solution, case)?;
             root.present().map_err(|e| e.to_string())
         }
     }
@@ -99,12 +121,11 @@ fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     grid: &Grid,
     sol: &ContactSolution,
-    mu: f64,
-    title: &str,
+    case: PlotCase,
 ) -> Result<(), String> {
     root.fill(&WHITE).map_err(err)?;
     let root = root
-        .titled(&format!("railcontact — {title}"), (FONT, 24))
+        .titled(&format!("railcontact — {}", case.title), (FONT, 24))
         .map_err(err)?;
     let (w, h) = root.dim_in_pixel();
     let (top, bottom) = root.split_vertically(h * 56 / 100);
@@ -116,21 +137,48 @@ fn draw<DB: DrawingBackend>(
         .zip(&f.traction_y_pa)
         .map(|(x, y)| x.hypot(*y))
         .collect();
-    map(&left, grid, &f.pressure_pa, "pressure p_n [MPa]", None)?;
+    let x_desc = case.x_desc();
+    map(
+        &left,
+        grid,
+        &f.pressure_pa,
+        "pressure p_n [MPa]",
+        None,
+        x_desc,
+    )?;
     if traction.iter().any(|&t| t > 0.0) {
         let caption = "traction |p_t| [MPa], slip hatched, adhesion/slip boundary red";
-        map(&right, grid, &traction, caption, Some(&f.state))?;
+        map(&right, grid, &traction, caption, Some(&f.state), x_desc)?;
     } else {
-        map(
-            &right,
-            grid,
-            &traction,
-            "traction |p_t| [MPa]: none (frictionless)",
-            None,
-        )?;
+        let note = if case.mu > 0.0 {
+            "no tangential traction: no creepage or shift"
+        } else {
+            "no tangential traction: frictionless"
+        };
+        panel_note(&right, "traction |p_t| [MPa]", 17, note)?;
     }
-    centre_line(&bottom, grid, sol, mu)?;
+    centre_line(&bottom, grid, sol, case)?;
     Ok(())
+}
+
+/// A panel with nothing to plot: its caption (font size `caption_px`) and
+/// a centred note that says why.
+pub(crate) fn panel_note<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    caption: &str,
+    caption_px: u32,
+    note: &str,
+) -> Result<(), String> {
+    let area = area.titled(caption, (FONT, caption_px)).map_err(err)?;
+    let (w, h) = area.dim_in_pixel();
+    area.draw(&Text::new(
+        note,
+        ((w / 2) as i32, (h / 2) as i32),
+        TextStyle::from((FONT, 17).into_font())
+            .color(&BLACK.mix(0.7))
+            .pos(Pos::new(HPos::Center, VPos::Center)),
+    ))
+    .map_err(err)
 }
 
 /// One colour map of `values` [Pa] on the grid, with a colour bar; with
@@ -141,6 +189,7 @@ fn map<DB: DrawingBackend>(
     values: &[f64],
     caption: &str,
     states: Option<&[ElementState]>,
+    x_desc: &str,
 ) -> Result<(), String> {
     let (w, _) = area.dim_in_pixel();
     let (main, bar) = area.split_horizontally(w.saturating_sub(115));
@@ -149,17 +198,33 @@ fn map<DB: DrawingBackend>(
     let (x0, y0) = (grid.x0_m * 1e3, grid.y0_m * 1e3);
     let (dx, dy) = (grid.dx_m * 1e3, grid.dy_m * 1e3);
     let (x1, y1) = (x0 + dx * grid.nx as f64, y0 + dy * grid.ny as f64);
+    let main = main.titled(caption, (FONT, 17)).map_err(err)?;
+    // Equal scale: the plotting area is what the margins and label areas
+    // leave; the axis with less length per pixel is widened about the grid.
+    const MARGIN: u32 = 10;
+    const X_LABELS: u32 = 45;
+    const Y_LABELS: u32 = 60;
+    let (mw, mh) = main.dim_in_pixel();
+    let (pw, ph) = (
+        mw.saturating_sub(2 * MARGIN + Y_LABELS).max(1) as f64,
+        mh.saturating_sub(2 * MARGIN + X_LABELS).max(1) as f64,
+    );
+    let per_px = ((x1 - x0) / pw).max((y1 - y0) / ph);
+    let widen = |a: f64, b: f64, px: f64| {
+        let half = 0.5 * per_px * px;
+        let mid = 0.5 * (a + b);
+        (mid - half)..(mid + half)
+    };
     let mut chart = ChartBuilder::on(&main)
-        .caption(caption, (FONT, 17))
-        .margin(10)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x0..x1, y0..y1)
+        .margin(MARGIN)
+        .x_label_area_size(X_LABELS)
+        .y_label_area_size(Y_LABELS)
+        .build_cartesian_2d(widen(x0, x1, pw), widen(y0, y1, ph))
         .map_err(err)?;
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("x (rolling) [mm]")
+        .x_desc(x_desc)
         .y_desc("y [mm]")
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 15))
@@ -299,8 +364,9 @@ fn centre_line<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     grid: &Grid,
     sol: &ContactSolution,
-    mu: f64,
+    case: PlotCase,
 ) -> Result<(), String> {
+    let mu = case.mu;
     let f = &sol.fields;
     let iy = centre_row(grid);
     let xs: Vec<f64> = (0..grid.nx).map(|ix| grid.x_m(ix) * 1e3).collect();
@@ -343,7 +409,7 @@ fn centre_line<DB: DrawingBackend>(
         .map_err(err)?;
     chart
         .configure_mesh()
-        .x_desc("x (rolling) [mm]")
+        .x_desc(case.x_desc())
         .y_desc("traction [MPa]")
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 15))

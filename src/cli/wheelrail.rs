@@ -8,7 +8,7 @@ use clap::Args;
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::cli::plot::{register_fonts, Format, FONT, SIZE};
+use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
@@ -344,10 +344,13 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
         sol.roll_rad * 1e3,
         sol.pitch_rad_per_s
     );
+    s += "wheel forces act on the rail, in the track frame (x forward, y to the right, z down); \
+          per patch: rail y and wheel y in profile coordinates, creepages and forces in the \
+          patch's side frame (eta, FS positive towards the field side: mirrored for the left wheel)\n";
     for w in &sol.wheels {
         let f = w.force_track_n;
         s += &format!(
-            "{} wheel: {} patch(es), approach {:.4} mm, force on the rail (track frame) \
+            "{} wheel: {} patch(es), approach {:.4} mm, force on the rail \
              Fx {:.1} N, Fy {:.1} N, Fz {:.1} N\n",
             w.side.name(),
             w.patches.len(),
@@ -359,8 +362,9 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
         for (k, p) in w.patches.iter().enumerate() {
             s += &format!(
                 "  patch {k}: rail y {:.2} mm, wheel y {:.2} mm, contact angle {:.2} deg, \
-                 rolling radius {:.2} mm\n    creepages {:.3e} {:.3e} {:.3e} 1/m; \
-                 FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, area {:.2} mm^2\n",
+                 rolling radius {:.2} mm\n    creepages xi {:.3e} [-], eta {:.3e} [-], \
+                 phi {:.3e} [1/m]; FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, \
+                 area {:.2} mm^2\n",
                 p.rail_y_m * 1e3,
                 p.wheel_y_m * 1e3,
                 p.contact_angle_rad.to_degrees(),
@@ -389,12 +393,7 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
 /// Runs `railcontact wheelrail`.
 pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
-    let text = std::fs::read_to_string(&args.case).map_err(|e| {
-        bad(format!(
-            "cannot read case file {}: {e}",
-            args.case.display()
-        ))
-    })?;
+    let text = super::CaseKind::read(&args.case, super::CaseKind::Wheelset)?;
     let dir = args.case.parent().unwrap_or(Path::new("."));
     let run = WheelrailRun::from_toml(&text, dir).map_err(|e| match e {
         CliError::BadInput(m) => bad(format!("{}: {m}", args.case.display())),
@@ -423,7 +422,11 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
         let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
         write_stdout(&format!("{json}\n"))?;
     } else {
-        write_stdout(&human(&sol, run.model))?;
+        let mut out = human(&sol, run.model);
+        if let Some(path) = &args.plot {
+            out.push_str(&format!("plot written to {}\n", path.display()));
+        }
+        write_stdout(&out)?;
     }
     Ok(())
 }
@@ -446,6 +449,9 @@ fn lateral_pressure(p: &PatchResult, side: Side) -> Vec<(f64, f64)> {
         })
         .collect()
 }
+
+/// Caption of the lower panels.
+const PRESSURE_CAPTION: &str = "largest pressure across each lateral grid line";
 
 fn write_plot(
     path: &Path,
@@ -485,11 +491,20 @@ where
         let side = w.side;
         let s = side.sign();
         let i = side.index();
-        // Window: 60 mm around the patches, in track y.
-        let yc: f64 = w.patches.iter().map(|p| p.track_y_m).sum::<f64>()
+        // Window, in the side frame (gauge side at -q): at least 70 mm
+        // around the patches, reaching 15 mm beyond the flange tip (the
+        // wheel's lowest point) so that gauge face and flange show on
+        // either wheel; then in track y.
+        let qc: f64 = w.patches.iter().map(|p| s * p.track_y_m).sum::<f64>()
             / w.patches.len().max(1) as f64
             * 1e3;
-        let (ylo, yhi) = (yc - 35.0, yc + 35.0);
+        let tip_q = scratch.locus[i]
+            .iter()
+            .max_by(|a, b| a.z_m.total_cmp(&b.z_m))
+            .map_or(qc, |p| p.q_m * 1e3);
+        let qlo = (qc - 35.0).min(tip_q - 15.0);
+        let qhi = (qlo + 70.0).max(qc + 25.0);
+        let (ylo, yhi) = if s > 0.0 { (qlo, qhi) } else { (-qhi, -qlo) };
         let rail: Vec<(f64, f64)> = run
             .pair
             .rail(side)
@@ -523,7 +538,7 @@ where
             )
             .margin(12)
             .x_label_area_size(40)
-            .y_label_area_size(55)
+            .y_label_area_size(70)
             .build_cartesian_2d(ylo..yhi, zlo..zhi)
             .map_err(err)?;
         chart
@@ -550,8 +565,16 @@ where
                 }),
             )
             .map_err(err)?;
+        // Away from the flange: lower left on the left wheel (flange to the
+        // right), middle right on the right wheel (flange to the left).
+        let legend = if s > 0.0 {
+            SeriesLabelPosition::MiddleRight
+        } else {
+            SeriesLabelPosition::LowerLeft
+        };
         chart
             .configure_series_labels()
+            .position(legend)
             .label_font((FONT, 15))
             .border_style(BLACK)
             .background_style(WHITE.mix(0.8))
@@ -569,17 +592,28 @@ where
             .map(|p| p.1)
             .fold(0.0, f64::max)
             .max(1.0);
-        let mut chart = ChartBuilder::on(&cols[k + sol.wheels.len()])
-            .caption("largest pressure across each lateral grid line", (FONT, 20))
+        let lower = &cols[k + sol.wheels.len()];
+        if curves.iter().all(|c| c.is_empty()) {
+            // Closed-form models give no per-element pressures.
+            let note = format!(
+                "no pressure distribution from model {}: pmax per patch in the summary",
+                run.model
+            );
+            panel_note(lower, PRESSURE_CAPTION, 20, &note)?;
+            continue;
+        }
+        let mut chart = ChartBuilder::on(lower)
+            .caption(PRESSURE_CAPTION, (FONT, 20))
             .margin(12)
             .x_label_area_size(40)
-            .y_label_area_size(55)
+            .y_label_area_size(70)
             .build_cartesian_2d(ylo..yhi, 0.0..pmax * 1.1)
             .map_err(err)?;
         chart
             .configure_mesh()
             .x_desc("track y [mm]")
             .y_desc("pressure [MPa]")
+            .y_label_formatter(&|v| format!("{v:.0}"))
             .label_style((FONT, 15))
             .draw()
             .map_err(err)?;

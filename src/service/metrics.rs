@@ -1,5 +1,6 @@
-//! Prometheus metrics of the server, in the text exposition format, served
-//! on their own port (`metrics_listen`) by a minimal HTTP responder:
+//! Prometheus metrics of the server, kept and encoded by `prometheus-client`
+//! (Prometheus text format 0.0.4) and served over HTTP/1.1 (axum on hyper)
+//! on their own port (`metrics_listen`): `GET /metrics`, 404 elsewhere.
 //!
 //! | metric | labels | what |
 //! |---|---|---|
@@ -12,16 +13,34 @@
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
+//! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
 //!
-//! The counters sit behind one short-held mutex (never held across a solve).
+//! Metrics that the handlers count are fields of [`Metrics`], registered in
+//! [`Metrics::default`] (a counter is registered without its `_total`
+//! suffix: the encoder appends it). Figures that another part of the server
+//! already counts (the solve pool, the kernel cache) are read at each
+//! scrape ([`Metrics::render`]). Counting is lock-free (atomics); the label
+//! families take a short read lock.
 
-use std::collections::BTreeMap;
-use std::fmt::Write as _;
-use std::sync::Mutex;
+use std::future::Future;
+use std::sync::Arc;
 
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use axum::extract::State;
+use axum::http::header::CONTENT_TYPE;
+use axum::response::IntoResponse;
+use axum::routing::get;
+use axum::Router;
+use prometheus_client::collector::Collector;
+use prometheus_client::encoding::{
+    prometheus_text, DescriptorEncoder, EncodeLabelSet, EncodeMetric,
+};
+use prometheus_client::metrics::counter::{ConstCounter, Counter};
+use prometheus_client::metrics::family::Family;
+use prometheus_client::metrics::gauge::{ConstGauge, Gauge};
+use prometheus_client::metrics::histogram::Histogram;
+use prometheus_client::registry::Registry;
 use tokio::net::TcpListener;
 
 use crate::core::cache::KernelCache;
@@ -33,69 +52,94 @@ const BUCKETS_S: [f64; 14] = [
     50e-6, 100e-6, 250e-6, 500e-6, 1e-3, 2.5e-3, 5e-3, 10e-3, 25e-3, 50e-3, 0.1, 0.5, 2.0, 10.0,
 ];
 
-#[derive(Default, Clone)]
-struct Histogram {
-    counts: [u64; BUCKETS_S.len()],
-    count: u64,
-    sum_s: f64,
+fn latency_histogram() -> Histogram {
+    Histogram::new(BUCKETS_S)
 }
 
-impl Histogram {
-    fn observe(&mut self, v: f64) {
-        for (c, b) in self.counts.iter_mut().zip(BUCKETS_S) {
-            if v <= b {
-                *c += 1;
-            }
-        }
-        self.count += 1;
-        self.sum_s += v;
-    }
+/// A histogram per label set, all with the latency buckets.
+type Histograms<L> = Family<L, Histogram, fn() -> Histogram>;
 
-    fn render(&self, out: &mut String, name: &str, labels: &str) {
-        let sep = if labels.is_empty() { "" } else { "," };
-        for (c, b) in self.counts.iter().zip(BUCKETS_S) {
-            let _ = writeln!(out, "{name}_bucket{{{labels}{sep}le=\"{b}\"}} {c}");
-        }
-        let _ = writeln!(
-            out,
-            "{name}_bucket{{{labels}{sep}le=\"+Inf\"}} {}",
-            self.count
-        );
-        let _ = writeln!(out, "{name}_sum{{{labels}}} {}", self.sum_s);
-        let _ = writeln!(out, "{name}_count{{{labels}}} {}", self.count);
-    }
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct CallLabels {
+    method: &'static str,
+    code: String,
 }
 
-#[derive(Default)]
-struct Counters {
-    requests: BTreeMap<(&'static str, String), u64>,
-    latency: BTreeMap<&'static str, Histogram>,
-    solves: BTreeMap<(&'static str, &'static str), Histogram>,
-    sessions_active: u64,
-    sessions_opened: u64,
-    store_damaged_records: u64,
-    registrations_refused: BTreeMap<&'static str, u64>,
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct MethodLabels {
+    method: &'static str,
+}
+
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct LimitLabels {
+    limit: &'static str,
+}
+
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct SolveLabels {
+    model: &'static str,
+    outcome: &'static str,
+}
+
+/// Registers a clone of each metric (they share their values) under its
+/// name and help.
+macro_rules! register {
+    ($registry:ident, $($name:literal, $help:literal => $metric:expr;)*) => {
+        $($registry.register($name, $help, $metric.clone());)*
+    };
 }
 
 /// The server's metrics.
-#[derive(Default)]
+#[derive(Debug)]
 pub struct Metrics {
-    counters: Mutex<Counters>,
+    registry: Registry,
+    requests: Family<CallLabels, Counter>,
+    request_duration: Histograms<MethodLabels>,
+    solve_duration: Histograms<SolveLabels>,
+    sessions_active: Gauge,
+    sessions_opened: Counter,
+    store_damaged_records: Gauge,
+    registrations_refused: Family<LimitLabels, Counter>,
+}
+
+impl Default for Metrics {
+    fn default() -> Self {
+        let m = Self {
+            registry: Registry::default(),
+            requests: Family::default(),
+            request_duration: Family::new_with_constructor(latency_histogram),
+            solve_duration: Family::new_with_constructor(latency_histogram),
+            sessions_active: Gauge::default(),
+            sessions_opened: Counter::default(),
+            store_damaged_records: Gauge::default(),
+            registrations_refused: Family::default(),
+        };
+        let mut r = m.registry;
+        // name (a counter's without `_total`), help, metric: one line each.
+        register!(r,
+            "railcontact_requests", "Finished gRPC calls" => m.requests;
+            "railcontact_request_duration_seconds", "Latency of calls [s]" => m.request_duration;
+            "railcontact_solve_duration_seconds", "Duration of single solves [s]" => m.solve_duration;
+            "railcontact_sessions_active", "Open co-simulation sessions" => m.sessions_active;
+            "railcontact_sessions_opened", "Co-simulation sessions opened" => m.sessions_opened;
+            "railcontact_store_damaged_records", "Damaged records of the profile pair store, listed as FAILED pairs" => m.store_damaged_records;
+            "railcontact_registrations_refused", "Registrations refused by a limit" => m.registrations_refused;
+        );
+        Self { registry: r, ..m }
+    }
 }
 
 impl Metrics {
-    fn with<R>(&self, f: impl FnOnce(&mut Counters) -> R) -> R {
-        f(&mut self.counters.lock().unwrap_or_else(|e| e.into_inner()))
-    }
-
     /// A finished call of `method` that took `seconds`; `error` its code
     /// when it failed.
     pub fn request(&self, method: &'static str, seconds: f64, error: Option<tonic::Code>) {
         let code = format!("{:?}", error.unwrap_or(tonic::Code::Ok));
-        self.with(|c| {
-            *c.requests.entry((method, code)).or_default() += 1;
-            c.latency.entry(method).or_default().observe(seconds);
-        });
+        self.requests
+            .get_or_create(&CallLabels { method, code })
+            .inc();
+        self.request_duration
+            .get_or_create(&MethodLabels { method })
+            .observe(seconds);
     }
 
     /// One solve of `model` that took `seconds`.
@@ -107,120 +151,262 @@ impl Metrics {
     /// `wheelrail_exact`, ...) that took `seconds`.
     pub fn solved_as(&self, model: &'static str, seconds: f64, ok: bool) {
         let outcome = if ok { "ok" } else { "error" };
-        self.with(|c| {
-            c.solves
-                .entry((model, outcome))
-                .or_default()
-                .observe(seconds)
-        });
+        self.solve_duration
+            .get_or_create(&SolveLabels { model, outcome })
+            .observe(seconds);
     }
 
     /// A session was opened.
     pub fn session_opened(&self) {
-        self.with(|c| {
-            c.sessions_active += 1;
-            c.sessions_opened += 1;
-        });
+        self.sessions_active.inc();
+        self.sessions_opened.inc();
     }
 
-    /// The number of damaged records in the profile pair store.
+    /// `n` damaged records of the store are listed as FAILED pairs.
     pub fn store_damaged_records(&self, n: u64) {
-        self.with(|c| c.store_damaged_records = n);
+        self.store_damaged_records.set(n as i64);
     }
 
-    /// A registration was refused by the limit `limit` (its config key).
+    /// A registration was refused by the limit named `limit`.
     pub fn registration_refused(&self, limit: &'static str) {
-        self.with(|c| *c.registrations_refused.entry(limit).or_default() += 1);
+        self.registrations_refused
+            .get_or_create(&LimitLabels { limit })
+            .inc();
     }
 
     /// A session ended.
     pub fn session_closed(&self) {
-        self.with(|c| c.sessions_active = c.sessions_active.saturating_sub(1));
+        use std::sync::atomic::Ordering::Relaxed;
+        let _ = self
+            .sessions_active
+            .inner()
+            .fetch_update(Relaxed, Relaxed, |n| (n > 0).then(|| n - 1));
     }
 
-    /// The exposition text, with the pool's and the kernel cache's figures.
+    /// The exposition text (Prometheus text format 0.0.4), with the pool's
+    /// and the kernel cache's figures.
     pub fn render(&self, pool: &SolvePool, cache: &KernelCache) -> String {
-        let mut o = String::new();
-        self.with(|c| {
-            o.push_str("# HELP railcontact_requests_total Finished gRPC calls.\n# TYPE railcontact_requests_total counter\n");
-            for ((m, code), n) in &c.requests {
-                let _ = writeln!(o, "railcontact_requests_total{{method=\"{m}\",code=\"{code}\"}} {n}");
-            }
-            o.push_str("# HELP railcontact_request_duration_seconds Latency of calls [s].\n# TYPE railcontact_request_duration_seconds histogram\n");
-            for (m, h) in &c.latency {
-                h.render(&mut o, "railcontact_request_duration_seconds", &format!("method=\"{m}\""));
-            }
-            o.push_str("# HELP railcontact_solve_duration_seconds Duration of single solves [s].\n# TYPE railcontact_solve_duration_seconds histogram\n");
-            for ((model, outcome), h) in &c.solves {
-                h.render(
-                    &mut o,
-                    "railcontact_solve_duration_seconds",
-                    &format!("model=\"{model}\",outcome=\"{outcome}\""),
-                );
-            }
-            let _ = writeln!(o, "# TYPE railcontact_sessions_active gauge\nrailcontact_sessions_active {}", c.sessions_active);
-            let _ = writeln!(o, "# TYPE railcontact_sessions_opened_total counter\nrailcontact_sessions_opened_total {}", c.sessions_opened);
-            let _ = writeln!(o, "# TYPE railcontact_store_damaged_records gauge\nrailcontact_store_damaged_records {}", c.store_damaged_records);
-            o.push_str("# TYPE railcontact_registrations_refused_total counter\n");
-            for (limit, n) in &c.registrations_refused {
-                let _ = writeln!(o, "railcontact_registrations_refused_total{{limit=\"{limit}\"}} {n}");
-            }
-        });
         let f = cache.figures();
-        let _ = writeln!(
-            o,
-            "# TYPE railcontact_solve_queue_admitted gauge\nrailcontact_solve_queue_admitted {}",
-            pool.admitted()
-        );
-        let _ = writeln!(
-            o,
-            "# TYPE railcontact_solves_cancelled_total counter\nrailcontact_solves_cancelled_total {}",
-            pool.cancelled()
-        );
-        for (name, kind, value) in [
-            ("hits_total", "counter", f.hits),
-            ("misses_total", "counter", f.misses),
-            ("evictions_total", "counter", f.evictions),
-            ("entries", "gauge", f.entries as u64),
-            ("bytes", "gauge", f.bytes as u64),
-            ("max_bytes", "gauge", f.max_bytes as u64),
-        ] {
-            let _ = writeln!(
-                o,
-                "# TYPE railcontact_kernel_cache_{name} {kind}\nrailcontact_kernel_cache_{name} {value}"
-            );
-        }
-        o
+        let mut scrape = Registry::default();
+        scrape.register_collector(Box::new(Figures(vec![
+            Figure::gauge(
+                "railcontact_solve_queue_admitted",
+                "Requests admitted to the solve pool, running plus waiting.",
+                pool.admitted() as u64,
+            ),
+            Figure::counter(
+                "railcontact_solves_cancelled",
+                "Solves told to stop because their request ended while they ran.",
+                pool.cancelled(),
+            ),
+            Figure::counter(
+                "railcontact_solves_timed_out",
+                "Solves stopped at the server's limit max_solve_time_s.",
+                pool.timed_out(),
+            ),
+            Figure::counter(
+                "railcontact_kernel_cache_hits",
+                "Influence-kernel cache hits.",
+                f.hits,
+            ),
+            Figure::counter(
+                "railcontact_kernel_cache_misses",
+                "Influence-kernel cache misses.",
+                f.misses,
+            ),
+            Figure::counter(
+                "railcontact_kernel_cache_evictions",
+                "Kernel sets evicted as least recently used.",
+                f.evictions,
+            ),
+            Figure::gauge(
+                "railcontact_kernel_cache_entries",
+                "Kernel sets held.",
+                f.entries as u64,
+            ),
+            Figure::gauge(
+                "railcontact_kernel_cache_bytes",
+                "Memory of the kernel sets held [bytes].",
+                f.bytes as u64,
+            ),
+            Figure::gauge(
+                "railcontact_kernel_cache_max_bytes",
+                "Memory cap of the kernel cache [bytes].",
+                f.max_bytes as u64,
+            ),
+        ])));
+        let mut text = String::new();
+        // Writing into a String cannot fail; an encoder error would only
+        // shorten the page.
+        let _ = prometheus_text::encode(&mut text, &self.registry);
+        let _ = prometheus_text::encode(&mut text, &scrape);
+        text
     }
 }
 
-/// Serves `GET /metrics` on `listener` until the task is dropped.
+/// One figure read at scrape time; its help ends in a full stop, as the
+/// registry's (which appends one).
+#[derive(Debug)]
+struct Figure {
+    name: &'static str,
+    help: &'static str,
+    counter: bool,
+    value: u64,
+}
+
+impl Figure {
+    /// A counter, named without its `_total` suffix.
+    fn counter(name: &'static str, help: &'static str, value: u64) -> Self {
+        Self {
+            name,
+            help,
+            counter: true,
+            value,
+        }
+    }
+
+    fn gauge(name: &'static str, help: &'static str, value: u64) -> Self {
+        Self {
+            name,
+            help,
+            counter: false,
+            value,
+        }
+    }
+}
+
+#[derive(Debug)]
+struct Figures(Vec<Figure>);
+
+impl Collector for Figures {
+    fn encode(&self, mut encoder: DescriptorEncoder) -> Result<(), std::fmt::Error> {
+        for f in &self.0 {
+            if f.counter {
+                let m = ConstCounter::new(f.value);
+                m.encode(encoder.encode_descriptor(f.name, f.help, None, m.metric_type())?)?;
+            } else {
+                let m = ConstGauge::new(f.value);
+                m.encode(encoder.encode_descriptor(f.name, f.help, None, m.metric_type())?)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// What the metrics page needs.
+#[derive(Clone)]
+struct Page {
+    metrics: Arc<Metrics>,
+    pool: SolvePool,
+}
+
+async fn metrics_page(State(page): State<Page>) -> impl IntoResponse {
+    (
+        [(CONTENT_TYPE, prometheus_text::CONTENT_TYPE)],
+        page.metrics.render(&page.pool, KernelCache::global()),
+    )
+}
+
+/// Serves `GET /metrics` on `listener` (404 for any other path) until
+/// `shutdown` completes; then stops accepting and lets the requests being
+/// answered finish.
 pub async fn serve_metrics(
     listener: TcpListener,
-    metrics: std::sync::Arc<Metrics>,
+    metrics: Arc<Metrics>,
     pool: SolvePool,
-) {
-    loop {
-        let Ok((mut stream, _)) = listener.accept().await else {
-            continue;
-        };
-        let metrics = metrics.clone();
-        let pool = pool.clone();
-        tokio::spawn(async move {
-            let mut buf = vec![0u8; 4096];
-            let n = stream.read(&mut buf).await.unwrap_or(0);
-            let head = String::from_utf8_lossy(&buf[..n]);
-            let response = if head.starts_with("GET /metrics") {
-                let body = metrics.render(&pool, KernelCache::global());
-                format!(
-                    "HTTP/1.1 200 OK\r\ncontent-type: text/plain; version=0.0.4\r\ncontent-length: {}\r\nconnection: close\r\n\r\n{body}",
-                    body.len()
-                )
-            } else {
-                "HTTP/1.1 404 Not Found\r\ncontent-length: 0\r\nconnection: close\r\n\r\n"
-                    .to_string()
-            };
-            let _ = stream.write_all(response.as_bytes()).await;
-        });
+    shutdown: impl Future<Output = ()> + Send + 'static,
+) -> std::io::Result<()> {
+    let app = Router::new()
+        .route("/metrics", get(metrics_page))
+        .with_state(Page { metrics, pool });
+    axum::serve(listener, app)
+        .with_graceful_shutdown(shutdown)
+        .await
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+
+    /// One HTTP/1.1 request on a fresh connection; the whole response.
+    async fn get(addr: std::net::SocketAddr, path: &str) -> String {
+        let mut s = tokio::net::TcpStream::connect(addr).await.unwrap();
+        let request = format!("GET {path} HTTP/1.1\r\nhost: x\r\nconnection: close\r\n\r\n");
+        s.write_all(request.as_bytes()).await.unwrap();
+        let mut page = String::new();
+        s.read_to_string(&mut page).await.unwrap();
+        page
+    }
+
+    #[test]
+    fn the_page_has_every_metric_with_its_type_and_labels() {
+        let m = Metrics::default();
+        m.request("SolvePatch", 3e-4, None);
+        m.request("SolvePatch", 2e-3, Some(tonic::Code::ResourceExhausted));
+        m.solved_as("wheelrail_exact", 7e-3, true);
+        m.session_opened();
+        m.session_opened();
+        m.session_closed();
+        let page = m.render(&SolvePool::new(1, 4), KernelCache::global());
+        for line in [
+            "# TYPE railcontact_requests_total counter",
+            "railcontact_requests_total{method=\"SolvePatch\",code=\"Ok\"} 1",
+            "railcontact_requests_total{method=\"SolvePatch\",code=\"ResourceExhausted\"} 1",
+            "# TYPE railcontact_request_duration_seconds histogram",
+            "railcontact_request_duration_seconds_count{method=\"SolvePatch\"} 2",
+            "railcontact_request_duration_seconds_bucket{method=\"SolvePatch\",le=\"0.0005\"} 1",
+            "railcontact_request_duration_seconds_bucket{method=\"SolvePatch\",le=\"0.0025\"} 2",
+            "railcontact_solve_duration_seconds_count{model=\"wheelrail_exact\",outcome=\"ok\"} 1",
+            "# TYPE railcontact_sessions_active gauge",
+            "railcontact_sessions_active 1",
+            "railcontact_sessions_opened_total 2",
+            "railcontact_solve_queue_admitted 0",
+            "# TYPE railcontact_solves_cancelled_total counter",
+            "railcontact_solves_cancelled_total 0",
+            "# TYPE railcontact_kernel_cache_hits_total counter",
+            "# TYPE railcontact_kernel_cache_misses_total counter",
+            "# TYPE railcontact_kernel_cache_evictions_total counter",
+            "# TYPE railcontact_kernel_cache_entries gauge",
+            "# TYPE railcontact_kernel_cache_bytes gauge",
+            "# TYPE railcontact_kernel_cache_max_bytes gauge",
+            "# HELP railcontact_kernel_cache_max_bytes Memory cap of the kernel cache [bytes].",
+            "# HELP railcontact_requests_total Finished gRPC calls.",
+        ] {
+            assert!(page.lines().any(|l| l == line), "no {line:?} in\n{page}");
+        }
+    }
+
+    #[tokio::test(flavor = "current_thread")]
+    async fn metrics_are_served_over_http_until_shutdown() {
+        let listener = TcpListener::bind("127.0.0.1:0").await.unwrap();
+        let addr = listener.local_addr().unwrap();
+        let metrics = Arc::new(Metrics::default());
+        metrics.session_opened();
+        let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+        let task = tokio::spawn(serve_metrics(
+            listener,
+            metrics,
+            SolvePool::new(1, 4),
+            async {
+                let _ = stopped.await;
+            },
+        ));
+        let page = get(addr, "/metrics").await;
+        assert!(page.starts_with("HTTP/1.1 200 OK\r\n"), "{page}");
+        let head = page.to_ascii_lowercase();
+        assert!(
+            head.contains("content-type: text/plain; version=0.0.4; charset=utf-8\r\n"),
+            "{page}"
+        );
+        assert!(page.contains("\nrailcontact_sessions_active 1\n"), "{page}");
+        let other = get(addr, "/").await;
+        assert!(other.starts_with("HTTP/1.1 404 Not Found\r\n"), "{other}");
+        stop.send(()).unwrap();
+        task.await.unwrap().unwrap();
+        assert!(
+            tokio::net::TcpStream::connect(addr).await.is_err(),
+            "still listening after shutdown"
+        );
     }
 }

@@ -4,7 +4,8 @@
 //! Shutdown is graceful: on SIGTERM or Ctrl-C (or [`RunningServer::shutdown`])
 //! the health service reports NOT_SERVING, the listener stops accepting,
 //! in-flight calls and open sessions get `shutdown_grace_s` to finish, and
-//! whatever is left is then dropped; then the store is closed.
+//! whatever is left is then dropped; then the metrics endpoint stops (the
+//! scrapes being answered finish) and the store is closed.
 //!
 //! At start the store of profile pairs is opened (`data_dir`), its pairs
 //! restored (prepared on first use), and the built-in pair
@@ -38,7 +39,7 @@ pub struct RunningServer {
     pub metrics_addr: Option<SocketAddr>,
     stop: oneshot::Sender<()>,
     task: JoinHandle<Result<(), tonic::transport::Error>>,
-    metrics_task: Option<JoinHandle<()>>,
+    metrics_task: Option<(oneshot::Sender<()>, JoinHandle<std::io::Result<()>>)>,
     health: tonic_health::server::HealthReporter,
     grace: Duration,
     pairs: Arc<PairRegistry>,
@@ -125,8 +126,11 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         Some(a) => {
             let l = TcpListener::bind(a).await?;
             let bound = l.local_addr()?;
-            let task = tokio::spawn(serve_metrics(l, metrics, pool));
-            (Some(bound), Some(task))
+            let (stop, stopped) = oneshot::channel::<()>();
+            let task = tokio::spawn(serve_metrics(l, metrics, pool, async {
+                let _ = stopped.await;
+            }));
+            (Some(bound), Some((stop, task)))
         }
         None => (None, None),
     };
@@ -158,7 +162,14 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
                 },
             ),
     );
-    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), "railcontact serving");
+    let store = match config.store_dir() {
+        Some(dir) => dir
+            .join(crate::service::store::FILE_NAME)
+            .display()
+            .to_string(),
+        None => "memory only".to_string(),
+    };
+    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), %store, "railcontact serving");
     Ok(RunningServer {
         addr,
         metrics_addr,
@@ -192,8 +203,18 @@ impl RunningServer {
                 task.abort();
             }
         }
-        if let Some(m) = self.metrics_task {
-            m.abort();
+        if let Some((stop, mut task)) = self.metrics_task {
+            let _ = stop.send(());
+            // A scrape takes milliseconds; idle keep-alive connections
+            // close at once.
+            match tokio::time::timeout(Duration::from_secs(2), &mut task).await {
+                Ok(Ok(Ok(()))) => {}
+                Ok(Ok(Err(e))) => {
+                    tracing::warn!(error = %e, "metrics endpoint error while stopping")
+                }
+                Ok(Err(e)) => tracing::warn!(error = %e, "metrics task failed"),
+                Err(_) => task.abort(),
+            }
         }
         self.pairs.close_store();
     }
@@ -258,14 +279,29 @@ async fn termination() {
     }
 }
 
-/// `railcontact serve`: tracing from RUST_LOG (default `info`), a runtime,
-/// the server until SIGTERM or Ctrl-C, then a graceful stop.
+/// Whether log lines on stderr get ANSI colours: only on a terminal, and
+/// not when `NO_COLOR` is set to anything but the empty string
+/// (<https://no-color.org>). journald, `docker logs` and files get plain
+/// text.
+pub fn log_colours(no_color: Option<&std::ffi::OsStr>, stderr_is_terminal: bool) -> bool {
+    stderr_is_terminal && no_color.is_none_or(|v| v.is_empty())
+}
+
+/// `railcontact serve`: tracing from RUST_LOG (default `info`) to stderr
+/// (coloured as [`log_colours`] says), a runtime, the server until SIGTERM
+/// or Ctrl-C, then a graceful stop.
 pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
+    use std::io::IsTerminal;
     let filter = tracing_subscriber::EnvFilter::try_from_default_env()
         .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info"));
+    let colours = log_colours(
+        std::env::var_os("NO_COLOR").as_deref(),
+        std::io::stderr().is_terminal(),
+    );
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(std::io::stderr)
+        .with_ansi(colours)
         .try_init();
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
@@ -289,4 +325,19 @@ pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
         server.shutdown().await;
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_colours;
+    use std::ffi::OsStr;
+
+    #[test]
+    fn logs_are_coloured_only_on_a_terminal_without_no_color() {
+        assert!(log_colours(None, true));
+        assert!(log_colours(Some(OsStr::new("")), true));
+        assert!(!log_colours(Some(OsStr::new("1")), true));
+        assert!(!log_colours(None, false));
+        assert!(!log_colours(Some(OsStr::new("1")), false));
+    }
 }

@@ -12,6 +12,21 @@ use serde_json::Value;
 /// The built command.
 pub const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
+/// Set to anything but "" or "0", skips the tests that install things
+/// beyond the Rust toolchain: the Python client's (a venv and PyPI
+/// packages) and the C++ client's (Debian packages).
+pub const SKIP_CLIENT_TESTS: &str = "RAILCONTACT_SKIP_CLIENT_TESTS";
+
+/// Whether [`SKIP_CLIENT_TESTS`] asks to skip `what`; says so on stderr
+/// (`cargo test -- --nocapture` shows it).
+pub fn skip_client_test(what: &str) -> bool {
+    let skip = std::env::var(SKIP_CLIENT_TESTS).is_ok_and(|v| !v.is_empty() && v != "0");
+    if skip {
+        eprintln!("skipped: {what} ({SKIP_CLIENT_TESTS} is set)");
+    }
+    skip
+}
+
 /// A `railcontact serve` child process, killed when dropped.
 pub struct Server {
     /// HOST:PORT it listens on.
@@ -25,15 +40,24 @@ pub struct Server {
 
 impl Server {
     /// Starts a server on 127.0.0.1, port 0, with its store in a fresh
-    /// temporary directory and its log in a file there; waits for its
-    /// `listening on` line.
+    /// temporary directory and its log (`RUST_LOG=warn`) in a file there;
+    /// waits for its `listening on` line.
     pub fn start() -> Server {
+        Server::start_with(&[], &[])
+    }
+
+    /// [`Server::start`] with more arguments after `serve --listen
+    /// 127.0.0.1:0` and more environment variables (set after, so they
+    /// override, `RAILCONTACT_DATA_DIR` and `RUST_LOG`).
+    pub fn start_with(args: &[&str], env: &[(&str, &str)]) -> Server {
         let dir = tempfile::tempdir().unwrap();
         let log = dir.path().join("server.log");
         let mut child = Command::new(BIN)
             .args(["serve", "--listen", "127.0.0.1:0"])
+            .args(args)
             .env("RAILCONTACT_DATA_DIR", dir.path().join("store"))
             .env("RUST_LOG", "warn")
+            .envs(env.iter().copied())
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
             .stderr(std::fs::File::create(&log).expect("create the server log"))
@@ -62,6 +86,11 @@ impl Server {
             log,
             _dir: dir,
         }
+    }
+
+    /// The temporary directory of its store and log.
+    pub fn dir(&self) -> &std::path::Path {
+        self._dir.path()
     }
 
     /// What the server wrote to its standard error so far.

@@ -96,6 +96,14 @@ def test_invalid_input_raises_with_code_and_field(client):
     with pytest.raises(railcontact.RailcontactError) as e:
         client.solve_patch(dict(case, grid={"nx": 8, "nz": 8}))
     assert e.value.field == "case.grid.nz"
+    # A case file that is missing or not TOML is bad input too.
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(REPO / "examples" / "cases" / "no-such-case.toml")
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT and e.value.field == "case"
+    assert "no-such-case.toml" in e.value.message
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(REPO / "README.md")
+    assert e.value.field == "case"
 
 
 def _run(session, creepages, mark_at=None):

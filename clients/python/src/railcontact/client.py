@@ -13,7 +13,7 @@ import grpc
 from ._build import build, enum_name
 from ._proto import railcontact_pb2 as pb
 from ._proto import railcontact_pb2_grpc as pb_grpc
-from .errors import RailcontactError
+from .errors import RailcontactError, invalid
 from .results import (
     CreepCurvePoint,
     Grid,
@@ -36,9 +36,17 @@ BUILTIN_PAIR = "mbench_s1002_uic60"
 
 
 def load_case(path: Union[str, os.PathLike]) -> dict:
-    """A case file of ``railcontact solve`` (TOML) as a mapping."""
-    with open(path, "rb") as f:
-        return tomllib.load(f)
+    """A case file of ``railcontact solve`` (TOML) as a mapping.
+
+    A file that cannot be read or is not TOML raises
+    :class:`RailcontactError` (INVALID_ARGUMENT, field ``case``), like
+    every other bad input.
+    """
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise invalid("case", f"cannot read case file {os.fspath(path)}: {e}") from e
 
 
 def patch_case(case: CaseLike, path: str = "case") -> pb.PatchCase:
