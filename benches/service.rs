@@ -85,6 +85,8 @@ fn round_trips(c: &mut Criterion) {
         .block_on(start(&ServeConfig {
             listen: "127.0.0.1:0".parse().unwrap(),
             data_dir: Default::default(),
+            // register_pair/builtin_new registers a new pair each iteration.
+            max_profile_pairs: usize::MAX,
             ..ServeConfig::default()
         }))
         .unwrap();

@@ -15,12 +15,19 @@
 //!
 //! # Life of a pair
 //!
-//! Registering inserts an entry (state PREPARING), prepares it on the solve
-//! pool, builds its contact table, writes the canonical registration to the
-//! store and marks it READY. A failed preparation removes the entry again
+//! Registering checks every number against its physical range
+//! ([`canonicalize`]), inserts an entry (state PREPARING; within the
+//! registry's limits, [`PairRegistry::begin`]), prepares it on the solve
+//! pool (profiles of at most `max_profile_points` points, and one trial
+//! solve at the centred position: [`prepare_with`]), builds its contact
+//! table, writes the canonical registration to the store and marks it
+//! READY. A failed preparation removes the entry again
 //! (a table that cannot be built does not: only one model needs it). After
 //! a restart the stored registrations come back as entries in state STORED
-//! and are prepared, and their tables built, on first use; the preparation of an entry runs once however
+//! (each checked first: a record whose content no longer hashes to its id,
+//! or that cannot be decoded, is a FAILED entry that is never served, see
+//! [`PairRegistry::open`]) and are prepared, and their tables built, on
+//! first use; the preparation of an entry runs once however
 //! many requests ask for it at the same time (a [`tokio::sync::OnceCell`]).
 //! No lock is held across an await or a preparation; store writes and the
 //! registry's map change together under the store's lock, so a delete and

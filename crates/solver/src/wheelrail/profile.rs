@@ -587,21 +587,6 @@ pub(crate) fn finish(
     checks: &ProfileChecks,
 ) -> Result<Profile, ProfileError> {
     let at = |line: Option<usize>| SourceLocation::new(name, line);
-    if let Some(p) = raw
-        .points
-        .iter()
-        .find(|p| !(p.y.abs() <= MAX_COORDINATE_M && p.z.abs() <= MAX_COORDINATE_M))
-    {
-        return Err(ProfileError::Check {
-            at: at(p.line),
-            kind: CheckKind::Coordinate,
-            message: format!(
-                "point (y = {:e} m, z = {:e} m) lies outside +-{MAX_COORDINATE_M} m, after the \
-                 file's offsets, shifts and unit factor; wrong offset or length unit?",
-                p.y, p.z
-            ),
-        });
-    }
     let pts = &mut raw.points;
     if pts.len() < 2 {
         return Err(ProfileError::Check {
@@ -620,23 +605,43 @@ pub(crate) fn finish(
         }
     }
 
+    // A point beyond MAX_COORDINATE_M: a wrong offset or unit factor.
+    let far = pts
+        .iter()
+        .find(|p| !(p.y.abs() <= MAX_COORDINATE_M && p.z.abs() <= MAX_COORDINATE_M))
+        .copied();
+    let outside = |p: &RawPoint| {
+        format!(
+            "point (y = {:e} m, z = {:e} m) lies outside +-{MAX_COORDINATE_M} m, after the \
+             file's offsets, shifts and unit factor",
+            p.y, p.z
+        )
+    };
     let (ylo, yhi) = range(pts.iter().map(|p| p.y));
     let (zlo, zhi) = range(pts.iter().map(|p| p.z));
     if yhi - ylo > checks.max_extent_m || zhi - zlo > checks.max_extent_m {
         return Err(ProfileError::Check {
-            at: at(None),
+            at: at(far.and_then(|p| p.line)),
             kind: CheckKind::Extent,
             message: format!(
                 "the profile spans {:.4} m in y and {:.4} m in z, more than the limit of {} m \
                  (ProfileChecks::max_extent_m); wrong length unit? (Simpack `units.len.f`, \
-                 plain files `# unit: mm`)",
+                 plain files `# unit: mm`){}",
                 yhi - ylo,
                 zhi - zlo,
-                checks.max_extent_m
+                checks.max_extent_m,
+                far.map(|p| format!("; {}", outside(&p)))
+                    .unwrap_or_default()
             ),
         });
     }
-
+    if let Some(p) = far {
+        return Err(ProfileError::Check {
+            at: at(p.line),
+            kind: CheckKind::Coordinate,
+            message: format!("{}; wrong offset or length unit?", outside(&p)),
+        });
+    }
     merge_close_points(name, &mut raw, checks);
     repair_reversals(name, &mut raw, checks)?;
 

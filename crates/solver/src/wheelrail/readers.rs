@@ -1170,8 +1170,16 @@ mod tests {
             let m = e.to_string();
             assert!(m.starts_with(at) && m.contains("10000"), "{m}");
         }
-        // A point 1e15 mm out: the coordinate check names its line.
+        // A point 1e15 mm out: the extent check names its line; every
+        // point 1e15 mm out (the extent is small): the coordinate check.
         let e = parse_miniprof(&miniprof("0", "0", "1e15 0"), "r.ban").unwrap_err();
+        assert!(e.to_string().starts_with("r.ban line 7"), "{e}");
+        assert!(e.to_string().contains("outside"), "{e}");
+        let mut far = String::from("XYPoints=3\n\n");
+        for k in 0..3 {
+            far.push_str(&format!("{} 0\n", 1e15 + k as f64 * 0.5));
+        }
+        let e = parse_miniprof(&far, "r.ban").unwrap_err();
         assert!(
             matches!(
                 e,
@@ -1182,7 +1190,7 @@ mod tests {
             ),
             "{e}"
         );
-        assert!(e.to_string().starts_with("r.ban line 7"), "{e}");
+        assert!(e.to_string().starts_with("r.ban line 3"), "{e}");
         // Simpack: a shift of 1e20 m, a unit factor of 1e-300, a weight of
         // 1e300.
         let simpack = |key: &str, point: &str| {

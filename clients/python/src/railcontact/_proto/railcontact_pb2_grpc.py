@@ -150,10 +150,17 @@ class ContactServiceServicer:
         streams the progress: VALIDATED (the id is known), then the stages of
         the preparation, then READY carrying the pair's description, and ends
         the stream. The registration is persisted in the server's store and
-        survives a restart. Errors: checks of the request itself fail the call
-        before any message; profile parse errors (naming the file and line)
-        and placement errors end the stream with INVALID_ARGUMENT, and the
-        pair is not registered.
+        survives a restart. Before READY the pair is solved once
+        (Hertz+FASTSIM, 50 kN a wheel, the wheelset centred): a pair whose
+        wheels do not touch their rails there is refused. Errors: checks of
+        the request itself (every number against its physical range, named
+        with the field path, the range and the value) fail the call before any
+        message; profile parse errors (naming the file and line, quoting at
+        most 100 characters of the input), a profile of more points than the
+        server's `max_profile_points`, and placement and trial-solve errors
+        end the stream with INVALID_ARGUMENT, and the pair is not registered.
+        A new pair beyond the server's `max_profile_pairs` or
+        `max_store_bytes` gets RESOURCE_EXHAUSTED.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
