@@ -8,6 +8,9 @@
 //! | `railcontact_solve_duration_seconds` | `model`, `outcome` | histogram of each solve (batch items, curve points, session steps) |
 //! | `railcontact_sessions_active` | | open co-simulation sessions |
 //! | `railcontact_sessions_opened_total` | | sessions opened |
+//! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
+//! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
+//! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
 //! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
@@ -71,6 +74,9 @@ struct Counters {
     solves: BTreeMap<(&'static str, &'static str), Histogram>,
     sessions_active: u64,
     sessions_opened: u64,
+    sessions_idle_closed: u64,
+    session_mark_bytes: u64,
+    session_marks_refused: u64,
 }
 
 /// The server's metrics.
@@ -124,6 +130,19 @@ impl Metrics {
         self.with(|c| c.sessions_active = c.sessions_active.saturating_sub(1));
     }
 
+    /// A session was closed because it idled.
+    pub fn session_idle_closed(&self) {
+        self.with(|c| c.sessions_idle_closed += 1);
+    }
+
+    /// The session marks now: `bytes` held, `refused` marks so far.
+    pub fn session_marks(&self, bytes: usize, refused: u64) {
+        self.with(|c| {
+            c.session_mark_bytes = bytes as u64;
+            c.session_marks_refused = refused;
+        });
+    }
+
     /// The exposition text, with the pool's and the kernel cache's figures.
     pub fn render(&self, pool: &SolvePool, cache: &KernelCache) -> String {
         let mut o = String::new();
@@ -146,6 +165,9 @@ impl Metrics {
             }
             let _ = writeln!(o, "# TYPE railcontact_sessions_active gauge\nrailcontact_sessions_active {}", c.sessions_active);
             let _ = writeln!(o, "# TYPE railcontact_sessions_opened_total counter\nrailcontact_sessions_opened_total {}", c.sessions_opened);
+            let _ = writeln!(o, "# TYPE railcontact_sessions_idle_closed_total counter\nrailcontact_sessions_idle_closed_total {}", c.sessions_idle_closed);
+            let _ = writeln!(o, "# TYPE railcontact_session_mark_bytes gauge\nrailcontact_session_mark_bytes {}", c.session_mark_bytes);
+            let _ = writeln!(o, "# TYPE railcontact_session_marks_refused_total counter\nrailcontact_session_marks_refused_total {}", c.session_marks_refused);
         });
         let f = cache.figures();
         let _ = writeln!(
