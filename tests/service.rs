@@ -13,63 +13,25 @@ use railcontact::problem::case::Case;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::convert::total_values;
 use railcontact::service::pb;
-use railcontact::service::pb::contact_service_client::ContactServiceClient;
-use railcontact::service::server::{start, RunningServer};
+use railcontact::service::server::RunningServer;
 use tokio_stream::StreamExt;
 use tonic::transport::Channel;
 use tonic::Code;
 
-type Client = ContactServiceClient<Channel>;
+mod common;
+use common::{metrics_page, serve, sphere, steel, Client};
 
 /// A server on an ephemeral port; pairs in memory only (no store).
 async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
+    serve(ServeConfig {
         data_dir: Default::default(),
         ..config
     })
     .await
-    .expect("server starts");
-    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects");
-    (server, client)
 }
 
 async fn server() -> (RunningServer, Client) {
     server_with(ServeConfig::default()).await
-}
-
-fn steel() -> pb::MaterialSection {
-    pb::MaterialSection {
-        shear_modulus_pa: Some(81.0e9),
-        poisson_ratio: Some(0.30),
-        ..Default::default()
-    }
-}
-
-/// h = x² + y² (R = 0.5 m), 10 kN, steel on steel.
-fn sphere(model: pb::Model, n: u32) -> pb::PatchCase {
-    pb::PatchCase {
-        model: model as i32,
-        material: Some(steel()),
-        geometry: Some(pb::GeometrySection {
-            kind: pb::GeometryKind::Quadratic as i32,
-            a_per_m: Some(1.0),
-            b_per_m: Some(1.0),
-            ..Default::default()
-        }),
-        load: Some(pb::LoadSection {
-            load: Some(pb::load_section::Load::NormalForceN(1.0e4)),
-        }),
-        grid: Some(pb::GridSection {
-            nx: Some(n),
-            ny: Some(n),
-            ..Default::default()
-        }),
-        ..Default::default()
-    }
 }
 
 /// `sphere` in steady rolling with mu = 0.3.
@@ -640,18 +602,6 @@ async fn bad_inputs_get_invalid_argument_naming_the_field() {
     );
     assert_eq!(step_result(&r[2]).step_index, 0);
     server.shutdown().await;
-}
-
-/// Reads the metrics page.
-async fn metrics_page(addr: std::net::SocketAddr) -> String {
-    use tokio::io::{AsyncReadExt, AsyncWriteExt};
-    let mut s = tokio::net::TcpStream::connect(addr).await.unwrap();
-    s.write_all(b"GET /metrics HTTP/1.1\r\nhost: x\r\nconnection: close\r\n\r\n")
-        .await
-        .unwrap();
-    let mut page = String::new();
-    s.read_to_string(&mut page).await.unwrap();
-    page
 }
 
 /// The server's `railcontact_solves_cancelled_total`.

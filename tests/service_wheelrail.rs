@@ -12,8 +12,7 @@ use std::path::Path;
 use railcontact::core::cache::KernelCache;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
-use railcontact::service::pb::contact_service_client::ContactServiceClient;
-use railcontact::service::server::{start, RunningServer};
+use railcontact::service::server::RunningServer;
 use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
@@ -21,10 +20,10 @@ use railcontact::wheelrail::{
     ContactTable, LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData,
     WarmStart, WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
 };
-use tonic::transport::Channel;
 use tonic::Code;
 
-type Client = ContactServiceClient<Channel>;
+mod common;
+use common::Client;
 
 const BUILTIN: &str = "mbench_s1002_uic60";
 
@@ -33,18 +32,11 @@ fn profile_path(name: &str) -> String {
 }
 
 async fn server_in(dir: &Path) -> (RunningServer, Client) {
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
+    common::serve(ServeConfig {
         data_dir: dir.to_path_buf(),
         ..ServeConfig::default()
     })
     .await
-    .expect("server starts");
-    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects");
-    (server, client)
 }
 
 fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {

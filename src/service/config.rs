@@ -41,6 +41,18 @@ pub struct ServeConfig {
     pub max_curve_points: usize,
     /// Sessions open at once (default 256); more get RESOURCE_EXHAUSTED.
     pub max_sessions: usize,
+    /// Memory the marks of one session may hold \[bytes\] (default 64 MiB:
+    /// 15 marks of an exact session on 256 x 256 elements, 66 bytes an
+    /// element each); a step whose mark would go beyond it is refused
+    /// in-band with RESOURCE_EXHAUSTED and not applied.
+    pub max_session_bytes: usize,
+    /// Memory the marks of all sessions together may hold \[bytes\]
+    /// (default 1 GiB); beyond it as `max_session_bytes`.
+    pub max_sessions_total_bytes: usize,
+    /// A session that receives no message for this long is closed: its
+    /// last message is an in-band error saying so, then the stream ends
+    /// with DEADLINE_EXCEEDED and its slot is free \[s\] (default 300).
+    pub session_idle_timeout_s: f64,
     /// Largest grid, nx * ny elements (default 65536 = 256 x 256).
     pub max_grid_elements: usize,
     /// Largest gRPC message, either direction \[bytes\] (default 16 MiB).
@@ -132,6 +144,9 @@ impl Default for ServeConfig {
             max_batch_items: 1024,
             max_curve_points: 1000,
             max_sessions: 256,
+            max_session_bytes: 64 << 20,
+            max_sessions_total_bytes: 1 << 30,
+            session_idle_timeout_s: 300.0,
             max_grid_elements: 256 * 256,
             max_message_bytes: 16 << 20,
             kernel_cache_max_bytes: crate::core::cache::DEFAULT_MAX_BYTES,
@@ -230,6 +245,13 @@ impl ServeConfig {
         if c.max_streams_per_connection == 0 {
             errors.push("max_streams_per_connection must be at least 1".into());
         }
+        // Up to a year: a Duration of it never overflows.
+        if !(c.session_idle_timeout_s > 0.0 && c.session_idle_timeout_s <= 3.2e7) {
+            errors.push(format!(
+                "session_idle_timeout_s must be > 0 and at most 3.2e7 (a year), got {}",
+                c.session_idle_timeout_s
+            ));
+        }
         for (key, v) in [
             ("max_batch_items", c.max_batch_items),
             ("max_curve_points", c.max_curve_points),
@@ -283,6 +305,21 @@ impl ServeConfig {
         parse(get("max_batch_items"), &mut self.max_batch_items, errors);
         parse(get("max_curve_points"), &mut self.max_curve_points, errors);
         parse(get("max_sessions"), &mut self.max_sessions, errors);
+        parse(
+            get("max_session_bytes"),
+            &mut self.max_session_bytes,
+            errors,
+        );
+        parse(
+            get("max_sessions_total_bytes"),
+            &mut self.max_sessions_total_bytes,
+            errors,
+        );
+        parse(
+            get("session_idle_timeout_s"),
+            &mut self.session_idle_timeout_s,
+            errors,
+        );
         parse(
             get("max_grid_elements"),
             &mut self.max_grid_elements,
@@ -393,6 +430,8 @@ mod tests {
             ("RAILCONTACT_DATA_DIR", "/var/lib/railcontact"),
             ("RAILCONTACT_STORE_DAMAGED", "fail"),
             ("RAILCONTACT_MAX_PROFILE_POINTS", "5000"),
+            ("RAILCONTACT_SESSION_IDLE_TIMEOUT_S", "2.5"),
+            ("RAILCONTACT_MAX_SESSION_BYTES", "1000"),
         ]);
         let flags = ServeFlags {
             listen: Some("127.0.0.1:7000".parse().unwrap()),
@@ -406,17 +445,21 @@ mod tests {
         assert_eq!(c.store_dir(), Some(Path::new("/var/lib/railcontact")));
         assert_eq!(c.store_damaged, StoreDamaged::Fail);
         assert_eq!(c.max_profile_points, 5000);
+        assert_eq!(c.session_idle_timeout_s, 2.5);
+        assert_eq!(c.max_session_bytes, 1000);
 
         let bad = env(&[
             ("RAILCONTACT_WORKERS", "many"),
             ("RAILCONTACT_MAX_SESSIONS", "0"),
             ("RAILCONTACT_STORE_DAMAGED", "ignore"),
+            ("RAILCONTACT_SESSION_IDLE_TIMEOUT_S", "0"),
         ]);
         let err = ServeConfig::load(None, &bad, &ServeFlags::default()).unwrap_err();
         assert!(
             err.contains("RAILCONTACT_WORKERS")
                 && err.contains("max_sessions")
-                && err.contains("RAILCONTACT_STORE_DAMAGED"),
+                && err.contains("RAILCONTACT_STORE_DAMAGED")
+                && err.contains("session_idle_timeout_s"),
             "{err}"
         );
         std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();

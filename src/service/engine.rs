@@ -13,14 +13,13 @@
 
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
-use crate::core::error::ContactError;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
 use crate::core::sensitivity::{
     central_differences, exact_jacobian, forces_of, ForceJacobian, JacobianPoint, JacobianSteps,
 };
 use crate::core::solution::{ContactSolution, Totals};
-use crate::core::solve::ContactSolver;
+use crate::core::solve::{ContactSolver, SolverState};
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
 use crate::problem::ModelRun;
@@ -52,22 +51,15 @@ pub fn check_sensitivities(case: &Case) -> Result<(), ServiceError> {
 }
 
 /// The exact model's persistent state.
-#[derive(Clone)]
 struct Exact {
     problem: ContactProblem,
     solver: ContactSolver,
 }
 
-/// A contact patch ready to solve. Cloning gives an independent engine in
-/// the same state (session marks).
-#[derive(Clone)]
+/// A contact patch ready to solve.
 pub struct PatchEngine {
     case: Case,
     exact: Option<Exact>,
-    /// False once the exact solver rejected a solve after it had started
-    /// (the patch reached the grid border): its warm start and transient
-    /// history are then no longer those of the last good step.
-    history_intact: bool,
     /// Compute the Jacobian of the forces with every solve.
     sensitivities: bool,
     /// Buffers of the conformal models' solves, kept between steps.
@@ -92,7 +84,6 @@ impl PatchEngine {
         Ok(Self {
             case,
             exact,
-            history_intact: true,
             sensitivities: false,
             conformal: FrictionalWorkspace::default(),
         })
@@ -113,10 +104,43 @@ impl PatchEngine {
         }
     }
 
-    /// Whether the solver state is that of the last successful solve (see
-    /// [`ContactSolver::solve_next_step`] on rejected steps).
-    pub fn history_intact(&self) -> bool {
-        self.history_intact
+    /// Copies what the next solves read from the solves before them into
+    /// `to` (reusing its buffers): the load and creepages and the exact
+    /// solver's [`SolverState`]. The other models keep nothing between
+    /// solves (the conformal buffers are no state: answers do not depend
+    /// on them).
+    pub fn save(&self, to: &mut EngineState) {
+        to.load = Some(self.case.load);
+        to.creepages = match self.case.kinematics {
+            Kinematics::SteadyRolling(c) => Some(c),
+            _ => None,
+        };
+        if let Some(e) = &self.exact {
+            e.solver.save_state(&mut to.solver);
+        }
+    }
+
+    /// Puts back a state saved from this engine: the next solve gives the
+    /// same bits as it would have given right after the save.
+    pub fn restore(&mut self, from: &EngineState) -> Result<(), ServiceError> {
+        if let Some(load) = from.load {
+            self.set_load(load);
+        }
+        if let Some(c) = from.creepages {
+            self.set_creepages(c);
+        }
+        if let Some(e) = &mut self.exact {
+            e.solver.restore_state(&from.solver).map_err(|err| {
+                ServiceError::Internal(format!("restoring a session state: {err}"))
+            })?;
+        }
+        Ok(())
+    }
+
+    /// The size of [`PatchEngine::save`]'s copy \[bytes\].
+    pub fn state_bytes(&self) -> usize {
+        std::mem::size_of::<EngineState>()
+            + self.exact.as_ref().map_or(0, |e| e.solver.state_bytes())
     }
 
     /// Computes the Jacobian of the forces with every solve from now on
@@ -154,8 +178,7 @@ impl PatchEngine {
     pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
         let (mut result, jacobian) = match &mut self.exact {
             Some(e) => {
-                let solved = e.solver.solve(&e.problem);
-                let solutions = self.note_rejection(solved)?;
+                let solutions = e.solver.solve(&e.problem)?;
                 let jacobian = match (&self.exact, solutions.last()) {
                     (Some(e), Some(base)) if self.sensitivities => {
                         Some(exact_jacobian(&e.solver, &e.problem, base)?)
@@ -177,7 +200,7 @@ impl PatchEngine {
         if let (Some(j), Some(step)) = (jacobian, result.result.as_mut()) {
             step.sensitivities = Some(convert::sensitivities(&j));
         }
-        convert::check_finite(&result)?;
+        self.check_finite(&result)?;
         Ok(result)
     }
 
@@ -191,20 +214,31 @@ impl PatchEngine {
         let e = self.exact.as_mut().ok_or_else(|| {
             ServiceError::invalid("model", "transient sessions run the exact model only")
         })?;
-        let solved = e.solver.solve_next_step(&e.problem, step);
-        let solution = self.note_rejection(solved)?;
+        let solution = e.solver.solve_next_step(&e.problem, step)?;
         let result = self.exact_result(std::slice::from_ref(&solution), fields);
-        convert::check_finite(&result)?;
+        self.check_finite(&result)?;
         Ok(result)
     }
 
-    /// Passes a solver outcome on, noting a rejection that changed the
-    /// solver's state.
-    fn note_rejection<T>(&mut self, r: Result<T, ContactError>) -> Result<T, ServiceError> {
-        if let Err(ContactError::GridTooSmall { .. }) = &r {
-            self.history_intact = false;
-        }
-        Ok(r?)
+    /// Refuses a result with a non-finite figure as INVALID_ARGUMENT naming
+    /// the input that drives the solve (creepages of steady rolling, the
+    /// shifts of transient steps, the load of frictionless contact): inputs
+    /// this far outside rolling contact overflow the arithmetic.
+    fn check_finite(&self, result: &pb::PatchResult) -> Result<(), ServiceError> {
+        convert::check_finite(result).map_err(|_| {
+            let field = match (&self.case.kinematics, self.case.load) {
+                (Kinematics::SteadyRolling(_), _) => "rolling",
+                (Kinematics::Transient(_), _) => "transient",
+                (Kinematics::Frictionless, NormalLoad::NormalForce(_)) => "load.normal_force_n",
+                (Kinematics::Frictionless, NormalLoad::Approach(_)) => "load.approach_m",
+            };
+            ServiceError::invalid(
+                field,
+                "the solve gives non-finite forces for these inputs: they are too far outside \
+                 wheel/rail contact for the arithmetic (creepages, spin and shifts of rolling \
+                 contact are small: |creepage| < 1, |spin| times the patch size < 1)",
+            )
+        })
     }
 
     /// The Jacobian of a FASTSIM solution with `totals`: central
@@ -270,4 +304,15 @@ impl PatchEngine {
                 .map(|s| convert::planar_fields(&s.fields)),
         }
     }
+}
+
+/// What [`PatchEngine::save`] keeps: what the next solves read from the
+/// solves before them. A session's refused step restores it; a mark keeps
+/// one.
+#[derive(Clone, Default)]
+pub struct EngineState {
+    load: Option<NormalLoad>,
+    creepages: Option<Creepages>,
+    /// The exact solver's state (empty for the other models).
+    solver: SolverState,
 }

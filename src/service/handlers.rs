@@ -6,7 +6,7 @@
 use std::pin::Pin;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
-use std::time::Instant as StdInstant;
+use std::time::{Duration, Instant as StdInstant};
 
 use tokio::sync::mpsc;
 use tokio_stream::wrappers::{ReceiverStream, UnboundedReceiverStream};
@@ -23,7 +23,7 @@ use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
 use crate::service::pool::{deadline_of, Admission, Lane, SolvePool, INLINE_FASTSIM_ELEMENTS};
-use crate::service::session::Session;
+use crate::service::session::{MarkBudget, Session, SessionLimits};
 use crate::service::status::ServiceError;
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
@@ -40,6 +40,14 @@ pub struct RequestLimits {
     pub max_curve_points: usize,
     /// Open sessions.
     pub max_sessions: usize,
+    /// Largest message \[bytes\] (a session step's response included).
+    pub max_message_bytes: usize,
+    /// Memory of one session's marks \[bytes\].
+    pub max_session_bytes: usize,
+    /// Memory of all sessions' marks \[bytes\].
+    pub max_sessions_total_bytes: usize,
+    /// A session without a message for this long is closed.
+    pub session_idle_timeout: Duration,
 }
 
 /// The service: shared by all connections.
@@ -49,6 +57,8 @@ pub struct ContactHandlers {
     limits: RequestLimits,
     metrics: Arc<Metrics>,
     sessions: Arc<AtomicUsize>,
+    /// The memory of the sessions' marks.
+    marks: MarkBudget,
     next_id: Arc<AtomicU64>,
     pairs: Arc<PairRegistry>,
 }
@@ -73,6 +83,7 @@ impl ContactHandlers {
             limits,
             metrics,
             sessions: Arc::new(AtomicUsize::new(0)),
+            marks: MarkBudget::new(limits.max_session_bytes, limits.max_sessions_total_bytes),
             next_id: Arc::new(AtomicU64::new(1)),
             pairs,
         }
@@ -626,7 +637,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                     .run_wheelrail_session(&mut inbound, &tx, session_id)
                     .await
                 {
-                    let _ = tx.send(Err(status)).await;
+                    this.end_stream(&tx, status).await;
                 }
             }
             .instrument(span),
@@ -648,7 +659,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         tokio::spawn(
             async move {
                 if let Err(status) = this.run_session(&mut inbound, &tx, session_id).await {
-                    let _ = tx.send(Err(status)).await;
+                    this.end_stream(&tx, status).await;
                 }
             }
             .instrument(span),
@@ -657,13 +668,16 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
     }
 }
 
-/// Decrements the open-session count when a session ends, however it ends.
-struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>);
+/// Decrements the open-session count when a session ends, however it
+/// ends, and updates the marks' figures (declared before the session, it
+/// is dropped after it and its marks).
+struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>, MarkBudget);
 
 impl Drop for SessionSlot {
     fn drop(&mut self) {
         self.0.fetch_sub(1, Ordering::Relaxed);
         self.1.session_closed();
+        self.1.session_marks(self.2.total_bytes(), self.2.refused());
     }
 }
 
@@ -704,8 +718,8 @@ fn refused(e: ServiceError) -> pb::ItemError {
 
 type SessionTx = mpsc::Sender<Result<pb::SessionResponse, Status>>;
 
-fn reply(kind: pb::session_response::Kind) -> Result<pb::SessionResponse, Status> {
-    Ok(pb::SessionResponse { kind: Some(kind) })
+fn reply(kind: pb::session_response::Kind) -> pb::SessionResponse {
+    pb::SessionResponse { kind: Some(kind) }
 }
 
 impl ContactHandlers {
@@ -719,7 +733,72 @@ impl ContactHandlers {
             )));
         }
         self.metrics.session_opened();
-        Ok(SessionSlot(self.sessions.clone(), self.metrics.clone()))
+        Ok(SessionSlot(
+            self.sessions.clone(),
+            self.metrics.clone(),
+            self.marks.clone(),
+        ))
+    }
+
+    /// The limits of a new session.
+    fn session_limits(&self) -> SessionLimits {
+        SessionLimits {
+            max_response_bytes: self.limits.max_message_bytes,
+            marks: self.marks.clone(),
+        }
+    }
+
+    /// A session's next message; None when the client closed its stream.
+    /// After `session_idle_timeout` without one, the session is closed:
+    /// its last message is the in-band error `in_band(e)` (if the client
+    /// reads it in time), then the stream ends with its status
+    /// (DEADLINE_EXCEEDED).
+    async fn receive<T, R>(
+        &self,
+        inbound: &mut Streaming<T>,
+        tx: &mpsc::Sender<Result<R, Status>>,
+        in_band: impl FnOnce(pb::ItemError) -> R,
+    ) -> Result<Option<T>, Status> {
+        let idle = self.limits.session_idle_timeout;
+        match tokio::time::timeout(idle, inbound.message()).await {
+            Ok(message) => message,
+            Err(_) => {
+                let e = self.idle_closed();
+                let _ = tokio::time::timeout(idle, tx.send(Ok(in_band(e.item_error())))).await;
+                Err(e.into())
+            }
+        }
+    }
+
+    /// Sends a session's response: false when the client has gone; the
+    /// idle error when it read nothing for `session_idle_timeout` (the
+    /// session is then closed, see [`ContactHandlers::receive`]).
+    async fn send<R>(&self, tx: &mpsc::Sender<Result<R, Status>>, r: R) -> Result<bool, Status> {
+        self.metrics
+            .session_marks(self.marks.total_bytes(), self.marks.refused());
+        match tokio::time::timeout(self.limits.session_idle_timeout, tx.send(Ok(r))).await {
+            Ok(sent) => Ok(sent.is_ok()),
+            Err(_) => Err(self.idle_closed().into()),
+        }
+    }
+
+    /// Counts a session closed for idling and says why.
+    fn idle_closed(&self) -> ServiceError {
+        self.metrics.session_idle_closed();
+        let e = ServiceError::Deadline(format!(
+            "the session was idle for {} s (no message from the client, or none of its \
+             responses read), this server's session_idle_timeout_s: it is closed; open a new \
+             session",
+            self.limits.session_idle_timeout.as_secs_f64()
+        ));
+        tracing::info!(error = %e, "session closed");
+        e
+    }
+
+    /// Ends a stream with `status` (given up after `session_idle_timeout`
+    /// when the client reads nothing).
+    async fn end_stream<R>(&self, tx: &mpsc::Sender<Result<R, Status>>, status: Status) {
+        let _ = tokio::time::timeout(self.limits.session_idle_timeout, tx.send(Err(status))).await;
     }
 
     /// Runs one wheel/rail session until the client closes its stream.
@@ -732,8 +811,9 @@ impl ContactHandlers {
     ) -> Result<(), Status> {
         use pb::wheel_rail_session_request::Kind;
         use pb::wheel_rail_session_response::Kind as Out;
-        let reply = |kind| Ok(pb::WheelRailSessionResponse { kind: Some(kind) });
-        let open = match inbound.message().await? {
+        let reply = |kind| pb::WheelRailSessionResponse { kind: Some(kind) };
+        let in_band = |e| reply(Out::Error(e));
+        let open = match self.receive(inbound, tx, in_band).await? {
             Some(pb::WheelRailSessionRequest {
                 kind: Some(Kind::Open(open)),
             }) => open,
@@ -752,8 +832,9 @@ impl ContactHandlers {
             false => None,
         };
         drop(admission);
-        let mut session = WheelRailSession::open(entry, prepared, table, &open)
-            .map_err(|e| Status::from(e.within("open")))?;
+        let mut session =
+            WheelRailSession::open(entry, prepared, table, &open, self.session_limits())
+                .map_err(|e| Status::from(e.within("open")))?;
         let model = session.model();
         tracing::info!(label = %open.client_label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
         let opened = Out::Opened(pb::WheelRailSessionOpened {
@@ -761,10 +842,10 @@ impl ContactHandlers {
             pair_id: session.pair_id().to_string(),
             model: session.wire_model() as i32,
         });
-        if tx.send(reply(opened)).await.is_err() {
+        if !self.send(tx, reply(opened)).await? {
             return Ok(());
         }
-        while let Some(msg) = inbound.message().await? {
+        while let Some(msg) = self.receive(inbound, tx, in_band).await? {
             let out = match msg.kind {
                 Some(Kind::Step(step)) => {
                     let t0 = StdInstant::now();
@@ -795,11 +876,15 @@ impl ContactHandlers {
                 None => Err(ServiceError::invalid("kind", "missing: step or rollback")),
             };
             let out = out.unwrap_or_else(|e| Out::Error(refused(e)));
-            if tx.send(reply(out)).await.is_err() {
+            if !self.send(tx, reply(out)).await? {
                 break;
             }
         }
-        tracing::info!(next_step = session.next_step(), "wheel/rail session closed");
+        tracing::info!(
+            next_step = session.next_step(),
+            mark_bytes = session.mark_bytes(),
+            "wheel/rail session closed"
+        );
         Ok(())
     }
 
@@ -813,7 +898,10 @@ impl ContactHandlers {
     ) -> Result<(), Status> {
         use pb::session_request::Kind;
         use pb::session_response::Kind as Out;
-        let open = match inbound.message().await? {
+        let in_band = |e| pb::SessionResponse {
+            kind: Some(Out::Error(e)),
+        };
+        let open = match self.receive(inbound, tx, in_band).await? {
             Some(pb::SessionRequest {
                 kind: Some(Kind::Open(open)),
             }) => open,
@@ -833,6 +921,7 @@ impl ContactHandlers {
         }
         let model = valid.case.model;
         let fields = open.include_fields;
+        let limits = self.session_limits();
         let admission = self.pool.session();
         let mut session = admission
             .run(move || {
@@ -841,7 +930,7 @@ impl ContactHandlers {
                 if jacobian {
                     engine.enable_sensitivities()?;
                 }
-                Session::open(engine, fields)
+                Session::open(engine, fields, limits)
             })
             .await
             .and_then(|r| r)
@@ -854,10 +943,10 @@ impl ContactHandlers {
             grid: session.engine().grid(),
             notes: session.engine().case().notes.clone(),
         });
-        if tx.send(reply(opened)).await.is_err() {
+        if !self.send(tx, reply(opened)).await? {
             return Ok(());
         }
-        while let Some(msg) = inbound.message().await? {
+        while let Some(msg) = self.receive(inbound, tx, in_band).await? {
             let out = match msg.kind {
                 Some(Kind::Step(step)) => {
                     let t0 = StdInstant::now();
@@ -872,11 +961,15 @@ impl ContactHandlers {
                 None => Err(ServiceError::invalid("kind", "missing: step or rollback")),
             };
             let out = out.unwrap_or_else(|e| Out::Error(refused(e)));
-            if tx.send(reply(out)).await.is_err() {
+            if !self.send(tx, reply(out)).await? {
                 break;
             }
         }
-        tracing::info!(next_step = session.next_step(), "session closed");
+        tracing::info!(
+            next_step = session.next_step(),
+            mark_bytes = session.mark_bytes(),
+            "session closed"
+        );
         Ok(())
     }
 

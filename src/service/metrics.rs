@@ -9,10 +9,16 @@
 //! | `railcontact_solve_duration_seconds` | `model`, `outcome` | histogram of each solve (batch items, curve points, session steps) |
 //! | `railcontact_sessions_active` | | open co-simulation sessions |
 //! | `railcontact_sessions_opened_total` | | sessions opened |
+//! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
+//! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
+//! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
 //! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
+//! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
+//! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
+//! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
@@ -100,6 +106,9 @@ pub struct Metrics {
     sessions_opened: Counter,
     store_damaged_records: Gauge,
     registrations_refused: Family<LimitLabels, Counter>,
+    sessions_idle_closed: Counter,
+    session_mark_bytes: Gauge,
+    session_marks_refused: Counter,
 }
 
 impl Default for Metrics {
@@ -113,6 +122,9 @@ impl Default for Metrics {
             sessions_opened: Counter::default(),
             store_damaged_records: Gauge::default(),
             registrations_refused: Family::default(),
+            sessions_idle_closed: Counter::default(),
+            session_mark_bytes: Gauge::default(),
+            session_marks_refused: Counter::default(),
         };
         let mut r = m.registry;
         // name (a counter's without `_total`), help, metric: one line each.
@@ -124,6 +136,9 @@ impl Default for Metrics {
             "railcontact_sessions_opened", "Co-simulation sessions opened" => m.sessions_opened;
             "railcontact_store_damaged_records", "Damaged records of the profile pair store, listed as FAILED pairs" => m.store_damaged_records;
             "railcontact_registrations_refused", "Registrations refused by a limit" => m.registrations_refused;
+            "railcontact_sessions_idle_closed", "Sessions closed because they idled past session_idle_timeout_s" => m.sessions_idle_closed;
+            "railcontact_session_mark_bytes", "Memory held by the marks of all sessions [bytes]" => m.session_mark_bytes;
+            "railcontact_session_marks_refused", "Marked steps refused by max_session_bytes or max_sessions_total_bytes" => m.session_marks_refused;
         );
         Self { registry: r, ..m }
     }
@@ -172,6 +187,19 @@ impl Metrics {
         self.registrations_refused
             .get_or_create(&LimitLabels { limit })
             .inc();
+    }
+
+    /// A session was closed because it idled.
+    pub fn session_idle_closed(&self) {
+        self.sessions_idle_closed.inc();
+    }
+
+    /// The session marks now: `bytes` held, `refused` marks so far.
+    pub fn session_marks(&self, bytes: usize, refused: u64) {
+        self.session_mark_bytes.set(bytes as i64);
+        self.session_marks_refused
+            .inner()
+            .store(refused, std::sync::atomic::Ordering::Relaxed);
     }
 
     /// A session ended.

@@ -83,6 +83,10 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         max_batch_items: config.max_batch_items,
         max_curve_points: config.max_curve_points,
         max_sessions: config.max_sessions,
+        max_message_bytes: config.max_message_bytes,
+        max_session_bytes: config.max_session_bytes,
+        max_sessions_total_bytes: config.max_sessions_total_bytes,
+        session_idle_timeout: Duration::from_secs_f64(config.session_idle_timeout_s),
     };
     let store = match config.store_dir() {
         Some(dir) => {

@@ -5,18 +5,31 @@
 //! starts and the transient history) and nothing else; it shares no
 //! mutable state with other sessions, which is why a session's outputs do
 //! not depend on what other sessions run meanwhile. Steps must come in
-//! order. A marked step stores a clone of the engine after that step;
-//! rolling back restores the clone, so repeating the steps after it
-//! reproduces their outputs bit for bit.
+//! order.
+//!
+//! Steps are transactions: the engine's state ([`EngineState`]: the load,
+//! the creepages, the exact solver's pressures, tractions, transient
+//! history and warm-start path) is saved before a step and put back when
+//! the step is refused for any reason (its inputs, the solver, a
+//! non-finite result, a response too large to send, a mark beyond the
+//! budget, a cancelled solve), so the next step gives the same bits as if
+//! the refused one had never been sent.
+//!
+//! A marked step keeps a copy of that state (not the kernels or buffers);
+//! rolling back puts it back, so repeating the steps after it reproduces
+//! their outputs bit for bit. Marks count against a memory budget per
+//! session and for the whole server ([`MarkBudget`]).
 
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::Arc;
 
 use crate::core::error::require_positive;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics, ShiftStep};
 use crate::problem::case::Model;
 use crate::service::convert;
-use crate::service::engine::PatchEngine;
+use crate::service::engine::{EngineState, PatchEngine};
 use crate::service::pb;
 use crate::service::status::ServiceError;
 
@@ -51,21 +64,93 @@ enum Motion {
     Shift(ShiftStep),
 }
 
+/// Field number of `step` in `SessionResponse` and `WheelRailSessionResponse`.
+const STEP_FIELD: u32 = 2;
+
+/// Refuses a step response that the server could not send: encoded in
+/// its response message, more than `max_bytes` (`max_message_bytes`).
+pub fn check_response_size<M: prost::Message>(
+    step: &M,
+    max_bytes: usize,
+) -> Result<(), ServiceError> {
+    let len = prost::encoding::message::encoded_len(STEP_FIELD, step);
+    if len <= max_bytes {
+        return Ok(());
+    }
+    Err(ServiceError::Exhausted(format!(
+        "the step's response would be {len} bytes, more than this server's max_message_bytes \
+         ({max_bytes}); the step was not applied: open the session without per-element fields \
+         (`open.include_fields`) or on a coarser grid"
+    )))
+}
+
+/// The memory the session marks of a server may hold: per session and all
+/// sessions together \[bytes\]. Clones share the server's count.
+#[derive(Debug, Clone)]
+pub struct MarkBudget {
+    session_max_bytes: usize,
+    total_max_bytes: usize,
+    total_bytes: Arc<AtomicUsize>,
+    refused: Arc<AtomicU64>,
+}
+
+impl MarkBudget {
+    /// At most `session_max_bytes` of marks per session and
+    /// `total_max_bytes` in all sessions together.
+    pub fn new(session_max_bytes: usize, total_max_bytes: usize) -> Self {
+        Self {
+            session_max_bytes,
+            total_max_bytes,
+            total_bytes: Arc::new(AtomicUsize::new(0)),
+            refused: Arc::new(AtomicU64::new(0)),
+        }
+    }
+
+    /// Bytes held by the marks of all open sessions now.
+    pub fn total_bytes(&self) -> usize {
+        self.total_bytes.load(Ordering::Relaxed)
+    }
+
+    /// Marks refused so far.
+    pub fn refused(&self) -> u64 {
+        self.refused.load(Ordering::Relaxed)
+    }
+}
+
 /// The step order and the marked states of a session (of any kind): the
-/// index the next step must have, and a state per marked step.
+/// index the next step must have, and a state per marked step with its
+/// size in bytes.
 #[derive(Debug)]
 pub struct Marks<T> {
     next_step: u64,
-    marks: BTreeMap<u64, T>,
+    marks: BTreeMap<u64, (T, usize)>,
+    /// Bytes of all marks (counted in the budget's total too).
+    bytes: usize,
+    budget: MarkBudget,
 }
 
-impl<T: Clone> Marks<T> {
-    /// No step yet, nothing marked.
-    pub fn new() -> Self {
+impl<T> Drop for Marks<T> {
+    fn drop(&mut self) {
+        self.budget
+            .total_bytes
+            .fetch_sub(self.bytes, Ordering::Relaxed);
+    }
+}
+
+impl<T> Marks<T> {
+    /// No step yet, nothing marked; marks within `budget`.
+    pub fn new(budget: MarkBudget) -> Self {
         Self {
             next_step: 0,
             marks: BTreeMap::new(),
+            bytes: 0,
+            budget,
         }
+    }
+
+    /// Bytes held by this session's marks.
+    pub fn bytes(&self) -> usize {
+        self.bytes
     }
 
     /// The index the next step must have.
@@ -89,34 +174,79 @@ impl<T: Clone> Marks<T> {
         ))
     }
 
-    /// Step `index` succeeded; `state` (the state after it) is kept when
-    /// the step is marked (dropping the oldest mark beyond [`MAX_MARKS`]).
-    pub fn done(&mut self, index: u64, mark: bool, state: impl FnOnce() -> T) {
-        self.next_step = index + 1;
+    /// Step `index` succeeded; `state` (the state after it, `bytes` in
+    /// size) is kept when the step is marked, dropping the oldest mark
+    /// beyond [`MAX_MARKS`]. RESOURCE_EXHAUSTED, and nothing changed, when
+    /// the mark would take this session's or the server's marks beyond
+    /// the budget.
+    pub fn done(
+        &mut self,
+        index: u64,
+        mark: bool,
+        bytes: usize,
+        state: impl FnOnce() -> T,
+    ) -> Result<(), ServiceError> {
         if mark {
-            if self.marks.len() >= MAX_MARKS {
-                self.marks.pop_first();
+            let evicted = match self.marks.len() >= MAX_MARKS {
+                true => self.marks.first_key_value().map_or(0, |(_, m)| m.1),
+                false => 0,
+            };
+            let b = &self.budget;
+            let session = self.bytes - evicted + bytes;
+            // The server's count includes this session's evicted mark.
+            let reserved = session <= b.session_max_bytes
+                && b.total_bytes
+                    .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |t| {
+                        (t + bytes - evicted <= b.total_max_bytes).then_some(t + bytes)
+                    })
+                    .is_ok();
+            if !reserved {
+                b.refused.fetch_add(1, Ordering::Relaxed);
+                let (what, max, key) = match session > b.session_max_bytes {
+                    true => ("this session's", b.session_max_bytes, "max_session_bytes"),
+                    false => (
+                        "all sessions'",
+                        b.total_max_bytes,
+                        "max_sessions_total_bytes",
+                    ),
+                };
+                return Err(ServiceError::Exhausted(format!(
+                    "`step.mark`: keeping this step's state ({bytes} bytes) would take {what} \
+                     marks beyond this server's {key} ({max} bytes); the step was not applied: \
+                     send it again without `mark`, or roll back to an earlier mark (later marks \
+                     are dropped){}",
+                    self.list()
+                )));
             }
-            self.marks.insert(index, state());
+            if evicted > 0 {
+                self.marks.pop_first();
+                b.total_bytes.fetch_sub(evicted, Ordering::Relaxed);
+            }
+            self.bytes = session;
+            self.marks.insert(index, (state(), bytes));
         }
+        self.next_step = index + 1;
+        Ok(())
     }
 
     /// Goes back to marked step `to`: its state; later marks are dropped,
     /// the mark itself stays.
-    pub fn rollback(&mut self, to: u64) -> Result<(T, pb::SessionRolledBack), ServiceError> {
-        let state = self.marks.get(&to).cloned().ok_or_else(|| {
-            ServiceError::precondition(
+    pub fn rollback(&mut self, to: u64) -> Result<(&T, pb::SessionRolledBack), ServiceError> {
+        if !self.marks.contains_key(&to) {
+            return Err(ServiceError::precondition(
                 "rollback.to_step_index",
                 format!(
                     "step {to} is not marked in this session{}; mark a step with `mark = true`",
                     self.list()
                 ),
-            )
-        })?;
-        self.marks.split_off(&(to + 1));
+            ));
+        }
+        let later: usize = self.marks.split_off(&(to + 1)).values().map(|m| m.1).sum();
+        self.bytes -= later;
+        self.budget.total_bytes.fetch_sub(later, Ordering::Relaxed);
         self.next_step = to + 1;
         Ok((
-            state,
+            &self.marks[&to].0,
             pb::SessionRolledBack {
                 to_step_index: to,
                 next_step_index: self.next_step,
@@ -135,10 +265,13 @@ impl<T: Clone> Marks<T> {
     }
 }
 
-impl<T: Clone> Default for Marks<T> {
-    fn default() -> Self {
-        Self::new()
-    }
+/// The limits of a session, from the server's settings.
+#[derive(Debug, Clone)]
+pub struct SessionLimits {
+    /// Largest step response \[bytes\] (`max_message_bytes`).
+    pub max_response_bytes: usize,
+    /// The marks' memory.
+    pub marks: MarkBudget,
 }
 
 /// One open session.
@@ -147,12 +280,20 @@ pub struct Session {
     kind: SessionKind,
     fields: bool,
     default_load: NormalLoad,
-    marks: Marks<PatchEngine>,
+    marks: Marks<EngineState>,
+    /// The engine's state before the step being solved (buffers reused
+    /// from step to step).
+    undo: EngineState,
+    max_response_bytes: usize,
 }
 
 impl Session {
     /// Opens a session on a validated case (field paths relative to `open`).
-    pub fn open(engine: PatchEngine, fields: bool) -> Result<Self, ServiceError> {
+    pub fn open(
+        engine: PatchEngine,
+        fields: bool,
+        limits: SessionLimits,
+    ) -> Result<Self, ServiceError> {
         let case = engine.case();
         convert::check_fields(case, fields)?;
         let kind = match case.kinematics {
@@ -174,7 +315,9 @@ impl Session {
             engine,
             kind,
             fields,
-            marks: Marks::new(),
+            marks: Marks::new(limits.marks),
+            undo: EngineState::default(),
+            max_response_bytes: limits.max_response_bytes,
         })
     }
 
@@ -193,19 +336,15 @@ impl Session {
         self.marks.next_step()
     }
 
+    /// Bytes held by the session's marks.
+    pub fn mark_bytes(&self) -> usize {
+        self.marks.bytes()
+    }
+
     /// Checks a step's order and inputs without solving; field paths are
     /// relative to the request (`step.`).
     pub fn check_step(&self, s: &pb::SessionStep) -> Result<StepInput, ServiceError> {
         self.marks.check_order(s.step_index)?;
-        if !self.engine.history_intact() {
-            return Err(ServiceError::precondition("", format!(
-                "a previous step was rejected by the solver after it had started (the patch reached \
-                 the grid border), so the session's history is no longer that of step {}; roll back \
-                 to a marked step{} or open a new session with a larger grid window",
-                self.marks.next_step().saturating_sub(1),
-                self.marks.list()
-            )));
-        }
         if !s.time_s.is_finite() {
             return Err(ServiceError::invalid(
                 "step.time_s",
@@ -288,8 +427,19 @@ impl Session {
     }
 
     /// Solves a checked step (CPU-bound: run it on the solve pool). A
-    /// failed step leaves the step counter where it was.
+    /// refused step leaves the session as it was, bit for bit.
     pub fn step(&mut self, input: StepInput) -> Result<pb::SessionStepResult, ServiceError> {
+        self.engine.save(&mut self.undo);
+        let r = self.try_step(input);
+        if r.is_err() {
+            self.engine.restore(&self.undo)?;
+        }
+        r
+    }
+
+    /// [`Session::step`] without the undo: the caller restores the engine
+    /// when this fails.
+    fn try_step(&mut self, input: StepInput) -> Result<pb::SessionStepResult, ServiceError> {
         self.engine.set_load(input.load);
         let result = match input.motion {
             Motion::Static => self.engine.solve(self.fields),
@@ -299,23 +449,35 @@ impl Session {
             }
             Motion::Shift(shift) => self.engine.solve_next_step(&shift, self.fields),
         }
-        .map_err(|e| e.rekey("load", "step").rekey("grid", "open.case.grid"))?;
-        let engine = &self.engine;
-        self.marks.done(input.index, input.mark, || engine.clone());
-        Ok(pb::SessionStepResult {
+        .map_err(|e| {
+            e.rekey("load", "step")
+                .rekey("rolling", "step.creepages")
+                .rekey("transient", "step.shift")
+                .rekey("grid", "open.case.grid")
+        })?;
+        let out = pb::SessionStepResult {
             step_index: input.index,
             time_s: input.time_s,
             result: result.result,
             fields: result.fields,
             marked: input.mark,
-        })
+        };
+        check_response_size(&out, self.max_response_bytes)?;
+        let engine = &self.engine;
+        self.marks
+            .done(input.index, input.mark, engine.state_bytes(), || {
+                let mut state = EngineState::default();
+                engine.save(&mut state);
+                state
+            })?;
+        Ok(out)
     }
 
     /// Goes back to the state after marked step `to`; later marks are
     /// dropped, the mark itself stays.
     pub fn rollback(&mut self, to: u64) -> Result<pb::SessionRolledBack, ServiceError> {
-        let (engine, out) = self.marks.rollback(to)?;
-        self.engine = engine;
+        let (state, out) = self.marks.rollback(to)?;
+        self.engine.restore(state)?;
         Ok(out)
     }
 }

@@ -46,7 +46,8 @@ pub enum ServiceError {
     /// (RESOURCE_EXHAUSTED).
     #[error("{0}")]
     Exhausted(String),
-    /// The client's deadline passed before the result was ready
+    /// The client's deadline passed before the result was ready, or a
+    /// session idled for the server's `session_idle_timeout_s`
     /// (DEADLINE_EXCEEDED).
     #[error("{0}")]
     Deadline(String),

@@ -7,16 +7,22 @@
 //! angle, each wheel's normal force per vertical load, and a single exact
 //! patch's tangential tractions). It shares no
 //! mutable state with other sessions, so its outputs depend only on its own
-//! sequence of requests. A marked step keeps a copy of the warm start after
-//! it; a rollback restores it, so repeating the steps after the mark
-//! reproduces their outputs bit for bit.
+//! sequence of requests. A step is a transaction: it solves from a copy of
+//! the warm start, which replaces the session's only when the step is
+//! answered, so a refused step (its inputs, the solver, a non-finite
+//! result, a response too large to send, a mark beyond the budget) leaves
+//! the session as it was. A marked step keeps a copy of the warm start
+//! after it (counted against the [`MarkBudget`]); a rollback restores it,
+//! so repeating the steps after the mark reproduces their outputs bit for
+//! bit. The search scratch holds buffers only: answers do not depend on
+//! it.
 
 use std::sync::Arc;
 
 use crate::core::cache::KernelCache;
 use crate::service::pairs::{PairEntry, PreparedPair};
 use crate::service::pb;
-use crate::service::session::Marks;
+use crate::service::session::{check_response_size, Marks, SessionLimits};
 use crate::service::status::ServiceError;
 use crate::service::wheelrail::{self, QuerySettings};
 use crate::wheelrail::{
@@ -45,6 +51,7 @@ pub struct WheelRailSession {
     scratch: SearchScratch,
     warm: WarmStart,
     marks: Marks<WarmStart>,
+    max_response_bytes: usize,
 }
 
 impl WheelRailSession {
@@ -55,6 +62,7 @@ impl WheelRailSession {
         prepared: Arc<PreparedPair>,
         table: Option<Arc<ContactTable>>,
         open: &pb::WheelRailSessionOpen,
+        limits: SessionLimits,
     ) -> Result<Self, ServiceError> {
         let settings = QuerySettings::new(
             open.model,
@@ -71,7 +79,8 @@ impl WheelRailSession {
             fields: open.include_fields,
             scratch: SearchScratch::default(),
             warm: WarmStart::default(),
-            marks: Marks::new(),
+            marks: Marks::new(limits.marks),
+            max_response_bytes: limits.max_response_bytes,
         })
     }
 
@@ -98,6 +107,11 @@ impl WheelRailSession {
         self.marks.next_step()
     }
 
+    /// Bytes held by the session's marks.
+    pub fn mark_bytes(&self) -> usize {
+        self.marks.bytes()
+    }
+
     /// Checks a step's order and inputs without solving; field paths are
     /// relative to the request (`step.`).
     pub fn check_step(&self, s: &pb::WheelRailSessionStep) -> Result<WheelRailStep, ServiceError> {
@@ -121,7 +135,7 @@ impl WheelRailSession {
     }
 
     /// Solves a checked step (CPU-bound: run it on the solve pool). A
-    /// failed step changes nothing.
+    /// refused step changes nothing.
     pub fn step(
         &mut self,
         step: WheelRailStep,
@@ -145,22 +159,32 @@ impl WheelRailSession {
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
         let mut result = wheelrail::result(self.pair_id(), self.model(), &solution, self.fields)
-            .map_err(|e| e.within("step"))?;
+            .map_err(|e| match e {
+                ServiceError::Internal(_) => ServiceError::invalid(
+                    "step",
+                    "the solve gives non-finite figures for this position, velocity and load: \
+                     they are too far outside a wheelset on its track for the arithmetic",
+                ),
+                e => e.within("step"),
+            })?;
         result.model = self.wire_model() as i32;
-        self.marks.done(step.index, step.mark, || warm.clone());
-        self.warm = warm;
-        Ok(pb::WheelRailSessionStepResult {
+        let out = pb::WheelRailSessionStepResult {
             step_index: step.index,
             time_s: step.time_s,
             result: Some(result),
             marked: step.mark,
-        })
+        };
+        check_response_size(&out, self.max_response_bytes)?;
+        self.marks
+            .done(step.index, step.mark, warm.bytes(), || warm.clone())?;
+        self.warm = warm;
+        Ok(out)
     }
 
     /// Goes back to the state after marked step `to`.
     pub fn rollback(&mut self, to: u64) -> Result<pb::SessionRolledBack, ServiceError> {
         let (warm, out) = self.marks.rollback(to)?;
-        self.warm = warm;
+        self.warm = warm.clone();
         Ok(out)
     }
 }

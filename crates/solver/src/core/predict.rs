@@ -190,6 +190,19 @@ impl WarmPath {
         theta
     }
 
+    /// Becomes a copy of `other` (reusing its buffers).
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        self.points = other.points;
+        self.pn.clone_from(&other.pn);
+        self.px.clone_from(&other.px);
+        self.py.clone_from(&other.py);
+    }
+
+    /// Memory held by the kept solution \[bytes\].
+    pub(crate) fn bytes(&self) -> usize {
+        8 * (self.pn.len() + self.px.len() + self.py.len())
+    }
+
     /// After a successful solve of `p`.
     pub(crate) fn push(&mut self, p: PathPoint) {
         self.points = [self.points[1], Some(p)];

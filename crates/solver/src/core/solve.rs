@@ -65,6 +65,40 @@ pub struct ContactSolver {
     path: WarmPath,
 }
 
+/// What the solves of a [`ContactSolver`] read from the solves before
+/// them: pressures, tractions, slips and element states, the transient
+/// history and the path of inputs of the warm start's prediction. Not the
+/// kernels or any buffer. Saving it before a solve and restoring it after
+/// makes the solve leave no trace ([`ContactSolver::save_state`]); the
+/// service keeps one per session mark.
+#[derive(Clone, Default)]
+pub struct SolverState {
+    pn: Vec<f64>,
+    px: Vec<f64>,
+    py: Vec<f64>,
+    sx: Vec<f64>,
+    sy: Vec<f64>,
+    state: Vec<ElementState>,
+    prev_state: Vec<ElementState>,
+    transient_steps: usize,
+    path: WarmPath,
+}
+
+impl SolverState {
+    /// Memory held by its buffers \[bytes\].
+    pub fn bytes(&self) -> usize {
+        let f = |v: &Vec<f64>| std::mem::size_of_val(v.as_slice());
+        let e = |v: &Vec<ElementState>| std::mem::size_of_val(v.as_slice());
+        [&self.pn, &self.px, &self.py, &self.sx, &self.sy]
+            .into_iter()
+            .map(f)
+            .sum::<usize>()
+            + e(&self.state)
+            + e(&self.prev_state)
+            + self.path.bytes()
+    }
+}
+
 /// A warm start's field `v`, named `key`, must hold one finite value per
 /// element (`n`).
 fn per_element(key: &str, v: &[f64], n: usize) -> Result<(), ContactError> {
@@ -152,6 +186,44 @@ impl ContactSolver {
         Ok(())
     }
 
+    /// Copies the state later solves read into `to` (reusing its buffers:
+    /// no allocation once they have this solver's size).
+    pub fn save_state(&self, to: &mut SolverState) {
+        to.pn.clone_from(&self.pn);
+        to.px.clone_from(&self.tr.px);
+        to.py.clone_from(&self.tr.py);
+        to.sx.clone_from(&self.tr.sx);
+        to.sy.clone_from(&self.tr.sy);
+        to.state.clone_from(&self.tr.state);
+        to.prev_state.clone_from(&self.prev_state);
+        to.transient_steps = self.transient_steps;
+        to.path.copy_from(&self.path);
+    }
+
+    /// Puts back a state saved from this solver (or one of the same grid):
+    /// the next solve gives the same bits as it would have given right
+    /// after the save. A state of another size is refused.
+    pub fn restore_state(&mut self, from: &SolverState) -> Result<(), ContactError> {
+        per_element("pressure_pa", &from.pn, self.pn.len())?;
+        self.pn.copy_from_slice(&from.pn);
+        self.tr.px.copy_from_slice(&from.px);
+        self.tr.py.copy_from_slice(&from.py);
+        self.tr.sx.copy_from_slice(&from.sx);
+        self.tr.sy.copy_from_slice(&from.sy);
+        self.tr.state.copy_from_slice(&from.state);
+        self.prev_state.copy_from_slice(&from.prev_state);
+        self.transient_steps = from.transient_steps;
+        self.path.copy_from(&from.path);
+        Ok(())
+    }
+
+    /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
+    pub fn state_bytes(&self) -> usize {
+        let n = self.grid.len();
+        // pn, px, py, sx, sy; two element states; the path's three fields.
+        n * (5 * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+    }
+
     /// Forgets the warm start.
     pub fn reset(&mut self) {
         for v in [&mut self.pn, &mut self.tr.px, &mut self.tr.py] {
@@ -215,8 +287,8 @@ impl ContactSolver {
     /// transient problem is `reset` followed by one call per step.
     ///
     /// A step the solver rejects after it started (the patch reaches the
-    /// grid border) leaves the history changed: restore a clone taken
-    /// before the step to retry.
+    /// grid border) leaves the history changed: restore a state saved
+    /// before the step ([`ContactSolver::save_state`]) to retry.
     pub fn solve_next_step(
         &mut self,
         problem: &ContactProblem,
@@ -757,6 +829,36 @@ mod tests {
         ] {
             assert!((x - y).abs() <= 1e-6 * y.abs(), "{x} against {y}");
         }
+    }
+
+    #[test]
+    fn a_restored_state_gives_the_bits_of_a_solver_that_never_saw_the_failed_solve() {
+        let cache = KernelCache::default();
+        let path = [rolling(1.0, 1.0), rolling(1.01, 1.02), rolling(1.02, 1.04)];
+        let mut replay = ContactSolver::new(&path[0], &cache);
+        let want: Vec<Totals> = path
+            .iter()
+            .map(|p| solve_last(&mut replay, p).totals)
+            .collect();
+        let mut s = ContactSolver::new(&path[0], &cache);
+        let mut saved = SolverState::default();
+        for p in &path[..2] {
+            solve_last(&mut s, p);
+        }
+        s.save_state(&mut saved);
+        assert_eq!(saved.bytes(), s.state_bytes());
+        // Refused after the prediction moved the start (no contact) and
+        // after a whole solve (the patch beyond the grid).
+        let mut none = rolling(1.0, 1.0);
+        none.load = NormalLoad::Approach(1e-12);
+        let mut huge = rolling(100.0, 1.0);
+        huge.load = NormalLoad::NormalForce(1e7);
+        for bad in [none, huge] {
+            assert!(s.solve(&bad).is_err());
+            s.restore_state(&saved).unwrap();
+        }
+        let got = solve_last(&mut s, &path[2]).totals;
+        assert_eq!(format!("{got:?}"), format!("{:?}", want[2]));
     }
 
     #[test]

@@ -622,6 +622,17 @@ pub struct WarmStart {
     pub tractions: [Option<PatchTractions>; 2],
 }
 
+impl WarmStart {
+    /// Memory it holds, itself and its tractions \[bytes\].
+    pub fn bytes(&self) -> usize {
+        let tractions = self.tractions.iter().flatten();
+        std::mem::size_of::<Self>()
+            + tractions
+                .map(|t| t.traction_pa.iter().map(|v| 8 * v.len()).sum::<usize>())
+                .sum::<usize>()
+    }
+}
+
 /// Tangential tractions on a patch grid (see [`WarmStart::tractions`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PatchTractions {

@@ -135,7 +135,13 @@ class ContactServiceServicer:
         starts and the transient history; steps must come in order, and a
         client can mark steps and roll back to a marked one. The same inputs
         give bit-identical outputs whether a session runs alone or interleaved
-        with others.
+        with others. A refused step (an error response) leaves the session bit
+        for bit as it was, whatever refused it: the next steps give what they
+        would have given had it never been sent. A session that receives no
+        message for the server's session_idle_timeout_s (default 300 s), or
+        whose client reads none of its responses for that long, is closed:
+        its last message is an error saying so, then the stream ends with
+        DEADLINE_EXCEEDED.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -221,7 +227,8 @@ class ContactServiceServicer:
         Steps must come in order; a client can mark steps and roll back to a
         marked one (the warm starts go back with it). The same sequence of
         requests gives bit-identical responses whether a session runs alone or
-        interleaved with others.
+        interleaved with others. Refused steps and idle sessions as in
+        PatchSession.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')

@@ -1,0 +1,70 @@
+//! Helpers shared by the service's end-to-end tests (each test binary uses
+//! some of them).
+#![allow(dead_code)]
+
+use railcontact::service::config::ServeConfig;
+use railcontact::service::pb;
+use railcontact::service::pb::contact_service_client::ContactServiceClient;
+use railcontact::service::server::{start, RunningServer};
+use tonic::transport::Channel;
+
+pub type Client = ContactServiceClient<Channel>;
+
+/// The server of `config` on an ephemeral loopback port (10 s shutdown
+/// grace) and a client of it.
+pub async fn serve(config: ServeConfig) -> (RunningServer, Client) {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        ..config
+    })
+    .await
+    .expect("server starts");
+    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    (server, client)
+}
+
+/// Reads the metrics page.
+pub async fn metrics_page(addr: std::net::SocketAddr) -> String {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let mut s = tokio::net::TcpStream::connect(addr).await.unwrap();
+    s.write_all(b"GET /metrics HTTP/1.1\r\nhost: x\r\nconnection: close\r\n\r\n")
+        .await
+        .unwrap();
+    let mut page = String::new();
+    s.read_to_string(&mut page).await.unwrap();
+    page
+}
+
+pub fn steel() -> pb::MaterialSection {
+    pb::MaterialSection {
+        shear_modulus_pa: Some(81.0e9),
+        poisson_ratio: Some(0.30),
+        ..Default::default()
+    }
+}
+
+/// h = x² + y² (R = 0.5 m), 10 kN, steel on steel.
+pub fn sphere(model: pb::Model, n: u32) -> pb::PatchCase {
+    pb::PatchCase {
+        model: model as i32,
+        material: Some(steel()),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Quadratic as i32,
+            a_per_m: Some(1.0),
+            b_per_m: Some(1.0),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(1.0e4)),
+        }),
+        grid: Some(pb::GridSection {
+            nx: Some(n),
+            ny: Some(n),
+            ..Default::default()
+        }),
+        ..Default::default()
+    }
+}

@@ -1,0 +1,709 @@
+//! Sessions that no client can poison or bloat, end to end over gRPC (the
+//! real server in-process on an ephemeral loopback port):
+//!
+//! - a refused step, whatever refused it (its inputs, the solver, a
+//!   non-finite result) leaves the session bit for bit as it was: the
+//!   steps after it equal a replay that never sent it, for every patch
+//!   session kind and model and every wheel/rail model;
+//! - marks count against a memory budget per session and per server;
+//! - a step response above the message limit is refused in-band;
+//! - an idle session is closed with an in-band error and frees its slot.
+
+use prost::Message;
+use railcontact::service::config::ServeConfig;
+use railcontact::service::pb;
+use railcontact::service::server::RunningServer;
+use railcontact::service::wheelrail::query_of;
+use railcontact::wheelrail::builtin::mbench_a22_input;
+use railcontact::wheelrail::WheelRailModel;
+use tokio::sync::mpsc;
+use tokio_stream::wrappers::ReceiverStream;
+use tokio_stream::StreamExt;
+use tonic::{Code, Status, Streaming};
+
+mod common;
+use common::{metrics_page, serve, sphere, Client};
+
+type Step = pb::SessionStep;
+use pb::session_response::Kind as Out;
+use pb::session_step::Load;
+
+/// A server on an ephemeral port with `config`'s limits; pairs in memory.
+async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
+    serve(ServeConfig {
+        data_dir: Default::default(),
+        ..config
+    })
+    .await
+}
+
+/// The messages of a response stream up to its end: all of them, and the
+/// status it ended with unless OK.
+async fn drain<R>(mut out: Streaming<R>) -> (Vec<R>, Option<Status>) {
+    let mut messages = Vec::new();
+    while let Some(r) = out.next().await {
+        match r {
+            Ok(m) => messages.push(m),
+            Err(s) => return (messages, Some(s)),
+        }
+    }
+    (messages, None)
+}
+
+/// The `n` responses of a stream that ends OK.
+async fn complete<R>(out: Result<tonic::Response<Streaming<R>>, Status>, n: usize) -> Vec<R> {
+    let (responses, status) = drain(out.unwrap().into_inner()).await;
+    assert!(status.is_none(), "{status:?}");
+    assert_eq!(responses.len(), n, "one response per request");
+    responses
+}
+
+/// The value of the unlabelled metric `name` on the metrics page.
+async fn metric(server: &RunningServer, name: &str) -> f64 {
+    let page = metrics_page(server.metrics_addr.expect("a metrics port")).await;
+    page.lines()
+        .find_map(|l| l.strip_prefix(&format!("{name} ")))
+        .unwrap_or_else(|| panic!("{name} not on the page:\n{page}"))
+        .parse()
+        .unwrap()
+}
+
+/// What the steps of a patch session prescribe.
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    Frictionless,
+    Rolling,
+    Transient,
+}
+
+/// h = x² + y² (R = 0.5 m), 10 kN, steel on steel, `n` x `n` elements,
+/// with friction 0.3 unless frictionless.
+fn case(model: pb::Model, kind: Kind, n: u32) -> pb::PatchCase {
+    let mut c = sphere(model, n);
+    let friction = Some(pb::FrictionSection {
+        coefficient: Some(0.3),
+        ..Default::default()
+    });
+    match kind {
+        Kind::Frictionless => {}
+        Kind::Rolling => {
+            c.friction = friction;
+            c.kinematics = Some(pb::patch_case::Kinematics::Rolling(pb::Creepages::default()));
+        }
+        Kind::Transient => {
+            c.friction = friction;
+            c.kinematics = Some(pb::patch_case::Kinematics::Transient(
+                pb::TransientSection {
+                    steps: vec![pb::ShiftStep {
+                        shift_x_m: Some(1e-6),
+                        ..Default::default()
+                    }],
+                },
+            ));
+        }
+    }
+    c
+}
+
+/// The paper's conformal Case 1 at 80 kN (model cect), rolling, 20 x 20.
+fn cect_case() -> pb::PatchCase {
+    pb::PatchCase {
+        model: pb::Model::Cect as i32,
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::ConformalCircular as i32,
+            rail_lateral_radius_m: Some(0.010),
+            wheel_lateral_radius_m: Some(-0.0101),
+            wheel_rolling_radius_m: Some(0.5),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(8.0e4)),
+        }),
+        ..case(pb::Model::Cect, Kind::Rolling, 20)
+    }
+}
+
+fn open(case: pb::PatchCase, fields: bool) -> pb::SessionRequest {
+    pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Open(pb::SessionOpen {
+            case: Some(case),
+            include_fields: fields,
+            client_label: "test".into(),
+            ..Default::default()
+        })),
+    }
+}
+
+fn request(kind: pb::session_request::Kind) -> pb::SessionRequest {
+    pb::SessionRequest { kind: Some(kind) }
+}
+
+/// Valid step `k` of a session of `kind`: load, creepages and shifts
+/// moving along a smooth path (so that the warm start's prediction is in
+/// use).
+fn valid(kind: Kind, k: u64) -> Step {
+    let f = k as f64;
+    let mut s = Step {
+        step_index: k,
+        time_s: f * 1e-3,
+        load: Some(Load::NormalForceN(1e4 * (1.0 + 0.02 * f))),
+        ..Default::default()
+    };
+    match kind {
+        Kind::Frictionless => {}
+        Kind::Rolling => {
+            s.creepages = Some(pb::Creepages {
+                creepage_long: 1e-3 * (1.0 + 0.1 * f),
+                creepage_lat: 0.5e-3 * (1.0 + 0.1 * f),
+                spin_per_m: 0.2,
+            })
+        }
+        Kind::Transient => {
+            s.shift = Some(pb::ShiftStep {
+                shift_x_m: Some(1e-6 * (1.0 + 0.2 * f)),
+                ..Default::default()
+            })
+        }
+    }
+    s
+}
+
+/// A step that the server refuses: what changes a valid step, the code and
+/// the field path it must name.
+struct Refusal {
+    what: &'static str,
+    change: fn(&mut Step),
+    code: Code,
+    field: &'static str,
+}
+
+fn negative_load(s: &mut Step) {
+    s.load = Some(Load::NormalForceN(-1.0));
+}
+/// An approach below the smallest undeformed distance: no contact.
+fn no_contact(s: &mut Step) {
+    s.load = Some(Load::ApproachM(1e-12));
+}
+/// A patch far larger than the grid.
+fn beyond_grid(s: &mut Step) {
+    s.load = Some(Load::NormalForceN(1e6));
+}
+fn huge_spin(s: &mut Step) {
+    s.creepages.as_mut().unwrap().spin_per_m = 1e300;
+}
+
+const NEGATIVE_LOAD: Refusal = Refusal {
+    what: "negative load",
+    change: negative_load,
+    code: Code::InvalidArgument,
+    field: "step.normal_force_n",
+};
+const NO_CONTACT: Refusal = Refusal {
+    what: "no contact",
+    change: no_contact,
+    code: Code::InvalidArgument,
+    field: "step",
+};
+const BEYOND_GRID: Refusal = Refusal {
+    what: "patch beyond the grid",
+    change: beyond_grid,
+    code: Code::InvalidArgument,
+    field: "open.case.grid",
+};
+const HUGE_SPIN: Refusal = Refusal {
+    what: "spin 1e300",
+    change: huge_spin,
+    code: Code::InvalidArgument,
+    field: "step.creepages",
+};
+
+/// Sends `messages` on one session and returns every response (the first
+/// is `opened`); the stream must end without an error.
+async fn session(client: &mut Client, messages: Vec<pb::SessionRequest>) -> Vec<Out> {
+    let n = messages.len();
+    let out = client.patch_session(tokio_stream::iter(messages)).await;
+    let responses = complete(out, n).await;
+    responses.into_iter().map(|r| r.kind.unwrap()).collect()
+}
+
+/// A step's answer as bytes, its solve time cleared: equal bytes are equal
+/// bits of every total, counter and field.
+fn step_bytes(r: &Out) -> Vec<u8> {
+    let Out::Step(s) = r else {
+        panic!("expected a step, got {r:?}")
+    };
+    let mut s = s.clone();
+    if let Some(info) = s.result.as_mut().and_then(|r| r.info.as_mut()) {
+        info.solve_time_s = 0.0;
+    }
+    s.encode_to_vec()
+}
+
+fn item_error(r: &Out) -> &pb::ItemError {
+    match r {
+        Out::Error(e) => e,
+        Out::Step(s) => panic!("expected an error, got step {}", s.step_index),
+        other => panic!("expected an error, got {other:?}"),
+    }
+}
+
+/// Steps 0-2, then each refusal in turn at index 3 (every other one), then
+/// steps 3-5: each refusal is answered in-band with its code and field,
+/// and the valid steps equal those of a session that never sent them, bit
+/// for bit.
+async fn refusals_leave_no_trace(
+    client: &mut Client,
+    case: pb::PatchCase,
+    kind: Kind,
+    fields: bool,
+    refusals: &[Refusal],
+) {
+    let step = |s: Step| request(pb::session_request::Kind::Step(s));
+    let mut plain = vec![open(case.clone(), fields)];
+    plain.extend((0..6).map(|k| step(valid(kind, k))));
+    let replay = session(client, plain).await;
+    let mut msgs = vec![open(case.clone(), fields)];
+    msgs.extend((0..3).map(|k| step(valid(kind, k))));
+    for r in refusals {
+        let mut s = valid(kind, 3);
+        (r.change)(&mut s);
+        msgs.push(step(s));
+    }
+    msgs.extend((3..6).map(|k| step(valid(kind, k))));
+    let got = session(client, msgs).await;
+    let n = refusals.len();
+    for (i, r) in refusals.iter().enumerate() {
+        let Out::Error(e) = &got[4 + i] else {
+            panic!("{kind:?} {:?}, {}: not refused", case.model, r.what)
+        };
+        assert_eq!(
+            (Code::from(e.code), e.field.as_str()),
+            (r.code, r.field),
+            "{kind:?} {:?}, {}: {}",
+            case.model,
+            r.what,
+            e.message
+        );
+    }
+    for k in 1..=3 {
+        assert_eq!(
+            step_bytes(&got[k]),
+            step_bytes(&replay[k]),
+            "{kind:?} {:?} step {}",
+            case.model,
+            k - 1
+        );
+    }
+    for k in 4..=6 {
+        assert_eq!(
+            step_bytes(&got[n + k]),
+            step_bytes(&replay[k]),
+            "{kind:?} {:?}: step {} after the refusals",
+            case.model,
+            k - 1
+        );
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn refused_patch_steps_leave_exact_sessions_bit_for_bit_as_they_were() {
+    let (server, mut client) = server_with(ServeConfig::default()).await;
+    let exact = pb::Model::Exact;
+    refusals_leave_no_trace(
+        &mut client,
+        case(exact, Kind::Frictionless, 16),
+        Kind::Frictionless,
+        true,
+        &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID],
+    )
+    .await;
+    refusals_leave_no_trace(
+        &mut client,
+        case(exact, Kind::Rolling, 16),
+        Kind::Rolling,
+        true,
+        &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID, HUGE_SPIN],
+    )
+    .await;
+    refusals_leave_no_trace(
+        &mut client,
+        case(exact, Kind::Transient, 16),
+        Kind::Transient,
+        true,
+        &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID],
+    )
+    .await;
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn refused_patch_steps_leave_fastsim_hertz_and_cect_sessions_as_they_were() {
+    let (server, mut client) = server_with(ServeConfig::default()).await;
+    refusals_leave_no_trace(
+        &mut client,
+        case(pb::Model::Fastsim, Kind::Rolling, 16),
+        Kind::Rolling,
+        false,
+        &[NEGATIVE_LOAD],
+    )
+    .await;
+    refusals_leave_no_trace(
+        &mut client,
+        case(pb::Model::Hertz, Kind::Frictionless, 16),
+        Kind::Frictionless,
+        false,
+        &[NEGATIVE_LOAD],
+    )
+    .await;
+    refusals_leave_no_trace(
+        &mut client,
+        cect_case(),
+        Kind::Rolling,
+        false,
+        &[NEGATIVE_LOAD],
+    )
+    .await;
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn marks_count_against_the_session_and_server_budgets() {
+    // A mark of an exact session on n elements keeps 5 f64 fields, two
+    // element states and the prediction's 3 f64 fields: 66 bytes an
+    // element and the few bytes of the state itself.
+    let n = 16 * 16;
+    let mark = 66 * n;
+    let (server, mut client) = server_with(ServeConfig {
+        max_session_bytes: 3 * mark + mark / 2,
+        max_sessions_total_bytes: 4 * mark + mark / 2,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    let kind = Kind::Rolling;
+    let marked = |k: u64| {
+        let mut s = valid(kind, k);
+        s.mark = true;
+        request(pb::session_request::Kind::Step(s))
+    };
+    let step = |k: u64| request(pb::session_request::Kind::Step(valid(kind, k)));
+    let back = |to: u64| {
+        request(pb::session_request::Kind::Rollback(pb::SessionRollback {
+            to_step_index: to,
+        }))
+    };
+    let c = case(pb::Model::Exact, kind, 16);
+    // Marks 0, 1 and 2 fit; the fourth is refused and its step not applied
+    // (step 3 comes again, unmarked, and equals the replay); after a
+    // rollback to 1 (mark 2 dropped) a mark fits again.
+    let msgs = vec![
+        open(c.clone(), false),
+        marked(0),
+        marked(1),
+        marked(2),
+        marked(3),
+        step(3),
+        step(4),
+        back(1),
+        marked(2),
+    ];
+    let got = session(&mut client, msgs).await;
+    let replay = session(
+        &mut client,
+        vec![
+            open(c.clone(), false),
+            step(0),
+            step(1),
+            step(2),
+            step(3),
+            step(4),
+        ],
+    )
+    .await;
+    let e = item_error(&got[4]);
+    assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+    assert!(
+        e.message.contains("max_session_bytes") && e.message.contains("marked: 0, 1, 2"),
+        "{}",
+        e.message
+    );
+    for (a, b) in [(5, 4), (6, 5)] {
+        assert_eq!(step_bytes(&got[a]), step_bytes(&replay[b]));
+    }
+    assert!(matches!(got[7], Out::RolledBack(_)), "{:?}", got[7]);
+    assert_eq!(step_bytes(&got[8]), step_bytes(&got[3]), "step 2 again");
+    assert_eq!(
+        metric(&server, "railcontact_session_marks_refused_total").await,
+        1.0
+    );
+    assert_eq!(metric(&server, "railcontact_session_mark_bytes").await, 0.0);
+
+    // The server's total: a session holding three marks leaves room for one
+    // more in another session, not two; closing it frees its marks.
+    let (tx, rx) = mpsc::channel(8);
+    let mut first = client
+        .patch_session(ReceiverStream::new(rx))
+        .await
+        .unwrap()
+        .into_inner();
+    for m in [open(c.clone(), false), marked(0), marked(1), marked(2)] {
+        tx.send(m).await.unwrap();
+        let r = first.next().await.unwrap().unwrap().kind.unwrap();
+        assert!(matches!(r, Out::Opened(_) | Out::Step(_)), "{r:?}");
+    }
+    let held = metric(&server, "railcontact_session_mark_bytes").await;
+    assert!(
+        held > 3.0 * mark as f64 && held < 3.5 * mark as f64,
+        "{held}"
+    );
+    let other = vec![open(c.clone(), false), marked(0), marked(1)];
+    let got = session(&mut client, other.clone()).await;
+    assert!(matches!(got[1], Out::Step(_)), "{:?}", got[1]);
+    let e = item_error(&got[2]);
+    assert_eq!(Code::from(e.code), Code::ResourceExhausted);
+    assert!(
+        e.message.contains("max_sessions_total_bytes"),
+        "{}",
+        e.message
+    );
+    drop(tx);
+    assert!(first.next().await.is_none());
+    let got = session(&mut client, other).await;
+    assert!(matches!(got[2], Out::Step(_)), "{:?}", got[2]);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_step_response_above_the_message_limit_is_refused_in_band() {
+    // 16 x 16 fields take about 12 kB; the session's requests far less.
+    let (server, mut client) = server_with(ServeConfig {
+        max_message_bytes: 4000,
+        ..ServeConfig::default()
+    })
+    .await;
+    let kind = Kind::Rolling;
+    let step = |k: u64| request(pb::session_request::Kind::Step(valid(kind, k)));
+    let got = session(
+        &mut client,
+        vec![
+            open(case(pb::Model::Exact, kind, 16), true),
+            step(0),
+            step(0),
+        ],
+    )
+    .await;
+    for r in &got[1..] {
+        let e = item_error(r);
+        assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+        assert!(
+            e.message.contains("max_message_bytes") && e.message.contains("open.include_fields"),
+            "{}",
+            e.message
+        );
+    }
+    // Without fields the same steps are answered.
+    let got = session(
+        &mut client,
+        vec![open(case(pb::Model::Exact, kind, 16), false), step(0)],
+    )
+    .await;
+    assert!(matches!(got[1], Out::Step(_)), "{:?}", got[1]);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn idle_sessions_are_closed_in_band_and_free_their_slots() {
+    let (server, mut client) = server_with(ServeConfig {
+        session_idle_timeout_s: 0.3,
+        max_sessions: 1,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    // A patch session that opens, steps once and then sends nothing while
+    // keeping its stream open.
+    let (tx, rx) = mpsc::channel(8);
+    let out = client.patch_session(ReceiverStream::new(rx)).await;
+    tx.send(open(case(pb::Model::Hertz, Kind::Frictionless, 16), false))
+        .await
+        .unwrap();
+    tx.send(request(pb::session_request::Kind::Step(valid(
+        Kind::Frictionless,
+        0,
+    ))))
+    .await
+    .unwrap();
+    let (messages, status) = drain(out.unwrap().into_inner()).await;
+    let status = status.expect("the stream ends with a status");
+    let kinds: Vec<Out> = messages.into_iter().map(|r| r.kind.unwrap()).collect();
+    assert!(matches!(kinds[0], Out::Opened(_)) && matches!(kinds[1], Out::Step(_)));
+    let e = item_error(&kinds[2]);
+    assert_eq!(Code::from(e.code), Code::DeadlineExceeded);
+    assert!(
+        e.message.contains("session_idle_timeout_s"),
+        "{}",
+        e.message
+    );
+    assert_eq!(kinds.len(), 3);
+    assert_eq!(status.code(), Code::DeadlineExceeded, "{status:?}");
+    assert!(status.message().contains("idle"), "{status:?}");
+    // Its slot is free: a session opens on this one-session server.
+    let got = session(
+        &mut client,
+        vec![open(case(pb::Model::Hertz, Kind::Frictionless, 16), false)],
+    )
+    .await;
+    assert!(matches!(got[0], Out::Opened(_)), "{:?}", got[0]);
+
+    // A wheel/rail session that idles after opening.
+    let (wtx, wrx) = mpsc::channel(8);
+    let wout = client.wheel_rail_session(ReceiverStream::new(wrx)).await;
+    wtx.send(wr_open(pb::WheelRailModel::HertzFastsim))
+        .await
+        .unwrap();
+    let (messages, status) = drain(wout.unwrap().into_inner()).await;
+    let status = status.expect("the stream ends with a status");
+    let kinds: Vec<WrOut> = messages.into_iter().map(|r| r.kind.unwrap()).collect();
+    assert!(matches!(kinds[0], WrOut::Opened(_)), "{:?}", kinds[0]);
+    match &kinds[1] {
+        WrOut::Error(e) => assert_eq!(Code::from(e.code), Code::DeadlineExceeded),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(status.code(), Code::DeadlineExceeded, "{status:?}");
+    assert_eq!(
+        metric(&server, "railcontact_sessions_idle_closed_total").await,
+        2.0
+    );
+    assert_eq!(metric(&server, "railcontact_sessions_active").await, 0.0);
+    drop((tx, wtx));
+    server.shutdown().await;
+}
+
+// ---------------------------------------------------------------------
+// Wheel/rail sessions
+// ---------------------------------------------------------------------
+
+use pb::wheel_rail_session_request::Kind as WrIn;
+use pb::wheel_rail_session_response::Kind as WrOut;
+
+fn wr_open(model: pb::WheelRailModel) -> pb::WheelRailSessionRequest {
+    pb::WheelRailSessionRequest {
+        kind: Some(WrIn::Open(pb::WheelRailSessionOpen {
+            pair_id: "mbench_s1002_uic60".into(),
+            model: model as i32,
+            client_label: "test".into(),
+            ..Default::default()
+        })),
+    }
+}
+
+/// Step `k` of a wheelset drifting 0.05 mm a step from 3 mm (Manchester
+/// A-2.2's inputs, roll from the profiles).
+fn wr_step(k: u64) -> pb::WheelRailSessionStep {
+    let mm = 3.0 + 0.05 * k as f64;
+    let q = query_of(
+        "mbench_s1002_uic60",
+        &mbench_a22_input(mm, None, None, WheelRailModel::Exact),
+    );
+    pb::WheelRailSessionStep {
+        step_index: k,
+        time_s: k as f64 * 1e-3,
+        position: q.position,
+        velocity: q.velocity,
+        load: q.load,
+        mark: false,
+    }
+}
+
+fn wr_request(s: pb::WheelRailSessionStep) -> pb::WheelRailSessionRequest {
+    pb::WheelRailSessionRequest {
+        kind: Some(WrIn::Step(s)),
+    }
+}
+
+/// A wheel/rail step's answer as bytes, its timing cleared.
+fn wr_step_bytes(r: &WrOut) -> Vec<u8> {
+    let WrOut::Step(s) = r else {
+        panic!("expected a step, got {r:?}")
+    };
+    let mut s = s.clone();
+    if let Some(r) = s.result.as_mut() {
+        r.timing = None;
+    }
+    s.encode_to_vec()
+}
+
+async fn wr_session(client: &mut Client, messages: Vec<pb::WheelRailSessionRequest>) -> Vec<WrOut> {
+    let n = messages.len();
+    let out = client
+        .wheel_rail_session(tokio_stream::iter(messages))
+        .await;
+    let responses = complete(out, n).await;
+    responses.into_iter().map(|r| r.kind.unwrap()).collect()
+}
+
+/// Wheel/rail steps that the server refuses.
+type WrRefusal = (
+    &'static str,
+    fn(&mut pb::WheelRailSessionStep),
+    &'static str,
+);
+
+fn wr_no_velocity(s: &mut pb::WheelRailSessionStep) {
+    s.velocity = None;
+}
+fn wr_huge_yaw(s: &mut pb::WheelRailSessionStep) {
+    s.position.as_mut().unwrap().yaw_rad = 0.5;
+}
+/// A lateral shift no wheel touches its rail at.
+fn wr_off_track(s: &mut pb::WheelRailSessionStep) {
+    s.position.as_mut().unwrap().lateral_m = 0.2;
+}
+
+const WR_REFUSALS: [WrRefusal; 3] = [
+    ("no velocity", wr_no_velocity, "step.velocity"),
+    ("yaw 0.5 rad", wr_huge_yaw, "step.position"),
+    ("off the track", wr_off_track, "step"),
+];
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn refused_wheel_rail_steps_leave_every_model_as_it_was() {
+    let (server, mut client) = server_with(ServeConfig::default()).await;
+    for model in [
+        pb::WheelRailModel::Exact,
+        pb::WheelRailModel::HertzFastsim,
+        pb::WheelRailModel::HertzFastsimTable,
+        pb::WheelRailModel::Auto,
+    ] {
+        let mut plain = vec![wr_open(model)];
+        plain.extend((0..5).map(|k| wr_request(wr_step(k))));
+        let replay = wr_session(&mut client, plain).await;
+        let mut msgs = vec![wr_open(model)];
+        msgs.extend((0..3).map(|k| wr_request(wr_step(k))));
+        for (_, change, _) in &WR_REFUSALS {
+            let mut s = wr_step(3);
+            change(&mut s);
+            msgs.push(wr_request(s));
+        }
+        msgs.extend((3..5).map(|k| wr_request(wr_step(k))));
+        let got = wr_session(&mut client, msgs).await;
+        for (i, (what, _, field)) in WR_REFUSALS.iter().enumerate() {
+            match &got[4 + i] {
+                WrOut::Error(e) => assert!(
+                    Code::from(e.code) == Code::InvalidArgument && e.field.starts_with(field),
+                    "{model:?}, {what}: {e:?}"
+                ),
+                other => panic!("{model:?}, {what}: {other:?}"),
+            }
+        }
+        let n = WR_REFUSALS.len();
+        for (a, b) in [(1, 1), (2, 2), (3, 3), (4 + n, 4), (5 + n, 5)] {
+            assert_eq!(
+                wr_step_bytes(&got[a]),
+                wr_step_bytes(&replay[b]),
+                "{model:?}: response {a}"
+            );
+        }
+    }
+    server.shutdown().await;
+}
