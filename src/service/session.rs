@@ -248,7 +248,7 @@ impl Session {
                     .as_ref()
                     .map(convert::creepages)
                     .unwrap_or_default();
-                c.validate()
+                c.check_input()
                     .map_err(|e| ServiceError::from(e).rekey("rolling.", "step.creepages."))?;
                 Motion::Rolling(c)
             }

@@ -21,7 +21,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::error::{require_finite, require_positive, ContactError, Range};
+
+/// Range of a friction coefficient [-] (dry steel on steel: about 0.3–0.6).
+pub const FRICTION_COEFFICIENT_RANGE: Range = Range::closed(0.0, 5.0, "");
+/// Range of the longitudinal and lateral creepages [-] of an input
+/// (1: a slip velocity equal to the rolling speed).
+pub const CREEPAGE_RANGE: Range = Range::symmetric(1.0, "");
+/// Range of the spin creepage of an input \[1/m\].
+pub const SPIN_RANGE: Range = Range::symmetric(1e3, "1/m");
 use crate::core::grid::Grid;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
@@ -45,19 +53,13 @@ impl Friction {
         }
     }
 
-    /// Checks both coefficients are finite and >= 0.
+    /// Checks both coefficients are in [`FRICTION_COEFFICIENT_RANGE`].
+    /// Any such pair is valid: a kinetic coefficient below the static one
+    /// (also 0) bounds the traction where the material slid just before.
     pub fn validate(&self) -> Result<(), ContactError> {
-        for (k, v) in [
-            ("friction.static_coefficient", self.static_coefficient),
-            ("friction.kinetic_coefficient", self.kinetic_coefficient),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(ContactError::invalid(
-                    k,
-                    format!("must be finite and >= 0, got {v}"),
-                ));
-            }
-        }
+        FRICTION_COEFFICIENT_RANGE.check("friction.static_coefficient", self.static_coefficient)?;
+        FRICTION_COEFFICIENT_RANGE
+            .check("friction.kinetic_coefficient", self.kinetic_coefficient)?;
         Ok(())
     }
 }
@@ -81,6 +83,15 @@ impl Creepages {
         require_finite("rolling.creepage_long", self.creepage_long)?;
         require_finite("rolling.creepage_lat", self.creepage_lat)?;
         require_finite("rolling.spin_per_m", self.spin_per_m)
+    }
+
+    /// Checks creepages given as input against their documented ranges
+    /// ([`CREEPAGE_RANGE`], [`SPIN_RANGE`]); keys are named `rolling.*`.
+    pub fn check_input(&self) -> Result<(), ContactError> {
+        CREEPAGE_RANGE.check("rolling.creepage_long", self.creepage_long)?;
+        CREEPAGE_RANGE.check("rolling.creepage_lat", self.creepage_lat)?;
+        SPIN_RANGE.check("rolling.spin_per_m", self.spin_per_m)?;
+        Ok(())
     }
 }
 
