@@ -40,11 +40,12 @@ pub mod ranges {
     /// `velocity.pitch_rad_per_s` \[rad/s\] (free rolling: -V/r0).
     pub const PITCH_RATE: Range = Range::symmetric(1000.0, "rad/s");
     /// `load.vertical_force_n` \[N\] (total on both wheels).
-    pub const VERTICAL_FORCE: Range = Range::positive(1e6, "N");
+    pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
     /// `load.approach_m` \[m\].
-    pub const APPROACH: Range = Range::positive(5e-3, "m").hint(UnitHint::Millimetre);
-    /// `load.center_z_m` \[m\] (the rigid position's height +- 5 cm).
-    pub const CENTER_Z: Range = Range::symmetric(0.05, "m").hint(UnitHint::Millimetre);
+    pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
+    /// `load.center_z_m` \[m\] (the rigid position's centre height is
+    /// near 0; 2 mm below it is an approach of 2 mm).
+    pub const CENTER_Z: Range = Range::symmetric(2e-3, "m").hint(UnitHint::Millimetre);
 }
 
 /// The request field of a wheel/rail load: `load.vertical_force_n`,

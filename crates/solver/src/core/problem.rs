@@ -25,6 +25,27 @@ use crate::core::error::{require_finite, require_positive, ContactError, Range};
 
 /// Range of a friction coefficient [-] (dry steel on steel: about 0.3–0.6).
 pub const FRICTION_COEFFICIENT_RANGE: Range = Range::closed(0.0, 5.0, "");
+/// Smallest non-zero friction coefficient [-]: below it the traction
+/// bounds are denormal numbers the solver cannot divide by.
+pub const MIN_NONZERO_FRICTION: f64 = 1e-6;
+
+/// `mu` if it is 0 or in [[`MIN_NONZERO_FRICTION`], 5]
+/// ([`FRICTION_COEFFICIENT_RANGE`]), else an error naming `key`.
+pub fn check_friction_coefficient(key: &str, mu: f64) -> Result<f64, ContactError> {
+    let mu = FRICTION_COEFFICIENT_RANGE.check(key, mu)?;
+    if mu != 0.0 && mu < MIN_NONZERO_FRICTION {
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "must be 0 or in [{MIN_NONZERO_FRICTION:e}, {}], got {}",
+                FRICTION_COEFFICIENT_RANGE.max,
+                crate::core::error::show(mu)
+            ),
+        ));
+    }
+    Ok(mu)
+}
+
 /// Range of the longitudinal and lateral creepages [-] of an input
 /// (1: a slip velocity equal to the rolling speed).
 pub const CREEPAGE_RANGE: Range = Range::symmetric(1.0, "");
@@ -57,9 +78,8 @@ impl Friction {
     /// Any such pair is valid: a kinetic coefficient below the static one
     /// (also 0) bounds the traction where the material slid just before.
     pub fn validate(&self) -> Result<(), ContactError> {
-        FRICTION_COEFFICIENT_RANGE.check("friction.static_coefficient", self.static_coefficient)?;
-        FRICTION_COEFFICIENT_RANGE
-            .check("friction.kinetic_coefficient", self.kinetic_coefficient)?;
+        check_friction_coefficient("friction.static_coefficient", self.static_coefficient)?;
+        check_friction_coefficient("friction.kinetic_coefficient", self.kinetic_coefficient)?;
         Ok(())
     }
 }

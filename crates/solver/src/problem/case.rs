@@ -88,7 +88,7 @@ pub mod ranges {
     /// Semi-axes of the Hertz patch of a load on the case's geometry and
     /// material \[m\]: outside, a unit is wrong (a force in kN, a
     /// modulus in GPa, a curvature in 1/mm).
-    pub const HERTZ_SEMI_AXIS: Range = Range::closed(1e-6, 0.5, "m");
+    pub const HERTZ_SEMI_AXIS: Range = Range::closed(1e-5, 0.5, "m");
     /// Fewest elements the Hertz patch must span in each direction of a
     /// given window (exact and conformal models).
     pub const MIN_ELEMENTS_ACROSS_PATCH: f64 = 3.0;
@@ -822,8 +822,7 @@ impl FrictionSection {
             self.kinetic_coefficient,
         ) {
             (Some(mu), None, None) => Friction::coulomb(
-                crate::core::problem::FRICTION_COEFFICIENT_RANGE
-                    .check("friction.coefficient", mu)?,
+                crate::core::problem::check_friction_coefficient("friction.coefficient", mu)?,
             ),
             (None, Some(s), Some(k)) => Friction {
                 static_coefficient: s,
@@ -1064,8 +1063,7 @@ impl Case {
             _ => vec![("load".to_string(), load)],
         };
         for (key, l) in loads {
-            let h = hertz_of(a_per_m, b_per_m, e_star, l)?;
-            check_hertz_patch(&key, l, &h, a_per_m, b_per_m, e_star)?;
+            let h = check_hertz_patch(&key, l, a_per_m, b_per_m, e_star)?;
             patch_x_m = patch_x_m.max(h.semi_axis_x_m);
             patch_y_m = patch_y_m.max(h.semi_axis_y_m);
         }
@@ -1281,15 +1279,21 @@ impl Case {
 fn check_hertz_patch(
     key: &str,
     load: NormalLoad,
-    h: &HertzSolution,
     a_per_m: f64,
     b_per_m: f64,
     e_star: f64,
-) -> Result<(), CaseError> {
+) -> Result<HertzSolution, CaseError> {
     let r = ranges::HERTZ_SEMI_AXIS;
-    if r.contains(h.semi_axis_x_m) && r.contains(h.semi_axis_y_m) {
-        return Ok(());
-    }
+    let h = hertz_of(a_per_m, b_per_m, e_star, load);
+    let axes = match &h {
+        Ok(h) if r.contains(h.semi_axis_x_m) && r.contains(h.semi_axis_y_m) => return Ok(h.clone()),
+        Ok(h) => format!(
+            "has semi-axes {} x {} m",
+            show(h.semi_axis_x_m),
+            show(h.semi_axis_y_m)
+        ),
+        Err(_) => "has no finite semi-axes".to_string(),
+    };
     let (field, value) = match load {
         NormalLoad::NormalForce(f) => ("normal_force_n", format!("{} N", show(f))),
         NormalLoad::Approach(d) => ("approach_m", format!("{} m", show(d))),
@@ -1298,13 +1302,11 @@ fn check_hertz_patch(
         format!("{key}.{field}"),
         format!(
             "the Hertz patch of {value} on this geometry (A = {} 1/m, B = {} 1/m) and material \
-             (E* = {} Pa) has semi-axes {} x {} m, outside {}: check the units \
+             (E* = {} Pa) {axes}, outside {}: check the units \
              (forces in N, lengths in m, curvatures in 1/m, moduli in Pa)",
             show(a_per_m),
             show(b_per_m),
             show(e_star),
-            show(h.semi_axis_x_m),
-            show(h.semi_axis_y_m),
             r.describe()
         ),
     ))
