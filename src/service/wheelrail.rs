@@ -175,7 +175,7 @@ impl QuerySettings {
         let p = position.unwrap_or_default();
         let v = velocity.ok_or_else(|| {
             ServiceError::invalid(
-                "velocity.forward_m_per_s",
+                "velocity",
                 format!(
                     "missing: give the velocity, forward_m_per_s in {}",
                     ranges::FORWARD_SPEED.describe()
