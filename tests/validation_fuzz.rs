@@ -782,3 +782,33 @@ fn mutated_profiles_read_or_fail_without_panicking() {
     assert!(ok + refused > 0, "no profile found in {}", dir.display());
     assert!(panicked.is_empty(), "the readers panicked on: {panicked:?}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn wheel_rail_patch_grids_obey_the_grid_limit() {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        data_dir: Default::default(),
+        max_grid_elements: 160 * 160,
+        ..ServeConfig::default()
+    })
+    .await
+    .expect("server starts");
+    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    let mut req = wheel_query(pb::WheelRailModel::Exact);
+    req.element_size_m = Some(6e-5);
+    let e = client.solve_wheel_rail(req.clone()).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    assert_eq!(field_of(e.message()), Some("element_size_m"), "{e:?}");
+    assert!(
+        e.message().contains("more than the limit of 25600"),
+        "{e:?}"
+    );
+    // The pair's own 0.2 mm elements fit.
+    req.element_size_m = None;
+    let r = client.solve_wheel_rail(req).await.expect("solves");
+    check_wheelrail_finite(r.get_ref().result.as_ref().unwrap()).unwrap();
+    server.shutdown().await;
+}
