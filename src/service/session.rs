@@ -11,10 +11,9 @@
 
 use std::collections::BTreeMap;
 
-use crate::core::error::require_positive;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics, ShiftStep};
-use crate::problem::case::Model;
+use crate::problem::case::{check_shift_step, ranges, Model};
 use crate::service::convert;
 use crate::service::engine::PatchEngine;
 use crate::service::pb;
@@ -214,11 +213,11 @@ impl Session {
         }
         let load = match s.load {
             Some(pb::session_step::Load::NormalForceN(f)) => {
-                require_positive("step.normal_force_n", f)?;
+                ranges::NORMAL_FORCE.check("step.normal_force_n", f)?;
                 NormalLoad::NormalForce(f)
             }
             Some(pb::session_step::Load::ApproachM(d)) => {
-                require_positive("step.approach_m", d)?;
+                ranges::APPROACH.check("step.approach_m", d)?;
                 NormalLoad::Approach(d)
             }
             None => self.default_load,
@@ -274,7 +273,7 @@ impl Session {
                     shift_y_m: sh.shift_y_m,
                     rotation_rad: sh.rotation_rad,
                 };
-                shift.validate("step.shift")?;
+                check_shift_step("step.shift", &shift)?;
                 Motion::Shift(shift)
             }
         };

@@ -1341,8 +1341,8 @@ fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), Cas
 }
 
 /// Checks a transient step's shifts and rotation against their ranges
-/// (its load is checked where it is read).
-fn check_shift_step(key: &str, s: &ShiftStep) -> Result<(), CaseError> {
+/// (its load is checked where it is read); `key` names the step.
+pub fn check_shift_step(key: &str, s: &ShiftStep) -> Result<(), CaseError> {
     ranges::SHIFT.check(&format!("{key}.shift_x_m"), s.shift_x_m)?;
     ranges::SHIFT.check(&format!("{key}.shift_y_m"), s.shift_y_m)?;
     ranges::ROTATION.check(&format!("{key}.rotation_rad"), s.rotation_rad)?;
