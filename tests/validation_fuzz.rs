@@ -525,7 +525,7 @@ fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
         ("load.approach_m", 1e-4, |r, v| {
             wheel_load(r, Load::ApproachM(v))
         }),
-        ("load.center_z_m", 1e-4, |r, v| {
+        ("load.center_z_m", -0.46, |r, v| {
             wheel_load(r, Load::CenterZM(v))
         }),
         ("element_size_m", 2e-4, |r, v| r.element_size_m = Some(v)),
@@ -623,8 +623,8 @@ async fn hostile_values_are_answered_or_refused_by_name() {
     // The exact model at the edges of the ranges that set its grids.
     for (path, v, set) in [
         ("element_size_m", 6e-5, wheel_fields()[12].2),
-        ("load.center_z_m", 2e-3, wheel_fields()[11].2),
-        ("load.center_z_m", -2e-3, wheel_fields()[11].2),
+        ("load.center_z_m", 0.0, wheel_fields()[11].2),
+        ("load.center_z_m", -1.5, wheel_fields()[11].2),
         ("load.approach_m", 2e-3, wheel_fields()[10].2),
         ("load.vertical_force_n", 1e6, wheel_fields()[9].2),
         ("position.lateral_m", 0.02, wheel_fields()[0].2),

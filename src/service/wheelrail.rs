@@ -43,9 +43,9 @@ pub mod ranges {
     pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
     /// `load.approach_m` \[m\].
     pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
-    /// `load.center_z_m` \[m\] (the rigid position's centre height is
-    /// near 0; 2 mm below it is an approach of 2 mm).
-    pub const CENTER_Z: Range = Range::symmetric(2e-3, "m").hint(UnitHint::Millimetre);
+    /// `load.center_z_m` \[m\]: z points down, so the centre of a wheelset
+    /// on its rails is at about minus the wheel radius.
+    pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
 }
 
 /// The request field of a wheel/rail load: `load.vertical_force_n`,
