@@ -74,10 +74,32 @@ impl Friction {
         }
     }
 
-    /// Checks both coefficients are in [`FRICTION_COEFFICIENT_RANGE`].
-    /// Any such pair is valid: a kinetic coefficient below the static one
-    /// (also 0) bounds the traction where the material slid just before.
+    /// Checks both coefficients are finite, and 0 or at least
+    /// [`MIN_NONZERO_FRICTION`] (what the solver needs; a large
+    /// coefficient models full adhesion). Any such pair is valid: a
+    /// kinetic coefficient below the static one (also 0) bounds the
+    /// traction where the material slid just before.
     pub fn validate(&self) -> Result<(), ContactError> {
+        for (key, mu) in [
+            ("friction.static_coefficient", self.static_coefficient),
+            ("friction.kinetic_coefficient", self.kinetic_coefficient),
+        ] {
+            if !(mu.is_finite() && (mu == 0.0 || mu >= MIN_NONZERO_FRICTION)) {
+                return Err(ContactError::invalid(
+                    key,
+                    format!(
+                        "must be finite, and 0 or >= {MIN_NONZERO_FRICTION:e}, got {}",
+                        crate::core::error::show(mu)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks coefficients given as input against their documented range
+    /// ([`check_friction_coefficient`]).
+    pub fn check_input(&self) -> Result<(), ContactError> {
         check_friction_coefficient("friction.static_coefficient", self.static_coefficient)?;
         check_friction_coefficient("friction.kinetic_coefficient", self.kinetic_coefficient)?;
         Ok(())

@@ -849,7 +849,7 @@ impl FrictionSection {
                 ))
             }
         };
-        f.validate()?;
+        f.check_input()?;
         Ok(f)
     }
 }
