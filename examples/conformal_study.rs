@@ -149,7 +149,7 @@ impl Case {
             let geo = self.geometry(size_force, n_lat, scale)?;
             match f(&geo) {
                 Ok(v) => return Ok((v, geo)),
-                Err(ContactError::GridTooSmall { detail }) => {
+                Err(ContactError::GridTooSmall { detail, .. }) => {
                     eprintln!(
                         "    grid {}x{} too small ({detail}), enlarging",
                         geo.grid.nx, geo.grid.ny

@@ -14,8 +14,8 @@ use crate::core::problem::Creepages;
 use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::problem::case::{
-    Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection,
-    MaterialSection, Model, SolverSection, StepSection, TransientSection,
+    ranges, Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection,
+    LoadSection, MaterialSection, Model, SolverSection, StepSection, TransientSection,
 };
 use crate::problem::report::{ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport};
 use crate::service::pb;
@@ -239,11 +239,8 @@ pub fn validate_case(c: &pb::PatchCase, limits: CaseLimits) -> Result<ValidCase,
                 ),
             ));
         }
-        if let Some(i) = extra.iter().position(|v| !v.is_finite()) {
-            return Err(ServiceError::invalid(
-                format!("{key}[{i}]"),
-                "must be finite",
-            ));
+        for (i, &v) in extra.iter().enumerate() {
+            ranges::EXTRA_GAP.check(&format!("{key}[{i}]"), v)?;
         }
     }
     Ok(ValidCase {
@@ -440,54 +437,156 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
     }
 }
 
-/// Every value of a wire totals message, in field order.
-pub fn total_values(t: &pb::PatchTotals) -> [f64; 13] {
+/// Every value of a wire totals message with its field name, in field
+/// order.
+pub fn named_totals(t: &pb::PatchTotals) -> [(&'static str, f64); 13] {
     [
-        t.normal_force_n,
-        t.fx_n,
-        t.fy_n,
-        t.mz_nm,
-        t.approach_m,
-        t.max_pressure_pa,
-        t.max_traction_pa,
-        t.contact_area_m2,
-        t.patch_length_m,
-        t.patch_width_m,
-        t.adhesion_fraction,
-        t.tgamma_n,
-        t.frictional_work_j,
+        ("normal_force_n", t.normal_force_n),
+        ("fx_n", t.fx_n),
+        ("fy_n", t.fy_n),
+        ("mz_nm", t.mz_nm),
+        ("approach_m", t.approach_m),
+        ("max_pressure_pa", t.max_pressure_pa),
+        ("max_traction_pa", t.max_traction_pa),
+        ("contact_area_m2", t.contact_area_m2),
+        ("patch_length_m", t.patch_length_m),
+        ("patch_width_m", t.patch_width_m),
+        ("adhesion_fraction", t.adhesion_fraction),
+        ("tgamma_n", t.tgamma_n),
+        ("frictional_work_j", t.frictional_work_j),
     ]
 }
 
-/// Refuses a result with a non-finite total (a solver fault: never sent
-/// as silent NaN).
+/// Every value of a wire totals message, in field order.
+pub fn total_values(t: &pb::PatchTotals) -> [f64; 13] {
+    named_totals(t).map(|(_, v)| v)
+}
+
+/// The first value of `values` (named, in a message at `path`) that is
+/// not finite, as the error that names it.
+pub fn finite_values<'a>(
+    path: &str,
+    values: impl IntoIterator<Item = (&'a str, f64)>,
+) -> Result<(), ServiceError> {
+    match values.into_iter().find(|(_, v)| !v.is_finite()) {
+        None => Ok(()),
+        Some((name, v)) => Err(ServiceError::NonFinite {
+            output: if path.is_empty() {
+                name.to_string()
+            } else {
+                format!("{path}.{name}")
+            },
+            value: v.to_string(),
+        }),
+    }
+}
+
+/// The first non-finite value of a repeated field at `path`.
+fn finite_list(path: &str, values: &[f64]) -> Result<(), ServiceError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(ServiceError::NonFinite {
+            output: format!("{path}[{i}]"),
+            value: values[i].to_string(),
+        }),
+    }
+}
+
+fn finite_step(path: &str, s: &pb::StepResult) -> Result<(), ServiceError> {
+    if let Some(t) = &s.totals {
+        finite_values(&format!("{path}.totals"), named_totals(t))?;
+    }
+    if let Some(i) = &s.info {
+        finite_values(
+            &format!("{path}.info"),
+            [
+                ("normal_residual", i.normal_residual),
+                ("tangential_residual", i.tangential_residual),
+                ("solve_time_s", i.solve_time_s),
+            ],
+        )?;
+    }
+    if let Some(c) = &s.conformal {
+        finite_values(
+            &format!("{path}.conformal"),
+            [
+                ("contact_angle_variation_deg", c.contact_angle_variation_deg),
+                ("length_width_ratio", c.length_width_ratio),
+                (
+                    "normal_force_from_tractions_n",
+                    c.normal_force_from_tractions_n,
+                ),
+                ("pressure_resultant_n", c.pressure_resultant_n),
+                ("fy_global_n", c.fy_global_n),
+                ("fz_global_n", c.fz_global_n),
+            ],
+        )?;
+    }
+    if let Some(j) = &s.sensitivities {
+        for (name, d) in [
+            ("per_approach_m", j.per_approach_m),
+            ("per_creepage_long", j.per_creepage_long),
+            ("per_creepage_lat", j.per_creepage_lat),
+            ("per_spin_per_m", j.per_spin_per_m),
+        ] {
+            if let Some(d) = d {
+                finite_values(
+                    &format!("{path}.sensitivities.{name}"),
+                    [
+                        ("normal_force", d.normal_force),
+                        ("fx", d.fx),
+                        ("fy", d.fy),
+                        ("mz", d.mz),
+                    ],
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks every number of `r`: a non-finite one is refused
+/// ([`ServiceError::NonFinite`], naming it by its path in the result,
+/// `steps[2].info.normal_residual`), never sent as a silent NaN or
+/// infinity.
 pub fn check_finite(r: &pb::PatchResult) -> Result<(), ServiceError> {
-    for s in r.result.iter().chain(r.steps.iter()) {
-        if let Some(t) = &s.totals {
-            if total_values(t).iter().any(|v| !v.is_finite()) {
-                return Err(ServiceError::Internal(format!(
-                    "the solver produced a non-finite total ({t:?}); please report this case"
-                )));
-            }
-        }
-        if let Some(j) = &s.sensitivities {
-            let columns = [
-                j.per_approach_m,
-                j.per_creepage_long,
-                j.per_creepage_lat,
-                j.per_spin_per_m,
-            ];
-            let finite = |d: &pb::ForceDerivatives| {
-                [d.normal_force, d.fx, d.fy, d.mz]
-                    .iter()
-                    .all(|v| v.is_finite())
-            };
-            if !columns.iter().flatten().all(finite) {
-                return Err(ServiceError::Internal(format!(
-                    "the Jacobian of the forces is not finite ({j:?}); please report this case"
-                )));
-            }
-        }
+    if let Some(s) = &r.result {
+        finite_step("result", s)?;
+    }
+    for (k, s) in r.steps.iter().enumerate() {
+        finite_step(&format!("steps[{k}]"), s)?;
+    }
+    finite_values("", [("friction_coefficient", r.friction_coefficient)])?;
+    if let Some(g) = &r.grid {
+        finite_values(
+            "grid",
+            [
+                ("element_size_x_m", g.element_size_x_m),
+                ("element_size_y_m", g.element_size_y_m),
+                ("x0_m", g.x0_m),
+                ("y0_m", g.y0_m),
+            ],
+        )?;
+    }
+    if let Some(f) = &r.fields {
+        check_fields_finite("fields", f)?;
+    }
+    Ok(())
+}
+
+/// Checks every value of per-element fields at `path`.
+pub fn check_fields_finite(path: &str, f: &pb::ElementFields) -> Result<(), ServiceError> {
+    for (name, v) in [
+        ("pressure_pa", &f.pressure_pa),
+        ("traction_x_pa", &f.traction_x_pa),
+        ("traction_y_pa", &f.traction_y_pa),
+        ("slip_x", &f.slip_x),
+        ("slip_y", &f.slip_y),
+        ("gap_m", &f.gap_m),
+        ("delta_rad", &f.delta_rad),
+        ("wfric_lateral_j_per_m2", &f.wfric_lateral_j_per_m2),
+    ] {
+        finite_list(&format!("{path}.{name}"), v)?;
     }
     Ok(())
 }

@@ -149,7 +149,13 @@ impl ContactHandlers {
         prefix: &str,
     ) -> Result<pb::WheelRailResult, ServiceError> {
         let entry = self.pairs.lookup(&req.pair_id)?;
-        let input = wheelrail::input(&req, &entry.spec.settings).map_err(|e| e.within(prefix))?;
+        let input = wheelrail::input(
+            &req,
+            &entry.spec.settings,
+            self.limits.case.max_grid_elements,
+        )
+        .map_err(|e| e.within(prefix))?;
+        let load_field = wheelrail::load_field(req.load.as_ref());
         let model = input.settings.model;
         let prepared = self
             .pairs
@@ -174,6 +180,7 @@ impl ContactHandlers {
             .map_err(|e| {
                 ServiceError::from(e)
                     .rekey("grid.element_size_m", "element_size_m")
+                    .rename("load", load_field)
                     .within(prefix)
             });
         self.metrics.solved_as(
@@ -1002,7 +1009,7 @@ fn sweep_points(req: &pb::CreepCurveRequest, max: usize) -> Result<Vec<Creepages
     use pb::creep_curve_request::Sweep;
     let check = |c: &pb::Creepages, key: String| {
         let c = convert::creepages(c);
-        c.validate()
+        c.check_input()
             .map_err(|e| ServiceError::from(e).rekey("rolling", &key))?;
         Ok::<_, ServiceError>(c)
     };

@@ -24,10 +24,9 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use crate::core::error::require_positive;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics, ShiftStep};
-use crate::problem::case::Model;
+use crate::problem::case::{check_shift_step, ranges, Model};
 use crate::service::convert;
 use crate::service::engine::{EngineState, PatchEngine};
 use crate::service::pb;
@@ -353,11 +352,11 @@ impl Session {
         }
         let load = match s.load {
             Some(pb::session_step::Load::NormalForceN(f)) => {
-                require_positive("step.normal_force_n", f)?;
+                ranges::NORMAL_FORCE.check("step.normal_force_n", f)?;
                 NormalLoad::NormalForce(f)
             }
             Some(pb::session_step::Load::ApproachM(d)) => {
-                require_positive("step.approach_m", d)?;
+                ranges::APPROACH.check("step.approach_m", d)?;
                 NormalLoad::Approach(d)
             }
             None => self.default_load,
@@ -387,7 +386,7 @@ impl Session {
                     .as_ref()
                     .map(convert::creepages)
                     .unwrap_or_default();
-                c.validate()
+                c.check_input()
                     .map_err(|e| ServiceError::from(e).rekey("rolling.", "step.creepages."))?;
                 Motion::Rolling(c)
             }
@@ -413,7 +412,7 @@ impl Session {
                     shift_y_m: sh.shift_y_m,
                     rotation_rad: sh.rotation_rad,
                 };
-                shift.validate("step.shift")?;
+                check_shift_step("step.shift", &shift)?;
                 Motion::Shift(shift)
             }
         };

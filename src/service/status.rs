@@ -60,6 +60,17 @@ pub enum ServiceError {
         "the solve was stopped before it finished: its deadline passed or its client went away"
     )]
     Cancelled,
+    /// A valid request whose answer holds a number that is not finite
+    /// (OUT_OF_RANGE): `output` names it in the result
+    /// (`result.info.normal_residual`). The documented input ranges are
+    /// meant to make this impossible; it is refused, never sent.
+    #[error("the answer's `{output}` is {value}, not a finite number: this input is beyond what the solver can represent; bring it closer to the documented ranges")]
+    NonFinite {
+        /// Path of the output in the result message.
+        output: String,
+        /// The value (NaN or an infinity), as text.
+        value: String,
+    },
     /// The server is shutting down (UNAVAILABLE).
     #[error("{0}")]
     Unavailable(String),
@@ -94,6 +105,7 @@ impl ServiceError {
             ServiceError::Exhausted(_) => Code::ResourceExhausted,
             ServiceError::Deadline(_) => Code::DeadlineExceeded,
             ServiceError::Cancelled => Code::Cancelled,
+            ServiceError::NonFinite { .. } => Code::OutOfRange,
             ServiceError::Unavailable(_) => Code::Unavailable,
             ServiceError::Internal(_) => Code::Internal,
         }
@@ -114,6 +126,18 @@ impl ServiceError {
                     reason,
                 }
             }
+            other => other,
+        }
+    }
+
+    /// The error with the field path `from` itself (not a child of it)
+    /// renamed `to`: `load` -> `load.center_z_m`.
+    pub fn rename(self, from: &str, to: &str) -> Self {
+        match self {
+            ServiceError::Invalid { field, reason } if field == from => ServiceError::Invalid {
+                field: to.to_string(),
+                reason,
+            },
             other => other,
         }
     }
@@ -148,15 +172,16 @@ impl ServiceError {
 }
 
 impl From<ContactError> for ServiceError {
+    /// Input errors keep the key they name ([`ContactError::key`]): a key
+    /// out of range, the window of a patch that reaches the grid's border,
+    /// the approach that makes no contact.
     fn from(e: ContactError) -> Self {
         match e {
             ContactError::InvalidInput { key, reason } => {
                 ServiceError::Invalid { field: key, reason }
             }
-            ContactError::GridTooSmall { .. } => ServiceError::invalid("grid", e.to_string()),
-            ContactError::NoContact { .. } => ServiceError::invalid("load", e.to_string()),
-            ContactError::Reference(_) => ServiceError::invalid("", e.to_string()),
             ContactError::Cancelled => ServiceError::Cancelled,
+            e => ServiceError::invalid(e.key().unwrap_or_default(), e.to_string()),
         }
     }
 }
@@ -197,8 +222,18 @@ impl From<WheelRailError> for ServiceError {
     fn from(e: WheelRailError) -> Self {
         match e {
             WheelRailError::Invalid { key, message } => ServiceError::invalid(key, message),
-            WheelRailError::Spline { .. } => ServiceError::invalid("spec", e.to_string()),
-            WheelRailError::Geometry { .. } => ServiceError::invalid("position", e.to_string()),
+            WheelRailError::Spline { .. } => ServiceError::invalid("pair_id", e.to_string()),
+            // The profiles do not face each other at this lateral shift
+            // (with this yaw and roll), or the load needs more approach
+            // than the profiles allow.
+            WheelRailError::Geometry { ref message, .. } => {
+                let field = if message.contains("load cannot be carried") {
+                    "load"
+                } else {
+                    "position.lateral_m"
+                };
+                ServiceError::invalid(field, e.to_string())
+            }
             WheelRailError::Cancelled
             | WheelRailError::Contact {
                 source: ContactError::Cancelled,

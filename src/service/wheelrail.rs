@@ -7,9 +7,10 @@
 //! (`position.yaw_rad`, `velocity.forward_m_per_s`, `load.approach_m`) are
 //! the request's field paths.
 
+use crate::core::error::{Range, UnitHint};
 use crate::core::material::CombinedMaterial;
 use crate::core::problem::Friction;
-use crate::service::convert::{grid_info, planar_fields};
+use crate::service::convert::{check_fields_finite, finite_values, grid_info, planar_fields};
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -17,6 +18,46 @@ use crate::wheelrail::{
     PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
     WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
 };
+
+/// The documented ranges of a wheel/rail query's motion and load (the
+/// proto's `WheelsetPosition`, `WheelsetVelocity`, `WheelLoad`), checked
+/// before anything is solved.
+pub mod ranges {
+    use super::{Range, UnitHint};
+
+    /// `position.lateral_m` \[m\] (flange contact is at about 8 mm).
+    pub const LATERAL: Range = Range::symmetric(0.02, "m").hint(UnitHint::Millimetre);
+    /// `position.yaw_rad` \[rad\].
+    pub const YAW: Range = Range::symmetric(0.05, "rad");
+    /// `position.roll_rad` \[rad\].
+    pub const ROLL: Range = Range::symmetric(0.05, "rad");
+    /// `velocity.forward_m_per_s` \[m/s\].
+    pub const FORWARD_SPEED: Range = Range::closed(1.0, 150.0, "m/s");
+    /// `velocity.lateral_m_per_s`, `velocity.vertical_m_per_s` \[m/s\].
+    pub const TRANSVERSE_SPEED: Range = Range::symmetric(5.0, "m/s");
+    /// `velocity.roll_rad_per_s`, `velocity.yaw_rad_per_s` \[rad/s\].
+    pub const TURN_RATE: Range = Range::symmetric(5.0, "rad/s");
+    /// `velocity.pitch_rad_per_s` \[rad/s\] (free rolling: -V/r0).
+    pub const PITCH_RATE: Range = Range::symmetric(1000.0, "rad/s");
+    /// `load.vertical_force_n` \[N\] (total on both wheels).
+    pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
+    /// `load.approach_m` \[m\].
+    pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
+    /// `load.center_z_m` \[m\]: z points down, so the centre of a wheelset
+    /// on its rails is at about minus the wheel radius.
+    pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
+}
+
+/// The request field of a wheel/rail load: `load.vertical_force_n`,
+/// `load.approach_m` or `load.center_z_m` (`load` when none is set).
+pub fn load_field(load: Option<&pb::WheelLoad>) -> &'static str {
+    match load.and_then(|l| l.load.as_ref()) {
+        Some(pb::wheel_load::Load::VerticalForceN(_)) => "load.vertical_force_n",
+        Some(pb::wheel_load::Load::ApproachM(_)) => "load.approach_m",
+        Some(pb::wheel_load::Load::CenterZM(_)) => "load.center_z_m",
+        None => "load",
+    }
+}
 
 /// The library model of a wire model.
 pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
@@ -111,6 +152,13 @@ impl QuerySettings {
         })
     }
 
+    /// The settings with patch grids of at most `max` elements (the
+    /// server's `max_grid_elements`).
+    pub fn with_max_grid_elements(mut self, max: usize) -> Self {
+        self.settings.max_grid_elements = max;
+        self
+    }
+
     /// The model.
     pub fn model(&self) -> WheelRailModel {
         self.settings.model
@@ -125,12 +173,55 @@ impl QuerySettings {
         load: Option<pb::WheelLoad>,
     ) -> Result<WheelRailInput, ServiceError> {
         let p = position.unwrap_or_default();
-        let v = velocity
-            .ok_or_else(|| ServiceError::invalid("velocity", "missing (forward_m_per_s > 0)"))?;
+        let v = velocity.ok_or_else(|| {
+            ServiceError::invalid(
+                "velocity",
+                format!(
+                    "missing: give the velocity, forward_m_per_s in {}",
+                    ranges::FORWARD_SPEED.describe()
+                ),
+            )
+        })?;
+        let check = |key: &str, v: f64, r: Range| r.check(key, v).map_err(ServiceError::from);
+        check("position.lateral_m", p.lateral_m, ranges::LATERAL)?;
+        check("position.yaw_rad", p.yaw_rad, ranges::YAW)?;
+        if let Some(r) = p.roll_rad {
+            check("position.roll_rad", r, ranges::ROLL)?;
+        }
+        check(
+            "velocity.forward_m_per_s",
+            v.forward_m_per_s,
+            ranges::FORWARD_SPEED,
+        )?;
+        check(
+            "velocity.lateral_m_per_s",
+            v.lateral_m_per_s,
+            ranges::TRANSVERSE_SPEED,
+        )?;
+        check(
+            "velocity.vertical_m_per_s",
+            v.vertical_m_per_s,
+            ranges::TRANSVERSE_SPEED,
+        )?;
+        check(
+            "velocity.roll_rad_per_s",
+            v.roll_rad_per_s,
+            ranges::TURN_RATE,
+        )?;
+        check("velocity.yaw_rad_per_s", v.yaw_rad_per_s, ranges::TURN_RATE)?;
+        if let Some(w) = v.pitch_rad_per_s {
+            check("velocity.pitch_rad_per_s", w, ranges::PITCH_RATE)?;
+        }
         let load = match load.and_then(|l| l.load) {
-            Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
-            Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
-            Some(pb::wheel_load::Load::CenterZM(z)) => WheelLoad::CenterHeight(z),
+            Some(pb::wheel_load::Load::VerticalForceN(f)) => {
+                WheelLoad::VerticalForce(check("load.vertical_force_n", f, ranges::VERTICAL_FORCE)?)
+            }
+            Some(pb::wheel_load::Load::ApproachM(d)) => {
+                WheelLoad::Approach(check("load.approach_m", d, ranges::APPROACH)?)
+            }
+            Some(pb::wheel_load::Load::CenterZM(z)) => {
+                WheelLoad::CenterHeight(check("load.center_z_m", z, ranges::CENTER_Z)?)
+            }
             None => {
                 return Err(ServiceError::invalid(
                     "load",
@@ -161,11 +252,13 @@ impl QuerySettings {
     }
 }
 
-/// The solver input of a query on a pair with `settings`. Field paths are
-/// relative to the query.
+/// The solver input of a query on a pair with `settings`, with patch
+/// grids of at most `max_grid_elements`. Field paths are relative to the
+/// query.
 pub fn input(
     req: &pb::SolveWheelRailRequest,
     settings: &PairSettings,
+    max_grid_elements: usize,
 ) -> Result<WheelRailInput, ServiceError> {
     let q = QuerySettings::new(
         req.model,
@@ -173,7 +266,8 @@ pub fn input(
         req.friction.as_ref(),
         req.element_size_m,
         settings,
-    )?;
+    )?
+    .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
 
@@ -294,38 +388,78 @@ fn wheel(w: &WheelResult, fields: bool) -> pb::WheelRailWheel {
     }
 }
 
-/// The wire result of a solution; a non-finite figure is refused (a solver
-/// fault, never sent as a silent NaN).
+/// Checks every number of a wire wheel/rail result: a non-finite one is
+/// refused ([`ServiceError::NonFinite`] naming its path,
+/// `wheels[0].patches[1].frictional_power_w`), never sent.
+pub fn check_finite(r: &pb::WheelRailResult) -> Result<(), ServiceError> {
+    finite_values(
+        "",
+        [
+            ("center_z_m", r.center_z_m),
+            ("roll_rad", r.roll_rad),
+            ("pitch_rad_per_s", r.pitch_rad_per_s),
+        ],
+    )?;
+    let track = |f: &Option<pb::TrackForce>| {
+        let f = f.unwrap_or_default();
+        [("x_n", f.x_n), ("y_n", f.y_n), ("z_n", f.z_n)]
+    };
+    for (i, w) in r.wheels.iter().enumerate() {
+        let at = format!("wheels[{i}]");
+        finite_values(
+            &at,
+            [
+                ("vertical_approach_m", w.vertical_approach_m),
+                ("min_gap_m", w.min_gap_m),
+            ],
+        )?;
+        finite_values(&format!("{at}.force_track_n"), track(&w.force_track_n))?;
+        for (k, p) in w.patches.iter().enumerate() {
+            let at = format!("{at}.patches[{k}]");
+            finite_values(
+                &at,
+                [
+                    ("contact_angle_rad", p.contact_angle_rad),
+                    ("contact_angle_variation_rad", p.contact_angle_variation_rad),
+                    ("rail_y_m", p.rail_y_m),
+                    ("rail_z_m", p.rail_z_m),
+                    ("wheel_y_m", p.wheel_y_m),
+                    ("track_x_m", p.track_x_m),
+                    ("track_y_m", p.track_y_m),
+                    ("track_z_m", p.track_z_m),
+                    ("rolling_radius_m", p.rolling_radius_m),
+                    ("creepage_long", p.creepage_long),
+                    ("creepage_lat", p.creepage_lat),
+                    ("spin_per_m", p.spin_per_m),
+                    ("normal_force_n", p.normal_force_n),
+                    ("fx_n", p.fx_n),
+                    ("fs_n", p.fs_n),
+                    ("mz_nm", p.mz_nm),
+                    ("approach_m", p.approach_m),
+                    ("max_pressure_pa", p.max_pressure_pa),
+                    ("contact_area_m2", p.contact_area_m2),
+                    ("adhesion_fraction", p.adhesion_fraction),
+                    ("frictional_power_w", p.frictional_power_w),
+                ],
+            )?;
+            finite_values(&format!("{at}.force_track_n"), track(&p.force_track_n))?;
+            if let Some(f) = &p.fields {
+                check_fields_finite(&format!("{at}.fields"), f)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The wire result of a solution; a non-finite number is refused
+/// ([`check_finite`]), never sent as a silent NaN.
 pub fn result(
     pair_id: &str,
     model: WheelRailModel,
     s: &WheelRailSolution,
     fields: bool,
 ) -> Result<pb::WheelRailResult, ServiceError> {
-    let finite = |v: f64| v.is_finite();
-    let bad = s.wheels.iter().any(|w| {
-        !w.force_track_n.iter().all(|&v| finite(v))
-            || w.patches.iter().any(|p| {
-                ![
-                    p.normal_force_n,
-                    p.fx_n,
-                    p.fs_n,
-                    p.mz_nm,
-                    p.creepage_long,
-                    p.creepage_lat,
-                    p.spin_per_m,
-                    p.contact_angle_rad,
-                ]
-                .iter()
-                .all(|&v| finite(v))
-            })
-    });
-    if bad || !finite(s.center_z_m) || !finite(s.roll_rad) {
-        return Err(ServiceError::Internal(
-            "the wheel/rail solution has a non-finite figure; please report this query".into(),
-        ));
-    }
-    Ok(pb::WheelRailResult {
+    let r = pb::WheelRailResult {
         pair_id: pair_id.to_string(),
         model: wire_model(model) as i32,
         center_z_m: s.center_z_m,
@@ -337,5 +471,7 @@ pub fn result(
             geometry_s: s.timing.geometry_s,
             solve_s: s.timing.solve_s,
         }),
-    })
+    };
+    check_finite(&r)?;
+    Ok(r)
 }

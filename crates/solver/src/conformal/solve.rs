@@ -124,13 +124,7 @@ pub fn solve_frictionless(
 
 /// The error for a loaded element (ix, iy) on the border of the (x, s) grid.
 pub fn border_error(grid: &crate::core::grid::Grid, ix: usize, iy: usize) -> ContactError {
-    ContactError::GridTooSmall {
-        detail: format!(
-            "element ({ix}, {iy}) at x = {:.4e} m, s = {:.4e} m is loaded",
-            grid.x_m(ix),
-            grid.y_m(iy)
-        ),
-    }
+    ContactError::grid_too_small(ix, iy, grid.nx, grid.x_m(ix), grid.y_m(iy))
 }
 
 /// Hertz's solution for two circular profiles and a wheel rolling radius

@@ -13,15 +13,26 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::core::error::ContactError;
+use crate::core::error::{ContactError, Range, UnitHint};
+
+/// Range of a shear modulus \[Pa\]: from soft rubber (1 MPa) to a body
+/// that stands in for a rigid one (1e18 Pa). Below it, a value that is in
+/// range times 1e9 is reported as a likely modulus in GPa.
+pub const SHEAR_MODULUS_RANGE: Range = Range::closed(1e6, 1e18, "Pa").hint(UnitHint::GigaPascal);
+/// Range of a Poisson ratio [-].
+pub const POISSON_RATIO_RANGE: Range = Range {
+    max_inclusive: false,
+    ..Range::closed(0.0, 0.5, "")
+};
 
 /// Isotropic linear elastic material of one body.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
-    /// Shear modulus G \[Pa\], > 0. Steel: about 80e9.
+    /// Shear modulus G \[Pa\], in [1e6, 1e18] ([`SHEAR_MODULUS_RANGE`]).
+    /// Steel: about 80e9.
     pub shear_modulus_pa: f64,
-    /// Poisson ratio nu [-], in [0, 0.5). Steel: about 0.28–0.30.
+    /// Poisson ratio nu [-], in [0, 0.5) ([`POISSON_RATIO_RANGE`]). Steel: about 0.28–0.30.
     pub poisson_ratio: f64,
 }
 
@@ -34,21 +45,8 @@ impl Material {
 
     /// Checks the values; `key` names the input field in error messages.
     pub fn validate(&self, key: &str) -> Result<(), ContactError> {
-        if !(self.shear_modulus_pa.is_finite() && self.shear_modulus_pa > 0.0) {
-            return Err(ContactError::invalid(
-                format!("{key}.shear_modulus_pa"),
-                format!(
-                    "must be a finite positive modulus in Pa, got {}",
-                    self.shear_modulus_pa
-                ),
-            ));
-        }
-        if !(self.poisson_ratio.is_finite() && (0.0..0.5).contains(&self.poisson_ratio)) {
-            return Err(ContactError::invalid(
-                format!("{key}.poisson_ratio"),
-                format!("must be in [0, 0.5), got {}", self.poisson_ratio),
-            ));
-        }
+        SHEAR_MODULUS_RANGE.check(&format!("{key}.shear_modulus_pa"), self.shear_modulus_pa)?;
+        POISSON_RATIO_RANGE.check(&format!("{key}.poisson_ratio"), self.poisson_ratio)?;
         Ok(())
     }
 }
@@ -145,11 +143,21 @@ mod tests {
         .unwrap_err();
         assert!(e.to_string().contains("material.shear_modulus_pa"));
         let e = Material {
-            shear_modulus_pa: 1.0,
+            shear_modulus_pa: 81e9,
             poisson_ratio: f64::NAN,
         }
         .validate("material")
         .unwrap_err();
         assert!(e.to_string().contains("poisson_ratio"));
+        // A modulus in GPa: the message suggests the unit.
+        let e = Material {
+            shear_modulus_pa: 81.0,
+            poisson_ratio: 0.3,
+        }
+        .validate("material")
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("did you mean 81e9"), "{e}");
+        assert!(e.contains("[1e6, 1e18] Pa, got 81"), "{e}");
     }
 }

@@ -21,7 +21,36 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::error::{require_finite, require_positive, ContactError, Range};
+
+/// Range of a friction coefficient [-] (dry steel on steel: about 0.3–0.6).
+pub const FRICTION_COEFFICIENT_RANGE: Range = Range::closed(0.0, 5.0, "");
+/// Smallest non-zero friction coefficient [-]: below it the traction
+/// bounds are denormal numbers the solver cannot divide by.
+pub const MIN_NONZERO_FRICTION: f64 = 1e-6;
+
+/// `mu` if it is 0 or in [[`MIN_NONZERO_FRICTION`], 5]
+/// ([`FRICTION_COEFFICIENT_RANGE`]), else an error naming `key`.
+pub fn check_friction_coefficient(key: &str, mu: f64) -> Result<f64, ContactError> {
+    let mu = FRICTION_COEFFICIENT_RANGE.check(key, mu)?;
+    if mu != 0.0 && mu < MIN_NONZERO_FRICTION {
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "must be 0 or in [{MIN_NONZERO_FRICTION:e}, {}], got {}",
+                FRICTION_COEFFICIENT_RANGE.max,
+                crate::core::error::show(mu)
+            ),
+        ));
+    }
+    Ok(mu)
+}
+
+/// Range of the longitudinal and lateral creepages [-] of an input
+/// (1: a slip velocity equal to the rolling speed).
+pub const CREEPAGE_RANGE: Range = Range::symmetric(1.0, "");
+/// Range of the spin creepage of an input \[1/m\].
+pub const SPIN_RANGE: Range = Range::symmetric(1e3, "1/m");
 use crate::core::grid::Grid;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
@@ -45,19 +74,34 @@ impl Friction {
         }
     }
 
-    /// Checks both coefficients are finite and >= 0.
+    /// Checks both coefficients are finite, and 0 or at least
+    /// [`MIN_NONZERO_FRICTION`] (what the solver needs; a large
+    /// coefficient models full adhesion). Any such pair is valid: a
+    /// kinetic coefficient below the static one (also 0) bounds the
+    /// traction where the material slid just before.
     pub fn validate(&self) -> Result<(), ContactError> {
-        for (k, v) in [
+        for (key, mu) in [
             ("friction.static_coefficient", self.static_coefficient),
             ("friction.kinetic_coefficient", self.kinetic_coefficient),
         ] {
-            if !(v.is_finite() && v >= 0.0) {
+            if !(mu.is_finite() && (mu == 0.0 || mu >= MIN_NONZERO_FRICTION)) {
                 return Err(ContactError::invalid(
-                    k,
-                    format!("must be finite and >= 0, got {v}"),
+                    key,
+                    format!(
+                        "must be finite, and 0 or >= {MIN_NONZERO_FRICTION:e}, got {}",
+                        crate::core::error::show(mu)
+                    ),
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// Checks coefficients given as input against their documented range
+    /// ([`check_friction_coefficient`]).
+    pub fn check_input(&self) -> Result<(), ContactError> {
+        check_friction_coefficient("friction.static_coefficient", self.static_coefficient)?;
+        check_friction_coefficient("friction.kinetic_coefficient", self.kinetic_coefficient)?;
         Ok(())
     }
 }
@@ -81,6 +125,15 @@ impl Creepages {
         require_finite("rolling.creepage_long", self.creepage_long)?;
         require_finite("rolling.creepage_lat", self.creepage_lat)?;
         require_finite("rolling.spin_per_m", self.spin_per_m)
+    }
+
+    /// Checks creepages given as input against their documented ranges
+    /// ([`CREEPAGE_RANGE`], [`SPIN_RANGE`]); keys are named `rolling.*`.
+    pub fn check_input(&self) -> Result<(), ContactError> {
+        CREEPAGE_RANGE.check("rolling.creepage_long", self.creepage_long)?;
+        CREEPAGE_RANGE.check("rolling.creepage_lat", self.creepage_lat)?;
+        SPIN_RANGE.check("rolling.spin_per_m", self.spin_per_m)?;
+        Ok(())
     }
 }
 

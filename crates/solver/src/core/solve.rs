@@ -629,13 +629,13 @@ impl ContactSolver {
         for iy in 0..grid.ny {
             for ix in 0..grid.nx {
                 if grid.on_border(ix, iy) && self.pn[grid.index(ix, iy)] > 0.0 {
-                    return Err(ContactError::GridTooSmall {
-                        detail: format!(
-                            "element ({ix}, {iy}) at x = {:.4e} m, y = {:.4e} m is loaded",
-                            grid.x_m(ix),
-                            grid.y_m(iy)
-                        ),
-                    });
+                    return Err(ContactError::grid_too_small(
+                        ix,
+                        iy,
+                        grid.nx,
+                        grid.x_m(ix),
+                        grid.y_m(iy),
+                    ));
                 }
             }
         }

@@ -61,6 +61,9 @@ pub const MAX_HALVINGS: usize = 4;
 /// Largest number of Newton steps (also bounded by the settings' iteration
 /// limit); the caller falls back to time marching when they do not suffice.
 pub const MAX_NEWTON_STEPS: usize = 50;
+/// Curvature term of a slipping element whose friction bound is zero,
+/// relative to its diagonal: large enough to keep its (zero) traction.
+const ZERO_BOUND_STIFFNESS: f64 = 1e12;
 /// The global part of the preconditioner (see `Linear::precondition`) is
 /// left out of a Newton step whose elements' mean weight is below this: on
 /// a mostly sliding patch (mean weight 0.13 at 20 times the bench case's
@@ -999,8 +1002,16 @@ pub fn solve_coulomb_newton(
                     let (t0, t1) = (tx[i], ty[i]);
                     // n = (t1, -t0): e = max(-n·s, 0)/g.
                     let ns = t1 * sx[i] - t0 * sy[i];
-                    let e = (-ns).max(0.0) / g[i];
                     let dt = d[0] * t0 * t0 + d[1] * t1 * t1;
+                    // A bound of zero (kinetic coefficient 0 behind a
+                    // slipping element) holds the traction at zero: the
+                    // limit g -> 0 of the curvature term, a stiffness that
+                    // leaves the element's unknown at 0.
+                    let e = if g[i] > 0.0 {
+                        (-ns).max(0.0) / g[i]
+                    } else {
+                        ZERO_BOUND_STIFFNESS * dt
+                    };
                     rhs[k] = -(t0 * sx[i] + t1 * sy[i]);
                     rhs[m + k] = 0.0;
                     Coef {
@@ -1077,7 +1088,11 @@ pub fn solve_coulomb_newton(
                 match role[i] {
                     Role::Slip => {
                         let (t0, t1) = (tx[i], ty[i]);
-                        let ang = (lambda * sol[k] / g[i]).clamp(-1.0, 1.0);
+                        let ang = if g[i] > 0.0 {
+                            (lambda * sol[k] / g[i]).clamp(-1.0, 1.0)
+                        } else {
+                            0.0
+                        };
                         let (sa, ca) = ang.sin_cos();
                         // n = (t1, -t0)
                         let (n0, n1) = (t1, -t0);

@@ -12,7 +12,7 @@ use crate::conformal::geometry::{
     Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve,
 };
 use crate::conformal::operator::InfluenceModel;
-use crate::core::error::{require_positive, ContactError};
+use crate::core::error::{check_count, show, ContactError};
 use crate::core::grid::Grid;
 use crate::core::hertz::HertzSolution;
 use crate::core::material::{CombinedMaterial, Material};
@@ -48,6 +48,51 @@ pub const POINTS_ORIGIN_TOLERANCE_M: f64 = 1e-7;
 /// Largest angle between the rail and wheel tangents at the origin in
 /// `geometry.*_points_m` \[deg\]: the profiles must touch there.
 pub const POINTS_TANGENT_TOLERANCE_DEG: f64 = 1.0;
+
+/// The documented ranges of the case's numeric keys (the same for the
+/// service's `PatchCase`); `examples/cases/README.md` lists them. Materials,
+/// friction and creepages have the core's ranges
+/// ([`crate::core::material::SHEAR_MODULUS_RANGE`],
+/// [`crate::core::problem::FRICTION_COEFFICIENT_RANGE`],
+/// [`crate::core::problem::CREEPAGE_RANGE`], [`crate::core::problem::SPIN_RANGE`]).
+pub mod ranges {
+    use crate::core::error::{Range, UnitHint};
+
+    /// `load.normal_force_n`, `transient.steps[k].normal_force_n` \[N\].
+    pub const NORMAL_FORCE: Range = Range::positive(1e8, "N");
+    /// `load.approach_m`, `transient.steps[k].approach_m` \[m\].
+    pub const APPROACH: Range = Range::positive(1e-2, "m").hint(UnitHint::Millimetre);
+    /// `geometry.a_per_m`, `geometry.b_per_m` \[1/m\] (radii of 5 µm to 500 m).
+    pub const CURVATURE: Range = Range::closed(1e-3, 1e5, "1/m");
+    /// `geometry.wheel_rolling_radius_m` \[m\].
+    pub const ROLLING_RADIUS: Range = Range::closed(0.01, 5.0, "m").hint(UnitHint::Millimetre);
+    /// |`geometry.*_lateral_radius_m`| \[m\] (or `inf`: a straight profile).
+    pub const LATERAL_RADIUS: Range = Range::closed(1e-4, 1e4, "m");
+    /// Coordinates of `geometry.*_points_m` \[m\].
+    pub const PROFILE_COORDINATE: Range = Range::symmetric(1.0, "m").hint(UnitHint::Millimetre);
+    /// Values of the service's `geometry.extra_gap_m` \[m\].
+    pub const EXTRA_GAP: Range = Range::symmetric(1e-2, "m");
+    /// `transient.steps[k].shift_x_m`, `shift_y_m` \[m\] (one step).
+    pub const SHIFT: Range = Range::symmetric(1e-2, "m").hint(UnitHint::Millimetre);
+    /// `transient.steps[k].rotation_rad` \[rad\] (one step).
+    pub const ROTATION: Range = Range::symmetric(0.1, "rad");
+    /// `grid.window_x_m`, `grid.window_y_m` \[m\].
+    pub const WINDOW: Range = Range::positive(1.0, "m").hint(UnitHint::Millimetre);
+    /// `solver.normal_tolerance`, `tangential_tolerance`,
+    /// `coupling_tolerance` [-].
+    pub const TOLERANCE: Range = Range::closed(1e-14, 0.1, "");
+    /// Largest `solver.max_iterations`.
+    pub const MAX_ITERATIONS: usize = 10_000;
+    /// Largest `solver.coupling_max_iterations`.
+    pub const MAX_COUPLING_ITERATIONS: usize = 1_000;
+    /// Semi-axes of the Hertz patch of a load on the case's geometry and
+    /// material \[m\]: outside, a unit is wrong (a force in kN, a
+    /// modulus in GPa, a curvature in 1/mm).
+    pub const HERTZ_SEMI_AXIS: Range = Range::closed(1e-5, 0.5, "m");
+    /// Fewest elements the Hertz patch must span in each direction of a
+    /// given window (exact and conformal models).
+    pub const MIN_ELEMENTS_ACROSS_PATCH: f64 = 3.0;
+}
 
 /// The contact model a case is solved with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
@@ -372,6 +417,10 @@ fn profile_from_points(
     points: &[[f64; 2]],
     key: &str,
 ) -> Result<(PointCurve, f64, [f64; 2]), CaseError> {
+    for (i, p) in points.iter().enumerate() {
+        ranges::PROFILE_COORDINATE.check(&format!("{key}[{i}].y_m"), p[0])?;
+        ranges::PROFILE_COORDINATE.check(&format!("{key}[{i}].z_m"), p[1])?;
+    }
     let curve = PointCurve::new(points, key)?;
     let dist = |p: &[f64; 2]| p[0].hypot(p[1]);
     let nearest = (0..points.len())
@@ -410,15 +459,18 @@ fn profile_from_points(
 
 /// A lateral radius: non-zero and not NaN (`inf`: straight).
 fn lateral_radius(key: &str, v: f64) -> Result<f64, CaseError> {
-    if v.is_nan() || v == 0.0 {
-        return Err(bad(
-            key,
-            format!(
-                "must be non-zero (convex > 0, concave < 0, inf for a straight profile), got {v}"
-            ),
-        ));
+    if v.is_infinite() || ranges::LATERAL_RADIUS.contains(v.abs()) {
+        return Ok(v);
     }
-    Ok(v)
+    let r = ranges::LATERAL_RADIUS;
+    Err(bad(
+        key,
+        format!(
+            "must be convex > 0 or concave < 0 with a size in {}, or inf for a straight profile, got {}",
+            r.describe(),
+            show(v)
+        ),
+    ))
 }
 
 impl GeometrySection {
@@ -486,8 +538,8 @@ impl GeometrySection {
             GeometryKind::Quadratic => {
                 let a = need("a_per_m", self.a_per_m)?;
                 let b = need("b_per_m", self.b_per_m)?;
-                require_positive("geometry.a_per_m", a)?;
-                require_positive("geometry.b_per_m", b)?;
+                ranges::CURVATURE.check("geometry.a_per_m", a)?;
+                ranges::CURVATURE.check("geometry.b_per_m", b)?;
                 Ok((CaseGeometry::Quadratic, a, b))
             }
             GeometryKind::ConformalCircular => {
@@ -496,7 +548,7 @@ impl GeometrySection {
                 let x = need("wheel_rolling_radius_m", self.wheel_rolling_radius_m)?;
                 let r = lateral_radius("geometry.rail_lateral_radius_m", r)?;
                 let w = lateral_radius("geometry.wheel_lateral_radius_m", w)?;
-                require_positive("geometry.wheel_rolling_radius_m", x)?;
+                ranges::ROLLING_RADIUS.check("geometry.wheel_rolling_radius_m", x)?;
                 let b = 0.5 * (1.0 / r + 1.0 / w);
                 if b.is_nan() || b <= 0.0 {
                     return Err(bad(
@@ -531,7 +583,7 @@ impl GeometrySection {
                     .as_deref()
                     .ok_or_else(|| missing("wheel_points_m"))?;
                 let x = need("wheel_rolling_radius_m", self.wheel_rolling_radius_m)?;
-                require_positive("geometry.wheel_rolling_radius_m", x)?;
+                ranges::ROLLING_RADIUS.check("geometry.wheel_rolling_radius_m", x)?;
                 let (rail, kr, tr) = profile_from_points(rp, "geometry.rail_points_m")?;
                 let (wheel, kw, tw) = profile_from_points(wp, "geometry.wheel_points_m")?;
                 let angle = (tr[0] * tw[1] - tr[1] * tw[0])
@@ -708,11 +760,11 @@ fn one_load(
             format!("give either `{key}.normal_force_n` or `{key}.approach_m`, not both"),
         )),
         (Some(f), None) => {
-            require_positive(&format!("{key}.normal_force_n"), f)?;
+            ranges::NORMAL_FORCE.check(&format!("{key}.normal_force_n"), f)?;
             Ok(Some(NormalLoad::NormalForce(f)))
         }
         (None, Some(d)) => {
-            require_positive(&format!("{key}.approach_m"), d)?;
+            ranges::APPROACH.check(&format!("{key}.approach_m"), d)?;
             Ok(Some(NormalLoad::Approach(d)))
         }
         (None, None) => Ok(None),
@@ -769,15 +821,9 @@ impl FrictionSection {
             self.static_coefficient,
             self.kinetic_coefficient,
         ) {
-            (Some(mu), None, None) => {
-                if !(mu.is_finite() && mu >= 0.0) {
-                    return Err(bad(
-                        "friction.coefficient",
-                        format!("must be finite and >= 0, got {mu}"),
-                    ));
-                }
-                Friction::coulomb(mu)
-            }
+            (Some(mu), None, None) => Friction::coulomb(
+                crate::core::problem::check_friction_coefficient("friction.coefficient", mu)?,
+            ),
             (None, Some(s), Some(k)) => Friction {
                 static_coefficient: s,
                 kinetic_coefficient: k,
@@ -803,7 +849,7 @@ impl FrictionSection {
                 ))
             }
         };
-        f.validate()?;
+        f.check_input()?;
         Ok(f)
     }
 }
@@ -849,7 +895,7 @@ impl Case {
                 ));
             }
             (Some(r), None) => {
-                r.validate()?;
+                r.check_input()?;
                 if model.is_cect() {
                     if let NormalLoad::Approach(_) = load {
                         return Err(bad(
@@ -882,7 +928,7 @@ impl Case {
                             shift_y_m: s.shift_y_m,
                             rotation_rad: s.rotation_rad,
                         };
-                        step.validate(&key)?;
+                        check_shift_step(&key, &step)?;
                         steps.push(step);
                     }
                     Kinematics::Transient(steps)
@@ -976,33 +1022,48 @@ impl Case {
         let nx = grid.nx.unwrap_or(default_n);
         let ny = grid.ny.unwrap_or(default_n);
         for (key, n) in [("grid.nx", nx), ("grid.ny", ny)] {
-            let (lo, hi) = (
+            check_count(
+                key,
+                n,
                 crate::core::grid::MIN_ELEMENTS,
                 crate::core::grid::MAX_ELEMENTS_PER_DIRECTION,
-            );
-            if !(lo..=hi).contains(&n) {
-                return Err(bad(key, format!("must be between {lo} and {hi}, got {n}")));
-            }
+            )?;
         }
         if let Some(w) = grid.window_x_m {
-            require_positive("grid.window_x_m", w)?;
+            ranges::WINDOW.check("grid.window_x_m", w)?;
         }
         if let Some(w) = grid.window_y_m {
-            require_positive("grid.window_y_m", w)?;
+            ranges::WINDOW.check("grid.window_y_m", w)?;
         }
 
         // Hertz patch of the largest load (on the flattened gap for the
         // conformal kinds): sizes the automatic window and checks a given one.
         let e_star = material.effective_modulus_pa();
         let (mut patch_x_m, mut patch_y_m) = (0.0f64, 0.0f64);
-        let loads: Vec<NormalLoad> = match &kinematics {
-            Kinematics::Transient(steps) if model == Model::Exact || model.is_cect() => {
-                steps.iter().map(|s| s.load).collect()
-            }
-            _ => vec![load],
+        let loads: Vec<(String, NormalLoad)> = match &kinematics {
+            Kinematics::Transient(steps) if model == Model::Exact || model.is_cect() => steps
+                .iter()
+                .enumerate()
+                .map(|(k, s)| {
+                    let own = match &file.transient {
+                        Some(t) => t
+                            .steps
+                            .get(k)
+                            .is_some_and(|s| s.normal_force_n.is_some() || s.approach_m.is_some()),
+                        None => false,
+                    };
+                    let key = if own {
+                        format!("transient.steps[{k}]")
+                    } else {
+                        "load".to_string()
+                    };
+                    (key, s.load)
+                })
+                .collect(),
+            _ => vec![("load".to_string(), load)],
         };
-        for l in loads {
-            let h = hertz_of(a_per_m, b_per_m, e_star, l)?;
+        for (key, l) in loads {
+            let h = check_hertz_patch(&key, l, a_per_m, b_per_m, e_star)?;
             patch_x_m = patch_x_m.max(h.semi_axis_x_m);
             patch_y_m = patch_y_m.max(h.semi_axis_y_m);
         }
@@ -1022,12 +1083,12 @@ impl Case {
         };
         let window_x_m = grid.window_x_m.unwrap_or(auto_x_m);
         let window_y_m = grid.window_y_m.unwrap_or(auto_y_m);
-        if model == Model::Exact {
-            for (key, w, s) in [
-                ("grid.window_x_m", window_x_m, patch_x_m),
-                ("grid.window_y_m", window_y_m, patch_y_m),
+        if model == Model::Exact || model.is_cect() {
+            for (key, w, s, n, n_key) in [
+                ("grid.window_x_m", window_x_m, patch_x_m, nx, "grid.nx"),
+                ("grid.window_y_m", window_y_m, patch_y_m, ny, "grid.ny"),
             ] {
-                if w < 2.0 * s {
+                if model == Model::Exact && w < 2.0 * s {
                     return Err(bad(
                         key,
                         format!(
@@ -1037,8 +1098,22 @@ impl Case {
                         ),
                     ));
                 }
+                let across = 2.0 * s / (w / n as f64);
+                if across < ranges::MIN_ELEMENTS_ACROSS_PATCH {
+                    return Err(bad(
+                        key,
+                        format!(
+                            "the Hertz contact patch ({:.4} mm) spans only {across:.2} elements of this \
+                             window ({} m over {n_key} = {n} elements); it needs at least {}: \
+                             give the window in m (not mm), make it smaller, raise {n_key} or leave the window unset",
+                            2.0 * s * 1e3,
+                            show(w),
+                            ranges::MIN_ELEMENTS_ACROSS_PATCH
+                        ),
+                    ));
+                }
             }
-        } else if !model.is_cect() && (grid.window_x_m.is_some() || grid.window_y_m.is_some()) {
+        } else if grid.window_x_m.is_some() || grid.window_y_m.is_some() {
             notes.push(format!(
                 "the {} model uses the Hertz ellipse: grid.window_* ignored",
                 model.name()
@@ -1050,29 +1125,27 @@ impl Case {
             let mut normal = NormalSettings::default();
             let mut tangential = TangentialSettings::default();
             if let Some(t) = s.normal_tolerance {
-                require_positive("solver.normal_tolerance", t)?;
-                normal.tolerance = t;
+                normal.tolerance = ranges::TOLERANCE.check("solver.normal_tolerance", t)?;
             }
             if let Some(t) = s.tangential_tolerance {
-                require_positive("solver.tangential_tolerance", t)?;
-                tangential.tolerance = t;
+                tangential.tolerance = ranges::TOLERANCE.check("solver.tangential_tolerance", t)?;
             }
             if let Some(m) = s.max_iterations {
-                if m == 0 {
-                    return Err(bad("solver.max_iterations", "must be at least 1"));
-                }
+                let m = check_count("solver.max_iterations", m, 1, ranges::MAX_ITERATIONS)?;
                 normal.max_iterations = m;
                 tangential.max_iterations = m;
             }
             if let Some(t) = s.coupling_tolerance {
-                require_positive("solver.coupling_tolerance", t)?;
-                settings.coupling_tolerance = t;
+                settings.coupling_tolerance =
+                    ranges::TOLERANCE.check("solver.coupling_tolerance", t)?;
             }
             if let Some(m) = s.coupling_max_iterations {
-                if m == 0 {
-                    return Err(bad("solver.coupling_max_iterations", "must be at least 1"));
-                }
-                settings.coupling_max_iterations = m;
+                settings.coupling_max_iterations = check_count(
+                    "solver.coupling_max_iterations",
+                    m,
+                    1,
+                    ranges::MAX_COUPLING_ITERATIONS,
+                )?;
             }
             settings.normal = normal;
             settings.tangential = tangential;
@@ -1199,6 +1272,46 @@ impl Case {
     }
 }
 
+/// Rejects a load whose Hertz patch on the case's geometry and material
+/// is outside [`ranges::HERTZ_SEMI_AXIS`] (a unit mistake in one of them);
+/// the error names the load `key` (`load`, `transient.steps[k]`) and quotes
+/// the values it depends on.
+fn check_hertz_patch(
+    key: &str,
+    load: NormalLoad,
+    a_per_m: f64,
+    b_per_m: f64,
+    e_star: f64,
+) -> Result<HertzSolution, CaseError> {
+    let r = ranges::HERTZ_SEMI_AXIS;
+    let h = hertz_of(a_per_m, b_per_m, e_star, load);
+    let axes = match &h {
+        Ok(h) if r.contains(h.semi_axis_x_m) && r.contains(h.semi_axis_y_m) => return Ok(h.clone()),
+        Ok(h) => format!(
+            "has semi-axes {} x {} m",
+            show(h.semi_axis_x_m),
+            show(h.semi_axis_y_m)
+        ),
+        Err(_) => "has no finite semi-axes".to_string(),
+    };
+    let (field, value) = match load {
+        NormalLoad::NormalForce(f) => ("normal_force_n", format!("{} N", show(f))),
+        NormalLoad::Approach(d) => ("approach_m", format!("{} m", show(d))),
+    };
+    Err(bad(
+        format!("{key}.{field}"),
+        format!(
+            "the Hertz patch of {value} on this geometry (A = {} 1/m, B = {} 1/m) and material \
+             (E* = {} Pa) {axes}, outside {}: check the units \
+             (forces in N, lengths in m, curvatures in 1/m, moduli in Pa)",
+            show(a_per_m),
+            show(b_per_m),
+            show(e_star),
+            r.describe()
+        ),
+    ))
+}
+
 /// Rejects a model that cannot run on the geometry; the error names `model`.
 fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CaseError> {
     match (model, geometry) {
@@ -1225,6 +1338,15 @@ fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), Cas
         )),
         _ => Ok(()),
     }
+}
+
+/// Checks a transient step's shifts and rotation against their ranges
+/// (its load is checked where it is read); `key` names the step.
+pub fn check_shift_step(key: &str, s: &ShiftStep) -> Result<(), CaseError> {
+    ranges::SHIFT.check(&format!("{key}.shift_x_m"), s.shift_x_m)?;
+    ranges::SHIFT.check(&format!("{key}.shift_y_m"), s.shift_y_m)?;
+    ranges::ROTATION.check(&format!("{key}.rotation_rad"), s.rotation_rad)?;
+    Ok(())
 }
 
 /// The steps of a static compression (conformal models): every shift zero,
@@ -1264,7 +1386,7 @@ fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftSt
                 "missing: every static compression step gives its normal force",
             )
         })?;
-        require_positive(&format!("{key}.normal_force_n"), f)?;
+        ranges::NORMAL_FORCE.check(&format!("{key}.normal_force_n"), f)?;
         if f <= previous {
             return Err(bad(
                 format!("{key}.normal_force_n"),
@@ -1459,5 +1581,145 @@ normal_force_n = 80000.0
         let tilted: Vec<[f64; 2]> = wheel.iter().map(|p| [p[0], p[1] + 0.1 * p[0]]).collect();
         assert!(err(&rail, &tilted).contains("`geometry.wheel_points_m`"));
         assert!(err(&wheel, &rail).contains("do not touch"));
+    }
+
+    const ROLLING: &str = r#"
+[material]
+shear_modulus_pa = 81.0e9
+poisson_ratio = 0.30
+[friction]
+coefficient = 0.3
+[geometry]
+kind = "quadratic"
+a_per_m = 2.6
+b_per_m = 0.92
+[load]
+normal_force_n = 10000.0
+[rolling]
+creepage_long = 0.001
+[grid]
+nx = 16
+ny = 16
+"#;
+
+    #[test]
+    fn every_key_has_a_range_that_the_message_states() {
+        for (from, to, key, says) in [
+            (
+                "creepage_long = 0.001",
+                "creepage_long = 1e300",
+                "rolling.creepage_long",
+                "[-1, 1], got 1e300",
+            ),
+            (
+                "coefficient = 0.3",
+                "coefficient = 1e300",
+                "friction.coefficient",
+                "[0, 5], got 1e300",
+            ),
+            (
+                "normal_force_n = 10000.0",
+                "normal_force_n = 1e300",
+                "load.normal_force_n",
+                "(0, 1e8] N, got 1e300",
+            ),
+            (
+                "a_per_m = 2.6",
+                "a_per_m = 1e300",
+                "geometry.a_per_m",
+                "[0.001, 1e5] 1/m",
+            ),
+            (
+                "ny = 16",
+                "ny = 16\nwindow_x_m = 1e300",
+                "grid.window_x_m",
+                "(0, 1] m, got 1e300",
+            ),
+            (
+                "ny = 16",
+                "ny = 16\n[solver]\nmax_iterations = 4294967295",
+                "solver.max_iterations",
+                "[1, 10000], got 4294967295",
+            ),
+            (
+                "ny = 16",
+                "ny = 16\n[solver]\nnormal_tolerance = 5e-324",
+                "solver.normal_tolerance",
+                "[1e-14, 0.1], got 5e-324",
+            ),
+            (
+                "ny = 16",
+                "ny = 16\n[solver]\ncoupling_tolerance = 0.5",
+                "solver.coupling_tolerance",
+                "got 0.5",
+            ),
+            (
+                "ny = 16",
+                "ny = 16\n[solver]\ncoupling_max_iterations = 100000",
+                "solver.coupling_max_iterations",
+                "[1, 1000]",
+            ),
+        ] {
+            let m = bad_key(&ROLLING.replace(from, to));
+            assert!(
+                m.contains(&format!("`{key}`")) && m.contains(says),
+                "{key}: {m}"
+            );
+            assert!(m.len() < 300, "{m}");
+        }
+    }
+
+    #[test]
+    fn likely_unit_mistakes_are_named() {
+        // A modulus in GPa.
+        let m = bad_key(&ROLLING.replace("81.0e9", "81"));
+        assert!(
+            m.contains("`material.shear_modulus_pa`") && m.contains("did you mean 81e9"),
+            "{m}"
+        );
+        // A rolling radius in mm.
+        let m = bad_key(&CASE_1.replace(
+            "wheel_rolling_radius_m = 0.5",
+            "wheel_rolling_radius_m = 460",
+        ));
+        assert!(
+            m.contains("`geometry.wheel_rolling_radius_m`") && m.contains("did you mean 0.46 m"),
+            "{m}"
+        );
+        // A window in mm: the patch spans less than one element.
+        let m = bad_key(&ROLLING.replace("ny = 16", "ny = 16\nwindow_x_m = 0.9"));
+        assert!(
+            m.contains("`grid.window_x_m`") && m.contains("grid.nx = 16"),
+            "{m}"
+        );
+        // A patch of metres: a force in the wrong unit on the geometry.
+        let m = bad_key(
+            &ROLLING
+                .replace("a_per_m = 2.6", "a_per_m = 1e-3")
+                .replace("10000.0", "1e8"),
+        );
+        assert!(
+            m.contains("`load.normal_force_n`") && m.contains("check the units"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn static_and_kinetic_pairs_solve_in_steady_rolling() {
+        let text = ROLLING.replace(
+            "coefficient = 0.3",
+            "static_coefficient = 0.35\nkinetic_coefficient = 0.0",
+        );
+        let case = Case::from_toml(&text).unwrap();
+        let s = crate::core::solve::solve(&case.problem().unwrap()).unwrap();
+        let t = &s[0].totals;
+        for v in [t.fx_n, t.fy_n, t.mz_nm, t.tgamma_n, t.frictional_work_j] {
+            assert!(v.is_finite(), "{t:?}");
+        }
+        // The adhesion zone carries traction, the slip zone none.
+        assert!(
+            t.fx_n.abs() > 0.0 && t.fx_n.abs() < 0.35 * t.normal_force_n,
+            "{t:?}"
+        );
     }
 }

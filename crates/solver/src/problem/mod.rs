@@ -52,8 +52,13 @@ impl From<ContactError> for CaseError {
             ContactError::Cancelled => CaseError::Cancelled,
             // Every other core error is about the input: a key out of
             // range, a grid too small for the patch, no contact, a
-            // rejected reference input.
-            e => CaseError::BadInput(e.to_string()),
+            // rejected reference input. The message names the key (as
+            // `invalid input `key`: ...`) wherever the error has one.
+            ContactError::InvalidInput { .. } => CaseError::BadInput(e.to_string()),
+            e => match e.key() {
+                Some(key) => CaseError::BadInput(format!("invalid input `{key}`: {e}")),
+                None => CaseError::BadInput(e.to_string()),
+            },
         }
     }
 }

@@ -22,16 +22,22 @@ fn hertz_load(load: NormalLoad) -> HertzLoad {
     }
 }
 
-/// Hertz solution of h = A x² + B y² under `load`; errors name the model.
+/// Hertz solution of h = A x² + B y² under `load`; errors name the load's
+/// key (`load.normal_force_n`, `load.approach_m`) and the model.
 pub fn hertz_of(
     a_per_m: f64,
     b_per_m: f64,
     e_star_pa: f64,
     load: NormalLoad,
 ) -> Result<HertzSolution, CaseError> {
-    // Hertz rejects only inputs: name the model in the message.
+    // Hertz rejects only inputs, of which the load is the one that varies
+    // between solves of a case (session steps, Jacobian columns).
+    let key = match load {
+        NormalLoad::NormalForce(_) => "load.normal_force_n",
+        NormalLoad::Approach(_) => "load.approach_m",
+    };
     hertz(a_per_m, b_per_m, e_star_pa, hertz_load(load))
-        .map_err(|e| CaseError::BadInput(format!("Hertz model: {e}")))
+        .map_err(|e| CaseError::BadInput(format!("invalid input `{key}`: Hertz model: {e}")))
 }
 
 /// The totals of a Hertz solution; tangential quantities are 0.

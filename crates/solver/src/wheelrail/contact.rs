@@ -128,6 +128,9 @@ pub struct WheelRailSettings {
     /// Model `auto`: contact-angle variation over a loaded patch above which
     /// it is solved again with the conformal method \[rad\].
     pub auto_conformal_angle_rad: f64,
+    /// Largest nx * ns of a patch grid: a patch that needs more elements
+    /// is refused (naming `grid.element_size_m`) before it is solved.
+    pub max_grid_elements: usize,
 }
 
 impl Default for WheelRailSettings {
@@ -140,6 +143,7 @@ impl Default for WheelRailSettings {
             load_tolerance: 1e-6,
             max_load_iterations: 40,
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
+            max_grid_elements: usize::MAX,
         }
     }
 }
@@ -1149,6 +1153,20 @@ fn patch_grid(
     };
     let nx = ladder(((xhi - xlo) / e).ceil() as usize).ok_or_else(too_big)?;
     let ns = ladder(((shi - slo) / e).ceil() as usize).ok_or_else(too_big)?;
+    let limit = input.settings.max_grid_elements;
+    if nx * ns > limit {
+        return Err(WheelRailError::invalid(
+            "grid.element_size_m",
+            format!(
+                "{} m elements give a patch grid of {nx} x {ns} = {} elements for a potential \
+                 contact area of {:.1} x {:.1} mm, more than the limit of {limit}; use larger elements",
+                e,
+                nx * ns,
+                (xhi - xlo) * 1e3,
+                (shi - slo) * 1e3,
+            ),
+        ));
+    }
     let x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
     let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
     Ok(Grid::new(nx, ns, e, e, x0, s0)?)

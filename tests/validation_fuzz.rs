@@ -1,0 +1,814 @@
+//! Fuzzing of the request validation: every numeric field of SolvePatch
+//! and SolveWheelRail requests set, one at a time, to extreme values (0,
+//! -0, negative, tiny, 5e-324, 1e300, +-inf, NaN, the typical value scaled
+//! by 1e+-6) against the real server in-process. Each answer must be OK
+//! with every number finite, or INVALID_ARGUMENT naming the mutated field
+//! (or one of the documented dependent fields below). Then the profile
+//! readers on mutations of the real profiles in `../shared/profiles`: Ok
+//! or a ProfileError, never a panic. Seeded and bounded (a few hundred
+//! requests on 16 x 16 grids); the counts are printed at the end.
+
+use std::collections::BTreeMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use railcontact::service::config::ServeConfig;
+use railcontact::service::convert::check_finite;
+use railcontact::service::pb;
+use railcontact::service::pb::contact_service_client::ContactServiceClient;
+use railcontact::service::server::start;
+use railcontact::service::wheelrail::check_finite as check_wheelrail_finite;
+use railcontact::wheelrail::profile::{parse_profile, LoadOptions};
+use tonic::Code;
+
+/// The extreme values, relative to a field's typical value `t`.
+fn extremes(t: f64) -> Vec<f64> {
+    vec![
+        0.0,
+        -0.0,
+        -t,
+        1e-300,
+        5e-324,
+        1e300,
+        -1e300,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        t * 1e6,
+        t * 1e-6,
+    ]
+}
+
+/// The field a status or item error names: `invalid `FIELD`: ...`.
+fn field_of(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("invalid `")
+        .and_then(|r| r.split_once('`'))
+        .map(|(f, _)| f)
+}
+
+/// Whether an error on `field` is acceptable for a mutation of `mutated`:
+/// the field itself, or a documented dependent field. The Hertz patch of
+/// the load depends on the geometry and the material (`load.*` names it,
+/// see `problem::case::ranges::HERTZ_SEMI_AXIS`); a window's element count
+/// on the patch (`grid.window_*`); a wheel/rail placement error names the
+/// lateral shift (`position.lateral_m`) whatever pose it comes from; a
+/// wheel/rail load whose patch needs too many elements names
+/// `element_size_m`.
+fn acceptable(mutated: &str, field: &str) -> bool {
+    if field == mutated {
+        return true;
+    }
+    let hertz_inputs = [
+        "case.geometry.",
+        "case.material.",
+        "case.load.",
+        "case.grid.n",
+    ];
+    if hertz_inputs.iter().any(|p| mutated.starts_with(p))
+        && (field.starts_with("case.load.") || field.starts_with("case.grid.window_"))
+    {
+        return true;
+    }
+    // The two lateral radii must leave the profiles touching in one point.
+    let radii = [
+        "case.geometry.rail_lateral_radius_m",
+        "case.geometry.wheel_lateral_radius_m",
+    ];
+    if radii.contains(&mutated) && radii.contains(&field) {
+        return true;
+    }
+    // A load's patch needs a grid of the query's element size within the
+    // grid limits: `element_size_m` names the fix (larger elements).
+    if mutated.starts_with("load.") && field == "element_size_m" {
+        return true;
+    }
+    mutated.starts_with("position.") && field == "position.lateral_m"
+}
+
+#[derive(Default)]
+struct Outcomes {
+    counts: BTreeMap<&'static str, usize>,
+    wrong: Vec<String>,
+}
+
+impl Outcomes {
+    fn record<T>(
+        &mut self,
+        mutated: &str,
+        value: String,
+        r: Result<T, tonic::Status>,
+        finite: impl Fn(&T) -> Result<(), String>,
+    ) {
+        match r {
+            Ok(v) => {
+                *self.counts.entry("OK").or_default() += 1;
+                if let Err(e) = finite(&v) {
+                    self.wrong
+                        .push(format!("{mutated} = {value}: OK with a non-finite {e}"));
+                }
+            }
+            Err(s) if s.code() == Code::InvalidArgument => {
+                *self.counts.entry("INVALID_ARGUMENT").or_default() += 1;
+                let m = s.message();
+                let field = field_of(m).unwrap_or("");
+                if !acceptable(mutated, field) || m.len() > 600 {
+                    self.wrong.push(format!(
+                        "{mutated} = {value}: INVALID_ARGUMENT names `{field}`: {m}"
+                    ));
+                }
+            }
+            Err(s) => {
+                *self.counts.entry("other").or_default() += 1;
+                self.wrong.push(format!(
+                    "{mutated} = {value}: {:?} {}",
+                    s.code(),
+                    s.message()
+                ));
+            }
+        }
+    }
+}
+
+type Mutator = Box<dyn Fn(&mut pb::PatchCase, f64)>;
+
+fn steel() -> pb::MaterialSection {
+    pb::MaterialSection {
+        shear_modulus_pa: Some(81.0e9),
+        poisson_ratio: Some(0.30),
+        ..Default::default()
+    }
+}
+
+/// Exact steady rolling on an ellipse, 16 x 16.
+fn rolling(model: pb::Model) -> pb::PatchCase {
+    pb::PatchCase {
+        model: model as i32,
+        material: Some(steel()),
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Quadratic as i32,
+            a_per_m: Some(2.6),
+            b_per_m: Some(0.92),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceN(1.0e4)),
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            creepage_long: 1e-3,
+            creepage_lat: 5e-4,
+            spin_per_m: 0.1,
+        })),
+        grid: Some(pb::GridSection {
+            nx: Some(16),
+            ny: Some(16),
+            ..Default::default()
+        }),
+        solver: None,
+    }
+}
+
+/// Conformal case 1 of the paper (cect), frictionless, 16 x 16.
+fn conformal() -> pb::PatchCase {
+    let mut c = rolling(pb::Model::Cect);
+    c.friction = None;
+    c.kinematics = None;
+    let g = geometry(&mut c);
+    *g = pb::GeometrySection {
+        kind: pb::GeometryKind::ConformalCircular as i32,
+        ..Default::default()
+    };
+    g.rail_lateral_radius_m = Some(0.010);
+    g.wheel_lateral_radius_m = Some(-0.0101);
+    g.wheel_rolling_radius_m = Some(0.5);
+    load(&mut c, pb::load_section::Load::NormalForceN(8.0e4));
+    c
+}
+
+/// Exact transient: two shift steps, 16 x 16.
+fn transient() -> pb::PatchCase {
+    let step = pb::ShiftStep {
+        shift_x_m: Some(1e-5),
+        ..Default::default()
+    };
+    pb::PatchCase {
+        kinematics: Some(pb::patch_case::Kinematics::Transient(
+            pb::TransientSection {
+                steps: vec![step, step],
+            },
+        )),
+        ..rolling(pb::Model::Exact)
+    }
+}
+
+fn geometry(c: &mut pb::PatchCase) -> &mut pb::GeometrySection {
+    c.geometry.get_or_insert_with(Default::default)
+}
+
+fn material(c: &mut pb::PatchCase) -> &mut pb::MaterialSection {
+    c.material.get_or_insert_with(Default::default)
+}
+
+fn creepages(c: &mut pb::PatchCase) -> &mut pb::Creepages {
+    match c.kinematics.as_mut() {
+        Some(pb::patch_case::Kinematics::Rolling(r)) => r,
+        _ => unreachable!("a rolling base case"),
+    }
+}
+
+fn steps(c: &mut pb::PatchCase) -> &mut Vec<pb::ShiftStep> {
+    match c.kinematics.as_mut() {
+        Some(pb::patch_case::Kinematics::Transient(t)) => &mut t.steps,
+        _ => unreachable!("a transient base case"),
+    }
+}
+
+fn grid(c: &mut pb::PatchCase) -> &mut pb::GridSection {
+    c.grid.get_or_insert_with(Default::default)
+}
+
+fn solver(c: &mut pb::PatchCase) -> &mut pb::SolverSection {
+    c.solver.get_or_insert_with(Default::default)
+}
+
+fn load(c: &mut pb::PatchCase, l: pb::load_section::Load) {
+    c.load = Some(pb::LoadSection { load: Some(l) });
+}
+
+/// The numeric fields of the base cases: (base, path, typical value,
+/// setter).
+fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
+    use pb::load_section::Load;
+    let exact = || rolling(pb::Model::Exact);
+    let m = |f: fn(&mut pb::PatchCase, f64)| -> Mutator { Box::new(f) };
+    vec![
+        (
+            exact(),
+            "case.material.shear_modulus_pa",
+            81e9,
+            m(|c, v| material(c).shear_modulus_pa = Some(v)),
+        ),
+        (
+            exact(),
+            "case.material.poisson_ratio",
+            0.3,
+            m(|c, v| material(c).poisson_ratio = Some(v)),
+        ),
+        (
+            exact(),
+            "case.friction.coefficient",
+            0.3,
+            m(|c, v| c.friction.as_mut().unwrap().coefficient = Some(v)),
+        ),
+        (
+            exact(),
+            "case.friction.kinetic_coefficient",
+            0.25,
+            m(|c, v| {
+                c.friction = Some(pb::FrictionSection {
+                    static_coefficient: Some(0.35),
+                    kinetic_coefficient: Some(v),
+                    ..Default::default()
+                })
+            }),
+        ),
+        (
+            exact(),
+            "case.friction.static_coefficient",
+            0.35,
+            m(|c, v| {
+                c.friction = Some(pb::FrictionSection {
+                    static_coefficient: Some(v),
+                    kinetic_coefficient: Some(0.0),
+                    ..Default::default()
+                })
+            }),
+        ),
+        (
+            exact(),
+            "case.geometry.a_per_m",
+            2.6,
+            m(|c, v| geometry(c).a_per_m = Some(v)),
+        ),
+        (
+            exact(),
+            "case.geometry.b_per_m",
+            0.92,
+            m(|c, v| geometry(c).b_per_m = Some(v)),
+        ),
+        (
+            exact(),
+            "case.load.normal_force_n",
+            1e4,
+            m(|c, v| load(c, Load::NormalForceN(v))),
+        ),
+        (
+            exact(),
+            "case.load.approach_m",
+            2e-5,
+            m(|c, v| load(c, Load::ApproachM(v))),
+        ),
+        (
+            exact(),
+            "case.rolling.creepage_long",
+            1e-3,
+            m(|c, v| creepages(c).creepage_long = v),
+        ),
+        (
+            exact(),
+            "case.rolling.creepage_lat",
+            5e-4,
+            m(|c, v| creepages(c).creepage_lat = v),
+        ),
+        (
+            exact(),
+            "case.rolling.spin_per_m",
+            0.1,
+            m(|c, v| creepages(c).spin_per_m = v),
+        ),
+        (
+            exact(),
+            "case.grid.window_x_m",
+            6e-3,
+            m(|c, v| grid(c).window_x_m = Some(v)),
+        ),
+        (
+            exact(),
+            "case.grid.window_y_m",
+            1e-2,
+            m(|c, v| grid(c).window_y_m = Some(v)),
+        ),
+        (
+            exact(),
+            "case.solver.normal_tolerance",
+            1e-10,
+            m(|c, v| solver(c).normal_tolerance = Some(v)),
+        ),
+        (
+            exact(),
+            "case.solver.tangential_tolerance",
+            1e-7,
+            m(|c, v| solver(c).tangential_tolerance = Some(v)),
+        ),
+        (
+            exact(),
+            "case.solver.coupling_tolerance",
+            1e-8,
+            m(|c, v| solver(c).coupling_tolerance = Some(v)),
+        ),
+        (
+            rolling(pb::Model::Fastsim),
+            "case.rolling.creepage_long",
+            1e-3,
+            m(|c, v| creepages(c).creepage_long = v),
+        ),
+        (
+            rolling(pb::Model::Fastsim),
+            "case.friction.coefficient",
+            0.3,
+            m(|c, v| c.friction.as_mut().unwrap().coefficient = Some(v)),
+        ),
+        (
+            rolling(pb::Model::Fastsim),
+            "case.load.normal_force_n",
+            1e4,
+            m(|c, v| load(c, Load::NormalForceN(v))),
+        ),
+        (
+            rolling(pb::Model::Hertz),
+            "case.geometry.b_per_m",
+            0.92,
+            m(|c, v| geometry(c).b_per_m = Some(v)),
+        ),
+        (
+            rolling(pb::Model::Hertz),
+            "case.load.approach_m",
+            2e-5,
+            m(|c, v| load(c, Load::ApproachM(v))),
+        ),
+        (
+            conformal(),
+            "case.geometry.rail_lateral_radius_m",
+            0.010,
+            m(|c, v| geometry(c).rail_lateral_radius_m = Some(v)),
+        ),
+        (
+            conformal(),
+            "case.geometry.wheel_lateral_radius_m",
+            -0.0101,
+            m(|c, v| geometry(c).wheel_lateral_radius_m = Some(v)),
+        ),
+        (
+            conformal(),
+            "case.geometry.wheel_rolling_radius_m",
+            0.5,
+            m(|c, v| geometry(c).wheel_rolling_radius_m = Some(v)),
+        ),
+        (
+            conformal(),
+            "case.load.normal_force_n",
+            8e4,
+            m(|c, v| load(c, Load::NormalForceN(v))),
+        ),
+        (
+            transient(),
+            "case.transient.steps[1].shift_x_m",
+            1e-5,
+            m(|c, v| steps(c)[1].shift_x_m = Some(v)),
+        ),
+        (
+            transient(),
+            "case.transient.steps[1].shift_y_m",
+            1e-5,
+            m(|c, v| steps(c)[1].shift_y_m = v),
+        ),
+        (
+            transient(),
+            "case.transient.steps[1].rotation_rad",
+            1e-3,
+            m(|c, v| steps(c)[1].rotation_rad = v),
+        ),
+        (
+            transient(),
+            "case.transient.steps[0].normal_force_n",
+            1e4,
+            m(|c, v| steps(c)[0].normal_force_n = Some(v)),
+        ),
+        (
+            transient(),
+            "case.transient.steps[1].approach_m",
+            2e-5,
+            m(|c, v| steps(c)[1].approach_m = Some(v)),
+        ),
+    ]
+}
+
+/// The integer fields: (path, setter) over a list of counts.
+fn patch_count_fields() -> Vec<(&'static str, fn(&mut pb::PatchCase, u32))> {
+    vec![
+        ("case.grid.nx", |c, n| grid(c).nx = Some(n)),
+        ("case.grid.ny", |c, n| grid(c).ny = Some(n)),
+        ("case.solver.max_iterations", |c, n| {
+            solver(c).max_iterations = Some(n)
+        }),
+        ("case.solver.coupling_max_iterations", |c, n| {
+            solver(c).coupling_max_iterations = Some(n)
+        }),
+    ]
+}
+
+type WheelMutator = fn(&mut pb::SolveWheelRailRequest, f64);
+
+fn wheel_query(model: pb::WheelRailModel) -> pb::SolveWheelRailRequest {
+    pb::SolveWheelRailRequest {
+        pair_id: "mbench_s1002_uic60".into(),
+        model: model as i32,
+        position: Some(pb::WheelsetPosition {
+            lateral_m: 3e-3,
+            ..Default::default()
+        }),
+        velocity: Some(pb::WheelsetVelocity {
+            forward_m_per_s: 30.0,
+            ..Default::default()
+        }),
+        load: Some(pb::WheelLoad {
+            load: Some(pb::wheel_load::Load::VerticalForceN(1e5)),
+        }),
+        ..Default::default()
+    }
+}
+
+fn position(r: &mut pb::SolveWheelRailRequest) -> &mut pb::WheelsetPosition {
+    r.position.get_or_insert_with(Default::default)
+}
+
+fn velocity(r: &mut pb::SolveWheelRailRequest) -> &mut pb::WheelsetVelocity {
+    r.velocity.get_or_insert_with(Default::default)
+}
+
+fn wheel_load(r: &mut pb::SolveWheelRailRequest, l: pb::wheel_load::Load) {
+    r.load = Some(pb::WheelLoad { load: Some(l) });
+}
+
+fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
+    use pb::wheel_load::Load;
+    vec![
+        ("position.lateral_m", 3e-3, |r, v| position(r).lateral_m = v),
+        ("position.yaw_rad", 1e-3, |r, v| position(r).yaw_rad = v),
+        ("position.roll_rad", 1e-3, |r, v| {
+            position(r).roll_rad = Some(v)
+        }),
+        ("velocity.forward_m_per_s", 30.0, |r, v| {
+            velocity(r).forward_m_per_s = v
+        }),
+        ("velocity.lateral_m_per_s", 0.1, |r, v| {
+            velocity(r).lateral_m_per_s = v
+        }),
+        ("velocity.vertical_m_per_s", 0.1, |r, v| {
+            velocity(r).vertical_m_per_s = v
+        }),
+        ("velocity.roll_rad_per_s", 0.1, |r, v| {
+            velocity(r).roll_rad_per_s = v
+        }),
+        ("velocity.yaw_rad_per_s", 0.1, |r, v| {
+            velocity(r).yaw_rad_per_s = v
+        }),
+        ("velocity.pitch_rad_per_s", -65.0, |r, v| {
+            velocity(r).pitch_rad_per_s = Some(v)
+        }),
+        ("load.vertical_force_n", 1e5, |r, v| {
+            wheel_load(r, Load::VerticalForceN(v))
+        }),
+        ("load.approach_m", 1e-4, |r, v| {
+            wheel_load(r, Load::ApproachM(v))
+        }),
+        ("load.center_z_m", -0.46, |r, v| {
+            wheel_load(r, Load::CenterZM(v))
+        }),
+        ("element_size_m", 2e-4, |r, v| r.element_size_m = Some(v)),
+        ("friction.coefficient", 0.3, |r, v| {
+            r.friction = Some(pb::FrictionSection {
+                coefficient: Some(v),
+                ..Default::default()
+            })
+        }),
+    ]
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hostile_values_are_answered_or_refused_by_name() {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        data_dir: Default::default(),
+        ..ServeConfig::default()
+    })
+    .await
+    .expect("server starts");
+    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    let mut out = Outcomes::default();
+    let patch_finite = |r: &tonic::Response<pb::SolvePatchResponse>| {
+        let r = r.get_ref().result.as_ref().ok_or("no result")?;
+        check_finite(r).map_err(|e| e.to_string())
+    };
+    for (base, path, typical, set) in patch_fields() {
+        for v in extremes(typical) {
+            let mut case = base.clone();
+            set(&mut case, v);
+            let r = client
+                .solve_patch(pb::SolvePatchRequest {
+                    case: Some(case),
+                    ..Default::default()
+                })
+                .await;
+            out.record(path, format!("{v:e}"), r, patch_finite);
+        }
+    }
+    for (path, set) in patch_count_fields() {
+        for n in [0, 1, 3, 4, 2049, 10_001, u32::MAX] {
+            let mut case = rolling(pb::Model::Exact);
+            set(&mut case, n);
+            let r = client
+                .solve_patch(pb::SolvePatchRequest {
+                    case: Some(case),
+                    ..Default::default()
+                })
+                .await;
+            out.record(path, n.to_string(), r, patch_finite);
+        }
+    }
+    // A batch: the item's path is under `items[1].`.
+    let mut bad = rolling(pb::Model::Exact);
+    geometry(&mut bad).a_per_m = Some(1e300);
+    let items = vec![
+        pb::SolvePatchRequest {
+            case: Some(rolling(pb::Model::Fastsim)),
+            ..Default::default()
+        },
+        pb::SolvePatchRequest {
+            case: Some(bad),
+            ..Default::default()
+        },
+    ];
+    let batch = client
+        .solve_patch_batch(pb::SolvePatchBatchRequest { items })
+        .await
+        .expect("batch answered")
+        .into_inner();
+    match &batch.items[1].outcome {
+        Some(pb::batch_item_result::Outcome::Error(e)) => {
+            assert_eq!(e.field, "items[1].case.geometry.a_per_m", "{e:?}");
+            assert_eq!(e.code, Code::InvalidArgument as i32);
+        }
+        other => panic!("{other:?}"),
+    }
+
+    let wheel_finite = |r: &tonic::Response<pb::SolveWheelRailResponse>| {
+        let r = r.get_ref().result.as_ref().ok_or("no result")?;
+        check_wheelrail_finite(r).map_err(|e| e.to_string())
+    };
+    for (path, typical, set) in wheel_fields() {
+        for v in extremes(typical) {
+            let mut req = wheel_query(pb::WheelRailModel::HertzFastsim);
+            set(&mut req, v);
+            let r = client.solve_wheel_rail(req).await;
+            out.record(path, format!("{v:e}"), r, wheel_finite);
+        }
+    }
+    // The exact model at the edges of the ranges that set its grids.
+    for (path, v, set) in [
+        ("element_size_m", 6e-5, wheel_fields()[12].2),
+        ("load.center_z_m", 0.0, wheel_fields()[11].2),
+        ("load.center_z_m", -1.5, wheel_fields()[11].2),
+        ("load.approach_m", 2e-3, wheel_fields()[10].2),
+        ("load.vertical_force_n", 1e6, wheel_fields()[9].2),
+        ("position.lateral_m", 0.02, wheel_fields()[0].2),
+        ("position.lateral_m", -0.02, wheel_fields()[0].2),
+        ("velocity.forward_m_per_s", 150.0, wheel_fields()[3].2),
+    ] {
+        let mut req = wheel_query(pb::WheelRailModel::Exact);
+        set(&mut req, v);
+        let r = client.solve_wheel_rail(req).await;
+        out.record(path, format!("{v:e}"), r, wheel_finite);
+    }
+    let total: usize = out.counts.values().sum();
+    eprintln!(
+        "validation fuzz: {total} requests, outcomes {:?}",
+        out.counts
+    );
+    server.shutdown().await;
+    assert!(
+        out.wrong.is_empty(),
+        "{} of {total} answers are wrong:\n{}",
+        out.wrong.len(),
+        out.wrong.join("\n")
+    );
+}
+
+/// A seeded xorshift generator (no dependency, the same cases every run).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// One mutation of a profile's text.
+fn mutate(text: &str, rng: &mut Rng) -> String {
+    let mut s = text.to_string();
+    let bytes = s.len();
+    match rng.below(7) {
+        // A digit changed.
+        0 => {
+            let digits: Vec<usize> = s
+                .char_indices()
+                .filter(|(_, c)| c.is_ascii_digit())
+                .map(|(i, _)| i)
+                .collect();
+            if !digits.is_empty() {
+                let i = digits[rng.below(digits.len())];
+                let d = (b'0' + rng.below(10) as u8) as char;
+                s.replace_range(i..i + 1, &d.to_string());
+            }
+        }
+        // A number replaced by a huge, tiny or non-finite one.
+        1 | 2 => {
+            let huge = [
+                "1e300", "-1e300", "5e-324", "nan", "inf", "-inf", "1e308", "0",
+            ];
+            let word = huge[rng.below(huge.len())];
+            let starts: Vec<usize> = s
+                .char_indices()
+                .filter(|(i, c)| {
+                    c.is_ascii_digit() && (*i == 0 || !s.as_bytes()[i - 1].is_ascii_alphanumeric())
+                })
+                .map(|(i, _)| i)
+                .collect();
+            if !starts.is_empty() {
+                let i = starts[rng.below(starts.len())];
+                let end = s[i..]
+                    .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+                    .map_or(s.len(), |k| i + k);
+                s.replace_range(i..end, word);
+            }
+        }
+        // Truncated at a character boundary.
+        3 => {
+            let mut cut = rng.below(bytes);
+            while !s.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            s.truncate(cut);
+        }
+        // A very long line inserted.
+        4 => {
+            let mut at = rng.below(bytes);
+            while !s.is_char_boundary(at) {
+                at -= 1;
+            }
+            s.insert_str(at, &format!("\n{}\n", "9".repeat(100_000)));
+        }
+        // A line deleted.
+        5 => {
+            let lines: Vec<&str> = s.lines().collect();
+            let k = rng.below(lines.len());
+            s = lines
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| *i != k)
+                .map(|(_, l)| *l)
+                .collect::<Vec<_>>()
+                .join("\n");
+        }
+        // Lines swapped (non-monotonic points).
+        _ => {
+            let mut lines: Vec<&str> = s.lines().collect();
+            let (a, b) = (rng.below(lines.len()), rng.below(lines.len()));
+            lines.swap(a, b);
+            s = lines.join("\n");
+        }
+    }
+    s
+}
+
+#[test]
+fn mutated_profiles_read_or_fail_without_panicking() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles");
+    let files = [
+        "MBench_S1002_v3.prw",
+        "MBench_UIC60_v3.prr",
+        "avg_HR.BAN",
+        "avg_wheel.whl",
+    ];
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut ok, mut refused, mut panicked) = (0usize, 0usize, Vec::new());
+    let quiet = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    for name in files {
+        let Ok(text) = std::fs::read_to_string(dir.join(name)) else {
+            continue;
+        };
+        for k in 0..120 {
+            let mutated = mutate(&text, &mut rng);
+            let r = catch_unwind(AssertUnwindSafe(|| {
+                parse_profile(&mutated, name, &LoadOptions::default()).is_ok()
+            }));
+            match r {
+                Ok(true) => ok += 1,
+                Ok(false) => refused += 1,
+                Err(_) => panicked.push(format!("{name} mutation {k}")),
+            }
+        }
+    }
+    std::panic::set_hook(quiet);
+    eprintln!(
+        "profile reader fuzz: {} cases, {ok} read, {refused} ProfileError, {} panics",
+        ok + refused + panicked.len(),
+        panicked.len()
+    );
+    assert!(ok + refused > 0, "no profile found in {}", dir.display());
+    assert!(panicked.is_empty(), "the readers panicked on: {panicked:?}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn wheel_rail_patch_grids_obey_the_grid_limit() {
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        data_dir: Default::default(),
+        max_grid_elements: 160 * 160,
+        ..ServeConfig::default()
+    })
+    .await
+    .expect("server starts");
+    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    let mut req = wheel_query(pb::WheelRailModel::Exact);
+    req.element_size_m = Some(6e-5);
+    let e = client.solve_wheel_rail(req.clone()).await.unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    assert_eq!(field_of(e.message()), Some("element_size_m"), "{e:?}");
+    assert!(
+        e.message().contains("more than the limit of 25600"),
+        "{e:?}"
+    );
+    // The pair's own 0.2 mm elements fit.
+    req.element_size_m = None;
+    let r = client.solve_wheel_rail(req).await.expect("solves");
+    check_wheelrail_finite(r.get_ref().result.as_ref().unwrap()).unwrap();
+    server.shutdown().await;
+}
