@@ -2,45 +2,35 @@
 //! request, a solve past the server's time limit, and a batch that must
 //! not starve other requests.
 
+mod common;
+
 use std::time::{Duration, Instant};
 
+use common::{serve, sphere, Client};
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
-use railcontact::service::pb::contact_service_client::ContactServiceClient;
-use railcontact::service::server::{start, RunningServer};
-use tonic::transport::Channel;
+use railcontact::service::server::RunningServer;
+use tokio_stream::StreamExt;
 use tonic::Code;
 
-type Client = ContactServiceClient<Channel>;
-
-/// A server on an ephemeral port with `config`; pairs in memory only.
+/// A server with `config` (pairs in memory only) and a client that sends
+/// and accepts messages of up to 64 MiB.
 async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
+    let (server, client) = serve(ServeConfig {
         data_dir: Default::default(),
         ..config
     })
-    .await
-    .expect("server starts");
-    let client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects")
+    .await;
+    let client = client
         .max_encoding_message_size(64 << 20)
         .max_decoding_message_size(64 << 20);
     (server, client)
 }
 
-/// h = x² + y² (R = 0.5 m), 10 kN, steel on steel, exact model on n x n,
-/// steady rolling when `creepage` is given.
-fn sphere(n: u32, creepage: Option<f64>) -> pb::PatchCase {
+/// `sphere` with the exact model on n x n, in steady rolling with mu = 0.3
+/// when `creepage` is given.
+fn exact(n: u32, creepage: Option<f64>) -> pb::PatchCase {
     pb::PatchCase {
-        model: pb::Model::Exact as i32,
-        material: Some(pb::MaterialSection {
-            shear_modulus_pa: Some(81.0e9),
-            poisson_ratio: Some(0.30),
-            ..Default::default()
-        }),
         friction: creepage.map(|_| pb::FrictionSection {
             coefficient: Some(0.3),
             ..Default::default()
@@ -51,21 +41,7 @@ fn sphere(n: u32, creepage: Option<f64>) -> pb::PatchCase {
                 ..Default::default()
             })
         }),
-        geometry: Some(pb::GeometrySection {
-            kind: pb::GeometryKind::Quadratic as i32,
-            a_per_m: Some(1.0),
-            b_per_m: Some(1.0),
-            ..Default::default()
-        }),
-        load: Some(pb::LoadSection {
-            load: Some(pb::load_section::Load::NormalForceN(1.0e4)),
-        }),
-        grid: Some(pb::GridSection {
-            nx: Some(n),
-            ny: Some(n),
-            ..Default::default()
-        }),
-        ..Default::default()
+        ..sphere(pb::Model::Exact, n)
     }
 }
 
@@ -83,7 +59,7 @@ async fn an_oversize_request_is_resource_exhausted_and_the_server_goes_on() {
         ..Default::default()
     })
     .await;
-    let items: Vec<_> = (0..200).map(|_| request(sphere(8, None))).collect();
+    let items: Vec<_> = (0..200).map(|_| request(exact(8, None))).collect();
     let r = client
         .solve_patch_batch(pb::SolvePatchBatchRequest {
             items,
@@ -94,7 +70,7 @@ async fn an_oversize_request_is_resource_exhausted_and_the_server_goes_on() {
     assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
     assert!(s.message().contains("max_message_bytes"), "{}", s.message());
     // The connection and the server serve the next request.
-    let ok = client.solve_patch(request(sphere(8, None))).await;
+    let ok = client.solve_patch(request(exact(8, None))).await;
     assert!(ok.is_ok(), "{ok:?}");
     server.shutdown().await;
 }
@@ -110,13 +86,13 @@ async fn a_solve_past_the_servers_time_limit_is_stopped_with_resource_exhausted(
     // Steady rolling on 256 x 256: about half a second on the development
     // machine, ten times the limit.
     let s = client
-        .solve_patch(request(sphere(256, Some(2e-4))))
+        .solve_patch(request(exact(256, Some(2e-4))))
         .await
         .expect_err("stopped at the limit");
     assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
     assert!(s.message().contains("max_solve_time_s"), "{}", s.message());
     // The only worker is free again: a small solve succeeds.
-    let ok = client.solve_patch(request(sphere(8, None))).await;
+    let ok = client.solve_patch(request(exact(8, None))).await;
     assert!(ok.is_ok(), "{ok:?}");
     server.shutdown().await;
 }
@@ -125,7 +101,7 @@ async fn a_solve_past_the_servers_time_limit_is_stopped_with_resource_exhausted(
 async fn a_small_solve_does_not_wait_for_a_large_batch() {
     let (server, client) = server_with(ServeConfig::default()).await;
     let items: Vec<_> = (0..256)
-        .map(|i| request(sphere(48, Some(1e-4 + 1e-7 * i as f64))))
+        .map(|i| request(exact(48, Some(1e-4 + 1e-7 * i as f64))))
         .collect();
     let mut batch_client = client.clone();
     let t0 = Instant::now();
@@ -142,12 +118,19 @@ async fn a_small_solve_does_not_wait_for_a_large_batch() {
     tokio::time::sleep(Duration::from_millis(100)).await;
     let mut small_client = client.clone();
     let t1 = Instant::now();
-    let small = small_client.solve_patch(request(sphere(16, None))).await;
+    let small = small_client.solve_patch(request(exact(16, None))).await;
     let waited = t1.elapsed();
     assert!(small.is_ok(), "{small:?}");
     let (batch, batch_took) = batch.await.unwrap();
     let batch = batch.expect("the batch solves").into_inner();
     assert_eq!(batch.items.len(), 256);
+    assert!(
+        batch.items.iter().all(|i| matches!(
+            i.outcome,
+            Some(pb::batch_item_result::Outcome::Result(_))
+        )),
+        "every item solves"
+    );
     eprintln!(
         "a 16x16 solve behind a 256-item 48x48 batch ({:.0} ms): {:.1} ms",
         batch_took.as_secs_f64() * 1e3,
@@ -158,5 +141,57 @@ async fn a_small_solve_does_not_wait_for_a_large_batch() {
         waited < batch_took.saturating_sub(Duration::from_millis(100)) / 2,
         "waited {waited:?} of the batch's {batch_took:?}"
     );
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_silent_session_stream_is_ended_and_an_oversize_open_is_resource_exhausted() {
+    let (server, mut client) = server_with(ServeConfig {
+        stream_first_message_timeout_s: 0.2,
+        max_message_bytes: 4096,
+        ..Default::default()
+    })
+    .await;
+    // A stream that sends nothing: DEADLINE_EXCEEDED naming the setting.
+    let (tx, rx) = tokio::sync::mpsc::channel::<pb::SessionRequest>(1);
+    let t0 = Instant::now();
+    let mut stream = client
+        .patch_session(tokio_stream::wrappers::ReceiverStream::new(rx))
+        .await
+        .expect("the stream starts")
+        .into_inner();
+    let s = stream
+        .next()
+        .await
+        .expect("an answer")
+        .expect_err("the silent stream is ended");
+    assert_eq!(s.code(), Code::DeadlineExceeded, "{s:?}");
+    assert!(
+        s.message().contains("stream_first_message_timeout_s"),
+        "{}",
+        s.message()
+    );
+    assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
+    drop(tx);
+    // An `open` larger than max_message_bytes: RESOURCE_EXHAUSTED.
+    let open = pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Open(pb::SessionOpen {
+            case: Some(exact(8, None)),
+            client_label: "x".repeat(8000),
+            ..Default::default()
+        })),
+    };
+    let mut stream = client
+        .patch_session(tokio_stream::iter(vec![open]))
+        .await
+        .expect("the stream starts")
+        .into_inner();
+    let s = stream
+        .next()
+        .await
+        .expect("an answer")
+        .expect_err("the oversize open is refused");
+    assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
+    assert!(s.message().contains("max_message_bytes"), "{}", s.message());
     server.shutdown().await;
 }

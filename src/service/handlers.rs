@@ -24,7 +24,7 @@ use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
 use crate::service::pool::{deadline_of, Admission, Lane, SolvePool, INLINE_FASTSIM_ELEMENTS};
 use crate::service::session::{MarkBudget, Session, SessionLimits};
-use crate::service::status::ServiceError;
+use crate::service::status::{self, ServiceError};
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
 use crate::wheelrail::{solve_wheelset, solve_wheelset_tabulated, SearchScratch, WheelRailModel};
@@ -48,6 +48,8 @@ pub struct RequestLimits {
     pub max_sessions_total_bytes: usize,
     /// A session without a message for this long is closed.
     pub session_idle_timeout: Duration,
+    /// A session stream must send its first message (`open`) within this.
+    pub first_message_timeout: Duration,
 }
 
 /// The service: shared by all connections.
@@ -768,11 +770,31 @@ impl ContactHandlers {
     ) -> Result<Option<T>, Status> {
         let idle = self.limits.session_idle_timeout;
         match tokio::time::timeout(idle, inbound.message()).await {
-            Ok(message) => message,
+            Ok(message) => message.map_err(status::inbound),
             Err(_) => {
                 let e = self.idle_closed();
                 let _ = tokio::time::timeout(idle, tx.send(Ok(in_band(e.item_error())))).await;
                 Err(e.into())
+            }
+        }
+    }
+
+    /// A session's first message, which must come within
+    /// `stream_first_message_timeout_s` of the stream's start: a stream that
+    /// stays silent is ended with DEADLINE_EXCEEDED before it takes a
+    /// session slot. None when the client closed its stream.
+    async fn receive_first<T>(&self, inbound: &mut Streaming<T>) -> Result<Option<T>, Status> {
+        let wait = self.limits.first_message_timeout;
+        match tokio::time::timeout(wait, inbound.message()).await {
+            Ok(message) => message.map_err(status::inbound),
+            Err(_) => {
+                self.metrics.first_message_timed_out();
+                Err(ServiceError::Deadline(format!(
+                    "no message within {} s of the stream's start, this server's \
+                     stream_first_message_timeout_s: send `open` first",
+                    wait.as_secs_f64()
+                ))
+                .into())
             }
         }
     }
@@ -820,7 +842,7 @@ impl ContactHandlers {
         use pb::wheel_rail_session_response::Kind as Out;
         let reply = |kind| pb::WheelRailSessionResponse { kind: Some(kind) };
         let in_band = |e| reply(Out::Error(e));
-        let open = match self.receive(inbound, tx, in_band).await? {
+        let open = match self.receive_first(inbound).await? {
             Some(pb::WheelRailSessionRequest {
                 kind: Some(Kind::Open(open)),
             }) => open,
@@ -908,7 +930,7 @@ impl ContactHandlers {
         let in_band = |e| pb::SessionResponse {
             kind: Some(Out::Error(e)),
         };
-        let open = match self.receive(inbound, tx, in_band).await? {
+        let open = match self.receive_first(inbound).await? {
             Some(pb::SessionRequest {
                 kind: Some(Kind::Open(open)),
             }) => open,

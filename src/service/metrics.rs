@@ -19,6 +19,7 @@
 //! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
 //! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
 //! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
+//! | `railcontact_streams_first_message_timed_out_total` | | session streams ended because no first message came within `stream_first_message_timeout_s` |
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
@@ -107,6 +108,7 @@ pub struct Metrics {
     store_damaged_records: Gauge,
     registrations_refused: Family<LimitLabels, Counter>,
     sessions_idle_closed: Counter,
+    first_message_timeouts: Counter,
     session_mark_bytes: Gauge,
     session_marks_refused: Counter,
 }
@@ -123,6 +125,7 @@ impl Default for Metrics {
             store_damaged_records: Gauge::default(),
             registrations_refused: Family::default(),
             sessions_idle_closed: Counter::default(),
+            first_message_timeouts: Counter::default(),
             session_mark_bytes: Gauge::default(),
             session_marks_refused: Counter::default(),
         };
@@ -137,6 +140,7 @@ impl Default for Metrics {
             "railcontact_store_damaged_records", "Damaged records of the profile pair store, listed as FAILED pairs" => m.store_damaged_records;
             "railcontact_registrations_refused", "Registrations refused by a limit" => m.registrations_refused;
             "railcontact_sessions_idle_closed", "Sessions closed because they idled past session_idle_timeout_s" => m.sessions_idle_closed;
+            "railcontact_streams_first_message_timed_out", "Session streams ended because no first message came within stream_first_message_timeout_s" => m.first_message_timeouts;
             "railcontact_session_mark_bytes", "Memory held by the marks of all sessions [bytes]" => m.session_mark_bytes;
             "railcontact_session_marks_refused", "Marked steps refused by max_session_bytes or max_sessions_total_bytes" => m.session_marks_refused;
         );
@@ -192,6 +196,11 @@ impl Metrics {
     /// A session was closed because it idled.
     pub fn session_idle_closed(&self) {
         self.sessions_idle_closed.inc();
+    }
+
+    /// A session stream sent no first message in time.
+    pub fn first_message_timed_out(&self) {
+        self.first_message_timeouts.inc();
     }
 
     /// The session marks now: `bytes` held, `refused` marks so far.

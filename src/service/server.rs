@@ -29,6 +29,7 @@ use crate::service::pairs::{self, PairRegistry, RegistryLimits};
 use crate::service::pb;
 use crate::service::pb::contact_service_server::ContactServiceServer;
 use crate::service::pool::SolvePool;
+use crate::service::status;
 use crate::service::store::PairStore;
 
 /// A server running on the current tokio runtime.
@@ -87,6 +88,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         max_session_bytes: config.max_session_bytes,
         max_sessions_total_bytes: config.max_sessions_total_bytes,
         session_idle_timeout: Duration::from_secs_f64(config.session_idle_timeout_s),
+        first_message_timeout: Duration::from_secs_f64(config.stream_first_message_timeout_s),
     };
     let store = match config.store_dir() {
         Some(dir) => {
@@ -224,34 +226,24 @@ impl RunningServer {
     }
 }
 
-/// The message of tonic's refusal of a request larger than
-/// `max_message_bytes`.
-const OVERSIZE_REQUEST: &str = "Error, decoded message length too large";
-
 /// tonic refuses a request message larger than `max_message_bytes` with
-/// OUT_OF_RANGE before any handler sees it; gRPC's status table has
-/// RESOURCE_EXHAUSTED for it, which clients retry differently (split the
-/// request rather than fix a value). Such a refusal is a trailers-only
-/// response, its status in the headers, which this rewrites.
+/// OUT_OF_RANGE before any handler sees it; such a refusal of a unary call
+/// is a trailers-only response, its status in the headers, which this
+/// rewrites to RESOURCE_EXHAUSTED ([`status::oversize_request`]). Session
+/// streams map it where they read ([`status::inbound`]).
 fn oversize_request_is_resource_exhausted(
     mut res: tonic::codegen::http::Response<tonic::body::Body>,
 ) -> tonic::codegen::http::Response<tonic::body::Body> {
     use tonic::codegen::http::HeaderValue;
     let headers = res.headers_mut();
-    let out_of_range = headers
-        .get("grpc-status")
-        .is_some_and(|v| v.as_bytes() == b"11");
-    let oversize = headers
+    if headers.get("grpc-status").map(|v| v.as_bytes()) != Some(b"11") {
+        return res;
+    }
+    let message = headers
         .get("grpc-message")
         .and_then(|v| v.to_str().ok())
-        .map(|m| m.replace("%20", " "))
-        .filter(|m| m.starts_with(OVERSIZE_REQUEST));
-    if let (true, Some(message)) = (out_of_range, oversize) {
-        let status = tonic::Status::resource_exhausted(format!(
-            "the request is larger than this server accepts (max_message_bytes): {}; \
-             split it into smaller requests",
-            message.trim_start_matches("Error, ")
-        ));
+        .map(|m| m.replace("%20", " "));
+    if let Some(status) = message.as_deref().and_then(status::oversize_request) {
         headers.insert("grpc-status", HeaderValue::from_static("8"));
         if let Ok(v) = HeaderValue::from_str(status.message()) {
             headers.insert("grpc-message", v);

@@ -256,6 +256,33 @@ impl From<WheelRailError> for ServiceError {
     }
 }
 
+/// The start of tonic's message when it refuses a request message larger
+/// than `max_message_bytes` (with OUT_OF_RANGE, before any handler sees it).
+const OVERSIZE_REQUEST: &str = "Error, decoded message length too large";
+
+/// RESOURCE_EXHAUSTED for tonic's refusal of a request message larger than
+/// `max_message_bytes` (`tonic_message`, percent-decoded); None for any
+/// other message. gRPC's status table has RESOURCE_EXHAUSTED for this, and
+/// clients retry it differently from OUT_OF_RANGE: split the request.
+pub fn oversize_request(tonic_message: &str) -> Option<tonic::Status> {
+    let detail = tonic_message.strip_prefix("Error, ")?;
+    tonic_message.starts_with(OVERSIZE_REQUEST).then(|| {
+        tonic::Status::resource_exhausted(format!(
+            "the request is larger than this server accepts (max_message_bytes): {detail}; \
+             split it into smaller requests"
+        ))
+    })
+}
+
+/// A status that reading a request stream gave, as the client should see
+/// it (an oversize message is RESOURCE_EXHAUSTED, see [`oversize_request`]).
+pub fn inbound(s: tonic::Status) -> tonic::Status {
+    match s.code() {
+        Code::OutOfRange => oversize_request(s.message()).unwrap_or(s),
+        _ => s,
+    }
+}
+
 impl From<ServiceError> for tonic::Status {
     fn from(e: ServiceError) -> Self {
         tonic::Status::new(e.code(), e.to_string())
