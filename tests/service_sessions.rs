@@ -202,19 +202,19 @@ const NO_CONTACT: Refusal = Refusal {
     what: "no contact",
     change: no_contact,
     code: Code::InvalidArgument,
-    field: "step",
+    field: "step.approach_m",
 };
 const BEYOND_GRID: Refusal = Refusal {
     what: "patch beyond the grid",
     change: beyond_grid,
     code: Code::InvalidArgument,
-    field: "open.case.grid",
+    field: "open.case.grid.window_x_m",
 };
 const HUGE_SPIN: Refusal = Refusal {
     what: "spin 1e300",
     change: huge_spin,
     code: Code::InvalidArgument,
-    field: "step.creepages",
+    field: "step.creepages.spin_per_m",
 };
 
 /// Sends `messages` on one session and returns every response (the first
