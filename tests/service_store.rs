@@ -8,6 +8,7 @@
 //! temporary directory (one test runs the binary); profiles come from
 //! `../shared/profiles`.
 
+mod common;
 mod support;
 
 use std::path::Path;
@@ -149,15 +150,7 @@ async fn solve(client: &mut Client, id: &str) -> Result<pb::WheelRailResult, ton
 
 /// A figure of the metrics page (the first line starting with `name`).
 async fn metric(server: &RunningServer, name: &str) -> f64 {
-    use tokio::io::{AsyncReadExt, AsyncWriteExt};
-    let mut s = tokio::net::TcpStream::connect(server.metrics_addr.unwrap())
-        .await
-        .unwrap();
-    s.write_all(b"GET /metrics HTTP/1.1\r\nhost: x\r\n\r\n")
-        .await
-        .unwrap();
-    let mut page = String::new();
-    s.read_to_string(&mut page).await.unwrap();
+    let page = common::metrics_page(server.metrics_addr.unwrap()).await;
     page.lines()
         .find_map(|l| l.strip_prefix(name))
         .and_then(|v| v.trim().parse().ok())
