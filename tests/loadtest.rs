@@ -123,3 +123,29 @@ fn health_exits_zero_only_when_serving() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot connect"));
 }
+
+#[test]
+fn sessions_refused_at_the_session_limit_open_again_with_backoff() {
+    // Two session slots, six sessions: four are refused at first
+    // (RESOURCE_EXHAUSTED) and open once earlier ones close.
+    let server = Server::start_with(&[], &[("RAILCONTACT_MAX_SESSIONS", "2")]);
+    let (v, out) = loadtest_json(&[
+        "--target",
+        &server.addr,
+        "--sessions",
+        "6",
+        "--steps",
+        "20",
+        "--batch-clients",
+        "0",
+        "--mix",
+        "patch:fastsim=1",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_clean(&v);
+    assert_eq!(num(&v, "steps"), 120.0);
+}
