@@ -61,10 +61,7 @@ async fn an_oversize_request_is_resource_exhausted_and_the_server_goes_on() {
     .await;
     let items: Vec<_> = (0..200).map(|_| request(exact(8, None))).collect();
     let r = client
-        .solve_patch_batch(pb::SolvePatchBatchRequest {
-            items,
-            ..Default::default()
-        })
+        .solve_patch_batch(pb::SolvePatchBatchRequest { items })
         .await;
     let s = r.expect_err("an oversize request is refused");
     assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
@@ -107,10 +104,7 @@ async fn a_small_solve_does_not_wait_for_a_large_batch() {
     let t0 = Instant::now();
     let batch = tokio::spawn(async move {
         let r = batch_client
-            .solve_patch_batch(pb::SolvePatchBatchRequest {
-                items,
-                ..Default::default()
-            })
+            .solve_patch_batch(pb::SolvePatchBatchRequest { items })
             .await;
         (r, t0.elapsed())
     });
@@ -125,10 +119,10 @@ async fn a_small_solve_does_not_wait_for_a_large_batch() {
     let batch = batch.expect("the batch solves").into_inner();
     assert_eq!(batch.items.len(), 256);
     assert!(
-        batch.items.iter().all(|i| matches!(
-            i.outcome,
-            Some(pb::batch_item_result::Outcome::Result(_))
-        )),
+        batch
+            .items
+            .iter()
+            .all(|i| matches!(i.outcome, Some(pb::batch_item_result::Outcome::Result(_)))),
         "every item solves"
     );
     eprintln!(

@@ -446,8 +446,11 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
     ]
 }
 
+/// Sets one integer field of a case.
+type CountSetter = fn(&mut pb::PatchCase, u32);
+
 /// The integer fields: (path, setter) over a list of counts.
-fn patch_count_fields() -> Vec<(&'static str, fn(&mut pb::PatchCase, u32))> {
+fn patch_count_fields() -> Vec<(&'static str, CountSetter)> {
     vec![
         ("case.grid.nx", |c, n| grid(c).nx = Some(n)),
         ("case.grid.ny", |c, n| grid(c).ny = Some(n)),

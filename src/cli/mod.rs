@@ -63,7 +63,7 @@ pub enum Command {
     ///
     /// Runs with no configuration on 127.0.0.1:50051. Settings come in
     /// layers: defaults, then --config FILE.toml, then the environment
-    /// variables RAILCONTACT_<KEY>, then these flags; every key is listed
+    /// variables RAILCONTACT_KEY (the key in capitals), then these flags; every key is listed
     /// below. Logs go to stderr, filtered by RUST_LOG (default info), in
     /// colour only on a terminal and without NO_COLOR.
     #[command(after_help = serve_settings_help())]

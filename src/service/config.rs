@@ -236,7 +236,7 @@ impl ServeConfig {
             ),
             ("http2_keepalive_timeout_s", c.http2_keepalive_timeout_s),
         ] {
-            if !(v.is_finite() && v >= 0.001 && v <= MAX_SECONDS) {
+            if !(0.001..=MAX_SECONDS).contains(&v) {
                 errors.push(format!(
                     "{key} must be from 0.001 to {MAX_SECONDS} s, got {v}"
                 ));

@@ -689,7 +689,7 @@ pub fn prepare(spec: &PairSpec, progress: &Progress) -> Result<PreparedPair, Ser
 
 /// Prepares a pair: reads the profiles (at most `limit` points each),
 /// fits and places them, and solves it once at the centred position
-/// ([`trial_solve`]). Field paths of errors are those of a `spec`
+/// (`trial_solve`). Field paths of errors are those of a `spec`
 /// registration.
 pub fn prepare_with(
     spec: &PairSpec,
@@ -755,7 +755,7 @@ pub fn prepare_with(
 /// One registered pair.
 pub struct PairEntry {
     /// Its registration (for a damaged record, a placeholder with the
-    /// record's id: see [`PairEntry::damage`]).
+    /// record's id: see `PairEntry::damaged`).
     pub spec: PairSpec,
     prepared: tokio::sync::OnceCell<Arc<PreparedPair>>,
     persisted: AtomicBool,

@@ -12,7 +12,7 @@
 //! answered, so a refused step (its inputs, the solver, a non-finite
 //! result, a response too large to send, a mark beyond the budget) leaves
 //! the session as it was. A marked step keeps a copy of the warm start
-//! after it (counted against the [`MarkBudget`]); a rollback restores it,
+//! after it (counted against the [`MarkBudget`](crate::service::session::MarkBudget)); a rollback restores it,
 //! so repeating the steps after the mark reproduces their outputs bit for
 //! bit. The search scratch holds buffers only: answers do not depend on
 //! it.

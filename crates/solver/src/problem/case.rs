@@ -1286,7 +1286,7 @@ fn check_hertz_patch(
     let r = ranges::HERTZ_SEMI_AXIS;
     let h = hertz_of(a_per_m, b_per_m, e_star, load);
     let axes = match &h {
-        Ok(h) if r.contains(h.semi_axis_x_m) && r.contains(h.semi_axis_y_m) => return Ok(h.clone()),
+        Ok(h) if r.contains(h.semi_axis_x_m) && r.contains(h.semi_axis_y_m) => return Ok(*h),
         Ok(h) => format!(
             "has semi-axes {} x {} m",
             show(h.semi_axis_x_m),

@@ -70,7 +70,7 @@ pub enum ModelRun {
     /// The conformal models (`cect`, `cect_halfspace`).
     Conformal(ConformalRun),
     /// The closed-form and FASTSIM models: their report is the whole result.
-    Reference(Report<'static>),
+    Reference(Box<Report<'static>>),
 }
 
 impl ModelRun {
@@ -82,14 +82,14 @@ impl ModelRun {
             Model::Cect | Model::CectHalfspace => {
                 ModelRun::Conformal(ConformalRun::solve(workspace, case)?)
             }
-            Model::HertzCorrected => {
-                ModelRun::Reference(reference_models::solve_conformal_hertz(case, true)?)
-            }
-            Model::Hertz if case.geometry.is_conformal() => {
-                ModelRun::Reference(reference_models::solve_conformal_hertz(case, false)?)
-            }
-            Model::Hertz => ModelRun::Reference(reference_models::solve_hertz(case)?),
-            Model::Fastsim => ModelRun::Reference(reference_models::solve_fastsim(case)?),
+            Model::HertzCorrected => ModelRun::Reference(Box::new(
+                reference_models::solve_conformal_hertz(case, true)?,
+            )),
+            Model::Hertz if case.geometry.is_conformal() => ModelRun::Reference(Box::new(
+                reference_models::solve_conformal_hertz(case, false)?,
+            )),
+            Model::Hertz => ModelRun::Reference(Box::new(reference_models::solve_hertz(case)?)),
+            Model::Fastsim => ModelRun::Reference(Box::new(reference_models::solve_fastsim(case)?)),
         })
     }
 
@@ -99,7 +99,7 @@ impl ModelRun {
         match self {
             ModelRun::Exact(run) => run.report(case, fields),
             ModelRun::Conformal(run) => run.report(case, fields),
-            ModelRun::Reference(report) => report.clone(),
+            ModelRun::Reference(report) => (**report).clone(),
         }
     }
 }
