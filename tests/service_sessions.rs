@@ -707,3 +707,43 @@ async fn refused_wheel_rail_steps_leave_every_model_as_it_was() {
     }
     server.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn wheel_rail_session_patches_obey_max_grid_elements() {
+    let (server, mut client) = serve(ServeConfig {
+        data_dir: Default::default(),
+        max_grid_elements: 400,
+        ..Default::default()
+    })
+    .await;
+    let open = pb::WheelRailSessionRequest {
+        kind: Some(WrIn::Open(pb::WheelRailSessionOpen {
+            pair_id: "mbench_s1002_uic60".into(),
+            model: pb::WheelRailModel::Exact as i32,
+            element_size_m: Some(6e-5),
+            ..Default::default()
+        })),
+    };
+    let responses: Vec<_> = client
+        .wheel_rail_session(tokio_stream::iter(vec![open, wr_request(wr_step(0))]))
+        .await
+        .expect("the stream starts")
+        .into_inner()
+        .collect()
+        .await;
+    let Some(Ok(pb::WheelRailSessionResponse {
+        kind: Some(WrOut::Error(e)),
+    })) = responses.get(1)
+    else {
+        panic!("expected the step refused in-band, got {responses:?}")
+    };
+    assert_eq!(Code::from(e.code), Code::InvalidArgument, "{}", e.message);
+    assert!(
+        e.field.ends_with("element_size_m"),
+        "{}: {}",
+        e.field,
+        e.message
+    );
+    assert!(e.message.contains("400"), "{}", e.message);
+    server.shutdown().await;
+}

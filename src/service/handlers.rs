@@ -754,6 +754,7 @@ impl ContactHandlers {
         SessionLimits {
             max_response_bytes: self.limits.max_message_bytes,
             marks: self.marks.clone(),
+            max_grid_elements: self.limits.case.max_grid_elements,
         }
     }
 

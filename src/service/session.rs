@@ -271,6 +271,9 @@ pub struct SessionLimits {
     pub max_response_bytes: usize,
     /// The marks' memory.
     pub marks: MarkBudget,
+    /// Largest patch grid of a wheel/rail session, nx * ny elements
+    /// (`max_grid_elements`).
+    pub max_grid_elements: usize,
 }
 
 /// One open session.

@@ -70,7 +70,8 @@ impl WheelRailSession {
             open.friction.as_ref(),
             open.element_size_m,
             &entry.spec.settings,
-        )?;
+        )?
+        .with_max_grid_elements(limits.max_grid_elements);
         Ok(Self {
             settings,
             entry,
