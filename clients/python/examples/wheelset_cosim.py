@@ -33,6 +33,8 @@ Starting 3 mm off centre, the wheelset performs the damped kinematic
 (Klingel) oscillation of a coned wheelset.
 """
 
+import sys
+
 import numpy as np
 
 from _common import connect, parser, plt, save
@@ -100,8 +102,11 @@ def simulate(session, wheelset, dt, steps, jacobian_every):
     """Integrates ``steps`` steps; returns the history as a dict of arrays."""
     history = {k: [] for k in ("t", "y", "psi", "fy_contact", "mz_contact", "q_left", "q_right", "fy_left", "fy_right")}
     jacobian = np.zeros((2, 2))
+    report_every = max(1, steps // 10)
     for n in range(steps):
         t = n * dt
+        if n % report_every == 0:
+            print(f"step {n} of {steps} (t = {t:.3f} s)", file=sys.stderr, flush=True)
         refresh = n % jacobian_every == 0
         r = session.step(time_s=t, mark=refresh, **wheelset.contact_inputs(wheelset.q, wheelset.v))
         contact = wheelset_loads(r.result, wheelset.q[0])
