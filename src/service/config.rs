@@ -16,6 +16,35 @@ use serde::Deserialize;
 /// Prefix of the environment variables.
 pub const ENV_PREFIX: &str = "RAILCONTACT_";
 
+/// `table` (the file's keys) with every key of [`ServeConfig`] that the
+/// environment sets (`RAILCONTACT_<KEY>`) put over it. A variable's text
+/// is read as a TOML value (`5`, `2.5`, `true`) or else as a string
+/// (`127.0.0.1:9464`, `/var/lib/railcontact`); one that does not fit its
+/// key is left out and reported in `errors`, naming the variable.
+fn env_layer(
+    mut table: toml::Table,
+    env: &dyn Fn(&str) -> Option<String>,
+    errors: &mut Vec<String>,
+) -> toml::Table {
+    for &key in serde_aux::serde_introspection::serde_introspect::<ServeConfig>() {
+        let name = format!("{ENV_PREFIX}{}", key.to_ascii_uppercase());
+        let Some(text) = env(&name) else { continue };
+        let value = format!("v = {}", text.trim())
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(text.trim().to_string()));
+        let alone = toml::Table::from_iter([(key.to_string(), value.clone())]);
+        match ServeConfig::deserialize(alone) {
+            Ok(_) => {
+                table.insert(key.to_string(), value);
+            }
+            Err(e) => errors.push(format!("{name}={text:?}: {}", e.to_string().trim_end())),
+        }
+    }
+    table
+}
+
 /// Longest duration any setting in seconds may take (one week): beyond it
 /// `Duration` arithmetic is no longer meaningful for a server.
 const MAX_SECONDS: f64 = 7.0 * 86400.0;
@@ -122,18 +151,6 @@ pub enum StoreDamaged {
     Fail,
 }
 
-impl std::str::FromStr for StoreDamaged {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "start" => Ok(Self::Start),
-            "fail" => Ok(Self::Fail),
-            other => Err(format!("expected \"start\" or \"fail\", got {other:?}")),
-        }
-    }
-}
-
 impl Default for ServeConfig {
     fn default() -> Self {
         Self {
@@ -186,22 +203,28 @@ impl ServeConfig {
         env: &dyn Fn(&str) -> Option<String>,
         flags: &ServeFlags,
     ) -> Result<Self, String> {
-        let mut c = match file {
+        let file_layer = match file {
             Some(path) => {
                 let text = std::fs::read_to_string(path)
                     .map_err(|e| format!("cannot read config file {}: {e}", path.display()))?;
-                toml::from_str(&text).map_err(|e| {
+                let in_file = |e: &dyn std::fmt::Display| {
                     format!(
                         "config file {}: {}",
                         path.display(),
                         e.to_string().trim_end()
                     )
-                })?
+                };
+                // Checked whole first, so that its errors name its lines.
+                toml::from_str::<ServeConfig>(&text).map_err(|e| in_file(&e))?;
+                text.parse::<toml::Table>().map_err(|e| in_file(&e))?
             }
-            None => ServeConfig::default(),
+            None => toml::Table::new(),
         };
         let mut errors = Vec::new();
-        c.apply_env(env, &mut errors);
+        let layers = env_layer(file_layer, env, &mut errors);
+        let mut c: ServeConfig = layers
+            .try_into()
+            .map_err(|e: toml::de::Error| format!("settings: {}", e.to_string().trim_end()))?;
         if let Some(v) = flags.listen {
             c.listen = v;
         }
@@ -271,105 +294,6 @@ impl ServeConfig {
         } else {
             Err(errors.join("; "))
         }
-    }
-
-    fn apply_env(&mut self, env: &dyn Fn(&str) -> Option<String>, errors: &mut Vec<String>) {
-        let get = |key: &str| {
-            let name = format!("{ENV_PREFIX}{}", key.to_ascii_uppercase());
-            env(&name).map(|text| (name, text))
-        };
-        fn parse<T: std::str::FromStr>(
-            var: Option<(String, String)>,
-            slot: &mut T,
-            errors: &mut Vec<String>,
-        ) where
-            T::Err: std::fmt::Display,
-        {
-            if let Some((name, text)) = var {
-                match text.trim().parse() {
-                    Ok(v) => *slot = v,
-                    Err(e) => errors.push(format!("{name}={text:?}: {e}")),
-                }
-            }
-        }
-        parse(get("listen"), &mut self.listen, errors);
-        let mut metrics = self.metrics_listen.unwrap_or(self.listen);
-        let metrics_var = get("metrics_listen");
-        let metrics_given = metrics_var.is_some();
-        parse(metrics_var, &mut metrics, errors);
-        if metrics_given {
-            self.metrics_listen = Some(metrics);
-        }
-        parse(get("workers"), &mut self.workers, errors);
-        parse(get("queue_capacity"), &mut self.queue_capacity, errors);
-        parse(get("max_batch_items"), &mut self.max_batch_items, errors);
-        parse(get("max_curve_points"), &mut self.max_curve_points, errors);
-        parse(get("max_sessions"), &mut self.max_sessions, errors);
-        parse(
-            get("max_session_bytes"),
-            &mut self.max_session_bytes,
-            errors,
-        );
-        parse(
-            get("max_sessions_total_bytes"),
-            &mut self.max_sessions_total_bytes,
-            errors,
-        );
-        parse(
-            get("session_idle_timeout_s"),
-            &mut self.session_idle_timeout_s,
-            errors,
-        );
-        parse(
-            get("max_grid_elements"),
-            &mut self.max_grid_elements,
-            errors,
-        );
-        parse(
-            get("max_message_bytes"),
-            &mut self.max_message_bytes,
-            errors,
-        );
-        parse(
-            get("kernel_cache_max_bytes"),
-            &mut self.kernel_cache_max_bytes,
-            errors,
-        );
-        parse(get("shutdown_grace_s"), &mut self.shutdown_grace_s, errors);
-        parse(get("data_dir"), &mut self.data_dir, errors);
-        parse(get("max_solve_time_s"), &mut self.max_solve_time_s, errors);
-        parse(
-            get("stream_first_message_timeout_s"),
-            &mut self.stream_first_message_timeout_s,
-            errors,
-        );
-        parse(
-            get("http2_keepalive_interval_s"),
-            &mut self.http2_keepalive_interval_s,
-            errors,
-        );
-        parse(
-            get("http2_keepalive_timeout_s"),
-            &mut self.http2_keepalive_timeout_s,
-            errors,
-        );
-        parse(
-            get("max_streams_per_connection"),
-            &mut self.max_streams_per_connection,
-            errors,
-        );
-        parse(get("store_damaged"), &mut self.store_damaged, errors);
-        parse(
-            get("max_profile_pairs"),
-            &mut self.max_profile_pairs,
-            errors,
-        );
-        parse(
-            get("max_profile_points"),
-            &mut self.max_profile_points,
-            errors,
-        );
-        parse(get("max_store_bytes"), &mut self.max_store_bytes, errors);
     }
 
     /// The store's directory, if the pairs are to be persisted.
