@@ -1,7 +1,7 @@
 //! `railcontact loadtest`: drives a running server (or several replicas)
 //! with concurrent co-simulation sessions and batch clients, measures the
 //! round trip of every step, and checks every answer bit for bit against a
-//! sequential replay of the same inputs.
+//! replay of the same inputs, each session alone on its stream.
 //!
 //! # What runs
 //!
@@ -53,8 +53,9 @@
 //! # The check
 //!
 //! After the concurrent run, every session and batch client is replayed
-//! with the same inputs, one after the other, on one connection to the
-//! first target, for as many steps as it completed. Each answer's result
+//! with the same inputs on one connection to the first target, for as many
+//! steps as it completed: each alone on its own stream, four at a time per
+//! core of the client machine. Each answer's result
 //! (server timing fields cleared) is compared by the SHA-256 of its
 //! protobuf encoding, which holds every double bit for bit: the server
 //! promises identical outputs however sessions interleave, and replicas
@@ -965,7 +966,7 @@ pub struct Breakdown {
     pub throughput_per_s: f64,
     /// Failed sessions or calls.
     pub errors: usize,
-    /// Steps whose answer differed from the sequential baseline.
+    /// Steps whose answer differed from the baseline replay.
     pub mismatches: usize,
 }
 
@@ -997,11 +998,11 @@ pub struct Report {
     pub throughput_per_s: f64,
     /// Failed sessions, steps and calls (concurrent run and baseline).
     pub errors: usize,
-    /// Steps that differed from the sequential baseline.
+    /// Steps that differed from the baseline replay.
     pub mismatches: usize,
     /// Steps compared with the baseline.
     pub verified_steps: usize,
-    /// Wall time of the sequential baseline \[s\].
+    /// Wall time of the baseline replay \[s\].
     pub baseline_s: f64,
     /// Per kind.
     pub kinds: BTreeMap<String, Breakdown>,
@@ -1034,9 +1035,11 @@ fn breakdown<'a>(tracks: impl Iterator<Item = (&'a Track, usize)>, wall_s: f64) 
     }
 }
 
-/// Replays every track's completed steps one after the other on
-/// `client`; returns per track the mismatching steps and the baseline's
-/// errors.
+/// Replays every track's completed steps on `client`, four tracks at a
+/// time per core of this machine (each track alone on its own stream, one
+/// step after the other, as in the run: a few in flight keep the server's
+/// workers busy between round trips); returns per track the mismatching
+/// steps and the baseline's errors.
 async fn baseline(
     client: &mut Client,
     tracks: &[Track],
@@ -1044,48 +1047,78 @@ async fn baseline(
     batch_items: usize,
     bar: &ProgressBar,
 ) -> (Vec<usize>, Vec<String>) {
-    let mut mismatches = Vec::with_capacity(tracks.len());
-    let mut errors = Vec::new();
-    for t in tracks {
-        let steps = t.digests.len() as u64;
-        let replay = Track {
-            latencies_s: Vec::new(),
-            digests: Vec::new(),
-            errors: Vec::new(),
-            ..t.clone()
-        };
-        let tick = || bar.inc(1);
-        let limits = Limits {
-            steps,
-            deadline: None,
-        };
-        let replay = if steps == 0 {
-            replay
-        } else {
-            run_track(
-                client.clone(),
-                replay,
-                &format!("{run}-baseline"),
-                limits,
-                batch_items,
-                &tick,
-            )
-            .await
-        };
-        for e in &replay.errors {
-            errors.push(format!("baseline of #{} ({}): {e}", t.index, t.kind.name()));
-        }
-        let m = t
-            .digests
-            .iter()
-            .enumerate()
-            .filter(|(k, d)| replay.digests.get(*k) != Some(d))
-            .count();
-        // Steps the baseline could not replay are its errors, not mismatches.
-        let unreplayed = t.digests.len() - replay.digests.len().min(t.digests.len());
-        mismatches.push(m - unreplayed);
+    let lanes = std::thread::available_parallelism()
+        .map_or(1, |n| 4 * n.get())
+        .clamp(1, tracks.len().max(1));
+    let shared: Arc<Vec<Track>> = Arc::new(tracks.to_vec());
+    let label = format!("{run}-baseline");
+    let mut tasks = Vec::with_capacity(lanes);
+    for lane in 0..lanes {
+        let (tracks, client, bar, label) =
+            (shared.clone(), client.clone(), bar.clone(), label.clone());
+        tasks.push(tokio::spawn(async move {
+            let mut out = Vec::new();
+            for i in (lane..tracks.len()).step_by(lanes) {
+                let r = replay_track(&client, &tracks[i], &label, batch_items, &bar).await;
+                out.push((i, r));
+            }
+            out
+        }));
     }
+    let mut per_track = vec![(0, Vec::new()); tracks.len()];
+    for task in tasks {
+        match task.await {
+            Ok(done) => {
+                for (i, r) in done {
+                    per_track[i] = r;
+                }
+            }
+            Err(e) => per_track[0].1.push(format!("a baseline task failed: {e}")),
+        }
+    }
+    let mismatches = per_track.iter().map(|(m, _)| *m).collect();
+    let errors = per_track.into_iter().flat_map(|(_, e)| e).collect();
     (mismatches, errors)
+}
+
+/// Replays one track; its mismatching steps and the baseline's errors.
+async fn replay_track(
+    client: &Client,
+    t: &Track,
+    label: &str,
+    batch_items: usize,
+    bar: &ProgressBar,
+) -> (usize, Vec<String>) {
+    let steps = t.digests.len() as u64;
+    let replay = Track {
+        latencies_s: Vec::new(),
+        digests: Vec::new(),
+        errors: Vec::new(),
+        ..t.clone()
+    };
+    if steps == 0 {
+        return (0, Vec::new());
+    }
+    let tick = || bar.inc(1);
+    let limits = Limits {
+        steps,
+        deadline: None,
+    };
+    let replay = run_track(client.clone(), replay, label, limits, batch_items, &tick).await;
+    let errors = replay
+        .errors
+        .iter()
+        .map(|e| format!("baseline of #{} ({}): {e}", t.index, t.kind.name()))
+        .collect();
+    let m = t
+        .digests
+        .iter()
+        .enumerate()
+        .filter(|(k, d)| replay.digests.get(*k) != Some(d))
+        .count();
+    // Steps the baseline could not replay are its errors, not mismatches.
+    let unreplayed = t.digests.len() - replay.digests.len().min(t.digests.len());
+    (m - unreplayed, errors)
 }
 
 fn bar(total: u64, hidden: bool, what: &str) -> ProgressBar {
@@ -1224,7 +1257,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     let wall_s = start.elapsed().as_secs_f64();
     progress.finish_and_clear();
 
-    // The sequential baseline on one connection to the first target.
+    // The baseline replay on one connection to the first target.
     let done: u64 = tracks.iter().map(|t| t.digests.len() as u64).sum();
     let verify_bar = bar(done, args.json, "verify");
     let mut client = ContactServiceClient::new(connect(&targets[0], timeout).await?)
@@ -1299,7 +1332,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     for (t, &m) in tracks.iter().zip(&mismatches) {
         if m > 0 {
             report.first_errors.push(format!(
-                "#{} ({}) on {}: {m} of {} steps differ from the sequential baseline",
+                "#{} ({}) on {}: {m} of {} steps differ from the baseline replay",
                 t.index,
                 t.kind.name(),
                 targets[t.target],
@@ -1385,7 +1418,7 @@ pub fn table(r: &Report) -> String {
     row(&mut out, "all", &all);
     let _ = writeln!(
         out,
-        "\n{} steps checked against the sequential baseline: {} mismatches, {} errors",
+        "\n{} steps checked against the baseline replay: {} mismatches, {} errors",
         r.verified_steps, r.mismatches, r.errors
     );
     for e in &r.first_errors {

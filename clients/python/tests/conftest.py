@@ -1,7 +1,7 @@
 """The real server for the tests: ``railcontact serve`` on an ephemeral
 loopback port, started once per test session.
 
-The binary is ``$RAILCONTACT_BIN`` (set by ``tests/python_client.rs`` to
+The binary is ``$RAILCONTACT_BIN`` (set by ``tests/end_to_end/python_client.rs`` to
 cargo's build of it), else ``<repo>/target/debug/railcontact``. Its store
 goes to a temporary directory; its log to ``server.log`` there, printed
 when the server does not start.

@@ -2,7 +2,7 @@
 //! request, a solve past the server's time limit, and a batch that must
 //! not starve other requests.
 
-mod common;
+use crate::common;
 
 use std::time::{Duration, Instant};
 

@@ -17,7 +17,7 @@ use std::process::{Command, Output};
 
 use sha2::{Digest, Sha256};
 
-mod support;
+use crate::support;
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

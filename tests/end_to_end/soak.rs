@@ -4,7 +4,7 @@
 //! sequential replay; zero errors, zero mismatches, the server's peak
 //! memory bounded.
 
-mod support;
+use crate::support;
 
 use support::{assert_clean, check, loadtest_json, num, Server};
 

@@ -8,8 +8,8 @@
 //! temporary directory (one test runs the binary); profiles come from
 //! `../shared/profiles`.
 
-mod common;
-mod support;
+use crate::common;
+use crate::support;
 
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! asserted: the machine is shared and noisy, and three servers on two
 //! cores share the same CPUs anyway.
 
-mod support;
+use crate::support;
 
 use support::{assert_clean, loadtest_json, num, Server};
 

@@ -21,7 +21,7 @@ use tokio_stream::wrappers::ReceiverStream;
 use tokio_stream::StreamExt;
 use tonic::{Code, Status, Streaming};
 
-mod common;
+use crate::common;
 use common::{metrics_page, serve, sphere, Client};
 
 type Step = pb::SessionStep;

@@ -18,7 +18,7 @@ use tokio_stream::StreamExt;
 use tonic::transport::Channel;
 use tonic::Code;
 
-mod common;
+use crate::common;
 use common::{metrics_page, serve, sphere, steel, Client};
 
 /// A server on an ephemeral port; pairs in memory only (no store).
@@ -619,6 +619,8 @@ async fn a_full_queue_is_resource_exhausted_and_a_passed_deadline_is_deadline_ex
         workers: 1,
         queue_capacity: 1,
         metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        // The slow solve below is 512 x 512.
+        max_grid_elements: 512 * 512,
         ..ServeConfig::default()
     })
     .await;
@@ -673,18 +675,19 @@ async fn a_full_queue_is_resource_exhausted_and_a_passed_deadline_is_deadline_ex
     }
     assert!(ok.is_some(), "the queue slot was never released");
 
-    // 100 ms is far less than this solve takes (0.46-0.53 s with its
-    // kernels on the development machine, by `railcontact solve`). The
-    // server answers 10 % before the client's timeout (10 ms here), ahead
-    // of the transport's own CANCELLED. A 40 ms timeout on a 128x128 solve
-    // (0.09 s) left it 4 ms; that version failed here once in about 20
-    // runs with another code (the message was not kept), most likely
-    // that race.
+    // 500 ms is far less than this solve takes (steady rolling on 512 x 512
+    // takes seconds), and far more than the request
+    // needs to reach its solve thread even when other tests load both
+    // cores, so the solve surely starts and is surely cut short. (With
+    // 100 ms on 256 x 256, a loaded machine sometimes let the deadline pass
+    // before the solve started: answered in time, but never counted.) The
+    // server answers 10 % before the client's timeout, ahead of the
+    // transport's own CANCELLED.
     let before = cancelled_solves(&server).await;
-    let mut slow = request(rolling(pb::Model::Exact, 256, 1e-3));
+    let mut slow = request(rolling(pb::Model::Exact, 512, 1e-3));
     slow.include_fields = false;
     let mut req = tonic::Request::new(slow);
-    req.set_timeout(Duration::from_millis(100));
+    req.set_timeout(Duration::from_millis(500));
     let (code, msg) = failure(client.solve_patch(req).await);
     assert_eq!(code, Code::DeadlineExceeded, "{msg}");
     // The abandoned solve is told to stop (core::cancel) and counted once

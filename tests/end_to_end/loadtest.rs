@@ -1,7 +1,7 @@
 //! `railcontact loadtest` and `railcontact health` as processes against a
 //! real `railcontact serve` on a loopback port.
 
-mod support;
+use crate::support;
 
 use support::{assert_clean, loadtest_json, num, run, Server};
 

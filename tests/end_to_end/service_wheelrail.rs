@@ -5,7 +5,7 @@
 //! server runs on an ephemeral loopback port with its store in a temporary
 //! directory; profiles come from `../shared/profiles`.
 
-mod support;
+use crate::support;
 
 use std::path::Path;
 
@@ -22,7 +22,7 @@ use railcontact::wheelrail::{
 };
 use tonic::Code;
 
-mod common;
+use crate::common;
 use common::Client;
 
 const BUILTIN: &str = "mbench_s1002_uic60";

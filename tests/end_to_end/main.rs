@@ -1,0 +1,44 @@
+//! End-to-end tests of the root package: the command line, the gRPC
+//! service (in-process and as a `railcontact serve` process), the load
+//! generator, the Python and C++ clients, and the dependency boundary.
+//!
+//! One test binary with a module per subject, so that the package's test
+//! code is compiled and linked once, and the tests of every subject run
+//! side by side (`cargo test --test end_to_end MODULE::` runs one subject,
+//! e.g. `cargo test --test end_to_end soak::`).
+//!
+//! | module | what |
+//! |---|---|
+//! | [`architecture`] | the solver crate's dependency boundary (`cargo tree`) |
+//! | [`cli`] | `railcontact` subcommands on the example cases |
+//! | [`service`] | SolvePatch, batches, creep curves, queue, deadlines, health, reflection |
+//! | [`service_limits`] | per-request and per-solve limits |
+//! | [`service_sessions`] | co-simulation patch sessions: order, marks, rollback, memory |
+//! | [`service_store`] | the profile-pair store: restart, damage, limits |
+//! | [`service_wheelrail`] | wheel/rail queries and sessions |
+//! | [`validation_fuzz`] | every numeric request field at extreme values; profile readers on mutated profiles |
+//! | [`loadtest`] | `railcontact loadtest` against a server process |
+//! | [`scaleout`] | three replicas, sessions spread by the client |
+//! | [`soak`] | 64 mixed sessions for 45 s, every answer replayed |
+//! | [`python_client`] | the Python client's pytest suite (a venv under `target/`) |
+//! | [`cpp_client`] | the C++ client built with CMake and run (Debian packages) |
+//!
+//! [`common`] starts servers in-process; [`support`] starts `railcontact
+//! serve` processes and runs the load generator.
+
+mod common;
+mod support;
+
+mod architecture;
+mod cli;
+mod cpp_client;
+mod loadtest;
+mod python_client;
+mod scaleout;
+mod service;
+mod service_limits;
+mod service_sessions;
+mod service_store;
+mod service_wheelrail;
+mod soak;
+mod validation_fuzz;
