@@ -216,7 +216,8 @@ impl WheelrailRun {
     /// Parses `text` (TOML); profile paths are relative to `dir`.
     pub fn from_toml(text: &str, dir: &Path) -> Result<Self, CliError> {
         let c: WheelrailCase = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
-        let (model, model_name) = match c.model.as_str() {
+        // Names in any case, as the Python client takes them.
+        let (model, model_name) = match c.model.to_ascii_lowercase().as_str() {
             "exact" => (WheelRailModel::Exact, "exact"),
             "hertz_fastsim" => (WheelRailModel::HertzFastsim, "hertz_fastsim"),
             "cect" => (WheelRailModel::Cect, "cect"),
@@ -227,7 +228,7 @@ impl WheelrailRun {
                 )))
             }
         };
-        let sides = match c.side.as_str() {
+        let sides = match c.side.to_ascii_lowercase().as_str() {
             "both" => Side::BOTH.to_vec(),
             "left" => vec![Side::Left],
             "right" => vec![Side::Right],

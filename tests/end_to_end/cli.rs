@@ -369,6 +369,26 @@ fn unknown_key_is_rejected() {
 }
 
 #[test]
+fn model_names_are_read_in_any_case() {
+    let lower = solve_json(&example("hertz_circle.toml"), &[]);
+    let upper = case_file(
+        "upper_model.toml",
+        &circle().replace("model = \"exact\"", "model = \"EXACT\""),
+    );
+    assert_ne!(circle(), std::fs::read_to_string(&upper).unwrap());
+    let v = solve_json(&upper, &[]);
+    assert_eq!(v["model"], "exact");
+    assert_eq!(v["normal_force_n"], lower["normal_force_n"]);
+    assert_eq!(v["max_pressure_pa"], lower["max_pressure_pa"]);
+    // An unknown name lists the known ones.
+    expect_bad(
+        "unknown_model.toml",
+        &circle().replace("model = \"exact\"", "model = \"exakt\""),
+        "expected one of hertz, hertz_corrected, fastsim, exact, cect, cect_halfspace",
+    );
+}
+
+#[test]
 fn negative_force_is_rejected() {
     expect_bad(
         "negative.toml",
@@ -855,6 +875,18 @@ fn wheelrail_json(case: &Path) -> Value {
     let stdout = String::from_utf8(out.stdout).unwrap();
     assert_eq!(stdout.trim().lines().count(), 1, "one JSON line: {stdout}");
     serde_json::from_str(stdout.trim()).unwrap()
+}
+
+#[test]
+fn wheelrail_model_and_side_names_are_read_in_any_case() {
+    let text = example_text("wheelset_a22.toml")
+        .replace("model = \"exact\"", "model = \"Hertz_FASTSIM\"")
+        .replace("side = \"both\"", "side = \"LEFT\"");
+    assert!(text.contains("Hertz_FASTSIM") && text.contains("LEFT"));
+    let v = wheelrail_json(&case_file("wheelset_upper.toml", &text));
+    assert_eq!(v["model"], "hertz_fastsim", "{v}");
+    assert!(v["wheels"]["left"].is_object(), "{v}");
+    assert!(v["wheels"]["right"].is_null(), "{v}");
 }
 
 #[test]

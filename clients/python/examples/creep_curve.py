@@ -3,11 +3,25 @@ rail, Manchester benchmark), centred wheelset, 100 kN per wheel.
 
 Lateral: the wheelset moves sideways at v_y while rolling at V, which gives
 both wheels a lateral creepage of about -v_y / V; longitudinal: the axle
-turns faster or slower than free rolling, pitch rate -(V / r0)(1 + s) for a
-relative slip s. Plotted are the total forces on the wheelset (minus the sum
-over the rails) over the total vertical load, which approach the friction
-coefficient (0.3) at full sliding. All points of a curve go in one
-SolveWheelRailBatch call, solved in parallel on the server.
+turns faster or slower than free rolling, pitch rate -(V / r)(1 + s) for a
+relative slip s, with r the rolling radius at the contact point (asked of
+the server first: 0.45991 m, not the nominal 0.46 m, whose pitch rate would
+already be a creepage of -2e-4). Plotted are the total forces on the
+wheelset (minus the sum over the rails) over the total vertical load, which
+approach the friction coefficient (0.3) at full sliding. All points of a
+curve go in one SolveWheelRailBatch call, solved in parallel on the server.
+
+Why the exact longitudinal curve does not start at zero: the contact is
+inclined (contact angle 0.024 rad), so the rolling wheel also spins about the
+contact normal (spin 0.053 /m): the slip grows linearly across the patch's
+width. On a patch symmetric about its centre line (Hertz's ellipse) that
+gives no longitudinal force in total, and Hertz+FASTSIM starts at Fx/Fz =
+0.0002; the exact patch of these profiles is not symmetric (it spans -13 to +7 mm
+across the rail about the point the rolling radius is taken at, its pressure
+centre 3.1 mm off that point), and the same spin, times that offset, acts
+as a longitudinal creepage of about 1.6e-4: Fx/Fz = 0.029 at s = 0.
+The lateral forces of spin are equal and opposite on the two wheels and
+cancel in the total, so both lateral curves start at 0.
 """
 
 import numpy as np
@@ -19,13 +33,24 @@ import railcontact
 NOMINAL_RADIUS_M = 0.46  # of the built-in pair's wheelset
 
 
+def rolling_radius(client, base, speed):
+    """The rolling radius at the centred wheelset's contact point [m]."""
+    probe = client.solve_wheelrail_batch(
+        [dict(base, velocity={"forward_m_per_s": speed, "pitch_rad_per_s": -speed / NOMINAL_RADIUS_M})]
+    )[0]
+    if isinstance(probe, railcontact.RailcontactError):
+        raise probe
+    return probe.wheels[0].patches[0].rolling_radius_m
+
+
 def sweep(client, model, slips, load_n, speed, element_size_m):
     """Total force on the wheelset / total vertical load for each slip, as
     (lateral, longitudinal) arrays."""
     base = {"model": model, "load": load_n, "element_size_m": element_size_m}
+    radius = rolling_radius(client, base, speed)
     lateral = [dict(base, velocity={"forward_m_per_s": speed, "lateral_m_per_s": -s * speed}) for s in slips]
     longitudinal = [
-        dict(base, velocity={"forward_m_per_s": speed, "pitch_rad_per_s": -(speed / NOMINAL_RADIUS_M) * (1 + s)})
+        dict(base, velocity={"forward_m_per_s": speed, "pitch_rad_per_s": -(speed / radius) * (1 + s)})
         for s in slips
     ]
     out = []
@@ -55,7 +80,7 @@ def main(argv=None):
             axes[0].plot(slips * 100, longitudinal, "o-", ms=3, label=model)
             axes[1].plot(slips * 100, lateral, "o-", ms=3, label=model)
             print(f"{model}: Fx/Fz at {slips[-1]:.3g}: {longitudinal[-1]:.3f}, Fy/Fz: {lateral[-1]:.3f}")
-    axes[0].set(xlabel="longitudinal slip s = -(omega r0 / V) - 1 [%]", ylabel="force on wheelset / vertical load [-]")
+    axes[0].set(xlabel="longitudinal slip s = -(omega r / V) - 1 [%]", ylabel="force on wheelset / vertical load [-]")
     axes[0].set_title("longitudinal (traction)")
     axes[1].set(xlabel="lateral slip v_y / V [%]")
     axes[1].set_title("lateral")

@@ -94,9 +94,10 @@ pub mod ranges {
     pub const MIN_ELEMENTS_ACROSS_PATCH: f64 = 3.0;
 }
 
-/// The contact model a case is solved with.
+/// The contact model a case is solved with. In a case file by its
+/// [`Model::name`] in any case (`"exact"`, `"Exact"`, `"EXACT"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "snake_case", try_from = "String")]
 pub enum Model {
     /// Hertz's closed-form normal solution; no tangential forces. On
     /// circular conformal profiles: the paper's Hertz on the flattened
@@ -118,7 +119,35 @@ pub enum Model {
     CectHalfspace,
 }
 
+impl TryFrom<String> for Model {
+    type Error = String;
+
+    /// The model named `name`, in any case.
+    fn try_from(name: String) -> Result<Self, String> {
+        Model::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(&name))
+            .ok_or_else(|| {
+                let names: Vec<_> = Model::ALL.iter().map(|m| m.name()).collect();
+                format!(
+                    "unknown model \"{name}\"; expected one of {}",
+                    names.join(", ")
+                )
+            })
+    }
+}
+
 impl Model {
+    /// Every model, in the order of the documentation.
+    pub const ALL: [Model; 6] = [
+        Model::Hertz,
+        Model::HertzCorrected,
+        Model::Fastsim,
+        Model::Exact,
+        Model::Cect,
+        Model::CectHalfspace,
+    ];
+
     /// The name used in the case file and the JSON output.
     pub fn name(self) -> &'static str {
         match self {
