@@ -14,7 +14,8 @@ pub const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
 /// Set to anything but "" or "0", skips the tests that install things
 /// beyond the Rust toolchain: the Python client's (a venv and PyPI
-/// packages) and the C++ client's (Debian packages).
+/// packages) and the C++ client's (Debian packages); the nginx proxy
+/// test (tests/proxy_fleet.rs) then runs only where nginx is installed.
 pub const SKIP_CLIENT_TESTS: &str = "RAILCONTACT_SKIP_CLIENT_TESTS";
 
 /// Whether [`SKIP_CLIENT_TESTS`] asks to skip `what`; says so on stderr
