@@ -37,66 +37,26 @@ fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn is_root() -> bool {
-    Command::new("id")
-        .arg("-u")
-        .output()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
-        .unwrap_or(false)
-}
-
-fn installed(package: &str) -> bool {
-    Command::new("dpkg-query")
-        .args(["-W", "-f=${Status}", package])
-        .output()
-        .map(|o| o.status.success() && String::from_utf8_lossy(&o.stdout).contains("ok installed"))
-        .unwrap_or(false)
-}
-
-/// Runs `args` as root: directly when we are root, else through `sudo -n`.
-fn as_root(args: &[&str]) -> Output {
-    let mut command = if is_root() {
-        let mut c = Command::new(args[0]);
-        c.args(&args[1..]);
-        c
-    } else {
-        let mut c = Command::new("sudo");
-        c.arg("-n").args(args);
-        c
-    };
-    command
-        .env("DEBIAN_FRONTEND", "noninteractive")
-        .stdin(Stdio::null())
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {args:?} (as root or with sudo -n): {e}"))
-}
-
 /// Installs the packages that are missing; fails the test when it cannot.
 fn ensure_packages() {
-    let missing: Vec<&str> = PACKAGES.iter().copied().filter(|p| !installed(p)).collect();
+    let missing: Vec<&str> = PACKAGES
+        .iter()
+        .copied()
+        .filter(|p| !support::installed(p))
+        .collect();
     if missing.is_empty() {
         return;
     }
-    eprintln!(
-        "C++ client test: installing Debian packages with apt-get: {} (skip with {}=1)",
-        missing.join(" "),
-        support::SKIP_CLIENT_TESTS
+    support::apt_install(
+        &missing,
+        &format!(
+            "C++ client test (skip with {}=1)",
+            support::SKIP_CLIENT_TESTS
+        ),
+        "the C++ client test needs these Debian packages and could not install them \
+         (run as root or with passwordless sudo, with access to the Debian mirrors, \
+         or install them by hand)",
     );
-    let how = "the C++ client test needs these Debian packages and could not install them \
-               (run as root or with passwordless sudo, with access to the Debian mirrors, \
-               or install them by hand)";
-    check(
-        &format!("apt-get update ({how})"),
-        &as_root(&["apt-get", "update", "-q"]),
-    );
-    let mut install = vec!["apt-get", "install", "-y", "-q", "--no-install-recommends"];
-    install.extend(&missing);
-    check(
-        &format!("apt-get install {missing:?} ({how})"),
-        &as_root(&install),
-    );
-    let still: Vec<&str> = missing.iter().copied().filter(|p| !installed(p)).collect();
-    assert!(still.is_empty(), "still missing after apt-get: {still:?}");
 }
 
 /// Configures and builds clients/cpp into target/cpp-client; returns the

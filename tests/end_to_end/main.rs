@@ -19,6 +19,7 @@
 //! | [`validation_fuzz`] | every numeric request field at extreme values; profile readers on mutated profiles |
 //! | [`loadtest`] | `railcontact loadtest` against a server process |
 //! | [`scaleout`] | three replicas, sessions spread by the client |
+//! | [`proxy_fleet`] | nginx (`deploy/nginx.conf`) in front of three replicas: routing, pinning, a drain |
 //! | [`soak`] | 64 mixed sessions for 45 s, every answer replayed |
 //! | [`python_client`] | the Python client's pytest suite (a venv under `target/`) |
 //! | [`cpp_client`] | the C++ client built with CMake and run (Debian packages) |
@@ -33,6 +34,7 @@ mod architecture;
 mod cli;
 mod cpp_client;
 mod loadtest;
+mod proxy_fleet;
 mod python_client;
 mod scaleout;
 mod service;

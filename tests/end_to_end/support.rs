@@ -14,7 +14,8 @@ pub const BIN: &str = env!("CARGO_BIN_EXE_railcontact");
 
 /// Set to anything but "" or "0", skips the tests that install things
 /// beyond the Rust toolchain: the Python client's (a venv and PyPI
-/// packages) and the C++ client's (Debian packages).
+/// packages) and the C++ client's (Debian packages); the nginx proxy
+/// test (tests/end_to_end/proxy_fleet.rs) then runs only where nginx is installed.
 pub const SKIP_CLIENT_TESTS: &str = "RAILCONTACT_SKIP_CLIENT_TESTS";
 
 /// Whether [`SKIP_CLIENT_TESTS`] asks to skip `what`; says so on stderr
@@ -31,6 +32,8 @@ pub fn skip_client_test(what: &str) -> bool {
 pub struct Server {
     /// HOST:PORT it listens on.
     pub addr: String,
+    /// HOST:PORT of its metrics page, when started with `--metrics-listen`.
+    pub metrics: Option<String>,
     child: Child,
     _stdout: BufReader<ChildStdout>,
     /// Its standard error.
@@ -79,8 +82,18 @@ impl Server {
                 )
             })
             .to_string();
+        // With a metrics port the server says where on a second line.
+        let metrics = args.contains(&"--metrics-listen").then(|| {
+            line.clear();
+            stdout.read_line(&mut line).expect("read the metrics line");
+            line.trim()
+                .strip_prefix("railcontact metrics on ")
+                .unwrap_or_else(|| panic!("unexpected second line {line:?}"))
+                .to_string()
+        });
         Server {
             addr,
+            metrics,
             child,
             _stdout: stdout,
             log,
@@ -97,6 +110,136 @@ impl Server {
     pub fn log(&self) -> String {
         std::fs::read_to_string(&self.log).unwrap_or_default()
     }
+
+    /// Sends SIGTERM (the graceful shutdown).
+    pub fn terminate(&self) {
+        signal(self.child.id(), "TERM");
+    }
+
+    /// Its exit status once it has exited, waiting at most `limit`.
+    pub fn wait_exit(&mut self, limit: std::time::Duration) -> Option<std::process::ExitStatus> {
+        let start = std::time::Instant::now();
+        loop {
+            if let Some(status) = self.child.try_wait().expect("waits") {
+                return Some(status);
+            }
+            if start.elapsed() > limit {
+                return None;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    }
+
+    /// Its metrics page (Prometheus text); needs `--metrics-listen`.
+    pub fn metrics_page(&self) -> String {
+        use std::io::{Read, Write};
+        let addr = self
+            .metrics
+            .as_deref()
+            .expect("started with --metrics-listen");
+        let mut s = std::net::TcpStream::connect(addr).expect("connect to the metrics port");
+        s.write_all(b"GET /metrics HTTP/1.1\r\nhost: x\r\nconnection: close\r\n\r\n")
+            .expect("send the metrics request");
+        let mut page = String::new();
+        s.read_to_string(&mut page).expect("read the metrics page");
+        page
+    }
+}
+
+/// Sends signal `name` (TERM, KILL, ...) to process `pid` with kill(1).
+pub fn signal(pid: u32, name: &str) {
+    let _ = Command::new("kill")
+        .arg(format!("-{name}"))
+        .arg(pid.to_string())
+        .stdin(Stdio::null())
+        .stderr(Stdio::null())
+        .status();
+}
+
+/// Whether this process runs as root.
+pub fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+        .unwrap_or(false)
+}
+
+/// Whether `sudo -n` works without a password.
+pub fn has_sudo() -> bool {
+    Command::new("sudo")
+        .args(["-n", "true"])
+        .stdin(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// Whether Debian package `package` is installed.
+pub fn installed(package: &str) -> bool {
+    Command::new("dpkg-query")
+        .args(["-W", "-f=${Status}", package])
+        .output()
+        .map(|o| o.status.success() && String::from_utf8_lossy(&o.stdout).contains("ok installed"))
+        .unwrap_or(false)
+}
+
+/// Runs `args` as root: directly when we are root, else through `sudo -n`.
+pub fn as_root(args: &[&str]) -> Output {
+    let mut command = if is_root() {
+        let mut c = Command::new(args[0]);
+        c.args(&args[1..]);
+        c
+    } else {
+        let mut c = Command::new("sudo");
+        c.arg("-n").args(args);
+        c
+    };
+    command
+        .env("DEBIAN_FRONTEND", "noninteractive")
+        .stdin(Stdio::null())
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {args:?} (as root or with sudo -n): {e}"))
+}
+
+/// Held while apt-get runs: the tests of this binary run side by side, and
+/// two apt-gets at once would fail on dpkg's lock.
+static APT: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Installs Debian packages `missing` with apt-get (as root or with
+/// `sudo -n`), saying so first on stderr with `why`; fails the test with
+/// `how` when apt-get fails. One install at a time in this process, and
+/// each waits up to 5 minutes for dpkg's lock held by another process.
+pub fn apt_install(missing: &[&str], why: &str, how: &str) {
+    let _one_at_a_time = APT.lock().unwrap_or_else(|e| e.into_inner());
+    let missing: Vec<&str> = missing.iter().copied().filter(|p| !installed(p)).collect();
+    if missing.is_empty() {
+        return;
+    }
+    eprintln!(
+        "{why}: installing Debian packages with apt-get: {}",
+        missing.join(" ")
+    );
+    check(
+        &format!("apt-get update ({how})"),
+        &as_root(&["apt-get", "update", "-q"]),
+    );
+    let mut install = vec![
+        "apt-get",
+        "install",
+        "-y",
+        "-q",
+        "--no-install-recommends",
+        "-o",
+        "DPkg::Lock::Timeout=300",
+    ];
+    install.extend(&missing);
+    check(
+        &format!("apt-get install {missing:?} ({how})"),
+        &as_root(&install),
+    );
+    let still: Vec<&str> = missing.iter().copied().filter(|p| !installed(p)).collect();
+    assert!(still.is_empty(), "still missing after apt-get: {still:?}");
 }
 
 /// Fails the test with `what`'s output unless it succeeded.
