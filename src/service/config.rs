@@ -488,6 +488,35 @@ mod tests {
                 && err.contains("session_idle_timeout_s"),
             "{err}"
         );
+        // Security keys through the environment; an empty path is "not set".
+        let e = env(&[
+            ("RAILCONTACT_INSECURE", "true"),
+            ("RAILCONTACT_LISTEN", "0.0.0.0:50051"),
+            ("RAILCONTACT_TLS_CERT", ""),
+            ("RAILCONTACT_REFLECTION", "false"),
+            (
+                "RAILCONTACT_AUTH_TOKENS_FILE",
+                "/etc/railcontact/tokens.toml",
+            ),
+        ]);
+        let c = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap();
+        assert!(c.insecure && !c.reflection && c.tls_cert.is_none());
+        assert_eq!(
+            c.auth_tokens_file.as_deref(),
+            Some(Path::new("/etc/railcontact/tokens.toml"))
+        );
+        assert!(c.check_exposure().unwrap().unwrap().contains("TLS"));
+        let c = ServeConfig {
+            insecure: false,
+            ..c
+        };
+        let err = c.check_exposure().unwrap_err();
+        assert!(
+            err.contains("tls_cert") && err.contains("--insecure"),
+            "{err}"
+        );
+        assert_eq!(ServeConfig::default().check_exposure(), Ok(None));
+
         std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();
         let err = ServeConfig::load(Some(&file), &none, &ServeFlags::default()).unwrap_err();
         assert!(err.contains("worker"), "{err}");
