@@ -26,10 +26,6 @@ use railcontact::service::config::{ServeConfig, ServeFlags};
 use railcontact::service::pb;
 use railcontact::service::pb::contact_service_client::ContactServiceClient;
 use railcontact::service::server::{start, RunningServer};
-use rcgen::{
-    BasicConstraints, CertificateParams, DnType, ExtendedKeyUsagePurpose, IsCa, Issuer, KeyPair,
-    KeyUsagePurpose,
-};
 use sha2::{Digest, Sha256};
 use tokio_stream::StreamExt;
 use tonic::service::interceptor::InterceptedService;
@@ -41,7 +37,8 @@ mod support;
 use common::{metrics_page, sphere};
 
 /// A CA, a server certificate for localhost and 127.0.0.1 and a client
-/// certificate, as PEM files in a temporary directory.
+/// certificate, as PEM files in a temporary directory
+/// ([`support::write_test_pki`]).
 struct Pki {
     dir: tempfile::TempDir,
 }
@@ -49,40 +46,7 @@ struct Pki {
 impl Pki {
     fn new() -> Pki {
         let dir = tempfile::tempdir().unwrap();
-        let ca_key = KeyPair::generate().unwrap();
-        let mut ca = CertificateParams::new(Vec::<String>::new()).unwrap();
-        ca.is_ca = IsCa::Ca(BasicConstraints::Unconstrained);
-        ca.distinguished_name
-            .push(DnType::CommonName, "railcontact test CA");
-        ca.key_usages = vec![
-            KeyUsagePurpose::KeyCertSign,
-            KeyUsagePurpose::CrlSign,
-            KeyUsagePurpose::DigitalSignature,
-        ];
-        let ca_cert = ca.self_signed(&ca_key).unwrap();
-        let issuer = Issuer::from_params(&ca, &ca_key);
-        let write = |name: &str, text: String| std::fs::write(dir.path().join(name), text).unwrap();
-        write("ca.pem", ca_cert.pem());
-        for (name, sans, usage) in [
-            (
-                "server",
-                vec!["localhost".to_string(), "127.0.0.1".to_string()],
-                ExtendedKeyUsagePurpose::ServerAuth,
-            ),
-            (
-                "client",
-                vec!["railcontact-test-client".to_string()],
-                ExtendedKeyUsagePurpose::ClientAuth,
-            ),
-        ] {
-            let key = KeyPair::generate().unwrap();
-            let mut params = CertificateParams::new(sans).unwrap();
-            params.distinguished_name.push(DnType::CommonName, name);
-            params.extended_key_usages = vec![usage];
-            let cert = params.signed_by(&key, &issuer).unwrap();
-            write(&format!("{name}.pem"), cert.pem());
-            write(&format!("{name}-key.pem"), key.serialize_pem());
-        }
+        support::write_test_pki(dir.path());
         Pki { dir }
     }
 
