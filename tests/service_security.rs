@@ -13,8 +13,10 @@
 //!   `admin` token given by its SHA-256 may; health needs no token;
 //!   refusals are counted by reason;
 //! - every RPC of the service descriptor is in the access table;
-//! - 0.0.0.0 without TLS and tokens is refused unless `insecure`; a
-//!   missing key, an invalid PEM file are start errors naming the file;
+//! - 0.0.0.0 without TLS and tokens is refused unless `insecure` (the
+//!   command exits 2 saying how to override; with `--insecure` it starts
+//!   and logs a warning); a missing key, an invalid PEM file are start
+//!   errors naming the file;
 //! - a client label holding a newline is logged escaped;
 //! - `railcontact health` and `railcontact loadtest` reach a server with
 //!   TLS and tokens through `--tls-ca` and `--token`.
@@ -628,4 +630,51 @@ fn health_and_loadtest_reach_a_server_with_tls_and_tokens() {
     assert!(support::num(&report, "errors") > 0.0, "{report}");
     let first = report["first_errors"].to_string();
     assert!(first.contains("nauthenticated"), "{first}");
+}
+
+#[test]
+fn serve_refuses_a_public_address_without_protection_with_exit_code_2() {
+    let out = support::run(&["serve", "--listen", "0.0.0.0:0", "--data-dir", ""]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--insecure") && stderr.contains("RAILCONTACT_INSECURE=true"),
+        "{stderr}"
+    );
+
+    // With --insecure it starts, and says so in its log.
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("server.log");
+    let mut child = Command::new(support::BIN)
+        .args([
+            "serve",
+            "--listen",
+            "0.0.0.0:0",
+            "--insecure",
+            "--data-dir",
+            "",
+        ])
+        .env("RUST_LOG", "warn")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(std::fs::File::create(&log).unwrap())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        line.starts_with("railcontact listening on 0.0.0.0:"),
+        "{line:?}"
+    );
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert!(
+        text.contains("WARN") && text.contains("insecure = true"),
+        "{text}"
+    );
 }

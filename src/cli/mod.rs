@@ -246,7 +246,12 @@ fn run_serve(args: &ServeArgs) -> Result<(), CliError> {
     let env = |name: &str| std::env::var(name).ok();
     let config = ServeConfig::load(args.config.as_deref(), &env, &flags)
         .map_err(|e| CliError::BadInput(format!("serve settings: {e}")))?;
-    crate::service::server::serve(&config).map_err(|e| CliError::Failure(format!("serve: {e}")))
+    // The server's own refusals of its settings (exposure without
+    // protection, unreadable TLS or tokens files) are bad input too.
+    crate::service::server::serve(&config).map_err(|e| match e.kind() {
+        std::io::ErrorKind::InvalidInput => CliError::BadInput(format!("serve: {e}")),
+        _ => CliError::Failure(format!("serve: {e}")),
+    })
 }
 
 /// The plot format chosen by `--plot`'s extension.

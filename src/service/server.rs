@@ -73,6 +73,9 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
 }
 
 /// Binds the ports and starts serving `config` on the current runtime.
+/// Settings it refuses (a listen address beyond loopback without TLS and
+/// tokens, unreadable or invalid TLS or tokens files) are errors of kind
+/// `InvalidInput`, before any port is bound.
 pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let invalid = |e: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, e);
     if let Some(warning) = config.check_exposure().map_err(invalid)? {
