@@ -19,7 +19,8 @@
 //!   errors naming the file;
 //! - a client label holding a newline is logged escaped;
 //! - `railcontact health` and `railcontact loadtest` reach a server with
-//!   TLS and tokens through `--tls-ca` and `--token`.
+//!   TLS and tokens through `--tls-ca` and `--token`;
+//! - `reflection = false` serves no reflection (UNIMPLEMENTED).
 
 use std::path::{Path, PathBuf};
 
@@ -677,4 +678,26 @@ fn serve_refuses_a_public_address_without_protection_with_exit_code_2() {
         text.contains("WARN") && text.contains("insecure = true"),
         "{text}"
     );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn reflection_can_be_turned_off() {
+    use tonic_reflection::pb::v1::server_reflection_client::ServerReflectionClient;
+    use tonic_reflection::pb::v1::server_reflection_request::MessageRequest;
+    use tonic_reflection::pb::v1::ServerReflectionRequest;
+    let server = server(ServeConfig {
+        reflection: false,
+        ..ServeConfig::default()
+    })
+    .await;
+    let ask = ServerReflectionRequest {
+        host: String::new(),
+        message_request: Some(MessageRequest::ListServices(String::new())),
+    };
+    let s = ServerReflectionClient::new(plain_channel(&server).await)
+        .server_reflection_info(tokio_stream::iter([ask]))
+        .await
+        .unwrap_err();
+    assert_eq!(s.code(), Code::Unimplemented, "{s:?}");
+    server.shutdown().await;
 }
