@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use clap::Args;
 
-use super::loadtest::{connect, health};
+use super::loadtest::{connect, health, ConnectArgs};
 use super::CliError;
 
 /// Options of `railcontact health`.
@@ -24,6 +24,9 @@ pub struct HealthArgs {
     /// Time limit to connect and to get the answer, in seconds.
     #[arg(long, default_value_t = 5.0)]
     pub timeout: f64,
+    /// TLS and token (the health service itself needs no token).
+    #[command(flatten)]
+    pub security: ConnectArgs,
 }
 
 /// Checks the health; Ok only when SERVING.
@@ -37,7 +40,7 @@ pub fn run(args: &HealthArgs) -> Result<(), CliError> {
         .build()
         .map_err(|e| CliError::Failure(format!("cannot start the runtime: {e}")))?;
     let status = runtime.block_on(async {
-        let channel = connect(&args.target, timeout).await?;
+        let channel = connect(&args.target, timeout, &args.security).await?;
         health(channel, &args.service, timeout).await.map_err(|s| {
             CliError::Failure(format!(
                 "{}: health check failed: {:?}: {}",

@@ -86,7 +86,9 @@ use serde::Serialize;
 use sha2::{Digest, Sha256};
 use tokio::sync::mpsc;
 use tokio_stream::wrappers::ReceiverStream;
-use tonic::transport::{Channel, Endpoint};
+use tonic::metadata::{Ascii, MetadataValue};
+use tonic::service::interceptor::InterceptedService;
+use tonic::transport::{Certificate, Channel, ClientTlsConfig, Endpoint, Identity};
 
 use super::CliError;
 use crate::service::pairs::BUILTIN_PAIR;
@@ -144,7 +146,52 @@ pub struct LoadtestArgs {
     /// Time limit to connect to each target and get its health, in seconds.
     #[arg(long, default_value_t = 10.0)]
     pub connect_timeout: f64,
+    /// TLS and token.
+    #[command(flatten)]
+    pub security: ConnectArgs,
 }
+
+/// How `loadtest` and `health` reach a server that asks for TLS or a
+/// token.
+#[derive(Debug, Clone, Default, Args)]
+pub struct ConnectArgs {
+    /// Connect with TLS, trusting server certificates signed by the
+    /// authorities of this PEM file.
+    #[arg(long, value_name = "FILE.pem")]
+    pub tls_ca: Option<std::path::PathBuf>,
+    /// With --tls-ca: the name the server's certificate must hold
+    /// (default: the host of --target).
+    #[arg(long, value_name = "NAME", requires = "tls_ca")]
+    pub tls_server_name: Option<String>,
+    /// Mutual TLS: this client's certificate chain, PEM (with
+    /// --tls-client-key and --tls-ca).
+    #[arg(long, value_name = "FILE.pem", requires_all = ["tls_client_key", "tls_ca"])]
+    pub tls_client_cert: Option<std::path::PathBuf>,
+    /// Mutual TLS: the private key of --tls-client-cert, PEM.
+    #[arg(long, value_name = "FILE.pem", requires = "tls_client_cert")]
+    pub tls_client_key: Option<std::path::PathBuf>,
+    /// Bearer token, sent on every call as `authorization: Bearer TOKEN`
+    /// (the variable keeps it out of the process list).
+    #[arg(long, env = "RAILCONTACT_TOKEN", hide_env_values = true)]
+    pub token: Option<String>,
+}
+
+/// Adds `authorization: Bearer TOKEN` to every call, when there is a
+/// token.
+#[derive(Clone, Default)]
+pub struct Bearer(Option<MetadataValue<Ascii>>);
+
+impl tonic::service::Interceptor for Bearer {
+    fn call(&mut self, mut req: tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status> {
+        if let Some(v) = &self.0 {
+            req.metadata_mut().insert("authorization", v.clone());
+        }
+        Ok(req)
+    }
+}
+
+/// A connection to a server, with its token.
+pub type Connection = InterceptedService<Channel, Bearer>;
 
 // ---------------------------------------------------------------------
 // Kinds and the mix
@@ -440,13 +487,15 @@ fn step_digest(mut r: pb::StepResult) -> Digest32 {
 // Clients
 // ---------------------------------------------------------------------
 
-type Client = ContactServiceClient<Channel>;
+type Client = ContactServiceClient<Connection>;
 
-/// `HOST:PORT` (or a URI) as an endpoint URI.
-fn target_uri(target: &str) -> Result<String, CliError> {
+/// `HOST:PORT` (or a URI) as an endpoint URI (https with TLS).
+fn target_uri(target: &str, tls: bool) -> Result<String, CliError> {
     let t = target.trim();
     let uri = if t.contains("://") {
         t.to_string()
+    } else if tls {
+        format!("https://{t}")
     } else {
         format!("http://{t}")
     };
@@ -478,15 +527,66 @@ pub(crate) fn chain(e: &dyn std::error::Error) -> String {
     s
 }
 
-/// Connects to `target` (HOST:PORT) within `timeout`.
-pub(crate) async fn connect(target: &str, timeout: Duration) -> Result<Channel, CliError> {
-    let uri = target_uri(target)?;
-    let endpoint = Endpoint::from_shared(uri)
+/// The TLS settings of `args` (None without --tls-ca).
+fn client_tls(args: &ConnectArgs) -> Result<Option<ClientTlsConfig>, CliError> {
+    let Some(ca) = &args.tls_ca else {
+        return Ok(None);
+    };
+    let read = |option: &str, path: &std::path::Path| {
+        std::fs::read(path).map_err(|e| {
+            CliError::BadInput(format!("{option} {}: cannot read it: {e}", path.display()))
+        })
+    };
+    let mut tls =
+        ClientTlsConfig::new().ca_certificate(Certificate::from_pem(read("--tls-ca", ca)?));
+    if let Some(name) = &args.tls_server_name {
+        tls = tls.domain_name(name.clone());
+    }
+    if let (Some(cert), Some(key)) = (&args.tls_client_cert, &args.tls_client_key) {
+        tls = tls.identity(Identity::from_pem(
+            read("--tls-client-cert", cert)?,
+            read("--tls-client-key", key)?,
+        ));
+    }
+    Ok(Some(tls))
+}
+
+/// The token interceptor of `args`.
+fn bearer(args: &ConnectArgs) -> Result<Bearer, CliError> {
+    match &args.token {
+        None => Ok(Bearer(None)),
+        Some(t) => format!("Bearer {}", t.trim())
+            .parse::<MetadataValue<Ascii>>()
+            .map(|v| Bearer(Some(v)))
+            .map_err(|_| {
+                CliError::BadInput(
+                    "--token: not a valid metadata value (printable ASCII, no line breaks)".into(),
+                )
+            }),
+    }
+}
+
+/// Connects to `target` (HOST:PORT) within `timeout`, with the TLS and
+/// token of `security`.
+pub(crate) async fn connect(
+    target: &str,
+    timeout: Duration,
+    security: &ConnectArgs,
+) -> Result<Connection, CliError> {
+    let tls = client_tls(security)?;
+    let token = bearer(security)?;
+    let uri = target_uri(target, tls.is_some())?;
+    let mut endpoint = Endpoint::from_shared(uri)
         .map_err(|e| CliError::BadInput(format!("--target `{target}`: {}", chain(&e))))?
         .connect_timeout(timeout)
         .tcp_nodelay(true);
+    if let Some(tls) = tls {
+        endpoint = endpoint
+            .tls_config(tls)
+            .map_err(|e| CliError::BadInput(format!("TLS options: {}", chain(&e))))?;
+    }
     match tokio::time::timeout(timeout, endpoint.connect()).await {
-        Ok(Ok(c)) => Ok(c),
+        Ok(Ok(c)) => Ok(InterceptedService::new(c, token)),
         Ok(Err(e)) => Err(CliError::Failure(format!(
             "cannot connect to {target}: {}",
             chain(&e)
@@ -500,7 +600,7 @@ pub(crate) async fn connect(target: &str, timeout: Duration) -> Result<Channel, 
 
 /// The health of `service` ("" for the whole server) on `channel`.
 pub(crate) async fn health(
-    channel: Channel,
+    channel: Connection,
     service: &str,
     timeout: Duration,
 ) -> Result<tonic_health::pb::health_check_response::ServingStatus, tonic::Status> {
@@ -1165,13 +1265,13 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
         return Err(CliError::BadInput("--target: no address given".into()));
     }
     for t in &targets {
-        target_uri(t)?;
+        target_uri(t, args.security.tls_ca.is_some())?;
     }
     // Every target reachable and its contact service serving (not
     // draining) before any load.
     let timeout = Duration::from_secs_f64(args.connect_timeout);
     for t in &targets {
-        let channel = connect(t, timeout).await?;
+        let channel = connect(t, timeout, &args.security).await?;
         use tonic_health::pb::health_check_response::ServingStatus;
         match health(channel, CONTACT_SERVICE, timeout).await {
             Ok(ServingStatus::Serving) => {}
@@ -1223,7 +1323,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     // One connection per session and batch client.
     let mut clients = Vec::with_capacity(tracks.len());
     for t in &tracks {
-        let channel = connect(&targets[t.target], timeout).await?;
+        let channel = connect(&targets[t.target], timeout, &args.security).await?;
         clients.push(
             ContactServiceClient::new(channel)
                 .max_decoding_message_size(64 << 20)
@@ -1260,9 +1360,10 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     // The baseline replay on one connection to the first target.
     let done: u64 = tracks.iter().map(|t| t.digests.len() as u64).sum();
     let verify_bar = bar(done, args.json, "verify");
-    let mut client = ContactServiceClient::new(connect(&targets[0], timeout).await?)
-        .max_decoding_message_size(64 << 20)
-        .max_encoding_message_size(64 << 20);
+    let mut client =
+        ContactServiceClient::new(connect(&targets[0], timeout, &args.security).await?)
+            .max_decoding_message_size(64 << 20)
+            .max_encoding_message_size(64 << 20);
     let b0 = Instant::now();
     let (mismatches, baseline_errors) =
         baseline(&mut client, &tracks, &run, args.batch_items, &verify_bar).await;
@@ -1507,8 +1608,15 @@ mod tests {
 
     #[test]
     fn targets_need_a_port() {
-        assert_eq!(target_uri("127.0.0.1:1").unwrap(), "http://127.0.0.1:1");
-        assert!(target_uri("localhost").is_err());
-        assert!(target_uri("http://[::1]:50051").is_ok());
+        assert_eq!(
+            target_uri("127.0.0.1:1", false).unwrap(),
+            "http://127.0.0.1:1"
+        );
+        assert_eq!(
+            target_uri("localhost:1", true).unwrap(),
+            "https://localhost:1"
+        );
+        assert!(target_uri("localhost", false).is_err());
+        assert!(target_uri("http://[::1]:50051", false).is_ok());
     }
 }

@@ -71,7 +71,7 @@ pub enum Command {
     /// Drive a running server (or several replicas) with concurrent
     /// co-simulation sessions and batch clients; report latency
     /// percentiles and throughput, and check every answer bit for bit
-    /// against a sequential replay (see docs/loadtest.md).
+    /// against a replay of each session alone (see docs/loadtest.md).
     ///
     /// Exit code 1 when any step failed or differed, or a target cannot be
     /// reached; 2 for bad options.
@@ -132,6 +132,23 @@ pub struct ServeArgs {
     /// railcontact-data; "": memory only).
     #[arg(long, value_name = "DIR", value_parser = OsStringValueParser::new().map(PathBuf::from))]
     pub data_dir: Option<PathBuf>,
+    /// TLS: the server's certificate chain, PEM (with --tls-key).
+    #[arg(long, value_name = "FILE.pem")]
+    pub tls_cert: Option<PathBuf>,
+    /// TLS: the private key of --tls-cert, PEM.
+    #[arg(long, value_name = "FILE.pem")]
+    pub tls_key: Option<PathBuf>,
+    /// Mutual TLS: the authorities of the client certificates, PEM; every
+    /// client must then present a certificate they signed.
+    #[arg(long, value_name = "FILE.pem")]
+    pub tls_client_ca: Option<PathBuf>,
+    /// Bearer tokens and their roles, TOML (see deploy/README.md).
+    #[arg(long, value_name = "FILE.toml")]
+    pub auth_tokens_file: Option<PathBuf>,
+    /// Allow listening on an address other than loopback without both TLS
+    /// and tokens (logs a warning).
+    #[arg(long)]
+    pub insecure: bool,
 }
 
 /// Options of `railcontact solve`.
@@ -220,11 +237,21 @@ fn run_serve(args: &ServeArgs) -> Result<(), CliError> {
         metrics_listen: args.metrics_listen,
         workers: args.workers,
         data_dir: args.data_dir.clone(),
+        tls_cert: args.tls_cert.clone(),
+        tls_key: args.tls_key.clone(),
+        tls_client_ca: args.tls_client_ca.clone(),
+        auth_tokens_file: args.auth_tokens_file.clone(),
+        insecure: args.insecure,
     };
     let env = |name: &str| std::env::var(name).ok();
     let config = ServeConfig::load(args.config.as_deref(), &env, &flags)
         .map_err(|e| CliError::BadInput(format!("serve settings: {e}")))?;
-    crate::service::server::serve(&config).map_err(|e| CliError::Failure(format!("serve: {e}")))
+    // The server's own refusals of its settings (exposure without
+    // protection, unreadable TLS or tokens files) are bad input too.
+    crate::service::server::serve(&config).map_err(|e| match e.kind() {
+        std::io::ErrorKind::InvalidInput => CliError::BadInput(format!("serve: {e}")),
+        _ => CliError::Failure(format!("serve: {e}")),
+    })
 }
 
 /// The plot format chosen by `--plot`'s extension.

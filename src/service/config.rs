@@ -137,6 +137,29 @@ pub struct ServeConfig {
     /// Calls open at once on one HTTP/2 connection (default 256); a client
     /// needing more opens another connection.
     pub max_streams_per_connection: u32,
+    /// TLS on the gRPC port: the server's certificate chain, a PEM file
+    /// (leaf first). Set together with `tls_key`; not set (default): plain
+    /// HTTP/2 (h2c).
+    pub tls_cert: Option<PathBuf>,
+    /// The private key of `tls_cert`, a PEM file (PKCS#8, PKCS#1 or SEC1).
+    pub tls_key: Option<PathBuf>,
+    /// Mutual TLS: a PEM file of the certificate authorities whose client
+    /// certificates are accepted; every client must then present one.
+    /// Needs `tls_cert`. Not set (default): clients present none.
+    pub tls_client_ca: Option<PathBuf>,
+    /// Bearer tokens, a TOML file of `[[token]]` entries (`name`, `role` =
+    /// "solve" or "admin", and `sha256` = the token's SHA-256 in hex, or
+    /// `token` = the token itself); see [`crate::service::auth`]. Set:
+    /// every call but the health service's needs `authorization: Bearer
+    /// TOKEN`. Not set (default): no tokens.
+    pub auth_tokens_file: Option<PathBuf>,
+    /// Serve gRPC reflection (default true); with `auth_tokens_file` it
+    /// needs a token of any role.
+    pub reflection: bool,
+    /// Allow listening on an address other than loopback without both TLS
+    /// and tokens (default false: such a start is refused). A warning is
+    /// logged at start.
+    pub insecure: bool,
 }
 
 /// What to do at start with damaged records of the store; see
@@ -178,6 +201,12 @@ impl Default for ServeConfig {
             max_profile_pairs: 256,
             max_profile_points: 20_000,
             max_store_bytes: 256 << 20,
+            tls_cert: None,
+            tls_key: None,
+            tls_client_ca: None,
+            auth_tokens_file: None,
+            reflection: true,
+            insecure: false,
         }
     }
 }
@@ -193,6 +222,16 @@ pub struct ServeFlags {
     pub workers: Option<usize>,
     /// `--data-dir`.
     pub data_dir: Option<PathBuf>,
+    /// `--tls-cert`.
+    pub tls_cert: Option<PathBuf>,
+    /// `--tls-key`.
+    pub tls_key: Option<PathBuf>,
+    /// `--tls-client-ca`.
+    pub tls_client_ca: Option<PathBuf>,
+    /// `--auth-tokens-file`.
+    pub auth_tokens_file: Option<PathBuf>,
+    /// `--insecure` (only turns it on).
+    pub insecure: bool,
 }
 
 impl ServeConfig {
@@ -236,6 +275,34 @@ impl ServeConfig {
         }
         if let Some(v) = &flags.data_dir {
             c.data_dir = v.clone();
+        }
+        for (flag, key) in [
+            (&flags.tls_cert, &mut c.tls_cert),
+            (&flags.tls_key, &mut c.tls_key),
+            (&flags.tls_client_ca, &mut c.tls_client_ca),
+            (&flags.auth_tokens_file, &mut c.auth_tokens_file),
+        ] {
+            if flag.is_some() {
+                key.clone_from(flag);
+            }
+            // An empty path (`RAILCONTACT_TLS_CERT=`) is "not set".
+            if key.as_ref().is_some_and(|p| p.as_os_str().is_empty()) {
+                *key = None;
+            }
+        }
+        c.insecure |= flags.insecure;
+        match (&c.tls_cert, &c.tls_key) {
+            (Some(_), None) => {
+                errors.push("tls_cert is set but tls_key is not: set both (TLS) or neither".into())
+            }
+            (None, Some(_)) => {
+                errors.push("tls_key is set but tls_cert is not: set both (TLS) or neither".into())
+            }
+            _ => {}
+        }
+        if c.tls_client_ca.is_some() && c.tls_cert.is_none() {
+            errors
+                .push("tls_client_ca needs TLS: set tls_cert and tls_key too (mutual TLS)".into());
         }
         for (key, v, least) in [
             ("shutdown_grace_s", c.shutdown_grace_s, 0.0),
@@ -293,6 +360,41 @@ impl ServeConfig {
             Ok(c)
         } else {
             Err(errors.join("; "))
+        }
+    }
+
+    /// Whether the gRPC port may listen where it is asked to. Loopback is
+    /// always allowed; any other address needs both TLS (`tls_cert`,
+    /// `tls_key`) and tokens (`auth_tokens_file`), or `insecure`. `Ok`
+    /// holds the warning to log when `insecure` is what allowed it.
+    pub fn check_exposure(&self) -> Result<Option<String>, String> {
+        if self.listen.ip().is_loopback() {
+            return Ok(None);
+        }
+        let mut missing = Vec::new();
+        if self.tls_cert.is_none() {
+            missing.push("TLS (tls_cert and tls_key)");
+        }
+        if self.auth_tokens_file.is_none() {
+            missing.push("bearer tokens (auth_tokens_file)");
+        }
+        if missing.is_empty() {
+            return Ok(None);
+        }
+        let missing = missing.join(" and ");
+        if self.insecure {
+            Ok(Some(format!(
+                "listening on {} without {missing}: anyone who reaches the port can use it \
+                 (insecure = true)",
+                self.listen
+            )))
+        } else {
+            Err(format!(
+                "refusing to listen on {}, which is not loopback, without {missing}: add them, \
+                 or override with --insecure, insecure = true or RAILCONTACT_INSECURE=true \
+                 (for a trusted network, or behind a proxy that authenticates)",
+                self.listen
+            ))
         }
     }
 
@@ -386,6 +488,35 @@ mod tests {
                 && err.contains("session_idle_timeout_s"),
             "{err}"
         );
+        // Security keys through the environment; an empty path is "not set".
+        let e = env(&[
+            ("RAILCONTACT_INSECURE", "true"),
+            ("RAILCONTACT_LISTEN", "0.0.0.0:50051"),
+            ("RAILCONTACT_TLS_CERT", ""),
+            ("RAILCONTACT_REFLECTION", "false"),
+            (
+                "RAILCONTACT_AUTH_TOKENS_FILE",
+                "/etc/railcontact/tokens.toml",
+            ),
+        ]);
+        let c = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap();
+        assert!(c.insecure && !c.reflection && c.tls_cert.is_none());
+        assert_eq!(
+            c.auth_tokens_file.as_deref(),
+            Some(Path::new("/etc/railcontact/tokens.toml"))
+        );
+        assert!(c.check_exposure().unwrap().unwrap().contains("TLS"));
+        let c = ServeConfig {
+            insecure: false,
+            ..c
+        };
+        let err = c.check_exposure().unwrap_err();
+        assert!(
+            err.contains("tls_cert") && err.contains("--insecure"),
+            "{err}"
+        );
+        assert_eq!(ServeConfig::default().check_exposure(), Ok(None));
+
         std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();
         let err = ServeConfig::load(Some(&file), &none, &ServeFlags::default()).unwrap_err();
         assert!(err.contains("worker"), "{err}");

@@ -19,6 +19,7 @@ use crate::core::problem::{Creepages, Kinematics};
 use crate::problem::case::{Case, Model};
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
+use crate::service::escaped;
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
@@ -91,12 +92,13 @@ impl ContactHandlers {
         }
     }
 
-    /// The client's `x-request-id`, or a new server id.
+    /// The client's `x-request-id` (escaped for the log), or a new server
+    /// id.
     fn request_id<T>(&self, req: &Request<T>) -> String {
         req.metadata()
             .get("x-request-id")
             .and_then(|v| v.to_str().ok())
-            .map(str::to_string)
+            .map(escaped)
             .unwrap_or_else(|| format!("r{}", self.next_id.fetch_add(1, Ordering::Relaxed)))
     }
 
@@ -311,7 +313,7 @@ async fn register(
                 t.build_time_s()
             ),
             Err(e) => {
-                tracing::warn!(pair_id = %entry.spec.id, error = %e, "contact table not built");
+                tracing::warn!(pair_id = %escaped(&entry.spec.id), error = %escaped(&e.to_string()), "contact table not built");
                 format!("contact table not built ({e}); model hertz_fastsim_table will fail for this pair, the others do not need it")
             }
         };
@@ -326,7 +328,7 @@ async fn register(
             );
         }
     }
-    tracing::info!(pair_id = %entry.spec.id, existed, "profile pair registered");
+    tracing::info!(pair_id = %escaped(&entry.spec.id), existed, "profile pair registered");
     send(
         pb::RegistrationStage::Ready,
         "ready",
@@ -358,7 +360,7 @@ fn finish<T>(
         r.as_ref().err().map(|e| e.code()),
     );
     if let Err(e) = &r {
-        tracing::info!(code = ?e.code(), error = %e, "request failed");
+        tracing::info!(code = ?e.code(), error = %escaped(&e.to_string()), "request failed");
     }
     r.map_err(Status::from)
 }
@@ -437,7 +439,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         tokio::spawn(
             async move {
                 if let Err(e) = register(&registry, spec, &admission, &tx, t0).await {
-                    tracing::info!(code = ?e.code(), error = %e, "registration failed");
+                    tracing::info!(code = ?e.code(), error = %escaped(&e.to_string()), "registration failed");
                     let _ = tx.send(Err(Status::from(e)));
                 }
             }
@@ -477,7 +479,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
             let admission = self.pool.admit(deadline)?;
             let (registry, key) = (self.pairs.clone(), id.clone());
             admission.run(move || registry.delete(&key)).await??;
-            tracing::info!(pair_id = %id, "profile pair deleted");
+            tracing::info!(pair_id = %escaped(&id), "profile pair deleted");
             Ok(pb::DeleteProfilePairResponse { pair_id: id })
         }
         .instrument(span)
@@ -721,7 +723,7 @@ fn already_open() -> ServiceError {
 
 /// A refused session request, answered in-band.
 fn refused(e: ServiceError) -> pb::ItemError {
-    tracing::debug!(error = %e, "session request refused");
+    tracing::debug!(error = %escaped(&e.to_string()), "session request refused");
     e.item_error()
 }
 
@@ -821,7 +823,7 @@ impl ContactHandlers {
              session",
             self.limits.session_idle_timeout.as_secs_f64()
         ));
-        tracing::info!(error = %e, "session closed");
+        tracing::info!(error = %escaped(&e.to_string()), "session closed");
         e
     }
 
@@ -866,7 +868,7 @@ impl ContactHandlers {
             WheelRailSession::open(entry, prepared, table, &open, self.session_limits())
                 .map_err(|e| Status::from(e.within("open")))?;
         let model = session.model();
-        tracing::info!(label = %open.client_label, pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
+        tracing::info!(label = %escaped(&open.client_label), pair_id = session.pair_id(), model = wheelrail::model_name(model), "wheel/rail session opened");
         let opened = Out::Opened(pb::WheelRailSessionOpened {
             session_id,
             pair_id: session.pair_id().to_string(),
@@ -966,7 +968,7 @@ impl ContactHandlers {
             .and_then(|r| r)
             .map_err(|e| e.within("open"))?;
         drop(admission);
-        tracing::info!(label = %open.client_label, model = model.name(), kind = ?session.kind(), "session opened");
+        tracing::info!(label = %escaped(&open.client_label), model = model.name(), kind = ?session.kind(), "session opened");
         let opened = Out::Opened(pb::SessionOpened {
             session_id,
             model: convert::wire_model(model) as i32,

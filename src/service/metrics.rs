@@ -23,6 +23,7 @@
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
+//! | `railcontact_auth_refused_total` | `reason` | calls refused by the bearer tokens (`auth_tokens_file`): `missing` (no `authorization` metadata, or not `Bearer`), `unknown` (no such token), `forbidden` (the token's role may not call the method) |
 //!
 //! Metrics that the handlers count are fields of [`Metrics`], registered in
 //! [`Metrics::default`] (a counter is registered without its `_total`
@@ -83,6 +84,11 @@ struct LimitLabels {
 }
 
 #[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct ReasonLabels {
+    reason: &'static str,
+}
+
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
 struct SolveLabels {
     model: &'static str,
     outcome: &'static str,
@@ -107,6 +113,7 @@ pub struct Metrics {
     sessions_opened: Counter,
     store_damaged_records: Gauge,
     registrations_refused: Family<LimitLabels, Counter>,
+    auth_refused: Family<ReasonLabels, Counter>,
     sessions_idle_closed: Counter,
     first_message_timeouts: Counter,
     session_mark_bytes: Gauge,
@@ -124,6 +131,7 @@ impl Default for Metrics {
             sessions_opened: Counter::default(),
             store_damaged_records: Gauge::default(),
             registrations_refused: Family::default(),
+            auth_refused: Family::default(),
             sessions_idle_closed: Counter::default(),
             first_message_timeouts: Counter::default(),
             session_mark_bytes: Gauge::default(),
@@ -139,6 +147,7 @@ impl Default for Metrics {
             "railcontact_sessions_opened", "Co-simulation sessions opened" => m.sessions_opened;
             "railcontact_store_damaged_records", "Damaged records of the profile pair store, listed as FAILED pairs" => m.store_damaged_records;
             "railcontact_registrations_refused", "Registrations refused by a limit" => m.registrations_refused;
+            "railcontact_auth_refused", "Calls refused by the bearer tokens, by reason" => m.auth_refused;
             "railcontact_sessions_idle_closed", "Sessions closed because they idled past session_idle_timeout_s" => m.sessions_idle_closed;
             "railcontact_streams_first_message_timed_out", "Session streams ended because no first message came within stream_first_message_timeout_s" => m.first_message_timeouts;
             "railcontact_session_mark_bytes", "Memory held by the marks of all sessions [bytes]" => m.session_mark_bytes;
@@ -190,6 +199,14 @@ impl Metrics {
     pub fn registration_refused(&self, limit: &'static str) {
         self.registrations_refused
             .get_or_create(&LimitLabels { limit })
+            .inc();
+    }
+
+    /// A call refused by the bearer tokens, for `reason` (`missing`,
+    /// `unknown`, `forbidden`).
+    pub fn auth_refused(&self, reason: &'static str) {
+        self.auth_refused
+            .get_or_create(&ReasonLabels { reason })
             .inc();
     }
 

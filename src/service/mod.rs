@@ -14,6 +14,8 @@
 //! | [`pool`] | solve threads, bounded admission, deadlines |
 //! | [`status`] | errors and their gRPC codes, in one place |
 //! | [`handlers`] | the RPC handlers |
+//! | [`auth`] | bearer tokens: roles, the table of who may call what, the tower layer |
+//! | [`tls`] | TLS of the gRPC port: certificate, key, client authorities |
 //! | [`config`] | layered settings (defaults, file, environment, flags) |
 //! | [`metrics`] | Prometheus metrics |
 //! | [`server`] | start, serve, graceful shutdown |
@@ -21,6 +23,7 @@
 //! The core (`crate::core`, `crate::conformal`) knows nothing of this
 //! module: no async, no network there.
 
+pub mod auth;
 pub mod config;
 pub mod convert;
 pub mod engine;
@@ -33,5 +36,42 @@ pub mod server;
 pub mod session;
 pub mod status;
 pub mod store;
+pub mod tls;
 pub mod wheelrail;
 pub mod wheelrail_session;
+
+/// Longest text of a client quoted in a log line, in characters.
+const MAX_LOGGED_CHARS: usize = 1000;
+
+/// Text that came from a client (a label, an id, a file name, a header,
+/// an error message quoting them), as it may appear in a log line: control
+/// characters, quotes and backslashes escaped as Rust does
+/// ([`str::escape_debug`]: a newline is `\n`), so that a client cannot
+/// forge or split log lines; at most 1000 characters, then `... (N
+/// characters)`.
+pub fn escaped(text: &str) -> String {
+    match text.char_indices().nth(MAX_LOGGED_CHARS) {
+        None => text.escape_debug().to_string(),
+        Some((end, _)) => format!(
+            "{}... ({} characters)",
+            text[..end].escape_debug(),
+            text.chars().count()
+        ),
+    }
+}
+
+/// An error with its sources, one after the other (transport errors say
+/// little at the top).
+pub fn error_chain(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut source = e.source();
+    while let Some(c) = source {
+        let t = c.to_string();
+        if !s.contains(&t) {
+            s.push_str(": ");
+            s.push_str(&t);
+        }
+        source = c.source();
+    }
+    s
+}

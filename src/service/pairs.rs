@@ -930,7 +930,7 @@ impl PairRegistry {
             for (id, record) in s.load_all().map_err(std::io::Error::other)? {
                 let entry = match (damage(&id, &record), record) {
                     (Some(reason), _) => {
-                        tracing::error!(pair_id = %quote(&id), store = %path, %reason, "stored profile pair is damaged: listed as FAILED, never served; register it again or delete it");
+                        tracing::error!(pair_id = %crate::service::escaped(&id), store = %path, reason = %crate::service::escaped(&reason), "stored profile pair is damaged: listed as FAILED, never served; register it again or delete it");
                         damaged.push(format!("{}: {reason}", quote(&id)));
                         let reason = format!("the stored record is damaged: {reason}; register the pair again or delete it");
                         PairEntry::failed(&id, reason, true)
@@ -938,13 +938,13 @@ impl PairRegistry {
                     (None, Ok(reg)) => match canonicalize(&reg) {
                         Ok(mut spec) => {
                             if spec.id != id {
-                                tracing::warn!(pair_id = %id, now = %spec.id, "stored profile pair has another id under this version; kept under its stored id");
+                                tracing::warn!(pair_id = %crate::service::escaped(&id), now = %spec.id, "stored profile pair has another id under this version; kept under its stored id");
                                 spec.id = id.clone();
                             }
                             Ok(PairEntry::new(spec, true))
                         }
                         Err(e) => {
-                            tracing::error!(pair_id = %id, error = %e, "stored profile pair is not valid in this version: listed as FAILED, never served");
+                            tracing::error!(pair_id = %crate::service::escaped(&id), error = %crate::service::escaped(&e.to_string()), "stored profile pair is not valid in this version: listed as FAILED, never served");
                             let reason = format!("the stored registration is not valid in this version: {e}; register the pair again or delete it");
                             PairEntry::failed(&id, reason, false)
                         }

@@ -21,6 +21,7 @@ use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
 use tonic::transport::server::TcpIncoming;
 
+use crate::service::auth::{AuthLayer, Tokens};
 use crate::service::config::ServeConfig;
 use crate::service::convert::CaseLimits;
 use crate::service::handlers::{ContactHandlers, RequestLimits};
@@ -31,6 +32,7 @@ use crate::service::pb::contact_service_server::ContactServiceServer;
 use crate::service::pool::SolvePool;
 use crate::service::status;
 use crate::service::store::PairStore;
+use crate::service::tls;
 
 /// A server running on the current tokio runtime.
 pub struct RunningServer {
@@ -71,7 +73,19 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
 }
 
 /// Binds the ports and starts serving `config` on the current runtime.
+/// Settings it refuses (a listen address beyond loopback without TLS and
+/// tokens, unreadable or invalid TLS or tokens files) are errors of kind
+/// `InvalidInput`, before any port is bound.
 pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
+    let invalid = |e: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, e);
+    if let Some(warning) = config.check_exposure().map_err(invalid)? {
+        tracing::warn!("{warning}");
+    }
+    let tls = tls::server_tls(config).map_err(|e| invalid(e.to_string()))?;
+    let tokens = match &config.auth_tokens_file {
+        Some(path) => Some(Tokens::load(path).map_err(|e| invalid(e.to_string()))?),
+        None => None,
+    };
     let workers = config.worker_count();
     let pool = SolvePool::new(workers, config.queue_count())
         .with_max_solve_time(Duration::from_secs_f64(config.max_solve_time_s));
@@ -116,15 +130,44 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         b.register_encoded_file_descriptor_set(pb::FILE_DESCRIPTOR_SET)
             .register_encoded_file_descriptor_set(tonic_health::pb::FILE_DESCRIPTOR_SET)
     };
-    let reflection_v1 = reflection(tonic_reflection::server::Builder::configure())
-        .build_v1()
-        .map_err(std::io::Error::other)?;
-    let reflection_v1alpha = reflection(tonic_reflection::server::Builder::configure())
-        .build_v1alpha()
-        .map_err(std::io::Error::other)?;
+    let (reflection_v1, reflection_v1alpha) = if config.reflection {
+        (
+            Some(
+                reflection(tonic_reflection::server::Builder::configure())
+                    .build_v1()
+                    .map_err(std::io::Error::other)?,
+            ),
+            Some(
+                reflection(tonic_reflection::server::Builder::configure())
+                    .build_v1alpha()
+                    .map_err(std::io::Error::other)?,
+            ),
+        )
+    } else {
+        (None, None)
+    };
     let service = ContactServiceServer::new(handlers)
         .max_decoding_message_size(config.max_message_bytes)
         .max_encoding_message_size(config.max_message_bytes);
+
+    let security = format!(
+        "tls: {}, client certificates: {}, tokens: {}, reflection: {}",
+        if tls.is_some() { "on" } else { "off" },
+        if config.tls_client_ca.is_some() {
+            "required"
+        } else {
+            "not asked"
+        },
+        tokens.as_ref().map_or(0, Tokens::len),
+        config.reflection
+    );
+    let auth = AuthLayer::new(tokens, metrics.clone());
+    let mut builder = tonic::transport::Server::builder();
+    if let Some(tls) = tls {
+        builder = builder
+            .tls_config(tls)
+            .map_err(|e| invalid(crate::service::error_chain(&e)))?;
+    }
 
     let listener = TcpListener::bind(config.listen).await?;
     let addr = listener.local_addr()?;
@@ -142,7 +185,9 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     };
     let (stop, stopped) = oneshot::channel::<()>();
     let task = tokio::spawn(
-        tonic::transport::Server::builder()
+        builder
+            // Every call passes the token check first.
+            .layer(auth)
             .layer(tower::util::MapResponseLayer::new(
                 oversize_request_is_resource_exhausted,
             ))
@@ -154,10 +199,12 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
                 config.http2_keepalive_timeout_s,
             )))
             .max_concurrent_streams(config.max_streams_per_connection)
-            .trace_fn(|req| tracing::info_span!("grpc", path = %req.uri().path()))
+            .trace_fn(|req| {
+                tracing::info_span!("grpc", path = %crate::service::escaped(req.uri().path()))
+            })
             .add_service(health_service)
-            .add_service(reflection_v1)
-            .add_service(reflection_v1alpha)
+            .add_optional_service(reflection_v1)
+            .add_optional_service(reflection_v1alpha)
             .add_service(service)
             // TCP_NODELAY: without it, a response written in two segments
             // waits for the client's delayed ACK (about 40 ms a call).
@@ -175,7 +222,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .to_string(),
         None => "memory only".to_string(),
     };
-    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), %store, "railcontact serving");
+    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), %store, %security, "railcontact serving");
     Ok(RunningServer {
         addr,
         metrics_addr,

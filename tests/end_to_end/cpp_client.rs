@@ -257,4 +257,57 @@ fn cpp_cosim_wheelset_against_the_server() {
     );
     check_trajectory(&parse_csv(&stdout));
     drop(server);
+
+    // The same over TLS with a bearer token (`--tls-ca`,
+    // RAILCONTACT_TOKEN); without the token the session is refused.
+    let dir = tempfile::tempdir().unwrap();
+    support::write_test_pki(dir.path());
+    let tokens = dir.path().join("tokens.toml");
+    std::fs::write(
+        &tokens,
+        "[[token]]\nname = \"cpp\"\nrole = \"solve\"\ntoken = \"cpp-test-token\"\n",
+    )
+    .unwrap();
+    let file = |name: &str| dir.path().join(name).display().to_string();
+    let server = Server::start_with(
+        &[
+            "--tls-cert",
+            &file("server.pem"),
+            "--tls-key",
+            &file("server-key.pem"),
+            "--auth-tokens-file",
+            &file("tokens.toml"),
+        ],
+        &[],
+    );
+    let target = server.addr.replace("127.0.0.1", "localhost");
+    let secured = |token: Option<&str>| {
+        let mut c = Command::new(&example);
+        c.args([
+            target.as_str(),
+            "--steps",
+            "120",
+            "--tls-ca",
+            &file("ca.pem"),
+        ])
+        .env_remove("RAILCONTACT_TOKEN");
+        if let Some(t) = token {
+            c.env("RAILCONTACT_TOKEN", t);
+        }
+        run_with_limit(&mut c, Duration::from_secs(120))
+    };
+    let output = secured(Some("cpp-test-token"));
+    assert!(
+        output.status.success(),
+        "cosim_wheelset over TLS with a token failed ({}):\n{}\n--- server log\n{}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr),
+        server.log()
+    );
+    let output = secured(None);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("UNAUTHENTICATED"),
+        "without a token: {stderr}"
+    );
 }

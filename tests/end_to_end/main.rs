@@ -13,6 +13,7 @@
 //! | [`cli`] | `railcontact` subcommands on the example cases |
 //! | [`service`] | SolvePatch, batches, creep curves, queue, deadlines, health, reflection |
 //! | [`service_limits`] | per-request and per-solve limits |
+//! | [`service_security`] | TLS, mutual TLS, tokens and roles, loopback-only defaults, escaped logs |
 //! | [`service_sessions`] | co-simulation patch sessions: order, marks, rollback, memory |
 //! | [`service_store`] | the profile-pair store: restart, damage, limits |
 //! | [`service_wheelrail`] | wheel/rail queries and sessions |
@@ -39,6 +40,7 @@ mod python_client;
 mod scaleout;
 mod service;
 mod service_limits;
+mod service_security;
 mod service_sessions;
 mod service_store;
 mod service_wheelrail;

@@ -1,7 +1,7 @@
 //! Scale-out on loopback: three `railcontact serve` processes, and
 //! `railcontact loadtest` spreading its sessions over them (session k on
 //! replica k mod 3, batch clients after them). Every answer of every
-//! replica must equal the sequential replay on the first replica, bit for
+//! replica must equal the replay on the first replica, bit for
 //! bit. Throughput against one and against three replicas is printed, not
 //! asserted: the machine is shared and noisy, and three servers on two
 //! cores share the same CPUs anyway.

@@ -1,7 +1,7 @@
 //! A bounded soak: 64 concurrent co-simulation sessions of mixed kinds and
 //! two batch clients against one `railcontact serve` for about a minute
 //! (`railcontact loadtest`), every answer checked bit for bit against a
-//! sequential replay; zero errors, zero mismatches, the server's peak
+//! replay of each session alone; zero errors, zero mismatches, the server's peak
 //! memory bounded.
 
 use crate::support;

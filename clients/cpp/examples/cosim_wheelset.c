@@ -48,7 +48,8 @@ static int model_of(const char* name) {
 static int usage(const char* argv0) {
   fprintf(stderr,
           "usage: %s TARGET [--model hertz_fastsim|exact|cect|auto] [--pair PAIR_ID] "
-          "[--steps N]\n",
+          "[--steps N] [--tls-ca FILE.pem]\n"
+          "(a bearer token, if the server needs one, from RAILCONTACT_TOKEN)\n",
           argv0);
   return 2;
 }
@@ -63,10 +64,13 @@ int main(int argc, char** argv) {
   const char* pair = "mbench_s1002_uic60";
   int model = RC_MODEL_HERTZ_FASTSIM;
   long steps = 200;
+  const char* tls_ca = NULL;
   for (int i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "--model") == 0 && i + 1 < argc) {
       model = model_of(argv[++i]);
       if (model == 0) return usage(argv[0]);
+    } else if (strcmp(argv[i], "--tls-ca") == 0 && i + 1 < argc) {
+      tls_ca = argv[++i];
     } else if (strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       pair = argv[++i];
     } else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc) {
@@ -84,7 +88,8 @@ int main(int argc, char** argv) {
   if (target == NULL) return usage(argv[0]);
 
   char err[1024];
-  rc_session* s = rc_open(target, pair, model, err, sizeof err);
+  rc_session* s = rc_open_secure(target, pair, model, tls_ca, getenv("RAILCONTACT_TOKEN"), err,
+                                 sizeof err);
   if (s == NULL) {
     fprintf(stderr, "rc_open: %s\n", err);
     return 1;

@@ -165,6 +165,14 @@ typedef struct rc_wheel_forces {
 rc_session* rc_open(const char* target, const char* pair_id, int model, char* err,
                     size_t errlen);
 
+/* rc_open to a server with TLS or bearer tokens: `tls_ca_file` (NULL or
+ * "": plaintext) names a PEM file of the authorities to trust and turns
+ * TLS on; `token` (NULL or "": none) is sent as `authorization: Bearer
+ * TOKEN`. */
+rc_session* rc_open_secure(const char* target, const char* pair_id, int model,
+                           const char* tls_ca_file, const char* token, char* err,
+                           size_t errlen);
+
 /* Solves step `step_index` (0 for the first, then consecutive; after
  * rc_rollback to k, k + 1) at time `time_s` for the wheelset state `in`,
  * and writes the result to `out`. Returns 0 or an error (see above); on

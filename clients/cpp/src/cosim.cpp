@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <utility>
 
 #include "railcontact/v1/railcontact.grpc.pb.h"
@@ -168,7 +170,23 @@ struct CoSimSession::Impl {
 
 CoSimSession::CoSimSession(const SessionOptions& options) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  s.channel = grpc::CreateChannel(options.target, grpc::InsecureChannelCredentials());
+  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
+  if (options.tls || !options.tls_ca_file.empty()) {
+    grpc::SslCredentialsOptions ssl;
+    if (!options.tls_ca_file.empty()) {
+      std::ifstream file(options.tls_ca_file, std::ios::binary);
+      if (!file) {
+        throw Error(grpc::StatusCode::INVALID_ARGUMENT,
+                    "cannot read the TLS authorities file " + options.tls_ca_file, "tls_ca_file",
+                    true);
+      }
+      std::ostringstream pem;
+      pem << file.rdbuf();
+      ssl.pem_root_certs = pem.str();
+    }
+    credentials = grpc::SslCredentials(ssl);
+  }
+  s.channel = grpc::CreateChannel(options.target, credentials);
   const auto deadline =
       std::chrono::system_clock::now() +
       std::chrono::microseconds(static_cast<std::int64_t>(options.connect_timeout_s * 1e6));
@@ -179,6 +197,9 @@ CoSimSession::CoSimSession(const SessionOptions& options) : impl_(std::make_uniq
                 "", true);
   }
   s.stub = pb::ContactService::NewStub(s.channel);
+  if (!options.token.empty()) {
+    s.context.AddMetadata("authorization", "Bearer " + options.token);
+  }
   s.stream = s.stub->WheelRailSession(&s.context);
   s.open = true;
 

@@ -139,6 +139,12 @@ extern "C" {
 
 rc_session* rc_open(const char* target, const char* pair_id, int model, char* err,
                     size_t errlen) {
+  return rc_open_secure(target, pair_id, model, nullptr, nullptr, err, errlen);
+}
+
+rc_session* rc_open_secure(const char* target, const char* pair_id, int model,
+                           const char* tls_ca_file, const char* token, char* err,
+                           size_t errlen) {
   if (target == nullptr || pair_id == nullptr) {
     usage(err, errlen, "rc_open needs a target and a pair id");
     return nullptr;
@@ -150,6 +156,13 @@ rc_session* rc_open(const char* target, const char* pair_id, int model, char* er
     options.pair_id = pair_id;
     options.model = static_cast<railcontact::Model>(model);
     options.client_label = "railcontact-c";
+    if (tls_ca_file != nullptr && tls_ca_file[0] != '\0') {
+      options.tls = true;
+      options.tls_ca_file = tls_ca_file;
+    }
+    if (token != nullptr) {
+      options.token = token;
+    }
     session = new rc_session(options);
   });
   return session;

@@ -3,8 +3,8 @@ loopback port, started once per test session.
 
 The binary is ``$RAILCONTACT_BIN`` (set by ``tests/end_to_end/python_client.rs`` to
 cargo's build of it), else ``<repo>/target/debug/railcontact``. Its store
-goes to a temporary directory; its log to ``server.log`` there, printed
-when the server does not start.
+goes to a temporary directory; its log beside it, printed when the
+server does not start.
 """
 
 from __future__ import annotations
@@ -33,12 +33,18 @@ def _binary() -> pathlib.Path:
 @pytest.fixture(scope="session")
 def server(tmp_path_factory):
     """The address ``127.0.0.1:PORT`` of a running server."""
-    data_dir = tmp_path_factory.mktemp("railcontact-data")
-    log_path = data_dir.parent / "server.log"
+    yield from start_server(tmp_path_factory.mktemp("railcontact-data"))
+
+
+def start_server(data_dir: pathlib.Path, *args: str):
+    """Runs ``railcontact serve --listen 127.0.0.1:0 ARGS`` with its store
+    in ``data_dir`` and its log beside it; yields its address, then stops
+    it."""
+    log_path = data_dir.parent / f"{data_dir.name}.log"
     env = dict(os.environ, RAILCONTACT_DATA_DIR=str(data_dir), RUST_LOG="warn")
     with open(log_path, "wb") as log:
         process = subprocess.Popen(
-            [str(_binary()), "serve", "--listen", "127.0.0.1:0"],
+            [str(_binary()), "serve", "--listen", "127.0.0.1:0", *args],
             stdout=subprocess.PIPE,
             stderr=log,
             stdin=subprocess.DEVNULL,

@@ -164,6 +164,13 @@ struct SessionOptions {
   std::string client_label = "railcontact-cpp";
   // How long to wait for the connection at open [s].
   double connect_timeout_s = 10.0;
+  // TLS: connect with TLS when set. `tls_ca_file` names a PEM file of the
+  // authorities to trust (empty with `tls`: gRPC's default roots).
+  bool tls = false;
+  std::string tls_ca_file;
+  // Bearer token sent as `authorization: Bearer TOKEN` (servers with
+  // auth_tokens_file); empty: none.
+  std::string token;
 };
 
 // A wheel/rail co-simulation session: one WheelRailSession stream. The

@@ -73,11 +73,59 @@ def _stream(responses: Iterator) -> Iterator:
         raise RailcontactError.from_rpc(e) from None
 
 
+class _Bearer(
+    grpc.UnaryUnaryClientInterceptor,
+    grpc.UnaryStreamClientInterceptor,
+    grpc.StreamUnaryClientInterceptor,
+    grpc.StreamStreamClientInterceptor,
+):
+    """Adds ``authorization: Bearer TOKEN`` to the metadata of every call."""
+
+    def __init__(self, token: str):
+        self._entry = ("authorization", f"Bearer {token}")
+
+    def _details(self, details):
+        return _Details(details, list(details.metadata or []) + [self._entry])
+
+    def intercept_unary_unary(self, continuation, details, request):
+        return continuation(self._details(details), request)
+
+    def intercept_unary_stream(self, continuation, details, request):
+        return continuation(self._details(details), request)
+
+    def intercept_stream_unary(self, continuation, details, requests):
+        return continuation(self._details(details), requests)
+
+    def intercept_stream_stream(self, continuation, details, requests):
+        return continuation(self._details(details), requests)
+
+
+class _Details(grpc.ClientCallDetails):
+    """``details`` with other metadata."""
+
+    def __init__(self, details, metadata):
+        self.method = details.method
+        self.timeout = details.timeout
+        self.metadata = metadata
+        self.credentials = details.credentials
+        self.wait_for_ready = getattr(details, "wait_for_ready", None)
+        self.compression = getattr(details, "compression", None)
+
+
+def _read(path) -> bytes:
+    with open(path, "rb") as f:
+        return f.read()
+
+
 class Client:
     """A connection to a railcontact server.
 
     ``Client("127.0.0.1:50051")`` opens an insecure channel; use it as a
-    context manager (or call :meth:`close`). ``timeout_s`` is the deadline of
+    context manager (or call :meth:`close`). ``tls=True`` connects with TLS
+    trusting the system's authorities, ``tls="ca.pem"`` trusting those of
+    that PEM file; ``client_cert=("client.pem", "client-key.pem")`` presents
+    a client certificate (mutual TLS). ``token`` is sent on every call as
+    ``authorization: Bearer TOKEN`` (servers with ``auth_tokens_file``). ``timeout_s`` is the deadline of
     each unary call and server stream (None: none). ``client.stub`` is the
     generated ``ContactServiceStub`` and ``railcontact.pb`` the message
     module, for everything this API does not cover.
@@ -97,6 +145,9 @@ class Client:
         timeout_s: Optional[float] = None,
         options: Optional[list] = None,
         channel: Optional[grpc.Channel] = None,
+        tls: Union[bool, str, os.PathLike, None] = None,
+        client_cert: Optional[tuple] = None,
+        token: Optional[str] = None,
     ):
         max_message = 256 * 1024 * 1024
         default_options = [
@@ -105,7 +156,22 @@ class Client:
         ]
         self.target = target
         self.timeout_s = timeout_s
-        self.channel = channel or grpc.insecure_channel(target, options=options or default_options)
+        options = options or default_options
+        if channel is None:
+            if tls or client_cert:
+                root = None if tls is True or not tls else _read(tls)
+                key, chain = (None, None)
+                if client_cert:
+                    chain, key = _read(client_cert[0]), _read(client_cert[1])
+                credentials = grpc.ssl_channel_credentials(
+                    root_certificates=root, private_key=key, certificate_chain=chain
+                )
+                channel = grpc.secure_channel(target, credentials, options=options)
+            else:
+                channel = grpc.insecure_channel(target, options=options)
+        if token:
+            channel = grpc.intercept_channel(channel, _Bearer(token))
+        self.channel = channel
         self.stub = pb_grpc.ContactServiceStub(self.channel)
         # Pair id -> the RegisterProfilePairRequest that registered it.
         self._registrations: dict = {}
