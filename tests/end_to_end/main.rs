@@ -5,7 +5,10 @@
 //! One test binary with a module per subject, so that the package's test
 //! code is compiled and linked once, and the tests of every subject run
 //! side by side (`cargo test --test end_to_end MODULE::` runs one subject,
-//! e.g. `cargo test --test end_to_end soak::`).
+//! e.g. `cargo test --test end_to_end endurance::`). libtest starts tests
+//! in the order of their names, so the longest, the soak, is in a module
+//! whose name sorts early (`endurance`): the rest run beside it instead of
+//! after it.
 //!
 //! | module | what |
 //! |---|---|
@@ -21,9 +24,9 @@
 //! | [`loadtest`] | `railcontact loadtest` against a server process |
 //! | [`scaleout`] | three replicas, sessions spread by the client |
 //! | [`proxy_fleet`] | nginx (`deploy/nginx.conf`) in front of three replicas: routing, pinning, a drain |
-//! | [`soak`] | 64 mixed sessions for 45 s, every answer replayed |
 //! | [`python_client`] | the Python client's pytest suite (a venv under `target/`) |
 //! | [`cpp_client`] | the C++ client built with CMake and run (Debian packages) |
+//! | [`endurance`] | the soak: 64 mixed sessions for 45 s, every answer replayed |
 //!
 //! [`common`] starts servers in-process; [`support`] starts `railcontact
 //! serve` processes and runs the load generator.
@@ -34,6 +37,7 @@ mod support;
 mod architecture;
 mod cli;
 mod cpp_client;
+mod endurance;
 mod loadtest;
 mod proxy_fleet;
 mod python_client;
@@ -44,5 +48,4 @@ mod service_security;
 mod service_sessions;
 mod service_store;
 mod service_wheelrail;
-mod soak;
 mod validation_fuzz;
