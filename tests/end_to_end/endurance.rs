@@ -8,11 +8,9 @@ use crate::support;
 
 use support::{assert_clean, check, loadtest_json, num, Server};
 
-/// Hertz+FASTSIM and exact wheelsets, exact, FASTSIM and Hertz patches
-/// (the conformal wheel/rail models are left out: on the load test's path
-/// a cect wheelset is refused at step 5, its conformal window reaching past
-/// the wheel profile).
-const MIX: &str = "wheelrail:hertz_fastsim=8,wheelrail:exact=2,\
+/// Hertz+FASTSIM, exact and conformal (cect) wheelsets, exact, FASTSIM and
+/// Hertz patches.
+const MIX: &str = "wheelrail:hertz_fastsim=8,wheelrail:exact=2,wheelrail:cect=1,\
                    patch:exact32=2,patch:fastsim=2,patch:hertz=1";
 
 /// How long the sessions run [s].

@@ -43,6 +43,34 @@ fn loadtest_json_has_sane_percentiles_no_errors_and_no_mismatches() {
     );
 }
 
+/// The conformal wheel/rail models along the load test's path: cect was
+/// refused at step 5 ("the wheel profile does not cross the rail normal")
+/// when its grid, rounded up, reached past the profile curves handed to the
+/// conformal geometry.
+#[test]
+fn conformal_wheelset_sessions_step_along_the_path() {
+    let server = Server::start();
+    let (v, out) = loadtest_json(&[
+        "--target",
+        &server.addr,
+        "--sessions",
+        "2",
+        "--steps",
+        "8",
+        "--batch-clients",
+        "0",
+        "--mix",
+        "wheelrail:cect=1,wheelrail:auto=1",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_clean(&v);
+    assert_eq!(num(&v, "steps"), 16.0, "{v}");
+}
+
 #[test]
 fn loadtest_table_and_time_limit() {
     let server = Server::start();

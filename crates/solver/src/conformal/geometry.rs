@@ -271,6 +271,16 @@ fn intersect_normal(
 }
 
 impl ConformalGeometry {
+    /// Arc length of the rail profile on each side of the origin that
+    /// [`ConformalGeometry::new`] samples for `grid` [m]. The curves handed
+    /// to it must reach that far (the wheel a little further: its points on
+    /// the rail's normals lie beyond the rail's where the profiles diverge).
+    pub fn reach_m(grid: &Grid) -> f64 {
+        let s_lo = grid.y_m(0) - grid.dy_m;
+        let s_hi = grid.y_m(grid.ny - 1) + grid.dy_m;
+        s_lo.abs().max(s_hi.abs()) * 1.2 + grid.dy_m
+    }
+
     /// Builds the geometry of `rail` and `wheel` profiles on `grid` (x, s).
     pub fn new(
         rail: &dyn Curve,
@@ -285,10 +295,8 @@ impl ConformalGeometry {
         let (nx, ny) = (grid.nx, grid.ny);
         // 1. Reference curve: midpoints between each rail point and the wheel
         // point on its normal, sampled finely on both sides of the origin.
-        let s_lo = grid.y_m(0) - grid.dy_m;
-        let s_hi = grid.y_m(ny - 1) + grid.dy_m;
         let step = grid.dy_m / REFERENCE_SAMPLES_PER_ELEMENT as f64;
-        let reach = s_lo.abs().max(s_hi.abs()) * 1.2 + grid.dy_m;
+        let reach = Self::reach_m(&grid);
         let nsamp = (2.0 * reach / step).ceil() as usize + 1;
         let mut mids: Vec<[f64; 2]> = Vec::with_capacity(nsamp);
         let mut tw = 0.0;

@@ -1173,7 +1173,8 @@ fn patch_grid(
 }
 
 /// Arc length of profile around the reference handed to the conformal
-/// geometry, beyond the patch's lateral extent [m].
+/// geometry, beyond what it samples for its grid
+/// ([`ConformalGeometry::reach_m`]) [m].
 const CONFORMAL_CURVE_MARGIN_M: f64 = 4e-3;
 
 /// The conformal geometry of a patch: rail profile and wheel locus around
@@ -1186,7 +1187,12 @@ fn conformal_geometry(
     geom: &PatchGeometry,
     grid: Grid,
 ) -> Result<ConformalGeometry, WheelRailError> {
-    let reach = geom.s_range_m[0].abs().max(geom.s_range_m[1].abs()) + CONFORMAL_CURVE_MARGIN_M;
+    // The grid is wider than the loaded range (its size rounds up a ladder),
+    // and the geometry samples 1.2 times the grid's half-width: the curves
+    // must reach past both.
+    let reach = ConformalGeometry::reach_m(&grid)
+        .max(geom.s_range_m[0].abs().max(geom.s_range_m[1].abs()))
+        + CONFORMAL_CURVE_MARGIN_M;
     let n = (reach / SAMPLE_SPACING_M).ceil() as usize;
     let [q0, z0] = geom.reference_m;
     let rs = pair.rail(side).samples();
