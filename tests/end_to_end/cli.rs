@@ -216,6 +216,12 @@ fn fastsim_example_runs() {
     assert!(f(&v, "fx_n") < 0.0 && f(&v, "fy_n") < 0.0);
     assert!(f(&v, "fx_n").hypot(f(&v, "fy_n")) <= 0.3 * 1e4 * 1.001);
     assert!(f(&v, "max_traction_pa") > 0.0);
+    // The reported maximum pressure is Hertz's p0 = 3 Fn / (2 pi a b), and
+    // the notes say so (FASTSIM's parabolic bound peaks at 4/3 p0).
+    let (a, b) = (f(&v, "patch_length_m") / 2.0, f(&v, "patch_width_m") / 2.0);
+    let p0 = 3.0 * f(&v, "normal_force_n") / (2.0 * std::f64::consts::PI * a * b);
+    assert!((f(&v, "max_pressure_pa") / p0 - 1.0).abs() < 1e-12, "{v}");
+    assert!(v["notes"].to_string().contains("4/3 p0"), "{}", v["notes"]);
 }
 
 #[test]

@@ -75,6 +75,9 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
     })
 }
 
+/// What the FASTSIM model reports, and which pressure.
+pub const NOTE_FASTSIM: &str = "normal quantities from Hertz; tangential from FASTSIM (Kalker's simplified theory); max_pressure_pa is Hertz's p0 = 3 Fn / (2 pi a b); FASTSIM's traction bound mu p uses the parabolic pressure of the simplified theory, whose maximum 2 Fn / (pi a b) = 4/3 p0 is the maximum pressure CONTACT's FASTSIM reports";
+
 /// Model `fastsim`: the Hertz ellipse, then FASTSIM with the case's creepages
 /// on `nx` x `ny` elements.
 pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
@@ -113,10 +116,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         grid: Some([case.nx, case.ny]),
         window_m: None,
         wfric_lateral: None,
-        notes: vec![
-            "normal quantities from Hertz; tangential from FASTSIM (Kalker's simplified theory)"
-                .to_string(),
-        ],
+        notes: vec![NOTE_FASTSIM.to_string()],
         steps: None,
         fields: None,
         geometry: None,
