@@ -178,7 +178,8 @@ impl From<WheelRailError> for CliError {
         match e {
             WheelRailError::Invalid { .. }
             | WheelRailError::Spline { .. }
-            | WheelRailError::Geometry { .. } => CliError::BadInput(e.to_string()),
+            | WheelRailError::Geometry { .. }
+            | WheelRailError::LoadNotCarried { .. } => CliError::BadInput(e.to_string()),
             WheelRailError::Contact { .. } | WheelRailError::Cancelled => {
                 CliError::Failure(e.to_string())
             }

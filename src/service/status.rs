@@ -224,16 +224,12 @@ impl From<WheelRailError> for ServiceError {
             WheelRailError::Invalid { key, message } => ServiceError::invalid(key, message),
             WheelRailError::Spline { .. } => ServiceError::invalid("pair_id", e.to_string()),
             // The profiles do not face each other at this lateral shift
-            // (with this yaw and roll), or the load needs more approach
-            // than the profiles allow.
-            WheelRailError::Geometry { ref message, .. } => {
-                let field = if message.contains("load cannot be carried") {
-                    "load"
-                } else {
-                    "position.lateral_m"
-                };
-                ServiceError::invalid(field, e.to_string())
+            // (with this yaw and roll).
+            WheelRailError::Geometry { .. } => {
+                ServiceError::invalid("position.lateral_m", e.to_string())
             }
+            // The load needs more approach than the profiles allow.
+            WheelRailError::LoadNotCarried { .. } => ServiceError::invalid("load", e.to_string()),
             WheelRailError::Cancelled
             | WheelRailError::Contact {
                 source: ContactError::Cancelled,
@@ -315,5 +311,26 @@ mod tests {
         assert_eq!(e.item_error().field, "step.creepages.spin_per_m");
         let s = tonic::Status::from(ServiceError::Exhausted("full".into()));
         assert_eq!(s.code(), Code::ResourceExhausted);
+    }
+
+    #[test]
+    fn wheel_rail_errors_name_the_field_by_their_kind() {
+        let load = ServiceError::from(WheelRailError::LoadNotCarried {
+            side: "left",
+            max_approach_m: 2e-3,
+        });
+        assert_eq!(load.code(), Code::InvalidArgument);
+        let item = load.item_error();
+        assert_eq!(item.field, "load");
+        assert!(
+            item.message.contains("exceeds 2.000 mm"),
+            "{}",
+            item.message
+        );
+        let apart = ServiceError::from(WheelRailError::Geometry {
+            side: "right",
+            message: "the profiles do not face each other".into(),
+        });
+        assert_eq!(apart.item_error().field, "position.lateral_m");
     }
 }

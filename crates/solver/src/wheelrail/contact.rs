@@ -987,12 +987,9 @@ fn solve_wheel(
             LoadResult::CapTooSmall => break,
         }
     }
-    Err(WheelRailError::Geometry {
+    Err(WheelRailError::LoadNotCarried {
         side: side.name(),
-        message: format!(
-            "the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
-            (cap - gmin) * 1e3
-        ),
+        max_approach_m: cap - gmin,
     })
 }
 

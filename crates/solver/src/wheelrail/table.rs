@@ -772,12 +772,9 @@ fn solve_wheel_tabulated(
             }
         }
     }
-    Err(WheelRailError::Geometry {
+    Err(WheelRailError::LoadNotCarried {
         side: side.name(),
-        message: format!(
-            "the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
-            (cap - gmin) * 1e3
-        ),
+        max_approach_m: cap - gmin,
     })
 }
 

@@ -70,6 +70,18 @@ pub enum WheelRailError {
         /// What is wrong.
         message: String,
     },
+    /// The load needs more approach than the profiles allow at this
+    /// position.
+    #[error(
+        "{side} wheel: the vertical approach needed exceeds {:.3} mm; the load cannot be carried",
+        .max_approach_m * 1e3
+    )]
+    LoadNotCarried {
+        /// "left" or "right".
+        side: &'static str,
+        /// The largest vertical approach the search allowed \[m\].
+        max_approach_m: f64,
+    },
     /// A contact patch could not be solved.
     #[error("{side} wheel, patch {patch}: {source}")]
     Contact {
