@@ -3,7 +3,9 @@
 //! -0, negative, tiny, 5e-324, 1e300, +-inf, NaN, the typical value scaled
 //! by 1e+-6) against the real server in-process. Each answer must be OK
 //! with every number finite, or INVALID_ARGUMENT naming the mutated field
-//! (or one of the documented dependent fields below). Then the profile
+//! (or one of the documented dependent fields below). The same for the
+//! position, velocity and load of wheel/rail session steps, where a refused
+//! step must also leave the session as it was. Then the profile
 //! readers on mutations of the real profiles in `../shared/profiles`: Ok
 //! or a ProfileError, never a panic. Seeded and bounded (a few hundred
 //! requests on 16 x 16 grids); the counts are printed at the end.
@@ -645,6 +647,143 @@ async fn hostile_values_are_answered_or_refused_by_name() {
         out.counts
     );
     server.shutdown().await;
+    assert!(
+        out.wrong.is_empty(),
+        "{} of {total} answers are wrong:\n{}",
+        out.wrong.len(),
+        out.wrong.join("\n")
+    );
+}
+
+/// Wheel/rail session steps: every position, velocity and load field of a
+/// step set to each extreme value in one Hertz+FASTSIM session. Each step
+/// is answered with a finite result or an in-band INVALID_ARGUMENT naming
+/// `step.` + the mutated field (or a documented dependent field). Every
+/// mutation is sent right after a rollback to a marked good step; a refused
+/// one must change nothing: the good step sent after it gives the bits of
+/// the same good step sent right after the rollback.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hostile_session_steps_are_answered_or_refused_by_name() {
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    use prost::Message;
+
+    let server = start(&ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        shutdown_grace_s: 10.0,
+        data_dir: Default::default(),
+        ..ServeConfig::default()
+    })
+    .await
+    .expect("server starts");
+    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
+        .await
+        .expect("client connects");
+    let (tx, rx) = tokio::sync::mpsc::channel(4);
+    let mut answers = client
+        .wheel_rail_session(tokio_stream::wrappers::ReceiverStream::new(rx))
+        .await
+        .expect("session stream")
+        .into_inner();
+    let mut call = async |kind: In| {
+        tx.send(pb::WheelRailSessionRequest { kind: Some(kind) })
+            .await
+            .expect("the stream is open");
+        answers
+            .message()
+            .await
+            .expect("an answer")
+            .and_then(|r| r.kind)
+            .expect("a response kind")
+    };
+    let opened = call(In::Open(pb::WheelRailSessionOpen {
+        pair_id: "mbench_s1002_uic60".into(),
+        model: pb::WheelRailModel::HertzFastsim as i32,
+        client_label: "fuzz".into(),
+        ..Default::default()
+    }))
+    .await;
+    assert!(matches!(opened, Out::Opened(_)), "{opened:?}");
+    let step = |index: u64, q: &pb::SolveWheelRailRequest, mark: bool| {
+        In::Step(pb::WheelRailSessionStep {
+            step_index: index,
+            time_s: index as f64 * 1e-3,
+            position: q.position,
+            velocity: q.velocity,
+            load: q.load,
+            mark,
+        })
+    };
+    let rollback = || In::Rollback(pb::SessionRollback { to_step_index: 0 });
+    let good = wheel_query(pb::WheelRailModel::HertzFastsim);
+    // The result's bits without its timings (which differ every step).
+    let bits = |answer: Out| match answer {
+        Out::Step(s) => {
+            let mut r = s.result.expect("a result");
+            r.timing = None;
+            Ok(r.encode_to_vec())
+        }
+        other => Err(format!("{other:?}")),
+    };
+    bits(call(step(0, &good, true)).await).expect("the marked good step");
+    assert!(matches!(call(rollback()).await, Out::RolledBack(_)));
+    let after_mark = bits(call(step(1, &good, false)).await).expect("a good step");
+    let mut out = Outcomes::default();
+    let fields: Vec<_> = wheel_fields()
+        .into_iter()
+        .filter(|(path, _, _)| {
+            ["position.", "velocity.", "load."]
+                .iter()
+                .any(|p| path.starts_with(p))
+        })
+        .collect();
+    let mut poisoned = Vec::new();
+    for (path, typical, set) in &fields {
+        for v in extremes(*typical) {
+            let mut q = good.clone();
+            set(&mut q, v);
+            let back = call(rollback()).await;
+            assert!(matches!(back, Out::RolledBack(_)), "{back:?}");
+            let r = match call(step(1, &q, false)).await {
+                Out::Step(s) => Ok(s),
+                Out::Error(e) => {
+                    // In-band errors carry their field under `step.`.
+                    let field = e.field.strip_prefix("step.").unwrap_or(&e.field);
+                    let message = format!("invalid `{field}`: {}", e.message);
+                    Err(tonic::Status::new(Code::from_i32(e.code), message))
+                }
+                other => panic!("{path} = {v:e}: {other:?}"),
+            };
+            let refused = r.is_err();
+            out.record(
+                path,
+                format!("{v:e}"),
+                r,
+                |s: &pb::WheelRailSessionStepResult| {
+                    let r = s.result.as_ref().ok_or("no result")?;
+                    check_wheelrail_finite(r).map_err(|e| e.to_string())
+                },
+            );
+            if refused {
+                match bits(call(step(1, &good, false)).await) {
+                    Ok(b) if b == after_mark => {}
+                    Ok(_) => poisoned.push(format!(
+                        "{path} = {v:e}: refused, yet the next good step differs"
+                    )),
+                    Err(e) => poisoned.push(format!("{path} = {v:e}: the next good step: {e}")),
+                }
+            }
+        }
+    }
+    let total: usize = out.counts.values().sum();
+    eprintln!(
+        "session fuzz: {total} mutated steps over {} fields, outcomes {:?}",
+        fields.len(),
+        out.counts
+    );
+    drop(tx);
+    server.shutdown().await;
+    assert!(poisoned.is_empty(), "{}", poisoned.join("\n"));
     assert!(
         out.wrong.is_empty(),
         "{} of {total} answers are wrong:\n{}",
