@@ -156,6 +156,7 @@ fn valid(kind: Kind, k: u64) -> Step {
                 creepage_long: 1e-3 * (1.0 + 0.1 * f),
                 creepage_lat: 0.5e-3 * (1.0 + 0.1 * f),
                 spin_per_m: 0.2,
+                ..Default::default()
             })
         }
         Kind::Transient => {
