@@ -1088,9 +1088,11 @@ fn a_case_file_given_to_the_other_command_names_the_right_one() {
 fn prescribed_force_gives_back_the_creepage() {
     // The rolling example on 16 x 16: its Fx with the creepage given, then
     // that Fx prescribed instead gives the creepage back (core::force).
+    // Inner tolerance 1e-10: the force tolerance is then 1e-9 mu Fn.
     let text = example_text("hertz_ellipse_rolling.toml")
         .replace("nx = 24", "nx = 16")
-        .replace("ny = 24", "ny = 16");
+        .replace("ny = 24", "ny = 16")
+        + "\n[solver]\ntangential_tolerance = 1e-10\n";
     let forward = solve_json(&case_file("force_fw.toml", &text), &[]);
     let fx = f(&forward, "fx_n");
     let inverse_text = text.replace("creepage_long = 0.001", &format!("force_x_n = {fx:e}"));

@@ -984,11 +984,19 @@ async fn solve_patch_finds_the_creepage_of_a_prescribed_force() {
     let (server, mut client) = server().await;
     // Fx of creepage_long = 2e-4, then that Fx prescribed: the creepage
     // comes back in `force_control` (core::force).
-    let forward = solve_patch(&mut client, rolling(pb::Model::Exact, 24, 2e-4)).await;
+    // Inner tolerance 1e-10: the force tolerance is then 1e-9 mu Fn.
+    let tight = |mut case: pb::PatchCase| {
+        case.solver = Some(pb::SolverSection {
+            tangential_tolerance: Some(1e-10),
+            ..Default::default()
+        });
+        case
+    };
+    let forward = solve_patch(&mut client, tight(rolling(pb::Model::Exact, 24, 2e-4))).await;
     let fx = totals(forward.result.as_ref().unwrap()).fx_n;
     assert!(forward.force_control.is_none());
     let with_force = |f: f64| {
-        let mut case = rolling(pb::Model::Exact, 24, 0.0);
+        let mut case = tight(rolling(pb::Model::Exact, 24, 0.0));
         case.kinematics = Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
             force_x_n: Some(f),
             ..Default::default()

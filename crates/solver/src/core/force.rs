@@ -18,13 +18,13 @@
 //!   Jacobian (two extra solves per iteration, from clones of the solver)
 //!   and a backtracking line search on |F - F*|.
 //!
-//! The iteration stops when |F - F*| <= `tolerance` mu Fn (each component),
-//! mu the kinetic friction coefficient, or when the bracket of the one
-//! creepage is narrower than 1e-14 of it. The force error is then also
-//! bounded by the inner solve's own tolerance
-//! ([`crate::core::tangential::TangentialSettings::tolerance`], relative to
-//! max mu p_n): the outer tolerance cannot make the answer more accurate
-//! than that.
+//! The iteration stops when |F - F*| <= tol mu Fn (each component), mu the
+//! kinetic friction coefficient, or when the bracket of the one creepage is
+//! narrower than 1e-14 of it. The inner solve's forces are only as exact as
+//! its own tolerance ([`crate::core::tangential::TangentialSettings::tolerance`],
+//! relative to max mu p_n), so tol = max(`tolerance`, 10 x the inner
+//! tolerance): 1e-6 with the default inner tolerance 1e-7, 1e-9 with an
+//! inner tolerance of 1e-10 or less.
 //!
 //! A force of magnitude mu Fn or more (mu kinetic: the bound at full
 //! slip) has no finite creepage and is refused naming its key; a smaller
@@ -61,7 +61,8 @@ impl PrescribedForce {
 /// Outer iteration settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ForceControlSettings {
-    /// Force tolerance relative to mu Fn [-] (default 1e-9).
+    /// Force tolerance relative to mu Fn [-] (default 1e-9; at least 10
+    /// times the inner tangential tolerance, see the module docs).
     pub tolerance: f64,
     /// Outer iteration limit (default 60).
     pub max_iterations: usize,
@@ -170,7 +171,10 @@ pub fn solve_prescribed_force(
             ),
         ));
     }
-    let tol = settings.tolerance * limit;
+    let tol = settings
+        .tolerance
+        .max(10.0 * problem.settings.tangential.tolerance)
+        * limit;
     let g = problem.material.shear_modulus_pa;
     let c2 = first.totals.contact_area_m2 / std::f64::consts::PI;
     // Kalker's linear slope dF/dcreepage (module docs).
@@ -566,6 +570,30 @@ mod tests {
             close(r.creepages.creepage_long, xi, 1e-6);
             close(r.creepages.creepage_lat, eta, 1e-6);
         }
+    }
+
+    #[test]
+    fn the_default_inner_tolerance_sets_a_reachable_force_tolerance() {
+        // Inner tolerance 1e-7 (the default): forces meet 1e-6 mu Fn; a
+        // demand of 1e-9 mu Fn would stall on the inner solve's accuracy.
+        let sat = xi_saturation();
+        let mut p = problem(32, creep(0.6 * sat, -0.5 * sat, 0.1));
+        p.settings.tangential.tolerance = 1e-7;
+        let fw = one(&mut ContactSolver::new(&p, KernelCache::global()), &p).unwrap();
+        p.kinematics = Kinematics::SteadyRolling(creep(0.0, 0.0, 0.1));
+        let t = PrescribedForce {
+            force_x_n: Some(fw.totals.fx_n),
+            force_y_n: Some(fw.totals.fy_n),
+        };
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        let r = solve_prescribed_force(&mut s, &p, t, ForceControlSettings::default()).unwrap();
+        assert!(
+            r.converged && r.outer_iterations < 10,
+            "{} iterations",
+            r.outer_iterations
+        );
+        assert!((r.solution.totals.fx_n - fw.totals.fx_n).abs() <= 1e-6 * MU * FN);
+        assert!((r.solution.totals.fy_n - fw.totals.fy_n).abs() <= 1e-6 * MU * FN);
     }
 
     #[test]
