@@ -499,7 +499,7 @@ mod tests {
         let sat = xi_saturation();
         // From the linear range to beyond the linear saturation creepage,
         // for each direction, the other creepage and spin given.
-        for f in [0.05, 0.4, 0.9, 1.6] {
+        for f in [0.05, 0.4, 0.9, 1.6, 2.5] {
             for k in 0..2 {
                 let (xi, eta, phi) = if k == 0 {
                     (f * sat, -0.1 * sat, 0.0)

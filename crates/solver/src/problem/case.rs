@@ -1858,3 +1858,72 @@ ny = 16
         );
     }
 }
+
+#[cfg(test)]
+mod prescribed_force_tests {
+    use super::*;
+
+    fn case(model: &str, rolling: &str) -> Result<Case, CaseError> {
+        Case::from_toml(&format!(
+            "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+             [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+             b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\n{rolling}\n"
+        ))
+    }
+
+    fn message(r: Result<Case, CaseError>) -> String {
+        match r {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_force_replaces_the_creepage_of_its_direction() {
+        let c = case(
+            "exact",
+            "force_x_n = -500.0\ncreepage_lat = 2e-4\nspin_per_m = 0.1",
+        )
+        .unwrap();
+        assert_eq!(c.prescribed_force.force_x_n, Some(-500.0));
+        assert_eq!(c.prescribed_force.force_y_n, None);
+        // The iteration starts from creepage 0; the other ones are kept.
+        assert_eq!(
+            c.kinematics,
+            Kinematics::SteadyRolling(Creepages {
+                creepage_long: 0.0,
+                creepage_lat: 2e-4,
+                spin_per_m: 0.1
+            })
+        );
+        let c = case("exact", "force_x_n = -500.0\nforce_y_n = 100.0").unwrap();
+        assert_eq!(c.prescribed_force.force_y_n, Some(100.0));
+    }
+
+    #[test]
+    fn both_keys_of_a_direction_and_other_models_are_refused_naming_the_keys() {
+        for (creep, force) in [
+            ("creepage_long", "force_x_n"),
+            ("creepage_lat", "force_y_n"),
+        ] {
+            let m = message(case("exact", &format!("{creep} = 1e-3\n{force} = -10.0")));
+            assert!(
+                m.contains(&format!("`rolling.{force}`"))
+                    && m.contains(&format!("`rolling.{creep}`")),
+                "{m}"
+            );
+        }
+        let m = message(case("exact", "force_y_n = 1e300"));
+        assert!(m.contains("rolling.force_y_n"), "{m}");
+        let m = message(case("hertz", "force_x_n = -10.0"));
+        assert!(
+            m.contains("rolling.force_x_n") && m.contains("no tangential forces"),
+            "{m}"
+        );
+        let m = message(case("fastsim", "force_y_n = -10.0"));
+        assert!(
+            m.contains("rolling.force_y_n") && m.contains("exact model only"),
+            "{m}"
+        );
+    }
+}
