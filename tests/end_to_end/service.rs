@@ -1030,5 +1030,43 @@ async fn solve_patch_finds_the_creepage_of_a_prescribed_force() {
         msg.contains("rolling.force_x_n") && msg.contains("exact model only"),
         "{msg}"
     );
+    // Creep curves and sessions step creepages: a prescribed force is
+    // refused there, in the case and in a sweep point.
+    let curve = |case: pb::PatchCase, point: pb::Creepages| pb::CreepCurveRequest {
+        case: Some(case),
+        sweep: Some(pb::creep_curve_request::Sweep::List(pb::CreepageList {
+            points: vec![point],
+        })),
+        include_fields: false,
+    };
+    let point_force = pb::Creepages {
+        force_x_n: Some(fx),
+        ..Default::default()
+    };
+    for (req, field) in [
+        (
+            curve(with_force(fx), pb::Creepages::default()),
+            "`case.rolling.force_x_n`",
+        ),
+        (
+            curve(rolling(pb::Model::Exact, 24, 0.0), point_force),
+            "force_x_n`",
+        ),
+    ] {
+        let (code, msg) = failure(client.creep_curve(req).await);
+        assert_eq!(code, Code::InvalidArgument, "{msg}");
+        assert!(
+            msg.contains(field) && msg.contains("not in creep curves"),
+            "{msg}"
+        );
+    }
+    let stream = tokio_stream::iter(vec![open(with_force(fx), false)]);
+    let mut out = client.patch_session(stream).await.unwrap().into_inner();
+    let (code, msg) = failure(out.next().await.unwrap());
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(
+        msg.contains("`open.case.rolling.force_x_n`") && msg.contains("not in sessions"),
+        "{msg}"
+    );
     server.shutdown().await;
 }
