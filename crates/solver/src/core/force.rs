@@ -92,10 +92,11 @@ pub struct ForceSolution {
     pub converged: bool,
 }
 
-fn with(problem: &ContactProblem, c: Creepages) -> ContactProblem {
-    let mut p = problem.clone();
-    p.kinematics = Kinematics::SteadyRolling(c);
-    p
+/// `work` (a copy of the problem, made once per prescribed-force solve)
+/// with creepages `c`.
+fn with(work: &mut ContactProblem, c: Creepages) -> &ContactProblem {
+    work.kinematics = Kinematics::SteadyRolling(c);
+    work
 }
 
 fn one(solver: &mut ContactSolver, p: &ContactProblem) -> Result<ContactSolution, ContactError> {
@@ -244,6 +245,7 @@ fn one_direction(
     settings: ForceControlSettings,
 ) -> Result<ForceSolution, ContactError> {
     let key = if k == 0 { FORCE_X_KEY } else { FORCE_Y_KEY };
+    let mut work = problem.clone();
     let mut c = c0;
     let mut x = component(&c0, k);
     let mut r = force(&first, k) - target;
@@ -306,7 +308,7 @@ fn one_direction(
         prev = Some((x, r));
         x = next;
         set(&mut c, k, x);
-        sol = one(solver, &with(problem, c))?;
+        sol = one(solver, with(&mut work, c))?;
         solves += 1;
         r = force(&sol, k) - target;
     }
@@ -332,6 +334,7 @@ fn both(
 ) -> Result<ForceSolution, ContactError> {
     let residual = |s: &ContactSolution| [s.totals.fx_n - target[0], s.totals.fy_n - target[1]];
     let norm = |r: [f64; 2]| r[0].hypot(r[1]);
+    let mut work = problem.clone();
     let mut c = c0;
     let mut sol = first;
     let mut r = residual(&sol);
@@ -353,7 +356,7 @@ fn both(
         for (k, d) in col.iter_mut().enumerate() {
             let mut cp = c;
             set(&mut cp, k, component(&c, k) + h);
-            let s = one(&mut solver.clone(), &with(problem, cp))?;
+            let s = one(&mut solver.clone(), with(&mut work, cp))?;
             solves += 1;
             *d = [
                 (s.totals.fx_n - sol.totals.fx_n) / h,
@@ -388,7 +391,7 @@ fn both(
                 t *= 0.5;
                 continue;
             }
-            let s = one(solver, &with(problem, cn))?;
+            let s = one(solver, with(&mut work, cn))?;
             solves += 1;
             let rn = residual(&s);
             if norm(rn) < (1.0 - 1e-4 * t) * norm(r) || t < 1e-6 {
