@@ -73,6 +73,7 @@ fn creepages(k: u64) -> pb::Creepages {
         creepage_long: 1e-3 * f,
         creepage_lat: 5e-4 * f,
         spin_per_m: 0.1 * f,
+        ..Default::default()
     }
 }
 

@@ -395,6 +395,7 @@ fn creepages(i: usize, k: u64) -> pb::Creepages {
         creepage_long: 1e-3 * (1.0 + 0.5 * a.sin()),
         creepage_lat: 5e-4 * a.cos(),
         spin_per_m: 0.1 * a.sin(),
+        ..Default::default()
     }
 }
 

@@ -397,6 +397,16 @@ fn write_stdout(text: &str) -> Result<(), CliError> {
 fn plot_title(case: &Case) -> String {
     match &case.kinematics {
         Kinematics::Frictionless => "static, frictionless".to_string(),
+        Kinematics::SteadyRolling(_) if case.prescribed_force.any() => format!(
+            "steady rolling, prescribed force Fx = {}, Fy = {}, mu = {}",
+            case.prescribed_force
+                .force_x_n
+                .map_or("-".to_string(), |f| format!("{f} N")),
+            case.prescribed_force
+                .force_y_n
+                .map_or("-".to_string(), |f| format!("{f} N")),
+            case.friction.kinetic_coefficient
+        ),
         Kinematics::SteadyRolling(c) => format!(
             "steady rolling: xi = {:.3e}, eta = {:.3e}, phi = {:.3e} 1/m, mu = {}",
             c.creepage_long, c.creepage_lat, c.spin_per_m, case.friction.kinetic_coefficient

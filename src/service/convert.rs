@@ -15,9 +15,12 @@ use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::problem::case::{
     ranges, Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection,
-    LoadSection, MaterialSection, Model, SolverSection, StepSection, TransientSection,
+    LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
+    TransientSection,
 };
-use crate::problem::report::{ConformalFieldsReport, ConformalKeys, Fields, Report, StepReport};
+use crate::problem::report::{
+    ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepReport,
+};
 use crate::service::pb;
 use crate::service::status::ServiceError;
 
@@ -112,12 +115,64 @@ pub fn creepages(c: &pb::Creepages) -> Creepages {
     }
 }
 
+/// The `[rolling]` section of wire creepages: a creepage or a prescribed
+/// force per direction (`force_x_n`, `force_y_n`).
+pub fn rolling(c: &pb::Creepages) -> RollingSection {
+    RollingSection {
+        creepage_long: (c.force_x_n.is_none() || c.creepage_long != 0.0).then_some(c.creepage_long),
+        creepage_lat: (c.force_y_n.is_none() || c.creepage_lat != 0.0).then_some(c.creepage_lat),
+        spin_per_m: c.spin_per_m,
+        force_x_n: c.force_x_n,
+        force_y_n: c.force_y_n,
+    }
+}
+
+/// Refuses a prescribed force in wire creepages `c` at field `key` (sessions
+/// and creep curves: they step or sweep creepages).
+pub fn no_prescribed_force(c: &pb::Creepages, key: &str, what: &str) -> Result<(), ServiceError> {
+    for (name, f) in [("force_x_n", c.force_x_n), ("force_y_n", c.force_y_n)] {
+        if f.is_some() {
+            return Err(ServiceError::invalid(
+                format!("{key}.{name}"),
+                format!("a prescribed force is solved by SolvePatch and SolvePatchBatch only, not in {what}: give the creepage"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a case with a prescribed force (sessions and creep curves).
+pub fn refuse_prescribed_force(case: &Case, what: &str) -> Result<(), ServiceError> {
+    let f = case.prescribed_force;
+    let key = match (f.force_x_n, f.force_y_n) {
+        (Some(_), _) => "rolling.force_x_n",
+        (None, Some(_)) => "rolling.force_y_n",
+        (None, None) => return Ok(()),
+    };
+    Err(ServiceError::invalid(
+        key,
+        format!("a prescribed force is solved by SolvePatch and SolvePatchBatch only, not in {what}: give the creepage"),
+    ))
+}
+
+/// The wire outcome of a prescribed-force solve.
+pub fn force_control(f: &ForceControlReport) -> pb::ForceControl {
+    pb::ForceControl {
+        creepage_long: f.creepage_long,
+        creepage_lat: f.creepage_lat,
+        spin_per_m: f.spin_per_m,
+        force_iterations: u32::try_from(f.force_iterations).unwrap_or(u32::MAX),
+        force_solves: u32::try_from(f.force_solves).unwrap_or(u32::MAX),
+    }
+}
+
 /// The wire creepages of core creepages.
 pub fn wire_creepages(c: &Creepages) -> pb::Creepages {
     pb::Creepages {
         creepage_long: c.creepage_long,
         creepage_lat: c.creepage_lat,
         spin_per_m: c.spin_per_m,
+        ..Default::default()
     }
 }
 
@@ -166,7 +221,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             approach_m,
         },
         rolling: match &c.kinematics {
-            Some(pb::patch_case::Kinematics::Rolling(r)) => Some(creepages(r)),
+            Some(pb::patch_case::Kinematics::Rolling(r)) => Some(rolling(r)),
             _ => None,
         },
         transient: match &c.kinematics {
@@ -434,6 +489,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         grid,
         notes: r.notes.clone(),
         fields,
+        force_control: r.force_control.as_ref().map(force_control),
     }
 }
 

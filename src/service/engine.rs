@@ -13,6 +13,7 @@
 
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
+use crate::core::force::{solve_prescribed_force, ForceControlSettings};
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
 use crate::core::sensitivity::{
@@ -22,7 +23,8 @@ use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::{ContactSolver, SolverState};
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
-use crate::problem::ModelRun;
+use crate::problem::report::ForceControlReport;
+use crate::problem::{CaseError, ModelRun};
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -178,14 +180,41 @@ impl PatchEngine {
     pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
         let (mut result, jacobian) = match &mut self.exact {
             Some(e) => {
-                let solutions = e.solver.solve(&e.problem)?;
+                let (solutions, force) = if self.case.prescribed_force.any() {
+                    let f = solve_prescribed_force(
+                        &mut e.solver,
+                        &e.problem,
+                        self.case.prescribed_force,
+                        ForceControlSettings::default(),
+                    )?;
+                    if !f.converged {
+                        return Err(ServiceError::from(CaseError::Failure(format!(
+                            "the prescribed force was not reached in {} outer iterations",
+                            f.outer_iterations
+                        ))));
+                    }
+                    // The Jacobian (if asked) is taken about the creepages found.
+                    e.problem.kinematics = Kinematics::SteadyRolling(f.creepages);
+                    let report = ForceControlReport {
+                        creepage_long: f.creepages.creepage_long,
+                        creepage_lat: f.creepages.creepage_lat,
+                        spin_per_m: f.creepages.spin_per_m,
+                        force_iterations: f.outer_iterations,
+                        force_solves: f.solves,
+                    };
+                    (vec![f.solution], Some(report))
+                } else {
+                    (e.solver.solve(&e.problem)?, None)
+                };
                 let jacobian = match (&self.exact, solutions.last()) {
                     (Some(e), Some(base)) if self.sensitivities => {
                         Some(exact_jacobian(&e.solver, &e.problem, base)?)
                     }
                     _ => None,
                 };
-                (self.exact_result(&solutions, fields), jacobian)
+                let mut result = self.exact_result(&solutions, fields);
+                result.force_control = force.as_ref().map(convert::force_control);
+                (result, jacobian)
             }
             None => {
                 let (mut r, totals) = self.reference_result(fields)?;
@@ -302,6 +331,7 @@ impl PatchEngine {
             fields: last
                 .filter(|_| fields)
                 .map(|s| convert::planar_fields(&s.fields)),
+            force_control: None,
         }
     }
 }

@@ -557,6 +557,8 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                 .ok_or_else(|| ServiceError::invalid("case", "missing"))?;
             let valid = convert::validate_case(case, self.limits.case)
                 .map_err(|e| e.within("case"))?;
+            convert::refuse_prescribed_force(&valid.case, "creep curves")
+                .map_err(|e| e.within("case"))?;
             convert::check_fields(&valid.case, req.include_fields)?;
             if !matches!(valid.case.kinematics, Kinematics::SteadyRolling(_)) {
                 return Err(ServiceError::invalid(
@@ -947,6 +949,8 @@ impl ContactHandlers {
             .ok_or_else(|| ServiceError::invalid("open.case", "missing"))?;
         let valid =
             convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
+        convert::refuse_prescribed_force(&valid.case, "sessions")
+            .map_err(|e| e.within("open.case"))?;
         let jacobian = open.include_sensitivities;
         if jacobian {
             check_sensitivities(&valid.case).map_err(|e| e.within("open"))?;
@@ -1033,6 +1037,7 @@ impl ContactHandlers {
 fn sweep_points(req: &pb::CreepCurveRequest, max: usize) -> Result<Vec<Creepages>, ServiceError> {
     use pb::creep_curve_request::Sweep;
     let check = |c: &pb::Creepages, key: String| {
+        convert::no_prescribed_force(c, &key, "creep curves")?;
         let c = convert::creepages(c);
         c.check_input()
             .map_err(|e| ServiceError::from(e).rekey("rolling", &key))?;

@@ -384,6 +384,9 @@ impl Session {
                 if s.shift.is_some() {
                     return Err(unused("shift", "steady-rolling"));
                 }
+                if let Some(c) = &s.creepages {
+                    convert::no_prescribed_force(c, "step.creepages", "sessions")?;
+                }
                 let c = s
                     .creepages
                     .as_ref()

@@ -1089,3 +1089,52 @@ fn a_case_file_given_to_the_other_command_names_the_right_one() {
         "{err}"
     );
 }
+
+#[test]
+fn prescribed_force_gives_back_the_creepage() {
+    // The rolling example on 16 x 16: its Fx with the creepage given, then
+    // that Fx prescribed instead gives the creepage back (core::force).
+    // Inner tolerance 1e-10: the force tolerance is then 1e-9 mu Fn.
+    let text = example_text("hertz_ellipse_rolling.toml")
+        .replace("nx = 24", "nx = 16")
+        .replace("ny = 24", "ny = 16")
+        + "\n[solver]\ntangential_tolerance = 1e-10\n";
+    let forward = solve_json(&case_file("force_fw.toml", &text), &[]);
+    let fx = f(&forward, "fx_n");
+    let inverse_text = text.replace("creepage_long = 0.001", &format!("force_x_n = {fx:e}"));
+    assert!(inverse_text.contains("force_x_n"));
+    let inverse = solve_json(&case_file("force_inv.toml", &inverse_text), &[]);
+    let c = &inverse["force_control"];
+    let xi = c["creepage_long"].as_f64().unwrap();
+    assert!((xi - 0.001).abs() <= 1e-6 * 0.001, "{c}");
+    assert_eq!(c["creepage_lat"].as_f64(), Some(0.0005));
+    assert!(c["force_iterations"].as_u64().unwrap() >= 1, "{c}");
+    assert!((f(&inverse, "fx_n") - fx).abs() <= 1e-6 * 0.3 * 1e4);
+    // Both keys of a direction, and a force beyond mu Fn, are refused
+    // naming the keys.
+    let both = text.replace(
+        "creepage_long = 0.001",
+        "creepage_long = 0.001\nforce_x_n = -100.0",
+    );
+    let out = run(&[
+        "solve",
+        case_file("force_both.toml", &both).to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("rolling.creepage_long") && err.contains("rolling.force_x_n"),
+        "{err}"
+    );
+    let beyond = text.replace("creepage_long = 0.001", "force_x_n = -3300.0");
+    let out = run(&[
+        "solve",
+        case_file("force_beyond.toml", &beyond).to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("rolling.force_x_n") && err.contains("saturation mu Fn"),
+        "{err}"
+    );
+}

@@ -517,6 +517,7 @@ fn creepages(k: u64) -> pb::Creepages {
         creepage_long: 1e-3 * (1.0 + 0.1 * f),
         creepage_lat: 5e-4 * (1.0 - 0.05 * f),
         spin_per_m: 0.1,
+        ..Default::default()
     }
 }
 

@@ -839,6 +839,7 @@ async fn sensitivities_match_finite_differences_over_the_wire_and_kalkers_linear
         creepage_long: 6e-4,
         creepage_lat: -3e-4,
         spin_per_m: 0.05,
+        ..Default::default()
     };
     // A fixed window: the default one follows the load, and the finite
     // differences below control the approach instead.
@@ -897,6 +898,7 @@ async fn sensitivities_match_finite_differences_over_the_wire_and_kalkers_linear
                         creepage_long: c.creepage_long,
                         creepage_lat: c.creepage_lat,
                         spin_per_m: c.spin_per_m,
+                        ..Default::default()
                     },
                 );
                 q.load = Some(pb::LoadSection {
@@ -974,5 +976,97 @@ async fn sensitivities_match_finite_differences_over_the_wire_and_kalkers_linear
     .await;
     let s = step_result(&responses[1]);
     assert!(s.result.as_ref().unwrap().sensitivities.is_some());
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn solve_patch_finds_the_creepage_of_a_prescribed_force() {
+    let (server, mut client) = server().await;
+    // Fx of creepage_long = 2e-4, then that Fx prescribed: the creepage
+    // comes back in `force_control` (core::force).
+    // Inner tolerance 1e-10: the force tolerance is then 1e-9 mu Fn.
+    let tight = |mut case: pb::PatchCase| {
+        case.solver = Some(pb::SolverSection {
+            tangential_tolerance: Some(1e-10),
+            ..Default::default()
+        });
+        case
+    };
+    let forward = solve_patch(&mut client, tight(rolling(pb::Model::Exact, 24, 2e-4))).await;
+    let fx = totals(forward.result.as_ref().unwrap()).fx_n;
+    assert!(forward.force_control.is_none());
+    let with_force = |f: f64| {
+        let mut case = tight(rolling(pb::Model::Exact, 24, 0.0));
+        case.kinematics = Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            force_x_n: Some(f),
+            ..Default::default()
+        }));
+        case
+    };
+    let r = solve_patch(&mut client, with_force(fx)).await;
+    let c = r.force_control.expect("force_control");
+    assert!((c.creepage_long - 2e-4).abs() <= 1e-6 * 2e-4, "{c:?}");
+    assert!(c.force_iterations >= 1);
+    let t = totals(r.result.as_ref().unwrap());
+    assert!((t.fx_n - fx).abs() <= 1e-6 * 0.3 * t.normal_force_n);
+    // At mu Fn: INVALID_ARGUMENT naming the field.
+    let fn_ = t.normal_force_n;
+    let (code, msg) = failure(
+        client
+            .solve_patch(request(with_force(-0.3 * fn_ * 1.01)))
+            .await,
+    );
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(
+        msg.contains("rolling.force_x_n") && msg.contains("saturation"),
+        "{msg}"
+    );
+    // FASTSIM does not solve for a force: refused naming the field.
+    let mut fastsim = with_force(fx);
+    fastsim.model = pb::Model::Fastsim as i32;
+    let (code, msg) = failure(client.solve_patch(request(fastsim)).await);
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(
+        msg.contains("rolling.force_x_n") && msg.contains("exact model only"),
+        "{msg}"
+    );
+    // Creep curves and sessions step creepages: a prescribed force is
+    // refused there, in the case and in a sweep point.
+    let curve = |case: pb::PatchCase, point: pb::Creepages| pb::CreepCurveRequest {
+        case: Some(case),
+        sweep: Some(pb::creep_curve_request::Sweep::List(pb::CreepageList {
+            points: vec![point],
+        })),
+        include_fields: false,
+    };
+    let point_force = pb::Creepages {
+        force_x_n: Some(fx),
+        ..Default::default()
+    };
+    for (req, field) in [
+        (
+            curve(with_force(fx), pb::Creepages::default()),
+            "`case.rolling.force_x_n`",
+        ),
+        (
+            curve(rolling(pb::Model::Exact, 24, 0.0), point_force),
+            "force_x_n`",
+        ),
+    ] {
+        let (code, msg) = failure(client.creep_curve(req).await);
+        assert_eq!(code, Code::InvalidArgument, "{msg}");
+        assert!(
+            msg.contains(field) && msg.contains("not in creep curves"),
+            "{msg}"
+        );
+    }
+    let stream = tokio_stream::iter(vec![open(with_force(fx), false)]);
+    let mut out = client.patch_session(stream).await.unwrap().into_inner();
+    let (code, msg) = failure(out.next().await.unwrap());
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(
+        msg.contains("`open.case.rolling.force_x_n`") && msg.contains("not in sessions"),
+        "{msg}"
+    );
     server.shutdown().await;
 }

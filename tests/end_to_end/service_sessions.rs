@@ -156,6 +156,7 @@ fn valid(kind: Kind, k: u64) -> Step {
                 creepage_long: 1e-3 * (1.0 + 0.1 * f),
                 creepage_lat: 0.5e-3 * (1.0 + 0.1 * f),
                 spin_per_m: 0.2,
+                ..Default::default()
             })
         }
         Kind::Transient => {
@@ -192,6 +193,17 @@ fn huge_spin(s: &mut Step) {
     s.creepages.as_mut().unwrap().spin_per_m = 1e300;
 }
 
+/// A prescribed force: SolvePatch only, sessions step creepages.
+fn prescribed_force(s: &mut Step) {
+    s.creepages.as_mut().unwrap().force_x_n = Some(-100.0);
+}
+
+const PRESCRIBED_FORCE: Refusal = Refusal {
+    what: "prescribed force",
+    change: prescribed_force,
+    code: Code::InvalidArgument,
+    field: "step.creepages.force_x_n",
+};
 const NEGATIVE_LOAD: Refusal = Refusal {
     what: "negative load",
     change: negative_load,
@@ -322,7 +334,13 @@ async fn refused_patch_steps_leave_exact_sessions_bit_for_bit_as_they_were() {
         case(exact, Kind::Rolling, 16),
         Kind::Rolling,
         true,
-        &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID, HUGE_SPIN],
+        &[
+            NEGATIVE_LOAD,
+            NO_CONTACT,
+            BEYOND_GRID,
+            HUGE_SPIN,
+            PRESCRIBED_FORCE,
+        ],
     )
     .await;
     refusals_leave_no_trace(

@@ -163,6 +163,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
             creepage_long: 1e-3,
             creepage_lat: 5e-4,
             spin_per_m: 0.1,
+            ..Default::default()
         })),
         grid: Some(pb::GridSection {
             nx: Some(16),

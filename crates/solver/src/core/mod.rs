@@ -9,6 +9,7 @@ pub mod creep;
 pub mod error;
 pub mod fastsim;
 pub mod fft;
+pub mod force;
 pub mod grid;
 pub mod hertz;
 pub mod influence;

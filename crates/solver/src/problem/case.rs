@@ -13,6 +13,7 @@ use crate::conformal::geometry::{
 };
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{check_count, show, ContactError};
+use crate::core::force::PrescribedForce;
 use crate::core::grid::Grid;
 use crate::core::hertz::HertzSolution;
 use crate::core::material::{CombinedMaterial, Material};
@@ -72,6 +73,9 @@ pub mod ranges {
     pub const PROFILE_COORDINATE: Range = Range::symmetric(1.0, "m").hint(UnitHint::Millimetre);
     /// Values of the service's `geometry.extra_gap_m` \[m\].
     pub const EXTRA_GAP: Range = Range::symmetric(1e-2, "m");
+    /// `rolling.force_x_n`, `rolling.force_y_n` \[N\] (a prescribed
+    /// tangential force; a solve further needs |F| < mu Fn).
+    pub const TANGENTIAL_FORCE: Range = Range::symmetric(1e8, "N");
     /// `transient.steps[k].shift_x_m`, `shift_y_m` \[m\] (one step).
     pub const SHIFT: Range = Range::symmetric(1e-2, "m").hint(UnitHint::Millimetre);
     /// `transient.steps[k].rotation_rad` \[rad\] (one step).
@@ -198,15 +202,89 @@ pub struct CaseFile {
     /// Normal load (required; transient steps may override it).
     pub load: LoadSection,
     /// Steady rolling creepages `creepage_long` [-], `creepage_lat` [-],
-    /// `spin_per_m` [1/m] (each defaults to 0); omit for a static or
-    /// transient case.
-    pub rolling: Option<Creepages>,
+    /// `spin_per_m` [1/m] (each defaults to 0), or instead of a creepage
+    /// the prescribed force `force_x_n` / `force_y_n` \[N\] (exact model);
+    /// omit for a static or transient case.
+    pub rolling: Option<RollingSection>,
     /// Transient shift steps; alternative to `[rolling]`.
     pub transient: Option<TransientSection>,
     /// Potential contact grid (optional; defaults below).
     pub grid: Option<GridSection>,
     /// Solver tolerances and limits (optional; core defaults).
     pub solver: Option<SolverSection>,
+}
+
+/// `[rolling]`: per direction either the creepage or the prescribed total
+/// tangential force on body 1 (signs as in [`crate::core::problem`]).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RollingSection {
+    /// Longitudinal creepage xi [-] (default 0 unless `force_x_n` is given).
+    pub creepage_long: Option<f64>,
+    /// Lateral creepage eta [-] (default 0 unless `force_y_n` is given).
+    pub creepage_lat: Option<f64>,
+    /// Spin creepage phi [1/m] (default 0).
+    pub spin_per_m: f64,
+    /// Prescribed longitudinal force Fx \[N\], |Fx| < mu Fn, instead of
+    /// `creepage_long`.
+    pub force_x_n: Option<f64>,
+    /// Prescribed lateral force Fy \[N\], |Fy| < mu Fn, instead of
+    /// `creepage_lat`.
+    pub force_y_n: Option<f64>,
+}
+
+impl RollingSection {
+    /// Rolling with these creepages.
+    pub fn creepages(c: Creepages) -> Self {
+        Self {
+            creepage_long: Some(c.creepage_long),
+            creepage_lat: Some(c.creepage_lat),
+            spin_per_m: c.spin_per_m,
+            force_x_n: None,
+            force_y_n: None,
+        }
+    }
+
+    /// The creepages (0 in the directions of a prescribed force: the start
+    /// of its iteration) and the prescribed forces; exactly one of creepage
+    /// and force per direction.
+    pub fn split(&self) -> Result<(Creepages, PrescribedForce), CaseError> {
+        let one = |creep: Option<f64>, force: Option<f64>, ck: &str, fk: &str| match (creep, force)
+        {
+            (Some(_), Some(_)) => Err(bad(
+                format!("rolling.{fk}"),
+                format!("give either `rolling.{ck}` or `rolling.{fk}`, not both"),
+            )),
+            (c, None) => Ok((c.unwrap_or(0.0), None)),
+            (None, Some(f)) => {
+                ranges::TANGENTIAL_FORCE.check(&format!("rolling.{fk}"), f)?;
+                Ok((0.0, Some(f)))
+            }
+        };
+        let (xi, fx) = one(
+            self.creepage_long,
+            self.force_x_n,
+            "creepage_long",
+            "force_x_n",
+        )?;
+        let (eta, fy) = one(
+            self.creepage_lat,
+            self.force_y_n,
+            "creepage_lat",
+            "force_y_n",
+        )?;
+        Ok((
+            Creepages {
+                creepage_long: xi,
+                creepage_lat: eta,
+                spin_per_m: self.spin_per_m,
+            },
+            PrescribedForce {
+                force_x_n: fx,
+                force_y_n: fy,
+            },
+        ))
+    }
 }
 
 /// `[material]`: either `shear_modulus_pa` + `poisson_ratio` for both bodies,
@@ -760,6 +838,10 @@ pub struct Case {
     /// conformal models transient steps are static compression: zero
     /// shifts, increasing forces).
     pub kinematics: Kinematics,
+    /// Prescribed tangential forces of steady rolling (exact model); the
+    /// creepages of their directions in `kinematics` are the iteration's
+    /// start.
+    pub prescribed_force: PrescribedForce,
     /// Elements in x.
     pub nx: usize,
     /// Elements in y.
@@ -916,6 +998,7 @@ impl Case {
                 )
             })?;
 
+        let mut prescribed_force = PrescribedForce::default();
         let kinematics = match (&file.rolling, &file.transient) {
             (Some(_), Some(_)) => {
                 return Err(bad(
@@ -924,7 +1007,29 @@ impl Case {
                 ));
             }
             (Some(r), None) => {
+                let (r, force) = r.split()?;
                 r.check_input()?;
+                if force.any() && model != Model::Exact {
+                    let key = if force.force_x_n.is_some() {
+                        "rolling.force_x_n"
+                    } else {
+                        "rolling.force_y_n"
+                    };
+                    return Err(bad(
+                        key,
+                        format!(
+                            "a prescribed force is solved with the exact model only, not {}{}: give \
+                             `rolling.creepage_long`/`creepage_lat`, or `model = \"exact\"`",
+                            model.name(),
+                            if matches!(model, Model::Hertz | Model::HertzCorrected) {
+                                " (it has no tangential forces)"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                }
+                prescribed_force = force;
                 if model.is_cect() {
                     if let NormalLoad::Approach(_) = load {
                         return Err(bad(
@@ -936,7 +1041,7 @@ impl Case {
                         ));
                     }
                 }
-                Kinematics::SteadyRolling(*r)
+                Kinematics::SteadyRolling(r)
             }
             (None, Some(t)) => {
                 if t.steps.is_empty() {
@@ -1191,6 +1296,7 @@ impl Case {
             material,
             friction,
             has_friction,
+            prescribed_force,
             geometry,
             a_per_m,
             b_per_m,
@@ -1749,6 +1855,75 @@ ny = 16
         assert!(
             t.fx_n.abs() > 0.0 && t.fx_n.abs() < 0.35 * t.normal_force_n,
             "{t:?}"
+        );
+    }
+}
+
+#[cfg(test)]
+mod prescribed_force_tests {
+    use super::*;
+
+    fn case(model: &str, rolling: &str) -> Result<Case, CaseError> {
+        Case::from_toml(&format!(
+            "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+             [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+             b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\n{rolling}\n"
+        ))
+    }
+
+    fn message(r: Result<Case, CaseError>) -> String {
+        match r {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_force_replaces_the_creepage_of_its_direction() {
+        let c = case(
+            "exact",
+            "force_x_n = -500.0\ncreepage_lat = 2e-4\nspin_per_m = 0.1",
+        )
+        .unwrap();
+        assert_eq!(c.prescribed_force.force_x_n, Some(-500.0));
+        assert_eq!(c.prescribed_force.force_y_n, None);
+        // The iteration starts from creepage 0; the other ones are kept.
+        assert_eq!(
+            c.kinematics,
+            Kinematics::SteadyRolling(Creepages {
+                creepage_long: 0.0,
+                creepage_lat: 2e-4,
+                spin_per_m: 0.1
+            })
+        );
+        let c = case("exact", "force_x_n = -500.0\nforce_y_n = 100.0").unwrap();
+        assert_eq!(c.prescribed_force.force_y_n, Some(100.0));
+    }
+
+    #[test]
+    fn both_keys_of_a_direction_and_other_models_are_refused_naming_the_keys() {
+        for (creep, force) in [
+            ("creepage_long", "force_x_n"),
+            ("creepage_lat", "force_y_n"),
+        ] {
+            let m = message(case("exact", &format!("{creep} = 1e-3\n{force} = -10.0")));
+            assert!(
+                m.contains(&format!("`rolling.{force}`"))
+                    && m.contains(&format!("`rolling.{creep}`")),
+                "{m}"
+            );
+        }
+        let m = message(case("exact", "force_y_n = 1e300"));
+        assert!(m.contains("rolling.force_y_n"), "{m}");
+        let m = message(case("hertz", "force_x_n = -10.0"));
+        assert!(
+            m.contains("rolling.force_x_n") && m.contains("no tangential forces"),
+            "{m}"
+        );
+        let m = message(case("fastsim", "force_y_n = -10.0"));
+        assert!(
+            m.contains("rolling.force_y_n") && m.contains("exact model only"),
+            "{m}"
         );
     }
 }

@@ -293,6 +293,7 @@ impl ConformalRun {
                 reference_yz_m: &self.geometry.reference_yz_m,
             })),
             geometry: Some(case.geometry.describe()),
+            force_control: None,
         }
     }
 }

@@ -22,15 +22,17 @@ use std::time::Instant;
 use thiserror::Error;
 
 use crate::conformal::frictional::FrictionalWorkspace;
+use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
+use crate::core::force::{solve_prescribed_force, ForceControlSettings};
 use crate::core::grid::Grid;
 use crate::core::problem::Kinematics;
 use crate::core::solution::{ContactSolution, SolveStatus};
-use crate::core::solve::solve;
+use crate::core::solve::{solve, ContactSolver};
 
 use case::{Case, Model};
 use conformal_models::ConformalRun;
-use report::{Fields, FieldsReport, Report, StepReport};
+use report::{Fields, FieldsReport, ForceControlReport, Report, StepReport};
 
 /// Why a case could not be solved.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -112,6 +114,8 @@ pub struct ExactRun {
     solutions: Vec<ContactSolution>,
     /// Wall time from the validated case to the solutions \[s\].
     elapsed_s: f64,
+    /// Prescribed forces: the creepages found.
+    force_control: Option<ForceControlReport>,
 }
 
 impl ExactRun {
@@ -119,7 +123,32 @@ impl ExactRun {
     pub fn solve(case: &Case) -> Result<Self, CaseError> {
         let t0 = Instant::now();
         let problem = case.problem()?;
-        let solutions = solve(&problem)?;
+        let (solutions, force_control) = if case.prescribed_force.any() {
+            let mut solver = ContactSolver::new(&problem, KernelCache::global());
+            let f = solve_prescribed_force(
+                &mut solver,
+                &problem,
+                case.prescribed_force,
+                ForceControlSettings::default(),
+            )?;
+            if !f.converged {
+                return Err(CaseError::Failure(format!(
+                    "the prescribed force was not reached in {} outer iterations (last creepages \
+                     xi = {}, eta = {})",
+                    f.outer_iterations, f.creepages.creepage_long, f.creepages.creepage_lat
+                )));
+            }
+            let report = ForceControlReport {
+                creepage_long: f.creepages.creepage_long,
+                creepage_lat: f.creepages.creepage_lat,
+                spin_per_m: f.creepages.spin_per_m,
+                force_iterations: f.outer_iterations,
+                force_solves: f.solves,
+            };
+            (vec![f.solution], Some(report))
+        } else {
+            (solve(&problem)?, None)
+        };
         if solutions.is_empty() {
             return Err(CaseError::Failure("the solver returned no solution".into()));
         }
@@ -127,6 +156,7 @@ impl ExactRun {
             grid: problem.grid,
             solutions,
             elapsed_s: t0.elapsed().as_secs_f64(),
+            force_control,
         })
     }
 
@@ -173,6 +203,7 @@ impl ExactRun {
                 fields: &self.last().fields,
             })),
             geometry: None,
+            force_control: self.force_control,
         }
     }
 }

@@ -72,6 +72,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         steps: None,
         fields: None,
         geometry: None,
+        force_control: None,
     })
 }
 
@@ -120,6 +121,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         steps: None,
         fields: None,
         geometry: None,
+        force_control: None,
     })
 }
 
@@ -190,5 +192,6 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         steps: None,
         fields: None,
         geometry: Some(case.geometry.describe()),
+        force_control: None,
     })
 }

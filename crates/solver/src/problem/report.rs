@@ -180,9 +180,29 @@ pub struct Report<'a> {
     /// Per-element fields of the (last) solution, with `--fields`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fields: Option<Fields<'a>>,
+    /// Steady rolling with a prescribed force: the creepages found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_control: Option<ForceControlReport>,
     /// One line describing a conformal geometry (readable summary only).
     #[serde(skip)]
     pub geometry: Option<String>,
+}
+
+/// The outcome of a prescribed-force solve (`[rolling] force_x_n`,
+/// `force_y_n`): the creepages that give the forces (the given ones in
+/// the other directions) and the outer iteration's counts.
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct ForceControlReport {
+    /// Longitudinal creepage xi [-].
+    pub creepage_long: f64,
+    /// Lateral creepage eta [-].
+    pub creepage_lat: f64,
+    /// Spin creepage phi [1/m] (as given).
+    pub spin_per_m: f64,
+    /// Outer (secant or Newton) iterations.
+    pub force_iterations: usize,
+    /// Exact solves of the outer iteration, all included.
+    pub force_solves: usize,
 }
 
 /// The summary lines shared by the planar and conformal reports: approach,
@@ -327,6 +347,16 @@ impl Report<'_> {
             line("spin moment Mz [N m]", format!("{:.4}", t.mz_nm));
         } else {
             line("tangential forces Fx, Fy, Mz", not_computed());
+        }
+        if let Some(f) = &self.force_control {
+            line(
+                "creepages found xi, eta [-]",
+                format!("{:.6e}, {:.6e}", f.creepage_long, f.creepage_lat),
+            );
+            line(
+                "force iterations (solves)",
+                format!("{} ({})", f.force_iterations, f.force_solves),
+            );
         }
         patch_lines(&mut line, t, tangential, "");
         if tangential && mu > 0.0 {

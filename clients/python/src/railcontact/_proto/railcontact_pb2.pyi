@@ -200,14 +200,18 @@ class LoadSection(_message.Message):
     def __init__(self, normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ...) -> None: ...
 
 class Creepages(_message.Message):
-    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m")
+    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m", "force_x_n", "force_y_n")
     CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
     CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
     SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
+    FORCE_X_N_FIELD_NUMBER: _ClassVar[int]
+    FORCE_Y_N_FIELD_NUMBER: _ClassVar[int]
     creepage_long: float
     creepage_lat: float
     spin_per_m: float
-    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ...) -> None: ...
+    force_x_n: float
+    force_y_n: float
+    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ...) -> None: ...
 
 class ShiftStep(_message.Message):
     __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m")
@@ -422,7 +426,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -430,6 +434,7 @@ class PatchResult(_message.Message):
     GRID_FIELD_NUMBER: _ClassVar[int]
     NOTES_FIELD_NUMBER: _ClassVar[int]
     FIELDS_FIELD_NUMBER: _ClassVar[int]
+    FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -437,7 +442,22 @@ class PatchResult(_message.Message):
     grid: GridInfo
     notes: _containers.RepeatedScalarFieldContainer[str]
     fields: ElementFields
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ...) -> None: ...
+    force_control: ForceControl
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ...) -> None: ...
+
+class ForceControl(_message.Message):
+    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m", "force_iterations", "force_solves")
+    CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
+    SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
+    FORCE_ITERATIONS_FIELD_NUMBER: _ClassVar[int]
+    FORCE_SOLVES_FIELD_NUMBER: _ClassVar[int]
+    creepage_long: float
+    creepage_lat: float
+    spin_per_m: float
+    force_iterations: int
+    force_solves: int
+    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_iterations: _Optional[int] = ..., force_solves: _Optional[int] = ...) -> None: ...
 
 class SolvePatchRequest(_message.Message):
     __slots__ = ("case", "include_fields", "include_sensitivities")

@@ -1,0 +1,698 @@
+//! Prescribed tangential forces in steady rolling: the creepage that gives
+//! a prescribed total force Fx and/or Fy (on body 1, signs as in
+//! [`crate::core::problem`]), the other creepages given.
+//!
+//! # Method
+//!
+//! An outer iteration on the creepage(s) around the exact solve, each inner
+//! solve warm-started from the previous iterate's tractions (the same
+//! [`ContactSolver`]).
+//!
+//! * One force prescribed: F(creepage) decreases monotonically and saturates
+//!   near mu Fn, so a root is found by the secant method safeguarded by a
+//!   bracket (a step outside the bracket is replaced by bisection; until both
+//!   ends are known, a step is at most 4 times the previous one). The first
+//!   step uses Kalker's linear slope -G c² C with c² the contact area over
+//!   pi and C = 4 (about C11 = C22 of a round patch).
+//! * Both forces prescribed: Newton on (xi, eta) with a forward-difference
+//!   Jacobian (two extra solves per iteration, from clones of the solver)
+//!   and a backtracking line search on |F - F*|.
+//!
+//! The iteration stops when |F - F*| <= tol mu Fn (each component), mu the
+//! kinetic friction coefficient, or when the bracket of the one creepage is
+//! narrower than 1e-14 of it. The inner solve's forces are only as exact as
+//! its own tolerance ([`crate::core::tangential::TangentialSettings::tolerance`],
+//! relative to max mu p_n), so tol = max(`tolerance`, 10 x the inner
+//! tolerance): 1e-6 with the default inner tolerance 1e-7, 1e-9 with an
+//! inner tolerance of 1e-10 or less.
+//!
+//! A force of magnitude mu Fn or more (mu kinetic: the bound at full
+//! slip) has no finite creepage and is refused naming its key; a smaller
+//! force that the given other creepage and spin leave out of reach is
+//! refused when the creepage would leave its input range (|creepage| <= 1).
+
+use crate::core::error::{show, ContactError};
+use crate::core::problem::{ContactProblem, Creepages, Kinematics, CREEPAGE_RANGE};
+use crate::core::solution::{ContactSolution, SolveStatus};
+use crate::core::solve::ContactSolver;
+
+/// Key of the prescribed longitudinal force in a case (`[rolling]`).
+pub const FORCE_X_KEY: &str = "rolling.force_x_n";
+/// Key of the prescribed lateral force in a case (`[rolling]`).
+pub const FORCE_Y_KEY: &str = "rolling.force_y_n";
+
+/// The prescribed forces \[N\] (on body 1); `None`: that direction's
+/// creepage is given.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PrescribedForce {
+    /// Prescribed Fx \[N\] instead of `creepage_long`.
+    pub force_x_n: Option<f64>,
+    /// Prescribed Fy \[N\] instead of `creepage_lat`.
+    pub force_y_n: Option<f64>,
+}
+
+impl PrescribedForce {
+    /// Whether any force is prescribed.
+    pub fn any(&self) -> bool {
+        self.force_x_n.is_some() || self.force_y_n.is_some()
+    }
+}
+
+/// Outer iteration settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForceControlSettings {
+    /// Force tolerance relative to mu Fn [-] (default 1e-9; at least 10
+    /// times the inner tangential tolerance, see the module docs).
+    pub tolerance: f64,
+    /// Outer iteration limit (default 60).
+    pub max_iterations: usize,
+}
+
+impl Default for ForceControlSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-9,
+            max_iterations: 60,
+        }
+    }
+}
+
+/// The solution at the creepages found.
+#[derive(Debug, Clone)]
+pub struct ForceSolution {
+    /// The exact solution at `creepages`.
+    pub solution: ContactSolution,
+    /// The creepages found (the given ones in the other direction).
+    pub creepages: Creepages,
+    /// Outer iterations (secant or Newton steps).
+    pub outer_iterations: usize,
+    /// Exact solves, all included (finite-difference ones too).
+    pub solves: usize,
+    /// Whether the force tolerance was met within the iteration limit.
+    pub converged: bool,
+}
+
+/// `work` (a copy of the problem, made once per prescribed-force solve)
+/// with creepages `c`.
+fn with(work: &mut ContactProblem, c: Creepages) -> &ContactProblem {
+    work.kinematics = Kinematics::SteadyRolling(c);
+    work
+}
+
+fn one(solver: &mut ContactSolver, p: &ContactProblem) -> Result<ContactSolution, ContactError> {
+    solver
+        .solve(p)?
+        .pop()
+        .ok_or_else(|| ContactError::invalid("rolling", "the solver returned no solution"))
+}
+
+fn out_of_reach(key: &str, force: f64, c: f64) -> ContactError {
+    ContactError::invalid(
+        key,
+        format!(
+            "{} N is out of reach with the given other creepage and spin: the creepage \
+             would leave [-1, 1] (last {})",
+            show(force),
+            show(c)
+        ),
+    )
+}
+
+/// Solves `problem` (steady rolling; the creepages of the prescribed
+/// directions are the start) for the creepages giving `target`.
+pub fn solve_prescribed_force(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    target: PrescribedForce,
+    settings: ForceControlSettings,
+) -> Result<ForceSolution, ContactError> {
+    let Kinematics::SteadyRolling(c0) = problem.kinematics else {
+        return Err(ContactError::invalid(
+            FORCE_X_KEY,
+            "a prescribed force needs steady rolling (`[rolling]`)",
+        ));
+    };
+    for (key, f) in [
+        (FORCE_X_KEY, target.force_x_n),
+        (FORCE_Y_KEY, target.force_y_n),
+    ] {
+        if let Some(f) = f {
+            crate::core::error::require_finite(key, f)?;
+        }
+    }
+    let first = one(solver, problem)?;
+    let mu = problem.friction.kinetic_coefficient;
+    let limit = mu * first.totals.normal_force_n;
+    let magnitude = target
+        .force_x_n
+        .unwrap_or(0.0)
+        .hypot(target.force_y_n.unwrap_or(0.0));
+    if magnitude >= limit {
+        let (key, value) = match (target.force_x_n, target.force_y_n) {
+            (Some(x), None) => (FORCE_X_KEY.to_string(), show(x)),
+            (None, Some(y)) => (FORCE_Y_KEY.to_string(), show(y)),
+            _ => (
+                format!("{FORCE_X_KEY}, {FORCE_Y_KEY}"),
+                format!(
+                    "|({}, {})| = {}",
+                    show(target.force_x_n.unwrap_or(0.0)),
+                    show(target.force_y_n.unwrap_or(0.0)),
+                    show(magnitude)
+                ),
+            ),
+        };
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "{value} N is at or beyond saturation mu Fn = {} x {} N = {} N (mu: the kinetic \
+                 coefficient): no finite creepage gives it",
+                show(mu),
+                show(first.totals.normal_force_n),
+                show(limit)
+            ),
+        ));
+    }
+    let tol = settings
+        .tolerance
+        .max(10.0 * problem.settings.tangential.tolerance)
+        * limit;
+    let g = problem.material.shear_modulus_pa;
+    let c2 = first.totals.contact_area_m2 / std::f64::consts::PI;
+    // Kalker's linear slope dF/dcreepage (module docs).
+    let slope0 = -g * c2 * 4.0;
+    match (target.force_x_n, target.force_y_n) {
+        (Some(fx), None) => one_direction(solver, problem, c0, 0, fx, first, slope0, tol, settings),
+        (None, Some(fy)) => one_direction(solver, problem, c0, 1, fy, first, slope0, tol, settings),
+        (Some(fx), Some(fy)) => {
+            // Finite-difference step: 1e-3 of the creepage where the
+            // linear theory saturates (as in `core::sensitivity`).
+            let h = (1e-3 * limit / slope0.abs()).max(1e-12);
+            both(
+                solver,
+                problem,
+                c0,
+                [fx, fy],
+                first,
+                [slope0, h],
+                tol,
+                settings,
+            )
+        }
+        (None, None) => Ok(ForceSolution {
+            solution: first,
+            creepages: c0,
+            outer_iterations: 0,
+            solves: 1,
+            converged: true,
+        }),
+    }
+}
+
+fn component(c: &Creepages, k: usize) -> f64 {
+    if k == 0 {
+        c.creepage_long
+    } else {
+        c.creepage_lat
+    }
+}
+
+fn set(c: &mut Creepages, k: usize, v: f64) {
+    if k == 0 {
+        c.creepage_long = v
+    } else {
+        c.creepage_lat = v
+    }
+}
+
+fn force(s: &ContactSolution, k: usize) -> f64 {
+    if k == 0 {
+        s.totals.fx_n
+    } else {
+        s.totals.fy_n
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn one_direction(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    c0: Creepages,
+    k: usize,
+    target: f64,
+    first: ContactSolution,
+    slope0: f64,
+    tol: f64,
+    settings: ForceControlSettings,
+) -> Result<ForceSolution, ContactError> {
+    let key = if k == 0 { FORCE_X_KEY } else { FORCE_Y_KEY };
+    let mut work = problem.clone();
+    let mut c = c0;
+    let mut x = component(&c0, k);
+    let mut r = force(&first, k) - target;
+    let mut sol = first;
+    let mut solves = 1;
+    // F decreases with the creepage: r > 0 means x is below the root.
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    let mut prev: Option<(f64, f64)> = None;
+    let mut iterations = 0;
+    loop {
+        if r.abs() <= tol {
+            break;
+        }
+        if r > 0.0 {
+            lo = lo.max(x);
+        } else {
+            hi = hi.min(x);
+        }
+        if (hi - lo).abs() <= 1e-14 * x.abs().max(f64::MIN_POSITIVE) {
+            break;
+        }
+        if iterations == settings.max_iterations {
+            return Ok(ForceSolution {
+                solution: sol,
+                creepages: c,
+                outer_iterations: iterations,
+                solves,
+                converged: false,
+            });
+        }
+        iterations += 1;
+        let slope = match prev {
+            Some((xp, rp)) if xp != x => (r - rp) / (x - xp),
+            _ => slope0,
+        };
+        let mut next = if slope < 0.0 && slope.is_finite() {
+            x - r / slope
+        } else {
+            f64::NAN
+        };
+        if lo.is_finite() && hi.is_finite() {
+            if !(next > lo.min(hi) && next < lo.max(hi)) {
+                next = 0.5 * (lo + hi);
+            }
+        } else {
+            // Not bracketed yet: move away from the known bound, at most 4
+            // times the last step (the first: the linear estimate).
+            let step_max = match prev {
+                Some((xp, _)) => 4.0 * (x - xp).abs(),
+                None => (r / slope0).abs(),
+            };
+            let dir = if r > 0.0 { 1.0 } else { -1.0 };
+            if !(next.is_finite() && (next - x) * dir > 0.0) || (next - x).abs() > step_max {
+                next = x + dir * step_max;
+            }
+        }
+        if !CREEPAGE_RANGE.contains(next) {
+            return Err(out_of_reach(key, target, next));
+        }
+        prev = Some((x, r));
+        x = next;
+        set(&mut c, k, x);
+        sol = one(solver, with(&mut work, c))?;
+        solves += 1;
+        r = force(&sol, k) - target;
+    }
+    Ok(ForceSolution {
+        converged: sol.info.status == SolveStatus::Converged,
+        solution: sol,
+        creepages: c,
+        outer_iterations: iterations,
+        solves,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn both(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    c0: Creepages,
+    target: [f64; 2],
+    first: ContactSolution,
+    [slope0, h]: [f64; 2],
+    tol: f64,
+    settings: ForceControlSettings,
+) -> Result<ForceSolution, ContactError> {
+    let residual = |s: &ContactSolution| [s.totals.fx_n - target[0], s.totals.fy_n - target[1]];
+    let norm = |r: [f64; 2]| r[0].hypot(r[1]);
+    let mut work = problem.clone();
+    let mut c = c0;
+    let mut sol = first;
+    let mut r = residual(&sol);
+    let mut solves = 1;
+    let mut iterations = 0;
+    while r[0].abs() > tol || r[1].abs() > tol {
+        if iterations == settings.max_iterations {
+            return Ok(ForceSolution {
+                solution: sol,
+                creepages: c,
+                outer_iterations: iterations,
+                solves,
+                converged: false,
+            });
+        }
+        iterations += 1;
+        // col[k]: d(Fx, Fy)/d(creepage k).
+        let mut col = [[0.0; 2]; 2];
+        for (k, d) in col.iter_mut().enumerate() {
+            let mut cp = c;
+            set(&mut cp, k, component(&c, k) + h);
+            let s = one(&mut solver.clone(), with(&mut work, cp))?;
+            solves += 1;
+            *d = [
+                (s.totals.fx_n - sol.totals.fx_n) / h,
+                (s.totals.fy_n - sol.totals.fy_n) / h,
+            ];
+        }
+        let jac = [[col[0][0], col[1][0]], [col[0][1], col[1][1]]];
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        let step = if det.is_finite() && det != 0.0 {
+            [
+                -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+                -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
+            ]
+        } else {
+            [-r[0] / slope0, -r[1] / slope0]
+        };
+        let mut t = 1.0;
+        loop {
+            let mut cn = c;
+            cn.creepage_long += t * step[0];
+            cn.creepage_lat += t * step[1];
+            if !(CREEPAGE_RANGE.contains(cn.creepage_long)
+                && CREEPAGE_RANGE.contains(cn.creepage_lat))
+            {
+                if t < 1e-6 {
+                    return Err(out_of_reach(
+                        FORCE_X_KEY,
+                        target[0].hypot(target[1]),
+                        cn.creepage_long.hypot(cn.creepage_lat),
+                    ));
+                }
+                t *= 0.5;
+                continue;
+            }
+            let s = one(solver, with(&mut work, cn))?;
+            solves += 1;
+            let rn = residual(&s);
+            if norm(rn) < (1.0 - 1e-4 * t) * norm(r) || t < 1e-6 {
+                c = cn;
+                sol = s;
+                r = rn;
+                break;
+            }
+            t *= 0.5;
+        }
+    }
+    Ok(ForceSolution {
+        converged: sol.info.status == SolveStatus::Converged,
+        solution: sol,
+        creepages: c,
+        outer_iterations: iterations,
+        solves,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::core::cache::KernelCache;
+    use crate::core::creep::kalker_creep_coefficients;
+    use crate::core::grid::Grid;
+    use crate::core::hertz::{hertz, HertzLoad};
+    use crate::core::material::{CombinedMaterial, Material};
+    use crate::core::normal::NormalLoad;
+    use crate::core::problem::Friction;
+
+    const FN: f64 = 1e4;
+    const MU: f64 = 0.3;
+
+    /// Identical bodies, G = 80 GPa, nu = 0.25 (a column of Kalker's
+    /// table), A = B = 1/m, Fn = 10 kN, mu = 0.3 on an n x n grid over 2.4
+    /// Hertz semi-axes; inner tangential tolerance 1e-10.
+    fn problem(n: usize, c: Creepages) -> ContactProblem {
+        problem_with(n, c, MU, 1.1 * FN)
+    }
+
+    /// As [`problem`] with friction coefficient `mu` and a window of 2.4
+    /// semi-axes of the Hertz patch at `window_load_n`.
+    fn problem_with(n: usize, c: Creepages, mu: f64, window_load_n: f64) -> ContactProblem {
+        let m = CombinedMaterial::identical(Material {
+            shear_modulus_pa: 8e10,
+            poisson_ratio: 0.25,
+        })
+        .unwrap();
+        let a = hertz(
+            1.0,
+            1.0,
+            m.effective_modulus_pa(),
+            HertzLoad::NormalForce {
+                normal_force_n: window_load_n,
+            },
+        )
+        .unwrap()
+        .semi_axis_x_m;
+        let grid = Grid::centered(n, n, 2.4 * a, 2.4 * a).unwrap();
+        let mut p = ContactProblem {
+            material: m,
+            friction: Friction::coulomb(mu),
+            gap_m: ContactProblem::quadratic_gap(&grid, 1.0, 1.0),
+            grid,
+            load: NormalLoad::NormalForce(FN),
+            kinematics: Kinematics::SteadyRolling(c),
+            settings: Default::default(),
+        };
+        p.settings.tangential.tolerance = 1e-10;
+        p
+    }
+
+    fn creep(xi: f64, eta: f64, phi: f64) -> Creepages {
+        Creepages {
+            creepage_long: xi,
+            creepage_lat: eta,
+            spin_per_m: phi,
+        }
+    }
+
+    fn forward(c: Creepages) -> ContactSolution {
+        let p = problem(32, c);
+        one(&mut ContactSolver::new(&p, KernelCache::global()), &p).unwrap()
+    }
+
+    fn prescribed(c: Creepages, t: PrescribedForce) -> Result<ForceSolution, ContactError> {
+        let p = problem(32, c);
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        solve_prescribed_force(&mut s, &p, t, ForceControlSettings::default())
+    }
+
+    /// Creepage at which Kalker's linear theory reaches mu Fn (C = 4).
+    fn xi_saturation() -> f64 {
+        let s = forward(creep(0.0, 0.0, 0.0));
+        MU * FN / (8e10 * s.totals.contact_area_m2 / std::f64::consts::PI * 4.0)
+    }
+
+    fn close(got: f64, want: f64, rel: f64) {
+        assert!(
+            (got - want).abs() <= rel * want.abs(),
+            "{got} against {want}"
+        );
+    }
+
+    #[test]
+    fn one_prescribed_force_gives_back_the_creepage_it_came_from() {
+        let sat = xi_saturation();
+        // From the linear range to beyond the linear saturation creepage,
+        // for each direction, the other creepage and spin given.
+        for f in [0.05, 0.4, 0.9, 1.6, 2.5] {
+            for k in 0..2 {
+                let (xi, eta, phi) = if k == 0 {
+                    (f * sat, -0.1 * sat, 0.0)
+                } else {
+                    (0.2 * sat, -f * sat, 0.2)
+                };
+                let fw = forward(creep(xi, eta, phi));
+                let (start, t) = if k == 0 {
+                    (
+                        creep(0.0, eta, phi),
+                        PrescribedForce {
+                            force_x_n: Some(fw.totals.fx_n),
+                            force_y_n: None,
+                        },
+                    )
+                } else {
+                    (
+                        creep(xi, 0.0, phi),
+                        PrescribedForce {
+                            force_x_n: None,
+                            force_y_n: Some(fw.totals.fy_n),
+                        },
+                    )
+                };
+                let r = prescribed(start, t).unwrap();
+                eprintln!(
+                    "k {k} f {f}: F/muFn {:.4}, {} outer iterations, {} solves",
+                    force(&fw, k) / (MU * FN),
+                    r.outer_iterations,
+                    r.solves
+                );
+                assert!(r.converged);
+                close(
+                    component(&r.creepages, k),
+                    if k == 0 { xi } else { eta },
+                    1e-6,
+                );
+                assert!((force(&r.solution, k) - force(&fw, k)).abs() <= 1e-9 * MU * FN);
+                // The given creepages are kept.
+                assert_eq!(r.creepages.spin_per_m, phi);
+                assert_eq!(
+                    component(&r.creepages, 1 - k),
+                    if k == 0 { eta } else { xi }
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn both_prescribed_forces_give_back_both_creepages() {
+        let sat = xi_saturation();
+        for (xi, eta) in [
+            (0.1 * sat, 0.05 * sat),
+            (0.6 * sat, -0.5 * sat),
+            (-1.2 * sat, 0.3 * sat),
+        ] {
+            let fw = forward(creep(xi, eta, 0.1));
+            let t = PrescribedForce {
+                force_x_n: Some(fw.totals.fx_n),
+                force_y_n: Some(fw.totals.fy_n),
+            };
+            let r = prescribed(creep(0.0, 0.0, 0.1), t).unwrap();
+            eprintln!(
+                "both ({xi:e}, {eta:e}): {} outer iterations, {} solves",
+                r.outer_iterations, r.solves
+            );
+            assert!(r.converged);
+            close(r.creepages.creepage_long, xi, 1e-6);
+            close(r.creepages.creepage_lat, eta, 1e-6);
+        }
+    }
+
+    #[test]
+    fn the_default_inner_tolerance_sets_a_reachable_force_tolerance() {
+        // Inner tolerance 1e-7 (the default): forces meet 1e-6 mu Fn; a
+        // demand of 1e-9 mu Fn would stall on the inner solve's accuracy.
+        let sat = xi_saturation();
+        let mut p = problem(32, creep(0.6 * sat, -0.5 * sat, 0.1));
+        p.settings.tangential.tolerance = 1e-7;
+        let fw = one(&mut ContactSolver::new(&p, KernelCache::global()), &p).unwrap();
+        p.kinematics = Kinematics::SteadyRolling(creep(0.0, 0.0, 0.1));
+        let t = PrescribedForce {
+            force_x_n: Some(fw.totals.fx_n),
+            force_y_n: Some(fw.totals.fy_n),
+        };
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        let r = solve_prescribed_force(&mut s, &p, t, ForceControlSettings::default()).unwrap();
+        assert!(
+            r.converged && r.outer_iterations < 10,
+            "{} iterations",
+            r.outer_iterations
+        );
+        assert!((r.solution.totals.fx_n - fw.totals.fx_n).abs() <= 1e-6 * MU * FN);
+        assert!((r.solution.totals.fy_n - fw.totals.fy_n).abs() <= 1e-6 * MU * FN);
+    }
+
+    #[test]
+    fn a_small_force_follows_kalkers_linear_theory() {
+        // Fx = -G a b C11 xi, C11 = 4.12 for a/b = 1, nu = 0.25: Kalker,
+        // Three-dimensional elastic bodies in rolling contact, 1990, Table
+        // E3 (`core::creep`). Full adhesion (mu = 100, the limit of the
+        // linear theory) on the grid of tests/validation/physics.rs
+        // (32 x 32 over 2.4 Hertz semi-axes), where the forward solve meets
+        // C11 within 3 %: the inverse must too.
+        let target = -1e-3 * 0.3 * FN;
+        let p = problem_with(32, creep(0.0, 0.0, 0.0), 100.0, FN);
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        let force = PrescribedForce {
+            force_x_n: Some(target),
+            force_y_n: None,
+        };
+        let r = solve_prescribed_force(&mut s, &p, force, ForceControlSettings::default()).unwrap();
+        let a = hertz(
+            1.0,
+            1.0,
+            CombinedMaterial::identical(Material {
+                shear_modulus_pa: 8e10,
+                poisson_ratio: 0.25,
+            })
+            .unwrap()
+            .effective_modulus_pa(),
+            HertzLoad::NormalForce { normal_force_n: FN },
+        )
+        .unwrap()
+        .semi_axis_x_m;
+        let c11 = kalker_creep_coefficients(1.0, 0.25).unwrap().c11;
+        assert!((c11 - 4.12).abs() < 0.005, "table C11 {c11}");
+        let linear = -target / (8e10 * a * a * c11);
+        eprintln!(
+            "xi {:e} against linear theory {linear:e}",
+            r.creepages.creepage_long
+        );
+        close(r.creepages.creepage_long, linear, 0.03);
+        close(r.solution.totals.fx_n, target, 1e-6);
+    }
+
+    #[test]
+    fn near_saturation_converges_to_a_large_finite_creepage() {
+        let sat = xi_saturation();
+        for sign in [1.0, -1.0] {
+            let target = sign * 0.999 * MU * FN;
+            let r = prescribed(
+                creep(0.0, 0.0, 0.0),
+                PrescribedForce {
+                    force_x_n: None,
+                    force_y_n: Some(target),
+                },
+            )
+            .unwrap();
+            eprintln!(
+                "0.999 mu Fn: eta {:e} ({} x linear saturation), {} outer iterations",
+                r.creepages.creepage_lat,
+                r.creepages.creepage_lat / sat,
+                r.outer_iterations
+            );
+            assert!(r.converged);
+            assert!((r.solution.totals.fy_n - target).abs() <= 1e-9 * MU * FN);
+            assert!(r.creepages.creepage_lat * sign < -sat, "{:?}", r.creepages);
+        }
+    }
+
+    #[test]
+    fn saturation_is_refused_naming_the_key() {
+        let cases = [
+            (Some(MU * FN), None, "rolling.force_x_n", "3000"),
+            (None, Some(-1.5 * MU * FN), "rolling.force_y_n", "-4500"),
+            (
+                Some(2400.0),
+                Some(1800.0),
+                "rolling.force_x_n, rolling.force_y_n",
+                "3000",
+            ),
+        ];
+        for (fx, fy, key, value) in cases {
+            let e = prescribed(
+                creep(0.0, 0.0, 0.0),
+                PrescribedForce {
+                    force_x_n: fx,
+                    force_y_n: fy,
+                },
+            )
+            .unwrap_err();
+            let msg = e.to_string();
+            assert_eq!(e.key(), Some(key), "{msg}");
+            assert!(
+                msg.contains(value)
+                    && msg.contains("mu Fn = 0.3 x 9999.99")
+                    && msg.contains("N = 2999.99"),
+                "{msg}"
+            );
+        }
+    }
+}
