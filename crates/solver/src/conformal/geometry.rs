@@ -272,7 +272,7 @@ fn intersect_normal(
 
 impl ConformalGeometry {
     /// Arc length of the rail profile on each side of the origin that
-    /// [`ConformalGeometry::new`] samples for `grid` [m]. The curves handed
+    /// [`ConformalGeometry::new`] samples for `grid` \[m\]. The curves handed
     /// to it must reach that far (the wheel a little further: its points on
     /// the rail's normals lie beyond the rail's where the profiles diverge).
     pub fn reach_m(grid: &Grid) -> f64 {
