@@ -91,6 +91,7 @@ use tonic::service::interceptor::InterceptedService;
 use tonic::transport::{Certificate, Channel, ClientTlsConfig, Endpoint, Identity};
 
 use super::CliError;
+use crate::service::error_chain;
 use crate::service::pairs::BUILTIN_PAIR;
 use crate::service::pb;
 use crate::service::pb::contact_service_client::ContactServiceClient;
@@ -512,22 +513,6 @@ fn target_uri(target: &str, tls: bool) -> Result<String, CliError> {
     }
 }
 
-/// A display of an error with its sources (tonic's transport errors say
-/// little at the top).
-pub(crate) fn chain(e: &dyn std::error::Error) -> String {
-    let mut s = e.to_string();
-    let mut src = e.source();
-    while let Some(c) = src {
-        let t = c.to_string();
-        if !s.contains(&t) {
-            s.push_str(": ");
-            s.push_str(&t);
-        }
-        src = c.source();
-    }
-    s
-}
-
 /// The TLS settings of `args` (None without --tls-ca).
 fn client_tls(args: &ConnectArgs) -> Result<Option<ClientTlsConfig>, CliError> {
     let Some(ca) = &args.tls_ca else {
@@ -578,19 +563,19 @@ pub(crate) async fn connect(
     let token = bearer(security)?;
     let uri = target_uri(target, tls.is_some())?;
     let mut endpoint = Endpoint::from_shared(uri)
-        .map_err(|e| CliError::BadInput(format!("--target `{target}`: {}", chain(&e))))?
+        .map_err(|e| CliError::BadInput(format!("--target `{target}`: {}", error_chain(&e))))?
         .connect_timeout(timeout)
         .tcp_nodelay(true);
     if let Some(tls) = tls {
         endpoint = endpoint
             .tls_config(tls)
-            .map_err(|e| CliError::BadInput(format!("TLS options: {}", chain(&e))))?;
+            .map_err(|e| CliError::BadInput(format!("TLS options: {}", error_chain(&e))))?;
     }
     match tokio::time::timeout(timeout, endpoint.connect()).await {
         Ok(Ok(c)) => Ok(InterceptedService::new(c, token)),
         Ok(Err(e)) => Err(CliError::Failure(format!(
             "cannot connect to {target}: {}",
-            chain(&e)
+            error_chain(&e)
         ))),
         Err(_) => Err(CliError::Failure(format!(
             "cannot connect to {target}: no answer within {:.1} s",

@@ -24,7 +24,7 @@ use crate::core::solve::{ContactSolver, SolverState};
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
 use crate::problem::report::ForceControlReport;
-use crate::problem::{CaseError, ModelRun};
+use crate::problem::ModelRun;
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -187,21 +187,9 @@ impl PatchEngine {
                         self.case.prescribed_force,
                         ForceControlSettings::default(),
                     )?;
-                    if !f.converged {
-                        return Err(ServiceError::from(CaseError::Failure(format!(
-                            "the prescribed force was not reached in {} outer iterations",
-                            f.outer_iterations
-                        ))));
-                    }
+                    let report = ForceControlReport::of(&f)?;
                     // The Jacobian (if asked) is taken about the creepages found.
                     e.problem.kinematics = Kinematics::SteadyRolling(f.creepages);
-                    let report = ForceControlReport {
-                        creepage_long: f.creepages.creepage_long,
-                        creepage_lat: f.creepages.creepage_lat,
-                        spin_per_m: f.creepages.spin_per_m,
-                        force_iterations: f.outer_iterations,
-                        force_solves: f.solves,
-                    };
                     (vec![f.solution], Some(report))
                 } else {
                     (e.solver.solve(&e.problem)?, None)

@@ -26,6 +26,15 @@ pub async fn serve(config: ServeConfig) -> (RunningServer, Client) {
     (server, client)
 }
 
+/// [`serve`] with `config` and no store (pairs in memory only).
+pub async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
+    serve(ServeConfig {
+        data_dir: Default::default(),
+        ..config
+    })
+    .await
+}
+
 /// Reads the metrics page.
 pub async fn metrics_page(addr: std::net::SocketAddr) -> String {
     use tokio::io::{AsyncReadExt, AsyncWriteExt};

@@ -33,6 +33,7 @@
 //! asks for no installs and nginx is missing, and where
 //! `RAILCONTACT_SKIP_PROXY_TEST` is set (anything but empty or `0`).
 
+use crate::common;
 use crate::support;
 
 use std::collections::BTreeMap;
@@ -484,30 +485,15 @@ fn load_through_the_proxy(servers: &[Server], nginx: &Nginx) {
 type Client = ContactServiceClient<Channel>;
 use pb::session_response::Kind as Out;
 
-/// Steady rolling, FASTSIM, quadratic gap, steel.
+/// Steady rolling with FASTSIM on `common::sphere`, mu = 0.3.
 fn patch_case() -> pb::PatchCase {
     pb::PatchCase {
-        model: pb::Model::Fastsim as i32,
-        material: Some(pb::MaterialSection {
-            shear_modulus_pa: Some(81.0e9),
-            poisson_ratio: Some(0.30),
-            ..Default::default()
-        }),
         friction: Some(pb::FrictionSection {
             coefficient: Some(0.3),
             ..Default::default()
         }),
-        geometry: Some(pb::GeometrySection {
-            kind: pb::GeometryKind::Quadratic as i32,
-            a_per_m: Some(1.09),
-            b_per_m: Some(1.67),
-            ..Default::default()
-        }),
-        load: Some(pb::LoadSection {
-            load: Some(pb::load_section::Load::NormalForceN(5e4)),
-        }),
         kinematics: Some(pb::patch_case::Kinematics::Rolling(creepages(0))),
-        ..Default::default()
+        ..common::sphere(pb::Model::Fastsim, 16)
     }
 }
 

@@ -19,17 +19,9 @@ use tonic::transport::Channel;
 use tonic::Code;
 
 use crate::common;
-use common::{metrics_page, serve, sphere, steel, Client};
+use common::{metrics_page, server_with, sphere, steel, Client};
 
 /// A server on an ephemeral port; pairs in memory only (no store).
-async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
-    serve(ServeConfig {
-        data_dir: Default::default(),
-        ..config
-    })
-    .await
-}
-
 async fn server() -> (RunningServer, Client) {
     server_with(ServeConfig::default()).await
 }

@@ -6,7 +6,7 @@ use crate::common;
 
 use std::time::{Duration, Instant};
 
-use common::{serve, sphere, Client};
+use common::{sphere, Client};
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
 use railcontact::service::server::RunningServer;
@@ -16,11 +16,7 @@ use tonic::Code;
 /// A server with `config` (pairs in memory only) and a client that sends
 /// and accepts messages of up to 64 MiB.
 async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
-    let (server, client) = serve(ServeConfig {
-        data_dir: Default::default(),
-        ..config
-    })
-    .await;
+    let (server, client) = common::server_with(config).await;
     let client = client
         .max_encoding_message_size(64 << 20)
         .max_decoding_message_size(64 << 20);

@@ -22,21 +22,13 @@ use tokio_stream::StreamExt;
 use tonic::{Code, Status, Streaming};
 
 use crate::common;
-use common::{metrics_page, serve, sphere, Client};
+use common::{metrics_page, serve, server_with, sphere, Client};
 
 type Step = pb::SessionStep;
 use pb::session_response::Kind as Out;
 use pb::session_step::Load;
 
 /// A server on an ephemeral port with `config`'s limits; pairs in memory.
-async fn server_with(config: ServeConfig) -> (RunningServer, Client) {
-    serve(ServeConfig {
-        data_dir: Default::default(),
-        ..config
-    })
-    .await
-}
-
 /// The messages of a response stream up to its end: all of them, and the
 /// status it ended with unless OK.
 async fn drain<R>(mut out: Streaming<R>) -> (Vec<R>, Option<Status>) {

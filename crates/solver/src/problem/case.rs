@@ -1566,14 +1566,7 @@ normal_force_n = 80000.0
 
     #[test]
     fn model_names_round_trip() {
-        for m in [
-            Model::Hertz,
-            Model::HertzCorrected,
-            Model::Fastsim,
-            Model::Exact,
-            Model::Cect,
-            Model::CectHalfspace,
-        ] {
+        for m in Model::ALL {
             // With friction and rolling, which FASTSIM needs.
             let text = format!(
                 "{}[friction]\ncoefficient = 0.3\n[rolling]\ncreepage_long = 1e-3\n",

@@ -131,20 +131,7 @@ impl ExactRun {
                 case.prescribed_force,
                 ForceControlSettings::default(),
             )?;
-            if !f.converged {
-                return Err(CaseError::Failure(format!(
-                    "the prescribed force was not reached in {} outer iterations (last creepages \
-                     xi = {}, eta = {})",
-                    f.outer_iterations, f.creepages.creepage_long, f.creepages.creepage_lat
-                )));
-            }
-            let report = ForceControlReport {
-                creepage_long: f.creepages.creepage_long,
-                creepage_lat: f.creepages.creepage_lat,
-                spin_per_m: f.creepages.spin_per_m,
-                force_iterations: f.outer_iterations,
-                force_solves: f.solves,
-            };
+            let report = ForceControlReport::of(&f)?;
             (vec![f.solution], Some(report))
         } else {
             (solve(&problem)?, None)

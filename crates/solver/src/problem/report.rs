@@ -5,9 +5,11 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::core::force::ForceSolution;
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::problem::case::Model;
+use crate::problem::CaseError;
 
 /// The quantities of the conformal models (`cect`, `cect_halfspace`,
 /// `hertz_corrected`, and `hertz` on conformal profiles) beyond
@@ -203,6 +205,27 @@ pub struct ForceControlReport {
     pub force_iterations: usize,
     /// Exact solves of the outer iteration, all included.
     pub force_solves: usize,
+}
+
+impl ForceControlReport {
+    /// The report of a prescribed-force solve; a force the outer iteration
+    /// did not reach is a failure naming its iterations and last creepages.
+    pub fn of(f: &ForceSolution) -> Result<Self, CaseError> {
+        if !f.converged {
+            return Err(CaseError::Failure(format!(
+                "the prescribed force was not reached in {} outer iterations (last creepages \
+                 xi = {}, eta = {})",
+                f.outer_iterations, f.creepages.creepage_long, f.creepages.creepage_lat
+            )));
+        }
+        Ok(ForceControlReport {
+            creepage_long: f.creepages.creepage_long,
+            creepage_lat: f.creepages.creepage_lat,
+            spin_per_m: f.creepages.spin_per_m,
+            force_iterations: f.outer_iterations,
+            force_solves: f.solves,
+        })
+    }
 }
 
 /// The summary lines shared by the planar and conformal reports: approach,
