@@ -14,5 +14,6 @@
 
 pub mod cli;
 pub mod service;
+pub mod shared;
 
 pub use railcontact_solver::{conformal, core, problem, wheelrail};

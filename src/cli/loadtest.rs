@@ -91,10 +91,9 @@ use tonic::service::interceptor::InterceptedService;
 use tonic::transport::{Certificate, Channel, ClientTlsConfig, Endpoint, Identity};
 
 use super::CliError;
-use crate::service::error_chain;
-use crate::service::pairs::BUILTIN_PAIR;
-use crate::service::pb;
-use crate::service::pb::contact_service_client::ContactServiceClient;
+use crate::shared::pb;
+use crate::shared::pb::contact_service_client::ContactServiceClient;
+use crate::shared::{error_chain, BUILTIN_PAIR};
 
 /// The default `--mix`: see the module documentation.
 pub const DEFAULT_MIX: &str =

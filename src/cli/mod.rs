@@ -1,10 +1,12 @@
 //! The `railcontact` command line: `railcontact solve CASE.toml [--json]
 //! [--fields] [--plot FILE]` (one contact patch) and `railcontact wheelrail
-//! CASE.toml [--json] [--plot FILE]` (a wheelset on its track); `serve`
-//! (the gRPC service), `loadtest` (drives a running service, see
-//! [`loadtest`]) and `health` (asks its gRPC health service).
+//! CASE.toml [--json] [--plot FILE]` (a wheelset on its track); `loadtest`
+//! (drives a running service, see [`loadtest`]) and `health` (asks its gRPC
+//! health service). The binary puts `serve` (`crate::service::command`)
+//! beside these; the command line does not import the service, and speaks
+//! to it through the wire types of [`crate::shared`].
 //!
-//! [`Cli`] is the clap definition, [`run`] executes it and returns the
+//! [`Command`] is the clap definition, [`run`] executes it and returns the
 //! process exit code: 0 on success, [`EXIT_BAD_INPUT`] (2) for bad input (the
 //! message on stderr names the offending key), [`EXIT_FAILURE`] (1) for any
 //! other failure.
@@ -16,30 +18,15 @@ pub mod wheelrail;
 
 use std::path::{Path, PathBuf};
 
-use clap::builder::{OsStringValueParser, TypedValueParser};
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Subcommand};
 
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::problem::Kinematics;
 use crate::problem::case::{Case, Model};
 use crate::problem::{CaseError, ModelRun};
+pub use crate::shared::{EXIT_BAD_INPUT, EXIT_FAILURE};
 
-/// Exit code for bad input (case file, options).
-pub const EXIT_BAD_INPUT: i32 = 2;
-/// Exit code for any other failure.
-pub const EXIT_FAILURE: i32 = 1;
-
-/// Frictional wheel/rail contact: Kalker's exact theory, conformal contact
-/// (CECT), Hertz and FASTSIM.
-#[derive(Debug, Parser)]
-#[command(name = "railcontact", version, about, long_about = None)]
-pub struct Cli {
-    /// What to do.
-    #[command(subcommand)]
-    pub command: Command,
-}
-
-/// The subcommands.
+/// The subcommands of the command line (`serve` is the service's).
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Solve one contact case read from a TOML file (SI units; see
@@ -58,16 +45,6 @@ pub enum Command {
     /// (per wheel: its patches and its total force on the rail in the track
     /// frame). Exit code 2 on bad input, 1 on other failures.
     Wheelrail(wheelrail::WheelrailArgs),
-    /// Serve the gRPC contact service (package railcontact.v1, see
-    /// proto/railcontact/v1/railcontact.proto) until SIGTERM or Ctrl-C.
-    ///
-    /// Runs with no configuration on 127.0.0.1:50051. Settings come in
-    /// layers: defaults, then --config FILE.toml, then the environment
-    /// variables RAILCONTACT_KEY (the key in capitals), then these flags; every key is listed
-    /// below. Logs go to stderr, filtered by RUST_LOG (default info), in
-    /// colour only on a terminal and without NO_COLOR.
-    #[command(after_help = serve_settings_help())]
-    Serve(ServeArgs),
     /// Drive a running server (or several replicas) with concurrent
     /// co-simulation sessions and batch clients; report latency
     /// percentiles and throughput, and check every answer bit for bit
@@ -80,75 +57,6 @@ pub enum Command {
     /// serving: prints the status, exit code 0 when SERVING, 1 otherwise.
     /// For container health checks and exec probes.
     Health(health::HealthArgs),
-}
-
-/// The keys of the settings file of `serve`, in the order of
-/// [`ServeConfig`](crate::service::config::ServeConfig)'s fields (read
-/// from its deserializer, so the list follows the struct). Each has the
-/// environment variable `RAILCONTACT_` + the key in upper case.
-pub fn serve_keys() -> &'static [&'static str] {
-    serde_aux::serde_introspection::serde_introspect::<crate::service::config::ServeConfig>()
-}
-
-/// The environment variable of a settings key.
-pub fn serve_env_var(key: &str) -> String {
-    format!(
-        "{}{}",
-        crate::service::config::ENV_PREFIX,
-        key.to_ascii_uppercase()
-    )
-}
-
-/// The list of settings at the end of `serve --help`.
-fn serve_settings_help() -> String {
-    let width = serve_keys().iter().map(|k| k.len()).max().unwrap_or(0);
-    let mut text = String::from(
-        "Settings: every key of the settings file and its environment variable \
-         (meanings and defaults: deploy/serve.toml):\n",
-    );
-    for key in serve_keys() {
-        text.push_str(&format!("  {key:<width$}  {}\n", serve_env_var(key)));
-    }
-    text
-}
-
-/// Options of `railcontact serve`.
-#[derive(Debug, Args)]
-pub struct ServeArgs {
-    /// Settings file (TOML, the keys listed below; a sample with every key
-    /// at its default: deploy/serve.toml).
-    #[arg(long, value_name = "FILE.toml")]
-    pub config: Option<PathBuf>,
-    /// gRPC address (default 127.0.0.1:50051).
-    #[arg(long, value_name = "ADDR:PORT")]
-    pub listen: Option<std::net::SocketAddr>,
-    /// Prometheus metrics address (GET /metrics); default: none.
-    #[arg(long, value_name = "ADDR:PORT")]
-    pub metrics_listen: Option<std::net::SocketAddr>,
-    /// Solves running at once (default: one per core).
-    #[arg(long)]
-    pub workers: Option<usize>,
-    /// Directory of the store of registered profile pairs (default
-    /// railcontact-data; "": memory only).
-    #[arg(long, value_name = "DIR", value_parser = OsStringValueParser::new().map(PathBuf::from))]
-    pub data_dir: Option<PathBuf>,
-    /// TLS: the server's certificate chain, PEM (with --tls-key).
-    #[arg(long, value_name = "FILE.pem")]
-    pub tls_cert: Option<PathBuf>,
-    /// TLS: the private key of --tls-cert, PEM.
-    #[arg(long, value_name = "FILE.pem")]
-    pub tls_key: Option<PathBuf>,
-    /// Mutual TLS: the authorities of the client certificates, PEM; every
-    /// client must then present a certificate they signed.
-    #[arg(long, value_name = "FILE.pem")]
-    pub tls_client_ca: Option<PathBuf>,
-    /// Bearer tokens and their roles, TOML (see deploy/README.md).
-    #[arg(long, value_name = "FILE.toml")]
-    pub auth_tokens_file: Option<PathBuf>,
-    /// Allow listening on an address other than loopback without both TLS
-    /// and tokens (logs a warning).
-    #[arg(long)]
-    pub insecure: bool,
 }
 
 /// Options of `railcontact solve`.
@@ -213,11 +121,10 @@ impl From<CaseError> for CliError {
 
 /// Runs the parsed command line; returns the process exit code. Output goes
 /// to stdout, errors to stderr.
-pub fn run(cli: Cli) -> i32 {
-    let result = match cli.command {
+pub fn run(command: Command) -> i32 {
+    let result = match command {
         Command::Solve(args) => run_solve(&args),
         Command::Wheelrail(args) => wheelrail::run(&args),
-        Command::Serve(args) => run_serve(&args),
         Command::Loadtest(args) => loadtest::run(&args),
         Command::Health(args) => health::run(&args),
     };
@@ -228,30 +135,6 @@ pub fn run(cli: Cli) -> i32 {
             e.exit_code()
         }
     }
-}
-
-fn run_serve(args: &ServeArgs) -> Result<(), CliError> {
-    use crate::service::config::{ServeConfig, ServeFlags};
-    let flags = ServeFlags {
-        listen: args.listen,
-        metrics_listen: args.metrics_listen,
-        workers: args.workers,
-        data_dir: args.data_dir.clone(),
-        tls_cert: args.tls_cert.clone(),
-        tls_key: args.tls_key.clone(),
-        tls_client_ca: args.tls_client_ca.clone(),
-        auth_tokens_file: args.auth_tokens_file.clone(),
-        insecure: args.insecure,
-    };
-    let env = |name: &str| std::env::var(name).ok();
-    let config = ServeConfig::load(args.config.as_deref(), &env, &flags)
-        .map_err(|e| CliError::BadInput(format!("serve settings: {e}")))?;
-    // The server's own refusals of its settings (exposure without
-    // protection, unreadable TLS or tokens files) are bad input too.
-    crate::service::server::serve(&config).map_err(|e| match e.kind() {
-        std::io::ErrorKind::InvalidInput => CliError::BadInput(format!("serve: {e}")),
-        _ => CliError::Failure(format!("serve: {e}")),
-    })
 }
 
 /// The plot format chosen by `--plot`'s extension.

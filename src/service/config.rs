@@ -11,6 +11,7 @@
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 
+use clap::builder::{OsStringValueParser, TypedValueParser};
 use serde::Deserialize;
 
 /// Prefix of the environment variables.
@@ -211,26 +212,39 @@ impl Default for ServeConfig {
     }
 }
 
-/// Overrides from the command line (unset: keep the lower layers').
-#[derive(Debug, Clone, Default)]
+/// Overrides from the command line (unset: keep the lower layers'): the
+/// flags of `railcontact serve` (see [`super::command`]).
+#[derive(Debug, Clone, Default, clap::Args)]
 pub struct ServeFlags {
-    /// `--listen`.
+    /// gRPC address (default 127.0.0.1:50051).
+    #[arg(long, value_name = "ADDR:PORT")]
     pub listen: Option<SocketAddr>,
-    /// `--metrics-listen`.
+    /// Prometheus metrics address (GET /metrics); default: none.
+    #[arg(long, value_name = "ADDR:PORT")]
     pub metrics_listen: Option<SocketAddr>,
-    /// `--workers`.
+    /// Solves running at once (default: one per core).
+    #[arg(long)]
     pub workers: Option<usize>,
-    /// `--data-dir`.
+    /// Directory of the store of registered profile pairs (default
+    /// railcontact-data; "": memory only).
+    #[arg(long, value_name = "DIR", value_parser = OsStringValueParser::new().map(PathBuf::from))]
     pub data_dir: Option<PathBuf>,
-    /// `--tls-cert`.
+    /// TLS: the server's certificate chain, PEM (with --tls-key).
+    #[arg(long, value_name = "FILE.pem")]
     pub tls_cert: Option<PathBuf>,
-    /// `--tls-key`.
+    /// TLS: the private key of --tls-cert, PEM.
+    #[arg(long, value_name = "FILE.pem")]
     pub tls_key: Option<PathBuf>,
-    /// `--tls-client-ca`.
+    /// Mutual TLS: the authorities of the client certificates, PEM; every
+    /// client must then present a certificate they signed.
+    #[arg(long, value_name = "FILE.pem")]
     pub tls_client_ca: Option<PathBuf>,
-    /// `--auth-tokens-file`.
+    /// Bearer tokens and their roles, TOML (see deploy/README.md).
+    #[arg(long, value_name = "FILE.toml")]
     pub auth_tokens_file: Option<PathBuf>,
-    /// `--insecure` (only turns it on).
+    /// Allow listening on an address other than loopback without both TLS
+    /// and tokens (logs a warning).
+    #[arg(long)]
     pub insecure: bool,
 }
 

@@ -4,7 +4,7 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`pb`] | generated wire types, client and server |
+//! | [`pb`] | generated wire types, client and server (`crate::shared::pb`) |
 //! | [`convert`] | wire <-> case file and results (the only place wire types are read) |
 //! | [`engine`] | one patch: a validated case and its persistent exact solver |
 //! | [`session`] | co-simulation sessions: step order, marks, rollback |
@@ -16,6 +16,7 @@
 //! | [`handlers`] | the RPC handlers |
 //! | [`auth`] | bearer tokens: roles, the table of who may call what, the tower layer |
 //! | [`tls`] | TLS of the gRPC port: certificate, key, client authorities |
+//! | [`command`] | `railcontact serve`: its options and settings help, start, exit code |
 //! | [`config`] | layered settings (defaults, file, environment, flags) |
 //! | [`metrics`] | Prometheus metrics |
 //! | [`server`] | start, serve, graceful shutdown |
@@ -24,13 +25,13 @@
 //! module: no async, no network there.
 
 pub mod auth;
+pub mod command;
 pub mod config;
 pub mod convert;
 pub mod engine;
 pub mod handlers;
 pub mod metrics;
 pub mod pairs;
-pub mod pb;
 pub mod pool;
 pub mod server;
 pub mod session;
@@ -39,6 +40,8 @@ pub mod store;
 pub mod tls;
 pub mod wheelrail;
 pub mod wheelrail_session;
+
+pub use crate::shared::{error_chain, pb};
 
 /// Longest text of a client quoted in a log line, in characters.
 const MAX_LOGGED_CHARS: usize = 1000;
@@ -58,20 +61,4 @@ pub fn escaped(text: &str) -> String {
             text.chars().count()
         ),
     }
-}
-
-/// An error with its sources, one after the other (transport errors say
-/// little at the top).
-pub fn error_chain(e: &dyn std::error::Error) -> String {
-    let mut s = e.to_string();
-    let mut source = e.source();
-    while let Some(c) = source {
-        let t = c.to_string();
-        if !s.contains(&t) {
-            s.push_str(": ");
-            s.push_str(&t);
-        }
-        source = c.source();
-    }
-    s
 }

@@ -62,8 +62,7 @@ use crate::wheelrail::{
     WheelRailSettings, WheelsetPosition, WheelsetVelocity,
 };
 
-/// Name of the built-in pair registered at every start.
-pub const BUILTIN_PAIR: &str = "mbench_s1002_uic60";
+pub use crate::shared::BUILTIN_PAIR;
 
 /// Default shear modulus of wheel/rail pairs [Pa] (the case file's).
 const DEFAULT_SHEAR_MODULUS_PA: f64 = 82.0e9;

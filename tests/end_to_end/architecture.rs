@@ -83,22 +83,50 @@ fn the_front_ends_stand_on_the_solver_crate() {
     }
 }
 
-#[test]
-fn the_service_does_not_import_the_command_line() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/service");
+/// The code lines (comments left out) of the sources under `src/DIR` that
+/// name any of `names`.
+fn lines_naming(dir: &str, names: &[&str]) -> Vec<String> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src")
+        .join(dir);
     let mut offenders = Vec::new();
-    for entry in std::fs::read_dir(dir).expect("read src/service") {
+    for entry in std::fs::read_dir(&dir).expect("read a source directory") {
         let path = entry.expect("a directory entry").path();
-        let text = std::fs::read_to_string(&path).expect("read a service source");
+        let text = std::fs::read_to_string(&path).expect("read a source");
         for (i, line) in text.lines().enumerate() {
-            if line.contains("crate::cli") || line.contains("super::cli") {
+            let code = !line.trim_start().starts_with("//");
+            if code && names.iter().any(|n| line.contains(n)) {
                 offenders.push(format!("{}:{}: {}", path.display(), i + 1, line.trim()));
             }
         }
     }
+    offenders
+}
+
+#[test]
+fn the_service_does_not_import_the_command_line() {
+    let offenders = lines_naming("service", &["crate::cli", "super::cli"]);
     assert!(
         offenders.is_empty(),
         "the service imports the command line:\n{}",
         offenders.join("\n")
+    );
+}
+
+#[test]
+fn the_command_line_does_not_import_the_service() {
+    // The command line reaches a server through `crate::shared` (the wire
+    // types); the binary's `main.rs` is the one place naming both.
+    let offenders = lines_naming("cli", &["crate::service", "super::service"]);
+    assert!(
+        offenders.is_empty(),
+        "the command line imports the service:\n{}",
+        offenders.join("\n")
+    );
+    let shared = lines_naming("shared", &["crate::service", "crate::cli"]);
+    assert!(
+        shared.is_empty(),
+        "shared names a front end:\n{}",
+        shared.join("\n")
     );
 }

@@ -304,13 +304,13 @@ fn no_help_shows_rustdoc_escapes() {
 
 #[test]
 fn serve_help_lists_every_settings_key_and_its_variable() {
-    let keys = railcontact::cli::serve_keys();
+    let keys = railcontact::service::command::settings_keys();
     assert!(keys.contains(&"data_dir") && keys.contains(&"kernel_cache_max_bytes"));
     let out = run(&["serve", "--help"]);
     assert!(out.status.success());
     let s = String::from_utf8_lossy(&out.stdout);
     for key in keys {
-        let var = railcontact::cli::serve_env_var(key);
+        let var = railcontact::service::command::env_var(key);
         assert!(
             s.lines()
                 .any(|l| l.split_whitespace().eq([*key, var.as_str()])),
@@ -328,7 +328,7 @@ fn the_sample_settings_file_names_every_key_at_its_default() {
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(loaded, ServeConfig::default());
     let text = std::fs::read_to_string(&path).unwrap();
-    for key in railcontact::cli::serve_keys() {
+    for key in railcontact::service::command::settings_keys() {
         // Set, or shown commented out where the default is "not set".
         let set = format!("{key} = ");
         assert!(
