@@ -10,8 +10,7 @@
 //!
 //! * One force prescribed: F(creepage) decreases monotonically and saturates
 //!   near mu Fn, so a root is found by the secant method safeguarded by a
-//!   bracket (a step outside the bracket is replaced by bisection; until both
-//!   ends are known, a step is at most 4 times the previous one). The first
+//!   bracket ([`crate::core::root`]). The first
 //!   step uses Kalker's linear slope -G c² C with c² the contact area over
 //!   pi and C = 4 (about C11 = C22 of a round patch).
 //! * Both forces prescribed: Newton on (xi, eta) with a forward-difference
@@ -33,6 +32,7 @@
 
 use crate::core::error::{show, ContactError};
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, CREEPAGE_RANGE};
+use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::ContactSolver;
 
@@ -246,78 +246,37 @@ fn one_direction(
 ) -> Result<ForceSolution, ContactError> {
     let key = if k == 0 { FORCE_X_KEY } else { FORCE_Y_KEY };
     let mut work = problem.clone();
-    let mut c = c0;
-    let mut x = component(&c0, k);
-    let mut r = force(&first, k) - target;
-    let mut sol = first;
-    let mut solves = 1;
-    // F decreases with the creepage: r > 0 means x is below the root.
-    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-    let mut prev: Option<(f64, f64)> = None;
-    let mut iterations = 0;
-    loop {
-        if r.abs() <= tol {
-            break;
-        }
-        if r > 0.0 {
-            lo = lo.max(x);
-        } else {
-            hi = hi.min(x);
-        }
-        if (hi - lo).abs() <= 1e-14 * x.abs().max(f64::MIN_POSITIVE) {
-            break;
-        }
-        if iterations == settings.max_iterations {
-            return Ok(ForceSolution {
-                solution: sol,
-                creepages: c,
-                outer_iterations: iterations,
-                solves,
-                converged: false,
-            });
-        }
-        iterations += 1;
-        let slope = match prev {
-            Some((xp, rp)) if xp != x => (r - rp) / (x - xp),
-            _ => slope0,
-        };
-        let mut next = if slope < 0.0 && slope.is_finite() {
-            x - r / slope
-        } else {
-            f64::NAN
-        };
-        if lo.is_finite() && hi.is_finite() {
-            if !(next > lo.min(hi) && next < lo.max(hi)) {
-                next = 0.5 * (lo + hi);
-            }
-        } else {
-            // Not bracketed yet: move away from the known bound, at most 4
-            // times the last step (the first: the linear estimate).
-            let step_max = match prev {
-                Some((xp, _)) => 4.0 * (x - xp).abs(),
-                None => (r / slope0).abs(),
-            };
-            let dir = if r > 0.0 { 1.0 } else { -1.0 };
-            if !(next.is_finite() && (next - x) * dir > 0.0) || (next - x).abs() > step_max {
-                next = x + dir * step_max;
-            }
-        }
-        if !CREEPAGE_RANGE.contains(next) {
-            return Err(out_of_reach(key, target, next));
-        }
-        prev = Some((x, r));
-        x = next;
-        set(&mut c, k, x);
-        sol = one(solver, with(&mut work, c))?;
-        solves += 1;
-        r = force(&sol, k) - target;
-    }
+    let r0 = force(&first, k) - target;
+    let root = decreasing_root(
+        component(&c0, k),
+        r0,
+        first,
+        RootSettings {
+            tolerance: tol,
+            max_iterations: settings.max_iterations,
+            slope: slope0,
+        },
+        CREEPAGE_RANGE,
+        |x| {
+            let mut c = c0;
+            set(&mut c, k, x);
+            let sol = one(solver, with(&mut work, c))?;
+            Ok((force(&sol, k) - target, sol))
+        },
+    )
+    .map_err(|e| match e {
+        RootError::Eval(e) => e,
+        RootError::OutOfRange { next } => out_of_reach(key, target, next),
+    })?;
+    let mut creepages = c0;
+    set(&mut creepages, k, root.x);
     Ok(ForceSolution {
-        converged: sol.info.status == SolveStatus::Converged,
-        solution: sol,
-        creepages: c,
-        outer_iterations: iterations,
-        solves,
+        converged: root.end != RootEnd::IterationLimit
+            && root.state.info.status == SolveStatus::Converged,
+        solution: root.state,
+        creepages,
+        outer_iterations: root.iterations,
+        solves: root.evaluations,
     })
 }
 

@@ -17,6 +17,7 @@ pub mod material;
 pub mod normal;
 mod predict;
 pub mod problem;
+pub mod root;
 pub mod sensitivity;
 mod simd;
 pub mod solution;
