@@ -384,6 +384,7 @@ fn wheelset_state(
             load: Some(pb::wheel_load::Load::VerticalForceN(
                 50e3 + 2e3 * (3.0 * w * t).sin(),
             )),
+            total_longitudinal_force_n: None,
         }),
     )
 }

@@ -13,7 +13,7 @@ use crate::cli::{plot_format, write_stdout, CliError};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
-use crate::wheelrail::contact::Timing;
+use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
     builtin, load_profile_with, solve_wheelset, LoadOptions, PatchResult, Profile, SearchScratch,
     Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel,
@@ -153,6 +153,7 @@ struct LoadKeys {
     vertical_force_n: Option<f64>,
     approach_m: Option<f64>,
     center_z_m: Option<f64>,
+    total_longitudinal_force_n: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -319,6 +320,7 @@ impl WheelrailRun {
                 element_size_m: c.grid.element_size_m,
                 ..WheelRailSettings::default()
             },
+            total_longitudinal_force_n: l.total_longitudinal_force_n,
         };
         Ok(Self {
             pair,
@@ -335,6 +337,8 @@ struct JsonReport<'a> {
     center_z_m: f64,
     roll_rad: f64,
     pitch_rad_per_s: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pitch_control: Option<PitchControl>,
     wheels: serde_json::Map<String, serde_json::Value>,
     timing: Timing,
 }
@@ -346,6 +350,18 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
         sol.roll_rad * 1e3,
         sol.pitch_rad_per_s
     );
+    if let Some(c) = sol.pitch_control {
+        s += &format!(
+            "rotation found for the total longitudinal force {:.1} N: reached {:.1} N at nominal \
+             creepage {:.4e} in {} steps ({} solves){}\n",
+            c.target_force_n,
+            c.force_n,
+            c.nominal_creepage,
+            c.iterations,
+            c.solves,
+            if c.converged { "" } else { ", NOT CONVERGED" }
+        );
+    }
     s += "wheel forces act on the rail, in the track frame (x forward, y to the right, z down); \
           per patch: rail y and wheel y in profile coordinates, creepages and forces in the \
           patch's side frame (eta, FS positive towards the field side: mirrored for the left wheel)\n";
@@ -418,6 +434,7 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
             center_z_m: sol.center_z_m,
             roll_rad: sol.roll_rad,
             pitch_rad_per_s: sol.pitch_rad_per_s,
+            pitch_control: sol.pitch_control,
             wheels,
             timing: sol.timing,
         };

@@ -643,6 +643,7 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
             element_size_m: s.element_size_m,
             ..WheelRailSettings::default()
         },
+        total_longitudinal_force_n: None,
     };
     let mut scratch = SearchScratch::default();
     let solution =

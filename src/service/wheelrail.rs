@@ -14,6 +14,7 @@ use crate::service::convert::{check_fields_finite, finite_values, grid_info, pla
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
+use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
 use crate::wheelrail::{
     PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
     WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
@@ -43,6 +44,9 @@ pub mod ranges {
     pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
     /// `load.approach_m` \[m\].
     pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
+    /// `load.total_longitudinal_force_n` \[N\] (its reach is checked
+    /// against saturation when solved).
+    pub const TOTAL_LONGITUDINAL_FORCE: Range = Range::symmetric(1e6, "N");
     /// `load.center_z_m` \[m\]: z points down, so the centre of a wheelset
     /// on its rails is at about minus the wheel radius.
     pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
@@ -212,6 +216,14 @@ impl QuerySettings {
         if let Some(w) = v.pitch_rad_per_s {
             check("velocity.pitch_rad_per_s", w, ranges::PITCH_RATE)?;
         }
+        let total_longitudinal_force_n = match load.and_then(|l| l.total_longitudinal_force_n) {
+            Some(f) => Some(check(
+                TOTAL_LONGITUDINAL_FORCE_KEY,
+                f,
+                ranges::TOTAL_LONGITUDINAL_FORCE,
+            )?),
+            None => None,
+        };
         let load = match load.and_then(|l| l.load) {
             Some(pb::wheel_load::Load::VerticalForceN(f)) => {
                 WheelLoad::VerticalForce(check("load.vertical_force_n", f, ranges::VERTICAL_FORCE)?)
@@ -248,6 +260,7 @@ impl QuerySettings {
             material: self.material,
             friction: self.friction,
             settings: self.settings,
+            total_longitudinal_force_n,
         })
     }
 }
@@ -305,6 +318,7 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
                 WheelLoad::Approach(d) => pb::wheel_load::Load::ApproachM(d),
                 WheelLoad::CenterHeight(z) => pb::wheel_load::Load::CenterZM(z),
             }),
+            total_longitudinal_force_n: input.total_longitudinal_force_n,
         }),
         friction: Some(pb::FrictionSection {
             static_coefficient: Some(f.static_coefficient),
@@ -400,6 +414,16 @@ pub fn check_finite(r: &pb::WheelRailResult) -> Result<(), ServiceError> {
             ("pitch_rad_per_s", r.pitch_rad_per_s),
         ],
     )?;
+    if let Some(c) = &r.pitch_control {
+        finite_values(
+            "pitch_control",
+            [
+                ("target_force_n", c.target_force_n),
+                ("force_n", c.force_n),
+                ("nominal_creepage", c.nominal_creepage),
+            ],
+        )?;
+    }
     let track = |f: &Option<pb::TrackForce>| {
         let f = f.unwrap_or_default();
         [("x_n", f.x_n), ("y_n", f.y_n), ("z_n", f.z_n)]
@@ -470,6 +494,14 @@ pub fn result(
             search_s: s.timing.search_s,
             geometry_s: s.timing.geometry_s,
             solve_s: s.timing.solve_s,
+        }),
+        pitch_control: s.pitch_control.map(|c| pb::PitchControl {
+            target_force_n: c.target_force_n,
+            force_n: c.force_n,
+            nominal_creepage: c.nominal_creepage,
+            iterations: c.iterations as u32,
+            solves: c.solves as u32,
+            converged: c.converged,
         }),
     };
     check_finite(&r)?;

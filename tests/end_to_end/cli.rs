@@ -1017,6 +1017,47 @@ fn wheelrail_bad_inputs_name_the_key() {
 }
 
 /// Measured profiles read from files next to the case: a MiniProf wheel on a
+/// `load.total_longitudinal_force_n`: the pitch rate is found and
+/// reported; with a pitch rate as well, or beyond saturation, exit code 2
+/// naming the key.
+#[test]
+fn wheelrail_finds_the_pitch_rate_of_a_braking_force() {
+    let text = example_text("wheelset_a22.toml")
+        .replace("model = \"exact\"", "model = \"hertz_fastsim\"")
+        .replace(
+            "vertical_force_n = 10000.0",
+            "vertical_force_n = 10000.0\ntotal_longitudinal_force_n = 1500.0",
+        );
+    let both = case_file("wr_brake_both.toml", &text);
+    let out = run(&["wheelrail", both.to_str().unwrap(), "--json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("load.total_longitudinal_force_n") && stderr.contains("pitch_rad_per_s"),
+        "{stderr}"
+    );
+    let braking = text.replace("pitch_rad_per_s = -4.2748834\n", "");
+    let v = wheelrail_json(&case_file("wr_brake.toml", &braking));
+    let c = &v["pitch_control"];
+    assert_eq!(c["converged"], Value::Bool(true), "{c}");
+    let fx: f64 = ["left", "right"]
+        .iter()
+        .map(|s| v["wheels"][*s]["force_track_n"][0].as_f64().unwrap())
+        .sum();
+    assert!((fx - 1500.0).abs() < 1e-2, "{fx}");
+    // Braked: the wheels turn slower than free rolling (-V / 0.46 m).
+    assert!(v["pitch_rad_per_s"].as_f64().unwrap() > -2.0 / 0.46, "{v}");
+    // mu Fn: 0.3 x about 25.5 kN (the flange patch carries 15 kN normal).
+    let beyond = braking.replace("= 1500.0", "= 9000.0");
+    let out = run(&[
+        "wheelrail",
+        case_file("wr_brake_beyond.toml", &beyond).to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("saturation"), "{stderr}");
+}
+
 /// MiniProf rail (mirrored into the right-hand convention), hertz_fastsim.
 #[test]
 fn wheelrail_reads_measured_profiles_by_path() {

@@ -336,6 +336,49 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
     server.shutdown().await;
 }
 
+/// A prescribed total longitudinal force: the pitch rate is found as by
+/// the library, bit for bit, with its report; saturation, a force with a
+/// pitch rate, and a force out of the documented range are INVALID_ARGUMENT
+/// naming the field.
+#[tokio::test]
+async fn a_prescribed_total_longitudinal_force_finds_the_pitch_rate_as_the_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    for model in [WheelRailModel::Exact, WheelRailModel::HertzFastsim] {
+        let mut input = mbench_a22_input(6.5, Some(-0.004376), None, model);
+        input.total_longitudinal_force_n = Some(-2500.0);
+        let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+        let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+        assert_same(&format!("{model:?}, braking force"), &got, &want);
+        let (c, w) = (got.pitch_control.unwrap(), want.pitch_control.unwrap());
+        assert!(c.converged, "{c:?}");
+        assert_eq!(c.force_n.to_bits(), w.force_n.to_bits());
+        assert_eq!(c.solves as usize, w.solves);
+        let total: f64 = got
+            .wheels
+            .iter()
+            .map(|w| w.force_track_n.unwrap().x_n)
+            .sum();
+        // The force tolerance: 1e-6 mu Fn (wheelrail::contact's docs).
+        assert!((total + 2500.0).abs() < 1e-6 * 0.3 * 25_000.0, "{total}");
+    }
+    let field = "load.total_longitudinal_force_n";
+    let mut input = mbench_a22_input(6.5, None, None, WheelRailModel::HertzFastsim);
+    input.total_longitudinal_force_n = Some(-9000.0);
+    let e = solve_err(&mut client, query_of(BUILTIN, &input)).await;
+    assert_invalid(&e, &[field, "saturation"]);
+    input.total_longitudinal_force_n = Some(2e6);
+    let e = solve_err(&mut client, query_of(BUILTIN, &input)).await;
+    assert_invalid(&e, &[field]);
+    input.total_longitudinal_force_n = Some(1000.0);
+    input.velocity.pitch_rad_per_s = Some(-4.3);
+    let e = solve_err(&mut client, query_of(BUILTIN, &input)).await;
+    assert_invalid(&e, &[field, "velocity.pitch_rad_per_s"]);
+    server.shutdown().await;
+}
+
 #[tokio::test]
 async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
     let dir = tempfile::tempdir().unwrap();
@@ -578,11 +621,13 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
     let mut r = good.clone();
     r.load = Some(pb::WheelLoad {
         load: Some(pb::wheel_load::Load::VerticalForceN(-5.0)),
+        ..Default::default()
     });
     assert_invalid(&solve_err(&mut client, r).await, &["load.vertical_force_n"]);
     let mut r = good.clone();
     r.load = Some(pb::WheelLoad {
         load: Some(pb::wheel_load::Load::CenterZM(f64::NAN)),
+        ..Default::default()
     });
     assert_invalid(&solve_err(&mut client, r).await, &["load.center_z_m"]);
     let mut r = good.clone();

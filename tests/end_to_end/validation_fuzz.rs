@@ -482,6 +482,7 @@ fn wheel_query(model: pb::WheelRailModel) -> pb::SolveWheelRailRequest {
         }),
         load: Some(pb::WheelLoad {
             load: Some(pb::wheel_load::Load::VerticalForceN(1e5)),
+            ..Default::default()
         }),
         ..Default::default()
     }
@@ -496,7 +497,7 @@ fn velocity(r: &mut pb::SolveWheelRailRequest) -> &mut pb::WheelsetVelocity {
 }
 
 fn wheel_load(r: &mut pb::SolveWheelRailRequest, l: pb::wheel_load::Load) {
-    r.load = Some(pb::WheelLoad { load: Some(l) });
+    r.load.get_or_insert_with(Default::default).load = Some(l);
 }
 
 fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
@@ -533,6 +534,11 @@ fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
         }),
         ("load.center_z_m", -0.46, |r, v| {
             wheel_load(r, Load::CenterZM(v))
+        }),
+        ("load.total_longitudinal_force_n", -1e4, |r, v| {
+            r.load
+                .get_or_insert_with(Default::default)
+                .total_longitudinal_force_n = Some(v)
         }),
         ("element_size_m", 2e-4, |r, v| r.element_size_m = Some(v)),
         ("friction.coefficient", 0.3, |r, v| {

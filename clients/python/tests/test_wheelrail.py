@@ -60,6 +60,27 @@ def test_solve_wheelrail_by_centre_height(client):
     assert all(not w.patches for w in lifted.wheels)
 
 
+def test_solve_wheelrail_for_a_traction_force(client):
+    """A prescribed total longitudinal force: the server finds the pitch
+    rate; the rails are pushed backwards by a driven wheelset."""
+    kw = dict(position={"lateral_m": 0.003}, velocity=V, model="hertz_fastsim")
+    r = client.solve_wheelrail(
+        load={"vertical_force_n": LOAD, "total_longitudinal_force_n": -2.0e4}, **kw
+    )
+    c = r.pitch_control
+    assert c is not None and c.converged and c.target_force_n == -2.0e4
+    assert r.force_track_n[0] == pytest.approx(-2.0e4, abs=1e-6 * 0.3 * 2 * LOAD)
+    # Driven: the wheels turn faster than free rolling at 0.46 m.
+    assert r.pitch_rad_per_s < -V / 0.46 and c.nominal_creepage > 0
+    assert client.solve_wheelrail(load=LOAD, **kw).pitch_control is None
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_wheelrail(
+            load={"vertical_force_n": LOAD, "total_longitudinal_force_n": -1.0e5}, **kw
+        )
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert "load.total_longitudinal_force_n" in str(e.value)
+
+
 def test_solve_wheelrail_exact_with_fields(client):
     r = client.solve_wheelrail(
         velocity={"forward_m_per_s": V, "lateral_m_per_s": -0.03},

@@ -371,8 +371,11 @@ class Client:
         ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...), or a
         number: the forward speed; ``load``: of ``WheelLoad``
         (``vertical_force_n``, ``approach_m`` or ``center_z_m``, the
-        wheelset centre's height as an MBS integrator has it), or a number:
-        the vertical force per wheel [N]; ``model``: ``"exact"``,
+        wheelset centre's height as an MBS integrator has it; with
+        ``total_longitudinal_force_n`` [N] the pitch rate is found for that
+        traction (< 0) or braking (> 0) force, see
+        ``WheelRailResult.pitch_control``), or a number: the vertical force
+        per wheel [N]; ``model``: ``"exact"``,
         ``"hertz_fastsim"``, ``"hertz_fastsim_table"``, ``"cect"`` or ``"auto"``; ``sides``:
         ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a
         ``FrictionSection`` mapping (default: the pair's).

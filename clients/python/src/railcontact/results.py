@@ -369,8 +369,24 @@ class WheelRailTiming:
 
 
 @dataclass(frozen=True)
+class PitchControl:
+    """How the pitch rate was found for a prescribed total longitudinal
+    force (``load={"total_longitudinal_force_n": ...}``): the force reached
+    [N], the nominal longitudinal creepage [-], steps and solves."""
+
+    target_force_n: float
+    force_n: float
+    nominal_creepage: float
+    iterations: int
+    solves: int
+    converged: bool
+
+
+@dataclass(frozen=True)
 class WheelRailResult:
-    """The solution of one wheelset query: the wheels solved, left first."""
+    """The solution of one wheelset query: the wheels solved, left first.
+    ``pitch_control`` is set when the total longitudinal force was
+    prescribed."""
 
     pair_id: str
     model: str = _enum()
@@ -379,6 +395,7 @@ class WheelRailResult:
     pitch_rad_per_s: float
     wheels: tuple = _many(WheelRailWheel)
     timing: WheelRailTiming = _sub(WheelRailTiming)
+    pitch_control: Optional[PitchControl] = _optional(PitchControl)
 
     def wheel(self, side: str) -> WheelRailWheel:
         """The wheel of ``side`` (``"left"`` or ``"right"``)."""

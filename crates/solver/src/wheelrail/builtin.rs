@@ -83,6 +83,7 @@ pub fn mbench_a22_input(
             model,
             ..WheelRailSettings::default()
         },
+        total_longitudinal_force_n: None,
     }
 }
 

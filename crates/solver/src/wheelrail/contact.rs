@@ -39,6 +39,26 @@
 //! normal. The wheel is a body of revolution: its pitch angle does not
 //! change the geometry, so the position has none (its rate does enter the
 //! creepages).
+//!
+//! # Traction and braking
+//!
+//! The rotation rate about the axle is given (`pitch_rad_per_s`), free
+//! rolling at the nominal radius, or found so that the wheels solved carry
+//! a prescribed **total longitudinal force** on their rails
+//! ([`WheelRailInput::total_longitudinal_force_n`], the sum of the wheels'
+//! `force_track_n[0]`): what an MBS model of a drive or brake asks. A
+//! driven wheelset pushes its rails backwards (force < 0), a braked one
+//! forwards (> 0). The unknown is the nominal longitudinal creepage
+//! xi0 = -1 - omega r0 / V (r0 the nominal radius, V the forward speed),
+//! on which the total force decreases; it is found by [`crate::core::root`]
+//! from xi0 = 0 (free rolling), each step a full solve of the wheels at the
+//! same rigid position (the search is not repeated). A force of magnitude
+//! mu Fn or more (mu kinetic, Fn the sum of the patches' normal forces) has
+//! no finite pitch rate and is refused naming the key; so is a smaller
+//! force that spin and lateral creepage leave out of reach (|xi0| would
+//! exceed 1). The force tolerance is as for a patch's prescribed force
+//! ([`crate::core::force`]): max(1e-6, 10 x the tangential tolerance) of
+//! mu Fn.
 
 use std::borrow::Cow;
 use std::time::Instant;
@@ -51,13 +71,16 @@ use crate::conformal::frictional::{
 use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCurve};
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
-use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
-use crate::core::problem::{ContactProblem, Creepages, Friction, Kinematics, SolverSettings};
+use crate::core::problem::{
+    ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
+};
+use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
 use crate::wheelrail::search::{
@@ -165,6 +188,12 @@ pub struct WheelRailInput {
     pub friction: Friction,
     /// Settings.
     pub settings: WheelRailSettings,
+    /// Prescribed total longitudinal force of the wheels solved on their
+    /// rails \[N\]: the sum of their `force_track_n[0]`, negative for
+    /// traction and positive for braking. The pitch rate is then found (see
+    /// the module docs), and `velocity.pitch_rad_per_s` must be `None`.
+    /// `None`: the pitch rate is given or free rolling.
+    pub total_longitudinal_force_n: Option<f64>,
 }
 
 impl WheelRailInput {
@@ -282,6 +311,9 @@ pub struct WheelRailSolution {
     pub roll_rad: f64,
     /// Rotation rate about the axle used [rad/s].
     pub pitch_rad_per_s: f64,
+    /// How the pitch rate was found, when the total longitudinal force was
+    /// prescribed.
+    pub pitch_control: Option<PitchControl>,
     /// Wheels solved.
     pub wheels: Vec<WheelResult>,
     /// Timing.
@@ -705,8 +737,6 @@ pub fn solve_wheelset_warm(
     };
     let resolved = input.with_load_resolved(rigid.center_z_m);
     let input = &*resolved;
-    let omega = pitch_rate(pair, input);
-    let mut wheels = Vec::new();
     let mut normal_per_vertical = warm.normal_per_vertical;
     // A wheel left out of this step keeps its tractions.
     let mut tractions: [Option<PatchTractions>; 2] = std::array::from_fn(|i| {
@@ -716,24 +746,37 @@ pub fn solve_wheelset_warm(
             warm.tractions[i].clone()
         }
     });
-    for &side in &input.sides {
-        let i = side.index();
-        let (wheel, ratio, carried) = solve_wheel(
-            pair,
-            input,
-            &rigid,
-            side,
-            omega,
-            cache,
-            scratch,
-            &mut timing,
-            warm.normal_per_vertical[i],
-            warm.tractions[i].as_ref(),
-        )?;
-        normal_per_vertical[i] = ratio;
-        tractions[i] = carried;
-        wheels.push(wheel);
-    }
+    // Each solve of the wheels starts from the last one's (the first from
+    // the warm start).
+    let mut solved = false;
+    let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
+        let mut wheels = Vec::with_capacity(input.sides.len());
+        for &side in &input.sides {
+            let i = side.index();
+            let (ratio, start) = if solved {
+                (normal_per_vertical[i], tractions[i].as_ref())
+            } else {
+                (warm.normal_per_vertical[i], warm.tractions[i].as_ref())
+            };
+            let (wheel, ratio, carried) = solve_wheel(
+                pair,
+                input,
+                &rigid,
+                side,
+                omega,
+                cache,
+                scratch,
+                &mut timing,
+                ratio,
+                start,
+            )?;
+            normal_per_vertical[i] = ratio;
+            tractions[i] = carried;
+            wheels.push(wheel);
+        }
+        solved = true;
+        Ok(wheels)
+    })?;
     *warm = WarmStart {
         roll_rad: Some(rigid.roll_rad),
         normal_per_vertical,
@@ -743,9 +786,117 @@ pub fn solve_wheelset_warm(
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
         pitch_rad_per_s: omega,
+        pitch_control,
         wheels,
         timing,
     })
+}
+
+/// Key of the prescribed total longitudinal force (case file and wire).
+pub const TOTAL_LONGITUDINAL_FORCE_KEY: &str = "load.total_longitudinal_force_n";
+
+/// The iteration that found the pitch rate for a prescribed total
+/// longitudinal force (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PitchControl {
+    /// The prescribed total longitudinal force on the rails \[N\].
+    pub target_force_n: f64,
+    /// The total longitudinal force of the solution \[N\].
+    pub force_n: f64,
+    /// The nominal longitudinal creepage found, -1 - omega r0 / V [-].
+    pub nominal_creepage: f64,
+    /// Steps of the iteration.
+    pub iterations: usize,
+    /// Solves of the wheels, the first (free rolling) included.
+    pub solves: usize,
+    /// Whether |force_n - target_force_n| met the tolerance; false when
+    /// the iteration limit was reached or the force jumps across the
+    /// target between two pitch rates 1e-14 apart.
+    pub converged: bool,
+}
+
+/// Step limit of the pitch-rate iteration.
+const MAX_PITCH_ITERATIONS: usize = 60;
+
+/// The wheels solved by `wheels_at(omega)` at the pitch rate of `input`:
+/// given, free rolling, or found for its prescribed total longitudinal
+/// force (see the module docs). Returns the rate used, the wheels, and the
+/// iteration's report when the force was prescribed.
+pub(crate) fn solve_pitch(
+    pair: &WheelRailPair,
+    input: &WheelRailInput,
+    mut wheels_at: impl FnMut(f64) -> Result<Vec<WheelResult>, WheelRailError>,
+) -> Result<(f64, Vec<WheelResult>, Option<PitchControl>), WheelRailError> {
+    let Some(target) = input.total_longitudinal_force_n else {
+        let omega = pitch_rate(pair, input);
+        return Ok((omega, wheels_at(omega)?, None));
+    };
+    let key = TOTAL_LONGITUDINAL_FORCE_KEY;
+    let v = input.velocity.forward_m_per_s;
+    let r0 = pair.wheelset().nominal_radius_m;
+    let omega_of = |xi0: f64| -(1.0 + xi0) * v / r0;
+    let total = |w: &[WheelResult]| w.iter().map(|w| w.force_track_n[0]).sum::<f64>();
+    let first = wheels_at(omega_of(0.0))?;
+    let patches = || first.iter().flat_map(|w| &w.patches);
+    let normal: f64 = patches().map(|p| p.normal_force_n).sum();
+    let mu = input.friction.kinetic_coefficient;
+    let limit = mu * normal;
+    if target.abs() >= limit {
+        return Err(WheelRailError::invalid(
+            key,
+            format!(
+                "{} N is at or beyond saturation mu Fn = {} x {} N = {} N (mu: the kinetic \
+                 coefficient, Fn: the patches' normal forces): no pitch rate gives it",
+                show(target),
+                show(mu),
+                show(normal),
+                show(limit)
+            ),
+        ));
+    }
+    // Kalker's linear slope, as for a patch (core::force): -G c^2 C per
+    // patch, c^2 the contact area over pi, C = 4.
+    let g = input.material.shear_modulus_pa;
+    let area: f64 = patches().map(|p| p.contact_area_m2).sum();
+    let slope = -g * area / std::f64::consts::PI * 4.0;
+    let tolerance = 1e-6_f64.max(10.0 * input.settings.solver.tangential.tolerance) * limit;
+    let r0_force = total(&first) - target;
+    let root = decreasing_root(
+        0.0,
+        r0_force,
+        first,
+        RootSettings {
+            tolerance,
+            max_iterations: MAX_PITCH_ITERATIONS,
+            slope,
+        },
+        CREEPAGE_RANGE,
+        |xi0| {
+            let wheels = wheels_at(omega_of(xi0))?;
+            Ok((total(&wheels) - target, wheels))
+        },
+    )
+    .map_err(|e| match e {
+        RootError::Eval(e) => e,
+        RootError::OutOfRange { next } => WheelRailError::invalid(
+            key,
+            format!(
+                "{} N is out of reach with this motion: the nominal longitudinal creepage would \
+                 leave [-1, 1] (last {})",
+                show(target),
+                show(next)
+            ),
+        ),
+    })?;
+    let control = PitchControl {
+        target_force_n: target,
+        force_n: root.residual + target,
+        nominal_creepage: root.x,
+        iterations: root.iterations,
+        solves: root.evaluations,
+        converged: root.end == RootEnd::Converged,
+    };
+    Ok((omega_of(root.x), root.state, Some(control)))
 }
 
 /// The FASTSIM solver of one wheel (40 x 40 elements).
@@ -786,6 +937,16 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     require_finite("velocity.yaw_rad_per_s", v.yaw_rad_per_s)?;
     if let Some(w) = v.pitch_rad_per_s {
         require_finite("velocity.pitch_rad_per_s", w)?;
+    }
+    if let Some(f) = input.total_longitudinal_force_n {
+        require_finite(TOTAL_LONGITUDINAL_FORCE_KEY, f)?;
+        if v.pitch_rad_per_s.is_some() {
+            return Err(WheelRailError::invalid(
+                TOTAL_LONGITUDINAL_FORCE_KEY,
+                "excludes velocity.pitch_rad_per_s: the pitch rate is found from the force; \
+                 give one of them",
+            ));
+        }
     }
     match input.load {
         WheelLoad::VerticalForce(f) => require_positive("load.vertical_force_n", f)?,

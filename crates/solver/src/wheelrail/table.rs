@@ -85,7 +85,7 @@ use crate::core::cancel::{self, CancelToken};
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::wheelrail::contact::{
-    finish, hertz_patch, load_iteration, pitch_rate, solve_wheelset, validate, wheel_fastsim,
+    finish, hertz_patch, load_iteration, solve_pitch, solve_wheelset, validate, wheel_fastsim,
     LoadResult, PatchWork, Timing, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSolution,
     WheelResult, CAP_FACTOR,
 };
@@ -846,25 +846,28 @@ pub fn solve_wheelset_tabulated(
     };
     let resolved = input.with_load_resolved(center_z_m);
     let input = &*resolved;
-    let omega = pitch_rate(pair, input);
-    let mut wheels = Vec::with_capacity(input.sides.len());
-    for &side in &input.sides {
-        let pose = SidePose::new(side, p.lateral_m, center_z_m, roll, p.yaw_rad);
-        wheels.push(solve_wheel_tabulated(
-            pair,
-            &contacts[side.index()],
-            &pose,
-            side,
-            input,
-            omega,
-            cache,
-            &mut timing,
-        )?);
-    }
+    let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
+        let mut wheels = Vec::with_capacity(input.sides.len());
+        for &side in &input.sides {
+            let pose = SidePose::new(side, p.lateral_m, center_z_m, roll, p.yaw_rad);
+            wheels.push(solve_wheel_tabulated(
+                pair,
+                &contacts[side.index()],
+                &pose,
+                side,
+                input,
+                omega,
+                cache,
+                &mut timing,
+            )?);
+        }
+        Ok(wheels)
+    })?;
     Ok(WheelRailSolution {
         center_z_m,
         roll_rad: roll,
         pitch_rad_per_s: omega,
+        pitch_control,
         wheels,
         timing,
     })

@@ -785,3 +785,137 @@ fn positions_outside_the_table_use_the_direct_search() {
     assert_eq!(d.roll_rad, t.roll_rad);
     assert_eq!(d.wheels[1].force_track_n, t.wheels[1].force_track_n);
 }
+
+/// The total longitudinal force of the wheels on their rails \[N\].
+fn total_fx(s: &WheelRailSolution) -> f64 {
+    s.wheels.iter().map(|w| w.force_track_n[0]).sum()
+}
+
+/// Traction control, against CONTACT: at CONTACT's pitch rates of A-2.2
+/// (inputs of mbench_a22_*.inp, in `A22`) its two wheels carry the total
+/// longitudinal force FX(right) + FX(left) of its reference output. Given
+/// that total, the pitch rate found must be CONTACT's. The per-wheel FX of
+/// the two codes agree within the tolerances of
+/// `a22_single_patch_cases_match_contact`; through the slope of the total
+/// force over the pitch rate that is a pitch-rate difference within
+/// `tolerance` below.
+#[test]
+fn prescribed_total_longitudinal_force_finds_contacts_pitch_rate() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    for r in &A22 {
+        let free = -2.0 / 0.46;
+        // CONTACT's total force on the rails: FX is along the track on both
+        // wheels (not mirrored).
+        let target = r.right[3] + r.left[3];
+        let mut input = a22_input(r.y_mm, Some(r.roll), None, WheelRailModel::Exact);
+        input.total_longitudinal_force_n = Some(target);
+        let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+        let c = sol.pitch_control.expect("a pitch control report");
+        assert!(c.converged, "{c:?}");
+        // The force tolerance: 1e-6 mu Fn (module docs of wheelrail::contact).
+        close(
+            "total Fx",
+            total_fx(&sol),
+            target,
+            0.0,
+            1e-6 * 0.3 * 20_400.0,
+        );
+        let got = sol.pitch_rad_per_s;
+        eprintln!(
+            "y = {} mm: pitch rate found {got:.8} rad/s, CONTACT {:.8}, free rolling {free:.8}; \
+             {} steps, {} solves",
+            r.y_mm, r.pitch, c.iterations, c.solves
+        );
+        // The two codes' FX differ by up to about 2 % per wheel here, and
+        // the pitch rate by that share of its departure from free rolling.
+        // Measured: 1.5 % at 2 mm, 1.0 % at 6.5 mm, 0.3 % at 10 mm.
+        let tolerance = 0.03 * (r.pitch - free).abs();
+        close("pitch rate", got, r.pitch, 0.0, tolerance);
+    }
+}
+
+/// A force the wheels can carry is found from any start, with both models
+/// and on the contact-table path, and gives back the pitch rate it came
+/// from; a force at or beyond saturation, or together with a pitch rate,
+/// is refused naming its key.
+#[test]
+fn prescribed_total_longitudinal_force_round_trip_and_limits() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
+    for model in [WheelRailModel::HertzFastsim, WheelRailModel::Exact] {
+        // Traction: the wheels turn 1.5e-3 faster than free rolling.
+        let omega = -2.0 / 0.46 * (1.0 + 1.5e-3);
+        let given = a22_input(6.5, None, Some(omega), model);
+        let at_omega = solve_wheelset(&pair, &given, &cache, &mut scratch).unwrap();
+        let target = total_fx(&at_omega);
+        let normal: f64 = at_omega
+            .wheels
+            .iter()
+            .flat_map(|w| &w.patches)
+            .map(|p| p.normal_force_n)
+            .sum();
+        let limit = 0.3 * normal;
+        assert!(target < -0.2 * limit, "{model:?}: traction {target} N");
+        let mut input = a22_input(6.5, None, None, model);
+        // The direct search, and the contact table (whose geometry differs
+        // slightly: each is compared with itself).
+        type Solve<'a> = &'a dyn Fn(&WheelRailInput, &mut SearchScratch) -> WheelRailSolution;
+        let direct: Solve = &|i, s| solve_wheelset(&pair, i, &cache, s).unwrap();
+        let tabulated: Solve = &|i, s| solve_wheelset_tabulated(&table, i, &cache, s).unwrap();
+        for (path, solve) in [("direct", direct), ("table", tabulated)] {
+            let target = total_fx(&solve(&given, &mut scratch));
+            input.total_longitudinal_force_n = Some(target);
+            let sol = solve(&input, &mut scratch);
+            let c = sol.pitch_control.unwrap();
+            assert!(c.converged, "{model:?}, {path}: {c:?}");
+            close("total Fx", total_fx(&sol), target, 0.0, 1e-6 * limit);
+            // Back to the rate it came from: within 1e-4 of its departure
+            // from free rolling (measured: 2e-5, Hertz+FASTSIM, whose
+            // saturated flange patch flattens the slope).
+            let free = -2.0 / 0.46;
+            close(
+                "pitch rate",
+                sol.pitch_rad_per_s,
+                omega,
+                0.0,
+                1e-4 * (omega - free).abs(),
+            );
+            eprintln!("{model:?}, {path}: {c:?}");
+        }
+        // Near saturation: a finite, large creepage.
+        input.total_longitudinal_force_n = Some(-0.98 * limit);
+        let near = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+        let c = near.pitch_control.unwrap();
+        assert!(c.converged, "{model:?} near saturation: {c:?}");
+        close(
+            "total Fx",
+            total_fx(&near),
+            -0.98 * limit,
+            0.0,
+            1e-6 * limit,
+        );
+        assert!(c.nominal_creepage > 5e-3, "{model:?}: {c:?}");
+        eprintln!("{model:?} at 0.98 mu Fn: {c:?}");
+        // At and beyond saturation: no pitch rate.
+        for f in [1.01 * limit, -limit] {
+            input.total_longitudinal_force_n = Some(f);
+            let e = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
+            let m = e.to_string();
+            assert!(
+                m.starts_with("load.total_longitudinal_force_n:") && m.contains("saturation"),
+                "{m}"
+            );
+        }
+        // With a pitch rate: one or the other.
+        let mut both = given.clone();
+        both.total_longitudinal_force_n = Some(target);
+        let m = solve_wheelset(&pair, &both, &cache, &mut scratch)
+            .unwrap_err()
+            .to_string();
+        assert!(m.contains("excludes velocity.pitch_rad_per_s"), "{m}");
+    }
+}

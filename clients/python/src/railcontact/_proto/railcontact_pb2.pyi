@@ -843,14 +843,16 @@ class WheelsetVelocity(_message.Message):
     def __init__(self, forward_m_per_s: _Optional[float] = ..., lateral_m_per_s: _Optional[float] = ..., vertical_m_per_s: _Optional[float] = ..., roll_rad_per_s: _Optional[float] = ..., yaw_rad_per_s: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ...) -> None: ...
 
 class WheelLoad(_message.Message):
-    __slots__ = ("vertical_force_n", "approach_m", "center_z_m")
+    __slots__ = ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")
     VERTICAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     APPROACH_M_FIELD_NUMBER: _ClassVar[int]
     CENTER_Z_M_FIELD_NUMBER: _ClassVar[int]
+    TOTAL_LONGITUDINAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     vertical_force_n: float
     approach_m: float
     center_z_m: float
-    def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ...) -> None: ...
+    total_longitudinal_force_n: float
+    def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
     __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields")
@@ -969,7 +971,7 @@ class WheelRailTiming(_message.Message):
     def __init__(self, search_s: _Optional[float] = ..., geometry_s: _Optional[float] = ..., solve_s: _Optional[float] = ...) -> None: ...
 
 class WheelRailResult(_message.Message):
-    __slots__ = ("pair_id", "model", "center_z_m", "roll_rad", "pitch_rad_per_s", "wheels", "timing")
+    __slots__ = ("pair_id", "model", "center_z_m", "roll_rad", "pitch_rad_per_s", "wheels", "timing", "pitch_control")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     CENTER_Z_M_FIELD_NUMBER: _ClassVar[int]
@@ -977,6 +979,7 @@ class WheelRailResult(_message.Message):
     PITCH_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
     WHEELS_FIELD_NUMBER: _ClassVar[int]
     TIMING_FIELD_NUMBER: _ClassVar[int]
+    PITCH_CONTROL_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     center_z_m: float
@@ -984,7 +987,24 @@ class WheelRailResult(_message.Message):
     pitch_rad_per_s: float
     wheels: _containers.RepeatedCompositeFieldContainer[WheelRailWheel]
     timing: WheelRailTiming
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., center_z_m: _Optional[float] = ..., roll_rad: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ..., wheels: _Optional[_Iterable[_Union[WheelRailWheel, _Mapping]]] = ..., timing: _Optional[_Union[WheelRailTiming, _Mapping]] = ...) -> None: ...
+    pitch_control: PitchControl
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., center_z_m: _Optional[float] = ..., roll_rad: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ..., wheels: _Optional[_Iterable[_Union[WheelRailWheel, _Mapping]]] = ..., timing: _Optional[_Union[WheelRailTiming, _Mapping]] = ..., pitch_control: _Optional[_Union[PitchControl, _Mapping]] = ...) -> None: ...
+
+class PitchControl(_message.Message):
+    __slots__ = ("target_force_n", "force_n", "nominal_creepage", "iterations", "solves", "converged")
+    TARGET_FORCE_N_FIELD_NUMBER: _ClassVar[int]
+    FORCE_N_FIELD_NUMBER: _ClassVar[int]
+    NOMINAL_CREEPAGE_FIELD_NUMBER: _ClassVar[int]
+    ITERATIONS_FIELD_NUMBER: _ClassVar[int]
+    SOLVES_FIELD_NUMBER: _ClassVar[int]
+    CONVERGED_FIELD_NUMBER: _ClassVar[int]
+    target_force_n: float
+    force_n: float
+    nominal_creepage: float
+    iterations: int
+    solves: int
+    converged: bool
+    def __init__(self, target_force_n: _Optional[float] = ..., force_n: _Optional[float] = ..., nominal_creepage: _Optional[float] = ..., iterations: _Optional[int] = ..., solves: _Optional[int] = ..., converged: _Optional[bool] = ...) -> None: ...
 
 class SolveWheelRailResponse(_message.Message):
     __slots__ = ("result",)
