@@ -14,6 +14,7 @@ use railcontact::core::hertz::{hertz, HertzLoad};
 use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use railcontact::core::material::{CombinedMaterial, Material};
 use railcontact::core::normal::NormalLoad;
+use railcontact::core::polach::{polach, PolachParameters};
 use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
 use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
@@ -243,6 +244,9 @@ fn reference_models(c: &mut Criterion) {
     };
     c.bench_function("fastsim_40x40", |b| {
         b.iter(|| black_box(fs.solve(&input).unwrap()))
+    });
+    c.bench_function("polach", |b| {
+        b.iter(|| black_box(polach(black_box(&input), 30.0, &PolachParameters::DRY).unwrap()))
     });
 }
 

@@ -48,6 +48,7 @@ fn wheelset_step(c: &mut Criterion) {
     for (name, model) in [
         ("wheelset_step_exact", WheelRailModel::Exact),
         ("wheelset_step_hertz_fastsim", WheelRailModel::HertzFastsim),
+        ("wheelset_step_hertz_polach", WheelRailModel::HertzPolach),
         ("wheelset_step_cect", WheelRailModel::Cect),
     ] {
         let mut g = c.benchmark_group(name);

@@ -1,5 +1,5 @@
 //! The Manchester Contact Benchmark, case, against CONTACT's reference
-//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim]`.
+//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach]`.
 //!
 //! Reads `docs/data/mbench_a22_contact.csv` (CONTACT's results, with their
 //! source), solves every shift 0..10 mm with the same roll and wheel
@@ -67,8 +67,9 @@ fn main() {
     let model = match std::env::args().nth(1).as_deref() {
         None | Some("exact") => WheelRailModel::Exact,
         Some("hertz_fastsim") => WheelRailModel::HertzFastsim,
+        Some("hertz_polach") => WheelRailModel::HertzPolach,
         Some(other) => {
-            eprintln!("unknown model {other}: use exact or hertz_fastsim");
+            eprintln!("unknown model {other}: use exact, hertz_fastsim or hertz_polach");
             std::process::exit(2);
         }
     };

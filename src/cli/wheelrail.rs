@@ -12,6 +12,7 @@ use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
+use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
 use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
@@ -40,7 +41,7 @@ pub struct WheelrailArgs {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WheelrailCase {
-    /// "exact" (default), "hertz_fastsim", "cect" or "auto".
+    /// "exact" (default), "hertz_fastsim", "hertz_polach", "cect" or "auto".
     #[serde(default = "default_model")]
     model: String,
     /// "both" (default), "left" or "right".
@@ -58,6 +59,18 @@ struct WheelrailCase {
     load: LoadKeys,
     #[serde(default)]
     grid: GridKeys,
+    /// Model hertz_polach: its parameters (default: Polach's 1999 model).
+    polach: Option<PolachKeys>,
+}
+
+/// `[polach]`: every key required when the section is given.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PolachKeys {
+    k_adhesion: f64,
+    k_slip: f64,
+    limit_ratio: f64,
+    decay_s_per_m: f64,
 }
 
 fn default_model() -> String {
@@ -222,11 +235,12 @@ impl WheelrailRun {
         let (model, model_name) = match c.model.to_ascii_lowercase().as_str() {
             "exact" => (WheelRailModel::Exact, "exact"),
             "hertz_fastsim" => (WheelRailModel::HertzFastsim, "hertz_fastsim"),
+            "hertz_polach" => (WheelRailModel::HertzPolach, "hertz_polach"),
             "cect" => (WheelRailModel::Cect, "cect"),
             "auto" => (WheelRailModel::Auto, "auto"),
             other => {
                 return Err(bad(format!(
-                    "invalid input `model`: \"{other}\"; expected \"exact\", \"hertz_fastsim\", \"cect\" or \"auto\""
+                    "invalid input `model`: \"{other}\"; expected \"exact\", \"hertz_fastsim\", \"hertz_polach\", \"cect\" or \"auto\""
                 )))
             }
         };
@@ -318,6 +332,15 @@ impl WheelrailRun {
             settings: WheelRailSettings {
                 model,
                 element_size_m: c.grid.element_size_m,
+                polach: match &c.polach {
+                    Some(p) => PolachParameters {
+                        k_adhesion: p.k_adhesion,
+                        k_slip: p.k_slip,
+                        limit_ratio: p.limit_ratio,
+                        decay_s_per_m: p.decay_s_per_m,
+                    },
+                    None => PolachParameters::default(),
+                },
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: l.total_longitudinal_force_n,

@@ -707,9 +707,12 @@ fn patch_lane(case: &Case, sensitivities: bool) -> Lane {
     }
 }
 
-/// The solve lane of a wheel/rail model: Hertz+FASTSIM is fast.
+/// The solve lane of a wheel/rail model: the Hertz models are fast.
 fn wheelrail_lane(model: WheelRailModel) -> Lane {
-    Lane::of(model == WheelRailModel::HertzFastsim)
+    Lane::of(matches!(
+        model,
+        WheelRailModel::HertzFastsim | WheelRailModel::HertzPolach
+    ))
 }
 
 fn open_first() -> ServiceError {

@@ -9,6 +9,7 @@
 
 use crate::core::error::{Range, UnitHint};
 use crate::core::material::CombinedMaterial;
+use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
 use crate::service::convert::{check_fields_finite, finite_values, grid_info, planar_fields};
 use crate::service::pairs::{self, PairSettings};
@@ -72,6 +73,7 @@ pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
         Ok(pb::WheelRailModel::HertzFastsim | pb::WheelRailModel::HertzFastsimTable) => {
             Ok(WheelRailModel::HertzFastsim)
         }
+        Ok(pb::WheelRailModel::HertzPolach) => Ok(WheelRailModel::HertzPolach),
         Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
         Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
         Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
@@ -88,6 +90,7 @@ pub fn wire_model(m: WheelRailModel) -> pb::WheelRailModel {
     match m {
         WheelRailModel::Exact => pb::WheelRailModel::Exact,
         WheelRailModel::HertzFastsim => pb::WheelRailModel::HertzFastsim,
+        WheelRailModel::HertzPolach => pb::WheelRailModel::HertzPolach,
         WheelRailModel::Cect => pb::WheelRailModel::Cect,
         WheelRailModel::Auto => pb::WheelRailModel::Auto,
     }
@@ -98,6 +101,7 @@ pub fn model_name(m: WheelRailModel) -> &'static str {
     match m {
         WheelRailModel::Exact => "wheelrail_exact",
         WheelRailModel::HertzFastsim => "wheelrail_hertz_fastsim",
+        WheelRailModel::HertzPolach => "wheelrail_hertz_polach",
         WheelRailModel::Cect => "wheelrail_cect",
         WheelRailModel::Auto => "wheelrail_auto",
     }
@@ -154,6 +158,22 @@ impl QuerySettings {
                 ..WheelRailSettings::default()
             },
         })
+    }
+
+    /// The settings with Polach's parameters of the request (field
+    /// `polach`; not set: his 1999 model).
+    pub fn with_polach(mut self, p: Option<&pb::PolachParameters>) -> Result<Self, ServiceError> {
+        if let Some(p) = p {
+            let parameters = PolachParameters {
+                k_adhesion: p.k_adhesion,
+                k_slip: p.k_slip,
+                limit_ratio: p.limit_ratio,
+                decay_s_per_m: p.decay_s_per_m,
+            };
+            parameters.validate("polach")?;
+            self.settings.polach = parameters;
+        }
+        Ok(self)
     }
 
     /// The settings with patch grids of at most `max` elements (the
@@ -280,6 +300,7 @@ pub fn input(
         req.element_size_m,
         settings,
     )?
+    .with_polach(req.polach.as_ref())?
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
@@ -327,6 +348,15 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
         }),
         element_size_m: Some(input.settings.element_size_m),
         include_fields: false,
+        polach: (input.settings.model == WheelRailModel::HertzPolach).then(|| {
+            let p = input.settings.polach;
+            pb::PolachParameters {
+                k_adhesion: p.k_adhesion,
+                k_slip: p.k_slip,
+                limit_ratio: p.limit_ratio,
+                decay_s_per_m: p.decay_s_per_m,
+            }
+        }),
     }
 }
 
@@ -342,6 +372,7 @@ fn method(m: &str) -> pb::WheelRailModel {
     match m {
         "exact" => pb::WheelRailModel::Exact,
         "hertz_fastsim" => pb::WheelRailModel::HertzFastsim,
+        "hertz_polach" => pb::WheelRailModel::HertzPolach,
         "cect" => pb::WheelRailModel::Cect,
         _ => pb::WheelRailModel::Unspecified,
     }

@@ -71,6 +71,7 @@ impl WheelRailSession {
             open.element_size_m,
             &entry.spec.settings,
         )?
+        .with_polach(open.polach.as_ref())?
         .with_max_grid_elements(limits.max_grid_elements);
         Ok(Self {
             settings,

@@ -1058,6 +1058,30 @@ fn wheelrail_finds_the_pitch_rate_of_a_braking_force() {
     assert!(stderr.contains("saturation"), "{stderr}");
 }
 
+/// Model hertz_polach with `[polach]`: every patch says so, the wheels
+/// carry their load; a parameter out of range is bad input naming it.
+#[test]
+fn wheelrail_solves_with_polachs_model_and_checks_its_parameters() {
+    let text = example_text("wheelset_a22.toml")
+        .replace("model = \"exact\"", "model = \"hertz_polach\"")
+        + "\n[polach]\nk_adhesion = 1.0\nk_slip = 0.4\nlimit_ratio = 0.4\ndecay_s_per_m = 0.6\n";
+    let v = wheelrail_json(&case_file("wr_polach.toml", &text));
+    for side in ["left", "right"] {
+        let w = &v["wheels"][side];
+        let fz = w["force_track_n"][2].as_f64().unwrap();
+        assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
+        for p in w["patches"].as_array().unwrap() {
+            assert_eq!(p["method"], "hertz_polach", "{p}");
+            assert_eq!(p["mz_nm"].as_f64(), Some(0.0), "{p}");
+        }
+    }
+    expect_bad_wheelrail(
+        "wr_polach_bad.toml",
+        &text.replace("k_slip = 0.4", "k_slip = 1.5"),
+        "polach.k_slip",
+    );
+}
+
 /// MiniProf rail (mirrored into the right-hand convention), hertz_fastsim.
 #[test]
 fn wheelrail_reads_measured_profiles_by_path() {

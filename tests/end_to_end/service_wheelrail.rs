@@ -293,7 +293,11 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
     // Manchester at 6.5 mm with CONTACT's roll and pitch rate.
     let pair = mbench_pair();
     let cache = KernelCache::default();
-    for model in [WheelRailModel::Exact, WheelRailModel::HertzFastsim] {
+    for model in [
+        WheelRailModel::Exact,
+        WheelRailModel::HertzFastsim,
+        WheelRailModel::HertzPolach,
+    ] {
         let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
         let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
         // By name and by id.
@@ -364,6 +368,18 @@ async fn a_prescribed_total_longitudinal_force_finds_the_pitch_rate_as_the_libra
         // The force tolerance: 1e-6 mu Fn (wheelrail::contact's docs).
         assert!((total + 2500.0).abs() < 1e-6 * 0.3 * 25_000.0, "{total}");
     }
+    // Polach's parameters travel: dry rail (Polach 2005) with a driving
+    // force, as the library.
+    let mut input = mbench_a22_input(6.5, Some(-0.004376), None, WheelRailModel::HertzPolach);
+    input.settings.polach = railcontact::core::polach::PolachParameters::DRY;
+    input.total_longitudinal_force_n = Some(-2500.0);
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("Polach, dry", &got, &want);
+    let mut req = query_of(BUILTIN, &input);
+    req.polach.as_mut().unwrap().k_slip = 2.0;
+    let e = solve_err(&mut client, req).await;
+    assert_invalid(&e, &["polach.k_slip"]);
     let field = "load.total_longitudinal_force_n";
     let mut input = mbench_a22_input(6.5, None, None, WheelRailModel::HertzFastsim);
     input.total_longitudinal_force_n = Some(-9000.0);

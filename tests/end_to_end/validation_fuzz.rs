@@ -540,6 +540,15 @@ fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
                 .get_or_insert_with(Default::default)
                 .total_longitudinal_force_n = Some(v)
         }),
+        ("polach.k_slip", 0.4, |r, v| {
+            r.model = pb::WheelRailModel::HertzPolach as i32;
+            r.polach = Some(pb::PolachParameters {
+                k_adhesion: 1.0,
+                k_slip: v,
+                limit_ratio: 0.4,
+                decay_s_per_m: 0.6,
+            })
+        }),
         ("element_size_m", 2e-4, |r, v| r.element_size_m = Some(v)),
         ("friction.coefficient", 0.3, |r, v| {
             r.friction = Some(pb::FrictionSection {

@@ -113,7 +113,9 @@ pub enum FastsimError {
     Creep(#[from] CreepError),
 }
 
-/// Input of one FASTSIM solve.
+/// Input of one FASTSIM solve: the tangential problem of an elliptic
+/// (Hertz) patch, also what Polach's model takes
+/// ([`crate::core::polach::polach`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastsimInput {
     /// Semi-axis `a` along the rolling direction `x` \[m\], > 0.
@@ -588,7 +590,7 @@ fn validate(input: &FastsimInput) -> Result<(), FastsimError> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::core::creep::kalker_linear_forces;
     use std::f64::consts::PI;
@@ -598,7 +600,7 @@ mod tests {
     }
 
     /// Wheel/rail-like case: a = 6 mm, b = 4 mm, 100 kN, steel.
-    fn base() -> FastsimInput {
+    pub(crate) fn base() -> FastsimInput {
         FastsimInput {
             semi_axis_x_m: 6e-3,
             semi_axis_y_m: 4e-3,

@@ -15,6 +15,7 @@ pub mod hertz;
 pub mod influence;
 pub mod material;
 pub mod normal;
+pub mod polach;
 mod predict;
 pub mod problem;
 pub mod root;

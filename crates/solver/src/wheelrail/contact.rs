@@ -77,6 +77,7 @@ use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
+use crate::core::polach::{polach, PolachParameters};
 use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
 };
@@ -102,6 +103,12 @@ pub enum WheelRailModel {
     /// Hertz on the curvatures at each patch's reference point, FASTSIM for
     /// the tangential forces: the fast path.
     HertzFastsim,
+    /// Hertz as [`WheelRailModel::HertzFastsim`], Polach's creep-force
+    /// model for the tangential forces ([`crate::core::polach`], with
+    /// [`WheelRailSettings::polach`]; its mu0, the coefficient at zero
+    /// slip velocity, is the static coefficient): closed form, no spin
+    /// moment.
+    HertzPolach,
     /// The conformal method (CECT with Blanco's influence coefficients) on
     /// every patch: curved patch, undeformed distance along local normals,
     /// normal and tangential problems coupled. Wheels with one patch only
@@ -154,6 +161,9 @@ pub struct WheelRailSettings {
     /// Largest nx * ns of a patch grid: a patch that needs more elements
     /// is refused (naming `grid.element_size_m`) before it is solved.
     pub max_grid_elements: usize,
+    /// Model `hertz_polach`: the reduction factors and falling friction of
+    /// Polach's model (default: none, his 1999 model).
+    pub polach: PolachParameters,
 }
 
 impl Default for WheelRailSettings {
@@ -167,6 +177,7 @@ impl Default for WheelRailSettings {
             max_load_iterations: 40,
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
             max_grid_elements: usize::MAX,
+            polach: PolachParameters::default(),
         }
     }
 }
@@ -214,7 +225,8 @@ impl WheelRailInput {
 /// One contact patch of a wheel.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchResult {
-    /// Method that solved the patch: "exact", "hertz_fastsim" or "cect".
+    /// Method that solved the patch: "exact", "hertz_fastsim",
+    /// "hertz_polach" or "cect".
     pub method: &'static str,
     /// Variation of the rail's contact angle over the loaded lateral extent
     /// \[rad\] (0 for Hertz+FASTSIM).
@@ -366,6 +378,8 @@ enum PatchKind {
     Hertz {
         a_per_m: f64,
         b_per_m: f64,
+        /// Polach's model for the creep forces, else FASTSIM.
+        polach: bool,
     },
     Conformal {
         geometry: Box<ConformalGeometry>,
@@ -504,7 +518,11 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
             }
-            PatchKind::Hertz { a_per_m, b_per_m } => {
+            PatchKind::Hertz {
+                a_per_m,
+                b_per_m,
+                polach: use_polach,
+            } => {
                 let hl = match load {
                     NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
                     NormalLoad::Approach(d) => HertzLoad::Approach {
@@ -526,24 +544,38 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
                 if frictional {
-                    let f = fastsim
-                        .solve(&FastsimInput {
-                            semi_axis_x_m: h.semi_axis_x_m,
-                            semi_axis_y_m: h.semi_axis_y_m,
-                            normal_force_n: h.normal_force_n,
-                            shear_modulus_pa: input.material.shear_modulus_pa,
-                            poisson_ratio: input.material.poisson_ratio,
-                            friction_coefficient: input.friction.kinetic_coefficient,
-                            creepage_long: self.creep.creepage_long,
-                            creepage_lat: self.creep.creepage_lat,
-                            spin_per_m: self.creep.spin_per_m,
-                        })
-                        .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
-                    out.fx_n = f.fx_n;
-                    out.fs_n = f.fy_n;
-                    out.mz_nm = f.mz_nm;
-                    out.adhesion = f.adhesion_fraction;
-                    out.tgamma_n = f.tgamma_n;
+                    let tangential = FastsimInput {
+                        semi_axis_x_m: h.semi_axis_x_m,
+                        semi_axis_y_m: h.semi_axis_y_m,
+                        normal_force_n: h.normal_force_n,
+                        shear_modulus_pa: input.material.shear_modulus_pa,
+                        poisson_ratio: input.material.poisson_ratio,
+                        // Polach's mu0 is the coefficient at zero slip velocity.
+                        friction_coefficient: if *use_polach {
+                            input.friction.static_coefficient
+                        } else {
+                            input.friction.kinetic_coefficient
+                        },
+                        creepage_long: self.creep.creepage_long,
+                        creepage_lat: self.creep.creepage_lat,
+                        spin_per_m: self.creep.spin_per_m,
+                    };
+                    if *use_polach {
+                        let f = polach(&tangential, self.speed, &input.settings.polach)?;
+                        out.fx_n = f.fx_n;
+                        out.fs_n = f.fy_n;
+                        out.adhesion = f.adhesion_fraction;
+                        out.tgamma_n = f.tgamma_n;
+                    } else {
+                        let f = fastsim
+                            .solve(&tangential)
+                            .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
+                        out.fx_n = f.fx_n;
+                        out.fs_n = f.fy_n;
+                        out.mz_nm = f.mz_nm;
+                        out.adhesion = f.adhesion_fraction;
+                        out.tgamma_n = f.tgamma_n;
+                    }
                 }
                 self.out = out;
             }
@@ -960,6 +992,7 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             format!("must be between 1e-6 and 5e-3 m, got {e}"),
         ));
     }
+    input.settings.polach.validate("polach")?;
     Ok(input.friction.validate()?)
 }
 
@@ -1185,7 +1218,9 @@ fn build_patch(
     let (hmin, b) = lateral_curvature(&geom);
     let kx0 = geom.lateral_at(0.0).kx_per_m;
     let kind = match input.settings.model {
-        WheelRailModel::HertzFastsim => hertz_kind(kx0, b),
+        WheelRailModel::HertzFastsim | WheelRailModel::HertzPolach => {
+            hertz_kind(kx0, b, input.settings.model)
+        }
         WheelRailModel::Exact | WheelRailModel::Auto => {
             let grid = patch_grid(&geom, cap, input)?;
             let mut gap_m = vec![0.0; grid.len()];
@@ -1237,11 +1272,13 @@ fn build_patch(
 }
 
 /// Hertz on the wheel's longitudinal curvature `kx` and the lateral
-/// curvature `b` of the undeformed distance [1/m], kept positive.
-fn hertz_kind(kx: f64, b: f64) -> PatchKind {
+/// curvature `b` of the undeformed distance [1/m], kept positive; the
+/// creep forces by Polach's model for `model` hertz_polach, else FASTSIM.
+fn hertz_kind(kx: f64, b: f64, model: WheelRailModel) -> PatchKind {
     PatchKind::Hertz {
         a_per_m: 0.5 * kx.max(1e-3),
         b_per_m: b.max(0.01 * kx).max(1e-3),
+        polach: model == WheelRailModel::HertzPolach,
     }
 }
 
@@ -1267,7 +1304,7 @@ pub(crate) fn hertz_patch(
         nz: geom.normal[1],
         sz: geom.tangent()[1],
         hmin,
-        kind: hertz_kind(kx, b),
+        kind: hertz_kind(kx, b, input.settings.model),
         geom,
         out: PatchOutcome::default(),
         warm_tractions: None,
@@ -1825,7 +1862,8 @@ pub(crate) fn finish(
     for mut p in patches {
         let (method, variation) = match &p.kind {
             PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
-            PatchKind::Hertz { .. } => ("hertz_fastsim", 0.0),
+            PatchKind::Hertz { polach: false, .. } => ("hertz_fastsim", 0.0),
+            PatchKind::Hertz { polach: true, .. } => ("hertz_polach", 0.0),
             PatchKind::Conformal { .. } => ("cect", p.out.angle_variation_rad),
         };
         // The patch is consumed: hand its per-element solution over.

@@ -70,6 +70,7 @@ class WheelRailModel(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_MODEL_CECT: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_AUTO: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_HERTZ_POLACH: _ClassVar[WheelRailModel]
 
 class WheelSides(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -123,6 +124,7 @@ WHEEL_RAIL_MODEL_HERTZ_FASTSIM: WheelRailModel
 WHEEL_RAIL_MODEL_CECT: WheelRailModel
 WHEEL_RAIL_MODEL_AUTO: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: WheelRailModel
+WHEEL_RAIL_MODEL_HERTZ_POLACH: WheelRailModel
 WHEEL_SIDES_UNSPECIFIED: WheelSides
 WHEEL_SIDES_BOTH: WheelSides
 WHEEL_SIDES_LEFT: WheelSides
@@ -816,6 +818,18 @@ class DeleteProfilePairResponse(_message.Message):
     pair_id: str
     def __init__(self, pair_id: _Optional[str] = ...) -> None: ...
 
+class PolachParameters(_message.Message):
+    __slots__ = ("k_adhesion", "k_slip", "limit_ratio", "decay_s_per_m")
+    K_ADHESION_FIELD_NUMBER: _ClassVar[int]
+    K_SLIP_FIELD_NUMBER: _ClassVar[int]
+    LIMIT_RATIO_FIELD_NUMBER: _ClassVar[int]
+    DECAY_S_PER_M_FIELD_NUMBER: _ClassVar[int]
+    k_adhesion: float
+    k_slip: float
+    limit_ratio: float
+    decay_s_per_m: float
+    def __init__(self, k_adhesion: _Optional[float] = ..., k_slip: _Optional[float] = ..., limit_ratio: _Optional[float] = ..., decay_s_per_m: _Optional[float] = ...) -> None: ...
+
 class WheelsetPosition(_message.Message):
     __slots__ = ("lateral_m", "yaw_rad", "roll_rad")
     LATERAL_M_FIELD_NUMBER: _ClassVar[int]
@@ -855,7 +869,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -865,6 +879,7 @@ class SolveWheelRailRequest(_message.Message):
     FRICTION_FIELD_NUMBER: _ClassVar[int]
     ELEMENT_SIZE_M_FIELD_NUMBER: _ClassVar[int]
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
+    POLACH_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -874,7 +889,8 @@ class SolveWheelRailRequest(_message.Message):
     friction: FrictionSection
     element_size_m: float
     include_fields: bool
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ...) -> None: ...
+    polach: PolachParameters
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1035,7 +1051,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1043,6 +1059,7 @@ class WheelRailSessionOpen(_message.Message):
     ELEMENT_SIZE_M_FIELD_NUMBER: _ClassVar[int]
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
     CLIENT_LABEL_FIELD_NUMBER: _ClassVar[int]
+    POLACH_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1050,7 +1067,8 @@ class WheelRailSessionOpen(_message.Message):
     element_size_m: float
     include_fields: bool
     client_label: str
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ...) -> None: ...
+    polach: PolachParameters
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
