@@ -238,6 +238,7 @@ fn reference_models(c: &mut Criterion) {
         shear_modulus_pa: 81e9,
         poisson_ratio: 0.3,
         friction_coefficient: 0.3,
+        static_friction_coefficient: 0.3,
         creepage_long: 1e-3,
         creepage_lat: 5e-4,
         spin_per_m: 0.2,

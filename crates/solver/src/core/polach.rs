@@ -143,8 +143,9 @@ pub struct PolachOutput {
     pub tgamma_n: f64,
 }
 
-/// Polach's forces of one Hertz patch (see the module docs), the friction
-/// coefficient of `input` being mu0; `rolling_speed_m_per_s` (V, > 0; slip
+/// Polach's forces of one Hertz patch (see the module docs), the static
+/// friction coefficient of `input` being mu0 (its kinetic one is not
+/// used); `rolling_speed_m_per_s` (V, > 0; slip
 /// velocity = V x creepage) enters only with falling friction.
 pub fn polach(
     input: &FastsimInput,
@@ -161,7 +162,10 @@ pub fn polach(
     }
     for (key, v) in [
         ("normal_force_n", input.normal_force_n),
-        ("friction_coefficient", input.friction_coefficient),
+        (
+            "static_friction_coefficient",
+            input.static_friction_coefficient,
+        ),
         ("creepage_long", input.creepage_long),
         ("creepage_lat", input.creepage_lat),
         ("spin_per_m", input.spin_per_m),
@@ -174,7 +178,7 @@ pub fn polach(
         input.shear_modulus_pa,
         rolling_speed_m_per_s,
     );
-    let (q, mu0) = (input.normal_force_n, input.friction_coefficient);
+    let (q, mu0) = (input.normal_force_n, input.static_friction_coefficient);
     let (xi, eta, phi) = (input.creepage_long, input.creepage_lat, input.spin_per_m);
     let k = kalker_creep_coefficients(a / b, input.poisson_ratio).map_err(|e: CreepError| {
         ContactError::invalid("polach", format!("creep coefficients: {e}"))
@@ -322,7 +326,7 @@ mod tests {
         // falls towards A mu0 Q (mu -> A mu0 as w -> infinity, and the
         // bracket (k_A eps/(1 + (k_A eps)^2) + atan(k_S eps)) -> pi/2).
         let mut i = input(0.0, 0.0, 0.0);
-        i.friction_coefficient = 0.55;
+        i.static_friction_coefficient = 0.55;
         let force = |xi: f64| {
             let mut i = i;
             i.creepage_long = xi;

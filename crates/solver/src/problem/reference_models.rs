@@ -92,6 +92,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         shear_modulus_pa: case.material.shear_modulus_pa,
         poisson_ratio: case.material.poisson_ratio,
         friction_coefficient: case.friction.kinetic_coefficient,
+        static_friction_coefficient: case.friction.static_coefficient,
         creepage_long: c.creepage_long,
         creepage_lat: c.creepage_lat,
         spin_per_m: c.spin_per_m,

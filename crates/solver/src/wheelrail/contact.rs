@@ -550,12 +550,10 @@ impl PatchWork {
                         normal_force_n: h.normal_force_n,
                         shear_modulus_pa: input.material.shear_modulus_pa,
                         poisson_ratio: input.material.poisson_ratio,
-                        // Polach's mu0 is the coefficient at zero slip velocity.
-                        friction_coefficient: if *use_polach {
-                            input.friction.static_coefficient
-                        } else {
-                            input.friction.kinetic_coefficient
-                        },
+                        // Polach's model takes the static one as its mu0,
+                        // the coefficient at zero slip velocity.
+                        friction_coefficient: input.friction.kinetic_coefficient,
+                        static_friction_coefficient: input.friction.static_coefficient,
                         creepage_long: self.creep.creepage_long,
                         creepage_lat: self.creep.creepage_lat,
                         spin_per_m: self.creep.spin_per_m,
