@@ -69,6 +69,8 @@ use crate::core::solution::ElementFields;
 
 /// Most depths in one request.
 pub const MAX_DEPTHS: usize = 256;
+/// Largest depth \[m\] (a depth in mm, such as `2.5`, is out of range).
+pub const MAX_DEPTH_M: f64 = 1.0;
 
 /// The body whose field is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -620,8 +622,8 @@ impl BodySubsurface {
     }
 }
 
-/// Checks a list of depths \[m\]: 1 to [`MAX_DEPTHS`] values, each finite and
-/// >= 0; `key` names the input.
+/// Checks a list of depths \[m\]: 1 to [`MAX_DEPTHS`] values, each in [0,
+/// [`MAX_DEPTH_M`]]; `key` names the input.
 pub fn check_depths(key: &str, depths_m: &[f64]) -> Result<(), ContactError> {
     if depths_m.is_empty() || depths_m.len() > MAX_DEPTHS {
         return Err(ContactError::invalid(
@@ -630,11 +632,11 @@ pub fn check_depths(key: &str, depths_m: &[f64]) -> Result<(), ContactError> {
         ));
     }
     for (i, &z) in depths_m.iter().enumerate() {
-        if !(z.is_finite() && z >= 0.0) {
+        if !(0.0..=MAX_DEPTH_M).contains(&z) {
             return Err(ContactError::invalid(
                 format!("{key}[{i}]"),
                 format!(
-                    "must be finite and >= 0 (a depth below the surface, m), got {}",
+                    "must be in [0, {MAX_DEPTH_M}] m (a depth below the surface), got {}",
                     show(z)
                 ),
             ));
@@ -1129,6 +1131,8 @@ mod tests {
         assert_eq!(e.key(), Some("subsurface.depths_m[1]"));
         let e = subsurface_fields(&grid, &m, &f, &[f64::NAN]).unwrap_err();
         assert_eq!(e.key(), Some("subsurface.depths_m[0]"));
+        let e = subsurface_fields(&grid, &m, &f, &[0.0, 2.5]).unwrap_err();
+        assert_eq!(e.key(), Some("subsurface.depths_m[1]"));
         let mut g = f.clone();
         g.traction_y_pa.pop();
         let e = subsurface_fields(&grid, &m, &g, &[1e-4]).unwrap_err();
