@@ -19,7 +19,7 @@
 //!   body 1, n = −depth in body 2).
 //! * Loads: the element tractions act on body 1 (p_n > 0 compression);
 //!   body 2 carries their opposite.
-//! * Stresses [Pa], tension positive. Under a pressure, sigma_nn < 0 in both
+//! * Stresses \[Pa\], tension positive. Under a pressure, sigma_nn < 0 in both
 //!   bodies; sigma_xn and sigma_yn change sign between the bodies for the
 //!   same tangential traction.
 //! * Displacements \[m\] of the body's material relative to its points at
@@ -30,7 +30,7 @@
 //! For a unit traction on the rectangle [x1, x2] x [y1, y2] of a
 //! half-space z >= 0 (pressure p pushing into the body, shears q_x, q_y), with
 //! X = xi − x, Y = eta − y, rho = sqrt(X² + Y² + z²), the potentials of
-//! Johnson eq. 3.7 are corner sums C[f] = f(X2,Y2) − f(X1,Y2) − f(X2,Y1) +
+//! Johnson eq. 3.7 are corner sums C\[f\] = f(X2,Y2) − f(X1,Y2) − f(X2,Y1) +
 //! f(X1,Y1) of double primitives: phi = ∫∫ 1/rho, H = ∫∫ ln(rho + z),
 //! F1 = ∫∫ (z ln(rho + z) − rho), and every derivative with respect to the
 //! field point is a corner sum of a closed form (each x-derivative a −d/dX of
