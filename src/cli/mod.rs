@@ -183,7 +183,7 @@ pub struct SolveArgs {
     /// and each body at one depth.
     #[arg(long, value_name = "FILE")]
     pub subsurface_plot: Option<PathBuf>,
-    /// The depth of --subsurface-plot's depth maps \[m\]: the computed depth
+    /// The depth of --subsurface-plot's depth maps, in metres: the computed depth
     /// nearest to it (default: the depth of body 1's largest von Mises
     /// stress).
     #[arg(long, value_name = "M", requires = "subsurface_plot")]
