@@ -340,7 +340,9 @@ fn response(c: &[f64; NPRIM], z: f64, material: &Material) -> UnitResponse {
 /// The response at the field point offset (`x`, `y`) \[m\] from the centre of
 /// an element of `dx` x `dy` \[m\], depth `z` >= 0 \[m\], in a body of
 /// `material` (its own frame: z into the body, the load a unit traction
-/// acting on the body).
+/// acting on the body). At `z` = 0 the point must not lie on an edge of the
+/// element, where the surface stresses are singular (grid points, at
+/// element centres, never do).
 pub fn element_response(
     x: f64,
     y: f64,
