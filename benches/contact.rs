@@ -18,6 +18,7 @@ use railcontact::core::polach::{polach, PolachParameters};
 use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
 use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
+use railcontact::core::subsurface::{subsurface_fields, Body, DepthKernels, SubsurfaceWorkspace};
 
 const SIZES: [usize; 4] = [32, 48, 64, 128];
 /// Steps per period of the warm-start benches' creepage path.
@@ -251,12 +252,94 @@ fn reference_models(c: &mut Criterion) {
     });
 }
 
+/// Subsurface stresses below the 64 x 64 steady-rolling circle (xi = 1e-3,
+/// mu = 0.3) at 32 depths from 0 to 1.5 a: the kernels of body 1 at all
+/// depths (built once), one evaluation of body 1 from built kernels
+/// (transform of the tractions, 32 x 9 products), and the one-shot
+/// `subsurface_fields` of both bodies (kernels built and dropped depth by
+/// depth).
+fn subsurface(c: &mut Criterion) {
+    let mut g = c.benchmark_group("subsurface");
+    g.sample_size(10);
+    let n = 64;
+    let p = circle(
+        n,
+        Kinematics::SteadyRolling(Creepages {
+            creepage_long: 1e-3,
+            ..Default::default()
+        }),
+    );
+    let cache = KernelCache::default();
+    let mut s = ContactSolver::new(&p, &cache);
+    let sol = s.solve(&p).unwrap().pop().unwrap();
+    let a = 0.5 * sol.totals.patch_length_m;
+    let depths: Vec<f64> = (0..32).map(|k| 1.5 * a * k as f64 / 31.0).collect();
+    let plan = ConvolutionPlan::new(n, n);
+    let body1 = p.material.body1;
+    g.bench_function("kernels_32_depths/64", |b| {
+        b.iter(|| {
+            black_box(
+                depths
+                    .iter()
+                    .map(|&z| DepthKernels::new(&plan, &p.grid, &body1, z))
+                    .collect::<Vec<_>>(),
+            )
+        })
+    });
+    let kernels: Vec<DepthKernels> = depths
+        .iter()
+        .map(|&z| DepthKernels::new(&plan, &p.grid, &body1, z))
+        .collect();
+    eprintln!(
+        "subsurface kernels, 32 depths at 64x64: {:.1} MB",
+        kernels.iter().map(DepthKernels::bytes).sum::<usize>() as f64 / 1e6
+    );
+    let f = &sol.fields;
+    let mut ws = SubsurfaceWorkspace::new(&plan);
+    let mut out: Vec<Vec<f64>> = (0..9).map(|_| vec![0.0; n * n * depths.len()]).collect();
+    g.bench_function("evaluate_32_depths/64", |b| {
+        b.iter(|| {
+            ws.load(
+                &plan,
+                Body::One,
+                [&f.traction_x_pa, &f.traction_y_pa, &f.pressure_pa],
+            );
+            for (k, kz) in kernels.iter().enumerate() {
+                let r = k * n * n..(k + 1) * n * n;
+                let [o0, o1, o2, o3, o4, o5, o6, o7, o8] = &mut out[..] else {
+                    unreachable!()
+                };
+                kz.apply(
+                    &plan,
+                    &mut ws,
+                    [
+                        &mut o0[r.clone()],
+                        &mut o1[r.clone()],
+                        &mut o2[r.clone()],
+                        &mut o3[r.clone()],
+                        &mut o4[r.clone()],
+                        &mut o5[r.clone()],
+                        &mut o6[r.clone()],
+                        &mut o7[r.clone()],
+                        &mut o8[r],
+                    ],
+                );
+            }
+        })
+    });
+    g.bench_function("fields_both_bodies_32_depths/64", |b| {
+        b.iter(|| black_box(subsurface_fields(&p.grid, &p.material, f, &depths).unwrap()))
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     kernels,
     matvecs,
     normal_solve,
     tangential_solves,
-    reference_models
+    reference_models,
+    subsurface
 );
 criterion_main!(benches);

@@ -14,6 +14,7 @@
 pub mod health;
 pub mod loadtest;
 pub mod plot;
+pub mod subsurface;
 pub mod wheelrail;
 
 use std::path::{Path, PathBuf};
@@ -79,6 +80,22 @@ pub struct SolveArgs {
     /// or .svg, by extension). Exact model only (not yet the conformal models).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
+    /// Write the subsurface fields of both bodies (a case with
+    /// `[subsurface]`) to FILE as CSV: one row per body, depth and element,
+    /// SI units, stresses tension positive in the frame (x, y, n), with the
+    /// principal, von Mises, Tresca, maximum shear and mean stresses.
+    #[arg(long, value_name = "FILE")]
+    pub subsurface_csv: Option<PathBuf>,
+    /// Write von Mises maps below the surface (a case with `[subsurface]`)
+    /// to FILE (.png or .svg): the x-n and y-n mid-planes of both bodies
+    /// and each body at one depth.
+    #[arg(long, value_name = "FILE")]
+    pub subsurface_plot: Option<PathBuf>,
+    /// The depth of --subsurface-plot's depth maps, in metres: the computed depth
+    /// nearest to it (default: the depth of body 1's largest von Mises
+    /// stress).
+    #[arg(long, value_name = "M", requires = "subsurface_plot")]
+    pub subsurface_depth_m: Option<f64>,
 }
 
 /// A failure of the command, sorted by exit code.
@@ -229,6 +246,34 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             )));
         }
     }
+    let sub_format = args
+        .subsurface_plot
+        .as_deref()
+        .map(plot_format)
+        .transpose()
+        .map_err(|e| {
+            CliError::BadInput(e.to_string().replace("`--plot`", "`--subsurface-plot`"))
+        })?;
+    if case.subsurface.is_none() {
+        for (flag, given) in [
+            ("--subsurface-csv", args.subsurface_csv.is_some()),
+            ("--subsurface-plot", args.subsurface_plot.is_some()),
+        ] {
+            if given {
+                return Err(CliError::BadInput(format!(
+                    "invalid option `{flag}`: the case has no `[subsurface]` section (give `depths_m`, \
+                     or `max_depth_m` and `depth_count`)"
+                )));
+            }
+        }
+    }
+    if let Some(d) = args.subsurface_depth_m {
+        if !(d.is_finite() && d >= 0.0) {
+            return Err(CliError::BadInput(format!(
+                "invalid option `--subsurface-depth-m`: must be finite and >= 0 (m), got {d}"
+            )));
+        }
+    }
     let run = ModelRun::solve(&case, &mut FrictionalWorkspace::default())?;
     let mut report = run.report(&case, args.fields);
     if report.geometry.is_none() && case.geometry.is_conformal() {
@@ -258,6 +303,30 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
         if !args.json {
             out.push_str(&format!("  plot written to {}\n", path.display()));
+        }
+    }
+    if let ModelRun::Exact(run) = &run {
+        if let Some(bodies) = run.subsurface.as_ref().map(|s| &s.bodies) {
+            if let Some(path) = &args.subsurface_csv {
+                subsurface::write_csv(path, &run.grid, bodies).map_err(|e| {
+                    CliError::Failure(format!("cannot write {}: {e}", path.display()))
+                })?;
+                if !args.json {
+                    out.push_str(&format!("  subsurface CSV written to {}\n", path.display()));
+                }
+            }
+            if let (Some(path), Some(format)) = (&args.subsurface_plot, sub_format) {
+                let k = subsurface::plot_depth(&run.grid, bodies, args.subsurface_depth_m);
+                subsurface::write_plot(path, format, &run.grid, bodies, k).map_err(|e| {
+                    CliError::Failure(format!("cannot write plot {}: {e}", path.display()))
+                })?;
+                if !args.json {
+                    out.push_str(&format!(
+                        "  subsurface plot written to {}\n",
+                        path.display()
+                    ));
+                }
+            }
         }
     }
     write_stdout(&out)

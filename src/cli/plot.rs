@@ -91,7 +91,7 @@ pub fn write_plot(
 }
 
 /// A perceptually ordered colour map (viridis-like) for t in [0, 1].
-fn colormap(t: f64) -> RGBColor {
+pub(crate) fn colormap(t: f64) -> RGBColor {
     const STOPS: [(f64, f64, f64); 6] = [
         (68.0, 1.0, 84.0),
         (65.0, 68.0, 135.0),
@@ -113,7 +113,7 @@ fn colormap(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
@@ -318,7 +318,7 @@ fn map<DB: DrawingBackend>(
     colour_bar(&bar, vmax)
 }
 
-fn colour_bar<DB: DrawingBackend>(
+pub(crate) fn colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     vmax_pa: f64,
 ) -> Result<(), String> {

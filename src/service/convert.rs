@@ -13,10 +13,11 @@ use crate::core::normal::NormalLoad;
 use crate::core::problem::Creepages;
 use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::problem::case::{
     ranges, Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection,
     LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
-    TransientSection,
+    SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepReport,
@@ -243,7 +244,56 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             coupling_tolerance: s.coupling_tolerance,
             coupling_max_iterations: size(s.coupling_max_iterations),
         }),
+        subsurface: c.subsurface.as_ref().map(|s| SubsurfaceSection {
+            depths_m: (!s.depths_m.is_empty()).then(|| s.depths_m.clone()),
+            max_depth_m: s.max_depth_m,
+            depth_count: size(s.depth_count),
+            shear_yield_stress_pa: s.shear_yield_stress_pa,
+        }),
     })
+}
+
+/// The wire form of both bodies' subsurface fields: their peaks, and the
+/// fields with `fields`.
+pub fn subsurface_result(
+    grid: &Grid,
+    bodies: &[BodySubsurface; 2],
+    surface_fatigue_index: Option<f64>,
+    fields: bool,
+) -> pb::SubsurfaceResult {
+    let peak = |p: FieldPeak| pb::StressPeak {
+        value_pa: p.value_pa,
+        x_m: p.x_m,
+        y_m: p.y_m,
+        depth_m: p.depth_m,
+    };
+    let body = |b: &BodySubsurface| {
+        let s = b.summary(grid);
+        let f = |v: &Vec<f64>| if fields { v.clone() } else { Vec::new() };
+        let [xx, yy, nn, xy, xn, yn] = &b.stress_pa;
+        let [ux, uy, un] = &b.displacement_m;
+        pb::BodySubsurface {
+            max_von_mises: Some(peak(s.max_von_mises)),
+            max_shear: Some(peak(s.max_shear)),
+            max_principal: Some(peak(s.max_principal)),
+            min_principal: Some(peak(s.min_principal)),
+            sigma_xx_pa: f(xx),
+            sigma_yy_pa: f(yy),
+            sigma_nn_pa: f(nn),
+            sigma_xy_pa: f(xy),
+            sigma_xn_pa: f(xn),
+            sigma_yn_pa: f(yn),
+            ux_m: f(ux),
+            uy_m: f(uy),
+            un_m: f(un),
+        }
+    };
+    pb::SubsurfaceResult {
+        depths_m: bodies[0].depths_m.clone(),
+        body1: Some(body(&bodies[0])),
+        body2: Some(body(&bodies[1])),
+        surface_fatigue_index,
+    }
 }
 
 /// Validates a wire case: the case file's rules, the server's grid limit
@@ -490,6 +540,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         notes: r.notes.clone(),
         fields,
         force_control: r.force_control.as_ref().map(force_control),
+        subsurface: None,
     }
 }
 

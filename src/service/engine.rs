@@ -24,7 +24,7 @@ use crate::core::solve::{ContactSolver, SolverState};
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
 use crate::problem::report::ForceControlReport;
-use crate::problem::ModelRun;
+use crate::problem::{ModelRun, SubsurfaceRun};
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -194,6 +194,7 @@ impl PatchEngine {
                 } else {
                     (e.solver.solve(&e.problem)?, None)
                 };
+                let grid = e.problem.grid;
                 let jacobian = match (&self.exact, solutions.last()) {
                     (Some(e), Some(base)) if self.sensitivities => {
                         Some(exact_jacobian(&e.solver, &e.problem, base)?)
@@ -202,6 +203,16 @@ impl PatchEngine {
                 };
                 let mut result = self.exact_result(&solutions, fields);
                 result.force_control = force.as_ref().map(convert::force_control);
+                if let Some(last) = solutions.last() {
+                    result.subsurface = SubsurfaceRun::of(&self.case, &grid, last)?.map(|s| {
+                        convert::subsurface_result(
+                            &grid,
+                            &s.bodies,
+                            s.surface_fatigue_index,
+                            fields,
+                        )
+                    });
+                }
                 (result, jacobian)
             }
             None => {
@@ -320,6 +331,7 @@ impl PatchEngine {
                 .filter(|_| fields)
                 .map(|s| convert::planar_fields(&s.fields)),
             force_control: None,
+            subsurface: None,
         }
     }
 }

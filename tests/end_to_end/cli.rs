@@ -1203,3 +1203,53 @@ fn prescribed_force_gives_back_the_creepage() {
         "{err}"
     );
 }
+
+#[test]
+fn subsurface_example_writes_peaks_csv_and_plot() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-subsurface");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (csv, png) = (dir.join("sub.csv"), dir.join("sub.png"));
+    let v = solve_json(
+        &example("subsurface_rolling.toml"),
+        &[
+            "--subsurface-csv",
+            csv.to_str().unwrap(),
+            "--subsurface-plot",
+            png.to_str().unwrap(),
+        ],
+    );
+    let s = &v["subsurface"];
+    assert_eq!(s["depths_m"].as_array().unwrap().len(), 16);
+    // The largest shear below a lightly tractive circle: about 0.31 p0
+    // about 0.48 a deep (Johnson 1985 §4.2); a = 3.19 mm here.
+    let p0 = f(&v, "max_pressure_pa");
+    let tau = s["body1"]["max_shear"]["value_pa"].as_f64().unwrap();
+    let depth = s["body1"]["max_shear"]["depth_m"].as_f64().unwrap();
+    assert!((tau / p0 - 0.31).abs() < 0.02, "{}", tau / p0);
+    assert!((depth / 3.19e-3 - 0.48).abs() < 0.1, "{depth}");
+    assert!(s["surface_fatigue_index"].as_f64().unwrap() < 0.0);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with("body,x_m,y_m,depth_m,n_m,"));
+    assert_eq!(lines.count(), 2 * 16 * 32 * 32);
+    assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+}
+
+#[test]
+fn subsurface_options_need_the_section() {
+    let out = run(&[
+        "solve",
+        example("hertz_circle.toml").to_str().unwrap(),
+        "--subsurface-csv",
+        "/dev/null",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("`--subsurface-csv`") && err.contains("[subsurface]"),
+        "{err}"
+    );
+}

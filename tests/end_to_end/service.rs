@@ -1062,3 +1062,78 @@ async fn solve_patch_finds_the_creepage_of_a_prescribed_force() {
     );
     server.shutdown().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn subsurface_stresses_only_when_asked_and_fields_only_with_include_fields() {
+    let (server, mut client) = server().await;
+    let sub = |depths_m: Vec<f64>| pb::SubsurfaceSection {
+        depths_m,
+        shear_yield_stress_pa: Some(300e6),
+        ..Default::default()
+    };
+    let n = 20;
+    let plain = solve_patch(&mut client, rolling(pb::Model::Exact, n, 5e-4)).await;
+    assert!(plain.subsurface.is_none(), "not asked: not computed");
+    let mut case = rolling(pb::Model::Exact, n, 5e-4);
+    case.subsurface = Some(sub(vec![0.5e-3, 1.5e-3, 3e-3]));
+    let peaks = solve_patch(&mut client, case.clone()).await;
+    let s = peaks.subsurface.as_ref().unwrap();
+    let b1 = s.body1.as_ref().unwrap();
+    assert!(b1.sigma_xx_pa.is_empty(), "fields only with include_fields");
+    assert!(s.surface_fatigue_index.is_some());
+    // The largest shear below a lightly tractive circle is about 0.3 p0
+    // (0.31 p0 at 0.48 a, Johnson 1985 §4.2; a = 3.19 mm here, so the
+    // depth 1.5 mm is the nearest).
+    let p0 = totals(peaks.result.as_ref().unwrap()).max_pressure_pa;
+    let tau = b1.max_shear.as_ref().unwrap();
+    assert!(
+        (tau.value_pa / p0 - 0.3).abs() < 0.03,
+        "{}",
+        tau.value_pa / p0
+    );
+    assert_eq!(tau.depth_m, 1.5e-3);
+    let full = client
+        .solve_patch(pb::SolvePatchRequest {
+            case: Some(case),
+            include_fields: true,
+            ..Default::default()
+        })
+        .await
+        .unwrap()
+        .into_inner()
+        .result
+        .unwrap();
+    let f = full.subsurface.as_ref().unwrap();
+    for b in [f.body1.as_ref().unwrap(), f.body2.as_ref().unwrap()] {
+        for v in [&b.sigma_xx_pa, &b.sigma_nn_pa, &b.sigma_yn_pa, &b.un_m] {
+            assert_eq!(v.len(), 3 * (n * n) as usize);
+        }
+    }
+    assert_eq!(
+        f.body1,
+        s.body1.as_ref().map(|b| pb::BodySubsurface {
+            sigma_xx_pa: f.body1.as_ref().unwrap().sigma_xx_pa.clone(),
+            sigma_yy_pa: f.body1.as_ref().unwrap().sigma_yy_pa.clone(),
+            sigma_nn_pa: f.body1.as_ref().unwrap().sigma_nn_pa.clone(),
+            sigma_xy_pa: f.body1.as_ref().unwrap().sigma_xy_pa.clone(),
+            sigma_xn_pa: f.body1.as_ref().unwrap().sigma_xn_pa.clone(),
+            sigma_yn_pa: f.body1.as_ref().unwrap().sigma_yn_pa.clone(),
+            ux_m: f.body1.as_ref().unwrap().ux_m.clone(),
+            uy_m: f.body1.as_ref().unwrap().uy_m.clone(),
+            un_m: f.body1.as_ref().unwrap().un_m.clone(),
+            ..b.clone()
+        })
+    );
+    // Refusals name the field.
+    let mut bad = rolling(pb::Model::Exact, n, 5e-4);
+    bad.subsurface = Some(sub(vec![-1e-3]));
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("subsurface.depths_m[0]"), "{msg}");
+    let mut bad = rolling(pb::Model::Fastsim, n, 5e-4);
+    bad.subsurface = Some(sub(vec![1e-3]));
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("subsurface") && msg.contains("exact"), "{msg}");
+    server.shutdown().await;
+}

@@ -171,6 +171,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
             ..Default::default()
         }),
         solver: None,
+        subsurface: None,
     }
 }
 
@@ -235,6 +236,10 @@ fn grid(c: &mut pb::PatchCase) -> &mut pb::GridSection {
 
 fn solver(c: &mut pb::PatchCase) -> &mut pb::SolverSection {
     c.solver.get_or_insert_with(Default::default)
+}
+
+fn subsurface(c: &mut pb::PatchCase) -> &mut pb::SubsurfaceSection {
+    c.subsurface.get_or_insert_with(Default::default)
 }
 
 fn load(c: &mut pb::PatchCase, l: pb::load_section::Load) {
@@ -363,6 +368,32 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
             m(|c, v| solver(c).coupling_tolerance = Some(v)),
         ),
         (
+            exact(),
+            "case.subsurface.depths_m[0]",
+            1e-3,
+            m(|c, v| subsurface(c).depths_m = vec![v]),
+        ),
+        (
+            exact(),
+            "case.subsurface.shear_yield_stress_pa",
+            300e6,
+            m(|c, v| {
+                let s = subsurface(c);
+                s.depths_m = vec![1e-3];
+                s.shear_yield_stress_pa = Some(v);
+            }),
+        ),
+        (
+            exact(),
+            "case.subsurface.max_depth_m",
+            3e-3,
+            m(|c, v| {
+                let s = subsurface(c);
+                s.depth_count = Some(4);
+                s.max_depth_m = Some(v);
+            }),
+        ),
+        (
             rolling(pb::Model::Fastsim),
             "case.rolling.creepage_long",
             1e-3,
@@ -462,6 +493,11 @@ fn patch_count_fields() -> Vec<(&'static str, CountSetter)> {
         }),
         ("case.solver.coupling_max_iterations", |c, n| {
             solver(c).coupling_max_iterations = Some(n)
+        }),
+        ("case.subsurface.depth_count", |c, n| {
+            let s = subsurface(c);
+            s.max_depth_m = Some(3e-3);
+            s.depth_count = Some(n);
         }),
     ]
 }

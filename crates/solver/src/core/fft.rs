@@ -479,7 +479,7 @@ const SYMMETRY_TOL: f64 = 1e-13;
 /// One transformed kernel, stored in the smallest form that is exact to
 /// [`SYMMETRY_TOL`] (half the memory traffic and a third of the arithmetic
 /// of a complex product for the real and imaginary forms).
-enum Spectrum<T: Real> {
+pub(crate) enum Spectrum<T: Real> {
     /// General spectrum.
     Complex(Vec<Complex<T>>),
     /// Real spectrum: the real parts.
@@ -490,7 +490,7 @@ enum Spectrum<T: Real> {
 
 impl<T: Real> Spectrum<T> {
     /// Memory held [bytes].
-    fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         match self {
             Spectrum::Complex(v) => std::mem::size_of_val(v.as_slice()),
             Spectrum::Real(v) | Spectrum::Imag(v) => std::mem::size_of_val(v.as_slice()),
@@ -500,7 +500,7 @@ impl<T: Real> Spectrum<T> {
     /// `dst (+)= K s` over the spectral range `at..at + dst.len()` of the
     /// kernel; assigns when `first`, accumulates otherwise.
     #[inline(always)]
-    fn apply(&self, at: usize, s: &[Complex<T>], dst: &mut [Complex<T>], first: bool) {
+    pub(crate) fn apply(&self, at: usize, s: &[Complex<T>], dst: &mut [Complex<T>], first: bool) {
         #[inline(always)]
         fn pass<K: Copy, T: Real>(
             k: &[K],
@@ -531,7 +531,8 @@ impl<T: Real> Spectrum<T> {
 }
 
 impl Spectrum<f64> {
-    fn new(k: Vec<Complex64>) -> Self {
+    /// The spectrum `k` in its smallest exact form (see [`SYMMETRY_TOL`]).
+    pub(crate) fn new(k: Vec<Complex64>) -> Self {
         let (mut m, mut re, mut im) = (0.0f64, 0.0f64, 0.0f64);
         for v in &k {
             m = m.max(v.norm());

@@ -24,4 +24,5 @@ mod simd;
 pub mod solution;
 pub mod solve;
 pub mod steady;
+pub mod subsurface;
 pub mod tangential;

@@ -18,6 +18,11 @@
 //! * Transient (shift) steps: `shift_x_m`, `shift_y_m` and `rotation_rad` are
 //!   the rigid displacement of body 1 relative to body 2 in the step (rotation
 //!   about the n axis through the origin).
+//! * Subsurface stresses and displacements ([`crate::core::subsurface`]) are
+//!   reported for both bodies in this one frame (x, y, n), stresses tension
+//!   positive; the depth runs into each body (n = +depth in body 1, −depth in
+//!   body 2), so under a pressure both bodies have sigma_nn < 0, body 1 moves
+//!   in +n and body 2 in −n.
 
 use serde::{Deserialize, Serialize};
 

@@ -82,6 +82,8 @@ pub mod ranges {
     pub const ROTATION: Range = Range::symmetric(0.1, "rad");
     /// `grid.window_x_m`, `grid.window_y_m` \[m\].
     pub const WINDOW: Range = Range::positive(1.0, "m").hint(UnitHint::Millimetre);
+    /// `subsurface.shear_yield_stress_pa` \[Pa\] (steel: 300e6 to 600e6).
+    pub const SHEAR_YIELD_STRESS: Range = Range::positive(1e11, "Pa");
     /// `solver.normal_tolerance`, `tangential_tolerance`,
     /// `coupling_tolerance` [-].
     pub const TOLERANCE: Range = Range::closed(1e-14, 0.1, "");
@@ -212,6 +214,90 @@ pub struct CaseFile {
     pub grid: Option<GridSection>,
     /// Solver tolerances and limits (optional; core defaults).
     pub solver: Option<SolverSection>,
+    /// Subsurface stresses of both bodies below the solved patch (exact
+    /// model; optional: computed only when present).
+    #[serde(default)]
+    pub subsurface: Option<SubsurfaceSection>,
+}
+
+/// `[subsurface]`: the depths below the surface at which to compute the
+/// stresses and displacements of both bodies (under every element of the
+/// grid), either as a list `depths_m` \[m\] or as `depth_count` depths
+/// evenly spaced from 0 to `max_depth_m` \[m\]; and optionally the yield
+/// stress in pure shear `shear_yield_stress_pa` \[Pa\] for the surface
+/// fatigue index ([`crate::core::subsurface::surface_fatigue_index`]).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SubsurfaceSection {
+    /// Depths below the surface \[m\], each in [0, 1], 1 to
+    /// [`crate::core::subsurface::MAX_DEPTHS`] of them.
+    pub depths_m: Option<Vec<f64>>,
+    /// Deepest of `depth_count` evenly spaced depths from 0 \[m\].
+    pub max_depth_m: Option<f64>,
+    /// Number of evenly spaced depths, 2 to [`crate::core::subsurface::MAX_DEPTHS`].
+    pub depth_count: Option<usize>,
+    /// Yield stress in pure shear k \[Pa\] (steel: about 300e6 to 600e6).
+    pub shear_yield_stress_pa: Option<f64>,
+}
+
+/// A validated `[subsurface]` request.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubsurfaceRequest {
+    /// Depths below the surface \[m\].
+    pub depths_m: Vec<f64>,
+    /// Yield stress in pure shear \[Pa\], for the surface fatigue index.
+    pub shear_yield_stress_pa: Option<f64>,
+}
+
+impl SubsurfaceSection {
+    /// The checked request of a case of `model` (errors name the key).
+    pub fn request(&self, model: Model) -> Result<SubsurfaceRequest, CaseError> {
+        use crate::core::subsurface::{check_depths, MAX_DEPTHS};
+        if model != Model::Exact {
+            return Err(bad(
+                "subsurface",
+                format!(
+                    "subsurface stresses come from the tractions of model = \"exact\", not \"{}\"",
+                    model.name()
+                ),
+            ));
+        }
+        let depths_m = match (&self.depths_m, self.max_depth_m, self.depth_count) {
+            (Some(d), None, None) => d.clone(),
+            (None, Some(max), Some(n)) => {
+                ranges::WINDOW.check("subsurface.max_depth_m", max)?;
+                let n = check_count("subsurface.depth_count", n, 2, MAX_DEPTHS)?;
+                (0..n).map(|k| max * (k as f64 / (n - 1) as f64)).collect()
+            }
+            (Some(_), _, _) => {
+                return Err(bad(
+                    "subsurface.depths_m",
+                    "give either `subsurface.depths_m` or `subsurface.max_depth_m` + \
+                     `subsurface.depth_count`, not both",
+                ))
+            }
+            (None, None, _) => {
+                return Err(bad(
+                    "subsurface.depths_m",
+                    "missing: give `subsurface.depths_m` or `subsurface.max_depth_m` + `subsurface.depth_count`",
+                ))
+            }
+            (None, Some(_), None) => {
+                return Err(bad(
+                    "subsurface.depth_count",
+                    "missing (needed with `max_depth_m`)",
+                ))
+            }
+        };
+        check_depths("subsurface.depths_m", &depths_m)?;
+        if let Some(k) = self.shear_yield_stress_pa {
+            ranges::SHEAR_YIELD_STRESS.check("subsurface.shear_yield_stress_pa", k)?;
+        }
+        Ok(SubsurfaceRequest {
+            depths_m,
+            shear_yield_stress_pa: self.shear_yield_stress_pa,
+        })
+    }
 }
 
 /// `[rolling]`: per direction either the creepage or the prescribed total
@@ -854,6 +940,8 @@ pub struct Case {
     pub settings: SolverSettings,
     /// Remarks for the user (ignored sections and the like).
     pub notes: Vec<String>,
+    /// The subsurface stresses to compute after the solve, if asked for.
+    pub subsurface: Option<SubsurfaceRequest>,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -1308,6 +1396,11 @@ impl Case {
             window_y_m,
             settings,
             notes,
+            subsurface: file
+                .subsurface
+                .as_ref()
+                .map(|s| s.request(model))
+                .transpose()?,
         })
     }
 
@@ -1711,7 +1804,7 @@ normal_force_n = 80000.0
         assert!(err(&wheel, &rail).contains("do not touch"));
     }
 
-    const ROLLING: &str = r#"
+    pub(super) const ROLLING: &str = r#"
 [material]
 shear_modulus_pa = 81.0e9
 poisson_ratio = 0.30
@@ -1918,5 +2011,83 @@ mod prescribed_force_tests {
             m.contains("rolling.force_y_n") && m.contains("exact model only"),
             "{m}"
         );
+    }
+}
+
+#[cfg(test)]
+mod subsurface_tests {
+    use super::tests::ROLLING;
+    use super::*;
+    use crate::conformal::frictional::FrictionalWorkspace;
+    use crate::problem::ModelRun;
+
+    fn bad(extra: &str) -> String {
+        match Case::from_toml(&format!("{ROLLING}{extra}")) {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn subsurface_section_is_checked_and_names_the_key() {
+        let c = Case::from_toml(&format!(
+            "{ROLLING}[subsurface]\nmax_depth_m = 3e-3\ndepth_count = 4\n"
+        ))
+        .unwrap();
+        let r = c.subsurface.unwrap();
+        assert_eq!(r.depths_m.len(), 4);
+        for (got, want) in r.depths_m.iter().zip([0.0, 1e-3, 2e-3, 3e-3]) {
+            assert!((got - want).abs() < 1e-18);
+        }
+        assert!(bad("[subsurface]\n").contains("`subsurface.depths_m`"));
+        assert!(
+            bad("[subsurface]\ndepths_m = [1e-3, -1e-3]\n").contains("`subsurface.depths_m[1]`")
+        );
+        assert!(
+            bad("[subsurface]\ndepths_m = [1e-3]\nmax_depth_m = 1e-3\ndepth_count = 2\n")
+                .contains("not both")
+        );
+        assert!(bad("[subsurface]\nmax_depth_m = 1e-3\n").contains("`subsurface.depth_count`"));
+        assert!(bad("[subsurface]\nmax_depth_m = 3\ndepth_count = 4\n")
+            .contains("`subsurface.max_depth_m`"));
+        assert!(
+            bad("[subsurface]\ndepths_m = [1e-3]\nshear_yield_stress_pa = -1.0\n")
+                .contains("`subsurface.shear_yield_stress_pa`")
+        );
+        assert!(bad("[subsurface]\ndepths = [1e-3]\n").contains("depths"));
+        let m = match Case::from_toml(&format!(
+            "model = \"fastsim\"\n{ROLLING}[subsurface]\ndepths_m = [1e-3]\n"
+        )) {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        };
+        assert!(m.contains("`subsurface`") && m.contains("exact"), "{m}");
+    }
+
+    #[test]
+    fn exact_run_reports_the_subsurface_peaks() {
+        let c = Case::from_toml(&format!(
+            "{ROLLING}[subsurface]\ndepths_m = [0.0, 1e-3, 2e-3, 3e-3, 4e-3]\nshear_yield_stress_pa = 300e6\n"
+        ))
+        .unwrap();
+        let run = ModelRun::solve(&c, &mut FrictionalWorkspace::default()).unwrap();
+        let report = run.report(&c, false);
+        let s = report.subsurface.as_ref().unwrap();
+        let t = &report.totals.totals;
+        // Below a Hertz-like patch with little traction (Fx < 0.3 Fn) the
+        // largest shear sits under the surface and is about 0.3 p0
+        // (Johnson 1985 §4.2: 0.31 p0 for a circle).
+        let ratio = s.body1.max_shear.value_pa / t.max_pressure_pa;
+        assert!((0.27..0.34).contains(&ratio), "{ratio}");
+        assert!(s.body1.max_shear.depth_m > 0.0);
+        assert_eq!(s.body1.max_shear.depth_m, s.body2.max_shear.depth_m);
+        let fi = s.surface_fatigue_index.unwrap();
+        let f = t.fx_n.hypot(t.fy_n) / t.normal_force_n;
+        assert!(
+            (fi - (f - 2.0 * t.contact_area_m2 * 300e6 / (3.0 * t.normal_force_n))).abs() < 1e-12
+        );
+        assert!(report.human().contains("body 2 max von Mises [MPa]"));
+        let json = serde_json::to_string(&report).unwrap();
+        assert!(json.contains("\"subsurface\":{\"depths_m\""), "{json}");
     }
 }

@@ -294,6 +294,7 @@ impl ConformalRun {
             })),
             geometry: Some(case.geometry.describe()),
             force_control: None,
+            subsurface: None,
         }
     }
 }

@@ -29,10 +29,11 @@ use crate::core::grid::Grid;
 use crate::core::problem::Kinematics;
 use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::{solve, ContactSolver};
+use crate::core::subsurface::{subsurface_fields, surface_fatigue_index, BodySubsurface};
 
 use case::{Case, Model};
 use conformal_models::ConformalRun;
-use report::{Fields, FieldsReport, ForceControlReport, Report, StepReport};
+use report::{Fields, FieldsReport, ForceControlReport, Report, StepReport, SubsurfaceReport};
 
 /// Why a case could not be solved.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -116,6 +117,50 @@ pub struct ExactRun {
     elapsed_s: f64,
     /// Prescribed forces: the creepages found.
     force_control: Option<ForceControlReport>,
+    /// The subsurface fields of both bodies below the (last) solution,
+    /// when the case asks for them (`[subsurface]`).
+    pub subsurface: Option<Box<SubsurfaceRun>>,
+}
+
+/// The subsurface fields of both bodies below a solution.
+pub struct SubsurfaceRun {
+    /// Body 1, body 2.
+    pub bodies: [BodySubsurface; 2],
+    /// Ekberg's surface fatigue index, when the case gives
+    /// `subsurface.shear_yield_stress_pa`.
+    pub surface_fatigue_index: Option<f64>,
+}
+
+impl SubsurfaceRun {
+    /// The fields below `solution` on `grid` for a case with
+    /// `[subsurface]` (None without).
+    pub fn of(
+        case: &Case,
+        grid: &Grid,
+        solution: &ContactSolution,
+    ) -> Result<Option<Self>, CaseError> {
+        let Some(r) = &case.subsurface else {
+            return Ok(None);
+        };
+        let t = &solution.totals;
+        Ok(Some(SubsurfaceRun {
+            bodies: subsurface_fields(grid, &case.material, &solution.fields, &r.depths_m)?,
+            surface_fatigue_index: r.shear_yield_stress_pa.and_then(|k| {
+                surface_fatigue_index(t.normal_force_n, t.fx_n.hypot(t.fy_n), t.contact_area_m2, k)
+            }),
+        }))
+    }
+
+    /// The peaks of both bodies' fields on `grid`.
+    pub fn report(&self, grid: &Grid) -> SubsurfaceReport {
+        let [b1, b2] = &self.bodies;
+        SubsurfaceReport {
+            depths_m: b1.depths_m.clone(),
+            body1: b1.summary(grid),
+            body2: b2.summary(grid),
+            surface_fatigue_index: self.surface_fatigue_index,
+        }
+    }
 }
 
 impl ExactRun {
@@ -136,14 +181,16 @@ impl ExactRun {
         } else {
             (solve(&problem)?, None)
         };
-        if solutions.is_empty() {
+        let Some(last) = solutions.last() else {
             return Err(CaseError::Failure("the solver returned no solution".into()));
-        }
+        };
+        let subsurface = SubsurfaceRun::of(case, &problem.grid, last)?.map(Box::new);
         Ok(ExactRun {
             grid: problem.grid,
             solutions,
             elapsed_s: t0.elapsed().as_secs_f64(),
             force_control,
+            subsurface,
         })
     }
 
@@ -191,6 +238,7 @@ impl ExactRun {
             })),
             geometry: None,
             force_control: self.force_control,
+            subsurface: self.subsurface.as_ref().map(|s| s.report(&self.grid)),
         }
     }
 }

@@ -73,6 +73,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         fields: None,
         geometry: None,
         force_control: None,
+        subsurface: None,
     })
 }
 
@@ -123,6 +124,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         fields: None,
         geometry: None,
         force_control: None,
+        subsurface: None,
     })
 }
 
@@ -194,5 +196,6 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         fields: None,
         geometry: Some(case.geometry.describe()),
         force_control: None,
+        subsurface: None,
     })
 }

@@ -8,6 +8,7 @@ use serde::Serialize;
 use crate::core::force::ForceSolution;
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
+use crate::core::subsurface::SubsurfaceSummary;
 use crate::problem::case::Model;
 use crate::problem::CaseError;
 
@@ -188,6 +189,26 @@ pub struct Report<'a> {
     /// One line describing a conformal geometry (readable summary only).
     #[serde(skip)]
     pub geometry: Option<String>,
+    /// Peaks of the subsurface stresses, with `[subsurface]` (exact model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subsurface: Option<SubsurfaceReport>,
+}
+
+/// The peaks of the subsurface stresses of both bodies (see
+/// [`crate::core::subsurface`] for the frame and signs) and the surface
+/// fatigue index.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SubsurfaceReport {
+    /// The depths computed \[m\].
+    pub depths_m: Vec<f64>,
+    /// Body 1 (the rail in wheel/rail contact).
+    pub body1: SubsurfaceSummary,
+    /// Body 2 (the wheel).
+    pub body2: SubsurfaceSummary,
+    /// Ekberg's surface fatigue index FI_surf [-] (positive: surface
+    /// fatigue predicted), when `shear_yield_stress_pa` was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_fatigue_index: Option<f64>,
 }
 
 /// The outcome of a prescribed-force solve (`[rolling] force_x_n`,
@@ -417,6 +438,29 @@ impl Report<'_> {
             );
         }
         line("solve time [s]", format!("{:.3}", r.solve_time_s));
+        if let Some(sub) = &self.subsurface {
+            for (body, b) in [("body 1", &sub.body1), ("body 2", &sub.body2)] {
+                for (what, p) in [
+                    ("max von Mises", &b.max_von_mises),
+                    ("max shear", &b.max_shear),
+                    ("max principal", &b.max_principal),
+                ] {
+                    line(
+                        &format!("{body} {what} [MPa]"),
+                        format!(
+                            "{:.2} at x {:.4}, y {:.4}, depth {:.4} mm",
+                            mpa(p.value_pa),
+                            mm(p.x_m),
+                            mm(p.y_m),
+                            mm(p.depth_m)
+                        ),
+                    );
+                }
+            }
+            if let Some(fi) = sub.surface_fatigue_index {
+                line("surface fatigue index [-]", format!("{fi:.4}"));
+            }
+        }
         for n in &self.notes {
             let _ = writeln!(o, "  note: {n}");
         }

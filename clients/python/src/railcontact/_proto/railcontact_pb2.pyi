@@ -262,7 +262,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -272,6 +272,7 @@ class PatchCase(_message.Message):
     TRANSIENT_FIELD_NUMBER: _ClassVar[int]
     GRID_FIELD_NUMBER: _ClassVar[int]
     SOLVER_FIELD_NUMBER: _ClassVar[int]
+    SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -281,7 +282,20 @@ class PatchCase(_message.Message):
     transient: TransientSection
     grid: GridSection
     solver: SolverSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ...) -> None: ...
+    subsurface: SubsurfaceSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ...) -> None: ...
+
+class SubsurfaceSection(_message.Message):
+    __slots__ = ("depths_m", "max_depth_m", "depth_count", "shear_yield_stress_pa")
+    DEPTHS_M_FIELD_NUMBER: _ClassVar[int]
+    MAX_DEPTH_M_FIELD_NUMBER: _ClassVar[int]
+    DEPTH_COUNT_FIELD_NUMBER: _ClassVar[int]
+    SHEAR_YIELD_STRESS_PA_FIELD_NUMBER: _ClassVar[int]
+    depths_m: _containers.RepeatedScalarFieldContainer[float]
+    max_depth_m: float
+    depth_count: int
+    shear_yield_stress_pa: float
+    def __init__(self, depths_m: _Optional[_Iterable[float]] = ..., max_depth_m: _Optional[float] = ..., depth_count: _Optional[int] = ..., shear_yield_stress_pa: _Optional[float] = ...) -> None: ...
 
 class PatchTotals(_message.Message):
     __slots__ = ("normal_force_n", "fx_n", "fy_n", "mz_nm", "approach_m", "max_pressure_pa", "max_traction_pa", "contact_area_m2", "patch_length_m", "patch_width_m", "adhesion_fraction", "tgamma_n", "frictional_work_j")
@@ -428,7 +442,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -437,6 +451,7 @@ class PatchResult(_message.Message):
     NOTES_FIELD_NUMBER: _ClassVar[int]
     FIELDS_FIELD_NUMBER: _ClassVar[int]
     FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
+    SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -445,7 +460,62 @@ class PatchResult(_message.Message):
     notes: _containers.RepeatedScalarFieldContainer[str]
     fields: ElementFields
     force_control: ForceControl
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ...) -> None: ...
+    subsurface: SubsurfaceResult
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ...) -> None: ...
+
+class StressPeak(_message.Message):
+    __slots__ = ("value_pa", "x_m", "y_m", "depth_m")
+    VALUE_PA_FIELD_NUMBER: _ClassVar[int]
+    X_M_FIELD_NUMBER: _ClassVar[int]
+    Y_M_FIELD_NUMBER: _ClassVar[int]
+    DEPTH_M_FIELD_NUMBER: _ClassVar[int]
+    value_pa: float
+    x_m: float
+    y_m: float
+    depth_m: float
+    def __init__(self, value_pa: _Optional[float] = ..., x_m: _Optional[float] = ..., y_m: _Optional[float] = ..., depth_m: _Optional[float] = ...) -> None: ...
+
+class BodySubsurface(_message.Message):
+    __slots__ = ("max_von_mises", "max_shear", "max_principal", "min_principal", "sigma_xx_pa", "sigma_yy_pa", "sigma_nn_pa", "sigma_xy_pa", "sigma_xn_pa", "sigma_yn_pa", "ux_m", "uy_m", "un_m")
+    MAX_VON_MISES_FIELD_NUMBER: _ClassVar[int]
+    MAX_SHEAR_FIELD_NUMBER: _ClassVar[int]
+    MAX_PRINCIPAL_FIELD_NUMBER: _ClassVar[int]
+    MIN_PRINCIPAL_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_XX_PA_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_YY_PA_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_NN_PA_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_XY_PA_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_XN_PA_FIELD_NUMBER: _ClassVar[int]
+    SIGMA_YN_PA_FIELD_NUMBER: _ClassVar[int]
+    UX_M_FIELD_NUMBER: _ClassVar[int]
+    UY_M_FIELD_NUMBER: _ClassVar[int]
+    UN_M_FIELD_NUMBER: _ClassVar[int]
+    max_von_mises: StressPeak
+    max_shear: StressPeak
+    max_principal: StressPeak
+    min_principal: StressPeak
+    sigma_xx_pa: _containers.RepeatedScalarFieldContainer[float]
+    sigma_yy_pa: _containers.RepeatedScalarFieldContainer[float]
+    sigma_nn_pa: _containers.RepeatedScalarFieldContainer[float]
+    sigma_xy_pa: _containers.RepeatedScalarFieldContainer[float]
+    sigma_xn_pa: _containers.RepeatedScalarFieldContainer[float]
+    sigma_yn_pa: _containers.RepeatedScalarFieldContainer[float]
+    ux_m: _containers.RepeatedScalarFieldContainer[float]
+    uy_m: _containers.RepeatedScalarFieldContainer[float]
+    un_m: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, max_von_mises: _Optional[_Union[StressPeak, _Mapping]] = ..., max_shear: _Optional[_Union[StressPeak, _Mapping]] = ..., max_principal: _Optional[_Union[StressPeak, _Mapping]] = ..., min_principal: _Optional[_Union[StressPeak, _Mapping]] = ..., sigma_xx_pa: _Optional[_Iterable[float]] = ..., sigma_yy_pa: _Optional[_Iterable[float]] = ..., sigma_nn_pa: _Optional[_Iterable[float]] = ..., sigma_xy_pa: _Optional[_Iterable[float]] = ..., sigma_xn_pa: _Optional[_Iterable[float]] = ..., sigma_yn_pa: _Optional[_Iterable[float]] = ..., ux_m: _Optional[_Iterable[float]] = ..., uy_m: _Optional[_Iterable[float]] = ..., un_m: _Optional[_Iterable[float]] = ...) -> None: ...
+
+class SubsurfaceResult(_message.Message):
+    __slots__ = ("depths_m", "body1", "body2", "surface_fatigue_index")
+    DEPTHS_M_FIELD_NUMBER: _ClassVar[int]
+    BODY1_FIELD_NUMBER: _ClassVar[int]
+    BODY2_FIELD_NUMBER: _ClassVar[int]
+    SURFACE_FATIGUE_INDEX_FIELD_NUMBER: _ClassVar[int]
+    depths_m: _containers.RepeatedScalarFieldContainer[float]
+    body1: BodySubsurface
+    body2: BodySubsurface
+    surface_fatigue_index: float
+    def __init__(self, depths_m: _Optional[_Iterable[float]] = ..., body1: _Optional[_Union[BodySubsurface, _Mapping]] = ..., body2: _Optional[_Union[BodySubsurface, _Mapping]] = ..., surface_fatigue_index: _Optional[float] = ...) -> None: ...
 
 class ForceControl(_message.Message):
     __slots__ = ("creepage_long", "creepage_lat", "spin_per_m", "force_iterations", "force_solves")
