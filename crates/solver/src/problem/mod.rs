@@ -168,6 +168,13 @@ impl ExactRun {
             .iter()
             .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
         let mut notes = Vec::new();
+        if self.grid.is_line() {
+            notes.push(
+                "line contact (plane strain): forces per metre of the cylinders [N/m], areas per metre [m²/m], \
+                 the approach relative to the surface 1 m from the load"
+                    .to_string(),
+            );
+        }
         if totals.status != SolveStatus::Converged {
             notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
         }
