@@ -859,8 +859,9 @@ pub struct SolverSection {
     /// Friction-law residual relative to max mu p_n that ends the tangential
     /// iteration [-] (default 1e-7).
     pub tangential_tolerance: Option<f64>,
-    /// Iteration limit of each solver, normal and tangential (default 1000
-    /// normal, 2000 tangential).
+    /// Iteration limit of each solver, normal and tangential, in each
+    /// normal/tangential alternation (default 1000 normal, 2000
+    /// tangential: Newton steps and fallback iterations together).
     pub max_iterations: Option<usize>,
     /// Estimated distance of the tractions to the coupled solution,
     /// relative to the pressures' L1 norm, that ends the normal/tangential

@@ -176,7 +176,21 @@ impl ExactRun {
             );
         }
         if totals.status != SolveStatus::Converged {
-            notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+            // Name the limit each failed step stopped at (that key raises it).
+            let mut keys: Vec<&str> = self
+                .solutions
+                .iter()
+                .filter_map(|s| s.info.limit.map(|l| l.key()))
+                .collect();
+            keys.sort_unstable();
+            keys.dedup();
+            notes.push(format!(
+                "a solver hit its iteration limit: the result is the last iterate (raise {})",
+                keys.iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            ));
         }
         let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
         Report {

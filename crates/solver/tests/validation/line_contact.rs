@@ -282,3 +282,88 @@ fn contact_bentall_aluminium_on_steel() {
         within_one(counts(&s), want, &format!("bentall mu {mu}, F {f_rel}"));
     }
 }
+
+#[test]
+fn a_stalled_newton_solve_restarts_after_a_short_march() {
+    // Bentall's rollers at mu 0.05 rolling freely (xi = 0) from rest: in
+    // the first normal/tangential alternation Newton stalls in a cycle of
+    // active sets. Time marching from its iterate then took its whole
+    // limit of 2000 iterations (2057 tangential iterations in all, 12 s),
+    // and the solve still said converged, the later alternations having
+    // converged. Newton again after 50 marching iterations converges in a
+    // few steps: the same answer in about 110 iterations.
+    let p = bentall(0.05);
+    let s = one(&p);
+    assert!(
+        s.info.tangential_iterations < 300,
+        "{} tangential iterations",
+        s.info.tangential_iterations
+    );
+    // The answer of a solve warm-started from it (one more alternation).
+    let mut solver = ContactSolver::new(&p, KernelCache::global());
+    let first = solver.solve(&p).unwrap().pop().unwrap();
+    let again = solver.solve(&p).unwrap().pop().unwrap();
+    let fmax = 0.05 * first.totals.normal_force_n;
+    assert!(
+        (first.totals.fx_n - again.totals.fx_n).abs() < 1e-6 * fmax,
+        "{} vs {} N/m",
+        first.totals.fx_n,
+        again.totals.fx_n
+    );
+    assert_eq!(first.totals.fx_n, s.totals.fx_n);
+}
+
+#[test]
+fn the_note_of_a_limit_names_the_key_that_raises_it() {
+    // Bentall's rollers with full adhesion (mu 5): two alternations are
+    // not enough for the coupled solution; the note named
+    // `[solver] max_iterations`, which changes nothing here.
+    use railcontact_solver::problem::case::Case;
+    use railcontact_solver::problem::ExactRun;
+    let text = |solver: &str| {
+        format!(
+            r#"
+[material.body1]
+shear_modulus_pa = 23.0e9
+poisson_ratio = 0.31
+[material.body2]
+shear_modulus_pa = 82.0e9
+poisson_ratio = 0.28
+[friction]
+coefficient = 5.0
+[geometry]
+kind = "line"
+a_per_m = 20.0
+[load]
+normal_force_n_per_m = 16201.9
+[rolling]
+creepage_long = -3.591e-4
+[grid]
+nx = 216
+window_x_m = 0.216e-3
+[solver]
+{solver}
+"#
+        )
+    };
+    for (solver, key, other) in [
+        (
+            "coupling_max_iterations = 2",
+            "`solver.coupling_max_iterations`",
+            "`solver.max_iterations`",
+        ),
+        (
+            "max_iterations = 1",
+            "`solver.max_iterations`",
+            "`solver.coupling_max_iterations`",
+        ),
+    ] {
+        let case = Case::from_toml(&text(solver)).unwrap();
+        let run = ExactRun::solve(&case).unwrap();
+        let report = run.report(&case, false);
+        assert_eq!(report.totals.status, SolveStatus::MaxIterations, "{solver}");
+        let notes = report.notes.join("\n");
+        assert!(notes.contains(key), "{solver}: {notes}");
+        assert!(!notes.contains(other), "{solver}: {notes}");
+    }
+}
