@@ -31,7 +31,7 @@
 //! are forces per metre). Its coefficients are those of the elastic
 //! half-plane in plane strain for a unit traction on the strip
 //! [X-dx/2, X+dx/2] x (-inf, inf), the 3-D point kernels integrated along y
-//! (Johnson 1985, §2.2 eqs. 2.18-2.19; Kalker 1990, §1.5):
+//! (Johnson 1985, §2.2):
 //!
 //! ```text
 //! A_nn = A_xx = 2(1-nu)/(pi G) L(X)     A_yy = 2/(pi G) L(X)      A_xy = 0
@@ -43,9 +43,10 @@
 //! to a rigid-body constant, fixed here by the reference distance R =
 //! [`LINE_REFERENCE_DISTANCE_M`]: the surface 1 m from a line load does not
 //! move. Approaches, and the shifts of transient steps, are therefore
-//! relative to the surface points 1 m away (Johnson 1985, §2.2 and §5.2,
-//! fixes the constant in the same way by a datum point; CONTACT's 2-D
-//! examples put it at the length of the cylinders, `DY`). For a normal load
+//! relative to the surface points 1 m away (Johnson 1985, §2.2, gives
+//! the half-plane's displacements relative to such a datum; the approach
+//! in CONTACT's `carter2d` reference output is that of a datum at the
+//! cylinders' length `DY`, checked in the validation tests). For a normal load
 //! P' \[N/m\] on a patch of half-width a the approach changes by
 //! 2 P' ln(R'/R) / (pi E*) with another reference distance R'. The constant
 //! cancels in steady rolling (the slip takes differences of

@@ -7,10 +7,10 @@
 //! `examples/bentall.inp`, `.ref_out`, commit 424e4e6, CONTACT revision
 //! 2356, 2023-05-10). Their 2-D mode puts one row of elements across the
 //! length DY of the cylinders (carter2d 200 mm, bentall 1000 mm), so their
-//! forces over DY are forces per metre here, and fixes the displacements'
-//! constant at the distance DY (Vollebregt's user guide §5.2; our
-//! reference distance is 1 m: the approaches differ by
-//! 2 P' ln(1 m / DY) / (pi E*), checked below).
+//! forces over DY are forces per metre here. The approach in carter2d's
+//! output is that of a displacement datum at the distance DY (ours is at
+//! 1 m: the approaches differ by 2 P' ln(1 m / DY) / (pi E*), checked
+//! below).
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::force::{
