@@ -23,12 +23,14 @@ use crate::core::steady::{
 };
 use crate::core::tangential::{
     shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
-    TangentialInput, TangentialOutput, TangentialScratch,
+    TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch, TangentialSettings,
 };
 
-/// Time-marching iterations between two Newton attempts of a steady
-/// rolling solve that stalled (see [`ContactSolver::solve`]): on Bentall's
-/// aluminium-on-steel rollers Newton converges in 3 to 5 steps after 50.
+/// Iterations of the fallback (time marching in steady rolling, FISTA in
+/// a transient step) between two Newton attempts of a tangential solve
+/// that stalled: on Bentall's aluminium-on-steel rollers Newton converges
+/// in 3 to 5 steps after 50 marching iterations, on a shifted line
+/// contact after 50 of FISTA.
 pub const MARCHING_RESTART: usize = 50;
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
@@ -492,58 +494,33 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: input_prev,
                     };
-                    let steady_scratch = self
-                        .newton_scratch
-                        .get_or_insert_with(|| SteadyScratch::new(n));
                     // The steady operator through the displacement kernels
-                    // (real spectra; exact, the patch being off the border).
-                    let mut outcome = solve_steady_newton(
-                        &self.displacement,
-                        &mut self.ows,
-                        &input,
-                        self.tr.output(),
-                        steady_scratch,
-                        &s.tangential,
-                    );
-                    // Newton can stall in a cycle of active sets (dissimilar
+                    // (real spectra; exact, the patch being off the border);
+                    // time marching when Newton stalls (dissimilar
                     // materials with little friction: Bentall's rollers).
-                    // Then a few time-marching iterations from its last
-                    // iterate, and Newton again; all within the iteration
-                    // limit.
-                    while !outcome.converged && outcome.iterations < s.tangential.max_iterations {
-                        let mut limited = s.tangential;
-                        limited.max_iterations =
-                            MARCHING_RESTART.min(s.tangential.max_iterations - outcome.iterations);
-                        let m = solve_steady_marching(
-                            &self.displacement,
-                            &mut self.ows,
-                            &input,
-                            self.tr.output(),
-                            &mut self.tangential_scratch,
-                            &mut self.marching_scratch,
-                            &limited,
-                        );
-                        outcome = m.after(&outcome);
-                        let left = s
-                            .tangential
-                            .max_iterations
-                            .saturating_sub(outcome.iterations);
-                        if outcome.converged || left == 0 {
-                            break;
+                    newton_with_restarts(&s.tangential, |newton, limited| {
+                        if newton {
+                            solve_steady_newton(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                self.newton_scratch
+                                    .get_or_insert_with(|| SteadyScratch::new(n)),
+                                limited,
+                            )
+                        } else {
+                            solve_steady_marching(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                &mut self.tangential_scratch,
+                                &mut self.marching_scratch,
+                                limited,
+                            )
                         }
-                        limited.max_iterations = left;
-                        let newton = solve_steady_newton(
-                            &self.displacement,
-                            &mut self.ows,
-                            &input,
-                            self.tr.output(),
-                            self.newton_scratch
-                                .get_or_insert_with(|| SteadyScratch::new(n)),
-                            &limited,
-                        );
-                        outcome = newton.after(&outcome);
-                    }
-                    outcome
+                    })
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
@@ -571,43 +548,34 @@ impl ContactSolver {
                         previous_state: &self.prev_state,
                     };
                     // Newton on the step's Coulomb system (about half the
-                    // products of FISTA); FISTA from its iterate if it fails.
-                    let scratch = self
-                        .newton_scratch
-                        .get_or_insert_with(|| SteadyScratch::new(n));
-                    let mut op = PlanarTangential {
-                        kernels: &self.displacement,
-                        ows: &mut self.ows,
-                    };
-                    let newton = solve_coulomb_newton(
-                        &mut op,
-                        LocalModel::Diagonal,
-                        None,
-                        &input,
-                        self.tr.output(),
-                        scratch,
-                        &s.tangential,
-                    );
-                    let left = s
-                        .tangential
-                        .max_iterations
-                        .saturating_sub(newton.iterations);
-                    if newton.converged || left == 0 {
-                        newton
-                    } else {
-                        // Within what is left of the iteration limit.
-                        let mut limited = s.tangential;
-                        limited.max_iterations = left;
-                        let f = solve_transient(
-                            &self.displacement,
-                            &mut self.ows,
-                            &input,
-                            self.tr.output(),
-                            &mut self.tangential_scratch,
-                            &limited,
-                        );
-                        f.after(&newton)
-                    }
+                    // products of FISTA); FISTA when it stalls.
+                    newton_with_restarts(&s.tangential, |newton, limited| {
+                        if newton {
+                            let mut op = PlanarTangential {
+                                kernels: &self.displacement,
+                                ows: &mut self.ows,
+                            };
+                            solve_coulomb_newton(
+                                &mut op,
+                                LocalModel::Diagonal,
+                                None,
+                                &input,
+                                self.tr.output(),
+                                self.newton_scratch
+                                    .get_or_insert_with(|| SteadyScratch::new(n)),
+                                limited,
+                            )
+                        } else {
+                            solve_transient(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                &mut self.tangential_scratch,
+                                limited,
+                            )
+                        }
+                    })
                 }
                 _ => {
                     return Err(ContactError::invalid(
@@ -758,6 +726,36 @@ impl Tractions {
             sy: &mut self.sy,
             state: &mut self.state,
         }
+    }
+}
+
+/// A tangential solve by Newton (`attempt(true, settings)`) that, while
+/// it stalls, continues with [`MARCHING_RESTART`] iterations of the
+/// fallback (`attempt(false, settings)`: time marching or FISTA, from the
+/// last iterate) and tries Newton again: all attempts together within
+/// `settings.max_iterations` (each is given what is left).
+fn newton_with_restarts(
+    settings: &TangentialSettings,
+    mut attempt: impl FnMut(bool, &TangentialSettings) -> TangentialOutcome,
+) -> TangentialOutcome {
+    let mut outcome = TangentialOutcome::default();
+    let mut newton = true;
+    loop {
+        let left = settings.max_iterations.saturating_sub(outcome.iterations);
+        if left == 0 {
+            return outcome;
+        }
+        let mut limited = *settings;
+        limited.max_iterations = if newton {
+            left
+        } else {
+            MARCHING_RESTART.min(left)
+        };
+        outcome = attempt(newton, &limited).after(&outcome);
+        if outcome.converged {
+            return outcome;
+        }
+        newton = !newton;
     }
 }
 

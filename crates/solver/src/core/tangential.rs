@@ -70,7 +70,7 @@ impl Default for TangentialSettings {
 }
 
 /// Outcome of a tangential solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TangentialOutcome {
     /// Outer iterations.
     pub iterations: usize,

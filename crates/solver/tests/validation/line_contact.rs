@@ -78,6 +78,26 @@ fn rel(got: f64, want: f64) -> f64 {
     (got / want - 1.0).abs()
 }
 
+/// The mean deviation over the contact |x| < a (the L1 norm over 2a) of
+/// the traction p_x / `scale` from the closed form of Carter and Cattaneo,
+/// sqrt(1 - x²/a²) - (c/a) sqrt(1 - (x - d)²/c²), the second term where
+/// |x - d| < c.
+fn mean_deviation(s: &ContactSolution, grid: &Grid, a: f64, c: f64, d: f64, scale: f64) -> f64 {
+    let mut l1 = 0.0;
+    for ix in 0..grid.nx {
+        let x = grid.x_m(ix);
+        if x.abs() >= a {
+            continue;
+        }
+        let mut want = (1.0 - (x / a).powi(2)).sqrt();
+        if (x - d).abs() < c {
+            want -= (c / a) * (1.0 - ((x - d) / c).powi(2)).sqrt();
+        }
+        l1 += (s.fields.traction_x_pa[ix] / scale - want).abs() * grid.dx_m;
+    }
+    l1 / (2.0 * a)
+}
+
 /// CONTACT's carter2d material: G = 82000 N/mm², nu = 0.28, both bodies.
 fn carter_material() -> CombinedMaterial {
     CombinedMaterial::identical(Material {
@@ -140,21 +160,7 @@ fn carter_closed_form_force_adhesion_zone_and_tractions() {
         // (the L1 norm of q - q_Carter over 2a), relative to mu p0. (At
         // single strips next to the stick/slip boundary, which a strip
         // resolves to dx, the deviation reaches 7e-3 mu p0.)
-        let mut l1 = 0.0;
-        for ix in 0..grid.nx {
-            let x = grid.x_m(ix);
-            if x.abs() >= half {
-                continue;
-            }
-            let mut want = (1.0 - (x / half).powi(2)).sqrt();
-            let d = half - c;
-            if (x - d).abs() < c {
-                want -= (c / half) * (1.0 - ((x - d) / c).powi(2)).sqrt();
-            }
-            let got = -s.fields.traction_x_pa[ix] / (mu * p0);
-            l1 += (got - want).abs() * grid.dx_m;
-        }
-        let mean = l1 / (2.0 * half);
+        let mean = mean_deviation(&s, &grid, half, c, half - c, -mu * p0);
         eprintln!("xi/xi_sat {q}: traction's mean deviation {mean:.2e} mu p0");
         assert!(
             mean < 5e-3,
@@ -366,4 +372,59 @@ window_x_m = 0.216e-3
         assert!(notes.contains(key), "{solver}: {notes}");
         assert!(!notes.contains(other), "{solver}: {notes}");
     }
+}
+
+#[test]
+fn cattaneo_shift_of_cylinders() {
+    // Reference: Cattaneo (1938), Mindlin (1949) in two dimensions;
+    // Johnson 1985 §7.2: cylinders pressed together by P' and then shifted
+    // with a tangential force Q' < mu P' stick in the centre, |x| < c with
+    // c/a = sqrt(1 - |Q'|/(mu P')), and slip outside; the traction is
+    // q(x) = mu p0 (sqrt(1 - x²/a²) - (c/a) sqrt(1 - x²/c²)) (second term
+    // in the stick zone only), opposing the shift. The shift that gives Q'
+    // depends on the datum of the displacements; c/a and q do not.
+    use railcontact_solver::core::problem::ShiftStep;
+    let mat = carter_material();
+    let estar = 82.0e9 / (1.0 - 0.28);
+    let (a_curv, mu, half) = (1.0, 0.3, 1.0e-3);
+    let load = PI * half * half * estar / (4.0 * 0.5 / a_curv);
+    let p0 = 2.0 * load / (PI * half);
+    let grid = Grid::line(400, 2.2 * half).unwrap();
+    let step = |shift_x_m: f64| ShiftStep {
+        load: NormalLoad::NormalForce(load),
+        shift_x_m,
+        shift_y_m: 0.0,
+        rotation_rad: 0.0,
+    };
+    let p = ContactProblem {
+        kinematics: Kinematics::Transient(vec![step(0.0), step(1.0e-6)]),
+        ..rolling_line(mat, grid, a_curv, load, mu, 0.0)
+    };
+    let s = solve(&p).unwrap().pop().unwrap();
+    assert_eq!(s.info.status, SolveStatus::Converged, "{:?}", s.info);
+    let ratio = -s.totals.fx_n / (mu * s.totals.normal_force_n);
+    assert!(
+        ratio > 0.2 && ratio < 0.9,
+        "partial slip wanted: Q'/(mu P') {ratio}"
+    );
+    let c = half * (1.0 - ratio).sqrt();
+    let stick = s
+        .fields
+        .state
+        .iter()
+        .filter(|&&e| e == ElementState::Adhesion)
+        .count() as f64
+        * grid.dx_m;
+    eprintln!(
+        "Q'/(mu P') {ratio:.4}: stick zone {stick:e} m vs Cattaneo {:e} m",
+        2.0 * c
+    );
+    assert!(
+        (stick - 2.0 * c).abs() <= 2.0 * grid.dx_m,
+        "stick zone {stick} m vs Cattaneo {} m",
+        2.0 * c
+    );
+    let mean = mean_deviation(&s, &grid, half, c, 0.0, -mu * p0);
+    eprintln!("traction's mean deviation {mean:.2e} mu p0");
+    assert!(mean < 5e-3, "traction off by {mean} mu p0 on average");
 }
