@@ -82,9 +82,10 @@ fn geometry(g: &pb::GeometrySection) -> Result<GeometrySection, ServiceError> {
             Ok(pb::GeometryKind::Quadratic) => GeometryKind::Quadratic,
             Ok(pb::GeometryKind::ConformalCircular) => GeometryKind::ConformalCircular,
             Ok(pb::GeometryKind::ConformalPoints) => GeometryKind::ConformalPoints,
+            Ok(pb::GeometryKind::Line) => GeometryKind::Line,
             _ => return Err(ServiceError::invalid(
                 "geometry.kind",
-                "missing: give GEOMETRY_KIND_QUADRATIC, _CONFORMAL_CIRCULAR or _CONFORMAL_POINTS",
+                "missing: give GEOMETRY_KIND_QUADRATIC, _CONFORMAL_CIRCULAR, _CONFORMAL_POINTS or _LINE",
             )),
         };
     Ok(GeometrySection {
@@ -99,10 +100,12 @@ fn geometry(g: &pb::GeometrySection) -> Result<GeometrySection, ServiceError> {
     })
 }
 
-/// The normal load of a wire load, `None` when not set.
+/// The normal load of a wire load, `None` when not set (a force per metre
+/// is a line contact's normal force: its totals are per metre).
 pub fn load(l: Option<&pb::load_section::Load>) -> Option<NormalLoad> {
     l.map(|l| match *l {
         pb::load_section::Load::NormalForceN(f) => NormalLoad::NormalForce(f),
+        pb::load_section::Load::NormalForceNPerM(f) => NormalLoad::NormalForce(f),
         pb::load_section::Load::ApproachM(d) => NormalLoad::Approach(d),
     })
 }
@@ -120,18 +123,25 @@ pub fn creepages(c: &pb::Creepages) -> Creepages {
 /// force per direction (`force_x_n`, `force_y_n`).
 pub fn rolling(c: &pb::Creepages) -> RollingSection {
     RollingSection {
-        creepage_long: (c.force_x_n.is_none() || c.creepage_long != 0.0).then_some(c.creepage_long),
+        creepage_long: (c.force_x_n.is_none() && c.force_x_n_per_m.is_none()
+            || c.creepage_long != 0.0)
+            .then_some(c.creepage_long),
         creepage_lat: (c.force_y_n.is_none() || c.creepage_lat != 0.0).then_some(c.creepage_lat),
         spin_per_m: c.spin_per_m,
         force_x_n: c.force_x_n,
         force_y_n: c.force_y_n,
+        force_x_n_per_m: c.force_x_n_per_m,
     }
 }
 
 /// Refuses a prescribed force in wire creepages `c` at field `key` (sessions
 /// and creep curves: they step or sweep creepages).
 pub fn no_prescribed_force(c: &pb::Creepages, key: &str, what: &str) -> Result<(), ServiceError> {
-    for (name, f) in [("force_x_n", c.force_x_n), ("force_y_n", c.force_y_n)] {
+    for (name, f) in [
+        ("force_x_n", c.force_x_n),
+        ("force_y_n", c.force_y_n),
+        ("force_x_n_per_m", c.force_x_n_per_m),
+    ] {
         if f.is_some() {
             return Err(ServiceError::invalid(
                 format!("{key}.{name}"),
@@ -146,6 +156,7 @@ pub fn no_prescribed_force(c: &pb::Creepages, key: &str, what: &str) -> Result<(
 pub fn refuse_prescribed_force(case: &Case, what: &str) -> Result<(), ServiceError> {
     let f = case.prescribed_force;
     let key = match (f.force_x_n, f.force_y_n) {
+        (Some(_), _) if case.geometry.is_line() => "rolling.force_x_n_per_m",
         (Some(_), _) => "rolling.force_x_n",
         (None, Some(_)) => "rolling.force_y_n",
         (None, None) => return Ok(()),
@@ -154,6 +165,20 @@ pub fn refuse_prescribed_force(case: &Case, what: &str) -> Result<(), ServiceErr
         key,
         format!("a prescribed force is solved by SolvePatch and SolvePatchBatch only, not in {what}: give the creepage"),
     ))
+}
+
+/// Refuses a line contact (sessions and creep curves: SolvePatch and
+/// SolvePatchBatch solve it).
+pub fn refuse_line_contact(case: &Case, what: &str) -> Result<(), ServiceError> {
+    if case.geometry.is_line() {
+        return Err(ServiceError::invalid(
+            "geometry.kind",
+            format!(
+                "a line contact is solved by SolvePatch and SolvePatchBatch only, not in {what}"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The wire outcome of a prescribed-force solve.
@@ -183,6 +208,7 @@ fn step_section(s: &pb::ShiftStep) -> StepSection {
         shift_y_m: s.shift_y_m,
         rotation_rad: s.rotation_rad,
         normal_force_n: s.normal_force_n,
+        normal_force_n_per_m: s.normal_force_n_per_m,
         approach_m: s.approach_m,
     }
 }
@@ -197,11 +223,13 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         .geometry
         .as_ref()
         .ok_or_else(|| ServiceError::invalid("geometry", "missing"))?;
-    let (normal_force_n, approach_m) = match load(c.load.as_ref().and_then(|l| l.load.as_ref())) {
-        Some(NormalLoad::NormalForce(f)) => (Some(f), None),
-        Some(NormalLoad::Approach(d)) => (None, Some(d)),
-        None => (None, None),
-    };
+    let (mut normal_force_n, mut normal_force_n_per_m, mut approach_m) = (None, None, None);
+    match c.load.as_ref().and_then(|l| l.load.as_ref()) {
+        Some(&pb::load_section::Load::NormalForceN(f)) => normal_force_n = Some(f),
+        Some(&pb::load_section::Load::NormalForceNPerM(f)) => normal_force_n_per_m = Some(f),
+        Some(&pb::load_section::Load::ApproachM(d)) => approach_m = Some(d),
+        None => {}
+    }
     let size = |n: Option<u32>| n.map(|n| n as usize);
     Ok(CaseFile {
         model: model(c.model)?,
@@ -219,6 +247,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         geometry: geometry(g)?,
         load: LoadSection {
             normal_force_n,
+            normal_force_n_per_m,
             approach_m,
         },
         rolling: match &c.kinematics {
@@ -317,7 +346,7 @@ pub fn validate_case(c: &pb::PatchCase, limits: CaseLimits) -> Result<ValidCase,
         .unwrap_or_default();
     if !extra.is_empty() {
         let key = "geometry.extra_gap_m";
-        if case.model != Model::Exact || case.geometry.is_conformal() {
+        if case.model != Model::Exact || case.geometry.is_conformal() || case.geometry.is_line() {
             return Err(ServiceError::invalid(
                 key,
                 "only the exact model on a quadratic geometry takes a per-element gap",

@@ -559,6 +559,8 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                 .map_err(|e| e.within("case"))?;
             convert::refuse_prescribed_force(&valid.case, "creep curves")
                 .map_err(|e| e.within("case"))?;
+            convert::refuse_line_contact(&valid.case, "creep curves")
+                .map_err(|e| e.within("case"))?;
             convert::check_fields(&valid.case, req.include_fields)?;
             if !matches!(valid.case.kinematics, Kinematics::SteadyRolling(_)) {
                 return Err(ServiceError::invalid(
@@ -954,6 +956,7 @@ impl ContactHandlers {
             convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
         convert::refuse_prescribed_force(&valid.case, "sessions")
             .map_err(|e| e.within("open.case"))?;
+        convert::refuse_line_contact(&valid.case, "sessions").map_err(|e| e.within("open.case"))?;
         let jacobian = open.include_sensitivities;
         if jacobian {
             check_sensitivities(&valid.case).map_err(|e| e.within("open"))?;

@@ -1253,3 +1253,26 @@ fn subsurface_options_need_the_section() {
         "{err}"
     );
 }
+
+#[test]
+fn the_line_contact_example_is_carters_rolling_per_metre() {
+    // examples/cases/line_carter.toml: CONTACT's carter2d on 200 strips.
+    // Carter (1926), Johnson 1985 §8.2: xi = 0.4 mu a/R leaves c/a = 0.6,
+    // Fx = (1 - 0.6²) mu Fn = 0.64 mu Fn, the creepage being negative.
+    let v = solve_json(&example("line_carter.toml"), &[]);
+    assert_eq!(v["status"], "converged");
+    assert!((f(&v, "normal_force_n") / 178_900.0 - 1.0).abs() < 1e-9);
+    let ratio = f(&v, "fx_n") / (0.3 * f(&v, "normal_force_n"));
+    assert!((ratio / 0.64 - 1.0).abs() < 5e-3, "Fx/(mu Fn) {ratio}");
+    assert_eq!(v["grid"], serde_json::json!([200, 1]), "{v}");
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("per metre"), "{notes}");
+    // A 3-D key is refused naming it (exit code 2).
+    let bad = case_file(
+        "line_with_ny.toml",
+        &example_text("line_carter.toml").replace("nx = 200", "nx = 200\nny = 8"),
+    );
+    let out = run(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("grid.ny"));
+}

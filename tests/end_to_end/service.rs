@@ -1137,3 +1137,75 @@ async fn subsurface_stresses_only_when_asked_and_fields_only_with_include_fields
     assert!(msg.contains("subsurface") && msg.contains("exact"), "{msg}");
     server.shutdown().await;
 }
+
+/// CONTACT's carter2d (examples/carter2d.inp): steel cylinders, R = 0.5 m,
+/// 178 900 N/m, mu 0.3, 55 strips, on the wire.
+fn carter_line(kin: pb::Creepages) -> pb::PatchCase {
+    pb::PatchCase {
+        model: pb::Model::Exact as i32,
+        material: Some(pb::MaterialSection {
+            shear_modulus_pa: Some(82.0e9),
+            poisson_ratio: Some(0.28),
+            ..Default::default()
+        }),
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Line as i32,
+            a_per_m: Some(1.0),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceNPerM(178_900.0)),
+        }),
+        grid: Some(pb::GridSection {
+            nx: Some(55),
+            ..Default::default()
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(kin)),
+        ..Default::default()
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn solve_patch_solves_a_line_contact_per_metre() {
+    let (_server, mut client) = server().await;
+    let r = solve_patch(
+        &mut client,
+        carter_line(pb::Creepages {
+            creepage_long: -2.4e-4,
+            ..Default::default()
+        }),
+    )
+    .await;
+    // carter2d.ref_out: FX = 6955 N over DY = 200 mm, 34 775 N/m (our
+    // centred window differs from CONTACT's grid by a quarter strip).
+    let t = totals(r.result.as_ref().unwrap());
+    assert!((t.normal_force_n / 178_900.0 - 1.0).abs() < 1e-9);
+    assert!((t.fx_n / 34_775.0 - 1.0).abs() < 0.01, "Fx {} N/m", t.fx_n);
+    assert_eq!(r.grid.as_ref().map(|g| (g.nx, g.ny)), Some((55, 1)));
+    // The force per metre prescribed: the creepage comes back.
+    let r = solve_patch(
+        &mut client,
+        carter_line(pb::Creepages {
+            force_x_n_per_m: Some(t.fx_n),
+            ..Default::default()
+        }),
+    )
+    .await;
+    let xi = r.force_control.unwrap().creepage_long;
+    assert!((xi / -2.4e-4 - 1.0).abs() < 1e-4, "creepage {xi}");
+    // A total force on a line contact is refused naming the field.
+    let (code, msg) = failure(
+        client
+            .solve_patch(request(carter_line(pb::Creepages {
+                force_x_n: Some(1000.0),
+                ..Default::default()
+            })))
+            .await,
+    );
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("rolling.force_x_n"), "{msg}");
+}

@@ -203,7 +203,11 @@ impl KernelCache {
         let set = cell
             .get_or_init(|| {
                 built = true;
-                let influence = HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material);
+                let influence = if grid.is_line() {
+                    HalfSpaceInfluence::plane_strain(grid.dx_m, material)
+                } else {
+                    HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
+                };
                 Arc::new(match other {
                     Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
                     None => KernelSet::new(plan, influence, kind),

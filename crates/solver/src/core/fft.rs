@@ -769,7 +769,7 @@ impl KernelSet {
                 nx,
                 ny,
                 fast_even_size(nx),
-                fast_even_size(ny),
+                periodic_rows(ny, fast_even_size),
             ));
             spectra.push(periodic_inverse(&pc, |ox, oy| {
                 influence.kernel(kind, Component::N, Component::N, ox, oy)
@@ -780,7 +780,10 @@ impl KernelSet {
             // The displacement operator's, whatever this set's kind.
             // Inverted in f64 on a plan of the single-precision sizes, then
             // rounded (as the single-precision kernels).
-            let (px, py) = (fast_even_size_single(nx), fast_even_size_single(ny));
+            let (px, py) = (
+                fast_even_size_single(nx),
+                periodic_rows(ny, fast_even_size_single),
+            );
             let wide_pc = ConvolutionPlan::<f64>::with_padding(nx, ny, px, py);
             // Wrapped offsets stay within the tables: |o| <= p/2 < n.
             let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
@@ -1140,6 +1143,17 @@ fn apply_indexed_body<T: Real>(
         }
         let src = if in_place[o] { &spec[o] } else { &outspec[o] };
         plan.rows_inverse(ws, src, |k| offsets[k], out);
+    }
+}
+
+/// The rows of a periodic array holding `ny` rows: `fast(ny)`, or 1 for
+/// the single row of a line contact (whose kernels do not depend on y:
+/// a periodic neighbour row would count the same strip twice).
+fn periodic_rows(ny: usize, fast: fn(usize) -> usize) -> usize {
+    if ny == 1 {
+        1
+    } else {
+        fast(ny)
     }
 }
 

@@ -6,10 +6,17 @@
 //! direction are contiguous). x is the rolling direction; the leading edge of a
 //! rolling contact is at large x (see [`crate::core::problem`] for the sign
 //! conventions).
+//!
+//! A grid of one row ([`Grid::line`]) is a line contact: strips of width
+//! `dx` across the unit length [`LINE_LENGTH_M`] of two cylinders, solved
+//! with the plane-strain coefficients of the half-plane
+//! ([`crate::core::influence`]). Its totals are forces per metre. Every
+//! other grid has at least [`MIN_ELEMENTS`] rows.
 
 use serde::Serialize;
 
 use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
 
 /// Smallest grid dimension accepted.
 pub const MIN_ELEMENTS: usize = 4;
@@ -90,6 +97,45 @@ impl Grid {
         })
     }
 
+    /// A line-contact grid of `nx` strips of width `window_x_m / nx`
+    /// centred on the origin ([`Grid::line_from`]).
+    pub fn line(nx: usize, window_x_m: f64) -> Result<Self, ContactError> {
+        require_positive("grid.window_x_m", window_x_m)?;
+        Self::line_from(nx, window_x_m / nx as f64, -0.5 * window_x_m)
+    }
+
+    /// A line-contact grid of `nx` strips of width `dx_m` from x = `x0_m`:
+    /// one row standing for [`LINE_LENGTH_M`] of the cylinders (y in
+    /// [-1/2, 1/2] m). The window `nx dx_m` must not exceed the reference
+    /// distance of the displacements ([`LINE_REFERENCE_DISTANCE_M`], 1 m),
+    /// which keeps the plane-strain operator positive definite.
+    pub fn line_from(nx: usize, dx_m: f64, x0_m: f64) -> Result<Self, ContactError> {
+        let g = Self::new(
+            nx,
+            MIN_ELEMENTS,
+            dx_m,
+            LINE_LENGTH_M,
+            x0_m,
+            -0.5 * LINE_LENGTH_M,
+        )?;
+        let window = nx as f64 * dx_m;
+        if window > LINE_REFERENCE_DISTANCE_M {
+            return Err(ContactError::invalid(
+                "grid.window_x_m",
+                format!(
+                    "a line contact's window must be at most {LINE_REFERENCE_DISTANCE_M} m, got {window} m"
+                ),
+            ));
+        }
+        Ok(Self { ny: 1, ..g })
+    }
+
+    /// Whether this is a line-contact grid (one row, [`Grid::line`]).
+    #[inline]
+    pub fn is_line(&self) -> bool {
+        self.ny == 1
+    }
+
     /// A grid centred on the origin covering `window_x_m` by `window_y_m`.
     pub fn centered(
         nx: usize,
@@ -115,7 +161,7 @@ impl Grid {
         self.nx * self.ny
     }
 
-    /// Always false: a grid has at least `MIN_ELEMENTS`² elements.
+    /// Always false: a grid has at least `MIN_ELEMENTS` elements.
     #[inline]
     pub fn is_empty(&self) -> bool {
         false
@@ -145,10 +191,11 @@ impl Grid {
         iy * self.nx + ix
     }
 
-    /// True when element (ix, iy) lies on the outer ring of the grid.
+    /// True when element (ix, iy) lies on the outer ring of the grid (for
+    /// a line contact: the first or last strip).
     #[inline]
     pub fn on_border(&self, ix: usize, iy: usize) -> bool {
-        ix == 0 || iy == 0 || ix + 1 == self.nx || iy + 1 == self.ny
+        ix == 0 || ix + 1 == self.nx || (!self.is_line() && (iy == 0 || iy + 1 == self.ny))
     }
 }
 

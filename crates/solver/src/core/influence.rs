@@ -22,6 +22,38 @@
 //! reciprocity, which makes the 3N x 3N matrix symmetric. The primitives used
 //! below differ from the textbook logarithms only by functions of one variable,
 //! which cancel in the four-corner difference; they stay finite at r = 0.
+//!
+//! # Line contact (plane strain)
+//!
+//! A grid of one row ([`crate::core::grid::Grid::line`]) is a line contact:
+//! cylinders with parallel axes along y, every field independent of y, the
+//! one row standing for the unit length [`LINE_LENGTH_M`] (so that its totals
+//! are forces per metre). Its coefficients are those of the elastic
+//! half-plane in plane strain for a unit traction on the strip
+//! [X-dx/2, X+dx/2] x (-inf, inf), the 3-D point kernels integrated along y
+//! (Johnson 1985, §2.2):
+//!
+//! ```text
+//! A_nn = A_xx = 2(1-nu)/(pi G) L(X)     A_yy = 2/(pi G) L(X)      A_xy = 0
+//! A_nx = -A_xn = (K/G) S(X)             A_ny = A_yn = 0
+//! L(X) = -int ln(|X - s| / R) ds,       S(X) = int sign(X - s) ds
+//! ```
+//!
+//! (s over [-dx/2, dx/2]). The logarithm's displacement is defined only up
+//! to a rigid-body constant, fixed here by the reference distance R =
+//! [`LINE_REFERENCE_DISTANCE_M`]: the surface 1 m from a line load does not
+//! move. Approaches, and the shifts of transient steps, are therefore
+//! relative to the surface points 1 m away (Johnson 1985, §2.2, gives
+//! the half-plane's displacements relative to such a datum; the approach
+//! in CONTACT's `carter2d` reference output is that of a datum at the
+//! cylinders' length `DY`, checked in the validation tests). For a normal load
+//! P' \[N/m\] on a patch of half-width a the approach changes by
+//! 2 P' ln(R'/R) / (pi E*) with another reference distance R'. The constant
+//! cancels in steady rolling (the slip takes differences of
+//! displacements). On a window shorter than 4 R the operator is positive
+//! definite (the logarithmic capacity of an interval is a quarter of its
+//! length); [`crate::core::grid::Grid::line`] keeps windows within R.
+//! A_yy is the antiplane (lateral) shear of the half-plane.
 
 use crate::core::material::CombinedMaterial;
 
@@ -74,9 +106,48 @@ fn prim_x_over_r2(x: f64, y: f64) -> f64 {
     a + b
 }
 
+/// Length of body the one row of a line-contact grid stands for \[m\]:
+/// its totals are forces per metre.
+pub const LINE_LENGTH_M: f64 = 1.0;
+/// Distance from a line load at which the surface does not move \[m\]:
+/// the datum of the half-plane's displacements (see the module docs).
+pub const LINE_REFERENCE_DISTANCE_M: f64 = 1.0;
+
+/// s ln(|s| / R) - s, the primitive of ln(|s| / R) (0 at s = 0).
+#[inline]
+fn prim_ln(s: f64) -> f64 {
+    if s == 0.0 {
+        0.0
+    } else {
+        s * (s.abs() / LINE_REFERENCE_DISTANCE_M).ln() - s
+    }
+}
+
+/// The strip integral L(X) = -int_{-h}^{h} ln(|X - s| / R) ds.
+#[inline]
+fn strip_log(x: f64, h: f64) -> f64 {
+    -(prim_ln(x + h) - prim_ln(x - h))
+}
+
+/// The strip integral S(X) = int_{-h}^{h} sign(X - s) ds.
+#[inline]
+fn strip_sign(x: f64, h: f64) -> f64 {
+    2.0 * x.clamp(-h, h)
+}
+
 #[inline]
 fn corners(f: impl Fn(f64, f64) -> f64, x: f64, y: f64, hx: f64, hy: f64) -> f64 {
     f(x + hx, y + hy) - f(x - hx, y + hy) - f(x + hx, y - hy) + f(x - hx, y - hy)
+}
+
+/// Which elastic body the coefficients describe.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Elasticity {
+    /// The three-dimensional half-space (rectangular elements).
+    HalfSpace,
+    /// The half-plane in plane strain: a line contact, one row of strips
+    /// (see the module docs).
+    PlaneStrain,
 }
 
 /// Closed-form influence coefficients for one grid spacing and material pair.
@@ -87,6 +158,7 @@ pub struct HalfSpaceInfluence {
     inv_pi_g: f64,
     nu: f64,
     k: f64,
+    elasticity: Elasticity,
 }
 
 impl HalfSpaceInfluence {
@@ -98,13 +170,48 @@ impl HalfSpaceInfluence {
             inv_pi_g: 1.0 / (std::f64::consts::PI * material.shear_modulus_pa),
             nu: material.poisson_ratio,
             k: material.kalker_k,
+            elasticity: Elasticity::HalfSpace,
+        }
+    }
+
+    /// Plane-strain coefficients of a line contact for strips of width
+    /// `dx_m` (the row standing for [`LINE_LENGTH_M`]).
+    pub fn plane_strain(dx_m: f64, material: &CombinedMaterial) -> Self {
+        Self {
+            elasticity: Elasticity::PlaneStrain,
+            ..Self::new(dx_m, LINE_LENGTH_M, material)
+        }
+    }
+
+    /// The elastic body of these coefficients.
+    pub fn elasticity(&self) -> Elasticity {
+        self.elasticity
+    }
+
+    /// The plane-strain coefficient (i, j) at offset x from the strip's
+    /// centre.
+    fn plane_strain_coefficient(&self, i: Component, j: Component, x: f64) -> f64 {
+        use Component::*;
+        let h = 0.5 * self.dx;
+        let c = self.inv_pi_g;
+        let pi_c = std::f64::consts::PI * c;
+        match (i, j) {
+            (X, X) | (N, N) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h),
+            (Y, Y) => 2.0 * c * strip_log(x, h),
+            (N, X) => pi_c * self.k * strip_sign(x, h),
+            (X, N) => -pi_c * self.k * strip_sign(x, h),
+            (X, Y) | (Y, X) | (N, Y) | (Y, N) => 0.0,
         }
     }
 
     /// Displacement difference component `i` \[m\] at offset (x, y) \[m\] from the
     /// centre of an element loaded by a unit uniform traction \[Pa\] in `j`.
+    /// A line contact's coefficients do not depend on y.
     pub fn coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
         use Component::*;
+        if self.elasticity == Elasticity::PlaneStrain {
+            return self.plane_strain_coefficient(i, j, x);
+        }
         let (hx, hy) = (0.5 * self.dx, 0.5 * self.dy);
         let c = self.inv_pi_g;
         let nu = self.nu;

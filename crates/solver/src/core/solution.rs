@@ -45,11 +45,43 @@ impl SolveStatus {
     }
 }
 
+/// The iteration limit a solve stopped at ([`SolveStatus::MaxIterations`]),
+/// with the setting that raises it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IterationLimit {
+    /// The normal solver's limit
+    /// ([`crate::core::normal::NormalSettings::max_iterations`]).
+    Normal,
+    /// The tangential solver's limit
+    /// ([`crate::core::tangential::TangentialSettings::max_iterations`]).
+    Tangential,
+    /// The limit of normal/tangential alternations of dissimilar
+    /// materials ([`crate::core::problem::SolverSettings::coupling_max_iterations`]).
+    Coupling,
+}
+
+impl IterationLimit {
+    /// The case file's key of the limit: `solver.max_iterations` (normal
+    /// and tangential) or `solver.coupling_max_iterations`.
+    pub fn key(self) -> &'static str {
+        match self {
+            IterationLimit::Normal | IterationLimit::Tangential => "solver.max_iterations",
+            IterationLimit::Coupling => "solver.coupling_max_iterations",
+        }
+    }
+}
+
 /// Counters and residuals of one solve (the core counts, it does not log).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct SolveInfo {
     /// Overall status.
     pub status: SolveStatus,
+    /// The limit the solve stopped at when `status` is
+    /// [`SolveStatus::MaxIterations`] (the alternation's, when it hit
+    /// its own; else the normal or the tangential solver's of its last
+    /// pass).
+    pub limit: Option<IterationLimit>,
     /// Conjugate-gradient iterations of the normal problem (all coupling passes).
     pub normal_iterations: usize,
     /// Outer iterations of the tangential problem (all coupling passes).

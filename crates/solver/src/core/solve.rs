@@ -16,15 +16,22 @@ use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal}
 use crate::core::predict::{PathPoint, WarmPath};
 use crate::core::problem::{ContactProblem, Kinematics, ShiftStep};
 use crate::core::solution::{
-    ContactSolution, ElementFields, ElementState, SolveInfo, SolveStatus, Totals,
+    ContactSolution, ElementFields, ElementState, IterationLimit, SolveInfo, SolveStatus, Totals,
 };
 use crate::core::steady::{
     solve_coulomb_newton, solve_steady_newton, LocalModel, PlanarTangential, SteadyScratch,
 };
 use crate::core::tangential::{
     shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
-    TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch,
+    TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch, TangentialSettings,
 };
+
+/// Iterations of the fallback (time marching in steady rolling, FISTA in
+/// a transient step) between two Newton attempts of a tangential solve
+/// that stalled: on Bentall's aluminium-on-steel rollers Newton converges
+/// in 3 to 5 steps after 50 marching iterations, on a shifted line
+/// contact after 50 of FISTA.
+pub const MARCHING_RESTART: usize = 50;
 
 /// A reusable solver for one grid and material pair. Keeps the tractions of
 /// the last solve, which warm-start the next one (the service keeps one per
@@ -394,6 +401,7 @@ impl ContactSolver {
         };
         let mut info = SolveInfo {
             status: SolveStatus::Converged,
+            limit: None,
             normal_iterations: 0,
             tangential_iterations: 0,
             coupling_iterations: 0,
@@ -486,38 +494,33 @@ impl ContactSolver {
                         cy: &self.cy,
                         previous_state: input_prev,
                     };
-                    let steady_scratch = self
-                        .newton_scratch
-                        .get_or_insert_with(|| SteadyScratch::new(n));
                     // The steady operator through the displacement kernels
-                    // (real spectra; exact, the patch being off the border).
-                    let newton = solve_steady_newton(
-                        &self.displacement,
-                        &mut self.ows,
-                        &input,
-                        self.tr.output(),
-                        steady_scratch,
-                        &s.tangential,
-                    );
-                    if newton.converged {
-                        newton
-                    } else {
-                        // Fallback: time marching from Newton's last iterate.
-                        let m = solve_steady_marching(
-                            &self.displacement,
-                            &mut self.ows,
-                            &input,
-                            self.tr.output(),
-                            &mut self.tangential_scratch,
-                            &mut self.marching_scratch,
-                            &s.tangential,
-                        );
-                        TangentialOutcome {
-                            iterations: newton.iterations + m.iterations,
-                            matvecs: newton.matvecs + m.matvecs,
-                            ..m
+                    // (real spectra; exact, the patch being off the border);
+                    // time marching when Newton stalls (dissimilar
+                    // materials with little friction: Bentall's rollers).
+                    newton_with_restarts(&s.tangential, |newton, limited| {
+                        if newton {
+                            solve_steady_newton(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                self.newton_scratch
+                                    .get_or_insert_with(|| SteadyScratch::new(n)),
+                                limited,
+                            )
+                        } else {
+                            solve_steady_marching(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                &mut self.tangential_scratch,
+                                &mut self.marching_scratch,
+                                limited,
+                            )
                         }
-                    }
+                    })
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
@@ -545,40 +548,34 @@ impl ContactSolver {
                         previous_state: &self.prev_state,
                     };
                     // Newton on the step's Coulomb system (about half the
-                    // products of FISTA); FISTA from its iterate if it fails.
-                    let scratch = self
-                        .newton_scratch
-                        .get_or_insert_with(|| SteadyScratch::new(n));
-                    let mut op = PlanarTangential {
-                        kernels: &self.displacement,
-                        ows: &mut self.ows,
-                    };
-                    let newton = solve_coulomb_newton(
-                        &mut op,
-                        LocalModel::Diagonal,
-                        None,
-                        &input,
-                        self.tr.output(),
-                        scratch,
-                        &s.tangential,
-                    );
-                    if newton.converged {
-                        newton
-                    } else {
-                        let f = solve_transient(
-                            &self.displacement,
-                            &mut self.ows,
-                            &input,
-                            self.tr.output(),
-                            &mut self.tangential_scratch,
-                            &s.tangential,
-                        );
-                        TangentialOutcome {
-                            iterations: newton.iterations + f.iterations,
-                            matvecs: newton.matvecs + f.matvecs,
-                            ..f
+                    // products of FISTA); FISTA when it stalls.
+                    newton_with_restarts(&s.tangential, |newton, limited| {
+                        if newton {
+                            let mut op = PlanarTangential {
+                                kernels: &self.displacement,
+                                ows: &mut self.ows,
+                            };
+                            solve_coulomb_newton(
+                                &mut op,
+                                LocalModel::Diagonal,
+                                None,
+                                &input,
+                                self.tr.output(),
+                                self.newton_scratch
+                                    .get_or_insert_with(|| SteadyScratch::new(n)),
+                                limited,
+                            )
+                        } else {
+                            solve_transient(
+                                &self.displacement,
+                                &mut self.ows,
+                                &input,
+                                self.tr.output(),
+                                &mut self.tangential_scratch,
+                                limited,
+                            )
                         }
-                    }
+                    })
                 }
                 _ => {
                     return Err(ContactError::invalid(
@@ -603,12 +600,20 @@ impl ContactSolver {
             }
             if c + 1 == cmax {
                 info.status = SolveStatus::MaxIterations;
+                info.limit = Some(IterationLimit::Coupling);
             }
         }
         // The loops above stop early once cancelled: no answer then.
         cancel::check()?;
         if !(normal_ok && tangential_ok) {
             info.status = SolveStatus::MaxIterations;
+            if info.limit.is_none() {
+                info.limit = Some(if normal_ok {
+                    IterationLimit::Tangential
+                } else {
+                    IterationLimit::Normal
+                });
+            }
         }
         if !frictional {
             self.tr
@@ -721,6 +726,36 @@ impl Tractions {
             sy: &mut self.sy,
             state: &mut self.state,
         }
+    }
+}
+
+/// A tangential solve by Newton (`attempt(true, settings)`) that, while
+/// it stalls, continues with [`MARCHING_RESTART`] iterations of the
+/// fallback (`attempt(false, settings)`: time marching or FISTA, from the
+/// last iterate) and tries Newton again: all attempts together within
+/// `settings.max_iterations` (each is given what is left).
+fn newton_with_restarts(
+    settings: &TangentialSettings,
+    mut attempt: impl FnMut(bool, &TangentialSettings) -> TangentialOutcome,
+) -> TangentialOutcome {
+    let mut outcome = TangentialOutcome::default();
+    let mut newton = true;
+    loop {
+        let left = settings.max_iterations.saturating_sub(outcome.iterations);
+        if left == 0 {
+            return outcome;
+        }
+        let mut limited = *settings;
+        limited.max_iterations = if newton {
+            left
+        } else {
+            MARCHING_RESTART.min(left)
+        };
+        outcome = attempt(newton, &limited).after(&outcome);
+        if outcome.converged {
+            return outcome;
+        }
+        newton = !newton;
     }
 }
 

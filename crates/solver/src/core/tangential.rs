@@ -47,7 +47,9 @@ use crate::core::solution::ElementState;
 pub struct TangentialSettings {
     /// Natural-residual tolerance relative to max mu p_n [-] (default 1e-7).
     pub tolerance: f64,
-    /// Outer iteration limit (default 2000).
+    /// Iteration limit of one tangential solve (default 2000): its Newton
+    /// steps and the time-marching or FISTA iterations of a fallback count
+    /// together.
     pub max_iterations: usize,
     /// Precondition the Newton steps' GMRES (steady rolling and transient
     /// steps, planar and conformal) with the inverse of the circulant
@@ -68,7 +70,7 @@ impl Default for TangentialSettings {
 }
 
 /// Outcome of a tangential solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct TangentialOutcome {
     /// Outer iterations.
     pub iterations: usize,
@@ -78,6 +80,18 @@ pub struct TangentialOutcome {
     pub residual: f64,
     /// Whether the tolerance was met.
     pub converged: bool,
+}
+
+impl TangentialOutcome {
+    /// This outcome of a solve that continued from `earlier`'s iterate:
+    /// its residual and convergence, the iterations and matvecs of both.
+    pub fn after(self, earlier: &TangentialOutcome) -> Self {
+        Self {
+            iterations: earlier.iterations + self.iterations,
+            matvecs: earlier.matvecs + self.matvecs,
+            ..self
+        }
+    }
 }
 
 /// Friction coefficients applied by the solvers.

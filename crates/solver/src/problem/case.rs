@@ -14,8 +14,9 @@ use crate::conformal::geometry::{
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{check_count, show, ContactError};
 use crate::core::force::PrescribedForce;
-use crate::core::grid::Grid;
+use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
+use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
@@ -61,6 +62,9 @@ pub mod ranges {
 
     /// `load.normal_force_n`, `transient.steps[k].normal_force_n` \[N\].
     pub const NORMAL_FORCE: Range = Range::positive(1e8, "N");
+    /// `load.normal_force_n_per_m`, `transient.steps[k].normal_force_n_per_m`
+    /// \[N/m\] (line contact).
+    pub const NORMAL_FORCE_PER_M: Range = Range::positive(1e10, "N/m");
     /// `load.approach_m`, `transient.steps[k].approach_m` \[m\].
     pub const APPROACH: Range = Range::positive(1e-2, "m").hint(UnitHint::Millimetre);
     /// `geometry.a_per_m`, `geometry.b_per_m` \[1/m\] (radii of 5 µm to 500 m).
@@ -76,6 +80,9 @@ pub mod ranges {
     /// `rolling.force_x_n`, `rolling.force_y_n` \[N\] (a prescribed
     /// tangential force; a solve further needs |F| < mu Fn).
     pub const TANGENTIAL_FORCE: Range = Range::symmetric(1e8, "N");
+    /// `rolling.force_x_n_per_m` \[N/m\] (a prescribed tangential force of a
+    /// line contact; a solve further needs |F| < mu Fn).
+    pub const TANGENTIAL_FORCE_PER_M: Range = Range::symmetric(1e10, "N/m");
     /// `transient.steps[k].shift_x_m`, `shift_y_m` \[m\] (one step).
     pub const SHIFT: Range = Range::symmetric(1e-2, "m").hint(UnitHint::Millimetre);
     /// `transient.steps[k].rotation_rad` \[rad\] (one step).
@@ -317,6 +324,10 @@ pub struct RollingSection {
     /// Prescribed lateral force Fy \[N\], |Fy| < mu Fn, instead of
     /// `creepage_lat`.
     pub force_y_n: Option<f64>,
+    /// Line contact (`geometry.kind = "line"`): prescribed longitudinal
+    /// force per metre Fx' \[N/m\], |Fx'| < mu Fn', instead of
+    /// `creepage_long`.
+    pub force_x_n_per_m: Option<f64>,
 }
 
 impl RollingSection {
@@ -328,13 +339,28 @@ impl RollingSection {
             spin_per_m: c.spin_per_m,
             force_x_n: None,
             force_y_n: None,
+            force_x_n_per_m: None,
         }
     }
 
     /// The creepages (0 in the directions of a prescribed force: the start
-    /// of its iteration) and the prescribed forces; exactly one of creepage
+    /// of its iteration) and the prescribed forces (`force_x_n_per_m` as
+    /// Fx: a line contact's totals are per metre); exactly one of creepage
     /// and force per direction.
     pub fn split(&self) -> Result<(Creepages, PrescribedForce), CaseError> {
+        let (force_x, fx_key) = match (self.force_x_n, self.force_x_n_per_m) {
+            (Some(_), Some(_)) => {
+                return Err(bad(
+                    "rolling.force_x_n_per_m",
+                    "give either `rolling.force_x_n` or `rolling.force_x_n_per_m`, not both",
+                ))
+            }
+            (None, Some(f)) => {
+                ranges::TANGENTIAL_FORCE_PER_M.check("rolling.force_x_n_per_m", f)?;
+                (Some(f), "force_x_n_per_m")
+            }
+            (f, None) => (f, "force_x_n"),
+        };
         let one = |creep: Option<f64>, force: Option<f64>, ck: &str, fk: &str| match (creep, force)
         {
             (Some(_), Some(_)) => Err(bad(
@@ -343,16 +369,13 @@ impl RollingSection {
             )),
             (c, None) => Ok((c.unwrap_or(0.0), None)),
             (None, Some(f)) => {
-                ranges::TANGENTIAL_FORCE.check(&format!("rolling.{fk}"), f)?;
+                if !fk.ends_with("_per_m") {
+                    ranges::TANGENTIAL_FORCE.check(&format!("rolling.{fk}"), f)?;
+                }
                 Ok((0.0, Some(f)))
             }
         };
-        let (xi, fx) = one(
-            self.creepage_long,
-            self.force_x_n,
-            "creepage_long",
-            "force_x_n",
-        )?;
+        let (xi, fx) = one(self.creepage_long, force_x, "creepage_long", fx_key)?;
         let (eta, fy) = one(
             self.creepage_lat,
             self.force_y_n,
@@ -414,6 +437,10 @@ pub enum GeometryKind {
     /// Rail and wheel profiles given as points (y, z) and a wheel rolling
     /// radius (conformal contact).
     ConformalPoints,
+    /// Line contact: two cylinders with parallel axes along y, h = a_per_m
+    /// x², solved in two dimensions (plane strain) per metre of their
+    /// length ([`crate::core::influence`]); exact model only.
+    Line,
 }
 
 impl GeometryKind {
@@ -423,6 +450,7 @@ impl GeometryKind {
             GeometryKind::Quadratic => "quadratic",
             GeometryKind::ConformalCircular => "conformal_circular",
             GeometryKind::ConformalPoints => "conformal_points",
+            GeometryKind::Line => "line",
         }
     }
 }
@@ -432,11 +460,11 @@ impl GeometryKind {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GeometrySection {
-    /// Geometry kind: `"quadratic"`, `"conformal_circular"` or
-    /// `"conformal_points"`.
+    /// Geometry kind: `"quadratic"`, `"conformal_circular"`,
+    /// `"conformal_points"` or `"line"`.
     pub kind: GeometryKind,
-    /// `quadratic`: curvature coefficient A in x (rolling direction) [1/m],
-    /// > 0 (A = 1/(2 R_x) for combined radius R_x).
+    /// `quadratic`, `line`: curvature coefficient A in x (rolling
+    /// direction) [1/m], > 0 (A = 1/(2 R_x) for combined radius R_x).
     pub a_per_m: Option<f64>,
     /// `quadratic`: curvature coefficient B in y (lateral) [1/m], > 0.
     pub b_per_m: Option<f64>,
@@ -461,6 +489,8 @@ pub struct GeometrySection {
 pub enum CaseGeometry {
     /// h = A x² + B y² (the case's `a_per_m`, `b_per_m`).
     Quadratic,
+    /// Line contact: h = A x² per metre of two cylinders (plane strain).
+    Line,
     /// Circular lateral profiles.
     ConformalCircular {
         /// Rail lateral radius \[m\] (convex > 0).
@@ -493,7 +523,12 @@ pub enum CaseGeometry {
 impl CaseGeometry {
     /// Whether the geometry is conformal (curved lateral profiles).
     pub fn is_conformal(&self) -> bool {
-        !matches!(self, CaseGeometry::Quadratic)
+        !matches!(self, CaseGeometry::Quadratic | CaseGeometry::Line)
+    }
+
+    /// Whether the geometry is a line contact (two dimensions).
+    pub fn is_line(&self) -> bool {
+        matches!(self, CaseGeometry::Line)
     }
 
     /// Lateral radii of rail and wheel and the wheel rolling radius \[m\]
@@ -501,7 +536,7 @@ impl CaseGeometry {
     /// `quadratic`.
     pub fn radii(&self) -> Option<(f64, f64, f64)> {
         match *self {
-            CaseGeometry::Quadratic => None,
+            CaseGeometry::Quadratic | CaseGeometry::Line => None,
             CaseGeometry::ConformalCircular {
                 rail_lateral_radius_m,
                 wheel_lateral_radius_m,
@@ -533,6 +568,7 @@ impl CaseGeometry {
     pub fn describe(&self) -> String {
         match self {
             CaseGeometry::Quadratic => "quadratic gap".to_string(),
+            CaseGeometry::Line => "line contact of cylinders (plane strain, per metre)".to_string(),
             CaseGeometry::ConformalCircular {
                 rail_lateral_radius_m: r,
                 wheel_lateral_radius_m: w,
@@ -563,7 +599,7 @@ impl CaseGeometry {
     /// The conformal geometry on the (x, s) grid `grid`.
     pub fn conformal(&self, grid: Grid) -> Result<ConformalGeometry, CaseError> {
         let g = match self {
-            CaseGeometry::Quadratic => return Err(bad(
+            CaseGeometry::Quadratic | CaseGeometry::Line => return Err(bad(
                 "geometry.kind",
                 "the conformal models need `kind = \"conformal_circular\"` or \"conformal_points\"",
             )),
@@ -702,7 +738,9 @@ impl GeometrySection {
             ),
         ];
         for (key, given, owner) in keys {
-            if given && owner != kind {
+            // A line contact's gap is A x².
+            let line_a = kind == GeometryKind::Line && key == "a_per_m";
+            if given && owner != kind && !line_a {
                 return Err(bad(
                     format!("geometry.{key}"),
                     format!(
@@ -713,10 +751,15 @@ impl GeometrySection {
                 ));
             }
         }
-        if kind == GeometryKind::Quadratic && self.wheel_rolling_radius_m.is_some() {
+        if matches!(kind, GeometryKind::Quadratic | GeometryKind::Line)
+            && self.wheel_rolling_radius_m.is_some()
+        {
             return Err(bad(
                 "geometry.wheel_rolling_radius_m",
-                "not used with `kind = \"quadratic\"` (it belongs to the conformal kinds)",
+                format!(
+                    "not used with `kind = \"{}\"` (it belongs to the conformal kinds)",
+                    kind.name()
+                ),
             ));
         }
         let need = |key: &str, v: Option<f64>| {
@@ -734,6 +777,11 @@ impl GeometrySection {
                 ranges::CURVATURE.check("geometry.a_per_m", a)?;
                 ranges::CURVATURE.check("geometry.b_per_m", b)?;
                 Ok((CaseGeometry::Quadratic, a, b))
+            }
+            GeometryKind::Line => {
+                let a = need("a_per_m", self.a_per_m)?;
+                ranges::CURVATURE.check("geometry.a_per_m", a)?;
+                Ok((CaseGeometry::Line, a, 0.0))
             }
             GeometryKind::ConformalCircular => {
                 let r = need("rail_lateral_radius_m", self.rail_lateral_radius_m)?;
@@ -821,13 +869,19 @@ impl GeometrySection {
     }
 }
 
-/// `[load]`: exactly one of `normal_force_n` and `approach_m`.
+/// `[load]`: exactly one of `normal_force_n` (`normal_force_n_per_m` for a
+/// line contact) and `approach_m`.
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSection {
     /// Total normal force \[N\], > 0.
     pub normal_force_n: Option<f64>,
-    /// Approach of the bodies \[m\], > 0.
+    /// Line contact (`geometry.kind = "line"`): normal force per metre of
+    /// the cylinders \[N/m\], > 0.
+    #[serde(default)]
+    pub normal_force_n_per_m: Option<f64>,
+    /// Approach of the bodies \[m\], > 0 (line contact: relative to the
+    /// surface points 1 m from the load, see [`crate::core::influence`]).
     pub approach_m: Option<f64>,
 }
 
@@ -854,6 +908,10 @@ pub struct StepSection {
     pub rotation_rad: f64,
     /// Normal force in the step \[N\], > 0 (default: the `[load]`).
     pub normal_force_n: Option<f64>,
+    /// Line contact: normal force per metre in the step \[N/m\], > 0
+    /// (default: the `[load]`).
+    #[serde(default)]
+    pub normal_force_n_per_m: Option<f64>,
     /// Approach in the step \[m\], > 0 (default: the `[load]`).
     pub approach_m: Option<f64>,
 }
@@ -865,14 +923,16 @@ pub struct GridSection {
     /// Elements in x (default 64 for `exact`, `cect`, `cect_halfspace`, 40
     /// strips for `fastsim`).
     pub nx: Option<usize>,
-    /// Elements in y, along s for the conformal models (default 64; 40 for `fastsim`).
+    /// Elements in y, along s for the conformal models (default 64; 40 for
+    /// `fastsim`; a line contact has one row: not given).
     pub ny: Option<usize>,
     /// Window length in x \[m\] (default 2.4 x the Hertz semi-axis in x;
     /// conformal models 3.2 x).
     pub window_x_m: Option<f64>,
     /// Window width in y \[m\] (default 2.4 x the Hertz semi-axis in y);
     /// conformal models: curvilinear width along s (default 2.6 x the plain
-    /// Hertz semi-axis, at most the arc of +-75° on the mean lateral radius).
+    /// Hertz semi-axis, at most the arc of +-75° on the mean lateral radius);
+    /// a line contact's row is 1 m long: not given.
     pub window_y_m: Option<f64>,
 }
 
@@ -885,8 +945,9 @@ pub struct SolverSection {
     /// Friction-law residual relative to max mu p_n that ends the tangential
     /// iteration [-] (default 1e-7).
     pub tangential_tolerance: Option<f64>,
-    /// Iteration limit of each solver, normal and tangential (default 1000
-    /// normal, 2000 tangential).
+    /// Iteration limit of each solver, normal and tangential, in each
+    /// normal/tangential alternation (default 1000 normal, 2000
+    /// tangential: Newton steps and fallback iterations together).
     pub max_iterations: Option<usize>,
     /// Estimated distance of the tractions to the coupled solution,
     /// relative to the pressures' L1 norm, that ends the normal/tangential
@@ -948,11 +1009,41 @@ fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
     CaseError::from(ContactError::invalid(key, reason))
 }
 
+/// The load of a `[load]` or a step named `key`: per metre
+/// (`normal_force_n_per_m`) for a line contact, else total
+/// (`normal_force_n`); the other force key is refused.
 fn one_load(
     key: &str,
     force: Option<f64>,
+    force_per_m: Option<f64>,
     approach: Option<f64>,
+    line: bool,
 ) -> Result<Option<NormalLoad>, CaseError> {
+    match (line, force, force_per_m) {
+        (true, Some(_), _) => {
+            return Err(bad(
+                format!("{key}.normal_force_n"),
+                format!("a line contact's load is per metre: give `{key}.normal_force_n_per_m` [N/m]"),
+            ))
+        }
+        (false, _, Some(_)) => {
+            return Err(bad(
+                format!("{key}.normal_force_n_per_m"),
+                format!("a force per metre is for `geometry.kind = \"line\"`: give `{key}.normal_force_n` [N]"),
+            ))
+        }
+        (true, None, Some(f)) => {
+            if approach.is_some() {
+                return Err(bad(
+                    format!("{key}.normal_force_n_per_m"),
+                    format!("give either `{key}.normal_force_n_per_m` or `{key}.approach_m`, not both"),
+                ));
+            }
+            ranges::NORMAL_FORCE_PER_M.check(&format!("{key}.normal_force_n_per_m"), f)?;
+            return Ok(Some(NormalLoad::NormalForce(f)));
+        }
+        _ => {}
+    }
     match (force, approach) {
         (Some(_), Some(_)) => Err(bad(
             format!("{key}.normal_force_n"),
@@ -1070,6 +1161,7 @@ impl Case {
 
         let (geometry, a_per_m, b_per_m) = file.geometry.validate()?;
         check_model_geometry(model, &geometry)?;
+        let line = geometry.is_line();
         if geometry.is_conformal() && matches!(model, Model::Exact | Model::Fastsim) {
             notes.push(format!(
                 "the {} model runs on the flattened quadratic gap h = A x² + B y², A = 1/(2 R_xw) = {a_per_m:.6} 1/m, \
@@ -1078,13 +1170,25 @@ impl Case {
             ));
         }
 
-        let load =
-            one_load("load", file.load.normal_force_n, file.load.approach_m)?.ok_or_else(|| {
-                bad(
-                    "load.normal_force_n",
-                    "missing: give `load.normal_force_n` or `load.approach_m`",
-                )
-            })?;
+        let l = &file.load;
+        let load = one_load(
+            "load",
+            l.normal_force_n,
+            l.normal_force_n_per_m,
+            l.approach_m,
+            line,
+        )?
+        .ok_or_else(|| {
+            let force = if line {
+                "normal_force_n_per_m"
+            } else {
+                "normal_force_n"
+            };
+            bad(
+                format!("load.{force}"),
+                format!("missing: give `load.{force}` or `load.approach_m`"),
+            )
+        })?;
 
         let mut prescribed_force = PrescribedForce::default();
         let kinematics = match (&file.rolling, &file.transient) {
@@ -1094,9 +1198,10 @@ impl Case {
                     "`[rolling]` and `[transient]` exclude each other; give one of them",
                 ));
             }
-            (Some(r), None) => {
-                let (r, force) = r.split()?;
+            (Some(rs), None) => {
+                let (r, force) = rs.split()?;
                 r.check_input()?;
+                check_line_rolling(rs, line)?;
                 if force.any() && model != Model::Exact {
                     let key = if force.force_x_n.is_some() {
                         "rolling.force_x_n"
@@ -1144,8 +1249,26 @@ impl Case {
                         let shift_x_m = s
                             .shift_x_m
                             .ok_or_else(|| bad(format!("{key}.shift_x_m"), "missing"))?;
+                        if line && (s.shift_y_m != 0.0 || s.rotation_rad != 0.0) {
+                            let k = if s.shift_y_m != 0.0 {
+                                "shift_y_m"
+                            } else {
+                                "rotation_rad"
+                            };
+                            return Err(bad(
+                                format!("{key}.{k}"),
+                                "a line contact shifts in x only: give 0 or leave it out",
+                            ));
+                        }
+                        let own = one_load(
+                            &key,
+                            s.normal_force_n,
+                            s.normal_force_n_per_m,
+                            s.approach_m,
+                            line,
+                        )?;
                         let step = ShiftStep {
-                            load: one_load(&key, s.normal_force_n, s.approach_m)?.unwrap_or(load),
+                            load: own.unwrap_or(load),
                             shift_x_m,
                             shift_y_m: s.shift_y_m,
                             rotation_rad: s.rotation_rad,
@@ -1241,8 +1364,23 @@ impl Case {
         } else {
             DEFAULT_EXACT_ELEMENTS
         };
+        if line {
+            for (key, given) in [
+                ("grid.ny", grid.ny.is_some()),
+                ("grid.window_y_m", grid.window_y_m.is_some()),
+            ] {
+                if given {
+                    return Err(bad(
+                        key,
+                        "a line contact has one row of strips standing for 1 m of the cylinders: leave it out",
+                    ));
+                }
+            }
+        }
         let nx = grid.nx.unwrap_or(default_n);
-        let ny = grid.ny.unwrap_or(default_n);
+        let ny = grid
+            .ny
+            .unwrap_or(if line { MIN_ELEMENTS } else { default_n });
         for (key, n) in [("grid.nx", nx), ("grid.ny", ny)] {
             check_count(
                 key,
@@ -1285,6 +1423,10 @@ impl Case {
             _ => vec![("load".to_string(), load)],
         };
         for (key, l) in loads {
+            if line {
+                patch_x_m = patch_x_m.max(check_line_patch(&key, l, a_per_m, e_star)?);
+                continue;
+            }
             let h = check_hertz_patch(&key, l, a_per_m, b_per_m, e_star)?;
             patch_x_m = patch_x_m.max(h.semi_axis_x_m);
             patch_y_m = patch_y_m.max(h.semi_axis_y_m);
@@ -1304,12 +1446,30 @@ impl Case {
             )
         };
         let window_x_m = grid.window_x_m.unwrap_or(auto_x_m);
-        let window_y_m = grid.window_y_m.unwrap_or(auto_y_m);
+        let window_y_m = if line {
+            LINE_LENGTH_M
+        } else {
+            grid.window_y_m.unwrap_or(auto_y_m)
+        };
+        if line && window_x_m > LINE_REFERENCE_DISTANCE_M {
+            return Err(bad(
+                "grid.window_x_m",
+                format!(
+                    "a line contact's window must be at most {LINE_REFERENCE_DISTANCE_M} m (the reference distance \
+                     of its displacements), got {} m",
+                    show(window_x_m)
+                ),
+            ));
+        }
+        let (nx_rows, ny) = if line { (1, 1) } else { (2, ny) };
         if model == Model::Exact || model.is_cect() {
             for (key, w, s, n, n_key) in [
                 ("grid.window_x_m", window_x_m, patch_x_m, nx, "grid.nx"),
                 ("grid.window_y_m", window_y_m, patch_y_m, ny, "grid.ny"),
-            ] {
+            ]
+            .into_iter()
+            .take(nx_rows)
+            {
                 if model == Model::Exact && w < 2.0 * s {
                     return Err(bad(
                         key,
@@ -1404,8 +1564,12 @@ impl Case {
         })
     }
 
-    /// The potential contact grid of the exact model.
+    /// The potential contact grid of the exact model (one row for a line
+    /// contact, [`Grid::line`]).
     pub fn grid(&self) -> Result<Grid, CaseError> {
+        if self.geometry.is_line() {
+            return Ok(Grid::line(self.nx, self.window_x_m)?);
+        }
         Ok(Grid::centered(
             self.nx,
             self.ny,
@@ -1540,9 +1704,107 @@ fn check_hertz_patch(
     ))
 }
 
+/// The half-width \[m\] of the contact of a line load on cylinders with
+/// h = A x² (2-D Hertz, Johnson 1985 §4.3: a² = 4 P' R /
+/// (pi E*), R = 1/(2A)), rejected outside [`ranges::HERTZ_SEMI_AXIS`] as
+/// [`check_hertz_patch`] does. For an approach d the half-width solves
+/// d = A a² (ln(2 R0 / a) + 1/2), R0 the reference distance of the
+/// displacements ([`LINE_REFERENCE_DISTANCE_M`]): the approach of the
+/// Hertz pressure on the half-plane (Johnson 1985 §5.2).
+fn check_line_patch(
+    key: &str,
+    load: NormalLoad,
+    a_per_m: f64,
+    e_star: f64,
+) -> Result<f64, CaseError> {
+    let r0 = LINE_REFERENCE_DISTANCE_M;
+    let half = match load {
+        NormalLoad::NormalForce(f) => (2.0 * f / (std::f64::consts::PI * a_per_m * e_star)).sqrt(),
+        NormalLoad::Approach(d) => {
+            // d(a) increases on (0, 2 R0): bisection on a logarithmic scale.
+            let approach = |a: f64| a_per_m * a * a * ((2.0 * r0 / a).ln() + 0.5);
+            let (mut lo, mut hi) = (1e-12_f64, r0);
+            if approach(hi) < d {
+                lo = hi;
+            }
+            for _ in 0..200 {
+                let mid = (lo * hi).sqrt();
+                if approach(mid) < d {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            hi
+        }
+    };
+    let r = ranges::HERTZ_SEMI_AXIS;
+    if r.contains(half) {
+        return Ok(half);
+    }
+    let (field, value) = match load {
+        NormalLoad::NormalForce(f) => ("normal_force_n_per_m", format!("{} N/m", show(f))),
+        NormalLoad::Approach(d) => ("approach_m", format!("{} m", show(d))),
+    };
+    Err(bad(
+        format!("{key}.{field}"),
+        format!(
+            "the 2-D Hertz contact of {value} on these cylinders (A = {} 1/m) and material \
+             (E* = {} Pa) has the half-width {} m, outside {}: check the units \
+             (forces per metre in N/m, lengths in m, curvatures in 1/m, moduli in Pa)",
+            show(a_per_m),
+            show(e_star),
+            show(half),
+            r.describe()
+        ),
+    ))
+}
+
+/// Refuses what a line contact cannot roll with (lateral creepage, spin,
+/// a lateral or total force), and a force per metre on other geometries.
+fn check_line_rolling(r: &RollingSection, line: bool) -> Result<(), CaseError> {
+    if !line {
+        if r.force_x_n_per_m.is_some() {
+            return Err(bad(
+                "rolling.force_x_n_per_m",
+                "a force per metre is for `geometry.kind = \"line\"`: give `rolling.force_x_n` [N]",
+            ));
+        }
+        return Ok(());
+    }
+    let lateral = [
+        ("creepage_lat", r.creepage_lat.is_some_and(|v| v != 0.0)),
+        ("spin_per_m", r.spin_per_m != 0.0),
+        ("force_y_n", r.force_y_n.is_some()),
+    ];
+    for (key, given) in lateral {
+        if given {
+            return Err(bad(
+                format!("rolling.{key}"),
+                "a line contact rolls in x only: give 0 or leave it out",
+            ));
+        }
+    }
+    if r.force_x_n.is_some() {
+        return Err(bad(
+            "rolling.force_x_n",
+            "a line contact's forces are per metre: give `rolling.force_x_n_per_m` [N/m]",
+        ));
+    }
+    Ok(())
+}
+
 /// Rejects a model that cannot run on the geometry; the error names `model`.
 fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CaseError> {
     match (model, geometry) {
+        (Model::Exact, CaseGeometry::Line) => Ok(()),
+        (_, CaseGeometry::Line) => Err(bad(
+            "model",
+            format!(
+                "model = \"{}\": a line contact (`geometry.kind = \"line\"`) is solved with the exact model only",
+                model.name()
+            ),
+        )),
         (Model::Cect | Model::CectHalfspace | Model::HertzCorrected, CaseGeometry::Quadratic) => {
             Err(bad(
                 "model",
@@ -2089,5 +2351,117 @@ mod subsurface_tests {
         assert!(report.human().contains("body 2 max von Mises [MPa]"));
         let json = serde_json::to_string(&report).unwrap();
         assert!(json.contains("\"subsurface\":{\"depths_m\""), "{json}");
+    }
+}
+
+#[cfg(test)]
+mod line_contact_tests {
+    use super::*;
+
+    /// CONTACT's carter2d (examples/carter2d.inp) as a case: 178 900 N/m.
+    const LINE: &str = r#"
+[material]
+shear_modulus_pa = 82.0e9
+poisson_ratio = 0.28
+[friction]
+coefficient = 0.3
+[geometry]
+kind = "line"
+a_per_m = 1.0
+[load]
+normal_force_n_per_m = 178900.0
+[rolling]
+creepage_long = -2.4e-4
+[grid]
+nx = 55
+"#;
+
+    fn err(text: &str) -> String {
+        match Case::from_toml(text) {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_line_case_has_one_row_and_the_2d_hertz_window() {
+        let c = Case::from_toml(LINE).unwrap();
+        assert!(c.geometry.is_line());
+        assert_eq!((c.nx, c.ny), (55, 1));
+        // 2.4 x the 2-D Hertz half-width a = sqrt(4 P' R / (pi E*)) = 1 mm
+        // (R = 0.5 m, E* = G/(1 - nu)).
+        assert!(
+            (c.window_x_m / 2.4e-3 - 1.0).abs() < 1e-3,
+            "{}",
+            c.window_x_m
+        );
+        let g = c.grid().unwrap();
+        assert!(g.is_line() && g.ny == 1 && g.dy_m == LINE_LENGTH_M);
+        assert_eq!(c.load, NormalLoad::NormalForce(178_900.0));
+        // An approach gives the window of the load with that approach:
+        // d = A a² (ln(2 R0 / a) + 1/2) at a = 1 mm.
+        let d = 1e-6 * ((2.0f64 / 1e-3).ln() + 0.5);
+        let by_approach = LINE.replace(
+            "normal_force_n_per_m = 178900.0",
+            &format!("approach_m = {d:e}"),
+        );
+        let c = Case::from_toml(&by_approach).unwrap();
+        assert!(
+            (c.window_x_m / 2.4e-3 - 1.0).abs() < 1e-6,
+            "{}",
+            c.window_x_m
+        );
+    }
+
+    #[test]
+    fn a_line_case_refuses_three_dimensional_keys_naming_them() {
+        for (from, to, key) in [
+            (
+                "normal_force_n_per_m",
+                "normal_force_n",
+                "`load.normal_force_n`",
+            ),
+            ("nx = 55", "nx = 55\nny = 8", "`grid.ny`"),
+            ("nx = 55", "nx = 55\nwindow_y_m = 0.01", "`grid.window_y_m`"),
+            (
+                "a_per_m = 1.0",
+                "a_per_m = 1.0\nb_per_m = 1.0",
+                "`geometry.b_per_m`",
+            ),
+            (
+                "creepage_long = -2.4e-4",
+                "creepage_lat = 1e-4",
+                "`rolling.creepage_lat`",
+            ),
+            (
+                "creepage_long = -2.4e-4",
+                "spin_per_m = 0.1",
+                "`rolling.spin_per_m`",
+            ),
+            (
+                "creepage_long = -2.4e-4",
+                "force_x_n = 100.0",
+                "`rolling.force_x_n`",
+            ),
+            ("nx = 55", "nx = 55\nwindow_x_m = 2.0", "`grid.window_x_m`"),
+            ("model", "model", "`model`"),
+        ] {
+            let text = if key == "`model`" {
+                format!("model = \"fastsim\"\n{LINE}")
+            } else {
+                LINE.replace(from, to)
+            };
+            let m = err(&text);
+            assert!(m.contains(key), "{key}: {m}");
+        }
+        // A force per metre on a three-dimensional geometry.
+        let quad = LINE
+            .replace("kind = \"line\"", "kind = \"quadratic\"\nb_per_m = 1.0")
+            .replace("nx = 55", "nx = 16\nny = 16");
+        assert!(err(&quad).contains("`load.normal_force_n_per_m`"));
+        // A prescribed force per metre is the core's Fx.
+        let force = LINE.replace("creepage_long = -2.4e-4", "force_x_n_per_m = 30000.0");
+        let c = Case::from_toml(&force).unwrap();
+        assert_eq!(c.prescribed_force.force_x_n, Some(30_000.0));
     }
 }

@@ -215,8 +215,29 @@ impl ExactRun {
             .iter()
             .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
         let mut notes = Vec::new();
+        if self.grid.is_line() {
+            notes.push(
+                "line contact (plane strain): forces per metre of the cylinders [N/m], areas per metre [m²/m], \
+                 the approach relative to the surface 1 m from the load"
+                    .to_string(),
+            );
+        }
         if totals.status != SolveStatus::Converged {
-            notes.push("a solver hit its iteration limit: the result is the last iterate ([solver] max_iterations)".to_string());
+            // Name the limit each failed step stopped at (that key raises it).
+            let mut keys: Vec<&str> = self
+                .solutions
+                .iter()
+                .filter_map(|s| s.info.limit.map(|l| l.key()))
+                .collect();
+            keys.sort_unstable();
+            keys.dedup();
+            notes.push(format!(
+                "a solver hit its iteration limit: the result is the last iterate (raise {})",
+                keys.iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            ));
         }
         let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
         Report {

@@ -4,6 +4,7 @@
 //! contact (`wheelrail`). Each reference number names its source.
 
 mod conformal;
+mod line_contact;
 mod physics;
 mod profiles;
 mod wheelrail;

@@ -23,6 +23,7 @@ class GeometryKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     GEOMETRY_KIND_QUADRATIC: _ClassVar[GeometryKind]
     GEOMETRY_KIND_CONFORMAL_CIRCULAR: _ClassVar[GeometryKind]
     GEOMETRY_KIND_CONFORMAL_POINTS: _ClassVar[GeometryKind]
+    GEOMETRY_KIND_LINE: _ClassVar[GeometryKind]
 
 class SolveStatus(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -95,6 +96,7 @@ GEOMETRY_KIND_UNSPECIFIED: GeometryKind
 GEOMETRY_KIND_QUADRATIC: GeometryKind
 GEOMETRY_KIND_CONFORMAL_CIRCULAR: GeometryKind
 GEOMETRY_KIND_CONFORMAL_POINTS: GeometryKind
+GEOMETRY_KIND_LINE: GeometryKind
 SOLVE_STATUS_UNSPECIFIED: SolveStatus
 SOLVE_STATUS_CONVERGED: SolveStatus
 SOLVE_STATUS_MAX_ITERATIONS: SolveStatus
@@ -194,40 +196,46 @@ class GeometrySection(_message.Message):
     def __init__(self, kind: _Optional[_Union[GeometryKind, str]] = ..., a_per_m: _Optional[float] = ..., b_per_m: _Optional[float] = ..., rail_lateral_radius_m: _Optional[float] = ..., wheel_lateral_radius_m: _Optional[float] = ..., wheel_rolling_radius_m: _Optional[float] = ..., rail_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wheel_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., extra_gap_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class LoadSection(_message.Message):
-    __slots__ = ("normal_force_n", "approach_m")
+    __slots__ = ("normal_force_n", "approach_m", "normal_force_n_per_m")
     NORMAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     APPROACH_M_FIELD_NUMBER: _ClassVar[int]
+    NORMAL_FORCE_N_PER_M_FIELD_NUMBER: _ClassVar[int]
     normal_force_n: float
     approach_m: float
-    def __init__(self, normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ...) -> None: ...
+    normal_force_n_per_m: float
+    def __init__(self, normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ...) -> None: ...
 
 class Creepages(_message.Message):
-    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m", "force_x_n", "force_y_n")
+    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m", "force_x_n", "force_y_n", "force_x_n_per_m")
     CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
     CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
     SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
     FORCE_X_N_FIELD_NUMBER: _ClassVar[int]
     FORCE_Y_N_FIELD_NUMBER: _ClassVar[int]
+    FORCE_X_N_PER_M_FIELD_NUMBER: _ClassVar[int]
     creepage_long: float
     creepage_lat: float
     spin_per_m: float
     force_x_n: float
     force_y_n: float
-    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ...) -> None: ...
+    force_x_n_per_m: float
+    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ...) -> None: ...
 
 class ShiftStep(_message.Message):
-    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m")
+    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "normal_force_n_per_m")
     SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
     SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
     ROTATION_RAD_FIELD_NUMBER: _ClassVar[int]
     NORMAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     APPROACH_M_FIELD_NUMBER: _ClassVar[int]
+    NORMAL_FORCE_N_PER_M_FIELD_NUMBER: _ClassVar[int]
     shift_x_m: float
     shift_y_m: float
     rotation_rad: float
     normal_force_n: float
     approach_m: float
-    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ...) -> None: ...
+    normal_force_n_per_m: float
+    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ...) -> None: ...
 
 class TransientSection(_message.Message):
     __slots__ = ("steps",)
