@@ -203,6 +203,7 @@ fn tangential_solves(c: &mut Criterion) {
             shift_x_m: sx,
             shift_y_m: 0.0,
             rotation_rad: 0.0,
+            rolling_m: 0.0,
         };
         let p = circle(n, Kinematics::Transient(vec![step(0.0), step(0.4e-6)]));
         let cache = KernelCache::default();

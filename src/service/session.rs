@@ -417,6 +417,7 @@ impl Session {
                         .ok_or_else(|| ServiceError::invalid("step.shift.shift_x_m", "missing"))?,
                     shift_y_m: sh.shift_y_m,
                     rotation_rad: sh.rotation_rad,
+                    rolling_m: 0.0,
                 };
                 check_shift_step("step.shift", &shift)?;
                 Motion::Shift(shift)

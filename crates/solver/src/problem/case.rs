@@ -1061,6 +1061,7 @@ impl Case {
                             shift_x_m,
                             shift_y_m: s.shift_y_m,
                             rotation_rad: s.rotation_rad,
+                            rolling_m: 0.0,
                         };
                         check_shift_step(&key, &step)?;
                         steps.push(step);
@@ -1534,6 +1535,7 @@ fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftSt
             shift_x_m: 0.0,
             shift_y_m: 0.0,
             rotation_rad: 0.0,
+            rolling_m: 0.0,
         });
     }
     Ok(out)
