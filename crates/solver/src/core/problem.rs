@@ -209,31 +209,37 @@ impl ShiftStep {
         Ok(())
     }
 
-    /// The rolling distance in elements of `grid`: `rolling_m / dx_m`,
-    /// which must be a whole number (within 1e-6 of an element) smaller
-    /// than `nx` (the tractions are carried by whole elements, without
-    /// interpolation); `key` names the step.
+    /// The rolling distance in elements of `grid` ([`rolling_elements`]);
+    /// `key` names the step.
     pub fn rolled_elements(&self, grid: &Grid, key: &str) -> Result<usize, ContactError> {
-        let k = self.rolling_m / grid.dx_m;
-        let whole = k.round();
-        if !(k.is_finite() && k >= 0.0)
-            || (k - whole).abs() > WHOLE_ELEMENTS_TOLERANCE * whole.max(1.0)
-            || whole >= grid.nx as f64
-        {
-            return Err(ContactError::invalid(
-                format!("{key}.rolling_m"),
-                format!(
-                    "must be a whole number of elements dx = {} m below the grid length ({} \
-                     elements): the tractions roll by whole elements; got {} m = {} dx",
-                    crate::core::error::show(grid.dx_m),
-                    grid.nx,
-                    crate::core::error::show(self.rolling_m),
-                    crate::core::error::show(k)
-                ),
-            ));
-        }
-        Ok(whole as usize)
+        rolling_elements(&format!("{key}.rolling_m"), self.rolling_m, grid)
     }
+}
+
+/// A rolling distance in elements of `grid`: `rolling_m / dx_m`, which
+/// must be a whole number (within 1e-6 of an element) below `nx` (the
+/// tractions are carried by whole elements, without interpolation); the
+/// error names `key`.
+pub fn rolling_elements(key: &str, rolling_m: f64, grid: &Grid) -> Result<usize, ContactError> {
+    let k = rolling_m / grid.dx_m;
+    let whole = k.round();
+    if !(k.is_finite() && k >= 0.0)
+        || (k - whole).abs() > WHOLE_ELEMENTS_TOLERANCE * whole.max(1.0)
+        || whole >= grid.nx as f64
+    {
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "must be a whole number of elements dx = {} m below the grid length ({} \
+                 elements): the tractions roll by whole elements; got {} m = {} dx",
+                crate::core::error::show(grid.dx_m),
+                grid.nx,
+                crate::core::error::show(rolling_m),
+                crate::core::error::show(k)
+            ),
+        ));
+    }
+    Ok(whole as usize)
 }
 
 /// What moves.
