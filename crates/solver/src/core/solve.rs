@@ -282,7 +282,10 @@ impl ContactSolver {
     /// tractions of the step this solver solved last (from the unloaded
     /// state after [`ContactSolver::new`] or [`ContactSolver::reset`]).
     /// `problem` supplies everything but the step and must be transient
-    /// (its own steps are not solved). This is how a co-simulation session
+    /// (its own steps are not solved). Its undeformed distance `gap_m` may
+    /// change from one step to the next: world-fixed shift steps in which
+    /// the geometry moves with the bodies over the grid (the tractions stay
+    /// where they are, unlike a rolling step's). This is how a co-simulation session
     /// advances one time step at a time; [`ContactSolver::solve`] of a
     /// transient problem is `reset` followed by one call per step.
     ///
