@@ -205,12 +205,35 @@ fn tangential_solves(c: &mut Criterion) {
             shift_x_m: sx,
             shift_y_m: 0.0,
             rotation_rad: 0.0,
+            rolling_m: 0.0,
         };
         let p = circle(n, Kinematics::Transient(vec![step(0.0), step(0.4e-6)]));
         let cache = KernelCache::default();
         let mut s = ContactSolver::new(&p, &cache);
         g.bench_with_input(BenchmarkId::new("transient_2_steps", n), &n, |b, _| {
             b.iter(|| black_box(s.solve(&p).unwrap()))
+        });
+    }
+    // Transient rolling: one more step of one element (dq = dx) at the
+    // creepages of `steady_rolling`, from a patch rolled in for three
+    // crossings (each iteration rolls on from the last).
+    for n in [32, 64] {
+        let Kinematics::SteadyRolling(c) = creep(1.0) else {
+            unreachable!()
+        };
+        let mut p = circle(n, creep(1.0));
+        let step = ShiftStep::rolling(p.load, p.grid.dx_m, &c);
+        p.kinematics = Kinematics::Transient(vec![step; 3 * n]);
+        let cache = KernelCache::default();
+        let mut s = ContactSolver::new(&p, &cache);
+        s.solve(&p).unwrap();
+        let last = s.solve_next_step(&p, &step).unwrap();
+        println!(
+            "counts transient_rolling_step/{n}: tangential iterations {}, operator products {}",
+            last.info.tangential_iterations, last.info.matvecs
+        );
+        g.bench_with_input(BenchmarkId::new("transient_rolling_step", n), &n, |b, _| {
+            b.iter(|| black_box(s.solve_next_step(&p, &step).unwrap()))
         });
     }
     g.finish();

@@ -202,7 +202,8 @@ pub fn wire_creepages(c: &Creepages) -> pb::Creepages {
     }
 }
 
-fn step_section(s: &pb::ShiftStep) -> StepSection {
+/// The case file's step section of a wire step.
+pub fn step_section(s: &pb::ShiftStep) -> StepSection {
     StepSection {
         shift_x_m: s.shift_x_m,
         shift_y_m: s.shift_y_m,
@@ -210,6 +211,9 @@ fn step_section(s: &pb::ShiftStep) -> StepSection {
         normal_force_n: s.normal_force_n,
         normal_force_n_per_m: s.normal_force_n_per_m,
         approach_m: s.approach_m,
+        creepage_long: s.creepage_long,
+        creepage_lat: s.creepage_lat,
+        spin_per_m: s.spin_per_m,
     }
 }
 
@@ -256,6 +260,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         },
         transient: match &c.kinematics {
             Some(pb::patch_case::Kinematics::Transient(t)) => Some(TransientSection {
+                rolling_step_m: t.rolling_step_m,
                 steps: t.steps.iter().map(step_section).collect(),
             }),
             _ => None,

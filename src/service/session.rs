@@ -26,7 +26,7 @@ use std::sync::Arc;
 
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics, ShiftStep};
-use crate::problem::case::{check_shift_step, ranges, Model};
+use crate::problem::case::{ranges, transient_step, Model};
 use crate::service::convert;
 use crate::service::engine::{EngineState, PatchEngine};
 use crate::service::pb;
@@ -410,15 +410,13 @@ impl Session {
                         "give the step's load in step.normal_force_n or step.approach_m",
                     ));
                 }
-                let shift = ShiftStep {
+                let shift = transient_step(
+                    "step.shift",
+                    &convert::step_section(sh),
                     load,
-                    shift_x_m: sh
-                        .shift_x_m
-                        .ok_or_else(|| ServiceError::invalid("step.shift.shift_x_m", "missing"))?,
-                    shift_y_m: sh.shift_y_m,
-                    rotation_rad: sh.rotation_rad,
-                };
-                check_shift_step("step.shift", &shift)?;
+                    self.engine.case().rolling_step_m,
+                    self.engine.case().geometry.is_line(),
+                )?;
                 Motion::Shift(shift)
             }
         };

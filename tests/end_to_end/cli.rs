@@ -210,6 +210,31 @@ fn transient_shift_follows_cattaneo() {
 }
 
 #[test]
+fn transient_rolling_example_holds_contacts_force() {
+    // The example is CONTACT's catt_to_cart cases 1-9 (github.com/eve70a/
+    // CONTACT, examples/catt_to_cart.inp and .ref_out, commit 424e4e6): at
+    // the shift and creepages CONTACT found, Fx = -0.657 mu Fn in every
+    // step, and 305 (case 1) then 422 (case 2) of the 621 contact elements
+    // adhere ("Tang: final element division: A, S=").
+    let v = solve_json(&example("transient_rolling.toml"), &[]);
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 9);
+    for (k, s) in steps.iter().enumerate() {
+        check_keys(s);
+        let ratio = f(s, "fx_n") / (0.4013 * f(s, "normal_force_n"));
+        assert!(
+            (ratio / -0.657 - 1.0).abs() < 0.01,
+            "case {}: Fx/(mu Fn) {ratio}",
+            k + 1
+        );
+    }
+    for (k, adhesion) in [(0, 305.0), (1, 422.0)] {
+        let got = f(&steps[k], "adhesion_fraction") * 621.0;
+        assert!((got - adhesion).abs() < 0.5, "case {}: {got}", k + 1);
+    }
+}
+
+#[test]
 fn fastsim_example_runs() {
     let v = solve_json(&example("fastsim_ellipse.toml"), &[]);
     assert_eq!(v["model"], "fastsim");

@@ -48,6 +48,15 @@ fn shift(x: f64) -> pb::ShiftStep {
     }
 }
 
+/// A transient rolling step at creepages (xi, 0.5 xi, 0).
+fn roll(xi: f64) -> pb::ShiftStep {
+    pb::ShiftStep {
+        creepage_long: Some(xi),
+        creepage_lat: Some(0.5 * xi),
+        ..Default::default()
+    }
+}
+
 /// `sphere` with transient shift steps of the rail in x [m].
 fn transient(n: u32, shifts: &[f64]) -> pb::PatchCase {
     pb::PatchCase {
@@ -58,6 +67,7 @@ fn transient(n: u32, shifts: &[f64]) -> pb::PatchCase {
         kinematics: Some(pb::patch_case::Kinematics::Transient(
             pb::TransientSection {
                 steps: shifts.iter().map(|&x| shift(x)).collect(),
+                ..Default::default()
             },
         )),
         ..sphere(pb::Model::Exact, n)
@@ -297,6 +307,7 @@ fn step(index: u64, motion: StepMotion, mark: bool) -> pb::SessionRequest {
     };
     match motion {
         StepMotion::Shift(x) => s.shift = Some(shift(x)),
+        StepMotion::Roll(c) => s.shift = Some(roll(c)),
         StepMotion::Creep(c) => {
             s.creepages = Some(pb::Creepages {
                 creepage_long: c,
@@ -313,6 +324,8 @@ fn step(index: u64, motion: StepMotion, mark: bool) -> pb::SessionRequest {
 #[derive(Clone, Copy)]
 enum StepMotion {
     Shift(f64),
+    /// A transient rolling step at this longitudinal creepage.
+    Roll(f64),
     Creep(f64),
 }
 
@@ -353,6 +366,48 @@ fn error(r: &pb::SessionResponse) -> &pb::ItemError {
         Some(pb::session_response::Kind::Error(e)) => e,
         other => panic!("expected an error, got {other:?}"),
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn transient_rolling_session_matches_the_batch_solve_and_replays_bit_for_bit() {
+    let (server, mut client) = server().await;
+    // A shift, then rolling steps of one element (0.5 mm of 20 x 10 mm).
+    let creepages = [1e-3, 1.2e-3, 1.2e-3];
+    let mut case = transient(20, &[1e-6]);
+    if let Some(pb::patch_case::Kinematics::Transient(t)) = case.kinematics.as_mut() {
+        t.rolling_step_m = Some(5e-4);
+        t.steps.extend(creepages.iter().map(|&c| roll(c)));
+    }
+    let g = case.grid.as_mut().unwrap();
+    g.window_x_m = Some(1e-2);
+    g.window_y_m = Some(1e-2);
+    let whole = solve_patch(&mut client, case.clone()).await;
+    assert_eq!(whole.steps.len(), 4);
+    let mut msgs = vec![open(case, true), step(0, StepMotion::Shift(1e-6), true)];
+    for _ in 0..2 {
+        msgs.extend((1..4).map(|k| step(k, StepMotion::Roll(creepages[k as usize - 1]), false)));
+        msgs.push(rollback(0));
+    }
+    let r = session(&mut client, msgs).await;
+    for k in 0..4 {
+        assert_eq!(
+            bits(totals(step_result(&r[1 + k]).result.as_ref().unwrap())),
+            bits(totals(&whole.steps[k])),
+            "step {k}"
+        );
+    }
+    // The tractions roll along: the same creepage, another answer.
+    assert_ne!(bits(totals(&whole.steps[2])), bits(totals(&whole.steps[3])));
+    // Replayed from the mark: the same bits, fields included.
+    for k in 1..4 {
+        let (a, b) = (step_result(&r[1 + k]), step_result(&r[5 + k]));
+        assert_eq!(
+            bits(totals(a.result.as_ref().unwrap())),
+            bits(totals(b.result.as_ref().unwrap()))
+        );
+        assert_eq!(a.fields, b.fields, "step {k}");
+    }
+    server.shutdown().await;
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -66,6 +66,9 @@ enum Kind {
     Frictionless,
     Rolling,
     Transient,
+    /// A shift, then rolling steps of one element (0.6 mm of a 16 x 16
+    /// grid over 9.6 mm).
+    TransientRolling,
 }
 
 /// h = x² + y² (R = 0.5 m), 10 kN, steel on steel, `n` x `n` elements,
@@ -82,16 +85,23 @@ fn case(model: pb::Model, kind: Kind, n: u32) -> pb::PatchCase {
             c.friction = friction;
             c.kinematics = Some(pb::patch_case::Kinematics::Rolling(pb::Creepages::default()));
         }
-        Kind::Transient => {
+        Kind::Transient | Kind::TransientRolling => {
             c.friction = friction;
+            let rolling = matches!(kind, Kind::TransientRolling);
             c.kinematics = Some(pb::patch_case::Kinematics::Transient(
                 pb::TransientSection {
                     steps: vec![pb::ShiftStep {
                         shift_x_m: Some(1e-6),
                         ..Default::default()
                     }],
+                    rolling_step_m: rolling.then_some(6e-4),
                 },
             ));
+            if rolling {
+                let g = c.grid.as_mut().unwrap();
+                g.window_x_m = Some(9.6e-3);
+                g.window_y_m = Some(9.6e-3);
+            }
         }
     }
     c
@@ -157,6 +167,20 @@ fn valid(kind: Kind, k: u64) -> Step {
                 ..Default::default()
             })
         }
+        Kind::TransientRolling if k == 0 => {
+            s.shift = Some(pb::ShiftStep {
+                shift_x_m: Some(1e-6),
+                ..Default::default()
+            })
+        }
+        Kind::TransientRolling => {
+            s.shift = Some(pb::ShiftStep {
+                creepage_long: Some(1e-3 * (1.0 + 0.1 * f)),
+                creepage_lat: Some(0.5e-3),
+                spin_per_m: Some(0.2),
+                ..Default::default()
+            })
+        }
     }
     s
 }
@@ -190,6 +214,17 @@ fn prescribed_force(s: &mut Step) {
     s.creepages.as_mut().unwrap().force_x_n = Some(-100.0);
 }
 
+/// A rolling step that also gives a shift.
+fn rolling_shift(s: &mut Step) {
+    s.shift.as_mut().unwrap().shift_x_m = Some(1e-6);
+}
+
+const ROLLING_SHIFT: Refusal = Refusal {
+    what: "rolling step with a shift",
+    change: rolling_shift,
+    code: Code::InvalidArgument,
+    field: "step.shift.shift_x_m",
+};
 const PRESCRIBED_FORCE: Refusal = Refusal {
     what: "prescribed force",
     change: prescribed_force,
@@ -341,6 +376,14 @@ async fn refused_patch_steps_leave_exact_sessions_bit_for_bit_as_they_were() {
         Kind::Transient,
         true,
         &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID],
+    )
+    .await;
+    refusals_leave_no_trace(
+        &mut client,
+        case(exact, Kind::TransientRolling, 16),
+        Kind::TransientRolling,
+        true,
+        &[NEGATIVE_LOAD, NO_CONTACT, BEYOND_GRID, ROLLING_SHIFT],
     )
     .await;
     server.shutdown().await;

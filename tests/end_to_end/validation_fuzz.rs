@@ -202,6 +202,7 @@ fn transient() -> pb::PatchCase {
         kinematics: Some(pb::patch_case::Kinematics::Transient(
             pb::TransientSection {
                 steps: vec![step, step],
+                ..Default::default()
             },
         )),
         ..rolling(pb::Model::Exact)

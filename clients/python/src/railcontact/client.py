@@ -595,7 +595,9 @@ class PatchSession(_Session):
         spin_per_m)`` or a mapping; ``normal_force_n`` or ``approach_m``: the
         step's load (default: the case's); ``shift`` (transient sessions):
         a ``ShiftStep`` mapping (``shift_x_m``, ``shift_y_m``,
-        ``rotation_rad``); ``mark``: remember the state after this step for
+        ``rotation_rad``; or ``creepage_long``, ``creepage_lat``,
+        ``spin_per_m`` for a step that rolls the case's
+        ``transient.rolling_step_m``); ``mark``: remember the state after this step for
         :meth:`rollback`; ``step_index``: default the next one.
         """
         step = self._step(

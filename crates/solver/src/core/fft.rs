@@ -1544,7 +1544,7 @@ mod tests {
             p[iy * nx] = 0.0;
         }
         let mut sp = vec![0.0; nx * ny];
-        crate::core::tangential::shift_upstream(&grid, &p, &mut sp);
+        crate::core::tangential::shift_upstream(&grid, 1, &p, &mut sp);
         let (mut b, mut a, mut a_s) = (vec![0.0; nx * ny], vec![0.0; nx * ny], vec![0.0; nx * ny]);
         let mut ws = steady.workspace();
         steady.apply(

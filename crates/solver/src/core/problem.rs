@@ -17,7 +17,19 @@
 //!   trailing edge (small x).
 //! * Transient (shift) steps: `shift_x_m`, `shift_y_m` and `rotation_rad` are
 //!   the rigid displacement of body 1 relative to body 2 in the step (rotation
-//!   about the n axis through the origin).
+//!   about the n axis through the origin). The slip distance in the step is
+//!   S(x) = W(x) + u(x) - u'(x), W the rigid shift, u the displacement
+//!   difference of body 1 relative to body 2 now and u' that of the previous
+//!   step at the same point.
+//! * Transient rolling steps (moving coordinates): the grid moves with the
+//!   contact patch, which rolls `rolling_m` = dq in +x over both bodies in
+//!   the step, so the material now at x was at x + dq one step before. The
+//!   rigid shift is W = dq w, w the creepages' rigid slip, and the slip per
+//!   unit rolled distance is
+//!   s(x) = S(x)/dq = w(x) + (u(x) - u'(x + dq))/dq,
+//!   the previous step's tractions carried dq upstream. When the tractions
+//!   no longer change, s = w + (u(x) - u(x + dq))/dq, which tends to the
+//!   steady-rolling s = w - du/dx as dq -> 0. dq = 0 is a shift step.
 //! * Subsurface stresses and displacements ([`crate::core::subsurface`]) are
 //!   reported for both bodies in this one frame (x, y, n), stresses tension
 //!   positive; the depth runs into each body (n = +depth in body 1, −depth in
@@ -153,17 +165,86 @@ pub struct ShiftStep {
     pub shift_y_m: f64,
     /// Rigid rotation about the n axis during the step \[rad\].
     pub rotation_rad: f64,
+    /// Distance the contact patch rolls in +x over both bodies during the
+    /// step \[m\], in moving coordinates (see the module conventions): the
+    /// previous step's tractions are carried this far upstream. 0 (the
+    /// default) is a shift step; otherwise a whole number of elements of
+    /// the grid (`dx_m`), checked by [`ShiftStep::rolled_elements`].
+    #[serde(default)]
+    pub rolling_m: f64,
 }
 
+/// Relative distance to a whole number of elements below which a rolling
+/// distance counts as whole (rounding of dq = k dx in decimal input).
+const WHOLE_ELEMENTS_TOLERANCE: f64 = 1e-6;
+
 impl ShiftStep {
-    /// Checks the load and that the shifts are finite; `key` names the step
-    /// (e.g. `transient.steps[3]`).
+    /// A transient rolling step of `rolling_m` \[m\] at `creepages`: the
+    /// rigid shift is the creepages' rigid slip times the distance rolled
+    /// (shift_x = xi dq, shift_y = eta dq, rotation = phi dq).
+    pub fn rolling(load: NormalLoad, rolling_m: f64, creepages: &Creepages) -> Self {
+        Self {
+            load,
+            shift_x_m: creepages.creepage_long * rolling_m,
+            shift_y_m: creepages.creepage_lat * rolling_m,
+            rotation_rad: creepages.spin_per_m * rolling_m,
+            rolling_m,
+        }
+    }
+
+    /// Checks the load and that the shifts are finite and the rolling
+    /// distance finite and >= 0; `key` names the step (e.g.
+    /// `transient.steps[3]`).
     pub fn validate(&self, key: &str) -> Result<(), ContactError> {
         validate_load(key, &self.load)?;
         require_finite(&format!("{key}.shift_x_m"), self.shift_x_m)?;
         require_finite(&format!("{key}.shift_y_m"), self.shift_y_m)?;
-        require_finite(&format!("{key}.rotation_rad"), self.rotation_rad)
+        require_finite(&format!("{key}.rotation_rad"), self.rotation_rad)?;
+        let rolling_key = format!("{key}.rolling_m");
+        require_finite(&rolling_key, self.rolling_m)?;
+        if self.rolling_m < 0.0 {
+            return Err(ContactError::invalid(
+                rolling_key,
+                format!(
+                    "must be >= 0 (the patch rolls in +x), got {}",
+                    crate::core::error::show(self.rolling_m)
+                ),
+            ));
+        }
+        Ok(())
     }
+
+    /// The rolling distance in elements of `grid` ([`rolling_elements`]);
+    /// `key` names the step.
+    pub fn rolled_elements(&self, grid: &Grid, key: &str) -> Result<usize, ContactError> {
+        rolling_elements(&format!("{key}.rolling_m"), self.rolling_m, grid)
+    }
+}
+
+/// A rolling distance in elements of `grid`: `rolling_m / dx_m`, which
+/// must be a whole number (within 1e-6 of an element) below `nx` (the
+/// tractions are carried by whole elements, without interpolation); the
+/// error names `key`.
+pub fn rolling_elements(key: &str, rolling_m: f64, grid: &Grid) -> Result<usize, ContactError> {
+    let k = rolling_m / grid.dx_m;
+    let whole = k.round();
+    if !(k.is_finite() && k >= 0.0)
+        || (k - whole).abs() > WHOLE_ELEMENTS_TOLERANCE * whole.max(1.0)
+        || whole >= grid.nx as f64
+    {
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "must be a whole number of elements dx = {} m below the grid length ({} \
+                 elements): the tractions roll by whole elements; got {} m = {} dx",
+                crate::core::error::show(grid.dx_m),
+                grid.nx,
+                crate::core::error::show(rolling_m),
+                crate::core::error::show(k)
+            ),
+        ));
+    }
+    Ok(whole as usize)
 }
 
 /// What moves.
@@ -174,8 +255,9 @@ pub enum Kinematics {
     Frictionless,
     /// Steady-state rolling with the given creepages.
     SteadyRolling(Creepages),
-    /// A sequence of shift steps starting from the unloaded state; each step
-    /// starts from the previous step's tractions.
+    /// A sequence of shift and rolling steps starting from the unloaded
+    /// state; each step starts from the previous step's tractions (carried
+    /// upstream by the distance rolled).
     Transient(Vec<ShiftStep>),
 }
 
@@ -255,7 +337,9 @@ impl ContactProblem {
                     ));
                 }
                 for (k, s) in steps.iter().enumerate() {
-                    s.validate(&format!("transient.steps[{k}]"))?;
+                    let key = format!("transient.steps[{k}]");
+                    s.validate(&key)?;
+                    s.rolled_elements(&self.grid, &key)?;
                 }
             }
         }

@@ -289,7 +289,10 @@ impl ContactSolver {
     /// tractions of the step this solver solved last (from the unloaded
     /// state after [`ContactSolver::new`] or [`ContactSolver::reset`]).
     /// `problem` supplies everything but the step and must be transient
-    /// (its own steps are not solved). This is how a co-simulation session
+    /// (its own steps are not solved). Its undeformed distance `gap_m` may
+    /// change from one step to the next: world-fixed shift steps in which
+    /// the geometry moves with the bodies over the grid (the tractions stay
+    /// where they are, unlike a rolling step's). This is how a co-simulation session
     /// advances one time step at a time; [`ContactSolver::solve`] of a
     /// transient problem is `reset` followed by one call per step.
     ///
@@ -304,6 +307,7 @@ impl ContactSolver {
         let t0 = Instant::now();
         problem.validate()?;
         step.validate("step")?;
+        step.rolled_elements(&self.grid, "step")?;
         if problem.grid != self.grid {
             return Err(ContactError::invalid(
                 "grid",
@@ -324,13 +328,30 @@ impl ContactSolver {
 
     /// One transient step from the current history (Kalker 1990 §5.2: the
     /// slip is the rigid shift plus the change of the displacement
-    /// difference since the previous step).
+    /// difference since the previous step; a rolling step first carries
+    /// the previous tractions and states upstream by the distance rolled,
+    /// see [`crate::core::problem`]).
     fn transient_step(
         &mut self,
         problem: &ContactProblem,
         step: &ShiftStep,
     ) -> Result<ContactSolution, ContactError> {
         let first = self.transient_steps == 0;
+        let rolled = step.rolled_elements(&self.grid, "step")?;
+        // The previous pressures where the material now at each element
+        // was (`h_eff` is free until the normal solve).
+        let previous_pn: &[f64] = if rolled > 0 {
+            shift_upstream(&self.grid, rolled, &self.tr.px, &mut self.tmp_x);
+            shift_upstream(&self.grid, rolled, &self.tr.py, &mut self.tmp_y);
+            std::mem::swap(&mut self.tr.px, &mut self.tmp_x);
+            std::mem::swap(&mut self.tr.py, &mut self.tmp_y);
+            shift_upstream(&self.grid, rolled, &self.pn, &mut self.h_eff);
+            shift_upstream(&self.grid, rolled, &self.tr.state, &mut self.prev_state);
+            &self.h_eff
+        } else {
+            self.prev_state.copy_from_slice(&self.tr.state);
+            &self.pn
+        };
         // Displacement difference of the previous state.
         if first {
             self.old_ux.fill(0.0);
@@ -340,7 +361,7 @@ impl ContactSolver {
             let inputs: &[(Component, &[f64])] = &[
                 (Component::X, &self.tr.px),
                 (Component::Y, &self.tr.py),
-                (Component::N, &self.pn),
+                (Component::N, previous_pn),
             ];
             let used = if problem.material.is_coupled() { 3 } else { 2 };
             self.displacement.apply(
@@ -352,7 +373,6 @@ impl ContactSolver {
                 ],
             );
         }
-        self.prev_state.copy_from_slice(&self.tr.state);
         let mut sol = self.solve_one(
             problem,
             step.load,
@@ -472,7 +492,7 @@ impl ContactSolver {
                         // element upstream (exact: the patch does not touch
                         // the grid border).
                         let dx = grid.dx_m;
-                        shift_upstream(&grid, &self.pn, &mut self.h_eff);
+                        shift_upstream(&grid, 1, &self.pn, &mut self.h_eff);
                         for (p, f) in [(&self.pn, 1.0 / dx), (&self.h_eff, -1.0 / dx)] {
                             add_tangential_of_normal(
                                 &self.displacement,
@@ -894,6 +914,93 @@ mod tests {
         }
         let got = solve_last(&mut s, &path[2]).totals;
         assert_eq!(format!("{got:?}"), format!("{:?}", want[2]));
+    }
+
+    /// The creepages of [`rolling`] with factor 1.
+    fn base_creepages() -> Creepages {
+        match rolling(1.0, 1.0).kinematics {
+            Kinematics::SteadyRolling(c) => c,
+            _ => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn a_rolling_step_from_rest_is_the_shift_by_the_creepages_times_the_distance() {
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 1.0);
+        let c = base_creepages();
+        let dq = 2.0 * p.grid.dx_m;
+        let roll = ShiftStep::rolling(p.load, dq, &c);
+        let shift = ShiftStep {
+            rolling_m: 0.0,
+            ..roll
+        };
+        assert_eq!(roll.shift_x_m, c.creepage_long * dq);
+        assert_eq!(roll.rotation_rad, c.spin_per_m * dq);
+        p.kinematics = Kinematics::Transient(vec![shift]);
+        let a = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        p.kinematics = Kinematics::Transient(vec![roll]);
+        let b = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        // Nothing to carry from rest: the same solve, the same bits.
+        assert_eq!(format!("{:?}", a.totals), format!("{:?}", b.totals));
+        assert_eq!(a.fields, b.fields);
+    }
+
+    #[test]
+    fn transient_rolling_tends_to_steady_rolling() {
+        // Steps of one element, dq = dx: when the tractions stop changing,
+        // the slip w + (u(x) - u(x + dx))/dx is the steady solver's
+        // discrete slip, so the limit is the steady solution itself (to the
+        // solvers' tolerances, 1e-7 of max mu p_n).
+        let cache = KernelCache::default();
+        let steady_problem = rolling(1.0, 1.0);
+        let steady = solve_last(
+            &mut ContactSolver::new(&steady_problem, &cache),
+            &steady_problem,
+        );
+        let c = base_creepages();
+        let mut p = steady_problem.clone();
+        let step = ShiftStep::rolling(p.load, p.grid.dx_m, &c);
+        // The patch is 32 / 2.4 x 2 = 27 elements long: six crossings. The
+        // distance to the steady forces shrinks by about 7 % per step here
+        // (0.56 of mu Fn after the first step, 1e-3 after 80).
+        p.kinematics = Kinematics::Transient(vec![step; 160]);
+        let sols = ContactSolver::new(&p, &cache).solve(&p).unwrap();
+        let fmax = 0.3 * steady.totals.normal_force_n;
+        let gap = |s: &ContactSolution| {
+            (s.totals.fx_n - steady.totals.fx_n)
+                .abs()
+                .max((s.totals.fy_n - steady.totals.fy_n).abs())
+                / fmax
+        };
+        // From rest the first step is far from it (a shift of dx w) ...
+        assert!(gap(&sols[0]) > 0.1, "{}", gap(&sols[0]));
+        let last = sols.last().unwrap();
+        assert_eq!(last.info.status, SolveStatus::Converged);
+        assert!(gap(last) < 1e-5, "{:e}", gap(last));
+        let d_mz = (last.totals.mz_nm - steady.totals.mz_nm).abs();
+        assert!(d_mz < 1e-4 * steady.totals.mz_nm.abs(), "{d_mz:e}");
+        // ... and the adhesion and slip areas are the steady ones.
+        assert_eq!(last.fields.state, steady.fields.state);
+    }
+
+    #[test]
+    fn a_rolling_distance_of_a_fraction_of_an_element_is_refused_naming_it() {
+        let mut p = rolling(1.0, 1.0);
+        let step = ShiftStep::rolling(p.load, 1.5 * p.grid.dx_m, &base_creepages());
+        p.kinematics = Kinematics::Transient(vec![step]);
+        match p.validate() {
+            Err(ContactError::InvalidInput { key, .. }) => {
+                assert_eq!(key, "transient.steps[0].rolling_m")
+            }
+            other => panic!("{other:?}"),
+        }
+        let mut s = ContactSolver::new(&p, &KernelCache::default());
+        p.kinematics = Kinematics::Transient(vec![ShiftStep {
+            rolling_m: 0.0,
+            ..step
+        }]);
+        assert!(s.solve_next_step(&p, &step).is_err());
     }
 
     #[test]

@@ -314,9 +314,9 @@ pub fn solve_steady_marching(
             break;
         }
         // Shifted tractions: material at I was at I+1 (upstream) one step ago.
-        shift_upstream(grid, px, shx);
-        shift_upstream(grid, py, shy);
-        shift_upstream(grid, state, prev_state);
+        shift_upstream(grid, 1, px, shx);
+        shift_upstream(grid, 1, py, shy);
+        shift_upstream(grid, 1, state, prev_state);
         tangential_matvec(k, ows, shx, shy, ashx, ashy);
         matvecs += 1;
         if step > 0 {
@@ -399,14 +399,14 @@ pub fn solve_steady_marching(
     }
 }
 
-/// `dst[I] = src[I + 1]` along every grid line (x), with the default value
-/// past the leading edge: the field one element upstream, where the material
-/// at I was one rolling step of dx ago.
-pub fn shift_upstream<T: Copy + Default>(grid: &Grid, src: &[T], dst: &mut [T]) {
+/// `dst[I] = src[I + k]` along every grid line (x), with the default value
+/// past the leading edge: the field `k` elements upstream, where the
+/// material at I was one rolling step of k dx ago. `k` must be below `nx`.
+pub fn shift_upstream<T: Copy + Default>(grid: &Grid, k: usize, src: &[T], dst: &mut [T]) {
     let nx = grid.nx;
     for (s, d) in src.chunks_exact(nx).zip(dst.chunks_exact_mut(nx)) {
-        d[..nx - 1].copy_from_slice(&s[1..]);
-        d[nx - 1] = T::default();
+        d[..nx - k].copy_from_slice(&s[k..]);
+        d[nx - k..].fill(T::default());
     }
 }
 

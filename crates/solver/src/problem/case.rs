@@ -21,7 +21,8 @@ use crate::core::material::{CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
+    rolling_elements, ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
+    CREEPAGE_RANGE, SPIN_RANGE,
 };
 use crate::core::tangential::TangentialSettings;
 use crate::problem::reference_models::hertz_of;
@@ -87,6 +88,9 @@ pub mod ranges {
     pub const SHIFT: Range = Range::symmetric(1e-2, "m").hint(UnitHint::Millimetre);
     /// `transient.steps[k].rotation_rad` \[rad\] (one step).
     pub const ROTATION: Range = Range::symmetric(0.1, "rad");
+    /// `transient.rolling_step_m` \[m\] (one step; further a whole number
+    /// of elements of the grid).
+    pub const ROLLING_STEP: Range = Range::positive(1.0, "m").hint(UnitHint::Millimetre);
     /// `grid.window_x_m`, `grid.window_y_m` \[m\].
     pub const WINDOW: Range = Range::positive(1.0, "m").hint(UnitHint::Millimetre);
     /// `subsurface.shear_yield_stress_pa` \[Pa\] (steel: 300e6 to 600e6).
@@ -885,20 +889,29 @@ pub struct LoadSection {
     pub approach_m: Option<f64>,
 }
 
-/// `[transient]`: a sequence of shift steps from the unloaded state.
+/// `[transient]`: a sequence of shift and rolling steps from the unloaded
+/// state, each from the tractions of the step before.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransientSection {
+    /// Distance the contact patch rolls in +x in each rolling step \[m\]
+    /// (moving coordinates, see [`crate::core::problem`]): a whole number
+    /// of elements `grid.window_x_m / grid.nx`, in (0, 1] m. Needed when a
+    /// step gives creepages (exact model only).
+    pub rolling_step_m: Option<f64>,
     /// The steps, at least one.
     pub steps: Vec<StepSection>,
 }
 
-/// One shift step in `transient.steps`.
+/// One step in `transient.steps`: a shift step (`shift_*`,
+/// `rotation_rad`) or a rolling step (creepages, rolling
+/// `transient.rolling_step_m`), never both.
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepSection {
     /// Rigid shift of body 1 relative to body 2 in x during the step \[m\]
-    /// (required, except for the conformal models, which take 0 only).
+    /// (required in a shift step, except for the conformal models, which
+    /// take 0 only).
     pub shift_x_m: Option<f64>,
     /// Rigid shift in y during the step \[m\] (default 0).
     #[serde(default)]
@@ -914,6 +927,34 @@ pub struct StepSection {
     pub normal_force_n_per_m: Option<f64>,
     /// Approach in the step \[m\], > 0 (default: the `[load]`).
     pub approach_m: Option<f64>,
+    /// Longitudinal creepage xi of a rolling step [-], in [-1, 1] (default
+    /// 0 when another creepage is given).
+    pub creepage_long: Option<f64>,
+    /// Lateral creepage eta of a rolling step [-], in [-1, 1] (default 0).
+    pub creepage_lat: Option<f64>,
+    /// Spin creepage phi of a rolling step \[1/m\], in [-1000, 1000]
+    /// (default 0).
+    pub spin_per_m: Option<f64>,
+}
+
+impl StepSection {
+    /// The creepages of a rolling step, None for a shift step; `key` names
+    /// the step.
+    fn creepages(&self, key: &str) -> Result<Option<Creepages>, CaseError> {
+        if self.creepage_long.is_none() && self.creepage_lat.is_none() && self.spin_per_m.is_none()
+        {
+            return Ok(None);
+        }
+        let c = Creepages {
+            creepage_long: self.creepage_long.unwrap_or(0.0),
+            creepage_lat: self.creepage_lat.unwrap_or(0.0),
+            spin_per_m: self.spin_per_m.unwrap_or(0.0),
+        };
+        CREEPAGE_RANGE.check(&format!("{key}.creepage_long"), c.creepage_long)?;
+        CREEPAGE_RANGE.check(&format!("{key}.creepage_lat"), c.creepage_lat)?;
+        SPIN_RANGE.check(&format!("{key}.spin_per_m"), c.spin_per_m)?;
+        Ok(Some(c))
+    }
 }
 
 /// `[grid]`: the potential contact grid, centred on the origin.
@@ -985,6 +1026,10 @@ pub struct Case {
     /// conformal models transient steps are static compression: zero
     /// shifts, increasing forces).
     pub kinematics: Kinematics,
+    /// `transient.rolling_step_m` \[m\]: the distance each rolling step
+    /// of a transient case rolls (a whole number of elements); None when
+    /// not given.
+    pub rolling_step_m: Option<f64>,
     /// Prescribed tangential forces of steady rolling (exact model); the
     /// creepages of their directions in `kinematics` are the iteration's
     /// start.
@@ -1240,41 +1285,16 @@ impl Case {
                 if t.steps.is_empty() {
                     return Err(bad("transient.steps", "needs at least one step"));
                 }
+                if let Some(dq) = t.rolling_step_m {
+                    ranges::ROLLING_STEP.check("transient.rolling_step_m", dq)?;
+                }
                 if model.is_cect() {
-                    Kinematics::Transient(static_compression(model, &t.steps)?)
+                    Kinematics::Transient(static_compression(model, t)?)
                 } else {
                     let mut steps = Vec::with_capacity(t.steps.len());
                     for (k, s) in t.steps.iter().enumerate() {
                         let key = format!("transient.steps[{k}]");
-                        let shift_x_m = s
-                            .shift_x_m
-                            .ok_or_else(|| bad(format!("{key}.shift_x_m"), "missing"))?;
-                        if line && (s.shift_y_m != 0.0 || s.rotation_rad != 0.0) {
-                            let k = if s.shift_y_m != 0.0 {
-                                "shift_y_m"
-                            } else {
-                                "rotation_rad"
-                            };
-                            return Err(bad(
-                                format!("{key}.{k}"),
-                                "a line contact shifts in x only: give 0 or leave it out",
-                            ));
-                        }
-                        let own = one_load(
-                            &key,
-                            s.normal_force_n,
-                            s.normal_force_n_per_m,
-                            s.approach_m,
-                            line,
-                        )?;
-                        let step = ShiftStep {
-                            load: own.unwrap_or(load),
-                            shift_x_m,
-                            shift_y_m: s.shift_y_m,
-                            rotation_rad: s.rotation_rad,
-                        };
-                        check_shift_step(&key, &step)?;
-                        steps.push(step);
+                        steps.push(transient_step(&key, s, load, t.rolling_step_m, line)?);
                     }
                     Kinematics::Transient(steps)
                 }
@@ -1495,6 +1515,25 @@ impl Case {
                     ));
                 }
             }
+            if let Some(dq) = file.transient.as_ref().and_then(|t| t.rolling_step_m) {
+                let grid = Grid::centered(nx, ny, window_x_m, window_y_m)?;
+                let key = "transient.rolling_step_m";
+                let reason = match rolling_elements(key, dq, &grid) {
+                    Ok(0) => format!("{} m is less than one element", show(dq)),
+                    Err(ContactError::InvalidInput { reason, .. }) => reason,
+                    _ => String::new(),
+                };
+                if !reason.is_empty() {
+                    return Err(bad(
+                        key,
+                        format!(
+                            "{reason} (grid.window_x_m / grid.nx = {} m / {nx}): give \
+                             grid.window_x_m = nx x rolling_step_m / k for a whole k",
+                            show(window_x_m)
+                        ),
+                    ));
+                }
+            }
         } else if grid.window_x_m.is_some() || grid.window_y_m.is_some() {
             notes.push(format!(
                 "the {} model uses the Hertz ellipse: grid.window_* ignored",
@@ -1540,6 +1579,7 @@ impl Case {
         }
 
         Ok(Case {
+            rolling_step_m: file.transient.as_ref().and_then(|t| t.rolling_step_m),
             model,
             material,
             friction,
@@ -1830,6 +1870,90 @@ fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), Cas
     }
 }
 
+/// The core step of a step section `s` named `key`: a rolling step of
+/// `rolling_step_m` (`transient.rolling_step_m`) when it gives creepages,
+/// else a shift step; its load defaults to `default_load` (per metre when
+/// `line`, a line contact, which shifts and rolls in x only). Checks the
+/// ranges and that a step is one kind or the other, naming the key.
+pub fn transient_step(
+    key: &str,
+    s: &StepSection,
+    default_load: NormalLoad,
+    rolling_step_m: Option<f64>,
+    line: bool,
+) -> Result<ShiftStep, CaseError> {
+    let load = one_load(
+        key,
+        s.normal_force_n,
+        s.normal_force_n_per_m,
+        s.approach_m,
+        line,
+    )?
+    .unwrap_or(default_load);
+    if line && (s.shift_y_m != 0.0 || s.rotation_rad != 0.0) {
+        let k = if s.shift_y_m != 0.0 {
+            "shift_y_m"
+        } else {
+            "rotation_rad"
+        };
+        return Err(bad(
+            format!("{key}.{k}"),
+            "a line contact shifts in x only: give 0 or leave it out",
+        ));
+    }
+    let step = match s.creepages(key)? {
+        Some(c) => {
+            if line && (c.creepage_lat != 0.0 || c.spin_per_m != 0.0) {
+                let k = if c.creepage_lat != 0.0 {
+                    "creepage_lat"
+                } else {
+                    "spin_per_m"
+                };
+                return Err(bad(
+                    format!("{key}.{k}"),
+                    "a line contact rolls in x only: give 0 or leave it out",
+                ));
+            }
+            for (name, given) in [
+                ("shift_x_m", s.shift_x_m.is_some()),
+                ("shift_y_m", s.shift_y_m != 0.0),
+                ("rotation_rad", s.rotation_rad != 0.0),
+            ] {
+                if given {
+                    return Err(bad(
+                        format!("{key}.{name}"),
+                        "a rolling step (one with creepages) takes no shift: its shift is the \
+                         creepages times transient.rolling_step_m",
+                    ));
+                }
+            }
+            let dq = rolling_step_m.ok_or_else(|| {
+                bad(
+                    "transient.rolling_step_m",
+                    format!(
+                        "missing: {key} gives creepages, so it rolls `transient.rolling_step_m` m"
+                    ),
+                )
+            })?;
+            ShiftStep::rolling(load, dq, &c)
+        }
+        None => ShiftStep {
+            load,
+            shift_x_m: s.shift_x_m.ok_or_else(|| {
+                bad(
+                    format!("{key}.shift_x_m"),
+                    "missing: give the shift (a shift step) or creepages (a rolling step)",
+                )
+            })?,
+            shift_y_m: s.shift_y_m,
+            rotation_rad: s.rotation_rad,
+            rolling_m: 0.0,
+        },
+    };
+    check_shift_step(key, &step)?;
+    Ok(step)
+}
+
 /// Checks a transient step's shifts and rotation against their ranges
 /// (its load is checked where it is read); `key` names the step.
 pub fn check_shift_step(key: &str, s: &ShiftStep) -> Result<(), CaseError> {
@@ -1840,12 +1964,27 @@ pub fn check_shift_step(key: &str, s: &ShiftStep) -> Result<(), CaseError> {
 }
 
 /// The steps of a static compression (conformal models): every shift zero,
-/// every step with a `normal_force_n`, increasing.
-fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftStep>, CaseError> {
-    let mut out: Vec<ShiftStep> = Vec::with_capacity(steps.len());
+/// no rolling, every step with a `normal_force_n`, increasing.
+fn static_compression(model: Model, t: &TransientSection) -> Result<Vec<ShiftStep>, CaseError> {
+    let no_rolling = |key: String| {
+        bad(
+            key,
+            format!(
+                "the {} model runs static compression only: no rolling steps",
+                model.name()
+            ),
+        )
+    };
+    if t.rolling_step_m.is_some() {
+        return Err(no_rolling("transient.rolling_step_m".into()));
+    }
+    let mut out: Vec<ShiftStep> = Vec::with_capacity(t.steps.len());
     let mut previous = 0.0;
-    for (k, s) in steps.iter().enumerate() {
+    for (k, s) in t.steps.iter().enumerate() {
         let key = format!("transient.steps[{k}]");
+        if s.creepages(&key)?.is_some() {
+            return Err(no_rolling(format!("{key}.creepage_long")));
+        }
         for (name, v) in [
             ("shift_x_m", s.shift_x_m.unwrap_or(0.0)),
             ("shift_y_m", s.shift_y_m),
@@ -1889,6 +2028,7 @@ fn static_compression(model: Model, steps: &[StepSection]) -> Result<Vec<ShiftSt
             shift_x_m: 0.0,
             shift_y_m: 0.0,
             rotation_rad: 0.0,
+            rolling_m: 0.0,
         });
     }
     Ok(out)
@@ -2084,6 +2224,79 @@ creepage_long = 0.001
 nx = 16
 ny = 16
 "#;
+
+    #[test]
+    fn transient_rolling_steps_read_from_a_case_file() {
+        let text = include_str!("../../../../examples/cases/transient_rolling.toml");
+        let c = Case::from_toml(text).unwrap();
+        let Kinematics::Transient(steps) = &c.kinematics else {
+            panic!("{:?}", c.kinematics)
+        };
+        assert_eq!(steps.len(), 9);
+        assert_eq!((steps[0].rolling_m, steps[0].shift_x_m), (0.0, 1.774e-5));
+        assert_eq!(
+            steps[1],
+            ShiftStep::rolling(
+                c.load,
+                2.5e-4,
+                &Creepages {
+                    creepage_long: 1.824e-3,
+                    ..Creepages::default()
+                }
+            )
+        );
+        c.problem().unwrap().validate().unwrap();
+        // The rolling distance and the step's kind, each named when wrong.
+        let steps_at = text.find("steps = [").unwrap();
+        for (from, to, key) in [
+            (
+                "rolling_step_m = 2.5e-4",
+                "rolling_step_m = 3.0e-4",
+                "`transient.rolling_step_m`",
+            ),
+            (
+                "rolling_step_m = 2.5e-4",
+                "rolling_step_m = 1e-9",
+                "`transient.rolling_step_m`",
+            ),
+            ("rolling_step_m = 2.5e-4", "", "`transient.rolling_step_m`"),
+            (
+                "rolling_step_m = 2.5e-4",
+                "rolling_step_m = -2.5e-4",
+                "`transient.rolling_step_m`",
+            ),
+            (
+                "{ creepage_long = 1.824e-3 }",
+                "{ creepage_long = 1.824e-3, shift_x_m = 1e-6 }",
+                "`transient.steps[1].shift_x_m`",
+            ),
+            (
+                "{ creepage_long = 1.882e-3 }",
+                "{ creepage_long = 2.0 }",
+                "`transient.steps[2].creepage_long`",
+            ),
+            (
+                "{ creepage_long = 1.882e-3 }",
+                "{ normal_force_n = 0.5 }",
+                "`transient.steps[2].shift_x_m`",
+            ),
+        ] {
+            let (head, tail) = text.split_at(steps_at);
+            let changed = if from.starts_with("rolling") {
+                format!("{}{tail}", head.replace(from, to))
+            } else {
+                format!("{head}{}", tail.replace(from, to))
+            };
+            let m = bad_key(&changed);
+            assert!(m.contains(key), "{to}: {m}");
+        }
+        // The conformal models compress statically: no rolling.
+        let m = bad_key(&format!(
+            "{CASE_1}[friction]\ncoefficient = 0.3\n[transient]\n\
+             steps = [{{ normal_force_n = 8e4, creepage_long = 1e-3 }}]\n"
+        ));
+        assert!(m.contains("`transient.steps[0].creepage_long`"), "{m}");
+    }
 
     #[test]
     fn every_key_has_a_range_that_the_message_states() {

@@ -395,6 +395,7 @@ fn cattaneo_shift_of_cylinders() {
         shift_x_m,
         shift_y_m: 0.0,
         rotation_rad: 0.0,
+        rolling_m: 0.0,
     };
     let p = ContactProblem {
         kinematics: Kinematics::Transient(vec![step(0.0), step(1.0e-6)]),

@@ -1,10 +1,12 @@
 //! Validation of the solver crate against analytic and published results,
 //! one test binary: the physics of the planar core (`physics`), conformal
-//! contact (`conformal`), the profile readers (`profiles`) and wheel/rail
-//! contact (`wheelrail`). Each reference number names its source.
+//! contact (`conformal`), the profile readers (`profiles`), transient rolling
+//! against CONTACT (`transient`) and wheel/rail contact (`wheelrail`). Each
+//! reference number names its source.
 
 mod conformal;
 mod line_contact;
 mod physics;
 mod profiles;
+mod transient;
 mod wheelrail;

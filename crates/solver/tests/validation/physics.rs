@@ -143,6 +143,7 @@ fn cattaneo_mindlin_stick_radius() {
             shift_x_m: if k == 0 { 0.0 } else { 0.7e-6 },
             shift_y_m: 0.0,
             rotation_rad: 0.0,
+            rolling_m: 0.0,
         })
         .collect();
     let p = quadratic(mat, a, b, f, 36, 36, mu, Kinematics::Transient(steps));
@@ -307,6 +308,7 @@ fn dissimilar_compression_gives_self_equilibrated_tangential_tractions() {
         shift_x_m: 0.0,
         shift_y_m: 0.0,
         rotation_rad: 0.0,
+        rolling_m: 0.0,
     };
     let p = quadratic(
         mat,

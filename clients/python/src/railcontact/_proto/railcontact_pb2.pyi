@@ -222,26 +222,34 @@ class Creepages(_message.Message):
     def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ...) -> None: ...
 
 class ShiftStep(_message.Message):
-    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "normal_force_n_per_m")
+    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n_per_m")
     SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
     SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
     ROTATION_RAD_FIELD_NUMBER: _ClassVar[int]
     NORMAL_FORCE_N_FIELD_NUMBER: _ClassVar[int]
     APPROACH_M_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
+    SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
     NORMAL_FORCE_N_PER_M_FIELD_NUMBER: _ClassVar[int]
     shift_x_m: float
     shift_y_m: float
     rotation_rad: float
     normal_force_n: float
     approach_m: float
+    creepage_long: float
+    creepage_lat: float
+    spin_per_m: float
     normal_force_n_per_m: float
-    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ...) -> None: ...
+    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ...) -> None: ...
 
 class TransientSection(_message.Message):
-    __slots__ = ("steps",)
+    __slots__ = ("steps", "rolling_step_m")
     STEPS_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_STEP_M_FIELD_NUMBER: _ClassVar[int]
     steps: _containers.RepeatedCompositeFieldContainer[ShiftStep]
-    def __init__(self, steps: _Optional[_Iterable[_Union[ShiftStep, _Mapping]]] = ...) -> None: ...
+    rolling_step_m: float
+    def __init__(self, steps: _Optional[_Iterable[_Union[ShiftStep, _Mapping]]] = ..., rolling_step_m: _Optional[float] = ...) -> None: ...
 
 class GridSection(_message.Message):
     __slots__ = ("nx", "ny", "window_x_m", "window_y_m")
