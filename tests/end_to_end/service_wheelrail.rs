@@ -799,6 +799,68 @@ async fn wr_session(
     Ok(responses)
 }
 
+/// A braking wheelset in a session: each step's prescribed total
+/// longitudinal force finds its pitch rate, warm-started from the last
+/// step, with the same bits as the library's warm-started solves.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_wheel_rail_session_brakes_to_its_prescribed_force_as_the_library() {
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let open = In::Open(pb::WheelRailSessionOpen {
+        pair_id: BUILTIN.into(),
+        model: pb::WheelRailModel::HertzFastsim as i32,
+        ..Default::default()
+    });
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mut warm = WarmStart::default();
+    let mut msgs = vec![wr_request(open)];
+    let mut want = Vec::new();
+    for (k, (mm, force)) in [(3.0, 500.0), (3.1, 1000.0), (3.2, 1500.0)]
+        .into_iter()
+        .enumerate()
+    {
+        let mut input = mbench_a22_input(mm, None, None, WheelRailModel::HertzFastsim);
+        input.total_longitudinal_force_n = Some(force);
+        want.push(solve_wheelset_warm(&pair, &input, &cache, &mut scratch, &mut warm).unwrap());
+        let q = query_of(BUILTIN, &input);
+        msgs.push(wr_request(In::Step(pb::WheelRailSessionStep {
+            step_index: k as u64,
+            position: q.position,
+            velocity: q.velocity,
+            load: q.load,
+            ..Default::default()
+        })));
+    }
+    let out = wr_session(&mut client, msgs).await.unwrap();
+    let steps: Vec<_> = out
+        .iter()
+        .filter_map(|o| match o {
+            Out::Step(s) => s.result.clone(),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(steps.len(), 3, "{out:?}");
+    for (k, (got, want)) in steps.iter().zip(&want).enumerate() {
+        assert_same(&format!("step {k}"), got, want);
+        let c = got.pitch_control.unwrap();
+        assert!(c.converged, "{c:?}");
+        let total: f64 = got
+            .wheels
+            .iter()
+            .map(|w| w.force_track_n.unwrap().x_n)
+            .sum();
+        assert!(
+            (total - c.target_force_n).abs() < 1e-6 * 0.3 * 20_000.0,
+            "{total}"
+        );
+    }
+    server.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn wheel_rail_session_warm_starts_as_the_library_and_rolls_back_bit_for_bit() {
     use pb::wheel_rail_session_request::Kind as In;
