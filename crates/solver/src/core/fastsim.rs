@@ -134,10 +134,10 @@ pub struct FastsimInput {
     /// Static coefficient of friction [-], >= 0: the bound of an element
     /// whose upstream neighbour adhered, and of the first element of each
     /// strip (the memory rule of the exact model in steady rolling). Equal
-    /// to `friction_coefficient` for Coulomb friction. Below it, material
-    /// that slipped re-adheres at the next element and builds up traction
-    /// again: a stick-slip sawtooth that the grid resolves as it is
-    /// refined (static 0.35, kinetic 0, the ellipse of
+    /// to `friction_coefficient` for Coulomb friction. With a kinetic
+    /// coefficient of 0 a strip carries traction only in its leading
+    /// adhesion zone, up to its first slipping element; the force converges
+    /// as the grid is refined (static 0.35, kinetic 0, the ellipse of
     /// `examples/cases/hertz_ellipse_rolling.toml`: Fx = -1457, -1385,
     /// -1349, -1334, -1325 N on 24, 50, 100, 200, 400 elements squared).
     pub static_friction_coefficient: f64,
@@ -1023,12 +1023,13 @@ pub(crate) mod tests {
                 "{xi}: {}",
                 out.fx_n
             );
-            // Behind every slipping element the traction starts from 0.
+            // Once an element of a strip slips, the bound is 0 for the rest
+            // of the strip: it slips on, carrying no traction.
             for j in 0..40 {
                 for i in 1..40 {
                     let (k, prev) = (fs.index(i, j).unwrap(), fs.index(i - 1, j).unwrap());
-                    if fs.state()[prev] == ElementState::Slip && fs.state()[k] == ElementState::Slip
-                    {
+                    if fs.state()[prev] == ElementState::Slip {
+                        assert_eq!(fs.state()[k], ElementState::Slip, "{xi}: ({i}, {j})");
                         assert_eq!(fs.px_pa()[k], 0.0, "{xi}: element ({i}, {j})");
                     }
                 }
