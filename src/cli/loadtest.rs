@@ -220,12 +220,15 @@ impl Kind {
             "wheelrail" => {
                 let m = match model {
                     "hertz_fastsim" => pb::WheelRailModel::HertzFastsim,
+                    "hertz_fastsim_table" => pb::WheelRailModel::HertzFastsimTable,
+                    "hertz_polach" => pb::WheelRailModel::HertzPolach,
                     "exact" => pb::WheelRailModel::Exact,
                     "cect" => pb::WheelRailModel::Cect,
                     "auto" => pb::WheelRailModel::Auto,
                     _ => {
                         return Err(format!(
-                            "`{s}`: wheelrail models are hertz_fastsim, exact, cect, auto"
+                            "`{s}`: wheelrail models are hertz_fastsim, hertz_fastsim_table, \
+                             hertz_polach, exact, cect, auto"
                         ))
                     }
                 };
@@ -253,6 +256,8 @@ impl Kind {
                 "wheelrail:{}",
                 match m {
                     pb::WheelRailModel::HertzFastsim => "hertz_fastsim",
+                    pb::WheelRailModel::HertzFastsimTable => "hertz_fastsim_table",
+                    pb::WheelRailModel::HertzPolach => "hertz_polach",
                     pb::WheelRailModel::Cect => "cect",
                     pb::WheelRailModel::Auto => "auto",
                     _ => "exact",
@@ -1575,7 +1580,13 @@ mod tests {
             let e = assign(mix, 4).unwrap_err();
             assert!(e.contains(needle), "{mix}: {e}");
         }
-        for k in ["wheelrail:auto", "patch:exact64", "patch:hertz"] {
+        for k in [
+            "wheelrail:auto",
+            "wheelrail:hertz_fastsim_table",
+            "wheelrail:hertz_polach",
+            "patch:exact64",
+            "patch:hertz",
+        ] {
             assert_eq!(Kind::parse(k).unwrap().name(), k);
         }
     }
