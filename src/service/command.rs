@@ -1,7 +1,7 @@
 //! `railcontact serve`: its options, the list of settings in its help, and
 //! the run that turns a bad setting into exit code 2. The binary
 //! (`src/main.rs`) puts this subcommand beside the command line's
-//! (`crate::cli`); neither front end imports the other.
+//! (the `cli` module); neither front end imports the other.
 
 use std::path::PathBuf;
 

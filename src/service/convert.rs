@@ -134,6 +134,19 @@ pub fn rolling(c: &pb::Creepages) -> RollingSection {
     }
 }
 
+/// A request of something SolvePatch and SolvePatchBatch alone solve
+/// (`thing`: "a prescribed force", "a line contact"), made in `what`
+/// (sessions, creep curves), naming `key`.
+fn solve_patch_only(key: impl Into<String>, thing: &str, what: &str, hint: &str) -> ServiceError {
+    ServiceError::invalid(
+        key,
+        format!("{thing} is solved by SolvePatch and SolvePatchBatch only, not in {what}{hint}"),
+    )
+}
+
+/// The hint of a refused prescribed force.
+const GIVE_THE_CREEPAGE: &str = ": give the creepage";
+
 /// Refuses a prescribed force in wire creepages `c` at field `key` (sessions
 /// and creep curves: they step or sweep creepages).
 pub fn no_prescribed_force(c: &pb::Creepages, key: &str, what: &str) -> Result<(), ServiceError> {
@@ -143,39 +156,41 @@ pub fn no_prescribed_force(c: &pb::Creepages, key: &str, what: &str) -> Result<(
         ("force_x_n_per_m", c.force_x_n_per_m),
     ] {
         if f.is_some() {
-            return Err(ServiceError::invalid(
+            return Err(solve_patch_only(
                 format!("{key}.{name}"),
-                format!("a prescribed force is solved by SolvePatch and SolvePatchBatch only, not in {what}: give the creepage"),
+                "a prescribed force",
+                what,
+                GIVE_THE_CREEPAGE,
             ));
         }
     }
     Ok(())
 }
 
-/// Refuses a case with a prescribed force (sessions and creep curves).
-pub fn refuse_prescribed_force(case: &Case, what: &str) -> Result<(), ServiceError> {
+/// Refuses a case that SolvePatch and SolvePatchBatch alone solve, in
+/// `what` (sessions and creep curves): a prescribed force, a line contact.
+pub fn refuse_solve_patch_only(case: &Case, what: &str) -> Result<(), ServiceError> {
     let f = case.prescribed_force;
-    let key = match (f.force_x_n, f.force_y_n) {
-        (Some(_), _) if case.geometry.is_line() => "rolling.force_x_n_per_m",
-        (Some(_), _) => "rolling.force_x_n",
-        (None, Some(_)) => "rolling.force_y_n",
-        (None, None) => return Ok(()),
+    let force_key = match (f.force_x_n, f.force_y_n) {
+        (Some(_), _) if case.geometry.is_line() => Some("rolling.force_x_n_per_m"),
+        (Some(_), _) => Some("rolling.force_x_n"),
+        (None, Some(_)) => Some("rolling.force_y_n"),
+        (None, None) => None,
     };
-    Err(ServiceError::invalid(
-        key,
-        format!("a prescribed force is solved by SolvePatch and SolvePatchBatch only, not in {what}: give the creepage"),
-    ))
-}
-
-/// Refuses a line contact (sessions and creep curves: SolvePatch and
-/// SolvePatchBatch solve it).
-pub fn refuse_line_contact(case: &Case, what: &str) -> Result<(), ServiceError> {
+    if let Some(key) = force_key {
+        return Err(solve_patch_only(
+            key,
+            "a prescribed force",
+            what,
+            GIVE_THE_CREEPAGE,
+        ));
+    }
     if case.geometry.is_line() {
-        return Err(ServiceError::invalid(
+        return Err(solve_patch_only(
             "geometry.kind",
-            format!(
-                "a line contact is solved by SolvePatch and SolvePatchBatch only, not in {what}"
-            ),
+            "a line contact",
+            what,
+            "",
         ));
     }
     Ok(())

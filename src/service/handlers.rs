@@ -557,9 +557,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                 .ok_or_else(|| ServiceError::invalid("case", "missing"))?;
             let valid = convert::validate_case(case, self.limits.case)
                 .map_err(|e| e.within("case"))?;
-            convert::refuse_prescribed_force(&valid.case, "creep curves")
-                .map_err(|e| e.within("case"))?;
-            convert::refuse_line_contact(&valid.case, "creep curves")
+            convert::refuse_solve_patch_only(&valid.case, "creep curves")
                 .map_err(|e| e.within("case"))?;
             convert::check_fields(&valid.case, req.include_fields)?;
             if !matches!(valid.case.kinematics, Kinematics::SteadyRolling(_)) {
@@ -954,9 +952,8 @@ impl ContactHandlers {
             .ok_or_else(|| ServiceError::invalid("open.case", "missing"))?;
         let valid =
             convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
-        convert::refuse_prescribed_force(&valid.case, "sessions")
+        convert::refuse_solve_patch_only(&valid.case, "sessions")
             .map_err(|e| e.within("open.case"))?;
-        convert::refuse_line_contact(&valid.case, "sessions").map_err(|e| e.within("open.case"))?;
         let jacobian = open.include_sensitivities;
         if jacobian {
             check_sensitivities(&valid.case).map_err(|e| e.within("open"))?;

@@ -1,4 +1,4 @@
-//! What the two front ends (`crate::cli` and `crate::service`) share, and
+//! What the two front ends (the command line, `cli`, and the service) share, and
 //! nothing else: neither imports the other, both import this.
 //!
 //! | item | what |

@@ -1812,19 +1812,15 @@ fn check_line_rolling(r: &RollingSection, line: bool) -> Result<(), CaseError> {
         }
         return Ok(());
     }
-    let lateral = [
-        ("creepage_lat", r.creepage_lat.is_some_and(|v| v != 0.0)),
-        ("spin_per_m", r.spin_per_m != 0.0),
-        ("force_y_n", r.force_y_n.is_some()),
-    ];
-    for (key, given) in lateral {
-        if given {
-            return Err(bad(
-                format!("rolling.{key}"),
-                "a line contact rolls in x only: give 0 or leave it out",
-            ));
-        }
-    }
+    refuse_lateral(
+        "rolling",
+        "rolls",
+        &[
+            ("creepage_lat", r.creepage_lat.is_some_and(|v| v != 0.0)),
+            ("spin_per_m", r.spin_per_m != 0.0),
+            ("force_y_n", r.force_y_n.is_some()),
+        ],
+    )?;
     if r.force_x_n.is_some() {
         return Err(bad(
             "rolling.force_x_n",
@@ -1832,6 +1828,19 @@ fn check_line_rolling(r: &RollingSection, line: bool) -> Result<(), CaseError> {
         ));
     }
     Ok(())
+}
+
+/// A line contact moves in x only: the first of `lateral` (a key under
+/// `section` and whether it is given) that is given is refused, naming
+/// it; `moves` is "rolls" or "shifts".
+fn refuse_lateral(section: &str, moves: &str, lateral: &[(&str, bool)]) -> Result<(), CaseError> {
+    match lateral.iter().find(|(_, given)| *given) {
+        Some((key, _)) => Err(bad(
+            format!("{section}.{key}"),
+            format!("a line contact {moves} in x only: give 0 or leave it out"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Rejects a model that cannot run on the geometry; the error names `model`.
@@ -1890,29 +1899,27 @@ pub fn transient_step(
         line,
     )?
     .unwrap_or(default_load);
-    if line && (s.shift_y_m != 0.0 || s.rotation_rad != 0.0) {
-        let k = if s.shift_y_m != 0.0 {
-            "shift_y_m"
-        } else {
-            "rotation_rad"
-        };
-        return Err(bad(
-            format!("{key}.{k}"),
-            "a line contact shifts in x only: give 0 or leave it out",
-        ));
+    if line {
+        refuse_lateral(
+            key,
+            "shifts",
+            &[
+                ("shift_y_m", s.shift_y_m != 0.0),
+                ("rotation_rad", s.rotation_rad != 0.0),
+            ],
+        )?;
     }
     let step = match s.creepages(key)? {
         Some(c) => {
-            if line && (c.creepage_lat != 0.0 || c.spin_per_m != 0.0) {
-                let k = if c.creepage_lat != 0.0 {
-                    "creepage_lat"
-                } else {
-                    "spin_per_m"
-                };
-                return Err(bad(
-                    format!("{key}.{k}"),
-                    "a line contact rolls in x only: give 0 or leave it out",
-                ));
+            if line {
+                refuse_lateral(
+                    key,
+                    "rolls",
+                    &[
+                        ("creepage_lat", c.creepage_lat != 0.0),
+                        ("spin_per_m", c.spin_per_m != 0.0),
+                    ],
+                )?;
             }
             for (name, given) in [
                 ("shift_x_m", s.shift_x_m.is_some()),
