@@ -16,8 +16,6 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use railcontact::service::config::ServeConfig;
 use railcontact::service::convert::check_finite;
 use railcontact::service::pb;
-use railcontact::service::pb::contact_service_client::ContactServiceClient;
-use railcontact::service::server::start;
 use railcontact::service::wheelrail::check_finite as check_wheelrail_finite;
 use railcontact::wheelrail::profile::{parse_profile, LoadOptions};
 use tonic::Code;
@@ -598,17 +596,7 @@ fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn hostile_values_are_answered_or_refused_by_name() {
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
-        data_dir: Default::default(),
-        ..ServeConfig::default()
-    })
-    .await
-    .expect("server starts");
-    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects");
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
     let mut out = Outcomes::default();
     let patch_finite = |r: &tonic::Response<pb::SolvePatchResponse>| {
         let r = r.get_ref().result.as_ref().ok_or("no result")?;
@@ -721,17 +709,7 @@ async fn hostile_session_steps_are_answered_or_refused_by_name() {
     use pb::wheel_rail_session_response::Kind as Out;
     use prost::Message;
 
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
-        data_dir: Default::default(),
-        ..ServeConfig::default()
-    })
-    .await
-    .expect("server starts");
-    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects");
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
     let (tx, rx) = tokio::sync::mpsc::channel(4);
     let mut answers = client
         .wheel_rail_session(tokio_stream::wrappers::ReceiverStream::new(rx))
@@ -980,18 +958,11 @@ fn mutated_profiles_read_or_fail_without_panicking() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn wheel_rail_patch_grids_obey_the_grid_limit() {
-    let server = start(&ServeConfig {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        shutdown_grace_s: 10.0,
-        data_dir: Default::default(),
+    let (server, mut client) = crate::common::server_with(ServeConfig {
         max_grid_elements: 160 * 160,
         ..ServeConfig::default()
     })
-    .await
-    .expect("server starts");
-    let mut client = ContactServiceClient::connect(format!("http://{}", server.addr))
-        .await
-        .expect("client connects");
+    .await;
     let mut req = wheel_query(pb::WheelRailModel::Exact);
     req.element_size_m = Some(6e-5);
     let e = client.solve_wheel_rail(req.clone()).await.unwrap_err();
