@@ -9,13 +9,15 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
 use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    solve_wheelset, solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, LoadOptions,
-    SearchScratch, SplineOptions, TableSettings, WarmStart, WheelRailModel, WheelRailPair,
+    solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm, solve_wheelset_warm,
+    ContactTable, LoadOptions, SearchScratch, SplineOptions, TableSettings, WarmStart, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution,
 };
 
 fn pair() -> WheelRailPair {
@@ -102,30 +104,18 @@ fn wheelset_step(c: &mut Criterion) {
     let mut g = c.benchmark_group("wheelset_path_exact");
     g.sample_size(20);
     for carry in [true, false] {
-        let mut warm = WarmStart::default();
-        let mut k = 0;
         let id = if carry {
             "tractions_carried"
         } else {
             "tractions_dropped"
         };
-        g.bench_function(id, |b| {
-            b.iter(|| {
-                k += 1;
-                if !carry {
-                    warm.tractions = Default::default();
-                }
-                black_box(
-                    solve_wheelset_warm(
-                        &pair,
-                        &path[k % path.len()],
-                        &cache,
-                        &mut scratch,
-                        &mut warm,
-                    )
-                    .unwrap(),
-                )
-            })
+        let reset = |w: &mut WarmStart| {
+            if !carry {
+                w.tractions = Default::default();
+            }
+        };
+        bench_path(&mut g, id, &path, reset, |input, warm| {
+            solve_wheelset_warm(&pair, input, &cache, &mut scratch, warm).unwrap()
         });
     }
     g.finish();
@@ -144,6 +134,60 @@ fn wheelset_step(c: &mut Criterion) {
         });
     }
     g.finish();
+    // A co-simulation on the tables: the load test's wheelset motion
+    // (`railcontact loadtest --mix wheelrail:hertz_fastsim_table=1`:
+    // lateral 4 mm and yaw 2 mrad at 2 Hz, 20 m/s, 50 kN per wheel
+    // varying by 2 kN at 6 Hz, roll found), steps of 1 ms, each from the
+    // last one's warm start (as a session does); and the same steps cold.
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let path: Vec<_> = (0..500)
+        .map(|k| {
+            let (t, a) = (k as f64 * 1e-3, w * k as f64 * 1e-3);
+            let mut inp = mbench_a22_input(0.0, None, None, WheelRailModel::HertzFastsim);
+            inp.position.lateral_m = 4e-3 * a.sin();
+            inp.position.yaw_rad = 2e-3 * a.cos();
+            inp.velocity.forward_m_per_s = 20.0;
+            inp.velocity.lateral_m_per_s = 4e-3 * w * a.cos();
+            inp.velocity.yaw_rad_per_s = -2e-3 * w * a.sin();
+            inp.load = WheelLoad::VerticalForce(50e3 + 2e3 * (3.0 * w * t).sin());
+            inp
+        })
+        .collect();
+    let mut g = c.benchmark_group("wheelset_path_hertz_fastsim_tabulated");
+    g.sample_size(50);
+    for warm_start in [true, false] {
+        let id = if warm_start { "warm" } else { "cold" };
+        let reset = |w: &mut WarmStart| {
+            if !warm_start {
+                *w = WarmStart::default();
+            }
+        };
+        bench_path(&mut g, id, &path, reset, |input, warm| {
+            solve_wheelset_tabulated_warm(&table, input, &cache, &mut scratch, warm).unwrap()
+        });
+    }
+    g.finish();
+}
+
+/// Benchmarks `solve` stepping along `path` (one step an iteration, round
+/// and round), each step from the warm start the last one left, after
+/// `reset` has cleared what the case leaves out.
+fn bench_path(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    id: &str,
+    path: &[WheelRailInput],
+    reset: impl Fn(&mut WarmStart),
+    mut solve: impl FnMut(&WheelRailInput, &mut WarmStart) -> WheelRailSolution,
+) {
+    let mut warm = WarmStart::default();
+    let mut k = 0;
+    g.bench_function(id, |b| {
+        b.iter(|| {
+            k += 1;
+            reset(&mut warm);
+            black_box(solve(&path[k % path.len()], &mut warm))
+        })
+    });
 }
 
 criterion_group!(benches, wheelset_step);

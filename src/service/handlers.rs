@@ -888,10 +888,15 @@ impl ContactHandlers {
                     let t0 = StdInstant::now();
                     let r = match session.check_step(&step) {
                         Ok(input) => {
+                            let lane = if session.is_inline(&input) {
+                                Lane::Inline
+                            } else {
+                                wheelrail_lane(model)
+                            };
                             let (s, r) = self
                                 .pool
                                 .session()
-                                .run_on(wheelrail_lane(model), move || {
+                                .run_on(lane, move || {
                                     let r = session.step(input);
                                     (session, r)
                                 })

@@ -19,8 +19,9 @@
 //! wheelsets with one shared lane). The operating system shares the cores
 //! between the lanes; a fast solve costs the exact ones little.
 //!
-//! A third lane for the smallest solves (Hertz, FASTSIM on small grids:
-//! tens of microseconds): they run on the runtime thread that received
+//! A third lane for the smallest solves (Hertz, FASTSIM on small grids,
+//! Hertz+FASTSIM wheelset steps on contact tables: tens of
+//! microseconds): they run on the runtime thread that received
 //! them, under a fast-lane permit. The hop to a blocking thread and back
 //! cost more than such a solve: on the development machine it took the
 //! loopback FASTSIM 40x40 session step from 71-79 µs to 90-113 µs at the
@@ -73,8 +74,10 @@ pub enum Lane {
     /// for [`Lane::Inline`].
     Fast,
     /// Hertz and FASTSIM patches of at most [`INLINE_FASTSIM_ELEMENTS`]
-    /// elements, without sensitivities: run on the runtime thread, under
-    /// a fast-lane permit.
+    /// elements, without sensitivities, and wheel/rail session steps on
+    /// contact tables
+    /// ([`WheelRailSession::is_inline`](crate::service::wheelrail_session::WheelRailSession::is_inline)):
+    /// run on the runtime thread, under a fast-lane permit.
     Inline,
 }
 

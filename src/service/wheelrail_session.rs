@@ -26,7 +26,7 @@ use crate::service::session::{check_response_size, Marks, SessionLimits};
 use crate::service::status::ServiceError;
 use crate::service::wheelrail::{self, QuerySettings};
 use crate::wheelrail::{
-    solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, SearchScratch, WarmStart,
+    solve_wheelset_tabulated_warm, solve_wheelset_warm, ContactTable, SearchScratch, WarmStart,
     WheelRailInput, WheelRailModel,
 };
 
@@ -136,6 +136,25 @@ impl WheelRailSession {
         })
     }
 
+    /// Whether `step` is as cheap as the patches that run on the runtime
+    /// thread ([`Lane::Inline`](crate::service::pool::Lane::Inline)): a
+    /// Hertz+FASTSIM step on contact tables (tens of microseconds: a
+    /// look-up, a few point evaluations and about four FASTSIM solves of
+    /// 40 x 40) at a position inside the table, without a prescribed total
+    /// longitudinal force (which solves the wheels several times) and
+    /// without per-element fields.
+    pub fn is_inline(&self, step: &WheelRailStep) -> bool {
+        let Some(table) = &self.table else {
+            return false;
+        };
+        let p = &step.input.position;
+        let roll = p.roll_rad.or(self.warm.roll_rad).unwrap_or(0.0);
+        step.input.settings.model == WheelRailModel::HertzFastsim
+            && step.input.total_longitudinal_force_n.is_none()
+            && !self.fields
+            && table.covers(p.lateral_m, roll)
+    }
+
     /// Solves a checked step (CPU-bound: run it on the solve pool). A
     /// refused step changes nothing.
     pub fn step(
@@ -145,8 +164,9 @@ impl WheelRailSession {
         let mut warm = self.warm.clone();
         let cache = KernelCache::global();
         let solution = match &self.table {
-            // Tabulated geometry needs no warm start.
-            Some(t) => solve_wheelset_tabulated(t, &step.input, cache, &mut self.scratch),
+            Some(t) => {
+                solve_wheelset_tabulated_warm(t, &step.input, cache, &mut self.scratch, &mut warm)
+            }
             None => solve_wheelset_warm(
                 &self.prepared.pair,
                 &step.input,

@@ -1488,10 +1488,9 @@ fn solve_all(
     Ok(fz)
 }
 
-/// Finds the wheel's vertical approach (or applies the given one).
 /// The normal force per vertical load of a single-patch wheel under force
 /// control: where the next step's load iteration starts.
-fn normal_per_vertical(patches: &[PatchWork], input: &WheelRailInput) -> Option<f64> {
+pub(crate) fn normal_per_vertical(patches: &[PatchWork], input: &WheelRailInput) -> Option<f64> {
     match (patches, input.load) {
         ([p], WheelLoad::VerticalForce(f)) => {
             let r = p.out.fn_n / f;
@@ -1540,7 +1539,12 @@ pub(crate) fn load_iteration(
                     ),
                 ));
             }
-            let accuracy = frictional_accuracy(last.is_none(), it, max_it);
+            // A Hertz patch is solved the same way at either accuracy:
+            // its first solve may be the answer.
+            let accuracy = match p.kind {
+                PatchKind::Hertz { .. } => Accuracy::Final,
+                _ => frictional_accuracy(last.is_none(), it, max_it),
+            };
             p.solve(
                 NormalLoad::NormalForce(fn_n),
                 true,

@@ -67,7 +67,7 @@ pub mod profile;
 pub mod readers;
 pub mod search;
 pub mod spline;
-pub mod table;
+mod table;
 pub mod wheelset;
 
 pub use contact::{
@@ -84,7 +84,9 @@ pub use search::{SearchScratch, SearchSettings};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
-pub use table::{solve_wheelset_tabulated, ContactTable, TableSettings};
+pub use table::{
+    solve_wheelset_tabulated, solve_wheelset_tabulated_warm, ContactTable, TableSettings,
+};
 pub use wheelset::{
     Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
     WheelsetVelocity,

@@ -111,7 +111,10 @@ pub struct LocusFrame {
     e1: [f64; 3],
     e2: [f64; 3],
     rm: f64,
-    theta0: f64,
+    /// cos and sin of theta0, the angle round the axle of the direction
+    /// whose x part is largest.
+    cos_theta0: f64,
+    sin_theta0: f64,
     axial_offset_m: f64,
     nominal_radius_m: f64,
 }
@@ -126,13 +129,20 @@ impl LocusFrame {
         e1.iter_mut().for_each(|v| *v /= n1);
         let e2 = cross(a, e1);
         let (ca, cb) = (e1[0], e2[0]);
+        let rm = ca.hypot(cb);
+        let (cos_theta0, sin_theta0) = if rm > 0.0 {
+            (ca / rm, cb / rm)
+        } else {
+            (1.0, 0.0)
+        };
         Self {
             axle: a,
             center: pose.center(),
             e1,
             e2,
-            rm: ca.hypot(cb),
-            theta0: cb.atan2(ca),
+            rm,
+            cos_theta0,
+            sin_theta0,
             axial_offset_m: wheel.axial_offset_m(),
             nominal_radius_m,
         }
@@ -145,16 +155,27 @@ impl LocusFrame {
         let [ty, tz] = s.tangent;
         // The outward wheel normal tz a - ty e_r(theta) (profile y along
         // the axle, z along e_r) has no x part:
-        // ty (A cos theta + B sin theta) = tz a_x.
+        // ty (A cos theta + B sin theta) = ty rm cos(theta - theta0) = tz a_x,
+        // so theta = theta0 -+ d with cos d = tz a_x / (ty rm); of the
+        // two, the one with the larger cos theta (the lower point). No
+        // trigonometric function is evaluated: with (cos d, sin d) the
+        // angle sums give cos theta and sin theta directly.
         let rhs = if ty.abs() > 1e-12 {
             (tz * a[0] / ty).clamp(-limit * rm, limit * rm)
         } else {
             0.0
         };
-        let d = (rhs / rm).clamp(-1.0, 1.0).acos();
-        let (t1, t2) = (self.theta0 - d, self.theta0 + d);
-        let theta = if t1.cos() >= t2.cos() { t1 } else { t2 };
-        let (st, ct) = theta.sin_cos();
+        let cd = if rm > 0.0 {
+            (rhs / rm).clamp(-1.0, 1.0)
+        } else {
+            0.0
+        };
+        let sd = (1.0 - cd * cd).max(0.0).sqrt();
+        let (c0, s0) = (self.cos_theta0, self.sin_theta0);
+        // cos(theta0 - d) - cos(theta0 + d) = 2 sin(theta0) sin(d) >= 0
+        // picks theta0 - d (also on a tie).
+        let sd = if s0 >= 0.0 { -sd } else { sd };
+        let (ct, st) = (c0 * cd - s0 * sd, s0 * cd + c0 * sd);
         let er = [
             ct * e1[0] + st * e2[0],
             ct * e1[1] + st * e2[1],

@@ -38,8 +38,9 @@
 //! Each of these is a **seed**: from it, the vertical gap is evaluated
 //! exactly at the actual position (lateral shift, roll **and yaw**: the
 //! contact-locus point of that wheel point, [`LocusFrame`], and the rail
-//! surface below it) and followed downhill along the wheel profile, sample
-//! by sample, to its local minimum, refined by a parabola. Seeds that end
+//! surface below it) and followed downhill along the wheel profile (in
+//! growing steps where the gap falls steeply, sample by sample near the
+//! bottom) to its local minimum, refined by a parabola. Seeds that end
 //! on the same minimum are one contact; seeds of a contact that does not
 //! exist at the actual position end on a neighbour. So the contact
 //! position, contact angle (from the rail's sample normals, as the direct
@@ -49,7 +50,12 @@
 //! position, not at a node. The barrier between neighbouring
 //! contacts (the largest vertical gap between them, for grouping) is
 //! evaluated the same way. The rigid position (and the roll, when it is
-//! not given) follows from these gaps as in the direct search.
+//! not given) follows from these gaps as in the direct search. The roll
+//! search starts at the previous step's roll in a co-simulation
+//! ([`solve_wheelset_tabulated_warm`]), otherwise at the table's estimate
+//! ([`ContactTable::roll_estimate`], from each node's smallest gap); its
+//! first roll's contacts come from the look-up, the next rolls' from the
+//! contacts of the roll before (the roll moves by micro-radians).
 //!
 //! The lateral curvature B of the normal undeformed distance (for Hertz)
 //! is evaluated at the actual position too, from the vertical gap G(q) at
@@ -85,9 +91,9 @@ use crate::core::cancel::{self, CancelToken};
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::wheelrail::contact::{
-    finish, hertz_patch, load_iteration, solve_pitch, solve_wheelset, validate, wheel_fastsim,
-    LoadResult, PatchWork, Timing, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSolution,
-    WheelResult, CAP_FACTOR,
+    finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch, solve_wheelset_warm,
+    validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
     find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
@@ -219,6 +225,10 @@ pub struct ContactTable {
     /// Per side, per node (lateral-major): its contacts, increasing q. The
     /// left side's is empty when it is the mirror image of the right's.
     nodes: [Vec<Vec<NodeContact>>; 2],
+    /// Per side, per node: the smallest vertical gap with the wheelset
+    /// centre at the nominal radius above the top of rail \[m\] (infinite
+    /// where the profiles do not overlap): the start of the roll search.
+    min_gap_m: [Vec<f64>; 2],
     /// The sides are mirror images: the left side at (y, roll) is the right
     /// side at (-y, -roll).
     mirrored: bool,
@@ -228,14 +238,14 @@ pub struct ContactTable {
 }
 
 /// The nodes of `side` with roll index in `rolls` (lateral-major within
-/// each roll), each with its contacts.
+/// each roll), each with its contacts and smallest vertical gap.
 fn build_rolls(
     pair: &WheelRailPair,
     side: Side,
     lateral: &Axis,
     roll: &Axis,
     rolls: std::ops::Range<usize>,
-) -> Vec<(usize, Vec<NodeContact>)> {
+) -> Vec<(usize, Vec<NodeContact>, f64)> {
     let z0 = -pair.wheelset().nominal_radius_m;
     let (rail, wheel) = (pair.rail(side), pair.wheel(side));
     let dt = wheel_step_m(wheel.samples());
@@ -257,7 +267,8 @@ fn build_rolls(
                 ..*p
             }));
             gap.compute(rail, &locus);
-            out.push((iy * roll.n + ir, node_contacts(&gap, &locus, dt)));
+            let min_gap_m = gap.min().map_or(f64::INFINITY, |(_, g)| g);
+            out.push((iy * roll.n + ir, node_contacts(&gap, &locus, dt), min_gap_m));
         }
     }
     out
@@ -293,12 +304,15 @@ impl ContactTable {
         let token = CancelToken::current();
         let chunk = roll.n.div_ceil(threads);
         let mut nodes: [Vec<Vec<NodeContact>>; 2] = Default::default();
+        let mut min_gap_m: [Vec<f64>; 2] = Default::default();
         for side in Side::BOTH {
             if mirrored && side == Side::Left {
                 continue;
             }
             let out = &mut nodes[side.index()];
             out.resize(lateral.n * roll.n, Vec::new());
+            let gaps = &mut min_gap_m[side.index()];
+            gaps.resize(lateral.n * roll.n, f64::INFINITY);
             let parts = std::thread::scope(|scope| {
                 let handles: Vec<_> = (0..roll.n)
                     .step_by(chunk)
@@ -319,8 +333,9 @@ impl ContactTable {
                     .map(|h| h.join().expect("table build thread"))
                     .collect::<Vec<_>>()
             });
-            for (k, contacts) in parts.into_iter().flatten() {
+            for (k, contacts, gap) in parts.into_iter().flatten() {
                 out[k] = contacts;
+                gaps[k] = gap;
             }
         }
         if cancel::requested() {
@@ -333,6 +348,7 @@ impl ContactTable {
             lateral,
             roll,
             nodes,
+            min_gap_m,
             mirrored,
             rails,
             build_s: t0.elapsed().as_secs_f64(),
@@ -362,6 +378,46 @@ impl ContactTable {
     /// True when (lateral shift, roll) lies inside the grid.
     pub fn covers(&self, lateral_m: f64, roll_rad: f64) -> bool {
         self.lateral.locate(lateral_m).is_some() && self.roll.locate(roll_rad).is_some()
+    }
+
+    /// The smallest vertical gap of `side` at (y, roll), interpolated
+    /// linearly in y at roll node `ir` (the wheelset centre at the
+    /// nominal radius, yaw 0) \[m\]; `None` outside the lateral range.
+    fn node_min_gap(&self, side: Side, lateral_m: f64, ir: usize) -> Option<f64> {
+        if self.mirrored && side == Side::Left {
+            return self.node_min_gap(Side::Right, -lateral_m, self.roll.n - 1 - ir);
+        }
+        let (iy, wy) = self.lateral.locate(lateral_m)?;
+        let gaps = &self.min_gap_m[side.index()];
+        let g0 = gaps[iy * self.roll.n + ir];
+        let g1 = gaps[(iy + 1) * self.roll.n + ir];
+        Some(g0 + wy * (g1 - g0))
+    }
+
+    /// The roll angle at which both wheels touch their rails at lateral
+    /// shift `lateral_m` and yaw 0, from the nodes' smallest gaps
+    /// (linear between roll nodes) \[rad\]: where the roll search starts.
+    /// `None` when the nodes do not bracket it.
+    pub fn roll_estimate(&self, lateral_m: f64) -> Option<f64> {
+        let d = |ir: usize| -> Option<f64> {
+            let v = self.node_min_gap(Side::Left, lateral_m, ir)?
+                - self.node_min_gap(Side::Right, lateral_m, ir)?;
+            v.is_finite().then_some(v)
+        };
+        let mut prev = d(0)?;
+        for ir in 1..self.roll.n {
+            let next = d(ir)?;
+            if prev <= 0.0 && next >= 0.0 {
+                let w = if next > prev {
+                    -prev / (next - prev)
+                } else {
+                    0.0
+                };
+                return Some(self.roll.value(ir - 1) + w * self.roll.step);
+            }
+            prev = next;
+        }
+        None
     }
 
     /// The seeds of the potential contacts of `side` at (y, roll),
@@ -417,25 +473,34 @@ impl ContactTable {
     /// (which carries the actual yaw and centre height): each seed of the
     /// look-up refined to the local minimum of the vertical gap on the
     /// wheel profile; seeds that end on the same minimum are one contact.
-    /// Increasing q.
+    /// Increasing q. With `near`, the contacts of a nearby pose of the
+    /// same position (the roll search's previous roll), those are the
+    /// seeds instead of the look-up's.
     fn evaluate(
         &self,
         side: Side,
         lateral_m: f64,
         roll_rad: f64,
         pose: &SidePose,
+        near: Option<&[Evaluated]>,
     ) -> Option<Vec<Evaluated>> {
-        let seeds = self.lookup(side, lateral_m, roll_rad)?;
         let probe = Probe::new(self, side, pose);
-        let mut out: Vec<Evaluated> = Vec::with_capacity(seeds.len());
-        for c in seeds {
-            let Some(e) = probe.descend(c.wheel_t_m) else {
-                continue;
+        let mut out: Vec<Evaluated> = Vec::new();
+        let mut add = |t_m: f64| {
+            let Some(e) = probe.descend(t_m) else {
+                return;
             };
             let same = |o: &Evaluated| (o.wheel_t_m - e.wheel_t_m).abs() < 2.0 * probe.dt;
             if !out.iter().any(same) {
                 out.push(e);
             }
+        };
+        match near {
+            Some(near) => near.iter().for_each(|c| add(c.wheel_t_m)),
+            None => self
+                .lookup(side, lateral_m, roll_rad)?
+                .iter()
+                .for_each(|c| add(c.wheel_t_m)),
         }
         out.sort_by(|a, b| a.locus.q_m.total_cmp(&b.locus.q_m));
         (!out.is_empty()).then_some(out)
@@ -452,9 +517,28 @@ struct Probe<'a> {
     rail_samples: &'a [CurveSample],
 }
 
-/// Most steps of the descent from a seed along the wheel profile (in
-/// sample spacings, 20 mm).
+/// Largest change of roll in the roll search over which the contacts of
+/// one roll seed those of the next instead of the table's look-up \[rad\]:
+/// a tenth of the default roll step, a change of the vertical gaps of
+/// about 0.2 mm across the track, ten times less than the level of
+/// potential contacts ([`CONTACT_LEVEL_M`]).
+const NEAR_ROLL_RAD: f64 = 2.5e-4;
+
+/// Most steps of the descent from a seed along the wheel profile, each
+/// way.
 const MAX_DESCENT_STEPS: usize = 400;
+
+/// Longest step of the descent from a seed along the wheel profile, in
+/// sample spacings (0.4 mm): a valley of the vertical gap narrower than
+/// that may be stepped over to a lower point beyond its barrier.
+const MAX_STRIDE_SAMPLES: f64 = 8.0;
+
+/// Least fall of the vertical gap over one step of the descent for the
+/// next step to be longer \[m\]. On the flat bottom of a tread contact the
+/// gap falls by nanometres a sample spacing; strides there would land on
+/// another of the ripples of a fitted profile (positions 0.06 mm apart on
+/// MBench at the same force), so the descent is sample by sample.
+const STRIDE_DROP_M: f64 = 1.0e-6;
 
 impl<'a> Probe<'a> {
     fn new(table: &'a ContactTable, side: Side, pose: &SidePose) -> Self {
@@ -503,25 +587,65 @@ impl<'a> Probe<'a> {
         })
     }
 
-    /// From the seed `t_m`, downhill along the wheel profile in sample
-    /// steps to a local minimum of the vertical gap, then to the vertex of
-    /// the parabola through it and its neighbours.
+    /// From the seed `t_m`, downhill along the wheel profile to a local
+    /// minimum of the vertical gap at sample resolution (a point whose
+    /// neighbours one sample spacing away on either side are not lower),
+    /// then to the vertex of the parabola through it and those neighbours.
+    /// Downhill steps double from one sample spacing up to
+    /// [`MAX_STRIDE_SAMPLES`] while the gap falls by more than
+    /// [`STRIDE_DROP_M`] a step, and start again at one where a step would
+    /// climb or the gap flattens: a seed far from its minimum (a contact
+    /// of a neighbouring node that the actual position lacks) gets there
+    /// in a few steps, and near a minimum, where the gap is flat, the
+    /// descent goes sample by sample.
     fn descend(&self, t_m: f64) -> Option<Evaluated> {
         let g = |t: f64| self.at(t).map_or(f64::INFINITY, |e| e.gap_m);
         let (mut t, mut g0) = (t_m, g(t_m));
         if !g0.is_finite() {
             return None;
         }
+        // The gaps one sample spacing above and below t, when known.
+        let (mut above, mut below): (Option<f64>, Option<f64>) = (None, None);
         for dir in [1.0, -1.0] {
+            let mut stride = 1.0;
             for _ in 0..MAX_DESCENT_STEPS {
-                let g1 = g(t + dir * self.dt);
+                let known = if dir > 0.0 { above } else { below };
+                let g1 = match known {
+                    Some(v) if stride == 1.0 => v,
+                    _ => g(t + dir * stride * self.dt),
+                };
                 if g1 >= g0 {
-                    break;
+                    if stride == 1.0 {
+                        if dir > 0.0 {
+                            above = Some(g1);
+                        } else {
+                            below = Some(g1);
+                        }
+                        break;
+                    }
+                    stride = 1.0;
+                    continue;
                 }
-                (t, g0) = (t + dir * self.dt, g1);
+                // The point left behind is a neighbour only after a unit
+                // step.
+                let behind = (stride == 1.0).then_some(g0);
+                (above, below) = if dir > 0.0 {
+                    (None, behind)
+                } else {
+                    (behind, None)
+                };
+                let drop = g0 - g1;
+                (t, g0) = (t + dir * stride * self.dt, g1);
+                stride = if drop > STRIDE_DROP_M {
+                    (2.0 * stride).min(MAX_STRIDE_SAMPLES)
+                } else {
+                    1.0
+                };
             }
         }
-        let (f, _) = parabola_vertex(g(t - self.dt), g0, g(t + self.dt), 1.0);
+        let lo = below.unwrap_or_else(|| g(t - self.dt));
+        let hi = above.unwrap_or_else(|| g(t + self.dt));
+        let (f, _) = parabola_vertex(lo, g0, hi, 1.0);
         self.at(t + f * self.dt)
     }
 
@@ -709,7 +833,9 @@ fn patch(
 }
 
 /// One wheel pressed onto its rail, its contacts evaluated at the rigid
-/// position (the structure of the direct path's wheel solution).
+/// position (the structure of the direct path's wheel solution); the load
+/// iteration of a single patch starts at `start`, a normal force per
+/// vertical load, which is returned for the next step.
 #[allow(clippy::too_many_arguments)]
 fn solve_wheel_tabulated(
     pair: &WheelRailPair,
@@ -720,7 +846,8 @@ fn solve_wheel_tabulated(
     omega: f64,
     cache: &KernelCache,
     timing: &mut Timing,
-) -> Result<WheelResult, WheelRailError> {
+    start: Option<f64>,
+) -> Result<(WheelResult, Option<f64>), WheelRailError> {
     let deepest = contacts
         .iter()
         .min_by(|a, b| a.gap_m.total_cmp(&b.gap_m))
@@ -730,7 +857,7 @@ fn solve_wheel_tabulated(
         WheelLoad::VerticalForce(f) => gmin + CAP_FACTOR * approach_estimate(deepest, input, f),
         // Not reaching the rail: nothing to solve (as the direct path).
         WheelLoad::Approach(d) if d <= gmin => {
-            return Ok(finish(pair, side, gmin, d, 0, Vec::new()))
+            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None))
         }
         WheelLoad::Approach(d) => gmin + d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_tabulated"),
@@ -747,7 +874,7 @@ fn solve_wheel_tabulated(
             .collect();
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
-        let result = load_iteration(&mut patches, input, cap, &mut fastsim, cache, None).map_err(
+        let result = load_iteration(&mut patches, input, cap, &mut fastsim, cache, start).map_err(
             |(patch, source): (usize, ContactError)| WheelRailError::Contact {
                 side: side.name(),
                 patch,
@@ -763,7 +890,8 @@ fn solve_wheel_tabulated(
                     reps = parts;
                     continue;
                 }
-                return Ok(finish(pair, side, gmin, delta, iterations, patches));
+                let ratio = normal_per_vertical(&patches, input);
+                return Ok((finish(pair, side, gmin, delta, iterations, patches), ratio));
             }
             LoadResult::CapTooSmall => {
                 cap = gmin + 2.0 * (cap - gmin);
@@ -781,46 +909,87 @@ fn solve_wheel_tabulated(
 /// Solves the wheel/rail contact of `input` on the table's pair with the
 /// contact geometry from `table` (see the module documentation) for the
 /// Hertz+FASTSIM model; other models, and positions outside the table, are
-/// solved by [`solve_wheelset`] with the direct search.
+/// solved by [`solve_wheelset`] with the direct search. The roll search
+/// starts at the table's estimate ([`ContactTable::roll_estimate`]).
 pub fn solve_wheelset_tabulated(
     table: &ContactTable,
     input: &WheelRailInput,
     cache: &KernelCache,
     scratch: &mut SearchScratch,
 ) -> Result<WheelRailSolution, WheelRailError> {
+    solve_wheelset_tabulated_warm(table, input, cache, scratch, &mut WarmStart::default())
+}
+
+/// [`solve_wheelset_tabulated`] in a co-simulation: the roll search starts
+/// at the previous step's roll and each wheel's load iteration at its
+/// previous normal force per vertical load (`warm`, which the solve
+/// updates; the same solves from the same warm start give the same bits).
+/// Positions solved with the direct search use and update `warm` as
+/// [`solve_wheelset_warm`] does.
+pub fn solve_wheelset_tabulated_warm(
+    table: &ContactTable,
+    input: &WheelRailInput,
+    cache: &KernelCache,
+    scratch: &mut SearchScratch,
+    warm: &mut WarmStart,
+) -> Result<WheelRailSolution, WheelRailError> {
     validate(input)?;
-    let direct = |scratch: &mut SearchScratch| solve_wheelset(&table.pair, input, cache, scratch);
     if input.settings.model != WheelRailModel::HertzFastsim {
-        return direct(scratch);
+        return solve_wheelset_warm(&table.pair, input, cache, scratch, warm);
     }
     let t0 = Instant::now();
     let pair = &table.pair;
     let p = &input.position;
     let z0 = -pair.wheelset().nominal_radius_m;
-    let at = |roll: f64, z: f64| -> Option<[Vec<Evaluated>; 2]> {
+    // The contacts of both sides at `roll`, from the look-up or from
+    // those at a nearby roll.
+    let at = |roll: f64, near: Option<&[Vec<Evaluated>; 2]>| -> Option<[Vec<Evaluated>; 2]> {
         let eval = |side: Side| {
-            let pose = SidePose::new(side, p.lateral_m, z, roll, p.yaw_rad);
-            table.evaluate(side, p.lateral_m, roll, &pose)
+            let pose = SidePose::new(side, p.lateral_m, z0, roll, p.yaw_rad);
+            let near = near.map(|n| n[side.index()].as_slice());
+            table.evaluate(side, p.lateral_m, roll, &pose, near)
         };
         Some([eval(Side::Left)?, eval(Side::Right)?])
     };
     let min_gap = |c: &[Evaluated]| c.iter().map(|e| e.gap_m).fold(f64::INFINITY, f64::min);
+    // The roll search: its first roll's contacts come from the look-up,
+    // the next ones' from the last roll's (the roll moves by less than
+    // NEAR_ROLL_RAD); `last` holds the last roll evaluated and its
+    // contacts, `first` the roll of the look-up.
+    let mut last: Option<(f64, [Vec<Evaluated>; 2])> = None;
+    let mut first: Option<f64> = None;
+    let mut search = |r: f64| -> Result<f64, WheelRailError> {
+        let near = match (&last, first) {
+            (Some((_, c)), Some(r0)) if (r - r0).abs() <= NEAR_ROLL_RAD => Some(c),
+            _ => {
+                first = Some(r);
+                None
+            }
+        };
+        let c = at(r, near).ok_or_else(|| WheelRailError::invalid("table", "outside"))?;
+        let d = min_gap(&c[0]) - min_gap(&c[1]);
+        last = Some((r, c));
+        Ok(d)
+    };
     let roll = match p.roll_rad {
-        Some(r) => Some(r),
+        Some(r) => search(r).ok().map(|_| r),
         None => find_roll(
-            |r| {
-                let c = at(r, z0).ok_or_else(|| WheelRailError::invalid("table", "outside"))?;
-                Ok(min_gap(&c[0]) - min_gap(&c[1]))
-            },
+            &mut search,
             pair.track().gauge_m,
             SearchSettings::default().roll_tolerance_m,
             p.lateral_m,
-            0.0,
+            warm.roll_rad
+                .or_else(|| table.roll_estimate(p.lateral_m))
+                .unwrap_or(0.0),
         )
         .ok(),
     };
-    let Some((roll, mut contacts)) = roll.and_then(|r| Some((r, at(r, z0)?))) else {
-        return direct(scratch);
+    let contacts = roll.and_then(|r| match last.take() {
+        Some((lr, c)) if lr == r => Some(c),
+        _ => at(r, None),
+    });
+    let (Some(roll), Some(mut contacts)) = (roll, contacts) else {
+        return solve_wheelset_warm(pair, input, cache, scratch, warm);
     };
     // Translating the wheelset in z shifts every vertical gap equally.
     let dz = min_gap(&contacts[0]).min(min_gap(&contacts[1]));
@@ -846,23 +1015,35 @@ pub fn solve_wheelset_tabulated(
     };
     let resolved = input.with_load_resolved(center_z_m);
     let input = &*resolved;
+    // Each solve of the wheels starts from the last one's (the first from
+    // the warm start).
+    let mut normal_per_vertical = warm.normal_per_vertical;
     let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
         let mut wheels = Vec::with_capacity(input.sides.len());
         for &side in &input.sides {
             let pose = SidePose::new(side, p.lateral_m, center_z_m, roll, p.yaw_rad);
-            wheels.push(solve_wheel_tabulated(
+            let i = side.index();
+            let (wheel, ratio) = solve_wheel_tabulated(
                 pair,
-                &contacts[side.index()],
+                &contacts[i],
                 &pose,
                 side,
                 input,
                 omega,
                 cache,
                 &mut timing,
-            )?);
+                normal_per_vertical[i],
+            )?;
+            normal_per_vertical[i] = ratio;
+            wheels.push(wheel);
         }
         Ok(wheels)
     })?;
+    *warm = WarmStart {
+        roll_rad: Some(roll),
+        normal_per_vertical,
+        tractions: [None, None],
+    };
     Ok(WheelRailSolution {
         center_z_m,
         roll_rad: roll,
