@@ -91,6 +91,9 @@ struct LawState {
     /// The bound mu p_n \[Pa\] handed to the Coulomb solvers as their
     /// pressure (with coefficient 1).
     bound: Vec<f64>,
+    /// Whether a solve used a law (then a saved state holds `mu`,
+    /// `mu_before` and `velocity`; under Coulomb's law it holds none).
+    used: bool,
 }
 
 impl LawState {
@@ -102,6 +105,7 @@ impl LawState {
             velocity: z(),
             velocity_new: z(),
             bound: z(),
+            used: false,
         }
     }
 }
@@ -252,9 +256,17 @@ impl ContactSolver {
         to.prev_state.clone_from(&self.prev_state);
         to.transient_steps = self.transient_steps;
         to.path.copy_from(&self.path);
-        to.mu.clone_from(&self.law.mu);
-        to.mu_before.clone_from(&self.law.mu_before);
-        to.slip_velocity.clone_from(&self.law.velocity);
+        for (to, from) in [
+            (&mut to.mu, &self.law.mu),
+            (&mut to.mu_before, &self.law.mu_before),
+            (&mut to.slip_velocity, &self.law.velocity),
+        ] {
+            if self.law.used {
+                to.clone_from(from);
+            } else {
+                to.clear();
+            }
+        }
     }
 
     /// Puts back a state saved from this solver (or one of the same grid):
@@ -289,9 +301,10 @@ impl ContactSolver {
     /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
-        // pn, px, py, sx, sy, the law's mu, mu_before and slip velocity; two
-        // element states; the path's three fields.
-        n * (8 * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+        // pn, px, py, sx, sy (and a law's mu, mu_before and slip velocity);
+        // two element states; the path's three fields.
+        let fields = if self.law.used { 8 } else { 5 };
+        n * (fields * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
     }
 
     /// Makes the solution of the last solve the history the next transient
@@ -827,6 +840,7 @@ impl ContactSolver {
         coupling: usize,
     ) -> (TangentialOutcome, bool) {
         let grid = self.grid;
+        self.law.used = true;
         let speed = law.rolling_speed_m_per_s;
         // Slip velocity per unit of the solver's slip, and the step's time:
         // steady s [-] at V; a rolling step's S [m] over dq/V; a shift's S

@@ -130,7 +130,7 @@ fn rolling_step() -> ShiftStep {
 }
 
 #[test]
-fn contact_veldep_fric_steady_and_transient_cases_1_to_12() {
+fn contact_veldep_fric_steady_and_transient_cases_1_to_26() {
     let cache = KernelCache::new(64 << 20);
     let step = rolling_step();
     let mut worst: f64 = 0.0;
@@ -156,9 +156,9 @@ fn contact_veldep_fric_steady_and_transient_cases_1_to_12() {
     let low = problem(Kinematics::Transient(vec![step]), SlipStart::Sticking);
     let s = solver.solve_next_step(&low, &step).unwrap();
     worst = worst.max(check("case 2", &s, 1.116e5, [77, 4]));
-    // Cases 4-12: on from case 3 (= case 1), each from the slip velocity
+    // Cases 4-26: on from case 3 (= case 1), each from the slip velocity
     // V. veldep_fric.ref_out, FX and "final element division: A, S=".
-    let cases: [(f64, [usize; 2]); 9] = [
+    let cases: [(f64, [usize; 2]); 23] = [
         (1.064e5, [34, 47]),
         (1.071e5, [79, 2]),
         (1.078e5, [77, 4]),
@@ -168,6 +168,20 @@ fn contact_veldep_fric_steady_and_transient_cases_1_to_12() {
         (1.098e5, [69, 12]),
         (1.067e5, [36, 45]),
         (1.074e5, [79, 2]),
+        (1.080e5, [77, 4]),
+        (1.086e5, [75, 6]),
+        (1.091e5, [73, 8]),
+        (1.096e5, [71, 10]),
+        (1.066e5, [36, 45]),
+        (1.073e5, [79, 2]),
+        (1.079e5, [77, 4]),
+        (1.085e5, [75, 6]),
+        (1.090e5, [73, 8]),
+        (1.095e5, [71, 10]),
+        (1.064e5, [36, 45]),
+        (1.071e5, [79, 2]),
+        (1.077e5, [77, 4]),
+        (1.083e5, [75, 6]),
     ];
     solver.restore_state(&state).unwrap();
     solver.continue_from_last_solution();
@@ -177,7 +191,7 @@ fn contact_veldep_fric_steady_and_transient_cases_1_to_12() {
         worst = worst.max(check(&format!("case {}", k + 4), &s, *fx, *c));
     }
     eprintln!(
-        "veldep_fric cases 1-12: worst force difference {:.2} %",
+        "veldep_fric cases 1-26: worst force difference {:.2} %",
         100.0 * worst
     );
 }
@@ -273,4 +287,41 @@ fn an_unconverged_law_iteration_is_flagged_with_its_key() {
     assert_eq!(s.info.status, SolveStatus::MaxIterations);
     assert_eq!(s.info.limit, Some(IterationLimit::FrictionLaw));
     assert_eq!(IterationLimit::FrictionLaw.key(), "friction.max_iterations");
+}
+
+#[test]
+fn memory_interpolates_between_the_static_and_the_instantaneous_law() {
+    // Friction memory (CONTACT user guide, "Friction memory", eq. dmu_dt):
+    // over a memory distance far beyond the patch the material keeps the
+    // static coefficient it enters with, so the steady solution is
+    // Coulomb's with mu_s(0) = 0.30; over one far below an element it is
+    // the instantaneous law's; in between, Fx lies between the two.
+    let cache = KernelCache::new(64 << 20);
+    let fx = |p: &ContactProblem| {
+        let s = ContactSolver::new(p, &cache)
+            .solve(p)
+            .unwrap()
+            .pop()
+            .unwrap();
+        assert_eq!(s.info.status, SolveStatus::Converged, "{:?}", s.info);
+        s.totals.fx_n
+    };
+    let with_memory = |d_c: f64| {
+        let mut p = steady(-0.0009999, SlipStart::Sticking);
+        let mut l = law(SlipStart::Sticking);
+        l.memory_distance_m = d_c;
+        p.friction = Friction::falling(l);
+        fx(&p)
+    };
+    let mut coulomb = steady(-0.0009999, SlipStart::Sticking);
+    coulomb.friction = Friction::coulomb(0.30);
+    let (f_static, f_instant) = (fx(&coulomb), fx(&steady(-0.0009999, SlipStart::Sticking)));
+    let (f_long, f_short, f_mid) = (with_memory(1e3), with_memory(1e-12), with_memory(1e-3));
+    eprintln!(
+        "Fx [N/m]: Coulomb 0.30 {f_static:.6e}, d_c 1 km {f_long:.6e}; instantaneous \
+         {f_instant:.6e}, d_c 1e-12 m {f_short:.6e}; d_c 1 mm {f_mid:.6e}"
+    );
+    assert!((f_long / f_static - 1.0).abs() < 1e-5);
+    assert!((f_short / f_instant - 1.0).abs() < 1e-5);
+    assert!(f_mid.abs() > f_instant.abs() && f_mid.abs() < f_static.abs());
 }
