@@ -7,6 +7,7 @@
 //! solutions and the CLI's reports become [`pb::PatchResult`]s, and a
 //! non-finite total is refused here, never sent.
 
+use crate::core::friclaw::SlipStart;
 use crate::core::grid::Grid;
 use crate::core::material::Material;
 use crate::core::normal::NormalLoad;
@@ -15,8 +16,8 @@ use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::problem::case::{
-    ranges, Case, CaseFile, FrictionSection, GeometryKind, GeometrySection, GridSection,
-    LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
+    ranges, Case, CaseFile, FrictionLawName, FrictionSection, GeometryKind, GeometrySection,
+    GridSection, LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
     SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
@@ -258,11 +259,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             body1: m.body1.as_ref().map(material),
             body2: m.body2.as_ref().map(material),
         },
-        friction: c.friction.as_ref().map(|f| FrictionSection {
-            coefficient: f.coefficient,
-            static_coefficient: f.static_coefficient,
-            kinetic_coefficient: f.kinetic_coefficient,
-        }),
+        friction: c.friction.as_ref().map(friction_section).transpose()?,
         geometry: geometry(g)?,
         load: LoadSection {
             normal_force_n,
@@ -745,4 +742,47 @@ pub fn check_fields_finite(path: &str, f: &pb::ElementFields) -> Result<(), Serv
         finite_list(&format!("{path}.{name}"), v)?;
     }
     Ok(())
+}
+
+/// The case file's `[friction]` of a wire friction section; keys
+/// `friction.*`.
+pub fn friction_section(f: &pb::FrictionSection) -> Result<FrictionSection, ServiceError> {
+    let law = match pb::FrictionLaw::try_from(f.law) {
+        Ok(pb::FrictionLaw::Unspecified | pb::FrictionLaw::Coulomb) => FrictionLawName::Coulomb,
+        Ok(pb::FrictionLaw::Linear) => FrictionLawName::Linear,
+        Ok(pb::FrictionLaw::Rational) => FrictionLawName::Rational,
+        Ok(pb::FrictionLaw::Exponential) => FrictionLawName::Exponential,
+        Err(_) => {
+            return Err(ServiceError::invalid(
+                "friction.law",
+                format!("unknown value {}", f.law),
+            ))
+        }
+    };
+    let start = match pb::SlipStart::try_from(f.start) {
+        Ok(pb::SlipStart::Unspecified) => None,
+        Ok(pb::SlipStart::Previous) => Some(SlipStart::Previous),
+        Ok(pb::SlipStart::Sticking) => Some(SlipStart::Sticking),
+        Ok(pb::SlipStart::Sliding) => Some(SlipStart::Sliding),
+        Err(_) => {
+            return Err(ServiceError::invalid(
+                "friction.start",
+                format!("unknown value {}", f.start),
+            ))
+        }
+    };
+    let list = |v: &[f64]| (!v.is_empty()).then(|| v.to_vec());
+    Ok(FrictionSection {
+        law,
+        coefficient: f.coefficient,
+        static_coefficient: f.static_coefficient,
+        kinetic_coefficient: f.kinetic_coefficient,
+        falling_coefficients: list(&f.falling_coefficients),
+        half_velocities_m_per_s: list(&f.half_velocities_m_per_s),
+        rolling_speed_m_per_s: f.rolling_speed_m_per_s,
+        memory_distance_m: f.memory_distance_m,
+        memory_velocity_m_per_s: f.memory_velocity_m_per_s,
+        start,
+        max_iterations: f.max_iterations.map(|n| n as usize),
+    })
 }

@@ -44,8 +44,9 @@ use sha2::{Digest, Sha256};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
-use crate::problem::case::{FrictionSection, MaterialSection};
+use crate::problem::case::{FrictionLawName, MaterialSection};
 use crate::service::config::{ServeConfig, StoreDamaged};
+use crate::service::convert;
 use crate::service::metrics::Metrics;
 use crate::service::pb;
 use crate::service::pool::Admission;
@@ -366,14 +367,17 @@ fn cli_material(m: &pb::MaterialSection) -> MaterialSection {
     }
 }
 
-/// The checked friction of a wire friction section; keys `friction.*`.
+/// The checked Coulomb friction of a wire friction section (wheel/rail
+/// contact solves Coulomb's law only); keys `friction.*`.
 pub fn friction(f: &pb::FrictionSection) -> Result<Friction, ServiceError> {
-    Ok(FrictionSection {
-        coefficient: f.coefficient,
-        static_coefficient: f.static_coefficient,
-        kinetic_coefficient: f.kinetic_coefficient,
+    let section = convert::friction_section(f)?;
+    if section.law != FrictionLawName::Coulomb {
+        return Err(ServiceError::invalid(
+            "friction.law",
+            "wheel/rail contact solves Coulomb friction only; falling laws are for SolvePatch and PatchSession",
+        ));
     }
-    .friction()?)
+    Ok(section.friction()?)
 }
 
 /// Checks an element size \[m\] (the wheel/rail solver's range).
@@ -849,7 +853,7 @@ impl PairEntry {
             track: c.track,
             wheelset: c.wheelset,
             material: c.material,
-            friction: c.friction,
+            friction: c.friction.clone(),
             element_size_m: self.spec.settings.element_size_m,
             smoothing_wavelength_m: self.spec.settings.smoothing_wavelength_m,
             prepare_time_s: prepared.map_or(0.0, |p| p.prepare_time_s),

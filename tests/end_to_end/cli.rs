@@ -1280,6 +1280,33 @@ fn subsurface_options_need_the_section() {
 }
 
 #[test]
+fn the_falling_friction_example_is_contacts_veldep_fric_case_1() {
+    // examples/cases/line_veldep_fric.toml: CONTACT's veldep_fric case 1
+    // (veldep_fric.ref_out, revision 2356: FX 1.109E+05 N over DY = 200 mm,
+    // 5.545e5 N/m; NCON 81, NADH 45, NSLIP 36).
+    let v = solve_json(&example("line_veldep_fric.toml"), &["--fields"]);
+    assert_eq!(v["status"], "converged");
+    let fx = f(&v, "fx_n");
+    assert!((fx / 5.545e5 - 1.0).abs() < 0.01, "Fx {fx} N/m");
+    let states = v["fields"]["state"].as_array().unwrap();
+    let count = |s: &str| states.iter().filter(|e| *e == s).count();
+    assert_eq!(
+        [count("adhesion"), count("slip")],
+        [45, 36],
+        "adhesion/slip"
+    );
+    // A falling-law key under Coulomb's law is refused naming it.
+    let bad = case_file(
+        "veldep_coulomb.toml",
+        &example_text("line_veldep_fric.toml").replace("law = \"exponential\"", ""),
+    );
+    let out = run(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("friction.falling_coefficients"), "{err}");
+}
+
+#[test]
 fn the_line_contact_example_is_carters_rolling_per_metre() {
     // examples/cases/line_carter.toml: CONTACT's carter2d on 200 strips.
     // Carter (1926), Johnson 1985 §8.2: xi = 0.4 mu a/R leaves c/a = 0.6,

@@ -1264,3 +1264,42 @@ async fn solve_patch_solves_a_line_contact_per_metre() {
     assert_eq!(code, Code::InvalidArgument);
     assert!(msg.contains("rolling.force_x_n"), "{msg}");
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn solve_patch_solves_falling_friction_as_contacts_veldep_fric() {
+    // CONTACT's veldep_fric case 1 (examples/veldep_fric.inp, .ref_out,
+    // revision 2356): R = 460 mm on a flat rail, 622 216 N over 200 mm,
+    // V = 45 m/s, CKSI -0.0009999, exponential law FKIN 0.18, FEXP1 0.12,
+    // SABSH1 100 mm/s; FX 1.109E+05 N over 200 mm (5.545e5 N/m).
+    let (_server, mut client) = server().await;
+    let mut case = carter_line(pb::Creepages {
+        creepage_long: -0.0009999,
+        ..Default::default()
+    });
+    case.friction = Some(pb::FrictionSection {
+        law: pb::FrictionLaw::Exponential as i32,
+        kinetic_coefficient: Some(0.18),
+        falling_coefficients: vec![0.12],
+        half_velocities_m_per_s: vec![0.1],
+        rolling_speed_m_per_s: Some(45.0),
+        start: pb::SlipStart::Sticking as i32,
+        ..Default::default()
+    });
+    case.geometry.as_mut().unwrap().a_per_m = Some(1.0 / (2.0 * 0.46));
+    case.load = Some(pb::LoadSection {
+        load: Some(pb::load_section::Load::NormalForceNPerM(622_216.0 / 0.2)),
+    });
+    case.grid = Some(pb::GridSection {
+        nx: Some(93),
+        window_x_m: Some(9.3e-3),
+        ..Default::default()
+    });
+    let r = solve_patch(&mut client, case.clone()).await;
+    let t = totals(r.result.as_ref().unwrap());
+    assert!((t.fx_n / 5.545e5 - 1.0).abs() < 0.01, "Fx {} N/m", t.fx_n);
+    // A falling law without its rolling speed is refused naming the field.
+    case.friction.as_mut().unwrap().rolling_speed_m_per_s = None;
+    let (code, msg) = failure(client.solve_patch(request(case)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("friction.rolling_speed_m_per_s"), "{msg}");
+}

@@ -390,6 +390,33 @@ async fn refused_patch_steps_leave_exact_sessions_bit_for_bit_as_they_were() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn refused_steps_leave_falling_friction_sessions_bit_for_bit_as_they_were() {
+    // A transient rolling session under exponential falling friction: the
+    // law's coefficients and slip velocities travel with the material from
+    // step to step, and a step refused after it was solved (the patch
+    // beyond the grid) puts them back with the rest.
+    let (server, mut client) = server_with(ServeConfig::default()).await;
+    let mut c = case(pb::Model::Exact, Kind::TransientRolling, 16);
+    c.friction = Some(pb::FrictionSection {
+        law: pb::FrictionLaw::Exponential as i32,
+        kinetic_coefficient: Some(0.2),
+        falling_coefficients: vec![0.1],
+        half_velocities_m_per_s: vec![0.05],
+        rolling_speed_m_per_s: Some(10.0),
+        ..Default::default()
+    });
+    refusals_leave_no_trace(
+        &mut client,
+        c,
+        Kind::TransientRolling,
+        true,
+        &[NEGATIVE_LOAD, BEYOND_GRID, ROLLING_SHIFT],
+    )
+    .await;
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn refused_patch_steps_leave_fastsim_hertz_and_cect_sessions_as_they_were() {
     let (server, mut client) = server_with(ServeConfig::default()).await;
     refusals_leave_no_trace(

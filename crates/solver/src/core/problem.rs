@@ -39,6 +39,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::core::error::{require_finite, require_positive, ContactError, Range};
+use crate::core::friclaw::SlipVelocityLaw;
 
 /// Range of a friction coefficient [-] (dry steel on steel: about 0.3–0.6).
 pub const FRICTION_COEFFICIENT_RANGE: Range = Range::closed(0.0, 5.0, "");
@@ -73,13 +74,21 @@ use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
 use crate::core::tangential::TangentialSettings;
 
-/// Coulomb friction.
+/// Friction: Coulomb's law with static and kinetic coefficients, or a
+/// slip-velocity dependent law ([`crate::core::friclaw`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Friction {
-    /// Static coefficient [-], bound for elements that were sticking.
+    /// Static coefficient [-], bound for elements that were sticking (with
+    /// a slip-velocity law: its mu_s(0)).
     pub static_coefficient: f64,
-    /// Kinetic coefficient [-], bound for elements that were sliding.
+    /// Kinetic coefficient [-], bound for elements that were sliding (with
+    /// a slip-velocity law: its limit mu_kin at large slip velocity).
     pub kinetic_coefficient: f64,
+    /// A slip-velocity dependent law (exact model only): then the bound of
+    /// every element is mu(s_a) p_n, and the two coefficients above are
+    /// the law's (see [`Friction::falling`]). None: Coulomb.
+    #[serde(default)]
+    pub slip_velocity_law: Option<SlipVelocityLaw>,
 }
 
 impl Friction {
@@ -88,6 +97,27 @@ impl Friction {
         Self {
             static_coefficient: mu,
             kinetic_coefficient: mu,
+            slip_velocity_law: None,
+        }
+    }
+
+    /// Static and kinetic coefficients (Coulomb's law with the static bound
+    /// where the material stuck just before, the kinetic one where it slid).
+    pub fn static_kinetic(static_coefficient: f64, kinetic_coefficient: f64) -> Self {
+        Self {
+            static_coefficient,
+            kinetic_coefficient,
+            slip_velocity_law: None,
+        }
+    }
+
+    /// The slip-velocity dependent `law`, its static coefficient mu_s(0)
+    /// and kinetic coefficient mu_kin.
+    pub fn falling(law: SlipVelocityLaw) -> Self {
+        Self {
+            static_coefficient: law.static_coefficient(),
+            kinetic_coefficient: law.kinetic_coefficient,
+            slip_velocity_law: Some(law),
         }
     }
 
@@ -97,6 +127,15 @@ impl Friction {
     /// kinetic coefficient below the static one (also 0) bounds the
     /// traction where the material slid just before.
     pub fn validate(&self) -> Result<(), ContactError> {
+        if let Some(law) = &self.slip_velocity_law {
+            law.validate()?;
+            if *self != Friction::falling(*law) {
+                return Err(ContactError::invalid(
+                    "friction.static_coefficient",
+                    "with a slip-velocity law the coefficients are the law's: build it with Friction::falling",
+                ));
+            }
+        }
         for (key, mu) in [
             ("friction.static_coefficient", self.static_coefficient),
             ("friction.kinetic_coefficient", self.kinetic_coefficient),

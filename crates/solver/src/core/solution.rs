@@ -59,15 +59,21 @@ pub enum IterationLimit {
     /// The limit of normal/tangential alternations of dissimilar
     /// materials ([`crate::core::problem::SolverSettings::coupling_max_iterations`]).
     Coupling,
+    /// The limit of the fixed-point iteration on the slip velocities of a
+    /// slip-velocity dependent friction law
+    /// ([`crate::core::friclaw::SlipVelocityLaw::max_iterations`]).
+    FrictionLaw,
 }
 
 impl IterationLimit {
     /// The case file's key of the limit: `solver.max_iterations` (normal
-    /// and tangential) or `solver.coupling_max_iterations`.
+    /// and tangential), `solver.coupling_max_iterations` or
+    /// `friction.max_iterations`.
     pub fn key(self) -> &'static str {
         match self {
             IterationLimit::Normal | IterationLimit::Tangential => "solver.max_iterations",
             IterationLimit::Coupling => "solver.coupling_max_iterations",
+            IterationLimit::FrictionLaw => "friction.max_iterations",
         }
     }
 }

@@ -10,6 +10,7 @@ use crate::core::cancel;
 use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::friclaw::{SlipStart, SlipVelocityLaw};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
@@ -70,6 +71,43 @@ pub struct ContactSolver {
     transient_steps: usize,
     /// Inputs and solution before last, for the warm start's prediction.
     path: WarmPath,
+    /// A slip-velocity law's state: see [`LawState`].
+    law: LawState,
+}
+
+/// Buffers of a slip-velocity dependent friction law
+/// ([`crate::core::friclaw`]), unused under Coulomb's law.
+#[derive(Clone)]
+struct LawState {
+    /// Friction coefficient of each element [-] of the last solve.
+    mu: Vec<f64>,
+    /// The coefficient the material at each element had one transient step
+    /// before [-] (0: none, fresh material, the static coefficient).
+    mu_before: Vec<f64>,
+    /// Slip velocity of each element \[m/s\]: the iterate, then the answer.
+    velocity: Vec<f64>,
+    /// The slip velocities of the last pass's solution \[m/s\].
+    velocity_new: Vec<f64>,
+    /// The bound mu p_n \[Pa\] handed to the Coulomb solvers as their
+    /// pressure (with coefficient 1).
+    bound: Vec<f64>,
+    /// Whether a solve used a law (then a saved state holds `mu`,
+    /// `mu_before` and `velocity`; under Coulomb's law it holds none).
+    used: bool,
+}
+
+impl LawState {
+    fn new(n: usize) -> Self {
+        let z = || vec![0.0; n];
+        Self {
+            mu: z(),
+            mu_before: z(),
+            velocity: z(),
+            velocity_new: z(),
+            bound: z(),
+            used: false,
+        }
+    }
 }
 
 /// What the solves of a [`ContactSolver`] read from the solves before
@@ -89,6 +127,9 @@ pub struct SolverState {
     prev_state: Vec<ElementState>,
     transient_steps: usize,
     path: WarmPath,
+    mu: Vec<f64>,
+    mu_before: Vec<f64>,
+    slip_velocity: Vec<f64>,
 }
 
 impl SolverState {
@@ -96,10 +137,19 @@ impl SolverState {
     pub fn bytes(&self) -> usize {
         let f = |v: &Vec<f64>| std::mem::size_of_val(v.as_slice());
         let e = |v: &Vec<ElementState>| std::mem::size_of_val(v.as_slice());
-        [&self.pn, &self.px, &self.py, &self.sx, &self.sy]
-            .into_iter()
-            .map(f)
-            .sum::<usize>()
+        [
+            &self.pn,
+            &self.px,
+            &self.py,
+            &self.sx,
+            &self.sy,
+            &self.mu,
+            &self.mu_before,
+            &self.slip_velocity,
+        ]
+        .into_iter()
+        .map(f)
+        .sum::<usize>()
             + e(&self.state)
             + e(&self.prev_state)
             + self.path.bytes()
@@ -154,6 +204,7 @@ impl ContactSolver {
             last_py: z(),
             transient_steps: 0,
             path: WarmPath::default(),
+            law: LawState::new(n),
         }
     }
 
@@ -205,6 +256,17 @@ impl ContactSolver {
         to.prev_state.clone_from(&self.prev_state);
         to.transient_steps = self.transient_steps;
         to.path.copy_from(&self.path);
+        for (to, from) in [
+            (&mut to.mu, &self.law.mu),
+            (&mut to.mu_before, &self.law.mu_before),
+            (&mut to.slip_velocity, &self.law.velocity),
+        ] {
+            if self.law.used {
+                to.clone_from(from);
+            } else {
+                to.clear();
+            }
+        }
     }
 
     /// Puts back a state saved from this solver (or one of the same grid):
@@ -221,14 +283,39 @@ impl ContactSolver {
         self.prev_state.copy_from_slice(&from.prev_state);
         self.transient_steps = from.transient_steps;
         self.path.copy_from(&from.path);
+        for (to, from) in [
+            (&mut self.law.mu, &from.mu),
+            (&mut self.law.mu_before, &from.mu_before),
+            (&mut self.law.velocity, &from.slip_velocity),
+        ] {
+            // A state saved before any solve holds empty fields.
+            if from.len() == to.len() {
+                to.copy_from_slice(from);
+            } else {
+                to.fill(0.0);
+            }
+        }
         Ok(())
     }
 
     /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
-        // pn, px, py, sx, sy; two element states; the path's three fields.
-        n * (5 * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+        // pn, px, py, sx, sy (and a law's mu, mu_before and slip velocity);
+        // two element states; the path's three fields.
+        let fields = if self.law.used { 8 } else { 5 };
+        n * (fields * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+    }
+
+    /// Makes the solution of the last solve the history the next transient
+    /// step ([`ContactSolver::solve_next_step`]) continues from, as if it
+    /// had been a transient step: a steady rolling solution is the state
+    /// of material that has rolled long enough, so transient rolling steps
+    /// continue the steady state in moving coordinates (Kalker 1990, §5.4;
+    /// CONTACT's sequences of a steady case followed by transient ones).
+    pub fn continue_from_last_solution(&mut self) {
+        self.transient_steps = self.transient_steps.max(1);
+        self.law.mu_before.copy_from_slice(&self.law.mu);
     }
 
     /// Forgets the warm start.
@@ -239,6 +326,9 @@ impl ContactSolver {
         self.tr.state.fill(ElementState::Exterior);
         self.transient_steps = 0;
         self.path.clear();
+        for v in [&mut self.law.mu_before, &mut self.law.velocity] {
+            v.fill(0.0);
+        }
     }
 
     /// Solves `problem` (which must have this solver's grid and materials):
@@ -260,7 +350,7 @@ impl ContactSolver {
                 let point = PathPoint::of(problem);
                 self.path
                     .predict(&point, [&mut self.pn, &mut self.tr.px, &mut self.tr.py]);
-                let solved = self.solve_one(problem, problem.load, None);
+                let solved = self.solve_one(problem, problem.load, None, 0.0);
                 match &solved {
                     Ok(_) => self.path.push(point),
                     Err(_) => self.path.clear(),
@@ -347,6 +437,13 @@ impl ContactSolver {
             std::mem::swap(&mut self.tr.py, &mut self.tmp_y);
             shift_upstream(&self.grid, rolled, &self.pn, &mut self.h_eff);
             shift_upstream(&self.grid, rolled, &self.tr.state, &mut self.prev_state);
+            if problem.friction.slip_velocity_law.is_some() {
+                let law = &mut self.law;
+                shift_upstream(&self.grid, rolled, &law.mu_before, &mut law.velocity_new);
+                std::mem::swap(&mut law.mu_before, &mut law.velocity_new);
+                shift_upstream(&self.grid, rolled, &law.velocity, &mut law.velocity_new);
+                std::mem::swap(&mut law.velocity, &mut law.velocity_new);
+            }
             &self.h_eff
         } else {
             self.prev_state.copy_from_slice(&self.tr.state);
@@ -377,17 +474,24 @@ impl ContactSolver {
             problem,
             step.load,
             Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
+            step.rolling_m,
         )?;
         sol.info.matvecs += usize::from(!first);
         self.transient_steps += 1;
+        if problem.friction.slip_velocity_law.is_some() {
+            self.law.mu_before.copy_from_slice(&self.law.mu);
+        }
         Ok(sol)
     }
 
+    /// One solve: steady (`shift` None) or a transient step of the rigid
+    /// `shift` (x, y, rotation) that rolls `rolling_m` \[m\].
     fn solve_one(
         &mut self,
         problem: &ContactProblem,
         load: NormalLoad,
         shift: Option<(f64, f64, f64)>,
+        rolling_m: f64,
     ) -> Result<ContactSolution, ContactError> {
         let grid = self.grid;
         let n = grid.len();
@@ -433,10 +537,20 @@ impl ContactSolver {
         let mut approach = 0.0;
         let mut normal_ok = true;
         let mut tangential_ok = true;
-        let friction = FrictionBounds {
-            static_coefficient: problem.friction.static_coefficient,
-            kinetic_coefficient: problem.friction.kinetic_coefficient,
+        let law = problem.friction.slip_velocity_law;
+        // A slip-velocity law hands its bounds mu p_n to the solvers as
+        // their pressure, with coefficient 1.
+        let friction = match law {
+            Some(_) => FrictionBounds {
+                static_coefficient: 1.0,
+                kinetic_coefficient: 1.0,
+            },
+            None => FrictionBounds {
+                static_coefficient: problem.friction.static_coefficient,
+                kinetic_coefficient: problem.friction.kinetic_coefficient,
+            },
         };
+        let mut law_ok = true;
         let mut monitor = CouplingMonitor::default();
         for c in 0..cmax {
             cancel::check()?;
@@ -476,8 +590,7 @@ impl ContactSolver {
                 break;
             }
             // Fixed part of the slip.
-            let input_prev: &[ElementState];
-            let outcome = match (&problem.kinematics, shift) {
+            let steady = match (&problem.kinematics, shift) {
                 (Kinematics::SteadyRolling(cr), _) => {
                     rigid_slip(
                         &grid,
@@ -505,42 +618,7 @@ impl ContactSolver {
                         }
                         info.matvecs += 2;
                     }
-                    input_prev = &self.prev_state;
-                    let input = TangentialInput {
-                        grid: &grid,
-                        pn: &self.pn,
-                        friction,
-                        cx: &self.cx,
-                        cy: &self.cy,
-                        previous_state: input_prev,
-                    };
-                    // The steady operator through the displacement kernels
-                    // (real spectra; exact, the patch being off the border);
-                    // time marching when Newton stalls (dissimilar
-                    // materials with little friction: Bentall's rollers).
-                    newton_with_restarts(&s.tangential, |newton, limited| {
-                        if newton {
-                            solve_steady_newton(
-                                &self.displacement,
-                                &mut self.ows,
-                                &input,
-                                self.tr.output(),
-                                self.newton_scratch
-                                    .get_or_insert_with(|| SteadyScratch::new(n)),
-                                limited,
-                            )
-                        } else {
-                            solve_steady_marching(
-                                &self.displacement,
-                                &mut self.ows,
-                                &input,
-                                self.tr.output(),
-                                &mut self.tangential_scratch,
-                                &mut self.marching_scratch,
-                                limited,
-                            )
-                        }
-                    })
+                    true
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
@@ -559,49 +637,21 @@ impl ContactSolver {
                         );
                         info.matvecs += 1;
                     }
-                    let input = TangentialInput {
-                        grid: &grid,
-                        pn: &self.pn,
-                        friction,
-                        cx: &self.cx,
-                        cy: &self.cy,
-                        previous_state: &self.prev_state,
-                    };
-                    // Newton on the step's Coulomb system (about half the
-                    // products of FISTA); FISTA when it stalls.
-                    newton_with_restarts(&s.tangential, |newton, limited| {
-                        if newton {
-                            let mut op = PlanarTangential {
-                                kernels: &self.displacement,
-                                ows: &mut self.ows,
-                            };
-                            solve_coulomb_newton(
-                                &mut op,
-                                LocalModel::Diagonal,
-                                None,
-                                &input,
-                                self.tr.output(),
-                                self.newton_scratch
-                                    .get_or_insert_with(|| SteadyScratch::new(n)),
-                                limited,
-                            )
-                        } else {
-                            solve_transient(
-                                &self.displacement,
-                                &mut self.ows,
-                                &input,
-                                self.tr.output(),
-                                &mut self.tangential_scratch,
-                                limited,
-                            )
-                        }
-                    })
+                    false
                 }
                 _ => {
                     return Err(ContactError::invalid(
                         "kinematics",
                         "internal: inconsistent kinematics",
                     ))
+                }
+            };
+            let outcome = match &law {
+                None => self.tangential_pass(&s.tangential, friction, steady, false),
+                Some(law) => {
+                    let (o, ok) = self.falling_friction(law, &s.tangential, steady, rolling_m, c);
+                    law_ok = ok;
+                    o
                 }
             };
             info.tangential_iterations += outcome.iterations;
@@ -625,13 +675,15 @@ impl ContactSolver {
         }
         // The loops above stop early once cancelled: no answer then.
         cancel::check()?;
-        if !(normal_ok && tangential_ok) {
+        if !(normal_ok && tangential_ok && law_ok) {
             info.status = SolveStatus::MaxIterations;
             if info.limit.is_none() {
-                info.limit = Some(if normal_ok {
+                info.limit = Some(if !normal_ok {
+                    IterationLimit::Normal
+                } else if !tangential_ok {
                     IterationLimit::Tangential
                 } else {
-                    IterationLimit::Normal
+                    IterationLimit::FrictionLaw
                 });
             }
         }
@@ -678,6 +730,209 @@ impl ContactSolver {
                 gap_m: problem.gap_m.clone(),
             },
         })
+    }
+
+    /// One Coulomb solve of the tangential problem whose fixed slip is in
+    /// `cx`, `cy`: steady rolling or a transient step; the bounds are
+    /// `friction` times the pressures, or times `law.bound` when
+    /// `law_bounds`.
+    fn tangential_pass(
+        &mut self,
+        settings: &TangentialSettings,
+        friction: FrictionBounds,
+        steady: bool,
+        law_bounds: bool,
+    ) -> TangentialOutcome {
+        let grid = self.grid;
+        let n = grid.len();
+        let input = TangentialInput {
+            grid: &grid,
+            pn: if law_bounds {
+                &self.law.bound
+            } else {
+                &self.pn
+            },
+            friction,
+            cx: &self.cx,
+            cy: &self.cy,
+            previous_state: &self.prev_state,
+        };
+        if steady {
+            // The steady operator through the displacement kernels (real
+            // spectra; exact, the patch being off the border); time
+            // marching when Newton stalls (dissimilar materials with
+            // little friction: Bentall's rollers).
+            newton_with_restarts(settings, |newton, limited| {
+                if newton {
+                    solve_steady_newton(
+                        &self.displacement,
+                        &mut self.ows,
+                        &input,
+                        self.tr.output(),
+                        self.newton_scratch
+                            .get_or_insert_with(|| SteadyScratch::new(n)),
+                        limited,
+                    )
+                } else {
+                    solve_steady_marching(
+                        &self.displacement,
+                        &mut self.ows,
+                        &input,
+                        self.tr.output(),
+                        &mut self.tangential_scratch,
+                        &mut self.marching_scratch,
+                        limited,
+                    )
+                }
+            })
+        } else {
+            // Newton on the step's Coulomb system (about half the products
+            // of FISTA); FISTA when it stalls.
+            newton_with_restarts(settings, |newton, limited| {
+                if newton {
+                    let mut op = PlanarTangential {
+                        kernels: &self.displacement,
+                        ows: &mut self.ows,
+                    };
+                    solve_coulomb_newton(
+                        &mut op,
+                        LocalModel::Diagonal,
+                        None,
+                        &input,
+                        self.tr.output(),
+                        self.newton_scratch
+                            .get_or_insert_with(|| SteadyScratch::new(n)),
+                        limited,
+                    )
+                } else {
+                    solve_transient(
+                        &self.displacement,
+                        &mut self.ows,
+                        &input,
+                        self.tr.output(),
+                        &mut self.tangential_scratch,
+                        limited,
+                    )
+                }
+            })
+        }
+    }
+
+    /// The tangential problem under the slip-velocity dependent `law`
+    /// (steady, or a transient step rolling `rolling_m` \[m\]): a
+    /// fixed-point iteration on the slip velocities, each pass a Coulomb
+    /// problem with the bounds mu(s_a) p_n of the last pass's slip
+    /// velocities, until the bounds of the answer's own slip velocities
+    /// differ from those it was solved with by less than ten times the
+    /// tangential tolerance (root mean square, relative to that of the
+    /// bounds). The first coupling pass (`coupling` 0) starts from
+    /// `law.start`; later ones continue. A pass whose change grows halves
+    /// the step towards the new slip velocities (relaxation, down to 1/16),
+    /// one whose change shrinks lengthens it again (up to 1); the iteration
+    /// stops at `law.iteration_limit()` passes. Returns the passes' outcome
+    /// (iterations and products summed) and whether the bounds converged.
+    fn falling_friction(
+        &mut self,
+        law: &SlipVelocityLaw,
+        settings: &TangentialSettings,
+        steady: bool,
+        rolling_m: f64,
+        coupling: usize,
+    ) -> (TangentialOutcome, bool) {
+        let grid = self.grid;
+        self.law.used = true;
+        let speed = law.rolling_speed_m_per_s;
+        // Slip velocity per unit of the solver's slip, and the step's time:
+        // steady s [-] at V; a rolling step's S [m] over dq/V; a shift's S
+        // over 1 s (CONTACT's convention, see core::friclaw).
+        let (per_slip, dt_s) = if steady {
+            (speed, grid.dx_m / speed)
+        } else if rolling_m > 0.0 {
+            (speed / rolling_m, rolling_m / speed)
+        } else {
+            (1.0, 1.0)
+        };
+        if coupling == 0 {
+            match law.start {
+                SlipStart::Previous => {}
+                SlipStart::Sticking => self.law.velocity.fill(0.0),
+                SlipStart::Sliding => self.law.velocity.fill(speed),
+            }
+        }
+        let tol = 10.0 * settings.tolerance;
+        let mut total = TangentialOutcome::default();
+        let mut omega = 1.0f64;
+        let mut last_change = f64::INFINITY;
+        for _ in 0..law.iteration_limit() {
+            self.law_coefficients(law, steady, dt_s);
+            for ((b, &p), &m) in self.law.bound.iter_mut().zip(&self.pn).zip(&self.law.mu) {
+                *b = p * m;
+            }
+            let bound = FrictionBounds {
+                static_coefficient: 1.0,
+                kinetic_coefficient: 1.0,
+            };
+            let o = self.tangential_pass(settings, bound, steady, true);
+            total = o.after(&total);
+            if cancel::requested() {
+                return (total, false);
+            }
+            // The slip velocities of this pass's solution and the bounds
+            // they give.
+            let law_state = &mut self.law;
+            for i in 0..grid.len() {
+                let (sx, sy) = (self.tr.sx[i], self.tr.sy[i]);
+                law_state.velocity_new[i] = per_slip * (sx * sx + sy * sy).sqrt();
+            }
+            std::mem::swap(&mut law_state.velocity, &mut law_state.velocity_new);
+            self.law_coefficients(law, steady, dt_s);
+            let law_state = &mut self.law;
+            let (mut change, mut size) = (0.0f64, 0.0f64);
+            for i in 0..grid.len() {
+                let new_bound = law_state.mu[i] * self.pn[i];
+                change += (new_bound - law_state.bound[i]).powi(2);
+                size += law_state.bound[i].powi(2);
+            }
+            let change = if size > 0.0 {
+                (change / size).sqrt()
+            } else {
+                0.0
+            };
+            if change <= tol {
+                // This pass's tractions meet the bounds of their own slip.
+                return (total, o.converged);
+            }
+            omega = if change > last_change {
+                (0.5 * omega).max(1.0 / 16.0)
+            } else {
+                (1.5 * omega).min(1.0)
+            };
+            last_change = change;
+            // Relaxed step: velocity <- old + omega (new - old).
+            for i in 0..grid.len() {
+                let old = law_state.velocity_new[i];
+                law_state.velocity[i] = old + omega * (law_state.velocity[i] - old);
+            }
+        }
+        // Leave the coefficients of the slip velocities of the answer.
+        let law_state = &mut self.law;
+        for i in 0..grid.len() {
+            let (sx, sy) = (self.tr.sx[i], self.tr.sy[i]);
+            law_state.velocity[i] = per_slip * (sx * sx + sy * sy).sqrt();
+        }
+        self.law_coefficients(law, steady, dt_s);
+        (total, false)
+    }
+
+    /// `law.mu` from `law.velocity`: along the rows in steady rolling, from
+    /// the previous step's coefficients in a transient step of `dt_s` \[s\].
+    fn law_coefficients(&mut self, law: &SlipVelocityLaw, steady: bool, dt_s: f64) {
+        let st = &mut self.law;
+        if steady {
+            law.steady_coefficients(&self.grid, &st.velocity, &mut st.mu);
+        } else {
+            law.step_coefficients(&st.velocity, &st.mu_before, dt_s, &mut st.mu);
+        }
     }
 
     fn totals(&self, approach: f64, frictional: bool, transient: bool) -> Totals {

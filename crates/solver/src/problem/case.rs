@@ -14,6 +14,7 @@ use crate::conformal::geometry::{
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{check_count, show, ContactError};
 use crate::core::force::PrescribedForce;
+use crate::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw, DEFAULT_LAW_ITERATIONS};
 use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
 use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
@@ -417,16 +418,64 @@ pub struct MaterialSection {
     pub body2: Option<Material>,
 }
 
-/// `[friction]`: `coefficient`, or `static_coefficient` + `kinetic_coefficient`.
-#[derive(Debug, Clone, Copy, Deserialize)]
+/// The friction law of a `[friction]` section.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionLawName {
+    /// Coulomb's law: `coefficient`, or `static_coefficient` +
+    /// `kinetic_coefficient` (the default).
+    #[default]
+    Coulomb,
+    /// Linear falling friction ([`crate::core::friclaw`]).
+    Linear,
+    /// Rational falling friction.
+    Rational,
+    /// Exponential falling friction.
+    Exponential,
+}
+
+/// `[friction]`: Coulomb's law (`coefficient`, or `static_coefficient` +
+/// `kinetic_coefficient`), or with `law = "linear" | "rational" |
+/// "exponential"` a slip-velocity dependent law ([`crate::core::friclaw`],
+/// exact model only): `kinetic_coefficient`, `falling_coefficients`,
+/// `half_velocities_m_per_s`, `rolling_speed_m_per_s` and the optional
+/// `memory_distance_m`, `memory_velocity_m_per_s`, `start`,
+/// `max_iterations`.
+#[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSection {
+    /// `"coulomb"` (default), `"linear"`, `"rational"` or `"exponential"`.
+    #[serde(default)]
+    pub law: FrictionLawName,
     /// Coulomb coefficient mu [-], >= 0 (static = kinetic).
     pub coefficient: Option<f64>,
     /// Static coefficient [-], >= 0 (with `kinetic_coefficient`).
     pub static_coefficient: Option<f64>,
-    /// Kinetic coefficient [-], >= 0 (with `static_coefficient`).
+    /// Kinetic coefficient [-], >= 0 (with `static_coefficient`); with a
+    /// falling law its limit mu_kin at large slip velocity, > 0.
     pub kinetic_coefficient: Option<f64>,
+    /// Falling law: the sizes mu_1 (, mu_2) [-] >= 0 of its one or two
+    /// terms at slip velocity 0; static coefficient mu_kin + mu_1 + mu_2 <= 5.
+    pub falling_coefficients: Option<Vec<f64>>,
+    /// Falling law: the slip velocities s_h1 (, s_h2) \[m/s\] > 0 at which
+    /// each term is halved, one per term.
+    pub half_velocities_m_per_s: Option<Vec<f64>>,
+    /// Falling law: rolling speed V \[m/s\] > 0, converting slip to slip
+    /// velocity.
+    pub rolling_speed_m_per_s: Option<f64>,
+    /// Falling law: memory distance d_c \[m\] >= 0 over which the
+    /// coefficient relaxes (default 0: instantaneous).
+    pub memory_distance_m: Option<f64>,
+    /// Falling law: memory velocity s_0 \[m/s\] >= 0, the least relaxation
+    /// rate (default 0).
+    pub memory_velocity_m_per_s: Option<f64>,
+    /// Falling law: the slip velocities the iteration starts from,
+    /// `"previous"` (default: continuation), `"sticking"` (0: the
+    /// low-slip solution) or `"sliding"` (V: the high-slip solution).
+    pub start: Option<SlipStart>,
+    /// Falling law: limit of the iteration on the slip velocities
+    /// (default 200).
+    pub max_iterations: Option<usize>,
 }
 
 /// Kind of undeformed geometry.
@@ -1149,8 +1198,114 @@ impl MaterialSection {
 }
 
 impl FrictionSection {
-    /// The checked friction coefficients (errors name the key).
+    /// The checked friction law (errors name the key).
     pub fn friction(&self) -> Result<Friction, CaseError> {
+        let shape = match self.law {
+            FrictionLawName::Coulomb => {
+                for (key, given) in [
+                    (
+                        "friction.falling_coefficients",
+                        self.falling_coefficients.is_some(),
+                    ),
+                    (
+                        "friction.half_velocities_m_per_s",
+                        self.half_velocities_m_per_s.is_some(),
+                    ),
+                    (
+                        "friction.rolling_speed_m_per_s",
+                        self.rolling_speed_m_per_s.is_some(),
+                    ),
+                    (
+                        "friction.memory_distance_m",
+                        self.memory_distance_m.is_some(),
+                    ),
+                    (
+                        "friction.memory_velocity_m_per_s",
+                        self.memory_velocity_m_per_s.is_some(),
+                    ),
+                    ("friction.start", self.start.is_some()),
+                    ("friction.max_iterations", self.max_iterations.is_some()),
+                ] {
+                    if given {
+                        return Err(bad(
+                            key,
+                            "belongs to a falling law: set `friction.law` to \"linear\", \"rational\" or \"exponential\"",
+                        ));
+                    }
+                }
+                return self.coulomb();
+            }
+            FrictionLawName::Linear => FallingShape::Linear,
+            FrictionLawName::Rational => FallingShape::Rational,
+            FrictionLawName::Exponential => FallingShape::Exponential,
+        };
+        for (key, given) in [
+            ("friction.coefficient", self.coefficient.is_some()),
+            (
+                "friction.static_coefficient",
+                self.static_coefficient.is_some(),
+            ),
+        ] {
+            if given {
+                return Err(bad(
+                    key,
+                    format!(
+                        "not with law = \"{}\": its static coefficient is kinetic_coefficient + falling_coefficients",
+                        shape.name()
+                    ),
+                ));
+            }
+        }
+        let need = |key: &str, v: Option<f64>| {
+            v.ok_or_else(|| bad(key, "missing (needed with a falling law)"))
+        };
+        let falling = self.falling_coefficients.as_deref().ok_or_else(|| {
+            bad(
+                "friction.falling_coefficients",
+                "missing (needed with a falling law)",
+            )
+        })?;
+        let half = self.half_velocities_m_per_s.as_deref().ok_or_else(|| {
+            bad(
+                "friction.half_velocities_m_per_s",
+                "missing (needed with a falling law)",
+            )
+        })?;
+        check_count("friction.falling_coefficients", falling.len(), 1, 2)?;
+        if half.len() != falling.len() {
+            return Err(bad(
+                "friction.half_velocities_m_per_s",
+                format!(
+                    "needs one value per falling coefficient ({}), got {}",
+                    falling.len(),
+                    half.len()
+                ),
+            ));
+        }
+        let two = |v: &[f64]| [v[0], v.get(1).copied().unwrap_or(0.0)];
+        let law = SlipVelocityLaw {
+            shape,
+            kinetic_coefficient: need("friction.kinetic_coefficient", self.kinetic_coefficient)?,
+            falling_coefficients: two(falling),
+            half_velocities_m_per_s: two(half),
+            rolling_speed_m_per_s: need(
+                "friction.rolling_speed_m_per_s",
+                self.rolling_speed_m_per_s,
+            )?,
+            memory_distance_m: self.memory_distance_m.unwrap_or(0.0),
+            memory_velocity_m_per_s: self.memory_velocity_m_per_s.unwrap_or(0.0),
+            start: self.start.unwrap_or_default(),
+            max_iterations: self.max_iterations.unwrap_or(DEFAULT_LAW_ITERATIONS),
+        };
+        if law.max_iterations == 0 {
+            return Err(bad("friction.max_iterations", "must be >= 1"));
+        }
+        law.validate()?;
+        Ok(Friction::falling(law))
+    }
+
+    /// Coulomb's coefficients (errors name the key).
+    fn coulomb(&self) -> Result<Friction, CaseError> {
         let f = match (
             self.coefficient,
             self.static_coefficient,
@@ -1159,10 +1314,7 @@ impl FrictionSection {
             (Some(mu), None, None) => Friction::coulomb(
                 crate::core::problem::check_friction_coefficient("friction.coefficient", mu)?,
             ),
-            (None, Some(s), Some(k)) => Friction {
-                static_coefficient: s,
-                kinetic_coefficient: k,
-            },
+            (None, Some(s), Some(k)) => Friction::static_kinetic(s, k),
             (Some(_), _, _) => {
                 return Err(bad(
                     "friction.coefficient",
@@ -1310,7 +1462,19 @@ impl Case {
             }
         };
         let (friction, has_friction) = match (&file.friction, needs_friction) {
-            (Some(f), _) => (f.friction()?, true),
+            (Some(f), _) => {
+                let friction = f.friction()?;
+                if friction.slip_velocity_law.is_some() && model != Model::Exact {
+                    return Err(bad(
+                        "friction.law",
+                        format!(
+                            "a falling law is solved by the exact model only, not by `{}`",
+                            model.name()
+                        ),
+                    ));
+                }
+                (friction, true)
+            }
             (None, true) => {
                 return Err(bad(
                     "friction.coefficient",
@@ -2044,6 +2208,7 @@ fn static_compression(model: Model, t: &TransientSection) -> Result<Vec<ShiftSte
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::core::solution::SolveStatus;
 
     const CASE_1: &str = r#"
 model = "cect"
@@ -2405,6 +2570,68 @@ ny = 16
             m.contains("`load.normal_force_n`") && m.contains("check the units"),
             "{m}"
         );
+    }
+
+    #[test]
+    fn a_falling_law_reads_from_the_friction_section() {
+        let falling = "law = \"exponential\"\nkinetic_coefficient = 0.18\n\
+                       falling_coefficients = [0.12]\nhalf_velocities_m_per_s = [0.1]\n\
+                       rolling_speed_m_per_s = 45.0\nstart = \"sliding\"";
+        let text = ROLLING.replace("coefficient = 0.3", falling);
+        let case = Case::from_toml(&text).unwrap();
+        let law = case.friction.slip_velocity_law.unwrap();
+        assert_eq!(law.shape, FallingShape::Exponential);
+        assert_eq!(law.falling_coefficients, [0.12, 0.0]);
+        assert_eq!(law.start, SlipStart::Sliding);
+        assert_eq!(law.max_iterations, DEFAULT_LAW_ITERATIONS);
+        assert!((case.friction.static_coefficient - 0.30).abs() < 1e-15);
+        let s = crate::core::solve::solve(&case.problem().unwrap()).unwrap();
+        assert_eq!(s[0].info.status, SolveStatus::Converged, "{:?}", s[0].info);
+        // Refusals name the key.
+        for (change, key) in [
+            (("law = \"exponential\"", "law = \"quadratic\""), "law"),
+            (
+                ("falling_coefficients = [0.12]", ""),
+                "`friction.falling_coefficients`",
+            ),
+            (
+                (
+                    "half_velocities_m_per_s = [0.1]",
+                    "half_velocities_m_per_s = [0.1, 1.0]",
+                ),
+                "`friction.half_velocities_m_per_s`",
+            ),
+            (
+                ("rolling_speed_m_per_s = 45.0", ""),
+                "`friction.rolling_speed_m_per_s`",
+            ),
+            (
+                ("kinetic_coefficient = 0.18", "coefficient = 0.18"),
+                "`friction.coefficient`",
+            ),
+            (
+                ("start = \"sliding\"", "max_iterations = 0"),
+                "`friction.max_iterations`",
+            ),
+            (
+                (
+                    "rolling_speed_m_per_s = 45.0",
+                    "rolling_speed_m_per_s = -45.0",
+                ),
+                "`friction.rolling_speed_m_per_s`",
+            ),
+        ] {
+            let m = bad_key(&text.replace(change.0, change.1));
+            assert!(m.contains(key), "{change:?}: {m}");
+        }
+        // Falling-law keys need a falling law; other models refuse the law.
+        let m = bad_key(&ROLLING.replace(
+            "coefficient = 0.3",
+            "coefficient = 0.3\nstart = \"sticking\"",
+        ));
+        assert!(m.contains("`friction.start`"), "{m}");
+        let m = bad_key(&format!("model = \"fastsim\"\n{text}"));
+        assert!(m.contains("`friction.law`"), "{m}");
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! reference number names its source.
 
 mod conformal;
+mod falling_friction;
 mod line_contact;
 mod physics;
 mod profiles;

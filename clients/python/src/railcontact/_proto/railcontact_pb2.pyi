@@ -17,6 +17,21 @@ class Model(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     MODEL_CECT: _ClassVar[Model]
     MODEL_CECT_HALFSPACE: _ClassVar[Model]
 
+class FrictionLaw(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    FRICTION_LAW_UNSPECIFIED: _ClassVar[FrictionLaw]
+    FRICTION_LAW_COULOMB: _ClassVar[FrictionLaw]
+    FRICTION_LAW_LINEAR: _ClassVar[FrictionLaw]
+    FRICTION_LAW_RATIONAL: _ClassVar[FrictionLaw]
+    FRICTION_LAW_EXPONENTIAL: _ClassVar[FrictionLaw]
+
+class SlipStart(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    SLIP_START_UNSPECIFIED: _ClassVar[SlipStart]
+    SLIP_START_PREVIOUS: _ClassVar[SlipStart]
+    SLIP_START_STICKING: _ClassVar[SlipStart]
+    SLIP_START_SLIDING: _ClassVar[SlipStart]
+
 class GeometryKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     GEOMETRY_KIND_UNSPECIFIED: _ClassVar[GeometryKind]
@@ -92,6 +107,15 @@ MODEL_FASTSIM: Model
 MODEL_EXACT: Model
 MODEL_CECT: Model
 MODEL_CECT_HALFSPACE: Model
+FRICTION_LAW_UNSPECIFIED: FrictionLaw
+FRICTION_LAW_COULOMB: FrictionLaw
+FRICTION_LAW_LINEAR: FrictionLaw
+FRICTION_LAW_RATIONAL: FrictionLaw
+FRICTION_LAW_EXPONENTIAL: FrictionLaw
+SLIP_START_UNSPECIFIED: SlipStart
+SLIP_START_PREVIOUS: SlipStart
+SLIP_START_STICKING: SlipStart
+SLIP_START_SLIDING: SlipStart
 GEOMETRY_KIND_UNSPECIFIED: GeometryKind
 GEOMETRY_KIND_QUADRATIC: GeometryKind
 GEOMETRY_KIND_CONFORMAL_CIRCULAR: GeometryKind
@@ -156,14 +180,30 @@ class MaterialSection(_message.Message):
     def __init__(self, shear_modulus_pa: _Optional[float] = ..., poisson_ratio: _Optional[float] = ..., body1: _Optional[_Union[Material, _Mapping]] = ..., body2: _Optional[_Union[Material, _Mapping]] = ...) -> None: ...
 
 class FrictionSection(_message.Message):
-    __slots__ = ("coefficient", "static_coefficient", "kinetic_coefficient")
+    __slots__ = ("coefficient", "static_coefficient", "kinetic_coefficient", "law", "falling_coefficients", "half_velocities_m_per_s", "rolling_speed_m_per_s", "memory_distance_m", "memory_velocity_m_per_s", "start", "max_iterations")
     COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
     STATIC_COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
     KINETIC_COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
+    LAW_FIELD_NUMBER: _ClassVar[int]
+    FALLING_COEFFICIENTS_FIELD_NUMBER: _ClassVar[int]
+    HALF_VELOCITIES_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    MEMORY_DISTANCE_M_FIELD_NUMBER: _ClassVar[int]
+    MEMORY_VELOCITY_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    START_FIELD_NUMBER: _ClassVar[int]
+    MAX_ITERATIONS_FIELD_NUMBER: _ClassVar[int]
     coefficient: float
     static_coefficient: float
     kinetic_coefficient: float
-    def __init__(self, coefficient: _Optional[float] = ..., static_coefficient: _Optional[float] = ..., kinetic_coefficient: _Optional[float] = ...) -> None: ...
+    law: FrictionLaw
+    falling_coefficients: _containers.RepeatedScalarFieldContainer[float]
+    half_velocities_m_per_s: _containers.RepeatedScalarFieldContainer[float]
+    rolling_speed_m_per_s: float
+    memory_distance_m: float
+    memory_velocity_m_per_s: float
+    start: SlipStart
+    max_iterations: int
+    def __init__(self, coefficient: _Optional[float] = ..., static_coefficient: _Optional[float] = ..., kinetic_coefficient: _Optional[float] = ..., law: _Optional[_Union[FrictionLaw, str]] = ..., falling_coefficients: _Optional[_Iterable[float]] = ..., half_velocities_m_per_s: _Optional[_Iterable[float]] = ..., rolling_speed_m_per_s: _Optional[float] = ..., memory_distance_m: _Optional[float] = ..., memory_velocity_m_per_s: _Optional[float] = ..., start: _Optional[_Union[SlipStart, str]] = ..., max_iterations: _Optional[int] = ...) -> None: ...
 
 class ProfilePoint(_message.Message):
     __slots__ = ("y_m", "z_m")
