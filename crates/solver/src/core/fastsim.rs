@@ -104,7 +104,8 @@ pub enum FastsimError {
     /// An input value is out of range.
     #[error("{name} must be {requirement}, got {value}")]
     InvalidInput {
-        /// Field name of [`FastsimInput`].
+        /// The input: a field of [`FastsimInput`] or [`SlopeReduction`], or
+        /// an argument (`speed_m_per_s`, the strip count `strips`).
         name: &'static str,
         /// What is required.
         requirement: &'static str,

@@ -111,7 +111,11 @@ pub struct StripOutput {
 /// allocation.
 pub fn strip_theory(input: &FastsimInput, strips: usize) -> Result<StripOutput, FastsimError> {
     if !(2..=MAX_STRIPS).contains(&strips) {
-        return Err(FastsimError::InvalidGrid { nx: 1, ny: strips });
+        return Err(FastsimError::InvalidInput {
+            name: "strips",
+            requirement: "in [2, 2^20]",
+            value: strips as f64,
+        });
     }
     validate(input)?;
     let (a, b) = (input.semi_axis_x_m, input.semi_axis_y_m);
@@ -278,10 +282,10 @@ mod tests {
         };
         let o = strip_theory(&dry, 10).unwrap();
         assert_eq!((o.fx_n, o.adhesion_fraction), (0.0, 0.0));
-        assert!(matches!(
-            strip_theory(&with(1e-3, 0.0, 0.0), 1),
-            Err(FastsimError::InvalidGrid { .. })
-        ));
+        let msg = strip_theory(&with(1e-3, 0.0, 0.0), 1)
+            .unwrap_err()
+            .to_string();
+        assert!(msg.contains("strips"), "{msg}");
         let bad = FastsimInput {
             creepage_lat: f64::NAN,
             ..base()
