@@ -7,7 +7,7 @@ use std::sync::Arc;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
-use railcontact::core::fastsim::{Fastsim, FastsimInput};
+use railcontact::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
 use railcontact::core::fft::{ConvolutionPlan, KernelSet, Precision};
 use railcontact::core::grid::Grid;
 use railcontact::core::hertz::{hertz, HertzLoad};
@@ -18,6 +18,7 @@ use railcontact::core::polach::{polach, PolachParameters};
 use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
 use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::ContactSolver;
+use railcontact::core::strip::strip_theory;
 use railcontact::core::subsurface::{subsurface_fields, Body, DepthKernels, SubsurfaceWorkspace};
 
 const SIZES: [usize; 4] = [32, 48, 64, 128];
@@ -272,6 +273,25 @@ fn reference_models(c: &mut Criterion) {
     });
     c.bench_function("polach", |b| {
         b.iter(|| black_box(polach(black_box(&input), 30.0, &PolachParameters::DRY).unwrap()))
+    });
+    // Spiryagin et al.'s reduction with made-up parameters in their ranges:
+    // the cost is the solve's, whatever the values.
+    let reduction = SlopeReduction {
+        initial_factor: 0.7,
+        limit_ratio: 0.3,
+        transition_rate: 0.5,
+        friction_limit_ratio: 0.4,
+        friction_decay_s_per_m: 0.6,
+    };
+    c.bench_function("fastsim_modified_40x40", |b| {
+        b.iter(|| black_box(fs.solve_modified(&input, 30.0, &reduction).unwrap()))
+    });
+    fs.set_traction_bound(TractionBound::Elliptic);
+    c.bench_function("fastsim_elliptic_40x40", |b| {
+        b.iter(|| black_box(fs.solve(&input).unwrap()))
+    });
+    c.bench_function("strip_100", |b| {
+        b.iter(|| black_box(strip_theory(black_box(&input), 100).unwrap()))
     });
 }
 

@@ -51,6 +51,11 @@ fn wheelset_step(c: &mut Criterion) {
         ("wheelset_step_exact", WheelRailModel::Exact),
         ("wheelset_step_hertz_fastsim", WheelRailModel::HertzFastsim),
         ("wheelset_step_hertz_polach", WheelRailModel::HertzPolach),
+        (
+            "wheelset_step_hertz_fastsim_elliptic",
+            WheelRailModel::HertzFastsimElliptic,
+        ),
+        ("wheelset_step_hertz_strip", WheelRailModel::HertzStrip),
         ("wheelset_step_cect", WheelRailModel::Cect),
     ] {
         let mut g = c.benchmark_group(name);

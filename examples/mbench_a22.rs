@@ -1,5 +1,5 @@
 //! The Manchester Contact Benchmark, case A-2.2, against CONTACT's reference
-//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach]`.
+//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach|hertz_fastsim_elliptic|hertz_strip]`.
 //!
 //! Reads `docs/data/mbench_a22_contact.csv` (CONTACT's results, with their
 //! source), solves every shift 0..10 mm with the same roll and wheel
@@ -64,12 +64,14 @@ fn read_reference() -> Vec<Row> {
 }
 
 fn main() {
-    let model = match std::env::args().nth(1).as_deref() {
-        None | Some("exact") => WheelRailModel::Exact,
-        Some("hertz_fastsim") => WheelRailModel::HertzFastsim,
-        Some("hertz_polach") => WheelRailModel::HertzPolach,
-        Some(other) => {
-            eprintln!("unknown model {other}: use exact, hertz_fastsim or hertz_polach");
+    let name = std::env::args().nth(1).unwrap_or_else(|| "exact".into());
+    let model = match WheelRailModel::from_name(&name) {
+        Some(m) if m == WheelRailModel::Exact || m.is_hertz() => m,
+        _ => {
+            eprintln!(
+                "unknown model {name}: use exact, hertz_fastsim, hertz_polach, \
+                 hertz_fastsim_elliptic or hertz_strip"
+            );
             std::process::exit(2);
         }
     };

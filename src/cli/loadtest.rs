@@ -222,13 +222,15 @@ impl Kind {
                     "hertz_fastsim" => pb::WheelRailModel::HertzFastsim,
                     "hertz_fastsim_table" => pb::WheelRailModel::HertzFastsimTable,
                     "hertz_polach" => pb::WheelRailModel::HertzPolach,
+                    "hertz_fastsim_elliptic" => pb::WheelRailModel::HertzFastsimElliptic,
+                    "hertz_strip" => pb::WheelRailModel::HertzStrip,
                     "exact" => pb::WheelRailModel::Exact,
                     "cect" => pb::WheelRailModel::Cect,
                     "auto" => pb::WheelRailModel::Auto,
                     _ => {
                         return Err(format!(
                             "`{s}`: wheelrail models are hertz_fastsim, hertz_fastsim_table, \
-                             hertz_polach, exact, cect, auto"
+                             hertz_polach, hertz_fastsim_elliptic, hertz_strip, exact, cect, auto"
                         ))
                     }
                 };
@@ -258,6 +260,8 @@ impl Kind {
                     pb::WheelRailModel::HertzFastsim => "hertz_fastsim",
                     pb::WheelRailModel::HertzFastsimTable => "hertz_fastsim_table",
                     pb::WheelRailModel::HertzPolach => "hertz_polach",
+                    pb::WheelRailModel::HertzFastsimElliptic => "hertz_fastsim_elliptic",
+                    pb::WheelRailModel::HertzStrip => "hertz_strip",
                     pb::WheelRailModel::Cect => "cect",
                     pb::WheelRailModel::Auto => "auto",
                     _ => "exact",

@@ -41,7 +41,8 @@ pub struct WheelrailArgs {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct WheelrailCase {
-    /// "exact" (default), "hertz_fastsim", "hertz_polach", "cect" or "auto".
+    /// "exact" (default), "hertz_fastsim", "hertz_polach",
+    /// "hertz_fastsim_elliptic", "hertz_strip", "cect" or "auto".
     #[serde(default = "default_model")]
     model: String,
     /// "both" (default), "left" or "right".
@@ -232,18 +233,18 @@ impl WheelrailRun {
     pub fn from_toml(text: &str, dir: &Path) -> Result<Self, CliError> {
         let c: WheelrailCase = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
         // Names in any case, as the Python client takes them.
-        let (model, model_name) = match c.model.to_ascii_lowercase().as_str() {
-            "exact" => (WheelRailModel::Exact, "exact"),
-            "hertz_fastsim" => (WheelRailModel::HertzFastsim, "hertz_fastsim"),
-            "hertz_polach" => (WheelRailModel::HertzPolach, "hertz_polach"),
-            "cect" => (WheelRailModel::Cect, "cect"),
-            "auto" => (WheelRailModel::Auto, "auto"),
-            other => {
-                return Err(bad(format!(
-                    "invalid input `model`: \"{other}\"; expected \"exact\", \"hertz_fastsim\", \"hertz_polach\", \"cect\" or \"auto\""
-                )))
-            }
-        };
+        let model = WheelRailModel::from_name(&c.model).ok_or_else(|| {
+            let names: Vec<String> = WheelRailModel::ALL
+                .iter()
+                .map(|m| format!("\"{}\"", m.name()))
+                .collect();
+            bad(format!(
+                "invalid input `model`: \"{}\"; expected one of {}",
+                c.model.to_ascii_lowercase(),
+                names.join(", ")
+            ))
+        })?;
+        let model_name = model.name();
         let sides = match c.side.to_ascii_lowercase().as_str() {
             "both" => Side::BOTH.to_vec(),
             "left" => vec![Side::Left],
@@ -404,7 +405,7 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
             s += &format!(
                 "  patch {k}: rail y {:.2} mm, wheel y {:.2} mm, contact angle {:.2} deg, \
                  rolling radius {:.2} mm\n    creepages xi {:.3e} [-], eta {:.3e} [-], \
-                 phi {:.3e} [1/m]; FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa, \
+                 phi {:.3e} [1/m]; FN {:.1} N, FX {:.1} N, FS {:.1} N; pmax {:.0} MPa{}, \
                  area {:.2} mm^2\n",
                 p.rail_y_m * 1e3,
                 p.wheel_y_m * 1e3,
@@ -417,6 +418,11 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
                 p.fx_n,
                 p.fs_n,
                 p.max_pressure_pa * 1e-6,
+                match p.method {
+                    "hertz_fastsim" => " (Hertz p0; FASTSIM's parabolic bound peaks at 4/3 p0)",
+                    m if m.starts_with("hertz_") => " (Hertz p0)",
+                    _ => "",
+                },
                 p.contact_area_m2 * 1e6
             );
         }

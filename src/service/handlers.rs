@@ -709,10 +709,7 @@ fn patch_lane(case: &Case, sensitivities: bool) -> Lane {
 
 /// The solve lane of a wheel/rail model: the Hertz models are fast.
 fn wheelrail_lane(model: WheelRailModel) -> Lane {
-    Lane::of(matches!(
-        model,
-        WheelRailModel::HertzFastsim | WheelRailModel::HertzPolach
-    ))
+    Lane::of(model.is_hertz())
 }
 
 fn open_first() -> ServiceError {

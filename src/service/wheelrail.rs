@@ -74,6 +74,8 @@ pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
             Ok(WheelRailModel::HertzFastsim)
         }
         Ok(pb::WheelRailModel::HertzPolach) => Ok(WheelRailModel::HertzPolach),
+        Ok(pb::WheelRailModel::HertzFastsimElliptic) => Ok(WheelRailModel::HertzFastsimElliptic),
+        Ok(pb::WheelRailModel::HertzStrip) => Ok(WheelRailModel::HertzStrip),
         Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
         Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
         Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
@@ -91,6 +93,8 @@ pub fn wire_model(m: WheelRailModel) -> pb::WheelRailModel {
         WheelRailModel::Exact => pb::WheelRailModel::Exact,
         WheelRailModel::HertzFastsim => pb::WheelRailModel::HertzFastsim,
         WheelRailModel::HertzPolach => pb::WheelRailModel::HertzPolach,
+        WheelRailModel::HertzFastsimElliptic => pb::WheelRailModel::HertzFastsimElliptic,
+        WheelRailModel::HertzStrip => pb::WheelRailModel::HertzStrip,
         WheelRailModel::Cect => pb::WheelRailModel::Cect,
         WheelRailModel::Auto => pb::WheelRailModel::Auto,
     }
@@ -102,6 +106,8 @@ pub fn model_name(m: WheelRailModel) -> &'static str {
         WheelRailModel::Exact => "wheelrail_exact",
         WheelRailModel::HertzFastsim => "wheelrail_hertz_fastsim",
         WheelRailModel::HertzPolach => "wheelrail_hertz_polach",
+        WheelRailModel::HertzFastsimElliptic => "wheelrail_hertz_fastsim_elliptic",
+        WheelRailModel::HertzStrip => "wheelrail_hertz_strip",
         WheelRailModel::Cect => "wheelrail_cect",
         WheelRailModel::Auto => "wheelrail_auto",
     }
@@ -369,12 +375,9 @@ fn force(f: [f64; 3]) -> pb::TrackForce {
 }
 
 fn method(m: &str) -> pb::WheelRailModel {
-    match m {
-        "exact" => pb::WheelRailModel::Exact,
-        "hertz_fastsim" => pb::WheelRailModel::HertzFastsim,
-        "hertz_polach" => pb::WheelRailModel::HertzPolach,
-        "cect" => pb::WheelRailModel::Cect,
-        _ => pb::WheelRailModel::Unspecified,
+    match WheelRailModel::from_name(m) {
+        Some(WheelRailModel::Auto) | None => pb::WheelRailModel::Unspecified,
+        Some(model) => wire_model(model),
     }
 }
 

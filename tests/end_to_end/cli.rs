@@ -1107,6 +1107,43 @@ fn wheelrail_solves_with_polachs_model_and_checks_its_parameters() {
     );
 }
 
+/// Models hertz_fastsim_elliptic and hertz_strip: every patch names its
+/// model, the wheels carry their load, the flange patch's creep force is
+/// near saturation (mu FN) as FASTSIM's; an unknown model is bad input
+/// listing the names.
+#[test]
+fn wheelrail_solves_with_the_elliptic_bound_and_strip_theory() {
+    for model in ["hertz_fastsim_elliptic", "hertz_strip"] {
+        let text = example_text("wheelset_a22.toml")
+            .replace("model = \"exact\"", &format!("model = \"{model}\""));
+        let v = wheelrail_json(&case_file(&format!("wr_{model}.toml"), &text));
+        for side in ["left", "right"] {
+            let w = &v["wheels"][side];
+            let fz = w["force_track_n"][2].as_f64().unwrap();
+            assert!((fz - 10_000.0).abs() < 0.1, "{model} {side}: Fz {fz}");
+            for p in w["patches"].as_array().unwrap() {
+                assert_eq!(p["method"], model, "{p}");
+            }
+        }
+        let flange = &v["wheels"]["right"]["patches"][0];
+        let (fx, fs, fnn) = (
+            flange["fx_n"].as_f64().unwrap(),
+            flange["fs_n"].as_f64().unwrap(),
+            flange["normal_force_n"].as_f64().unwrap(),
+        );
+        let t = fx.hypot(fs);
+        assert!(
+            t <= 0.3 * fnn * (1.0 + 1e-9) && t > 0.25 * fnn,
+            "{model}: {t} of {fnn}"
+        );
+    }
+    expect_bad_wheelrail(
+        "wr_unknown_model.toml",
+        &example_text("wheelset_a22.toml").replace("model = \"exact\"", "model = \"fastrip\""),
+        "hertz_strip",
+    );
+}
+
 /// MiniProf rail (mirrored into the right-hand convention), hertz_fastsim.
 #[test]
 fn wheelrail_reads_measured_profiles_by_path() {

@@ -297,6 +297,8 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         WheelRailModel::Exact,
         WheelRailModel::HertzFastsim,
         WheelRailModel::HertzPolach,
+        WheelRailModel::HertzFastsimElliptic,
+        WheelRailModel::HertzStrip,
     ] {
         let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
         let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();

@@ -25,5 +25,6 @@ mod simd;
 pub mod solution;
 pub mod solve;
 pub mod steady;
+pub mod strip;
 pub mod subsurface;
 pub mod tangential;

@@ -72,7 +72,7 @@ use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCur
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastsim::{Fastsim, FastsimInput};
+use crate::core::fastsim::{Fastsim, FastsimInput, TractionBound};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::material::CombinedMaterial;
@@ -84,6 +84,7 @@ use crate::core::problem::{
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
+use crate::core::strip::strip_theory;
 use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LocusPoint, PatchGeometry,
     RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
@@ -109,6 +110,17 @@ pub enum WheelRailModel {
     /// slip velocity, is the static coefficient): closed form, no spin
     /// moment.
     HertzPolach,
+    /// Hertz as [`WheelRailModel::HertzFastsim`], FASTSIM with Hertz's
+    /// elliptic pressure in the traction bound
+    /// ([`crate::core::fastsim::TractionBound::Elliptic`]) instead of the
+    /// parabolic one. The patch's `max_pressure_pa` is Hertz's p0 with
+    /// either FASTSIM bound.
+    HertzFastsimElliptic,
+    /// Hertz as [`WheelRailModel::HertzFastsim`], strip theory with
+    /// Kalker's coefficients for the tangential forces
+    /// ([`crate::core::strip`], after Sichani et al.'s FaStrip): closed
+    /// form per strip, with the kinetic friction coefficient.
+    HertzStrip,
     /// The conformal method (CECT with Blanco's influence coefficients) on
     /// every patch: curved patch, undeformed distance along local normals,
     /// normal and tangential problems coupled. Wheels with one patch only
@@ -120,6 +132,53 @@ pub enum WheelRailModel {
     /// [`WheelRailSettings::auto_conformal_angle_rad`] over the loaded area.
     Auto,
 }
+
+impl WheelRailModel {
+    /// The model's name in case files and patch results ("exact",
+    /// "hertz_fastsim", ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Exact => "exact",
+            Self::HertzFastsim => "hertz_fastsim",
+            Self::HertzPolach => "hertz_polach",
+            Self::HertzFastsimElliptic => "hertz_fastsim_elliptic",
+            Self::HertzStrip => "hertz_strip",
+            Self::Cect => "cect",
+            Self::Auto => "auto",
+        }
+    }
+
+    /// Every model, in the order of [`WheelRailModel::name`]'s list.
+    pub const ALL: [Self; 7] = [
+        Self::Exact,
+        Self::HertzFastsim,
+        Self::HertzPolach,
+        Self::HertzFastsimElliptic,
+        Self::HertzStrip,
+        Self::Cect,
+        Self::Auto,
+    ];
+
+    /// The model of a name of [`WheelRailModel::name`], in any case.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name().eq_ignore_ascii_case(name))
+    }
+
+    /// Whether the model solves Hertz patches (closed-form normal problem,
+    /// a fast tangential model).
+    pub fn is_hertz(self) -> bool {
+        matches!(
+            self,
+            Self::HertzFastsim | Self::HertzPolach | Self::HertzFastsimElliptic | Self::HertzStrip
+        )
+    }
+}
+
+/// Strips of model `hertz_strip` (midpoint rule over the ellipse: force
+/// errors below 1e-4 relative, module docs of [`crate::core::strip`]).
+pub const HERTZ_STRIPS: usize = 100;
 
 /// Default of [`WheelRailSettings::auto_conformal_angle_rad`] \[rad\] (10
 /// degrees).
@@ -225,8 +284,9 @@ impl WheelRailInput {
 /// One contact patch of a wheel.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchResult {
-    /// Method that solved the patch: "exact", "hertz_fastsim",
-    /// "hertz_polach" or "cect".
+    /// Method that solved the patch: "exact", "cect" or the Hertz model's
+    /// name ([`WheelRailModel::name`]: "hertz_fastsim", "hertz_polach",
+    /// "hertz_fastsim_elliptic", "hertz_strip").
     pub method: &'static str,
     /// Variation of the rail's contact angle over the loaded lateral extent
     /// \[rad\] (0 for Hertz+FASTSIM).
@@ -266,7 +326,9 @@ pub struct PatchResult {
     pub mz_nm: f64,
     /// Normal approach of the patch \[m\].
     pub approach_m: f64,
-    /// Largest pressure \[Pa\].
+    /// Largest pressure \[Pa\]; of a Hertz model's patch Hertz's
+    /// `p0 = 3 Fn/(2 pi a b)`, whatever the bound of its FASTSIM (the
+    /// parabolic bound peaks at `4/3 p0`, the elliptic at `p0`).
     pub max_pressure_pa: f64,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
@@ -378,8 +440,8 @@ enum PatchKind {
     Hertz {
         a_per_m: f64,
         b_per_m: f64,
-        /// Polach's model for the creep forces, else FASTSIM.
-        polach: bool,
+        /// The model of the creep forces: one of the Hertz models.
+        model: WheelRailModel,
     },
     Conformal {
         geometry: Box<ConformalGeometry>,
@@ -521,7 +583,7 @@ impl PatchWork {
             PatchKind::Hertz {
                 a_per_m,
                 b_per_m,
-                polach: use_polach,
+                model,
             } => {
                 let hl = match load {
                     NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
@@ -558,22 +620,36 @@ impl PatchWork {
                         creepage_lat: self.creep.creepage_lat,
                         spin_per_m: self.creep.spin_per_m,
                     };
-                    if *use_polach {
-                        let f = polach(&tangential, self.speed, &input.settings.polach)?;
-                        out.fx_n = f.fx_n;
-                        out.fs_n = f.fy_n;
-                        out.adhesion = f.adhesion_fraction;
-                        out.tgamma_n = f.tgamma_n;
-                    } else {
-                        let f = fastsim
-                            .solve(&tangential)
-                            .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
-                        out.fx_n = f.fx_n;
-                        out.fs_n = f.fy_n;
-                        out.mz_nm = f.mz_nm;
-                        out.adhesion = f.adhesion_fraction;
-                        out.tgamma_n = f.tgamma_n;
-                    }
+                    // (Fx, Fs, Mz, adhesion fraction, T gamma) of the model.
+                    let (fx, fs, mz, adhesion, tgamma) = match model {
+                        WheelRailModel::HertzPolach => {
+                            let f = polach(&tangential, self.speed, &input.settings.polach)?;
+                            (f.fx_n, f.fy_n, 0.0, f.adhesion_fraction, f.tgamma_n)
+                        }
+                        WheelRailModel::HertzStrip => {
+                            let f = strip_theory(&tangential, HERTZ_STRIPS)
+                                .map_err(|e| ContactError::invalid("strip", e.to_string()))?;
+                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
+                        }
+                        _ => {
+                            fastsim.set_traction_bound(
+                                if *model == WheelRailModel::HertzFastsimElliptic {
+                                    TractionBound::Elliptic
+                                } else {
+                                    TractionBound::Parabolic
+                                },
+                            );
+                            let f = fastsim
+                                .solve(&tangential)
+                                .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
+                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
+                        }
+                    };
+                    out.fx_n = fx;
+                    out.fs_n = fs;
+                    out.mz_nm = mz;
+                    out.adhesion = adhesion;
+                    out.tgamma_n = tgamma;
                 }
                 self.out = out;
             }
@@ -1216,9 +1292,10 @@ fn build_patch(
     let (hmin, b) = lateral_curvature(&geom);
     let kx0 = geom.lateral_at(0.0).kx_per_m;
     let kind = match input.settings.model {
-        WheelRailModel::HertzFastsim | WheelRailModel::HertzPolach => {
-            hertz_kind(kx0, b, input.settings.model)
-        }
+        WheelRailModel::HertzFastsim
+        | WheelRailModel::HertzPolach
+        | WheelRailModel::HertzFastsimElliptic
+        | WheelRailModel::HertzStrip => hertz_kind(kx0, b, input.settings.model),
         WheelRailModel::Exact | WheelRailModel::Auto => {
             let grid = patch_grid(&geom, cap, input)?;
             let mut gap_m = vec![0.0; grid.len()];
@@ -1271,12 +1348,16 @@ fn build_patch(
 
 /// Hertz on the wheel's longitudinal curvature `kx` and the lateral
 /// curvature `b` of the undeformed distance [1/m], kept positive; the
-/// creep forces by Polach's model for `model` hertz_polach, else FASTSIM.
+/// creep forces by `model` if it is a Hertz model, else FASTSIM.
 fn hertz_kind(kx: f64, b: f64, model: WheelRailModel) -> PatchKind {
     PatchKind::Hertz {
         a_per_m: 0.5 * kx.max(1e-3),
         b_per_m: b.max(0.01 * kx).max(1e-3),
-        polach: model == WheelRailModel::HertzPolach,
+        model: if model.is_hertz() {
+            model
+        } else {
+            WheelRailModel::HertzFastsim
+        },
     }
 }
 
@@ -1864,8 +1945,7 @@ pub(crate) fn finish(
     for mut p in patches {
         let (method, variation) = match &p.kind {
             PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
-            PatchKind::Hertz { polach: false, .. } => ("hertz_fastsim", 0.0),
-            PatchKind::Hertz { polach: true, .. } => ("hertz_polach", 0.0),
+            PatchKind::Hertz { model, .. } => (model.name(), 0.0),
             PatchKind::Conformal { .. } => ("cect", p.out.angle_variation_rad),
         };
         // The patch is consumed: hand its per-element solution over.

@@ -305,6 +305,45 @@ fn hertz_fastsim_normal_forces_agree_with_exact_in_single_patches() {
     }
 }
 
+/// The fast models' creep-force magnitudes against CONTACT's exact ones at
+/// the three shifts of [`A22`], within the largest difference of each
+/// model over the whole sweep (0.5..10 mm, single-patch cases,
+/// `docs/manchester_a22.md`, `cargo run --example mbench_a22 MODEL`):
+/// FASTSIM with the elliptic bound 4.27 %, strip theory 4.72 % (the
+/// parabolic bound: 5.33 %).
+#[test]
+fn fast_models_creep_forces_agree_with_contact() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    for (model, limit) in [
+        (WheelRailModel::HertzFastsim, 0.0533),
+        (WheelRailModel::HertzFastsimElliptic, 0.0427),
+        (WheelRailModel::HertzStrip, 0.0472),
+    ] {
+        for r in &A22 {
+            let input = a22_input(r.y_mm, Some(r.roll), Some(r.pitch), model);
+            let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+            for w in &sol.wheels {
+                let want = match w.side {
+                    Side::Right => &r.right,
+                    Side::Left => &r.left,
+                };
+                let p = &w.patches[0];
+                assert_eq!(p.method, model.name());
+                let tag = format!("{model:?}, y = {} mm, {:?} wheel: |Ft|", r.y_mm, w.side);
+                close(
+                    &tag,
+                    p.fx_n.hypot(p.fs_n),
+                    want[3].hypot(want[4]),
+                    limit,
+                    0.0,
+                );
+            }
+        }
+    }
+}
+
 fn worn_pair() -> WheelRailPair {
     let rail = railcontact_solver::wheelrail::load_profile_with(
         path("avg_HR.BAN"),

@@ -87,6 +87,8 @@ class WheelRailModel(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_MODEL_AUTO: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_POLACH: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_HERTZ_STRIP: _ClassVar[WheelRailModel]
 
 class WheelSides(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -151,6 +153,8 @@ WHEEL_RAIL_MODEL_CECT: WheelRailModel
 WHEEL_RAIL_MODEL_AUTO: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_POLACH: WheelRailModel
+WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: WheelRailModel
+WHEEL_RAIL_MODEL_HERTZ_STRIP: WheelRailModel
 WHEEL_SIDES_UNSPECIFIED: WheelSides
 WHEEL_SIDES_BOTH: WheelSides
 WHEEL_SIDES_LEFT: WheelSides
