@@ -26,3 +26,4 @@ pub mod solve;
 pub mod steady;
 pub mod subsurface;
 pub mod tangential;
+pub mod temperature;
