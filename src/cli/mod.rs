@@ -15,6 +15,7 @@ pub mod health;
 pub mod loadtest;
 pub mod plot;
 pub mod subsurface;
+pub mod temperature;
 pub mod wheelrail;
 
 use std::path::{Path, PathBuf};
@@ -96,6 +97,12 @@ pub struct SolveArgs {
     /// stress).
     #[arg(long, value_name = "M", requires = "subsurface_plot")]
     pub subsurface_depth_m: Option<f64>,
+    /// Write the flash temperatures of both surfaces (a case with
+    /// `[temperature]`) to FILE as CSV: one row per element, its centre
+    /// x_m, y_m, the frictional power density heat_flux_w_per_m2 and the
+    /// surface temperatures body1_k, body2_k (kelvin).
+    #[arg(long, value_name = "FILE")]
+    pub temperature_csv: Option<PathBuf>,
 }
 
 /// A failure of the command, sorted by exit code.
@@ -267,6 +274,13 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             }
         }
     }
+    if case.temperature.is_none() && args.temperature_csv.is_some() {
+        return Err(CliError::BadInput(
+            "invalid option `--temperature-csv`: the case has no `[temperature]` section (give \
+             `rolling_speed_m_per_s`, `[temperature.body1]` and `[temperature.body2]`)"
+                .to_string(),
+        ));
+    }
     if let Some(d) = args.subsurface_depth_m {
         if !(d.is_finite() && d >= 0.0) {
             return Err(CliError::BadInput(format!(
@@ -303,6 +317,18 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
         if !args.json {
             out.push_str(&format!("  plot written to {}\n", path.display()));
+        }
+    }
+    if let (ModelRun::Exact(run), Some(path)) = (&run, &args.temperature_csv) {
+        if let Some(t) = &run.temperature {
+            temperature::write_csv(path, &run.grid, t)
+                .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
+            if !args.json {
+                out.push_str(&format!(
+                    "  temperature CSV written to {}\n",
+                    path.display()
+                ));
+            }
         }
     }
     if let ModelRun::Exact(run) = &run {

@@ -81,7 +81,7 @@
 //! elements upstream in its row); [`flash_temperatures_into`] does not
 //! allocate.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::core::error::{show, ContactError};
 use crate::core::error::{Range, UnitHint};
@@ -102,7 +102,8 @@ pub const SPECIFIC_HEAT_RANGE: Range = Range::positive(1e5, "J/(kg K)");
 pub const ROLLING_SPEED_RANGE: Range = Range::positive(1e3, "m/s");
 
 /// Thermal properties of one body.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ThermalBody {
     /// Bulk (initial) temperature of the body's surface layer \[K\], in
     /// [`BULK_TEMPERATURE_RANGE`].
@@ -160,7 +161,8 @@ impl ThermalBody {
 }
 
 /// The inputs of the flash temperatures: both bodies and the rolling speed.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct ThermalInput {
     /// Body 1 (the rail in wheel/rail contact).
     pub body1: ThermalBody,
