@@ -39,6 +39,8 @@
 //!
 //! With t = (x_lead − x)/V this is, along a row,
 //! dT(x) = 1/(beta sqrt(pi V)) ∫_x^x_lead F(x') / sqrt(x' − x) dx'.
+//! (Ertz & Knothe's equation numbers below are those CONTACT's
+//! `m_temperature` cites.)
 //!
 //! * Heat partition (Ertz & Knothe eq. 25 with equal surface speeds): body 1
 //!   takes the share eps1 = beta1/(beta1 + beta2) of q, body 2 the rest, so
@@ -186,6 +188,20 @@ impl ThermalInput {
         Ok(())
     }
 
+    /// Whether every value is in its range (what [`ThermalInput::validate`]
+    /// checks, without formatting a key).
+    pub fn in_range(&self) -> bool {
+        let body = |b: &ThermalBody| {
+            BULK_TEMPERATURE_RANGE.contains(b.bulk_temperature_k)
+                && CONDUCTIVITY_RANGE.contains(b.conductivity_w_per_m_k)
+                && DENSITY_RANGE.contains(b.density_kg_per_m3)
+                && SPECIFIC_HEAT_RANGE.contains(b.specific_heat_j_per_kg_k)
+        };
+        body(&self.body1)
+            && body(&self.body2)
+            && ROLLING_SPEED_RANGE.contains(self.rolling_speed_m_per_s)
+    }
+
     /// Share of the frictional heat that flows into body 1,
     /// beta1/(beta1 + beta2) [-].
     pub fn heat_share_body1(&self) -> f64 {
@@ -224,11 +240,13 @@ pub struct TemperatureSummary {
     pub contact_temperature_k: f64,
     /// Share of the frictional heat into body 1 [-].
     pub heat_share_body1: f64,
-    /// Frictional power of the patch, sum q dA \[W\].
+    /// Frictional power of the patch, sum q dA \[W\] (a line contact: per
+    /// metre of its length \[W/m\]).
     pub frictional_power_w: f64,
     /// Peclet number V a / (2 kappa) [-] with a the half length of the
     /// longest contact row and kappa the larger diffusivity of the bodies:
-    /// the model holds for Pe >> 1 (about 5 and above); 0 without contact.
+    /// the model neglects the heat conducted along the surface, which holds
+    /// for Pe >> 1; 0 without contact.
     pub peclet_number: f64,
 }
 
@@ -295,7 +313,10 @@ pub fn flash_temperatures_into(
     body1_k: &mut [f64],
     body2_k: &mut [f64],
 ) -> Result<TemperatureSummary, ContactError> {
-    input.validate("temperature")?;
+    if !input.in_range() {
+        // The error names the key (formatting it allocates: only here).
+        input.validate("temperature")?;
+    }
     let n = grid.len();
     check_lengths(
         "fields",
