@@ -78,7 +78,9 @@ pub struct SolveArgs {
     #[arg(long, requires = "json")]
     pub fields: bool,
     /// Write pressure and traction maps and a centre-line plot to FILE (.png
-    /// or .svg, by extension). Exact model only (not yet the conformal models).
+    /// or .svg, by extension), with a case's `[temperature]` both bodies'
+    /// surface temperatures along the centre line on a second axis. Exact
+    /// model only (not yet the conformal models).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
     /// Write the subsurface fields of both bodies (a case with
@@ -312,6 +314,7 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
                 title: &plot_title(&case),
                 mu: case.friction.kinetic_coefficient,
                 rolling: matches!(case.kinematics, Kinematics::SteadyRolling(_)),
+                temperature: run.temperature.as_deref(),
             },
         )
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;

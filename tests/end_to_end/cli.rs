@@ -1306,10 +1306,15 @@ fn the_line_contact_example_is_carters_rolling_per_metre() {
 fn flash_temperature_example_writes_peaks_and_csv() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-temperature");
     std::fs::create_dir_all(&dir).unwrap();
-    let csv = dir.join("temp.csv");
+    let (csv, png) = (dir.join("temp.csv"), dir.join("temp.png"));
     let v = solve_json(
         &example("flash_temperature.toml"),
-        &["--temperature-csv", csv.to_str().unwrap()],
+        &[
+            "--temperature-csv",
+            csv.to_str().unwrap(),
+            "--plot",
+            png.to_str().unwrap(),
+        ],
     );
     let t = &v["temperature"];
     // CONTACT's ertz_temperature case 1 on the same elements: FRIC.POWER
@@ -1337,6 +1342,8 @@ fn flash_temperature_example_writes_peaks_and_csv() {
     // sum q dA over the rows is the frictional power (0.2 x 0.5 mm elements).
     let sum: f64 = rows.iter().map(|r| r[2]).sum::<f64>() * 0.2e-3 * 0.5e-3;
     assert!((sum / power - 1.0).abs() < 1e-6, "{sum} {power}");
+    // The centre line carries the temperatures on a second axis.
+    assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
 }
 
 #[test]
