@@ -91,7 +91,8 @@ use crate::core::grid::Grid;
 use crate::core::solution::ElementFields;
 
 /// Range of a bulk temperature \[K\] (−100 °C to about the melting point of
-/// steel); a value in degrees Celsius is recognised in messages.
+/// steel); the message for a value below it that is in it as degrees
+/// Celsius (such as 20) suggests the kelvin value.
 pub const BULK_TEMPERATURE_RANGE: Range =
     Range::closed(173.15, 2000.0, "K").hint(UnitHint::Celsius);
 /// Range of a thermal conductivity \[W/(m K)\] (steel: about 50).
