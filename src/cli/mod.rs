@@ -15,6 +15,7 @@ pub mod health;
 pub mod loadtest;
 pub mod plot;
 pub mod subsurface;
+pub mod temperature;
 pub mod wheelrail;
 
 use std::path::{Path, PathBuf};
@@ -77,7 +78,9 @@ pub struct SolveArgs {
     #[arg(long, requires = "json")]
     pub fields: bool,
     /// Write pressure and traction maps and a centre-line plot to FILE (.png
-    /// or .svg, by extension). Exact model only (not yet the conformal models).
+    /// or .svg, by extension), with a case's `[temperature]` both bodies'
+    /// surface temperatures along the centre line on a second axis. Exact
+    /// model only (not yet the conformal models).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
     /// Write the subsurface fields of both bodies (a case with
@@ -96,6 +99,12 @@ pub struct SolveArgs {
     /// stress).
     #[arg(long, value_name = "M", requires = "subsurface_plot")]
     pub subsurface_depth_m: Option<f64>,
+    /// Write the flash temperatures of both surfaces (a case with
+    /// `[temperature]`) to FILE as CSV: one row per element, its centre
+    /// x_m, y_m, the frictional power density heat_flux_w_per_m2 and the
+    /// surface temperatures body1_k, body2_k (kelvin).
+    #[arg(long, value_name = "FILE")]
+    pub temperature_csv: Option<PathBuf>,
 }
 
 /// A failure of the command, sorted by exit code.
@@ -267,6 +276,13 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             }
         }
     }
+    if case.temperature.is_none() && args.temperature_csv.is_some() {
+        return Err(CliError::BadInput(
+            "invalid option `--temperature-csv`: the case has no `[temperature]` section (give \
+             `rolling_speed_m_per_s`, `[temperature.body1]` and `[temperature.body2]`)"
+                .to_string(),
+        ));
+    }
     if let Some(d) = args.subsurface_depth_m {
         if !(d.is_finite() && d >= 0.0) {
             return Err(CliError::BadInput(format!(
@@ -298,11 +314,24 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
                 title: &plot_title(&case),
                 mu: case.friction.kinetic_coefficient,
                 rolling: matches!(case.kinematics, Kinematics::SteadyRolling(_)),
+                temperature: run.temperature.as_deref(),
             },
         )
         .map_err(|e| CliError::Failure(format!("cannot write plot {}: {e}", path.display())))?;
         if !args.json {
             out.push_str(&format!("  plot written to {}\n", path.display()));
+        }
+    }
+    if let (ModelRun::Exact(run), Some(path)) = (&run, &args.temperature_csv) {
+        if let Some(t) = &run.temperature {
+            temperature::write_csv(path, &run.grid, t)
+                .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
+            if !args.json {
+                out.push_str(&format!(
+                    "  temperature CSV written to {}\n",
+                    path.display()
+                ));
+            }
         }
     }
     if let ModelRun::Exact(run) = &run {

@@ -16,6 +16,7 @@ use plotters::style::{register_font, FontStyle};
 
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementState};
+use crate::core::temperature::SurfaceTemperatures;
 
 /// Output format of a plot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -54,6 +55,9 @@ pub struct PlotCase<'a> {
     pub mu: f64,
     /// Steady rolling: the x axis is labelled as the rolling direction.
     pub rolling: bool,
+    /// The flash temperatures (a case with `[temperature]`): both bodies'
+    /// surface temperatures along the centre line, on a second axis \[K\].
+    pub temperature: Option<&'a SurfaceTemperatures>,
 }
 
 impl PlotCase<'_> {
@@ -397,6 +401,23 @@ fn centre_line<DB: DrawingBackend>(
         grid.x0_m * 1e3,
         (grid.x0_m + grid.dx_m * grid.nx as f64) * 1e3,
     );
+    // Temperatures on the right axis (drawn only for a case with them).
+    let temperatures = case.temperature.map(|t| {
+        let k = |v: &[f64]| -> Vec<(f64, f64)> {
+            (0..grid.nx)
+                .map(|ix| (xs[ix], v[grid.index(ix, iy)]))
+                .collect()
+        };
+        (k(&t.body1_k), k(&t.body2_k))
+    });
+    let (tlo, thi) = temperatures
+        .iter()
+        .flat_map(|(a, b)| a.iter().chain(b))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, v)| {
+            (a.min(v), b.max(v))
+        });
+    let (tlo, thi) = if tlo <= thi { (tlo, thi) } else { (0.0, 1.0) };
+    let tpad = 0.08 * (thi - tlo).max(1e-9);
     let mut chart = ChartBuilder::on(area)
         .caption(
             format!("centre line y = {:.3} mm", grid.y_m(iy) * 1e3),
@@ -405,8 +426,10 @@ fn centre_line<DB: DrawingBackend>(
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(70)
+        .right_y_label_area_size(if case.temperature.is_some() { 70 } else { 0 })
         .build_cartesian_2d(x0..x1, (lo - pad)..(hi + pad))
-        .map_err(err)?;
+        .map_err(err)?
+        .set_secondary_coord(x0..x1, (tlo - tpad)..(thi + tpad));
     chart
         .configure_mesh()
         .x_desc(case.x_desc())
@@ -460,6 +483,26 @@ fn centre_line<DB: DrawingBackend>(
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 25, y)], green.stroke_width(2))
             });
+    }
+    if let Some((t1, t2)) = temperatures {
+        chart
+            .configure_secondary_axes()
+            .y_desc("surface temperature [K]")
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 15))
+            .draw()
+            .map_err(err)?;
+        let red = RGBColor(214, 39, 40);
+        chart
+            .draw_secondary_series(LineSeries::new(t1, red.stroke_width(2)))
+            .map_err(err)?
+            .label("T body 1 [K]")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 25, y)], red.stroke_width(2)));
+        chart
+            .draw_secondary_series(DashedLineSeries::new(t2, 6, 4, red.stroke_width(2)))
+            .map_err(err)?
+            .label("T body 2 [K]")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 25, y)], red.mix(0.6)));
     }
     chart
         .configure_series_labels()

@@ -15,6 +15,7 @@ use crate::core::problem::Creepages;
 use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
+use crate::core::temperature::{SurfaceTemperatures, TemperaturePeak, ThermalBody, ThermalInput};
 use crate::problem::case::{
     ranges, Case, CaseFile, FrictionLawName, FrictionSection, GeometryKind, GeometrySection,
     GridSection, LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
@@ -296,7 +297,55 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             depth_count: size(s.depth_count),
             shear_yield_stress_pa: s.shear_yield_stress_pa,
         }),
+        temperature: c.temperature.as_ref().map(thermal_input).transpose()?,
     })
+}
+
+/// The case's `[temperature]` of a wire section (both bodies required).
+fn thermal_input(t: &pb::TemperatureSection) -> Result<ThermalInput, ServiceError> {
+    let body = |key: &str, b: &Option<pb::ThermalBody>| {
+        b.as_ref()
+            .map(|b| ThermalBody {
+                bulk_temperature_k: b.bulk_temperature_k,
+                conductivity_w_per_m_k: b.conductivity_w_per_m_k,
+                density_kg_per_m3: b.density_kg_per_m3,
+                specific_heat_j_per_kg_k: b.specific_heat_j_per_kg_k,
+            })
+            .ok_or_else(|| {
+                ServiceError::invalid(
+                    format!("temperature.{key}"),
+                    "missing: give the body's bulk temperature, conductivity, density and specific heat",
+                )
+            })
+    };
+    Ok(ThermalInput {
+        body1: body("body1", &t.body1)?,
+        body2: body("body2", &t.body2)?,
+        rolling_speed_m_per_s: t.rolling_speed_m_per_s,
+    })
+}
+
+/// The wire form of the flash temperatures: their peaks, and the fields
+/// with `fields`.
+pub fn temperature_result(t: &SurfaceTemperatures, fields: bool) -> pb::TemperatureResult {
+    let peak = |p: TemperaturePeak| pb::TemperaturePeak {
+        temperature_k: p.temperature_k,
+        x_m: p.x_m,
+        y_m: p.y_m,
+    };
+    let f = |v: &Vec<f64>| if fields { v.clone() } else { Vec::new() };
+    let s = &t.summary;
+    pb::TemperatureResult {
+        max_body1: Some(peak(s.max_body1)),
+        max_body2: Some(peak(s.max_body2)),
+        contact_temperature_k: s.contact_temperature_k,
+        heat_share_body1: s.heat_share_body1,
+        frictional_power_w: s.frictional_power_w,
+        peclet_number: s.peclet_number,
+        body1_k: f(&t.body1_k),
+        body2_k: f(&t.body2_k),
+        heat_flux_w_per_m2: f(&t.heat_flux_w_per_m2),
+    }
 }
 
 /// The wire form of both bodies' subsurface fields: their peaks, and the
@@ -587,6 +636,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         fields,
         force_control: r.force_control.as_ref().map(force_control),
         subsurface: None,
+        temperature: None,
     }
 }
 
@@ -723,6 +773,36 @@ pub fn check_finite(r: &pb::PatchResult) -> Result<(), ServiceError> {
     }
     if let Some(f) = &r.fields {
         check_fields_finite("fields", f)?;
+    }
+    if let Some(t) = &r.temperature {
+        for (name, p) in [("max_body1", &t.max_body1), ("max_body2", &t.max_body2)] {
+            if let Some(p) = p {
+                finite_values(
+                    &format!("temperature.{name}"),
+                    [
+                        ("temperature_k", p.temperature_k),
+                        ("x_m", p.x_m),
+                        ("y_m", p.y_m),
+                    ],
+                )?;
+            }
+        }
+        finite_values(
+            "temperature",
+            [
+                ("contact_temperature_k", t.contact_temperature_k),
+                ("heat_share_body1", t.heat_share_body1),
+                ("frictional_power_w", t.frictional_power_w),
+                ("peclet_number", t.peclet_number),
+            ],
+        )?;
+        for (name, v) in [
+            ("body1_k", &t.body1_k),
+            ("body2_k", &t.body2_k),
+            ("heat_flux_w_per_m2", &t.heat_flux_w_per_m2),
+        ] {
+            finite_list(&format!("temperature.{name}"), v)?;
+        }
     }
     Ok(())
 }

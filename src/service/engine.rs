@@ -21,6 +21,7 @@ use crate::core::sensitivity::{
 };
 use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::{ContactSolver, SolverState};
+use crate::core::temperature::flash_temperatures;
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
 use crate::problem::report::ForceControlReport;
@@ -204,6 +205,10 @@ impl PatchEngine {
                 let mut result = self.exact_result(&solutions, fields);
                 result.force_control = force.as_ref().map(convert::force_control);
                 if let Some(last) = solutions.last() {
+                    if let Some(input) = &self.case.temperature {
+                        let t = flash_temperatures(&grid, &last.fields, input)?;
+                        result.temperature = Some(convert::temperature_result(&t, fields));
+                    }
                     result.subsurface = SubsurfaceRun::of(&self.case, &grid, last)?.map(|s| {
                         convert::subsurface_result(
                             &grid,
@@ -332,6 +337,7 @@ impl PatchEngine {
                 .map(|s| convert::planar_fields(&s.fields)),
             force_control: None,
             subsurface: None,
+            temperature: None,
         }
     }
 }

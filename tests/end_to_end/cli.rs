@@ -1365,3 +1365,63 @@ fn the_line_contact_example_is_carters_rolling_per_metre() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("grid.ny"));
 }
+
+#[test]
+fn flash_temperature_example_writes_peaks_and_csv() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-temperature");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (csv, png) = (dir.join("temp.csv"), dir.join("temp.png"));
+    let v = solve_json(
+        &example("flash_temperature.toml"),
+        &[
+            "--temperature-csv",
+            csv.to_str().unwrap(),
+            "--plot",
+            png.to_str().unwrap(),
+        ],
+    );
+    let t = &v["temperature"];
+    // CONTACT's ertz_temperature case 1 on the same elements: FRIC.POWER
+    // = -2.994E+04 W (eve70a/CONTACT, examples/ertz_temperature.ref_out).
+    let power = t["frictional_power_w"].as_f64().unwrap();
+    assert!((power / 2.994e4 - 1.0).abs() < 1e-3, "{power}");
+    // Equal steels at 0 C: the contact starts at 273.15 K, both surfaces
+    // share the frictional rise in the contact and one maximum.
+    assert!((t["contact_temperature_k"].as_f64().unwrap() - 273.15).abs() < 1e-9);
+    let max1 = t["max_body1"]["temperature_k"].as_f64().unwrap();
+    let max2 = t["max_body2"]["temperature_k"].as_f64().unwrap();
+    assert_eq!(max1, max2);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "x_m,y_m,heat_flux_w_per_m2,body1_k,body2_k"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 73 * 45);
+    let csv_max = rows.iter().map(|r| r[3]).fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(csv_max, max1);
+    // sum q dA over the rows is the frictional power (0.2 x 0.5 mm elements).
+    let sum: f64 = rows.iter().map(|r| r[2]).sum::<f64>() * 0.2e-3 * 0.5e-3;
+    assert!((sum / power - 1.0).abs() < 1e-6, "{sum} {power}");
+    // The centre line carries the temperatures on a second axis.
+    assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+}
+
+#[test]
+fn temperature_csv_needs_the_section() {
+    let out = run(&[
+        "solve",
+        example("hertz_circle.toml").to_str().unwrap(),
+        "--temperature-csv",
+        "/dev/null",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("`--temperature-csv`") && err.contains("[temperature]"),
+        "{err}"
+    );
+}

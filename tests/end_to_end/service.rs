@@ -91,6 +91,21 @@ async fn solve_patch(client: &mut Client, case: pb::PatchCase) -> pb::PatchResul
         .unwrap()
 }
 
+/// SolvePatch of `case` with `include_fields`.
+async fn solve_patch_with_fields(client: &mut Client, case: pb::PatchCase) -> pb::PatchResult {
+    client
+        .solve_patch(pb::SolvePatchRequest {
+            case: Some(case),
+            include_fields: true,
+            ..Default::default()
+        })
+        .await
+        .unwrap()
+        .into_inner()
+        .result
+        .unwrap()
+}
+
 fn totals(r: &pb::StepResult) -> &pb::PatchTotals {
     r.totals.as_ref().unwrap()
 }
@@ -1147,17 +1162,7 @@ async fn subsurface_stresses_only_when_asked_and_fields_only_with_include_fields
         tau.value_pa / p0
     );
     assert_eq!(tau.depth_m, 1.5e-3);
-    let full = client
-        .solve_patch(pb::SolvePatchRequest {
-            case: Some(case),
-            include_fields: true,
-            ..Default::default()
-        })
-        .await
-        .unwrap()
-        .into_inner()
-        .result
-        .unwrap();
+    let full = solve_patch_with_fields(&mut client, case).await;
     let f = full.subsurface.as_ref().unwrap();
     for b in [f.body1.as_ref().unwrap(), f.body2.as_ref().unwrap()] {
         for v in [&b.sigma_xx_pa, &b.sigma_nn_pa, &b.sigma_yn_pa, &b.un_m] {
@@ -1302,4 +1307,68 @@ async fn solve_patch_solves_falling_friction_as_contacts_veldep_fric() {
     let (code, msg) = failure(client.solve_patch(request(case)).await);
     assert_eq!(code, Code::InvalidArgument);
     assert!(msg.contains("friction.rolling_speed_m_per_s"), "{msg}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn flash_temperatures_only_when_asked_and_fields_only_with_include_fields() {
+    let (server, mut client) = server().await;
+    let steel = |bulk_temperature_k| pb::ThermalBody {
+        bulk_temperature_k,
+        conductivity_w_per_m_k: 50.0,
+        density_kg_per_m3: 7850.0,
+        specific_heat_j_per_kg_k: 450.0,
+    };
+    let section = pb::TemperatureSection {
+        rolling_speed_m_per_s: 30.0,
+        body1: Some(steel(293.15)),
+        body2: Some(steel(333.15)),
+    };
+    let n = 20;
+    let plain = solve_patch(&mut client, rolling(pb::Model::Exact, n, 2e-3)).await;
+    assert!(plain.temperature.is_none(), "not asked: not computed");
+    let mut case = rolling(pb::Model::Exact, n, 2e-3);
+    case.temperature = Some(section);
+    let peaks = solve_patch(&mut client, case.clone()).await;
+    let t = peaks.temperature.as_ref().unwrap();
+    assert!(t.body1_k.is_empty(), "fields only with include_fields");
+    // Equal steels: the bulk temperatures meet at their mean; the frictional
+    // power is T-gamma times the rolling speed.
+    assert!((t.contact_temperature_k - 313.15).abs() < 1e-9);
+    let tgamma = totals(peaks.result.as_ref().unwrap()).tgamma_n;
+    assert!(
+        (t.frictional_power_w - 30.0 * tgamma).abs() < 1e-9 * 30.0 * tgamma,
+        "{} {tgamma}",
+        t.frictional_power_w
+    );
+    assert!(t.max_body1.unwrap().temperature_k > 313.15);
+    let full = solve_patch_with_fields(&mut client, case.clone()).await;
+    let f = full.temperature.as_ref().unwrap();
+    for v in [&f.body1_k, &f.body2_k, &f.heat_flux_w_per_m2] {
+        assert_eq!(v.len(), (n * n) as usize);
+    }
+    let hottest = f.body1_k.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(hottest, t.max_body1.unwrap().temperature_k);
+    // Refusals name the field.
+    let mut bad = case.clone();
+    bad.temperature.as_mut().unwrap().body2 = Some(steel(60.0));
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(
+        msg.contains("temperature.body2.bulk_temperature_k") && msg.contains("Celsius"),
+        "{msg}"
+    );
+    let mut bad = case.clone();
+    bad.temperature.as_mut().unwrap().body1 = None;
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(msg.contains("temperature.body1"), "{msg}");
+    let mut bad = case;
+    bad.model = pb::Model::Fastsim as i32;
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument);
+    assert!(
+        msg.contains("temperature") && msg.contains("exact"),
+        "{msg}"
+    );
+    server.shutdown().await;
 }

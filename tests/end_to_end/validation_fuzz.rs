@@ -170,6 +170,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         }),
         solver: None,
         subsurface: None,
+        temperature: None,
     }
 }
 
@@ -239,6 +240,28 @@ fn solver(c: &mut pb::PatchCase) -> &mut pb::SolverSection {
 
 fn subsurface(c: &mut pb::PatchCase) -> &mut pb::SubsurfaceSection {
     c.subsurface.get_or_insert_with(Default::default)
+}
+
+/// The temperature section with steel on both bodies at 300 K and 30 m/s,
+/// then body 1 of it.
+fn thermal(c: &mut pb::PatchCase) -> &mut pb::TemperatureSection {
+    c.temperature.get_or_insert_with(|| {
+        let steel = pb::ThermalBody {
+            bulk_temperature_k: 300.0,
+            conductivity_w_per_m_k: 50.0,
+            density_kg_per_m3: 7850.0,
+            specific_heat_j_per_kg_k: 450.0,
+        };
+        pb::TemperatureSection {
+            rolling_speed_m_per_s: 30.0,
+            body1: Some(steel),
+            body2: Some(steel),
+        }
+    })
+}
+
+fn thermal_body1(c: &mut pb::PatchCase) -> &mut pb::ThermalBody {
+    thermal(c).body1.get_or_insert_with(Default::default)
 }
 
 fn load(c: &mut pb::PatchCase, l: pb::load_section::Load) {
@@ -381,6 +404,36 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
                 s.depths_m = vec![1e-3];
                 s.shear_yield_stress_pa = Some(v);
             }),
+        ),
+        (
+            exact(),
+            "case.temperature.rolling_speed_m_per_s",
+            30.0,
+            m(|c, v| thermal(c).rolling_speed_m_per_s = v),
+        ),
+        (
+            exact(),
+            "case.temperature.body1.bulk_temperature_k",
+            300.0,
+            m(|c, v| thermal_body1(c).bulk_temperature_k = v),
+        ),
+        (
+            exact(),
+            "case.temperature.body1.conductivity_w_per_m_k",
+            50.0,
+            m(|c, v| thermal_body1(c).conductivity_w_per_m_k = v),
+        ),
+        (
+            exact(),
+            "case.temperature.body1.density_kg_per_m3",
+            7850.0,
+            m(|c, v| thermal_body1(c).density_kg_per_m3 = v),
+        ),
+        (
+            exact(),
+            "case.temperature.body1.specific_heat_j_per_kg_k",
+            450.0,
+            m(|c, v| thermal_body1(c).specific_heat_j_per_kg_k = v),
         ),
         (
             exact(),

@@ -105,6 +105,9 @@ pub fn show(v: f64) -> String {
     }
 }
 
+/// 0 degrees Celsius in kelvin \[K\].
+pub const CELSIUS_ZERO_K: f64 = 273.15;
+
 /// A unit mistake a [`Range`] recognises in a value outside it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum UnitHint {
@@ -114,6 +117,8 @@ pub enum UnitHint {
     GigaPascal,
     /// A length in m given in mm (`460` for 0.46).
     Millimetre,
+    /// A temperature in K given in degrees Celsius (`20` for 293.15).
+    Celsius,
 }
 
 /// The documented range of a numeric input: `min` .. `max` (each bound
@@ -213,6 +218,10 @@ impl Range {
             UnitHint::Millimetre if v.abs() > self.max && self.contains(v * 1e-3) => format!(
                 " (this looks like millimetres: did you mean {} m?)",
                 show(v * 1e-3)
+            ),
+            UnitHint::Celsius if self.contains(v + CELSIUS_ZERO_K) => format!(
+                " (this looks like degrees Celsius: did you mean {} K?)",
+                show(v + CELSIUS_ZERO_K)
             ),
             _ => String::new(),
         };

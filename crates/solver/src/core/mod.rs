@@ -28,3 +28,4 @@ pub mod steady;
 pub mod strip;
 pub mod subsurface;
 pub mod tangential;
+pub mod temperature;

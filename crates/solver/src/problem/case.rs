@@ -26,6 +26,7 @@ use crate::core::problem::{
     CREEPAGE_RANGE, SPIN_RANGE,
 };
 use crate::core::tangential::TangentialSettings;
+use crate::core::temperature::ThermalInput;
 use crate::problem::reference_models::hertz_of;
 use crate::problem::CaseError;
 
@@ -230,6 +231,45 @@ pub struct CaseFile {
     /// model; optional: computed only when present).
     #[serde(default)]
     pub subsurface: Option<SubsurfaceSection>,
+    /// Flash temperatures of both surfaces from the frictional heat
+    /// (exact model, steady rolling; optional: computed only when present).
+    #[serde(default)]
+    pub temperature: Option<TemperatureSection>,
+}
+
+/// `[temperature]`: the rolling speed `rolling_speed_m_per_s` \[m/s\] and
+/// the tables `[temperature.body1]`, `[temperature.body2]`, each with
+/// `bulk_temperature_k` \[K\], `conductivity_w_per_m_k` \[W/(m K)\],
+/// `density_kg_per_m3` \[kg/m³\] and `specific_heat_j_per_kg_k` \[J/(kg
+/// K)\] (all required; ranges in [`crate::core::temperature`]). The flash
+/// temperatures follow Ertz & Knothe's model
+/// ([`crate::core::temperature::flash_temperatures`]).
+pub type TemperatureSection = ThermalInput;
+
+/// The checked `[temperature]` of a case of `model` with `kinematics`
+/// (errors name the key).
+fn temperature_request(
+    section: &TemperatureSection,
+    model: Model,
+    kinematics: &Kinematics,
+) -> Result<ThermalInput, CaseError> {
+    if model != Model::Exact {
+        return Err(bad(
+            "temperature",
+            format!(
+                "flash temperatures come from the frictional power of model = \"exact\", not \"{}\"",
+                model.name()
+            ),
+        ));
+    }
+    if !matches!(kinematics, Kinematics::SteadyRolling(_)) {
+        return Err(bad(
+            "temperature",
+            "flash temperatures need steady rolling: give `[rolling]` (a static or `[transient]` case has no steady frictional power)",
+        ));
+    }
+    section.validate("temperature")?;
+    Ok(*section)
 }
 
 /// `[subsurface]`: the depths below the surface at which to compute the
@@ -1097,6 +1137,8 @@ pub struct Case {
     pub notes: Vec<String>,
     /// The subsurface stresses to compute after the solve, if asked for.
     pub subsurface: Option<SubsurfaceRequest>,
+    /// The flash temperatures to compute after the solve, if asked for.
+    pub temperature: Option<ThermalInput>,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -1742,6 +1784,11 @@ impl Case {
             }
         }
 
+        let temperature = file
+            .temperature
+            .as_ref()
+            .map(|t| temperature_request(t, model, &kinematics))
+            .transpose()?;
         Ok(Case {
             rolling_step_m: file.transient.as_ref().and_then(|t| t.rolling_step_m),
             model,
@@ -1765,6 +1812,7 @@ impl Case {
                 .as_ref()
                 .map(|s| s.request(model))
                 .transpose()?,
+            temperature,
         })
     }
 
@@ -2910,5 +2958,108 @@ nx = 55
         let force = LINE.replace("creepage_long = -2.4e-4", "force_x_n_per_m = 30000.0");
         let c = Case::from_toml(&force).unwrap();
         assert_eq!(c.prescribed_force.force_x_n, Some(30_000.0));
+    }
+}
+
+#[cfg(test)]
+mod temperature_tests {
+    use super::tests::ROLLING;
+    use super::*;
+    use crate::conformal::frictional::FrictionalWorkspace;
+    use crate::problem::ModelRun;
+
+    /// Steel on steel (Ertz & Knothe's values), rail at 20 C, wheel at 60 C,
+    /// 30 m/s.
+    const TEMPERATURE: &str = r#"
+[temperature]
+rolling_speed_m_per_s = 30.0
+[temperature.body1]
+bulk_temperature_k = 293.15
+conductivity_w_per_m_k = 50.0
+density_kg_per_m3 = 7850.0
+specific_heat_j_per_kg_k = 450.0
+[temperature.body2]
+bulk_temperature_k = 333.15
+conductivity_w_per_m_k = 50.0
+density_kg_per_m3 = 7850.0
+specific_heat_j_per_kg_k = 450.0
+"#;
+
+    fn bad(text: &str) -> String {
+        match Case::from_toml(text) {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn temperature_section_is_checked_and_names_the_key() {
+        let c = Case::from_toml(&format!("{ROLLING}{TEMPERATURE}")).unwrap();
+        let t = c.temperature.unwrap();
+        assert_eq!(t.rolling_speed_m_per_s, 30.0);
+        assert_eq!(t.body2.bulk_temperature_k, 333.15);
+        let m = bad(&format!(
+            "{ROLLING}{}",
+            TEMPERATURE.replace("333.15", "60.0")
+        ));
+        assert!(
+            m.contains("`temperature.body2.bulk_temperature_k`") && m.contains("Celsius"),
+            "{m}"
+        );
+        let m = bad(&format!(
+            "{ROLLING}{}",
+            TEMPERATURE.replace(
+                "rolling_speed_m_per_s = 30.0",
+                "rolling_speed_m_per_s = -1.0"
+            )
+        ));
+        assert!(m.contains("`temperature.rolling_speed_m_per_s`"), "{m}");
+        let m = bad(&format!(
+            "{ROLLING}{}",
+            TEMPERATURE.replacen("density_kg_per_m3 = 7850.0\n", "", 1)
+        ));
+        assert!(m.contains("density_kg_per_m3"), "{m}");
+        let m = bad(&format!(
+            "{ROLLING}{}",
+            TEMPERATURE.replacen("density_kg_per_m3", "density", 1)
+        ));
+        assert!(m.contains("density"), "{m}");
+        let m = bad(&format!("model = \"fastsim\"\n{ROLLING}{TEMPERATURE}"));
+        assert!(m.contains("`temperature`") && m.contains("exact"), "{m}");
+        let m = bad(&format!(
+            "{}{TEMPERATURE}",
+            ROLLING.replace("[rolling]\ncreepage_long = 0.001\n", "")
+        ));
+        assert!(
+            m.contains("`temperature`") && m.contains("steady rolling"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn exact_run_reports_the_flash_temperatures() {
+        let c = Case::from_toml(&format!("{ROLLING}{TEMPERATURE}")).unwrap();
+        let run = ModelRun::solve(&c, &mut FrictionalWorkspace::default()).unwrap();
+        let report = run.report(&c, false);
+        let t = report.temperature.unwrap();
+        // The frictional power is T-gamma times the rolling speed
+        // (-sum p_t . s dA V; |p_t||s| = -p_t . s where the material slips).
+        let tgamma = report.totals.totals.tgamma_n;
+        assert!(tgamma > 0.0);
+        assert!(
+            (t.frictional_power_w - 30.0 * tgamma).abs() < 1e-9 * 30.0 * tgamma,
+            "{} {tgamma}",
+            t.frictional_power_w
+        );
+        // Equal steels: the contact temperature is the mean bulk
+        // temperature, the heat splits in halves, the rail heats above it
+        // and the wheel is nowhere below its bulk temperature.
+        assert!((t.contact_temperature_k - 313.15).abs() < 1e-9);
+        assert!((t.heat_share_body1 - 0.5).abs() < 1e-12);
+        assert!(t.max_body1.temperature_k > 313.15);
+        assert!(t.max_body2.temperature_k >= 333.15);
+        assert!(report.human().contains("body 1 max temperature [K]"));
+        let json = serde_json::to_string(&report).unwrap();
+        assert!(json.contains("\"temperature\":{\"max_body1\""), "{json}");
     }
 }

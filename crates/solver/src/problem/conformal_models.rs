@@ -295,6 +295,7 @@ impl ConformalRun {
             geometry: Some(case.geometry.describe()),
             force_control: None,
             subsurface: None,
+            temperature: None,
         }
     }
 }

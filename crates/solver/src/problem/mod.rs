@@ -30,6 +30,7 @@ use crate::core::problem::Kinematics;
 use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::{solve, ContactSolver};
 use crate::core::subsurface::{subsurface_fields, surface_fatigue_index, BodySubsurface};
+use crate::core::temperature::{flash_temperatures, SurfaceTemperatures};
 
 use case::{Case, Model};
 use conformal_models::ConformalRun;
@@ -120,6 +121,9 @@ pub struct ExactRun {
     /// The subsurface fields of both bodies below the (last) solution,
     /// when the case asks for them (`[subsurface]`).
     pub subsurface: Option<Box<SubsurfaceRun>>,
+    /// The flash temperatures of both surfaces of the solution, when the
+    /// case asks for them (`[temperature]`).
+    pub temperature: Option<Box<SurfaceTemperatures>>,
 }
 
 /// The subsurface fields of both bodies below a solution.
@@ -185,12 +189,19 @@ impl ExactRun {
             return Err(CaseError::Failure("the solver returned no solution".into()));
         };
         let subsurface = SubsurfaceRun::of(case, &problem.grid, last)?.map(Box::new);
+        let temperature = case
+            .temperature
+            .as_ref()
+            .map(|input| flash_temperatures(&problem.grid, &last.fields, input))
+            .transpose()?
+            .map(Box::new);
         Ok(ExactRun {
             grid: problem.grid,
             solutions,
             elapsed_s: t0.elapsed().as_secs_f64(),
             force_control,
             subsurface,
+            temperature,
         })
     }
 
@@ -260,6 +271,7 @@ impl ExactRun {
             geometry: None,
             force_control: self.force_control,
             subsurface: self.subsurface.as_ref().map(|s| s.report(&self.grid)),
+            temperature: self.temperature.as_ref().map(|t| t.summary),
         }
     }
 }

@@ -74,6 +74,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         geometry: None,
         force_control: None,
         subsurface: None,
+        temperature: None,
     })
 }
 
@@ -125,6 +126,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         geometry: None,
         force_control: None,
         subsurface: None,
+        temperature: None,
     })
 }
 
@@ -197,5 +199,6 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         geometry: Some(case.geometry.describe()),
         force_control: None,
         subsurface: None,
+        temperature: None,
     })
 }

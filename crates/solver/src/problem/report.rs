@@ -9,6 +9,7 @@ use crate::core::force::ForceSolution;
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::SubsurfaceSummary;
+use crate::core::temperature::TemperatureSummary;
 use crate::problem::case::Model;
 use crate::problem::CaseError;
 
@@ -192,6 +193,10 @@ pub struct Report<'a> {
     /// Peaks of the subsurface stresses, with `[subsurface]` (exact model).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub subsurface: Option<SubsurfaceReport>,
+    /// The flash temperatures' peaks, with `[temperature]` (exact model,
+    /// steady rolling; see [`crate::core::temperature`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<TemperatureSummary>,
 }
 
 /// The peaks of the subsurface stresses of both bodies (see
@@ -460,6 +465,32 @@ impl Report<'_> {
             if let Some(fi) = sub.surface_fatigue_index {
                 line("surface fatigue index [-]", format!("{fi:.4}"));
             }
+        }
+        if let Some(t) = &self.temperature {
+            for (body, p) in [("body 1", &t.max_body1), ("body 2", &t.max_body2)] {
+                line(
+                    &format!("{body} max temperature [K]"),
+                    format!(
+                        "{:.2} at x {:.4}, y {:.4} mm",
+                        p.temperature_k,
+                        mm(p.x_m),
+                        mm(p.y_m)
+                    ),
+                );
+            }
+            line(
+                "contact temperature [K]",
+                format!("{:.2} (before frictional heating)", t.contact_temperature_k),
+            );
+            line(
+                "frictional power [W]",
+                format!("{:.4e}", t.frictional_power_w),
+            );
+            line(
+                "heat share body 1 [-]",
+                format!("{:.4}", t.heat_share_body1),
+            );
+            line("Peclet number [-]", format!("{:.1}", t.peclet_number));
         }
         for n in &self.notes {
             let _ = writeln!(o, "  note: {n}");

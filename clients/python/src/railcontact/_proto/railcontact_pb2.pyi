@@ -322,7 +322,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -333,6 +333,7 @@ class PatchCase(_message.Message):
     GRID_FIELD_NUMBER: _ClassVar[int]
     SOLVER_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
+    TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -343,7 +344,30 @@ class PatchCase(_message.Message):
     grid: GridSection
     solver: SolverSection
     subsurface: SubsurfaceSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ...) -> None: ...
+    temperature: TemperatureSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ...) -> None: ...
+
+class ThermalBody(_message.Message):
+    __slots__ = ("bulk_temperature_k", "conductivity_w_per_m_k", "density_kg_per_m3", "specific_heat_j_per_kg_k")
+    BULK_TEMPERATURE_K_FIELD_NUMBER: _ClassVar[int]
+    CONDUCTIVITY_W_PER_M_K_FIELD_NUMBER: _ClassVar[int]
+    DENSITY_KG_PER_M3_FIELD_NUMBER: _ClassVar[int]
+    SPECIFIC_HEAT_J_PER_KG_K_FIELD_NUMBER: _ClassVar[int]
+    bulk_temperature_k: float
+    conductivity_w_per_m_k: float
+    density_kg_per_m3: float
+    specific_heat_j_per_kg_k: float
+    def __init__(self, bulk_temperature_k: _Optional[float] = ..., conductivity_w_per_m_k: _Optional[float] = ..., density_kg_per_m3: _Optional[float] = ..., specific_heat_j_per_kg_k: _Optional[float] = ...) -> None: ...
+
+class TemperatureSection(_message.Message):
+    __slots__ = ("rolling_speed_m_per_s", "body1", "body2")
+    ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    BODY1_FIELD_NUMBER: _ClassVar[int]
+    BODY2_FIELD_NUMBER: _ClassVar[int]
+    rolling_speed_m_per_s: float
+    body1: ThermalBody
+    body2: ThermalBody
+    def __init__(self, rolling_speed_m_per_s: _Optional[float] = ..., body1: _Optional[_Union[ThermalBody, _Mapping]] = ..., body2: _Optional[_Union[ThermalBody, _Mapping]] = ...) -> None: ...
 
 class SubsurfaceSection(_message.Message):
     __slots__ = ("depths_m", "max_depth_m", "depth_count", "shear_yield_stress_pa")
@@ -502,7 +526,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -512,6 +536,7 @@ class PatchResult(_message.Message):
     FIELDS_FIELD_NUMBER: _ClassVar[int]
     FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
+    TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -521,7 +546,40 @@ class PatchResult(_message.Message):
     fields: ElementFields
     force_control: ForceControl
     subsurface: SubsurfaceResult
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ...) -> None: ...
+    temperature: TemperatureResult
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ...) -> None: ...
+
+class TemperaturePeak(_message.Message):
+    __slots__ = ("temperature_k", "x_m", "y_m")
+    TEMPERATURE_K_FIELD_NUMBER: _ClassVar[int]
+    X_M_FIELD_NUMBER: _ClassVar[int]
+    Y_M_FIELD_NUMBER: _ClassVar[int]
+    temperature_k: float
+    x_m: float
+    y_m: float
+    def __init__(self, temperature_k: _Optional[float] = ..., x_m: _Optional[float] = ..., y_m: _Optional[float] = ...) -> None: ...
+
+class TemperatureResult(_message.Message):
+    __slots__ = ("max_body1", "max_body2", "contact_temperature_k", "heat_share_body1", "frictional_power_w", "peclet_number", "body1_k", "body2_k", "heat_flux_w_per_m2")
+    MAX_BODY1_FIELD_NUMBER: _ClassVar[int]
+    MAX_BODY2_FIELD_NUMBER: _ClassVar[int]
+    CONTACT_TEMPERATURE_K_FIELD_NUMBER: _ClassVar[int]
+    HEAT_SHARE_BODY1_FIELD_NUMBER: _ClassVar[int]
+    FRICTIONAL_POWER_W_FIELD_NUMBER: _ClassVar[int]
+    PECLET_NUMBER_FIELD_NUMBER: _ClassVar[int]
+    BODY1_K_FIELD_NUMBER: _ClassVar[int]
+    BODY2_K_FIELD_NUMBER: _ClassVar[int]
+    HEAT_FLUX_W_PER_M2_FIELD_NUMBER: _ClassVar[int]
+    max_body1: TemperaturePeak
+    max_body2: TemperaturePeak
+    contact_temperature_k: float
+    heat_share_body1: float
+    frictional_power_w: float
+    peclet_number: float
+    body1_k: _containers.RepeatedScalarFieldContainer[float]
+    body2_k: _containers.RepeatedScalarFieldContainer[float]
+    heat_flux_w_per_m2: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, max_body1: _Optional[_Union[TemperaturePeak, _Mapping]] = ..., max_body2: _Optional[_Union[TemperaturePeak, _Mapping]] = ..., contact_temperature_k: _Optional[float] = ..., heat_share_body1: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., peclet_number: _Optional[float] = ..., body1_k: _Optional[_Iterable[float]] = ..., body2_k: _Optional[_Iterable[float]] = ..., heat_flux_w_per_m2: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class StressPeak(_message.Message):
     __slots__ = ("value_pa", "x_m", "y_m", "depth_m")
