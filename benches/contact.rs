@@ -271,6 +271,10 @@ fn reference_models(c: &mut Criterion) {
     c.bench_function("fastsim_40x40", |b| {
         b.iter(|| black_box(fs.solve(&input).unwrap()))
     });
+    let mut totals = Fastsim::totals_only(40, 40).unwrap();
+    c.bench_function("fastsim_40x40_totals", |b| {
+        b.iter(|| black_box(totals.solve(&input).unwrap()))
+    });
     c.bench_function("polach", |b| {
         b.iter(|| black_box(polach(black_box(&input), 30.0, &PolachParameters::DRY).unwrap()))
     });

@@ -176,7 +176,8 @@ fn wheelset_step(c: &mut Criterion) {
 
 /// Benchmarks `solve` stepping along `path` (one step an iteration, round
 /// and round), each step from the warm start the last one left, after
-/// `reset` has cleared what the case leaves out.
+/// `reset` has cleared what the case leaves out. First prints where the
+/// time of a step goes (the solution's timing, mean over one pass).
 fn bench_path(
     g: &mut BenchmarkGroup<'_, WallTime>,
     id: &str,
@@ -184,6 +185,19 @@ fn bench_path(
     reset: impl Fn(&mut WarmStart),
     mut solve: impl FnMut(&WheelRailInput, &mut WarmStart) -> WheelRailSolution,
 ) {
+    let mut warm = WarmStart::default();
+    let mut split = [0.0; 3];
+    for input in path {
+        reset(&mut warm);
+        let t = solve(input, &mut warm).timing;
+        for (s, v) in split.iter_mut().zip([t.search_s, t.geometry_s, t.solve_s]) {
+            *s += v * 1e6 / path.len() as f64;
+        }
+    }
+    eprintln!(
+        "{id}: per step search {:.1} us, geometry {:.1} us, solve {:.1} us",
+        split[0], split[1], split[2]
+    );
     let mut warm = WarmStart::default();
     let mut k = 0;
     g.bench_function(id, |b| {

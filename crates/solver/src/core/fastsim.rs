@@ -85,6 +85,7 @@
 //!   model has no single displacement field.
 
 use crate::core::creep::{kalker_creep_coefficients, CreepCoefficients, CreepError};
+use crate::core::simd::multiversion;
 use thiserror::Error;
 
 /// Largest accepted number of elements `nx * ny`.
@@ -340,11 +341,15 @@ pub enum ElementState {
 /// Element `(i, j)` — `i` along `x` counted from the leading edge
 /// (`i = 0` at `x` near `+a(y)`), `j` along `y` from `y = -b` — is stored at
 /// index `j * nx + i` of every per-element slice. Before the first
-/// [`Fastsim::solve`] all fields are zero.
+/// [`Fastsim::solve`] all fields are zero. A solver made by
+/// [`Fastsim::totals_only`] keeps no per-element fields (its slices are
+/// empty) and gives the same totals, bit for bit, in less time.
 #[derive(Debug, Clone)]
 pub struct Fastsim {
     nx: usize,
     ny: usize,
+    /// Whether solves store the per-element fields.
+    fields: bool,
     flexibility: FlexibilityModel,
     bound: TractionBound,
     x_m: Vec<f64>,
@@ -362,13 +367,28 @@ impl Fastsim {
     /// Creates a solver with `nx` elements per strip and `ny` strips
     /// (both >= 2, `nx * ny <= MAX_ELEMENTS`).
     pub fn new(nx: usize, ny: usize) -> Result<Self, FastsimError> {
-        let n = nx
+        Self::with_fields(nx, ny, true)
+    }
+
+    /// A solver like [`Fastsim::new`] that computes the totals only: no
+    /// per-element fields are stored (its per-element slices are empty).
+    /// The totals are those of [`Fastsim::new`], bit for bit; a wheel/rail
+    /// step, which reads the totals only, saves the stores (see
+    /// `benches/README.md`).
+    pub fn totals_only(nx: usize, ny: usize) -> Result<Self, FastsimError> {
+        Self::with_fields(nx, ny, false)
+    }
+
+    fn with_fields(nx: usize, ny: usize, fields: bool) -> Result<Self, FastsimError> {
+        let grid = nx
             .checked_mul(ny)
             .filter(|&n| nx >= 2 && ny >= 2 && n <= MAX_ELEMENTS)
             .ok_or(FastsimError::InvalidGrid { nx, ny })?;
+        let n = if fields { grid } else { 0 };
         Ok(Self {
             nx,
             ny,
+            fields,
             flexibility: FlexibilityModel::default(),
             bound: TractionBound::default(),
             x_m: vec![0.0; n],
@@ -415,9 +435,10 @@ impl Fastsim {
         self.ny
     }
 
-    /// Index of element `(i, j)` into the per-element slices, if in range.
+    /// Index of element `(i, j)` into the per-element slices, if in range
+    /// (`None` on a [`Fastsim::totals_only`] solver).
     pub fn index(&self, i: usize, j: usize) -> Option<usize> {
-        (i < self.nx && j < self.ny).then(|| j * self.nx + i)
+        (self.fields && i < self.nx && j < self.ny).then(|| j * self.nx + i)
     }
 
     /// Element centre `x` \[m\].
@@ -621,20 +642,12 @@ impl Fastsim {
                     ..Strip::default()
                 }
             });
-            for i in 0..nx {
-                for (l, strip) in strips[..lanes].iter_mut().enumerate() {
-                    let e = strip.advance(i, &k);
-                    let at = (j0 + l) * nx + i;
-                    self.x_m[at] = e.x;
-                    self.y_m[at] = strip.y;
-                    self.area_m2[at] = strip.da;
-                    self.pn_pa[at] = e.pn;
-                    self.px_pa[at] = strip.px;
-                    self.py_pa[at] = strip.py;
-                    self.slip_x[at] = e.sx;
-                    self.slip_y[at] = e.sy;
-                    self.state[at] = e.state;
-                }
+            if self.fields {
+                self.march(j0, &mut strips[..lanes], &k);
+            } else {
+                let mut side_by_side = Lanes::from_strips(&strips);
+                march_lanes(&mut side_by_side, self.nx, &k);
+                side_by_side.write_back(&mut strips);
             }
             for strip in &mut strips[..lanes] {
                 strip.release(&k);
@@ -656,6 +669,130 @@ impl Fastsim {
             max_traction_pa: pmax.sqrt(),
             bound_peak_pressure_pa: pn_scale,
             coefficients: coef,
+        }
+    }
+}
+
+impl Fastsim {
+    /// Integrates `strips` (strips `j0..` of the grid) element by element
+    /// from the leading edge, storing the per-element fields.
+    fn march(&mut self, j0: usize, strips: &mut [Strip], k: &StripConstants) {
+        let nx = self.nx;
+        for i in 0..nx {
+            for (l, strip) in strips.iter_mut().enumerate() {
+                let e = strip.advance(i, k);
+                let at = (j0 + l) * nx + i;
+                self.x_m[at] = e.x;
+                self.y_m[at] = strip.y;
+                self.area_m2[at] = strip.da;
+                self.pn_pa[at] = e.pn;
+                self.px_pa[at] = strip.px;
+                self.py_pa[at] = strip.py;
+                self.slip_x[at] = e.sx;
+                self.slip_y[at] = e.sy;
+                self.state[at] = e.state;
+            }
+        }
+    }
+}
+
+/// [`LANES`] strips side by side, one array element a strip: the state of
+/// a totals-only march ([`march_lanes`]).
+#[derive(Clone, Copy, Default)]
+struct Lanes {
+    y: [f64; LANES],
+    ay: [f64; LANES],
+    dx: [f64; LANES],
+    da: [f64; LANES],
+    wx: [f64; LANES],
+    px: [f64; LANES],
+    py: [f64; LANES],
+    x_prev: [f64; LANES],
+    fx: [f64; LANES],
+    fy: [f64; LANES],
+    mz: [f64; LANES],
+    tgamma: [f64; LANES],
+    adhesion_area: [f64; LANES],
+    area: [f64; LANES],
+    pmax2: [f64; LANES],
+    sliding: [bool; LANES],
+}
+
+impl Lanes {
+    fn from_strips(strips: &[Strip; LANES]) -> Self {
+        let mut out = Self::default();
+        for (l, s) in strips.iter().enumerate() {
+            (out.y[l], out.ay[l], out.dx[l], out.da[l], out.wx[l]) = (s.y, s.ay, s.dx, s.da, s.wx);
+            (out.px[l], out.py[l], out.x_prev[l]) = (s.px, s.py, s.x_prev);
+            (out.fx[l], out.fy[l], out.mz[l], out.tgamma[l]) = (s.fx, s.fy, s.mz, s.tgamma);
+            (out.adhesion_area[l], out.area[l], out.pmax2[l]) = (s.adhesion_area, s.area, s.pmax2);
+            out.sliding[l] = s.sliding;
+        }
+        out
+    }
+
+    fn write_back(&self, strips: &mut [Strip; LANES]) {
+        for (l, s) in strips.iter_mut().enumerate() {
+            (s.px, s.py, s.x_prev) = (self.px[l], self.py[l], self.x_prev[l]);
+            (s.fx, s.fy, s.mz, s.tgamma) = (self.fx[l], self.fy[l], self.mz[l], self.tgamma[l]);
+            (s.adhesion_area, s.area, s.pmax2) =
+                (self.adhesion_area[l], self.area[l], self.pmax2[l]);
+            s.sliding = self.sliding[l];
+        }
+    }
+}
+
+multiversion! {
+    /// [`Strip::advance`] for [`LANES`] strips at once, without the
+    /// per-element values: the same arithmetic in the same order, the
+    /// branch between adhesion and slip replaced by selections, so the
+    /// lanes run in vector registers and the totals are those of
+    /// [`Strip::advance`] bit for bit. The slip velocities, which only
+    /// the per-element fields show, are not computed.
+    fn march_lanes(s: &mut Lanes, nx: usize, k: &StripConstants) => march_lanes_body
+}
+
+#[inline(always)]
+fn march_lanes_body(s: &mut Lanes, nx: usize, k: &StripConstants) {
+    for i in 0..nx {
+        let centre = i as f64 + 0.5;
+        for l in 0..LANES {
+            let (ay, dx, da) = (s.ay[l], s.dx[l], s.da[l]);
+            let x = ay - centre * dx;
+            let step = s.x_prev[l] - x;
+            let wy = k.eta_l2 + k.phi_l3 * 0.5 * (s.x_prev[l] + x);
+            let (px_prev, py_prev) = (s.px[l], s.py[l]);
+            let hx = px_prev - s.wx[l] * step;
+            let hy = py_prev - wy * step;
+            let pn = if k.elliptic {
+                k.pn_scale * ((ay - x) * (ay + x) * k.inv_a2).max(0.0).sqrt()
+            } else {
+                (k.pn_scale * (ay - x) * (ay + x) * k.inv_a2).max(0.0)
+            };
+            let bound = if s.sliding[l] { k.mu } else { k.mu_static } * pn;
+            let mag2 = hx * hx + hy * hy;
+            let adhesion = mag2 <= bound * bound;
+            let f = bound / mag2.sqrt();
+            let (px, py) = if adhesion { (hx, hy) } else { (hx * f, hy * f) };
+            let work = slip_work(px_prev, py_prev, px, py, hx, hy, k);
+            s.tgamma[l] = if adhesion {
+                s.tgamma[l]
+            } else {
+                s.tgamma[l] - work
+            };
+            s.adhesion_area[l] = if adhesion {
+                s.adhesion_area[l] + da
+            } else {
+                s.adhesion_area[l]
+            };
+            s.sliding[l] = !adhesion;
+            (s.px[l], s.py[l]) = (px, py);
+            s.fx[l] += px * da;
+            s.fy[l] += py * da;
+            s.mz[l] += (x * py - s.y[l] * px) * da;
+            s.area[l] += da;
+            s.pmax2[l] = s.pmax2[l].max(px * px + py * py);
+            s.x_prev[l] = x;
         }
     }
 }
@@ -754,9 +891,9 @@ impl Strip {
             sy = k.l_slip * (self.py - hy) / step;
             state = ElementState::Slip;
             self.sliding = true;
-            // Mean traction over the step times slip times step.
-            self.tgamma -=
-                0.5 * ((px_prev + self.px) * sx + (py_prev + self.py) * sy) * step * k.dy;
+            // Mean traction over the step times slip times step (the
+            // slip times the step is L_s times the cut increment).
+            self.tgamma -= slip_work(px_prev, py_prev, self.px, self.py, hx, hy, k);
         }
         let (px, py) = (self.px, self.py);
         self.fx += px * da;
@@ -783,6 +920,23 @@ impl Strip {
         let hy = self.py - wy * step;
         self.tgamma += 0.5 * k.l_slip * (self.px * hx + self.py * hy) * k.dy;
     }
+}
+
+/// The frictional work of a slip step, per unit width of the strip over
+/// `dy`: the mean of the tractions before (`px_prev`, `py_prev`) and after
+/// (`px`, `py`) the step times the slip over the step, which is `L_s`
+/// times the cut increment (`p - p_H`, `p_H = (hx, hy)`).
+#[inline(always)]
+fn slip_work(
+    px_prev: f64,
+    py_prev: f64,
+    px: f64,
+    py: f64,
+    hx: f64,
+    hy: f64,
+    k: &StripConstants,
+) -> f64 {
+    0.5 * k.l_slip * ((px_prev + px) * (px - hx) + (py_prev + py) * (py - hy)) * k.dy
 }
 
 /// Half-length `a(y_j)` of strip `j`.
@@ -893,6 +1047,46 @@ pub(crate) mod tests {
 
     fn solve(nx: usize, ny: usize, inp: &FastsimInput) -> FastsimOutput {
         Fastsim::new(nx, ny).unwrap().solve(inp).unwrap()
+    }
+
+    /// A totals-only solver gives the same totals, bit for bit, in
+    /// adhesion, partial slip and full sliding, with both bounds and a
+    /// static coefficient above the kinetic one, in its AVX2 copy and its
+    /// baseline copy; it keeps no fields.
+    #[test]
+    fn totals_only_gives_the_same_totals_and_no_fields() {
+        let mut full = Fastsim::new(40, 37).unwrap();
+        let mut totals = Fastsim::totals_only(40, 37).unwrap();
+        assert!(totals.pn_pa().is_empty() && totals.index(0, 0).is_none());
+        for (bound, baseline) in [
+            (TractionBound::Parabolic, false),
+            (TractionBound::Elliptic, false),
+            (TractionBound::Parabolic, true),
+            (TractionBound::Elliptic, true),
+        ] {
+            crate::core::simd::force_baseline(baseline);
+            full.set_traction_bound(bound);
+            totals.set_traction_bound(bound);
+            for (xi, eta, phi) in [(1e-5, 0.0, 0.0), (1e-3, 5e-4, 0.2), (0.05, 0.0, 1.0)] {
+                let input = FastsimInput {
+                    static_friction_coefficient: 0.35,
+                    ..with(xi, eta, phi)
+                };
+                let a = full.solve(&input).unwrap();
+                let b = totals.solve(&input).unwrap();
+                for (u, v) in [
+                    (a.fx_n, b.fx_n),
+                    (a.fy_n, b.fy_n),
+                    (a.mz_nm, b.mz_nm),
+                    (a.tgamma_n, b.tgamma_n),
+                    (a.adhesion_fraction, b.adhesion_fraction),
+                    (a.max_traction_pa, b.max_traction_pa),
+                ] {
+                    assert_eq!(u.to_bits(), v.to_bits(), "{bound:?} {xi} {eta} {phi}");
+                }
+            }
+        }
+        crate::core::simd::force_baseline(false);
     }
 
     #[test]

@@ -1005,9 +1005,10 @@ pub(crate) fn solve_pitch(
     Ok((omega_of(root.x), root.state, Some(control)))
 }
 
-/// The FASTSIM solver of one wheel (40 x 40 elements).
+/// The FASTSIM solver of one wheel (40 x 40 elements; the patches report
+/// totals only).
 pub(crate) fn wheel_fastsim(side: Side) -> Result<Fastsim, WheelRailError> {
-    Fastsim::new(40, 40).map_err(|err| WheelRailError::Geometry {
+    Fastsim::totals_only(40, 40).map_err(|err| WheelRailError::Geometry {
         side: side.name(),
         message: err.to_string(),
     })

@@ -67,7 +67,7 @@ pub mod profile;
 pub mod readers;
 pub mod search;
 pub mod spline;
-mod table;
+pub mod table;
 pub mod wheelset;
 
 pub use contact::{

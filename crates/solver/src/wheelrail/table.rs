@@ -909,7 +909,7 @@ fn solve_wheel_tabulated(
 /// Solves the wheel/rail contact of `input` on the table's pair with the
 /// contact geometry from `table` (see the module documentation) for the
 /// Hertz+FASTSIM model; other models, and positions outside the table, are
-/// solved by [`solve_wheelset`] with the direct search. The roll search
+/// solved by [`solve_wheelset`](crate::wheelrail::solve_wheelset) with the direct search. The roll search
 /// starts at the table's estimate ([`ContactTable::roll_estimate`]).
 pub fn solve_wheelset_tabulated(
     table: &ContactTable,
