@@ -21,11 +21,10 @@ use crate::core::sensitivity::{
 };
 use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::{ContactSolver, SolverState};
-use crate::core::temperature::flash_temperatures;
 use crate::problem::case::{Case, Model};
 use crate::problem::reference_models as reference;
 use crate::problem::report::ForceControlReport;
-use crate::problem::{ModelRun, SubsurfaceRun};
+use crate::problem::{ModelRun, SolutionExtras};
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -205,11 +204,12 @@ impl PatchEngine {
                 let mut result = self.exact_result(&solutions, fields);
                 result.force_control = force.as_ref().map(convert::force_control);
                 if let Some(last) = solutions.last() {
-                    if let Some(input) = &self.case.temperature {
-                        let t = flash_temperatures(&grid, &last.fields, input)?;
-                        result.temperature = Some(convert::temperature_result(&t, fields));
-                    }
-                    result.subsurface = SubsurfaceRun::of(&self.case, &grid, last)?.map(|s| {
+                    let extras = SolutionExtras::of(&self.case, &grid, last)?;
+                    result.temperature = extras
+                        .temperature
+                        .as_ref()
+                        .map(|t| convert::temperature_result(t, fields));
+                    result.subsurface = extras.subsurface.map(|s| {
                         convert::subsurface_result(
                             &grid,
                             &s.bodies,

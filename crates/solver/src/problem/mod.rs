@@ -126,6 +126,29 @@ pub struct ExactRun {
     pub temperature: Option<Box<SurfaceTemperatures>>,
 }
 
+/// What a case asks of an exact solution besides its tractions, computed
+/// in one place for the command line ([`ExactRun`]) and the service.
+pub struct SolutionExtras {
+    /// The subsurface fields (`[subsurface]`).
+    pub subsurface: Option<SubsurfaceRun>,
+    /// The flash temperatures of both surfaces (`[temperature]`).
+    pub temperature: Option<SurfaceTemperatures>,
+}
+
+impl SolutionExtras {
+    /// The extras `case` asks of `solution` on `grid`.
+    pub fn of(case: &Case, grid: &Grid, solution: &ContactSolution) -> Result<Self, CaseError> {
+        Ok(Self {
+            subsurface: SubsurfaceRun::of(case, grid, solution)?,
+            temperature: case
+                .temperature
+                .as_ref()
+                .map(|input| flash_temperatures(grid, &solution.fields, input))
+                .transpose()?,
+        })
+    }
+}
+
 /// The subsurface fields of both bodies below a solution.
 pub struct SubsurfaceRun {
     /// Body 1, body 2.
@@ -188,20 +211,14 @@ impl ExactRun {
         let Some(last) = solutions.last() else {
             return Err(CaseError::Failure("the solver returned no solution".into()));
         };
-        let subsurface = SubsurfaceRun::of(case, &problem.grid, last)?.map(Box::new);
-        let temperature = case
-            .temperature
-            .as_ref()
-            .map(|input| flash_temperatures(&problem.grid, &last.fields, input))
-            .transpose()?
-            .map(Box::new);
+        let extras = SolutionExtras::of(case, &problem.grid, last)?;
         Ok(ExactRun {
             grid: problem.grid,
             solutions,
             elapsed_s: t0.elapsed().as_secs_f64(),
             force_control,
-            subsurface,
-            temperature,
+            subsurface: extras.subsurface.map(Box::new),
+            temperature: extras.temperature.map(Box::new),
         })
     }
 
