@@ -13,10 +13,12 @@ use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
-use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
+use railcontact::wheelrail::builtin::{
+    load_test_input, mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET,
+};
 use railcontact::wheelrail::{
     solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm, solve_wheelset_warm,
-    ContactTable, LoadOptions, SearchScratch, SplineOptions, TableSettings, WarmStart, WheelLoad,
+    ContactTable, LoadOptions, SearchScratch, SplineOptions, TableSettings, WarmStart,
     WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution,
 };
 
@@ -144,22 +146,45 @@ fn wheelset_step(c: &mut Criterion) {
     // lateral 4 mm and yaw 2 mrad at 2 Hz, 20 m/s, 50 kN per wheel
     // varying by 2 kN at 6 Hz, roll found), steps of 1 ms, each from the
     // last one's warm start (as a session does); and the same steps cold.
-    let w = 2.0 * std::f64::consts::PI * 2.0;
     let path: Vec<_> = (0..500)
-        .map(|k| {
-            let (t, a) = (k as f64 * 1e-3, w * k as f64 * 1e-3);
-            let mut inp = mbench_a22_input(0.0, None, None, WheelRailModel::HertzFastsim);
-            inp.position.lateral_m = 4e-3 * a.sin();
-            inp.position.yaw_rad = 2e-3 * a.cos();
-            inp.velocity.forward_m_per_s = 20.0;
-            inp.velocity.lateral_m_per_s = 4e-3 * w * a.cos();
-            inp.velocity.yaw_rad_per_s = -2e-3 * w * a.sin();
-            inp.load = WheelLoad::VerticalForce(50e3 + 2e3 * (3.0 * w * t).sin());
-            inp
-        })
+        .map(|k| load_test_input(k, 4e-3, WheelRailModel::HertzFastsim))
         .collect();
-    let mut g = c.benchmark_group("wheelset_path_hertz_fastsim_tabulated");
-    g.sample_size(50);
+    bench_warm_and_cold(
+        c,
+        "wheelset_path_hertz_fastsim_tabulated",
+        50,
+        &path,
+        |input, warm| {
+            solve_wheelset_tabulated_warm(&table, input, &cache, &mut scratch, warm).unwrap()
+        },
+    );
+    // The same motion with the exact model on the direct search, as a
+    // `wheelrail:exact` session steps (`railcontact loadtest --mix
+    // wheelrail:exact=1`).
+    let exact: Vec<_> = (0..300)
+        .map(|k| load_test_input(k, 4e-3, WheelRailModel::Exact))
+        .collect();
+    bench_warm_and_cold(
+        c,
+        "wheelset_path_exact_load_test",
+        20,
+        &exact,
+        |input, warm| solve_wheelset_warm(&pair, input, &cache, &mut scratch, warm).unwrap(),
+    );
+}
+
+/// A group `name` of two benches along `path`: `warm`, each step from the
+/// last one's warm start (as a session does), and `cold`, each step from a
+/// fresh one.
+fn bench_warm_and_cold(
+    c: &mut Criterion,
+    name: &str,
+    samples: usize,
+    path: &[WheelRailInput],
+    mut solve: impl FnMut(&WheelRailInput, &mut WarmStart) -> WheelRailSolution,
+) {
+    let mut g = c.benchmark_group(name);
+    g.sample_size(samples);
     for warm_start in [true, false] {
         let id = if warm_start { "warm" } else { "cold" };
         let reset = |w: &mut WarmStart| {
@@ -167,9 +192,7 @@ fn wheelset_step(c: &mut Criterion) {
                 *w = WarmStart::default();
             }
         };
-        bench_path(&mut g, id, &path, reset, |input, warm| {
-            solve_wheelset_tabulated_warm(&table, input, &cache, &mut scratch, warm).unwrap()
-        });
+        bench_path(&mut g, id, path, reset, &mut solve);
     }
     g.finish();
 }
@@ -186,17 +209,28 @@ fn bench_path(
     mut solve: impl FnMut(&WheelRailInput, &mut WarmStart) -> WheelRailSolution,
 ) {
     let mut warm = WarmStart::default();
-    let mut split = [0.0; 3];
+    let mut split = [0.0; 5];
+    let mut total = 0.0;
     for input in path {
         reset(&mut warm);
+        let t0 = std::time::Instant::now();
         let t = solve(input, &mut warm).timing;
-        for (s, v) in split.iter_mut().zip([t.search_s, t.geometry_s, t.solve_s]) {
+        total += t0.elapsed().as_secs_f64() * 1e6 / path.len() as f64;
+        let parts = [
+            t.search_s,
+            t.geometry_s,
+            t.solve_s,
+            t.normal_s,
+            t.tangential_s,
+        ];
+        for (s, v) in split.iter_mut().zip(parts) {
             *s += v * 1e6 / path.len() as f64;
         }
     }
     eprintln!(
-        "{id}: per step search {:.1} us, geometry {:.1} us, solve {:.1} us",
-        split[0], split[1], split[2]
+        "{id}: per step {total:.1} us: search {:.1} us, geometry {:.1} us, solve {:.1} us \
+         (exact patches: normal {:.1} us, tangential and the rest {:.1} us)",
+        split[0], split[1], split[2], split[3], split[4]
     );
     let mut warm = WarmStart::default();
     let mut k = 0;

@@ -1069,7 +1069,9 @@ fn wheelrail_finds_the_pitch_rate_of_a_braking_force() {
         .iter()
         .map(|s| v["wheels"][*s]["force_track_n"][0].as_f64().unwrap())
         .sum();
-    assert!((fx - 1500.0).abs() < 1e-2, "{fx}");
+    // The force tolerance of the exact model at the wheel/rail defaults:
+    // 1e-4 of mu Fn (wheelrail::contact's docs), mu Fn about 7.6 kN.
+    assert!((fx - 1500.0).abs() < 1e-4 * 0.3 * 25.5e3, "{fx}");
     // Braked: the wheels turn slower than free rolling (-V / 0.46 m).
     assert!(v["pitch_rad_per_s"].as_f64().unwrap() > -2.0 / 0.46, "{v}");
     // mu Fn: 0.3 x about 25.5 kN (the flange patch carries 15 kN normal).

@@ -102,6 +102,9 @@ pub struct SolveInfo {
     pub tangential_residual: f64,
     /// Wall time of the solve \[s\], kernel construction included.
     pub solve_time_s: f64,
+    /// Of `solve_time_s`, the time in the normal problem's solver (all
+    /// passes) \[s\].
+    pub normal_time_s: f64,
 }
 
 /// Per-element results on the potential contact grid (index `iy * nx + ix`).

@@ -533,6 +533,7 @@ impl ContactSolver {
             normal_residual: 0.0,
             tangential_residual: 0.0,
             solve_time_s: 0.0,
+            normal_time_s: 0.0,
         };
         let mut approach = 0.0;
         let mut normal_ok = true;
@@ -571,6 +572,7 @@ impl ContactSolver {
                     self.h_eff[i] += self.tmp_x[i];
                 }
             }
+            let tn = Instant::now();
             let no = solve_normal(
                 &self.displacement,
                 &mut self.ows,
@@ -581,6 +583,7 @@ impl ContactSolver {
                 &mut self.normal_scratch,
                 &s.normal,
             );
+            info.normal_time_s += tn.elapsed().as_secs_f64();
             info.normal_iterations += no.iterations;
             info.matvecs += no.matvecs;
             info.normal_residual = no.residual;

@@ -87,6 +87,26 @@ pub fn mbench_a22_input(
     }
 }
 
+/// Step `k` (1 ms steps) of the wheelset motion of `railcontact loadtest`'s
+/// wheel/rail sessions (its first session's phase) with `model`, on
+/// [`mbench_a22_input`]'s materials and friction: lateral shift
+/// `amplitude_m` sin(2 pi f t) (the load test's is 4 mm) and yaw 2 mrad
+/// cos(2 pi f t) with f = 2 Hz, their rates, 20 m/s forward, the roll found,
+/// free rolling, and a vertical load of 50 kN + 2 kN sin(6 pi f t) a wheel.
+pub fn load_test_input(k: usize, amplitude_m: f64, model: WheelRailModel) -> WheelRailInput {
+    let w = 2.0 * std::f64::consts::PI * 2.0;
+    let t = k as f64 * 1e-3;
+    let a = w * t;
+    let mut input = mbench_a22_input(0.0, None, None, model);
+    input.position.lateral_m = amplitude_m * a.sin();
+    input.position.yaw_rad = 2e-3 * a.cos();
+    input.velocity.forward_m_per_s = 20.0;
+    input.velocity.lateral_m_per_s = amplitude_m * w * a.cos();
+    input.velocity.yaw_rad_per_s = -2e-3 * w * a.sin();
+    input.load = WheelLoad::VerticalForce(50e3 + 2e3 * (3.0 * w * t).sin());
+    input
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

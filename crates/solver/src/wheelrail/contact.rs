@@ -56,9 +56,11 @@
 //! mu Fn or more (mu kinetic, Fn the sum of the patches' normal forces) has
 //! no finite pitch rate and is refused naming the key; so is a smaller
 //! force that spin and lateral creepage leave out of reach (|xi0| would
-//! exceed 1). The force tolerance is as for a patch's prescribed force
-//! ([`crate::core::force`]): max(1e-6, 10 x the tangential tolerance) of
-//! mu Fn.
+//! exceed 1). The force tolerance ([`pitch_force_tolerance`]) is 1e-6 of
+//! mu Fn with the Hertz models, whose creep forces are exact to rounding;
+//! with the iterative ones, as for a patch's prescribed force
+//! ([`crate::core::force`]), max(1e-6, 10 x the tangential tolerance) of
+//! mu Fn: 1e-4 at the wheel/rail default ([`wheelrail_solver_settings`]).
 
 use std::borrow::Cow;
 use std::time::Instant;
@@ -86,8 +88,8 @@ use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
 use crate::wheelrail::search::{
-    gap_intervals, patch_geometry, rigid_position_from, split_intervals, LocusPoint, PatchGeometry,
-    RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
+    gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
+    PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
     PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition, WheelsetVelocity,
@@ -208,7 +210,9 @@ pub struct WheelRailSettings {
     pub element_size_m: f64,
     /// Contact search.
     pub search: SearchSettings,
-    /// Core solver settings.
+    /// Core solver settings of the exact and conformal patches (default:
+    /// [`wheelrail_solver_settings`], tolerances that give forces and
+    /// maximum pressures to five digits and more).
     pub solver: SolverSettings,
     /// Relative tolerance on the vertical force [-].
     pub load_tolerance: f64,
@@ -231,7 +235,7 @@ impl Default for WheelRailSettings {
             model: WheelRailModel::Exact,
             element_size_m: 2.0e-4,
             search: SearchSettings::default(),
-            solver: SolverSettings::default(),
+            solver: wheelrail_solver_settings(),
             load_tolerance: 1e-6,
             max_load_iterations: 40,
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
@@ -240,6 +244,29 @@ impl Default for WheelRailSettings {
         }
     }
 }
+
+/// The core solver settings of wheel/rail patches: the core's defaults with
+/// the normal tolerance [`ESTIMATE_NORMAL_TOLERANCE`] (1e-6 of the pressure
+/// per iteration, against the core's 1e-10) and the tangential tolerance
+/// [`WHEELRAIL_TANGENTIAL_TOLERANCE`] (1e-5 of mu p_max, against 1e-7).
+/// Their force errors, about 1e-6 of mu F_n and less for F_n and p_max,
+/// are below the fifth digit and far below the discretisation's at
+/// wheel/rail element sizes (moving a 0.2 mm grid by a fraction of an
+/// element changes F_x and F_s by about 1e-4 of the wheel load: see
+/// `exact_session_steps_agree_with_cold_solves` in the validation tests).
+/// A prescribed total longitudinal force is met to max(1e-6, 10 x the
+/// tangential tolerance) = 1e-4 of mu F_n with them
+/// ([`pitch_force_tolerance`]).
+pub fn wheelrail_solver_settings() -> SolverSettings {
+    let mut s = SolverSettings::default();
+    s.normal.tolerance = ESTIMATE_NORMAL_TOLERANCE;
+    s.tangential.tolerance = WHEELRAIL_TANGENTIAL_TOLERANCE;
+    s
+}
+
+/// The default tangential tolerance of wheel/rail patches
+/// ([`wheelrail_solver_settings`]).
+pub const WHEELRAIL_TANGENTIAL_TOLERANCE: f64 = 1e-5;
 
 /// Everything a wheelset solution needs besides the profile pair.
 #[derive(Debug, Clone, PartialEq)]
@@ -374,6 +401,22 @@ pub struct Timing {
     pub geometry_s: f64,
     /// Contact problems and load iteration.
     pub solve_s: f64,
+    /// Of `solve_s`, the exact patches' normal problems.
+    pub normal_s: f64,
+    /// Of `solve_s`, the rest of the exact patches' solves: the tangential
+    /// problems and the solvers' set-up and transfers.
+    pub tangential_s: f64,
+}
+
+impl Timing {
+    /// Adds the load iteration started at `since` on `patches`.
+    fn add_solves(&mut self, since: Instant, patches: &[PatchWork]) {
+        self.solve_s += since.elapsed().as_secs_f64();
+        for p in patches {
+            self.normal_s += p.solver_s[0];
+            self.tangential_s += p.solver_s[1];
+        }
+    }
 }
 
 /// Solution for one wheelset position.
@@ -424,9 +467,15 @@ pub(crate) struct PatchWork {
     hmin: f64,
     kind: PatchKind,
     out: PatchOutcome,
+    /// Pressures \[Pa\] on this patch's grid from the previous time step,
+    /// for its first solve (exact patches).
+    warm_pressure: Option<Vec<f64>>,
     /// Tangential tractions \[Pa\] on this patch's grid from the previous
     /// time step, for the first frictional solve (exact patches).
     warm_tractions: Option<[Vec<f64>; 2]>,
+    /// Time of this patch's exact solves in their normal problems and the
+    /// rest \[s\] ([`Timing::normal_s`], [`Timing::tangential_s`]).
+    solver_s: [f64; 2],
 }
 
 // One per patch and few patches per wheel: the size of the exact variant
@@ -502,6 +551,9 @@ impl PatchWork {
         }
         match &mut self.kind {
             PatchKind::Exact { problem, solver } => {
+                if let Some(pn) = self.warm_pressure.take() {
+                    solver.set_pressure_warm_start(&pn)?;
+                }
                 if frictional {
                     if let Some([px, py]) = self.warm_tractions.take() {
                         solver.set_traction_warm_start(&px, &py)?;
@@ -520,6 +572,9 @@ impl PatchWork {
                     .ok_or(ContactError::NoContact {
                         detail: "no solution".into(),
                     })?;
+                let info = &sol.info;
+                self.solver_s[0] += info.normal_time_s;
+                self.solver_s[1] += info.solve_time_s - info.normal_time_s;
                 let t = sol.totals;
                 self.out = PatchOutcome {
                     fn_n: t.normal_force_n,
@@ -763,15 +818,14 @@ pub struct WarmStart {
     /// force per vertical load [-], the load iteration's first normal force.
     pub normal_per_vertical: [Option<f64>; 2],
     /// Per wheel: `normal_per_vertical` of the two steps before the
-    /// previous one (the nearer first). On contact tables
-    /// ([`crate::wheelrail::solve_wheelset_tabulated_warm`]) the load
-    /// iteration starts from the extrapolation of the three
-    /// ([`extrapolated_start`]); the direct path leaves them `None`.
+    /// previous one (the nearer first). The load iteration starts from the
+    /// extrapolation of the three ([`extrapolated_start`]).
     pub normal_per_vertical_earlier: [[Option<f64>; 2]; 2],
-    /// Per wheel: the previous single-patch exact solve's tangential
-    /// tractions, the first frictional solve's start when this step's patch
-    /// has a grid of the same shape and element size (shifted by whole
-    /// elements to the same place).
+    /// Per wheel: the previous single-patch exact solve's pressures and
+    /// tangential tractions, the first solve's start when this step's
+    /// patch has a grid of the same shape and element size (shifted by
+    /// whole elements to the same place). The patch grid keeps that shape
+    /// while the potential contact area fits it ([`patch_grid`]).
     pub tractions: [Option<PatchTractions>; 2],
 }
 
@@ -804,25 +858,55 @@ impl WarmStart {
         let tractions = self.tractions.iter().flatten();
         std::mem::size_of::<Self>()
             + tractions
-                .map(|t| t.traction_pa.iter().map(|v| 8 * v.len()).sum::<usize>())
+                .map(|t| {
+                    8 * t.pressure_pa.len()
+                        + t.traction_pa.iter().map(|v| 8 * v.len()).sum::<usize>()
+                })
                 .sum::<usize>()
     }
 }
 
-/// Tangential tractions on a patch grid (see [`WarmStart::tractions`]).
+/// The surface tractions of a patch's exact solution on its grid (see
+/// [`WarmStart::tractions`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PatchTractions {
     /// The grid they are on.
     pub grid: Grid,
+    /// Pressure per element \[Pa\].
+    pub pressure_pa: Vec<f64>,
     /// Longitudinal and lateral traction per element \[Pa\].
     pub traction_pa: [Vec<f64>; 2],
 }
 
 impl PatchTractions {
-    /// These tractions on `grid`: None unless it has the same shape and
-    /// element size; shifted by the whole elements between the two grids'
-    /// corners (zero where they do not overlap).
-    fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 2]> {
+    /// The box \[x0, x1, s0, s1\] \[m\] of the loaded elements (positive
+    /// pressure), element edges included; None when none is loaded.
+    fn loaded_box(&self) -> Option<[f64; 4]> {
+        let g = &self.grid;
+        let (mut lo, mut hi) = ([usize::MAX; 2], [0; 2]);
+        for iy in 0..g.ny {
+            for ix in 0..g.nx {
+                if self.pressure_pa[g.index(ix, iy)] > 0.0 {
+                    lo = [lo[0].min(ix), lo[1].min(iy)];
+                    hi = [hi[0].max(ix), hi[1].max(iy)];
+                }
+            }
+        }
+        (lo[0] <= hi[0]).then(|| {
+            [
+                g.x0_m + lo[0] as f64 * g.dx_m,
+                g.x0_m + (hi[0] + 1) as f64 * g.dx_m,
+                g.y0_m + lo[1] as f64 * g.dy_m,
+                g.y0_m + (hi[1] + 1) as f64 * g.dy_m,
+            ]
+        })
+    }
+
+    /// These tractions on `grid` (pressure, longitudinal, lateral): None
+    /// unless it has the same shape and element size; shifted by the whole
+    /// elements between the two grids' corners (zero where they do not
+    /// overlap).
+    fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 3]> {
         let old = &self.grid;
         let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
         if old.nx != grid.nx
@@ -836,13 +920,18 @@ impl PatchTractions {
         let sx = ((grid.x0_m - old.x0_m) / grid.dx_m).round() as i64;
         let sy = ((grid.y0_m - old.y0_m) / grid.dy_m).round() as i64;
         let (nx, ny) = (grid.nx as i64, grid.ny as i64);
-        let mut out = [vec![0.0; grid.len()], vec![0.0; grid.len()]];
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let from = [
+            &self.pressure_pa,
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ];
         for iy in 0..ny {
             for ix in 0..nx {
                 let (ox, oy) = (ix + sx, iy + sy);
                 if (0..nx).contains(&ox) && (0..ny).contains(&oy) {
                     let (i, o) = ((iy * nx + ix) as usize, (oy * nx + ox) as usize);
-                    for (to, from) in out.iter_mut().zip(&self.traction_pa) {
+                    for (to, from) in out.iter_mut().zip(from) {
                         to[i] = from[o];
                     }
                 }
@@ -878,6 +967,12 @@ pub fn solve_wheelset_warm(
     let resolved = input.with_load_resolved(rigid.center_z_m);
     let input = &*resolved;
     let mut normal_per_vertical = warm.normal_per_vertical;
+    let first_start: [Option<f64>; 2] = std::array::from_fn(|i| {
+        extrapolated_start(
+            warm.normal_per_vertical[i],
+            warm.normal_per_vertical_earlier.map(|e| e[i]),
+        )
+    });
     // A wheel left out of this step keeps its tractions.
     let mut tractions: [Option<PatchTractions>; 2] = std::array::from_fn(|i| {
         if input.sides.iter().any(|s| s.index() == i) {
@@ -896,7 +991,7 @@ pub fn solve_wheelset_warm(
             let (ratio, start) = if solved {
                 (normal_per_vertical[i], tractions[i].as_ref())
             } else {
-                (warm.normal_per_vertical[i], warm.tractions[i].as_ref())
+                (first_start[i], warm.tractions[i].as_ref())
             };
             let (wheel, ratio, carried) = solve_wheel(
                 pair,
@@ -920,7 +1015,10 @@ pub fn solve_wheelset_warm(
     *warm = WarmStart {
         roll_rad: Some(rigid.roll_rad),
         normal_per_vertical,
-        normal_per_vertical_earlier: [[None; 2]; 2],
+        normal_per_vertical_earlier: [
+            warm.normal_per_vertical,
+            warm.normal_per_vertical_earlier[0],
+        ],
         tractions,
     };
     Ok(WheelRailSolution {
@@ -954,6 +1052,16 @@ pub struct PitchControl {
     /// the iteration limit was reached or the force jumps across the
     /// target between two pitch rates 1e-14 apart.
     pub converged: bool,
+}
+
+/// The tolerance of a prescribed total longitudinal force relative to
+/// mu Fn (see the module docs).
+pub fn pitch_force_tolerance(settings: &WheelRailSettings) -> f64 {
+    if settings.model.is_hertz() {
+        1e-6
+    } else {
+        1e-6_f64.max(10.0 * settings.solver.tangential.tolerance)
+    }
 }
 
 /// Step limit of the pitch-rate iteration.
@@ -1000,7 +1108,7 @@ pub(crate) fn solve_pitch(
     let g = input.material.shear_modulus_pa;
     let area: f64 = patches().map(|p| p.contact_area_m2).sum();
     let slope = -g * area / std::f64::consts::PI * 4.0;
-    let tolerance = 1e-6_f64.max(10.0 * input.settings.solver.tangential.tolerance) * limit;
+    let tolerance = pitch_force_tolerance(&input.settings) * limit;
     let r0_force = total(&first) - target;
     let root = decreasing_root(
         0.0,
@@ -1188,16 +1296,20 @@ fn solve_wheel(
     let merge = input.settings.search.merge_distance_m;
     let mut intervals = gap_intervals(gap, cap, merge);
     let mut split = false;
-    for attempt in 0..5 {
+    // A single patch's grid is first sized from the last step's contact
+    // ([`patch_grid`]); where the pressure reaches its border, from `cap`.
+    let mut from_last = true;
+    for attempt in 0..6 {
         let tg = Instant::now();
         let mut patches = Vec::new();
+        let last = warm_tractions.filter(|_| from_last && intervals.len() == 1);
         for &iv in &intervals {
             let Some(geom) = patch_geometry(pair.rail(side), locus, gap, iv, MARGIN_ELEMENTS * e)
             else {
                 continue;
             };
             patches.push(build_patch(
-                pair, locus, geom, cap, &pose, side, input, omega, cache,
+                pair, locus, geom, cap, &pose, side, input, omega, cache, last,
             )?);
         }
         if patches.is_empty() {
@@ -1208,13 +1320,23 @@ fn solve_wheel(
         }
         if let ([p], Some(t)) = (patches.as_mut_slice(), warm_tractions) {
             if let PatchKind::Exact { problem, .. } = &p.kind {
-                p.warm_tractions = t.on(&problem.grid);
+                if let Some([pn, px, py]) = t.on(&problem.grid) {
+                    p.warm_pressure = Some(pn);
+                    p.warm_tractions = Some([px, py]);
+                }
             }
         }
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
         let result = match load_iteration(&mut patches, input, cap, &mut fastsim, cache, start) {
             Ok(r) => r,
+            // The pressure reached the edge of a grid sized from the last
+            // step's contact: size it for `cap`.
+            Err((_, ContactError::GridTooSmall { .. })) if last.is_some() => {
+                from_last = false;
+                timing.add_solves(ts, &patches);
+                continue;
+            }
             // The pressure reached the edge of a grid sized for `cap`.
             Err((_, ContactError::GridTooSmall { .. })) => LoadResult::CapTooSmall,
             Err((k, source)) => {
@@ -1225,7 +1347,7 @@ fn solve_wheel(
                 })
             }
         };
-        timing.solve_s += ts.elapsed().as_secs_f64();
+        timing.add_solves(ts, &patches);
         match result {
             LoadResult::Done { delta, iterations } => {
                 // Interpenetration that falls apart at the final approach
@@ -1306,6 +1428,7 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
     let f = &p.out.solution.as_ref()?.fields;
     Some(PatchTractions {
         grid: problem.grid,
+        pressure_pa: f.pressure_pa.clone(),
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
     })
 }
@@ -1321,6 +1444,7 @@ fn build_patch(
     input: &WheelRailInput,
     omega: f64,
     cache: &KernelCache,
+    last: Option<&PatchTractions>,
 ) -> Result<PatchWork, WheelRailError> {
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
     let nz = geom.normal[1];
@@ -1333,7 +1457,7 @@ fn build_patch(
         | WheelRailModel::HertzFastsimElliptic
         | WheelRailModel::HertzStrip => hertz_kind(kx0, b, input.settings.model),
         WheelRailModel::Exact | WheelRailModel::Auto => {
-            let grid = patch_grid(&geom, cap, input)?;
+            let grid = patch_grid(&geom, cap, input, last)?;
             let mut gap_m = vec![0.0; grid.len()];
             for is in 0..grid.ny {
                 let s = grid.y_m(is);
@@ -1354,7 +1478,7 @@ fn build_patch(
             PatchKind::Exact { problem, solver }
         }
         WheelRailModel::Cect => {
-            let grid = patch_grid(&geom, cap, input)?;
+            let grid = patch_grid(&geom, cap, input, None)?;
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, grid)?),
                 workspace: Box::default(),
@@ -1378,7 +1502,9 @@ fn build_patch(
         hmin,
         kind,
         out: PatchOutcome::default(),
+        warm_pressure: None,
         warm_tractions: None,
+        solver_s: [0.0; 2],
     })
 }
 
@@ -1422,16 +1548,27 @@ pub(crate) fn hertz_patch(
         kind: hertz_kind(kx, b, input.settings.model),
         geom,
         out: PatchOutcome::default(),
+        warm_pressure: None,
         warm_tractions: None,
+        solver_s: [0.0; 2],
     }
 }
 
 /// The (x, s) grid of a patch: where h(x, s) is below the normal approach
-/// of `cap`, with a margin, rounded up to the grid ladder.
+/// of `cap`, with a margin, rounded up to the grid ladder. With `last`, the
+/// last time step's solution of the patch on a grid of the same element
+/// size: around where that was loaded, [`LAST_CONTACT_MARGIN`] elements
+/// wider on each side (a patch moves by less than an element in a time
+/// step; where the pressure reaches the border, the caller sizes the grid
+/// again without `last`), and of the shape of the last grid (whose
+/// tractions then start this step's solves) when that covers the area and
+/// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
+/// direction.
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
     input: &WheelRailInput,
+    last: Option<&PatchTractions>,
 ) -> Result<Grid, WheelRailError> {
     let e = input.settings.element_size_m;
     let dn = cap * geom.normal[1];
@@ -1447,8 +1584,16 @@ fn patch_grid(
         (xlo, xhi) = (-e, e);
     }
     let margin = MARGIN_ELEMENTS * e;
-    let (xlo, xhi) = (xlo - margin, xhi + margin);
-    let [slo, shi] = geom.s_range_m;
+    let (mut xlo, mut xhi) = (xlo - margin, xhi + margin);
+    let [mut slo, mut shi] = geom.s_range_m;
+    let same = |a: f64| (a - e).abs() <= 1e-9 * e;
+    let last = last.filter(|t| same(t.grid.dx_m) && same(t.grid.dy_m));
+    if let Some([x0, x1, s0, s1]) = last.and_then(PatchTractions::loaded_box) {
+        let m = LAST_CONTACT_MARGIN * e;
+        if one_valley(&geom.lateral, s0 - m, s1 + m) {
+            (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
+        }
+    }
     let too_big = || {
         WheelRailError::invalid(
             "grid.element_size_m",
@@ -1461,8 +1606,19 @@ fn patch_grid(
             ),
         )
     };
-    let nx = ladder(((xhi - xlo) / e).ceil() as usize).ok_or_else(too_big)?;
-    let ns = ladder(((shi - slo) / e).ceil() as usize).ok_or_else(too_big)?;
+    let (need_x, need_s) = (((xhi - xlo) / e).ceil(), ((shi - slo) / e).ceil());
+    let mut nx = ladder(need_x as usize).ok_or_else(too_big)?;
+    let mut ns = ladder(need_s as usize).ok_or_else(too_big)?;
+    if let Some(k) = last.map(|t| &t.grid) {
+        // One element to spare: the centred grid may sit half an element
+        // off the area.
+        let fits = |n: usize, need: f64, ladder: usize| {
+            n as f64 >= need + 1.0 && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
+        };
+        if fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns) {
+            (nx, ns) = (k.nx, k.ny);
+        }
+    }
     let limit = input.settings.max_grid_elements;
     if nx * ns > limit {
         return Err(WheelRailError::invalid(
@@ -1481,6 +1637,28 @@ fn patch_grid(
     let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
     Ok(Grid::new(nx, ns, e, e, x0, s0)?)
 }
+
+/// Whether the undeformed distance of `lateral` (its smallest over x at each
+/// s) never falls moving away from \[`s0`, `s1`\] on either side (by more
+/// than 10 nm, the samples' interpolation noise): then no other valley of
+/// the potential contact area lies outside, where a grid on \[`s0`, `s1`\]
+/// would miss a second region of contact.
+fn one_valley(lateral: &[LateralSample], s0: f64, s1: f64) -> bool {
+    const NOISE_M: f64 = 1e-8;
+    let rises = |a: &LateralSample, b: &LateralSample| b.gap_m >= a.gap_m - NOISE_M;
+    let above = lateral.iter().filter(|l| l.s_m > s1);
+    let below = lateral.iter().rev().filter(|l| l.s_m < s0);
+    above.clone().zip(above.skip(1)).all(|(a, b)| rises(a, b))
+        && below.clone().zip(below.skip(1)).all(|(a, b)| rises(a, b))
+}
+
+/// Elements of potential contact around the last time step's loaded ones
+/// ([`patch_grid`]).
+const LAST_CONTACT_MARGIN: f64 = 3.0;
+
+/// How much larger than the ladder's size (per direction) the last step's
+/// grid may be and still be kept ([`patch_grid`]).
+const KEEP_SHAPE_SLACK: f64 = 1.25;
 
 /// Arc length of profile around the reference handed to the conformal
 /// geometry, beyond what it samples for its grid
@@ -1549,16 +1727,29 @@ pub(crate) enum Accuracy {
 }
 
 /// Normal tolerance of an [`Accuracy::Estimate`] solve (relative pressure
-/// change per iteration; the default of a final solve is 1e-10).
+/// change per iteration; also the default of a final wheel/rail solve,
+/// [`wheelrail_solver_settings`]).
 pub(crate) const ESTIMATE_NORMAL_TOLERANCE: f64 = 1e-6;
 /// Tangential tolerance of an [`Accuracy::Estimate`] solve (natural
-/// residual relative to max mu p_n; the default of a final solve is 1e-7).
+/// residual relative to max mu p_n; the default of a final wheel/rail
+/// solve is [`WHEELRAIL_TANGENTIAL_TOLERANCE`]).
 /// Its force error, about 1e-5 of mu F_n, moves the vertical force of a
 /// tread contact (creep force's vertical share a few percent) by less than
 /// the default load tolerance, 1e-6 of the load.
 pub(crate) const ESTIMATE_TANGENTIAL_TOLERANCE: f64 = 1e-4;
 
 impl Accuracy {
+    /// This accuracy, or `Final` when an estimate would be solved to the
+    /// same tolerances (an estimate that is as good as the answer may be
+    /// the answer).
+    fn or_final(self, solver: &SolverSettings) -> Self {
+        if Accuracy::Estimate.settings(solver) == *solver {
+            Accuracy::Final
+        } else {
+            self
+        }
+    }
+
     fn settings(self, solver: &SolverSettings) -> SolverSettings {
         let mut s = *solver;
         if self == Accuracy::Estimate {
@@ -1658,11 +1849,15 @@ pub(crate) fn load_iteration(
                     ),
                 ));
             }
-            // A Hertz patch is solved the same way at either accuracy:
-            // its first solve may be the answer.
+            // A Hertz patch is solved the same way at either accuracy, and
+            // from a warm start (the last steps' ratio) the first solve is
+            // usually within the load tolerance: either may be the answer.
             let accuracy = match p.kind {
                 PatchKind::Hertz { .. } => Accuracy::Final,
-                _ => frictional_accuracy(last.is_none(), it, max_it),
+                PatchKind::Exact { .. } if start.is_some() => Accuracy::Final,
+                _ => {
+                    frictional_accuracy(last.is_none(), it, max_it).or_final(&input.settings.solver)
+                }
             };
             p.solve(
                 NormalLoad::NormalForce(fn_n),
@@ -1787,7 +1982,8 @@ fn frictional_steps(
     let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
     loop {
-        let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it);
+        let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it)
+            .or_final(&input.settings.solver);
         let fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
         iterations += 1;
         if accuracy == Accuracy::Final && ((fz - target).abs() <= tol || iterations >= max_it) {
@@ -2062,6 +2258,30 @@ pub(crate) fn finish(
 mod tests {
     use super::*;
 
+    /// A grid around the last contact is used only where no other valley
+    /// of the undeformed distance lies outside it.
+    #[test]
+    fn one_valley_sees_a_second_valley_outside_the_box() {
+        let sample = |s_m: f64, gap_m: f64| LateralSample {
+            s_m,
+            gap_m,
+            dx_m: 0.0,
+            kx_per_m: 2.0,
+        };
+        let parabola: Vec<_> = (-20..=20)
+            .map(|i| sample(i as f64 * 1e-4, 5.0 * (i as f64 * 1e-4).powi(2)))
+            .collect();
+        assert!(one_valley(&parabola, -5e-4, 5e-4));
+        // A second dip of 1 um beyond s = 1.2 mm.
+        let mut two = parabola.clone();
+        for l in two.iter_mut().filter(|l| l.s_m > 1.25e-3) {
+            l.gap_m = 5.0 * 1.2e-3_f64.powi(2) - 1e-6;
+        }
+        assert!(!one_valley(&two, -5e-4, 5e-4));
+        // Inside the box it does not matter.
+        assert!(one_valley(&two, -5e-4, 1.5e-3));
+    }
+
     /// Tractions move with the grid by whole elements, and only to a grid
     /// of the same shape and element size.
     #[test]
@@ -2070,16 +2290,21 @@ mod tests {
         let old = Grid::new(4, 4, e, e, 0.0, 0.0).unwrap();
         let t = PatchTractions {
             grid: old,
+            pressure_pa: (0..16).map(|i| 2.0 * i as f64).collect(),
             traction_pa: [
                 (0..16).map(|i| i as f64).collect(),
                 (0..16).map(|i| -(i as f64)).collect(),
             ],
         };
-        assert_eq!(t.on(&old).unwrap(), t.traction_pa);
+        let [pn, px, py] = t.on(&old).unwrap();
+        assert_eq!(
+            (pn, [px, py]),
+            (t.pressure_pa.clone(), t.traction_pa.clone())
+        );
         // One element further in x and 0.4 of one in y: element (ix, iy)
         // is the old (ix + 1, iy); the last column has no old element.
         let moved = Grid::new(4, 4, e, e, e, 0.4 * e).unwrap();
-        let [px, py] = t.on(&moved).unwrap();
+        let [pn, px, py] = t.on(&moved).unwrap();
         for iy in 0..4 {
             for ix in 0..4 {
                 let want = if ix < 3 {
@@ -2087,7 +2312,8 @@ mod tests {
                 } else {
                     0.0
                 };
-                assert_eq!((px[4 * iy + ix], py[4 * iy + ix]), (want, -want));
+                let i = 4 * iy + ix;
+                assert_eq!((pn[i], px[i], py[i]), (2.0 * want, want, -want));
             }
         }
         for other in [

@@ -71,8 +71,9 @@ pub mod table;
 pub mod wheelset;
 
 pub use contact::{
-    solve_wheelset, solve_wheelset_warm, PatchResult, PatchTractions, WarmStart, WheelLoad,
-    WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
+    pitch_force_tolerance, solve_wheelset, solve_wheelset_warm, wheelrail_solver_settings,
+    PatchResult, PatchTractions, WarmStart, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,

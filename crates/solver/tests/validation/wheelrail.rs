@@ -5,12 +5,13 @@
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::solution::SolveStatus;
-use railcontact_solver::wheelrail::builtin::mbench_a22_input;
+use railcontact_solver::wheelrail::builtin::{load_test_input, mbench_a22_input};
 use railcontact_solver::wheelrail::{
-    load_profile, solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm,
-    solve_wheelset_warm, ContactTable, PatchResult, SearchScratch, Side, SplineOptions,
-    TableSettings, TrackData, WarmStart, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSettings, WheelRailSolution, WheelsetData,
+    load_profile, pitch_force_tolerance, solve_wheelset, solve_wheelset_tabulated,
+    solve_wheelset_tabulated_warm, solve_wheelset_warm, wheelrail_solver_settings, ContactTable,
+    PatchResult, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelResult, WheelsetData,
 };
 
 fn path(name: &str) -> String {
@@ -167,41 +168,90 @@ fn right_wheel_at_5mm(model: WheelRailModel) -> WheelRailSolution {
 /// At 5 mm the right wheel touches at the flange root and on the tread, 8 mm
 /// apart; CONTACT reports the two regions together: FN 9619, FX -763.3, FS
 /// -2738 N (mbench_a22_right.ref_out, case 11).
+/// Issue 27's accuracy target for exact wheelset steps in a session: each
+/// step starts from the last (roll, the load iteration's start extrapolated
+/// from the last three steps, the pressures and tractions, a grid sized
+/// from the last contact and of the last grid's shape), with the wheel/rail
+/// tolerances (`wheelrail_solver_settings`); a cold solve of the same
+/// input (fresh warm start, the core's default tolerances, 1e-10 and 1e-7)
+/// must give every wheel's forces within 1 % of its load and its largest
+/// pressure within 2 %. Two paths of 200 steps: the load test's motion
+/// (50 kN a wheel, 1 ms steps) at 12 mm amplitude, which reaches flange
+/// contact; and A-2.2's 5 mm position moved by 0.6 mm, where the right
+/// wheel has two patches part of the way. Measured: forces within 2.7e-4
+/// of the load, p_max within 0.7 %; the differences are those of the
+/// grids' places (a 0.2 mm grid moved by part of an element), not of the
+/// tolerances. The same steps from the same warm start give the same bits.
 #[test]
-fn exact_time_steps_start_from_the_last_steps_tractions() {
-    // A smooth path of lateral shifts in tread contact (one patch a wheel,
-    // the grid's shape unchanged): each step's first frictional solve
-    // starts from the previous step's tractions (WarmStart::tractions),
-    // and ends at the same solution, to the load tolerance (1e-6 of the
-    // load, WheelRailSettings), as a start without them. (What it saves is
-    // in the bench wheelset_path_exact.)
+fn exact_session_steps_agree_with_cold_solves() {
     let pair = mbench_pair();
     let cache = KernelCache::default();
-    let (mut carried, mut dropped) = (WarmStart::default(), WarmStart::default());
-    let (mut s1, mut s2) = (SearchScratch::default(), SearchScratch::default());
-    for k in 0..10 {
-        let y = 2.0 + 0.05 * (0.5 * k as f64).sin();
-        let input = a22_input(y, None, None, WheelRailModel::Exact);
-        dropped.tractions = Default::default();
-        let a = solve_wheelset_warm(&pair, &input, &cache, &mut s1, &mut carried).unwrap();
-        let b = solve_wheelset_warm(&pair, &input, &cache, &mut s2, &mut dropped).unwrap();
-        for (w, t) in a.wheels.iter().zip(&carried.tractions) {
-            let t = t
-                .as_ref()
-                .expect("a single exact patch carries its tractions");
-            assert_eq!(Some(t.grid), w.patches[0].grid_geometry, "step {k}");
+    let load_test = |k: usize| load_test_input(k, 12e-3, WheelRailModel::Exact);
+    let two_patch = |k: usize| {
+        let y = 5.0 + 0.6 * (2.0 * std::f64::consts::PI * k as f64 / 200.0).sin();
+        a22_input(y, None, None, WheelRailModel::Exact)
+    };
+    let paths: [(&str, &dyn Fn(usize) -> WheelRailInput); 2] = [
+        ("load test, 12 mm", &load_test),
+        ("A-2.2, 5 mm", &two_patch),
+    ];
+    for (name, step) in paths {
+        let run = || {
+            let mut scratch = SearchScratch::default();
+            let mut warm = WarmStart::default();
+            (0..200)
+                .map(|k| {
+                    let s = solve_wheelset_warm(&pair, &step(k), &cache, &mut scratch, &mut warm)
+                        .unwrap();
+                    for (w, t) in s.wheels.iter().zip(&warm.tractions) {
+                        if let ([p], Some(t)) = (w.patches.as_slice(), t) {
+                            assert_eq!(Some(t.grid), p.grid_geometry, "{name} step {k}");
+                        }
+                    }
+                    s
+                })
+                .collect::<Vec<_>>()
+        };
+        let warm = run();
+        let (mut flange, mut two) = (false, false);
+        let (mut df, mut dp) = (0.0_f64, 0.0_f64);
+        let mut scratch = SearchScratch::default();
+        for (k, s) in warm.iter().enumerate().step_by(10) {
+            let mut input = step(k);
+            input.settings.solver = Default::default();
+            let cold = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+            let WheelLoad::VerticalForce(load) = input.load else {
+                unreachable!()
+            };
+            for (a, b) in s.wheels.iter().zip(&cold.wheels) {
+                assert_eq!(a.patches.len(), b.patches.len(), "{name} step {k}");
+                two |= a.patches.len() > 1;
+                flange |= a.patches.iter().any(|p| p.contact_angle_rad.abs() > 0.5);
+                for q in 0..3 {
+                    df = df.max((a.force_track_n[q] - b.force_track_n[q]).abs() / load);
+                }
+                let pmax = |w: &WheelResult| {
+                    w.patches
+                        .iter()
+                        .map(|p| p.max_pressure_pa)
+                        .fold(0.0, f64::max)
+                };
+                dp = dp.max((pmax(a) / pmax(b) - 1.0).abs());
+            }
         }
-        for (wa, wb) in a.wheels.iter().zip(&b.wheels) {
-            assert_eq!(wa.patches.len(), 1);
-            let (pa, pb) = (&wa.patches[0], &wb.patches[0]);
-            for (what, x, y) in [
-                ("fx", pa.fx_n, pb.fx_n),
-                ("fs", pa.fs_n, pb.fs_n),
-                ("fn", pa.normal_force_n, pb.normal_force_n),
-            ] {
-                assert!(
-                    (x - y).abs() <= 2e-6 * 10_000.0,
-                    "step {k} {what}: {x} vs {y}"
+        eprintln!("{name}: forces within {df:.2e} of the load, p_max within {dp:.2e}");
+        assert!(df <= 0.01 && dp <= 0.02, "{name}: {df} {dp}");
+        match name {
+            "load test, 12 mm" => assert!(flange, "{name}: no flange contact"),
+            _ => assert!(two, "{name}: no wheel with two patches"),
+        }
+        let again = run();
+        for (k, (a, b)) in warm.iter().zip(&again).enumerate() {
+            for (wa, wb) in a.wheels.iter().zip(&b.wheels) {
+                assert_eq!(
+                    wa.force_track_n.map(f64::to_bits),
+                    wb.force_track_n.map(f64::to_bits),
+                    "{name} step {k}"
                 );
             }
         }
@@ -224,12 +274,16 @@ fn a22_two_point_contact_at_5mm() {
     close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
     // The load iteration solves its first patches to looser tolerances
     // (estimates that steer it); the answer comes from solves at the
-    // default ones (normal 1e-10, tangential 1e-7).
+    // wheel/rail defaults (normal 1e-6, tangential 1e-5).
+    let defaults = wheelrail_solver_settings();
     for p in &w.patches {
         let info = &p.solution.as_ref().expect("exact patches keep fields").info;
         assert_eq!(info.status, SolveStatus::Converged);
-        assert!(info.normal_residual < 1e-10, "{info:?}");
-        assert!(info.tangential_residual <= 1e-7, "{info:?}");
+        assert!(info.normal_residual < defaults.normal.tolerance, "{info:?}");
+        assert!(
+            info.tangential_residual <= defaults.tangential.tolerance,
+            "{info:?}"
+        );
     }
     // Two exact patches: one frictionless solve of both together (one
     // approach, the vertical load), then frictional ones. Patch by patch,
@@ -840,18 +894,9 @@ fn warm_tabulated_steps_agree_with_the_direct_search() {
     let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
     let cache = KernelCache::default();
     let mut scratch = SearchScratch::default();
-    let w = 2.0 * std::f64::consts::PI * 2.0;
     let step = |k: usize, amplitude_m: f64| {
-        let (t, load) = (k as f64 * 1e-3, 50e3);
-        let a = w * t;
-        let mut input = mbench_a22_input(0.0, None, None, WheelRailModel::HertzFastsim);
-        input.position.lateral_m = amplitude_m * a.sin();
-        input.position.yaw_rad = 2e-3 * a.cos();
-        input.velocity.forward_m_per_s = 20.0;
-        input.velocity.lateral_m_per_s = amplitude_m * w * a.cos();
-        input.velocity.yaw_rad_per_s = -2e-3 * w * a.sin();
-        input.load = WheelLoad::VerticalForce(load + 2e3 * (3.0 * w * t).sin());
-        (input, load)
+        let input = load_test_input(k, amplitude_m, WheelRailModel::HertzFastsim);
+        (input, 50e3)
     };
     // Every 5th step of 0.25 s at 12 mm (up to 11.9 mm, flange contact)
     // is also compared.
@@ -932,13 +977,12 @@ fn prescribed_total_longitudinal_force_finds_contacts_pitch_rate() {
         let sol = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
         let c = sol.pitch_control.expect("a pitch control report");
         assert!(c.converged, "{c:?}");
-        // The force tolerance: 1e-6 mu Fn (module docs of wheelrail::contact).
         close(
             "total Fx",
             total_fx(&sol),
             target,
             0.0,
-            1e-6 * 0.3 * 20_400.0,
+            pitch_force_tolerance(&input.settings) * 0.3 * 20_400.0,
         );
         let got = sol.pitch_rad_per_s;
         eprintln!(
@@ -990,7 +1034,13 @@ fn prescribed_total_longitudinal_force_round_trip_and_limits() {
             let sol = solve(&input, &mut scratch);
             let c = sol.pitch_control.unwrap();
             assert!(c.converged, "{model:?}, {path}: {c:?}");
-            close("total Fx", total_fx(&sol), target, 0.0, 1e-6 * limit);
+            close(
+                "total Fx",
+                total_fx(&sol),
+                target,
+                0.0,
+                pitch_force_tolerance(&input.settings) * limit,
+            );
             // Back to the rate it came from: within 1e-4 of its departure
             // from free rolling (measured: 2e-5, Hertz+FASTSIM, whose
             // saturated flange patch flattens the slope).
@@ -1014,7 +1064,7 @@ fn prescribed_total_longitudinal_force_round_trip_and_limits() {
             total_fx(&near),
             -0.98 * limit,
             0.0,
-            1e-6 * limit,
+            pitch_force_tolerance(&input.settings) * limit,
         );
         assert!(c.nominal_creepage > 5e-3, "{model:?}: {c:?}");
         eprintln!("{model:?} at 0.98 mu Fn: {c:?}");
