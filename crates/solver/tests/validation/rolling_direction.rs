@@ -4,6 +4,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
+use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::creep::kalker_creep_coefficients;
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::hertz::{hertz, HertzLoad};
@@ -13,7 +14,7 @@ use railcontact_solver::core::problem::{
     ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep, SolverSettings,
 };
 use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
-use railcontact_solver::core::solve::solve;
+use railcontact_solver::core::solve::{solve, ContactSolver};
 
 const FN: f64 = 1.0e4;
 
@@ -235,6 +236,39 @@ fn transient_rolling_in_minus_x_tends_to_steady_rolling_in_minus_x() {
     assert!(gap(&t[0]) > 0.1);
     assert!(gap(end) < 1e-3);
     assert_eq!(end.fields.state, s.fields.state);
+}
+
+#[test]
+fn steps_solved_one_at_a_time_in_minus_y_are_the_whole_sequence_bit_for_bit() {
+    // A co-simulation session advances with solve_next_step: rolling in
+    // -y (chi = 3 pi/2, a step of dy) it must give the bits of the whole
+    // transient problem solved at once.
+    let st = problem(1.0, 0.7, [20, 22], 0.3, steady(1e-4, -3e-4, 0.3), 1.5 * PI);
+    let c = Creepages {
+        creepage_long: 1e-4,
+        creepage_lat: -3e-4,
+        spin_per_m: 0.3,
+    };
+    let step = ShiftStep::rolling(NormalLoad::NormalForce(FN), st.grid.dy_m, &c);
+    let p = ContactProblem {
+        kinematics: Kinematics::Transient(vec![step; 6]),
+        ..st
+    };
+    let whole = solve(&p).unwrap();
+    let mut solver = ContactSolver::new(&p, KernelCache::global());
+    for (k, w) in whole.iter().enumerate() {
+        let one = solver.solve_next_step(&p, &step).unwrap();
+        assert_eq!(one.fields, w.fields, "step {k}");
+        assert_eq!(
+            format!("{:?}", one.totals),
+            format!("{:?}", w.totals),
+            "step {k}"
+        );
+    }
+    // A step of dx is no whole number of elements along y here.
+    let dx = ShiftStep::rolling(NormalLoad::NormalForce(FN), p.grid.dx_m, &c);
+    let e = solver.solve_next_step(&p, &dx).unwrap_err();
+    assert_eq!(e.key(), Some("step.rolling_m"));
 }
 
 #[test]
