@@ -56,6 +56,8 @@ fn circle_on(nx: usize, ny: usize, kinematics: Kinematics) -> ContactProblem {
         load: NormalLoad::NormalForce(1e4),
         kinematics,
         settings: Default::default(),
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
     }
 }
 

@@ -17,9 +17,9 @@ use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveS
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::core::temperature::{SurfaceTemperatures, TemperaturePeak, ThermalBody, ThermalInput};
 use crate::problem::case::{
-    ranges, Case, CaseFile, FrictionLawName, FrictionSection, GeometryKind, GeometrySection,
-    GridSection, LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
-    SubsurfaceSection, TransientSection,
+    ranges, Case, CaseFile, ExtraRigidSlipSection, FrictionLawName, FrictionSection, GeometryKind,
+    GeometrySection, GridSection, LoadSection, MaterialSection, Model, RollingSection,
+    SolverSection, StepSection, SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepReport,
@@ -74,6 +74,11 @@ fn material(m: &pb::Material) -> Material {
     }
 }
 
+/// A repeated field's values, None when empty.
+fn values(v: &[f64]) -> Option<Vec<f64>> {
+    (!v.is_empty()).then(|| v.to_vec())
+}
+
 fn points(p: &[pb::ProfilePoint]) -> Option<Vec<[f64; 2]>> {
     (!p.is_empty()).then(|| p.iter().map(|q| [q.y_m, q.z_m]).collect())
 }
@@ -99,6 +104,7 @@ fn geometry(g: &pb::GeometrySection) -> Result<GeometrySection, ServiceError> {
         wheel_rolling_radius_m: g.wheel_rolling_radius_m,
         rail_points_m: points(&g.rail_points_m),
         wheel_points_m: points(&g.wheel_points_m),
+        gap_m: values(&g.gap_m),
     })
 }
 
@@ -298,6 +304,11 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             shear_yield_stress_pa: s.shear_yield_stress_pa,
         }),
         temperature: c.temperature.as_ref().map(thermal_input).transpose()?,
+        rolling_direction_rad: c.rolling_direction_rad,
+        extra_rigid_slip: c.extra_rigid_slip.as_ref().map(|e| ExtraRigidSlipSection {
+            slip_x: values(&e.slip_x),
+            slip_y: values(&e.slip_y),
+        }),
     })
 }
 
@@ -412,6 +423,12 @@ pub fn validate_case(c: &pb::PatchCase, limits: CaseLimits) -> Result<ValidCase,
         .unwrap_or_default();
     if !extra.is_empty() {
         let key = "geometry.extra_gap_m";
+        if case.gap_m.is_some() {
+            return Err(ServiceError::invalid(
+                key,
+                "give either geometry.gap_m (the whole gap) or geometry.extra_gap_m (an addition), not both",
+            ));
+        }
         if case.model != Model::Exact || case.geometry.is_conformal() || case.geometry.is_line() {
             return Err(ServiceError::invalid(
                 key,

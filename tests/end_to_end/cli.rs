@@ -1369,6 +1369,33 @@ fn the_line_contact_example_is_carters_rolling_per_metre() {
 }
 
 #[test]
+fn the_bentall_example_rolls_in_minus_x_as_contact_states_it() {
+    // examples/cases/line_bentall_minus_x.toml: CONTACT's bentall case 4
+    // with CHI = 180 deg as given. bentall.ref_out, case 4: CREEP X
+    // 4.294e-4, NCON 200, NADH 125, NSLIP 75 (adhesion fraction 0.625).
+    let v = solve_json(&example("line_bentall_minus_x.toml"), &[]);
+    assert_eq!(v["status"], "converged");
+    let xi = v["force_control"]["creepage_long"].as_f64().unwrap();
+    assert!((xi / 4.294e-4 - 1.0).abs() < 0.01, "creepage {xi}");
+    let adhesion = f(&v, "adhesion_fraction") * 200.0;
+    assert!(
+        (adhesion - 125.0).abs() <= 1.0 + 1e-9,
+        "adhesion elements {adhesion}"
+    );
+    // A direction off the grid's axes is refused naming the key.
+    let bad = case_file(
+        "bentall_oblique.toml",
+        &example_text("line_bentall_minus_x.toml").replace(
+            "rolling_direction_rad = 3.141592653589793",
+            "rolling_direction_rad = 1.0",
+        ),
+    );
+    let out = run(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("rolling_direction_rad"));
+}
+
+#[test]
 fn flash_temperature_example_writes_peaks_and_csv() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-temperature");
     std::fs::create_dir_all(&dir).unwrap();

@@ -608,6 +608,45 @@ async fn parallel_sessions_equal_sequential_ones_bit_for_bit() {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_rolling_direction_a_given_gap_and_an_extra_slip_reach_the_solver() {
+    // The wire fields become the case file's keys (service::convert):
+    // rolling in -x with creepage xi is rolling in +x with -xi turned half
+    // a turn (core::frame), so Fx changes sign; the quadratic gap given per
+    // element is the quadratic case; a uniform extra slip e_x is the
+    // creepage xi + e_x.
+    let (server, mut client) = server().await;
+    let fx = |r: &pb::PatchResult| totals(r.result.as_ref().unwrap()).fx_n;
+    let plus = solve_patch(&mut client, rolling(pb::Model::Exact, 16, -2e-4)).await;
+    let mut c = rolling(pb::Model::Exact, 16, 2e-4);
+    c.rolling_direction_rad = std::f64::consts::PI;
+    let minus = solve_patch(&mut client, c).await;
+    assert!(
+        (fx(&minus) + fx(&plus)).abs() < 1e-9 * 1e4,
+        "{} {}",
+        fx(&minus),
+        fx(&plus)
+    );
+    let quadratic = solve_patch_with_fields(&mut client, rolling(pb::Model::Exact, 16, 2e-4)).await;
+    let mut c = rolling(pb::Model::Exact, 16, 2e-4);
+    c.geometry.as_mut().unwrap().gap_m = quadratic.fields.as_ref().unwrap().gap_m.clone();
+    let given = solve_patch(&mut client, c).await;
+    assert_eq!(fx(&given), fx(&quadratic));
+    let mut c = rolling(pb::Model::Exact, 16, 1e-4);
+    c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
+        slip_x: vec![1e-4; 256],
+        slip_y: Vec::new(),
+    });
+    let extra = solve_patch(&mut client, c).await;
+    assert!(
+        (fx(&extra) - fx(&quadratic)).abs() < 1e-8 * 1e4,
+        "{} {}",
+        fx(&extra),
+        fx(&quadratic)
+    );
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_inputs_get_invalid_argument_naming_the_field() {
     let (server, mut client) = server().await;
     let mut cases: Vec<(pb::SolvePatchRequest, &str)> = Vec::new();
@@ -630,6 +669,18 @@ async fn bad_inputs_get_invalid_argument_naming_the_field() {
     let mut c = sphere(pb::Model::Exact, 16);
     c.geometry.as_mut().unwrap().extra_gap_m = vec![0.0; 7];
     cases.push((request(c), "`case.geometry.extra_gap_m`"));
+    let mut c = rolling(pb::Model::Exact, 16, 1e-3);
+    c.rolling_direction_rad = 0.3;
+    cases.push((request(c), "`case.rolling_direction_rad`"));
+    let mut c = rolling(pb::Model::Exact, 16, 1e-3);
+    c.geometry.as_mut().unwrap().gap_m = vec![0.0; 7];
+    cases.push((request(c), "`case.geometry.gap_m`"));
+    let mut c = rolling(pb::Model::Exact, 16, 1e-3);
+    c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
+        slip_x: vec![f64::NAN; 256],
+        slip_y: Vec::new(),
+    });
+    cases.push((request(c), "`case.extra_rigid_slip.slip_x[0]`"));
     cases.push((
         pb::SolvePatchRequest {
             case: Some(sphere(pb::Model::Hertz, 16)),

@@ -171,6 +171,8 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         solver: None,
         subsurface: None,
         temperature: None,
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
     }
 }
 
@@ -315,6 +317,35 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
                     kinetic_coefficient: Some(0.0),
                     ..Default::default()
                 })
+            }),
+        ),
+        (
+            exact(),
+            "case.rolling_direction_rad",
+            std::f64::consts::PI,
+            m(|c, v| c.rolling_direction_rad = v),
+        ),
+        (
+            exact(),
+            "case.geometry.gap_m[5]",
+            0.0,
+            m(|c, v| {
+                let mut h = vec![1e-3; 256];
+                h[5] = v;
+                geometry(c).gap_m = h;
+            }),
+        ),
+        (
+            exact(),
+            "case.extra_rigid_slip.slip_y[3]",
+            1e-4,
+            m(|c, v| {
+                let mut e = vec![0.0; 256];
+                e[3] = v;
+                c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
+                    slip_x: Vec::new(),
+                    slip_y: e,
+                });
             }),
         ),
         (

@@ -419,6 +419,8 @@ mod tests {
             load: NormalLoad::NormalForce(FN),
             kinematics: Kinematics::SteadyRolling(c),
             settings: Default::default(),
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
         };
         p.settings.tangential.tolerance = 1e-10;
         p

@@ -10,6 +10,7 @@ pub mod error;
 pub mod fastsim;
 pub mod fft;
 pub mod force;
+pub mod frame;
 pub mod friclaw;
 pub mod grid;
 pub mod hertz;

@@ -30,6 +30,21 @@
 //!   the previous step's tractions carried dq upstream. When the tractions
 //!   no longer change, s = w + (u(x) - u(x + dq))/dq, which tends to the
 //!   steady-rolling s = w - du/dx as dq -> 0. dq = 0 is a shift step.
+//! * Rolling direction: `rolling_direction_rad` = chi is the direction in
+//!   which the patch travels over both bodies, measured from +x towards +y
+//!   (CONTACT's `CHI`); 0, the default, is the +x of the items above. The
+//!   material enters at the leading edge, the side chi points to, and
+//!   steady rolling's slip is s = w - du/dq with q along (cos chi, sin chi);
+//!   a rolling step of dq carries the previous tractions dq against that
+//!   direction. Creepages, shifts, tractions and forces stay in (x, y):
+//!   the creepages are still body 1's rigid velocity relative to body 2
+//!   over V. The patch rolls along a grid axis: chi is a multiple of pi/2
+//!   ([`crate::core::frame`]); chi = pi mirrors a +x solution through the
+//!   origin.
+//! * Extra rigid slip per element (`extra_rigid_slip`, CONTACT's `EXRHS`
+//!   with E = 9): a velocity of body 1 relative to body 2 over V [-] added
+//!   to the creepages' rigid slip w at each element, in (x, y); a rolling
+//!   step of dq adds dq times it to the rigid shift.
 //! * Subsurface stresses and displacements ([`crate::core::subsurface`]) are
 //!   reported for both bodies in this one frame (x, y, n), stresses tension
 //!   positive; the depth runs into each body (n = +depth in body 1, −depth in
@@ -204,11 +219,13 @@ pub struct ShiftStep {
     pub shift_y_m: f64,
     /// Rigid rotation about the n axis during the step \[rad\].
     pub rotation_rad: f64,
-    /// Distance the contact patch rolls in +x over both bodies during the
-    /// step \[m\], in moving coordinates (see the module conventions): the
-    /// previous step's tractions are carried this far upstream. 0 (the
-    /// default) is a shift step; otherwise a whole number of elements of
-    /// the grid (`dx_m`), checked by [`ShiftStep::rolled_elements`].
+    /// Distance the contact patch rolls over both bodies during the step
+    /// \[m\], in +x or the problem's rolling direction, in moving
+    /// coordinates (see the module conventions): the previous step's
+    /// tractions are carried this far upstream. 0 (the default) is a shift
+    /// step; otherwise a whole number of elements of the grid along the
+    /// rolling direction (`dx_m`, `dy_m` rolling along y), checked by
+    /// [`ShiftStep::rolled_elements`].
     #[serde(default)]
     pub rolling_m: f64,
 }
@@ -334,6 +351,62 @@ pub struct ContactProblem {
     pub kinematics: Kinematics,
     /// Solver settings.
     pub settings: SolverSettings,
+    /// Rolling direction chi \[rad\] (see the module conventions): a
+    /// multiple of pi/2, 0 rolling in +x.
+    pub rolling_direction_rad: f64,
+    /// Extra rigid slip per element (see the module conventions); None: none.
+    pub extra_rigid_slip: Option<ExtraRigidSlip>,
+}
+
+/// An extra rigid slip per element [-] added to the creepages' rigid slip
+/// (index `iy * nx + ix`, one value per element in each component):
+/// CONTACT's `EXRHS` of a rolling case (E = 9), relevant for conformal
+/// contact and coupling with finite elements.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ExtraRigidSlip {
+    /// x component [-].
+    pub slip_x: Vec<f64>,
+    /// y component [-].
+    pub slip_y: Vec<f64>,
+}
+
+impl ExtraRigidSlip {
+    /// The same extra slip (`x`, `y`) [-] in every element of `grid`.
+    pub fn uniform(grid: &Grid, x: f64, y: f64) -> Self {
+        Self {
+            slip_x: vec![x; grid.len()],
+            slip_y: vec![y; grid.len()],
+        }
+    }
+
+    /// Checks one finite value per element of `grid` in each component;
+    /// keys are named `extra_rigid_slip.slip_x` and `.slip_y`.
+    pub fn validate(&self, grid: &Grid) -> Result<(), ContactError> {
+        for (key, v) in [
+            ("extra_rigid_slip.slip_x", &self.slip_x),
+            ("extra_rigid_slip.slip_y", &self.slip_y),
+        ] {
+            if v.len() != grid.len() {
+                return Err(ContactError::invalid(
+                    key,
+                    format!(
+                        "has {} values for a grid of {} x {} = {} elements",
+                        v.len(),
+                        grid.nx,
+                        grid.ny,
+                        grid.len()
+                    ),
+                ));
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(ContactError::invalid(
+                    format!("{key}[{i}]"),
+                    format!("must be finite, got {}", crate::core::error::show(v[i])),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Checks a normal load; `key` names it.
@@ -365,6 +438,23 @@ impl ContactProblem {
             ));
         }
         validate_load("load", &self.load)?;
+        // Rolling steps roll whole elements of the rolling frame's grid.
+        let rolling_grid = crate::core::frame::RollingFrame::of(self)?.rolling_grid();
+        if let Some(extra) = &self.extra_rigid_slip {
+            extra.validate(&self.grid)?;
+            let rolls = match &self.kinematics {
+                Kinematics::Frictionless => false,
+                Kinematics::SteadyRolling(_) => true,
+                Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
+            };
+            if !rolls {
+                return Err(ContactError::invalid(
+                    "extra_rigid_slip",
+                    "is a slip per unit rolled distance: it needs steady rolling or transient \
+                     steps that all roll (rolling_m > 0)",
+                ));
+            }
+        }
         match &self.kinematics {
             Kinematics::Frictionless => {}
             Kinematics::SteadyRolling(c) => c.validate()?,
@@ -378,7 +468,7 @@ impl ContactProblem {
                 for (k, s) in steps.iter().enumerate() {
                     let key = format!("transient.steps[{k}]");
                     s.validate(&key)?;
-                    s.rolled_elements(&self.grid, &key)?;
+                    s.rolled_elements(&rolling_grid, &key)?;
                 }
             }
         }

@@ -10,6 +10,7 @@ use crate::core::cancel;
 use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::frame::{quarter_turns, RollingFrame};
 use crate::core::friclaw::{SlipStart, SlipVelocityLaw};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
@@ -45,7 +46,11 @@ pub const MARCHING_RESTART: usize = 50;
 /// service's session marks).
 #[derive(Clone)]
 pub struct ContactSolver {
+    /// The grid in the rolling frame (the problem's when it rolls in +x).
     grid: Grid,
+    /// The map from the problem's frame to the rolling frame the solver
+    /// works in ([`crate::core::frame`]).
+    frame: RollingFrame,
     displacement: Arc<KernelSet>,
     /// Buffers of the Newton Coulomb solver, allocated on first use.
     newton_scratch: Option<SteadyScratch>,
@@ -170,13 +175,18 @@ fn per_element(key: &str, v: &[f64], n: usize) -> Result<(), ContactError> {
 
 impl ContactSolver {
     /// A solver for `problem`'s grid and materials, with kernels from `cache`.
+    /// A rolling direction that is not a multiple of pi/2 builds the
+    /// solver of +x; [`ContactSolver::solve`] then refuses the problem.
     pub fn new(problem: &ContactProblem, cache: &KernelCache) -> Self {
-        let grid = problem.grid;
+        let turns = quarter_turns(problem.rolling_direction_rad, &problem.grid).unwrap_or(0);
+        let frame = RollingFrame::new(turns, problem.grid);
+        let grid = frame.rolling_grid();
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
         let n = grid.len();
         let z = || vec![0.0; n];
         Self {
             grid,
+            frame,
             ows: displacement.workspace(),
             displacement,
             newton_scratch: None,
@@ -224,7 +234,7 @@ impl ContactSolver {
     /// several patches at once. `pn` must have one value per element.
     pub fn set_pressure_warm_start(&mut self, pn: &[f64]) -> Result<(), ContactError> {
         per_element("pressure_pa", pn, self.pn.len())?;
-        self.pn.copy_from_slice(pn);
+        self.frame.field_to_rolling(pn, &mut self.pn);
         self.path.clear();
         Ok(())
     }
@@ -238,8 +248,12 @@ impl ContactSolver {
     pub fn set_traction_warm_start(&mut self, px: &[f64], py: &[f64]) -> Result<(), ContactError> {
         per_element("traction_x_pa", px, self.tr.px.len())?;
         per_element("traction_y_pa", py, self.tr.py.len())?;
-        self.tr.px.copy_from_slice(px);
-        self.tr.py.copy_from_slice(py);
+        if self.frame.is_identity() {
+            self.tr.px.copy_from_slice(px);
+            self.tr.py.copy_from_slice(py);
+        } else {
+            [self.tr.px, self.tr.py] = self.frame.vectors_to_rolling(px, py);
+        }
         self.path.clear();
         Ok(())
     }
@@ -337,14 +351,45 @@ impl ContactSolver {
         &mut self,
         problem: &ContactProblem,
     ) -> Result<Vec<ContactSolution>, ContactError> {
-        let t0 = Instant::now();
         problem.validate()?;
-        if problem.grid != self.grid {
+        self.check_frame(problem)?;
+        if self.frame.is_identity() {
+            return self.solve_rolling(problem);
+        }
+        let turned = self.frame.problem(problem);
+        let solutions = self
+            .solve_rolling(&turned)
+            .map_err(|e| self.frame.error(e))?;
+        Ok(solutions
+            .into_iter()
+            .map(|s| self.frame.solution(s, &problem.gap_m))
+            .collect())
+    }
+
+    /// Refuses a problem of another grid or rolling direction than the
+    /// solver's (validated before).
+    fn check_frame(&self, problem: &ContactProblem) -> Result<(), ContactError> {
+        if problem.grid != self.frame.user_grid() {
             return Err(ContactError::invalid(
                 "grid",
                 "differs from the grid this solver was built for",
             ));
         }
+        if quarter_turns(problem.rolling_direction_rad, &problem.grid)? != self.frame.turns() {
+            return Err(ContactError::invalid(
+                crate::core::frame::ROLLING_DIRECTION_KEY,
+                "differs from the rolling direction this solver was built for",
+            ));
+        }
+        Ok(())
+    }
+
+    /// [`ContactSolver::solve`] of a validated problem of the rolling frame.
+    fn solve_rolling(
+        &mut self,
+        problem: &ContactProblem,
+    ) -> Result<Vec<ContactSolution>, ContactError> {
+        let t0 = Instant::now();
         match &problem.kinematics {
             Kinematics::Frictionless | Kinematics::SteadyRolling(_) => {
                 let point = PathPoint::of(problem);
@@ -397,21 +442,33 @@ impl ContactSolver {
         let t0 = Instant::now();
         problem.validate()?;
         step.validate("step")?;
+        self.check_frame(problem)?;
         step.rolled_elements(&self.grid, "step")?;
-        if problem.grid != self.grid {
-            return Err(ContactError::invalid(
-                "grid",
-                "differs from the grid this solver was built for",
-            ));
-        }
         if !matches!(problem.kinematics, Kinematics::Transient(_)) {
             return Err(ContactError::invalid(
                 "kinematics",
                 "solve_next_step needs a transient problem",
             ));
         }
+        if problem.extra_rigid_slip.is_some() {
+            // The problem's own steps roll (validated); this one must too.
+            if step.rolling_m <= 0.0 {
+                return Err(ContactError::invalid(
+                    "step.rolling_m",
+                    "must be > 0 with an extra rigid slip (a slip per unit rolled distance)",
+                ));
+            }
+        }
         self.path.clear();
-        let mut sol = self.transient_step(problem, step)?;
+        let mut sol = if self.frame.is_identity() {
+            self.transient_step(problem, step)?
+        } else {
+            let turned = self.frame.problem(problem);
+            let s = self
+                .transient_step(&turned, &self.frame.step(step))
+                .map_err(|e| self.frame.error(e))?;
+            self.frame.solution(s, &problem.gap_m)
+        };
         sol.info.solve_time_s = t0.elapsed().as_secs_f64();
         Ok(sol)
     }
@@ -602,6 +659,9 @@ impl ContactSolver {
                         &mut self.cx,
                         &mut self.cy,
                     );
+                    if let Some(e) = &problem.extra_rigid_slip {
+                        add_scaled(1.0, [&e.slip_x, &e.slip_y], [&mut self.cx, &mut self.cy]);
+                    }
                     if coupled {
                         // Steady-rolling slip of the normal pressure,
                         // (A_tn p_n - A_tn S p_n)/dx with S the shift by one
@@ -625,6 +685,13 @@ impl ContactSolver {
                 }
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
+                    if let Some(e) = &problem.extra_rigid_slip {
+                        add_scaled(
+                            rolling_m,
+                            [&e.slip_x, &e.slip_y],
+                            [&mut self.cx, &mut self.cy],
+                        );
+                    }
                     for i in 0..n {
                         self.cx[i] -= self.old_ux[i];
                         self.cy[i] -= self.old_uy[i];
@@ -1051,6 +1118,15 @@ fn rigid_slip(grid: &Grid, a: [f64; 2], rot: f64, wx: &mut [f64], wy: &mut [f64]
     }
 }
 
+/// `c += factor * e`, component by component.
+fn add_scaled(factor: f64, e: [&[f64]; 2], c: [&mut [f64]; 2]) {
+    for (c, e) in c.into_iter().zip(e) {
+        for (c, e) in c.iter_mut().zip(e) {
+            *c += factor * e;
+        }
+    }
+}
+
 /// `c += factor * A_tn p_n`: the tangential displacement difference of a
 /// normal pressure field (non-zero for dissimilar materials only).
 fn add_tangential_of_normal(
@@ -1115,6 +1191,8 @@ mod tests {
                 spin_per_m: 0.3 * f_creep,
             }),
             settings: Default::default(),
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
         }
     }
 

@@ -669,6 +669,8 @@ mod tests {
             load: NormalLoad::NormalForce(1e5),
             kinematics: Kinematics::SteadyRolling(creepages),
             settings: Default::default(),
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
         };
         let s = solve(&problem).unwrap().pop().unwrap();
         let input = ThermalInput {

@@ -12,8 +12,9 @@ use crate::conformal::geometry::{
     Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve,
 };
 use crate::conformal::operator::InfluenceModel;
-use crate::core::error::{check_count, show, ContactError};
+use crate::core::error::{check_count, show, ContactError, Range};
 use crate::core::force::PrescribedForce;
+use crate::core::frame::{axis_turns, RollingFrame, ROLLING_DIRECTION_KEY};
 use crate::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw, DEFAULT_LAW_ITERATIONS};
 use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
@@ -22,8 +23,8 @@ use crate::core::material::{CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
-    rolling_elements, ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
-    CREEPAGE_RANGE, SPIN_RANGE,
+    rolling_elements, ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep,
+    SolverSettings, CREEPAGE_RANGE, SPIN_RANGE,
 };
 use crate::core::tangential::TangentialSettings;
 use crate::core::temperature::ThermalInput;
@@ -80,6 +81,8 @@ pub mod ranges {
     pub const PROFILE_COORDINATE: Range = Range::symmetric(1.0, "m").hint(UnitHint::Millimetre);
     /// Values of the service's `geometry.extra_gap_m` \[m\].
     pub const EXTRA_GAP: Range = Range::symmetric(1e-2, "m");
+    /// Values of `geometry.gap_m` \[m\].
+    pub const GAP: Range = Range::symmetric(1.0, "m");
     /// `rolling.force_x_n`, `rolling.force_y_n` \[N\] (a prescribed
     /// tangential force; a solve further needs |F| < mu Fn).
     pub const TANGENTIAL_FORCE: Range = Range::symmetric(1e8, "N");
@@ -235,6 +238,32 @@ pub struct CaseFile {
     /// (exact model, steady rolling; optional: computed only when present).
     #[serde(default)]
     pub temperature: Option<TemperatureSection>,
+    /// Rolling direction chi \[rad\] of steady rolling and of transient
+    /// rolling steps, from +x towards +y (CONTACT's `CHI`): a multiple of
+    /// pi/2 within 1e-6 rad, 0 (+x, the default), pi/2 (+y), pi (-x) or
+    /// 3 pi/2 (-y); a line contact 0 or pi. Exact model only. Creepages,
+    /// forces and fields stay in (x, y) (see [`crate::core::problem`]).
+    #[serde(default)]
+    pub rolling_direction_rad: f64,
+    /// Extra rigid slip per element (exact model, rolling; optional).
+    #[serde(default)]
+    pub extra_rigid_slip: Option<ExtraRigidSlipSection>,
+}
+
+/// `[extra_rigid_slip]`: a rigid slip [-] added at each element to the
+/// creepages' rigid slip w = (xi - phi y, eta + phi x), CONTACT's `EXRHS`
+/// of a rolling case (E = 9): `slip_x` and `slip_y`, each nx * ny values
+/// with index iy * nx + ix (x fastest) in [-1, 1]; one of them may be left
+/// out (zeros). Exact model, steady rolling or transient steps that all
+/// roll (a rolling step of dq adds dq times it to the rigid shift); the
+/// grid's `nx` and `ny` must be given.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtraRigidSlipSection {
+    /// x component per element [-].
+    pub slip_x: Option<Vec<f64>>,
+    /// y component per element [-].
+    pub slip_y: Option<Vec<f64>>,
 }
 
 /// `[temperature]`: the rolling speed `rolling_speed_m_per_s` \[m/s\] and
@@ -575,6 +604,15 @@ pub struct GeometrySection {
     pub rail_points_m: Option<Vec<[f64; 2]>>,
     /// `conformal_points`: wheel profile points `[y, z]` \[m\], same rules.
     pub wheel_points_m: Option<Vec<[f64; 2]>>,
+    /// `quadratic`, `line`, exact model: the undeformed distance given per
+    /// element \[m\] (CONTACT's `IBASE = 9`), replacing A x² + B y²:
+    /// nx * ny values with index iy * nx + ix (x fastest; a line contact
+    /// nx), each in [-1, 1] m, at the element centres of the grid, which
+    /// must be given (`nx`, `ny`, and the windows). A and B still estimate
+    /// the Hertz patch that checks the window, so give those of the
+    /// best-fitting quadric.
+    #[serde(default)]
+    pub gap_m: Option<Vec<f64>>,
 }
 
 /// A validated geometry.
@@ -1139,6 +1177,13 @@ pub struct Case {
     pub subsurface: Option<SubsurfaceRequest>,
     /// The flash temperatures to compute after the solve, if asked for.
     pub temperature: Option<ThermalInput>,
+    /// Rolling direction chi \[rad\] (`rolling_direction_rad`; exact model).
+    pub rolling_direction_rad: f64,
+    /// The undeformed distance per element \[m\] (`geometry.gap_m`)
+    /// replacing the quadratic one; None: h = A x² + B y².
+    pub gap_m: Option<Vec<f64>>,
+    /// Extra rigid slip per element (`[extra_rigid_slip]`).
+    pub extra_rigid_slip: Option<ExtraRigidSlip>,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -1584,7 +1629,9 @@ impl Case {
             }
         }
 
-        let grid = file.grid.unwrap_or_default();
+        let turns = rolling_direction(&file, model, line)?;
+        let grid_given = file.grid.unwrap_or_default();
+        let grid = grid_given;
         let default_n = if model == Model::Fastsim {
             DEFAULT_FASTSIM_ELEMENTS
         } else {
@@ -1723,7 +1770,14 @@ impl Case {
             }
             if let Some(dq) = file.transient.as_ref().and_then(|t| t.rolling_step_m) {
                 let grid = Grid::centered(nx, ny, window_x_m, window_y_m)?;
+                // Whole elements along the rolling direction.
+                let grid = RollingFrame::new(turns, grid).rolling_grid();
                 let key = "transient.rolling_step_m";
+                let (w, n, axis) = if turns % 2 == 1 {
+                    (window_y_m, ny, "y")
+                } else {
+                    (window_x_m, nx, "x")
+                };
                 let reason = match rolling_elements(key, dq, &grid) {
                     Ok(0) => format!("{} m is less than one element", show(dq)),
                     Err(ContactError::InvalidInput { reason, .. }) => reason,
@@ -1733,9 +1787,9 @@ impl Case {
                     return Err(bad(
                         key,
                         format!(
-                            "{reason} (grid.window_x_m / grid.nx = {} m / {nx}): give \
-                             grid.window_x_m = nx x rolling_step_m / k for a whole k",
-                            show(window_x_m)
+                            "{reason} (grid.window_{axis}_m / grid.n{axis} = {} m / {n}): give \
+                             grid.window_{axis}_m = n{axis} x rolling_step_m / k for a whole k",
+                            show(w)
                         ),
                     ));
                 }
@@ -1789,7 +1843,12 @@ impl Case {
             .as_ref()
             .map(|t| temperature_request(t, model, &kinematics))
             .transpose()?;
+        let gap_m = given_gap(&file, model, &geometry, [nx, ny], grid_given)?;
+        let extra_rigid_slip = extra_rigid_slip(&file, model, &kinematics, [nx, ny], grid_given)?;
         Ok(Case {
+            rolling_direction_rad: file.rolling_direction_rad,
+            gap_m,
+            extra_rigid_slip,
             rolling_step_m: file.transient.as_ref().and_then(|t| t.rolling_step_m),
             model,
             material,
@@ -1837,10 +1896,15 @@ impl Case {
             material: self.material,
             friction: self.friction,
             grid,
-            gap_m: ContactProblem::quadratic_gap(&grid, self.a_per_m, self.b_per_m),
+            gap_m: match &self.gap_m {
+                Some(h) => h.clone(),
+                None => ContactProblem::quadratic_gap(&grid, self.a_per_m, self.b_per_m),
+            },
             load: self.load,
             kinematics: self.kinematics.clone(),
             settings: self.settings,
+            rolling_direction_rad: self.rolling_direction_rad,
+            extra_rigid_slip: self.extra_rigid_slip.clone(),
         })
     }
 
@@ -2056,6 +2120,151 @@ fn refuse_lateral(section: &str, moves: &str, lateral: &[(&str, bool)]) -> Resul
 }
 
 /// Rejects a model that cannot run on the geometry; the error names `model`.
+/// The quarter turns of `rolling_direction_rad` (see
+/// [`crate::core::frame`]): any multiple of pi/2 (a line contact 0 or pi)
+/// for the exact model, 0 for the others; flash temperatures roll in +x.
+fn rolling_direction(file: &CaseFile, model: Model, line: bool) -> Result<u8, CaseError> {
+    let key = ROLLING_DIRECTION_KEY;
+    let turns = axis_turns(file.rolling_direction_rad, line)?;
+    if turns != 0 && model != Model::Exact {
+        return Err(bad(
+            key,
+            format!(
+                "the exact model rolls in other directions than +x, not {}: leave it 0",
+                model.name()
+            ),
+        ));
+    }
+    if turns != 0 && file.temperature.is_some() {
+        return Err(bad(
+            key,
+            "the flash temperatures are computed for rolling in +x: leave it 0 or leave out [temperature]",
+        ));
+    }
+    Ok(turns)
+}
+
+/// Checks that `values` (named `key`) hold one value per element of an
+/// `n[0]` x `n[1]` grid that the case gives (`grid`), each in `range`.
+fn per_element_values(
+    key: &str,
+    values: &[f64],
+    n: [usize; 2],
+    grid: GridSection,
+    line: bool,
+    range: Range,
+) -> Result<(), CaseError> {
+    let given = grid.nx.is_some() && (line || grid.ny.is_some());
+    if !given {
+        return Err(bad(
+            key,
+            "gives values per element: give the grid's `grid.nx` and `grid.ny` too",
+        ));
+    }
+    let elements = if line { n[0] } else { n[0] * n[1] };
+    if values.len() != elements {
+        return Err(bad(
+            key,
+            format!(
+                "has {} values for a grid of {elements} elements (nx = {}{})",
+                values.len(),
+                n[0],
+                if line {
+                    String::new()
+                } else {
+                    format!(", ny = {}", n[1])
+                }
+            ),
+        ));
+    }
+    for (i, &v) in values.iter().enumerate() {
+        range.check(&format!("{key}[{i}]"), v)?;
+    }
+    Ok(())
+}
+
+/// `geometry.gap_m`, checked: exact model on a quadratic or line geometry.
+fn given_gap(
+    file: &CaseFile,
+    model: Model,
+    geometry: &CaseGeometry,
+    n: [usize; 2],
+    grid: GridSection,
+) -> Result<Option<Vec<f64>>, CaseError> {
+    let Some(h) = &file.geometry.gap_m else {
+        return Ok(None);
+    };
+    let key = "geometry.gap_m";
+    if model != Model::Exact || geometry.is_conformal() {
+        return Err(bad(
+            key,
+            format!(
+                "a gap per element is solved by the exact model on `kind = \"quadratic\"` or `\"line\"`, \
+                 not {} on `{}`",
+                model.name(),
+                file.geometry.kind.name()
+            ),
+        ));
+    }
+    per_element_values(key, h, n, grid, geometry.is_line(), ranges::GAP)?;
+    Ok(Some(h.clone()))
+}
+
+/// `[extra_rigid_slip]`, checked: exact model, rolling kinematics.
+fn extra_rigid_slip(
+    file: &CaseFile,
+    model: Model,
+    kinematics: &Kinematics,
+    n: [usize; 2],
+    grid: GridSection,
+) -> Result<Option<ExtraRigidSlip>, CaseError> {
+    let Some(e) = &file.extra_rigid_slip else {
+        return Ok(None);
+    };
+    let key = "extra_rigid_slip";
+    if model != Model::Exact {
+        return Err(bad(
+            key,
+            format!(
+                "an extra rigid slip is solved by the exact model only, not {}",
+                model.name()
+            ),
+        ));
+    }
+    let rolls = match kinematics {
+        Kinematics::Frictionless => false,
+        Kinematics::SteadyRolling(_) => true,
+        Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
+    };
+    if !rolls {
+        return Err(bad(
+            key,
+            "is a slip per unit rolled distance: give `[rolling]`, or `[transient]` steps that all roll \
+             (creepages and `transient.rolling_step_m`)",
+        ));
+    }
+    if e.slip_x.is_none() && e.slip_y.is_none() {
+        return Err(bad(
+            key,
+            "give `extra_rigid_slip.slip_x` and/or `extra_rigid_slip.slip_y`",
+        ));
+    }
+    let line = file.geometry.kind == GeometryKind::Line;
+    let elements = if line { n[0] } else { n[0] * n[1] };
+    let mut out = [vec![0.0; elements], vec![0.0; elements]];
+    for (k, (name, v)) in [("slip_x", &e.slip_x), ("slip_y", &e.slip_y)]
+        .into_iter()
+        .enumerate()
+    {
+        if let Some(v) = v {
+            per_element_values(&format!("{key}.{name}"), v, n, grid, line, CREEPAGE_RANGE)?;
+            out[k].clone_from(v);
+        }
+    }
+    let [slip_x, slip_y] = out;
+    Ok(Some(ExtraRigidSlip { slip_x, slip_y }))
+}
+
 fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CaseError> {
     match (model, geometry) {
         (Model::Exact, CaseGeometry::Line) => Ok(()),
@@ -2272,7 +2481,7 @@ wheel_rolling_radius_m = 0.5
 normal_force_n = 80000.0
 "#;
 
-    fn bad_key(text: &str) -> String {
+    pub(super) fn bad_key(text: &str) -> String {
         match Case::from_toml(text) {
             Err(CaseError::BadInput(m)) => m,
             other => panic!("expected bad input, got {other:?}"),
@@ -2396,6 +2605,7 @@ normal_force_n = 80000.0
             wheel_rolling_radius_m: Some(0.5),
             rail_points_m: Some(rail.to_vec()),
             wheel_points_m: Some(wheel.to_vec()),
+            gap_m: None,
         }
     }
 
@@ -3061,5 +3271,150 @@ specific_heat_j_per_kg_k = 450.0
         assert!(report.human().contains("body 1 max temperature [K]"));
         let json = serde_json::to_string(&report).unwrap();
         assert!(json.contains("\"temperature\":{\"max_body1\""), "{json}");
+    }
+}
+
+#[cfg(test)]
+mod rolling_frame_tests {
+    use super::tests::bad_key;
+    use super::*;
+    use crate::core::solution::SolveStatus;
+
+    /// An exact steady-rolling case on a 24 x 20 grid with `extra` lines.
+    fn rolling_case(extra: &str) -> String {
+        format!(
+            r#"
+model = "exact"
+{extra}
+[material]
+shear_modulus_pa = 80.0e9
+poisson_ratio = 0.25
+[friction]
+coefficient = 0.3
+[geometry]
+kind = "quadratic"
+a_per_m = 1.0
+b_per_m = 0.6
+[load]
+normal_force_n = 10000.0
+[rolling]
+creepage_long = 3e-4
+creepage_lat = -1e-4
+spin_per_m = 0.5
+[grid]
+nx = 24
+ny = 20
+window_x_m = 12e-3
+window_y_m = 14e-3
+"#
+        )
+    }
+
+    #[test]
+    fn a_hertz_gap_given_per_element_is_the_quadratic_case_bit_for_bit() {
+        // CONTACT's IBASE = 9 (user guide §"Non-Hertzian geometry
+        // specification"): the values h(x_I) at the element centres.
+        let quadratic = Case::from_toml(&rolling_case("")).unwrap();
+        let h = quadratic.problem().unwrap().gap_m;
+        let list: Vec<String> = h.iter().map(|v| format!("{v:?}")).collect();
+        let text = rolling_case("").replace(
+            "b_per_m = 0.6\n",
+            &format!("b_per_m = 0.6\ngap_m = [{}]\n", list.join(", ")),
+        );
+        let given = Case::from_toml(&text).unwrap();
+        assert_eq!(given.problem().unwrap().gap_m, h);
+        let a = crate::core::solve::solve(&quadratic.problem().unwrap()).unwrap();
+        let b = crate::core::solve::solve(&given.problem().unwrap()).unwrap();
+        assert_eq!(a[0].info.status, SolveStatus::Converged);
+        assert_eq!(format!("{:?}", a[0].totals), format!("{:?}", b[0].totals));
+        assert_eq!(a[0].fields, b[0].fields);
+    }
+
+    #[test]
+    fn a_rolling_direction_and_an_extra_slip_reach_the_problem() {
+        let n = 24 * 20;
+        let slip = |v: f64| vec![format!("{v:?}"); n].join(", ");
+        let text = rolling_case(&format!(
+            "rolling_direction_rad = 3.141592653589793\n[extra_rigid_slip]\nslip_x = [{}]\n",
+            slip(1e-4)
+        ));
+        let p = Case::from_toml(&text).unwrap().problem().unwrap();
+        assert_eq!(p.rolling_direction_rad, std::f64::consts::PI);
+        let e = p.extra_rigid_slip.unwrap();
+        assert_eq!(e.slip_x, vec![1e-4; n]);
+        assert_eq!(e.slip_y, vec![0.0; n]);
+    }
+
+    #[test]
+    fn bad_gaps_directions_and_slips_are_refused_naming_the_key() {
+        let n = 24 * 20;
+        let list = |k: usize, v: &str| vec![v; k].join(", ");
+        let slip = |extra: &str| format!("[extra_rigid_slip]\n{extra}\n");
+        for (text, key) in [
+            (
+                rolling_case("").replace(
+                    "b_per_m = 0.6\n",
+                    &format!("b_per_m = 0.6\ngap_m = [{}]\n", list(7, "0.0")),
+                ),
+                "`geometry.gap_m`",
+            ),
+            (
+                rolling_case("").replace(
+                    "b_per_m = 0.6\n",
+                    &format!("b_per_m = 0.6\ngap_m = [nan, {}]\n", list(n - 1, "0.0")),
+                ),
+                "`geometry.gap_m[0]`",
+            ),
+            (
+                rolling_case("rolling_direction_rad = nan"),
+                "`rolling_direction_rad`",
+            ),
+            (
+                rolling_case("rolling_direction_rad = 0.3"),
+                "`rolling_direction_rad`",
+            ),
+            (
+                rolling_case("rolling_direction_rad = 3.141592653589793")
+                    .replace("model = \"exact\"", "model = \"fastsim\""),
+                "`rolling_direction_rad`",
+            ),
+            (
+                rolling_case(&slip(&format!("slip_y = [{}]", list(n + 1, "0.0")))),
+                "`extra_rigid_slip.slip_y`",
+            ),
+            (
+                rolling_case(&slip(&format!("slip_x = [inf, {}]", list(n - 1, "0.0")))),
+                "`extra_rigid_slip.slip_x[0]`",
+            ),
+            (rolling_case(&slip("")), "`extra_rigid_slip`"),
+            (
+                rolling_case(&slip(&format!("slip_x = [{}]", list(n, "0.0"))))
+                    .replace("nx = 24\n", ""),
+                "`extra_rigid_slip.slip_x`",
+            ),
+        ] {
+            let m = bad_key(&text);
+            assert!(m.contains(key), "{key}: {m}");
+        }
+    }
+
+    #[test]
+    fn rolling_along_y_steps_whole_elements_in_y() {
+        // dx = 0.5 mm, dy = 0.7 mm: rolling in +y, a step of 0.5 mm is no
+        // whole number of elements, one of 0.7 mm is.
+        let text = |dq: f64| {
+            rolling_case("rolling_direction_rad = 1.5707963267948966").replace(
+                "[rolling]\ncreepage_long = 3e-4\ncreepage_lat = -1e-4\nspin_per_m = 0.5\n",
+                &format!(
+                    "[transient]\nrolling_step_m = {dq:?}\nsteps = [{{ creepage_lat = 3e-4 }}]\n"
+                ),
+            )
+        };
+        let m = bad_key(&text(0.5e-3));
+        assert!(
+            m.contains("`transient.rolling_step_m`") && m.contains("window_y_m"),
+            "{m}"
+        );
+        assert!(Case::from_toml(&text(0.7e-3)).is_ok());
     }
 }

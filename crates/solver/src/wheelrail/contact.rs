@@ -1473,6 +1473,8 @@ fn build_patch(
                 load: NormalLoad::Approach(0.0),
                 kinematics: Kinematics::SteadyRolling(creep),
                 settings: input.settings.solver,
+                rolling_direction_rad: 0.0,
+                extra_rigid_slip: None,
             };
             let solver = Box::new(ContactSolver::new(&problem, cache));
             PatchKind::Exact { problem, solver }

@@ -66,6 +66,8 @@ fn problem(kinematics: Kinematics, start: SlipStart) -> ContactProblem {
         load: NormalLoad::NormalForce(LOAD_N_PER_M),
         kinematics,
         settings: SolverSettings::default(),
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
     }
 }
 
@@ -268,6 +270,8 @@ fn full_sliding_follows_the_law_at_the_rigid_slip_velocity() {
                 spin_per_m: 0.0,
             }),
             settings: SolverSettings::default(),
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
         };
         let s = railcontact_solver::core::solve::solve(&p)
             .unwrap()

@@ -9,5 +9,6 @@ mod falling_friction;
 mod line_contact;
 mod physics;
 mod profiles;
+mod rolling_direction;
 mod transient;
 mod wheelrail;

@@ -54,6 +54,8 @@ fn quadratic(
         load: NormalLoad::NormalForce(force),
         kinematics: kin,
         settings: SolverSettings::default(),
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
     }
 }
 
@@ -450,6 +452,8 @@ fn carter_creep_curve_on_a_long_strip() {
                 spin_per_m: 0.0,
             }),
             settings: SolverSettings::default(),
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
         };
         let probe = one(&make(1e-6));
         let n_line = line(&probe.fields.pressure_pa);

@@ -75,6 +75,8 @@ fn problem() -> ContactProblem {
         load: NormalLoad::NormalForce(0.4705),
         kinematics: Kinematics::Transient(Vec::new()),
         settings: SolverSettings::default(),
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
     }
 }
 

@@ -218,7 +218,7 @@ class ProfilePoint(_message.Message):
     def __init__(self, y_m: _Optional[float] = ..., z_m: _Optional[float] = ...) -> None: ...
 
 class GeometrySection(_message.Message):
-    __slots__ = ("kind", "a_per_m", "b_per_m", "rail_lateral_radius_m", "wheel_lateral_radius_m", "wheel_rolling_radius_m", "rail_points_m", "wheel_points_m", "extra_gap_m")
+    __slots__ = ("kind", "a_per_m", "b_per_m", "rail_lateral_radius_m", "wheel_lateral_radius_m", "wheel_rolling_radius_m", "rail_points_m", "wheel_points_m", "extra_gap_m", "gap_m")
     KIND_FIELD_NUMBER: _ClassVar[int]
     A_PER_M_FIELD_NUMBER: _ClassVar[int]
     B_PER_M_FIELD_NUMBER: _ClassVar[int]
@@ -228,6 +228,7 @@ class GeometrySection(_message.Message):
     RAIL_POINTS_M_FIELD_NUMBER: _ClassVar[int]
     WHEEL_POINTS_M_FIELD_NUMBER: _ClassVar[int]
     EXTRA_GAP_M_FIELD_NUMBER: _ClassVar[int]
+    GAP_M_FIELD_NUMBER: _ClassVar[int]
     kind: GeometryKind
     a_per_m: float
     b_per_m: float
@@ -237,7 +238,8 @@ class GeometrySection(_message.Message):
     rail_points_m: _containers.RepeatedCompositeFieldContainer[ProfilePoint]
     wheel_points_m: _containers.RepeatedCompositeFieldContainer[ProfilePoint]
     extra_gap_m: _containers.RepeatedScalarFieldContainer[float]
-    def __init__(self, kind: _Optional[_Union[GeometryKind, str]] = ..., a_per_m: _Optional[float] = ..., b_per_m: _Optional[float] = ..., rail_lateral_radius_m: _Optional[float] = ..., wheel_lateral_radius_m: _Optional[float] = ..., wheel_rolling_radius_m: _Optional[float] = ..., rail_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wheel_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., extra_gap_m: _Optional[_Iterable[float]] = ...) -> None: ...
+    gap_m: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, kind: _Optional[_Union[GeometryKind, str]] = ..., a_per_m: _Optional[float] = ..., b_per_m: _Optional[float] = ..., rail_lateral_radius_m: _Optional[float] = ..., wheel_lateral_radius_m: _Optional[float] = ..., wheel_rolling_radius_m: _Optional[float] = ..., rail_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wheel_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., extra_gap_m: _Optional[_Iterable[float]] = ..., gap_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class LoadSection(_message.Message):
     __slots__ = ("normal_force_n", "approach_m", "normal_force_n_per_m")
@@ -322,7 +324,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -334,6 +336,8 @@ class PatchCase(_message.Message):
     SOLVER_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_DIRECTION_RAD_FIELD_NUMBER: _ClassVar[int]
+    EXTRA_RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -345,7 +349,17 @@ class PatchCase(_message.Message):
     solver: SolverSection
     subsurface: SubsurfaceSection
     temperature: TemperatureSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ...) -> None: ...
+    rolling_direction_rad: float
+    extra_rigid_slip: ExtraRigidSlip
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ...) -> None: ...
+
+class ExtraRigidSlip(_message.Message):
+    __slots__ = ("slip_x", "slip_y")
+    SLIP_X_FIELD_NUMBER: _ClassVar[int]
+    SLIP_Y_FIELD_NUMBER: _ClassVar[int]
+    slip_x: _containers.RepeatedScalarFieldContainer[float]
+    slip_y: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class ThermalBody(_message.Message):
     __slots__ = ("bulk_temperature_k", "conductivity_w_per_m_k", "density_kg_per_m3", "specific_heat_j_per_kg_k")

@@ -1,0 +1,374 @@
+//! The rolling direction chi and the extra rigid slip per element
+//! (`core::frame`, `core::problem` conventions) against Kalker's linear
+//! theory and against the +x solutions they must reproduce.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::creep::kalker_creep_coefficients;
+use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::hertz::{hertz, HertzLoad};
+use railcontact_solver::core::material::{CombinedMaterial, Material};
+use railcontact_solver::core::normal::NormalLoad;
+use railcontact_solver::core::problem::{
+    ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep, SolverSettings,
+};
+use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
+use railcontact_solver::core::solve::{solve, ContactSolver};
+
+const FN: f64 = 1.0e4;
+
+fn material() -> CombinedMaterial {
+    CombinedMaterial::identical(Material {
+        shear_modulus_pa: 80.0e9,
+        poisson_ratio: 0.25,
+    })
+    .unwrap()
+}
+
+/// Hertz semi-axes \[m\] of h = A x² + B y² under [`FN`].
+fn semi_axes(a: f64, b: f64) -> (f64, f64) {
+    let h = hertz(
+        a,
+        b,
+        material().effective_modulus_pa(),
+        HertzLoad::NormalForce { normal_force_n: FN },
+    )
+    .unwrap();
+    (h.semi_axis_x_m, h.semi_axis_y_m)
+}
+
+/// h = A x² + B y² on an nx x ny grid 2.4 by 2.6 Hertz semi-axes (the
+/// elements are not square), rolling in `chi` with `kin`.
+fn problem(a: f64, b: f64, n: [usize; 2], mu: f64, kin: Kinematics, chi: f64) -> ContactProblem {
+    let (sa, sb) = semi_axes(a, b);
+    let grid = Grid::centered(n[0], n[1], 2.4 * sa, 2.6 * sb).unwrap();
+    ContactProblem {
+        material: material(),
+        friction: Friction::coulomb(mu),
+        gap_m: ContactProblem::quadratic_gap(&grid, a, b),
+        grid,
+        load: NormalLoad::NormalForce(FN),
+        kinematics: kin,
+        settings: SolverSettings::default(),
+        rolling_direction_rad: chi,
+        extra_rigid_slip: None,
+    }
+}
+
+fn steady(xi: f64, eta: f64, phi: f64) -> Kinematics {
+    Kinematics::SteadyRolling(Creepages {
+        creepage_long: xi,
+        creepage_lat: eta,
+        spin_per_m: phi,
+    })
+}
+
+fn last(p: &ContactProblem) -> ContactSolution {
+    let s = solve(p).unwrap().pop().unwrap();
+    assert_eq!(s.info.status, SolveStatus::Converged, "{:?}", s.info);
+    s
+}
+
+/// Mean x of the adhesion elements \[m\].
+fn adhesion_centroid_x(p: &ContactProblem, s: &ContactSolution) -> f64 {
+    let g = &p.grid;
+    let (mut sum, mut n) = (0.0, 0);
+    for iy in 0..g.ny {
+        for ix in 0..g.nx {
+            if s.fields.state[g.index(ix, iy)] == ElementState::Adhesion {
+                sum += g.x_m(ix);
+                n += 1;
+            }
+        }
+    }
+    assert!(n > 0);
+    sum / n as f64
+}
+
+fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
+    (a - b).abs() <= rel * scale
+}
+
+#[test]
+fn rolling_in_minus_x_mirrors_the_plus_x_solution_and_moves_adhesion_to_the_new_leading_edge() {
+    // Partial slip with spin on an ellipse. Rolling in -x (chi = pi) is
+    // rolling in +x turned half a turn about n: with the creepages turned
+    // too, (xi, eta) -> (-xi, -eta) and phi unchanged, every field is the
+    // +x one at (-x, -y) with its vectors reversed. Physically the
+    // adhesion area sits at the leading edge, the side the patch rolls to:
+    // large x for chi = 0, small x for chi = pi (problem.rs conventions;
+    // Johnson 1985, §8.2: the stick zone at the leading edge).
+    let (xi, eta, phi) = (4e-4, -2e-4, 0.6);
+    let mu = 0.3;
+    let plus = problem(1.0, 0.6, [28, 24], mu, steady(-xi, -eta, phi), 0.0);
+    let minus = problem(1.0, 0.6, [28, 24], mu, steady(xi, eta, phi), PI);
+    let (sp, sm) = (last(&plus), last(&minus));
+    let g = plus.grid;
+    let tol = 1e-9 * sp.totals.max_pressure_pa;
+    for iy in 0..g.ny {
+        for ix in 0..g.nx {
+            let i = g.index(ix, iy);
+            let j = g.index(g.nx - 1 - ix, g.ny - 1 - iy);
+            assert!((sm.fields.pressure_pa[i] - sp.fields.pressure_pa[j]).abs() <= tol);
+            assert!((sm.fields.traction_x_pa[i] + sp.fields.traction_x_pa[j]).abs() <= tol);
+            assert!((sm.fields.traction_y_pa[i] + sp.fields.traction_y_pa[j]).abs() <= tol);
+            assert_eq!(sm.fields.state[i], sp.fields.state[j]);
+        }
+    }
+    let t = (&sm.totals, &sp.totals);
+    assert!(
+        close(t.0.fx_n, -t.1.fx_n, 1e-9, FN),
+        "{} {}",
+        t.0.fx_n,
+        t.1.fx_n
+    );
+    assert!(close(t.0.fy_n, -t.1.fy_n, 1e-9, FN));
+    assert!(close(t.0.mz_nm, t.1.mz_nm, 1e-9, t.1.mz_nm.abs()));
+    // The same creepages rolled both ways: the leading edge swaps sides.
+    let same = problem(1.0, 0.6, [28, 24], mu, steady(xi, eta, phi), 0.0);
+    let ss = last(&same);
+    let (forward, backward) = (
+        adhesion_centroid_x(&same, &ss),
+        adhesion_centroid_x(&minus, &sm),
+    );
+    eprintln!("adhesion centroid x: chi 0 {forward:.3e} m, chi pi {backward:.3e} m");
+    assert!(forward > 0.0 && backward < 0.0);
+}
+
+#[test]
+fn rolling_in_plus_y_on_a_circle_turns_kalkers_coefficients_with_the_direction() {
+    // Reference: Kalker 1990, Table E3 (core::creep::KALKER_TABLE), a/b =
+    // 1, nu = 0.25: C11 = 4.12 along the rolling direction, C22 = 3.67
+    // across it. Rolling in +y (chi = pi/2) the creepage along the rolling
+    // direction is eta: Fy = -G ab C11 eta, Fx = -G ab C22 xi (full
+    // adhesion, mu large, vanishing creepage).
+    let (xi, eta) = (1e-6, -2e-6);
+    let up = problem(1.0, 1.0, [32, 35], 100.0, steady(xi, eta, 0.0), FRAC_PI_2);
+    let s = last(&up);
+    let (a, b) = semi_axes(1.0, 1.0);
+    let k = kalker_creep_coefficients(a / b, 0.25).unwrap();
+    let g = material().shear_modulus_pa;
+    let along = -s.totals.fy_n / (g * a * b * eta);
+    let across = -s.totals.fx_n / (g * a * b * xi);
+    eprintln!(
+        "chi pi/2: C along {along:.4} vs C11 {:.4}, across {across:.4} vs C22 {:.4}",
+        k.c11, k.c22
+    );
+    assert!((along / k.c11 - 1.0).abs() < 0.03, "{along} vs {}", k.c11);
+    assert!((across / k.c22 - 1.0).abs() < 0.03, "{across} vs {}", k.c22);
+
+    // Against the +x solution on the grid turned with it, (x', y') = (y,
+    // -x), with the creepages turned, (xi', eta') = (eta, -xi): the forces
+    // turn back, Fx = -Fy', Fy = Fx'. Partial slip with spin.
+    let (xi, eta, phi) = (3e-4, 5e-4, 0.8);
+    let up = problem(1.0, 1.0, [24, 20], 0.3, steady(xi, eta, phi), FRAC_PI_2);
+    let su = last(&up);
+    let g = up.grid;
+    let turned = Grid::new(
+        g.ny,
+        g.nx,
+        g.dy_m,
+        g.dx_m,
+        g.y0_m,
+        -(g.x0_m + g.nx as f64 * g.dx_m),
+    )
+    .unwrap();
+    let plus = ContactProblem {
+        gap_m: ContactProblem::quadratic_gap(&turned, 1.0, 1.0),
+        grid: turned,
+        kinematics: steady(eta, -xi, phi),
+        rolling_direction_rad: 0.0,
+        ..up.clone()
+    };
+    let sp = last(&plus);
+    let (tu, tp) = (&su.totals, &sp.totals);
+    eprintln!(
+        "chi pi/2: Fx {:.6} Fy {:.6}; +x turned back: Fx {:.6} Fy {:.6}",
+        tu.fx_n, tu.fy_n, -tp.fy_n, tp.fx_n
+    );
+    assert!(close(tu.fx_n, -tp.fy_n, 1e-8, FN));
+    assert!(close(tu.fy_n, tp.fx_n, 1e-8, FN));
+    assert!(close(tu.mz_nm, tp.mz_nm, 1e-8, tp.mz_nm.abs()));
+    assert_eq!(tu.contact_area_m2, tp.contact_area_m2);
+    assert_eq!(tu.patch_length_m, tp.patch_width_m);
+}
+
+#[test]
+fn transient_rolling_in_minus_x_tends_to_steady_rolling_in_minus_x() {
+    // Moving coordinates (problem.rs conventions): rolling steps of one
+    // element from rest carry the tractions against the rolling direction
+    // and approach the steady state rolled the same way (Kalker 1990,
+    // §5.4); here in -x.
+    let (xi, eta, phi) = (-3e-4, 1e-4, 0.4);
+    let st = problem(1.0, 0.7, [24, 20], 0.3, steady(xi, eta, phi), PI);
+    let dq = st.grid.dx_m;
+    let c = Creepages {
+        creepage_long: xi,
+        creepage_lat: eta,
+        spin_per_m: phi,
+    };
+    let steps = vec![ShiftStep::rolling(NormalLoad::NormalForce(FN), dq, &c); 120];
+    let tr = ContactProblem {
+        kinematics: Kinematics::Transient(steps),
+        ..st.clone()
+    };
+    let s = last(&st);
+    let t = solve(&tr).unwrap();
+    // Distance to the steady forces relative to mu Fn: with one element
+    // per step the limit is the steady solution itself (as in +x,
+    // core::solve::tests::transient_rolling_tends_to_steady_rolling), the
+    // distance shrinking by some 7 % per step.
+    let gap = |x: &ContactSolution| {
+        (x.totals.fx_n - s.totals.fx_n)
+            .abs()
+            .max((x.totals.fy_n - s.totals.fy_n).abs())
+            / (0.3 * FN)
+    };
+    let end = t.last().unwrap();
+    eprintln!(
+        "chi pi: steady Fx {:.3} Fy {:.3}; rolling step 1 gap {:.3e}, step 120 gap {:.3e}",
+        s.totals.fx_n,
+        s.totals.fy_n,
+        gap(&t[0]),
+        gap(end)
+    );
+    assert!(gap(&t[0]) > 0.1);
+    assert!(gap(end) < 1e-3);
+    assert_eq!(end.fields.state, s.fields.state);
+}
+
+#[test]
+fn steps_solved_one_at_a_time_in_minus_y_are_the_whole_sequence_bit_for_bit() {
+    // A co-simulation session advances with solve_next_step: rolling in
+    // -y (chi = 3 pi/2, a step of dy) it must give the bits of the whole
+    // transient problem solved at once.
+    let st = problem(1.0, 0.7, [20, 22], 0.3, steady(1e-4, -3e-4, 0.3), 1.5 * PI);
+    let c = Creepages {
+        creepage_long: 1e-4,
+        creepage_lat: -3e-4,
+        spin_per_m: 0.3,
+    };
+    let step = ShiftStep::rolling(NormalLoad::NormalForce(FN), st.grid.dy_m, &c);
+    let p = ContactProblem {
+        kinematics: Kinematics::Transient(vec![step; 6]),
+        ..st
+    };
+    let whole = solve(&p).unwrap();
+    let mut solver = ContactSolver::new(&p, KernelCache::global());
+    for (k, w) in whole.iter().enumerate() {
+        let one = solver.solve_next_step(&p, &step).unwrap();
+        assert_eq!(one.fields, w.fields, "step {k}");
+        assert_eq!(
+            format!("{:?}", one.totals),
+            format!("{:?}", w.totals),
+            "step {k}"
+        );
+    }
+    // A step of dx is no whole number of elements along y here.
+    let dx = ShiftStep::rolling(NormalLoad::NormalForce(FN), p.grid.dx_m, &c);
+    let e = solver.solve_next_step(&p, &dx).unwrap_err();
+    assert_eq!(e.key(), Some("step.rolling_m"));
+}
+
+#[test]
+fn a_uniform_extra_rigid_slip_is_a_changed_creepage() {
+    // w + e = (xi + e_x - phi y, eta + e_y + phi x): steady rolling and
+    // transient rolling steps (dq e added to the shift) alike.
+    let (xi, eta, phi) = (2e-4, -1e-4, 0.5);
+    let (ex, ey) = (-3e-4, 2.5e-4);
+    for chi in [0.0, PI] {
+        let base = problem(1.0, 0.6, [24, 20], 0.3, steady(xi, eta, phi), chi);
+        let mut extra = base.clone();
+        extra.extra_rigid_slip = Some(ExtraRigidSlip::uniform(&base.grid, ex, ey));
+        let changed = ContactProblem {
+            kinematics: steady(xi + ex, eta + ey, phi),
+            ..base.clone()
+        };
+        let (a, b) = (last(&extra), last(&changed));
+        eprintln!(
+            "chi {chi}: extra slip Fx {:.6} Fy {:.6}; creepage Fx {:.6} Fy {:.6}",
+            a.totals.fx_n, a.totals.fy_n, b.totals.fx_n, b.totals.fy_n
+        );
+        assert!(close(a.totals.fx_n, b.totals.fx_n, 1e-8, FN));
+        assert!(close(a.totals.fy_n, b.totals.fy_n, 1e-8, FN));
+        assert!(close(
+            a.totals.mz_nm,
+            b.totals.mz_nm,
+            1e-8,
+            b.totals.mz_nm.abs()
+        ));
+
+        let dq = base.grid.dx_m;
+        let roll = |c: Creepages| {
+            Kinematics::Transient(vec![
+                ShiftStep::rolling(NormalLoad::NormalForce(FN), dq, &c);
+                5
+            ])
+        };
+        let c = Creepages {
+            creepage_long: xi,
+            creepage_lat: eta,
+            spin_per_m: phi,
+        };
+        let mut extra = ContactProblem {
+            kinematics: roll(c),
+            ..base.clone()
+        };
+        extra.extra_rigid_slip = Some(ExtraRigidSlip::uniform(&base.grid, ex, ey));
+        let changed = ContactProblem {
+            kinematics: roll(Creepages {
+                creepage_long: xi + ex,
+                creepage_lat: eta + ey,
+                spin_per_m: phi,
+            }),
+            ..base.clone()
+        };
+        let (a, b) = (solve(&extra).unwrap(), solve(&changed).unwrap());
+        for (a, b) in a.iter().zip(&b) {
+            assert!(close(a.totals.fx_n, b.totals.fx_n, 1e-8, FN));
+            assert!(close(a.totals.fy_n, b.totals.fy_n, 1e-8, FN));
+        }
+    }
+}
+
+#[test]
+fn a_full_turn_is_no_turn_bit_for_bit() {
+    let p = problem(1.0, 0.6, [20, 20], 0.3, steady(3e-4, 1e-4, 0.5), 0.0);
+    let turned = ContactProblem {
+        rolling_direction_rad: 2.0 * PI,
+        ..p.clone()
+    };
+    assert_eq!(
+        format!("{:?}", last(&p).totals),
+        format!("{:?}", last(&turned).totals)
+    );
+}
+
+#[test]
+fn bad_rolling_directions_and_extra_slips_are_refused_naming_the_key() {
+    let p = problem(1.0, 0.6, [16, 16], 0.3, steady(3e-4, 0.0, 0.0), 0.0);
+    let key = |p: &ContactProblem| solve(p).unwrap_err().key().map(str::to_string);
+    for chi in [f64::NAN, f64::INFINITY, 0.3] {
+        let bad = ContactProblem {
+            rolling_direction_rad: chi,
+            ..p.clone()
+        };
+        assert_eq!(key(&bad).as_deref(), Some("rolling_direction_rad"), "{chi}");
+    }
+    let mut short = p.clone();
+    short.extra_rigid_slip = Some(ExtraRigidSlip {
+        slip_x: vec![0.0; 7],
+        slip_y: vec![0.0; p.grid.len()],
+    });
+    assert_eq!(key(&short).as_deref(), Some("extra_rigid_slip.slip_x"));
+    let mut nan = p.clone();
+    let mut e = ExtraRigidSlip::uniform(&p.grid, 0.0, 0.0);
+    e.slip_y[5] = f64::NAN;
+    nan.extra_rigid_slip = Some(e);
+    assert_eq!(key(&nan).as_deref(), Some("extra_rigid_slip.slip_y[5]"));
+    let mut frictionless = p.clone();
+    frictionless.kinematics = Kinematics::Frictionless;
+    frictionless.extra_rigid_slip = Some(ExtraRigidSlip::uniform(&p.grid, 0.0, 0.0));
+    assert_eq!(key(&frictionless).as_deref(), Some("extra_rigid_slip"));
+}
