@@ -4,7 +4,7 @@
 use std::hint::black_box;
 use std::sync::Arc;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
 use railcontact::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
@@ -313,10 +313,24 @@ fn reference_models(c: &mut Criterion) {
             }
         })
         .collect();
-    let mut kp = KikPiotrowski::new(KikPiotrowskiSettings::default()).unwrap();
+    let fresh = KikPiotrowski::new(KikPiotrowskiSettings::default()).unwrap();
     let load = NormalLoad::NormalForce(1e5);
-    c.bench_function("kik_piotrowski_normal_48", |b| {
-        b.iter(|| black_box(kp.solve_normal(black_box(&sections), load, e).unwrap()))
+    // Cold: a fresh workspace (the force iteration from Hertz's circle);
+    // warm: the last solve at 1 % less force (a load iteration's next step).
+    c.bench_function("kik_piotrowski_normal_48_cold", |b| {
+        b.iter_batched_ref(
+            || fresh.clone(),
+            |kp| black_box(kp.solve_normal(black_box(&sections), load, e).unwrap()),
+            BatchSize::SmallInput,
+        )
+    });
+    let mut kp = fresh.clone();
+    c.bench_function("kik_piotrowski_normal_48_warm", |b| {
+        b.iter(|| {
+            kp.solve_normal(&sections, NormalLoad::NormalForce(0.99e5), e)
+                .unwrap();
+            black_box(kp.solve_normal(black_box(&sections), load, e).unwrap())
+        })
     });
     let normal = kp.solve_normal(&sections, load, e).unwrap();
     c.bench_function("kik_piotrowski_fastsim_48x40_totals", |b| {

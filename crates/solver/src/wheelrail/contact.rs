@@ -351,7 +351,9 @@ pub struct PatchResult {
     pub approach_m: f64,
     /// Largest pressure \[Pa\]; of a Hertz model's patch Hertz's
     /// `p0 = 3 Fn/(2 pi a b)`, whatever the bound of its FASTSIM (the
-    /// parabolic bound peaks at `4/3 p0`, the elliptic at `p0`).
+    /// parabolic bound peaks at `4/3 p0`, the elliptic at `p0`); of a
+    /// `kik_piotrowski` patch the peak of its pressure, which its FASTSIM
+    /// bound shares.
     pub max_pressure_pa: f64,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
