@@ -746,6 +746,33 @@ mod tests {
         assert!(rel(side(true), side(false)) < 1e-2);
     }
 
+    /// A force-controlled solve started from the workspace's last one ends
+    /// where a cold start does, within the force tolerance, in fewer steps.
+    #[test]
+    fn warm_start_agrees_with_a_cold_one() {
+        let sections = quadratic(1.0, 2.5, 0.02, 401);
+        let e = e_star();
+        let mut cold = KikPiotrowski::new(KikPiotrowskiSettings::default()).unwrap();
+        let c = cold
+            .solve_normal(&sections, NormalLoad::NormalForce(1e5), e)
+            .unwrap();
+        let mut warm = KikPiotrowski::new(KikPiotrowskiSettings::default()).unwrap();
+        warm.solve_normal(&sections, NormalLoad::NormalForce(0.97e5), e)
+            .unwrap();
+        let w = warm
+            .solve_normal(&sections, NormalLoad::NormalForce(1e5), e)
+            .unwrap();
+        assert!(rel(w.normal_force_n, 1e5) < 1e-9);
+        assert!(rel(w.penetration_m, c.penetration_m) < 1e-8);
+        assert!(rel(w.max_pressure_pa, c.max_pressure_pa) < 1e-8);
+        assert!(
+            w.iterations <= c.iterations,
+            "{} {}",
+            w.iterations,
+            c.iterations
+        );
+    }
+
     #[test]
     fn rejects_bad_input() {
         assert!(KikPiotrowski::new(KikPiotrowskiSettings {
