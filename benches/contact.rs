@@ -4,7 +4,7 @@
 use std::hint::black_box;
 use std::sync::Arc;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
 use railcontact::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
@@ -12,6 +12,7 @@ use railcontact::core::fft::{ConvolutionPlan, KernelSet, Precision};
 use railcontact::core::grid::Grid;
 use railcontact::core::hertz::{hertz, HertzLoad};
 use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
+use railcontact::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection};
 use railcontact::core::material::{CombinedMaterial, Material};
 use railcontact::core::normal::NormalLoad;
 use railcontact::core::polach::{polach, PolachParameters};
@@ -298,6 +299,44 @@ fn reference_models(c: &mut Criterion) {
     });
     c.bench_function("strip_100", |b| {
         b.iter(|| black_box(strip_theory(black_box(&input), 100).unwrap()))
+    });
+    // Kik-Piotrowski on a non-elliptic gap (a wheel of radius 0.46 m, a
+    // lateral gap B y^2 + C y^4 flatter than a parabola), 201 sections, 48
+    // strips: the normal solve under force control, then FASTSIM (40
+    // elements per strip, totals only) on its area.
+    let sections: Vec<KpSection> = (0..201)
+        .map(|k| {
+            let y = -0.015 + 0.03 * k as f64 / 200.0;
+            KpSection {
+                y_m: y,
+                gap_m: 1.0 * y * y + 4e3 * y.powi(4),
+                centre_x_m: 0.0,
+                curvature_x_per_m: 1.0 / 0.46,
+            }
+        })
+        .collect();
+    let fresh = KikPiotrowski::new(KikPiotrowskiSettings::default()).unwrap();
+    let load = NormalLoad::NormalForce(1e5);
+    // Cold: a fresh workspace (the force iteration from Hertz's circle);
+    // warm: the last solve at 1 % less force (a load iteration's next step).
+    c.bench_function("kik_piotrowski_normal_48_cold", |b| {
+        b.iter_batched_ref(
+            || fresh.clone(),
+            |kp| black_box(kp.solve_normal(black_box(&sections), load, e).unwrap()),
+            BatchSize::SmallInput,
+        )
+    });
+    let mut kp = fresh.clone();
+    c.bench_function("kik_piotrowski_normal_48_warm", |b| {
+        b.iter(|| {
+            kp.solve_normal(&sections, NormalLoad::NormalForce(0.99e5), e)
+                .unwrap();
+            black_box(kp.solve_normal(black_box(&sections), load, e).unwrap())
+        })
+    });
+    let normal = kp.solve_normal(&sections, load, e).unwrap();
+    c.bench_function("kik_piotrowski_fastsim_48x40_totals", |b| {
+        b.iter(|| black_box(kp.solve_tangential(&normal, &input, &mut totals).unwrap()))
     });
 }
 

@@ -58,6 +58,10 @@ fn wheelset_step(c: &mut Criterion) {
             WheelRailModel::HertzFastsimElliptic,
         ),
         ("wheelset_step_hertz_strip", WheelRailModel::HertzStrip),
+        (
+            "wheelset_step_kik_piotrowski",
+            WheelRailModel::KikPiotrowski,
+        ),
         ("wheelset_step_cect", WheelRailModel::Cect),
     ] {
         let mut g = c.benchmark_group(name);

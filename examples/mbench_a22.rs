@@ -1,5 +1,5 @@
 //! The Manchester Contact Benchmark, case A-2.2, against CONTACT's reference
-//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach|hertz_fastsim_elliptic|hertz_strip]`.
+//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach|hertz_fastsim_elliptic|hertz_strip|kik_piotrowski]`.
 //!
 //! Reads `docs/data/mbench_a22_contact.csv` (CONTACT's results, with their
 //! source), solves every shift 0..10 mm with the same roll and wheel
@@ -66,11 +66,11 @@ fn read_reference() -> Vec<Row> {
 fn main() {
     let name = std::env::args().nth(1).unwrap_or_else(|| "exact".into());
     let model = match WheelRailModel::from_name(&name) {
-        Some(m) if m == WheelRailModel::Exact || m.is_hertz() => m,
+        Some(m) if m == WheelRailModel::Exact || m.is_fast() => m,
         _ => {
             eprintln!(
                 "unknown model {name}: use exact, hertz_fastsim, hertz_polach, \
-                 hertz_fastsim_elliptic or hertz_strip"
+                 hertz_fastsim_elliptic, hertz_strip or kik_piotrowski"
             );
             std::process::exit(2);
         }

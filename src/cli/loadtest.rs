@@ -224,13 +224,15 @@ impl Kind {
                     "hertz_polach" => pb::WheelRailModel::HertzPolach,
                     "hertz_fastsim_elliptic" => pb::WheelRailModel::HertzFastsimElliptic,
                     "hertz_strip" => pb::WheelRailModel::HertzStrip,
+                    "kik_piotrowski" => pb::WheelRailModel::KikPiotrowski,
                     "exact" => pb::WheelRailModel::Exact,
                     "cect" => pb::WheelRailModel::Cect,
                     "auto" => pb::WheelRailModel::Auto,
                     _ => {
                         return Err(format!(
                             "`{s}`: wheelrail models are hertz_fastsim, hertz_fastsim_table, \
-                             hertz_polach, hertz_fastsim_elliptic, hertz_strip, exact, cect, auto"
+                             hertz_polach, hertz_fastsim_elliptic, hertz_strip, kik_piotrowski, \
+                             exact, cect, auto"
                         ))
                     }
                 };
@@ -262,6 +264,7 @@ impl Kind {
                     pb::WheelRailModel::HertzPolach => "hertz_polach",
                     pb::WheelRailModel::HertzFastsimElliptic => "hertz_fastsim_elliptic",
                     pb::WheelRailModel::HertzStrip => "hertz_strip",
+                    pb::WheelRailModel::KikPiotrowski => "kik_piotrowski",
                     pb::WheelRailModel::Cect => "cect",
                     pb::WheelRailModel::Auto => "auto",
                     _ => "exact",

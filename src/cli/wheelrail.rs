@@ -42,7 +42,8 @@ pub struct WheelrailArgs {
 #[serde(deny_unknown_fields)]
 struct WheelrailCase {
     /// "exact" (default), "hertz_fastsim", "hertz_polach",
-    /// "hertz_fastsim_elliptic", "hertz_strip", "cect" or "auto".
+    /// "hertz_fastsim_elliptic", "hertz_strip", "kik_piotrowski", "cect" or
+    /// "auto".
     #[serde(default = "default_model")]
     model: String,
     /// "both" (default), "left" or "right".

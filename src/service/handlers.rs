@@ -707,9 +707,10 @@ fn patch_lane(case: &Case, sensitivities: bool) -> Lane {
     }
 }
 
-/// The solve lane of a wheel/rail model: the Hertz models are fast.
+/// The solve lane of a wheel/rail model: the Hertz models and
+/// kik_piotrowski are fast.
 fn wheelrail_lane(model: WheelRailModel) -> Lane {
-    Lane::of(model.is_hertz())
+    Lane::of(model.is_fast())
 }
 
 fn open_first() -> ServiceError {

@@ -76,6 +76,7 @@ pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
         Ok(pb::WheelRailModel::HertzPolach) => Ok(WheelRailModel::HertzPolach),
         Ok(pb::WheelRailModel::HertzFastsimElliptic) => Ok(WheelRailModel::HertzFastsimElliptic),
         Ok(pb::WheelRailModel::HertzStrip) => Ok(WheelRailModel::HertzStrip),
+        Ok(pb::WheelRailModel::KikPiotrowski) => Ok(WheelRailModel::KikPiotrowski),
         Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
         Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
         Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
@@ -95,6 +96,7 @@ pub fn wire_model(m: WheelRailModel) -> pb::WheelRailModel {
         WheelRailModel::HertzPolach => pb::WheelRailModel::HertzPolach,
         WheelRailModel::HertzFastsimElliptic => pb::WheelRailModel::HertzFastsimElliptic,
         WheelRailModel::HertzStrip => pb::WheelRailModel::HertzStrip,
+        WheelRailModel::KikPiotrowski => pb::WheelRailModel::KikPiotrowski,
         WheelRailModel::Cect => pb::WheelRailModel::Cect,
         WheelRailModel::Auto => pb::WheelRailModel::Auto,
     }
@@ -108,6 +110,7 @@ pub fn model_name(m: WheelRailModel) -> &'static str {
         WheelRailModel::HertzPolach => "wheelrail_hertz_polach",
         WheelRailModel::HertzFastsimElliptic => "wheelrail_hertz_fastsim_elliptic",
         WheelRailModel::HertzStrip => "wheelrail_hertz_strip",
+        WheelRailModel::KikPiotrowski => "wheelrail_kik_piotrowski",
         WheelRailModel::Cect => "wheelrail_cect",
         WheelRailModel::Auto => "wheelrail_auto",
     }

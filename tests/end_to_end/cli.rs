@@ -1109,13 +1109,13 @@ fn wheelrail_solves_with_polachs_model_and_checks_its_parameters() {
     );
 }
 
-/// Models hertz_fastsim_elliptic and hertz_strip: every patch names its
+/// Models hertz_fastsim_elliptic, hertz_strip and kik_piotrowski: every patch names its
 /// model, the wheels carry their load, the flange patch's creep force is
 /// near saturation (mu FN) as FASTSIM's; an unknown model is bad input
 /// listing the names.
 #[test]
-fn wheelrail_solves_with_the_elliptic_bound_and_strip_theory() {
-    for model in ["hertz_fastsim_elliptic", "hertz_strip"] {
+fn wheelrail_solves_with_the_elliptic_bound_strip_theory_and_kik_piotrowski() {
+    for model in ["hertz_fastsim_elliptic", "hertz_strip", "kik_piotrowski"] {
         let text = example_text("wheelset_a22.toml")
             .replace("model = \"exact\"", &format!("model = \"{model}\""));
         let v = wheelrail_json(&case_file(&format!("wr_{model}.toml"), &text));

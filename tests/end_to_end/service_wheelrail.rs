@@ -300,6 +300,7 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         WheelRailModel::HertzPolach,
         WheelRailModel::HertzFastsimElliptic,
         WheelRailModel::HertzStrip,
+        WheelRailModel::KikPiotrowski,
     ] {
         let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
         let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();

@@ -182,6 +182,19 @@ pub struct FastsimOutput {
     pub coefficients: CreepCoefficients,
 }
 
+/// One strip of a non-elliptic patch ([`Fastsim::solve_strips`]): the
+/// patch's part between two lines `y = const`, in contact over
+/// `|x - centre_x_m| < half_length_m`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PatchStrip {
+    /// Lateral position of the strip's centre line \[m\].
+    pub y_m: f64,
+    /// Half-length along `x` \[m\], >= 0 (0: no contact).
+    pub half_length_m: f64,
+    /// `x` of the strip's middle \[m\].
+    pub centre_x_m: f64,
+}
+
 /// How the flexibilities enter the traction increments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FlexibilityModel {
@@ -543,6 +556,133 @@ impl Fastsim {
         Ok(self.solve_reduced(&reduced, coef, k))
     }
 
+    /// FASTSIM on a non-elliptic patch of `strips`, each `strip_width_m`
+    /// wide \[m\] (> 0), with [`Fastsim::nx`] elements per strip: the
+    /// traction bound `mu pn` with the pressure semi-elliptic along each
+    /// strip, `pn = p_s sqrt(a_j^2 - (x - x_j)^2)/a_max` (`a_j`, `x_j` the
+    /// strip's half-length and middle, `a_max` the longest half-length:
+    /// Kik and Piotrowski's pressure, [`crate::core::kikpiotrowski`]),
+    /// `p_s` such that the midpoint sum of `pn` is `input.normal_force_n`;
+    /// the flexibilities those of the ellipse of `input`'s semi-axes (an
+    /// equivalent ellipse), spin slip `phi x` at the element's `x`. The
+    /// spin moment is about `x = 0`, `y = 0`; strips of half-length 0 carry
+    /// nothing. Totals only: the per-element fields and the traction bound
+    /// setting are not used. `bound_peak_pressure_pa` is `p_s`. No
+    /// allocation.
+    pub fn solve_strips(
+        &mut self,
+        input: &FastsimInput,
+        strips: &[PatchStrip],
+        strip_width_m: f64,
+    ) -> Result<FastsimOutput, FastsimError> {
+        validate(input)?;
+        if !(strip_width_m.is_finite() && strip_width_m > 0.0) {
+            return Err(FastsimError::InvalidInput {
+                name: "strip_width_m",
+                requirement: "finite and > 0",
+                value: strip_width_m,
+            });
+        }
+        let mut a_max = 0.0_f64;
+        for s in strips {
+            let finite = s.y_m.is_finite() && s.centre_x_m.is_finite();
+            if !(finite && s.half_length_m.is_finite() && s.half_length_m >= 0.0) {
+                return Err(FastsimError::InvalidInput {
+                    name: "strips",
+                    requirement: "finite positions and half-lengths >= 0",
+                    value: s.half_length_m,
+                });
+            }
+            a_max = a_max.max(s.half_length_m);
+        }
+        if a_max <= 0.0 {
+            return Err(FastsimError::InvalidInput {
+                name: "strips",
+                requirement: "at least one half-length > 0",
+                value: a_max,
+            });
+        }
+        let (a, b, g) = (
+            input.semi_axis_x_m,
+            input.semi_axis_y_m,
+            input.shear_modulus_pa,
+        );
+        let coef = kalker_creep_coefficients(a / b, input.poisson_ratio)?;
+        let (xi, eta, phi) = (input.creepage_long, input.creepage_lat, input.spin_per_m);
+        let (l1, l2, l3, l_slip) = self.flexibilities(a, b, g, &coef, [xi, eta, phi], 1.0);
+        let (nx, dy) = (self.nx, strip_width_m);
+        let live = || strips.iter().filter(|s| s.half_length_m > 0.0);
+        let mut shape_integral = 0.0;
+        for s in live() {
+            add_elliptic_strip(&mut shape_integral, s.half_length_m, nx, dy, a_max);
+        }
+        let k = StripConstants {
+            pn_scale: input.normal_force_n / shape_integral,
+            inv_a2: 1.0 / (a_max * a_max),
+            elliptic: true,
+            mu: input.friction_coefficient,
+            mu_static: input.static_friction_coefficient,
+            eta_l2: eta / l2,
+            phi_l3: phi / l3,
+            l_slip,
+            dy,
+        };
+        let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
+        let (mut tgamma, mut adh_area, mut tot_area, mut pmax) = (0.0, 0.0, 0.0, 0.0_f64);
+        let mut pending = live();
+        let mut batch = [PatchStrip::default(); LANES];
+        loop {
+            let mut lanes = 0;
+            while lanes < LANES {
+                let Some(s) = pending.next() else { break };
+                batch[lanes] = *s;
+                lanes += 1;
+            }
+            if lanes == 0 {
+                break;
+            }
+            let mut side: [Strip; LANES] = std::array::from_fn(|l| {
+                let s = batch[l.min(lanes - 1)];
+                let ay = s.half_length_m;
+                let dx = 2.0 * ay / nx as f64;
+                Strip {
+                    y: s.y_m,
+                    ay,
+                    dx,
+                    da: dx * dy,
+                    wx: xi / l1 - k.phi_l3 * s.y_m,
+                    wy0: k.eta_l2 + k.phi_l3 * s.centre_x_m,
+                    x_prev: ay,
+                    ..Strip::default()
+                }
+            });
+            let mut side_by_side = Lanes::from_strips(&side);
+            march_lanes(&mut side_by_side, nx, &k);
+            side_by_side.write_back(&mut side);
+            for (strip, s) in side[..lanes].iter_mut().zip(&batch) {
+                strip.release(&k);
+                fx += strip.fx;
+                fy += strip.fy;
+                // The march's x is about the strip's middle.
+                mz += strip.mz + s.centre_x_m * strip.fy;
+                tgamma += strip.tgamma;
+                adh_area += strip.adhesion_area;
+                tot_area += strip.area;
+                pmax = pmax.max(strip.pmax2);
+            }
+        }
+        Ok(FastsimOutput {
+            fx_n: fx,
+            fy_n: fy,
+            mz_nm: mz,
+            adhesion_fraction: adh_area / tot_area,
+            tgamma_n: tgamma,
+            max_traction_pa: pmax.sqrt(),
+            bound_peak_pressure_pa: k.pn_scale,
+            coefficients: coef,
+        })
+    }
+
     /// The solve of validated input with the flexibilities divided by `k`.
     fn solve_reduced(
         &mut self,
@@ -559,33 +699,7 @@ impl Fastsim {
             input.static_friction_coefficient,
         );
 
-        let c = (a * b).sqrt();
-        let mut l1 = 8.0 * a / (3.0 * coef.c11 * g) / k_reduction;
-        let mut l2 = 8.0 * a / (3.0 * coef.c22 * g) / k_reduction;
-        let mut l3 = std::f64::consts::PI * a * a / (4.0 * g * c * coef.c23) / k_reduction;
-        let norm = (xi * xi + eta * eta + c * c * phi * phi).sqrt();
-        let l_bar = if norm > 0.0 {
-            (xi.abs() * l1 + eta.abs() * l2 + c * phi.abs() * l3) / norm
-        } else {
-            l1
-        };
-        // Flexibility that converts W back into a slip velocity (see docs).
-        let l_slip = match self.flexibility {
-            FlexibilityModel::Weighted => {
-                (l1, l2, l3) = (l_bar, l_bar, l_bar);
-                l_bar
-            }
-            FlexibilityModel::Separate => {
-                let r2 = 0.25 * (a * a + b * b) * phi * phi;
-                let num = xi * xi / l1 + eta * eta / l2 + r2 / l3;
-                let den = xi * xi / (l1 * l1) + eta * eta / (l2 * l2) + r2 / (l3 * l3);
-                if den > 0.0 {
-                    num / den
-                } else {
-                    l1
-                }
-            }
-        };
+        let (l1, l2, l3, l_slip) = self.flexibilities(a, b, g, &coef, [xi, eta, phi], k_reduction);
 
         let nx = self.nx;
         let dy = 2.0 * b / self.ny as f64;
@@ -599,10 +713,7 @@ impl Fastsim {
             let dx = 2.0 * ay / nxf;
             if elliptic {
                 // Midpoint sum of sqrt(1 - x^2/a^2 - y^2/b^2) = sqrt(a_y^2 - x^2)/a.
-                for i in 0..nx {
-                    let x = ay - (i as f64 + 0.5) * dx;
-                    shape_integral += dy * dx * ((ay - x) * (ay + x)).max(0.0).sqrt() / a;
-                }
+                add_elliptic_strip(&mut shape_integral, ay, nx, dy, a);
             } else {
                 // Midpoint sum of (1 - x^2/a^2 - y^2/b^2) = (a_y^2 - x^2)/a^2,
                 // exact per strip: (4 a_y^3/3 + dx^2 a_y/6)/a^2.
@@ -638,6 +749,7 @@ impl Fastsim {
                     dx,
                     da: dx * dy,
                     wx: xi / l1 - k.phi_l3 * y,
+                    wy0: k.eta_l2,
                     x_prev: ay,
                     ..Strip::default()
                 }
@@ -674,6 +786,50 @@ impl Fastsim {
 }
 
 impl Fastsim {
+    /// Kalker's flexibilities `L1`, `L2`, `L3` of the ellipse `a`, `b`
+    /// \[m\] at shear modulus `g` \[Pa\], divided by the slope reduction
+    /// `k_reduction`, as the flexibility model uses them, and the
+    /// flexibility `L_s` that converts the increment rate back into a slip
+    /// velocity (module docs) [m/Pa].
+    fn flexibilities(
+        &self,
+        a: f64,
+        b: f64,
+        g: f64,
+        coef: &CreepCoefficients,
+        [xi, eta, phi]: [f64; 3],
+        k_reduction: f64,
+    ) -> (f64, f64, f64, f64) {
+        let c = (a * b).sqrt();
+        let mut l1 = 8.0 * a / (3.0 * coef.c11 * g) / k_reduction;
+        let mut l2 = 8.0 * a / (3.0 * coef.c22 * g) / k_reduction;
+        let mut l3 = std::f64::consts::PI * a * a / (4.0 * g * c * coef.c23) / k_reduction;
+        let norm = (xi * xi + eta * eta + c * c * phi * phi).sqrt();
+        let l_bar = if norm > 0.0 {
+            (xi.abs() * l1 + eta.abs() * l2 + c * phi.abs() * l3) / norm
+        } else {
+            l1
+        };
+        // Flexibility that converts W back into a slip velocity (see docs).
+        let l_slip = match self.flexibility {
+            FlexibilityModel::Weighted => {
+                (l1, l2, l3) = (l_bar, l_bar, l_bar);
+                l_bar
+            }
+            FlexibilityModel::Separate => {
+                let r2 = 0.25 * (a * a + b * b) * phi * phi;
+                let num = xi * xi / l1 + eta * eta / l2 + r2 / l3;
+                let den = xi * xi / (l1 * l1) + eta * eta / (l2 * l2) + r2 / (l3 * l3);
+                if den > 0.0 {
+                    num / den
+                } else {
+                    l1
+                }
+            }
+        };
+        (l1, l2, l3, l_slip)
+    }
+
     /// Integrates `strips` (strips `j0..` of the grid) element by element
     /// from the leading edge, storing the per-element fields.
     fn march(&mut self, j0: usize, strips: &mut [Strip], k: &StripConstants) {
@@ -705,6 +861,7 @@ struct Lanes {
     dx: [f64; LANES],
     da: [f64; LANES],
     wx: [f64; LANES],
+    wy0: [f64; LANES],
     px: [f64; LANES],
     py: [f64; LANES],
     x_prev: [f64; LANES],
@@ -722,7 +879,8 @@ impl Lanes {
     fn from_strips(strips: &[Strip; LANES]) -> Self {
         let mut out = Self::default();
         for (l, s) in strips.iter().enumerate() {
-            (out.y[l], out.ay[l], out.dx[l], out.da[l], out.wx[l]) = (s.y, s.ay, s.dx, s.da, s.wx);
+            (out.y[l], out.ay[l], out.dx[l], out.da[l]) = (s.y, s.ay, s.dx, s.da);
+            (out.wx[l], out.wy0[l]) = (s.wx, s.wy0);
             (out.px[l], out.py[l], out.x_prev[l]) = (s.px, s.py, s.x_prev);
             (out.fx[l], out.fy[l], out.mz[l], out.tgamma[l]) = (s.fx, s.fy, s.mz, s.tgamma);
             (out.adhesion_area[l], out.area[l], out.pmax2[l]) = (s.adhesion_area, s.area, s.pmax2);
@@ -760,7 +918,7 @@ fn march_lanes_body(s: &mut Lanes, nx: usize, k: &StripConstants) {
             let (ay, dx, da) = (s.ay[l], s.dx[l], s.da[l]);
             let x = ay - centre * dx;
             let step = s.x_prev[l] - x;
-            let wy = k.eta_l2 + k.phi_l3 * 0.5 * (s.x_prev[l] + x);
+            let wy = s.wy0[l] + k.phi_l3 * 0.5 * (s.x_prev[l] + x);
             let (px_prev, py_prev) = (s.px[l], s.py[l]);
             let hx = px_prev - s.wx[l] * step;
             let hy = py_prev - wy * step;
@@ -829,7 +987,12 @@ struct Strip {
     ay: f64,
     dx: f64,
     da: f64,
+    /// Rigid slip rates over the flexibilities: `wx` the longitudinal
+    /// one, `wy0` the lateral one without the spin term of `x` about the
+    /// strip's centre (`eta/L2`, plus `phi x_c/L3` for a strip centred at
+    /// `x_c`).
     wx: f64,
+    wy0: f64,
     px: f64,
     py: f64,
     x_prev: f64,
@@ -863,7 +1026,7 @@ impl Strip {
         let (ay, dx, da, y) = (self.ay, self.dx, self.da, self.y);
         let x = ay - (i as f64 + 0.5) * dx;
         let step = self.x_prev - x;
-        let wy = k.eta_l2 + k.phi_l3 * 0.5 * (self.x_prev + x);
+        let wy = self.wy0 + k.phi_l3 * 0.5 * (self.x_prev + x);
         let (px_prev, py_prev) = (self.px, self.py);
         let hx = self.px - self.wx * step;
         let hy = self.py - wy * step;
@@ -915,7 +1078,7 @@ impl Strip {
     /// the bound vanishes: p -> 0, slip Lbar (0 - p_H)/h.
     fn release(&mut self, k: &StripConstants) {
         let step = self.x_prev + self.ay;
-        let wy = k.eta_l2 + k.phi_l3 * 0.5 * (self.x_prev - self.ay);
+        let wy = self.wy0 + k.phi_l3 * 0.5 * (self.x_prev - self.ay);
         let hx = self.px - self.wx * step;
         let hy = self.py - wy * step;
         self.tgamma += 0.5 * k.l_slip * (self.px * hx + self.py * hy) * k.dy;
@@ -937,6 +1100,17 @@ fn slip_work(
     k: &StripConstants,
 ) -> f64 {
     0.5 * k.l_slip * ((px_prev + px) * (px - hx) + (py_prev + py) * (py - hy)) * k.dy
+}
+
+/// Adds to `sum` the midpoint sum over `nx` elements of a strip of
+/// half-length `ay` and width `dy` of `sqrt(ay^2 - x^2)/a` (element by
+/// element, the order the totals' bits depend on).
+fn add_elliptic_strip(sum: &mut f64, ay: f64, nx: usize, dy: f64, a: f64) {
+    let dx = 2.0 * ay / nx as f64;
+    for i in 0..nx {
+        let x = ay - (i as f64 + 0.5) * dx;
+        *sum += dy * dx * ((ay - x) * (ay + x)).max(0.0).sqrt() / a;
+    }
 }
 
 /// Half-length `a(y_j)` of strip `j`.

@@ -110,6 +110,12 @@ pub fn complete_elliptic(m: f64) -> Result<CompleteElliptic, HertzError> {
     Ok(CompleteElliptic { k, e: k - m * d, d })
 }
 
+/// `D(m) = (K - E)/m` alone for `0 <= m < 1` (unchecked), the half of
+/// [`complete_elliptic`]'s work that `D` needs.
+pub(crate) fn elliptic_d(m: f64) -> f64 {
+    carlson_rd(0.0, 1.0 - m, 1.0) / 3.0
+}
+
 /// Stop the duplication once all relative deviations from the mean are below
 /// this; the neglected terms are then O(1e-18).
 const CARLSON_TOL: f64 = 1e-3;

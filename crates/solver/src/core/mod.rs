@@ -15,6 +15,7 @@ pub mod friclaw;
 pub mod grid;
 pub mod hertz;
 pub mod influence;
+pub mod kikpiotrowski;
 pub mod material;
 pub mod normal;
 pub mod polach;

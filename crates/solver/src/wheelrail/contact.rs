@@ -77,6 +77,7 @@ use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, TractionBound};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
+use crate::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection, DEFAULT_STRIPS};
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
 use crate::core::polach::{polach, PolachParameters};
@@ -123,6 +124,15 @@ pub enum WheelRailModel {
     /// ([`crate::core::strip`], after Sichani et al.'s FaStrip): closed
     /// form per strip, with the kinetic friction coefficient.
     HertzStrip,
+    /// Kik and Piotrowski's non-elliptic normal contact
+    /// ([`crate::core::kikpiotrowski`]) on each patch's undeformed
+    /// distance (its lateral sections: the virtual penetration 0.55 times
+    /// the penetration gives the area, a semi-elliptic pressure along each
+    /// strip scaled by the displacement at the point of largest
+    /// interpenetration), FASTSIM on that area for the creep forces
+    /// ([`crate::core::fastsim::Fastsim::solve_strips`], flexibilities of
+    /// the equivalent ellipse, [`KIK_PIOTROWSKI_STRIPS`] strips).
+    KikPiotrowski,
     /// The conformal method (CECT with Blanco's influence coefficients) on
     /// every patch: curved patch, undeformed distance along local normals,
     /// normal and tangential problems coupled. Wheels with one patch only
@@ -145,18 +155,20 @@ impl WheelRailModel {
             Self::HertzPolach => "hertz_polach",
             Self::HertzFastsimElliptic => "hertz_fastsim_elliptic",
             Self::HertzStrip => "hertz_strip",
+            Self::KikPiotrowski => "kik_piotrowski",
             Self::Cect => "cect",
             Self::Auto => "auto",
         }
     }
 
     /// Every model, in the order of [`WheelRailModel::name`]'s list.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::Exact,
         Self::HertzFastsim,
         Self::HertzPolach,
         Self::HertzFastsimElliptic,
         Self::HertzStrip,
+        Self::KikPiotrowski,
         Self::Cect,
         Self::Auto,
     ];
@@ -176,7 +188,18 @@ impl WheelRailModel {
             Self::HertzFastsim | Self::HertzPolach | Self::HertzFastsimElliptic | Self::HertzStrip
         )
     }
+
+    /// Whether the model is one of the fast ones (a Hertz model or
+    /// `kik_piotrowski`: no influence-coefficient solve).
+    pub fn is_fast(self) -> bool {
+        self.is_hertz() || self == Self::KikPiotrowski
+    }
 }
+
+/// Strips across a patch of model `kik_piotrowski`
+/// ([`crate::core::kikpiotrowski::DEFAULT_STRIPS`]; FASTSIM takes the 40
+/// elements per strip of the wheel/rail solver's).
+pub const KIK_PIOTROWSKI_STRIPS: usize = DEFAULT_STRIPS;
 
 /// Strips of model `hertz_strip` (midpoint rule over the ellipse: force
 /// errors below 1e-4 relative, module docs of [`crate::core::strip`]).
@@ -311,9 +334,9 @@ impl WheelRailInput {
 /// One contact patch of a wheel.
 #[derive(Debug, Clone, Serialize)]
 pub struct PatchResult {
-    /// Method that solved the patch: "exact", "cect" or the Hertz model's
-    /// name ([`WheelRailModel::name`]: "hertz_fastsim", "hertz_polach",
-    /// "hertz_fastsim_elliptic", "hertz_strip").
+    /// Method that solved the patch: "exact", "cect", "kik_piotrowski" or
+    /// the Hertz model's name ([`WheelRailModel::name`]: "hertz_fastsim",
+    /// "hertz_polach", "hertz_fastsim_elliptic", "hertz_strip").
     pub method: &'static str,
     /// Variation of the rail's contact angle over the loaded lateral extent
     /// \[rad\] (0 for Hertz+FASTSIM).
@@ -355,7 +378,9 @@ pub struct PatchResult {
     pub approach_m: f64,
     /// Largest pressure \[Pa\]; of a Hertz model's patch Hertz's
     /// `p0 = 3 Fn/(2 pi a b)`, whatever the bound of its FASTSIM (the
-    /// parabolic bound peaks at `4/3 p0`, the elliptic at `p0`).
+    /// parabolic bound peaks at `4/3 p0`, the elliptic at `p0`); of a
+    /// `kik_piotrowski` patch the peak of its pressure, which its FASTSIM
+    /// bound shares.
     pub max_pressure_pa: f64,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
@@ -496,6 +521,11 @@ enum PatchKind {
         geometry: Box<ConformalGeometry>,
         /// Buffers kept over the load iteration's solves.
         workspace: Box<FrictionalWorkspace>,
+    },
+    KikPiotrowski {
+        /// The undeformed distance's lateral sections (patch frame).
+        sections: Vec<KpSection>,
+        method: Box<KikPiotrowski>,
     },
 }
 
@@ -640,6 +670,30 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
             }
+            PatchKind::KikPiotrowski { sections, method } => {
+                let n = method
+                    .solve_normal(sections, load, input.material.effective_modulus_pa())
+                    .map_err(|e| ContactError::invalid("kik_piotrowski", e.to_string()))?;
+                let mut out = PatchOutcome {
+                    fn_n: n.normal_force_n,
+                    approach_m: n.approach_m,
+                    max_pressure_pa: n.max_pressure_pa,
+                    area_m2: n.contact_area_m2,
+                    ..PatchOutcome::default()
+                };
+                if frictional {
+                    let tangential = fastsim_input(&self.creep, input, 0.0, 0.0, 0.0);
+                    let f = method
+                        .solve_tangential(&n, &tangential, fastsim)
+                        .map_err(|e| ContactError::invalid("kik_piotrowski", e.to_string()))?;
+                    out.fx_n = f.fx_n;
+                    out.fs_n = f.fy_n;
+                    out.mz_nm = f.mz_nm;
+                    out.adhesion = f.adhesion_fraction;
+                    out.tgamma_n = f.tgamma_n;
+                }
+                self.out = out;
+            }
             PatchKind::Hertz {
                 a_per_m,
                 b_per_m,
@@ -666,20 +720,13 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
                 if frictional {
-                    let tangential = FastsimInput {
-                        semi_axis_x_m: h.semi_axis_x_m,
-                        semi_axis_y_m: h.semi_axis_y_m,
-                        normal_force_n: h.normal_force_n,
-                        shear_modulus_pa: input.material.shear_modulus_pa,
-                        poisson_ratio: input.material.poisson_ratio,
-                        // Polach's model takes the static one as its mu0,
-                        // the coefficient at zero slip velocity.
-                        friction_coefficient: input.friction.kinetic_coefficient,
-                        static_friction_coefficient: input.friction.static_coefficient,
-                        creepage_long: self.creep.creepage_long,
-                        creepage_lat: self.creep.creepage_lat,
-                        spin_per_m: self.creep.spin_per_m,
-                    };
+                    let tangential = fastsim_input(
+                        &self.creep,
+                        input,
+                        h.semi_axis_x_m,
+                        h.semi_axis_y_m,
+                        h.normal_force_n,
+                    );
                     // (Fx, Fs, Mz, adhesion fraction, T gamma) of the model.
                     let (fx, fs, mz, adhesion, tgamma) = match model {
                         WheelRailModel::HertzPolach => {
@@ -715,6 +762,31 @@ impl PatchWork {
             }
         }
         Ok(())
+    }
+}
+
+/// The tangential problem of a patch with creepages `creep` on the ellipse
+/// `a`, `b` \[m\] at normal force `fn_n` \[N\].
+fn fastsim_input(
+    creep: &Creepages,
+    input: &WheelRailInput,
+    a: f64,
+    b: f64,
+    fn_n: f64,
+) -> FastsimInput {
+    FastsimInput {
+        semi_axis_x_m: a,
+        semi_axis_y_m: b,
+        normal_force_n: fn_n,
+        shear_modulus_pa: input.material.shear_modulus_pa,
+        poisson_ratio: input.material.poisson_ratio,
+        // Polach's model takes the static one as its mu0, the coefficient
+        // at zero slip velocity.
+        friction_coefficient: input.friction.kinetic_coefficient,
+        static_friction_coefficient: input.friction.static_coefficient,
+        creepage_long: creep.creepage_long,
+        creepage_lat: creep.creepage_lat,
+        spin_per_m: creep.spin_per_m,
     }
 }
 
@@ -1479,6 +1551,7 @@ fn build_patch(
             let solver = Box::new(ContactSolver::new(&problem, cache));
             PatchKind::Exact { problem, solver }
         }
+        WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom)?,
         WheelRailModel::Cect => {
             let grid = patch_grid(&geom, cap, input, None)?;
             PatchKind::Conformal {
@@ -1492,6 +1565,10 @@ fn build_patch(
             problem.gap_m.iter().copied().fold(f64::INFINITY, f64::min)
         }
         PatchKind::Hertz { .. } => hmin,
+        PatchKind::KikPiotrowski { sections, .. } => sections
+            .iter()
+            .map(|s| s.gap_m)
+            .fold(f64::INFINITY, f64::min),
         // The curves are put in touch at the reference point.
         PatchKind::Conformal { .. } => geom.min_vertical_gap_m * nz,
     };
@@ -1507,6 +1584,32 @@ fn build_patch(
         warm_pressure: None,
         warm_tractions: None,
         solver_s: [0.0; 2],
+    })
+}
+
+/// A `kik_piotrowski` patch on the lateral samples of `geom`'s undeformed
+/// distance (samples without curvature along `x`, where the wheel's is not
+/// positive, are left out).
+fn kik_piotrowski_kind(geom: &PatchGeometry) -> Result<PatchKind, WheelRailError> {
+    let sections: Vec<KpSection> = geom
+        .lateral
+        .iter()
+        .filter(|l| l.kx_per_m > 0.0)
+        .map(|l| KpSection {
+            y_m: l.s_m,
+            gap_m: l.gap_m,
+            centre_x_m: l.dx_m,
+            curvature_x_per_m: l.kx_per_m,
+        })
+        .collect();
+    let method = KikPiotrowski::new(KikPiotrowskiSettings {
+        strips: KIK_PIOTROWSKI_STRIPS,
+        ..KikPiotrowskiSettings::default()
+    })
+    .map_err(|e| WheelRailError::invalid("model", e.to_string()))?;
+    Ok(PatchKind::KikPiotrowski {
+        sections,
+        method: Box::new(method),
     })
 }
 
@@ -1851,11 +1954,12 @@ pub(crate) fn load_iteration(
                     ),
                 ));
             }
-            // A Hertz patch is solved the same way at either accuracy, and
+            // A Hertz (or Kik-Piotrowski) patch is solved the same way at
+            // either accuracy, and
             // from a warm start (the last steps' ratio) the first solve is
             // usually within the load tolerance: either may be the answer.
             let accuracy = match p.kind {
-                PatchKind::Hertz { .. } => Accuracy::Final,
+                PatchKind::Hertz { .. } | PatchKind::KikPiotrowski { .. } => Accuracy::Final,
                 PatchKind::Exact { .. } if start.is_some() => Accuracy::Final,
                 _ => {
                     frictional_accuracy(last.is_none(), it, max_it).or_final(&input.settings.solver)
@@ -2183,6 +2287,7 @@ pub(crate) fn finish(
         let (method, variation) = match &p.kind {
             PatchKind::Exact { .. } => ("exact", exact_angle_variation(rail, &p)),
             PatchKind::Hertz { model, .. } => (model.name(), 0.0),
+            PatchKind::KikPiotrowski { .. } => ("kik_piotrowski", 0.0),
             PatchKind::Conformal { .. } => ("cect", p.out.angle_variation_rad),
         };
         // The patch is consumed: hand its per-element solution over.
@@ -2208,7 +2313,7 @@ pub(crate) fn finish(
             PatchKind::Exact { problem, .. } => {
                 ([problem.grid.nx, problem.grid.ny], Some(problem.grid))
             }
-            PatchKind::Hertz { .. } => ([0, 0], None),
+            PatchKind::Hertz { .. } | PatchKind::KikPiotrowski { .. } => ([0, 0], None),
             PatchKind::Conformal { geometry, .. } => {
                 ([geometry.grid.nx, geometry.grid.ny], Some(geometry.grid))
             }

@@ -89,6 +89,7 @@ class WheelRailModel(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_MODEL_HERTZ_POLACH: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_STRIP: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_KIK_PIOTROWSKI: _ClassVar[WheelRailModel]
 
 class WheelSides(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -155,6 +156,7 @@ WHEEL_RAIL_MODEL_HERTZ_FASTSIM_TABLE: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_POLACH: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_STRIP: WheelRailModel
+WHEEL_RAIL_MODEL_KIK_PIOTROWSKI: WheelRailModel
 WHEEL_SIDES_UNSPECIFIED: WheelSides
 WHEEL_SIDES_BOTH: WheelSides
 WHEEL_SIDES_LEFT: WheelSides
