@@ -1955,9 +1955,9 @@ pub(crate) fn load_iteration(
                 ));
             }
             // A Hertz (or Kik-Piotrowski) patch is solved the same way at
-            // either accuracy, and
-            // from a warm start (the last steps' ratio) the first solve is
-            // usually within the load tolerance: either may be the answer.
+            // either accuracy, and from a warm start (the last steps' ratio)
+            // an exact patch's first solve is usually within the load
+            // tolerance: either may be the answer.
             let accuracy = match p.kind {
                 PatchKind::Hertz { .. } | PatchKind::KikPiotrowski { .. } => Accuracy::Final,
                 PatchKind::Exact { .. } if start.is_some() => Accuracy::Final,
