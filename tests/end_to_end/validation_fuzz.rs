@@ -171,6 +171,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         solver: None,
         subsurface: None,
         temperature: None,
+        conformal: None,
     }
 }
 

@@ -40,6 +40,12 @@ class GeometryKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     GEOMETRY_KIND_CONFORMAL_POINTS: _ClassVar[GeometryKind]
     GEOMETRY_KIND_LINE: _ClassVar[GeometryKind]
 
+class RigidSlip(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    RIGID_SLIP_UNSPECIFIED: _ClassVar[RigidSlip]
+    RIGID_SLIP_ACTUAL_SURFACE: _ClassVar[RigidSlip]
+    RIGID_SLIP_REFERENCE_SECTION: _ClassVar[RigidSlip]
+
 class SolveStatus(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     SOLVE_STATUS_UNSPECIFIED: _ClassVar[SolveStatus]
@@ -123,6 +129,9 @@ GEOMETRY_KIND_QUADRATIC: GeometryKind
 GEOMETRY_KIND_CONFORMAL_CIRCULAR: GeometryKind
 GEOMETRY_KIND_CONFORMAL_POINTS: GeometryKind
 GEOMETRY_KIND_LINE: GeometryKind
+RIGID_SLIP_UNSPECIFIED: RigidSlip
+RIGID_SLIP_ACTUAL_SURFACE: RigidSlip
+RIGID_SLIP_REFERENCE_SECTION: RigidSlip
 SOLVE_STATUS_UNSPECIFIED: SolveStatus
 SOLVE_STATUS_CONVERGED: SolveStatus
 SOLVE_STATUS_MAX_ITERATIONS: SolveStatus
@@ -322,7 +331,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "conformal")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -334,6 +343,7 @@ class PatchCase(_message.Message):
     SOLVER_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -345,7 +355,14 @@ class PatchCase(_message.Message):
     solver: SolverSection
     subsurface: SubsurfaceSection
     temperature: TemperatureSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
+
+class ConformalSection(_message.Message):
+    __slots__ = ("rigid_slip",)
+    RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
+    rigid_slip: RigidSlip
+    def __init__(self, rigid_slip: _Optional[_Union[RigidSlip, str]] = ...) -> None: ...
 
 class ThermalBody(_message.Message):
     __slots__ = ("bulk_temperature_k", "conductivity_w_per_m_k", "density_kg_per_m3", "specific_heat_j_per_kg_k")
