@@ -58,7 +58,7 @@ pub fn model(m: i32) -> Result<Model, ServiceError> {
 
 /// The rigid slip surface of a wire `conformal.rigid_slip` (None: not set,
 /// the default).
-fn rigid_slip(r: i32) -> Result<Option<RigidSlipSurface>, ServiceError> {
+pub fn rigid_slip(r: i32) -> Result<Option<RigidSlipSurface>, ServiceError> {
     match pb::RigidSlip::try_from(r) {
         Ok(pb::RigidSlip::Unspecified) => Ok(None),
         Ok(pb::RigidSlip::ActualSurface) => Ok(Some(RigidSlipSurface::ActualSurface)),

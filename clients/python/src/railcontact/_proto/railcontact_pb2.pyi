@@ -1074,7 +1074,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1085,6 +1085,7 @@ class SolveWheelRailRequest(_message.Message):
     ELEMENT_SIZE_M_FIELD_NUMBER: _ClassVar[int]
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
     POLACH_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1095,7 +1096,8 @@ class SolveWheelRailRequest(_message.Message):
     element_size_m: float
     include_fields: bool
     polach: PolachParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1256,7 +1258,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1265,6 +1267,7 @@ class WheelRailSessionOpen(_message.Message):
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
     CLIENT_LABEL_FIELD_NUMBER: _ClassVar[int]
     POLACH_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1273,7 +1276,8 @@ class WheelRailSessionOpen(_message.Message):
     include_fields: bool
     client_label: str
     polach: PolachParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
