@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
+use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::polach::PolachParameters;
@@ -63,6 +64,17 @@ struct WheelrailCase {
     grid: GridKeys,
     /// Model hertz_polach: its parameters (default: Polach's 1999 model).
     polach: Option<PolachKeys>,
+    /// Models cect and auto: options of the conformal method.
+    conformal: Option<ConformalKeys>,
+}
+
+/// `[conformal]`: the conformal method's rigid slip (models cect, auto).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConformalKeys {
+    /// "actual_surface" (default) or "reference_section".
+    #[serde(default)]
+    rigid_slip: RigidSlipSurface,
 }
 
 /// `[polach]`: every key required when the section is given.
@@ -246,6 +258,12 @@ impl WheelrailRun {
             ))
         })?;
         let model_name = model.name();
+        if c.conformal.is_some() && !matches!(model, WheelRailModel::Cect | WheelRailModel::Auto) {
+            return Err(bad(format!(
+                "invalid input `conformal`: options of the conformal method, models \"cect\" \
+                 and \"auto\", not \"{model_name}\""
+            )));
+        }
         let sides = match c.side.to_ascii_lowercase().as_str() {
             "both" => Side::BOTH.to_vec(),
             "left" => vec![Side::Left],
@@ -343,6 +361,11 @@ impl WheelrailRun {
                     },
                     None => PolachParameters::default(),
                 },
+                rigid_slip: c
+                    .conformal
+                    .as_ref()
+                    .map(|k| k.rigid_slip)
+                    .unwrap_or_default(),
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: l.total_longitudinal_force_n,

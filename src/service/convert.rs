@@ -7,6 +7,7 @@
 //! solutions and the CLI's reports become [`pb::PatchResult`]s, and a
 //! non-finite total is refused here, never sent.
 
+use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::friclaw::SlipStart;
 use crate::core::grid::Grid;
 use crate::core::material::Material;
@@ -17,9 +18,9 @@ use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveS
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::core::temperature::{SurfaceTemperatures, TemperaturePeak, ThermalBody, ThermalInput};
 use crate::problem::case::{
-    ranges, Case, CaseFile, ExtraRigidSlipSection, FrictionLawName, FrictionSection, GeometryKind,
-    GeometrySection, GridSection, LoadSection, MaterialSection, Model, RollingSection,
-    SolverSection, StepSection, SubsurfaceSection, TransientSection,
+    ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FrictionLawName,
+    FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection, MaterialSection,
+    Model, RollingSection, SolverSection, StepSection, SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepReport,
@@ -52,6 +53,20 @@ pub fn model(m: i32) -> Result<Model, ServiceError> {
         Ok(pb::Model::Cect) => Ok(Model::Cect),
         Ok(pb::Model::CectHalfspace) => Ok(Model::CectHalfspace),
         Err(_) => Err(ServiceError::invalid("model", format!("unknown model {m}"))),
+    }
+}
+
+/// The rigid slip surface of a wire `conformal.rigid_slip` (None: not set,
+/// the default).
+pub fn rigid_slip(r: i32) -> Result<Option<RigidSlipSurface>, ServiceError> {
+    match pb::RigidSlip::try_from(r) {
+        Ok(pb::RigidSlip::Unspecified) => Ok(None),
+        Ok(pb::RigidSlip::ActualSurface) => Ok(Some(RigidSlipSurface::ActualSurface)),
+        Ok(pb::RigidSlip::ReferenceSection) => Ok(Some(RigidSlipSurface::ReferenceSection)),
+        Err(_) => Err(ServiceError::invalid(
+            "conformal.rigid_slip",
+            format!("unknown value {r}"),
+        )),
     }
 }
 
@@ -309,6 +324,15 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             slip_x: values(&e.slip_x),
             slip_y: values(&e.slip_y),
         }),
+        conformal: c
+            .conformal
+            .as_ref()
+            .map(|s| {
+                Ok::<_, ServiceError>(ConformalSection {
+                    rigid_slip: rigid_slip(s.rigid_slip)?,
+                })
+            })
+            .transpose()?,
     })
 }
 

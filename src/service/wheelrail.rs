@@ -7,11 +7,14 @@
 //! (`position.yaw_rad`, `velocity.forward_m_per_s`, `load.approach_m`) are
 //! the request's field paths.
 
+use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::error::{Range, UnitHint};
 use crate::core::material::CombinedMaterial;
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
-use crate::service::convert::{check_fields_finite, finite_values, grid_info, planar_fields};
+use crate::service::convert::{
+    check_fields_finite, finite_values, grid_info, planar_fields, rigid_slip,
+};
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -169,6 +172,30 @@ impl QuerySettings {
         })
     }
 
+    /// The settings with the conformal method's options of the request
+    /// (field `conformal`, models cect and auto only; not set: the
+    /// defaults).
+    pub fn with_conformal(
+        mut self,
+        c: Option<&pb::ConformalSection>,
+    ) -> Result<Self, ServiceError> {
+        if let Some(c) = c {
+            if !matches!(
+                self.settings.model,
+                WheelRailModel::Cect | WheelRailModel::Auto
+            ) {
+                return Err(ServiceError::invalid(
+                    "conformal",
+                    "options of the conformal method: models cect and auto only",
+                ));
+            }
+            if let Some(r) = rigid_slip(c.rigid_slip)? {
+                self.settings.rigid_slip = r;
+            }
+        }
+        Ok(self)
+    }
+
     /// The settings with Polach's parameters of the request (field
     /// `polach`; not set: his 1999 model).
     pub fn with_polach(mut self, p: Option<&pb::PolachParameters>) -> Result<Self, ServiceError> {
@@ -310,6 +337,7 @@ pub fn input(
         settings,
     )?
     .with_polach(req.polach.as_ref())?
+    .with_conformal(req.conformal.as_ref())?
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
@@ -365,6 +393,16 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
                 limit_ratio: p.limit_ratio,
                 decay_s_per_m: p.decay_s_per_m,
             }
+        }),
+        conformal: matches!(
+            input.settings.model,
+            WheelRailModel::Cect | WheelRailModel::Auto
+        )
+        .then(|| pb::ConformalSection {
+            rigid_slip: match input.settings.rigid_slip {
+                RigidSlipSurface::ActualSurface => pb::RigidSlip::ActualSurface,
+                RigidSlipSurface::ReferenceSection => pb::RigidSlip::ReferenceSection,
+            } as i32,
         }),
     }
 }

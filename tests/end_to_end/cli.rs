@@ -1039,6 +1039,11 @@ fn wheelrail_bad_inputs_name_the_key() {
         &good.replace("[grid]", "[grid]\nelement_size = 0.1"),
         "element_size",
     );
+    expect_bad_wheelrail(
+        "wr_conformal.toml",
+        &format!("{good}\n[conformal]\nrigid_slip = \"reference_section\"\n"),
+        "conformal",
+    );
 }
 
 /// Measured profiles read from files next to the case: a MiniProf wheel on a

@@ -546,6 +546,25 @@ fn cect_rolling(c: f64) -> pb::PatchCase {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn cect_takes_the_rigid_slip_on_the_actual_surfaces_unless_asked_otherwise() {
+    let (server, mut client) = server().await;
+    let with = |r: pb::RigidSlip| {
+        let mut c = cect_rolling(0.86e-3);
+        c.conformal = Some(pb::ConformalSection {
+            rigid_slip: r as i32,
+        });
+        c
+    };
+    let default = solve_patch(&mut client, cect_rolling(0.86e-3)).await;
+    let actual = solve_patch(&mut client, with(pb::RigidSlip::ActualSurface)).await;
+    let section = solve_patch(&mut client, with(pb::RigidSlip::ReferenceSection)).await;
+    let t = |r: &pb::PatchResult| bits(totals(r.result.as_ref().unwrap()));
+    assert_eq!(t(&default), t(&actual));
+    assert_ne!(t(&default), t(&section));
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_cect_session_equals_single_solves_bit_for_bit() {
     // The session keeps its conformal buffers from step to step; a single
     // solve starts with new ones. The answers must not tell them apart.
@@ -689,6 +708,14 @@ async fn bad_inputs_get_invalid_argument_naming_the_field() {
         },
         "`include_fields`",
     ));
+    let mut c = sphere(pb::Model::Exact, 16);
+    c.conformal = Some(pb::ConformalSection {
+        rigid_slip: pb::RigidSlip::ReferenceSection as i32,
+    });
+    cases.push((request(c), "`case.conformal`"));
+    let mut c = cect_rolling(1e-3);
+    c.conformal = Some(pb::ConformalSection { rigid_slip: 7 });
+    cases.push((request(c), "`case.conformal.rigid_slip`"));
     for (req, field) in cases {
         let (code, msg) = failure(client.solve_patch(req).await);
         assert_eq!(code, Code::InvalidArgument, "{field}: {msg}");

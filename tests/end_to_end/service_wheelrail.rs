@@ -9,6 +9,7 @@ use crate::support;
 
 use std::path::Path;
 
+use railcontact::conformal::geometry::RigidSlipSurface;
 use railcontact::core::cache::KernelCache;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
@@ -344,6 +345,31 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
     server.shutdown().await;
 }
 
+#[tokio::test]
+async fn cect_queries_take_the_rigid_slip_asked_for_as_the_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    for surface in [
+        RigidSlipSurface::ActualSurface,
+        RigidSlipSurface::ReferenceSection,
+    ] {
+        let mut input = mbench_a22_input(0.0, None, None, WheelRailModel::Cect);
+        input.settings.rigid_slip = surface;
+        let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+        let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+        assert_same(&format!("cect {surface:?}"), &got, &want);
+    }
+    let mut r = query_of(
+        BUILTIN,
+        &mbench_a22_input(0.0, None, None, WheelRailModel::Cect),
+    );
+    r.conformal = Some(pb::ConformalSection { rigid_slip: 9 });
+    assert_invalid(&solve_err(&mut client, r).await, &["conformal.rigid_slip"]);
+    server.shutdown().await;
+}
+
 /// A prescribed total longitudinal force: the pitch rate is found as by
 /// the library, bit for bit, with its report; saturation, a force with a
 /// pitch rate, and a force out of the documented range are INVALID_ARGUMENT
@@ -666,6 +692,9 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
     let mut r = good.clone();
     r.model = 42;
     assert_invalid(&solve_err(&mut client, r).await, &["model"]);
+    let mut r = good.clone();
+    r.conformal = Some(pb::ConformalSection::default());
+    assert_invalid(&solve_err(&mut client, r).await, &["conformal", "cect"]);
     // The server still answers.
     solve(&mut client, good).await;
     server.shutdown().await;

@@ -173,6 +173,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         temperature: None,
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        conformal: None,
     }
 }
 

@@ -29,7 +29,9 @@
 
 use std::sync::Arc;
 
-use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry};
+use crate::conformal::geometry::{
+    midplane_rail_weight, ConformalCreepages, ConformalGeometry, RigidSlipSurface,
+};
 use crate::conformal::operator::{ConformalOperator, InfluenceModel, Tractions};
 use crate::conformal::solve::border_error;
 use crate::core::cache::KernelCache;
@@ -88,6 +90,9 @@ pub struct ConformalSettings {
     pub coupling_tolerance: f64,
     /// Alternation limit (default 50).
     pub coupling_max_iterations: usize,
+    /// Where steady rolling takes the rigid velocities (default
+    /// [`RigidSlipSurface::ActualSurface`]).
+    pub rigid_slip: RigidSlipSurface,
 }
 
 impl Default for ConformalSettings {
@@ -97,6 +102,7 @@ impl Default for ConformalSettings {
             tangential: TangentialSettings::default(),
             coupling_tolerance: 1e-8,
             coupling_max_iterations: 50,
+            rigid_slip: RigidSlipSurface::default(),
         }
     }
 }
@@ -364,9 +370,7 @@ pub fn solve_frictional(
     let mut prev_approach = 0.0;
     for (k, &(force, creep)) in steps.iter().enumerate() {
         crate::core::error::require_positive("load.normal_force_n", force)?;
-        if let Some(c) = &creep {
-            geometry.rigid_slip(c, wx, ws);
-        } else if k > 0 {
+        if creep.is_none() && k > 0 {
             // Displacement difference of the previous step's tractions.
             a_op.apply_parts(
                 Precision::Double,
@@ -452,6 +456,18 @@ pub fn solve_frictional(
             );
             let mut inner_ok = no.converged;
             approach = no.approach_m;
+            if let Some(c) = &creep {
+                // On the actual surfaces the rigid slip moves with the
+                // approach (the wheel's points on the elements' normals).
+                geometry.rigid_slip(
+                    c,
+                    settings.rigid_slip,
+                    approach,
+                    midplane_rail_weight(material),
+                    wx,
+                    ws,
+                );
+            }
             // Tangential problem: fixed slip from the pressures (and, for a
             // static step, minus the previous displacements).
             // The pressures' tangential displacements, through the operator

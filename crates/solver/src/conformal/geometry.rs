@@ -31,15 +31,47 @@
 //!   rate that gives the longitudinal creepage xi at the rigid point
 //!   (omega = -V (1 + xi)/R_xw about +y). The lateral creepage eta is a
 //!   relative velocity eta V along t(0) and the spin phi a relative rotation
-//!   rate phi V about n(0) through the origin. The rigid velocities are
-//!   taken at the reference-surface point (x, c(s)), where the bodies touch.
-//!   Points farther from the wheel axis than the rigid point (larger rolling
-//!   radius) get a larger longitudinal rigid slip, and the wheel's velocity
-//!   component along z, -omega x, projects on t(s) as a lateral slip: the
-//!   geometric spin of conformal contact.
+//!   rate phi V about n(0) through the origin. Points farther from the wheel
+//!   axis than the rigid point (larger rolling radius) get a larger
+//!   longitudinal rigid slip, and the wheel's velocity component along z,
+//!   -omega x, projects on t(s) as a lateral slip: the geometric spin of
+//!   conformal contact.
+//! * Where the rigid velocities are taken ([`RigidSlipSurface`]): by
+//!   default on the actual surfaces, as CONTACT does for its conformal and
+//!   "planar with rigid slip on actual surfaces" discretisations
+//!   (eve70a/CONTACT, `src/m_wr_rigslip.f90`: `wr_rigslip_wrsurf`,
+//!   `project_midplane`). The rail translates, so its velocity is the same
+//!   everywhere; the wheel's is that of its material point W on the normal
+//!   line through (x, c(s)), on the undeformed wheel surface in the section
+//!   x, with the wheel moved by the approach d along n(0). A material point
+//!   keeps the rigid velocity of its undeformed position, the elastic
+//!   displacement adding only the -du/dx of steady rolling. The wheel's
+//!   velocity omega x (W - A) is tangent to the wheel's surface, which in
+//!   the section x is inclined by about x/rho to the rail's (rho the
+//!   distance from the axis); the slip that matters is the one along the
+//!   surface where the two meet, so w_x is the relative velocity's
+//!   component along fac t_rail + (1 - fac) t_wheel in the plane
+//!   (x, n(s)) ([`midplane_rail_weight`]). Worked by hand for a wheel
+//!   rolling on a plane with W at angle theta (sin theta = x/rho) and
+//!   identical bodies: the relative velocity per V is
+//!   (-1 + f rho cos theta, -f rho sin theta) in (x, n), f = (1 + xi)/R_xw;
+//!   the surface direction is that of (1 + f rho cos theta,
+//!   -f rho sin theta), so w_x = (F² - 1)/sqrt(1 + 2 F cos theta + F²)
+//!   ≈ cos(theta/2) (F - 1) with F = f rho. Along x the drop of the surface,
+//!   rho (1 - cos theta) ≈ x²/(2 rho), is cancelled by its inclination: a
+//!   cylinder (rho = R_xw) rolling freely has no rigid slip. What remains
+//!   is the rolling radius of the wheel's own surface: a sphere of radius
+//!   R on a plane at omega R = V has rho = sqrt(R² - y²), so
+//!   w_x ≈ -y²/(2 R²) (CONTACT's `test-rollers3` case 1).
+//!   [`RigidSlipSurface::ReferenceSection`] takes instead the velocities
+//!   at the reference-curve point c(s) of the section x = 0 for every x,
+//!   components along x and t(s). The reference curve lies midway
+//!   between the profiles, so it keeps half of the wheel's lateral drop:
+//!   w_x ≈ -y²/(4 R²) for the sphere.
 
 use crate::core::error::ContactError;
 use crate::core::grid::Grid;
+use crate::core::material::{CombinedMaterial, Material};
 
 /// A smooth profile curve in the (y, z) plane, parametrised by arc length t
 /// \[m\], through the origin at t = 0.
@@ -220,6 +252,44 @@ pub struct ConformalCreepages {
     pub spin_per_m: f64,
 }
 
+/// Where the conformal model takes the rigid velocities of the bodies
+/// (see the module docs, "Where the rigid velocities are taken").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RigidSlipSurface {
+    /// At the wheel's material point on the actual (undeformed, approached)
+    /// wheel surface of each element, the longitudinal slip along the
+    /// surface where rail and wheel meet: the wheel's own rolling radius
+    /// at each point sets the slip. CONTACT's choice and the default.
+    #[default]
+    ActualSurface,
+    /// At the reference-curve point c(s) of the section x = 0, the same for
+    /// every x, slip along x: the rolling radius of the curve midway
+    /// between the profiles (half the wheel's lateral drop).
+    ReferenceSection,
+}
+
+impl RigidSlipSurface {
+    /// The name in case files: `"actual_surface"`, `"reference_section"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            RigidSlipSurface::ActualSurface => "actual_surface",
+            RigidSlipSurface::ReferenceSection => "reference_section",
+        }
+    }
+}
+
+/// The weight fac of the rail in the direction of the contact surface
+/// along x, fac t_rail + (1 - fac) t_wheel: under the pressures the
+/// surfaces meet where their normal displacements split the gap in the
+/// ratio of the bodies' compliances c_i = (1 - nu_i)/G_i, so
+/// fac = c_2/(c_1 + c_2), 1/2 for identical bodies, 1 for a rigid rail.
+pub fn midplane_rail_weight(material: &CombinedMaterial) -> f64 {
+    let compliance = |m: &Material| (1.0 - m.poisson_ratio) / m.shear_modulus_pa;
+    let (c1, c2) = (compliance(&material.body1), compliance(&material.body2));
+    c2 / (c1 + c2)
+}
+
 /// The geometry of one conformal contact on a curvilinear grid: x along
 /// rolling, the grid's y coordinate is the curvilinear s.
 #[derive(Debug, Clone, PartialEq)]
@@ -235,6 +305,14 @@ pub struct ConformalGeometry {
     /// cos(delta(s) - delta(0)) per element: the approach closes the gap
     /// by d times this.
     pub approach_weight: Vec<f64>,
+    /// Per element: the wheel's surface point (y, z) \[m\] on the normal
+    /// line through (x, c(s)), in the section x of the unloaded wheel (axis
+    /// at z = -R_xw).
+    pub wheel_point_yz_m: Vec<[f64; 2]>,
+    /// Per element: the rate of change (dy/dd, dz/dd) [-] of that point with
+    /// the approach d, the wheel moved by d along n(0) (its point on the
+    /// normal line slides along the profile by -d sin(delta - delta0)).
+    pub wheel_point_per_approach: Vec<[f64; 2]>,
     /// Wheel rolling radius at the rigid contact point \[m\].
     pub wheel_rolling_radius_m: f64,
     /// Mean contact angle delta(0) \[rad\].
@@ -355,6 +433,8 @@ impl ConformalGeometry {
         let n = grid.len();
         let mut gap_m = vec![0.0; n];
         let mut approach_weight = vec![0.0; n];
+        let mut wheel_point_yz_m = vec![[0.0; 2]; n];
+        let mut wheel_point_per_approach = vec![[0.0; 2]; n];
         let z_axis = -wheel_rolling_radius_m;
         let (mut tr, mut tw0) = (grid.y_m(0), grid.y_m(0));
         for iy in 0..ny {
@@ -393,6 +473,19 @@ impl ConformalGeometry {
                 let i = grid.index(ix, iy);
                 gap_m[i] = lam_r - lam_w;
                 approach_weight[i] = (delta - delta0).cos();
+                wheel_point_yz_m[i] = [c[0] + lam_w * nv[0], c[1] + lam_w * nv[1]];
+                // Moving the wheel by d n(0) moves the normal line by
+                // -d sin(delta - delta0) along t(s) relative to it: the
+                // point slides along the section's tangent tau by that over
+                // tau . t(s).
+                let (_, tau) = section(t_x);
+                let along = tau[0] * delta.cos() + tau[1] * delta.sin();
+                let slide = if along.abs() > f64::EPSILON {
+                    -(delta - delta0).sin() / along
+                } else {
+                    0.0
+                };
+                wheel_point_per_approach[i] = [slide * tau[0], slide * tau[1]];
             }
         }
         Ok(Self {
@@ -401,13 +494,29 @@ impl ConformalGeometry {
             reference_yz_m,
             gap_m,
             approach_weight,
+            wheel_point_yz_m,
+            wheel_point_per_approach,
             wheel_rolling_radius_m,
             mean_contact_angle_rad: delta0,
         })
     }
 
-    /// Rigid slip (w_x, w_s) per element [-] for creepages at the rigid point.
-    pub fn rigid_slip(&self, c: &ConformalCreepages, wx: &mut [f64], ws: &mut [f64]) {
+    /// Rigid slip (w_x, w_s) per element [-] for creepages at the rigid
+    /// point, with the rigid velocities taken on `surface`. With
+    /// [`RigidSlipSurface::ActualSurface`] the wheel is moved by
+    /// `approach_m` \[m\] along n(0), and the longitudinal slip is taken
+    /// along the contact surface's direction in the plane (x, n(s)), the
+    /// direction of the velocities fac v_rail + (1 - fac) v_wheel with
+    /// `rail_weight` = fac (see [`midplane_rail_weight`]).
+    pub fn rigid_slip(
+        &self,
+        c: &ConformalCreepages,
+        surface: RigidSlipSurface,
+        approach_m: f64,
+        rail_weight: f64,
+        wx: &mut [f64],
+        ws: &mut [f64],
+    ) {
         let g = &self.grid;
         let r = self.wheel_rolling_radius_m;
         let z_axis = -r;
@@ -416,10 +525,20 @@ impl ConformalGeometry {
         for iy in 0..g.ny {
             let d = self.delta_rad[iy];
             let t = [d.cos(), d.sin()];
-            let [py, pz] = self.reference_yz_m[iy];
             for ix in 0..g.nx {
                 let i = g.index(ix, iy);
                 let x = g.x_m(ix);
+                // The wheel point whose rigid velocity counts, in the frame
+                // of the wheel (axis at z_axis; the approach moves the axis
+                // with it, and the spin's n(0) x d n(0) vanishes).
+                let [py, pz] = match surface {
+                    RigidSlipSurface::ReferenceSection => self.reference_yz_m[iy],
+                    RigidSlipSurface::ActualSurface => {
+                        let [y0, z0] = self.wheel_point_yz_m[i];
+                        let [dy, dz] = self.wheel_point_per_approach[i];
+                        [y0 + approach_m * dy, z0 + approach_m * dz]
+                    }
+                };
                 // Wheel rotation: w = -e_x + ((1 + xi)/R) ((z - z_a) e_x - x e_z).
                 let f = (1.0 + c.creepage_long) / r;
                 let mut w = [-1.0 + f * (pz - z_axis), 0.0, -f * x];
@@ -437,8 +556,20 @@ impl ConformalGeometry {
                 for k in 0..3 {
                     w[k] += c.spin_per_m * cross[k];
                 }
-                wx[i] = w[0];
                 ws[i] = w[1] * t[0] + w[2] * t[1];
+                wx[i] = match surface {
+                    RigidSlipSurface::ReferenceSection => w[0],
+                    RigidSlipSurface::ActualSurface => {
+                        // Rail velocity -e_x, wheel velocity -e_x - w (per
+                        // V): the contact surface runs along
+                        // -(fac v_rail + (1 - fac) v_wheel) = e_x + (1 - fac) w,
+                        // taken in the plane (x, n(s)).
+                        let wn = w[2] * t[0] - w[1] * t[1];
+                        let k = 1.0 - rail_weight;
+                        let (mx, mn) = (1.0 + k * w[0], k * wn);
+                        (w[0] * mx + wn * mn) / mx.hypot(mn)
+                    }
+                };
             }
         }
     }
@@ -468,6 +599,24 @@ mod tests {
 
     fn grid(n: usize, half_x: f64, half_s: f64) -> Grid {
         Grid::centered(n, n, 2.0 * half_x, 2.0 * half_s).unwrap()
+    }
+
+    /// The rigid slip (w_x, w_s) of identical bodies at longitudinal
+    /// creepage `xi` with the wheel moved by `approach_m`.
+    fn slip(
+        geo: &ConformalGeometry,
+        xi: f64,
+        surface: RigidSlipSurface,
+        approach_m: f64,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let n = geo.grid.len();
+        let (mut wx, mut ws) = (vec![0.0; n], vec![0.0; n]);
+        let creep = ConformalCreepages {
+            creepage_long: xi,
+            ..Default::default()
+        };
+        geo.rigid_slip(&creep, surface, approach_m, 0.5, &mut wx, &mut ws);
+        (wx, ws)
     }
 
     #[test]
@@ -554,17 +703,8 @@ mod tests {
         let (rr, rw, rx) = (0.010, -0.0101, 0.5);
         let g = grid(10, 3e-3, 8e-3);
         let geo = ConformalGeometry::new(&Circle::rail(rr), &Circle::wheel(rw), rx, g).unwrap();
-        let n = g.len();
-        let (mut wx, mut ws) = (vec![0.0; n], vec![0.0; n]);
         let xi = -1.5e-3;
-        geo.rigid_slip(
-            &ConformalCreepages {
-                creepage_long: xi,
-                ..Default::default()
-            },
-            &mut wx,
-            &mut ws,
-        );
+        let (wx, ws) = slip(&geo, xi, RigidSlipSurface::ReferenceSection, 0.0);
         for iy in 0..g.ny {
             for ix in 0..g.nx {
                 let i = g.index(ix, iy);
@@ -575,6 +715,111 @@ mod tests {
                 let want_s = -(1.0 + xi) * x / rx * d.sin();
                 assert!((wx[i] - want_x).abs() < 1e-12);
                 assert!((ws[i] - want_s).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn a_cylinder_rolling_freely_on_a_plane_has_no_rigid_slip() {
+        // A wheel of constant radius R (straight profile) on a plane: its
+        // surface in the section x lies x²/(2R) above the rail, but it
+        // moves along itself, inclined by theta = asin(x/R); along the
+        // contact surface (half-way, identical bodies) the slip is, by
+        // hand with F = 1 + xi the wheel's speed over V, the relative
+        // velocity (-1 + F cos theta, -F sin theta) along the direction of
+        // (1 + F cos theta, -F sin theta):
+        // (F² - 1)/sqrt(1 + 2 F cos theta + F²), 0 at omega R = V
+        // (F = 1). The x component alone would be -x²/(2R²).
+        let r = 0.1;
+        let g = grid(21, 5e-3, 5e-3);
+        let straight = Circle::rail(f64::INFINITY);
+        let geo = ConformalGeometry::new(&straight, &straight, r, g).unwrap();
+        for xi in [0.0, 2e-3] {
+            let (wx, ws) = slip(&geo, xi, RigidSlipSurface::ActualSurface, 1e-5);
+            for iy in 0..g.ny {
+                for ix in 0..g.nx {
+                    let i = g.index(ix, iy);
+                    let theta = (g.x_m(ix) / r).asin();
+                    let f = 1.0 + xi;
+                    let want = (f * f - 1.0) / (1.0 + 2.0 * f * theta.cos() + f * f).sqrt();
+                    assert!((wx[i] - want).abs() < 1e-14, "{} vs {want}", wx[i]);
+                    assert!(ws[i].abs() < 1e-14);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn rigid_slip_of_a_sphere_rolling_on_a_plane_follows_its_rolling_radius() {
+        // A sphere of radius R (profile radius R about an axis R above the
+        // plane) rolling at omega R = V. Its material point at lateral y
+        // is rho = sqrt(R² - y²) from the axis, at angle theta
+        // (sin theta = x/rho) in its section: by hand (as for the
+        // cylinder, with F = rho/R) w_x = (F² - 1)/sqrt(1 + 2 F cos theta
+        // + F²) ≈ cos(theta/2) (F - 1) ≈ -y²/(2 R²), whatever x; the
+        // velocity -omega x along z gives w_s = -x sin(delta)/R. The
+        // reference section keeps the midway curve's drop -s²/(4 R):
+        // w_x ≈ -s²/(4 R²).
+        let r = 0.1;
+        let g = grid(21, 5e-3, 5e-3);
+        let geo =
+            ConformalGeometry::new(&Circle::rail(f64::INFINITY), &Circle::wheel(r), r, g).unwrap();
+        let (wx, ws) = slip(&geo, 0.0, RigidSlipSurface::ActualSurface, 0.0);
+        let (rx, rs) = slip(&geo, 0.0, RigidSlipSurface::ReferenceSection, 0.0);
+        for iy in 0..g.ny {
+            let s = g.y_m(iy);
+            let d = geo.delta_rad[iy];
+            for ix in 0..g.nx {
+                let i = g.index(ix, iy);
+                let x = g.x_m(ix);
+                let [y, _] = geo.wheel_point_yz_m[i];
+                let rho = (r * r - y * y).sqrt();
+                let theta = (x / rho).asin();
+                // (n(s) leans by delta ≈ -s/(2R) from z: a relative
+                // change of order delta² in the projection.)
+                let f = rho / r;
+                let hand = (f * f - 1.0) / (1.0 + 2.0 * f * theta.cos() + f * f).sqrt();
+                assert!(
+                    (wx[i] - hand).abs() < 1e-3 * hand.abs() + 1e-12,
+                    "({x}, {s}): {} vs {hand}",
+                    wx[i]
+                );
+                let simple = -s * s / (2.0 * r * r);
+                assert!(
+                    (wx[i] - simple).abs() < 1e-2 * simple.abs() + 1e-9,
+                    "({x}, {s}): {} vs {simple}",
+                    wx[i]
+                );
+                assert!((ws[i] + x * d.sin() / r).abs() < 1e-15);
+                assert_eq!(rs[i], ws[i]);
+                // (The reference curve is interpolated between samples
+                // dy/8 apart: about 2e-9 m off the midway curve.)
+                let midway = -s * s / (4.0 * r * r);
+                assert!(
+                    (rx[i] - midway).abs() < 1e-2 * midway.abs() + 1e-7,
+                    "({x}, {s}): {} vs {midway}",
+                    rx[i]
+                );
+            }
+        }
+        // The approach d moves the sphere along n(0) = z: relative to it
+        // the normal line through c(s) moves by -d sin(delta) along t(s),
+        // and the sphere's point on it slides as far along the profile,
+        // whose slope there is about 2 delta (delta ≈ -s/(2R) on the
+        // midway curve, the profile's slope -s/R): its height changes by
+        // -2 d delta², w_x by -2 d delta²/R.
+        let d = 1.6e-4;
+        let (ax, _) = slip(&geo, 0.0, RigidSlipSurface::ActualSurface, d);
+        for iy in 0..g.ny {
+            let delta = geo.delta_rad[iy];
+            for ix in 0..g.nx {
+                let i = g.index(ix, iy);
+                let hand = -2.0 * d * delta * delta / r;
+                assert!(
+                    (ax[i] - wx[i] - hand).abs() < 5e-2 * hand.abs() + 1e-15,
+                    "{} vs {hand}",
+                    ax[i] - wx[i]
+                );
             }
         }
     }

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::conformal::frictional::{ConformalKinematics, ConformalSettings};
 use crate::conformal::geometry::{
-    Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve,
+    Circle, ConformalCreepages, ConformalGeometry, Curve, PointCurve, RigidSlipSurface,
 };
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{check_count, show, ContactError, Range};
@@ -248,6 +248,10 @@ pub struct CaseFile {
     /// Extra rigid slip per element (exact model, rolling; optional).
     #[serde(default)]
     pub extra_rigid_slip: Option<ExtraRigidSlipSection>,
+    /// Options of the conformal models (`cect`, `cect_halfspace`;
+    /// optional).
+    #[serde(default)]
+    pub conformal: Option<ConformalSection>,
 }
 
 /// `[extra_rigid_slip]`: a rigid slip [-] added at each element to the
@@ -264,6 +268,20 @@ pub struct ExtraRigidSlipSection {
     pub slip_x: Option<Vec<f64>>,
     /// y component per element [-].
     pub slip_y: Option<Vec<f64>>,
+}
+
+/// `[conformal]`: options of the conformal models (`cect`,
+/// `cect_halfspace`).
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct ConformalSection {
+    /// Where steady rolling takes the bodies' rigid velocities:
+    /// `"actual_surface"` (default; the wheel's material point on each
+    /// element's normal, slip along the surface where the bodies meet, as
+    /// CONTACT does) or `"reference_section"` (the reference-curve point of
+    /// the section x = 0 for every x, slip along x). See
+    /// [`RigidSlipSurface`].
+    pub rigid_slip: Option<RigidSlipSurface>,
 }
 
 /// `[temperature]`: the rolling speed `rolling_speed_m_per_s` \[m/s\] and
@@ -299,6 +317,36 @@ fn temperature_request(
     }
     section.validate("temperature")?;
     Ok(*section)
+}
+
+/// The checked `[conformal]` of a case of `model` with `kinematics`: its
+/// rigid slip surface (the default without the section). The section
+/// belongs to the conformal models; outside steady rolling its rigid slip
+/// is unused (a note says so).
+fn conformal_options(
+    section: Option<ConformalSection>,
+    model: Model,
+    kinematics: &Kinematics,
+    notes: &mut Vec<String>,
+) -> Result<RigidSlipSurface, CaseError> {
+    let Some(section) = section else {
+        return Ok(RigidSlipSurface::default());
+    };
+    if !model.is_cect() {
+        return Err(bad(
+            "conformal",
+            format!(
+                "options of model = \"cect\" or \"cect_halfspace\", not \"{}\"",
+                model.name()
+            ),
+        ));
+    }
+    if section.rigid_slip.is_some() && !matches!(kinematics, Kinematics::SteadyRolling(_)) {
+        notes.push(
+            "conformal.rigid_slip applies to steady rolling ([rolling]): unused here".to_string(),
+        );
+    }
+    Ok(section.rigid_slip.unwrap_or_default())
 }
 
 /// `[subsurface]`: the depths below the surface at which to compute the
@@ -1184,6 +1232,9 @@ pub struct Case {
     pub gap_m: Option<Vec<f64>>,
     /// Extra rigid slip per element (`[extra_rigid_slip]`).
     pub extra_rigid_slip: Option<ExtraRigidSlip>,
+    /// Conformal models: where steady rolling takes the rigid velocities
+    /// (`conformal.rigid_slip`).
+    pub rigid_slip: RigidSlipSurface,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -1845,6 +1896,7 @@ impl Case {
             .transpose()?;
         let gap_m = given_gap(&file, model, &geometry, [nx, ny], grid_given)?;
         let extra_rigid_slip = extra_rigid_slip(&file, model, &kinematics, [nx, ny], grid_given)?;
+        let rigid_slip = conformal_options(file.conformal, model, &kinematics, &mut notes)?;
         Ok(Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
@@ -1872,6 +1924,7 @@ impl Case {
                 .map(|s| s.request(model))
                 .transpose()?,
             temperature,
+            rigid_slip,
         })
     }
 
@@ -1968,6 +2021,7 @@ impl Case {
         let mut c = ConformalSettings {
             normal: s.normal,
             tangential: s.tangential,
+            rigid_slip: self.rigid_slip,
             ..ConformalSettings::default()
         };
         if s.coupling_tolerance > 0.0 {
@@ -2563,6 +2617,40 @@ normal_force_n = 80000.0
         assert!(m.contains("`transient.steps[1].shift_y_m`"), "{m}");
         let m = bad_key(&stat.replace("{ normal_force_n = 1e4 }", "{ approach_m = 1e-5 }"));
         assert!(m.contains("`transient.steps[0].approach_m`"), "{m}");
+    }
+
+    #[test]
+    fn the_conformal_section_chooses_the_rigid_slip_of_the_conformal_models() {
+        let rolling =
+            format!("{CASE_1}[friction]\ncoefficient = 0.3\n[rolling]\ncreepage_long = 1e-3\n");
+        let c = Case::from_toml(&rolling).unwrap();
+        assert_eq!(c.rigid_slip, RigidSlipSurface::ActualSurface);
+        assert_eq!(
+            c.conformal_settings().rigid_slip,
+            RigidSlipSurface::ActualSurface
+        );
+        let chosen = format!("{rolling}[conformal]\nrigid_slip = \"reference_section\"\n");
+        let c = Case::from_toml(&chosen).unwrap();
+        assert_eq!(
+            c.conformal_settings().rigid_slip,
+            RigidSlipSurface::ReferenceSection
+        );
+        assert!(c.notes.iter().all(|n| !n.contains("rigid_slip")));
+        let m = bad_key(&chosen.replace("reference_section", "midway"));
+        assert!(
+            m.contains("rigid_slip") && m.contains("actual_surface"),
+            "{m}"
+        );
+        let m = bad_key(&chosen.replace("rigid_slip", "rigid"));
+        assert!(m.contains("rigid"), "{m}");
+        let m = bad_key(&chosen.replace("model = \"cect\"", "model = \"hertz\""));
+        assert!(m.contains("`conformal`") && m.contains("hertz"), "{m}");
+        // Without rolling the choice is unused, and a note says so.
+        let c = Case::from_toml(&format!(
+            "{CASE_1}[conformal]\nrigid_slip = \"actual_surface\"\n"
+        ))
+        .unwrap();
+        assert!(c.notes.iter().any(|n| n.contains("conformal.rigid_slip")));
     }
 
     #[test]

@@ -70,7 +70,9 @@ use serde::Serialize;
 use crate::conformal::frictional::{
     solve_frictional, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
 };
-use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, PointCurve};
+use crate::conformal::geometry::{
+    ConformalCreepages, ConformalGeometry, PointCurve, RigidSlipSurface,
+};
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
@@ -250,6 +252,10 @@ pub struct WheelRailSettings {
     /// Model `hertz_polach`: the reduction factors and falling friction of
     /// Polach's model (default: none, his 1999 model).
     pub polach: PolachParameters,
+    /// Models `cect` and `auto`: where the conformal method takes the
+    /// rigid velocities (default on the actual surfaces, see
+    /// [`RigidSlipSurface`]).
+    pub rigid_slip: RigidSlipSurface,
 }
 
 impl Default for WheelRailSettings {
@@ -264,6 +270,7 @@ impl Default for WheelRailSettings {
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
             max_grid_elements: usize::MAX,
             polach: PolachParameters::default(),
+            rigid_slip: RigidSlipSurface::default(),
         }
     }
 }
@@ -646,7 +653,10 @@ impl PatchWork {
                     input.friction.kinetic_coefficient,
                     InfluenceModel::Blanco,
                     &kinematics,
-                    &ConformalSettings::default(),
+                    &ConformalSettings {
+                        rigid_slip: input.settings.rigid_slip,
+                        ..ConformalSettings::default()
+                    },
                     cache,
                 )?
                 .pop()

@@ -3,6 +3,7 @@
 //! balance over sweeps with measured worn profiles, errors, and contact
 //! tables against the direct search.
 
+use railcontact_solver::conformal::geometry::RigidSlipSurface;
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::solution::SolveStatus;
 use railcontact_solver::wheelrail::builtin::{load_test_input, mbench_a22_input};
@@ -683,6 +684,19 @@ fn conformal_patches_through_the_same_interface() {
         cect.patches[0].normal_force_n,
         auto_low.patches[0].normal_force_n
     );
+    // The rigid slip on the reference section instead of the actual
+    // surfaces (the default) reaches the patch: another creep force.
+    let mut input = a22_input(6.0, None, None, WheelRailModel::Cect);
+    input.position.yaw_rad = 0.0;
+    input.sides = vec![Side::Right];
+    input.settings.rigid_slip = RigidSlipSurface::ReferenceSection;
+    let section = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap();
+    let (pa, ps) = (&cect.patches[0], &section.wheels[0].patches[0]);
+    eprintln!(
+        "cect FX: actual surface {} N, reference section {} N",
+        pa.fx_n, ps.fx_n
+    );
+    assert_ne!(pa.fx_n, ps.fx_n);
 }
 
 // Contact tables (railcontact_solver::wheelrail::table): the tabulated

@@ -40,6 +40,12 @@ class GeometryKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     GEOMETRY_KIND_CONFORMAL_POINTS: _ClassVar[GeometryKind]
     GEOMETRY_KIND_LINE: _ClassVar[GeometryKind]
 
+class RigidSlip(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    RIGID_SLIP_UNSPECIFIED: _ClassVar[RigidSlip]
+    RIGID_SLIP_ACTUAL_SURFACE: _ClassVar[RigidSlip]
+    RIGID_SLIP_REFERENCE_SECTION: _ClassVar[RigidSlip]
+
 class SolveStatus(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     SOLVE_STATUS_UNSPECIFIED: _ClassVar[SolveStatus]
@@ -124,6 +130,9 @@ GEOMETRY_KIND_QUADRATIC: GeometryKind
 GEOMETRY_KIND_CONFORMAL_CIRCULAR: GeometryKind
 GEOMETRY_KIND_CONFORMAL_POINTS: GeometryKind
 GEOMETRY_KIND_LINE: GeometryKind
+RIGID_SLIP_UNSPECIFIED: RigidSlip
+RIGID_SLIP_ACTUAL_SURFACE: RigidSlip
+RIGID_SLIP_REFERENCE_SECTION: RigidSlip
 SOLVE_STATUS_UNSPECIFIED: SolveStatus
 SOLVE_STATUS_CONVERGED: SolveStatus
 SOLVE_STATUS_MAX_ITERATIONS: SolveStatus
@@ -326,7 +335,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -340,6 +349,7 @@ class PatchCase(_message.Message):
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     ROLLING_DIRECTION_RAD_FIELD_NUMBER: _ClassVar[int]
     EXTRA_RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -353,7 +363,8 @@ class PatchCase(_message.Message):
     temperature: TemperatureSection
     rolling_direction_rad: float
     extra_rigid_slip: ExtraRigidSlip
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class ExtraRigidSlip(_message.Message):
     __slots__ = ("slip_x", "slip_y")
@@ -362,6 +373,12 @@ class ExtraRigidSlip(_message.Message):
     slip_x: _containers.RepeatedScalarFieldContainer[float]
     slip_y: _containers.RepeatedScalarFieldContainer[float]
     def __init__(self, slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ...) -> None: ...
+
+class ConformalSection(_message.Message):
+    __slots__ = ("rigid_slip",)
+    RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
+    rigid_slip: RigidSlip
+    def __init__(self, rigid_slip: _Optional[_Union[RigidSlip, str]] = ...) -> None: ...
 
 class ThermalBody(_message.Message):
     __slots__ = ("bulk_temperature_k", "conductivity_w_per_m_k", "density_kg_per_m3", "specific_heat_j_per_kg_k")
@@ -1073,7 +1090,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1084,6 +1101,7 @@ class SolveWheelRailRequest(_message.Message):
     ELEMENT_SIZE_M_FIELD_NUMBER: _ClassVar[int]
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
     POLACH_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1094,7 +1112,8 @@ class SolveWheelRailRequest(_message.Message):
     element_size_m: float
     include_fields: bool
     polach: PolachParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1255,7 +1274,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1264,6 +1283,7 @@ class WheelRailSessionOpen(_message.Message):
     INCLUDE_FIELDS_FIELD_NUMBER: _ClassVar[int]
     CLIENT_LABEL_FIELD_NUMBER: _ClassVar[int]
     POLACH_FIELD_NUMBER: _ClassVar[int]
+    CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1272,7 +1292,8 @@ class WheelRailSessionOpen(_message.Message):
     include_fields: bool
     client_label: str
     polach: PolachParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ...) -> None: ...
+    conformal: ConformalSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
