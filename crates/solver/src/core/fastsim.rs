@@ -627,8 +627,7 @@ impl Fastsim {
             l_slip,
             dy,
         };
-        let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
-        let (mut tgamma, mut adh_area, mut tot_area, mut pmax) = (0.0, 0.0, 0.0, 0.0_f64);
+        let mut sums = Strip::default();
         let mut pending = live();
         let mut batch = [PatchStrip::default(); LANES];
         loop {
@@ -661,26 +660,11 @@ impl Fastsim {
             side_by_side.write_back(&mut side);
             for (strip, s) in side[..lanes].iter_mut().zip(&batch) {
                 strip.release(&k);
-                fx += strip.fx;
-                fy += strip.fy;
                 // The march's x is about the strip's middle.
-                mz += strip.mz + s.centre_x_m * strip.fy;
-                tgamma += strip.tgamma;
-                adh_area += strip.adhesion_area;
-                tot_area += strip.area;
-                pmax = pmax.max(strip.pmax2);
+                sums.add_totals(strip, s.centre_x_m);
             }
         }
-        Ok(FastsimOutput {
-            fx_n: fx,
-            fy_n: fy,
-            mz_nm: mz,
-            adhesion_fraction: adh_area / tot_area,
-            tgamma_n: tgamma,
-            max_traction_pa: pmax.sqrt(),
-            bound_peak_pressure_pa: k.pn_scale,
-            coefficients: coef,
-        })
+        Ok(sums.totals(k.pn_scale, coef))
     }
 
     /// The solve of validated input with the flexibilities divided by `k`.
@@ -722,8 +706,7 @@ impl Fastsim {
         }
         let pn_scale = input.normal_force_n / shape_integral;
 
-        let (mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0);
-        let (mut tgamma, mut adh_area, mut tot_area, mut pmax) = (0.0, 0.0, 0.0, 0.0_f64);
+        let mut sums = Strip::default();
         let k = StripConstants {
             pn_scale,
             inv_a2,
@@ -763,25 +746,10 @@ impl Fastsim {
             }
             for strip in &mut strips[..lanes] {
                 strip.release(&k);
-                fx += strip.fx;
-                fy += strip.fy;
-                mz += strip.mz;
-                tgamma += strip.tgamma;
-                adh_area += strip.adhesion_area;
-                tot_area += strip.area;
-                pmax = pmax.max(strip.pmax2);
+                sums.add_totals(strip, 0.0);
             }
         }
-        FastsimOutput {
-            fx_n: fx,
-            fy_n: fy,
-            mz_nm: mz,
-            adhesion_fraction: adh_area / tot_area,
-            tgamma_n: tgamma,
-            max_traction_pa: pmax.sqrt(),
-            bound_peak_pressure_pa: pn_scale,
-            coefficients: coef,
-        }
+        sums.totals(pn_scale, coef)
     }
 }
 
@@ -1006,6 +974,34 @@ struct Strip {
     /// Whether the last element slipped (its successor's bound is then the
     /// kinetic one).
     sliding: bool,
+}
+
+impl Strip {
+    /// Adds a released strip's totals to these (a strip summing others),
+    /// its march's x about `centre_x` \[m\].
+    fn add_totals(&mut self, strip: &Strip, centre_x: f64) {
+        self.fx += strip.fx;
+        self.fy += strip.fy;
+        self.mz += strip.mz + centre_x * strip.fy;
+        self.tgamma += strip.tgamma;
+        self.adhesion_area += strip.adhesion_area;
+        self.area += strip.area;
+        self.pmax2 = self.pmax2.max(strip.pmax2);
+    }
+
+    /// The output of a strip summing all of a solve's.
+    fn totals(&self, pn_scale: f64, coefficients: CreepCoefficients) -> FastsimOutput {
+        FastsimOutput {
+            fx_n: self.fx,
+            fy_n: self.fy,
+            mz_nm: self.mz,
+            adhesion_fraction: self.adhesion_area / self.area,
+            tgamma_n: self.tgamma,
+            max_traction_pa: self.pmax2.sqrt(),
+            bound_peak_pressure_pa: pn_scale,
+            coefficients,
+        }
+    }
 }
 
 /// The values of one element besides the strip's traction.

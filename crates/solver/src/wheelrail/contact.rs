@@ -276,8 +276,8 @@ impl Default for WheelRailSettings {
 }
 
 /// The core solver settings of wheel/rail patches: the core's defaults with
-/// the normal tolerance [`ESTIMATE_NORMAL_TOLERANCE`] (1e-6 of the pressure
-/// per iteration, against the core's 1e-10) and the tangential tolerance
+/// the normal tolerance 1e-6 of the pressure per iteration (against the
+/// core's 1e-10; that of the load iteration's estimates) and the tangential tolerance
 /// [`WHEELRAIL_TANGENTIAL_TOLERANCE`] (1e-5 of mu p_max, against 1e-7).
 /// Their force errors, about 1e-6 of mu F_n and less for F_n and p_max,
 /// are below the fifth digit and far below the discretisation's at
@@ -906,8 +906,9 @@ pub struct WarmStart {
     /// Per wheel: the previous single-patch exact solve's pressures and
     /// tangential tractions, the first solve's start when this step's
     /// patch has a grid of the same shape and element size (shifted by
-    /// whole elements to the same place). The patch grid keeps that shape
-    /// while the potential contact area fits it ([`patch_grid`]).
+    /// whole elements to the same place). The patch grid is sized around
+    /// where they were loaded and keeps their grid's shape while the
+    /// potential contact area fits it.
     pub tractions: [Option<PatchTractions>; 2],
 }
 
