@@ -41,11 +41,9 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// A grid of `nx` x `ny` elements covering `[x0, x0 + nx dx] x [y0, y0 + ny dy]`.
-    /// Length along x and width along y \[m\] of the bounding box of the
-    /// elements where `field > 0` (the loaded patch), or None when there
-    /// are none.
-    pub fn loaded_extent_m(&self, field: &[f64]) -> Option<[f64; 2]> {
+    /// The first and last columns and rows \[ix0, ix1, iy0, iy1\] of the
+    /// elements where `field > 0`, or None when there are none.
+    fn loaded_elements(&self, field: &[f64]) -> Option<[usize; 4]> {
         let (mut xmin, mut xmax, mut ymin, mut ymax) = (usize::MAX, 0, usize::MAX, 0);
         for iy in 0..self.ny {
             for ix in 0..self.nx {
@@ -57,14 +55,36 @@ impl Grid {
                 }
             }
         }
-        (xmin != usize::MAX).then(|| {
+        (xmin != usize::MAX).then_some([xmin, xmax, ymin, ymax])
+    }
+
+    /// The box \[x0, x1, y0, y1\] \[m\] of the elements where `field > 0`
+    /// (the loaded patch), their edges included, or None when there are
+    /// none.
+    pub fn loaded_box_m(&self, field: &[f64]) -> Option<[f64; 4]> {
+        self.loaded_elements(field).map(|[x0, x1, y0, y1]| {
             [
-                (xmax - xmin + 1) as f64 * self.dx_m,
-                (ymax - ymin + 1) as f64 * self.dy_m,
+                self.x0_m + x0 as f64 * self.dx_m,
+                self.x0_m + (x1 + 1) as f64 * self.dx_m,
+                self.y0_m + y0 as f64 * self.dy_m,
+                self.y0_m + (y1 + 1) as f64 * self.dy_m,
             ]
         })
     }
 
+    /// Length along x and width along y \[m\] of the bounding box of the
+    /// elements where `field > 0` (the loaded patch), or None when there
+    /// are none.
+    pub fn loaded_extent_m(&self, field: &[f64]) -> Option<[f64; 2]> {
+        self.loaded_elements(field).map(|[x0, x1, y0, y1]| {
+            [
+                (x1 - x0 + 1) as f64 * self.dx_m,
+                (y1 - y0 + 1) as f64 * self.dy_m,
+            ]
+        })
+    }
+
+    /// A grid of `nx` x `ny` elements covering `[x0, x0 + nx dx] x [y0, y0 + ny dy]`.
     pub fn new(
         nx: usize,
         ny: usize,

@@ -962,29 +962,6 @@ pub struct PatchTractions {
 }
 
 impl PatchTractions {
-    /// The box \[x0, x1, s0, s1\] \[m\] of the loaded elements (positive
-    /// pressure), element edges included; None when none is loaded.
-    fn loaded_box(&self) -> Option<[f64; 4]> {
-        let g = &self.grid;
-        let (mut lo, mut hi) = ([usize::MAX; 2], [0; 2]);
-        for iy in 0..g.ny {
-            for ix in 0..g.nx {
-                if self.pressure_pa[g.index(ix, iy)] > 0.0 {
-                    lo = [lo[0].min(ix), lo[1].min(iy)];
-                    hi = [hi[0].max(ix), hi[1].max(iy)];
-                }
-            }
-        }
-        (lo[0] <= hi[0]).then(|| {
-            [
-                g.x0_m + lo[0] as f64 * g.dx_m,
-                g.x0_m + (hi[0] + 1) as f64 * g.dx_m,
-                g.y0_m + lo[1] as f64 * g.dy_m,
-                g.y0_m + (hi[1] + 1) as f64 * g.dy_m,
-            ]
-        })
-    }
-
     /// These tractions on `grid` (pressure, longitudinal, lateral): None
     /// unless it has the same shape and element size; shifted by the whole
     /// elements between the two grids' corners (zero where they do not
@@ -1704,7 +1681,7 @@ fn patch_grid(
     let [mut slo, mut shi] = geom.s_range_m;
     let same = |a: f64| (a - e).abs() <= 1e-9 * e;
     let last = last.filter(|t| same(t.grid.dx_m) && same(t.grid.dy_m));
-    if let Some([x0, x1, s0, s1]) = last.and_then(PatchTractions::loaded_box) {
+    if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
         let m = LAST_CONTACT_MARGIN * e;
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
             (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
