@@ -885,6 +885,28 @@ pub fn solve_coulomb_newton(
             (0.0, 0.0)
         }
     };
+    // The scale of the natural map that sorts elements into adhesion and
+    // slip, z = p - s / d_class. Every positive scale has the same fixed
+    // point (Coulomb's law); the scale decides how a step far from it is
+    // sorted. In steady rolling the upwind model's d = dbar fits. In a
+    // transient step the slip is a displacement difference, and a traction
+    // error spread over the patch moves it about (patch width / element
+    // size) times more than the same error at one element: with
+    // d_class = dbar, a cold shift on a fine grid sorts every element into
+    // slip after every step and Newton cycles until the FISTA fallback
+    // takes over (CONTACT's perfc wheel at 287 x 323 elements: 106 steps
+    // and 329 products; at 575 x 647: 709 steps, 2,325 products, 150 s).
+    // Scaled by the patch width in elements, sqrt(loaded elements), the
+    // same shifts take 8, 10, 12 and 13 Newton steps from 71 x 81 to
+    // 575 x 647 (41, 50, 67, 72 products); the counts hardly change for
+    // any factor from 30 to 1000 on those grids (benches/README.md).
+    let d_class = match local {
+        LocalModel::Upwind => dbar,
+        LocalModel::Diagonal => {
+            let loaded_count = pn.iter().filter(|&&v| v > 0.0).count();
+            dbar * (loaded_count as f64).sqrt().max(1.0)
+        }
+    };
     let mut matvecs = 0;
     slip(op, px, py, sx, sy);
     matvecs += 1;
@@ -933,7 +955,7 @@ pub fn solve_coulomb_newton(
                 role[i] = Role::Exterior;
                 continue;
             }
-            let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
+            let z = [px[i] - sx[i] / d_class, py[i] - sy[i] / d_class];
             let zn = norm(z[0], z[1]);
             role[i] = if zn <= g[i] || zn == 0.0 {
                 Role::Adhesion
@@ -950,7 +972,7 @@ pub fn solve_coulomb_newton(
             let (n0, n1) = if m > 0.0 && (m - g[i]).abs() <= 1e-12 * g[i] {
                 (px[i] / m, py[i] / m)
             } else {
-                let z = [px[i] - sx[i] / dbar, py[i] - sy[i] / dbar];
+                let z = [px[i] - sx[i] / d_class, py[i] - sy[i] / d_class];
                 let zn = norm(z[0], z[1]);
                 let (a, b) = (g[i] * z[0] / zn - px[i], g[i] * z[1] / zn - py[i]);
                 moved += a * a + b * b;

@@ -7,6 +7,8 @@
 mod conformal;
 mod falling_friction;
 mod line_contact;
+mod perfc;
+mod perfc_case;
 mod physics;
 mod profiles;
 mod rolling_direction;
