@@ -68,17 +68,9 @@ fn wheelset_step(c: &mut Criterion) {
         g.sample_size(20);
         for &(y, roll, pitch) in &SHIFTS {
             let inp = mbench_a22_input(y, Some(roll), Some(pitch), model);
-            // Where the time goes (printed once per case). The conformal
-            // method solves wheels with one patch only: the shifts with two
-            // on a wheel are skipped for it.
-            let sol = match solve_wheelset(&pair, &inp, &cache, &mut scratch) {
-                Ok(sol) => sol,
-                Err(e) if model == WheelRailModel::Cect => {
-                    eprintln!("{name} y = {y} mm: skipped ({e})");
-                    continue;
-                }
-                Err(e) => panic!("{name} y = {y} mm: {e}"),
-            };
+            // Where the time goes (printed once per case).
+            let sol = solve_wheelset(&pair, &inp, &cache, &mut scratch)
+                .unwrap_or_else(|e| panic!("{name} y = {y} mm: {e}"));
             let t = sol.timing;
             eprintln!(
                 "{name} y = {y} mm: search {:.2} ms, geometry {:.2} ms, solve {:.2} ms, patches {:?}",

@@ -68,7 +68,8 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::conformal::frictional::{
-    solve_frictional, ConformalKinematics, ConformalSettings, FrictionalWorkspace,
+    solve_frictional, ConformalKinematics, ConformalSettings, ConformalSolution,
+    FrictionalWorkspace,
 };
 use crate::conformal::geometry::{
     ConformalCreepages, ConformalGeometry, PointCurve, RigidSlipSurface,
@@ -137,9 +138,13 @@ pub enum WheelRailModel {
     KikPiotrowski,
     /// The conformal method (CECT with Blanco's influence coefficients) on
     /// every patch: curved patch, undeformed distance along local normals,
-    /// normal and tangential problems coupled. Wheels with one patch only
-    /// (force control along the patch normal); the wheelset's yaw is
-    /// neglected in the patch geometry.
+    /// normal and tangential problems coupled. A wheel with one patch is
+    /// solved under force control along the patch normal; with several,
+    /// each patch at its share of the wheel's approach (secant steps on
+    /// its normal force). The yaw enters through the patch's creepages at
+    /// its reference point (the lateral creepage; the rigid slip's own
+    /// wheel rotation stays about the unyawed axis); the patch geometry
+    /// neglects it.
     Cect,
     /// Exact (planar) everywhere, then CECT where a wheel has one patch
     /// whose contact angle varies by more than
@@ -528,6 +533,9 @@ enum PatchKind {
         geometry: Box<ConformalGeometry>,
         /// Buffers kept over the load iteration's solves.
         workspace: Box<FrictionalWorkspace>,
+        /// The last solve's normal force against elastic approach, the
+        /// start of the next solve at a given approach (several patches).
+        law: Option<ApproachLaw>,
     },
     KikPiotrowski {
         /// The undeformed distance's lateral sections (patch frame).
@@ -630,39 +638,57 @@ impl PatchWork {
             PatchKind::Conformal {
                 geometry,
                 workspace,
+                law,
             } => {
-                let NormalLoad::NormalForce(f) = load else {
-                    return Err(ContactError::invalid(
-                        "model",
-                        "the conformal method (cect) solves wheels with one contact patch only; \
-                         this wheel has several (use model = \"auto\" or \"exact\")",
-                    ));
+                // The conformal rigid slip turns the wheel about its axis
+                // itself ([`ConformalGeometry::rigid_slip`]); that rotation's
+                // component along n(0), -(1 + xi) sin(delta(0))/R_xw per V,
+                // is the part of the patch's spin the contact angle makes:
+                // the rest is passed on.
+                let own_spin = -(1.0 + self.creep.creepage_long)
+                    * geometry.mean_contact_angle_rad.sin()
+                    / geometry.wheel_rolling_radius_m;
+                let creepages = ConformalCreepages {
+                    creepage_long: self.creep.creepage_long,
+                    creepage_lat: self.creep.creepage_lat,
+                    spin_per_m: self.creep.spin_per_m - own_spin,
                 };
-                let kinematics = ConformalKinematics::SteadyRolling {
-                    normal_force_n: f,
-                    creepages: ConformalCreepages {
-                        creepage_long: self.creep.creepage_long,
-                        creepage_lat: self.creep.creepage_lat,
-                        spin_per_m: self.creep.spin_per_m,
-                    },
+                let settings = ConformalSettings {
+                    rigid_slip: input.settings.rigid_slip,
+                    ..ConformalSettings::default()
                 };
-                let sol = solve_frictional(
-                    workspace,
-                    geometry,
-                    &input.material,
-                    input.friction.kinetic_coefficient,
-                    InfluenceModel::Blanco,
-                    &kinematics,
-                    &ConformalSettings {
-                        rigid_slip: input.settings.rigid_slip,
-                        ..ConformalSettings::default()
-                    },
-                    cache,
-                )?
-                .pop()
-                .ok_or(ContactError::NoContact {
-                    detail: "no solution".into(),
-                })?;
+                let mut solve_at = |normal_force_n: f64| {
+                    solve_frictional(
+                        workspace,
+                        geometry,
+                        &input.material,
+                        input.friction.kinetic_coefficient,
+                        InfluenceModel::Blanco,
+                        &ConformalKinematics::SteadyRolling {
+                            normal_force_n,
+                            creepages,
+                        },
+                        &settings,
+                        cache,
+                    )?
+                    .pop()
+                    .ok_or(ContactError::NoContact {
+                        detail: "no solution".into(),
+                    })
+                };
+                let sol = match load {
+                    NormalLoad::NormalForce(f) => solve_at(f)?,
+                    // A wheel with several patches: each at its share of
+                    // the wheel's approach (above `hmin`, checked above).
+                    NormalLoad::Approach(d) => {
+                        let elastic = d - self.hmin;
+                        let guess = law.map_or_else(
+                            || hertz_force_guess(&self.geom, elastic, input),
+                            |l| l.force_at(elastic),
+                        );
+                        conformal_at_approach(elastic, guess, law, input, &mut solve_at)?
+                    }
+                };
                 let t = &sol.totals;
                 self.out = PatchOutcome {
                     global_qz_n: Some([t.fy_global_n, t.fz_global_n]),
@@ -1437,6 +1463,7 @@ fn solve_wheel(
                             kind: PatchKind::Conformal {
                                 geometry: Box::new(geometry),
                                 workspace: Box::default(),
+                                law: None,
                             },
                             hmin,
                             out: PatchOutcome::default(),
@@ -1545,6 +1572,7 @@ fn build_patch(
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, grid)?),
                 workspace: Box::default(),
+                law: None,
             }
         }
     };
@@ -1803,6 +1831,89 @@ fn conformal_geometry(
         geom.rolling_radius_m,
         grid,
     )?)
+}
+
+/// A conformal patch's normal force against its elastic approach near the
+/// last solve: F^(2/3) = g + slope (approach - e), nearly linear (Hertz's
+/// F ~ approach^(3/2)).
+#[derive(Debug, Clone, Copy)]
+struct ApproachLaw {
+    /// F^(2/3) of the last solve \[N^(2/3)\].
+    g: f64,
+    /// Its elastic approach \[m\].
+    e: f64,
+    /// d F^(2/3) / d approach \[N^(2/3)/m\], > 0.
+    slope: f64,
+}
+
+impl ApproachLaw {
+    /// The normal force at elastic approach `e` \[N\].
+    fn force_at(&self, e: f64) -> f64 {
+        let g = self.g + self.slope * (e - self.e);
+        // Beyond the law's root: Hertz's scaling from the last solve.
+        let g = if g > 0.0 { g } else { self.g * e / self.e };
+        g.powf(1.5)
+    }
+}
+
+/// Hertz's normal force at elastic approach `e` \[m\] on the curvatures
+/// at a patch's reference point (those of [`hertz_kind`]).
+fn hertz_force_guess(geom: &PatchGeometry, e: f64, input: &WheelRailInput) -> f64 {
+    let kx = geom.lateral_at(0.0).kx_per_m;
+    let PatchKind::Hertz {
+        a_per_m, b_per_m, ..
+    } = hertz_kind(kx, lateral_curvature(geom).1, WheelRailModel::HertzFastsim)
+    else {
+        unreachable!("hertz_kind makes Hertz patches")
+    };
+    let load = HertzLoad::Approach { approach_m: e };
+    hertz(
+        a_per_m,
+        b_per_m,
+        input.material.effective_modulus_pa(),
+        load,
+    )
+    .map_or(1e4, |h| h.normal_force_n)
+}
+
+/// The conformal solution of `solve_at` (a solve at a normal force) whose
+/// elastic approach is `e` \[m\]: secant steps on F^(2/3) from the normal
+/// force `guess`, until the approach is within the load tolerance over 1.5
+/// of `e` (the force then within the load tolerance) or the load
+/// iteration's limit is spent (the last solve is the answer, as with a
+/// single patch). `law` keeps the last step for the next call.
+fn conformal_at_approach(
+    e: f64,
+    guess: f64,
+    law: &mut Option<ApproachLaw>,
+    input: &WheelRailInput,
+    solve_at: &mut impl FnMut(f64) -> Result<ConformalSolution, ContactError>,
+) -> Result<ConformalSolution, ContactError> {
+    let tol = (input.settings.load_tolerance / 1.5).max(1e-10) * e;
+    let mut g = guess.powf(2.0 / 3.0);
+    let mut prev: Option<(f64, f64)> = None;
+    let mut it = 0;
+    loop {
+        it += 1;
+        let sol = solve_at(g.powf(1.5))?;
+        let ek = sol.totals.approach_m;
+        let slope = match (prev, *law) {
+            (Some((g0, e0)), _) if ek != e0 => (g - g0) / (ek - e0),
+            (_, Some(l)) => l.slope,
+            _ => g / ek,
+        };
+        let slope = if slope.is_finite() && slope > 0.0 {
+            slope
+        } else {
+            g / ek
+        };
+        *law = Some(ApproachLaw { g, e: ek, slope });
+        if (ek - e).abs() <= tol || it >= input.settings.max_load_iterations {
+            return Ok(sol);
+        }
+        prev = Some((g, ek));
+        g = (g + slope * (e - ek)).max(0.25 * g);
+    }
 }
 
 /// How accurately the load iteration solves a patch.
