@@ -1086,6 +1086,15 @@ fn wheelrail_friction_table_from_the_case_file() {
         ),
         "friction.coefficient",
     );
+    // A patch case has no rail profile: its table keys are refused.
+    expect_bad(
+        "patch_table.toml",
+        &example_text("hertz_ellipse_rolling.toml").replace(
+            "coefficient = 0.30",
+            "coefficient = 0.30\ncontact_angles_rad = [0.0]",
+        ),
+        "friction.contact_angles_rad",
+    );
     expect_bad_wheelrail(
         "wr_falling_hertz.toml",
         &example_text("wheelset_a22.toml")
