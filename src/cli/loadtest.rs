@@ -385,6 +385,7 @@ fn wheelset_state(
             lateral_m: y0 * a.sin(),
             yaw_rad: psi0 * a.cos(),
             roll_rad: None,
+            track_s_m: 0.0,
         }),
         Some(pb::WheelsetVelocity {
             forward_m_per_s: 20.0,

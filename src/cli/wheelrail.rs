@@ -15,12 +15,13 @@ use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
+use crate::problem::case::{FrictionLawName, FrictionSection};
 use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
-    builtin, load_profile_with, solve_wheelset, LoadOptions, PatchResult, Profile, SearchScratch,
-    Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
-    WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, load_profile_with, solve_wheelset, FrictionTable, LoadOptions, PatchResult, Profile,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
+    WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -52,8 +53,11 @@ struct WheelrailCase {
     side: String,
     #[serde(default)]
     material: MaterialKeys,
-    #[serde(default)]
-    friction: FrictionKeys,
+    /// `[friction]`: the patch cases' keys (Coulomb, or a falling law for
+    /// the exact model, its rolling speed optional: each patch rolls at its
+    /// own), or a friction table over the rail profile. Default: Coulomb
+    /// 0.3.
+    friction: Option<FrictionSection>,
     track: TrackKeys,
     wheelset: WheelsetKeys,
     #[serde(default)]
@@ -113,18 +117,6 @@ impl Default for MaterialKeys {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct FrictionKeys {
-    coefficient: f64,
-}
-
-impl Default for FrictionKeys {
-    fn default() -> Self {
-        Self { coefficient: 0.3 }
-    }
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct TrackKeys {
     rail_profile: String,
     rail_profile_left: Option<String>,
@@ -157,6 +149,8 @@ struct PositionKeys {
     #[serde(default)]
     yaw_rad: f64,
     roll_rad: Option<f64>,
+    #[serde(default)]
+    track_s_m: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -232,6 +226,26 @@ fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Pro
         None => load_profile_with(dir.join(name), &options),
     };
     result.map_err(|e| bad(format!("invalid input `{key}`: {e}")))
+}
+
+/// The friction of a wheel/rail case's `[friction]` (Coulomb 0.3 without
+/// one): a falling law's rolling speed defaults to `forward_m_per_s`, which
+/// each patch's own replaces.
+fn wheelrail_friction(
+    section: Option<FrictionSection>,
+    forward_m_per_s: f64,
+) -> Result<(Friction, Option<FrictionTable>), CliError> {
+    let Some(mut f) = section else {
+        return Ok((Friction::coulomb(0.3), None));
+    };
+    if let Some(table) = f.table()? {
+        // The table's coefficients replace these.
+        return Ok((Friction::coulomb(0.0), Some(table)));
+    }
+    if f.law != FrictionLawName::Coulomb && f.rolling_speed_m_per_s.is_none() {
+        f.rolling_speed_m_per_s = Some(forward_m_per_s);
+    }
+    Ok((f.friction()?, None))
 }
 
 /// A parsed and checked case: the pair and the solver input.
@@ -331,11 +345,13 @@ impl WheelrailRun {
         })
         .map_err(|e| bad(e.to_string().replace("material.body1", "material")))?;
         let v = &c.velocity;
+        let (friction, friction_table) = wheelrail_friction(c.friction, v.forward_m_per_s)?;
         let input = WheelRailInput {
             position: WheelsetPosition {
                 lateral_m: c.position.lateral_m,
                 yaw_rad: c.position.yaw_rad,
                 roll_rad: c.position.roll_rad,
+                track_s_m: c.position.track_s_m,
             },
             velocity: WheelsetVelocity {
                 forward_m_per_s: v.forward_m_per_s,
@@ -348,7 +364,8 @@ impl WheelrailRun {
             load,
             sides,
             material,
-            friction: Friction::coulomb(c.friction.coefficient),
+            friction,
+            friction_table,
             settings: WheelRailSettings {
                 model,
                 element_size_m: c.grid.element_size_m,

@@ -905,5 +905,10 @@ pub fn friction_section(f: &pb::FrictionSection) -> Result<FrictionSection, Serv
         memory_velocity_m_per_s: f.memory_velocity_m_per_s,
         start,
         max_iterations: f.max_iterations.map(|n| n as usize),
+        // The wire's table is its own message (wheel/rail `friction_table`).
+        contact_angles_rad: None,
+        rail_y_m: None,
+        coefficients: None,
+        track_s_m: None,
     })
 }

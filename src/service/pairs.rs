@@ -367,15 +367,13 @@ fn cli_material(m: &pb::MaterialSection) -> MaterialSection {
     }
 }
 
-/// The checked Coulomb friction of a wire friction section (wheel/rail
-/// contact solves Coulomb's law only); keys `friction.*`.
+/// The checked friction of a wire friction section for wheel/rail
+/// contact; keys `friction.*`. A falling law's rolling speed is not needed
+/// (each patch rolls at its own; 1 m/s stands in until then).
 pub fn friction(f: &pb::FrictionSection) -> Result<Friction, ServiceError> {
-    let section = convert::friction_section(f)?;
-    if section.law != FrictionLawName::Coulomb {
-        return Err(ServiceError::invalid(
-            "friction.law",
-            "wheel/rail contact solves Coulomb friction only; falling laws are for SolvePatch and PatchSession",
-        ));
+    let mut section = convert::friction_section(f)?;
+    if section.law != FrictionLawName::Coulomb && section.rolling_speed_m_per_s.is_none() {
+        section.rolling_speed_m_per_s = Some(1.0);
     }
     Ok(section.friction()?)
 }
@@ -641,7 +639,9 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
         load: WheelLoad::VerticalForce(TRIAL_WHEEL_LOAD_N),
         sides: Side::BOTH.to_vec(),
         material: s.material,
-        friction: s.friction,
+        // The trial's Hertz model takes Coulomb's law.
+        friction: Friction::coulomb(s.friction.kinetic_coefficient),
+        friction_table: None,
         settings: WheelRailSettings {
             model: WheelRailModel::HertzFastsim,
             element_size_m: s.element_size_m,

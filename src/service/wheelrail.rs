@@ -9,6 +9,7 @@
 
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::error::{Range, UnitHint};
+use crate::core::friclaw::{FallingShape, SlipStart};
 use crate::core::material::CombinedMaterial;
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
@@ -20,8 +21,9 @@ use crate::service::pb;
 use crate::service::status::ServiceError;
 use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
 use crate::wheelrail::{
-    PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
-    WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
+    FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailError, WheelRailInput,
+    WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 /// The documented ranges of a wheel/rail query's motion and load (the
@@ -135,6 +137,7 @@ pub struct QuerySettings {
     sides: Vec<Side>,
     material: CombinedMaterial,
     friction: Friction,
+    friction_table: Option<FrictionTable>,
     settings: WheelRailSettings,
 }
 
@@ -164,12 +167,54 @@ impl QuerySettings {
             sides: sides(sides_field)?,
             material: pair.material,
             friction,
+            friction_table: None,
             settings: WheelRailSettings {
                 model: model(model_field)?,
                 element_size_m,
                 ..WheelRailSettings::default()
             },
         })
+    }
+
+    /// The settings with the request's friction table (field
+    /// `friction_table`; not set: none).
+    pub fn with_friction_table(
+        mut self,
+        t: Option<&pb::FrictionTable>,
+    ) -> Result<Self, ServiceError> {
+        let Some(t) = t else { return Ok(self) };
+        const KEY: &str = "friction_table";
+        let (axis, positions) = match (t.contact_angles_rad.is_empty(), t.rail_y_m.is_empty()) {
+            (false, true) => (FrictionAxis::ContactAngle, &t.contact_angles_rad),
+            (true, false) => (FrictionAxis::RailLateral, &t.rail_y_m),
+            _ => {
+                return Err(ServiceError::invalid(
+                    format!("{KEY}.contact_angles_rad"),
+                    "give one of contact_angles_rad and rail_y_m",
+                ))
+            }
+        };
+        let table = FrictionTable {
+            axis,
+            positions: positions.clone(),
+            track_s_m: t.track_s_m.clone(),
+            coefficients: t.coefficients.clone(),
+        };
+        // The library's keys are the case file's, under `friction.`.
+        table.validate().map_err(|e| match e {
+            WheelRailError::Invalid { key, message } => {
+                ServiceError::invalid(key.replacen("friction.", &format!("{KEY}."), 1), message)
+            }
+            e => ServiceError::invalid(KEY, e.to_string()),
+        })?;
+        if self.friction.slip_velocity_law.is_some() {
+            return Err(ServiceError::invalid(
+                "friction.law",
+                "a friction table sets Coulomb's law: give either the table or a falling law",
+            ));
+        }
+        self.friction_table = Some(table);
+        Ok(self)
     }
 
     /// The settings with the conformal method's options of the request
@@ -245,6 +290,12 @@ impl QuerySettings {
         let check = |key: &str, v: f64, r: Range| r.check(key, v).map_err(ServiceError::from);
         check("position.lateral_m", p.lateral_m, ranges::LATERAL)?;
         check("position.yaw_rad", p.yaw_rad, ranges::YAW)?;
+        if !p.track_s_m.is_finite() {
+            return Err(ServiceError::invalid(
+                "position.track_s_m",
+                format!("must be finite, got {}", p.track_s_m),
+            ));
+        }
         if let Some(r) = p.roll_rad {
             check("position.roll_rad", r, ranges::ROLL)?;
         }
@@ -302,6 +353,7 @@ impl QuerySettings {
                 lateral_m: p.lateral_m,
                 yaw_rad: p.yaw_rad,
                 roll_rad: p.roll_rad,
+                track_s_m: p.track_s_m,
             },
             velocity: WheelsetVelocity {
                 forward_m_per_s: v.forward_m_per_s,
@@ -315,6 +367,7 @@ impl QuerySettings {
             sides: self.sides.clone(),
             material: self.material,
             friction: self.friction,
+            friction_table: self.friction_table.clone(),
             settings: self.settings,
             total_longitudinal_force_n,
         })
@@ -338,6 +391,7 @@ pub fn input(
     )?
     .with_polach(req.polach.as_ref())?
     .with_conformal(req.conformal.as_ref())?
+    .with_friction_table(req.friction_table.as_ref())?
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
@@ -361,6 +415,7 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
             lateral_m: p.lateral_m,
             yaw_rad: p.yaw_rad,
             roll_rad: p.roll_rad,
+            track_s_m: p.track_s_m,
         }),
         velocity: Some(pb::WheelsetVelocity {
             forward_m_per_s: v.forward_m_per_s,
@@ -378,10 +433,19 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
             }),
             total_longitudinal_force_n: input.total_longitudinal_force_n,
         }),
-        friction: Some(pb::FrictionSection {
-            static_coefficient: Some(f.static_coefficient),
-            kinetic_coefficient: Some(f.kinetic_coefficient),
-            ..Default::default()
+        friction: Some(friction_section_of(&f)),
+        friction_table: input.friction_table.as_ref().map(|t| {
+            let positions = t.positions.clone();
+            let (contact_angles_rad, rail_y_m) = match t.axis {
+                FrictionAxis::ContactAngle => (positions, Vec::new()),
+                FrictionAxis::RailLateral => (Vec::new(), positions),
+            };
+            pb::FrictionTable {
+                contact_angles_rad,
+                rail_y_m,
+                coefficients: t.coefficients.clone(),
+                track_s_m: t.track_s_m.clone(),
+            }
         }),
         element_size_m: Some(input.settings.element_size_m),
         include_fields: false,
@@ -407,6 +471,37 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
     }
 }
 
+/// The wire friction of a library friction (its falling law, if any,
+/// without its rolling speed: each patch rolls at its own).
+fn friction_section_of(f: &Friction) -> pb::FrictionSection {
+    let Some(law) = f.slip_velocity_law else {
+        return pb::FrictionSection {
+            static_coefficient: Some(f.static_coefficient),
+            kinetic_coefficient: Some(f.kinetic_coefficient),
+            ..Default::default()
+        };
+    };
+    pb::FrictionSection {
+        kinetic_coefficient: Some(law.kinetic_coefficient),
+        law: match law.shape {
+            FallingShape::Linear => pb::FrictionLaw::Linear,
+            FallingShape::Rational => pb::FrictionLaw::Rational,
+            FallingShape::Exponential => pb::FrictionLaw::Exponential,
+        } as i32,
+        falling_coefficients: law.falling_coefficients.to_vec(),
+        half_velocities_m_per_s: law.half_velocities_m_per_s.to_vec(),
+        memory_distance_m: Some(law.memory_distance_m),
+        memory_velocity_m_per_s: Some(law.memory_velocity_m_per_s),
+        start: match law.start {
+            SlipStart::Previous => pb::SlipStart::Previous,
+            SlipStart::Sticking => pb::SlipStart::Sticking,
+            SlipStart::Sliding => pb::SlipStart::Sliding,
+        } as i32,
+        max_iterations: Some(law.iteration_limit() as u32),
+        ..Default::default()
+    }
+}
+
 fn force(f: [f64; 3]) -> pb::TrackForce {
     pb::TrackForce {
         x_n: f[0],
@@ -427,6 +522,7 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
     pb::WheelRailPatch {
         method: method(p.method) as i32,
         contact_angle_rad: p.contact_angle_rad,
+        friction_coefficient: p.friction_coefficient,
         contact_angle_variation_rad: p.contact_angle_variation_rad,
         rail_y_m: p.rail_y_m,
         rail_z_m: p.rail_z_m,

@@ -73,6 +73,7 @@ impl WheelRailSession {
         )?
         .with_polach(open.polach.as_ref())?
         .with_conformal(open.conformal.as_ref())?
+        .with_friction_table(open.friction_table.as_ref())?
         .with_max_grid_elements(limits.max_grid_elements);
         Ok(Self {
             settings,

@@ -1046,6 +1046,67 @@ fn wheelrail_bad_inputs_name_the_key() {
     );
 }
 
+/// `examples/cases/wheelset_a22_varfric.toml`: CONTACT's
+/// mbench_a22_varfric case 4 (github.com/eve70a/CONTACT,
+/// examples/mbench_a22_varfric.ref_out, commit eb670a7): one flange-root
+/// patch with FSTAT 0.2076, FN 9907, FX -608.6, FS -1963 N; each within
+/// 1 %. Bad table keys exit with code 2 naming the key.
+#[test]
+fn wheelrail_friction_table_from_the_case_file() {
+    let v = wheelrail_json(&example("wheelset_a22_varfric.toml"));
+    let p = &v["wheels"]["right"]["patches"][0];
+    for (key, want) in [
+        ("friction_coefficient", 0.2076),
+        ("normal_force_n", 9907.0),
+        ("fx_n", -608.6),
+        ("fs_n", -1963.0),
+    ] {
+        let got = f(p, key);
+        assert!(
+            (got - want).abs() <= 0.01 * want.abs(),
+            "{key}: {got}, CONTACT {want}"
+        );
+    }
+    let good = example_text("wheelset_a22_varfric.toml");
+    expect_bad_wheelrail(
+        "wr_table_order.toml",
+        &good.replace("[0.17453292519943295, 0.3490658503988659]", "[0.3, 0.2]"),
+        "friction.contact_angles_rad",
+    );
+    expect_bad_wheelrail(
+        "wr_table_count.toml",
+        &good.replace("coefficients = [0.3, 0.2]", "coefficients = [0.3]"),
+        "friction.coefficients",
+    );
+    expect_bad_wheelrail(
+        "wr_table_and_mu.toml",
+        &good.replace(
+            "coefficients = [0.3, 0.2]",
+            "coefficients = [0.3, 0.2]\ncoefficient = 0.3",
+        ),
+        "friction.coefficient",
+    );
+    // A patch case has no rail profile: its table keys are refused.
+    expect_bad(
+        "patch_table.toml",
+        &example_text("hertz_ellipse_rolling.toml").replace(
+            "coefficient = 0.30",
+            "coefficient = 0.30\ncontact_angles_rad = [0.0]",
+        ),
+        "friction.contact_angles_rad",
+    );
+    expect_bad_wheelrail(
+        "wr_falling_hertz.toml",
+        &example_text("wheelset_a22.toml")
+            .replace("model = \"exact\"", "model = \"hertz_fastsim\"")
+            .replace(
+                "coefficient = 0.3",
+                "law = \"exponential\"\nkinetic_coefficient = 0.2\nfalling_coefficients = [0.1]\nhalf_velocities_m_per_s = [0.05]",
+            ),
+        "friction.law",
+    );
+}
+
 /// Measured profiles read from files next to the case: a MiniProf wheel on a
 /// `load.total_longitudinal_force_n`: the pitch rate is found and
 /// reported; with a pitch rate as well, or beyond saturation, exit code 2

@@ -11,6 +11,8 @@ use std::path::Path;
 
 use railcontact::conformal::geometry::RigidSlipSurface;
 use railcontact::core::cache::KernelCache;
+use railcontact::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw};
+use railcontact::core::problem::Friction;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
 use railcontact::service::server::RunningServer;
@@ -18,9 +20,9 @@ use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
     load_profile, load_profile_with, pitch_force_tolerance, solve_wheelset,
-    solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, LoadOptions, SearchScratch, Side,
-    SplineOptions, TableSettings, TrackData, WarmStart, WheelRailModel, WheelRailPair,
-    WheelRailSolution, WheelsetData,
+    solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, FrictionAxis, FrictionTable,
+    LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
+    WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
 };
 use tonic::Code;
 
@@ -546,6 +548,116 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
     assert_eq!(e.code(), Code::NotFound);
     let e = client.delete_profile_pair(del(BUILTIN)).await.unwrap_err();
     assert_eq!(e.code(), Code::FailedPrecondition, "{e:?}");
+    server.shutdown().await;
+}
+
+/// Friction varying over the rail profile and along the track
+/// (`friction_table`, read at `position.track_s_m`) and a falling law, as
+/// the library bit for bit, in a query and in a session; each patch reports
+/// its coefficient. A bad table, a table with a falling law and a falling
+/// law for a Hertz model are INVALID_ARGUMENT naming the field.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn friction_tables_and_falling_laws_solve_as_the_library() {
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let table = FrictionTable {
+        axis: FrictionAxis::ContactAngle,
+        positions: vec![0.1, 0.4],
+        track_s_m: vec![0.0, 100.0],
+        coefficients: vec![0.3, 0.2, 0.4, 0.1],
+    };
+    let mut input = mbench_a22_input(5.0, None, None, WheelRailModel::Exact);
+    input.friction_table = Some(table.clone());
+    input.position.track_s_m = 40.0;
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("friction table", &got, &want);
+    for (g, w) in got.wheels.iter().zip(&want.wheels) {
+        for (gp, wp) in g.patches.iter().zip(&w.patches) {
+            assert_eq!(
+                gp.friction_coefficient.to_bits(),
+                wp.friction_coefficient.to_bits()
+            );
+            let mu = table.coefficient(wp.contact_angle_rad, 40.0);
+            assert_eq!(wp.friction_coefficient, mu);
+        }
+    }
+    // A session opened with the table: its first step as the library.
+    let q = query_of(BUILTIN, &input);
+    let open = In::Open(pb::WheelRailSessionOpen {
+        pair_id: BUILTIN.into(),
+        model: pb::WheelRailModel::Exact as i32,
+        friction_table: q.friction_table.clone(),
+        ..Default::default()
+    });
+    let step = In::Step(pb::WheelRailSessionStep {
+        step_index: 0,
+        position: q.position,
+        velocity: q.velocity,
+        load: q.load,
+        ..Default::default()
+    });
+    let out = wr_session(&mut client, vec![wr_request(open), wr_request(step)])
+        .await
+        .unwrap();
+    let first = out
+        .iter()
+        .find_map(|o| match o {
+            Out::Step(s) => s.result.clone(),
+            _ => None,
+        })
+        .expect("a step result");
+    let warm = solve_wheelset_warm(
+        &pair,
+        &input,
+        &cache,
+        &mut SearchScratch::default(),
+        &mut WarmStart::default(),
+    )
+    .unwrap();
+    assert_same("session with a friction table", &first, &warm);
+    // A falling law, each patch at its own rolling speed.
+    let mut input = mbench_a22_input(5.5, None, None, WheelRailModel::Exact);
+    input.friction = Friction::falling(SlipVelocityLaw {
+        shape: FallingShape::Exponential,
+        kinetic_coefficient: 0.15,
+        falling_coefficients: [0.2, 0.0],
+        half_velocities_m_per_s: [0.05, 0.0],
+        rolling_speed_m_per_s: 2.0,
+        memory_distance_m: 0.0,
+        memory_velocity_m_per_s: 0.0,
+        start: SlipStart::Sticking,
+        max_iterations: 0,
+    });
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("falling law", &got, &want);
+    // Errors.
+    let mut r = query_of(BUILTIN, &input);
+    r.friction_table = q.friction_table.clone();
+    assert_invalid(&solve_err(&mut client, r).await, &["friction.law"]);
+    let mut r = query_of(BUILTIN, &input);
+    r.model = pb::WheelRailModel::HertzFastsim as i32;
+    assert_invalid(&solve_err(&mut client, r).await, &["friction.law", "exact"]);
+    let mut r = q.clone();
+    r.friction_table.as_mut().unwrap().coefficients.pop();
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["friction_table.coefficients"],
+    );
+    let mut r = q.clone();
+    r.friction_table.as_mut().unwrap().rail_y_m = vec![0.0];
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["friction_table.contact_angles_rad"],
+    );
+    let mut r = q;
+    r.position.as_mut().unwrap().track_s_m = f64::NAN;
+    assert_invalid(&solve_err(&mut client, r).await, &["position.track_s_m"]);
     server.shutdown().await;
 }
 

@@ -78,6 +78,9 @@ pub struct ContactSolver {
     path: WarmPath,
     /// A slip-velocity law's state: see [`LawState`].
     law: LawState,
+    /// Factor on the friction coefficients of each grid row (empty: 1
+    /// everywhere): [`ContactSolver::set_row_friction_scale`].
+    row_scale: Vec<f64>,
 }
 
 /// Buffers of a slip-velocity dependent friction law
@@ -215,6 +218,55 @@ impl ContactSolver {
             transient_steps: 0,
             path: WarmPath::default(),
             law: LawState::new(n),
+            row_scale: Vec::new(),
+        }
+    }
+
+    /// Friction varying across the rolling direction, one grid row at a
+    /// time (CONTACT's friction per grid row, user guide §"Friction
+    /// description", variable friction `VARFRC`): the friction
+    /// coefficients of every element of grid row `iy` (lateral position
+    /// `grid.y_m(iy)`) are the problem's coefficients times `scale[iy]`,
+    /// its static and kinetic ones under Coulomb's law, mu(s_a) under a
+    /// slip-velocity law. `scale` has one finite factor > 0 per grid row, or
+    /// is empty for the problem's coefficients everywhere (the default).
+    /// Kept for every later solve of this solver; needs rolling in +x
+    /// (`rolling_direction_rad` 0: the rows are the grid's).
+    pub fn set_row_friction_scale(&mut self, scale: &[f64]) -> Result<(), ContactError> {
+        const KEY: &str = "row_friction_scale";
+        if scale.is_empty() {
+            self.row_scale.clear();
+            return Ok(());
+        }
+        if !self.frame.is_identity() {
+            return Err(ContactError::invalid(
+                KEY,
+                "friction per grid row needs rolling_direction_rad = 0",
+            ));
+        }
+        if scale.len() != self.grid.ny || scale.iter().any(|f| !(f.is_finite() && *f > 0.0)) {
+            return Err(ContactError::invalid(
+                KEY,
+                format!(
+                    "needs {} finite factors > 0, one per grid row, got {} values",
+                    self.grid.ny,
+                    scale.len()
+                ),
+            ));
+        }
+        self.row_scale.clear();
+        self.row_scale.extend_from_slice(scale);
+        Ok(())
+    }
+
+    /// The factor on the friction coefficients of element `i` (1 without a
+    /// row scale).
+    #[inline]
+    fn row_factor(&self, i: usize) -> f64 {
+        if self.row_scale.is_empty() {
+            1.0
+        } else {
+            self.row_scale[i / self.grid.nx]
         }
     }
 
@@ -717,6 +769,14 @@ impl ContactSolver {
                 }
             };
             let outcome = match &law {
+                None if !self.row_scale.is_empty() => {
+                    // The row factors go into the bounds handed over as
+                    // pressures, with the problem's coefficients.
+                    for i in 0..n {
+                        self.law.bound[i] = self.pn[i] * self.row_factor(i);
+                    }
+                    self.tangential_pass(&s.tangential, friction, steady, true)
+                }
                 None => self.tangential_pass(&s.tangential, friction, steady, false),
                 Some(law) => {
                     let (o, ok) = self.falling_friction(law, &s.tangential, steady, rolling_m, c);
@@ -935,8 +995,8 @@ impl ContactSolver {
         let mut last_change = f64::INFINITY;
         for _ in 0..law.iteration_limit() {
             self.law_coefficients(law, steady, dt_s);
-            for ((b, &p), &m) in self.law.bound.iter_mut().zip(&self.pn).zip(&self.law.mu) {
-                *b = p * m;
+            for i in 0..grid.len() {
+                self.law.bound[i] = self.pn[i] * self.law.mu[i] * self.row_factor(i);
             }
             let bound = FrictionBounds {
                 static_coefficient: 1.0,
@@ -956,13 +1016,13 @@ impl ContactSolver {
             }
             std::mem::swap(&mut law_state.velocity, &mut law_state.velocity_new);
             self.law_coefficients(law, steady, dt_s);
-            let law_state = &mut self.law;
             let (mut change, mut size) = (0.0f64, 0.0f64);
             for i in 0..grid.len() {
-                let new_bound = law_state.mu[i] * self.pn[i];
-                change += (new_bound - law_state.bound[i]).powi(2);
-                size += law_state.bound[i].powi(2);
+                let new_bound = self.law.mu[i] * self.pn[i] * self.row_factor(i);
+                change += (new_bound - self.law.bound[i]).powi(2);
+                size += self.law.bound[i].powi(2);
             }
+            let law_state = &mut self.law;
             let change = if size > 0.0 {
                 (change / size).sqrt()
             } else {
@@ -1198,6 +1258,63 @@ mod tests {
 
     fn solve_last(s: &mut ContactSolver, p: &ContactProblem) -> ContactSolution {
         s.solve(p).unwrap().pop().unwrap()
+    }
+
+    /// A row scale of 2 everywhere is the coefficients doubled; a scale that differs by row bounds each row
+    /// by its own coefficient; a scale of the wrong length is refused naming
+    /// the key.
+    #[test]
+    fn row_friction_scale_bounds_each_row_by_its_coefficient() {
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 20.0);
+        p.friction = Friction::coulomb(0.15);
+        let mut scaled = ContactSolver::new(&p, &cache);
+        scaled
+            .set_row_friction_scale(&vec![2.0; p.grid.ny])
+            .unwrap();
+        let a = solve_last(&mut scaled, &p);
+        let mut q = p.clone();
+        q.friction = Friction::coulomb(0.3);
+        let b = solve_last(&mut ContactSolver::new(&q, &cache), &q);
+        // Not to the bit: the bounds reach the solvers as their pressures
+        // (measured on Fx: 2.8e-12 of mu Fn).
+        let limit = 1e-9 * 0.3 * b.totals.normal_force_n;
+        assert!((a.totals.fx_n - b.totals.fx_n).abs() < limit);
+        assert!((a.totals.fy_n - b.totals.fy_n).abs() < limit);
+        // Rows below the centre at 0.1, above at 0.3 (of 0.15 x 2/3, 2): in
+        // full slip each element carries its row's mu p_n.
+        let g = p.grid;
+        let scale: Vec<f64> = (0..g.ny)
+            .map(|iy| if g.y_m(iy) < 0.0 { 2.0 / 3.0 } else { 2.0 })
+            .collect();
+        scaled.set_row_friction_scale(&scale).unwrap();
+        let c = solve_last(&mut scaled, &p);
+        let f = &c.fields;
+        for (iy, row_scale) in scale.iter().enumerate() {
+            for ix in 0..g.nx {
+                let i = g.index(ix, iy);
+                if f.pressure_pa[i] > 0.0 && f.state[i] == ElementState::Slip {
+                    let t = f.traction_x_pa[i].hypot(f.traction_y_pa[i]);
+                    let bound = 0.15 * row_scale * f.pressure_pa[i];
+                    assert!(
+                        (t - bound).abs() <= 1e-6 * bound,
+                        "row {iy}: {t} against {bound}"
+                    );
+                }
+            }
+        }
+        let err = scaled.set_row_friction_scale(&[1.0; 3]).unwrap_err();
+        assert!(err.to_string().contains("row_friction_scale"), "{err}");
+        let err = scaled.set_row_friction_scale(&vec![0.0; g.ny]).unwrap_err();
+        assert!(err.to_string().contains("row_friction_scale"), "{err}");
+        scaled.set_row_friction_scale(&[]).unwrap();
+        let d = solve_last(&mut scaled, &p);
+        let e = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        // The same answer from another start (the last solve's tractions),
+        // to the tangential tolerance.
+        let mu_fn = 0.15 * e.totals.normal_force_n;
+        assert!((d.totals.fx_n - e.totals.fx_n).abs() < 1e-5 * mu_fn);
+        assert!((d.totals.fy_n - e.totals.fy_n).abs() < 1e-5 * mu_fn);
     }
 
     #[test]

@@ -30,6 +30,8 @@ use crate::core::tangential::TangentialSettings;
 use crate::core::temperature::ThermalInput;
 use crate::problem::reference_models::hertz_of;
 use crate::problem::CaseError;
+use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
+use crate::wheelrail::WheelRailError;
 
 /// Default grid of the exact model in each direction (elements).
 pub const DEFAULT_EXACT_ELEMENTS: usize = 64;
@@ -557,7 +559,10 @@ pub enum FrictionLawName {
 /// exact model only): `kinetic_coefficient`, `falling_coefficients`,
 /// `half_velocities_m_per_s`, `rolling_speed_m_per_s` and the optional
 /// `memory_distance_m`, `memory_velocity_m_per_s`, `start`,
-/// `max_iterations`.
+/// `max_iterations`. Wheel/rail cases also take a friction table over the
+/// rail profile ([`crate::wheelrail::friction`]): `contact_angles_rad` or
+/// `rail_y_m`, `coefficients`, and the optional `track_s_m`
+/// ([`FrictionSection::table`]).
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSection {
@@ -593,6 +598,18 @@ pub struct FrictionSection {
     /// Falling law: limit of the iteration on the slip velocities
     /// (default 200).
     pub max_iterations: Option<usize>,
+    /// Wheel/rail friction table: contact angles \[rad\], strictly
+    /// increasing, in \[-1.6, 1.6\] (or `rail_y_m`).
+    pub contact_angles_rad: Option<Vec<f64>>,
+    /// Wheel/rail friction table: lateral coordinates on the rail profile
+    /// \[m\], strictly increasing (or `contact_angles_rad`).
+    pub rail_y_m: Option<Vec<f64>>,
+    /// Wheel/rail friction table: coefficients [-] in \[1e-6, 5\], one per
+    /// position, row after row for each of `track_s_m`.
+    pub coefficients: Option<Vec<f64>>,
+    /// Wheel/rail friction table: track coordinates \[m\] of its rows,
+    /// strictly increasing (default: one row for the whole track).
+    pub track_s_m: Option<Vec<f64>>,
 }
 
 /// Kind of undeformed geometry.
@@ -1336,8 +1353,87 @@ impl MaterialSection {
 }
 
 impl FrictionSection {
+    /// The wheel/rail friction table of `contact_angles_rad` or `rail_y_m`,
+    /// `coefficients` and `track_s_m`, checked; None without one. A table
+    /// excludes the Coulomb and falling-law keys.
+    pub fn table(&self) -> Result<Option<FrictionTable>, CaseError> {
+        let (axis, positions) =
+            match (&self.contact_angles_rad, &self.rail_y_m) {
+                (None, None) => {
+                    for (key, given) in [
+                        ("friction.coefficients", self.coefficients.is_some()),
+                        ("friction.track_s_m", self.track_s_m.is_some()),
+                    ] {
+                        if given {
+                            return Err(bad(
+                            key,
+                            "belongs to a friction table: give `friction.contact_angles_rad` or \
+                             `friction.rail_y_m`",
+                        ));
+                        }
+                    }
+                    return Ok(None);
+                }
+                (Some(a), None) => (FrictionAxis::ContactAngle, a),
+                (None, Some(y)) => (FrictionAxis::RailLateral, y),
+                (Some(_), Some(_)) => return Err(bad(
+                    "friction.rail_y_m",
+                    "give either `friction.contact_angles_rad` or `friction.rail_y_m`, not both",
+                )),
+            };
+        for (key, given) in [
+            ("friction.law", self.law != FrictionLawName::Coulomb),
+            ("friction.coefficient", self.coefficient.is_some()),
+            (
+                "friction.static_coefficient",
+                self.static_coefficient.is_some(),
+            ),
+            (
+                "friction.kinetic_coefficient",
+                self.kinetic_coefficient.is_some(),
+            ),
+        ] {
+            if given {
+                return Err(bad(
+                    key,
+                    "not with a friction table (it sets Coulomb's law with its own coefficients)",
+                ));
+            }
+        }
+        let table = FrictionTable {
+            axis,
+            positions: positions.clone(),
+            track_s_m: self.track_s_m.clone().unwrap_or_default(),
+            coefficients: self
+                .coefficients
+                .clone()
+                .ok_or_else(|| bad("friction.coefficients", "missing (needed with a table)"))?,
+        };
+        table.validate().map_err(|e| match e {
+            WheelRailError::Invalid { key, message } => bad(key, message),
+            other => bad("friction", other.to_string()),
+        })?;
+        Ok(Some(table))
+    }
+
     /// The checked friction law (errors name the key).
     pub fn friction(&self) -> Result<Friction, CaseError> {
+        for (key, given) in [
+            (
+                "friction.contact_angles_rad",
+                self.contact_angles_rad.is_some(),
+            ),
+            ("friction.rail_y_m", self.rail_y_m.is_some()),
+            ("friction.coefficients", self.coefficients.is_some()),
+            ("friction.track_s_m", self.track_s_m.is_some()),
+        ] {
+            if given {
+                return Err(bad(
+                    key,
+                    "belongs to a wheel/rail friction table (`railcontact wheelrail` cases)",
+                ));
+            }
+        }
         let shape = match self.law {
             FrictionLawName::Coulomb => {
                 for (key, given) in [

@@ -66,6 +66,7 @@ pub fn mbench_a22_input(
             lateral_m: y_mm * 1e-3,
             yaw_rad: 2.4e-3 * y_mm,
             roll_rad,
+            track_s_m: 0.0,
         },
         velocity: WheelsetVelocity {
             pitch_rad_per_s,
@@ -79,6 +80,7 @@ pub fn mbench_a22_input(
         })
         .expect("valid steel"),
         friction: Friction::coulomb(0.3),
+        friction_table: None,
         settings: WheelRailSettings {
             model,
             ..WheelRailSettings::default()

@@ -78,6 +78,7 @@ use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, TractionBound};
+use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection, DEFAULT_STRIPS};
@@ -91,13 +92,14 @@ use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::ContactSolution;
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
+use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
     PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
-    PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition, WheelsetVelocity,
-    SAMPLE_SPACING_M,
+    CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition,
+    WheelsetVelocity, SAMPLE_SPACING_M,
 };
 
 /// Contact model per patch.
@@ -316,8 +318,16 @@ pub struct WheelRailInput {
     pub sides: Vec<Side>,
     /// Materials (body 1 rail, body 2 wheel).
     pub material: CombinedMaterial,
-    /// Friction.
+    /// Friction of every patch; with `friction_table`, only its
+    /// slip-velocity law must be None (a table sets Coulomb's law). A
+    /// slip-velocity law needs the exact model; its rolling speed is each
+    /// patch's own (`rolling_speed_m_per_s` of the patch), whatever
+    /// `rolling_speed_m_per_s` it holds.
     pub friction: Friction,
+    /// Friction varying over the rail profile and along the track, in
+    /// place of `friction`'s coefficients (see [`crate::wheelrail::friction`]);
+    /// None: `friction` everywhere.
+    pub friction_table: Option<FrictionTable>,
     /// Settings.
     pub settings: WheelRailSettings,
     /// Prescribed total longitudinal force of the wheels solved on their
@@ -378,6 +388,10 @@ pub struct PatchResult {
     /// Rolling speed the creepages are relative to [m/s] (see the module
     /// conventions): slip velocity = creepage x this.
     pub rolling_speed_m_per_s: f64,
+    /// Kinetic friction coefficient at the reference point [-]: the
+    /// input's, or its friction table's there (an exact patch reads the
+    /// table per grid row).
+    pub friction_coefficient: f64,
     /// Normal force on the rail \[N\].
     pub normal_force_n: f64,
     /// Longitudinal force on the rail \[N\].
@@ -502,6 +516,8 @@ pub(crate) struct PatchWork {
     sz: f64,
     /// Smallest normal undeformed distance.
     hmin: f64,
+    /// Friction at the reference point.
+    friction: Friction,
     kind: PatchKind,
     out: PatchOutcome,
     /// Pressures \[Pa\] on this patch's grid from the previous time step,
@@ -657,12 +673,13 @@ impl PatchWork {
                     rigid_slip: input.settings.rigid_slip,
                     ..ConformalSettings::default()
                 };
+                let mu = self.friction.kinetic_coefficient;
                 let mut solve_at = |normal_force_n: f64| {
                     solve_frictional(
                         workspace,
                         geometry,
                         &input.material,
-                        input.friction.kinetic_coefficient,
+                        mu,
                         InfluenceModel::Blanco,
                         &ConformalKinematics::SteadyRolling {
                             normal_force_n,
@@ -718,7 +735,8 @@ impl PatchWork {
                     ..PatchOutcome::default()
                 };
                 if frictional {
-                    let tangential = fastsim_input(&self.creep, input, 0.0, 0.0, 0.0);
+                    let tangential =
+                        fastsim_input(&self.creep, input, &self.friction, 0.0, 0.0, 0.0);
                     let f = method
                         .solve_tangential(&n, &tangential, fastsim)
                         .map_err(|e| ContactError::invalid("kik_piotrowski", e.to_string()))?;
@@ -759,6 +777,7 @@ impl PatchWork {
                     let tangential = fastsim_input(
                         &self.creep,
                         input,
+                        &self.friction,
                         h.semi_axis_x_m,
                         h.semi_axis_y_m,
                         h.normal_force_n,
@@ -801,11 +820,12 @@ impl PatchWork {
     }
 }
 
-/// The tangential problem of a patch with creepages `creep` on the ellipse
-/// `a`, `b` \[m\] at normal force `fn_n` \[N\].
+/// The tangential problem of a patch with creepages `creep` and `friction`
+/// on the ellipse `a`, `b` \[m\] at normal force `fn_n` \[N\].
 fn fastsim_input(
     creep: &Creepages,
     input: &WheelRailInput,
+    friction: &Friction,
     a: f64,
     b: f64,
     fn_n: f64,
@@ -818,8 +838,8 @@ fn fastsim_input(
         poisson_ratio: input.material.poisson_ratio,
         // Polach's model takes the static one as its mu0, the coefficient
         // at zero slip velocity.
-        friction_coefficient: input.friction.kinetic_coefficient,
-        static_friction_coefficient: input.friction.static_coefficient,
+        friction_coefficient: friction.kinetic_coefficient,
+        static_friction_coefficient: friction.static_coefficient,
         creepage_long: creep.creepage_long,
         creepage_lat: creep.creepage_lat,
         spin_per_m: creep.spin_per_m,
@@ -1174,14 +1194,16 @@ pub(crate) fn solve_pitch(
     let first = wheels_at(omega_of(0.0))?;
     let patches = || first.iter().flat_map(|w| &w.patches);
     let normal: f64 = patches().map(|p| p.normal_force_n).sum();
-    let mu = input.friction.kinetic_coefficient;
-    let limit = mu * normal;
+    let limit: f64 = patches()
+        .map(|p| p.friction_coefficient * p.normal_force_n)
+        .sum();
+    let mu = if normal > 0.0 { limit / normal } else { 0.0 };
     if target.abs() >= limit {
         return Err(WheelRailError::invalid(
             key,
             format!(
                 "{} N is at or beyond saturation mu Fn = {} x {} N = {} N (mu: the kinetic \
-                 coefficient, Fn: the patches' normal forces): no pitch rate gives it",
+                 coefficient, weighted by the patches' normal forces Fn): no pitch rate gives it",
                 show(target),
                 show(mu),
                 show(normal),
@@ -1297,7 +1319,49 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     input.settings.polach.validate("polach")?;
-    Ok(input.friction.validate()?)
+    if let Some(law) = input.friction.slip_velocity_law {
+        if input.friction_table.is_some() {
+            return Err(WheelRailError::invalid(
+                "friction.law",
+                "a friction table sets Coulomb's law: give either the table or a falling law",
+            ));
+        }
+        if input.settings.model != WheelRailModel::Exact {
+            return Err(WheelRailError::invalid(
+                "friction.law",
+                format!(
+                    "a falling friction law needs model = \"exact\", not \"{}\"",
+                    input.settings.model.name()
+                ),
+            ));
+        }
+        // Each patch's own rolling speed replaces the law's.
+        let at_speed = SlipVelocityLaw {
+            rolling_speed_m_per_s: v.forward_m_per_s,
+            ..law
+        };
+        at_speed.validate()?;
+        return Ok(());
+    }
+    if let Some(table) = &input.friction_table {
+        return table.validate();
+    }
+    let f = &input.friction;
+    if matches!(
+        input.settings.model,
+        WheelRailModel::Cect | WheelRailModel::Auto
+    ) && f.static_coefficient != f.kinetic_coefficient
+    {
+        return Err(WheelRailError::invalid(
+            "friction.static_coefficient",
+            format!(
+                "the conformal method (model \"{}\") takes one Coulomb coefficient: give \
+                 `friction.coefficient`",
+                input.settings.model.name()
+            ),
+        ));
+    }
+    Ok(f.validate()?)
 }
 
 /// A first estimate of the vertical approach that carries `force` on the
@@ -1534,6 +1598,8 @@ fn build_patch(
     last: Option<&PatchTractions>,
 ) -> Result<PatchWork, WheelRailError> {
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
+    let rail = pair.rail(side);
+    let friction = patch_friction(rail, &geom, input, speed);
     let nz = geom.normal[1];
     let sz = geom.tangent()[1];
     let (hmin, b) = lateral_curvature(&geom);
@@ -1554,7 +1620,7 @@ fn build_patch(
             }
             let problem = ContactProblem {
                 material: input.material,
-                friction: input.friction,
+                friction,
                 grid,
                 gap_m,
                 load: NormalLoad::Approach(0.0),
@@ -1563,7 +1629,17 @@ fn build_patch(
                 rolling_direction_rad: 0.0,
                 extra_rigid_slip: None,
             };
-            let solver = Box::new(ContactSolver::new(&problem, cache));
+            let mut solver = Box::new(ContactSolver::new(&problem, cache));
+            if let Some(table) = &input.friction_table {
+                let mu = friction.kinetic_coefficient;
+                let scale: Vec<f64> = (0..grid.ny)
+                    .map(|is| table_coefficient(table, rail, &geom, grid.y_m(is), input) / mu)
+                    .collect();
+                // A table constant over the patch leaves the coefficients alone.
+                if scale.iter().any(|&f| f != 1.0) {
+                    solver.set_row_friction_scale(&scale)?;
+                }
+            }
             PatchKind::Exact { problem, solver }
         }
         WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom)?,
@@ -1595,6 +1671,7 @@ fn build_patch(
         nz,
         sz,
         hmin,
+        friction,
         kind,
         out: PatchOutcome::default(),
         warm_pressure: None,
@@ -1645,11 +1722,12 @@ fn hertz_kind(kx: f64, b: f64, model: WheelRailModel) -> PatchKind {
 }
 
 /// Hook for contact tables ([`crate::wheelrail::table`]): a Hertz+FASTSIM
-/// patch from its reference geometry (`geom.lateral` may be empty), its
+/// patch on `rail` from its reference geometry (`geom.lateral` may be empty), its
 /// smallest normal gap `hmin` [m], the wheel's longitudinal curvature `kx`
 /// and the lateral curvature `b` [1/m].
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn hertz_patch(
+    rail: &PlacedRail,
     geom: PatchGeometry,
     hmin: f64,
     kx: f64,
@@ -1661,6 +1739,7 @@ pub(crate) fn hertz_patch(
 ) -> PatchWork {
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
     PatchWork {
+        friction: patch_friction(rail, &geom, input, speed),
         creep,
         speed,
         nz: geom.normal[1],
@@ -2341,6 +2420,68 @@ fn laws_slope(patches: &[PatchWork], at: f64, d: f64) -> f64 {
         .sum()
 }
 
+/// The rail sample at lateral position `s_m` \[m\] of `geom`'s tangent
+/// plane (rail samples are equally spaced in arc length, close to s).
+fn rail_sample_at<'a>(rail: &'a PlacedRail, geom: &PatchGeometry, s_m: f64) -> &'a CurveSample {
+    let rs = rail.samples();
+    let k = (geom.rail_index as f64 + s_m / SAMPLE_SPACING_M)
+        .round()
+        .clamp(0.0, (rs.len() - 1) as f64) as usize;
+    &rs[k]
+}
+
+/// The contact angle \[rad\] of the rail surface at `sample` (see the
+/// module conventions).
+fn rail_contact_angle(sample: &CurveSample) -> f64 {
+    let o = sample.outward_normal();
+    (-o[0]).atan2(-o[1])
+}
+
+/// `table`'s coefficient at lateral position `s_m` \[m\] of `geom`'s
+/// tangent plane (0: the reference point) and the wheelset's track
+/// coordinate.
+fn table_coefficient(
+    table: &FrictionTable,
+    rail: &PlacedRail,
+    geom: &PatchGeometry,
+    s_m: f64,
+    input: &WheelRailInput,
+) -> f64 {
+    let at = match (table.axis, s_m == 0.0) {
+        (FrictionAxis::ContactAngle, true) => geom.contact_angle_rad,
+        (FrictionAxis::ContactAngle, false) => rail_contact_angle(rail_sample_at(rail, geom, s_m)),
+        (FrictionAxis::RailLateral, true) => {
+            rail.to_profile(geom.reference_m[0], geom.reference_m[1])[0]
+        }
+        (FrictionAxis::RailLateral, false) => {
+            let c = rail_sample_at(rail, geom, s_m);
+            rail.to_profile(c.q_m, c.z_m)[0]
+        }
+    };
+    table.coefficient(at, input.position.track_s_m)
+}
+
+/// The friction of a patch at `geom`'s reference point whose rolling speed
+/// is `speed` \[m/s\]: the input's (a slip-velocity law at that speed), or
+/// its table's coefficient there.
+fn patch_friction(
+    rail: &PlacedRail,
+    geom: &PatchGeometry,
+    input: &WheelRailInput,
+    speed: f64,
+) -> Friction {
+    if let Some(table) = &input.friction_table {
+        return Friction::coulomb(table_coefficient(table, rail, geom, 0.0, input));
+    }
+    match input.friction.slip_velocity_law {
+        Some(law) => Friction::falling(SlipVelocityLaw {
+            rolling_speed_m_per_s: speed,
+            ..law
+        }),
+        None => input.friction,
+    }
+}
+
 /// Variation of the rail's contact angle over the loaded lateral lines of
 /// an exact (planar) patch solution [rad].
 fn exact_angle_variation(rail: &PlacedRail, p: &PatchWork) -> f64 {
@@ -2348,18 +2489,12 @@ fn exact_angle_variation(rail: &PlacedRail, p: &PatchWork) -> f64 {
         return 0.0;
     };
     let g = &problem.grid;
-    let rs = rail.samples();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for is in 0..g.ny {
         if !(0..g.nx).any(|ix| sol.fields.pressure_pa[g.index(ix, is)] > 0.0) {
             continue;
         }
-        // Rail samples are equally spaced in arc length, close to s.
-        let k = (p.geom.rail_index as f64 + g.y_m(is) / SAMPLE_SPACING_M)
-            .round()
-            .clamp(0.0, (rs.len() - 1) as f64) as usize;
-        let o = rs[k].outward_normal();
-        let delta = (-o[0]).atan2(-o[1]);
+        let delta = rail_contact_angle(rail_sample_at(rail, &p.geom, g.y_m(is)));
         lo = lo.min(delta);
         hi = hi.max(delta);
     }
@@ -2440,6 +2575,7 @@ pub(crate) fn finish(
             contact_area_m2: o.area_m2,
             adhesion_fraction: o.adhesion,
             rolling_speed_m_per_s: p.speed,
+            friction_coefficient: p.friction.kinetic_coefficient,
             frictional_power_w: o.tgamma_n * p.speed,
             force_track_n: f,
             grid: grid_n,

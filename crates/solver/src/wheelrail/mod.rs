@@ -63,6 +63,7 @@
 
 pub mod builtin;
 pub mod contact;
+pub mod friction;
 pub mod profile;
 pub mod readers;
 pub mod search;
@@ -75,6 +76,7 @@ pub use contact::{
     PatchResult, PatchTractions, WarmStart, WheelLoad, WheelRailInput, WheelRailModel,
     WheelRailSettings, WheelRailSolution, WheelResult,
 };
+pub use friction::{FrictionAxis, FrictionTable};
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,
     LengthUnit, LoadOptions, MiniProfVariant, MirrorZ, Profile, ProfileChecks, ProfileError,

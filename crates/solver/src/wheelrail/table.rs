@@ -100,7 +100,7 @@ use crate::wheelrail::search::{
     SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
-    CurveSample, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
+    CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
 };
 
 /// Potential contacts are the minima of the vertical gap up to this far
@@ -799,6 +799,7 @@ fn approach_estimate(c: &Evaluated, input: &WheelRailInput, force: f64) -> f64 {
 
 /// The patch of contact `c` at the rigid position.
 fn patch(
+    rail: &PlacedRail,
     c: &Evaluated,
     pose: &SidePose,
     side: Side,
@@ -821,6 +822,7 @@ fn patch(
         locus_index: 0,
     };
     hertz_patch(
+        rail,
         geom,
         c.gap_m * cos,
         c.locus.kx_per_m,
@@ -870,7 +872,7 @@ fn solve_wheel_tabulated(
         let tg = Instant::now();
         let mut patches: Vec<_> = reps
             .iter()
-            .map(|&i| patch(&contacts[i], pose, side, input, omega))
+            .map(|&i| patch(pair.rail(side), &contacts[i], pose, side, input, omega))
             .collect();
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();

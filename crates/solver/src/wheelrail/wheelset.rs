@@ -476,6 +476,10 @@ pub struct WheelsetPosition {
     /// Roll angle \[rad\]; `None` to find it from the profiles (both wheels
     /// touching their rails).
     pub roll_rad: Option<f64>,
+    /// Position of the wheelset along the track \[m\]: where a friction
+    /// table along the track is read ([`crate::wheelrail::FrictionTable`]);
+    /// nothing else depends on it (default 0).
+    pub track_s_m: f64,
 }
 
 /// Wheelset velocity (see the module conventions).

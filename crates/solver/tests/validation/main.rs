@@ -1,7 +1,8 @@
 //! Validation of the solver crate against analytic and published results,
 //! one test binary: the physics of the planar core (`physics`), conformal
 //! contact (`conformal`), the profile readers (`profiles`), transient rolling
-//! against CONTACT (`transient`) and wheel/rail contact (`wheelrail`). Each
+//! against CONTACT (`transient`), wheel/rail contact (`wheelrail`) and its
+//! friction varying over the profile (`variable_friction`). Each
 //! reference number names its source.
 
 mod conformal;
@@ -13,4 +14,5 @@ mod physics;
 mod profiles;
 mod rolling_direction;
 mod transient;
+mod variable_friction;
 mod wheelrail;

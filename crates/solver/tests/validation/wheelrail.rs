@@ -23,7 +23,7 @@ fn path(name: &str) -> String {
     )
 }
 
-fn mbench_pair() -> WheelRailPair {
+pub(crate) fn mbench_pair() -> WheelRailPair {
     let rail = load_profile(path("MBench_UIC60_v3.prr")).unwrap();
     let wheel = load_profile(path("MBench_S1002_v3.prw")).unwrap();
     WheelRailPair::new(
