@@ -5,6 +5,7 @@
 
 use railcontact_solver::conformal::geometry::RigidSlipSurface;
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::fastsim::SlopeReduction;
 use railcontact_solver::core::solution::SolveStatus;
 use railcontact_solver::wheelrail::builtin::{load_test_input, mbench_a22_input};
 use railcontact_solver::wheelrail::{
@@ -397,6 +398,99 @@ fn fast_models_creep_forces_agree_with_contact() {
                     0.0,
                 );
             }
+        }
+    }
+}
+
+/// Model `hertz_fastsim_modified` over the three shifts of [`A22`]:
+/// without reduction ([`SlopeReduction::NONE`]) every patch is
+/// `hertz_fastsim`'s bit for bit; with the default reduction
+/// ([`SlopeReduction::TRACTCURV`], `k0 = 0.54`) the creep forces are
+/// smaller than FASTSIM's but above `k0 alpha_inf` times them (the
+/// reduction lies between those factors); far into sliding (the wheel
+/// turning 30 % slower than free rolling) the creep force is the falling
+/// friction's `mu0 ((1 - A) exp(-B w) + A) Fn` at the slip velocity `w =
+/// V sqrt(xi^2 + eta^2)` of the patch (Spiryagin et al.'s law, the
+/// documented form of [`SlopeReduction`]).
+#[test]
+fn modified_fastsim_reduces_fastsims_forces_and_saturates_at_falling_friction() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let solve = |input: &WheelRailInput, scratch: &mut SearchScratch| {
+        solve_wheelset(&pair, input, &cache, scratch).unwrap()
+    };
+    for r in &A22 {
+        let plain = solve(
+            &a22_input(
+                r.y_mm,
+                Some(r.roll),
+                Some(r.pitch),
+                WheelRailModel::HertzFastsim,
+            ),
+            &mut scratch,
+        );
+        let mut input = a22_input(
+            r.y_mm,
+            Some(r.roll),
+            Some(r.pitch),
+            WheelRailModel::HertzFastsimModified,
+        );
+        input.settings.modified_fastsim = SlopeReduction::NONE;
+        let none = solve(&input, &mut scratch);
+        input.settings.modified_fastsim = SlopeReduction::TRACTCURV;
+        let reduced = solve(&input, &mut scratch);
+        for ((p, n), m) in plain.wheels.iter().zip(&none.wheels).zip(&reduced.wheels) {
+            let tag = format!("y = {} mm, {:?} wheel", r.y_mm, p.side);
+            for (a, b) in p.patches.iter().zip(&n.patches) {
+                assert_eq!(b.method, "hertz_fastsim_modified");
+                let fields = |q: &PatchResult| {
+                    [
+                        q.normal_force_n,
+                        q.fx_n,
+                        q.fs_n,
+                        q.mz_nm,
+                        q.adhesion_fraction,
+                        q.frictional_power_w,
+                        q.max_pressure_pa,
+                    ]
+                };
+                assert_eq!(fields(a), fields(b), "{tag}");
+            }
+            for (a, b) in p.patches.iter().zip(&m.patches) {
+                let (ta, tb) = (a.fx_n.hypot(a.fs_n), b.fx_n.hypot(b.fs_n));
+                assert!(tb < ta && tb > 0.54 * 0.02 * ta, "{tag}: {tb} vs {ta}");
+            }
+        }
+    }
+    let r = &A22[0];
+    let mut input = a22_input(
+        r.y_mm,
+        Some(r.roll),
+        Some(0.7 * r.pitch),
+        WheelRailModel::HertzFastsimModified,
+    );
+    let law = SlopeReduction {
+        friction_limit_ratio: 0.4,
+        friction_decay_s_per_m: 0.6,
+        ..SlopeReduction::TRACTCURV
+    };
+    input.settings.modified_fastsim = law;
+    let mu0 = input.friction.static_coefficient;
+    assert_eq!(mu0, input.friction.kinetic_coefficient);
+    let sol = solve(&input, &mut scratch);
+    for w in &sol.wheels {
+        for p in &w.patches {
+            assert!(p.creepage_long.abs() > 0.2, "{}", p.creepage_long);
+            let slip = p.rolling_speed_m_per_s * p.creepage_long.hypot(p.creepage_lat);
+            let limit = mu0 * law.friction_factor(slip) * p.normal_force_n;
+            close(
+                &format!("{:?} wheel sliding: |Ft|", w.side),
+                p.fx_n.hypot(p.fs_n),
+                limit,
+                1e-3,
+                0.0,
+            );
         }
     }
 }
