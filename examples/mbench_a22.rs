@@ -1,5 +1,5 @@
 //! The Manchester Contact Benchmark, case A-2.2, against CONTACT's reference
-//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach|hertz_fastsim_elliptic|hertz_strip|kik_piotrowski]`.
+//! output: `cargo run --release --example mbench_a22 [exact|hertz_fastsim|hertz_polach|hertz_fastsim_elliptic|hertz_strip|hertz_fastsim_modified|kik_piotrowski]`.
 //!
 //! Reads `docs/data/mbench_a22_contact.csv` (CONTACT's results, with their
 //! source), solves every shift 0..10 mm with the same roll and wheel
@@ -70,7 +70,7 @@ fn main() {
         _ => {
             eprintln!(
                 "unknown model {name}: use exact, hertz_fastsim, hertz_polach, \
-                 hertz_fastsim_elliptic, hertz_strip or kik_piotrowski"
+                 hertz_fastsim_elliptic, hertz_strip, hertz_fastsim_modified or kik_piotrowski"
             );
             std::process::exit(2);
         }

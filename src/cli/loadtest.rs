@@ -224,6 +224,7 @@ impl Kind {
                     "hertz_polach" => pb::WheelRailModel::HertzPolach,
                     "hertz_fastsim_elliptic" => pb::WheelRailModel::HertzFastsimElliptic,
                     "hertz_strip" => pb::WheelRailModel::HertzStrip,
+                    "hertz_fastsim_modified" => pb::WheelRailModel::HertzFastsimModified,
                     "kik_piotrowski" => pb::WheelRailModel::KikPiotrowski,
                     "exact" => pb::WheelRailModel::Exact,
                     "cect" => pb::WheelRailModel::Cect,
@@ -231,8 +232,8 @@ impl Kind {
                     _ => {
                         return Err(format!(
                             "`{s}`: wheelrail models are hertz_fastsim, hertz_fastsim_table, \
-                             hertz_polach, hertz_fastsim_elliptic, hertz_strip, kik_piotrowski, \
-                             exact, cect, auto"
+                             hertz_polach, hertz_fastsim_elliptic, hertz_strip, \
+                             hertz_fastsim_modified, kik_piotrowski, exact, cect, auto"
                         ))
                     }
                 };
@@ -264,6 +265,7 @@ impl Kind {
                     pb::WheelRailModel::HertzPolach => "hertz_polach",
                     pb::WheelRailModel::HertzFastsimElliptic => "hertz_fastsim_elliptic",
                     pb::WheelRailModel::HertzStrip => "hertz_strip",
+                    pb::WheelRailModel::HertzFastsimModified => "hertz_fastsim_modified",
                     pb::WheelRailModel::KikPiotrowski => "kik_piotrowski",
                     pb::WheelRailModel::Cect => "cect",
                     pb::WheelRailModel::Auto => "auto",

@@ -12,6 +12,7 @@ use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::cache::KernelCache;
+use crate::core::fastsim::SlopeReduction;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
@@ -44,8 +45,8 @@ pub struct WheelrailArgs {
 #[serde(deny_unknown_fields)]
 struct WheelrailCase {
     /// "exact" (default), "hertz_fastsim", "hertz_polach",
-    /// "hertz_fastsim_elliptic", "hertz_strip", "kik_piotrowski", "cect" or
-    /// "auto".
+    /// "hertz_fastsim_elliptic", "hertz_strip", "hertz_fastsim_modified",
+    /// "kik_piotrowski", "cect" or "auto".
     #[serde(default = "default_model")]
     model: String,
     /// "both" (default), "left" or "right".
@@ -68,6 +69,9 @@ struct WheelrailCase {
     grid: GridKeys,
     /// Model hertz_polach: its parameters (default: Polach's 1999 model).
     polach: Option<PolachKeys>,
+    /// Model hertz_fastsim_modified: its slope reduction and falling
+    /// friction (default: [`SlopeReduction::TRACTCURV`]).
+    modified_fastsim: Option<ModifiedFastsimKeys>,
     /// Models cect and auto: options of the conformal method.
     conformal: Option<ConformalKeys>,
 }
@@ -89,6 +93,31 @@ struct PolachKeys {
     k_slip: f64,
     limit_ratio: f64,
     decay_s_per_m: f64,
+}
+
+/// `[modified_fastsim]`: each key defaults to
+/// [`SlopeReduction::TRACTCURV`]'s value.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct ModifiedFastsimKeys {
+    initial_factor: f64,
+    limit_ratio: f64,
+    transition_rate: f64,
+    friction_limit_ratio: f64,
+    friction_decay_s_per_m: f64,
+}
+
+impl Default for ModifiedFastsimKeys {
+    fn default() -> Self {
+        let r = SlopeReduction::TRACTCURV;
+        Self {
+            initial_factor: r.initial_factor,
+            limit_ratio: r.limit_ratio,
+            transition_rate: r.transition_rate,
+            friction_limit_ratio: r.friction_limit_ratio,
+            friction_decay_s_per_m: r.friction_decay_s_per_m,
+        }
+    }
 }
 
 fn default_model() -> String {
@@ -377,6 +406,16 @@ impl WheelrailRun {
                         decay_s_per_m: p.decay_s_per_m,
                     },
                     None => PolachParameters::default(),
+                },
+                modified_fastsim: match &c.modified_fastsim {
+                    Some(m) => SlopeReduction {
+                        initial_factor: m.initial_factor,
+                        limit_ratio: m.limit_ratio,
+                        transition_rate: m.transition_rate,
+                        friction_limit_ratio: m.friction_limit_ratio,
+                        friction_decay_s_per_m: m.friction_decay_s_per_m,
+                    },
+                    None => SlopeReduction::TRACTCURV,
                 },
                 rigid_slip: c
                     .conformal

@@ -9,6 +9,7 @@
 
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::error::{Range, UnitHint};
+use crate::core::fastsim::SlopeReduction;
 use crate::core::friclaw::{FallingShape, SlipStart};
 use crate::core::material::CombinedMaterial;
 use crate::core::polach::PolachParameters;
@@ -19,7 +20,7 @@ use crate::service::convert::{
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
-use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
+use crate::wheelrail::contact::{validate_slope_reduction, TOTAL_LONGITUDINAL_FORCE_KEY};
 use crate::wheelrail::{
     FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailError, WheelRailInput,
     WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult, WheelsetPosition,
@@ -81,6 +82,7 @@ pub fn model(m: i32) -> Result<WheelRailModel, ServiceError> {
         Ok(pb::WheelRailModel::HertzPolach) => Ok(WheelRailModel::HertzPolach),
         Ok(pb::WheelRailModel::HertzFastsimElliptic) => Ok(WheelRailModel::HertzFastsimElliptic),
         Ok(pb::WheelRailModel::HertzStrip) => Ok(WheelRailModel::HertzStrip),
+        Ok(pb::WheelRailModel::HertzFastsimModified) => Ok(WheelRailModel::HertzFastsimModified),
         Ok(pb::WheelRailModel::KikPiotrowski) => Ok(WheelRailModel::KikPiotrowski),
         Ok(pb::WheelRailModel::Cect) => Ok(WheelRailModel::Cect),
         Ok(pb::WheelRailModel::Auto) => Ok(WheelRailModel::Auto),
@@ -101,6 +103,7 @@ pub fn wire_model(m: WheelRailModel) -> pb::WheelRailModel {
         WheelRailModel::HertzPolach => pb::WheelRailModel::HertzPolach,
         WheelRailModel::HertzFastsimElliptic => pb::WheelRailModel::HertzFastsimElliptic,
         WheelRailModel::HertzStrip => pb::WheelRailModel::HertzStrip,
+        WheelRailModel::HertzFastsimModified => pb::WheelRailModel::HertzFastsimModified,
         WheelRailModel::KikPiotrowski => pb::WheelRailModel::KikPiotrowski,
         WheelRailModel::Cect => pb::WheelRailModel::Cect,
         WheelRailModel::Auto => pb::WheelRailModel::Auto,
@@ -115,6 +118,7 @@ pub fn model_name(m: WheelRailModel) -> &'static str {
         WheelRailModel::HertzPolach => "wheelrail_hertz_polach",
         WheelRailModel::HertzFastsimElliptic => "wheelrail_hertz_fastsim_elliptic",
         WheelRailModel::HertzStrip => "wheelrail_hertz_strip",
+        WheelRailModel::HertzFastsimModified => "wheelrail_hertz_fastsim_modified",
         WheelRailModel::KikPiotrowski => "wheelrail_kik_piotrowski",
         WheelRailModel::Cect => "wheelrail_cect",
         WheelRailModel::Auto => "wheelrail_auto",
@@ -257,6 +261,26 @@ impl QuerySettings {
         Ok(self)
     }
 
+    /// The settings with the modified FASTSIM's parameters of the request
+    /// (field `modified_fastsim`; not set: [`SlopeReduction::TRACTCURV`]).
+    pub fn with_modified_fastsim(
+        mut self,
+        m: Option<&pb::ModifiedFastsimParameters>,
+    ) -> Result<Self, ServiceError> {
+        if let Some(m) = m {
+            let r = SlopeReduction {
+                initial_factor: m.initial_factor,
+                limit_ratio: m.limit_ratio,
+                transition_rate: m.transition_rate,
+                friction_limit_ratio: m.friction_limit_ratio,
+                friction_decay_s_per_m: m.friction_decay_s_per_m,
+            };
+            validate_slope_reduction(&r, "modified_fastsim")?;
+            self.settings.modified_fastsim = r;
+        }
+        Ok(self)
+    }
+
     /// The settings with patch grids of at most `max` elements (the
     /// server's `max_grid_elements`).
     pub fn with_max_grid_elements(mut self, max: usize) -> Self {
@@ -390,6 +414,7 @@ pub fn input(
         settings,
     )?
     .with_polach(req.polach.as_ref())?
+    .with_modified_fastsim(req.modified_fastsim.as_ref())?
     .with_conformal(req.conformal.as_ref())?
     .with_friction_table(req.friction_table.as_ref())?
     .with_max_grid_elements(max_grid_elements);
@@ -458,6 +483,18 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
                 decay_s_per_m: p.decay_s_per_m,
             }
         }),
+        modified_fastsim: (input.settings.model == WheelRailModel::HertzFastsimModified).then(
+            || {
+                let r = input.settings.modified_fastsim;
+                pb::ModifiedFastsimParameters {
+                    initial_factor: r.initial_factor,
+                    limit_ratio: r.limit_ratio,
+                    transition_rate: r.transition_rate,
+                    friction_limit_ratio: r.friction_limit_ratio,
+                    friction_decay_s_per_m: r.friction_decay_s_per_m,
+                }
+            },
+        ),
         conformal: matches!(
             input.settings.model,
             WheelRailModel::Cect | WheelRailModel::Auto

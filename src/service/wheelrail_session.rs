@@ -72,6 +72,7 @@ impl WheelRailSession {
             &entry.spec.settings,
         )?
         .with_polach(open.polach.as_ref())?
+        .with_modified_fastsim(open.modified_fastsim.as_ref())?
         .with_conformal(open.conformal.as_ref())?
         .with_friction_table(open.friction_table.as_ref())?
         .with_max_grid_elements(limits.max_grid_elements);

@@ -1175,6 +1175,31 @@ fn wheelrail_solves_with_polachs_model_and_checks_its_parameters() {
     );
 }
 
+/// Model hertz_fastsim_modified with `[modified_fastsim]` (keys left out
+/// take the defaults): every patch says so, the wheels carry their load;
+/// a parameter out of range is bad input naming it.
+#[test]
+fn wheelrail_solves_with_the_modified_fastsim_and_checks_its_parameters() {
+    let text = example_text("wheelset_a22.toml")
+        .replace("model = \"exact\"", "model = \"hertz_fastsim_modified\"")
+        + "\n[modified_fastsim]\ninitial_factor = 0.6\nfriction_limit_ratio = 0.4\n\
+           friction_decay_s_per_m = 0.6\n";
+    let v = wheelrail_json(&case_file("wr_modified_fastsim.toml", &text));
+    for side in ["left", "right"] {
+        let w = &v["wheels"][side];
+        let fz = w["force_track_n"][2].as_f64().unwrap();
+        assert!((fz - 10_000.0).abs() < 0.1, "{side}: Fz {fz}");
+        for p in w["patches"].as_array().unwrap() {
+            assert_eq!(p["method"], "hertz_fastsim_modified", "{p}");
+        }
+    }
+    expect_bad_wheelrail(
+        "wr_modified_fastsim_bad.toml",
+        &text.replace("initial_factor = 0.6", "initial_factor = 1.5"),
+        "modified_fastsim.initial_factor",
+    );
+}
+
 /// Models hertz_fastsim_elliptic, hertz_strip and kik_piotrowski: every patch names its
 /// model, the wheels carry their load, the flange patch's creep force is
 /// near saturation (mu FN) as FASTSIM's; an unknown model is bad input

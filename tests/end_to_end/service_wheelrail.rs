@@ -303,6 +303,7 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         WheelRailModel::HertzPolach,
         WheelRailModel::HertzFastsimElliptic,
         WheelRailModel::HertzStrip,
+        WheelRailModel::HertzFastsimModified,
         WheelRailModel::KikPiotrowski,
     ] {
         let input = mbench_a22_input(6.5, Some(-0.004376), Some(-4.2748834), model);
@@ -416,6 +417,26 @@ async fn a_prescribed_total_longitudinal_force_finds_the_pitch_rate_as_the_libra
     req.polach.as_mut().unwrap().k_slip = 2.0;
     let e = solve_err(&mut client, req).await;
     assert_invalid(&e, &["polach.k_slip"]);
+    // The modified FASTSIM's parameters travel, with falling friction, as
+    // the library; one out of range names its field.
+    let mut input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::HertzFastsimModified,
+    );
+    input.settings.modified_fastsim = railcontact::core::fastsim::SlopeReduction {
+        friction_limit_ratio: 0.4,
+        friction_decay_s_per_m: 0.6,
+        ..railcontact::core::fastsim::SlopeReduction::TRACTCURV
+    };
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("modified FASTSIM, falling friction", &got, &want);
+    let mut req = query_of(BUILTIN, &input);
+    req.modified_fastsim.as_mut().unwrap().limit_ratio = 0.0;
+    let e = solve_err(&mut client, req).await;
+    assert_invalid(&e, &["modified_fastsim.limit_ratio"]);
     let field = "load.total_longitudinal_force_n";
     let mut input = mbench_a22_input(6.5, None, None, WheelRailModel::HertzFastsim);
     input.total_longitudinal_force_n = Some(-9000.0);

@@ -274,6 +274,22 @@ impl SlopeReduction {
         friction_decay_s_per_m: 0.0,
     };
 
+    /// The slope reduction of CONTACT's traction-curve example (eve70a/CONTACT
+    /// `examples/matlab_tractcurv.m`, the modified FASTSIM curve of its user
+    /// guide, Section 5.9, fitted to Engel, Beck and Alders' Siemens
+    /// Eurosprinter measurements at 10 m/s): `k0 = 0.54`, `alpha_inf =
+    /// 0.02`, `beta = 0.62`; Coulomb friction here (`A = 1`, `B = 0`). The
+    /// example's falling friction is CONTACT's per-element law `mu = 0.1368
+    /// + 0.2232 exp(-w/0.99 m/s)` (static 0.36), not this model's global
+    /// one: in this form about `A = 0.38`, `B = 1.01 s/m` with `mu0 = 0.36`.
+    pub const TRACTCURV: Self = Self {
+        initial_factor: 0.54,
+        limit_ratio: 0.02,
+        transition_rate: 0.62,
+        friction_limit_ratio: 1.0,
+        friction_decay_s_per_m: 0.0,
+    };
+
     /// Checks the ranges in the field docs.
     pub fn validate(&self) -> Result<(), FastsimError> {
         let checks = [
@@ -1420,6 +1436,14 @@ pub(crate) mod tests {
             friction_decay_s_per_m: 0.6,
         };
         let o = fs.solve_modified(&with(1e-8, 0.0, 0.0), 0.0, &r).unwrap();
+        // In full adhesion the forces are FASTSIM's times the documented
+        // factor `k` (the flexibilities divided by it), to rounding.
+        let plain = fs.solve(&with(1e-8, 0.0, 0.0)).unwrap();
+        let k = r.factor(
+            8e10 * PI * 6e-3 * 4e-3 * plain.coefficients.c11 * 1e-8,
+            0.3e5,
+        );
+        assert!(rel(o.fx_n, k * plain.fx_n) < 1e-12 && rel(k, 0.6) < 1e-5);
         let lin = kalker_linear_forces(6e-3, 4e-3, 8e10, 0.28, 1e-8, 0.0, 0.0).unwrap();
         assert!(
             rel(o.fx_n, 0.6 * lin.fx_n) < 5e-4,

@@ -42,7 +42,10 @@
 //! integrals `R_F` and `R_D` (B. C. Carlson, "Numerical computation of real or
 //! complex elliptic integrals", Numerical Algorithms 10, 1995):
 //! `K(m) = R_F(0, 1-m, 1)`, `D(m) = R_D(0, 1-m, 1)/3`, `E = K - m D`, which has
-//! no cancellation for small `m`.
+//! no cancellation for small `m`. `D(m)` alone, which Kik-Piotrowski's
+//! displacement evaluates some 200 times a penetration, is taken from the
+//! arithmetic-geometric mean (`elliptic_d`), equal to the above to about
+//! 1e-15 and a third of its cost.
 
 use thiserror::Error;
 
@@ -110,11 +113,37 @@ pub fn complete_elliptic(m: f64) -> Result<CompleteElliptic, HertzError> {
     Ok(CompleteElliptic { k, e: k - m * d, d })
 }
 
-/// `D(m) = (K - E)/m` alone for `0 <= m < 1` (unchecked), the half of
-/// [`complete_elliptic`]'s work that `D` needs.
+/// `D(m) = (K - E)/m` alone for `0 <= m < 1` (unchecked), by the
+/// arithmetic-geometric mean (Abramowitz and Stegun, Handbook of
+/// Mathematical Functions, 17.6): `a0 = 1`, `b0 = sqrt(1 - m)`,
+/// `c0^2 = m`, `K = pi/(2 a_N)` and `K - E = K sum_n 2^(n-1) c_n^2`. The
+/// ratios `c_n^2/m` are carried (`c_(n+1) = c_n^2/(4 a_(n+1))`), so small
+/// `m` loses no digits to the difference. Agrees with Carlson's `R_D` of
+/// [`complete_elliptic`] to about 1e-15 relative at a third of its cost:
+/// the hot call of Kik-Piotrowski's displacement
+/// ([`crate::core::kikpiotrowski`]).
 pub(crate) fn elliptic_d(m: f64) -> f64 {
-    carlson_rd(0.0, 1.0 - m, 1.0) / 3.0
+    let (mut a, mut b) = (1.0_f64, (1.0 - m).sqrt());
+    // q = c_n^2/m, w = 2^(n-1): the sum starts with n = 0.
+    let (mut q, mut w, mut sum) = (1.0_f64, 0.5_f64, 0.5_f64);
+    for _ in 0..AGM_MAX_ITER {
+        let a1 = 0.5 * (a + b);
+        q *= q * m / (16.0 * a1 * a1);
+        b = (a * b).sqrt();
+        a = a1;
+        w *= 2.0;
+        sum += w * q;
+        // c_(n+1)^2 below 1e-32 (a is 1/2 to 1 for m < 1): a and the sum
+        // have converged to rounding.
+        if q * m < 1e-32 {
+            break;
+        }
+    }
+    std::f64::consts::FRAC_PI_2 / a * sum
 }
+
+/// Safety cap on AGM steps (m = 1 - 2^-52 needs 8).
+const AGM_MAX_ITER: usize = 64;
 
 /// Stop the duplication once all relative deviations from the mean are below
 /// this; the neglected terms are then O(1e-18).
@@ -474,6 +503,29 @@ mod tests {
         let d = complete_elliptic(m).unwrap().d;
         let series = PI / 4.0 * (1.0 + 3.0 * m / 8.0 + 15.0 * m * m / 64.0);
         assert!(rel(d, series) < 1e-15);
+    }
+
+    /// The AGM's `D(m)` against Carlson's (two independent algorithms,
+    /// each accurate to about 1e-15), from 0 to the largest `m` below 1,
+    /// and the series at small `m`.
+    #[test]
+    fn elliptic_d_by_agm_matches_carlson() {
+        let mut worst = 0.0_f64;
+        for k in 0..=2000 {
+            let m = k as f64 / 2000.0 * (1.0 - f64::EPSILON);
+            worst = worst.max(rel(elliptic_d(m), complete_elliptic(m).unwrap().d));
+        }
+        for e in 1..=52 {
+            let m = 1.0 - 2f64.powi(-e);
+            worst = worst.max(rel(elliptic_d(m), complete_elliptic(m).unwrap().d));
+            let m = 2f64.powi(-e);
+            worst = worst.max(rel(elliptic_d(m), complete_elliptic(m).unwrap().d));
+        }
+        assert!(worst < 4e-15, "{worst}");
+        let m = 1e-5;
+        let series = PI / 4.0 * (1.0 + 3.0 * m / 8.0 + 15.0 * m * m / 64.0);
+        assert!(rel(elliptic_d(m), series) < 1e-15);
+        assert_eq!(elliptic_d(0.0), PI / 4.0);
     }
 
     #[test]

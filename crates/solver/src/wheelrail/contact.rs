@@ -77,7 +77,7 @@ use crate::conformal::geometry::{
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastsim::{Fastsim, FastsimInput, TractionBound};
+use crate::core::fastsim::{Fastsim, FastsimError, FastsimInput, SlopeReduction, TractionBound};
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
@@ -129,6 +129,16 @@ pub enum WheelRailModel {
     /// ([`crate::core::strip`], after Sichani et al.'s FaStrip): closed
     /// form per strip, with the kinetic friction coefficient.
     HertzStrip,
+    /// Hertz as [`WheelRailModel::HertzFastsim`], the modified FASTSIM of
+    /// Spiryagin, Polach and Cole for the tangential forces
+    /// ([`crate::core::fastsim::Fastsim::solve_modified`], parabolic
+    /// bound, with [`WheelRailSettings::modified_fastsim`]): FASTSIM's
+    /// flexibilities divided by a slope reduction that falls from `k0` at
+    /// small creepage towards `k0 alpha_inf` at large creepage, both
+    /// friction coefficients times a factor falling with the slip
+    /// velocity. With [`SlopeReduction::NONE`] it is
+    /// [`WheelRailModel::HertzFastsim`] bit for bit.
+    HertzFastsimModified,
     /// Kik and Piotrowski's non-elliptic normal contact
     /// ([`crate::core::kikpiotrowski`]) on each patch's undeformed
     /// distance (its lateral sections: the virtual penetration 0.55 times
@@ -164,6 +174,7 @@ impl WheelRailModel {
             Self::HertzPolach => "hertz_polach",
             Self::HertzFastsimElliptic => "hertz_fastsim_elliptic",
             Self::HertzStrip => "hertz_strip",
+            Self::HertzFastsimModified => "hertz_fastsim_modified",
             Self::KikPiotrowski => "kik_piotrowski",
             Self::Cect => "cect",
             Self::Auto => "auto",
@@ -171,12 +182,13 @@ impl WheelRailModel {
     }
 
     /// Every model, in the order of [`WheelRailModel::name`]'s list.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::Exact,
         Self::HertzFastsim,
         Self::HertzPolach,
         Self::HertzFastsimElliptic,
         Self::HertzStrip,
+        Self::HertzFastsimModified,
         Self::KikPiotrowski,
         Self::Cect,
         Self::Auto,
@@ -194,7 +206,11 @@ impl WheelRailModel {
     pub fn is_hertz(self) -> bool {
         matches!(
             self,
-            Self::HertzFastsim | Self::HertzPolach | Self::HertzFastsimElliptic | Self::HertzStrip
+            Self::HertzFastsim
+                | Self::HertzPolach
+                | Self::HertzFastsimElliptic
+                | Self::HertzStrip
+                | Self::HertzFastsimModified
         )
     }
 
@@ -259,6 +275,11 @@ pub struct WheelRailSettings {
     /// Model `hertz_polach`: the reduction factors and falling friction of
     /// Polach's model (default: none, his 1999 model).
     pub polach: PolachParameters,
+    /// Model `hertz_fastsim_modified`: the slope reduction and falling
+    /// friction of the modified FASTSIM (default
+    /// [`SlopeReduction::TRACTCURV`]: `k0 = 0.54`, `alpha_inf = 0.02`,
+    /// `beta = 0.62`, Coulomb friction).
+    pub modified_fastsim: SlopeReduction,
     /// Models `cect` and `auto`: where the conformal method takes the
     /// rigid velocities (default on the actual surfaces, see
     /// [`RigidSlipSurface`]).
@@ -277,6 +298,7 @@ impl Default for WheelRailSettings {
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
             max_grid_elements: usize::MAX,
             polach: PolachParameters::default(),
+            modified_fastsim: SlopeReduction::TRACTCURV,
             rigid_slip: RigidSlipSurface::default(),
         }
     }
@@ -358,7 +380,8 @@ impl WheelRailInput {
 pub struct PatchResult {
     /// Method that solved the patch: "exact", "cect", "kik_piotrowski" or
     /// the Hertz model's name ([`WheelRailModel::name`]: "hertz_fastsim",
-    /// "hertz_polach", "hertz_fastsim_elliptic", "hertz_strip").
+    /// "hertz_polach", "hertz_fastsim_elliptic", "hertz_strip",
+    /// "hertz_fastsim_modified").
     pub method: &'static str,
     /// Variation of the rail's contact angle over the loaded lateral extent
     /// \[rad\] (0 for Hertz+FASTSIM).
@@ -787,6 +810,17 @@ impl PatchWork {
                         WheelRailModel::HertzPolach => {
                             let f = polach(&tangential, self.speed, &input.settings.polach)?;
                             (f.fx_n, f.fy_n, 0.0, f.adhesion_fraction, f.tgamma_n)
+                        }
+                        WheelRailModel::HertzFastsimModified => {
+                            fastsim.set_traction_bound(TractionBound::Parabolic);
+                            let f = fastsim
+                                .solve_modified(
+                                    &tangential,
+                                    self.speed,
+                                    &input.settings.modified_fastsim,
+                                )
+                                .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
+                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
                         }
                         WheelRailModel::HertzStrip => {
                             let f = strip_theory(&tangential, HERTZ_STRIPS)
@@ -1319,6 +1353,7 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     input.settings.polach.validate("polach")?;
+    validate_slope_reduction(&input.settings.modified_fastsim, "modified_fastsim")?;
     if let Some(law) = input.friction.slip_velocity_law {
         if input.friction_table.is_some() {
             return Err(WheelRailError::invalid(
@@ -1362,6 +1397,21 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     Ok(f.validate()?)
+}
+
+/// Checks a modified FASTSIM's parameters, naming `key.field`.
+pub fn validate_slope_reduction(r: &SlopeReduction, key: &str) -> Result<(), ContactError> {
+    match r.validate() {
+        Err(FastsimError::InvalidInput {
+            name,
+            requirement,
+            value,
+        }) => Err(ContactError::invalid(
+            format!("{key}.{name}"),
+            format!("must be {requirement}, got {}", show(value)),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// A first estimate of the vertical approach that carries `force` on the
@@ -1608,7 +1658,8 @@ fn build_patch(
         WheelRailModel::HertzFastsim
         | WheelRailModel::HertzPolach
         | WheelRailModel::HertzFastsimElliptic
-        | WheelRailModel::HertzStrip => hertz_kind(kx0, b, input.settings.model),
+        | WheelRailModel::HertzStrip
+        | WheelRailModel::HertzFastsimModified => hertz_kind(kx0, b, input.settings.model),
         WheelRailModel::Exact | WheelRailModel::Auto => {
             let grid = patch_grid(&geom, cap, input, last)?;
             let mut gap_m = vec![0.0; grid.len()];

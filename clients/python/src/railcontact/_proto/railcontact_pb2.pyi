@@ -96,6 +96,7 @@ class WheelRailModel(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_HERTZ_STRIP: _ClassVar[WheelRailModel]
     WHEEL_RAIL_MODEL_KIK_PIOTROWSKI: _ClassVar[WheelRailModel]
+    WHEEL_RAIL_MODEL_HERTZ_FASTSIM_MODIFIED: _ClassVar[WheelRailModel]
 
 class WheelSides(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
@@ -166,6 +167,7 @@ WHEEL_RAIL_MODEL_HERTZ_POLACH: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_FASTSIM_ELLIPTIC: WheelRailModel
 WHEEL_RAIL_MODEL_HERTZ_STRIP: WheelRailModel
 WHEEL_RAIL_MODEL_KIK_PIOTROWSKI: WheelRailModel
+WHEEL_RAIL_MODEL_HERTZ_FASTSIM_MODIFIED: WheelRailModel
 WHEEL_SIDES_UNSPECIFIED: WheelSides
 WHEEL_SIDES_BOTH: WheelSides
 WHEEL_SIDES_LEFT: WheelSides
@@ -1039,6 +1041,20 @@ class DeleteProfilePairResponse(_message.Message):
     pair_id: str
     def __init__(self, pair_id: _Optional[str] = ...) -> None: ...
 
+class ModifiedFastsimParameters(_message.Message):
+    __slots__ = ("initial_factor", "limit_ratio", "transition_rate", "friction_limit_ratio", "friction_decay_s_per_m")
+    INITIAL_FACTOR_FIELD_NUMBER: _ClassVar[int]
+    LIMIT_RATIO_FIELD_NUMBER: _ClassVar[int]
+    TRANSITION_RATE_FIELD_NUMBER: _ClassVar[int]
+    FRICTION_LIMIT_RATIO_FIELD_NUMBER: _ClassVar[int]
+    FRICTION_DECAY_S_PER_M_FIELD_NUMBER: _ClassVar[int]
+    initial_factor: float
+    limit_ratio: float
+    transition_rate: float
+    friction_limit_ratio: float
+    friction_decay_s_per_m: float
+    def __init__(self, initial_factor: _Optional[float] = ..., limit_ratio: _Optional[float] = ..., transition_rate: _Optional[float] = ..., friction_limit_ratio: _Optional[float] = ..., friction_decay_s_per_m: _Optional[float] = ...) -> None: ...
+
 class PolachParameters(_message.Message):
     __slots__ = ("k_adhesion", "k_slip", "limit_ratio", "decay_s_per_m")
     K_ADHESION_FIELD_NUMBER: _ClassVar[int]
@@ -1104,7 +1120,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table", "modified_fastsim")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1117,6 +1133,7 @@ class SolveWheelRailRequest(_message.Message):
     POLACH_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_TABLE_FIELD_NUMBER: _ClassVar[int]
+    MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1129,7 +1146,8 @@ class SolveWheelRailRequest(_message.Message):
     polach: PolachParameters
     conformal: ConformalSection
     friction_table: FrictionTable
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ...) -> None: ...
+    modified_fastsim: ModifiedFastsimParameters
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1292,7 +1310,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table", "modified_fastsim")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1303,6 +1321,7 @@ class WheelRailSessionOpen(_message.Message):
     POLACH_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_TABLE_FIELD_NUMBER: _ClassVar[int]
+    MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1313,7 +1332,8 @@ class WheelRailSessionOpen(_message.Message):
     polach: PolachParameters
     conformal: ConformalSection
     friction_table: FrictionTable
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ...) -> None: ...
+    modified_fastsim: ModifiedFastsimParameters
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
