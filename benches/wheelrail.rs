@@ -59,6 +59,10 @@ fn wheelset_step(c: &mut Criterion) {
         ),
         ("wheelset_step_hertz_strip", WheelRailModel::HertzStrip),
         (
+            "wheelset_step_hertz_fastsim_modified",
+            WheelRailModel::HertzFastsimModified,
+        ),
+        (
             "wheelset_step_kik_piotrowski",
             WheelRailModel::KikPiotrowski,
         ),
