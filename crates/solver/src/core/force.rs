@@ -1,6 +1,9 @@
-//! Prescribed tangential forces in steady rolling: the creepage that gives
+//! Prescribed tangential forces: in steady rolling the creepage that gives
 //! a prescribed total force Fx and/or Fy (on body 1, signs as in
-//! [`crate::core::problem`]), the other creepages given.
+//! [`crate::core::problem`]), the other creepages given
+//! ([`solve_prescribed_force`]); in a transient step the shift that gives a
+//! prescribed Fx or Fy, the step's other shift and rotation given
+//! ([`solve_prescribed_force_step`]).
 //!
 //! # Method
 //!
@@ -25,21 +28,37 @@
 //! tolerance): 1e-6 with the default inner tolerance 1e-7, 1e-9 with an
 //! inner tolerance of 1e-10 or less.
 //!
+//! A transient step's force decreases with its shift in the same way (a
+//! convex problem from the same previous state), so one prescribed force
+//! takes the same safeguarded secant on the shift, each solve from the state
+//! before the step (restored: [`ContactSolver::save_state`]); its first
+//! step uses Mindlin's tangential stiffness 8 G a/(2 - nu), a the radius of
+//! a circle of the contact area.
+//!
 //! A force of magnitude mu Fn or more (mu kinetic: the bound at full
 //! slip) has no finite creepage and is refused naming its key; a smaller
 //! force that the given other creepage and spin leave out of reach is
 //! refused when the creepage would leave its input range (|creepage| <= 1).
 
+use crate::core::error::Range;
 use crate::core::error::{show, ContactError};
-use crate::core::problem::{ContactProblem, Creepages, Kinematics, CREEPAGE_RANGE};
+use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep, CREEPAGE_RANGE};
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::{ContactSolution, SolveStatus};
-use crate::core::solve::ContactSolver;
+use crate::core::solve::{ContactSolver, SolverState};
 
 /// Key of the prescribed longitudinal force in a case (`[rolling]`).
 pub const FORCE_X_KEY: &str = "rolling.force_x_n";
 /// Key of the prescribed lateral force in a case (`[rolling]`).
 pub const FORCE_Y_KEY: &str = "rolling.force_y_n";
+/// Key of a transient step's prescribed longitudinal force.
+pub const STEP_FORCE_X_KEY: &str = "step.force_x_n";
+/// Key of a transient step's prescribed lateral force.
+pub const STEP_FORCE_Y_KEY: &str = "step.force_y_n";
+
+/// The shifts a prescribed-force step may try \[m\]: beyond them the force
+/// is out of reach.
+const SHIFT_RANGE: Range = Range::symmetric(1.0, "");
 
 /// The prescribed forces \[N\] (on body 1); `None`: that direction's
 /// creepage is given.
@@ -106,17 +125,22 @@ fn one(solver: &mut ContactSolver, p: &ContactProblem) -> Result<ContactSolution
         .ok_or_else(|| ContactError::invalid("rolling", "the solver returned no solution"))
 }
 
-fn out_of_reach(key: &str, force: f64, c: f64) -> ContactError {
+/// The error of a force out of reach: the `unknown` (creepage or shift)
+/// would leave [-1, 1], its last value `c`; `given` names what is fixed.
+fn out_of_reach(key: &str, force: f64, [given, unknown]: [&str; 2], c: f64) -> ContactError {
     ContactError::invalid(
         key,
         format!(
-            "{} N is out of reach with the given other creepage and spin: the creepage \
-             would leave [-1, 1] (last {})",
+            "{} N is out of reach with the given {given}: the {unknown} would leave [-1, 1] \
+             (last {})",
             show(force),
             show(c)
         ),
     )
 }
+
+/// What [`out_of_reach`] says of a steady solve.
+const STEADY_REACH: [&str; 2] = ["other creepage and spin", "creepage"];
 
 /// Solves `problem` (steady rolling; the creepages of the prescribed
 /// directions are the start) for the creepages giving `target`.
@@ -141,37 +165,7 @@ pub fn solve_prescribed_force(
         }
     }
     let first = one(solver, problem)?;
-    let mu = problem.friction.kinetic_coefficient;
-    let limit = mu * first.totals.normal_force_n;
-    let magnitude = target
-        .force_x_n
-        .unwrap_or(0.0)
-        .hypot(target.force_y_n.unwrap_or(0.0));
-    if magnitude >= limit {
-        let (key, value) = match (target.force_x_n, target.force_y_n) {
-            (Some(x), None) => (FORCE_X_KEY.to_string(), show(x)),
-            (None, Some(y)) => (FORCE_Y_KEY.to_string(), show(y)),
-            _ => (
-                format!("{FORCE_X_KEY}, {FORCE_Y_KEY}"),
-                format!(
-                    "|({}, {})| = {}",
-                    show(target.force_x_n.unwrap_or(0.0)),
-                    show(target.force_y_n.unwrap_or(0.0)),
-                    show(magnitude)
-                ),
-            ),
-        };
-        return Err(ContactError::invalid(
-            key,
-            format!(
-                "{value} N is at or beyond saturation mu Fn = {} x {} N = {} N (mu: the kinetic \
-                 coefficient): no finite creepage gives it",
-                show(mu),
-                show(first.totals.normal_force_n),
-                show(limit)
-            ),
-        ));
-    }
+    let limit = saturation(problem, &first, target, [FORCE_X_KEY, FORCE_Y_KEY])?;
     let tol = settings
         .tolerance
         .max(10.0 * problem.settings.tangential.tolerance)
@@ -206,6 +200,189 @@ pub fn solve_prescribed_force(
             converged: true,
         }),
     }
+}
+
+/// A transient step solved for a prescribed force.
+#[derive(Debug, Clone)]
+pub struct StepForceSolution {
+    /// The step's solution at `step`.
+    pub solution: ContactSolution,
+    /// The step with the shift found (the other components as given).
+    pub step: ShiftStep,
+    /// Outer (secant) iterations.
+    pub outer_iterations: usize,
+    /// Solves of the step, all included.
+    pub solves: usize,
+    /// Whether the force tolerance was met within the iteration limit.
+    pub converged: bool,
+}
+
+/// Solves the transient `step` of `problem` (transient kinematics), going on
+/// from `solver`'s state as [`ContactSolver::solve_next_step`] does, for the
+/// shift that gives `target`: one force, Fx (the shift in x found) or Fy
+/// (in y); the step's shift in that direction is the start, its other
+/// shift, rotation, rolling distance and load are kept. The solver ends in
+/// the state after the step at the shift found (its state before the step
+/// when an error is returned: `problem`'s grid; a force at or beyond
+/// saturation, or both forces, refused naming `step.force_x_n` /
+/// `step.force_y_n`).
+pub fn solve_prescribed_force_step(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    step: &ShiftStep,
+    target: PrescribedForce,
+    settings: ForceControlSettings,
+) -> Result<StepForceSolution, ContactError> {
+    let (k, f) = match (target.force_x_n, target.force_y_n) {
+        (Some(x), None) => (0, x),
+        (None, Some(y)) => (1, y),
+        (None, None) => {
+            let solution = solver.solve_next_step(problem, step)?;
+            return Ok(StepForceSolution {
+                converged: solution.info.status == SolveStatus::Converged,
+                solution,
+                step: *step,
+                outer_iterations: 0,
+                solves: 1,
+            });
+        }
+        (Some(_), Some(_)) => {
+            return Err(ContactError::invalid(
+                STEP_FORCE_Y_KEY,
+                "a transient step takes one prescribed force: give the shift of the other \
+                 direction",
+            ))
+        }
+    };
+    let key = if k == 0 {
+        STEP_FORCE_X_KEY
+    } else {
+        STEP_FORCE_Y_KEY
+    };
+    crate::core::error::require_finite(key, f)?;
+    let shift = |s: &ShiftStep| if k == 0 { s.shift_x_m } else { s.shift_y_m };
+    let with_shift = |x: f64| {
+        let mut s = *step;
+        if k == 0 {
+            s.shift_x_m = x;
+        } else {
+            s.shift_y_m = x;
+        }
+        s
+    };
+    let mut before = SolverState::default();
+    solver.save_state(&mut before);
+    let first = solver.solve_next_step(problem, step)?;
+    let limit = match saturation(
+        problem,
+        &first,
+        target,
+        [STEP_FORCE_X_KEY, STEP_FORCE_Y_KEY],
+    ) {
+        Ok(l) => l,
+        Err(e) => {
+            solver.restore_state(&before)?;
+            return Err(e);
+        }
+    };
+    let tol = settings
+        .tolerance
+        .max(10.0 * problem.settings.tangential.tolerance)
+        * limit;
+    // Mindlin's tangential stiffness of a circle of the contact area.
+    let m = &problem.material;
+    let a = (first.totals.contact_area_m2 / std::f64::consts::PI).sqrt();
+    let slope0 = -8.0 * m.shear_modulus_pa * a / (2.0 - m.poisson_ratio);
+    let mut last = shift(step);
+    let root = decreasing_root(
+        shift(step),
+        force(&first, k) - f,
+        first,
+        RootSettings {
+            tolerance: tol,
+            max_iterations: settings.max_iterations,
+            slope: slope0,
+        },
+        SHIFT_RANGE,
+        |x| {
+            solver.restore_state(&before)?;
+            last = x;
+            let sol = solver.solve_next_step(problem, &with_shift(x))?;
+            Ok((force(&sol, k) - f, sol))
+        },
+    );
+    let root = match root {
+        Ok(r) => r,
+        Err(e) => {
+            solver.restore_state(&before)?;
+            return Err(match e {
+                RootError::Eval(e) => e,
+                RootError::OutOfRange { next } => {
+                    out_of_reach(key, f, ["other shift and rotation", "shift [m]"], next)
+                }
+            });
+        }
+    };
+    let found = with_shift(root.x);
+    let mut solves = root.evaluations;
+    if last != root.x {
+        // The solver holds the last evaluation's state: solve the root's
+        // step again from the state before (the same bits as its first
+        // solve of it).
+        solver.restore_state(&before)?;
+        solver.solve_next_step(problem, &found)?;
+        solves += 1;
+    }
+    Ok(StepForceSolution {
+        converged: root.end != RootEnd::IterationLimit
+            && root.state.info.status == SolveStatus::Converged,
+        solution: root.state,
+        step: found,
+        outer_iterations: root.iterations,
+        solves,
+    })
+}
+
+/// mu Fn of `first` (mu kinetic), or the error of a `target` at or beyond it
+/// (naming `keys`, x then y).
+fn saturation(
+    problem: &ContactProblem,
+    first: &ContactSolution,
+    target: PrescribedForce,
+    [key_x, key_y]: [&str; 2],
+) -> Result<f64, ContactError> {
+    let mu = problem.friction.kinetic_coefficient;
+    let limit = mu * first.totals.normal_force_n;
+    let magnitude = target
+        .force_x_n
+        .unwrap_or(0.0)
+        .hypot(target.force_y_n.unwrap_or(0.0));
+    if magnitude >= limit {
+        let (key, value) = match (target.force_x_n, target.force_y_n) {
+            (Some(x), None) => (key_x.to_string(), show(x)),
+            (None, Some(y)) => (key_y.to_string(), show(y)),
+            _ => (
+                format!("{key_x}, {key_y}"),
+                format!(
+                    "|({}, {})| = {}",
+                    show(target.force_x_n.unwrap_or(0.0)),
+                    show(target.force_y_n.unwrap_or(0.0)),
+                    show(magnitude)
+                ),
+            ),
+        };
+        return Err(ContactError::invalid(
+            key,
+            format!(
+                "{value} N is at or beyond saturation mu Fn = {} x {} N = {} N (mu: the kinetic \
+                 coefficient): no finite creepage or shift gives it",
+                show(mu),
+                show(first.totals.normal_force_n),
+                show(limit)
+            ),
+        ));
+    }
+    Ok(limit)
 }
 
 fn component(c: &Creepages, k: usize) -> f64 {
@@ -266,7 +443,7 @@ fn one_direction(
     )
     .map_err(|e| match e {
         RootError::Eval(e) => e,
-        RootError::OutOfRange { next } => out_of_reach(key, target, next),
+        RootError::OutOfRange { next } => out_of_reach(key, target, STEADY_REACH, next),
     })?;
     let mut creepages = c0;
     set(&mut creepages, k, root.x);
@@ -344,6 +521,7 @@ fn both(
                     return Err(out_of_reach(
                         FORCE_X_KEY,
                         target[0].hypot(target[1]),
+                        STEADY_REACH,
                         cn.creepage_long.hypot(cn.creepage_lat),
                     ));
                 }
@@ -654,6 +832,127 @@ mod tests {
                     && msg.contains("N = 2999.99"),
                 "{msg}"
             );
+        }
+    }
+
+    /// The circle of [`problem`] on a 24 x 24 grid, loaded by one transient
+    /// step, and the solver after that step.
+    fn loaded() -> (ContactProblem, ContactSolver) {
+        let mut p = problem(24, creep(0.0, 0.0, 0.0));
+        let load = ShiftStep {
+            load: p.load,
+            shift_x_m: 0.0,
+            shift_y_m: 0.0,
+            rotation_rad: 0.0,
+            rolling_m: 0.0,
+        };
+        p.kinematics = Kinematics::Transient(vec![load]);
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        s.solve(&p).unwrap();
+        (p, s)
+    }
+
+    fn shift_step(p: &ContactProblem, x: f64, y: f64, rotation_rad: f64) -> ShiftStep {
+        ShiftStep {
+            load: p.load,
+            shift_x_m: x,
+            shift_y_m: y,
+            rotation_rad,
+            rolling_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_prescribed_step_force_gives_back_the_shift_it_came_from() {
+        // Mindlin's full-slip shift of this circle is 3 mu Fn (2 - nu)/(8 G
+        // a), about 7.5 um (a = 3.3 mm): these shifts leave an adhesion
+        // zone, the first with rotation.
+        let (p, mut s) = loaded();
+        let mut before = SolverState::default();
+        s.save_state(&mut before);
+        for (k, dx, dy, rot) in [
+            (0, 2e-6, 0.0, 3e-4),
+            (1, 0.5e-6, -1.5e-6, 0.0),
+            (0, -4e-6, 1e-6, 0.0),
+        ] {
+            s.restore_state(&before).unwrap();
+            let step = shift_step(&p, dx, dy, rot);
+            let forward = s.solve_next_step(&p, &step).unwrap();
+            let after_forward = s
+                .solve_next_step(&p, &shift_step(&p, 0.0, 0.0, 0.0))
+                .unwrap();
+            s.restore_state(&before).unwrap();
+            let (start, target, want) = if k == 0 {
+                let t = PrescribedForce {
+                    force_x_n: Some(forward.totals.fx_n),
+                    force_y_n: None,
+                };
+                (shift_step(&p, 0.0, dy, rot), t, dx)
+            } else {
+                let t = PrescribedForce {
+                    force_x_n: None,
+                    force_y_n: Some(forward.totals.fy_n),
+                };
+                (shift_step(&p, dx, 0.0, rot), t, dy)
+            };
+            let r = solve_prescribed_force_step(&mut s, &p, &start, target, Default::default())
+                .unwrap();
+            assert!(r.converged, "{k} {dx} {dy}");
+            let got = if k == 0 {
+                r.step.shift_x_m
+            } else {
+                r.step.shift_y_m
+            };
+            assert!(
+                (got - want).abs() <= 1e-6 * want.abs(),
+                "shift {got:e} against {want:e}"
+            );
+            let limit = MU * r.solution.totals.normal_force_n;
+            let f = [r.solution.totals.fx_n, r.solution.totals.fy_n];
+            let t = [forward.totals.fx_n, forward.totals.fy_n];
+            assert!((f[k] - t[k]).abs() <= 1e-9 * limit, "{f:?} against {t:?}");
+            println!(
+                "shift {k}: {:.3e} m in {} secant steps, {} solves",
+                got, r.outer_iterations, r.solves
+            );
+            // The solver is left after the step found: the next step
+            // from it is the forward path's next step.
+            let next = s
+                .solve_next_step(&p, &shift_step(&p, 0.0, 0.0, 0.0))
+                .unwrap();
+            for (a, b) in [
+                (next.totals.fx_n, after_forward.totals.fx_n),
+                (next.totals.fy_n, after_forward.totals.fy_n),
+            ] {
+                assert!((a - b).abs() <= 1e-6 * limit, "{a} against {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_step_force_at_saturation_or_two_forces_are_refused() {
+        let (p, mut s) = loaded();
+        let step = shift_step(&p, 0.0, 0.0, 0.0);
+        let cases = [
+            (Some(1.01 * MU * FN), None, STEP_FORCE_X_KEY),
+            (None, Some(-MU * FN), STEP_FORCE_Y_KEY),
+            (Some(100.0), Some(100.0), STEP_FORCE_Y_KEY),
+        ];
+        let mut before = SolverState::default();
+        s.save_state(&mut before);
+        let reference = s.clone().solve_next_step(&p, &step).unwrap();
+        for (fx, fy, key) in cases {
+            let target = PrescribedForce {
+                force_x_n: fx,
+                force_y_n: fy,
+            };
+            let e = solve_prescribed_force_step(&mut s, &p, &step, target, Default::default())
+                .unwrap_err();
+            assert_eq!(e.key(), Some(key), "{e}");
+            // The solver keeps its state before the step.
+            let again = s.clone().solve_next_step(&p, &step).unwrap();
+            assert_eq!(again.totals.fx_n, reference.totals.fx_n);
+            assert_eq!(again.totals.fy_n, reference.totals.fy_n);
         }
     }
 }

@@ -16,6 +16,7 @@
 //! for one step with ties, see `check_counts`).
 
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::force::{solve_prescribed_force_step, PrescribedForce};
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::normal::NormalLoad;
@@ -247,4 +248,61 @@ fn world_fixed_steps_with_moving_geometry_match_contact_catt_to_cart() {
         100.0 * worst
     );
     assert_eq!(differ, [69], "cases whose counts differ (by ties)");
+}
+
+/// CONTACT's `cattaneo` example, case 2 (github.com/eve70a/CONTACT,
+/// `examples/cattaneo.inp` and `examples/cattaneo.ref_out`, commit
+/// 424e4e6): a polyethylene ball (G = 200 N/mm², nu = 0.42 both, h = 0.01
+/// (x² + y²) /mm) on 19 x 19 elements of 0.13333 mm from (-1.26667,
+/// -1.26667) mm, pressed by Fn = 9.1954 N and shifted from the unloaded
+/// state by the tangential force Fx = -0.875 mu Fn (mu = 0.4). CONTACT
+/// finds "SHIFT X 8.155E-03" mm with 177 contact, 45 adhesion and 132 slip
+/// elements ("NCON NADH NSLIP").
+#[test]
+fn prescribed_force_shift_matches_contact_cattaneo_case_2() {
+    let d = 0.13333 * MM;
+    let grid = Grid::new(19, 19, d, d, -1.26667 * MM, -1.26667 * MM).unwrap();
+    let curvature = 0.01 / MM;
+    let load = NormalLoad::NormalForce(9.1954);
+    let step = ShiftStep {
+        load,
+        shift_x_m: 0.0,
+        shift_y_m: 0.0,
+        rotation_rad: 0.0,
+        rolling_m: 0.0,
+    };
+    let problem = ContactProblem {
+        material: CombinedMaterial::identical(Material {
+            shear_modulus_pa: 200e6,
+            poisson_ratio: 0.42,
+        })
+        .unwrap(),
+        friction: Friction::coulomb(0.4),
+        gap_m: ContactProblem::quadratic_gap(&grid, curvature, curvature),
+        grid,
+        load,
+        kinematics: Kinematics::Transient(vec![step]),
+        settings: SolverSettings::default(),
+        rolling_direction_rad: 0.0,
+        extra_rigid_slip: None,
+    };
+    let mut solver = ContactSolver::new(&problem, &KernelCache::default());
+    let target = PrescribedForce {
+        force_x_n: Some(-0.875 * 0.4 * 9.1954),
+        force_y_n: None,
+    };
+    let r = solve_prescribed_force_step(&mut solver, &problem, &step, target, Default::default())
+        .unwrap();
+    assert!(r.converged);
+    let shift_mm = r.step.shift_x_m / MM;
+    println!(
+        "cattaneo case 2: shift {shift_mm:.6e} mm (CONTACT 8.155e-3), counts {:?}, {} secant steps",
+        counts(&r.solution),
+        r.outer_iterations
+    );
+    assert!(
+        (shift_mm / 8.155e-3 - 1.0).abs() <= 1e-3,
+        "shift {shift_mm:e} mm against 8.155e-3"
+    );
+    assert_eq!(counts(&r.solution), [177, 45, 132]);
 }
