@@ -16,7 +16,7 @@ use crate::core::fastsim::SlopeReduction;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
-use crate::problem::case::{FrictionLawName, FrictionSection};
+use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
     builtin, load_profile_with, solve_wheelset, FrictionTable, LoadOptions, PatchResult, Profile,
@@ -258,23 +258,18 @@ fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Pro
 }
 
 /// The friction of a wheel/rail case's `[friction]` (Coulomb 0.3 without
-/// one): a falling law's rolling speed defaults to `forward_m_per_s`, which
-/// each patch's own replaces.
+/// one), or its table.
 fn wheelrail_friction(
     section: Option<FrictionSection>,
-    forward_m_per_s: f64,
 ) -> Result<(Friction, Option<FrictionTable>), CliError> {
-    let Some(mut f) = section else {
+    let Some(f) = section else {
         return Ok((Friction::coulomb(0.3), None));
     };
     if let Some(table) = f.table()? {
         // The table's coefficients replace these.
         return Ok((Friction::coulomb(0.0), Some(table)));
     }
-    if f.law != FrictionLawName::Coulomb && f.rolling_speed_m_per_s.is_none() {
-        f.rolling_speed_m_per_s = Some(forward_m_per_s);
-    }
-    Ok((f.friction()?, None))
+    Ok((f.wheelrail_friction()?, None))
 }
 
 /// A parsed and checked case: the pair and the solver input.
@@ -374,7 +369,7 @@ impl WheelrailRun {
         })
         .map_err(|e| bad(e.to_string().replace("material.body1", "material")))?;
         let v = &c.velocity;
-        let (friction, friction_table) = wheelrail_friction(c.friction, v.forward_m_per_s)?;
+        let (friction, friction_table) = wheelrail_friction(c.friction)?;
         let input = WheelRailInput {
             position: WheelsetPosition {
                 lateral_m: c.position.lateral_m,

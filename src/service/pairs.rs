@@ -44,7 +44,7 @@ use sha2::{Digest, Sha256};
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
-use crate::problem::case::{FrictionLawName, MaterialSection};
+use crate::problem::case::MaterialSection;
 use crate::service::config::{ServeConfig, StoreDamaged};
 use crate::service::convert;
 use crate::service::metrics::Metrics;
@@ -368,14 +368,10 @@ fn cli_material(m: &pb::MaterialSection) -> MaterialSection {
 }
 
 /// The checked friction of a wire friction section for wheel/rail
-/// contact; keys `friction.*`. A falling law's rolling speed is not needed
-/// (each patch rolls at its own; 1 m/s stands in until then).
+/// contact; keys `friction.*`
+/// ([`crate::problem::case::FrictionSection::wheelrail_friction`]).
 pub fn friction(f: &pb::FrictionSection) -> Result<Friction, ServiceError> {
-    let mut section = convert::friction_section(f)?;
-    if section.law != FrictionLawName::Coulomb && section.rolling_speed_m_per_s.is_none() {
-        section.rolling_speed_m_per_s = Some(1.0);
-    }
-    Ok(section.friction()?)
+    Ok(convert::friction_section(f)?.wheelrail_friction()?)
 }
 
 /// Checks an element size \[m\] (the wheel/rail solver's range).

@@ -20,11 +20,10 @@ use crate::service::convert::{
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
-use crate::wheelrail::contact::{validate_slope_reduction, TOTAL_LONGITUDINAL_FORCE_KEY};
+use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
 use crate::wheelrail::{
-    FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailError, WheelRailInput,
-    WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult, WheelsetPosition,
-    WheelsetVelocity,
+    FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailSettings, WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
 };
 
 /// The documented ranges of a wheel/rail query's motion and load (the
@@ -204,13 +203,7 @@ impl QuerySettings {
             track_s_m: t.track_s_m.clone(),
             coefficients: t.coefficients.clone(),
         };
-        // The library's keys are the case file's, under `friction.`.
-        table.validate().map_err(|e| match e {
-            WheelRailError::Invalid { key, message } => {
-                ServiceError::invalid(key.replacen("friction.", &format!("{KEY}."), 1), message)
-            }
-            e => ServiceError::invalid(KEY, e.to_string()),
-        })?;
+        table.validate_as(KEY)?;
         if self.friction.slip_velocity_law.is_some() {
             return Err(ServiceError::invalid(
                 "friction.law",
@@ -275,7 +268,7 @@ impl QuerySettings {
                 friction_limit_ratio: m.friction_limit_ratio,
                 friction_decay_s_per_m: m.friction_decay_s_per_m,
             };
-            validate_slope_reduction(&r, "modified_fastsim")?;
+            r.validate_as("modified_fastsim")?;
             self.settings.modified_fastsim = r;
         }
         Ok(self)

@@ -368,9 +368,16 @@ pub fn solve_frictional(
     let mut out = Vec::with_capacity(steps.len());
     // Approach of the previous load step (static compression starts unloaded).
     let mut prev_approach = 0.0;
+    let rail_weight = midplane_rail_weight(material);
     for (k, &(force, creep)) in steps.iter().enumerate() {
         crate::core::error::require_positive("load.normal_force_n", force)?;
-        if creep.is_none() && k > 0 {
+        if let Some(c) = &creep {
+            // On the reference section the rigid slip is the step's; on the
+            // actual surfaces it moves with the approach (below).
+            if settings.rigid_slip == RigidSlipSurface::ReferenceSection {
+                geometry.rigid_slip(c, settings.rigid_slip, 0.0, rail_weight, wx, ws);
+            }
+        } else if k > 0 {
             // Displacement difference of the previous step's tractions.
             a_op.apply_parts(
                 Precision::Double,
@@ -456,17 +463,10 @@ pub fn solve_frictional(
             );
             let mut inner_ok = no.converged;
             approach = no.approach_m;
-            if let Some(c) = &creep {
-                // On the actual surfaces the rigid slip moves with the
-                // approach (the wheel's points on the elements' normals).
-                geometry.rigid_slip(
-                    c,
-                    settings.rigid_slip,
-                    approach,
-                    midplane_rail_weight(material),
-                    wx,
-                    ws,
-                );
+            if let (Some(c), RigidSlipSurface::ActualSurface) = (&creep, settings.rigid_slip) {
+                // The wheel's points on the elements' normals move with the
+                // approach.
+                geometry.rigid_slip(c, settings.rigid_slip, approach, rail_weight, wx, ws);
             }
             // Tangential problem: fixed slip from the pressures (and, for a
             // static step, minus the previous displacements).

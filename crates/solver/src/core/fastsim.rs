@@ -85,6 +85,7 @@
 //!   model has no single displacement field.
 
 use crate::core::creep::{kalker_creep_coefficients, CreepCoefficients, CreepError};
+use crate::core::error::{show, ContactError};
 use crate::core::simd::multiversion;
 use thiserror::Error;
 
@@ -289,6 +290,22 @@ impl SlopeReduction {
         friction_limit_ratio: 1.0,
         friction_decay_s_per_m: 0.0,
     };
+
+    /// [`SlopeReduction::validate`] for an input named `key`: the error
+    /// names `key.<field>` (`modified_fastsim.limit_ratio`).
+    pub fn validate_as(&self, key: &str) -> Result<(), ContactError> {
+        self.validate().map_err(|e| match e {
+            FastsimError::InvalidInput {
+                name,
+                requirement,
+                value,
+            } => ContactError::invalid(
+                format!("{key}.{name}"),
+                format!("must be {requirement}, got {}", show(value)),
+            ),
+            other => ContactError::invalid(key, other.to_string()),
+        })
+    }
 
     /// Checks the ranges in the field docs.
     pub fn validate(&self) -> Result<(), FastsimError> {

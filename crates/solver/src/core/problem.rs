@@ -317,6 +317,18 @@ pub enum Kinematics {
     Transient(Vec<ShiftStep>),
 }
 
+impl Kinematics {
+    /// Steady rolling, or transient steps that all roll (`rolling_m > 0`):
+    /// what a slip per unit rolled distance (an extra rigid slip) needs.
+    pub fn rolls_throughout(&self) -> bool {
+        match self {
+            Kinematics::Frictionless => false,
+            Kinematics::SteadyRolling(_) => true,
+            Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
+        }
+    }
+}
+
 /// Solver settings (tolerances and iteration limits).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SolverSettings {
@@ -442,12 +454,7 @@ impl ContactProblem {
         let rolling_grid = crate::core::frame::RollingFrame::of(self)?.rolling_grid();
         if let Some(extra) = &self.extra_rigid_slip {
             extra.validate(&self.grid)?;
-            let rolls = match &self.kinematics {
-                Kinematics::Frictionless => false,
-                Kinematics::SteadyRolling(_) => true,
-                Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
-            };
-            if !rolls {
+            if !self.kinematics.rolls_throughout() {
                 return Err(ContactError::invalid(
                     "extra_rigid_slip",
                     "is a slip per unit rolled distance: it needs steady rolling or transient \
@@ -473,38 +480,6 @@ impl ContactProblem {
             }
         }
         Ok(())
-    }
-
-    /// The undeformed distance of a body of revolution over a profile
-    /// (CONTACT's `IBASE = 2`, "circular in x, piecewise linear in y"):
-    /// h = b(y) + r - sqrt(r² - (x - x_c)²), with b the heights
-    /// `heights_m` \[m\] at y = `y_first_m` + k `dy_m` (k = 0, 1, ...),
-    /// interpolated linearly and held constant beyond both ends, and `r`
-    /// the rolling radius \[m\] of the circle in x (the undeformed distance
-    /// of a wheel of that radius on a straight rail). Needs at least two
-    /// heights, `dy_m > 0` and |x - x_c| < r over the grid; the caller
-    /// checks them.
-    pub fn circular_profile_gap(
-        grid: &Grid,
-        x_center_m: f64,
-        radius_m: f64,
-        y_first_m: f64,
-        dy_m: f64,
-        heights_m: &[f64],
-    ) -> Vec<f64> {
-        let last = heights_m.len() - 1;
-        let mut h = vec![0.0; grid.len()];
-        for iy in 0..grid.ny {
-            let t = ((grid.y_m(iy) - y_first_m) / dy_m).clamp(0.0, last as f64);
-            let k = (t.floor() as usize).min(last - 1);
-            let f = t - k as f64;
-            let b = heights_m[k] * (1.0 - f) + heights_m[k + 1] * f;
-            for ix in 0..grid.nx {
-                let x = grid.x_m(ix) - x_center_m;
-                h[grid.index(ix, iy)] = b + radius_m - (radius_m * radius_m - x * x).sqrt();
-            }
-        }
-        h
     }
 
     /// The quadratic undeformed distance h = A x² + B y² on `grid`.

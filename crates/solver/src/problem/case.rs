@@ -1416,6 +1416,20 @@ impl FrictionSection {
         Ok(Some(table))
     }
 
+    /// [`FrictionSection::friction`] for wheel/rail contact: a falling
+    /// law's rolling speed is not needed (each patch replaces it with its
+    /// own; 1 m/s stands in when it is not given).
+    pub fn wheelrail_friction(&self) -> Result<Friction, CaseError> {
+        if self.law != FrictionLawName::Coulomb && self.rolling_speed_m_per_s.is_none() {
+            let given = FrictionSection {
+                rolling_speed_m_per_s: Some(1.0),
+                ..self.clone()
+            };
+            return given.friction();
+        }
+        self.friction()
+    }
+
     /// The checked friction law (errors name the key).
     pub fn friction(&self) -> Result<Friction, CaseError> {
         for (key, given) in [
@@ -2381,12 +2395,7 @@ fn extra_rigid_slip(
             ),
         ));
     }
-    let rolls = match kinematics {
-        Kinematics::Frictionless => false,
-        Kinematics::SteadyRolling(_) => true,
-        Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
-    };
-    if !rolls {
+    if !kinematics.rolls_throughout() {
         return Err(bad(
             key,
             "is a slip per unit rolled distance: give `[rolling]`, or `[transient]` steps that all roll \

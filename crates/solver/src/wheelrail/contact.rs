@@ -77,7 +77,7 @@ use crate::conformal::geometry::{
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastsim::{Fastsim, FastsimError, FastsimInput, SlopeReduction, TractionBound};
+use crate::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
@@ -992,6 +992,39 @@ pub struct WarmStart {
     pub tractions: [Option<PatchTractions>; 2],
 }
 
+impl WarmStart {
+    /// Each wheel's first normal force per vertical load in this step:
+    /// [`extrapolated_start`] of the last three steps'.
+    pub fn first_ratios(&self) -> [Option<f64>; 2] {
+        std::array::from_fn(|i| {
+            extrapolated_start(
+                self.normal_per_vertical[i],
+                self.normal_per_vertical_earlier.map(|e| e[i]),
+            )
+        })
+    }
+
+    /// The warm start after a step that found `roll_rad`, each wheel's
+    /// `normal_per_vertical` and `tractions`: the step's ratios become the
+    /// last ones, the last ones the earlier ones.
+    pub fn advance(
+        &mut self,
+        roll_rad: f64,
+        normal_per_vertical: [Option<f64>; 2],
+        tractions: [Option<PatchTractions>; 2],
+    ) {
+        *self = WarmStart {
+            roll_rad: Some(roll_rad),
+            normal_per_vertical,
+            normal_per_vertical_earlier: [
+                self.normal_per_vertical,
+                self.normal_per_vertical_earlier[0],
+            ],
+            tractions,
+        };
+    }
+}
+
 /// The first normal force per vertical load of a wheel's load iteration
 /// from those of the last three steps (`last`, then `earlier`, the nearer
 /// first): extrapolated by the parabola through the three (the line
@@ -1107,12 +1140,7 @@ pub fn solve_wheelset_warm(
     let resolved = input.with_load_resolved(rigid.center_z_m);
     let input = &*resolved;
     let mut normal_per_vertical = warm.normal_per_vertical;
-    let first_start: [Option<f64>; 2] = std::array::from_fn(|i| {
-        extrapolated_start(
-            warm.normal_per_vertical[i],
-            warm.normal_per_vertical_earlier.map(|e| e[i]),
-        )
-    });
+    let first_start = warm.first_ratios();
     // A wheel left out of this step keeps its tractions.
     let mut tractions: [Option<PatchTractions>; 2] = std::array::from_fn(|i| {
         if input.sides.iter().any(|s| s.index() == i) {
@@ -1152,15 +1180,7 @@ pub fn solve_wheelset_warm(
         solved = true;
         Ok(wheels)
     })?;
-    *warm = WarmStart {
-        roll_rad: Some(rigid.roll_rad),
-        normal_per_vertical,
-        normal_per_vertical_earlier: [
-            warm.normal_per_vertical,
-            warm.normal_per_vertical_earlier[0],
-        ],
-        tractions,
-    };
+    warm.advance(rigid.roll_rad, normal_per_vertical, tractions);
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
@@ -1353,7 +1373,10 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     input.settings.polach.validate("polach")?;
-    validate_slope_reduction(&input.settings.modified_fastsim, "modified_fastsim")?;
+    input
+        .settings
+        .modified_fastsim
+        .validate_as("modified_fastsim")?;
     if let Some(law) = input.friction.slip_velocity_law {
         if input.friction_table.is_some() {
             return Err(WheelRailError::invalid(
@@ -1397,21 +1420,6 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     Ok(f.validate()?)
-}
-
-/// Checks a modified FASTSIM's parameters, naming `key.field`.
-pub fn validate_slope_reduction(r: &SlopeReduction, key: &str) -> Result<(), ContactError> {
-    match r.validate() {
-        Err(FastsimError::InvalidInput {
-            name,
-            requirement,
-            value,
-        }) => Err(ContactError::invalid(
-            format!("{key}.{name}"),
-            format!("must be {requirement}, got {}", show(value)),
-        )),
-        _ => Ok(()),
-    }
 }
 
 /// A first estimate of the vertical approach that carries `force` on the
@@ -1761,15 +1769,22 @@ fn kik_piotrowski_kind(geom: &PatchGeometry) -> Result<PatchKind, WheelRailError
 /// curvature `b` of the undeformed distance [1/m], kept positive; the
 /// creep forces by `model` if it is a Hertz model, else FASTSIM.
 fn hertz_kind(kx: f64, b: f64, model: WheelRailModel) -> PatchKind {
+    let (a_per_m, b_per_m) = hertz_curvatures(kx, b);
     PatchKind::Hertz {
-        a_per_m: 0.5 * kx.max(1e-3),
-        b_per_m: b.max(0.01 * kx).max(1e-3),
+        a_per_m,
+        b_per_m,
         model: if model.is_hertz() {
             model
         } else {
             WheelRailModel::HertzFastsim
         },
     }
+}
+
+/// Hertz's A and B \[1/m\] of a patch of longitudinal curvature `kx` and
+/// lateral curvature `b` (each kept positive).
+fn hertz_curvatures(kx: f64, b: f64) -> (f64, f64) {
+    (0.5 * kx.max(1e-3), b.max(0.01 * kx).max(1e-3))
 }
 
 /// Hook for contact tables ([`crate::wheelrail::table`]): a Hertz+FASTSIM
@@ -1990,12 +2005,7 @@ impl ApproachLaw {
 /// at a patch's reference point (those of [`hertz_kind`]).
 fn hertz_force_guess(geom: &PatchGeometry, e: f64, input: &WheelRailInput) -> f64 {
     let kx = geom.lateral_at(0.0).kx_per_m;
-    let PatchKind::Hertz {
-        a_per_m, b_per_m, ..
-    } = hertz_kind(kx, lateral_curvature(geom).1, WheelRailModel::HertzFastsim)
-    else {
-        unreachable!("hertz_kind makes Hertz patches")
-    };
+    let (a_per_m, b_per_m) = hertz_curvatures(kx, lateral_curvature(geom).1);
     let load = HertzLoad::Approach { approach_m: e };
     hertz(
         a_per_m,

@@ -46,11 +46,11 @@ pub enum FrictionAxis {
 }
 
 impl FrictionAxis {
-    /// The case-file key of the positions.
-    pub fn key(self) -> &'static str {
+    /// The field of the positions (`contact_angles_rad`, `rail_y_m`).
+    pub fn field(self) -> &'static str {
         match self {
-            FrictionAxis::ContactAngle => "friction.contact_angles_rad",
-            FrictionAxis::RailLateral => "friction.rail_y_m",
+            FrictionAxis::ContactAngle => "contact_angles_rad",
+            FrictionAxis::RailLateral => "rail_y_m",
         }
     }
 }
@@ -124,6 +124,13 @@ impl FrictionTable {
 
     /// Checks the table; errors name the case-file key under `friction.`.
     pub fn validate(&self) -> Result<(), WheelRailError> {
+        self.validate_as("friction")
+    }
+
+    /// Checks the table; errors name its fields under `prefix`
+    /// (`friction.coefficients` in case files, `friction_table.coefficients`
+    /// in requests).
+    pub fn validate_as(&self, prefix: &str) -> Result<(), WheelRailError> {
         let increasing = |key: &str, v: &[f64]| -> Result<(), WheelRailError> {
             if let Some(x) = v.iter().find(|x| !x.is_finite()) {
                 return Err(WheelRailError::invalid(
@@ -143,7 +150,7 @@ impl FrictionTable {
             }
             Ok(())
         };
-        let key = self.axis.key();
+        let key = &format!("{prefix}.{}", self.axis.field());
         if self.positions.is_empty() {
             return Err(WheelRailError::invalid(key, "needs at least one position"));
         }
@@ -159,13 +166,13 @@ impl FrictionTable {
                 ));
             }
         }
-        increasing("friction.track_s_m", &self.track_s_m)?;
+        increasing(&format!("{prefix}.track_s_m"), &self.track_s_m)?;
         let rows = self.track_s_m.len().max(1);
         let want = rows * self.positions.len();
-        const COEFFICIENTS: &str = "friction.coefficients";
+        let coefficients_key = &format!("{prefix}.coefficients");
         if self.coefficients.len() != want {
             return Err(WheelRailError::invalid(
-                COEFFICIENTS,
+                coefficients_key,
                 format!(
                     "needs {want} values ({} per track position x {rows} track position(s)), \
                      got {}",
@@ -175,9 +182,9 @@ impl FrictionTable {
             ));
         }
         for &mu in &self.coefficients {
-            if check_friction_coefficient(COEFFICIENTS, mu)? == 0.0 {
+            if check_friction_coefficient(coefficients_key, mu)? == 0.0 {
                 return Err(WheelRailError::invalid(
-                    COEFFICIENTS,
+                    coefficients_key,
                     "must be > 0 (a table scales the coefficient row by row)",
                 ));
             }

@@ -91,9 +91,9 @@ use crate::core::cancel::{self, CancelToken};
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::wheelrail::contact::{
-    extrapolated_start, finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch,
-    solve_wheelset_warm, validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart,
-    WheelLoad, WheelRailInput, WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
+    finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch, solve_wheelset_warm,
+    validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
     find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
@@ -1019,12 +1019,7 @@ pub fn solve_wheelset_tabulated_warm(
     let input = &*resolved;
     // Each solve of the wheels starts from the last one's, the first from
     // the warm start's last three steps ([`extrapolated_start`]).
-    let mut start: [Option<f64>; 2] = std::array::from_fn(|i| {
-        extrapolated_start(
-            warm.normal_per_vertical[i],
-            warm.normal_per_vertical_earlier.map(|e| e[i]),
-        )
-    });
+    let mut start = warm.first_ratios();
     let mut normal_per_vertical = warm.normal_per_vertical;
     let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
         let mut wheels = Vec::with_capacity(input.sides.len());
@@ -1048,15 +1043,7 @@ pub fn solve_wheelset_tabulated_warm(
         }
         Ok(wheels)
     })?;
-    *warm = WarmStart {
-        roll_rad: Some(roll),
-        normal_per_vertical,
-        normal_per_vertical_earlier: [
-            warm.normal_per_vertical,
-            warm.normal_per_vertical_earlier[0],
-        ],
-        tractions: [None, None],
-    };
+    warm.advance(roll, normal_per_vertical, [None, None]);
     Ok(WheelRailSolution {
         center_z_m,
         roll_rad: roll,

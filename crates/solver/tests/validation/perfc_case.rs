@@ -46,15 +46,7 @@ pub fn case(level: usize, heights: &[f64], kinematics: Kinematics) -> ContactPro
     ContactProblem {
         material: CombinedMaterial::identical(steel).unwrap(),
         friction: Friction::coulomb(0.3),
-        // XM = 0, RY1 = 483.931 mm, Y1 = -12 mm, DY1 = 0.1 mm.
-        gap_m: ContactProblem::circular_profile_gap(
-            &grid,
-            0.0,
-            483.931 * MM,
-            -12.0 * MM,
-            0.1 * MM,
-            heights,
-        ),
+        gap_m: circular_profile_gap(&grid, heights),
         grid,
         load: NormalLoad::Approach(APPROACH_M),
         kinematics,
@@ -75,4 +67,30 @@ pub fn shift_step() -> ShiftStep {
         rotation_rad: 0.0008,
         rolling_m: 0.0,
     }
+}
+
+/// CONTACT's IBASE = 2, "circular in x, piecewise linear in y": h = b(y) +
+/// r - sqrt(r² - (x - x_m)²), with the inputs' XM = 0, RY1 = 483.931 mm and
+/// the heights b at y = Y1 + k DY1 (Y1 = -12 mm, DY1 = 0.1 mm), interpolated
+/// linearly and held beyond both ends.
+fn circular_profile_gap(grid: &Grid, heights: &[f64]) -> Vec<f64> {
+    let (r, y_first, dy) = (483.931 * MM, -12.0 * MM, 0.1 * MM);
+    let last = heights.len() - 1;
+    let root: Vec<f64> = (0..grid.nx)
+        .map(|ix| {
+            let x = grid.x_m(ix);
+            (r * r - x * x).sqrt()
+        })
+        .collect();
+    let mut h = vec![0.0; grid.len()];
+    for iy in 0..grid.ny {
+        let t = ((grid.y_m(iy) - y_first) / dy).clamp(0.0, last as f64);
+        let k = (t.floor() as usize).min(last - 1);
+        let f = t - k as f64;
+        let b = heights[k] * (1.0 - f) + heights[k + 1] * f;
+        for (ix, root) in root.iter().enumerate() {
+            h[grid.index(ix, iy)] = b + r - root;
+        }
+    }
+    h
 }
