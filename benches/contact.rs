@@ -9,6 +9,9 @@ use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criteri
 use railcontact::core::cache::KernelCache;
 use railcontact::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
 use railcontact::core::fft::{ConvolutionPlan, KernelSet, Precision};
+use railcontact::core::force::{
+    solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
+};
 use railcontact::core::grid::Grid;
 use railcontact::core::hertz::{hertz, HertzLoad};
 use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
@@ -18,7 +21,7 @@ use railcontact::core::normal::NormalLoad;
 use railcontact::core::polach::{polach, PolachParameters};
 use railcontact::core::problem::{ContactProblem, Creepages, Friction, Kinematics, ShiftStep};
 use railcontact::core::sensitivity::exact_jacobian;
-use railcontact::core::solve::ContactSolver;
+use railcontact::core::solve::{ContactSolver, SolverState};
 use railcontact::core::strip::strip_theory;
 use railcontact::core::subsurface::{subsurface_fields, Body, DepthKernels, SubsurfaceWorkspace};
 
@@ -238,6 +241,58 @@ fn tangential_solves(c: &mut Criterion) {
         );
         g.bench_with_input(BenchmarkId::new("transient_rolling_step", n), &n, |b, _| {
             b.iter(|| black_box(s.solve_next_step(&p, &step).unwrap()))
+        });
+        // The same step at its Fx prescribed (the shift starting from 0, as
+        // case files and sessions start it), each time from the same state.
+        let target = PrescribedForce {
+            force_x_n: Some(last.totals.fx_n),
+            force_y_n: None,
+        };
+        let start = ShiftStep {
+            shift_x_m: 0.0,
+            ..step
+        };
+        let mut before = SolverState::default();
+        s.save_state(&mut before);
+        let settings = ForceControlSettings::default();
+        let r = solve_prescribed_force_step(&mut s, &p, &start, target, settings).unwrap();
+        println!(
+            "counts transient_rolling_step_force/{n}: {} secant steps, {} solves",
+            r.outer_iterations, r.solves
+        );
+        g.bench_with_input(
+            BenchmarkId::new("transient_rolling_step_force", n),
+            &n,
+            |b, _| {
+                b.iter(|| {
+                    s.restore_state(&before).unwrap();
+                    black_box(solve_prescribed_force_step(
+                        &mut s, &p, &start, target, settings,
+                    ))
+                })
+            },
+        );
+        // Steady rolling of the same patch at that Fx prescribed, cold
+        // (its creepage starting from 0, as case files start it).
+        let mut steady = circle(n, creep(1.0));
+        let steady_target = PrescribedForce {
+            force_x_n: Some(s.solve(&steady).unwrap()[0].totals.fx_n),
+            force_y_n: None,
+        };
+        steady.kinematics = Kinematics::SteadyRolling(Creepages {
+            creepage_long: 0.0,
+            ..c
+        });
+        g.bench_with_input(BenchmarkId::new("steady_rolling_force", n), &n, |b, _| {
+            b.iter(|| {
+                s.reset();
+                black_box(solve_prescribed_force(
+                    &mut s,
+                    &steady,
+                    steady_target,
+                    settings,
+                ))
+            })
         });
     }
     g.finish();

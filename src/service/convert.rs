@@ -23,7 +23,8 @@ use crate::problem::case::{
     Model, RollingSection, SolverSection, StepSection, SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
-    ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepReport,
+    ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepForceReport,
+    StepReport,
 };
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -252,6 +253,24 @@ pub fn step_section(s: &pb::ShiftStep) -> StepSection {
         creepage_long: s.creepage_long,
         creepage_lat: s.creepage_lat,
         spin_per_m: s.spin_per_m,
+        force_x_n: s.force_x_n,
+        force_y_n: s.force_y_n,
+        force_x_n_per_m: s.force_x_n_per_m,
+        rolling_m: s.rolling_m,
+        gap_travel_x_m: s.gap_travel_x_m,
+    }
+}
+
+/// The wire outcome of a transient step solved for a prescribed force.
+pub fn step_force_control(f: &StepForceReport) -> pb::StepForceControl {
+    pb::StepForceControl {
+        shift_x_m: f.shift_x_m,
+        shift_y_m: f.shift_y_m,
+        rolling_m: f.rolling_m,
+        creepage_long: f.creepage_long,
+        creepage_lat: f.creepage_lat,
+        force_iterations: u32::try_from(f.force_iterations).unwrap_or(u32::MAX),
+        force_solves: u32::try_from(f.force_solves).unwrap_or(u32::MAX),
     }
 }
 
@@ -600,6 +619,7 @@ pub fn step_of_report(r: &StepReport) -> pb::StepResult {
         }),
         conformal: r.conformal.as_ref().map(conformal),
         sensitivities: None,
+        force_control: r.force_control.as_ref().map(step_force_control),
     }
 }
 

@@ -13,7 +13,7 @@
 
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
-use crate::core::force::{solve_prescribed_force, ForceControlSettings};
+use crate::core::force::{continued_start, solve_prescribed_force_step, ForceControlSettings};
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
 use crate::core::sensitivity::{
@@ -21,10 +21,10 @@ use crate::core::sensitivity::{
 };
 use crate::core::solution::{ContactSolution, Totals};
 use crate::core::solve::{ContactSolver, SolverState};
-use crate::problem::case::{Case, Model};
+use crate::problem::case::{Case, Model, TransientStep};
 use crate::problem::reference_models as reference;
-use crate::problem::report::ForceControlReport;
-use crate::problem::{ModelRun, SolutionExtras};
+use crate::problem::report::StepForceReport;
+use crate::problem::{solve_exact, ModelRun, SolutionExtras};
 use crate::service::convert::{self, ValidCase};
 use crate::service::pb;
 use crate::service::status::ServiceError;
@@ -56,6 +56,15 @@ pub fn check_sensitivities(case: &Case) -> Result<(), ServiceError> {
 struct Exact {
     problem: ContactProblem,
     solver: ContactSolver,
+    /// The last transient step solved by `solve_next_step`, as solved (the
+    /// next prescribed force's secant continues from it).
+    last_step: Option<ShiftStep>,
+    /// How far the quadratic undeformed distance has travelled in +x over
+    /// the grid in the steps of `solve_next_step` \[m\].
+    gap_offset_m: f64,
+    /// Whether the case adds a gap per element (`extra_gap_m`): the gap
+    /// then does not travel.
+    extra_gap: bool,
 }
 
 /// A contact patch ready to solve.
@@ -73,13 +82,26 @@ impl PatchEngine {
     /// from `cache` (built on a miss).
     pub fn new(valid: ValidCase, cache: &KernelCache) -> Result<Self, ServiceError> {
         let ValidCase { case, extra_gap_m } = valid;
+        if !case.step_gap_offsets_m.is_empty() && !extra_gap_m.is_empty() {
+            return Err(ServiceError::invalid(
+                "geometry.extra_gap_m",
+                "a gap given per element does not travel: not with transient steps' \
+                 `gap_travel_x_m`",
+            ));
+        }
         let exact = if case.model == Model::Exact {
             let mut problem = case.problem()?;
             for (h, e) in problem.gap_m.iter_mut().zip(&extra_gap_m) {
                 *h += e;
             }
             let solver = ContactSolver::new(&problem, cache);
-            Some(Exact { problem, solver })
+            Some(Exact {
+                problem,
+                solver,
+                last_step: None,
+                gap_offset_m: 0.0,
+                extra_gap: !extra_gap_m.is_empty(),
+            })
         } else {
             None
         };
@@ -119,6 +141,8 @@ impl PatchEngine {
         };
         if let Some(e) = &self.exact {
             e.solver.save_state(&mut to.solver);
+            to.last_step = e.last_step;
+            to.gap_offset_m = e.gap_offset_m;
         }
     }
 
@@ -135,6 +159,10 @@ impl PatchEngine {
             e.solver.restore_state(&from.solver).map_err(|err| {
                 ServiceError::Internal(format!("restoring a session state: {err}"))
             })?;
+            e.last_step = from.last_step;
+            if e.gap_offset_m != from.gap_offset_m {
+                e.move_gap(&self.case, from.gap_offset_m);
+            }
         }
         Ok(())
     }
@@ -180,20 +208,16 @@ impl PatchEngine {
     pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
         let (mut result, jacobian) = match &mut self.exact {
             Some(e) => {
-                let (solutions, force) = if self.case.prescribed_force.any() {
-                    let f = solve_prescribed_force(
-                        &mut e.solver,
-                        &e.problem,
-                        self.case.prescribed_force,
-                        ForceControlSettings::default(),
-                    )?;
-                    let report = ForceControlReport::of(&f)?;
+                let solved = solve_exact(&self.case, &mut e.solver, &e.problem)?;
+                if let Some(f) = &solved.force_control {
                     // The Jacobian (if asked) is taken about the creepages found.
-                    e.problem.kinematics = Kinematics::SteadyRolling(f.creepages);
-                    (vec![f.solution], Some(report))
-                } else {
-                    (e.solver.solve(&e.problem)?, None)
-                };
+                    e.problem.kinematics = Kinematics::SteadyRolling(Creepages {
+                        creepage_long: f.creepage_long,
+                        creepage_lat: f.creepage_lat,
+                        spin_per_m: f.spin_per_m,
+                    });
+                }
+                let (solutions, force) = (solved.solutions, solved.force_control);
                 let grid = e.problem.grid;
                 let jacobian = match (&self.exact, solutions.last()) {
                     (Some(e), Some(base)) if self.sensitivities => {
@@ -201,7 +225,7 @@ impl PatchEngine {
                     }
                     _ => None,
                 };
-                let mut result = self.exact_result(&solutions, fields);
+                let mut result = self.exact_result(&solutions, &solved.step_forces, fields);
                 result.force_control = force.as_ref().map(convert::force_control);
                 if let Some(last) = solutions.last() {
                     let extras = SolutionExtras::of(&self.case, &grid, last)?;
@@ -238,17 +262,43 @@ impl PatchEngine {
     }
 
     /// Solves one more transient step of the exact model, from the state
-    /// the previous step left.
+    /// the previous step left, with the bodies' undeformed distance moved
+    /// `gap_travel_x_m` further over the grid, for the shift giving its
+    /// prescribed force if it has one (errors name `step.shift.…`).
     pub fn solve_next_step(
         &mut self,
-        step: &ShiftStep,
+        step: &TransientStep,
+        gap_travel_x_m: f64,
         fields: bool,
     ) -> Result<pb::PatchResult, ServiceError> {
         let e = self.exact.as_mut().ok_or_else(|| {
             ServiceError::invalid("model", "transient sessions run the exact model only")
         })?;
-        let solution = e.solver.solve_next_step(&e.problem, step)?;
-        let result = self.exact_result(std::slice::from_ref(&solution), fields);
+        if gap_travel_x_m != 0.0 {
+            if e.extra_gap {
+                return Err(ServiceError::invalid(
+                    "step.shift.gap_travel_x_m",
+                    "moves the quadratic undeformed distance: not with a gap given per element \
+                     (`geometry.extra_gap_m`)",
+                ));
+            }
+            e.move_gap(&self.case, e.gap_offset_m + gap_travel_x_m);
+        }
+        let start = match &e.last_step {
+            Some(previous) => continued_start(previous, &step.step, step.force),
+            None => step.step,
+        };
+        let f = solve_prescribed_force_step(
+            &mut e.solver,
+            &e.problem,
+            &start,
+            step.force,
+            ForceControlSettings::default(),
+        )
+        .map_err(|err| err.with_key_prefix("step", "step.shift"))?;
+        e.last_step = Some(f.step);
+        let report = StepForceReport::of("step.shift", step.force, &f)?;
+        let result = self.exact_result(std::slice::from_ref(&f.solution), &[report], fields);
         self.check_finite(&result)?;
         Ok(result)
     }
@@ -312,19 +362,35 @@ impl PatchEngine {
         Ok((convert::result_of_report(&report), report.totals.totals))
     }
 
-    /// The wire result of exact-model solutions (the last is the result).
-    fn exact_result(&self, solutions: &[ContactSolution], fields: bool) -> pb::PatchResult {
+    /// The wire result of exact-model solutions (the last is the result),
+    /// with the shifts their prescribed step forces found (`step_forces`,
+    /// one per solution or empty).
+    fn exact_result(
+        &self,
+        solutions: &[ContactSolution],
+        step_forces: &[Option<StepForceReport>],
+        fields: bool,
+    ) -> pb::PatchResult {
         let case = &self.case;
-        let last = solutions.last();
         let frictional = case.has_friction && !matches!(case.kinematics, Kinematics::Frictionless);
+        let steps: Vec<pb::StepResult> = solutions
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let mut step = convert::step_of_solution(s);
+                step.force_control = step_forces
+                    .get(k)
+                    .copied()
+                    .flatten()
+                    .map(|f| convert::step_force_control(&f));
+                step
+            })
+            .collect();
+        let last = solutions.last();
         pb::PatchResult {
             model: pb::Model::Exact as i32,
-            result: last.map(convert::step_of_solution),
-            steps: if solutions.len() > 1 {
-                solutions.iter().map(convert::step_of_solution).collect()
-            } else {
-                Vec::new()
-            },
+            result: steps.last().cloned(),
+            steps: if steps.len() > 1 { steps } else { Vec::new() },
             friction_coefficient: if frictional {
                 case.friction.kinetic_coefficient
             } else {
@@ -342,6 +408,21 @@ impl PatchEngine {
     }
 }
 
+impl Exact {
+    /// Puts the case's quadratic gap `offset_m` along +x on the grid.
+    fn move_gap(&mut self, case: &Case, offset_m: f64) {
+        let grid = self.problem.grid;
+        ContactProblem::quadratic_gap_at(
+            &grid,
+            case.a_per_m,
+            case.b_per_m,
+            offset_m,
+            &mut self.problem.gap_m,
+        );
+        self.gap_offset_m = offset_m;
+    }
+}
+
 /// What [`PatchEngine::save`] keeps: what the next solves read from the
 /// solves before them. A session's refused step restores it; a mark keeps
 /// one.
@@ -351,4 +432,8 @@ pub struct EngineState {
     creepages: Option<Creepages>,
     /// The exact solver's state (empty for the other models).
     solver: SolverState,
+    /// The exact model's last transient step as solved.
+    last_step: Option<ShiftStep>,
+    /// How far the exact model's gap has travelled \[m\].
+    gap_offset_m: f64,
 }

@@ -25,8 +25,8 @@ use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use crate::core::normal::NormalLoad;
-use crate::core::problem::{Creepages, Kinematics, ShiftStep};
-use crate::problem::case::{ranges, transient_step, Model};
+use crate::core::problem::{Creepages, Kinematics};
+use crate::problem::case::{gap_travel, ranges, transient_step, Model, TransientStep};
 use crate::service::convert;
 use crate::service::engine::{EngineState, PatchEngine};
 use crate::service::pb;
@@ -60,7 +60,8 @@ pub struct StepInput {
 enum Motion {
     Static,
     Rolling(Creepages),
-    Shift(ShiftStep),
+    /// A transient step and how far the bodies' gap travels in it.
+    Shift(TransientStep, f64),
 }
 
 /// Field number of `step` in `SessionResponse` and `WheelRailSessionResponse`.
@@ -410,14 +411,17 @@ impl Session {
                         "give the step's load in step.normal_force_n or step.approach_m",
                     ));
                 }
+                let section = convert::step_section(sh);
+                let case = self.engine.case();
+                let travel = gap_travel("step.shift", &section, case.model, case.gap_m.is_some())?;
                 let shift = transient_step(
                     "step.shift",
-                    &convert::step_section(sh),
+                    &section,
                     load,
-                    self.engine.case().rolling_step_m,
-                    self.engine.case().geometry.is_line(),
+                    case.rolling_step_m,
+                    case.geometry.is_line(),
                 )?;
-                Motion::Shift(shift)
+                Motion::Shift(shift, travel)
             }
         };
         Ok(StepInput {
@@ -450,7 +454,9 @@ impl Session {
                 self.engine.set_creepages(c);
                 self.engine.solve(self.fields)
             }
-            Motion::Shift(shift) => self.engine.solve_next_step(&shift, self.fields),
+            Motion::Shift(shift, travel) => {
+                self.engine.solve_next_step(&shift, travel, self.fields)
+            }
         }
         .map_err(|e| {
             e.rekey("load", "step")

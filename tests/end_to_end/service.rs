@@ -57,6 +57,15 @@ fn roll(xi: f64) -> pb::ShiftStep {
     }
 }
 
+/// A transient step rolling 0.5 mm at the prescribed force Fx [N].
+fn force_roll(fx: f64) -> pb::ShiftStep {
+    pb::ShiftStep {
+        force_x_n: Some(fx),
+        rolling_m: Some(5e-4),
+        ..Default::default()
+    }
+}
+
 /// `sphere` with transient shift steps of the rail in x [m].
 fn transient(n: u32, shifts: &[f64]) -> pb::PatchCase {
     pb::PatchCase {
@@ -323,6 +332,7 @@ fn step(index: u64, motion: StepMotion, mark: bool) -> pb::SessionRequest {
     match motion {
         StepMotion::Shift(x) => s.shift = Some(shift(x)),
         StepMotion::Roll(c) => s.shift = Some(roll(c)),
+        StepMotion::ForceRoll(f) => s.shift = Some(force_roll(f)),
         StepMotion::Creep(c) => {
             s.creepages = Some(pb::Creepages {
                 creepage_long: c,
@@ -341,6 +351,8 @@ enum StepMotion {
     Shift(f64),
     /// A transient rolling step at this longitudinal creepage.
     Roll(f64),
+    /// A transient step rolling one element (0.5 mm) at this prescribed Fx.
+    ForceRoll(f64),
     Creep(f64),
 }
 
@@ -421,6 +433,101 @@ async fn transient_rolling_session_matches_the_batch_solve_and_replays_bit_for_b
             bits(totals(b.result.as_ref().unwrap()))
         );
         assert_eq!(a.fields, b.fields, "step {k}");
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn prescribed_step_forces_report_their_shifts_in_solves_and_sessions() {
+    let (server, mut client) = server().await;
+    // A shift, then rolling steps of one element at prescribed forces.
+    let forces = [-150.0, -160.0, -160.0];
+    let mut case = transient(20, &[1e-6]);
+    if let Some(pb::patch_case::Kinematics::Transient(t)) = case.kinematics.as_mut() {
+        t.steps.extend(forces.iter().map(|&f| force_roll(f)));
+    }
+    let g = case.grid.as_mut().unwrap();
+    g.window_x_m = Some(1e-2);
+    g.window_y_m = Some(1e-2);
+    let whole = solve_patch(&mut client, case.clone()).await;
+    assert_eq!(whole.steps.len(), 4);
+    assert_eq!(whole.steps[0].force_control, None);
+    for k in 1..4 {
+        let f = whole.steps[k].force_control.unwrap();
+        let t = totals(&whole.steps[k]);
+        assert!(
+            (t.fx_n - forces[k - 1]).abs() < 1e-5 * 0.3 * t.normal_force_n,
+            "step {k}: Fx {} against {}",
+            t.fx_n,
+            forces[k - 1]
+        );
+        assert_eq!(f.rolling_m, 5e-4);
+        assert_eq!(f.creepage_long, Some(f.shift_x_m / 5e-4));
+        assert!(f.force_solves >= 2, "{f:?}");
+    }
+    // A session gives the same bits step by step; a force beyond mu Fn is
+    // refused naming its field and leaves the session as it was.
+    let mut msgs = vec![open(case, false), step(0, StepMotion::Shift(1e-6), false)];
+    msgs.push(step(1, StepMotion::ForceRoll(forces[0]), false));
+    msgs.push(step(2, StepMotion::ForceRoll(-1e6), false));
+    msgs.extend((2..4).map(|k| step(k, StepMotion::ForceRoll(forces[k as usize - 1]), false)));
+    let r = session(&mut client, msgs).await;
+    let e = error(&r[3]);
+    assert_eq!(e.code, Code::InvalidArgument as i32);
+    assert_eq!(e.field, "step.shift.force_x_n", "{}", e.message);
+    for (k, i) in [(0, 1), (1, 2), (2, 4), (3, 5)] {
+        let s = step_result(&r[i]).result.as_ref().unwrap();
+        assert_eq!(bits(totals(s)), bits(totals(&whole.steps[k])), "step {k}");
+        assert_eq!(s.force_control, whole.steps[k].force_control, "step {k}");
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn bodies_travelling_over_the_grid_replay_bit_for_bit_in_sessions() {
+    let (server, mut client) = server().await;
+    // Shift steps on a fixed 20 x 10 mm grid over which the bodies travel
+    // 0.5 mm (one element) a step, from 2 mm left of its centre.
+    let travel = |x: f64, t: f64| pb::ShiftStep {
+        gap_travel_x_m: Some(t),
+        ..shift(x)
+    };
+    let steps = [travel(1e-6, -2e-3), travel(1e-6, 5e-4), travel(0.0, 5e-4)];
+    let mut case = transient(20, &[]);
+    if let Some(pb::patch_case::Kinematics::Transient(t)) = case.kinematics.as_mut() {
+        t.steps = steps.to_vec();
+    }
+    let g = case.grid.as_mut().unwrap();
+    g.window_x_m = Some(2e-2);
+    g.window_y_m = Some(1e-2);
+    let whole = solve_patch(&mut client, case.clone()).await;
+    assert_eq!(whole.steps.len(), 3);
+    // Step by step in a session, and again after a rollback over a step
+    // that moved the bodies: the same bits.
+    let msg = |k: u64, mark: bool| {
+        let mut s = pb::SessionStep {
+            step_index: k,
+            mark,
+            shift: Some(steps[k as usize]),
+            ..Default::default()
+        };
+        s.time_s = k as f64;
+        pb::SessionRequest {
+            kind: Some(pb::session_request::Kind::Step(s)),
+        }
+    };
+    let msgs = vec![
+        open(case, false),
+        msg(0, false),
+        msg(1, true),
+        msg(2, false),
+        rollback(1),
+        msg(2, false),
+    ];
+    let r = session(&mut client, msgs).await;
+    for (k, i) in [(0, 1), (1, 2), (2, 3), (2, 5)] {
+        let s = step_result(&r[i]).result.as_ref().unwrap();
+        assert_eq!(bits(totals(s)), bits(totals(&whole.steps[k])), "step {k}");
     }
     server.shutdown().await;
 }

@@ -61,6 +61,22 @@ impl ContactError {
         }
     }
 
+    /// The error with an input key `from` or `from.…` renamed to `to` or
+    /// `to.…` (a step's `step.shift_x_m` as `transient.steps[3].shift_x_m`);
+    /// other errors unchanged.
+    pub fn with_key_prefix(self, from: &str, to: &str) -> Self {
+        match self {
+            ContactError::InvalidInput { key, reason } => {
+                let key = match key.strip_prefix(from) {
+                    Some(rest) if rest.is_empty() || rest.starts_with('.') => format!("{to}{rest}"),
+                    _ => key,
+                };
+                ContactError::InvalidInput { key, reason }
+            }
+            other => other,
+        }
+    }
+
     /// Shorthand for [`ContactError::InvalidInput`].
     pub fn invalid(key: impl Into<String>, reason: impl Into<String>) -> Self {
         ContactError::InvalidInput {

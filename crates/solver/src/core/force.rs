@@ -343,6 +343,81 @@ pub fn solve_prescribed_force_step(
     })
 }
 
+/// Solves every step of the transient `problem` from the unloaded state
+/// (as [`ContactSolver::solve`] does), each step with a prescribed force in
+/// `forces` (one entry per step; `PrescribedForce::default()` for a step
+/// solved as given) for its shift ([`solve_prescribed_force_step`]), the
+/// secant of a step starting where [`continued_start`] puts it.
+/// `before_step(k, problem)` may change what a step sees of the problem
+/// (its undeformed distance: bodies moving over the grid) before step `k`
+/// is solved. An error names its step's key under `steps_key`
+/// (`transient.steps[k]` for `steps_key = "transient.steps"`); the solver
+/// then holds the state after the steps before it.
+pub fn solve_steps_with_forces(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    forces: &[PrescribedForce],
+    settings: ForceControlSettings,
+    steps_key: &str,
+    mut before_step: impl FnMut(usize, &mut ContactProblem),
+) -> Result<Vec<StepForceSolution>, ContactError> {
+    let Kinematics::Transient(steps) = &problem.kinematics else {
+        return Err(ContactError::invalid(
+            "kinematics",
+            "prescribed step forces need transient steps",
+        ));
+    };
+    if forces.len() != steps.len() {
+        return Err(ContactError::invalid(
+            steps_key,
+            format!(
+                "{} steps but {} prescribed forces",
+                steps.len(),
+                forces.len()
+            ),
+        ));
+    }
+    solver.reset();
+    let mut work = problem.clone();
+    let mut out: Vec<StepForceSolution> = Vec::with_capacity(steps.len());
+    for (k, (step, &target)) in steps.iter().zip(forces).enumerate() {
+        let start = match out.last() {
+            Some(previous) => continued_start(&previous.step, step, target),
+            None => *step,
+        };
+        before_step(k, &mut work);
+        let solved = solve_prescribed_force_step(solver, &work, &start, target, settings)
+            .map_err(|e| e.with_key_prefix("step", &format!("{steps_key}[{k}]")))?;
+        out.push(solved);
+    }
+    Ok(out)
+}
+
+/// `step` with the shift in the direction of `target`'s force continued
+/// from `previous`, the step before as solved: the same creepage when both
+/// roll (shift over rolling distance), the same shift when neither does;
+/// the step as given otherwise, and without a prescribed force. Where the
+/// secant of [`solve_prescribed_force_step`] starts: a step rolling on at
+/// a steady force needs about two solves from there.
+pub fn continued_start(
+    previous: &ShiftStep,
+    step: &ShiftStep,
+    target: PrescribedForce,
+) -> ShiftStep {
+    let scale = match (previous.rolling_m > 0.0, step.rolling_m > 0.0) {
+        (true, true) => step.rolling_m / previous.rolling_m,
+        (false, false) => 1.0,
+        _ => return *step,
+    };
+    let mut start = *step;
+    match (target.force_x_n, target.force_y_n) {
+        (Some(_), None) => start.shift_x_m = scale * previous.shift_x_m,
+        (None, Some(_)) => start.shift_y_m = scale * previous.shift_y_m,
+        _ => {}
+    }
+    start
+}
+
 /// mu Fn of `first` (mu kinetic), or the error of a `target` at or beyond it
 /// (naming `keys`, x then y).
 fn saturation(
@@ -954,5 +1029,94 @@ mod tests {
             assert_eq!(again.totals.fx_n, reference.totals.fx_n);
             assert_eq!(again.totals.fy_n, reference.totals.fy_n);
         }
+    }
+
+    #[test]
+    fn a_sequence_of_steps_with_forces_follows_the_forward_path() {
+        // Load, a shift, two rolling steps of one element each: the forces
+        // of a forward solve, prescribed step by step (the load step as
+        // given, Fx for the shift, Fx and then Fy for the rolling steps),
+        // give back the shifts and rolled creepages they came from.
+        let (mut p, _) = loaded();
+        let dq = p.grid.dx_m;
+        let steps = vec![
+            shift_step(&p, 0.0, 0.0, 0.0),
+            shift_step(&p, 2e-6, 0.0, 0.0),
+            ShiftStep::rolling(p.load, dq, &creep(1e-3, 2e-4, 0.0)),
+            ShiftStep::rolling(p.load, dq, &creep(5e-4, -3e-4, 0.0)),
+        ];
+        p.kinematics = Kinematics::Transient(steps.clone());
+        let mut s = ContactSolver::new(&p, KernelCache::global());
+        let forward = s.solve(&p).unwrap();
+        let fx = |k: usize| PrescribedForce {
+            force_x_n: Some(forward[k].totals.fx_n),
+            force_y_n: None,
+        };
+        let forces = [
+            PrescribedForce::default(),
+            fx(1),
+            fx(2),
+            PrescribedForce {
+                force_x_n: None,
+                force_y_n: Some(forward[3].totals.fy_n),
+            },
+        ];
+        // The steps' shifts in the prescribed directions are only starts.
+        let mut start = steps.clone();
+        start[1].shift_x_m = 0.0;
+        start[2].shift_x_m = 0.0;
+        start[3].shift_y_m = 0.0;
+        let q = ContactProblem {
+            kinematics: Kinematics::Transient(start),
+            ..p.clone()
+        };
+        let r = solve_steps_with_forces(
+            &mut s,
+            &q,
+            &forces,
+            Default::default(),
+            "transient.steps",
+            |_, _| {},
+        )
+        .unwrap();
+        assert_eq!(r.len(), 4);
+        assert_eq!(r[0].outer_iterations, 0);
+        for (k, got) in r.iter().enumerate() {
+            assert!(got.converged, "step {k}");
+            for (a, b) in [
+                (got.step.shift_x_m, steps[k].shift_x_m),
+                (got.step.shift_y_m, steps[k].shift_y_m),
+            ] {
+                assert!(
+                    (a - b).abs() <= 1e-6 * b.abs().max(1e-9),
+                    "step {k}: {a:e} against {b:e}"
+                );
+            }
+            assert_eq!(got.step.rolling_m, steps[k].rolling_m);
+        }
+        // A force beyond saturation names its step.
+        let mut bad = forces;
+        bad[2].force_x_n = Some(2.0 * MU * FN);
+        let e = solve_steps_with_forces(
+            &mut s,
+            &q,
+            &bad,
+            Default::default(),
+            "transient.steps",
+            |_, _| {},
+        )
+        .unwrap_err();
+        assert_eq!(e.key(), Some("transient.steps[2].force_x_n"), "{e}");
+        let no_change = |_: usize, _: &mut ContactProblem| {};
+        let e = solve_steps_with_forces(
+            &mut s,
+            &q,
+            &bad[..3],
+            Default::default(),
+            "transient.steps",
+            no_change,
+        )
+        .unwrap_err();
+        assert_eq!(e.key(), Some("transient.steps"), "{e}");
     }
 }

@@ -485,13 +485,26 @@ impl ContactProblem {
     /// The quadratic undeformed distance h = A x² + B y² on `grid`.
     pub fn quadratic_gap(grid: &Grid, a_per_m: f64, b_per_m: f64) -> Vec<f64> {
         let mut h = vec![0.0; grid.len()];
+        Self::quadratic_gap_at(grid, a_per_m, b_per_m, 0.0, &mut h);
+        h
+    }
+
+    /// Writes h = A (x - `x_offset_m`)² + B y² on `grid` into `h` (one value
+    /// per element): the quadratic gap of bodies moved `x_offset_m` in +x
+    /// over the grid.
+    pub fn quadratic_gap_at(
+        grid: &Grid,
+        a_per_m: f64,
+        b_per_m: f64,
+        x_offset_m: f64,
+        h: &mut [f64],
+    ) {
         for iy in 0..grid.ny {
             let y = grid.y_m(iy);
             for ix in 0..grid.nx {
-                let x = grid.x_m(ix);
+                let x = grid.x_m(ix) - x_offset_m;
                 h[grid.index(ix, iy)] = a_per_m * x * x + b_per_m * y * y;
             }
         }
-        h
     }
 }

@@ -95,6 +95,8 @@ pub mod ranges {
     pub const SHIFT: Range = Range::symmetric(1e-2, "m").hint(UnitHint::Millimetre);
     /// `transient.steps[k].rotation_rad` \[rad\] (one step).
     pub const ROTATION: Range = Range::symmetric(0.1, "rad");
+    /// `transient.steps[k].gap_travel_x_m` \[m\] (one step).
+    pub const GAP_TRAVEL: Range = Range::symmetric(1.0, "m").hint(UnitHint::Millimetre);
     /// `transient.rolling_step_m` \[m\] (one step; further a whole number
     /// of elements of the grid).
     pub const ROLLING_STEP: Range = Range::positive(1.0, "m").hint(UnitHint::Millimetre);
@@ -1097,13 +1099,19 @@ pub struct TransientSection {
 
 /// One step in `transient.steps`: a shift step (`shift_*`,
 /// `rotation_rad`) or a rolling step (creepages, rolling
-/// `transient.rolling_step_m`), never both.
-#[derive(Debug, Clone, Copy, Deserialize)]
+/// `transient.rolling_step_m` or the step's `rolling_m`), never both. A
+/// shift step with `rolling_m` rolls that far by its shift: the potential
+/// contact area moves with the bodies, in world-fixed terms (the
+/// tractions stay where they are on the bodies). In either kind one
+/// tangential force may be prescribed instead of the shift or creepage of
+/// its direction (exact model): the step is solved for the shift that
+/// gives it, reported with the step.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepSection {
     /// Rigid shift of body 1 relative to body 2 in x during the step \[m\]
-    /// (required in a shift step, except for the conformal models, which
-    /// take 0 only).
+    /// (required in a shift step unless `force_x_n` is given, except for
+    /// the conformal models, which take 0 only).
     pub shift_x_m: Option<f64>,
     /// Rigid shift in y during the step \[m\] (default 0).
     #[serde(default)]
@@ -1127,9 +1135,87 @@ pub struct StepSection {
     /// Spin creepage phi of a rolling step \[1/m\], in [-1000, 1000]
     /// (default 0).
     pub spin_per_m: Option<f64>,
+    /// Prescribed longitudinal force Fx on body 1 in the step \[N\],
+    /// |Fx| < mu Fn, instead of `shift_x_m` (a shift step) or
+    /// `creepage_long` (a rolling step); exact model.
+    #[serde(default)]
+    pub force_x_n: Option<f64>,
+    /// Prescribed lateral force Fy \[N\], |Fy| < mu Fn, instead of
+    /// `shift_y_m` or `creepage_lat`; not with `force_x_n`.
+    #[serde(default)]
+    pub force_y_n: Option<f64>,
+    /// Line contact: prescribed longitudinal force per metre Fx' \[N/m\],
+    /// |Fx'| < mu Fn', as `force_x_n` otherwise.
+    #[serde(default)]
+    pub force_x_n_per_m: Option<f64>,
+    /// Distance this step rolls \[m\]: a whole number of elements, in
+    /// (0, 1] (default: `transient.rolling_step_m` in a step with
+    /// creepages, 0 in a shift step). A shift step with `rolling_m` is a
+    /// rolling step given by its shift (the creepages are the shifts over
+    /// `rolling_m`).
+    #[serde(default)]
+    pub rolling_m: Option<f64>,
+    /// Distance the bodies' undeformed distance travels in +x over the
+    /// grid in this shift step \[m\], in [-1, 1] (default 0): world-fixed
+    /// steps on a fixed potential contact area, the tractions staying where
+    /// they are on the grid. It accumulates over the steps: after steps
+    /// with travels t_1..t_k the gap is A (x - s)² + B y², s = t_1 + ... +
+    /// t_k (exact model, without `geometry.gap_m`).
+    #[serde(default)]
+    pub gap_travel_x_m: Option<f64>,
 }
 
 impl StepSection {
+    /// The force prescribed in the step (`force_x_n_per_m` as Fx when
+    /// `line`: a line contact's totals are per metre), at most one,
+    /// checked against its range; `key` names the step.
+    fn force(&self, key: &str, line: bool) -> Result<PrescribedForce, CaseError> {
+        let force_x_n = match (line, self.force_x_n, self.force_x_n_per_m) {
+            (true, Some(_), _) => {
+                return Err(bad(
+                    format!("{key}.force_x_n"),
+                    format!(
+                        "a line contact's forces are per metre: give `{key}.force_x_n_per_m` [N/m]"
+                    ),
+                ))
+            }
+            (false, _, Some(_)) => {
+                return Err(bad(
+                    format!("{key}.force_x_n_per_m"),
+                    format!(
+                        "a force per metre is for `geometry.kind = \"line\"`: give `{key}.force_x_n` [N]"
+                    ),
+                ))
+            }
+            (true, None, f) => {
+                if let Some(f) = f {
+                    ranges::TANGENTIAL_FORCE_PER_M.check(&format!("{key}.force_x_n_per_m"), f)?;
+                }
+                f
+            }
+            (false, f, None) => {
+                if let Some(f) = f {
+                    ranges::TANGENTIAL_FORCE.check(&format!("{key}.force_x_n"), f)?;
+                }
+                f
+            }
+        };
+        if let Some(f) = self.force_y_n {
+            ranges::TANGENTIAL_FORCE.check(&format!("{key}.force_y_n"), f)?;
+            if force_x_n.is_some() {
+                return Err(bad(
+                    format!("{key}.force_y_n"),
+                    "a transient step takes one prescribed force: give the shift (or creepage) \
+                     of the other direction",
+                ));
+            }
+        }
+        Ok(PrescribedForce {
+            force_x_n,
+            force_y_n: self.force_y_n,
+        })
+    }
+
     /// The creepages of a rolling step, None for a shift step; `key` names
     /// the step.
     fn creepages(&self, key: &str) -> Result<Option<Creepages>, CaseError> {
@@ -1226,6 +1312,13 @@ pub struct Case {
     /// creepages of their directions in `kinematics` are the iteration's
     /// start.
     pub prescribed_force: PrescribedForce,
+    /// The forces prescribed in the transient steps (`transient.steps[k].
+    /// force_x_n`, ...), one per step; empty when no step prescribes one.
+    pub step_forces: Vec<PrescribedForce>,
+    /// Where the undeformed distance has travelled in +x over the grid in
+    /// each transient step \[m\] (the sums of `transient.steps[k].
+    /// gap_travel_x_m`), one per step; empty when no step gives one.
+    pub step_gap_offsets_m: Vec<f64>,
     /// Elements in x.
     pub nx: usize,
     /// Elements in y.
@@ -1636,6 +1729,8 @@ impl Case {
         })?;
 
         let mut prescribed_force = PrescribedForce::default();
+        let mut step_forces = Vec::new();
+        let mut step_gap_offsets_m = Vec::new();
         let kinematics = match (&file.rolling, &file.transient) {
             (Some(_), Some(_)) => {
                 return Err(bad(
@@ -1692,9 +1787,31 @@ impl Case {
                     Kinematics::Transient(static_compression(model, t)?)
                 } else {
                     let mut steps = Vec::with_capacity(t.steps.len());
+                    let mut forces = Vec::with_capacity(t.steps.len());
+                    let mut offsets = Vec::with_capacity(t.steps.len());
+                    let mut offset = 0.0;
                     for (k, s) in t.steps.iter().enumerate() {
                         let key = format!("transient.steps[{k}]");
-                        steps.push(transient_step(&key, s, load, t.rolling_step_m, line)?);
+                        offset += gap_travel(&key, s, model, file.geometry.gap_m.is_some())?;
+                        offsets.push(offset);
+                        let t = transient_step(&key, s, load, t.rolling_step_m, line)?;
+                        if t.force.any() && model != Model::Exact {
+                            return Err(bad(
+                                format!("{key}.force_x_n"),
+                                format!(
+                                    "a prescribed force is solved with the exact model only, not {}",
+                                    model.name()
+                                ),
+                            ));
+                        }
+                        steps.push(t.step);
+                        forces.push(t.force);
+                    }
+                    if forces.iter().any(PrescribedForce::any) {
+                        step_forces = forces;
+                    }
+                    if t.steps.iter().any(|s| s.gap_travel_x_m.is_some()) {
+                        step_gap_offsets_m = offsets;
                     }
                     Kinematics::Transient(steps)
                 }
@@ -2017,6 +2134,8 @@ impl Case {
             friction,
             has_friction,
             prescribed_force,
+            step_forces,
+            step_gap_offsets_m,
             geometry,
             a_per_m,
             b_per_m,
@@ -2459,18 +2578,32 @@ fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), Cas
     }
 }
 
+/// A transient step as the core solves it: the step and the force
+/// prescribed in it (none: the step is solved as given).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TransientStep {
+    /// The step; in a direction with a prescribed force its shift is the
+    /// iteration's start (0).
+    pub step: ShiftStep,
+    /// The force prescribed in the step.
+    pub force: PrescribedForce,
+}
+
 /// The core step of a step section `s` named `key`: a rolling step of
-/// `rolling_step_m` (`transient.rolling_step_m`) when it gives creepages,
-/// else a shift step; its load defaults to `default_load` (per metre when
-/// `line`, a line contact, which shifts and rolls in x only). Checks the
-/// ranges and that a step is one kind or the other, naming the key.
+/// the step's `rolling_m` or `rolling_step_m` (`transient.rolling_step_m`)
+/// when it gives creepages, else a shift step (rolling its own
+/// `rolling_m`, if given); its load defaults to `default_load` (per metre
+/// when `line`, a line contact, which shifts and rolls in x only); with
+/// the force it prescribes. Checks the ranges and that a step is one kind
+/// or the other and gives either the shift (creepage) or the force of a
+/// direction, naming the key.
 pub fn transient_step(
     key: &str,
     s: &StepSection,
     default_load: NormalLoad,
     rolling_step_m: Option<f64>,
     line: bool,
-) -> Result<ShiftStep, CaseError> {
+) -> Result<TransientStep, CaseError> {
     let load = one_load(
         key,
         s.normal_force_n,
@@ -2486,9 +2619,21 @@ pub fn transient_step(
             &[
                 ("shift_y_m", s.shift_y_m != 0.0),
                 ("rotation_rad", s.rotation_rad != 0.0),
+                ("force_y_n", s.force_y_n.is_some()),
             ],
         )?;
     }
+    let force = s.force(key, line)?;
+    if let Some(dq) = s.rolling_m {
+        ranges::ROLLING_STEP.check(&format!("{key}.rolling_m"), dq)?;
+    }
+    let fx_key = if line { "force_x_n_per_m" } else { "force_x_n" };
+    let either = |given: &str, force: &str| {
+        bad(
+            format!("{key}.{force}"),
+            format!("give either `{key}.{given}` or `{key}.{force}`, not both"),
+        )
+    };
     let step = match s.creepages(key)? {
         Some(c) => {
             if line {
@@ -2510,35 +2655,88 @@ pub fn transient_step(
                     return Err(bad(
                         format!("{key}.{name}"),
                         "a rolling step (one with creepages) takes no shift: its shift is the \
-                         creepages times transient.rolling_step_m",
+                         creepages times its rolling distance",
                     ));
                 }
             }
-            let dq = rolling_step_m.ok_or_else(|| {
+            if force.force_x_n.is_some() && s.creepage_long.is_some() {
+                return Err(either("creepage_long", fx_key));
+            }
+            if force.force_y_n.is_some() && s.creepage_lat.is_some() {
+                return Err(either("creepage_lat", "force_y_n"));
+            }
+            let dq = s.rolling_m.or(rolling_step_m).ok_or_else(|| {
                 bad(
                     "transient.rolling_step_m",
                     format!(
-                        "missing: {key} gives creepages, so it rolls `transient.rolling_step_m` m"
+                        "missing: {key} gives creepages, so it rolls `transient.rolling_step_m` m \
+                         (or its own `{key}.rolling_m`)"
                     ),
                 )
             })?;
             ShiftStep::rolling(load, dq, &c)
         }
-        None => ShiftStep {
-            load,
-            shift_x_m: s.shift_x_m.ok_or_else(|| {
-                bad(
-                    format!("{key}.shift_x_m"),
-                    "missing: give the shift (a shift step) or creepages (a rolling step)",
-                )
-            })?,
-            shift_y_m: s.shift_y_m,
-            rotation_rad: s.rotation_rad,
-            rolling_m: 0.0,
-        },
+        None => {
+            let shift_x_m = match (s.shift_x_m, force.force_x_n) {
+                (Some(_), Some(_)) => return Err(either("shift_x_m", fx_key)),
+                (Some(x), None) => x,
+                (None, Some(_)) => 0.0,
+                (None, None) => {
+                    return Err(bad(
+                        format!("{key}.shift_x_m"),
+                        format!(
+                            "missing: give the shift (a shift step), `{fx_key}` (a prescribed \
+                             force) or creepages (a rolling step)"
+                        ),
+                    ))
+                }
+            };
+            if force.force_y_n.is_some() && s.shift_y_m != 0.0 {
+                return Err(either("shift_y_m", "force_y_n"));
+            }
+            ShiftStep {
+                load,
+                shift_x_m,
+                shift_y_m: s.shift_y_m,
+                rotation_rad: s.rotation_rad,
+                rolling_m: s.rolling_m.unwrap_or(0.0),
+            }
+        }
     };
     check_shift_step(key, &step)?;
-    Ok(step)
+    Ok(TransientStep { step, force })
+}
+
+/// The `gap_travel_x_m` of step `s` named `key` (0 when not given),
+/// checked: a shift step of the exact `model` whose gap is the quadratic
+/// one (`given_gap`: an undeformed distance given per element, which does
+/// not travel).
+pub fn gap_travel(
+    key: &str,
+    s: &StepSection,
+    model: Model,
+    given_gap: bool,
+) -> Result<f64, CaseError> {
+    let Some(t) = s.gap_travel_x_m else {
+        return Ok(0.0);
+    };
+    let name = format!("{key}.gap_travel_x_m");
+    ranges::GAP_TRAVEL.check(&name, t)?;
+    let rolls = s.rolling_m.is_some()
+        || s.creepage_long.is_some()
+        || s.creepage_lat.is_some()
+        || s.spin_per_m.is_some();
+    let reason = if rolls {
+        "is for shift steps on a fixed grid: a rolling step's grid moves with the bodies"
+    } else if model != Model::Exact {
+        "is solved by the exact model only"
+    } else if given_gap {
+        "moves the quadratic undeformed distance: not with a gap given per element \
+         (`geometry.gap_m`, `geometry.extra_gap_m`)"
+    } else {
+        return Ok(t);
+    };
+    Err(bad(name, reason))
 }
 
 /// Checks a transient step's shifts and rotation against their ranges
@@ -2571,6 +2769,24 @@ fn static_compression(model: Model, t: &TransientSection) -> Result<Vec<ShiftSte
         let key = format!("transient.steps[{k}]");
         if s.creepages(&key)?.is_some() {
             return Err(no_rolling(format!("{key}.creepage_long")));
+        }
+        if s.rolling_m.is_some() {
+            return Err(no_rolling(format!("{key}.rolling_m")));
+        }
+        for (name, given) in [
+            ("force_x_n", s.force_x_n.is_some()),
+            ("force_y_n", s.force_y_n.is_some()),
+            ("force_x_n_per_m", s.force_x_n_per_m.is_some()),
+        ] {
+            if given {
+                return Err(bad(
+                    format!("{key}.{name}"),
+                    format!(
+                        "the {} model runs static compression only: no tangential forces",
+                        model.name()
+                    ),
+                ));
+            }
         }
         for (name, v) in [
             ("shift_x_m", s.shift_x_m.unwrap_or(0.0)),
@@ -3171,6 +3387,162 @@ mod prescribed_force_tests {
             m.contains("rolling.force_y_n") && m.contains("exact model only"),
             "{m}"
         );
+    }
+}
+
+#[cfg(test)]
+mod step_force_tests {
+    use super::*;
+    use crate::problem::ExactRun;
+
+    /// A transient exact case (0.5 mm elements on 16 x 16) with `steps`.
+    fn case(steps: &str) -> Result<Case, CaseError> {
+        Case::from_toml(&format!(
+            "model = \"exact\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+             [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+             b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[grid]\nnx = 16\nny = 16\n\
+             window_x_m = 8e-3\nwindow_y_m = 8e-3\n[transient]\nrolling_step_m = 5e-4\n\
+             steps = [{steps}]\n"
+        ))
+    }
+
+    fn message(r: Result<Case, CaseError>) -> String {
+        match r {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_step_force_replaces_the_shift_or_creepage_of_its_direction() {
+        let c = case(
+            "{ shift_x_m = 1e-6 }, { force_x_n = -300.0, shift_y_m = 1e-7 }, \
+             { force_y_n = 200.0, creepage_long = 1e-3 }, { force_x_n = -100.0, rolling_m = 1e-3 }",
+        )
+        .unwrap();
+        let x = |f: f64| PrescribedForce {
+            force_x_n: Some(f),
+            force_y_n: None,
+        };
+        assert_eq!(
+            c.step_forces,
+            [
+                PrescribedForce::default(),
+                x(-300.0),
+                PrescribedForce {
+                    force_x_n: None,
+                    force_y_n: Some(200.0)
+                },
+                x(-100.0)
+            ]
+        );
+        let Kinematics::Transient(steps) = &c.kinematics else {
+            panic!("{:?}", c.kinematics)
+        };
+        // The prescribed directions start from 0; a rolling step rolls
+        // `transient.rolling_step_m` or its own `rolling_m`.
+        let shifts: Vec<[f64; 3]> = steps
+            .iter()
+            .map(|s| [s.shift_x_m, s.shift_y_m, s.rolling_m])
+            .collect();
+        assert_eq!(
+            shifts,
+            [
+                [1e-6, 0.0, 0.0],
+                [0.0, 1e-7, 0.0],
+                [1e-3 * 5e-4, 0.0, 5e-4],
+                [0.0, 0.0, 1e-3]
+            ]
+        );
+        assert!(case("{ shift_x_m = 1e-6 }").unwrap().step_forces.is_empty());
+        // Travel accumulates over the steps.
+        let c = case(
+            "{ shift_x_m = 0.0, gap_travel_x_m = -1e-3 }, { shift_x_m = 0.0 }, \
+             { shift_x_m = 0.0, gap_travel_x_m = 5e-4 }",
+        )
+        .unwrap();
+        assert_eq!(c.step_gap_offsets_m, [-1e-3, -1e-3, -5e-4]);
+        assert!(case("{ shift_x_m = 1e-6 }")
+            .unwrap()
+            .step_gap_offsets_m
+            .is_empty());
+    }
+
+    #[test]
+    fn conflicting_step_keys_are_refused_naming_them() {
+        for (steps, keys) in [
+            (
+                "{ shift_x_m = 1e-6, force_x_n = 10.0 }",
+                &[
+                    "transient.steps[0].force_x_n",
+                    "transient.steps[0].shift_x_m",
+                ][..],
+            ),
+            (
+                "{ shift_x_m = 0.0, shift_y_m = 1e-6, force_y_n = 10.0 }",
+                &["transient.steps[0].force_y_n"],
+            ),
+            (
+                "{ creepage_long = 1e-3, force_x_n = 10.0 }",
+                &["transient.steps[0].force_x_n", "creepage_long"],
+            ),
+            (
+                "{ force_x_n = 10.0, force_y_n = 10.0 }",
+                &["transient.steps[0].force_y_n", "one prescribed force"],
+            ),
+            (
+                "{ force_x_n_per_m = 10.0 }",
+                &["transient.steps[0].force_x_n_per_m", "line"],
+            ),
+            ("{ force_x_n = 1e300 }", &["transient.steps[0].force_x_n"]),
+            ("{ force_x_n = nan }", &["transient.steps[0].force_x_n"]),
+            (
+                "{ shift_x_m = 0.0 }, { force_x_n = 1.0, rolling_m = -1e-4 }",
+                &["transient.steps[1].rolling_m"],
+            ),
+            (
+                "{ rolling_m = 5e-4 }",
+                &["transient.steps[0].shift_x_m", "force_x_n"],
+            ),
+            (
+                "{ shift_x_m = 0.0 }, { creepage_long = 1e-3, gap_travel_x_m = 5e-4 }",
+                &["transient.steps[1].gap_travel_x_m", "rolling step"],
+            ),
+            (
+                "{ shift_x_m = 0.0, gap_travel_x_m = 2.0 }",
+                &["transient.steps[0].gap_travel_x_m"],
+            ),
+        ] {
+            let m = message(case(steps));
+            for k in keys {
+                assert!(m.contains(k), "{steps}: {m}");
+            }
+        }
+    }
+
+    #[test]
+    fn step_forces_are_solved_and_reported_per_step() {
+        // The Fx of a forward step, prescribed, gives back its shift.
+        let forward = case("{ shift_x_m = 0.0 }, { shift_x_m = 2e-6 }").unwrap();
+        let run = ExactRun::solve(&forward).unwrap();
+        let fx = run.last().totals.fx_n;
+        let c = case(&format!("{{ shift_x_m = 0.0 }}, {{ force_x_n = {fx:e} }}")).unwrap();
+        let run = ExactRun::solve(&c).unwrap();
+        let report = run.report(&c, false);
+        let steps = report.steps.as_ref().unwrap();
+        assert_eq!(steps[0].force_control, None);
+        let f = steps[1].force_control.unwrap();
+        assert!((f.shift_x_m - 2e-6).abs() < 1e-6 * 2e-6, "{f:?}");
+        assert_eq!((f.creepage_long, f.rolling_m), (None, 0.0));
+        let text = report.human();
+        assert!(
+            text.contains("step 2 prescribed force: shift x, y"),
+            "{text}"
+        );
+        // Saturation names the step.
+        let c = case("{ shift_x_m = 0.0 }, { force_x_n = -3000.0 }").unwrap();
+        let e = ExactRun::solve(&c).err().unwrap().to_string();
+        assert!(e.contains("transient.steps[1].force_x_n"), "{e}");
     }
 }
 

@@ -233,6 +233,7 @@ impl ConformalRun {
                 fz_global_n: t.fz_global_n,
                 coupling_iterations: coupling,
             }),
+            force_control: None,
         }
     }
 

@@ -24,17 +24,21 @@ use thiserror::Error;
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
 use crate::core::error::ContactError;
-use crate::core::force::{solve_prescribed_force, ForceControlSettings};
+use crate::core::force::{
+    solve_prescribed_force, solve_steps_with_forces, ForceControlSettings, PrescribedForce,
+};
 use crate::core::grid::Grid;
-use crate::core::problem::Kinematics;
+use crate::core::problem::{ContactProblem, Kinematics};
 use crate::core::solution::{ContactSolution, SolveStatus};
-use crate::core::solve::{solve, ContactSolver};
+use crate::core::solve::ContactSolver;
 use crate::core::subsurface::{subsurface_fields, surface_fatigue_index, BodySubsurface};
 use crate::core::temperature::{flash_temperatures, SurfaceTemperatures};
 
 use case::{Case, Model};
 use conformal_models::ConformalRun;
-use report::{Fields, FieldsReport, ForceControlReport, Report, StepReport, SubsurfaceReport};
+use report::{
+    Fields, FieldsReport, ForceControlReport, Report, StepForceReport, StepReport, SubsurfaceReport,
+};
 
 /// Why a case could not be solved.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -118,12 +122,99 @@ pub struct ExactRun {
     elapsed_s: f64,
     /// Prescribed forces: the creepages found.
     force_control: Option<ForceControlReport>,
+    /// Prescribed step forces: the shifts found, per step.
+    step_forces: Vec<Option<StepForceReport>>,
     /// The subsurface fields of both bodies below the (last) solution,
     /// when the case asks for them (`[subsurface]`).
     pub subsurface: Option<Box<SubsurfaceRun>>,
     /// The flash temperatures of both surfaces of the solution, when the
     /// case asks for them (`[temperature]`).
     pub temperature: Option<Box<SurfaceTemperatures>>,
+}
+
+/// The exact model's solutions of a case, with what its prescribed forces
+/// found.
+pub struct ExactSolves {
+    /// One solution, or one per transient step.
+    pub solutions: Vec<ContactSolution>,
+    /// Steady rolling with prescribed forces (`[rolling] force_x_n`, ...):
+    /// the creepages found.
+    pub force_control: Option<ForceControlReport>,
+    /// Per transient step with a prescribed force: the shift found (empty
+    /// when no step prescribes one).
+    pub step_forces: Vec<Option<StepForceReport>>,
+}
+
+/// Solves `case` with the exact model on `solver`, which was built for
+/// `problem` (the case's problem, its undeformed distance as the caller
+/// needs it): the creepages of prescribed forces in steady rolling, the
+/// shifts of prescribed step forces in a transient case (from the
+/// unloaded state), or the problem as given (steady and static solves
+/// warm-start from the solver's last).
+pub fn solve_exact(
+    case: &Case,
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+) -> Result<ExactSolves, CaseError> {
+    let settings = ForceControlSettings::default();
+    if case.prescribed_force.any() {
+        let f = solve_prescribed_force(solver, problem, case.prescribed_force, settings)?;
+        let report = ForceControlReport::of(&f)?;
+        return Ok(ExactSolves {
+            solutions: vec![f.solution],
+            force_control: Some(report),
+            step_forces: Vec::new(),
+        });
+    }
+    if case.step_forces.is_empty() && case.step_gap_offsets_m.is_empty() {
+        return Ok(ExactSolves {
+            solutions: solver.solve(problem)?,
+            force_control: None,
+            step_forces: Vec::new(),
+        });
+    }
+    let steps = match &problem.kinematics {
+        Kinematics::Transient(steps) => steps.len(),
+        _ => 0,
+    };
+    let forces = if case.step_forces.is_empty() {
+        vec![PrescribedForce::default(); steps]
+    } else {
+        case.step_forces.clone()
+    };
+    // Bodies travelling over the grid: each step's gap, moved.
+    let travel = |k: usize, p: &mut ContactProblem| {
+        if let Some(&offset) = case.step_gap_offsets_m.get(k) {
+            let grid = p.grid;
+            ContactProblem::quadratic_gap_at(
+                &grid,
+                case.a_per_m,
+                case.b_per_m,
+                offset,
+                &mut p.gap_m,
+            );
+        }
+    };
+    let solved = solve_steps_with_forces(
+        solver,
+        problem,
+        &forces,
+        settings,
+        "transient.steps",
+        travel,
+    )?;
+    let mut solutions = Vec::with_capacity(solved.len());
+    let mut step_forces = Vec::with_capacity(solved.len());
+    for (k, (f, &target)) in solved.into_iter().zip(&forces).enumerate() {
+        let key = format!("transient.steps[{k}]");
+        step_forces.push(StepForceReport::of(&key, target, &f)?);
+        solutions.push(f.solution);
+    }
+    Ok(ExactSolves {
+        solutions,
+        force_control: None,
+        step_forces,
+    })
 }
 
 /// What a case asks of an exact solution besides its tractions, computed
@@ -195,19 +286,10 @@ impl ExactRun {
     pub fn solve(case: &Case) -> Result<Self, CaseError> {
         let t0 = Instant::now();
         let problem = case.problem()?;
-        let (solutions, force_control) = if case.prescribed_force.any() {
-            let mut solver = ContactSolver::new(&problem, KernelCache::global());
-            let f = solve_prescribed_force(
-                &mut solver,
-                &problem,
-                case.prescribed_force,
-                ForceControlSettings::default(),
-            )?;
-            let report = ForceControlReport::of(&f)?;
-            (vec![f.solution], Some(report))
-        } else {
-            (solve(&problem)?, None)
-        };
+        let mut solver = ContactSolver::new(&problem, KernelCache::global());
+        let solved = solve_exact(case, &mut solver, &problem)?;
+        let (solutions, force_control, step_forces) =
+            (solved.solutions, solved.force_control, solved.step_forces);
         let Some(last) = solutions.last() else {
             return Err(CaseError::Failure("the solver returned no solution".into()));
         };
@@ -215,11 +297,17 @@ impl ExactRun {
         Ok(ExactRun {
             grid: problem.grid,
             solutions,
+            step_forces,
             elapsed_s: t0.elapsed().as_secs_f64(),
             force_control,
             subsurface: extras.subsurface.map(Box::new),
             temperature: extras.temperature.map(Box::new),
         })
+    }
+
+    /// The solutions: one, or one per transient step.
+    pub fn solutions(&self) -> &[ContactSolution] {
+        &self.solutions
     }
 
     /// The (last) solution.
@@ -232,7 +320,11 @@ impl ExactRun {
         let steps: Vec<StepReport> = self
             .solutions
             .iter()
-            .map(StepReport::from_solution)
+            .enumerate()
+            .map(|(k, s)| StepReport {
+                force_control: self.step_forces.get(k).copied().flatten(),
+                ..StepReport::from_solution(s)
+            })
             .collect();
         let mut totals = StepReport::from_solution(self.last());
         totals.solve_time_s = self.elapsed_s;

@@ -5,7 +5,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::core::force::ForceSolution;
+use crate::core::error::ContactError;
+use crate::core::force::{ForceSolution, PrescribedForce, StepForceSolution};
 use crate::core::grid::Grid;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::SubsurfaceSummary;
@@ -106,6 +107,9 @@ pub struct StepReport {
     /// Conformal models: their additional quantities.
     #[serde(flatten)]
     pub conformal: Option<ConformalKeys>,
+    /// A step with a prescribed force: the shift found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force_control: Option<StepForceReport>,
 }
 
 impl StepReport {
@@ -119,6 +123,7 @@ impl StepReport {
             solve_time_s,
             status: SolveStatus::Converged,
             conformal: None,
+            force_control: None,
         }
     }
 
@@ -133,6 +138,7 @@ impl StepReport {
             solve_time_s: i.solve_time_s,
             status: i.status,
             conformal: None,
+            force_control: None,
         }
     }
 }
@@ -254,6 +260,73 @@ impl ForceControlReport {
     }
 }
 
+/// The outcome of a transient step with a prescribed force
+/// (`transient.steps[k].force_x_n`, ...): the step's shift found (the
+/// given one in the other direction) and, in a rolling step, the
+/// creepages it stands for (shift over rolling distance).
+#[derive(Debug, Clone, Copy, Serialize, PartialEq)]
+pub struct StepForceReport {
+    /// Rigid shift in x of the step \[m\].
+    pub shift_x_m: f64,
+    /// Rigid shift in y of the step \[m\].
+    pub shift_y_m: f64,
+    /// Distance the step rolled \[m\] (0: a shift step).
+    pub rolling_m: f64,
+    /// Rolling steps: longitudinal creepage xi = shift_x / rolling [-].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub creepage_long: Option<f64>,
+    /// Rolling steps: lateral creepage eta = shift_y / rolling [-].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub creepage_lat: Option<f64>,
+    /// Outer (secant) iterations.
+    pub force_iterations: usize,
+    /// Solves of the step, all included.
+    pub force_solves: usize,
+}
+
+impl StepForceReport {
+    /// The report of the step named `key` (`transient.steps[3]`) solved
+    /// for `target`: None when the step prescribes no force. A force the
+    /// secant did not reach within its iteration limit is refused naming
+    /// the force's key (it lies too close to saturation for the step).
+    pub fn of(
+        key: &str,
+        target: PrescribedForce,
+        f: &StepForceSolution,
+    ) -> Result<Option<Self>, CaseError> {
+        if !target.any() {
+            return Ok(None);
+        }
+        let s = &f.step;
+        if !f.converged {
+            let name = if target.force_x_n.is_some() {
+                "force_x_n"
+            } else {
+                "force_y_n"
+            };
+            return Err(CaseError::from(ContactError::invalid(
+                format!("{key}.{name}"),
+                format!(
+                    "not reached in {} outer iterations (last shifts x = {} m, y = {} m): the \
+                     force is too close to saturation (mu Fn) for this step; prescribe a smaller \
+                     one or the shift",
+                    f.outer_iterations, s.shift_x_m, s.shift_y_m
+                ),
+            )));
+        }
+        let rolled = |shift: f64| (s.rolling_m > 0.0).then(|| shift / s.rolling_m);
+        Ok(Some(StepForceReport {
+            shift_x_m: s.shift_x_m,
+            shift_y_m: s.shift_y_m,
+            rolling_m: s.rolling_m,
+            creepage_long: rolled(s.shift_x_m),
+            creepage_lat: rolled(s.shift_y_m),
+            force_iterations: f.outer_iterations,
+            force_solves: f.solves,
+        }))
+    }
+}
+
 /// The summary lines shared by the planar and conformal reports: approach,
 /// max pressure (and traction), area and patch size.
 fn patch_lines(line: &mut dyn FnMut(&str, String), t: &Totals, traction: bool, width_note: &str) {
@@ -367,6 +440,24 @@ impl Report<'_> {
                     step.iterations,
                     step.status.as_str()
                 );
+            }
+            for (k, step) in steps.iter().enumerate() {
+                if let Some(f) = &step.force_control {
+                    let creep = match (f.creepage_long, f.creepage_lat) {
+                        (Some(xi), Some(eta)) => format!(" (xi, eta {xi:.6e}, {eta:.6e})"),
+                        _ => String::new(),
+                    };
+                    let _ = writeln!(
+                        o,
+                        "    step {} prescribed force: shift x, y {:.6e}, {:.6e} mm{creep} in {} \
+                         secant steps ({} solves)",
+                        k + 1,
+                        mm(f.shift_x_m),
+                        mm(f.shift_y_m),
+                        f.force_iterations,
+                        f.force_solves
+                    );
+                }
             }
             let _ = writeln!(o, "  last step:");
         }

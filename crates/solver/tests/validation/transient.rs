@@ -306,3 +306,216 @@ fn prescribed_force_shift_matches_contact_cattaneo_case_2() {
     );
     assert_eq!(counts(&r.solution), [177, 45, 132]);
 }
+
+/// `catt_to_cart.ref_out`, cases 116 to 171: "SHIFT X" of each world-fixed
+/// step whose potential contact area moves one element with the bodies
+/// (its XL grows by DX = 0.25 mm a case) \[mm\]. Case 115 is case 1 again
+/// (the Cattaneo shift 1.774e-2 mm).
+const MOVING_WINDOW_SHIFT_MM: [f64; 56] = [
+    4.548e-4, 4.705e-4, 4.886e-4, 5.125e-4, 5.349e-4, 5.552e-4, 5.835e-4, 6.069e-4, 6.377e-4,
+    6.690e-4, 7.003e-4, 7.419e-4, 7.960e-4, 8.508e-4, 8.505e-4, 8.334e-4, 8.103e-4, 7.980e-4,
+    7.808e-4, 7.779e-4, 7.719e-4, 7.681e-4, 7.661e-4, 7.655e-4, 7.660e-4, 7.676e-4, 7.693e-4,
+    7.712e-4, 7.733e-4, 7.752e-4, 7.767e-4, 7.776e-4, 7.777e-4, 7.774e-4, 7.767e-4, 7.762e-4,
+    7.757e-4, 7.753e-4, 7.750e-4, 7.748e-4, 7.747e-4, 7.747e-4, 7.747e-4, 7.748e-4, 7.749e-4,
+    7.750e-4, 7.750e-4, 7.751e-4, 7.752e-4, 7.752e-4, 7.752e-4, 7.752e-4, 7.752e-4, 7.752e-4,
+    7.751e-4, 7.751e-4,
+];
+
+/// `catt_to_cart.ref_out`, cases 115 to 171: adhesion elements ("Tang:
+/// final element division: A, S=", of 621): those of cases 1-57 but for
+/// case 126 (350, as its world-fixed twin 70; case 12 has 352).
+fn moving_window_adhesion(k: usize) -> usize {
+    if k == 11 {
+        350
+    } else {
+        ADHESION[k]
+    }
+}
+
+/// The catt_to_cart case file of [`prescribed_step_forces_from_a_case_match_contact_catt_to_cart`]
+/// with these `[grid]` elements in x and steps.
+fn catt_to_cart_case(nx: usize, steps: &[String]) -> String {
+    format!(
+        r#"
+model = "exact"
+[material]
+shear_modulus_pa = 1.0e6
+poisson_ratio = 0.28
+[friction]
+coefficient = 0.4013
+[geometry]
+kind = "quadratic"
+a_per_m = 2.963
+b_per_m = 2.963
+[load]
+normal_force_n = 0.4705
+[grid]
+nx = {nx}
+ny = 33
+window_x_m = {}
+window_y_m = 8.25e-3
+[transient]
+steps = [{}]
+"#,
+        nx as f64 * 0.25e-3,
+        steps.join(", ")
+    )
+}
+
+/// The prescribed force of every step, from a case file: CONTACT's
+/// `catt_to_cart` cases 115-171 (and 1-57) as CONTACT states them, Fx =
+/// -0.657 mu Fn prescribed in each step and the shift found. Step 1 is the
+/// Cattaneo shift at Fn = 0.4705 N; steps 2-57 are shift steps at the
+/// approach 0.07258 mm (`catt_to_cart.inp`, cases 116-171: PEN) whose
+/// potential contact area moves one element with the bodies
+/// (`rolling_m` = dx): the tractions stay on the bodies, one element
+/// upstream on the grid, which is a rolling step given by its shift.
+#[test]
+fn prescribed_step_forces_from_a_case_match_contact_catt_to_cart() {
+    use railcontact_solver::problem::case::Case;
+    use railcontact_solver::problem::ExactRun;
+    let f = FX_OVER_MU_FN * 0.4013 * 0.4705;
+    let mut steps = vec![format!("{{ force_x_n = {f:e} }}")];
+    for _ in 0..56 {
+        steps.push(format!(
+            "{{ force_x_n = {f:e}, rolling_m = 2.5e-4, approach_m = 7.258e-5 }}"
+        ));
+    }
+    let text = catt_to_cart_case(33, &steps);
+    let case = Case::from_toml(&text).unwrap();
+    let run = ExactRun::solve(&case).unwrap();
+    let report = run.report(&case, false);
+    let steps = report.steps.as_ref().unwrap();
+    assert_eq!(steps.len(), 57);
+    let dq = 0.25 * MM;
+    let (mut worst_shift, mut worst_creep, mut worst_fn) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut secant, mut solves) = (0, 0);
+    let mut differ = Vec::new();
+    for (k, s) in steps.iter().enumerate() {
+        let fc = s
+            .force_control
+            .expect("a prescribed force reports its shift");
+        secant += fc.force_iterations;
+        solves += fc.force_solves;
+        let t = &s.totals;
+        // The force is met to the outer tolerance (1e-6 mu Fn).
+        assert!(
+            (t.fx_n - f).abs() <= 1e-5 * 0.4013 * t.normal_force_n,
+            "step {}: Fx {} against {f}",
+            k + 1,
+            t.fx_n
+        );
+        // "FN 0.4705" in every case.
+        let fn_err = (t.normal_force_n / 0.4705 - 1.0).abs();
+        worst_fn = worst_fn.max(fn_err);
+        let (want, got) = if k == 0 {
+            (CASE_1_SHIFT_MM, fc.shift_x_m / MM)
+        } else {
+            (MOVING_WINDOW_SHIFT_MM[k - 1], fc.shift_x_m / MM)
+        };
+        let err = (got / want - 1.0).abs();
+        if k == 1 {
+            eprintln!("case 116: shift {got:.4e} mm against CONTACT's {want:.4e}");
+        }
+        worst_shift = worst_shift.max(err);
+        assert!(
+            err < 0.01 && fn_err < 0.01,
+            "case {}: shift {got:.4e} mm against CONTACT's {want:.4e}, Fn {}",
+            115 + k,
+            t.normal_force_n
+        );
+        if k > 0 {
+            // The creepage of the same step in moving coordinates (cases
+            // 2-57).
+            let xi = fc
+                .creepage_long
+                .expect("a rolling step reports its creepage");
+            assert_eq!(fc.rolling_m, dq);
+            worst_creep = worst_creep.max((xi / CREEPAGE[k - 1] - 1.0).abs());
+        }
+    }
+    for (k, s) in run.solutions().iter().enumerate() {
+        if !check_counts(115 + k, s, moving_window_adhesion(k)) {
+            differ.push(115 + k);
+        }
+    }
+    eprintln!(
+        "catt_to_cart 115-171 from a case with prescribed Fx: worst shift {:.3} %, creepage \
+         against cases 2-57 {:.3} %, Fn {:.3} %; {secant} secant steps, {solves} solves in 57 \
+         steps; counts differ in {differ:?}",
+        100.0 * worst_shift,
+        100.0 * worst_creep,
+        100.0 * worst_fn
+    );
+    assert!(worst_creep < 0.01, "creepage {worst_creep}");
+    // Case 116 differs most: 4.564e-4 mm against 4.548e-4, where CONTACT's
+    // moving-coordinate twin (case 2) has 1.824e-3 x 0.25 mm = 4.560e-4.
+    assert!(worst_shift < 0.004, "shift {worst_shift}");
+    assert_eq!(differ, [126], "cases whose counts differ (by ties)");
+}
+
+/// CONTACT's `catt_to_cart` cases 58-114 from a case file: world-fixed
+/// steps on a fixed grid of 90 x 33 elements over which the bodies travel
+/// one element (0.25 mm) a step (`gap_travel_x_m`), Fx = -0.657 mu Fn
+/// prescribed in each. The grid is centred on the origin, so the first
+/// step puts the bodies 7.125 mm left of its centre, where CONTACT's grid
+/// from x = -4.125 mm has them. Against CONTACT's printed shifts of cases
+/// 58-75 (`WORLD_SHIFT_MM`) and, over all 57 steps, against the same
+/// steps with the potential contact area moving instead (cases 115-171:
+/// the same physics in other coordinates).
+#[test]
+fn bodies_travelling_over_a_fixed_grid_match_contact_catt_to_cart() {
+    use railcontact_solver::problem::case::Case;
+    use railcontact_solver::problem::ExactRun;
+    let f = FX_OVER_MU_FN * 0.4013 * 0.4705;
+    let run = |nx: usize, first: &str, step: &str| {
+        let mut steps = vec![format!("{{ force_x_n = {f:e}{first} }}")];
+        for _ in 0..56 {
+            steps.push(format!(
+                "{{ force_x_n = {f:e}, approach_m = 7.258e-5, {step} }}"
+            ));
+        }
+        let case = Case::from_toml(&catt_to_cart_case(nx, &steps)).unwrap();
+        let run = ExactRun::solve(&case).unwrap();
+        let report = run.report(&case, false);
+        let shifts: Vec<f64> = report
+            .steps
+            .as_ref()
+            .unwrap()
+            .iter()
+            .map(|s| s.force_control.unwrap().shift_x_m)
+            .collect();
+        (shifts, run)
+    };
+    let (world, world_run) = run(
+        90,
+        ", gap_travel_x_m = -7.125e-3",
+        "gap_travel_x_m = 2.5e-4",
+    );
+    let (moving, _) = run(33, "", "rolling_m = 2.5e-4");
+    let mut worst: f64 = 0.0;
+    for (k, s) in world.iter().enumerate() {
+        if let Some(&want) = [CASE_1_SHIFT_MM].iter().chain(&WORLD_SHIFT_MM).nth(k) {
+            let err = (s / MM / want - 1.0).abs();
+            worst = worst.max(err);
+            assert!(
+                err < 0.01,
+                "case {}: shift {} mm against {want}",
+                58 + k,
+                s / MM
+            );
+        }
+        let same = (s / moving[k] - 1.0).abs();
+        assert!(same < 1e-4, "step {}: {s:e} against {:e}", k + 1, moving[k]);
+    }
+    let differ: Vec<usize> = (0..18)
+        .filter(|&k| !check_counts(58 + k, &world_run.solutions()[k], WORLD_ADHESION[k]))
+        .map(|k| 58 + k)
+        .collect();
+    eprintln!(
+        "catt_to_cart 58-75 from a case with the bodies travelling: worst shift {:.3} %; counts \
+         differ in {differ:?}",
+        100.0 * worst
+    );
+    assert_eq!(differ, [69], "cases whose counts differ (by ties)");
+}

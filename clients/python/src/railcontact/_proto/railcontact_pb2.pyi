@@ -281,7 +281,7 @@ class Creepages(_message.Message):
     def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ...) -> None: ...
 
 class ShiftStep(_message.Message):
-    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n_per_m")
+    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n_per_m", "force_x_n", "force_y_n", "force_x_n_per_m", "rolling_m", "gap_travel_x_m")
     SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
     SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
     ROTATION_RAD_FIELD_NUMBER: _ClassVar[int]
@@ -291,6 +291,11 @@ class ShiftStep(_message.Message):
     CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
     SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
     NORMAL_FORCE_N_PER_M_FIELD_NUMBER: _ClassVar[int]
+    FORCE_X_N_FIELD_NUMBER: _ClassVar[int]
+    FORCE_Y_N_FIELD_NUMBER: _ClassVar[int]
+    FORCE_X_N_PER_M_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_M_FIELD_NUMBER: _ClassVar[int]
+    GAP_TRAVEL_X_M_FIELD_NUMBER: _ClassVar[int]
     shift_x_m: float
     shift_y_m: float
     rotation_rad: float
@@ -300,7 +305,12 @@ class ShiftStep(_message.Message):
     creepage_lat: float
     spin_per_m: float
     normal_force_n_per_m: float
-    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ...) -> None: ...
+    force_x_n: float
+    force_y_n: float
+    force_x_n_per_m: float
+    rolling_m: float
+    gap_travel_x_m: float
+    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ..., rolling_m: _Optional[float] = ..., gap_travel_x_m: _Optional[float] = ...) -> None: ...
 
 class TransientSection(_message.Message):
     __slots__ = ("steps", "rolling_step_m")
@@ -483,16 +493,36 @@ class SolverInfo(_message.Message):
     def __init__(self, status: _Optional[_Union[SolveStatus, str]] = ..., normal_iterations: _Optional[int] = ..., tangential_iterations: _Optional[int] = ..., coupling_iterations: _Optional[int] = ..., matvecs: _Optional[int] = ..., normal_residual: _Optional[float] = ..., tangential_residual: _Optional[float] = ..., solve_time_s: _Optional[float] = ...) -> None: ...
 
 class StepResult(_message.Message):
-    __slots__ = ("totals", "info", "conformal", "sensitivities")
+    __slots__ = ("totals", "info", "conformal", "sensitivities", "force_control")
     TOTALS_FIELD_NUMBER: _ClassVar[int]
     INFO_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     SENSITIVITIES_FIELD_NUMBER: _ClassVar[int]
+    FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     totals: PatchTotals
     info: SolverInfo
     conformal: ConformalTotals
     sensitivities: Sensitivities
-    def __init__(self, totals: _Optional[_Union[PatchTotals, _Mapping]] = ..., info: _Optional[_Union[SolverInfo, _Mapping]] = ..., conformal: _Optional[_Union[ConformalTotals, _Mapping]] = ..., sensitivities: _Optional[_Union[Sensitivities, _Mapping]] = ...) -> None: ...
+    force_control: StepForceControl
+    def __init__(self, totals: _Optional[_Union[PatchTotals, _Mapping]] = ..., info: _Optional[_Union[SolverInfo, _Mapping]] = ..., conformal: _Optional[_Union[ConformalTotals, _Mapping]] = ..., sensitivities: _Optional[_Union[Sensitivities, _Mapping]] = ..., force_control: _Optional[_Union[StepForceControl, _Mapping]] = ...) -> None: ...
+
+class StepForceControl(_message.Message):
+    __slots__ = ("shift_x_m", "shift_y_m", "rolling_m", "creepage_long", "creepage_lat", "force_iterations", "force_solves")
+    SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
+    SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_M_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
+    FORCE_ITERATIONS_FIELD_NUMBER: _ClassVar[int]
+    FORCE_SOLVES_FIELD_NUMBER: _ClassVar[int]
+    shift_x_m: float
+    shift_y_m: float
+    rolling_m: float
+    creepage_long: float
+    creepage_lat: float
+    force_iterations: int
+    force_solves: int
+    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rolling_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., force_iterations: _Optional[int] = ..., force_solves: _Optional[int] = ...) -> None: ...
 
 class ForceDerivatives(_message.Message):
     __slots__ = ("normal_force", "fx", "fy", "mz")
