@@ -13,7 +13,9 @@
 
 use crate::conformal::frictional::FrictionalWorkspace;
 use crate::core::cache::KernelCache;
-use crate::core::force::{continued_start, solve_prescribed_force_step, ForceControlSettings};
+use crate::core::force::{
+    continued_start, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
+};
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
 use crate::core::sensitivity::{
@@ -202,6 +204,27 @@ impl PatchEngine {
         }
     }
 
+    /// Replaces the creepages of a steady-rolling case and the forces the
+    /// next solves prescribe; the creepage of a direction with a force
+    /// starts its iteration from the creepage the last solve had (found or
+    /// given): a session's step continues from its last step.
+    pub fn set_rolling(&mut self, c: Creepages, force: PrescribedForce) {
+        let last = self.case.creepages();
+        let start = Creepages {
+            creepage_long: match force.force_x_n {
+                Some(_) => last.creepage_long,
+                None => c.creepage_long,
+            },
+            creepage_lat: match force.force_y_n {
+                Some(_) => last.creepage_lat,
+                None => c.creepage_lat,
+            },
+            spin_per_m: c.spin_per_m,
+        };
+        self.case.prescribed_force = force;
+        self.set_creepages(start);
+    }
+
     /// Solves the case: one solution, or one per transient step (which
     /// then start from the unloaded state). Steady-rolling and static
     /// solves of the exact model warm-start from the previous solve.
@@ -210,12 +233,15 @@ impl PatchEngine {
             Some(e) => {
                 let solved = solve_exact(&self.case, &mut e.solver, &e.problem)?;
                 if let Some(f) = &solved.force_control {
-                    // The Jacobian (if asked) is taken about the creepages found.
-                    e.problem.kinematics = Kinematics::SteadyRolling(Creepages {
+                    // The Jacobian (if asked) is taken about the creepages
+                    // found, and a session's next step starts from them.
+                    let found = Kinematics::SteadyRolling(Creepages {
                         creepage_long: f.creepage_long,
                         creepage_lat: f.creepage_lat,
                         spin_per_m: f.spin_per_m,
                     });
+                    e.problem.kinematics = found.clone();
+                    self.case.kinematics = found;
                 }
                 let (solutions, force) = (solved.solutions, solved.force_control);
                 let grid = e.problem.grid;

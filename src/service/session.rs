@@ -24,6 +24,7 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 
+use crate::core::force::PrescribedForce;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::problem::case::{gap_travel, ranges, transient_step, Model, TransientStep};
@@ -59,7 +60,8 @@ pub struct StepInput {
 #[derive(Debug, Clone, Copy)]
 enum Motion {
     Static,
-    Rolling(Creepages),
+    /// Steady rolling at these creepages, or at the forces prescribed.
+    Rolling(Creepages, PrescribedForce),
     /// A transient step and how far the bodies' gap travels in it.
     Shift(TransientStep, f64),
 }
@@ -385,17 +387,13 @@ impl Session {
                 if s.shift.is_some() {
                     return Err(unused("shift", "steady-rolling"));
                 }
-                if let Some(c) = &s.creepages {
-                    convert::no_prescribed_force(c, "step.creepages", "sessions")?;
-                }
-                let c = s
-                    .creepages
-                    .as_ref()
-                    .map(convert::creepages)
-                    .unwrap_or_default();
+                let (c, force) = match &s.creepages {
+                    Some(w) => self.step_creepages(w)?,
+                    None => Default::default(),
+                };
                 c.check_input()
                     .map_err(|e| ServiceError::from(e).rekey("rolling.", "step.creepages."))?;
-                Motion::Rolling(c)
+                Motion::Rolling(c, force)
             }
             SessionKind::Transient => {
                 if s.creepages.is_some() {
@@ -433,6 +431,43 @@ impl Session {
         })
     }
 
+    /// The creepages of a steady-rolling step and the forces it prescribes
+    /// instead (exact model; a direction's creepage is then where the
+    /// force's iteration starts: the last step's, see
+    /// [`PatchEngine::set_rolling`]).
+    fn step_creepages(
+        &self,
+        w: &pb::Creepages,
+    ) -> Result<(Creepages, PrescribedForce), ServiceError> {
+        if w.force_x_n_per_m.is_some() {
+            return Err(ServiceError::invalid(
+                "step.creepages.force_x_n_per_m",
+                "a force per metre is for line contacts, which sessions do not solve: give \
+                 `force_x_n`",
+            ));
+        }
+        let (c, force) = convert::rolling(w)
+            .split()
+            .map_err(|e| ServiceError::from(e).rekey("rolling.", "step.creepages."))?;
+        let model = self.engine.case().model;
+        if force.any() && model != Model::Exact {
+            let key = if force.force_x_n.is_some() {
+                "step.creepages.force_x_n"
+            } else {
+                "step.creepages.force_y_n"
+            };
+            return Err(ServiceError::invalid(
+                key,
+                format!(
+                    "a prescribed force is solved with the exact model only, not {}: give the \
+                     creepage",
+                    model.name()
+                ),
+            ));
+        }
+        Ok((c, force))
+    }
+
     /// Solves a checked step (CPU-bound: run it on the solve pool). A
     /// refused step leaves the session as it was, bit for bit.
     pub fn step(&mut self, input: StepInput) -> Result<pb::SessionStepResult, ServiceError> {
@@ -450,8 +485,8 @@ impl Session {
         self.engine.set_load(input.load);
         let result = match input.motion {
             Motion::Static => self.engine.solve(self.fields),
-            Motion::Rolling(c) => {
-                self.engine.set_creepages(c);
+            Motion::Rolling(c, force) => {
+                self.engine.set_rolling(c, force);
                 self.engine.solve(self.fields)
             }
             Motion::Shift(shift, travel) => {
@@ -470,6 +505,7 @@ impl Session {
             result: result.result,
             fields: result.fields,
             marked: input.mark,
+            force_control: result.force_control,
         };
         check_response_size(&out, self.max_response_bytes)?;
         let engine = &self.engine;

@@ -483,6 +483,96 @@ async fn prescribed_step_forces_report_their_shifts_in_solves_and_sessions() {
     server.shutdown().await;
 }
 
+/// A steady-rolling session step prescribing Fx [N] (lateral creepage
+/// 0.5e-3).
+fn force_step(index: u64, fx: f64, mark: bool) -> pb::SessionRequest {
+    pb::SessionRequest {
+        kind: Some(pb::session_request::Kind::Step(pb::SessionStep {
+            step_index: index,
+            mark,
+            creepages: Some(pb::Creepages {
+                creepage_lat: 0.5e-3,
+                force_x_n: Some(fx),
+                ..Default::default()
+            }),
+            ..Default::default()
+        })),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn steady_session_steps_prescribe_forces_and_replay_bit_for_bit() {
+    let (server, mut client) = server().await;
+    let case = rolling(pb::Model::Exact, 16, 1e-3);
+    // The forces of SolvePatch at two creepages.
+    let fx_at = |xi: f64| {
+        let mut c = case.clone();
+        c.kinematics = Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            creepage_long: xi,
+            creepage_lat: 0.5e-3,
+            ..Default::default()
+        }));
+        c
+    };
+    let f1 = totals(
+        solve_patch(&mut client, fx_at(-4e-4))
+            .await
+            .result
+            .as_ref()
+            .unwrap(),
+    )
+    .fx_n;
+    let f2 = totals(
+        solve_patch(&mut client, fx_at(-5e-4))
+            .await
+            .result
+            .as_ref()
+            .unwrap(),
+    )
+    .fx_n;
+    let msgs = vec![
+        open(case, false),
+        step(0, StepMotion::Creep(1e-3), false),
+        force_step(1, f1, true),
+        force_step(2, f2, false),
+        force_step(3, -1e7, false),
+        rollback(1),
+        force_step(2, f2, false),
+    ];
+    let r = session(&mut client, msgs).await;
+    let limit = 0.3 * 1e4;
+    for (i, f, xi) in [(2, f1, -4e-4), (3, f2, -5e-4)] {
+        let s = step_result(&r[i]);
+        let fc = s.force_control.unwrap();
+        let fx = totals(s.result.as_ref().unwrap()).fx_n;
+        assert!((fx - f).abs() <= 1e-5 * limit, "Fx {fx} against {f}");
+        assert!((fc.creepage_long - xi).abs() <= 1e-4 * xi.abs(), "{fc:?}");
+        assert_eq!(fc.creepage_lat, 0.5e-3);
+    }
+    // The force beyond mu Fn names its field and changes nothing; the
+    // replay after the rollback gives the same bits.
+    let e = error(&r[4]);
+    assert_eq!(e.code, Code::InvalidArgument as i32);
+    assert_eq!(e.field, "step.creepages.force_x_n", "{}", e.message);
+    let (a, b) = (step_result(&r[3]), step_result(&r[6]));
+    assert_eq!(
+        bits(totals(a.result.as_ref().unwrap())),
+        bits(totals(b.result.as_ref().unwrap()))
+    );
+    assert_eq!(a.force_control, b.force_control);
+    // Only the exact model solves forces.
+    let r = session(
+        &mut client,
+        vec![
+            open(rolling(pb::Model::Fastsim, 16, 1e-3), false),
+            force_step(0, f1, false),
+        ],
+    )
+    .await;
+    assert_eq!(error(&r[1]).field, "step.creepages.force_x_n");
+    server.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bodies_travelling_over_the_grid_replay_bit_for_bit_in_sessions() {
     let (server, mut client) = server().await;

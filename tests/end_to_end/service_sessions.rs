@@ -209,9 +209,9 @@ fn huge_spin(s: &mut Step) {
     s.creepages.as_mut().unwrap().spin_per_m = 1e300;
 }
 
-/// A prescribed force: SolvePatch only, sessions step creepages.
+/// A prescribed force beyond mu Fn: no finite creepage gives it.
 fn prescribed_force(s: &mut Step) {
-    s.creepages.as_mut().unwrap().force_x_n = Some(-100.0);
+    s.creepages.as_mut().unwrap().force_x_n = Some(-1e7);
 }
 
 /// A rolling step that also gives a shift.
@@ -226,7 +226,7 @@ const ROLLING_SHIFT: Refusal = Refusal {
     field: "step.shift.shift_x_m",
 };
 const PRESCRIBED_FORCE: Refusal = Refusal {
-    what: "prescribed force",
+    what: "prescribed force beyond saturation",
     change: prescribed_force,
     code: Code::InvalidArgument,
     field: "step.creepages.force_x_n",

@@ -858,18 +858,20 @@ class SessionOpened(_message.Message):
     def __init__(self, session_id: _Optional[str] = ..., model: _Optional[_Union[Model, str]] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ...) -> None: ...
 
 class SessionStepResult(_message.Message):
-    __slots__ = ("step_index", "time_s", "result", "fields", "marked")
+    __slots__ = ("step_index", "time_s", "result", "fields", "marked", "force_control")
     STEP_INDEX_FIELD_NUMBER: _ClassVar[int]
     TIME_S_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     FIELDS_FIELD_NUMBER: _ClassVar[int]
     MARKED_FIELD_NUMBER: _ClassVar[int]
+    FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     step_index: int
     time_s: float
     result: StepResult
     fields: ElementFields
     marked: bool
-    def __init__(self, step_index: _Optional[int] = ..., time_s: _Optional[float] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., marked: _Optional[bool] = ...) -> None: ...
+    force_control: ForceControl
+    def __init__(self, step_index: _Optional[int] = ..., time_s: _Optional[float] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., marked: _Optional[bool] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ...) -> None: ...
 
 class SessionRolledBack(_message.Message):
     __slots__ = ("to_step_index", "next_step_index")
