@@ -57,7 +57,8 @@
 //! no finite pitch rate and is refused naming the key; so is a smaller
 //! force that spin and lateral creepage leave out of reach (|xi0| would
 //! exceed 1). The force tolerance ([`pitch_force_tolerance`]) is 1e-6 of
-//! mu Fn with the Hertz models, whose creep forces are exact to rounding;
+//! mu Fn with the fast models (Hertz, Kik-Piotrowski), whose creep forces
+//! are exact to rounding at a given normal solution;
 //! with the iterative ones, as for a patch's prescribed force
 //! ([`crate::core::force`]), max(1e-6, 10 x the tangential tolerance) of
 //! mu Fn: 1e-4 at the wheel/rail default ([`wheelrail_solver_settings`]).
@@ -1217,7 +1218,7 @@ pub struct PitchControl {
 /// The tolerance of a prescribed total longitudinal force relative to
 /// mu Fn (see the module docs).
 pub fn pitch_force_tolerance(settings: &WheelRailSettings) -> f64 {
-    if settings.model.is_hertz() {
+    if settings.model.is_fast() {
         1e-6
     } else {
         1e-6_f64.max(10.0 * settings.solver.tangential.tolerance)

@@ -1165,7 +1165,11 @@ fn prescribed_total_longitudinal_force_round_trip_and_limits() {
     let cache = KernelCache::default();
     let mut scratch = SearchScratch::default();
     let table = ContactTable::build(&pair, &TableSettings::default()).unwrap();
-    for model in [WheelRailModel::HertzFastsim, WheelRailModel::Exact] {
+    for model in [
+        WheelRailModel::HertzFastsim,
+        WheelRailModel::KikPiotrowski,
+        WheelRailModel::Exact,
+    ] {
         // Traction: the wheels turn 1.5e-3 faster than free rolling.
         let omega = -2.0 / 0.46 * (1.0 + 1.5e-3);
         let given = a22_input(6.5, None, Some(omega), model);
