@@ -487,17 +487,15 @@ impl ConformalGeometry {
         wheel_rolling_radius_m: f64,
         grid: Grid,
     ) -> Result<Self, ContactError> {
-        let WheelYaw { yaw_rad, lean } = yaw;
-        crate::core::error::require_finite("geometry.yaw_rad", yaw_rad)?;
-        crate::core::error::require_finite("geometry.lean", lean)?;
-        if yaw_rad.abs() >= 0.5 * std::f64::consts::PI {
+        crate::core::error::require_finite("geometry.yaw_rad", yaw.yaw_rad)?;
+        crate::core::error::require_finite("geometry.lean", yaw.lean)?;
+        if yaw.yaw_rad.abs() >= 0.5 * std::f64::consts::PI {
             return Err(ContactError::invalid(
                 "geometry.yaw_rad",
-                format!("{yaw_rad} rad: must lie within (-pi/2, pi/2)"),
+                format!("{} rad: must lie within (-pi/2, pi/2)", yaw.yaw_rad),
             ));
         }
         let lead = |t: f64| wheel.lead(t);
-        let yaw = WheelYaw { yaw_rad, lean };
         Self::build(rail, wheel, &lead, yaw, wheel_rolling_radius_m, grid)
     }
 

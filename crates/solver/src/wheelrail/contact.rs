@@ -166,9 +166,11 @@ pub enum WheelRailModel {
     /// [`WheelRailSettings::auto_conformal_angle_rad`] over its loaded
     /// area, the wheel's other patches staying exact; with several
     /// patches all are solved again at the wheel's approach, each at its
-    /// share of it (as [`WheelRailModel::Cect`] solves them). Per patch
-    /// the two methods agree where a patch is barely conformal (A-2.2 at
-    /// 5 mm: normal forces within 0.2 %), so a wheel may mix them.
+    /// share of it (as [`WheelRailModel::Cect`] solves them). Both take a
+    /// patch's normal approach from the same rigid position and agree
+    /// where a patch is barely conformal (A-2.2 at 5 mm: each patch's
+    /// normal force within 0.05 % of the wheel's load), so a wheel may mix
+    /// them.
     Auto,
 }
 
