@@ -248,19 +248,24 @@ impl PointCurve {
         Ok(curve)
     }
 
-    /// The lead (x, sigma) \[m\] at arc length `t` and its rate along the
-    /// curve's unit tangent (that of [`Curve::eval`]); zeros without a
+    /// The point, unit tangent (those of [`Curve::eval`]), lead (x,
+    /// sigma) \[m\] and the lead's rate along the unit tangent at arc
+    /// length `t`, the four splines on one knot interval; zeros without a
     /// lead.
-    fn lead(&self, t: f64) -> ([f64; 2], [f64; 2]) {
-        let Some([x, sigma]) = &self.lead else {
-            return ([0.0; 2], [0.0; 2]);
-        };
-        let (_, dy) = self.y.eval(&self.t, t);
-        let (_, dz) = self.z.eval(&self.t, t);
+    fn eval_with_lead(&self, t: f64) -> WheelPoint {
+        let i = Spline::interval(&self.t, t);
+        let (y, dy) = self.y.eval_in(&self.t, i, t);
+        let (z, dz) = self.z.eval_in(&self.t, i, t);
         let n = dy.hypot(dz).max(f64::MIN_POSITIVE);
-        let (xv, dx) = x.eval(&self.t, t);
-        let (sv, ds) = sigma.eval(&self.t, t);
-        ([xv, sv], [dx / n, ds / n])
+        let (lead, rate) = match &self.lead {
+            Some([x, sigma]) => {
+                let (xv, dx) = x.eval_in(&self.t, i, t);
+                let (sv, ds) = sigma.eval_in(&self.t, i, t);
+                ([xv, sv], [dx / n, ds / n])
+            }
+            None => ([0.0; 2], [0.0; 2]),
+        };
+        ([y, z], [dy / n, dz / n], lead, rate)
     }
 }
 
@@ -272,6 +277,10 @@ impl Curve for PointCurve {
         ([y, z], [dy / n, dz / n])
     }
 }
+
+/// A wheel curve's point (y, z) \[m\], unit tangent, lead (x, sigma) \[m\]
+/// and the lead's rate along the tangent [-] at one arc length.
+type WheelPoint = ([f64; 2], [f64; 2], [f64; 2], [f64; 2]);
 
 /// Natural cubic spline values and second derivatives on given knots.
 #[derive(Debug, Clone, PartialEq)]
@@ -306,12 +315,21 @@ impl Spline {
 
     /// Value and derivative at `x` (linear extrapolation outside the knots).
     fn eval(&self, t: &[f64], x: f64) -> (f64, f64) {
+        self.eval_in(t, Self::interval(t, x), x)
+    }
+
+    /// The knot interval [t_i, t_(i+1)] that [`Spline::eval`] takes for `x`.
+    fn interval(t: &[f64], x: f64) -> usize {
         let n = t.len();
-        let i = match t.partition_point(|&k| k <= x) {
+        match t.partition_point(|&k| k <= x) {
             0 => 0,
             k if k >= n => n - 2,
             k => k - 1,
-        };
+        }
+    }
+
+    /// [`Spline::eval`] on the knot interval `i`.
+    fn eval_in(&self, t: &[f64], i: usize, x: f64) -> (f64, f64) {
         let h = t[i + 1] - t[i];
         let a = (t[i + 1] - x) / h;
         let b = (x - t[i]) / h;
@@ -470,7 +488,10 @@ impl ConformalGeometry {
         wheel_rolling_radius_m: f64,
         grid: Grid,
     ) -> Result<Self, ContactError> {
-        let no_lead = |_: f64| ([0.0; 2], [0.0; 2]);
+        let no_lead = |t: f64| {
+            let (p, d) = wheel.eval(t);
+            (p, d, [0.0; 2], [0.0; 2])
+        };
         let yaw = WheelYaw::default();
         Self::build(rail, wheel, &no_lead, yaw, wheel_rolling_radius_m, grid)
     }
@@ -495,14 +516,14 @@ impl ConformalGeometry {
                 format!("{} rad: must lie within (-pi/2, pi/2)", yaw.yaw_rad),
             ));
         }
-        let lead = |t: f64| wheel.lead(t);
+        let lead = |t: f64| wheel.eval_with_lead(t);
         Self::build(rail, wheel, &lead, yaw, wheel_rolling_radius_m, grid)
     }
 
     fn build(
         rail: &dyn Curve,
         wheel: &dyn Curve,
-        lead: &dyn Fn(f64) -> ([f64; 2], [f64; 2]),
+        wheel_with_lead: &dyn Fn(f64) -> WheelPoint,
         yaw: WheelYaw,
         wheel_rolling_radius_m: f64,
         grid: Grid,
@@ -581,7 +602,7 @@ impl ConformalGeometry {
         // along the circle, the axis h below... above it (z down).
         let (sin_yaw, cos_yaw) = yaw_rad.sin_cos();
         let tan_yaw = sin_yaw / cos_yaw;
-        let sigma0 = lead(0.0).0[1];
+        let sigma0 = wheel_with_lead(0.0).2[1];
         let h = if sigma0 == 0.0 {
             wheel_rolling_radius_m
         } else {
@@ -617,8 +638,7 @@ impl ConformalGeometry {
                 // it y changes by tan psi per x, the arc from the lowest
                 // point by 1/cos psi per x).
                 let section = |t: f64| -> ([f64; 2], [f64; 2]) {
-                    let (p, d) = wheel.eval(t);
-                    let ([xl, sl], [dxl, dsl]) = lead(t);
+                    let (p, d, [xl, sl], [dxl, dsl]) = wheel_with_lead(t);
                     let rho = p[1] - z_axis;
                     let w = sl + (x - xl) / cos_yaw;
                     let dw = dsl - dxl / cos_yaw;
