@@ -13,27 +13,15 @@ use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
-use railcontact::wheelrail::builtin::{
-    load_test_input, mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET,
-};
+use railcontact::wheelrail::builtin::{load_test_input, mbench_a22_input, mbench_pair};
 use railcontact::wheelrail::{
     solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm, solve_wheelset_warm,
-    ContactTable, LoadOptions, SearchScratch, SplineOptions, TableSettings, WarmStart,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution,
+    ContactTable, SearchScratch, TableSettings, WarmStart, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSolution,
 };
 
 fn pair() -> WheelRailPair {
-    let o = LoadOptions::default();
-    let rail = profile("MBench_UIC60_v3.prr", &o).unwrap().unwrap();
-    let wheel = profile("MBench_S1002_v3.prw", &o).unwrap().unwrap();
-    WheelRailPair::new(
-        [&rail, &rail],
-        [&wheel, &wheel],
-        MBENCH_TRACK,
-        MBENCH_WHEELSET,
-        &SplineOptions::default(),
-    )
-    .unwrap()
+    mbench_pair().unwrap()
 }
 
 /// Shift [mm], roll [rad] and wheel rotation [rad/s] of CONTACT's

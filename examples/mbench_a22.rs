@@ -10,11 +10,8 @@
 use std::time::Instant;
 
 use railcontact::core::cache::KernelCache;
-use railcontact::wheelrail::builtin::{mbench_a22_input, profile, MBENCH_TRACK, MBENCH_WHEELSET};
-use railcontact::wheelrail::{
-    solve_wheelset, LoadOptions, SearchScratch, Side, SplineOptions, WheelRailInput,
-    WheelRailModel, WheelRailPair,
-};
+use railcontact::wheelrail::builtin::{mbench_a22_input, mbench_pair};
+use railcontact::wheelrail::{solve_wheelset, SearchScratch, Side, WheelRailInput, WheelRailModel};
 
 /// One CONTACT row.
 struct Row {
@@ -75,17 +72,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let opts = LoadOptions::default();
-    let rail = profile("MBench_UIC60_v3.prr", &opts).unwrap().unwrap();
-    let wheel = profile("MBench_S1002_v3.prw", &opts).unwrap().unwrap();
-    let pair = WheelRailPair::new(
-        [&rail, &rail],
-        [&wheel, &wheel],
-        MBENCH_TRACK,
-        MBENCH_WHEELSET,
-        &SplineOptions::default(),
-    )
-    .unwrap();
+    let pair = mbench_pair().unwrap();
     let reference = read_reference();
     let cache = KernelCache::default();
     let mut scratch = SearchScratch::default();

@@ -68,6 +68,37 @@
 //!   components along x and t(s). The reference curve lies midway
 //!   between the profiles, so it keeps half of the wheel's lateral drop:
 //!   w_x ≈ -y²/(4 R²) for the sphere.
+//! * Yaw ([`ConformalGeometry::new_yawed`]): the wheel's axis turned by
+//!   psi about z, along a = (-sin psi, cos psi, 0). The wheel curve is then
+//!   the curve of the wheel's points closest to the prismatic rail (the
+//!   contact locus of the wheel/rail search, where the wheel's normal has
+//!   no x part) projected on the plane x = 0, each point with its lead:
+//!   its longitudinal position x_l relative to the origin's, and its
+//!   distance sigma along its circle about the axis from the circle's
+//!   lowest point (on a cone of half-angle delta, sigma ≈ R tan(delta)
+//!   tan(psi): the lead of the contact point). The circle of radius
+//!   rho = sqrt((z - z_a)² + sigma²) through a point turns with the yaw:
+//!   moving along it by x - x_l in x moves it by (x - x_l) tan(psi) in y,
+//!   and its height is z_a + sqrt(rho² - (sigma + (x - x_l)/cos psi)²).
+//!   That is the wheel's section in the plane x, where its distance to the
+//!   rail is measured; the patch's valley then follows x_l(s), as the
+//!   planar approach's h(x, s) = h(s) + k_x (x - x_l(s))²/2 does. The axis
+//!   passes through A, the centre of the origin's circle, h = sqrt(R_xw² -
+//!   sigma0²) above the origin; the wheel turns at the rate f V about it
+//!   that gives xi at the origin, f = (1 + xi)/(h cos psi), and its
+//!   velocity -f V a x (P - A) has a lateral part f sin(psi) (z - z_a) V
+//!   (the yaw's lateral creepage, varying over the patch with the local
+//!   t(s)) and a vertical one -f (sin(psi) (y - y_a) + cos(psi) (x - x_a))
+//!   V. Its value at the origin is part of the creepages a caller knows
+//!   there ([`ConformalGeometry::wheel_rotation_creepages`]). A rolled
+//!   wheel's circles lean: along a circle y changes by lean = -tan(roll)
+//!   per z as well, which at the point's slope -sigma/(rho cos psi) adds
+//!   -lean sigma/(rho cos psi) to the tan(psi) above ([`WheelYaw::lean`];
+//!   at 4 mrad of roll on a flange, sigma = 17 mm, the valley moves by
+//!   0.15 mm). Its second-order part, a drift of lean x²/(2 rho) (below a
+//!   tenth of a micrometre over a patch), is left out, with or without
+//!   yaw; the rigid slip's axis stays horizontal (the roll's spin at the
+//!   origin comes with the creepages).
 
 use crate::core::error::ContactError;
 use crate::core::grid::Grid;
@@ -129,6 +160,8 @@ pub struct PointCurve {
     t: Vec<f64>,
     y: Spline,
     z: Spline,
+    /// A yawed wheel's lead (x, sigma) per point ([`PointCurve::with_lead`]).
+    lead: Option<[Spline; 2]>,
 }
 
 impl PointCurve {
@@ -176,7 +209,63 @@ impl PointCurve {
             y: Spline::natural(&t, &ys),
             z: Spline::natural(&t, &zs),
             t,
+            lead: None,
         })
+    }
+
+    /// A yawed wheel's curve through `points` (y, z) \[m\], as
+    /// [`PointCurve::new`], with the `lead` (x, sigma) \[m\] of each point
+    /// (see the module docs, "Yaw"): its longitudinal position relative
+    /// to the origin's, and its distance along its circle about the
+    /// wheel's axis from the circle's lowest point, positive ahead.
+    pub fn with_lead(
+        points: &[[f64; 2]],
+        lead: &[[f64; 2]],
+        key: &str,
+    ) -> Result<Self, ContactError> {
+        let mut curve = Self::new(points, key)?;
+        if lead.len() != points.len() {
+            return Err(ContactError::invalid(
+                key,
+                format!("{} leads for {} points", lead.len(), points.len()),
+            ));
+        }
+        if let Some(i) = lead
+            .iter()
+            .position(|l| !(l[0].is_finite() && l[1].is_finite()))
+        {
+            return Err(ContactError::invalid(
+                key,
+                format!("the lead of point {i} is not finite"),
+            ));
+        }
+        let xs: Vec<f64> = lead.iter().map(|l| l[0]).collect();
+        let sigmas: Vec<f64> = lead.iter().map(|l| l[1]).collect();
+        curve.lead = Some([
+            Spline::natural(&curve.t, &xs),
+            Spline::natural(&curve.t, &sigmas),
+        ]);
+        Ok(curve)
+    }
+
+    /// The point, unit tangent (those of [`Curve::eval`]), lead (x,
+    /// sigma) \[m\] and the lead's rate along the unit tangent at arc
+    /// length `t`, the four splines on one knot interval; zeros without a
+    /// lead.
+    fn eval_with_lead(&self, t: f64) -> WheelPoint {
+        let i = Spline::interval(&self.t, t);
+        let (y, dy) = self.y.eval_in(&self.t, i, t);
+        let (z, dz) = self.z.eval_in(&self.t, i, t);
+        let n = dy.hypot(dz).max(f64::MIN_POSITIVE);
+        let (lead, rate) = match &self.lead {
+            Some([x, sigma]) => {
+                let (xv, dx) = x.eval_in(&self.t, i, t);
+                let (sv, ds) = sigma.eval_in(&self.t, i, t);
+                ([xv, sv], [dx / n, ds / n])
+            }
+            None => ([0.0; 2], [0.0; 2]),
+        };
+        ([y, z], [dy / n, dz / n], lead, rate)
     }
 }
 
@@ -188,6 +277,10 @@ impl Curve for PointCurve {
         ([y, z], [dy / n, dz / n])
     }
 }
+
+/// A wheel curve's point (y, z) \[m\], unit tangent, lead (x, sigma) \[m\]
+/// and the lead's rate along the tangent [-] at one arc length.
+type WheelPoint = ([f64; 2], [f64; 2], [f64; 2], [f64; 2]);
 
 /// Natural cubic spline values and second derivatives on given knots.
 #[derive(Debug, Clone, PartialEq)]
@@ -222,12 +315,21 @@ impl Spline {
 
     /// Value and derivative at `x` (linear extrapolation outside the knots).
     fn eval(&self, t: &[f64], x: f64) -> (f64, f64) {
+        self.eval_in(t, Self::interval(t, x), x)
+    }
+
+    /// The knot interval [t_i, t_(i+1)] that [`Spline::eval`] takes for `x`.
+    fn interval(t: &[f64], x: f64) -> usize {
         let n = t.len();
-        let i = match t.partition_point(|&k| k <= x) {
+        match t.partition_point(|&k| k <= x) {
             0 => 0,
             k if k >= n => n - 2,
             k => k - 1,
-        };
+        }
+    }
+
+    /// [`Spline::eval`] on the knot interval `i`.
+    fn eval_in(&self, t: &[f64], i: usize, x: f64) -> (f64, f64) {
         let h = t[i + 1] - t[i];
         let a = (t[i + 1] - x) / h;
         let b = (x - t[i]) / h;
@@ -313,10 +415,30 @@ pub struct ConformalGeometry {
     /// the approach d, the wheel moved by d along n(0) (its point on the
     /// normal line slides along the profile by -d sin(delta - delta0)).
     pub wheel_point_per_approach: Vec<[f64; 2]>,
-    /// Wheel rolling radius at the rigid contact point \[m\].
+    /// Wheel rolling radius at the rigid contact point \[m\]: its distance
+    /// from the wheel's axis.
     pub wheel_rolling_radius_m: f64,
     /// Mean contact angle delta(0) \[rad\].
     pub mean_contact_angle_rad: f64,
+    /// Yaw of the wheel's axis about z \[rad\]: the axis runs along
+    /// (-sin psi, cos psi, 0) (see the module docs, "Yaw").
+    pub yaw_rad: f64,
+    /// The centre of the wheel's circle through the origin (x, y, z) \[m\],
+    /// a point of its axis: (0, 0, -R_xw) without yaw.
+    pub wheel_axis_point_m: [f64; 3],
+}
+
+/// How the wheel of [`ConformalGeometry::new_yawed`] is turned (see the
+/// module docs, "Yaw").
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WheelYaw {
+    /// Yaw of the wheel's axis about z \[rad\], within (-pi/2, pi/2).
+    pub yaw_rad: f64,
+    /// Lean of the wheel's circles from the roll [-]: the change of y per
+    /// change of z along a circle's plane at its lowest point, -tan(roll)
+    /// cos(psi) for the axle (-sin psi cos roll, cos psi cos roll, sin
+    /// roll).
+    pub lean: f64,
 }
 
 /// Arc-length sampling step of the reference curve relative to the grid's s step.
@@ -366,6 +488,47 @@ impl ConformalGeometry {
         wheel_rolling_radius_m: f64,
         grid: Grid,
     ) -> Result<Self, ContactError> {
+        let no_lead = |t: f64| {
+            let (p, d) = wheel.eval(t);
+            (p, d, [0.0; 2], [0.0; 2])
+        };
+        let yaw = WheelYaw::default();
+        Self::build(rail, wheel, &no_lead, yaw, wheel_rolling_radius_m, grid)
+    }
+
+    /// Builds the geometry of `rail` and a wheel yawed by `yaw_rad` \[rad\]
+    /// on `grid` (x, s): `wheel` is the curve of the wheel's points closest
+    /// to the rail, with their lead ([`PointCurve::with_lead`]; see the
+    /// module docs, "Yaw"). Without a lead and at yaw 0 it is
+    /// [`ConformalGeometry::new`] bit for bit.
+    pub fn new_yawed(
+        rail: &dyn Curve,
+        wheel: &PointCurve,
+        yaw: WheelYaw,
+        wheel_rolling_radius_m: f64,
+        grid: Grid,
+    ) -> Result<Self, ContactError> {
+        crate::core::error::require_finite("geometry.yaw_rad", yaw.yaw_rad)?;
+        crate::core::error::require_finite("geometry.lean", yaw.lean)?;
+        if yaw.yaw_rad.abs() >= 0.5 * std::f64::consts::PI {
+            return Err(ContactError::invalid(
+                "geometry.yaw_rad",
+                format!("{} rad: must lie within (-pi/2, pi/2)", yaw.yaw_rad),
+            ));
+        }
+        let lead = |t: f64| wheel.eval_with_lead(t);
+        Self::build(rail, wheel, &lead, yaw, wheel_rolling_radius_m, grid)
+    }
+
+    fn build(
+        rail: &dyn Curve,
+        wheel: &dyn Curve,
+        wheel_with_lead: &dyn Fn(f64) -> WheelPoint,
+        yaw: WheelYaw,
+        wheel_rolling_radius_m: f64,
+        grid: Grid,
+    ) -> Result<Self, ContactError> {
+        let WheelYaw { yaw_rad, lean } = yaw;
         crate::core::error::require_positive(
             "geometry.wheel_rolling_radius_m",
             wheel_rolling_radius_m,
@@ -435,7 +598,19 @@ impl ConformalGeometry {
         let mut approach_weight = vec![0.0; n];
         let mut wheel_point_yz_m = vec![[0.0; 2]; n];
         let mut wheel_point_per_approach = vec![[0.0; 2]; n];
-        let z_axis = -wheel_rolling_radius_m;
+        // The origin's circle: its lowest point lies sigma0 behind it
+        // along the circle, the axis h below... above it (z down).
+        let (sin_yaw, cos_yaw) = yaw_rad.sin_cos();
+        let tan_yaw = sin_yaw / cos_yaw;
+        let sigma0 = wheel_with_lead(0.0).2[1];
+        let h = if sigma0 == 0.0 {
+            wheel_rolling_radius_m
+        } else {
+            let r = wheel_rolling_radius_m;
+            (r * r - sigma0 * sigma0).max(0.0).sqrt()
+        };
+        let z_axis = -h;
+        let wheel_axis_point_m = [-sigma0 * cos_yaw, -sigma0 * sin_yaw, z_axis];
         let (mut tr, mut tw0) = (grid.y_m(0), grid.y_m(0));
         for iy in 0..ny {
             let s = grid.y_m(iy);
@@ -458,14 +633,31 @@ impl ConformalGeometry {
             for ix in 0..nx {
                 let x = grid.x_m(ix);
                 // The wheel's section in the plane x: every profile point
-                // keeps its distance rho from the axis.
+                // keeps its distance rho from the axis, rho² = (z -
+                // z_axis)² + sigma², its circle turned by the yaw (along
+                // it y changes by tan psi per x, the arc from the lowest
+                // point by 1/cos psi per x).
                 let section = |t: f64| -> ([f64; 2], [f64; 2]) {
-                    let (p, d) = wheel.eval(t);
+                    let (p, d, [xl, sl], [dxl, dsl]) = wheel_with_lead(t);
                     let rho = p[1] - z_axis;
-                    let q = (rho * rho - x * x).max(0.0).sqrt();
-                    let dz = if q > 0.0 { rho * d[1] / q } else { 0.0 };
-                    let norm = d[0].hypot(dz);
-                    ([p[0], z_axis + q], [d[0] / norm, dz / norm])
+                    let w = sl + (x - xl) / cos_yaw;
+                    let dw = dsl - dxl / cos_yaw;
+                    let q = (rho * rho + sl * sl - w * w).max(0.0).sqrt();
+                    let dz = if q > 0.0 {
+                        (rho * d[1] + sl * dsl - w * dw) / q
+                    } else {
+                        0.0
+                    };
+                    // y along the circle: tan psi per x, and the lean times
+                    // the circle's slope -sigma/(rho cos psi) there.
+                    let slope = tan_yaw - lean * sl / (rho * cos_yaw);
+                    let dslope = -lean * (dsl * rho - sl * d[1]) / (rho * rho * cos_yaw);
+                    let dy = d[0] - dxl * slope + (x - xl) * dslope;
+                    let norm = dy.hypot(dz);
+                    (
+                        [p[0] + (x - xl) * slope, z_axis + q],
+                        [dy / norm, dz / norm],
+                    )
                 };
                 let (t_x, lam_w) =
                     intersect_normal(&section, c, nv, tx).ok_or_else(|| fail("wheel"))?;
@@ -498,7 +690,45 @@ impl ConformalGeometry {
             wheel_point_per_approach,
             wheel_rolling_radius_m,
             mean_contact_angle_rad: delta0,
+            yaw_rad,
+            wheel_axis_point_m,
         })
+    }
+
+    /// The lateral creepage along t(0) \[-\] and the spin about n(0)
+    /// \[1/m\] that the rigid slip's own wheel rotation makes at the origin
+    /// for longitudinal creepage `creepage_long` (see
+    /// [`ConformalGeometry::rigid_slip`]): those of the wheel's rotation
+    /// alone, without the creepages handed to it. A caller that has the
+    /// creepages of all motions at the origin hands on the rest.
+    pub fn wheel_rotation_creepages(&self, creepage_long: f64) -> (f64, f64) {
+        let d0 = self.mean_contact_angle_rad;
+        let [_, _, z_axis] = self.wheel_axis_point_m;
+        let (w_y, w_z) = self.wheel_rotation_slip(creepage_long, [0.0; 3]);
+        let lateral = w_y * d0.cos() + w_z * d0.sin();
+        // The rotation -(1 + xi)/(h cos psi) V (-sin psi, cos psi, 0)
+        // of the wheel relative to the rail, along n(0).
+        let spin = -(1.0 + creepage_long) * d0.sin() / -z_axis;
+        (lateral, spin)
+    }
+
+    /// The (y, z) parts of the rigid slip per V of the rail relative to
+    /// the wheel's rotation alone at the wheel point `p` (x, y, z) \[m\]
+    /// (the rail's own velocity, -e_x, has none).
+    fn wheel_rotation_slip(&self, creepage_long: f64, p: [f64; 3]) -> (f64, f64) {
+        let (fs, fc) = self.rotation_rates(creepage_long);
+        let [xa, ya, za] = self.wheel_axis_point_m;
+        (fs * (p[2] - za), -(fs * (p[1] - ya) + fc * (p[0] - xa)))
+    }
+
+    /// The wheel's rotation rate per V, f = (1 + xi)/(h cos psi) [1/m]
+    /// with h the axis' height above the origin (the rate that gives the
+    /// longitudinal creepage xi at the origin), times sin psi and cos psi.
+    fn rotation_rates(&self, creepage_long: f64) -> (f64, f64) {
+        let (sin_yaw, cos_yaw) = self.yaw_rad.sin_cos();
+        let h = -self.wheel_axis_point_m[2];
+        let f = (1.0 + creepage_long) / (h * cos_yaw);
+        (f * sin_yaw, f * cos_yaw)
     }
 
     /// Rigid slip (w_x, w_s) per element [-] for creepages at the rigid
@@ -518,8 +748,8 @@ impl ConformalGeometry {
         ws: &mut [f64],
     ) {
         let g = &self.grid;
-        let r = self.wheel_rolling_radius_m;
-        let z_axis = -r;
+        let (_, fc) = self.rotation_rates(c.creepage_long);
+        let z_axis = self.wheel_axis_point_m[2];
         let d0 = self.mean_contact_angle_rad;
         let (t0, n0) = ([d0.cos(), d0.sin()], [-d0.sin(), d0.cos()]);
         for iy in 0..g.ny {
@@ -539,9 +769,10 @@ impl ConformalGeometry {
                         [y0 + approach_m * dy, z0 + approach_m * dz]
                     }
                 };
-                // Wheel rotation: w = -e_x + ((1 + xi)/R) ((z - z_a) e_x - x e_z).
-                let f = (1.0 + c.creepage_long) / r;
-                let mut w = [-1.0 + f * (pz - z_axis), 0.0, -f * x];
+                // Wheel rotation -f V a about the axis through A,
+                // a = (-sin psi, cos psi, 0): w = -e_x + f a x (P - A).
+                let (wy, wz) = self.wheel_rotation_slip(c.creepage_long, [x, py, pz]);
+                let mut w = [-1.0 + fc * (pz - z_axis), wy, wz];
                 // Lateral creepage along t(0).
                 w[1] += c.creepage_lat * t0[0];
                 w[2] += c.creepage_lat * t0[1];
@@ -636,6 +867,81 @@ mod tests {
         let mut dup = pts.clone();
         dup[5] = dup[4];
         assert!(PointCurve::new(&dup, "rail").is_err());
+    }
+
+    /// A straight wheel profile (a cylinder of radius `r`) yawed by `psi`
+    /// on a plane, with the lead of its closest points: at lateral y they
+    /// lie at x = -y tan(psi), at the lowest points of their circles.
+    fn yawed_cylinder(r: f64, psi: f64, g: Grid) -> ConformalGeometry {
+        let pts: Vec<[f64; 2]> = (-300..=300).map(|k| [k as f64 * 5e-5, 0.0]).collect();
+        let lead: Vec<[f64; 2]> = pts.iter().map(|p| [-p[0] * psi.tan(), 0.0]).collect();
+        let wheel = PointCurve::with_lead(&pts, &lead, "wheel").unwrap();
+        let rail = Circle::rail(f64::INFINITY);
+        let yaw = WheelYaw {
+            yaw_rad: psi,
+            lean: 0.0,
+        };
+        ConformalGeometry::new_yawed(&rail, &wheel, yaw, r, g).unwrap()
+    }
+
+    #[test]
+    fn a_yawed_cylinder_on_a_plane_has_its_closed_form_gap_and_lateral_slip() {
+        // By hand: the cylinder's surface lies sqrt(r² - u²) below its
+        // axis, u = x cos(psi) + y sin(psi) the horizontal distance from
+        // the axis' vertical plane, so h = r - sqrt(r² - u²). It turns at
+        // f V = (1 + xi) V/(r cos psi) about (-sin psi, cos psi, 0): the
+        // rail moves relative to its point sqrt(r² - u²) below the axis
+        // laterally by f sin(psi) sqrt(r² - u²) per V, (1 + xi) tan(psi)
+        // at the origin.
+        let (r, psi, xi) = (0.46, 0.02, 1e-3);
+        let g = grid(21, 5e-3, 5e-3);
+        let geo = yawed_cylinder(r, psi, g);
+        let n = g.len();
+        let (mut wx, mut ws) = (vec![0.0; n], vec![0.0; n]);
+        let creep = ConformalCreepages {
+            creepage_long: xi,
+            ..Default::default()
+        };
+        geo.rigid_slip(
+            &creep,
+            RigidSlipSurface::ActualSurface,
+            0.0,
+            0.5,
+            &mut wx,
+            &mut ws,
+        );
+        for iy in 0..g.ny {
+            assert!(geo.delta_rad[iy].abs() < 1e-12);
+            for ix in 0..g.nx {
+                let (x, s) = (g.x_m(ix), g.y_m(iy));
+                let i = g.index(ix, iy);
+                let u = x * psi.cos() + s * psi.sin();
+                let q = (r * r - u * u).sqrt();
+                let want = r - q;
+                let got = geo.gap_m[i];
+                assert!(
+                    (got - want).abs() < 1e-14 + 1e-9 * want,
+                    "({x}, {s}): {got} vs {want}"
+                );
+                let want_s = (1.0 + xi) * psi.tan() * q / r;
+                assert!(
+                    (ws[i] - want_s).abs() < 1e-14,
+                    "({x}, {s}): {} vs {want_s}",
+                    ws[i]
+                );
+            }
+        }
+        let (lat, spin) = geo.wheel_rotation_creepages(xi);
+        assert!((lat - (1.0 + xi) * psi.tan()).abs() < 1e-16);
+        assert_eq!(spin, 0.0);
+        // Without yaw the lead vanishes and the geometry is that of
+        // `new`, bit for bit.
+        let plain = yawed_cylinder(r, 0.0, g);
+        let straight = Circle::rail(f64::INFINITY);
+        assert_eq!(
+            plain,
+            ConformalGeometry::new(&straight, &straight, r, g).unwrap()
+        );
     }
 
     #[test]

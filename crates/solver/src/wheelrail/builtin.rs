@@ -6,8 +6,10 @@ use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
 use crate::wheelrail::contact::{WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings};
 use crate::wheelrail::profile::{parse_profile, LoadOptions, Profile, ProfileError};
+use crate::wheelrail::spline::SplineOptions;
 use crate::wheelrail::wheelset::{
-    Side, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 /// Prefix of built-in profile names in case files: `builtin:NAME`.
@@ -49,6 +51,26 @@ pub const MBENCH_WHEELSET: WheelsetData = WheelsetData {
     nominal_radius_m: 0.460,
     flange_back_y_m: Some(-0.070),
 };
+
+/// The Manchester benchmark's pair: the built-in S1002 wheel on the
+/// built-in UIC60 rail on both sides, [`MBENCH_TRACK`] and
+/// [`MBENCH_WHEELSET`], default spline options.
+pub fn mbench_pair() -> Result<WheelRailPair, WheelRailError> {
+    let o = LoadOptions::default();
+    let load = |name: &str| {
+        profile(name, &o)
+            .expect("a built-in profile")
+            .map_err(|e| WheelRailError::invalid("profile", e.to_string()))
+    };
+    let (rail, wheel) = (load("MBench_UIC60_v3.prr")?, load("MBench_S1002_v3.prw")?);
+    WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        MBENCH_TRACK,
+        MBENCH_WHEELSET,
+        &SplineOptions::default(),
+    )
+}
 
 /// The input of Manchester benchmark case at lateral shift `y_mm`
 /// \[mm\] (Shackleton & Iwnicki, VSD 46, 2008): yaw 2.4 mrad per mm, 10 kN per

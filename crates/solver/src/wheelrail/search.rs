@@ -87,6 +87,11 @@ pub struct LocusPoint {
     pub radius_m: f64,
     /// Wheel profile y of the point \[m\].
     pub profile_y_m: f64,
+    /// Distance along the point's circle about the axle from the circle's
+    /// lowest point (direction e1) \[m\], positive ahead: nonzero with yaw
+    /// (the lead of the contact point, about r tan(delta) tan(psi) on a
+    /// cone of contact angle delta).
+    pub lead_m: f64,
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -190,6 +195,7 @@ impl LocusFrame {
             kx_per_m: -ty / r,
             radius_m: r,
             profile_y_m: s.q_m,
+            lead_m: r * st,
         }
     }
 }
