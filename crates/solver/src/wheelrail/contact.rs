@@ -991,8 +991,9 @@ pub struct WarmStart {
     /// while the potential contact area fits it.
     pub tractions: [Option<PatchTractions>; 2],
     /// Per wheel: `tractions` of the step before the previous one. Where
-    /// both map onto this step's grid ([`PatchTractions::on`]), the first
-    /// solve starts from their extrapolation to this step.
+    /// both fall on this step's grid (the same shape and element size,
+    /// shifted by whole elements), the first solve starts from their
+    /// extrapolation to this step.
     pub earlier_tractions: [Option<PatchTractions>; 2],
 }
 
