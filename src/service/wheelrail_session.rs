@@ -5,7 +5,7 @@
 //! deleted meanwhile), the settings of its opening message, a search
 //! scratch and the warm start of the previous step ([`WarmStart`]: roll
 //! angle, each wheel's normal force per vertical load, and a single exact
-//! patch's tangential tractions). It shares no
+//! patch's pressures and tangential tractions of the last two steps). It shares no
 //! mutable state with other sessions, so its outputs depend only on its own
 //! sequence of requests. A step is a transaction: it solves from a copy of
 //! the warm start, which replaces the session's only when the step is
@@ -14,8 +14,9 @@
 //! the session as it was. A marked step keeps a copy of the warm start
 //! after it (counted against the [`MarkBudget`](crate::service::session::MarkBudget)); a rollback restores it,
 //! so repeating the steps after the mark reproduces their outputs bit for
-//! bit. The search scratch holds buffers only: answers do not depend on
-//! it.
+//! bit. The search scratch holds buffers only (with each wheel's last
+//! exact patch solver, renewed for its kernels and buffers, none of its
+//! state): answers do not depend on it.
 
 use std::sync::Arc;
 

@@ -222,6 +222,66 @@ impl ContactSolver {
         }
     }
 
+    /// Makes this solver the one [`ContactSolver::new`] builds for
+    /// `problem`: in place, keeping its kernels and buffers, when it was
+    /// built for a grid of the same shape and element sizes (anywhere),
+    /// the same rolling direction and materials (the kernels `cache` gives
+    /// for `problem` are its own); else a new solver. Everything the last
+    /// solves left (pressures, tractions, states, history, warm start's
+    /// path, row friction scale) is forgotten: the next solves give the
+    /// same bits as on a new solver, without its allocations and first
+    /// touches of memory. A wheel/rail session renews each wheel's solver
+    /// from one time step to the next.
+    pub fn renew(&mut self, problem: &ContactProblem, cache: &KernelCache) {
+        let turns = quarter_turns(problem.rolling_direction_rad, &problem.grid).unwrap_or(0);
+        let frame = RollingFrame::new(turns, problem.grid);
+        let grid = frame.rolling_grid();
+        let same_shape = (grid.nx, grid.ny, grid.dx_m, grid.dy_m)
+            == (self.grid.nx, self.grid.ny, self.grid.dx_m, self.grid.dy_m);
+        let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
+        if !(same_shape && Arc::ptr_eq(&displacement, &self.displacement)) {
+            *self = Self::new(problem, cache);
+            return;
+        }
+        self.grid = grid;
+        self.frame = frame;
+        for v in [
+            &mut self.pn,
+            &mut self.tr.px,
+            &mut self.tr.py,
+            &mut self.tr.sx,
+            &mut self.tr.sy,
+            &mut self.h_eff,
+            &mut self.cx,
+            &mut self.cy,
+            &mut self.tmp_x,
+            &mut self.tmp_y,
+            &mut self.old_ux,
+            &mut self.old_uy,
+            &mut self.last_pn,
+            &mut self.last_px,
+            &mut self.last_py,
+        ] {
+            v.fill(0.0);
+        }
+        self.tr.state.fill(ElementState::Exterior);
+        self.prev_state.fill(ElementState::Exterior);
+        self.transient_steps = 0;
+        self.path.clear();
+        let law = &mut self.law;
+        for v in [
+            &mut law.mu,
+            &mut law.mu_before,
+            &mut law.velocity,
+            &mut law.velocity_new,
+            &mut law.bound,
+        ] {
+            v.fill(0.0);
+        }
+        law.used = false;
+        self.row_scale.clear();
+    }
+
     /// Friction varying across the rolling direction, one grid row at a
     /// time (CONTACT's friction per grid row, user guide §"Friction
     /// description", variable friction `VARFRC`): the friction
@@ -1258,6 +1318,51 @@ mod tests {
 
     fn solve_last(s: &mut ContactSolver, p: &ContactProblem) -> ContactSolution {
         s.solve(p).unwrap().pop().unwrap()
+    }
+
+    /// A renewed solver solves as a new one, bit for bit: one that solved
+    /// other loads and creepages with a row friction scale, renewed for a
+    /// grid of the same shape one element and a half away, and a new solver
+    /// for that grid, solve the same sequence to the same bits.
+    #[test]
+    fn a_renewed_solver_solves_as_a_new_one() {
+        let cache = KernelCache::default();
+        let first = rolling(1.0, 1.0);
+        let mut used = ContactSolver::new(&first, &cache);
+        used.set_row_friction_scale(&[0.9; 32]).unwrap();
+        solve_last(&mut used, &first);
+        solve_last(&mut used, &rolling(1.2, 3.0));
+        used.continue_from_last_solution();
+        let moved = |f_load: f64, f_creep: f64| {
+            let mut p = rolling(f_load, f_creep);
+            let g = p.grid;
+            p.grid = Grid::new(
+                g.nx,
+                g.ny,
+                g.dx_m,
+                g.dy_m,
+                g.x0_m + g.dx_m,
+                g.y0_m - 0.5 * g.dy_m,
+            )
+            .unwrap();
+            p.gap_m = ContactProblem::quadratic_gap(&p.grid, 1.0, 1.0);
+            p
+        };
+        used.renew(&moved(0.9, 2.0), &cache);
+        let mut fresh = ContactSolver::new(&moved(0.9, 2.0), &cache);
+        let mut frictionless = moved(1.1, 2.0);
+        frictionless.kinematics = Kinematics::Frictionless;
+        for p in [
+            moved(0.9, 2.0),
+            frictionless,
+            moved(1.0, 2.5),
+            moved(1.05, 2.6),
+        ] {
+            let (a, b) = (solve_last(&mut used, &p), solve_last(&mut fresh, &p));
+            assert_eq!(a.fields, b.fields);
+            assert_eq!(format!("{:?}", a.totals), format!("{:?}", b.totals));
+            assert_eq!(a.info.matvecs, b.info.matvecs);
+        }
     }
 
     /// A row scale of 2 everywhere is the coefficients doubled; a scale that differs by row bounds each row

@@ -998,9 +998,14 @@ pub struct WarmStart {
     /// tangential tractions, the first solve's start when this step's
     /// patch has a grid of the same shape and element size (shifted by
     /// whole elements to the same place). The patch grid is sized around
-    /// where they were loaded and keeps their grid's shape while the
-    /// potential contact area fits it.
+    /// where they were loaded and keeps their grid's shape (and lattice)
+    /// while the potential contact area fits it.
     pub tractions: [Option<PatchTractions>; 2],
+    /// Per wheel: `tractions` of the step before the previous one. Where
+    /// both fall on this step's grid (the same shape and element size,
+    /// shifted by whole elements), the first solve starts from their
+    /// extrapolation to this step.
+    pub earlier_tractions: [Option<PatchTractions>; 2],
 }
 
 impl WarmStart {
@@ -1024,6 +1029,7 @@ impl WarmStart {
         normal_per_vertical: [Option<f64>; 2],
         tractions: [Option<PatchTractions>; 2],
     ) {
+        let earlier_tractions = std::mem::take(&mut self.tractions);
         *self = WarmStart {
             roll_rad: Some(roll_rad),
             normal_per_vertical,
@@ -1032,6 +1038,7 @@ impl WarmStart {
                 self.normal_per_vertical_earlier[0],
             ],
             tractions,
+            earlier_tractions,
         };
     }
 }
@@ -1062,7 +1069,11 @@ pub fn extrapolated_start(last: Option<f64>, earlier: [Option<f64>; 2]) -> Optio
 impl WarmStart {
     /// Memory it holds, itself and its tractions \[bytes\].
     pub fn bytes(&self) -> usize {
-        let tractions = self.tractions.iter().flatten();
+        let tractions = self
+            .tractions
+            .iter()
+            .chain(&self.earlier_tractions)
+            .flatten();
         std::mem::size_of::<Self>()
             + tractions
                 .map(|t| {
@@ -1086,6 +1097,25 @@ pub struct PatchTractions {
 }
 
 impl PatchTractions {
+    /// The start of a solve on `grid` from these tractions ([`Self::on`]):
+    /// with `earlier`, the tractions of the step before theirs, where both
+    /// map onto `grid`, extrapolated along the line through the two
+    /// (2 last - earlier, the pressures kept >= 0).
+    fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
+        let mut last = self.on(grid)?;
+        if let Some(before) = earlier.and_then(|e| e.on(grid)) {
+            for (a, b) in last.iter_mut().zip(&before) {
+                for (a, &b) in a.iter_mut().zip(b) {
+                    *a = 2.0 * *a - b;
+                }
+            }
+            for p in &mut last[0] {
+                *p = p.max(0.0);
+            }
+        }
+        Some(last)
+    }
+
     /// These tractions on `grid` (pressure, longitudinal, lateral): None
     /// unless it has the same shape and element size; shifted by the whole
     /// elements between the two grids' corners (zero where they do not
@@ -1168,9 +1198,15 @@ pub fn solve_wheelset_warm(
         for &side in &input.sides {
             let i = side.index();
             let (ratio, start) = if solved {
-                (normal_per_vertical[i], tractions[i].as_ref())
+                (normal_per_vertical[i], [tractions[i].as_ref(), None])
             } else {
-                (first_start[i], warm.tractions[i].as_ref())
+                (
+                    first_start[i],
+                    [
+                        warm.tractions[i].as_ref(),
+                        warm.earlier_tractions[i].as_ref(),
+                    ],
+                )
             };
             let (wheel, ratio, carried) = solve_wheel(
                 pair,
@@ -1485,9 +1521,10 @@ fn solve_wheel(
     scratch: &mut SearchScratch,
     timing: &mut Timing,
     start: Option<f64>,
-    warm_tractions: Option<&PatchTractions>,
+    [warm_tractions, earlier_tractions]: [Option<&PatchTractions>; 2],
 ) -> Result<(WheelResult, Option<f64>, Option<PatchTractions>), WheelRailError> {
     let i = side.index();
+    let mut spare = scratch.solvers.0[i].take();
     let gap = &scratch.gap[i];
     let locus = &scratch.locus[i];
     let gmin = rigid.min_gap_m[i];
@@ -1506,7 +1543,9 @@ fn solve_wheel(
         // Not reaching the rail (a centre height above the rigid one, or a
         // wheel lifted by a given roll): nothing to solve.
         WheelLoad::Approach(d) if d <= gmin => {
-            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None, None))
+            let wheel = finish(pair, side, gmin, d, 0, Vec::new(), &mut spare);
+            scratch.solvers.0[i] = spare;
+            return Ok((wheel, None, None));
         }
         WheelLoad::Approach(d) => gmin + d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_warm"),
@@ -1528,7 +1567,7 @@ fn solve_wheel(
                 continue;
             };
             patches.push(build_patch(
-                pair, locus, geom, cap, &pose, side, input, omega, cache, last,
+                pair, locus, geom, cap, &pose, side, input, omega, cache, last, &mut spare,
             )?);
         }
         if patches.is_empty() {
@@ -1539,7 +1578,7 @@ fn solve_wheel(
         }
         if let ([p], Some(t)) = (patches.as_mut_slice(), warm_tractions) {
             if let PatchKind::Exact { problem, .. } = &p.kind {
-                if let Some([pn, px, py]) = t.on(&problem.grid) {
+                if let Some([pn, px, py]) = t.start_on(&problem.grid, earlier_tractions) {
                     p.warm_pressure = Some(pn);
                     p.warm_tractions = Some([px, py]);
                 }
@@ -1620,7 +1659,9 @@ fn solve_wheel(
                         timing.solve_s += tc.elapsed().as_secs_f64();
                         if let LoadResult::Done { delta, iterations } = r {
                             let ratio = normal_per_vertical(&patches, input);
-                            let wheel = finish(pair, side, gmin, delta, iterations, patches);
+                            let wheel =
+                                finish(pair, side, gmin, delta, iterations, patches, &mut spare);
+                            scratch.solvers.0[i] = spare;
                             return Ok((wheel, ratio, None));
                         }
                         return Err(WheelRailError::Geometry {
@@ -1631,7 +1672,8 @@ fn solve_wheel(
                 }
                 let ratio = normal_per_vertical(&patches, input);
                 let carried = carried_tractions(&patches);
-                let wheel = finish(pair, side, gmin, delta, iterations, patches);
+                let wheel = finish(pair, side, gmin, delta, iterations, patches, &mut spare);
+                scratch.solvers.0[i] = spare;
                 return Ok((wheel, ratio, carried));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
@@ -1674,6 +1716,7 @@ fn build_patch(
     omega: f64,
     cache: &KernelCache,
     last: Option<&PatchTractions>,
+    spare: &mut Option<Box<ContactSolver>>,
 ) -> Result<PatchWork, WheelRailError> {
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega);
     let rail = pair.rail(side);
@@ -1708,7 +1751,14 @@ fn build_patch(
                 rolling_direction_rad: 0.0,
                 extra_rigid_slip: None,
             };
-            let mut solver = Box::new(ContactSolver::new(&problem, cache));
+            // The wheel's last solver renewed (its kernels and buffers).
+            let mut solver = match spare.take() {
+                Some(mut s) => {
+                    s.renew(&problem, cache);
+                    s
+                }
+                None => Box::new(ContactSolver::new(&problem, cache)),
+            };
             if let Some(table) = &input.friction_table {
                 let mu = friction.kinetic_coefficient;
                 let scale: Vec<f64> = (0..grid.ny)
@@ -1849,7 +1899,9 @@ pub(crate) fn hertz_patch(
 /// again without `last`), and of the shape of the last grid (whose
 /// tractions then start this step's solves) when that covers the area and
 /// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
-/// direction.
+/// direction; such a grid lies whole elements from the last one (within
+/// half an element of the centred place), so that the last tractions fall
+/// on its elements.
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
@@ -1895,15 +1947,16 @@ fn patch_grid(
     let (need_x, need_s) = (((xhi - xlo) / e).ceil(), ((shi - slo) / e).ceil());
     let mut nx = ladder(need_x as usize).ok_or_else(too_big)?;
     let mut ns = ladder(need_s as usize).ok_or_else(too_big)?;
-    if let Some(k) = last.map(|t| &t.grid) {
-        // One element to spare: the centred grid may sit half an element
-        // off the area.
-        let fits = |n: usize, need: f64, ladder: usize| {
-            n as f64 >= need + 1.0 && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
-        };
-        if fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns) {
-            (nx, ns) = (k.nx, k.ny);
-        }
+    // One element to spare: the grid may sit half an element off the
+    // centred one, on the last grid's lattice.
+    let fits = |n: usize, need: f64, ladder: usize| {
+        n as f64 >= need + 1.0 && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
+    };
+    let kept = last
+        .map(|t| &t.grid)
+        .filter(|k| fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns));
+    if let Some(k) = kept {
+        (nx, ns) = (k.nx, k.ny);
     }
     let limit = input.settings.max_grid_elements;
     if nx * ns > limit {
@@ -1919,8 +1972,14 @@ fn patch_grid(
             ),
         ));
     }
-    let x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
-    let s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
+    let mut x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
+    let mut s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
+    if let Some(k) = kept {
+        // Whole elements from the last grid: its tractions then fall on
+        // this grid's elements, not half an element off.
+        x0 = k.x0_m + ((x0 - k.x0_m) / e).round() * e;
+        s0 = k.y0_m + ((s0 - k.y0_m) / e).round() * e;
+    }
     Ok(Grid::new(nx, ns, e, e, x0, s0)?)
 }
 
@@ -2602,6 +2661,9 @@ fn exact_angle_variation(rail: &PlacedRail, p: &PatchWork) -> f64 {
     }
 }
 
+/// The wheel's result from its solved `patches`; an exact patch's solver
+/// goes to `spare` (the last one's of several), to be renewed by the next
+/// solve of the wheel.
 pub(crate) fn finish(
     pair: &WheelRailPair,
     side: Side,
@@ -2609,6 +2671,7 @@ pub(crate) fn finish(
     delta: f64,
     iterations: usize,
     patches: Vec<PatchWork>,
+    spare: &mut Option<Box<ContactSolver>>,
 ) -> WheelResult {
     let s = side.sign();
     let rail = pair.rail(side);
@@ -2679,6 +2742,9 @@ pub(crate) fn finish(
             solution,
             grid_geometry,
         });
+        if let PatchKind::Exact { solver, .. } = p.kind {
+            *spare = Some(solver);
+        }
     }
     // Field side first: decreasing q.
     out.sort_by(|a, b| (s * b.track_y_m).total_cmp(&(s * a.track_y_m)));

@@ -28,6 +28,7 @@
 //!    reference (as the load moves it), plus the wheel's curvature along
 //!    x: h(x, s) = h(s) + k_x(s) (x - dx(s))^2 / 2 (planar contact approach).
 
+use crate::core::solve::ContactSolver;
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, PlacedWheel, Side, WheelRailError, WheelRailPair, WheelsetPosition,
     SAMPLE_SPACING_M,
@@ -379,13 +380,30 @@ fn range(it: impl Iterator<Item = f64>) -> (f64, f64) {
     })
 }
 
-/// Buffers of the contact search, reused between calls.
+/// Buffers of a wheelset solve, reused between calls: the contact search's,
+/// and each wheel's last exact patch solver, which the next solve of a
+/// patch grid of the same shape renews ([`ContactSolver::renew`]: its
+/// kernels and buffers, none of its state). Nothing in them changes a
+/// result.
 #[derive(Debug, Clone, Default)]
 pub struct SearchScratch {
     /// Contact locus per side (left, right).
     pub locus: [Vec<LocusPoint>; 2],
     /// Vertical gap per side.
     pub gap: [VerticalGap; 2],
+    /// Per side: the last exact patch solver.
+    pub(crate) solvers: SpareSolvers,
+}
+
+/// Per side (left, right): a patch solver kept for its kernels and buffers.
+#[derive(Clone, Default)]
+pub(crate) struct SpareSolvers(pub(crate) [Option<Box<ContactSolver>>; 2]);
+
+impl std::fmt::Debug for SpareSolvers {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let kept = self.0.each_ref().map(|s| s.is_some());
+        f.debug_tuple("SpareSolvers").field(&kept).finish()
+    }
 }
 
 /// The rigid position of the wheelset: both wheels touch their rails (or,

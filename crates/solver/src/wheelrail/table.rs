@@ -859,7 +859,7 @@ fn solve_wheel_tabulated(
         WheelLoad::VerticalForce(f) => gmin + CAP_FACTOR * approach_estimate(deepest, input, f),
         // Not reaching the rail: nothing to solve (as the direct path).
         WheelLoad::Approach(d) if d <= gmin => {
-            return Ok((finish(pair, side, gmin, d, 0, Vec::new()), None))
+            return Ok((finish(pair, side, gmin, d, 0, Vec::new(), &mut None), None))
         }
         WheelLoad::Approach(d) => gmin + d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_tabulated"),
@@ -893,7 +893,10 @@ fn solve_wheel_tabulated(
                     continue;
                 }
                 let ratio = normal_per_vertical(&patches, input);
-                return Ok((finish(pair, side, gmin, delta, iterations, patches), ratio));
+                return Ok((
+                    finish(pair, side, gmin, delta, iterations, patches, &mut None),
+                    ratio,
+                ));
             }
             LoadResult::CapTooSmall => {
                 cap = gmin + 2.0 * (cap - gmin);
