@@ -62,15 +62,21 @@ impl ContactError {
     }
 
     /// The error with an input key `from` or `from.…` renamed to `to` or
-    /// `to.…` (a step's `step.shift_x_m` as `transient.steps[3].shift_x_m`);
-    /// other errors unchanged.
+    /// `to.…` (a step's `step.shift_x_m` as `transient.steps[3].shift_x_m`;
+    /// each of several keys joined by ", "); other errors unchanged.
     pub fn with_key_prefix(self, from: &str, to: &str) -> Self {
         match self {
             ContactError::InvalidInput { key, reason } => {
-                let key = match key.strip_prefix(from) {
-                    Some(rest) if rest.is_empty() || rest.starts_with('.') => format!("{to}{rest}"),
-                    _ => key,
-                };
+                let key = key
+                    .split(", ")
+                    .map(|k| match k.strip_prefix(from) {
+                        Some(rest) if rest.is_empty() || rest.starts_with('.') => {
+                            format!("{to}{rest}")
+                        }
+                        _ => k.to_string(),
+                    })
+                    .collect::<Vec<_>>()
+                    .join(", ");
                 ContactError::InvalidInput { key, reason }
             }
             other => other,

@@ -30,10 +30,11 @@
 //!
 //! A transient step's force decreases with its shift in the same way (a
 //! convex problem from the same previous state), so one prescribed force
-//! takes the same safeguarded secant on the shift, each solve from the state
-//! before the step (restored: [`ContactSolver::save_state`]); its first
-//! step uses Mindlin's tangential stiffness 8 G a/(2 - nu), a the radius of
-//! a circle of the contact area.
+//! takes the same safeguarded secant on the shift, and both forces the same
+//! Newton iteration on the two shifts, each solve from the state before the
+//! step (restored: [`ContactSolver::save_state`]); the first step uses
+//! Mindlin's tangential stiffness 8 G a/(2 - nu), a the radius of a circle
+//! of the contact area.
 //!
 //! A force of magnitude mu Fn or more (mu kinetic: the bound at full
 //! slip) has no finite creepage and is refused naming its key; a smaller
@@ -219,13 +220,12 @@ pub struct StepForceSolution {
 
 /// Solves the transient `step` of `problem` (transient kinematics), going on
 /// from `solver`'s state as [`ContactSolver::solve_next_step`] does, for the
-/// shift that gives `target`: one force, Fx (the shift in x found) or Fy
-/// (in y); the step's shift in that direction is the start, its other
+/// shift that gives `target`: Fx (the shift in x found), Fy (in y) or
+/// both; the step's shifts in those directions are the start, its other
 /// shift, rotation, rolling distance and load are kept. The solver ends in
 /// the state after the step at the shift found (its state before the step
 /// when an error is returned: `problem`'s grid; a force at or beyond
-/// saturation, or both forces, refused naming `step.force_x_n` /
-/// `step.force_y_n`).
+/// saturation refused naming `step.force_x_n` / `step.force_y_n`).
 pub fn solve_prescribed_force_step(
     solver: &mut ContactSolver,
     problem: &ContactProblem,
@@ -246,12 +246,8 @@ pub fn solve_prescribed_force_step(
                 solves: 1,
             });
         }
-        (Some(_), Some(_)) => {
-            return Err(ContactError::invalid(
-                STEP_FORCE_Y_KEY,
-                "a transient step takes one prescribed force: give the shift of the other \
-                 direction",
-            ))
+        (Some(fx), Some(fy)) => {
+            return step_both(solver, problem, step, [fx, fy], settings);
         }
     };
     let key = if k == 0 {
@@ -289,10 +285,7 @@ pub fn solve_prescribed_force_step(
         .tolerance
         .max(10.0 * problem.settings.tangential.tolerance)
         * limit;
-    // Mindlin's tangential stiffness of a circle of the contact area.
-    let m = &problem.material;
-    let a = (first.totals.contact_area_m2 / std::f64::consts::PI).sqrt();
-    let slope0 = -8.0 * m.shear_modulus_pa * a / (2.0 - m.poisson_ratio);
+    let slope0 = mindlin_slope(problem, &first);
     let mut last = shift(step);
     let root = decreasing_root(
         shift(step),
@@ -317,9 +310,7 @@ pub fn solve_prescribed_force_step(
             solver.restore_state(&before)?;
             return Err(match e {
                 RootError::Eval(e) => e,
-                RootError::OutOfRange { next } => {
-                    out_of_reach(key, f, ["other shift and rotation", "shift [m]"], next)
-                }
+                RootError::OutOfRange { next } => out_of_reach(key, f, STEP_REACH, next),
             });
         }
     };
@@ -410,13 +401,96 @@ pub fn continued_start(
         _ => return *step,
     };
     let mut start = *step;
-    match (target.force_x_n, target.force_y_n) {
-        (Some(_), None) => start.shift_x_m = scale * previous.shift_x_m,
-        (None, Some(_)) => start.shift_y_m = scale * previous.shift_y_m,
-        _ => {}
+    if target.force_x_n.is_some() {
+        start.shift_x_m = scale * previous.shift_x_m;
+    }
+    if target.force_y_n.is_some() {
+        start.shift_y_m = scale * previous.shift_y_m;
     }
     start
 }
+
+/// [`solve_prescribed_force_step`] with both forces prescribed: Newton on
+/// the two shifts, each solve from the state before the step.
+fn step_both(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    step: &ShiftStep,
+    target: [f64; 2],
+    settings: ForceControlSettings,
+) -> Result<StepForceSolution, ContactError> {
+    for (key, f) in [(STEP_FORCE_X_KEY, target[0]), (STEP_FORCE_Y_KEY, target[1])] {
+        crate::core::error::require_finite(key, f)?;
+    }
+    let with_shifts = |x: [f64; 2]| ShiftStep {
+        shift_x_m: x[0],
+        shift_y_m: x[1],
+        ..*step
+    };
+    let mut before = SolverState::default();
+    solver.save_state(&mut before);
+    let prescribed = PrescribedForce {
+        force_x_n: Some(target[0]),
+        force_y_n: Some(target[1]),
+    };
+    let solved = (|| {
+        let first = solver.solve_next_step(problem, step)?;
+        let limit = saturation(
+            problem,
+            &first,
+            prescribed,
+            [STEP_FORCE_X_KEY, STEP_FORCE_Y_KEY],
+        )?;
+        let tol = settings
+            .tolerance
+            .max(10.0 * problem.settings.tangential.tolerance)
+            * limit;
+        let slope0 = mindlin_slope(problem, &first);
+        let h = (1e-3 * limit / slope0.abs()).max(1e-15);
+        let reach = Reach {
+            range: SHIFT_RANGE,
+            key: STEP_FORCE_X_KEY,
+            words: STEP_REACH,
+        };
+        newton_both(
+            [step.shift_x_m, step.shift_y_m],
+            first,
+            target,
+            [slope0, h],
+            tol,
+            settings,
+            reach,
+            |x, _| {
+                solver.restore_state(&before)?;
+                solver.solve_next_step(problem, &with_shifts(x))
+            },
+        )
+    })();
+    match solved {
+        Ok(end) => Ok(StepForceSolution {
+            solution: end.solution,
+            step: with_shifts(end.x),
+            outer_iterations: end.iterations,
+            solves: end.solves,
+            converged: end.converged,
+        }),
+        Err(e) => {
+            solver.restore_state(&before)?;
+            Err(e)
+        }
+    }
+}
+
+/// Mindlin's tangential stiffness dF/dshift of a circle of `first`'s
+/// contact area, 8 G a/(2 - nu) (negative: the force opposes the shift).
+fn mindlin_slope(problem: &ContactProblem, first: &ContactSolution) -> f64 {
+    let m = &problem.material;
+    let a = (first.totals.contact_area_m2 / std::f64::consts::PI).sqrt();
+    -8.0 * m.shear_modulus_pa * a / (2.0 - m.poisson_ratio)
+}
+
+/// What [`out_of_reach`] says of a transient step.
+const STEP_REACH: [&str; 2] = ["other shift and rotation", "shift [m]"];
 
 /// mu Fn of `first` (mu kinetic), or the error of a `target` at or beyond it
 /// (naming `keys`, x then y).
@@ -532,42 +606,67 @@ fn one_direction(
     })
 }
 
+/// What the Newton iteration of two prescribed forces ([`newton_both`])
+/// ends with.
+struct BothEnd {
+    solution: ContactSolution,
+    /// The unknowns found (creepages or shifts).
+    x: [f64; 2],
+    iterations: usize,
+    solves: usize,
+    converged: bool,
+}
+
+/// The unknowns' range of [`newton_both`] and the error of leaving it.
+struct Reach<'a> {
+    range: Range,
+    key: &'a str,
+    /// What [`out_of_reach`] says.
+    words: [&'a str; 2],
+}
+
+/// Newton on the two unknowns `x` (creepages or shifts) for the forces
+/// `target` (Fx, Fy), from `x0` whose solution is `first`, with a
+/// forward-difference Jacobian of step `h` (two extra solves an
+/// iteration; `slope0` where it is singular) and a backtracking line
+/// search on |F - F*|. `eval(x, probe)` solves at `x`; `probe` marks the
+/// difference solves, which must not move the state the next solves start
+/// from. The last evaluation is always the solution returned.
 #[allow(clippy::too_many_arguments)]
-fn both(
-    solver: &mut ContactSolver,
-    problem: &ContactProblem,
-    c0: Creepages,
-    target: [f64; 2],
+fn newton_both(
+    x0: [f64; 2],
     first: ContactSolution,
+    target: [f64; 2],
     [slope0, h]: [f64; 2],
     tol: f64,
     settings: ForceControlSettings,
-) -> Result<ForceSolution, ContactError> {
+    reach: Reach,
+    mut eval: impl FnMut([f64; 2], bool) -> Result<ContactSolution, ContactError>,
+) -> Result<BothEnd, ContactError> {
     let residual = |s: &ContactSolution| [s.totals.fx_n - target[0], s.totals.fy_n - target[1]];
     let norm = |r: [f64; 2]| r[0].hypot(r[1]);
-    let mut work = problem.clone();
-    let mut c = c0;
+    let mut x = x0;
     let mut sol = first;
     let mut r = residual(&sol);
     let mut solves = 1;
     let mut iterations = 0;
     while r[0].abs() > tol || r[1].abs() > tol {
         if iterations == settings.max_iterations {
-            return Ok(ForceSolution {
+            return Ok(BothEnd {
                 solution: sol,
-                creepages: c,
-                outer_iterations: iterations,
+                x,
+                iterations,
                 solves,
                 converged: false,
             });
         }
         iterations += 1;
-        // col[k]: d(Fx, Fy)/d(creepage k).
+        // col[k]: d(Fx, Fy)/d(x k).
         let mut col = [[0.0; 2]; 2];
         for (k, d) in col.iter_mut().enumerate() {
-            let mut cp = c;
-            set(&mut cp, k, component(&c, k) + h);
-            let s = one(&mut solver.clone(), with(&mut work, cp))?;
+            let mut xp = x;
+            xp[k] += h;
+            let s = eval(xp, true)?;
             solves += 1;
             *d = [
                 (s.totals.fx_n - sol.totals.fx_n) / h,
@@ -586,28 +685,24 @@ fn both(
         };
         let mut t = 1.0;
         loop {
-            let mut cn = c;
-            cn.creepage_long += t * step[0];
-            cn.creepage_lat += t * step[1];
-            if !(CREEPAGE_RANGE.contains(cn.creepage_long)
-                && CREEPAGE_RANGE.contains(cn.creepage_lat))
-            {
+            let xn = [x[0] + t * step[0], x[1] + t * step[1]];
+            if !(reach.range.contains(xn[0]) && reach.range.contains(xn[1])) {
                 if t < 1e-6 {
                     return Err(out_of_reach(
-                        FORCE_X_KEY,
+                        reach.key,
                         target[0].hypot(target[1]),
-                        STEADY_REACH,
-                        cn.creepage_long.hypot(cn.creepage_lat),
+                        reach.words,
+                        xn[0].hypot(xn[1]),
                     ));
                 }
                 t *= 0.5;
                 continue;
             }
-            let s = one(solver, with(&mut work, cn))?;
+            let s = eval(xn, false)?;
             solves += 1;
             let rn = residual(&s);
             if norm(rn) < (1.0 - 1e-4 * t) * norm(r) || t < 1e-6 {
-                c = cn;
+                x = xn;
                 sol = s;
                 r = rn;
                 break;
@@ -615,12 +710,61 @@ fn both(
             t *= 0.5;
         }
     }
-    Ok(ForceSolution {
+    Ok(BothEnd {
         converged: sol.info.status == SolveStatus::Converged,
         solution: sol,
-        creepages: c,
-        outer_iterations: iterations,
+        x,
+        iterations,
         solves,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn both(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    c0: Creepages,
+    target: [f64; 2],
+    first: ContactSolution,
+    slope_h: [f64; 2],
+    tol: f64,
+    settings: ForceControlSettings,
+) -> Result<ForceSolution, ContactError> {
+    let mut work = problem.clone();
+    let creepages = |x: [f64; 2]| Creepages {
+        creepage_long: x[0],
+        creepage_lat: x[1],
+        ..c0
+    };
+    let reach = Reach {
+        range: CREEPAGE_RANGE,
+        key: FORCE_X_KEY,
+        words: STEADY_REACH,
+    };
+    let end = newton_both(
+        [c0.creepage_long, c0.creepage_lat],
+        first,
+        target,
+        slope_h,
+        tol,
+        settings,
+        reach,
+        |x, probe| {
+            let p = with(&mut work, creepages(x));
+            if probe {
+                // From a clone: the warm start stays the iterate's.
+                one(&mut solver.clone(), p)
+            } else {
+                one(solver, p)
+            }
+        },
+    )?;
+    Ok(ForceSolution {
+        solution: end.solution,
+        creepages: creepages(end.x),
+        outer_iterations: end.iterations,
+        solves: end.solves,
+        converged: end.converged,
     })
 }
 
@@ -1005,13 +1149,63 @@ mod tests {
     }
 
     #[test]
-    fn a_step_force_at_saturation_or_two_forces_are_refused() {
+    fn both_step_forces_give_back_both_shifts() {
+        let (p, mut s) = loaded();
+        let mut before = SolverState::default();
+        s.save_state(&mut before);
+        let step = shift_step(&p, 2e-6, -1.5e-6, 2e-4);
+        let forward = s.solve_next_step(&p, &step).unwrap();
+        s.restore_state(&before).unwrap();
+        let target = PrescribedForce {
+            force_x_n: Some(forward.totals.fx_n),
+            force_y_n: Some(forward.totals.fy_n),
+        };
+        let start = shift_step(&p, 0.0, 0.0, 2e-4);
+        let r =
+            solve_prescribed_force_step(&mut s, &p, &start, target, Default::default()).unwrap();
+        assert!(r.converged);
+        for (got, want) in [
+            (r.step.shift_x_m, step.shift_x_m),
+            (r.step.shift_y_m, step.shift_y_m),
+        ] {
+            assert!(
+                (got - want).abs() <= 1e-5 * want.abs(),
+                "shift {got:e} against {want:e}"
+            );
+        }
+        let limit = MU * r.solution.totals.normal_force_n;
+        assert!((r.solution.totals.fx_n - forward.totals.fx_n).abs() <= 1e-9 * limit);
+        assert!((r.solution.totals.fy_n - forward.totals.fy_n).abs() <= 1e-9 * limit);
+        println!(
+            "both shifts in {} Newton steps, {} solves",
+            r.outer_iterations, r.solves
+        );
+        // The solver is left after the step found: its state is the
+        // forward step's (the same shifts to the tolerance).
+        let next = s
+            .solve_next_step(&p, &shift_step(&p, 0.0, 0.0, 0.0))
+            .unwrap();
+        s.restore_state(&before).unwrap();
+        s.solve_next_step(&p, &step).unwrap();
+        let again = s
+            .solve_next_step(&p, &shift_step(&p, 0.0, 0.0, 0.0))
+            .unwrap();
+        assert!((next.totals.fx_n - again.totals.fx_n).abs() <= 1e-6 * limit);
+        assert!((next.totals.fy_n - again.totals.fy_n).abs() <= 1e-6 * limit);
+    }
+
+    #[test]
+    fn a_step_force_at_saturation_is_refused() {
         let (p, mut s) = loaded();
         let step = shift_step(&p, 0.0, 0.0, 0.0);
         let cases = [
             (Some(1.01 * MU * FN), None, STEP_FORCE_X_KEY),
             (None, Some(-MU * FN), STEP_FORCE_Y_KEY),
-            (Some(100.0), Some(100.0), STEP_FORCE_Y_KEY),
+            (
+                Some(0.8 * MU * FN),
+                Some(0.8 * MU * FN),
+                "step.force_x_n, step.force_y_n",
+            ),
         ];
         let mut before = SolverState::default();
         s.save_state(&mut before);

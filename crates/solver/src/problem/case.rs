@@ -1102,10 +1102,10 @@ pub struct TransientSection {
 /// `transient.rolling_step_m` or the step's `rolling_m`), never both. A
 /// shift step with `rolling_m` rolls that far by its shift: the potential
 /// contact area moves with the bodies, in world-fixed terms (the
-/// tractions stay where they are on the bodies). In either kind one
-/// tangential force may be prescribed instead of the shift or creepage of
-/// its direction (exact model): the step is solved for the shift that
-/// gives it, reported with the step.
+/// tractions stay where they are on the bodies). In either kind the
+/// tangential forces may be prescribed instead of the shifts or creepages
+/// of their directions (exact model): the step is solved for the shifts
+/// that give them, reported with the step.
 #[derive(Debug, Clone, Copy, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepSection {
@@ -1140,8 +1140,8 @@ pub struct StepSection {
     /// `creepage_long` (a rolling step); exact model.
     #[serde(default)]
     pub force_x_n: Option<f64>,
-    /// Prescribed lateral force Fy \[N\], |Fy| < mu Fn, instead of
-    /// `shift_y_m` or `creepage_lat`; not with `force_x_n`.
+    /// Prescribed lateral force Fy \[N\], |(Fx, Fy)| < mu Fn, instead of
+    /// `shift_y_m` or `creepage_lat` (with `force_x_n` or alone).
     #[serde(default)]
     pub force_y_n: Option<f64>,
     /// Line contact: prescribed longitudinal force per metre Fx' \[N/m\],
@@ -1166,9 +1166,9 @@ pub struct StepSection {
 }
 
 impl StepSection {
-    /// The force prescribed in the step (`force_x_n_per_m` as Fx when
-    /// `line`: a line contact's totals are per metre), at most one,
-    /// checked against its range; `key` names the step.
+    /// The forces prescribed in the step (`force_x_n_per_m` as Fx when
+    /// `line`: a line contact's totals are per metre), checked against
+    /// their ranges; `key` names the step.
     fn force(&self, key: &str, line: bool) -> Result<PrescribedForce, CaseError> {
         let force_x_n = match (line, self.force_x_n, self.force_x_n_per_m) {
             (true, Some(_), _) => {
@@ -1202,13 +1202,6 @@ impl StepSection {
         };
         if let Some(f) = self.force_y_n {
             ranges::TANGENTIAL_FORCE.check(&format!("{key}.force_y_n"), f)?;
-            if force_x_n.is_some() {
-                return Err(bad(
-                    format!("{key}.force_y_n"),
-                    "a transient step takes one prescribed force: give the shift (or creepage) \
-                     of the other direction",
-                ));
-            }
         }
         Ok(PrescribedForce {
             force_x_n,
@@ -3487,8 +3480,8 @@ mod step_force_tests {
                 &["transient.steps[0].force_x_n", "creepage_long"],
             ),
             (
-                "{ force_x_n = 10.0, force_y_n = 10.0 }",
-                &["transient.steps[0].force_y_n", "one prescribed force"],
+                "{ force_x_n = 10.0, force_y_n = 10.0, shift_y_m = 1e-7 }",
+                &["transient.steps[0].force_y_n", "shift_y_m"],
             ),
             (
                 "{ force_x_n_per_m = 10.0 }",
