@@ -41,6 +41,8 @@
 //! force that the given other creepage and spin leave out of reach is
 //! refused when the creepage would leave its input range (|creepage| <= 1).
 
+use std::time::Instant;
+
 use crate::core::error::Range;
 use crate::core::error::{show, ContactError};
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep, CREEPAGE_RANGE};
@@ -151,6 +153,20 @@ pub fn solve_prescribed_force(
     target: PrescribedForce,
     settings: ForceControlSettings,
 ) -> Result<ForceSolution, ContactError> {
+    let t0 = Instant::now();
+    let mut f = creepages_for_force(solver, problem, target, settings)?;
+    // The solve time is the whole iteration's.
+    f.solution.info.solve_time_s = t0.elapsed().as_secs_f64();
+    Ok(f)
+}
+
+/// [`solve_prescribed_force`] but for the solve time.
+fn creepages_for_force(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    target: PrescribedForce,
+    settings: ForceControlSettings,
+) -> Result<ForceSolution, ContactError> {
     let Kinematics::SteadyRolling(c0) = problem.kinematics else {
         return Err(ContactError::invalid(
             FORCE_X_KEY,
@@ -227,6 +243,21 @@ pub struct StepForceSolution {
 /// when an error is returned: `problem`'s grid; a force at or beyond
 /// saturation refused naming `step.force_x_n` / `step.force_y_n`).
 pub fn solve_prescribed_force_step(
+    solver: &mut ContactSolver,
+    problem: &ContactProblem,
+    step: &ShiftStep,
+    target: PrescribedForce,
+    settings: ForceControlSettings,
+) -> Result<StepForceSolution, ContactError> {
+    let t0 = Instant::now();
+    let mut f = shifts_for_force(solver, problem, step, target, settings)?;
+    // The solve time is the whole step's, all its solves.
+    f.solution.info.solve_time_s = t0.elapsed().as_secs_f64();
+    Ok(f)
+}
+
+/// [`solve_prescribed_force_step`] but for the solve time.
+fn shifts_for_force(
     solver: &mut ContactSolver,
     problem: &ContactProblem,
     step: &ShiftStep,
