@@ -289,14 +289,14 @@ impl PatchEngine {
 
     /// Solves one more transient step of the exact model, from the state
     /// the previous step left, with the bodies' undeformed distance moved
-    /// `gap_travel_x_m` further over the grid, for the shift giving its
+    /// its `gap_travel_x_m` further over the grid, for the shift giving its
     /// prescribed force if it has one (errors name `step.shift.…`).
     pub fn solve_next_step(
         &mut self,
         step: &TransientStep,
-        gap_travel_x_m: f64,
         fields: bool,
     ) -> Result<pb::PatchResult, ServiceError> {
+        let gap_travel_x_m = step.gap_travel_x_m;
         let e = self.exact.as_mut().ok_or_else(|| {
             ServiceError::invalid("model", "transient sessions run the exact model only")
         })?;

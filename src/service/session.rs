@@ -27,7 +27,7 @@ use std::sync::Arc;
 use crate::core::force::PrescribedForce;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics};
-use crate::problem::case::{gap_travel, ranges, transient_step, Model, TransientStep};
+use crate::problem::case::{ranges, transient_step, Model, TransientStep};
 use crate::service::convert;
 use crate::service::engine::{EngineState, PatchEngine};
 use crate::service::pb;
@@ -62,8 +62,8 @@ enum Motion {
     Static,
     /// Steady rolling at these creepages, or at the forces prescribed.
     Rolling(Creepages, PrescribedForce),
-    /// A transient step and how far the bodies' gap travels in it.
-    Shift(TransientStep, f64),
+    /// A transient step (with how far the bodies' gap travels in it).
+    Shift(TransientStep),
 }
 
 /// Field number of `step` in `SessionResponse` and `WheelRailSessionResponse`.
@@ -411,15 +411,16 @@ impl Session {
                 }
                 let section = convert::step_section(sh);
                 let case = self.engine.case();
-                let travel = gap_travel("step.shift", &section, case.model, case.gap_m.is_some())?;
                 let shift = transient_step(
                     "step.shift",
                     &section,
                     load,
                     case.rolling_step_m,
                     case.geometry.is_line(),
+                    case.model,
+                    case.gap_m.is_some(),
                 )?;
-                Motion::Shift(shift, travel)
+                Motion::Shift(shift)
             }
         };
         Ok(StepInput {
@@ -489,9 +490,7 @@ impl Session {
                 self.engine.set_rolling(c, force);
                 self.engine.solve(self.fields)
             }
-            Motion::Shift(shift, travel) => {
-                self.engine.solve_next_step(&shift, travel, self.fields)
-            }
+            Motion::Shift(shift) => self.engine.solve_next_step(&shift, self.fields),
         }
         .map_err(|e| {
             e.rekey("load", "step")

@@ -1785,9 +1785,18 @@ impl Case {
                     let mut offset = 0.0;
                     for (k, s) in t.steps.iter().enumerate() {
                         let key = format!("transient.steps[{k}]");
-                        offset += gap_travel(&key, s, model, file.geometry.gap_m.is_some())?;
+                        let given_gap = file.geometry.gap_m.is_some();
+                        let t = transient_step(
+                            &key,
+                            s,
+                            load,
+                            t.rolling_step_m,
+                            line,
+                            model,
+                            given_gap,
+                        )?;
+                        offset += t.gap_travel_x_m;
                         offsets.push(offset);
-                        let t = transient_step(&key, s, load, t.rolling_step_m, line)?;
                         if t.force.any() && model != Model::Exact {
                             return Err(bad(
                                 format!("{key}.force_x_n"),
@@ -2580,6 +2589,9 @@ pub struct TransientStep {
     pub step: ShiftStep,
     /// The force prescribed in the step.
     pub force: PrescribedForce,
+    /// How far the bodies' undeformed distance travels over the grid in
+    /// the step \[m\] (`gap_travel_x_m`, 0 when not given).
+    pub gap_travel_x_m: f64,
 }
 
 /// The core step of a step section `s` named `key`: a rolling step of
@@ -2589,14 +2601,18 @@ pub struct TransientStep {
 /// when `line`, a line contact, which shifts and rolls in x only); with
 /// the force it prescribes. Checks the ranges and that a step is one kind
 /// or the other and gives either the shift (creepage) or the force of a
-/// direction, naming the key.
+/// direction, and its `gap_travel_x_m` (only in a shift step of the exact
+/// `model` without a gap given per element, `given_gap`), naming the key.
 pub fn transient_step(
     key: &str,
     s: &StepSection,
     default_load: NormalLoad,
     rolling_step_m: Option<f64>,
     line: bool,
+    model: Model,
+    given_gap: bool,
 ) -> Result<TransientStep, CaseError> {
+    let gap_travel_x_m = gap_travel(key, s, model, given_gap)?;
     let load = one_load(
         key,
         s.normal_force_n,
@@ -2697,19 +2713,18 @@ pub fn transient_step(
         }
     };
     check_shift_step(key, &step)?;
-    Ok(TransientStep { step, force })
+    Ok(TransientStep {
+        step,
+        force,
+        gap_travel_x_m,
+    })
 }
 
 /// The `gap_travel_x_m` of step `s` named `key` (0 when not given),
 /// checked: a shift step of the exact `model` whose gap is the quadratic
 /// one (`given_gap`: an undeformed distance given per element, which does
 /// not travel).
-pub fn gap_travel(
-    key: &str,
-    s: &StepSection,
-    model: Model,
-    given_gap: bool,
-) -> Result<f64, CaseError> {
+fn gap_travel(key: &str, s: &StepSection, model: Model, given_gap: bool) -> Result<f64, CaseError> {
     let Some(t) = s.gap_travel_x_m else {
         return Ok(0.0);
     };

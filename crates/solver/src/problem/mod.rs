@@ -182,17 +182,22 @@ pub fn solve_exact(
     } else {
         case.step_forces.clone()
     };
-    // Bodies travelling over the grid: each step's gap, moved.
+    // Bodies travelling over the grid: a step's gap, moved where it
+    // travelled (the problem's gap is the one at offset 0).
+    let mut at = 0.0;
     let travel = |k: usize, p: &mut ContactProblem| {
         if let Some(&offset) = case.step_gap_offsets_m.get(k) {
-            let grid = p.grid;
-            ContactProblem::quadratic_gap_at(
-                &grid,
-                case.a_per_m,
-                case.b_per_m,
-                offset,
-                &mut p.gap_m,
-            );
+            if offset != at {
+                let grid = p.grid;
+                ContactProblem::quadratic_gap_at(
+                    &grid,
+                    case.a_per_m,
+                    case.b_per_m,
+                    offset,
+                    &mut p.gap_m,
+                );
+                at = offset;
+            }
         }
     };
     let solved = solve_steps_with_forces(
