@@ -1,5 +1,6 @@
 //! The rolling frame: a problem whose rolling direction chi is not +x,
-//! turned so that it rolls in +x, and its solution turned back.
+//! turned so that it rolls in +x (or close to it), and its solution turned
+//! back.
 //!
 //! The exact solver discretises steady rolling and transient rolling steps
 //! along the grid's x axis (the upwind difference of the steady operator,
@@ -11,12 +12,23 @@
 //! elements (rows and columns exchanged when k is odd), every per-element
 //! field onto its element, and every tangential vector (creepages, shifts,
 //! tractions, slips, forces) by the same rotation; spin, rotations, the
-//! moment about n through the origin and all scalars are unchanged. Other
-//! directions would need a discretisation of d/dq across the grid lines,
-//! which the solver does not have: they are refused, naming the key.
-//! CONTACT also takes its rolling direction `CHI` near 0 or pi only
-//! (Vollebregt, User guide for CONTACT, §"Tangential quantities in case of
-//! rolling").
+//! moment about n through the origin and all scalars are unchanged.
+//!
+//! Any other direction is split as chi = k pi/2 + theta, |theta| <= pi/4
+//! ([`direction`]): the problem is turned by the k quarter turns and keeps
+//! the oblique rest theta as its rolling direction. Transient rolling steps
+//! take it: a step of dq carries the previous tractions, pressures and
+//! element states (dq cos theta, dq sin theta) upstream, off the element
+//! centres, by bilinear interpolation between the four surrounding
+//! elements (the states and a friction law's memory from the nearest
+//! element; see [`crate::core::tangential::carry_upstream`]). Steady
+//! rolling has no discretisation of d/dq across the grid lines and is
+//! refused off the axes, naming the key: its transient rolling steps tend
+//! to it. CONTACT likewise takes steady rolling along `CHI` = 0 or pi only
+//! (its SteadyGS solver, which resets other directions to 0 with a
+//! warning) and interpolates the carried fields of transient rolling steps
+//! in any direction (Vollebregt, User guide for CONTACT, §"Tangential
+//! quantities in case of rolling").
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -32,16 +44,28 @@ pub const AXIS_TOLERANCE_RAD: f64 = 1e-6;
 /// The key of the rolling direction in errors.
 pub const ROLLING_DIRECTION_KEY: &str = "rolling_direction_rad";
 
-/// The quarter turns k (0 to 3) of a rolling direction `chi_rad` = k pi/2
-/// on `grid`, or an error naming [`ROLLING_DIRECTION_KEY`]: chi must be
-/// finite and within [`AXIS_TOLERANCE_RAD`] of a multiple of pi/2, and a
-/// line contact (one row of strips across y) rolls along x only (k 0 or 2).
-pub fn quarter_turns(chi_rad: f64, grid: &Grid) -> Result<u8, ContactError> {
-    axis_turns(chi_rad, grid.is_line())
+/// A rolling direction chi = turns pi/2 + oblique_rad.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Direction {
+    /// Quarter turns k, 0 to 3.
+    pub turns: u8,
+    /// The rest theta \[rad\], |theta| <= pi/4; exactly 0 within
+    /// [`AXIS_TOLERANCE_RAD`] of a multiple of pi/2.
+    pub oblique_rad: f64,
 }
 
-/// [`quarter_turns`] on a grid that is a line contact (`line`) or not.
-pub fn axis_turns(chi_rad: f64, line: bool) -> Result<u8, ContactError> {
+impl Direction {
+    /// Whether the direction is along one of the grid's axes.
+    pub fn is_axis(&self) -> bool {
+        self.oblique_rad == 0.0
+    }
+}
+
+/// The [`Direction`] of `chi_rad` on a grid that is a line contact
+/// (`line`: one row of strips across y, which rolls along x only: chi 0 or
+/// pi) or not, or an error naming [`ROLLING_DIRECTION_KEY`]; chi must be
+/// finite.
+pub fn direction(chi_rad: f64, line: bool) -> Result<Direction, ContactError> {
     if !chi_rad.is_finite() {
         return Err(ContactError::invalid(
             ROLLING_DIRECTION_KEY,
@@ -49,18 +73,14 @@ pub fn axis_turns(chi_rad: f64, line: bool) -> Result<u8, ContactError> {
         ));
     }
     let k = (chi_rad / FRAC_PI_2).round();
-    if (chi_rad - k * FRAC_PI_2).abs() > AXIS_TOLERANCE_RAD {
-        return Err(ContactError::invalid(
-            ROLLING_DIRECTION_KEY,
-            format!(
-                "must be a multiple of pi/2 (within {AXIS_TOLERANCE_RAD:e} rad): the patch rolls along a \
-                 grid axis, 0 = +x, pi/2 = +y, pi = -x, 3 pi/2 = -y; got {}",
-                show(chi_rad)
-            ),
-        ));
-    }
-    let k = k.rem_euclid(4.0) as u8;
-    if line && k % 2 == 1 {
+    let rest = chi_rad - k * FRAC_PI_2;
+    let oblique_rad = if rest.abs() > AXIS_TOLERANCE_RAD {
+        rest
+    } else {
+        0.0
+    };
+    let turns = k.rem_euclid(4.0) as u8;
+    if line && (turns % 2 == 1 || oblique_rad != 0.0) {
         return Err(ContactError::invalid(
             ROLLING_DIRECTION_KEY,
             format!(
@@ -69,7 +89,34 @@ pub fn axis_turns(chi_rad: f64, line: bool) -> Result<u8, ContactError> {
             ),
         ));
     }
-    Ok(k)
+    Ok(Direction { turns, oblique_rad })
+}
+
+/// The quarter turns k (0 to 3) of a rolling direction `chi_rad` = k pi/2
+/// on `grid`, or an error naming [`ROLLING_DIRECTION_KEY`]: chi must be
+/// finite and within [`AXIS_TOLERANCE_RAD`] of a multiple of pi/2, and a
+/// line contact (one row of strips across y) rolls along x only (k 0 or 2).
+/// This is the rule of steady rolling; transient problems take any
+/// [`direction`].
+pub fn quarter_turns(chi_rad: f64, grid: &Grid) -> Result<u8, ContactError> {
+    axis_turns(chi_rad, grid.is_line())
+}
+
+/// [`quarter_turns`] on a grid that is a line contact (`line`) or not.
+pub fn axis_turns(chi_rad: f64, line: bool) -> Result<u8, ContactError> {
+    let d = direction(chi_rad, line)?;
+    if !d.is_axis() {
+        return Err(ContactError::invalid(
+            ROLLING_DIRECTION_KEY,
+            format!(
+                "must be a multiple of pi/2 (within {AXIS_TOLERANCE_RAD:e} rad) in steady rolling: \
+                 it rolls along a grid axis, 0 = +x, pi/2 = +y, pi = -x, 3 pi/2 = -y (transient \
+                 rolling steps take any direction and tend to steady rolling); got {}",
+                show(chi_rad)
+            ),
+        ));
+    }
+    Ok(d.turns)
 }
 
 /// The map between a problem's frame (the user's) and the solver's
@@ -87,8 +134,8 @@ pub struct RollingFrame {
 impl RollingFrame {
     /// The frame of `problem`'s rolling direction and grid.
     pub fn of(problem: &ContactProblem) -> Result<Self, ContactError> {
-        let turns = quarter_turns(problem.rolling_direction_rad, &problem.grid)?;
-        Ok(Self::new(turns, problem.grid))
+        let d = direction(problem.rolling_direction_rad, problem.grid.is_line())?;
+        Ok(Self::new(d.turns, problem.grid))
     }
 
     /// The frame of `turns` quarter turns of `user`.
@@ -253,7 +300,8 @@ impl RollingFrame {
     }
 
     /// `p` (of this frame's grid and direction) in the rolling frame: its
-    /// rolling direction 0.
+    /// rolling direction the oblique rest of `p`'s ([`Direction`]), 0 along
+    /// an axis.
     pub fn problem(&self, p: &ContactProblem) -> ContactProblem {
         let mut gap_m = vec![0.0; p.gap_m.len()];
         self.field_to_rolling(&p.gap_m, &mut gap_m);
@@ -283,7 +331,8 @@ impl RollingFrame {
             load: p.load,
             kinematics,
             settings: p.settings,
-            rolling_direction_rad: 0.0,
+            rolling_direction_rad: direction(p.rolling_direction_rad, p.grid.is_line())
+                .map_or(0.0, |d| d.oblique_rad),
             extra_rigid_slip,
         }
     }

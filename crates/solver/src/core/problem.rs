@@ -38,9 +38,11 @@
 //!   a rolling step of dq carries the previous tractions dq against that
 //!   direction. Creepages, shifts, tractions and forces stay in (x, y):
 //!   the creepages are still body 1's rigid velocity relative to body 2
-//!   over V. The patch rolls along a grid axis: chi is a multiple of pi/2
-//!   ([`crate::core::frame`]); chi = pi mirrors a +x solution through the
-//!   origin.
+//!   over V. Steady rolling rolls along a grid axis: chi is a multiple of
+//!   pi/2 ([`crate::core::frame`]); chi = pi mirrors a +x solution through
+//!   the origin. Transient rolling steps take any chi: off the axes a step
+//!   carries the previous tractions dq along -(cos chi, sin chi), between
+//!   the element centres (interpolated, [`crate::core::frame`]).
 //! * Extra rigid slip per element (`extra_rigid_slip`, CONTACT's `EXRHS`
 //!   with E = 9): a velocity of body 1 relative to body 2 over V [-] added
 //!   to the creepages' rigid slip w at each element, in (x, y); a rolling
@@ -223,9 +225,10 @@ pub struct ShiftStep {
     /// \[m\], in +x or the problem's rolling direction, in moving
     /// coordinates (see the module conventions): the previous step's
     /// tractions are carried this far upstream. 0 (the default) is a shift
-    /// step; otherwise a whole number of elements of the grid along the
-    /// rolling direction (`dx_m`, `dy_m` rolling along y), checked by
-    /// [`ShiftStep::rolled_elements`].
+    /// step; otherwise, along an axis, a whole number of elements of the
+    /// grid along the rolling direction (`dx_m`, `dy_m` rolling along y),
+    /// and any distance below the grid's extent off the axes, checked by
+    /// [`ShiftStep::carry`].
     #[serde(default)]
     pub rolling_m: f64,
 }
@@ -275,6 +278,49 @@ impl ShiftStep {
     pub fn rolled_elements(&self, grid: &Grid, key: &str) -> Result<usize, ContactError> {
         rolling_elements(&format!("{key}.rolling_m"), self.rolling_m, grid)
     }
+
+    /// How far this step carries the previous tractions on `grid` of the
+    /// rolling frame, the patch rolling at `oblique_rad` from its x axis
+    /// ([`crate::core::frame::Direction`]): along x by whole elements
+    /// ([`ShiftStep::rolled_elements`]) when `oblique_rad` is 0, else by
+    /// (dq cos theta / dx, dq sin theta / dy) elements, each below the
+    /// grid's count; `key` names the step.
+    pub fn carry(&self, grid: &Grid, oblique_rad: f64, key: &str) -> Result<Carry, ContactError> {
+        if oblique_rad == 0.0 || self.rolling_m == 0.0 {
+            return Ok(Carry::Whole(self.rolled_elements(grid, key)?));
+        }
+        let (s, c) = oblique_rad.sin_cos();
+        let elements = [
+            self.rolling_m * c / grid.dx_m,
+            self.rolling_m * s / grid.dy_m,
+        ];
+        if !(elements[0] < grid.nx as f64 && elements[1].abs() < grid.ny as f64) {
+            return Err(ContactError::invalid(
+                format!("{key}.rolling_m"),
+                format!(
+                    "must roll less than the grid's length along each axis: {} m at {} rad is \
+                     {} x {} elements of a grid of {} x {}",
+                    crate::core::error::show(self.rolling_m),
+                    crate::core::error::show(oblique_rad),
+                    crate::core::error::show(elements[0]),
+                    crate::core::error::show(elements[1]),
+                    grid.nx,
+                    grid.ny
+                ),
+            ));
+        }
+        Ok(Carry::Oblique(elements))
+    }
+}
+
+/// How far a transient step carries the previous tractions upstream
+/// ([`ShiftStep::carry`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Carry {
+    /// Whole elements along x (0: a shift step).
+    Whole(usize),
+    /// Elements along x (> 0) and y, off the element centres.
+    Oblique([f64; 2]),
 }
 
 /// A rolling distance in elements of `grid`: `rolling_m / dx_m`, which
@@ -363,8 +409,8 @@ pub struct ContactProblem {
     pub kinematics: Kinematics,
     /// Solver settings.
     pub settings: SolverSettings,
-    /// Rolling direction chi \[rad\] (see the module conventions): a
-    /// multiple of pi/2, 0 rolling in +x.
+    /// Rolling direction chi \[rad\] (see the module conventions): 0
+    /// rolling in +x; a multiple of pi/2 in steady rolling.
     pub rolling_direction_rad: f64,
     /// Extra rigid slip per element (see the module conventions); None: none.
     pub extra_rigid_slip: Option<ExtraRigidSlip>,
@@ -450,8 +496,15 @@ impl ContactProblem {
             ));
         }
         validate_load("load", &self.load)?;
-        // Rolling steps roll whole elements of the rolling frame's grid.
-        let rolling_grid = crate::core::frame::RollingFrame::of(self)?.rolling_grid();
+        // Rolling steps roll whole elements of the rolling frame's grid, or
+        // any distance off its axes.
+        let direction =
+            crate::core::frame::direction(self.rolling_direction_rad, self.grid.is_line())?;
+        let rolling_grid =
+            crate::core::frame::RollingFrame::new(direction.turns, self.grid).rolling_grid();
+        if !direction.is_axis() && matches!(self.kinematics, Kinematics::SteadyRolling(_)) {
+            crate::core::frame::quarter_turns(self.rolling_direction_rad, &self.grid)?;
+        }
         if let Some(extra) = &self.extra_rigid_slip {
             extra.validate(&self.grid)?;
             if !self.kinematics.rolls_throughout() {
@@ -475,7 +528,7 @@ impl ContactProblem {
                 for (k, s) in steps.iter().enumerate() {
                     let key = format!("transient.steps[{k}]");
                     s.validate(&key)?;
-                    s.rolled_elements(&rolling_grid, &key)?;
+                    s.carry(&rolling_grid, direction.oblique_rad, &key)?;
                 }
             }
         }

@@ -10,13 +10,13 @@ use crate::core::cancel;
 use crate::core::coupling::CouplingMonitor;
 use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
-use crate::core::frame::{quarter_turns, RollingFrame};
+use crate::core::frame::{direction, RollingFrame};
 use crate::core::friclaw::{SlipStart, SlipVelocityLaw};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
 use crate::core::predict::{PathPoint, WarmPath};
-use crate::core::problem::{ContactProblem, Kinematics, ShiftStep};
+use crate::core::problem::{Carry, ContactProblem, Kinematics, ShiftStep};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, IterationLimit, SolveInfo, SolveStatus, Totals,
 };
@@ -24,8 +24,9 @@ use crate::core::steady::{
     solve_coulomb_newton, solve_steady_newton, LocalModel, PlanarTangential, SteadyScratch,
 };
 use crate::core::tangential::{
-    shift_upstream, solve_steady_marching, solve_transient, FrictionBounds, MarchingScratch,
-    TangentialInput, TangentialOutcome, TangentialOutput, TangentialScratch, TangentialSettings,
+    carry_upstream, carry_upstream_nearest, shift_upstream, solve_steady_marching, solve_transient,
+    FrictionBounds, MarchingScratch, TangentialInput, TangentialOutcome, TangentialOutput,
+    TangentialScratch, TangentialSettings,
 };
 
 /// Iterations of the fallback (time marching in steady rolling, FISTA in
@@ -178,10 +179,11 @@ fn per_element(key: &str, v: &[f64], n: usize) -> Result<(), ContactError> {
 
 impl ContactSolver {
     /// A solver for `problem`'s grid and materials, with kernels from `cache`.
-    /// A rolling direction that is not a multiple of pi/2 builds the
-    /// solver of +x; [`ContactSolver::solve`] then refuses the problem.
+    /// A rolling direction that is not finite builds the solver of +x;
+    /// [`ContactSolver::solve`] then refuses the problem.
     pub fn new(problem: &ContactProblem, cache: &KernelCache) -> Self {
-        let turns = quarter_turns(problem.rolling_direction_rad, &problem.grid).unwrap_or(0);
+        let turns =
+            direction(problem.rolling_direction_rad, problem.grid.is_line()).map_or(0, |d| d.turns);
         let frame = RollingFrame::new(turns, problem.grid);
         let grid = frame.rolling_grid();
         let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
@@ -233,7 +235,8 @@ impl ContactSolver {
     /// touches of memory. A wheel/rail session renews each wheel's solver
     /// from one time step to the next.
     pub fn renew(&mut self, problem: &ContactProblem, cache: &KernelCache) {
-        let turns = quarter_turns(problem.rolling_direction_rad, &problem.grid).unwrap_or(0);
+        let turns =
+            direction(problem.rolling_direction_rad, problem.grid.is_line()).map_or(0, |d| d.turns);
         let frame = RollingFrame::new(turns, problem.grid);
         let grid = frame.rolling_grid();
         let same_shape = (grid.nx, grid.ny, grid.dx_m, grid.dy_m)
@@ -487,7 +490,9 @@ impl ContactSolver {
                 "differs from the grid this solver was built for",
             ));
         }
-        if quarter_turns(problem.rolling_direction_rad, &problem.grid)? != self.frame.turns() {
+        if direction(problem.rolling_direction_rad, problem.grid.is_line())?.turns
+            != self.frame.turns()
+        {
             return Err(ContactError::invalid(
                 crate::core::frame::ROLLING_DIRECTION_KEY,
                 "differs from the rolling direction this solver was built for",
@@ -555,7 +560,6 @@ impl ContactSolver {
         problem.validate()?;
         step.validate("step")?;
         self.check_frame(problem)?;
-        step.rolled_elements(&self.grid, "step")?;
         if !matches!(problem.kinematics, Kinematics::Transient(_)) {
             return Err(ContactError::invalid(
                 "kinematics",
@@ -596,21 +600,38 @@ impl ContactSolver {
         step: &ShiftStep,
     ) -> Result<ContactSolution, ContactError> {
         let first = self.transient_steps == 0;
-        let rolled = step.rolled_elements(&self.grid, "step")?;
+        let oblique = direction(problem.rolling_direction_rad, self.grid.is_line())?.oblique_rad;
+        let carry = step.carry(&self.grid, oblique, "step")?;
+        let grid = self.grid;
+        // Moves one field where the material now at each element was.
+        let carried = |src: &[f64], dst: &mut [f64]| match carry {
+            Carry::Whole(k) => shift_upstream(&grid, k, src, dst),
+            Carry::Oblique(e) => carry_upstream(&grid, e, src, dst),
+        };
         // The previous pressures where the material now at each element
         // was (`h_eff` is free until the normal solve).
-        let previous_pn: &[f64] = if rolled > 0 {
-            shift_upstream(&self.grid, rolled, &self.tr.px, &mut self.tmp_x);
-            shift_upstream(&self.grid, rolled, &self.tr.py, &mut self.tmp_y);
+        let previous_pn: &[f64] = if carry != Carry::Whole(0) {
+            carried(&self.tr.px, &mut self.tmp_x);
+            carried(&self.tr.py, &mut self.tmp_y);
             std::mem::swap(&mut self.tr.px, &mut self.tmp_x);
             std::mem::swap(&mut self.tr.py, &mut self.tmp_y);
-            shift_upstream(&self.grid, rolled, &self.pn, &mut self.h_eff);
-            shift_upstream(&self.grid, rolled, &self.tr.state, &mut self.prev_state);
+            carried(&self.pn, &mut self.h_eff);
+            match carry {
+                Carry::Whole(k) => shift_upstream(&grid, k, &self.tr.state, &mut self.prev_state),
+                Carry::Oblique(e) => {
+                    carry_upstream_nearest(&grid, e, &self.tr.state, &mut self.prev_state)
+                }
+            }
             if problem.friction.slip_velocity_law.is_some() {
+                // A law's memory does not interpolate (0 is fresh material).
                 let law = &mut self.law;
-                shift_upstream(&self.grid, rolled, &law.mu_before, &mut law.velocity_new);
+                let memory = |src: &[f64], dst: &mut [f64]| match carry {
+                    Carry::Whole(k) => shift_upstream(&grid, k, src, dst),
+                    Carry::Oblique(e) => carry_upstream_nearest(&grid, e, src, dst),
+                };
+                memory(&law.mu_before, &mut law.velocity_new);
                 std::mem::swap(&mut law.mu_before, &mut law.velocity_new);
-                shift_upstream(&self.grid, rolled, &law.velocity, &mut law.velocity_new);
+                memory(&law.velocity, &mut law.velocity_new);
                 std::mem::swap(&mut law.velocity, &mut law.velocity_new);
             }
             &self.h_eff

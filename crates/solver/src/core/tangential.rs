@@ -410,6 +410,58 @@ pub fn shift_upstream<T: Copy + Default>(grid: &Grid, k: usize, src: &[T], dst: 
     }
 }
 
+/// `dst(x, y) = src(x + ex dx, y + ey dy)` for `[ex, ey]` = `elements`
+/// (ex in [0, nx), |ey| < ny): the field where the material at each element
+/// was one oblique rolling step ago ([`crate::core::frame`]), bilinear
+/// between the four element centres around that point, those outside the
+/// grid counting 0 (no traction or pressure outside the potential contact
+/// area). A whole number of elements along x gives [`shift_upstream`]'s
+/// values.
+pub fn carry_upstream(grid: &Grid, elements: [f64; 2], src: &[f64], dst: &mut [f64]) {
+    let (nx, ny) = (grid.nx as isize, grid.ny as isize);
+    let at = |ix: isize, iy: isize| {
+        if (0..nx).contains(&ix) && (0..ny).contains(&iy) {
+            src[(iy * nx + ix) as usize]
+        } else {
+            0.0
+        }
+    };
+    let (fx, fy) = (elements[0].floor(), elements[1].floor());
+    let (tx, ty) = (elements[0] - fx, elements[1] - fy);
+    let (kx, ky) = (fx as isize, fy as isize);
+    for iy in 0..ny {
+        for ix in 0..nx {
+            let (x0, y0) = (ix + kx, iy + ky);
+            let lower = (1.0 - tx) * at(x0, y0) + tx * at(x0 + 1, y0);
+            let upper = (1.0 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1);
+            dst[(iy * nx + ix) as usize] = (1.0 - ty) * lower + ty * upper;
+        }
+    }
+}
+
+/// [`carry_upstream`] of a field that does not interpolate (element states,
+/// a friction law's memory): the value of the element nearest to where the
+/// material was, the default outside the grid.
+pub fn carry_upstream_nearest<T: Copy + Default>(
+    grid: &Grid,
+    elements: [f64; 2],
+    src: &[T],
+    dst: &mut [T],
+) {
+    let (nx, ny) = (grid.nx as isize, grid.ny as isize);
+    let (kx, ky) = (elements[0].round() as isize, elements[1].round() as isize);
+    for iy in 0..ny {
+        for ix in 0..nx {
+            let (jx, jy) = (ix + kx, iy + ky);
+            dst[(iy * nx + ix) as usize] = if (0..nx).contains(&jx) && (0..ny).contains(&jy) {
+                src[(jy * nx + jx) as usize]
+            } else {
+                T::default()
+            };
+        }
+    }
+}
+
 /// Extra buffers of [`solve_steady_marching`].
 #[derive(Clone)]
 pub struct MarchingScratch {

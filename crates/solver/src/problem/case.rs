@@ -14,7 +14,7 @@ use crate::conformal::geometry::{
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::{check_count, show, ContactError, Range};
 use crate::core::force::PrescribedForce;
-use crate::core::frame::{axis_turns, RollingFrame, ROLLING_DIRECTION_KEY};
+use crate::core::frame::{axis_turns, direction, Direction, RollingFrame, ROLLING_DIRECTION_KEY};
 use crate::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw, DEFAULT_LAW_ITERATIONS};
 use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
@@ -1909,7 +1909,8 @@ impl Case {
             }
         }
 
-        let turns = rolling_direction(&file, model, line)?;
+        let direction = rolling_direction(&file, model, line)?;
+        let turns = direction.turns;
         let grid_given = file.grid.unwrap_or_default();
         let grid = grid_given;
         let default_n = if model == Model::Fastsim {
@@ -2048,7 +2049,8 @@ impl Case {
                     ));
                 }
             }
-            if let Some(dq) = file.transient.as_ref().and_then(|t| t.rolling_step_m) {
+            let axis_step = file.transient.as_ref().and_then(|t| t.rolling_step_m);
+            if let Some(dq) = axis_step.filter(|_| direction.is_axis()) {
                 let grid = Grid::centered(nx, ny, window_x_m, window_y_m)?;
                 // Whole elements along the rolling direction.
                 let grid = RollingFrame::new(turns, grid).rolling_grid();
@@ -2405,13 +2407,16 @@ fn refuse_lateral(section: &str, moves: &str, lateral: &[(&str, bool)]) -> Resul
 }
 
 /// Rejects a model that cannot run on the geometry; the error names `model`.
-/// The quarter turns of `rolling_direction_rad` (see
-/// [`crate::core::frame`]): any multiple of pi/2 (a line contact 0 or pi)
-/// for the exact model, 0 for the others; flash temperatures roll in +x.
-fn rolling_direction(file: &CaseFile, model: Model, line: bool) -> Result<u8, CaseError> {
+/// The [`Direction`] of `rolling_direction_rad` (see
+/// [`crate::core::frame`]): the exact model rolls in any direction (a line
+/// contact 0 or pi), steady rolling along a grid axis (a multiple of pi/2)
+/// and transient rolling steps in any; the other models roll in +x; flash
+/// temperatures roll in +x.
+fn rolling_direction(file: &CaseFile, model: Model, line: bool) -> Result<Direction, CaseError> {
     let key = ROLLING_DIRECTION_KEY;
-    let turns = axis_turns(file.rolling_direction_rad, line)?;
-    if turns != 0 && model != Model::Exact {
+    let d = direction(file.rolling_direction_rad, line)?;
+    let along_x = d.turns == 0 && d.is_axis();
+    if !along_x && model != Model::Exact {
         return Err(bad(
             key,
             format!(
@@ -2420,13 +2425,16 @@ fn rolling_direction(file: &CaseFile, model: Model, line: bool) -> Result<u8, Ca
             ),
         ));
     }
-    if turns != 0 && file.temperature.is_some() {
+    if !along_x && file.temperature.is_some() {
         return Err(bad(
             key,
             "the flash temperatures are computed for rolling in +x: leave it 0 or leave out [temperature]",
         ));
     }
-    Ok(turns)
+    if !d.is_axis() && file.transient.is_none() {
+        axis_turns(file.rolling_direction_rad, line)?;
+    }
+    Ok(d)
 }
 
 /// Checks that `values` (named `key`) hold one value per element of an
@@ -3989,5 +3997,30 @@ window_y_m = 14e-3
             "{m}"
         );
         assert!(Case::from_toml(&text(0.7e-3)).is_ok());
+    }
+
+    #[test]
+    fn transient_steps_roll_any_distance_off_the_axes() {
+        // chi = 0.5 rad: a step of 0.37 mm is 0.57 dx along x and 0.26 dy
+        // along y (dx = 0.5 mm, dy = 0.7 mm), carried by interpolation;
+        // steady rolling at 0.5 rad is refused.
+        let text = |dq: f64| {
+            rolling_case("rolling_direction_rad = 0.5").replace(
+                "[rolling]\ncreepage_long = 3e-4\ncreepage_lat = -1e-4\nspin_per_m = 0.5\n",
+                &format!(
+                    "[transient]\nrolling_step_m = {dq:?}\nsteps = [{{ creepage_long = 3e-4 }}, \
+                     {{ creepage_long = 3e-4 }}]\n"
+                ),
+            )
+        };
+        let run = |dq: f64| crate::problem::ExactRun::solve(&Case::from_toml(&text(dq)).unwrap());
+        assert_eq!(run(0.37e-3).ok().unwrap().solutions.len(), 2);
+        let m = run(0.1).err().unwrap().to_string();
+        assert!(m.contains("transient.steps[0].rolling_m"), "{m}");
+        let m = bad_key(&rolling_case("rolling_direction_rad = 0.5"));
+        assert!(
+            m.contains("`rolling_direction_rad`") && m.contains("steady"),
+            "{m}"
+        );
     }
 }
