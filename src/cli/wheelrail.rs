@@ -266,8 +266,8 @@ fn wheelrail_friction(
         return Ok((Friction::coulomb(0.3), None));
     };
     if let Some(table) = f.table()? {
-        // The table's coefficients replace these.
-        return Ok((Friction::coulomb(0.0), Some(table)));
+        // The table's coefficients scale the section's law.
+        return Ok((f.table_law()?, Some(table)));
     }
     Ok((f.wheelrail_friction()?, None))
 }

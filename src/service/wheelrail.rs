@@ -204,12 +204,6 @@ impl QuerySettings {
             coefficients: t.coefficients.clone(),
         };
         table.validate_as(KEY)?;
-        if self.friction.slip_velocity_law.is_some() {
-            return Err(ServiceError::invalid(
-                "friction.law",
-                "a friction table sets Coulomb's law: give either the table or a falling law",
-            ));
-        }
         self.friction_table = Some(table);
         Ok(self)
     }

@@ -1068,6 +1068,21 @@ fn wheelrail_friction_table_from_the_case_file() {
         );
     }
     let good = example_text("wheelset_a22_varfric.toml");
+    // A falling law of static coefficient 0.4 (0.1 + 0.3) scaled to the
+    // table: its kinetic coefficient at the patch is 0.1 x mu_table / 0.4.
+    let falling = case_file(
+        "wr_table_falling.toml",
+        &good.replace(
+            "coefficients = [0.3, 0.2]",
+            "coefficients = [0.3, 0.2]\nlaw = \"exponential\"\nkinetic_coefficient = 0.1\n\
+             falling_coefficients = [0.3]\nhalf_velocities_m_per_s = [0.05]",
+        ),
+    );
+    let v = wheelrail_json(&falling);
+    let q = &v["wheels"]["right"]["patches"][0];
+    let want = 0.1 * f(p, "friction_coefficient") / 0.4;
+    let got = f(q, "friction_coefficient");
+    assert!((got - want).abs() < 1e-12, "{got} against {want}");
     expect_bad_wheelrail(
         "wr_table_order.toml",
         &good.replace("[0.17453292519943295, 0.3490658503988659]", "[0.3, 0.2]"),

@@ -575,8 +575,9 @@ async fn file_pairs_register_once_by_content_and_are_listed_got_and_deleted() {
 /// Friction varying over the rail profile and along the track
 /// (`friction_table`, read at `position.track_s_m`) and a falling law, as
 /// the library bit for bit, in a query and in a session; each patch reports
-/// its coefficient. A bad table, a table with a falling law and a falling
-/// law for a Hertz model are INVALID_ARGUMENT naming the field.
+/// its coefficient; a falling law scaled to a table as well. A bad table
+/// and a falling law for a Hertz model are INVALID_ARGUMENT naming the
+/// field.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn friction_tables_and_falling_laws_solve_as_the_library() {
     use pb::wheel_rail_session_request::Kind as In;
@@ -657,10 +658,15 @@ async fn friction_tables_and_falling_laws_solve_as_the_library() {
     let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
     let got = solve(&mut client, query_of(BUILTIN, &input)).await;
     assert_same("falling law", &got, &want);
+    // A falling law scaled to a friction table (Friction::scaled_to).
+    input.friction_table = Some(table.clone());
+    input.position.track_s_m = 40.0;
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("falling law with a table", &got, &want);
+    input.friction_table = None;
+    input.position.track_s_m = 0.0;
     // Errors.
-    let mut r = query_of(BUILTIN, &input);
-    r.friction_table = q.friction_table.clone();
-    assert_invalid(&solve_err(&mut client, r).await, &["friction.law"]);
     let mut r = query_of(BUILTIN, &input);
     r.model = pb::WheelRailModel::HertzFastsim as i32;
     assert_invalid(&solve_err(&mut client, r).await, &["friction.law", "exact"]);

@@ -138,6 +138,29 @@ impl Friction {
         }
     }
 
+    /// This law with its static coefficient `static_coefficient` and the
+    /// rest scaled with it: the kinetic coefficient in proportion, a
+    /// slip-velocity law's kinetic and falling coefficients by the same
+    /// factor (its shape in slip velocity kept). Coulomb's law with equal
+    /// coefficients is [`Friction::coulomb`] of it, bit for bit. The static
+    /// coefficient must be > 0 unless both are equal (a wheel/rail
+    /// friction table's coefficients scale the section's law this way,
+    /// [`crate::wheelrail::friction`]).
+    pub fn scaled_to(&self, static_coefficient: f64) -> Self {
+        let f = static_coefficient / self.static_coefficient;
+        match self.slip_velocity_law {
+            None if self.static_coefficient == self.kinetic_coefficient => {
+                Self::coulomb(static_coefficient)
+            }
+            None => Self::static_kinetic(static_coefficient, self.kinetic_coefficient * f),
+            Some(law) => Self::falling(SlipVelocityLaw {
+                kinetic_coefficient: law.kinetic_coefficient * f,
+                falling_coefficients: law.falling_coefficients.map(|c| c * f),
+                ..law
+            }),
+        }
+    }
+
     /// Checks both coefficients are finite, and 0 or at least
     /// [`MIN_NONZERO_FRICTION`] (what the solver needs; a large
     /// coefficient models full adhesion). Any such pair is valid: a

@@ -606,8 +606,9 @@ pub struct FrictionSection {
     /// Wheel/rail friction table: lateral coordinates on the rail profile
     /// \[m\], strictly increasing (or `contact_angles_rad`).
     pub rail_y_m: Option<Vec<f64>>,
-    /// Wheel/rail friction table: coefficients [-] in \[1e-6, 5\], one per
-    /// position, row after row for each of `track_s_m`.
+    /// Wheel/rail friction table: static coefficients [-] in \[1e-6, 5\],
+    /// one per position, row after row for each of `track_s_m`; the
+    /// section's law is scaled to them ([`FrictionSection::table_law`]).
     pub coefficients: Option<Vec<f64>>,
     /// Wheel/rail friction table: track coordinates \[m\] of its rows,
     /// strictly increasing (default: one row for the whole track).
@@ -1441,7 +1442,9 @@ impl MaterialSection {
 impl FrictionSection {
     /// The wheel/rail friction table of `contact_angles_rad` or `rail_y_m`,
     /// `coefficients` and `track_s_m`, checked; None without one. A table
-    /// excludes the Coulomb and falling-law keys.
+    /// excludes `coefficient`: its coefficients are static coefficients,
+    /// and the section's other keys (a falling law, or static and kinetic
+    /// coefficients) give the law they scale ([`FrictionSection::table_law`]).
     pub fn table(&self) -> Result<Option<FrictionTable>, CaseError> {
         let (axis, positions) =
             match (&self.contact_angles_rad, &self.rail_y_m) {
@@ -1467,24 +1470,12 @@ impl FrictionSection {
                     "give either `friction.contact_angles_rad` or `friction.rail_y_m`, not both",
                 )),
             };
-        for (key, given) in [
-            ("friction.law", self.law != FrictionLawName::Coulomb),
-            ("friction.coefficient", self.coefficient.is_some()),
-            (
-                "friction.static_coefficient",
-                self.static_coefficient.is_some(),
-            ),
-            (
-                "friction.kinetic_coefficient",
-                self.kinetic_coefficient.is_some(),
-            ),
-        ] {
-            if given {
-                return Err(bad(
-                    key,
-                    "not with a friction table (it sets Coulomb's law with its own coefficients)",
-                ));
-            }
+        if self.coefficient.is_some() {
+            return Err(bad(
+                "friction.coefficient",
+                "not with a friction table (its coefficients are the static ones; a law's other \
+                 keys, or static_coefficient with kinetic_coefficient, give the shape it scales)",
+            ));
         }
         let table = FrictionTable {
             axis,
@@ -1500,6 +1491,26 @@ impl FrictionSection {
             other => bad("friction", other.to_string()),
         })?;
         Ok(Some(table))
+    }
+
+    /// The law a friction table scales (see [`FrictionSection::table`]):
+    /// the section without its table keys, Coulomb's law with equal
+    /// coefficients when it gives none.
+    pub fn table_law(&self) -> Result<Friction, CaseError> {
+        let shape = FrictionSection {
+            contact_angles_rad: None,
+            rail_y_m: None,
+            coefficients: None,
+            track_s_m: None,
+            ..self.clone()
+        };
+        let none_given = shape.law == FrictionLawName::Coulomb
+            && shape.static_coefficient.is_none()
+            && shape.kinetic_coefficient.is_none();
+        if none_given {
+            return Ok(Friction::coulomb(1.0));
+        }
+        shape.wheelrail_friction()
     }
 
     /// [`FrictionSection::friction`] for wheel/rail contact: a falling

@@ -351,10 +351,11 @@ pub struct WheelRailInput {
     pub sides: Vec<Side>,
     /// Materials (body 1 rail, body 2 wheel).
     pub material: CombinedMaterial,
-    /// Friction of every patch; with `friction_table`, only its
-    /// slip-velocity law must be None (a table sets Coulomb's law). A
-    /// slip-velocity law needs the exact model; its rolling speed is each
-    /// patch's own (`rolling_speed_m_per_s` of the patch), whatever
+    /// Friction of every patch; with `friction_table`, its law scaled to
+    /// the table's static coefficient at each point
+    /// ([`Friction::scaled_to`]). A slip-velocity law needs the exact
+    /// model; its rolling speed is each patch's own
+    /// (`rolling_speed_m_per_s` of the patch), whatever
     /// `rolling_speed_m_per_s` it holds.
     pub friction: Friction,
     /// Friction varying over the rail profile and along the track, in
@@ -1424,13 +1425,17 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         .settings
         .modified_fastsim
         .validate_as("modified_fastsim")?;
-    if let Some(law) = input.friction.slip_velocity_law {
-        if input.friction_table.is_some() {
+    if let Some(table) = &input.friction_table {
+        table.validate()?;
+        let f = &input.friction;
+        if f.static_coefficient != f.kinetic_coefficient && f.static_coefficient <= 0.0 {
             return Err(WheelRailError::invalid(
-                "friction.law",
-                "a friction table sets Coulomb's law: give either the table or a falling law",
+                "friction.static_coefficient",
+                "a friction table scales the friction's law by its static coefficient: give one > 0",
             ));
         }
+    }
+    if let Some(law) = input.friction.slip_velocity_law {
         if input.settings.model != WheelRailModel::Exact {
             return Err(WheelRailError::invalid(
                 "friction.law",
@@ -1448,9 +1453,6 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         at_speed.validate()?;
         return Ok(());
     }
-    if let Some(table) = &input.friction_table {
-        return table.validate();
-    }
     let f = &input.friction;
     if matches!(
         input.settings.model,
@@ -1465,6 +1467,10 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
                 input.settings.model.name()
             ),
         ));
+    }
+    if input.friction_table.is_some() {
+        // The table's coefficients replace the section's (its ratio kept).
+        return Ok(());
     }
     Ok(f.validate()?)
 }
@@ -1760,7 +1766,9 @@ fn build_patch(
                 None => Box::new(ContactSolver::new(&problem, cache)),
             };
             if let Some(table) = &input.friction_table {
-                let mu = friction.kinetic_coefficient;
+                // The patch's static coefficient is the table's at its
+                // reference point; each row scales it to the row's own.
+                let mu = table_coefficient(table, rail, &geom, 0.0, input);
                 let scale: Vec<f64> = (0..grid.ny)
                     .map(|is| table_coefficient(table, rail, &geom, grid.y_m(is), input) / mu)
                     .collect();
@@ -2626,15 +2634,16 @@ fn patch_friction(
     input: &WheelRailInput,
     speed: f64,
 ) -> Friction {
-    if let Some(table) = &input.friction_table {
-        return Friction::coulomb(table_coefficient(table, rail, geom, 0.0, input));
-    }
-    match input.friction.slip_velocity_law {
+    let own = match input.friction.slip_velocity_law {
         Some(law) => Friction::falling(SlipVelocityLaw {
             rolling_speed_m_per_s: speed,
             ..law
         }),
         None => input.friction,
+    };
+    match &input.friction_table {
+        Some(table) => own.scaled_to(table_coefficient(table, rail, geom, 0.0, input)),
+        None => own,
     }
 }
 

@@ -21,7 +21,13 @@
 //! [`crate::wheelrail::PatchResult::friction_coefficient`] reports); an
 //! exact patch reads the table once per grid row, at the row's own point
 //! of the rail profile ([`crate::core::solve::ContactSolver::set_row_friction_scale`]).
-//! A table sets Coulomb's law with equal static and kinetic coefficients.
+//! The table's coefficients are static coefficients, and the friction's
+//! law is scaled to them ([`crate::core::problem::Friction::scaled_to`]):
+//! Coulomb's law with equal coefficients takes the table's; static and
+//! kinetic coefficients keep their ratio; a slip-velocity law (exact model)
+//! keeps its shape in slip velocity, its kinetic and falling coefficients
+//! scaled by the same factor. CONTACT's `VARFRC` gives every entry a law
+//! of its own; here one law's shape holds over the whole table.
 //!
 //! Why the contact angle and the rail's lateral coordinate: friction
 //! modifiers and flange lubrication act on parts of the rail head, which

@@ -177,28 +177,30 @@ fn an_exact_patch_takes_the_coefficient_of_each_grid_row() {
         friction_table: Some(table.clone()),
         ..case_input(CASE3)
     });
-    let p = &sol.wheels[0].patches[1];
-    let fields = &p.solution.as_ref().unwrap().fields;
-    let g = p.grid_geometry.unwrap();
     // The rows' coefficients from the traction bound they reached.
-    let mut rows = Vec::new();
-    for iy in 0..g.ny {
-        let (mut t, mut pn) = (0.0, 0.0);
-        for ix in 0..g.nx {
-            let i = g.index(ix, iy);
-            t += fields.traction_x_pa[i].hypot(fields.traction_y_pa[i]);
-            pn += fields.pressure_pa[i];
-        }
-        if pn > 0.0 {
-            rows.push(t / pn);
-        }
-    }
+    let rows = row_ratios(&sol.wheels[0].patches[1], |_| 1.0);
     // The rows differ (measured: from 0.263 to 0.347 over the 7 loaded rows).
     let (lo, hi) = rows
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &m| (a.min(m), b.max(m)));
     assert!(hi - lo > 0.01, "row coefficients {rows:?}");
     assert!(lo >= 0.2 - 1e-4 && hi <= 0.4 + 1e-4, "{rows:?}");
+}
+
+/// The exponential law mu_kin + mu_1 exp(-s_a ln 2 / 0.05 m/s), starting
+/// from sticking (the rolling speed is each patch's own).
+fn exponential(mu_kin: f64, mu1: f64) -> SlipVelocityLaw {
+    SlipVelocityLaw {
+        shape: FallingShape::Exponential,
+        kinetic_coefficient: mu_kin,
+        falling_coefficients: [mu1, 0.0],
+        half_velocities_m_per_s: [0.05, 0.0],
+        rolling_speed_m_per_s: 1.0,
+        memory_distance_m: 0.0,
+        memory_velocity_m_per_s: 0.0,
+        start: SlipStart::Sticking,
+        max_iterations: 0,
+    }
 }
 
 /// An exponential falling law (the exact model's, per patch at its own
@@ -212,17 +214,7 @@ fn an_exact_patch_takes_the_coefficient_of_each_grid_row() {
 /// (measured: |F| 2885.5 N against 3736.5 N, FN 9630 N).
 #[test]
 fn falling_friction_per_patch() {
-    let law = |mu1: f64| SlipVelocityLaw {
-        shape: FallingShape::Exponential,
-        kinetic_coefficient: 0.1,
-        falling_coefficients: [mu1, 0.0],
-        half_velocities_m_per_s: [0.05, 0.0],
-        rolling_speed_m_per_s: 1.0,
-        memory_distance_m: 0.0,
-        memory_velocity_m_per_s: 0.0,
-        start: SlipStart::Sticking,
-        max_iterations: 0,
-    };
+    let law = |mu1: f64| exponential(0.1, mu1);
     let with = |f: Friction| {
         right_wheel(&WheelRailInput {
             friction_table: None,
@@ -266,8 +258,8 @@ fn falling_friction_per_patch() {
 }
 
 /// A falling law is the exact model's: the others refuse it naming the
-/// key, as a table combined with one; unequal static and kinetic
-/// coefficients are refused by the conformal method.
+/// key (with a table too); unequal static and kinetic coefficients are
+/// refused by the conformal method.
 #[test]
 fn falling_friction_is_refused_where_it_cannot_be_solved() {
     let law = SlipVelocityLaw {
@@ -286,13 +278,6 @@ fn falling_friction_is_refused_where_it_cannot_be_solved() {
     let mut scratch = SearchScratch::default();
     let mut input = case_input(CASE3);
     input.friction = Friction::falling(law);
-    let err = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
-    assert!(
-        err.to_string()
-            .starts_with("friction.law: a friction table"),
-        "{err}"
-    );
-    input.friction_table = None;
     input.settings.model = WheelRailModel::HertzFastsim;
     let err = solve_wheelset(&pair, &input, &cache, &mut scratch).unwrap_err();
     assert!(
@@ -306,5 +291,101 @@ fn falling_friction_is_refused_where_it_cannot_be_solved() {
     assert!(
         err.to_string().starts_with("friction.static_coefficient"),
         "{err}"
+    );
+}
+
+/// Row coefficients |t| / p_n summed over each loaded grid row of `p`'s
+/// fields, and the same with each element's bound `mu(i)` p_n in place of
+/// |t|: their ratio per row.
+fn row_ratios(
+    p: &railcontact_solver::wheelrail::PatchResult,
+    mu: impl Fn(usize) -> f64,
+) -> Vec<f64> {
+    let fields = &p.solution.as_ref().unwrap().fields;
+    let g = p.grid_geometry.unwrap();
+    let mut rows = Vec::new();
+    for iy in 0..g.ny {
+        let (mut t, mut bound) = (0.0, 0.0);
+        for ix in 0..g.nx {
+            let i = g.index(ix, iy);
+            t += fields.traction_x_pa[i].hypot(fields.traction_y_pa[i]);
+            bound += mu(i) * fields.pressure_pa[i];
+        }
+        if bound > 0.0 {
+            rows.push(t / bound);
+        }
+    }
+    rows
+}
+
+/// A table scales the friction's law to its static coefficients
+/// (`Friction::scaled_to`, wheelrail::friction docs). With a falling law
+/// of static coefficient 0.4 (mu_kin 0.1 + mu_1 0.3) and the table rising
+/// across the fully sliding flange-root patch of case 3 (0.2 to 0.4 by
+/// contact angle), every element carries the law's mu(s_a) p_n times its
+/// row's table coefficient over 0.4; under Coulomb's law with the same
+/// table each row carries its table coefficient: per row, the first ratio
+/// is the second over 0.4 (within 1e-3: the law's iteration tolerance is
+/// 1e-4 of the bounds). A constant table of the law's static coefficient
+/// is the law without a table, to the bit; a constant table at half of it
+/// is the law with both coefficients halved, to the bit.
+#[test]
+fn a_table_scales_a_falling_law_row_by_row() {
+    let law = exponential;
+    let rising = FrictionTable {
+        axis: FrictionAxis::ContactAngle,
+        positions: vec![0.2, 0.4],
+        track_s_m: Vec::new(),
+        coefficients: vec![0.2, 0.4],
+    };
+    let with = |f: Friction, t: Option<FrictionTable>| {
+        right_wheel(&WheelRailInput {
+            friction_table: t,
+            friction: f,
+            ..case_input(CASE3)
+        })
+    };
+    let falling = law(0.1, 0.3);
+    let scaled = with(Friction::falling(falling), Some(rising.clone()));
+    let coulomb = with(Friction::coulomb(0.3), Some(rising));
+    let (p, q) = (&scaled.wheels[0].patches[1], &coulomb.wheels[0].patches[1]);
+    assert_eq!(p.adhesion_fraction, 0.0);
+    assert_eq!(q.adhesion_fraction, 0.0);
+    let fields = &p.solution.as_ref().unwrap().fields;
+    let speed = p.rolling_speed_m_per_s;
+    let mu = |i: usize| falling.coefficient(speed * fields.slip_x[i].hypot(fields.slip_y[i]));
+    let law_rows = row_ratios(p, mu);
+    let table_rows = row_ratios(q, |_| 1.0);
+    eprintln!("rows: law-scaled {law_rows:?}, Coulomb table {table_rows:?}");
+    assert_eq!(law_rows.len(), table_rows.len());
+    // The rows differ (measured: 0.347 to 0.263 under Coulomb's law).
+    assert!((table_rows[table_rows.len() - 1] - table_rows[0]).abs() > 0.01);
+    for (a, b) in law_rows.iter().zip(&table_rows) {
+        assert!((a - b / 0.4).abs() < 1e-3, "{law_rows:?} {table_rows:?}");
+    }
+    // Constant tables.
+    let bits = |s: &WheelRailSolution| {
+        s.wheels[0]
+            .patches
+            .iter()
+            .map(|p| {
+                [
+                    p.fx_n.to_bits(),
+                    p.fs_n.to_bits(),
+                    p.normal_force_n.to_bits(),
+                ]
+            })
+            .collect::<Vec<_>>()
+    };
+    let constant = |mu: f64| Some(FrictionTable::constant(FrictionAxis::ContactAngle, mu));
+    let plain = with(Friction::falling(falling), None);
+    assert_eq!(
+        bits(&with(Friction::falling(falling), constant(0.4))),
+        bits(&plain)
+    );
+    let halved = with(Friction::falling(law(0.05, 0.15)), None);
+    assert_eq!(
+        bits(&with(Friction::falling(falling), constant(0.2))),
+        bits(&halved)
     );
 }
