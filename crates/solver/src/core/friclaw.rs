@@ -78,7 +78,9 @@ impl FallingShape {
 pub enum SlipStart {
     /// The slip velocities of the solver's previous solve (carried with the
     /// material in a rolling step): continuation, the default. Zero on a
-    /// fresh solver, as `Sticking`.
+    /// fresh solver, as `Sticking`; a wheel/rail session's exact patch
+    /// starts from its previous time step's
+    /// ([`crate::wheelrail::PatchTractions::slip_velocity_m_per_s`]).
     #[default]
     Previous,
     /// Zero slip velocity, the static coefficient everywhere: approaches

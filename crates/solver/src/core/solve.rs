@@ -373,6 +373,24 @@ impl ContactSolver {
         Ok(())
     }
 
+    /// Makes `v` \[m/s\] the slip velocities a slip-velocity law's next
+    /// solve starts its iteration from when the law starts from the
+    /// previous solve ([`crate::core::friclaw::SlipStart::Previous`]): for
+    /// a caller that carries them over from a solve on another solver of
+    /// the same grid, as a wheel/rail session does from one time step to
+    /// the next. One finite value >= 0 per element.
+    pub fn set_slip_velocity_warm_start(&mut self, v: &[f64]) -> Result<(), ContactError> {
+        per_element("slip_velocity_m_per_s", v, self.law.velocity.len())?;
+        if let Some(i) = v.iter().position(|&s| s < 0.0) {
+            return Err(ContactError::invalid(
+                format!("slip_velocity_m_per_s[{i}]"),
+                "must be >= 0",
+            ));
+        }
+        self.frame.field_to_rolling(v, &mut self.law.velocity);
+        Ok(())
+    }
+
     /// Copies the state later solves read into `to` (reusing its buffers:
     /// no allocation once they have this solver's size).
     pub fn save_state(&self, to: &mut SolverState) {

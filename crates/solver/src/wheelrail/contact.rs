@@ -561,6 +561,10 @@ pub(crate) struct PatchWork {
     /// Tangential tractions \[Pa\] on this patch's grid from the previous
     /// time step, for the first frictional solve (exact patches).
     warm_tractions: Option<[Vec<f64>; 2]>,
+    /// Slip velocities \[m/s\] on this patch's grid from the previous time
+    /// step under a slip-velocity law, for the first frictional solve
+    /// (exact patches; [`PatchTractions::slip_velocity_m_per_s`]).
+    warm_slip_velocity: Option<Vec<f64>>,
     /// Time of this patch's exact solves in their normal problems and the
     /// rest \[s\] ([`Timing::normal_s`], [`Timing::tangential_s`]).
     solver_s: [f64; 2],
@@ -653,6 +657,9 @@ impl PatchWork {
                 if frictional {
                     if let Some([px, py]) = self.warm_tractions.take() {
                         solver.set_traction_warm_start(&px, &py)?;
+                    }
+                    if let Some(v) = self.warm_slip_velocity.take() {
+                        solver.set_slip_velocity_warm_start(&v)?;
                     }
                 }
                 problem.load = load;
@@ -1078,7 +1085,7 @@ impl WarmStart {
         std::mem::size_of::<Self>()
             + tractions
                 .map(|t| {
-                    8 * t.pressure_pa.len()
+                    8 * (t.pressure_pa.len() + t.slip_velocity_m_per_s.len())
                         + t.traction_pa.iter().map(|v| 8 * v.len()).sum::<usize>()
                 })
                 .sum::<usize>()
@@ -1095,6 +1102,11 @@ pub struct PatchTractions {
     pub pressure_pa: Vec<f64>,
     /// Longitudinal and lateral traction per element \[Pa\].
     pub traction_pa: [Vec<f64>; 2],
+    /// Slip velocity per element \[m/s\] under a slip-velocity law (the
+    /// rolling speed times the slip's size), the start of the next step's
+    /// iteration on the slip velocities when the law starts from the
+    /// previous solve (`SlipStart::Previous`); empty under Coulomb's law.
+    pub slip_velocity_m_per_s: Vec<f64>,
 }
 
 impl PatchTractions {
@@ -1122,6 +1134,32 @@ impl PatchTractions {
     /// elements between the two grids' corners (zero where they do not
     /// overlap).
     fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 3]> {
+        let from = [
+            &self.pressure_pa[..],
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ];
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        self.shift_onto(grid, &from, &mut out)?;
+        Some(out)
+    }
+
+    /// The slip velocities on `grid` (as [`Self::on`]; 0 where they do not
+    /// overlap): None under Coulomb's law or on a grid of another shape.
+    fn slip_velocity_on(&self, grid: &Grid) -> Option<Vec<f64>> {
+        if self.slip_velocity_m_per_s.is_empty() {
+            return None;
+        }
+        let mut out = [vec![0.0; grid.len()]];
+        self.shift_onto(grid, &[&self.slip_velocity_m_per_s], &mut out)?;
+        let [v] = out;
+        Some(v)
+    }
+
+    /// `to[k]` = `from[k]` of this grid moved onto `grid` ([`Self::on`]);
+    /// None, `to` untouched, unless `grid` has this grid's shape and
+    /// element size.
+    fn shift_onto(&self, grid: &Grid, from: &[&[f64]], to: &mut [Vec<f64>]) -> Option<()> {
         let old = &self.grid;
         let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
         if old.nx != grid.nx
@@ -1135,24 +1173,18 @@ impl PatchTractions {
         let sx = ((grid.x0_m - old.x0_m) / grid.dx_m).round() as i64;
         let sy = ((grid.y0_m - old.y0_m) / grid.dy_m).round() as i64;
         let (nx, ny) = (grid.nx as i64, grid.ny as i64);
-        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
-        let from = [
-            &self.pressure_pa,
-            &self.traction_pa[0],
-            &self.traction_pa[1],
-        ];
         for iy in 0..ny {
             for ix in 0..nx {
                 let (ox, oy) = (ix + sx, iy + sy);
                 if (0..nx).contains(&ox) && (0..ny).contains(&oy) {
                     let (i, o) = ((iy * nx + ix) as usize, (oy * nx + ox) as usize);
-                    for (to, from) in out.iter_mut().zip(from) {
+                    for (to, from) in to.iter_mut().zip(from) {
                         to[i] = from[o];
                     }
                 }
             }
         }
-        Some(out)
+        Some(())
     }
 }
 
@@ -1587,6 +1619,7 @@ fn solve_wheel(
                 if let Some([pn, px, py]) = t.start_on(&problem.grid, earlier_tractions) {
                     p.warm_pressure = Some(pn);
                     p.warm_tractions = Some([px, py]);
+                    p.warm_slip_velocity = t.slip_velocity_on(&problem.grid);
                 }
             }
         }
@@ -1703,10 +1736,18 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
         return None;
     };
     let f = &p.out.solution.as_ref()?.fields;
+    // Steady rolling's slip is the slip velocity over the rolling speed.
+    let slip_velocity_m_per_s = match &problem.friction.slip_velocity_law {
+        Some(law) => (f.slip_x.iter().zip(&f.slip_y))
+            .map(|(sx, sy)| law.rolling_speed_m_per_s * sx.hypot(*sy))
+            .collect(),
+        None => Vec::new(),
+    };
     Some(PatchTractions {
         grid: problem.grid,
         pressure_pa: f.pressure_pa.clone(),
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
+        slip_velocity_m_per_s,
     })
 }
 
@@ -1813,6 +1854,7 @@ fn build_patch(
         out: PatchOutcome::default(),
         warm_pressure: None,
         warm_tractions: None,
+        warm_slip_velocity: None,
         solver_s: [0.0; 2],
     })
 }
@@ -1894,6 +1936,7 @@ pub(crate) fn hertz_patch(
         out: PatchOutcome::default(),
         warm_pressure: None,
         warm_tractions: None,
+        warm_slip_velocity: None,
         solver_s: [0.0; 2],
     }
 }
@@ -2898,6 +2941,7 @@ mod tests {
                 (0..16).map(|i| i as f64).collect(),
                 (0..16).map(|i| -(i as f64)).collect(),
             ],
+            slip_velocity_m_per_s: Vec::new(),
         };
         let [pn, px, py] = t.on(&old).unwrap();
         assert_eq!(
