@@ -3548,6 +3548,20 @@ mod step_force_tests {
     }
 
     #[test]
+    fn bodies_travelling_off_the_grid_are_told_how_far_they_went() {
+        // A patch of radius 3.2 mm on a window of 8 mm: 1.5 mm of travel
+        // puts it on the grid's border.
+        let c = case("{ shift_x_m = 0.0 }, { shift_x_m = 0.0, gap_travel_x_m = 1.5e-3 }").unwrap();
+        let m = ExactRun::solve(&c).err().unwrap().to_string();
+        assert!(
+            m.contains("grid.window_x_m")
+                && m.contains("transient.steps[1]")
+                && m.contains("0.0015 m"),
+            "{m}"
+        );
+    }
+
+    #[test]
     fn step_forces_are_solved_and_reported_per_step() {
         // The Fx of a forward step, prescribed, gives back its shift.
         let forward = case("{ shift_x_m = 0.0 }, { shift_x_m = 2e-6 }").unwrap();

@@ -185,7 +185,9 @@ pub fn solve_exact(
     // Bodies travelling over the grid: a step's gap, moved where it
     // travelled (the problem's gap is the one at offset 0).
     let mut at = 0.0;
+    let step = std::cell::Cell::new(0);
     let travel = |k: usize, p: &mut ContactProblem| {
+        step.set(k);
         if let Some(&offset) = case.step_gap_offsets_m.get(k) {
             if offset != at {
                 let grid = p.grid;
@@ -207,7 +209,25 @@ pub fn solve_exact(
         settings,
         "transient.steps",
         travel,
-    )?;
+    )
+    .map_err(|e| match e {
+        // Travelled off the grid: say how far, and which key moved them.
+        ContactError::GridTooSmall { key, detail } => {
+            let k = step.get();
+            match case.step_gap_offsets_m.get(k) {
+                Some(&offset) if offset != 0.0 => ContactError::GridTooSmall {
+                    key,
+                    detail: format!(
+                        "{detail}; at transient.steps[{k}] the bodies have travelled {} m over \
+                         the grid (the steps' gap_travel_x_m summed)",
+                        crate::core::error::show(offset)
+                    ),
+                },
+                _ => ContactError::GridTooSmall { key, detail },
+            }
+        }
+        e => e,
+    })?;
     let mut solutions = Vec::with_capacity(solved.len());
     let mut step_forces = Vec::with_capacity(solved.len());
     for (k, (f, &target)) in solved.into_iter().zip(&forces).enumerate() {
