@@ -8,7 +8,7 @@ use railcontact_solver::core::hertz::{hertz, HertzLoad};
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
+    ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep, SolverSettings,
 };
 use railcontact_solver::core::sensitivity::{
     central_differences, exact_jacobian, ForceJacobian, JacobianPoint, JacobianSteps,
@@ -650,5 +650,111 @@ fn jacobian_in_partial_slip_matches_cold_finite_differences() {
                 );
             }
         }
+    }
+}
+
+/// CONTACT's example `conformal`, case 1 (github.com/eve70a/CONTACT,
+/// examples/conformal.inp and conformal.ref_out, revision 2356) on `n`
+/// times finer elements (0.4 mm / n, the same window): the parabolic
+/// undeformed distance of its conformal wheel-rail patch, b1 = 0.00076859
+/// /mm and b3 = 0.00098039 /mm (h = b1 x² + b3 y²), approach 0.09089 mm,
+/// 51 x 39 elements of 0.4 mm from (-10.2, -7.8) mm; G = 82 GPa, nu =
+/// 0.28; steady rolling at CKSI = -0.004, CETA = -0.0098995, CPHI =
+/// -0.0015372 /mm, mu = 0.3, where the patch slides fully under the large
+/// spin. `spin_offset` > 0 takes the spin's rigid slip at x +
+/// spin_offset dx instead of the element centre (as an extra uniform
+/// lateral slip phi spin_offset dx). Returns FN, FX, FY \[N\], MZ \[N m\],
+/// p_max \[MPa\], elements in contact, sliding.
+fn conformal_case_1(n: usize, spin_offset: f64) -> ([f64; 5], [usize; 2]) {
+    let d = 0.4e-3 / n as f64;
+    let grid = Grid::new(51 * n, 39 * n, d, d, -10.2e-3, -7.8e-3).unwrap();
+    let phi = -1.5372;
+    let p = ContactProblem {
+        material: CombinedMaterial::identical(Material {
+            shear_modulus_pa: 82.0e9,
+            poisson_ratio: 0.28,
+        })
+        .unwrap(),
+        friction: Friction::coulomb(0.3),
+        gap_m: ContactProblem::quadratic_gap(&grid, 0.76859, 0.98039),
+        extra_rigid_slip: (spin_offset != 0.0)
+            .then(|| ExtraRigidSlip::uniform(&grid, 0.0, phi * spin_offset * d)),
+        grid,
+        load: NormalLoad::Approach(0.09089e-3),
+        kinematics: Kinematics::SteadyRolling(Creepages {
+            creepage_long: -0.004,
+            creepage_lat: -0.0098995,
+            spin_per_m: phi,
+        }),
+        settings: SolverSettings::default(),
+        rolling_direction_rad: 0.0,
+    };
+    let s = one(&p);
+    let t = &s.totals;
+    let count = |state: ElementState| s.fields.state.iter().filter(|&&e| e == state).count();
+    let slip = count(ElementState::Slip);
+    (
+        [
+            t.normal_force_n,
+            t.fx_n,
+            t.fy_n,
+            t.mz_nm,
+            t.max_pressure_pa / 1e6,
+        ],
+        [slip + count(ElementState::Adhesion), slip],
+    )
+}
+
+/// CONTACT's `conformal` case 1 (see [`conformal_case_1`]) prints FN
+/// 1.000E+05 N, FX 9144 N, FY 2.592E+04 N, MZ 3.860E+04 N mm, PMAX 912.8
+/// N/mm², 1027 elements in contact, all sliding. The normal problem, the
+/// maximum pressure and the counts agree to its digits; the creep forces
+/// agree to its digits when the spin's rigid slip is taken a sixth of an
+/// element downstream of the centre, at x + dx/6: CONTACT's FACPHI, whose
+/// default is 1/6 (its input reader `kin%facphi = 1d0 / 6d0` when the
+/// rolling line gives no fourth value; the rigid slip `cphi (x - spinxo +
+/// cos chi dq facphi)`). We take it at the element centre: on the same
+/// grid FX, FY, MZ are 0.54 %, 0.25 % and 0.91 % from CONTACT's. Refined
+/// to 0.1 mm both converge to one answer, and the centre is the closer on
+/// the 0.4 mm grid (measured: FX 9193.1 / 9143.8 against 9179.3, FY
+/// 25854.9 / 25917.9 against 25852.3, MZ 38.95 / 38.60 against 38.97 N m
+/// at the centre / at dx/6 against the centre at 0.1 mm).
+#[test]
+fn contact_conformal_example_case_1() {
+    let ([fn_n, fx, fy, mz, p_max], [contact, slip]) = conformal_case_1(1, 0.0);
+    let (sixth, _) = conformal_case_1(1, 1.0 / 6.0);
+    let (fine, _) = conformal_case_1(4, 0.0);
+    eprintln!(
+        "conformal case 1: FN {fn_n:.1} FX {fx:.1} FY {fy:.1} MZ {mz:.3} N m, p_max {p_max:.2} MPa, \
+         contact {contact}, slip {slip}; spin slip at dx/6: FX {:.1} FY {:.1} MZ {:.3}; 0.1 mm: \
+         FX {:.1} FY {:.1} MZ {:.3}",
+        sixth[1], sixth[2], sixth[3], fine[1], fine[2], fine[3]
+    );
+    let digits = |what: &str, got: f64, want: f64, half_unit: f64| {
+        assert!(
+            (got - want).abs() <= half_unit,
+            "{what}: {got}, CONTACT {want}"
+        );
+    };
+    digits("FN", fn_n, 1.000e5, 50.0);
+    digits("p_max", p_max, 912.8, 0.05);
+    assert_eq!((contact, slip), (1027, 1027));
+    // At x + dx/6, as CONTACT: its printed digits.
+    digits("FX", sixth[1], 9144.0, 0.5);
+    digits("FY", sixth[2], 2.592e4, 5.0);
+    digits("MZ", sixth[3], 38.60, 0.005);
+    // At the centre: within 1 % of CONTACT, and nearer the refined answer.
+    for (k, want) in [(1, 9144.0), (2, 2.592e4), (3, 38.60)] {
+        let centre = [fx, fy, mz][k - 1];
+        assert!(
+            (centre / want - 1.0).abs() < 0.01,
+            "{k}: {centre} against {want}"
+        );
+        assert!(
+            (centre - fine[k]).abs() < (sixth[k] - fine[k]).abs(),
+            "{k}: centre {centre}, dx/6 {}, refined {}",
+            sixth[k],
+            fine[k]
+        );
     }
 }
