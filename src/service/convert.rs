@@ -342,6 +342,8 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         extra_rigid_slip: c.extra_rigid_slip.as_ref().map(|e| ExtraRigidSlipSection {
             slip_x: values(&e.slip_x),
             slip_y: values(&e.slip_y),
+            shift_x_m: values(&e.shift_x_m),
+            shift_y_m: values(&e.shift_y_m),
         }),
         conformal: c
             .conformal

@@ -851,6 +851,7 @@ async fn a_rolling_direction_a_given_gap_and_an_extra_slip_reach_the_solver() {
     c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
         slip_x: vec![1e-4; 256],
         slip_y: Vec::new(),
+        ..Default::default()
     });
     let extra = solve_patch(&mut client, c).await;
     assert!(
@@ -858,6 +859,21 @@ async fn a_rolling_direction_a_given_gap_and_an_extra_slip_reach_the_solver() {
         "{} {}",
         fx(&extra),
         fx(&quadratic)
+    );
+    // Shift steps take an extra shift: a uniform 1e-7 m is each step's
+    // shift plus 1e-7 m.
+    let moved = solve_patch(&mut client, transient(16, &[2e-7, 4e-7])).await;
+    let mut c = transient(16, &[1e-7, 3e-7]);
+    c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
+        shift_x_m: vec![1e-7; 256],
+        ..Default::default()
+    });
+    let extra = solve_patch(&mut client, c).await;
+    assert!(
+        (fx(&extra) - fx(&moved)).abs() < 1e-8 * 1e4,
+        "{} {}",
+        fx(&extra),
+        fx(&moved)
     );
     server.shutdown().await;
 }
@@ -895,6 +911,7 @@ async fn bad_inputs_get_invalid_argument_naming_the_field() {
     c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
         slip_x: vec![f64::NAN; 256],
         slip_y: Vec::new(),
+        ..Default::default()
     });
     cases.push((request(c), "`case.extra_rigid_slip.slip_x[0]`"));
     cases.push((

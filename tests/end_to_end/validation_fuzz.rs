@@ -346,6 +346,7 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
                 c.extra_rigid_slip = Some(pb::ExtraRigidSlip {
                     slip_x: Vec::new(),
                     slip_y: e,
+                    ..Default::default()
                 });
             }),
         ),

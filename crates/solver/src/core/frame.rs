@@ -320,8 +320,18 @@ impl RollingFrame {
             }
         };
         let extra_rigid_slip = p.extra_rigid_slip.as_ref().map(|e| {
-            let [slip_x, slip_y] = self.vectors_to_rolling(&e.slip_x, &e.slip_y);
-            ExtraRigidSlip { slip_x, slip_y }
+            let turn = |x: &[f64], y: &[f64]| match x.is_empty() {
+                true => [Vec::new(), Vec::new()],
+                false => self.vectors_to_rolling(x, y),
+            };
+            let [slip_x, slip_y] = turn(&e.slip_x, &e.slip_y);
+            let [shift_x_m, shift_y_m] = turn(&e.shift_x_m, &e.shift_y_m);
+            ExtraRigidSlip {
+                slip_x,
+                slip_y,
+                shift_x_m,
+                shift_y_m,
+            }
         });
         ContactProblem {
             material: p.material,

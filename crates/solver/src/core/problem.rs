@@ -46,7 +46,8 @@
 //! * Extra rigid slip per element (`extra_rigid_slip`, CONTACT's `EXRHS`
 //!   with E = 9): a velocity of body 1 relative to body 2 over V [-] added
 //!   to the creepages' rigid slip w at each element, in (x, y); a rolling
-//!   step of dq adds dq times it to the rigid shift.
+//!   step of dq adds dq times it to the rigid shift. A shift step takes an
+//!   extra rigid shift per element [m] instead, added to its rigid shift.
 //! * Subsurface stresses and displacements ([`crate::core::subsurface`]) are
 //!   reported for both bodies in this one frame (x, y, n), stresses tension
 //!   positive; the depth runs into each body (n = +depth in body 1, −depth in
@@ -386,18 +387,6 @@ pub enum Kinematics {
     Transient(Vec<ShiftStep>),
 }
 
-impl Kinematics {
-    /// Steady rolling, or transient steps that all roll (`rolling_m > 0`):
-    /// what a slip per unit rolled distance (an extra rigid slip) needs.
-    pub fn rolls_throughout(&self) -> bool {
-        match self {
-            Kinematics::Frictionless => false,
-            Kinematics::SteadyRolling(_) => true,
-            Kinematics::Transient(steps) => steps.iter().all(|s| s.rolling_m > 0.0),
-        }
-    }
-}
-
 /// Solver settings (tolerances and iteration limits).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SolverSettings {
@@ -440,15 +429,22 @@ pub struct ContactProblem {
 }
 
 /// An extra rigid slip per element [-] added to the creepages' rigid slip
-/// (index `iy * nx + ix`, one value per element in each component):
-/// CONTACT's `EXRHS` of a rolling case (E = 9), relevant for conformal
-/// contact and coupling with finite elements.
+/// in rolling, and an extra rigid shift per element \[m\] added to the
+/// rigid shift of each transient shift step (index `iy * nx + ix`, one
+/// value per element in each component): CONTACT's `EXRHS` (E = 9) of a
+/// rolling case and of a shift case, relevant for conformal contact and
+/// coupling with finite elements. Steady rolling and rolling steps need the
+/// slip, shift steps the shift; a pair not needed may be empty.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ExtraRigidSlip {
-    /// x component [-].
+    /// x component [-] (empty: no slip).
     pub slip_x: Vec<f64>,
-    /// y component [-].
+    /// y component [-] (empty with `slip_x`).
     pub slip_y: Vec<f64>,
+    /// x component of the shift of each shift step \[m\] (empty: no shift).
+    pub shift_x_m: Vec<f64>,
+    /// y component \[m\] (empty with `shift_x_m`).
+    pub shift_y_m: Vec<f64>,
 }
 
 impl ExtraRigidSlip {
@@ -457,16 +453,107 @@ impl ExtraRigidSlip {
         Self {
             slip_x: vec![x; grid.len()],
             slip_y: vec![y; grid.len()],
+            ..Self::default()
         }
     }
 
-    /// Checks one finite value per element of `grid` in each component;
-    /// keys are named `extra_rigid_slip.slip_x` and `.slip_y`.
+    /// The same extra shift (`x`, `y`) \[m\] of every shift step in every
+    /// element of `grid`.
+    pub fn uniform_shift(grid: &Grid, x: f64, y: f64) -> Self {
+        Self {
+            shift_x_m: vec![x; grid.len()],
+            shift_y_m: vec![y; grid.len()],
+            ..Self::default()
+        }
+    }
+
+    /// Whether it has a slip (for rolling).
+    pub fn has_slip(&self) -> bool {
+        !self.slip_x.is_empty()
+    }
+
+    /// Whether it has a shift (for shift steps).
+    pub fn has_shift(&self) -> bool {
+        !self.shift_x_m.is_empty()
+    }
+
+    /// Checks that `kinematics` finds what it needs: a slip for steady
+    /// rolling and rolling steps (`rolling_m > 0`), a shift for shift
+    /// steps; errors name the missing pair and the step.
+    pub fn check_kinematics(&self, kinematics: &Kinematics) -> Result<(), ContactError> {
+        match kinematics {
+            Kinematics::Frictionless => Err(ContactError::invalid(
+                "extra_rigid_slip",
+                "needs rolling or transient steps (the problem is frictionless)",
+            )),
+            Kinematics::SteadyRolling(_) => {
+                if self.has_shift() {
+                    return Err(ContactError::invalid(
+                        "extra_rigid_slip.shift_x_m",
+                        "is the shift of transient shift steps: steady rolling takes slip_x, slip_y",
+                    ));
+                }
+                self.check_step_kind(true, "steady rolling")
+            }
+            Kinematics::Transient(steps) => {
+                for (k, s) in steps.iter().enumerate() {
+                    self.check_step(s, &format!("transient.steps[{k}]"))?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Checks that transient `step` (named `key`) finds what it needs (see
+    /// [`ExtraRigidSlip::check_kinematics`]).
+    pub fn check_step(&self, step: &ShiftStep, key: &str) -> Result<(), ContactError> {
+        self.check_step_kind(step.rolling_m > 0.0, key)
+    }
+
+    fn check_step_kind(&self, rolls: bool, what: &str) -> Result<(), ContactError> {
+        match (rolls, self.has_slip(), self.has_shift()) {
+            (true, false, _) => Err(ContactError::invalid(
+                "extra_rigid_slip.slip_x",
+                format!(
+                    "missing: {what} rolls, and takes the extra slip per unit rolled distance \
+                     (slip_x, slip_y)"
+                ),
+            )),
+            (false, _, false) => Err(ContactError::invalid(
+                "extra_rigid_slip.shift_x_m",
+                format!("missing: {what} is a shift step, and takes the extra shift (shift_x_m, shift_y_m)"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// Checks one finite value per element of `grid` in each component of
+    /// each pair given (both components of a pair, or neither), and one
+    /// pair at least; keys are named `extra_rigid_slip.slip_x` and so on.
     pub fn validate(&self, grid: &Grid) -> Result<(), ContactError> {
-        for (key, v) in [
-            ("extra_rigid_slip.slip_x", &self.slip_x),
-            ("extra_rigid_slip.slip_y", &self.slip_y),
+        if !self.has_slip() && !self.has_shift() {
+            return Err(ContactError::invalid(
+                "extra_rigid_slip",
+                "is empty: give slip_x, slip_y (rolling) or shift_x_m, shift_y_m (shift steps)",
+            ));
+        }
+        for (key, v, given) in [
+            ("extra_rigid_slip.slip_x", &self.slip_x, self.has_slip()),
+            ("extra_rigid_slip.slip_y", &self.slip_y, self.has_slip()),
+            (
+                "extra_rigid_slip.shift_x_m",
+                &self.shift_x_m,
+                self.has_shift(),
+            ),
+            (
+                "extra_rigid_slip.shift_y_m",
+                &self.shift_y_m,
+                self.has_shift(),
+            ),
         ] {
+            if !given && v.is_empty() {
+                continue;
+            }
             if v.len() != grid.len() {
                 return Err(ContactError::invalid(
                     key,
@@ -530,13 +617,7 @@ impl ContactProblem {
         }
         if let Some(extra) = &self.extra_rigid_slip {
             extra.validate(&self.grid)?;
-            if !self.kinematics.rolls_throughout() {
-                return Err(ContactError::invalid(
-                    "extra_rigid_slip",
-                    "is a slip per unit rolled distance: it needs steady rolling or transient \
-                     steps that all roll (rolling_m > 0)",
-                ));
-            }
+            extra.check_kinematics(&self.kinematics)?;
         }
         match &self.kinematics {
             Kinematics::Frictionless => {}

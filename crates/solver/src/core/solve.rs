@@ -584,14 +584,9 @@ impl ContactSolver {
                 "solve_next_step needs a transient problem",
             ));
         }
-        if problem.extra_rigid_slip.is_some() {
-            // The problem's own steps roll (validated); this one must too.
-            if step.rolling_m <= 0.0 {
-                return Err(ContactError::invalid(
-                    "step.rolling_m",
-                    "must be > 0 with an extra rigid slip (a slip per unit rolled distance)",
-                ));
-            }
+        if let Some(extra) = &problem.extra_rigid_slip {
+            // A rolling step takes the extra slip, a shift step the shift.
+            extra.check_step(step, "step")?;
         }
         self.path.clear();
         let mut sol = if self.frame.is_identity() {
@@ -837,11 +832,12 @@ impl ContactSolver {
                 (Kinematics::Transient(_), Some((shx, shy, rot))) => {
                     rigid_slip(&grid, [shx, shy], rot, &mut self.cx, &mut self.cy);
                     if let Some(e) = &problem.extra_rigid_slip {
-                        add_scaled(
-                            rolling_m,
-                            [&e.slip_x, &e.slip_y],
-                            [&mut self.cx, &mut self.cy],
-                        );
+                        let (factor, [x, y]) = if rolling_m > 0.0 {
+                            (rolling_m, [&e.slip_x, &e.slip_y])
+                        } else {
+                            (1.0, [&e.shift_x_m, &e.shift_y_m])
+                        };
+                        add_scaled(factor, [x, y], [&mut self.cx, &mut self.cy]);
                     }
                     for i in 0..n {
                         self.cx[i] -= self.old_ux[i];

@@ -261,10 +261,13 @@ pub struct CaseFile {
 /// `[extra_rigid_slip]`: a rigid slip [-] added at each element to the
 /// creepages' rigid slip w = (xi - phi y, eta + phi x), CONTACT's `EXRHS`
 /// of a rolling case (E = 9): `slip_x` and `slip_y`, each nx * ny values
-/// with index iy * nx + ix (x fastest) in [-1, 1]; one of them may be left
-/// out (zeros). Exact model, steady rolling or transient steps that all
-/// roll (a rolling step of dq adds dq times it to the rigid shift); the
-/// grid's `nx` and `ny` must be given.
+/// with index iy * nx + ix (x fastest) in [-1, 1]; and a rigid shift
+/// \[m\] added at each element to the shift of every transient shift step,
+/// `EXRHS` of a shift case: `shift_x_m` and `shift_y_m`, in [-0.01, 0.01]
+/// m. One component of a pair may be left out (zeros). Exact model; steady
+/// rolling and rolling steps need the slip (a rolling step of dq adds dq
+/// times it to the rigid shift), shift steps the shift; the grid's `nx`
+/// and `ny` must be given.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExtraRigidSlipSection {
@@ -272,6 +275,10 @@ pub struct ExtraRigidSlipSection {
     pub slip_x: Option<Vec<f64>>,
     /// y component per element [-].
     pub slip_y: Option<Vec<f64>>,
+    /// x component of each shift step's extra shift per element \[m\].
+    pub shift_x_m: Option<Vec<f64>>,
+    /// y component of each shift step's extra shift per element \[m\].
+    pub shift_y_m: Option<Vec<f64>>,
 }
 
 /// `[conformal]`: options of the conformal models (`cect`,
@@ -2535,33 +2542,46 @@ fn extra_rigid_slip(
             ),
         ));
     }
-    if !kinematics.rolls_throughout() {
-        return Err(bad(
-            key,
-            "is a slip per unit rolled distance: give `[rolling]`, or `[transient]` steps that all roll \
-             (creepages and `transient.rolling_step_m`)",
-        ));
-    }
-    if e.slip_x.is_none() && e.slip_y.is_none() {
-        return Err(bad(
-            key,
-            "give `extra_rigid_slip.slip_x` and/or `extra_rigid_slip.slip_y`",
-        ));
-    }
     let line = file.geometry.kind == GeometryKind::Line;
     let elements = if line { n[0] } else { n[0] * n[1] };
-    let mut out = [vec![0.0; elements], vec![0.0; elements]];
-    for (k, (name, v)) in [("slip_x", &e.slip_x), ("slip_y", &e.slip_y)]
-        .into_iter()
-        .enumerate()
-    {
-        if let Some(v) = v {
-            per_element_values(&format!("{key}.{name}"), v, n, grid, line, CREEPAGE_RANGE)?;
-            out[k].clone_from(v);
+    // One pair: both components, zeros for one left out; empty without.
+    let pair = |names: [&str; 2], given: [&Option<Vec<f64>>; 2], range: Range| {
+        let mut out = [Vec::new(), Vec::new()];
+        if given.iter().all(|v| v.is_none()) {
+            return Ok(out);
         }
+        for (k, (name, v)) in names.into_iter().zip(given).enumerate() {
+            out[k] = match v {
+                Some(v) => {
+                    per_element_values(&format!("{key}.{name}"), v, n, grid, line, range)?;
+                    v.clone()
+                }
+                None => vec![0.0; elements],
+            };
+        }
+        Ok::<_, CaseError>(out)
+    };
+    let [slip_x, slip_y] = pair(["slip_x", "slip_y"], [&e.slip_x, &e.slip_y], CREEPAGE_RANGE)?;
+    let [shift_x_m, shift_y_m] = pair(
+        ["shift_x_m", "shift_y_m"],
+        [&e.shift_x_m, &e.shift_y_m],
+        ranges::SHIFT,
+    )?;
+    let extra = ExtraRigidSlip {
+        slip_x,
+        slip_y,
+        shift_x_m,
+        shift_y_m,
+    };
+    if !extra.has_slip() && !extra.has_shift() {
+        return Err(bad(
+            key,
+            "give `extra_rigid_slip.slip_x` and/or `slip_y` (rolling), or `shift_x_m` and/or \
+             `shift_y_m` (shift steps)",
+        ));
     }
-    let [slip_x, slip_y] = out;
-    Ok(Some(ExtraRigidSlip { slip_x, slip_y }))
+    extra.check_kinematics(kinematics)?;
+    Ok(Some(extra))
 }
 
 fn check_model_geometry(model: Model, geometry: &CaseGeometry) -> Result<(), CaseError> {
@@ -3993,6 +4013,14 @@ window_y_m = 14e-3
                 "`extra_rigid_slip.slip_x[0]`",
             ),
             (rolling_case(&slip("")), "`extra_rigid_slip`"),
+            (
+                rolling_case(&slip(&format!("shift_x_m = [{}]", list(n, "0.0")))),
+                "`extra_rigid_slip.shift_x_m`",
+            ),
+            (
+                rolling_case(&slip(&format!("shift_y_m = [{}]", list(n, "0.5")))),
+                "`extra_rigid_slip.shift_y_m[0]`",
+            ),
             (
                 rolling_case(&slip(&format!("slip_x = [{}]", list(n, "0.0"))))
                     .replace("nx = 24\n", ""),

@@ -333,6 +333,79 @@ fn a_uniform_extra_rigid_slip_is_a_changed_creepage() {
 }
 
 #[test]
+fn a_uniform_extra_shift_is_a_changed_step_shift() {
+    // CONTACT's EXRHS in a shift case: an extra rigid shift (ex, ey) [m]
+    // in every element of every shift step is the step's shift changed by
+    // it; mixed with rolling steps, those take the extra slip. Both ways,
+    // rolling in +x and -x.
+    let (ex, ey) = (2e-7, -1.5e-7);
+    for chi in [0.0, PI] {
+        let base = problem(1.0, 0.6, [24, 20], 0.3, Kinematics::Frictionless, chi);
+        let load = NormalLoad::NormalForce(FN);
+        let shift = |x: f64, y: f64| ShiftStep {
+            load,
+            shift_x_m: x,
+            shift_y_m: y,
+            rotation_rad: 1e-4,
+            rolling_m: 0.0,
+        };
+        let c = Creepages {
+            creepage_long: 2e-4,
+            creepage_lat: 0.0,
+            spin_per_m: 0.3,
+        };
+        let rolled = ShiftStep::rolling(load, base.grid.dx_m, &c);
+        let steps = |d: [f64; 2]| {
+            Kinematics::Transient(vec![
+                shift(1e-7 + d[0], d[1]),
+                shift(-2e-7 + d[0], 3e-7 + d[1]),
+                rolled,
+            ])
+        };
+        let mut extra = ExtraRigidSlip::uniform_shift(&base.grid, ex, ey);
+        extra.slip_x = vec![0.0; base.grid.len()];
+        extra.slip_y = vec![0.0; base.grid.len()];
+        let with = ContactProblem {
+            kinematics: steps([0.0, 0.0]),
+            extra_rigid_slip: Some(extra),
+            ..base.clone()
+        };
+        let changed = ContactProblem {
+            kinematics: steps([ex, ey]),
+            ..base.clone()
+        };
+        let (a, b) = (solve(&with).unwrap(), solve(&changed).unwrap());
+        for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+            eprintln!(
+                "chi {chi} step {k}: extra shift Fx {:.6} Fy {:.6}; shift Fx {:.6} Fy {:.6}",
+                a.totals.fx_n, a.totals.fy_n, b.totals.fx_n, b.totals.fy_n
+            );
+            assert!(close(a.totals.fx_n, b.totals.fx_n, 1e-8, FN));
+            assert!(close(a.totals.fy_n, b.totals.fy_n, 1e-8, FN));
+        }
+        // A shift step needs the shift, steady rolling refuses it.
+        let slip_only = ContactProblem {
+            extra_rigid_slip: Some(ExtraRigidSlip::uniform(&base.grid, ex, ey)),
+            ..with.clone()
+        };
+        let key = |p: &ContactProblem| solve(p).unwrap_err().key().map(str::to_string);
+        assert_eq!(
+            key(&slip_only).as_deref(),
+            Some("extra_rigid_slip.shift_x_m")
+        );
+        let steady_shift = ContactProblem {
+            kinematics: steady(2e-4, 0.0, 0.3),
+            extra_rigid_slip: Some(ExtraRigidSlip::uniform_shift(&base.grid, ex, ey)),
+            ..base.clone()
+        };
+        assert_eq!(
+            key(&steady_shift).as_deref(),
+            Some("extra_rigid_slip.shift_x_m")
+        );
+    }
+}
+
+#[test]
 fn a_full_turn_is_no_turn_bit_for_bit() {
     let p = problem(1.0, 0.6, [20, 20], 0.3, steady(3e-4, 1e-4, 0.5), 0.0);
     let turned = ContactProblem {
@@ -361,6 +434,7 @@ fn bad_rolling_directions_and_extra_slips_are_refused_naming_the_key() {
     short.extra_rigid_slip = Some(ExtraRigidSlip {
         slip_x: vec![0.0; 7],
         slip_y: vec![0.0; p.grid.len()],
+        ..ExtraRigidSlip::default()
     });
     assert_eq!(key(&short).as_deref(), Some("extra_rigid_slip.slip_x"));
     let mut nan = p.clone();

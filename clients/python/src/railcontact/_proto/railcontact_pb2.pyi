@@ -379,12 +379,16 @@ class PatchCase(_message.Message):
     def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
 
 class ExtraRigidSlip(_message.Message):
-    __slots__ = ("slip_x", "slip_y")
+    __slots__ = ("slip_x", "slip_y", "shift_x_m", "shift_y_m")
     SLIP_X_FIELD_NUMBER: _ClassVar[int]
     SLIP_Y_FIELD_NUMBER: _ClassVar[int]
+    SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
+    SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
     slip_x: _containers.RepeatedScalarFieldContainer[float]
     slip_y: _containers.RepeatedScalarFieldContainer[float]
-    def __init__(self, slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ...) -> None: ...
+    shift_x_m: _containers.RepeatedScalarFieldContainer[float]
+    shift_y_m: _containers.RepeatedScalarFieldContainer[float]
+    def __init__(self, slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., shift_x_m: _Optional[_Iterable[float]] = ..., shift_y_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class ConformalSection(_message.Message):
     __slots__ = ("rigid_slip",)
