@@ -574,6 +574,7 @@ impl<'a> Probe<'a> {
             q_m: mix(a.q_m, b.q_m),
             z_m: mix(a.z_m, b.z_m),
             tangent: [tan[0] / norm, tan[1] / norm],
+            curvature_per_m: mix(a.curvature_per_m, b.curvature_per_m),
         });
         let rail_z_m = self.rail.rail_z_at(locus.q_m);
         rail_z_m.is_finite().then_some(Evaluated {

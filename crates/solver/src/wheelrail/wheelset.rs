@@ -197,6 +197,9 @@ pub struct CurveSample {
     pub z_m: f64,
     /// Unit tangent in CONTACT point order (dq/dt, dz/dt).
     pub tangent: [f64; 2],
+    /// Signed curvature of the fitted profile [1/m], positive where the
+    /// body is convex (see [`crate::wheelrail::spline`], "Signs").
+    pub curvature_per_m: f64,
 }
 
 impl CurveSample {
@@ -228,6 +231,9 @@ fn sample(spline: &ProfileSpline, map: impl Fn(f64, f64) -> [f64; 2]) -> Vec<Cur
                 q_m: q,
                 z_m: z,
                 tangent: [tan[0] / norm, tan[1] / norm],
+                // `map` turns and shifts (the rail's cant): the curvature
+                // is that of the profile.
+                curvature_per_m: p.curvature_per_m,
             }
         })
         .collect()

@@ -3,6 +3,7 @@
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::creep::kalker_creep_coefficients;
+use railcontact_solver::core::fastsim::{Fastsim, FastsimInput};
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::hertz::{hertz, HertzLoad};
 use railcontact_solver::core::material::{CombinedMaterial, Material};
@@ -15,6 +16,7 @@ use railcontact_solver::core::sensitivity::{
 };
 use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
 use railcontact_solver::core::solve::{solve, ContactSolver};
+use railcontact_solver::core::strip::strip_theory;
 
 fn material(nu: f64) -> CombinedMaterial {
     CombinedMaterial::identical(Material {
@@ -756,5 +758,105 @@ fn contact_conformal_example_case_1() {
             sixth[k],
             fine[k]
         );
+    }
+}
+
+/// Strip theory (`core::strip`, whose spin terms are its own: FaStrip's
+/// were not available) against the exact model on a Hertzian ellipse
+/// with spin: h = A x² + B y², A = 1.087, B = 3.0 1/m (a/b = 1.96, a
+/// wheel of 0.46 m on a rail crown), 10 kN, nu = 0.28, G = 80 GPa, mu =
+/// 0.3, the exact model on 64 x 64 elements, strip theory on 100 strips.
+/// Spins in units of phi_sat = mu Fn/(G c³ C23), the spin whose linear
+/// lateral force is mu Fn (0.80 1/m here). Each row: (xi, eta,
+/// phi/phi_sat, strip's Fx - exact's, Fy - exact's, both per mu Fn, and
+/// strip's Mz over exact's), the table of the module docs of
+/// `core::strip`. Allowed: 0.01 mu Fn in force and 0.03 in the moment
+/// ratio, the exact model's own discretisation error on this grid (its
+/// C22 and C23 within 2.5 %, C33 within 3.2 %:
+/// `spin_creep_coefficients_match_kalker_table`).
+#[test]
+fn strip_theory_with_spin_against_the_exact_model() {
+    let nu = 0.28;
+    let mat = material(nu);
+    let g = mat.shear_modulus_pa;
+    let (ca, cb, fnn, mu) = (1.087, 3.0, 1.0e4, 0.3);
+    let hz = hertz(
+        ca,
+        cb,
+        mat.effective_modulus_pa(),
+        HertzLoad::NormalForce {
+            normal_force_n: fnn,
+        },
+    )
+    .unwrap();
+    let (a, b) = (hz.semi_axis_x_m, hz.semi_axis_y_m);
+    let c = (a * b).sqrt();
+    let k = kalker_creep_coefficients(a / b, nu).unwrap();
+    let phi_sat = mu * fnn / (g * c.powi(3) * k.c23);
+    let table: [(f64, f64, f64, f64, f64, f64); 8] = [
+        (0.0, 0.0, 0.1, 0.0, 0.003, 0.60),
+        (0.0, 0.0, 0.3, 0.0, 0.021, 0.61),
+        (0.0, 0.0, 1.0, 0.0, 0.040, 0.45),
+        (0.0, 0.0, 3.0, 0.0, -0.420, 0.30),
+        (0.0, 0.0, 10.0, 0.0, -0.687, 0.25),
+        (0.0, 1e-3, 1.0, 0.0, -0.040, 0.62),
+        (0.0, -1e-3, 1.0, 0.0, 0.115, 1.07),
+        (1e-3, 0.0, 1.0, -0.032, 0.017, 0.36),
+    ];
+    let mf = mu * fnn;
+    for &(xi, eta, q, dfx, dfy, mz_ratio) in &table {
+        let phi = q * phi_sat;
+        let cr = Creepages {
+            creepage_long: xi,
+            creepage_lat: eta,
+            spin_per_m: phi,
+        };
+        let e = one(&quadratic(
+            mat,
+            ca,
+            cb,
+            fnn,
+            64,
+            64,
+            mu,
+            Kinematics::SteadyRolling(cr),
+        ));
+        let inp = FastsimInput {
+            semi_axis_x_m: a,
+            semi_axis_y_m: b,
+            normal_force_n: fnn,
+            shear_modulus_pa: g,
+            poisson_ratio: nu,
+            friction_coefficient: mu,
+            static_friction_coefficient: mu,
+            creepage_long: xi,
+            creepage_lat: eta,
+            spin_per_m: phi,
+        };
+        let s = strip_theory(&inp, 100).unwrap();
+        let f = Fastsim::new(40, 40).unwrap().solve(&inp).unwrap();
+        let t = &e.totals;
+        eprintln!(
+            "a {a:.3e} b {b:.3e} m, phi_sat {phi_sat:.3} 1/m; xi {xi}, eta {eta}, phi/phi_sat {q}: exact Fx {:.1} Fy {:.1} N Mz {:.4} N m | strip Fx {:.1} Fy {:.1} Mz {:.4} | FASTSIM 40x40 Fx {:.1} Fy {:.1} Mz {:.4} | per mu Fn: strip dFx {:+.3} dFy {:+.3}, FASTSIM dFx {:+.3} dFy {:+.3}; Mz / exact: strip {:.2}, FASTSIM {:.2}",
+            t.fx_n,
+            t.fy_n,
+            t.mz_nm,
+            s.fx_n,
+            s.fy_n,
+            s.mz_nm,
+            f.fx_n,
+            f.fy_n,
+            f.mz_nm,
+            (s.fx_n - t.fx_n) / mf,
+            (s.fy_n - t.fy_n) / mf,
+            (f.fx_n - t.fx_n) / mf,
+            (f.fy_n - t.fy_n) / mf,
+            s.mz_nm / t.mz_nm,
+            f.mz_nm / t.mz_nm,
+        );
+        let row = format!("xi {xi}, eta {eta}, phi/phi_sat {q}");
+        assert!(((s.fx_n - t.fx_n) / mf - dfx).abs() <= 0.01, "{row}: Fx");
+        assert!(((s.fy_n - t.fy_n) / mf - dfy).abs() <= 0.01, "{row}: Fy");
+        assert!((s.mz_nm / t.mz_nm - mz_ratio).abs() <= 0.03, "{row}: Mz");
     }
 }

@@ -54,6 +54,13 @@ fn a22_input(
     mbench_a22_input(y_mm, roll, pitch, model)
 }
 
+/// A-2.2's (kinetic) friction coefficient.
+fn a22_friction() -> f64 {
+    a22_input(2.0, None, None, WheelRailModel::Cect)
+        .friction
+        .kinetic_coefficient
+}
+
 /// One patch of CONTACT's reference output for case, in the units of
 /// the file: rail y [mm], |contact angle| [rad], FN, FX, FS [N] (on the
 /// rail, patch frame), creepages xi, eta [-] and phi [1/mm].
@@ -1203,15 +1210,25 @@ fn prescribed_total_longitudinal_force_round_trip_and_limits() {
                 pitch_force_tolerance(&input.settings) * limit,
             );
             // Back to the rate it came from: within 1e-4 of its departure
-            // from free rolling (measured: 2e-5, Hertz+FASTSIM, whose
-            // saturated flange patch flattens the slope).
+            // from free rolling for the closed-form models (measured: 2e-5,
+            // Hertz+FASTSIM, whose saturated flange patch flattens the
+            // slope), 2e-4 for the exact model, whose force is smooth in
+            // the rate only to its iterative solution: measured 1.25e-4
+            // (its found rate's force 0.011 N from the target, 8.2e-7
+            // rad/s away, where its force changes by 0.058 N over 1e-6
+            // rad/s).
             let free = -2.0 / 0.46;
+            let share = if model == WheelRailModel::Exact {
+                2e-4
+            } else {
+                1e-4
+            };
             close(
                 "pitch rate",
                 sol.pitch_rad_per_s,
                 omega,
                 0.0,
-                1e-4 * (omega - free).abs(),
+                share * (omega - free).abs(),
             );
             eprintln!("{model:?}, {path}: {c:?}");
         }
@@ -1286,25 +1303,22 @@ fn same_patch_forces(got: &PatchResult, want: &PatchResult, mu: f64) {
 /// model's patches. Both patches are barely conformal (contact angle
 /// varying by 0.028 and 0.060 rad over them), where CECT's curved patch
 /// and Blanco's coefficients change little. The split of the load between
-/// the patches follows their stiffness: the yawed flange root's conformal
-/// section is stiffer along x than the planar approach's quadratic form
-/// (the wheel's own lateral curvature crossed along x, which that form
-/// leaves out: `docs/conformal_study.md`, "Yaw"), which moves 4 N (0.04 %
-/// of the load) from the tread to the flange root. Per patch the normal
-/// force within 0.1 % of the wheel's load, the creep forces per normal
-/// force within 0.5 % of mu, the wheel's vertical force the load.
-/// Measured (cect / exact): FN 1608.2 / 1612.5 and 8029.0 / 8025.6 N, FX
-/// -2.5 / -2.4 and -801.8 / -800.8 N, FS -481.3 / -483.7 and -2274.0 /
-/// -2269.3 N.
+/// the patches follows their stiffness. Per patch the normal force within
+/// 0.1 % of the wheel's load, the creep forces per normal force within 0.5
+/// % of mu, the wheel's vertical force the load. Measured (cect / exact):
+/// FN 1608.2 / 1609.6 and 8029.0 / 8028.5 N, FX -2.5 / -2.4 and -801.8 /
+/// -801.1 N, FS -481.3 / -482.9 and -2274.0 / -2270.1 N. While the planar
+/// approach took the circle's curvature as k_x (leaving out the wheel's
+/// lateral curvature crossed along x by the yawed circles:
+/// `docs/conformal_study.md`, "Yaw") the exact model put 4 N more on the
+/// tread (1612.5 / 8025.6 N).
 #[test]
 fn cect_solves_each_patch_of_a_two_patch_wheel() {
     let exact = right_wheel_at_5mm(WheelRailModel::Exact);
     let cect = right_wheel_at_5mm(WheelRailModel::Cect);
     let (we, wc) = (&exact.wheels[0], &cect.wheels[0]);
     assert_eq!((we.patches.len(), wc.patches.len()), (2, 2));
-    let mu = a22_input(5.0, None, None, WheelRailModel::Cect)
-        .friction
-        .kinetic_coefficient;
+    let mu = a22_friction();
     for (e, c) in we.patches.iter().zip(&wc.patches) {
         assert_eq!(c.method, "cect");
         eprintln!(
@@ -1389,9 +1403,7 @@ fn cect_with_yaw_agrees_with_the_exact_model_on_tread_patches() {
     let pair = mbench_pair();
     let cache = KernelCache::default();
     let mut scratch = SearchScratch::default();
-    let mu = a22_input(2.0, None, None, WheelRailModel::Cect)
-        .friction
-        .kinetic_coefficient;
+    let mu = a22_friction();
     for yaw in [2.0e-3, 4.8e-3] {
         let mut solve = |model| {
             let mut input = a22_input(2.0, None, None, model);
@@ -1413,6 +1425,63 @@ fn cect_with_yaw_agrees_with_the_exact_model_on_tread_patches() {
             close("FS", c.fs_n, e.fs_n, 0.0, 5e-3 * bound);
             close("Fz", wc.force_track_n[2], 10_000.0, 1e-6, 0.0);
         }
+    }
+}
+
+/// On the yawed flange of A-2.2 (right wheel, roll found, free rolling:
+/// 5 mm at 12 mrad on the flange root, 6.5 mm at 15.6 mrad and 10 mm at
+/// 24 mrad on the flange) cect's undeformed distance is the wheel's
+/// actual section, and the planar patch of the exact model takes the
+/// wheel's normal curvature along x (`wheelrail::search::LocusFrame::
+/// point`, Euler's, both checked against a yawed torus by brute force).
+/// The two then see the same curvature along x at the patch centre and
+/// agree on the peak pressure as on the forces: allowed p_max within 1 %,
+/// FN within 0.1 %, FX and FS within 0.5 % of mu FN. Measured (cect /
+/// exact): 5 mm p_max 1.5156 / 1.5143 GPa, 6.5 mm 2.7058 / 2.6832 GPa
+/// (0.85 %), 10 mm 2.5726 / 2.5873 GPa; FN within 0.07 %, FX and FS
+/// within 0.2 % of mu FN. With the circle's curvature as k_x the exact
+/// model's p_max at 6.5 mm was 2.640 GPa, 2.5 % below cect's.
+#[test]
+fn cect_and_the_exact_model_agree_on_the_yawed_flange() {
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let mu = a22_friction();
+    for y_mm in [5.0, 6.5, 10.0] {
+        let mut solve = |model| {
+            let mut input = a22_input(y_mm, None, None, model);
+            input.sides = vec![Side::Right];
+            solve_wheelset(&pair, &input, &cache, &mut scratch)
+                .unwrap()
+                .wheels[0]
+                .clone()
+        };
+        let (exact, cect) = (solve(WheelRailModel::Exact), solve(WheelRailModel::Cect));
+        let pick = |w: &WheelResult| {
+            w.patches
+                .iter()
+                .max_by(|a, b| a.normal_force_n.total_cmp(&b.normal_force_n))
+                .unwrap()
+                .clone()
+        };
+        let (e, c) = (pick(&exact), pick(&cect));
+        eprintln!(
+            "{y_mm} mm: angle {:.2} rad, FN {:.1} / {:.1}, FX {:.1} / {:.1}, FS {:.1} / {:.1} N, p_max {:.4} / {:.4} GPa (cect / exact)",
+            e.contact_angle_rad,
+            c.normal_force_n,
+            e.normal_force_n,
+            c.fx_n,
+            e.fx_n,
+            c.fs_n,
+            e.fs_n,
+            c.max_pressure_pa * 1e-9,
+            e.max_pressure_pa * 1e-9
+        );
+        close("p_max", c.max_pressure_pa, e.max_pressure_pa, 0.01, 0.0);
+        close("FN", c.normal_force_n, e.normal_force_n, 1e-3, 0.0);
+        let bound = mu * e.normal_force_n;
+        close("FX", c.fx_n, e.fx_n, 0.0, 5e-3 * bound);
+        close("FS", c.fs_n, e.fs_n, 0.0, 5e-3 * bound);
     }
 }
 
