@@ -98,6 +98,7 @@ use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
     PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
+use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition,
     WheelsetVelocity, SAMPLE_SPACING_M,
@@ -369,6 +370,10 @@ pub struct WheelRailInput {
     /// the module docs), and `velocity.pitch_rad_per_s` must be `None`.
     /// `None`: the pitch rate is given or free rolling.
     pub total_longitudinal_force_n: Option<f64>,
+    /// Flash temperatures of the wheel and rail surfaces per patch
+    /// ([`crate::wheelrail::temperature`]; model `exact` only), each
+    /// patch's [`PatchResult::temperature`]; `None`: none (and no cost).
+    pub temperature: Option<WheelRailThermal>,
 }
 
 impl WheelRailInput {
@@ -458,6 +463,10 @@ pub struct PatchResult {
     /// The patch's grid, for plots.
     #[serde(skip)]
     pub grid_geometry: Option<Grid>,
+    /// Flash temperatures of the rail and wheel surfaces, when the input
+    /// asked for them ([`WheelRailInput::temperature`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<PatchTemperatures>,
 }
 
 /// One wheel.
@@ -1193,7 +1202,7 @@ pub fn solve_wheelset_warm(
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
-    let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
+    let (omega, mut wheels, pitch_control) = solve_pitch(pair, input, |omega| {
         let mut wheels = Vec::with_capacity(input.sides.len());
         for &side in &input.sides {
             let i = side.index();
@@ -1227,6 +1236,9 @@ pub fn solve_wheelset_warm(
         solved = true;
         Ok(wheels)
     })?;
+    if let Some(thermal) = &input.temperature {
+        add_temperatures(&mut wheels, thermal)?;
+    }
     warm.advance(rigid.roll_rad, normal_per_vertical, tractions);
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
@@ -1418,6 +1430,9 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             "grid.element_size_m",
             format!("must be between 1e-6 and 5e-3 m, got {e}"),
         ));
+    }
+    if let Some(thermal) = &input.temperature {
+        temperature::validate(thermal, input.settings.model)?;
     }
     input.settings.polach.validate("polach")?;
     input
@@ -2741,6 +2756,7 @@ pub(crate) fn finish(
             grid: grid_n,
             solution,
             grid_geometry,
+            temperature: None,
         });
         if let PatchKind::Exact { solver, .. } = p.kind {
             *spare = Some(solver);
