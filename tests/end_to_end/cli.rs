@@ -1046,29 +1046,12 @@ fn wheelrail_bad_inputs_name_the_key() {
     );
 }
 
-/// `[temperature.rail]` and `[temperature.wheel]` of rail steel at 20 °C
-/// and a wheel at 60 °C.
-const WHEELRAIL_TEMPERATURE: &str = "
-[temperature.rail]
-bulk_temperature_k = 293.15
-conductivity_w_per_m_k = 50.0
-density_kg_per_m3 = 7850.0
-specific_heat_j_per_kg_k = 450.0
-
-[temperature.wheel]
-bulk_temperature_k = 333.15
-conductivity_w_per_m_k = 50.0
-density_kg_per_m3 = 7850.0
-specific_heat_j_per_kg_k = 450.0
-";
-
 #[test]
 fn wheelrail_temperatures_per_patch_in_json_and_summary() {
-    let text = format!(
-        "{}{WHEELRAIL_TEMPERATURE}",
-        example_text("wheelset_a22.toml")
-    );
-    let case = case_file("wheelset_temperature.toml", &text);
+    // examples/cases/wheelset_a22_temperature.toml: A-2.2 at 6.5 mm, the
+    // rail at 20 °C, the wheel at 60 °C.
+    let case = example("wheelset_a22_temperature.toml");
+    let text = example_text("wheelset_a22_temperature.toml");
     let v = wheelrail_json(&case);
     for side in ["left", "right"] {
         let p = &v["wheels"][side]["patches"][0];
