@@ -75,7 +75,8 @@ struct WheelrailCase {
     /// Models cect and auto: options of the conformal method.
     conformal: Option<ConformalKeys>,
     /// `[temperature.rail]` and `[temperature.wheel]`: flash temperatures
-    /// per patch (model exact; each patch rolls at its own speed).
+    /// per patch (models exact, cect, auto; each patch rolls at its own
+    /// speed).
     temperature: Option<WheelRailThermal>,
 }
 

@@ -187,7 +187,7 @@ impl QuerySettings {
 
     /// The settings with the request's flash temperatures (field
     /// `temperature`: body1 the rail, body2 the wheel, the rolling speed
-    /// left 0; model exact only; not set: none).
+    /// left 0; models exact, cect and auto; not set: none).
     pub fn with_temperature(
         mut self,
         t: Option<&pb::TemperatureSection>,
@@ -599,6 +599,8 @@ fn method(m: &str) -> pb::WheelRailModel {
 
 fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
     let with_fields = fields && p.solution.is_some() && p.grid_geometry.is_some();
+    // The grid also locates a cect patch's temperature fields.
+    let with_grid = with_fields || (fields && p.temperature.is_some() && p.grid_geometry.is_some());
     pb::WheelRailPatch {
         method: method(p.method) as i32,
         contact_angle_rad: p.contact_angle_rad,
@@ -629,7 +631,7 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
         grid: p
             .grid_geometry
             .as_ref()
-            .filter(|_| with_fields)
+            .filter(|_| with_grid)
             .map(grid_info),
         fields: p
             .solution

@@ -1091,7 +1091,7 @@ fn wheelrail_temperatures_per_patch_in_json_and_summary() {
     expect_bad_wheelrail(
         "wr_temperature_model.toml",
         &text.replace("model = \"exact\"", "model = \"hertz_fastsim\""),
-        "temperature: flash temperatures come from the tractions and slips per element of model \"exact\"; model \"hertz_fastsim\"",
+        "temperature: flash temperatures come from the tractions and slips per element of models \"exact\", \"cect\" and \"auto\"; model \"hertz_fastsim\"",
     );
     expect_bad_wheelrail(
         "wr_temperature_body.toml",

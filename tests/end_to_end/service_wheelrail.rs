@@ -1340,6 +1340,23 @@ async fn wheel_rail_temperatures_come_per_patch_as_the_library_and_replay_bit_fo
     let got = solve(&mut client, with_fields).await;
     assert_same_temperatures("query with fields", &got, &want, true);
 
+    // A cect patch's temperatures come from its curved grid, which is sent
+    // with them (its ElementFields are not).
+    let mut cect = input.clone();
+    cect.settings.model = WheelRailModel::Cect;
+    let want_cect = solve_wheelset(&pair, &cect, &cache, &mut SearchScratch::default()).unwrap();
+    let mut r = query_of(BUILTIN, &cect);
+    r.include_fields = true;
+    let got_cect = solve(&mut client, r).await;
+    assert_same("cect", &got_cect, &want_cect);
+    assert_same_temperatures("cect", &got_cect, &want_cect, true);
+    for p in got_cect.wheels.iter().flat_map(|w| &w.patches) {
+        assert_eq!(p.method, pb::WheelRailModel::Cect as i32);
+        let g = p.grid.expect("the grid of the temperature fields");
+        assert_eq!((g.nx, g.ny), (p.grid_nx, p.grid_ns));
+        assert!(p.fields.is_none());
+    }
+
     // A batch item carries them too.
     let out = client
         .solve_wheel_rail_batch(pb::SolveWheelRailBatchRequest {

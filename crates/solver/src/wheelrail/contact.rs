@@ -90,7 +90,7 @@ use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
 };
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
-use crate::core::solution::ContactSolution;
+use crate::core::solution::{ContactSolution, ElementFields};
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
@@ -371,7 +371,8 @@ pub struct WheelRailInput {
     /// `None`: the pitch rate is given or free rolling.
     pub total_longitudinal_force_n: Option<f64>,
     /// Flash temperatures of the wheel and rail surfaces per patch
-    /// ([`crate::wheelrail::temperature`]; model `exact` only), each
+    /// ([`crate::wheelrail::temperature`]; models `exact`, `cect` and
+    /// `auto`), each
     /// patch's [`PatchResult::temperature`]; `None`: none (and no cost).
     pub temperature: Option<WheelRailThermal>,
 }
@@ -463,6 +464,11 @@ pub struct PatchResult {
     /// The patch's grid, for plots.
     #[serde(skip)]
     pub grid_geometry: Option<Grid>,
+    /// A `cect` patch's tractions on the rail and slips of the rail
+    /// relative to the wheel per element of `grid_geometry` (x, s on the
+    /// curved surface), kept when the input asks for temperatures.
+    #[serde(skip)]
+    pub conformal_fields: Option<ElementFields>,
     /// Flash temperatures of the rail and wheel surfaces, when the input
     /// asked for them ([`WheelRailInput::temperature`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -619,6 +625,9 @@ struct PatchOutcome {
     adhesion: f64,
     tgamma_n: f64,
     solution: Option<ContactSolution>,
+    /// A conformal patch's tractions and slips on its grid (x, s), kept
+    /// only for the flash temperatures ([`WheelRailInput::temperature`]).
+    conformal_fields: Option<ElementFields>,
     /// Single-patch load iteration under force control: the normal force
     /// at which the vertical force would equal the load, one secant step
     /// beyond the solution's (within the load tolerance of it) \[N\]; the
@@ -763,6 +772,14 @@ impl PatchWork {
                     area_m2: t.contact_area_m2,
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
+                    conformal_fields: input.temperature.map(|_| ElementFields {
+                        pressure_pa: sol.pressure_pa,
+                        traction_x_pa: sol.traction_x_pa,
+                        traction_y_pa: sol.traction_s_pa,
+                        slip_x: sol.slip_x,
+                        slip_y: sol.slip_s,
+                        ..ElementFields::default()
+                    }),
                     ..PatchOutcome::default()
                 };
             }
@@ -2701,6 +2718,7 @@ pub(crate) fn finish(
         };
         // The patch is consumed: hand its per-element solution over.
         let solution = p.out.solution.take();
+        let conformal_fields = p.out.conformal_fields.take();
         let g = &p.geom;
         let t = g.tangent();
         let o = &p.out;
@@ -2756,6 +2774,7 @@ pub(crate) fn finish(
             grid: grid_n,
             solution,
             grid_geometry,
+            conformal_fields,
             temperature: None,
         });
         if let PatchKind::Exact { solver, .. } = p.kind {

@@ -20,27 +20,32 @@
 //!   (Ertz & Knothe's equal surface speeds).
 //! * The fields are on the patch grid: x along the track (the rolling
 //!   direction, material entering at large x), y the lateral coordinate s
-//!   in the contact plane; the peaks' `y_m` is that s.
+//!   (in the contact plane of an `exact` patch, the arc length along the
+//!   curved surface of a `cect` patch); the peaks' `y_m` is that s.
 //!
 //! # Which models
 //!
-//! Only model `exact`: the temperatures need the tractions and slips per
-//! element on a grid whose rows run in the rolling direction, which the
-//! exact patches have. The others are refused naming `temperature`:
-//! the Hertz models and `kik_piotrowski` give forces in closed form or
-//! from FASTSIM strips, not a traction field on a grid (a flash
-//! temperature from a patch's total power alone would be the Hertz/Jaeger
-//! estimate, not the same model); `cect` solves on the curved patch, whose
-//! rows also run along x, so the model would apply, but its wheel/rail
-//! patches keep no per-element fields; `auto` may solve a patch with
-//! `cect`.
+//! Models `exact`, `cect` and `auto` (whose patches are one or the
+//! other): the temperatures need the tractions and slips per element on a
+//! grid whose rows run in the rolling direction. An exact patch has them
+//! on its planar grid; a `cect` patch on its curved one, whose rows also
+//! run along x at a fixed s: the model is 1-D heat conduction into the
+//! depth under each surface point, fed along each row, so the surface's
+//! curvature across the rows does not enter it (the heat a surface
+//! element takes is |p_t| |s| V times its area dx ds on the curved
+//! surface, as the conformal frictional power counts it). The others are
+//! refused naming `temperature`: the Hertz models and `kik_piotrowski`
+//! give their forces in closed form or from FASTSIM strips, not a traction
+//! field on a grid (a flash temperature from a patch's total power alone
+//! would be a Jaeger-type estimate, another model).
 //!
 //! # Cost
 //!
 //! Nothing when `temperature` is absent (the solve does not look at it).
 //! With it, one [`flash_temperatures`] per patch after the last solve of
 //! the wheelset (O(nx² ny) square roots, and three fields of the patch
-//! grid's size).
+//! grid's size); a `cect` patch keeps its last solve's tractions and slips
+//! (moved, not copied) instead of dropping them.
 
 use serde::{Deserialize, Serialize};
 
@@ -110,18 +115,23 @@ pub struct PatchTemperatures {
     pub surface: SurfaceTemperatures,
 }
 
-/// The flash temperatures of an exact `patch` (None for a patch without
-/// per-element fields).
+/// The flash temperatures of an `exact` or `cect` `patch` (None for a
+/// patch without per-element fields).
 pub fn patch_temperatures(
     patch: &PatchResult,
     thermal: &WheelRailThermal,
 ) -> Result<Option<PatchTemperatures>, ContactError> {
-    let (Some(solution), Some(grid)) = (&patch.solution, &patch.grid_geometry) else {
+    let fields = match (&patch.solution, &patch.conformal_fields) {
+        (Some(s), _) => &s.fields,
+        (None, Some(f)) => f,
+        (None, None) => return Ok(None),
+    };
+    let Some(grid) = &patch.grid_geometry else {
         return Ok(None);
     };
     let v = patch.rolling_speed_m_per_s;
     ROLLING_SPEED_RANGE.check("velocity.forward_m_per_s", v)?;
-    let surface = flash_temperatures(grid, &solution.fields, &thermal.input(v))?;
+    let surface = flash_temperatures(grid, fields, &thermal.input(v))?;
     let s = surface.summary;
     Ok(Some(PatchTemperatures {
         max_rail: s.max_body1,
@@ -135,17 +145,20 @@ pub fn patch_temperatures(
 }
 
 /// Refuses, naming `temperature`, a model whose patches have no traction
-/// and slip fields for the temperatures (all but `exact`: see the module
-/// docs).
+/// and slip fields for the temperatures (all but `exact`, `cect` and
+/// `auto`: see the module docs).
 pub fn check_model(model: WheelRailModel) -> Result<(), WheelRailError> {
-    if model == WheelRailModel::Exact {
+    if matches!(
+        model,
+        WheelRailModel::Exact | WheelRailModel::Cect | WheelRailModel::Auto
+    ) {
         return Ok(());
     }
     Err(WheelRailError::invalid(
         TEMPERATURE_KEY,
         format!(
-            "flash temperatures come from the tractions and slips per element of model \
-             \"exact\"; model \"{}\" has none on a planar patch grid",
+            "flash temperatures come from the tractions and slips per element of models \
+             \"exact\", \"cect\" and \"auto\"; model \"{}\" has none on a patch grid",
             model.name()
         ),
     ))
