@@ -372,8 +372,8 @@ pub struct WheelRailInput {
     pub total_longitudinal_force_n: Option<f64>,
     /// Flash temperatures of the wheel and rail surfaces per patch
     /// ([`crate::wheelrail::temperature`]; models `exact`, `cect` and
-    /// `auto`), each
-    /// patch's [`PatchResult::temperature`]; `None`: none (and no cost).
+    /// `auto`), each patch's [`PatchResult::temperature`]; `None`: none
+    /// (and no cost).
     pub temperature: Option<WheelRailThermal>,
 }
 
