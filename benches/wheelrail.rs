@@ -4,7 +4,8 @@
 //! flange contact (6.5 mm, 10 mm), with the planar exact model and with
 //! Hertz+FASTSIM, direct and with contact tables; and a co-simulation's
 //! exact steps along a smooth path, with and without the tangential
-//! tractions carried from step to step. Kernels are cached (a long-running
+//! tractions carried from step to step; and what the flash temperatures
+//! of the exact patches add to a step. Kernels are cached (a long-running
 //! service's steady state). See benches/README.md; run with `cargo bench --bench wheelrail`.
 
 use std::hint::black_box;
@@ -13,11 +14,13 @@ use criterion::measurement::WallTime;
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
+use railcontact::core::temperature::ThermalBody;
 use railcontact::wheelrail::builtin::{load_test_input, mbench_a22_input, mbench_pair};
+use railcontact::wheelrail::temperature::patch_temperatures;
 use railcontact::wheelrail::{
     solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm, solve_wheelset_warm,
     ContactTable, SearchScratch, TableSettings, WarmStart, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSolution,
+    WheelRailPair, WheelRailSolution, WheelRailThermal,
 };
 
 fn pair() -> WheelRailPair {
@@ -80,6 +83,29 @@ fn wheelset_step(c: &mut Criterion) {
         }
         g.finish();
     }
+    // What the flash temperatures add to an exact step: every patch's
+    // temperatures from its solved fields (rail steel at 20 °C, wheel at
+    // 60 °C), the part of a step with `temperature` that one without it
+    // does not run.
+    let thermal = WheelRailThermal {
+        rail: ThermalBody::steel(293.15),
+        wheel: ThermalBody::steel(333.15),
+    };
+    let mut g = c.benchmark_group("wheelset_temperatures_exact");
+    g.sample_size(20);
+    for &(y, roll, pitch) in &SHIFTS {
+        let inp = mbench_a22_input(y, Some(roll), Some(pitch), WheelRailModel::Exact);
+        let sol = solve_wheelset(&pair, &inp, &cache, &mut scratch).unwrap();
+        let patches: Vec<_> = sol.wheels.iter().flat_map(|w| &w.patches).collect();
+        g.bench_with_input(BenchmarkId::from_parameter(y), &patches, |b, patches| {
+            b.iter(|| {
+                for p in patches.iter() {
+                    black_box(patch_temperatures(p, &thermal).unwrap());
+                }
+            })
+        });
+    }
+    g.finish();
     // A co-simulation's steps with the exact model: the lateral shift along
     // a smooth path (2 mm + 0.05 mm sin(2 pi k / 100), tread contact), each
     // step from the previous one's warm start (roll, load, and the

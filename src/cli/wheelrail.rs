@@ -21,8 +21,8 @@ use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
     builtin, load_profile_with, solve_wheelset, FrictionTable, LoadOptions, PatchResult, Profile,
     SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
-    WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelRailThermal,
+    WheelsetData, WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -74,6 +74,10 @@ struct WheelrailCase {
     modified_fastsim: Option<ModifiedFastsimKeys>,
     /// Models cect and auto: options of the conformal method.
     conformal: Option<ConformalKeys>,
+    /// `[temperature.rail]` and `[temperature.wheel]`: flash temperatures
+    /// per patch (models exact, cect, auto; each patch rolls at its own
+    /// speed).
+    temperature: Option<WheelRailThermal>,
 }
 
 /// `[conformal]`: the conformal method's rigid slip (models cect, auto).
@@ -420,6 +424,7 @@ impl WheelrailRun {
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: l.total_longitudinal_force_n,
+            temperature: c.temperature,
         };
         Ok(Self {
             pair,
@@ -500,6 +505,23 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
                 },
                 p.contact_area_m2 * 1e6
             );
+            if let Some(t) = &p.temperature {
+                s += &format!(
+                    "    flash temperature: rail max {:.1} K at x {:.2} mm, s {:.2} mm; wheel max \
+                     {:.1} K at x {:.2} mm, s {:.2} mm; contact {:.1} K, rail's heat share {:.3}, \
+                     frictional power {:.1} W, Peclet {:.0}\n",
+                    t.max_rail.temperature_k,
+                    t.max_rail.x_m * 1e3,
+                    t.max_rail.y_m * 1e3,
+                    t.max_wheel.temperature_k,
+                    t.max_wheel.x_m * 1e3,
+                    t.max_wheel.y_m * 1e3,
+                    t.contact_temperature_k,
+                    t.heat_share_rail,
+                    t.frictional_power_w,
+                    t.peclet_number
+                );
+            }
         }
     }
     let t = sol.timing;

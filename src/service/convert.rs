@@ -357,8 +357,9 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
     })
 }
 
-/// The case's `[temperature]` of a wire section (both bodies required).
-fn thermal_input(t: &pb::TemperatureSection) -> Result<ThermalInput, ServiceError> {
+/// The case's `[temperature]` of a wire section (both bodies required;
+/// the values are checked by the caller).
+pub fn thermal_input(t: &pb::TemperatureSection) -> Result<ThermalInput, ServiceError> {
     let body = |key: &str, b: &Option<pb::ThermalBody>| {
         b.as_ref()
             .map(|b| ThermalBody {

@@ -644,6 +644,7 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
             ..WheelRailSettings::default()
         },
         total_longitudinal_force_n: None,
+        temperature: None,
     };
     let mut scratch = SearchScratch::default();
     let solution =

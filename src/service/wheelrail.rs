@@ -14,16 +14,20 @@ use crate::core::friclaw::{FallingShape, SlipStart};
 use crate::core::material::CombinedMaterial;
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
+use crate::core::temperature::ThermalBody;
 use crate::service::convert::{
-    check_fields_finite, finite_values, grid_info, planar_fields, rigid_slip,
+    check_fields_finite, finite_values, grid_info, planar_fields, rigid_slip, temperature_result,
+    thermal_input,
 };
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
 use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
+use crate::wheelrail::temperature::{check_model, TEMPERATURE_KEY};
 use crate::wheelrail::{
     FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailSettings, WheelRailSolution, WheelResult, WheelsetPosition, WheelsetVelocity,
+    WheelRailSettings, WheelRailSolution, WheelRailThermal, WheelResult, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 /// The documented ranges of a wheel/rail query's motion and load (the
@@ -142,6 +146,7 @@ pub struct QuerySettings {
     friction: Friction,
     friction_table: Option<FrictionTable>,
     settings: WheelRailSettings,
+    temperature: Option<WheelRailThermal>,
 }
 
 impl QuerySettings {
@@ -176,7 +181,37 @@ impl QuerySettings {
                 element_size_m,
                 ..WheelRailSettings::default()
             },
+            temperature: None,
         })
+    }
+
+    /// The settings with the request's flash temperatures (field
+    /// `temperature`: body1 the rail, body2 the wheel, the rolling speed
+    /// left 0; models exact, cect and auto; not set: none).
+    pub fn with_temperature(
+        mut self,
+        t: Option<&pb::TemperatureSection>,
+    ) -> Result<Self, ServiceError> {
+        let Some(t) = t else { return Ok(self) };
+        check_model(self.settings.model)?;
+        if t.rolling_speed_m_per_s != 0.0 {
+            return Err(ServiceError::invalid(
+                format!("{TEMPERATURE_KEY}.rolling_speed_m_per_s"),
+                format!(
+                    "leave it 0 on wheel/rail queries: each patch rolls at its own speed, from \
+                     velocity.forward_m_per_s and the wheel's rotation (got {})",
+                    t.rolling_speed_m_per_s
+                ),
+            ));
+        }
+        let bodies = thermal_input(t)?;
+        bodies.body1.validate(&format!("{TEMPERATURE_KEY}.body1"))?;
+        bodies.body2.validate(&format!("{TEMPERATURE_KEY}.body2"))?;
+        self.temperature = Some(WheelRailThermal {
+            rail: bodies.body1,
+            wheel: bodies.body2,
+        });
+        Ok(self)
     }
 
     /// The settings with the request's friction table (field
@@ -381,6 +416,7 @@ impl QuerySettings {
             friction_table: self.friction_table.clone(),
             settings: self.settings,
             total_longitudinal_force_n,
+            temperature: self.temperature,
         })
     }
 }
@@ -404,6 +440,7 @@ pub fn input(
     .with_modified_fastsim(req.modified_fastsim.as_ref())?
     .with_conformal(req.conformal.as_ref())?
     .with_friction_table(req.friction_table.as_ref())?
+    .with_temperature(req.temperature.as_ref())?
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
@@ -482,6 +519,19 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
                 }
             },
         ),
+        temperature: input.temperature.map(|t| {
+            let body = |b: ThermalBody| pb::ThermalBody {
+                bulk_temperature_k: b.bulk_temperature_k,
+                conductivity_w_per_m_k: b.conductivity_w_per_m_k,
+                density_kg_per_m3: b.density_kg_per_m3,
+                specific_heat_j_per_kg_k: b.specific_heat_j_per_kg_k,
+            };
+            pb::TemperatureSection {
+                rolling_speed_m_per_s: 0.0,
+                body1: Some(body(t.rail)),
+                body2: Some(body(t.wheel)),
+            }
+        }),
         conformal: matches!(
             input.settings.model,
             WheelRailModel::Cect | WheelRailModel::Auto
@@ -543,6 +593,8 @@ fn method(m: &str) -> pb::WheelRailModel {
 
 fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
     let with_fields = fields && p.solution.is_some() && p.grid_geometry.is_some();
+    // The grid also locates a cect patch's temperature fields.
+    let with_grid = with_fields || (fields && p.temperature.is_some() && p.grid_geometry.is_some());
     pb::WheelRailPatch {
         method: method(p.method) as i32,
         contact_angle_rad: p.contact_angle_rad,
@@ -573,13 +625,17 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
         grid: p
             .grid_geometry
             .as_ref()
-            .filter(|_| with_fields)
+            .filter(|_| with_grid)
             .map(grid_info),
         fields: p
             .solution
             .as_ref()
             .filter(|_| with_fields)
             .map(|s| planar_fields(&s.fields)),
+        temperature: p
+            .temperature
+            .as_ref()
+            .map(|t| temperature_result(&t.surface, fields)),
     }
 }
 
@@ -664,6 +720,18 @@ pub fn check_finite(r: &pb::WheelRailResult) -> Result<(), ServiceError> {
             finite_values(&format!("{at}.force_track_n"), track(&p.force_track_n))?;
             if let Some(f) = &p.fields {
                 check_fields_finite(&format!("{at}.fields"), f)?;
+            }
+            if let Some(t) = &p.temperature {
+                let peak = |p: &Option<pb::TemperaturePeak>| p.unwrap_or_default().temperature_k;
+                finite_values(
+                    &format!("{at}.temperature"),
+                    [
+                        ("max_body1.temperature_k", peak(&t.max_body1)),
+                        ("max_body2.temperature_k", peak(&t.max_body2)),
+                        ("frictional_power_w", t.frictional_power_w),
+                        ("peclet_number", t.peclet_number),
+                    ],
+                )?;
             }
         }
     }

@@ -76,6 +76,7 @@ impl WheelRailSession {
         .with_modified_fastsim(open.modified_fastsim.as_ref())?
         .with_conformal(open.conformal.as_ref())?
         .with_friction_table(open.friction_table.as_ref())?
+        .with_temperature(open.temperature.as_ref())?
         .with_max_grid_elements(limits.max_grid_elements);
         Ok(Self {
             settings,

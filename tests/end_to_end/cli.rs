@@ -1046,6 +1046,60 @@ fn wheelrail_bad_inputs_name_the_key() {
     );
 }
 
+#[test]
+fn wheelrail_temperatures_per_patch_in_json_and_summary() {
+    // examples/cases/wheelset_a22_temperature.toml: at 6.5 mm, the
+    // rail at 20 °C, the wheel at 60 °C.
+    let case = example("wheelset_a22_temperature.toml");
+    let text = example_text("wheelset_a22_temperature.toml");
+    let v = wheelrail_json(&case);
+    for side in ["left", "right"] {
+        let p = &v["wheels"][side]["patches"][0];
+        let t = &p["temperature"];
+        // Equal effusivities: the contact at the mean bulk temperature,
+        // half the heat into the rail.
+        assert!((f(t, "contact_temperature_k") - 313.15).abs() < 1e-9, "{t}");
+        assert!((f(t, "heat_share_rail") - 0.5).abs() < 1e-15, "{t}");
+        let rail = f(&t["max_rail"], "temperature_k");
+        assert!(rail > 313.15 + 10.0 && rail < 1000.0, "{side}: {t}");
+        assert!(f(&t["max_wheel"], "temperature_k") >= 333.15, "{side}: {t}");
+        // The heat flux sums to the patch's frictional power.
+        let (q, w) = (f(t, "frictional_power_w"), f(p, "frictional_power_w"));
+        assert!((q - w).abs() <= 1e-9 * w, "{side}: {q} W against {w} W");
+    }
+    // Without the sections: no temperature key.
+    let plain = wheelrail_json(&example("wheelset_a22.toml"));
+    assert!(plain["wheels"]["right"]["patches"][0]["temperature"].is_null());
+    let out = run(&["wheelrail", case.to_str().unwrap()]);
+    assert!(out.status.success());
+    let summary = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(
+        summary.matches("flash temperature: rail max").count(),
+        2,
+        "{summary}"
+    );
+    assert!(summary.contains("; wheel max"), "{summary}");
+
+    expect_bad_wheelrail(
+        "wr_temperature_value.toml",
+        &text.replace(
+            "bulk_temperature_k = 333.15\nconductivity_w_per_m_k = 50.0",
+            "bulk_temperature_k = 333.15\nconductivity_w_per_m_k = 0.0",
+        ),
+        "temperature.wheel.conductivity_w_per_m_k",
+    );
+    expect_bad_wheelrail(
+        "wr_temperature_model.toml",
+        &text.replace("model = \"exact\"", "model = \"hertz_fastsim\""),
+        "temperature: flash temperatures come from the tractions and slips per element of models \"exact\", \"cect\" and \"auto\"; model \"hertz_fastsim\"",
+    );
+    expect_bad_wheelrail(
+        "wr_temperature_body.toml",
+        &text.replace("[temperature.rail]", "[temperature.body1]"),
+        "body1",
+    );
+}
+
 /// `examples/cases/wheelset_a22_varfric.toml`: CONTACT's
 /// mbench_a22_varfric case 4 (github.com/eve70a/CONTACT,
 /// examples/mbench_a22_varfric.ref_out, commit eb670a7): one flange-root

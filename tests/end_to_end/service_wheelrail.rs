@@ -1,7 +1,8 @@
 //! End-to-end tests of the wheel/rail part of the gRPC service: profile
 //! pairs (built-in, from file contents, idempotent ids, list/get/delete,
 //! persistence across a restart), SolveWheelRail against the library bit
-//! for bit, batches, and the errors of each kind of bad input. The real
+//! for bit, batches, flash temperatures per patch, and the errors of each
+//! kind of bad input. The real
 //! server runs on an ephemeral loopback port with its store in a temporary
 //! directory; profiles come from `../shared/profiles`.
 
@@ -13,6 +14,7 @@ use railcontact::conformal::geometry::RigidSlipSurface;
 use railcontact::core::cache::KernelCache;
 use railcontact::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw};
 use railcontact::core::problem::Friction;
+use railcontact::core::temperature::ThermalBody;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::pb;
 use railcontact::service::server::RunningServer;
@@ -22,7 +24,7 @@ use railcontact::wheelrail::{
     load_profile, load_profile_with, pitch_force_tolerance, solve_wheelset,
     solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, FrictionAxis, FrictionTable,
     LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
-    WheelRailModel, WheelRailPair, WheelRailSolution, WheelsetData,
+    WheelRailModel, WheelRailPair, WheelRailSolution, WheelRailThermal, WheelsetData,
 };
 use tonic::Code;
 
@@ -1205,5 +1207,264 @@ async fn the_table_model_builds_the_pairs_contact_table_once_and_solves_as_the_l
     let direct = solve(&mut client, direct).await;
     let tabulated = solve(&mut client, queries[1].1.clone()).await;
     assert_ne!(untimed(direct), untimed(tabulated));
+    server.shutdown().await;
+}
+
+/// Rail steel at 20 °C, a wheel at 60 °C conducting 40 % less (so that
+/// rail and wheel cannot be swapped unseen).
+fn a22_thermal() -> WheelRailThermal {
+    WheelRailThermal {
+        rail: ThermalBody::steel(293.15),
+        wheel: ThermalBody {
+            conductivity_w_per_m_k: 30.0,
+            ..ThermalBody::steel(333.15)
+        },
+    }
+}
+
+/// The wire temperatures of each patch equal the library's, bit for bit:
+/// the rail's as body 1, the wheel's as body 2; the fields only with
+/// `fields`.
+fn assert_same_temperatures(
+    what: &str,
+    got: &pb::WheelRailResult,
+    want: &WheelRailSolution,
+    fields: bool,
+) {
+    for (g, w) in got.wheels.iter().zip(&want.wheels) {
+        for (gp, wp) in g.patches.iter().zip(&w.patches) {
+            let gt = gp.temperature.as_ref().expect("temperatures on the wire");
+            let wt = wp
+                .temperature
+                .as_ref()
+                .expect("temperatures in the library");
+            let peak = |p: &Option<pb::TemperaturePeak>| {
+                let p = p.unwrap();
+                [p.temperature_k, p.x_m, p.y_m].map(bits)
+            };
+            assert_eq!(
+                peak(&gt.max_body1),
+                [wt.max_rail.temperature_k, wt.max_rail.x_m, wt.max_rail.y_m].map(bits),
+                "{what}: the rail's peak"
+            );
+            assert_eq!(
+                peak(&gt.max_body2),
+                [
+                    wt.max_wheel.temperature_k,
+                    wt.max_wheel.x_m,
+                    wt.max_wheel.y_m
+                ]
+                .map(bits),
+                "{what}: the wheel's peak"
+            );
+            assert_eq!(
+                [
+                    gt.contact_temperature_k,
+                    gt.heat_share_body1,
+                    gt.frictional_power_w,
+                    gt.peclet_number
+                ]
+                .map(bits),
+                [
+                    wt.contact_temperature_k,
+                    wt.heat_share_rail,
+                    wt.frictional_power_w,
+                    wt.peclet_number
+                ]
+                .map(bits),
+                "{what}: totals"
+            );
+            if fields {
+                assert_eq!(gt.body1_k, wt.surface.body1_k, "{what}: the rail's field");
+                assert_eq!(gt.body2_k, wt.surface.body2_k, "{what}: the wheel's field");
+                assert_eq!(gt.heat_flux_w_per_m2, wt.surface.heat_flux_w_per_m2);
+                assert_eq!(gt.body1_k.len(), (gp.grid_nx * gp.grid_ns) as usize);
+            } else {
+                assert!(
+                    gt.body1_k.is_empty()
+                        && gt.body2_k.is_empty()
+                        && gt.heat_flux_w_per_m2.is_empty()
+                );
+            }
+        }
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn wheel_rail_temperatures_come_per_patch_as_the_library_and_replay_bit_for_bit() {
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+
+    // A query: peaks per patch as the library's; fields with include_fields.
+    let mut input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::Exact,
+    );
+    let plain = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert!(plain
+        .wheels
+        .iter()
+        .flat_map(|w| &w.patches)
+        .all(|p| p.temperature.is_none()));
+    input.temperature = Some(a22_thermal());
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let req = query_of(BUILTIN, &input);
+    let section = req.temperature.expect("query_of sends the temperatures");
+    let got = solve(&mut client, req.clone()).await;
+    assert_same("query", &got, &want);
+    assert_same_temperatures("query", &got, &want, false);
+    // The contact figures are those of the query without temperatures.
+    assert_eq!(untimed(plain.clone()).wheels.len(), got.wheels.len());
+    for (a, b) in plain.wheels.iter().zip(&got.wheels) {
+        for (pa, pb_) in a.patches.iter().zip(&b.patches) {
+            assert_eq!(
+                [pa.normal_force_n, pa.fx_n, pa.fs_n, pa.frictional_power_w].map(bits),
+                [
+                    pb_.normal_force_n,
+                    pb_.fx_n,
+                    pb_.fs_n,
+                    pb_.frictional_power_w
+                ]
+                .map(bits)
+            );
+        }
+    }
+    let flange = &got.wheels[1].patches[0];
+    let t = flange.temperature.as_ref().unwrap();
+    assert!(
+        t.max_body1.unwrap().temperature_k > t.contact_temperature_k + 100.0,
+        "{t:?}"
+    );
+    let mut with_fields = req.clone();
+    with_fields.include_fields = true;
+    let got = solve(&mut client, with_fields).await;
+    assert_same_temperatures("query with fields", &got, &want, true);
+
+    // A cect patch's temperatures come from its curved grid, which is sent
+    // with them (its ElementFields are not).
+    let mut cect = input.clone();
+    cect.settings.model = WheelRailModel::Cect;
+    let want_cect = solve_wheelset(&pair, &cect, &cache, &mut SearchScratch::default()).unwrap();
+    let mut r = query_of(BUILTIN, &cect);
+    r.include_fields = true;
+    let got_cect = solve(&mut client, r).await;
+    assert_same("cect", &got_cect, &want_cect);
+    assert_same_temperatures("cect", &got_cect, &want_cect, true);
+    for p in got_cect.wheels.iter().flat_map(|w| &w.patches) {
+        assert_eq!(p.method, pb::WheelRailModel::Cect as i32);
+        let g = p.grid.expect("the grid of the temperature fields");
+        assert_eq!((g.nx, g.ny), (p.grid_nx, p.grid_ns));
+        assert!(p.fields.is_none());
+    }
+
+    // A batch item carries them too.
+    let out = client
+        .solve_wheel_rail_batch(pb::SolveWheelRailBatchRequest {
+            items: vec![req.clone()],
+        })
+        .await
+        .unwrap()
+        .into_inner()
+        .items;
+    match out[0].outcome.as_ref().unwrap() {
+        pb::wheel_rail_batch_item::Outcome::Result(r) => {
+            assert_same_temperatures("batch", r, &want, false)
+        }
+        other => panic!("{other:?}"),
+    }
+
+    // Bad input: INVALID_ARGUMENT naming the field.
+    let mut r = req.clone();
+    r.temperature
+        .as_mut()
+        .unwrap()
+        .body2
+        .as_mut()
+        .unwrap()
+        .conductivity_w_per_m_k = 0.0;
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["temperature.body2.conductivity_w_per_m_k"],
+    );
+    let mut r = req.clone();
+    r.temperature.as_mut().unwrap().body1 = None;
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["temperature.body1", "missing"],
+    );
+    let mut r = req.clone();
+    r.temperature.as_mut().unwrap().rolling_speed_m_per_s = 2.0;
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["temperature.rolling_speed_m_per_s"],
+    );
+    let mut r = req.clone();
+    r.model = pb::WheelRailModel::HertzFastsim as i32;
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["temperature", "hertz_fastsim", "exact"],
+    );
+
+    // A session computes them at every step, as the library's warm
+    // sequence, and replays them bit for bit after a rollback.
+    let open = pb::WheelRailSessionOpen {
+        pair_id: BUILTIN.into(),
+        model: pb::WheelRailModel::Exact as i32,
+        temperature: Some(section),
+        ..Default::default()
+    };
+    let shifts = [3.0, 3.05, 3.1];
+    let mut msgs = vec![wr_request(In::Open(open.clone()))];
+    for (k, &mm) in shifts.iter().enumerate() {
+        msgs.push(wr_step(k as u64, mm, k == 1));
+    }
+    msgs.push(wr_request(In::Rollback(pb::SessionRollback {
+        to_step_index: 1,
+    })));
+    msgs.push(wr_step(2, shifts[2], false));
+    let r = wr_session(&mut client, msgs).await.unwrap();
+    assert_eq!(r.len(), 6, "{r:?}");
+    let step = |k: usize| match &r[k] {
+        Out::Step(s) => s.result.clone().unwrap(),
+        other => panic!("response {k}: expected a step, got {other:?}"),
+    };
+    let mut scratch = SearchScratch::default();
+    let mut warm = WarmStart::default();
+    for (k, &mm) in shifts.iter().enumerate() {
+        let mut input = mbench_a22_input(mm, None, None, WheelRailModel::Exact);
+        input.temperature = Some(a22_thermal());
+        let want = solve_wheelset_warm(&pair, &input, &cache, &mut scratch, &mut warm).unwrap();
+        assert_same(&format!("step {k}"), &step(1 + k), &want);
+        assert_same_temperatures(&format!("step {k}"), &step(1 + k), &want, false);
+    }
+    assert!(matches!(r[4], Out::RolledBack(_)), "{:?}", r[4]);
+    assert_eq!(untimed(step(5)), untimed(step(3)), "the replayed step");
+
+    // A bad section refuses the session, naming the field under `open`.
+    let mut bad = open.clone();
+    bad.temperature
+        .as_mut()
+        .unwrap()
+        .body1
+        .as_mut()
+        .unwrap()
+        .bulk_temperature_k = 20.0;
+    let e = wr_session(&mut client, vec![wr_request(In::Open(bad))])
+        .await
+        .unwrap_err();
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    assert!(
+        e.message()
+            .contains("open.temperature.body1.bulk_temperature_k")
+            && e.message().contains("Celsius"),
+        "{}",
+        e.message()
+    );
     server.shutdown().await;
 }

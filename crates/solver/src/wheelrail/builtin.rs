@@ -108,6 +108,7 @@ pub fn mbench_a22_input(
             ..WheelRailSettings::default()
         },
         total_longitudinal_force_n: None,
+        temperature: None,
     }
 }
 

@@ -90,7 +90,7 @@ use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
 };
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
-use crate::core::solution::ContactSolution;
+use crate::core::solution::{ContactSolution, ElementFields};
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
@@ -98,6 +98,7 @@ use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
     PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
+use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition,
     WheelsetVelocity, SAMPLE_SPACING_M,
@@ -370,6 +371,11 @@ pub struct WheelRailInput {
     /// the module docs), and `velocity.pitch_rad_per_s` must be `None`.
     /// `None`: the pitch rate is given or free rolling.
     pub total_longitudinal_force_n: Option<f64>,
+    /// Flash temperatures of the wheel and rail surfaces per patch
+    /// ([`crate::wheelrail::temperature`]; models `exact`, `cect` and
+    /// `auto`), each patch's [`PatchResult::temperature`]; `None`: none
+    /// (and no cost).
+    pub temperature: Option<WheelRailThermal>,
 }
 
 impl WheelRailInput {
@@ -459,6 +465,15 @@ pub struct PatchResult {
     /// The patch's grid, for plots.
     #[serde(skip)]
     pub grid_geometry: Option<Grid>,
+    /// A `cect` patch's tractions on the rail and slips of the rail
+    /// relative to the wheel per element of `grid_geometry` (x, s on the
+    /// curved surface), kept when the input asks for temperatures.
+    #[serde(skip)]
+    pub conformal_fields: Option<ElementFields>,
+    /// Flash temperatures of the rail and wheel surfaces, when the input
+    /// asked for them ([`WheelRailInput::temperature`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<PatchTemperatures>,
 }
 
 /// One wheel.
@@ -615,6 +630,9 @@ struct PatchOutcome {
     adhesion: f64,
     tgamma_n: f64,
     solution: Option<ContactSolution>,
+    /// A conformal patch's tractions and slips on its grid (x, s), kept
+    /// only for the flash temperatures ([`WheelRailInput::temperature`]).
+    conformal_fields: Option<ElementFields>,
     /// Single-patch load iteration under force control: the normal force
     /// at which the vertical force would equal the load, one secant step
     /// beyond the solution's (within the load tolerance of it) \[N\]; the
@@ -762,6 +780,14 @@ impl PatchWork {
                     area_m2: t.contact_area_m2,
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
+                    conformal_fields: input.temperature.map(|_| ElementFields {
+                        pressure_pa: sol.pressure_pa,
+                        traction_x_pa: sol.traction_x_pa,
+                        traction_y_pa: sol.traction_s_pa,
+                        slip_x: sol.slip_x,
+                        slip_y: sol.slip_s,
+                        ..ElementFields::default()
+                    }),
                     ..PatchOutcome::default()
                 };
             }
@@ -1226,7 +1252,7 @@ pub fn solve_wheelset_warm(
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
-    let (omega, wheels, pitch_control) = solve_pitch(pair, input, |omega| {
+    let (omega, mut wheels, pitch_control) = solve_pitch(pair, input, |omega| {
         let mut wheels = Vec::with_capacity(input.sides.len());
         for &side in &input.sides {
             let i = side.index();
@@ -1260,6 +1286,9 @@ pub fn solve_wheelset_warm(
         solved = true;
         Ok(wheels)
     })?;
+    if let Some(thermal) = &input.temperature {
+        add_temperatures(&mut wheels, thermal)?;
+    }
     warm.advance(rigid.roll_rad, normal_per_vertical, tractions);
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
@@ -1451,6 +1480,9 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             "grid.element_size_m",
             format!("must be between 1e-6 and 5e-3 m, got {e}"),
         ));
+    }
+    if let Some(thermal) = &input.temperature {
+        temperature::validate(thermal, input.settings.model)?;
     }
     input.settings.polach.validate("polach")?;
     input
@@ -2738,6 +2770,7 @@ pub(crate) fn finish(
         };
         // The patch is consumed: hand its per-element solution over.
         let solution = p.out.solution.take();
+        let conformal_fields = p.out.conformal_fields.take();
         let g = &p.geom;
         let t = g.tangent();
         let o = &p.out;
@@ -2793,6 +2826,8 @@ pub(crate) fn finish(
             grid: grid_n,
             solution,
             grid_geometry,
+            conformal_fields,
+            temperature: None,
         });
         if let PatchKind::Exact { solver, .. } = p.kind {
             *spare = Some(solver);

@@ -13,6 +13,8 @@
 //!   their planar geometry;
 //! * [`contact`]: creepages, the per-patch contact problems and the load
 //!   iteration ([`solve_wheelset`]);
+//! * [`temperature`]: flash temperatures of the wheel and rail per patch
+//!   ([`WheelRailThermal`], [`PatchTemperatures`]);
 //! * [`table`]: contact tables per profile pair for the Hertz+FASTSIM fast
 //!   path ([`ContactTable`], [`solve_wheelset_tabulated`]).
 //!
@@ -69,6 +71,7 @@ pub mod readers;
 pub mod search;
 pub mod spline;
 pub mod table;
+pub mod temperature;
 pub mod wheelset;
 
 pub use contact::{
@@ -90,6 +93,7 @@ pub use spline::{
 pub use table::{
     solve_wheelset_tabulated, solve_wheelset_tabulated_warm, ContactTable, TableSettings,
 };
+pub use temperature::{PatchTemperatures, WheelRailThermal};
 pub use wheelset::{
     Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
     WheelsetVelocity,

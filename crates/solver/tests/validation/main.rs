@@ -1,8 +1,9 @@
 //! Validation of the solver crate against analytic and published results,
 //! one test binary: the physics of the planar core (`physics`), conformal
 //! contact (`conformal`), the profile readers (`profiles`), transient rolling
-//! against CONTACT (`transient`), wheel/rail contact (`wheelrail`) and its
-//! friction varying over the profile (`variable_friction`). Each
+//! against CONTACT (`transient`), wheel/rail contact (`wheelrail`), its
+//! friction varying over the profile (`variable_friction`) and its flash
+//! temperatures (`wheelrail_temperature`). Each
 //! reference number names its source.
 
 mod conformal;
@@ -16,3 +17,4 @@ mod rolling_direction;
 mod transient;
 mod variable_friction;
 mod wheelrail;
+mod wheelrail_temperature;

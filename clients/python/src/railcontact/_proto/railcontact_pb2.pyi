@@ -1156,7 +1156,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table", "modified_fastsim")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table", "modified_fastsim", "temperature")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1170,6 +1170,7 @@ class SolveWheelRailRequest(_message.Message):
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_TABLE_FIELD_NUMBER: _ClassVar[int]
     MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
+    TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1183,7 +1184,8 @@ class SolveWheelRailRequest(_message.Message):
     conformal: ConformalSection
     friction_table: FrictionTable
     modified_fastsim: ModifiedFastsimParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ...) -> None: ...
+    temperature: TemperatureSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1196,7 +1198,7 @@ class TrackForce(_message.Message):
     def __init__(self, x_n: _Optional[float] = ..., y_n: _Optional[float] = ..., z_n: _Optional[float] = ...) -> None: ...
 
 class WheelRailPatch(_message.Message):
-    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient")
+    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient", "temperature")
     METHOD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_RAD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_VARIATION_RAD_FIELD_NUMBER: _ClassVar[int]
@@ -1225,6 +1227,7 @@ class WheelRailPatch(_message.Message):
     GRID_FIELD_NUMBER: _ClassVar[int]
     FIELDS_FIELD_NUMBER: _ClassVar[int]
     FRICTION_COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
+    TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     method: WheelRailModel
     contact_angle_rad: float
     contact_angle_variation_rad: float
@@ -1253,7 +1256,8 @@ class WheelRailPatch(_message.Message):
     grid: GridInfo
     fields: ElementFields
     friction_coefficient: float
-    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ...) -> None: ...
+    temperature: TemperatureResult
+    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ...) -> None: ...
 
 class WheelRailWheel(_message.Message):
     __slots__ = ("side", "vertical_approach_m", "min_gap_m", "patches", "force_track_n", "load_iterations")
@@ -1346,7 +1350,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table", "modified_fastsim")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table", "modified_fastsim", "temperature")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1358,6 +1362,7 @@ class WheelRailSessionOpen(_message.Message):
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_TABLE_FIELD_NUMBER: _ClassVar[int]
     MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
+    TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1369,7 +1374,8 @@ class WheelRailSessionOpen(_message.Message):
     conformal: ConformalSection
     friction_table: FrictionTable
     modified_fastsim: ModifiedFastsimParameters
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ...) -> None: ...
+    temperature: TemperatureSection
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
