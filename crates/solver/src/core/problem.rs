@@ -47,7 +47,7 @@
 //!   with E = 9): a velocity of body 1 relative to body 2 over V [-] added
 //!   to the creepages' rigid slip w at each element, in (x, y); a rolling
 //!   step of dq adds dq times it to the rigid shift. A shift step takes an
-//!   extra rigid shift per element [m] instead, added to its rigid shift.
+//!   extra rigid shift per element \[m\] instead, added to its rigid shift.
 //! * Subsurface stresses and displacements ([`crate::core::subsurface`]) are
 //!   reported for both bodies in this one frame (x, y, n), stresses tension
 //!   positive; the depth runs into each body (n = +depth in body 1, −depth in
