@@ -44,6 +44,34 @@ def test_solve_wheelrail_both_wheels_carry_the_load(client):
     assert right.patches[0].rolling_radius_m > r.wheel("left").patches[0].rolling_radius_m
 
 
+def test_solve_wheelrail_with_flash_temperatures(client):
+    # Rail (body 1) at 20 C, wheel (body 2) at 60 C; steel. Each exact
+    # patch reports both surfaces' peaks, the heat of its own frictional
+    # power; fields only when asked for.
+    steel = {"conductivity_w_per_m_k": 50.0, "density_kg_per_m3": 7850.0, "specific_heat_j_per_kg_k": 450.0}
+    temperature = {
+        "body1": {"bulk_temperature_k": 293.15, **steel},
+        "body2": {"bulk_temperature_k": 333.15, **steel},
+    }
+    r = client.solve_wheelrail(
+        position={"lateral_m": 0.003, "yaw_rad": 0.002},
+        velocity=V,
+        load=LOAD,
+        model="exact",
+        temperature=temperature,
+    )
+    for w in r.wheels:
+        for p in w.patches:
+            t = p.temperature
+            assert t is not None and t.body1_k.size == 0
+            assert t.frictional_power_w == pytest.approx(p.frictional_power_w, rel=1e-9)
+            assert t.max_body1.temperature_k > 293.15
+            assert 293.15 < t.contact_temperature_k < 333.15
+            assert 0.0 < p.friction_coefficient
+    plain = client.solve_wheelrail(position={"lateral_m": 0.003}, velocity=V, load=LOAD, model="exact")
+    assert all(p.temperature is None for w in plain.wheels for p in w.patches)
+
+
 def test_solve_wheelrail_by_centre_height(client):
     """The centre height of a force-loaded solve, handed back as the load,
     gives the same forces (what an MBS integrator does)."""

@@ -363,6 +363,7 @@ class Client:
         friction=None,
         element_size_m: Optional[float] = None,
         include_fields: bool = False,
+        temperature=None,
     ) -> WheelRailResult:
         """Solves a wheelset on a registered pair (``SolveWheelRail``).
 
@@ -378,7 +379,12 @@ class Client:
         per wheel [N]; ``model``: ``"exact"``,
         ``"hertz_fastsim"``, ``"hertz_fastsim_table"``, ``"cect"`` or ``"auto"``; ``sides``:
         ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a
-        ``FrictionSection`` mapping (default: the pair's).
+        ``FrictionSection`` mapping (default: the pair's); ``temperature``:
+        a ``TemperatureSection`` mapping (``body1``: the rail, ``body2``: the
+        wheel, each ``bulk_temperature_k``, ``conductivity_w_per_m_k``,
+        ``density_kg_per_m3``, ``specific_heat_j_per_kg_k``; models
+        ``"exact"``, ``"cect"``, ``"auto"``): each patch's flash
+        temperatures in ``WheelRailPatch.temperature``.
         """
         request = wheelrail_request(
             pair_id,
@@ -390,6 +396,7 @@ class Client:
             friction=friction,
             element_size_m=element_size_m,
             include_fields=include_fields,
+            temperature=temperature,
         )
         response = self._on_pair(
             pair_id, lambda: _call(self.stub.SolveWheelRail, request, timeout=self.timeout_s)
@@ -438,9 +445,11 @@ class Client:
         element_size_m: Optional[float] = None,
         include_fields: bool = False,
         label: str = "",
+        temperature=None,
     ) -> "WheelRailSession":
         """Opens a co-simulation session on a wheelset (``WheelRailSession``);
-        see :class:`WheelRailSession`. The settings hold for every step."""
+        see :class:`WheelRailSession`. The settings hold for every step
+        (``temperature`` as in :meth:`solve_wheelrail`)."""
         values = _set_values(
             pair_id=pair_id,
             model=model,
@@ -449,6 +458,7 @@ class Client:
             element_size_m=element_size_m,
             include_fields=include_fields,
             client_label=label,
+            temperature=temperature,
         )
         opening = build(pb.WheelRailSessionOpen, values, "open")
         return self._on_pair(

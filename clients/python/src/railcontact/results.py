@@ -58,6 +58,11 @@ def _many(cls=None):
     return field(metadata={"pb": lambda m, name: tuple(from_pb(cls, x) for x in getattr(m, name))})
 
 
+def _array():
+    """A repeated number field: a read-only 1-D array."""
+    return field(metadata={"pb": lambda m, name: _readonly(getattr(m, name))})
+
+
 def _enum():
     """An enum: its short lower-case name."""
     return field(
@@ -248,6 +253,33 @@ def _gridded(cls, message):
 
 
 @dataclass(frozen=True)
+class TemperaturePeak:
+    """A surface's highest flash temperature [K] and where it is [m]."""
+
+    temperature_k: float
+    x_m: float
+    y_m: float
+
+
+@dataclass(frozen=True, eq=False)
+class TemperatureResult:
+    """Flash temperatures of a patch (the proto's TemperatureResult):
+    body 1 is the rail in wheel/rail results, the wheel body 2. The
+    per-element fields (index ``iy * nx + ix``) are empty unless fields
+    were asked for."""
+
+    max_body1: TemperaturePeak = _sub(TemperaturePeak)
+    max_body2: TemperaturePeak = _sub(TemperaturePeak)
+    contact_temperature_k: float
+    heat_share_body1: float
+    frictional_power_w: float
+    peclet_number: float
+    body1_k: np.ndarray = _array()
+    body2_k: np.ndarray = _array()
+    heat_flux_w_per_m2: np.ndarray = _array()
+
+
+@dataclass(frozen=True)
 class PatchResult:
     """The result of one patch case (SolvePatch, a creep-curve point)."""
 
@@ -258,6 +290,7 @@ class PatchResult:
     grid: Optional[Grid] = _optional(Grid)
     notes: tuple = _many()
     fields: Optional[ElementFields] = _given()
+    temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
 
     @classmethod
     def from_pb(cls, message) -> "PatchResult":
@@ -339,6 +372,8 @@ class WheelRailPatch:
     grid_ns: int
     grid: Optional[Grid] = _optional(Grid)
     fields: Optional[ElementFields] = _given()
+    friction_coefficient: float
+    temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
 
     @classmethod
     def from_pb(cls, message) -> "WheelRailPatch":
