@@ -551,8 +551,15 @@ impl ExtraRigidSlip {
                 self.has_shift(),
             ),
         ] {
+            // A pair is given whole (its x component non-empty) or not at all.
             if !given && v.is_empty() {
                 continue;
+            }
+            if !given {
+                return Err(ContactError::invalid(
+                    key,
+                    "is given without its x component: give both components of the pair",
+                ));
             }
             if v.len() != grid.len() {
                 return Err(ContactError::invalid(

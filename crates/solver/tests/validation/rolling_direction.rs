@@ -437,6 +437,14 @@ fn bad_rolling_directions_and_extra_slips_are_refused_naming_the_key() {
         ..ExtraRigidSlip::default()
     });
     assert_eq!(key(&short).as_deref(), Some("extra_rigid_slip.slip_x"));
+    let mut half = p.clone();
+    half.extra_rigid_slip = Some(ExtraRigidSlip {
+        slip_x: vec![0.0; p.grid.len()],
+        slip_y: vec![0.0; p.grid.len()],
+        shift_y_m: vec![0.0; p.grid.len()],
+        ..ExtraRigidSlip::default()
+    });
+    assert_eq!(key(&half).as_deref(), Some("extra_rigid_slip.shift_y_m"));
     let mut nan = p.clone();
     let mut e = ExtraRigidSlip::uniform(&p.grid, 0.0, 0.0);
     e.slip_y[5] = f64::NAN;
