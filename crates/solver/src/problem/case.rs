@@ -1260,7 +1260,7 @@ pub struct GridSection {
 #[derive(Debug, Clone, Copy, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
-    /// Relative pressure change that ends the normal iteration [-] (default 1e-10).
+    /// Relative pressure change that ends the normal iteration [-] (default 1e-6).
     pub normal_tolerance: Option<f64>,
     /// Friction-law residual relative to max mu p_n that ends the tangential
     /// iteration [-] (default 1e-7).

@@ -317,8 +317,8 @@ impl Default for WheelRailSettings {
 }
 
 /// The core solver settings of wheel/rail patches: the core's defaults with
-/// the normal tolerance 1e-6 of the pressure per iteration (against the
-/// core's 1e-10; that of the load iteration's estimates) and the tangential tolerance
+/// the normal tolerance 1e-6 of the pressure per iteration (the core's
+/// default too; that of the load iteration's estimates) and the tangential tolerance
 /// [`WHEELRAIL_TANGENTIAL_TOLERANCE`] (1e-5 of mu p_max, against 1e-7).
 /// Their force errors, about 1e-6 of mu F_n and less for F_n and p_max,
 /// are below the fifth digit and far below the discretisation's at
