@@ -24,7 +24,7 @@ use crate::core::steady::{
     solve_coulomb_newton, solve_steady_newton, LocalModel, PlanarTangential, SteadyScratch,
 };
 use crate::core::tangential::{
-    carry_upstream, carry_upstream_nearest, shift_upstream, solve_steady_marching, solve_transient,
+    carry_field, carry_field_nearest, shift_upstream, solve_steady_marching, solve_transient,
     FrictionBounds, MarchingScratch, TangentialInput, TangentialOutcome, TangentialOutput,
     TangentialScratch, TangentialSettings,
 };
@@ -616,35 +616,21 @@ impl ContactSolver {
         let oblique = direction(problem.rolling_direction_rad, self.grid.is_line())?.oblique_rad;
         let carry = step.carry(&self.grid, oblique, "step")?;
         let grid = self.grid;
-        // Moves one field where the material now at each element was.
-        let carried = |src: &[f64], dst: &mut [f64]| match carry {
-            Carry::Whole(k) => shift_upstream(&grid, k, src, dst),
-            Carry::Oblique(e) => carry_upstream(&grid, e, src, dst),
-        };
         // The previous pressures where the material now at each element
         // was (`h_eff` is free until the normal solve).
         let previous_pn: &[f64] = if carry != Carry::Whole(0) {
-            carried(&self.tr.px, &mut self.tmp_x);
-            carried(&self.tr.py, &mut self.tmp_y);
+            carry_field(&grid, carry, &self.tr.px, &mut self.tmp_x);
+            carry_field(&grid, carry, &self.tr.py, &mut self.tmp_y);
             std::mem::swap(&mut self.tr.px, &mut self.tmp_x);
             std::mem::swap(&mut self.tr.py, &mut self.tmp_y);
-            carried(&self.pn, &mut self.h_eff);
-            match carry {
-                Carry::Whole(k) => shift_upstream(&grid, k, &self.tr.state, &mut self.prev_state),
-                Carry::Oblique(e) => {
-                    carry_upstream_nearest(&grid, e, &self.tr.state, &mut self.prev_state)
-                }
-            }
+            carry_field(&grid, carry, &self.pn, &mut self.h_eff);
+            carry_field_nearest(&grid, carry, &self.tr.state, &mut self.prev_state);
             if problem.friction.slip_velocity_law.is_some() {
                 // A law's memory does not interpolate (0 is fresh material).
                 let law = &mut self.law;
-                let memory = |src: &[f64], dst: &mut [f64]| match carry {
-                    Carry::Whole(k) => shift_upstream(&grid, k, src, dst),
-                    Carry::Oblique(e) => carry_upstream_nearest(&grid, e, src, dst),
-                };
-                memory(&law.mu_before, &mut law.velocity_new);
+                carry_field_nearest(&grid, carry, &law.mu_before, &mut law.velocity_new);
                 std::mem::swap(&mut law.mu_before, &mut law.velocity_new);
-                memory(&law.velocity, &mut law.velocity_new);
+                carry_field_nearest(&grid, carry, &law.velocity, &mut law.velocity_new);
                 std::mem::swap(&mut law.velocity, &mut law.velocity_new);
             }
             &self.h_eff

@@ -40,6 +40,7 @@ use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::Component;
+use crate::core::problem::Carry;
 use crate::core::solution::ElementState;
 
 /// Settings of the tangential solvers.
@@ -407,6 +408,27 @@ pub fn shift_upstream<T: Copy + Default>(grid: &Grid, k: usize, src: &[T], dst: 
     for (s, d) in src.chunks_exact(nx).zip(dst.chunks_exact_mut(nx)) {
         d[..nx - k].copy_from_slice(&s[k..]);
         d[nx - k..].fill(T::default());
+    }
+}
+
+/// `dst` = `src` where the material now at each element was before a
+/// transient step that carries its fields by `carry`
+/// ([`crate::core::problem::ShiftStep::carry`]): [`shift_upstream`] by
+/// whole elements, else [`carry_upstream`] between element centres.
+pub fn carry_field(grid: &Grid, carry: Carry, src: &[f64], dst: &mut [f64]) {
+    match carry {
+        Carry::Whole(k) => shift_upstream(grid, k, src, dst),
+        Carry::Oblique(e) => carry_upstream(grid, e, src, dst),
+    }
+}
+
+/// [`carry_field`] of a field that does not interpolate (element states, a
+/// friction law's memory): [`carry_upstream_nearest`] off the element
+/// centres.
+pub fn carry_field_nearest<T: Copy + Default>(grid: &Grid, carry: Carry, src: &[T], dst: &mut [T]) {
+    match carry {
+        Carry::Whole(k) => shift_upstream(grid, k, src, dst),
+        Carry::Oblique(e) => carry_upstream_nearest(grid, e, src, dst),
     }
 }
 

@@ -1598,13 +1598,7 @@ fn solve_wheel(
     let gap = &scratch.gap[i];
     let locus = &scratch.locus[i];
     let gmin = rigid.min_gap_m[i];
-    let pose = SidePose::new(
-        side,
-        input.position.lateral_m,
-        rigid.center_z_m,
-        rigid.roll_rad,
-        input.position.yaw_rad,
-    );
+    let pose = rigid.pose(side, &input.position);
     let e = input.settings.element_size_m;
     let mut cap = match input.load {
         WheelLoad::VerticalForce(f) => {
@@ -2869,13 +2863,7 @@ mod tests {
         let side = Side::Right;
         let i = side.index();
         let (gap, locus) = (&scratch.gap[i], &scratch.locus[i]);
-        let pose = SidePose::new(
-            side,
-            input.position.lateral_m,
-            rigid.center_z_m,
-            rigid.roll_rad,
-            input.position.yaw_rad,
-        );
+        let pose = rigid.pose(side, &input.position);
         let cap = rigid.min_gap_m[i] + 1e-4;
         let merge = input.settings.search.merge_distance_m;
         let iv = gap_intervals(gap, cap, merge)

@@ -449,6 +449,20 @@ pub struct RigidPosition {
     pub min_gap_m: [f64; 2],
 }
 
+impl RigidPosition {
+    /// The pose of `side`'s wheel at this rigid position, the wheelset at
+    /// `position` (its lateral shift and yaw).
+    pub fn pose(&self, side: Side, position: &WheelsetPosition) -> SidePose {
+        SidePose::new(
+            side,
+            position.lateral_m,
+            self.center_z_m,
+            self.roll_rad,
+            position.yaw_rad,
+        )
+    }
+}
+
 /// Settings of the contact search.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SearchSettings {
