@@ -98,6 +98,12 @@ fn matvecs(c: &mut Criterion) {
                 )
             })
         });
+        // Sixteen columns spread over the grid: the pressure changes of the
+        // elements a normal iteration clamped (`KernelSet::add_normal_columns`).
+        let columns: Vec<(usize, f64)> = (0..16).map(|k| (k * n * n / 16 + n / 2, 1.0)).collect();
+        g.bench_with_input(BenchmarkId::new("normal_columns_16", n), &n, |b, _| {
+            b.iter(|| set.add_normal_columns(&columns, 0, &mut ux))
+        });
         g.bench_with_input(BenchmarkId::new("tangential", n), &n, |b, _| {
             b.iter(|| {
                 set.apply(

@@ -611,6 +611,9 @@ pub struct KernelSet {
     /// both kinds of one grid and material pair, so shared when built with
     /// [`KernelSet::sharing_inverse_of`].
     tangential_inverse: Arc<TangentialInverse>,
+    /// The real-space normal kernel A_nn at every offset of the grid, for
+    /// [`KernelSet::add_normal_columns`] (None without a normal kernel).
+    normal_table: Option<KernelTable>,
     /// Self-influence coefficients (x, y, n) of this kind, and (x, y) of
     /// the steady-rolling kind (evaluated once: the closed forms cost
     /// several logarithms).
@@ -674,6 +677,10 @@ impl KernelSet {
                 .chain(&self.tangential_inverse.spectra)
                 .map(Spectrum::bytes)
                 .sum::<usize>()
+            + self
+                .normal_table
+                .as_ref()
+                .map_or(0, |t| t.values.len() * std::mem::size_of::<f64>())
     }
 
     /// Builds and transforms all kernels (tangential block, normal, and the
@@ -728,6 +735,7 @@ impl KernelSet {
         // The displacement kind's tangential tables (xx, xy, yy), kept for
         // the periodic inverse: the closed forms cost several logarithms.
         let mut tangential_tables: [Option<KernelTable>; 3] = [None, None, None];
+        let mut normal_table = None;
         for (a, &i) in COMPONENTS.iter().enumerate() {
             for (b, &j) in COMPONENTS.iter().enumerate() {
                 let needed = (a < 2 && b < 2) || (a == 2 && b == 2) || coupled;
@@ -747,6 +755,8 @@ impl KernelSet {
                 );
                 if kind == KernelKind::Displacement && a < 2 && b < 2 {
                     tangential_tables[a + b] = Some(t);
+                } else if a == 2 && b == 2 {
+                    normal_table = Some(t);
                 }
             }
         }
@@ -814,6 +824,7 @@ impl KernelSet {
             tangential_norm_bound: bound,
             normal_inverse,
             tangential_inverse,
+            normal_table,
             diagonal: COMPONENTS.map(|c| influence.kernel(kind, c, c, 0, 0)),
             steady_diagonal: [Component::X, Component::Y]
                 .map(|c| influence.kernel(KernelKind::SteadyRolling, c, c, 0, 0)),
@@ -853,6 +864,42 @@ impl KernelSet {
             return self.diagonal[i as usize];
         }
         self.influence.kernel(self.kind, i, j, ox, oy)
+    }
+
+    /// `out[I - offset] += sum_k A_nn(I, J_k - offset) c_k` over the grid's
+    /// elements I, for the pairs (J_k, c_k) of `columns` (J_k - offset an
+    /// element of this grid): the product of a pressure change on a few
+    /// elements, from the real-space kernel, exact where an FFT product
+    /// rounds. It costs about `nx * ny` multiply-adds a column against
+    /// [`KernelSet::normal_column_limit`] columns for one FFT product.
+    /// Returns false (and leaves `out` alone) for a set without a normal
+    /// kernel.
+    pub fn add_normal_columns(
+        &self,
+        columns: &[(usize, f64)],
+        offset: usize,
+        out: &mut [f64],
+    ) -> bool {
+        let Some(t) = &self.normal_table else {
+            return false;
+        };
+        add_columns(&t.values, t.nx, t.ny, columns, offset, out);
+        true
+    }
+
+    /// How many columns [`KernelSet::add_normal_columns`] may add before
+    /// one normal FFT product would be cheaper (0 without a normal kernel):
+    /// `3 log2(px py)` of the padded array. A column is `nx * ny`
+    /// multiply-adds streaming one kernel row per grid row, a product two
+    /// transforms of `px * py` values: on the 2-core machine of
+    /// `benches/README.md` (benches `matvec/normal` and
+    /// `matvec/normal_columns_16`) a product costs 43 to 83 columns from
+    /// 32x32 to 128x128, 3.1 to 5.2 log2(px py); the limit keeps below.
+    pub fn normal_column_limit(&self) -> usize {
+        if self.normal_table.is_none() {
+            return 0;
+        }
+        (3.0 * ((self.plan.px * self.plan.py) as f64).log2()) as usize
     }
 
     /// The self-influence coefficients (xx, yy) of the steady-rolling
@@ -1286,6 +1333,45 @@ pub struct OperatorWorkspace {
     tangential_pc: Box<Buffers<f32>>,
 }
 
+multiversion! {
+    /// `out += sum_k K(., J_k - offset) c_k` for the real-space table
+    /// `values` of a kernel on an `nx x ny` grid, output row by output row
+    /// (the row stays in the first-level cache while the columns add to
+    /// it, each column in the order given).
+    fn add_columns(
+        values: &[f64],
+        nx: usize,
+        ny: usize,
+        columns: &[(usize, f64)],
+        offset: usize,
+        out: &mut [f64],
+    ) => add_columns_body
+}
+
+#[inline(always)]
+fn add_columns_body(
+    values: &[f64],
+    nx: usize,
+    ny: usize,
+    columns: &[(usize, f64)],
+    offset: usize,
+    out: &mut [f64],
+) {
+    let w = 2 * nx - 1;
+    for (ty, row) in out.chunks_exact_mut(nx).take(ny).enumerate() {
+        for &(j, c) in columns {
+            let j = j - offset;
+            let (sx, sy) = (j % nx, j / nx);
+            // Offset (tx - sx, ty - sy) lies at (tx - sx + nx - 1, ty - sy
+            // + ny - 1) of the table: tx = 0..nx is one contiguous run.
+            let start = (ty + ny - 1 - sy) * w + (nx - 1 - sx);
+            for (o, &k) in row.iter_mut().zip(&values[start..start + nx]) {
+                *o += c * k;
+            }
+        }
+    }
+}
+
 /// The dense influence matrix of `set` for the listed components, row
 /// (component a, element I) = a * N + I. For tests and small checks only: it
 /// costs O(N²) memory.
@@ -1381,6 +1467,45 @@ mod tests {
         check_fft_equals_dense(12, 9, KernelKind::Displacement);
         check_fft_equals_dense(7, 16, KernelKind::Displacement);
         check_fft_equals_dense(11, 10, KernelKind::SteadyRolling);
+    }
+
+    /// A few columns of the normal kernel added from the real-space table
+    /// equal the dense matrix's columns (to rounding), on a rectangular
+    /// grid with elements of unequal sides, as part of a larger vector
+    /// (offset) and in both kinds.
+    #[test]
+    fn normal_columns_equal_the_dense_matrix_columns() {
+        for (nx, ny, kind) in [
+            (13, 7, KernelKind::Displacement),
+            (6, 11, KernelKind::SteadyRolling),
+        ] {
+            let ic = HalfSpaceInfluence::new(1e-4, 1.3e-4, &dissimilar());
+            let set = KernelSet::new(Arc::new(ConvolutionPlan::new(nx, ny)), ic, kind);
+            let n = nx * ny;
+            let offset = 5;
+            let columns = [
+                (offset, 2e6),
+                (offset + nx + 2, -1e6),
+                (offset + n - 1, 3e5),
+            ];
+            let mut seed = 3u64;
+            let start: Vec<f64> = (0..n).map(|_| 1e-6 * lcg(&mut seed)).collect();
+            let mut out = start.clone();
+            assert!(set.add_normal_columns(&columns, offset, &mut out));
+            let a = dense_matrix(&set, &[Component::N]);
+            let (mut err, mut norm) = (0.0f64, 0.0f64);
+            for i in 0..n {
+                let want = start[i]
+                    + columns
+                        .iter()
+                        .map(|&(j, c)| a[(i, j - offset)] * c)
+                        .sum::<f64>();
+                err = err.max((out[i] - want).abs());
+                norm = norm.max(want.abs());
+            }
+            assert!(err <= 1e-14 * norm, "{nx}x{ny}: {err:e} of {norm:e}");
+            assert!(set.normal_column_limit() > 0);
+        }
     }
 
     /// Every input/output combination the solvers use (and a few more),

@@ -8,6 +8,13 @@
 //! count hardly grows with the grid (about 10 for the Hertz circle from 32x32
 //! to 128x128, against 28 to 62 without).
 //!
+//! One operator product an iteration: the displacements A p are carried
+//! along the steps, and after a step that clamped elements to zero pressure
+//! the product of those few pressure changes is added from the real-space
+//! kernel column by column ([`NormalOperator::add_columns`]); only a step
+//! that clamps more elements than a product's worth of columns
+//! ([`NormalOperator::column_limit`]) takes a second product.
+//!
 //! Find p_n >= 0 with g = h - delta + u_n(p_n) >= 0 and p_n g = 0, where u_n =
 //! A_nn p_n (plus a fixed contribution of the tangential tractions when the
 //! materials differ, folded into h by the caller). Convergence: the relative
@@ -79,6 +86,9 @@ pub struct NormalScratch {
     free: Vec<bool>,
     /// Unit weights.
     ones: Vec<f64>,
+    /// The elements an iteration clamped to zero pressure and their
+    /// pressure changes beyond the step (see [`NormalOperator::add_columns`]).
+    columns: Vec<(usize, f64)>,
     kept: Kept,
 }
 
@@ -104,6 +114,7 @@ impl NormalScratch {
             z: vec![0.0; n],
             free: vec![false; n],
             ones: vec![1.0; n],
+            columns: Vec::new(),
             kept: Kept::default(),
         }
     }
@@ -134,6 +145,18 @@ pub trait NormalOperator {
     /// alone) when the operator has none, and the solver runs without.
     fn precondition(&mut self, _r: &[f64], _z: &mut [f64]) -> bool {
         false
+    }
+    /// `out += sum_k A(., j_k) c_k` for a few (element j_k, value c_k)
+    /// pairs, in ascending element order: the product of a pressure change
+    /// on those elements; false (and `out` left alone) when the operator
+    /// cannot, and the solver makes a whole product instead.
+    fn add_columns(&mut self, _columns: &[(usize, f64)], _out: &mut [f64]) -> bool {
+        false
+    }
+    /// How many columns [`NormalOperator::add_columns`] adds in about the
+    /// time of one product (0: none).
+    fn column_limit(&self) -> usize {
+        0
     }
 }
 
@@ -199,6 +222,30 @@ impl NormalOperator for BlockNormal<'_> {
         }
         all
     }
+
+    fn add_columns(&mut self, columns: &[(usize, f64)], out: &mut [f64]) -> bool {
+        if self.column_limit() == 0 {
+            return false;
+        }
+        let mut rest = columns;
+        for (op, range) in &self.blocks {
+            let here = rest.partition_point(|&(j, _)| j < range.end);
+            op.kernels
+                .add_normal_columns(&rest[..here], range.start, &mut out[range.clone()]);
+            rest = &rest[here..];
+        }
+        true
+    }
+
+    /// The smallest block's limit: a column costs its block's elements, a
+    /// product all blocks' products.
+    fn column_limit(&self) -> usize {
+        self.blocks
+            .iter()
+            .map(|(op, _)| op.column_limit())
+            .min()
+            .unwrap_or(0)
+    }
 }
 
 /// The planar half-space operator of a kernel set.
@@ -221,6 +268,14 @@ impl NormalOperator for PlanarNormal<'_> {
 
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
         self.kernels.apply_normal_inverse(self.ows, r, z)
+    }
+
+    fn add_columns(&mut self, columns: &[(usize, f64)], out: &mut [f64]) -> bool {
+        self.kernels.add_normal_columns(columns, 0, out)
+    }
+
+    fn column_limit(&self) -> usize {
+        self.kernels.normal_column_limit()
     }
 }
 
@@ -296,6 +351,7 @@ fn solve_normal_body(
         z,
         free,
         ones,
+        columns,
         kept,
     } = scratch;
     // Unit weights are exact: w x = x, w w = 1.
@@ -318,9 +374,15 @@ fn solve_normal_body(
     let mut iterations = 0;
     d.fill(0.0);
     // u = A p is carried along (u <- c (u - alpha A d)) while the step is a
-    // plain CG step; it is recomputed after a projection changed p
-    // otherwise, and every REFRESH iterations against drift.
+    // plain CG step; after a projection that set a few elements' pressures
+    // to zero, the product of those changes is added column by column
+    // (NormalOperator::add_columns); it is recomputed after larger
+    // projections, and every REFRESH iterations against drift.
     const REFRESH: usize = 25;
+    let column_limit = op.column_limit().min(n);
+    if columns.capacity() < column_limit {
+        columns.reserve(column_limit - columns.len());
+    }
     let mut u_valid = false;
     let mut since_refresh = 0;
     if let (true, Some(c)) = (same_start, start_scale) {
@@ -430,11 +492,16 @@ fn solve_normal_body(
         }
         let alpha = if den > 0.0 { num / den } else { 0.0 };
         p_old.copy_from_slice(pn);
+        // Clamped elements and their pressure changes beyond the step, while
+        // there are at most column_limit of them.
+        columns.clear();
         let mut clamped = false;
-        for ((p, &p_old), (&d, &f)) in pn
+        let mut few = true;
+        for (i, ((p, &p_old), (&d, &f))) in pn
             .iter_mut()
             .zip(p_old.iter())
             .zip(d.iter().zip(free.iter()))
+            .enumerate()
         {
             if f {
                 let v = p_old - alpha * d;
@@ -442,7 +509,13 @@ fn solve_normal_body(
                     *p = v;
                 } else {
                     *p = 0.0;
-                    clamped |= v < 0.0 || p_old > 0.0;
+                    if v < 0.0 {
+                        clamped = true;
+                        few &= columns.len() < column_limit;
+                        if few {
+                            columns.push((i, -v));
+                        }
+                    }
                 }
             }
         }
@@ -455,6 +528,7 @@ fn solve_normal_body(
                 }
             }
             clamped = true;
+            few = false;
         }
         conj = true;
         let mut scale = 1.0;
@@ -469,6 +543,14 @@ fn solve_normal_body(
         if u_valid {
             for (u, &q) in u.iter_mut().zip(q.iter()) {
                 *u = scale * (*u - alpha * q);
+            }
+        } else if few {
+            for (u, &q) in u.iter_mut().zip(q.iter()) {
+                *u -= alpha * q;
+            }
+            u_valid = op.add_columns(columns, u);
+            if u_valid {
+                u.iter_mut().for_each(|u| *u *= scale);
             }
         }
         let mut change = 0.0;
