@@ -59,9 +59,9 @@
 //! exceed 1). The force tolerance ([`pitch_force_tolerance`]) is 1e-6 of
 //! mu Fn with the fast models (Hertz, Kik-Piotrowski), whose creep forces
 //! are exact to rounding at a given normal solution;
-//! with the iterative ones, as for a patch's prescribed force
-//! ([`crate::core::force`]), max(1e-6, 10 x the tangential tolerance) of
-//! mu Fn: 1e-4 at the wheel/rail default ([`wheelrail_solver_settings`]).
+//! with the iterative ones max(1e-6, the tangential tolerance) of mu Fn:
+//! 1e-4 at the wheel/rail default ([`wheelrail_solver_settings`]), ten
+//! times the creep forces' own error at that tolerance.
 
 use std::borrow::Cow;
 use std::time::Instant;
@@ -272,7 +272,7 @@ pub struct WheelRailSettings {
     pub search: SearchSettings,
     /// Core solver settings of the exact and conformal patches (default:
     /// [`wheelrail_solver_settings`], tolerances that give forces and
-    /// maximum pressures to five digits and more).
+    /// maximum pressures to about five digits).
     pub solver: SolverSettings,
     /// Relative tolerance on the vertical force [-].
     pub load_tolerance: f64,
@@ -319,13 +319,16 @@ impl Default for WheelRailSettings {
 /// The core solver settings of wheel/rail patches: the core's defaults with
 /// the normal tolerance 1e-6 of the pressure per iteration (the core's
 /// default too; that of the load iteration's estimates) and the tangential tolerance
-/// [`WHEELRAIL_TANGENTIAL_TOLERANCE`] (1e-5 of mu p_max, against 1e-7).
-/// Their force errors, about 1e-6 of mu F_n and less for F_n and p_max,
-/// are below the fifth digit and far below the discretisation's at
-/// wheel/rail element sizes (moving a 0.2 mm grid by a fraction of an
-/// element changes F_x and F_s by about 1e-4 of the wheel load: see
-/// `exact_session_steps_agree_with_cold_solves` in the validation tests).
-/// A prescribed total longitudinal force is met to max(1e-6, 10 x the
+/// [`WHEELRAIL_TANGENTIAL_TOLERANCE`] (1e-4 of mu p_max, against 1e-7; the
+/// load iteration's estimates use the same, so an estimate that meets the
+/// load is the answer). Their force errors, about 1e-5 of mu F_n and less
+/// for F_n and p_max, are at the fifth digit and below the
+/// discretisation's at wheel/rail element sizes (moving a 0.2 mm grid by a
+/// fraction of an element changes F_x and F_s by about 1e-4 of the wheel
+/// load: see `exact_session_steps_agree_with_cold_solves` in the
+/// validation tests). Along the load test's path (600 steps, 50 kN a
+/// wheel) the creep forces stay within 0.4 N of those at 1e-5.
+/// A prescribed total longitudinal force is met to max(1e-6, the
 /// tangential tolerance) = 1e-4 of mu F_n with them
 /// ([`pitch_force_tolerance`]).
 pub fn wheelrail_solver_settings() -> SolverSettings {
@@ -337,7 +340,7 @@ pub fn wheelrail_solver_settings() -> SolverSettings {
 
 /// The default tangential tolerance of wheel/rail patches
 /// ([`wheelrail_solver_settings`]).
-pub const WHEELRAIL_TANGENTIAL_TOLERANCE: f64 = 1e-5;
+pub const WHEELRAIL_TANGENTIAL_TOLERANCE: f64 = 1e-4;
 
 /// Everything a wheelset solution needs besides the profile pair.
 #[derive(Debug, Clone, PartialEq)]
@@ -1329,7 +1332,7 @@ pub fn pitch_force_tolerance(settings: &WheelRailSettings) -> f64 {
     if settings.model.is_fast() {
         1e-6
     } else {
-        1e-6_f64.max(10.0 * settings.solver.tangential.tolerance)
+        1e-6_f64.max(settings.solver.tangential.tolerance)
     }
 }
 

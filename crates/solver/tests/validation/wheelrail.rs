@@ -283,7 +283,7 @@ fn a22_two_point_contact_at_5mm() {
     close("Fz", w.force_track_n[2], 10_000.0, 1e-6, 0.0);
     // The load iteration solves its first patches to looser tolerances
     // (estimates that steer it); the answer comes from solves at the
-    // wheel/rail defaults (normal 1e-6, tangential 1e-5).
+    // wheel/rail defaults (normal 1e-6, tangential 1e-4).
     let defaults = wheelrail_solver_settings();
     for p in &w.patches {
         let info = &p.solution.as_ref().expect("exact patches keep fields").info;

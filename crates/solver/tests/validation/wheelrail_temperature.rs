@@ -100,9 +100,9 @@ fn a22_patch_temperatures_equal_the_patch_path_on_the_same_patch() {
                 flash_temperatures(&grid, &again.fields, &t.input(p.rolling_speed_m_per_s))
                     .unwrap();
             // Temperatures: the rises over the contact temperature agree
-            // to within the solver's tolerances (tangential 1e-5 of mu p:
-            // the two solves stop at different iterates; measured: 3e-6 K
-            // of a 20 K rise on the tread, 4e-5 K of 215 K on the flange).
+            // to within the solver's tolerances (tangential 1e-4 of mu p:
+            // the two solves stop at different iterates; measured: 3.9e-6 K
+            // of a 20 K rise on the tread, 4.8e-5 K of 215 K on the flange).
             let tc = temp.contact_temperature_k;
             let rise = temp.max_rail.temperature_k - tc;
             assert!(rise > 10.0, "{what}: rise {rise} K");
