@@ -5,7 +5,8 @@
 //!   non-finite result) leaves the session bit for bit as it was: the
 //!   steps after it equal a replay that never sent it, for every patch
 //!   session kind and model and every wheel/rail model;
-//! - marks count against a memory budget per session and per server;
+//! - a session's live working state and its marks count against the
+//!   memory limits per session and per server, and return when it closes;
 //! - a step response above the message limit is refused in-band;
 //! - an idle session is closed with an in-band error and frees its slot.
 
@@ -446,21 +447,57 @@ async fn refused_patch_steps_leave_fastsim_hertz_and_cect_sessions_as_they_were(
     server.shutdown().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn marks_count_against_the_session_and_server_budgets() {
-    // A mark of an exact session on n elements keeps 5 f64 fields, two
-    // element states and the prediction's 3 f64 fields: 66 bytes an
-    // element and the few bytes of the state itself.
-    let n = 16 * 16;
-    let mark = 66 * n;
+/// The memory a session of `c` holds once opened, after its first and
+/// after its second (unmarked) step \[bytes\], its live working state:
+/// measured on a server of its own, from `railcontact_session_bytes` while
+/// it is the only session. (The first step allocates the solver's Newton
+/// scratch and prediction, the second the undo copy of the prediction.)
+async fn live_bytes(c: &pb::PatchCase, kind: Kind) -> [usize; 3] {
     let (server, mut client) = server_with(ServeConfig {
-        max_session_bytes: 3 * mark + mark / 2,
-        max_sessions_total_bytes: 4 * mark + mark / 2,
         metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
+    let (tx, rx) = mpsc::channel(8);
+    let mut out = client
+        .patch_session(ReceiverStream::new(rx))
+        .await
+        .unwrap()
+        .into_inner();
+    let mut held = Vec::new();
+    for m in [
+        open(c.clone(), false),
+        request(pb::session_request::Kind::Step(valid(kind, 0))),
+        request(pb::session_request::Kind::Step(valid(kind, 1))),
+    ] {
+        tx.send(m).await.unwrap();
+        let r = out.next().await.unwrap().unwrap().kind.unwrap();
+        assert!(matches!(r, Out::Opened(_) | Out::Step(_)), "{r:?}");
+        held.push(metric(&server, "railcontact_session_bytes").await as usize);
+    }
+    drop(tx);
+    assert!(out.next().await.is_none());
+    server.shutdown().await;
+    [held[0], held[1], held[2]]
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn marks_count_against_the_session_and_server_budgets() {
+    // A mark of an exact session on n elements keeps 5 f64 fields, two
+    // element states and the prediction's 3 f64 fields: 66 bytes an
+    // element and the few bytes of the state itself. The limits hold the
+    // session's live working state besides (its solver's buffers).
+    let n = 16 * 16;
+    let mark = 66 * n;
     let kind = Kind::Rolling;
+    let [_, _, live] = live_bytes(&case(pb::Model::Exact, kind, 16), kind).await;
+    let (server, mut client) = server_with(ServeConfig {
+        max_session_bytes: live + 3 * mark + mark / 2,
+        max_sessions_total_bytes: 2 * live + 4 * mark + mark / 2,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
     let marked = |k: u64| {
         let mut s = valid(kind, k);
         s.mark = true;
@@ -550,6 +587,172 @@ async fn marks_count_against_the_session_and_server_budgets() {
     assert!(first.next().await.is_none());
     let got = session(&mut client, other).await;
     assert!(matches!(got[2], Out::Step(_)), "{:?}", got[2]);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn live_state_counts_against_the_server_and_returns_when_sessions_close() {
+    // An exact rolling session on 24 x 24: its solver's buffers once
+    // opened, and after its first step also the Newton scratch and the
+    // prediction's fields. The server holds one such session and a second
+    // one opened, not two that have stepped.
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 24);
+    let [opened, stepped, steady] = live_bytes(&c, kind).await;
+    assert!(
+        opened < stepped && stepped <= steady,
+        "{opened} {stepped} {steady}"
+    );
+    let total = steady + (opened + stepped) / 2;
+    let (server, client) = server_with(ServeConfig {
+        max_sessions_total_bytes: total,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    let step = |k: u64| request(pb::session_request::Kind::Step(valid(kind, k)));
+    let held = || metric(&server, "railcontact_session_bytes");
+    let start = |c: pb::PatchCase| {
+        let mut client = client.clone();
+        async move {
+            let (tx, rx) = mpsc::channel(8);
+            let out = client
+                .patch_session(ReceiverStream::new(rx))
+                .await
+                .unwrap()
+                .into_inner();
+            tx.send(open(c, false)).await.unwrap();
+            (tx, out)
+        }
+    };
+    async fn answer(out: &mut Streaming<pb::SessionResponse>) -> Out {
+        out.next().await.unwrap().unwrap().kind.unwrap()
+    }
+    let (first_tx, mut first) = start(c.clone()).await;
+    assert!(matches!(answer(&mut first).await, Out::Opened(_)));
+    for k in 0..2 {
+        first_tx.send(step(k)).await.unwrap();
+        assert!(matches!(answer(&mut first).await, Out::Step(_)));
+    }
+    assert_eq!(held().await as usize, steady);
+
+    // The second session opens; its first step would take the server
+    // beyond its total: refused in-band, twice, and it gives back what the
+    // step allocated. The first session keeps stepping meanwhile.
+    let (second_tx, mut second) = start(c.clone()).await;
+    assert!(matches!(answer(&mut second).await, Out::Opened(_)));
+    for k in 2..4 {
+        second_tx.send(step(0)).await.unwrap();
+        let e = item_error(&answer(&mut second).await).clone();
+        assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+        assert!(
+            e.message.contains("max_sessions_total_bytes")
+                && e.message.contains(&format!("({total} bytes)"))
+                && e.message
+                    .contains(&format!("{stepped} bytes of working state")),
+            "{}",
+            e.message
+        );
+        assert_eq!(held().await as usize, steady + opened);
+        first_tx.send(step(k)).await.unwrap();
+        assert!(matches!(answer(&mut first).await, Out::Step(_)));
+    }
+    assert_eq!(
+        metric(&server, "railcontact_session_memory_refused_total").await,
+        2.0
+    );
+
+    // The first session closes: its bytes return, and the second one's
+    // step fits.
+    drop(first_tx);
+    assert!(first.next().await.is_none());
+    second_tx.send(step(0)).await.unwrap();
+    assert!(matches!(answer(&mut second).await, Out::Step(_)));
+    assert_eq!(held().await as usize, stepped);
+    drop(second_tx);
+    assert!(second.next().await.is_none());
+    assert_eq!(held().await, 0.0);
+    assert_eq!(metric(&server, "railcontact_session_mark_bytes").await, 0.0);
+    server.shutdown().await;
+}
+
+/// An exact steady-rolling session on 256 x 256 elements (the largest
+/// grid by default), h = x² + y² (R = 0.5 m), 10 kN, mu 0.3, in process:
+/// after two steps its live state is the solver's buffers (the Newton
+/// scratch included), the gap and the undo copy; with `MAX_MARKS` marks
+/// of its state it fits the default `max_session_bytes`, and its live
+/// state alone is more than the 64 MiB that limit was when it counted
+/// marks only. Printed with `--nocapture`.
+#[test]
+fn an_exact_session_on_the_largest_grid_fits_the_default_limit() {
+    use railcontact::core::cache::KernelCache;
+    use railcontact::service::convert::{validate_case, CaseLimits};
+    use railcontact::service::engine::PatchEngine;
+    use railcontact::service::memory::SessionBudget;
+    use railcontact::service::session::{Session, SessionLimits, MAX_MARKS};
+    let n = 256;
+    let c = case(pb::Model::Exact, Kind::Rolling, n);
+    let config = ServeConfig::default();
+    let limits = CaseLimits {
+        max_grid_elements: config.max_grid_elements,
+    };
+    let engine = PatchEngine::new(validate_case(&c, limits).unwrap(), &KernelCache::default());
+    let budget = SessionBudget::new(config.max_session_bytes, config.max_sessions_total_bytes);
+    let limits = SessionLimits {
+        max_response_bytes: config.max_message_bytes,
+        memory: budget.clone(),
+        max_grid_elements: config.max_grid_elements,
+    };
+    let mut session = Session::open(engine.unwrap(), false, limits).unwrap();
+    let opened = session.live_bytes();
+    for k in 0..2 {
+        let input = session.check_step(&valid(Kind::Rolling, k)).unwrap();
+        session.step(input).unwrap();
+    }
+    let live = session.live_bytes();
+    assert_eq!(budget.total_bytes(), live);
+    let mark = session.engine().state_bytes();
+    let full = live + MAX_MARKS * mark;
+    println!(
+        "exact 256 x 256 session: {opened} bytes opened, {live} after two steps ({} an \
+         element), a mark {mark}: {full} with {MAX_MARKS} marks",
+        live / (n * n) as usize
+    );
+    assert!(full <= config.max_session_bytes, "{full}");
+    assert!(live > 64 << 20, "{live}");
+    drop(session);
+    assert_eq!(budget.total_bytes(), 0);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_session_whose_solver_does_not_fit_is_not_opened() {
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 24);
+    let [opened, _, _] = live_bytes(&c, kind).await;
+    let (server, mut client) = server_with(ServeConfig {
+        max_session_bytes: opened - 1,
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    let out = client
+        .patch_session(tokio_stream::iter([open(c, false)]))
+        .await
+        .unwrap()
+        .into_inner();
+    let (messages, status) = drain(out).await;
+    assert!(messages.is_empty(), "{messages:?}");
+    let status = status.expect("the stream ends with a status");
+    assert_eq!(status.code(), Code::ResourceExhausted, "{status:?}");
+    assert!(
+        status.message().contains("max_session_bytes")
+            && status
+                .message()
+                .contains(&format!("takes {opened} bytes of working state")),
+        "{}",
+        status.message()
+    );
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
     server.shutdown().await;
 }
 
