@@ -991,6 +991,106 @@ async fn refused_wheel_rail_steps_leave_every_model_as_it_was() {
     server.shutdown().await;
 }
 
+/// Two steps of a session opened by `open` (steps `step(0)`, `step(1)`)
+/// on a server that runs no other: what the server counts for it
+/// then, and after it closed \[bytes\].
+async fn held_by<I, O: std::fmt::Debug>(
+    server: &RunningServer,
+    run: impl FnOnce(ReceiverStream<I>) -> BoxFuture<Streaming<O>>,
+    messages: [I; 3],
+) -> (f64, f64) {
+    let (tx, rx) = mpsc::channel(8);
+    let mut out = run(ReceiverStream::new(rx)).await;
+    for m in messages {
+        tx.send(m).await.unwrap();
+        let r = out.next().await.unwrap().unwrap();
+        assert!(!format!("{r:?}").contains("Error("), "{r:?}");
+    }
+    let held = metric(server, "railcontact_session_bytes").await;
+    drop(tx);
+    assert!(out.next().await.is_none());
+    (held, metric(server, "railcontact_session_bytes").await)
+}
+
+type BoxFuture<T> = std::pin::Pin<Box<dyn std::future::Future<Output = T> + Send>>;
+
+/// What each kind of session holds between steps, counted by the server
+/// (printed with `--nocapture`), and given back when it closes: the exact
+/// model's solver buffers (steady and transient), a conformal patch's
+/// workspace, nothing for the fast patch models; on a wheelset (A-2.2
+/// near 3 mm) the exact model's two patch solvers and warm start, the
+/// others' contact search and warm start.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn every_session_kind_counts_what_it_holds_and_gives_it_back() {
+    let (server, client) = server_with(ServeConfig {
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..ServeConfig::default()
+    })
+    .await;
+    let patch = |c: pb::PatchCase, kind: Kind| {
+        let step = |k| request(pb::session_request::Kind::Step(valid(kind, k)));
+        [open(c, false), step(0), step(1)]
+    };
+    let patches = [
+        (
+            "exact rolling 24 x 24",
+            patch(case(pb::Model::Exact, Kind::Rolling, 24), Kind::Rolling),
+        ),
+        (
+            "exact transient 16 x 16",
+            patch(
+                case(pb::Model::Exact, Kind::TransientRolling, 16),
+                Kind::TransientRolling,
+            ),
+        ),
+        ("cect rolling 20 x 20", patch(cect_case(), Kind::Rolling)),
+        (
+            "fastsim rolling 16 x 16",
+            patch(case(pb::Model::Fastsim, Kind::Rolling, 16), Kind::Rolling),
+        ),
+        (
+            "hertz",
+            patch(
+                case(pb::Model::Hertz, Kind::Frictionless, 16),
+                Kind::Frictionless,
+            ),
+        ),
+    ];
+    for (what, messages) in patches {
+        let mut c = client.clone();
+        let run = move |rx| -> BoxFuture<_> {
+            Box::pin(async move { c.patch_session(rx).await.unwrap().into_inner() })
+        };
+        let (held, after) = held_by(&server, run, messages).await;
+        println!("patch session, {what}: {held} bytes");
+        assert_eq!(after, 0.0, "{what}");
+        if what.starts_with("exact") || what.starts_with("cect") {
+            assert!(held > 0.0, "{what}");
+        }
+    }
+    for model in [
+        pb::WheelRailModel::Exact,
+        pb::WheelRailModel::Cect,
+        pb::WheelRailModel::HertzFastsim,
+        pb::WheelRailModel::HertzFastsimTable,
+    ] {
+        let mut c = client.clone();
+        let run = move |rx| -> BoxFuture<_> {
+            Box::pin(async move { c.wheel_rail_session(rx).await.unwrap().into_inner() })
+        };
+        let messages = [
+            wr_open(model),
+            wr_request(wr_step(0)),
+            wr_request(wr_step(1)),
+        ];
+        let (held, after) = held_by(&server, run, messages).await;
+        println!("wheel/rail session, {model:?}: {held} bytes");
+        assert!(held > 0.0, "{model:?}");
+        assert_eq!(after, 0.0, "{model:?}");
+    }
+    server.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn wheel_rail_session_patches_obey_max_grid_elements() {
     let (server, mut client) = serve(ServeConfig {
