@@ -447,23 +447,35 @@ async fn refused_patch_steps_leave_fastsim_hertz_and_cect_sessions_as_they_were(
     server.shutdown().await;
 }
 
+/// A server with `config`'s limits and a metrics port.
+async fn metered(config: ServeConfig) -> (RunningServer, Client) {
+    server_with(ServeConfig {
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..config
+    })
+    .await
+}
+
+/// A patch session's call: the sender of its requests and its responses.
+async fn patch_call(
+    client: &mut Client,
+) -> (
+    mpsc::Sender<pb::SessionRequest>,
+    Streaming<pb::SessionResponse>,
+) {
+    let (tx, rx) = mpsc::channel(8);
+    let out = client.patch_session(ReceiverStream::new(rx)).await;
+    (tx, out.unwrap().into_inner())
+}
+
 /// The memory a session of `c` holds once opened, after its first and
 /// after its second (unmarked) step \[bytes\], its live working state:
 /// measured on a server of its own, from `railcontact_session_bytes` while
 /// it is the only session. (The first step allocates the solver's Newton
 /// scratch and prediction, the second the undo copy of the prediction.)
 async fn live_bytes(c: &pb::PatchCase, kind: Kind) -> [usize; 3] {
-    let (server, mut client) = server_with(ServeConfig {
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
-        ..ServeConfig::default()
-    })
-    .await;
-    let (tx, rx) = mpsc::channel(8);
-    let mut out = client
-        .patch_session(ReceiverStream::new(rx))
-        .await
-        .unwrap()
-        .into_inner();
+    let (server, mut client) = metered(ServeConfig::default()).await;
+    let (tx, mut out) = patch_call(&mut client).await;
     let mut held = Vec::new();
     for m in [
         open(c.clone(), false),
@@ -491,10 +503,9 @@ async fn marks_count_against_the_session_and_server_budgets() {
     let mark = 66 * n;
     let kind = Kind::Rolling;
     let [_, _, live] = live_bytes(&case(pb::Model::Exact, kind, 16), kind).await;
-    let (server, mut client) = server_with(ServeConfig {
+    let (server, mut client) = metered(ServeConfig {
         max_session_bytes: live + 3 * mark + mark / 2,
         max_sessions_total_bytes: 2 * live + 4 * mark + mark / 2,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
@@ -557,12 +568,7 @@ async fn marks_count_against_the_session_and_server_budgets() {
 
     // The server's total: a session holding three marks leaves room for one
     // more in another session, not two; closing it frees its marks.
-    let (tx, rx) = mpsc::channel(8);
-    let mut first = client
-        .patch_session(ReceiverStream::new(rx))
-        .await
-        .unwrap()
-        .into_inner();
+    let (tx, mut first) = patch_call(&mut client).await;
     for m in [open(c.clone(), false), marked(0), marked(1), marked(2)] {
         tx.send(m).await.unwrap();
         let r = first.next().await.unwrap().unwrap().kind.unwrap();
@@ -604,9 +610,8 @@ async fn live_state_counts_against_the_server_and_returns_when_sessions_close() 
         "{opened} {stepped} {steady}"
     );
     let total = steady + (opened + stepped) / 2;
-    let (server, client) = server_with(ServeConfig {
+    let (server, client) = metered(ServeConfig {
         max_sessions_total_bytes: total,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
@@ -615,12 +620,7 @@ async fn live_state_counts_against_the_server_and_returns_when_sessions_close() 
     let start = |c: pb::PatchCase| {
         let mut client = client.clone();
         async move {
-            let (tx, rx) = mpsc::channel(8);
-            let out = client
-                .patch_session(ReceiverStream::new(rx))
-                .await
-                .unwrap()
-                .into_inner();
+            let (tx, out) = patch_call(&mut client).await;
             tx.send(open(c, false)).await.unwrap();
             (tx, out)
         }
@@ -729,9 +729,8 @@ async fn a_session_whose_solver_does_not_fit_is_not_opened() {
     let kind = Kind::Rolling;
     let c = case(pb::Model::Exact, kind, 24);
     let [opened, _, _] = live_bytes(&c, kind).await;
-    let (server, mut client) = server_with(ServeConfig {
+    let (server, mut client) = metered(ServeConfig {
         max_session_bytes: opened - 1,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
@@ -796,10 +795,9 @@ async fn a_step_response_above_the_message_limit_is_refused_in_band() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn idle_sessions_are_closed_in_band_and_free_their_slots() {
-    let (server, mut client) = server_with(ServeConfig {
+    let (server, mut client) = metered(ServeConfig {
         session_idle_timeout_s: 0.3,
         max_sessions: 1,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
@@ -1022,11 +1020,7 @@ type BoxFuture<T> = std::pin::Pin<Box<dyn std::future::Future<Output = T> + Send
 /// others' contact search and warm start.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn every_session_kind_counts_what_it_holds_and_gives_it_back() {
-    let (server, client) = server_with(ServeConfig {
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
-        ..ServeConfig::default()
-    })
-    .await;
+    let (server, client) = metered(ServeConfig::default()).await;
     let patch = |c: pb::PatchCase, kind: Kind| {
         let step = |k| request(pb::session_request::Kind::Step(valid(kind, k)));
         [open(c, false), step(0), step(1)]
@@ -1087,6 +1081,98 @@ async fn every_session_kind_counts_what_it_holds_and_gives_it_back() {
         println!("wheel/rail session, {model:?}: {held} bytes");
         assert!(held > 0.0, "{model:?}");
         assert_eq!(after, 0.0, "{model:?}");
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_wheel_rail_step_beyond_the_session_limit_is_refused_and_gives_back_its_solvers() {
+    // An exact wheel/rail session on holds megabytes of patch
+    // solvers after a step (see the test above), its contact search alone
+    // 0.4 MB: with 2 MB a session, its steps are refused in-band and the
+    // session keeps only the search; a Hertz+FASTSIM session fits.
+    let max = 2 << 20;
+    let (server, mut client) = metered(ServeConfig {
+        max_session_bytes: max,
+        ..ServeConfig::default()
+    })
+    .await;
+    let (tx, rx) = mpsc::channel(8);
+    let mut out = client
+        .wheel_rail_session(ReceiverStream::new(rx))
+        .await
+        .unwrap()
+        .into_inner();
+    tx.send(wr_open(pb::WheelRailModel::Exact)).await.unwrap();
+    let r = out.next().await.unwrap().unwrap().kind.unwrap();
+    assert!(matches!(r, WrOut::Opened(_)), "{r:?}");
+    for _ in 0..2 {
+        tx.send(wr_request(wr_step(0))).await.unwrap();
+        let r = out.next().await.unwrap().unwrap().kind.unwrap();
+        let WrOut::Error(e) = r else {
+            panic!("expected a refusal, got {r:?}")
+        };
+        assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+        assert!(
+            e.message
+                .contains(&format!("max_session_bytes ({max} bytes)")),
+            "{}",
+            e.message
+        );
+        let held = metric(&server, "railcontact_session_bytes").await;
+        assert!(held > 0.0 && held < 0.5e6, "{held}");
+    }
+    let fast = wr_session(
+        &mut client,
+        vec![
+            wr_open(pb::WheelRailModel::HertzFastsim),
+            wr_request(wr_step(0)),
+        ],
+    )
+    .await;
+    assert!(matches!(fast[1], WrOut::Step(_)), "{:?}", fast[1]);
+    drop(tx);
+    assert!(out.next().await.is_none());
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn idle_and_vanished_sessions_give_their_memory_back() {
+    let (server, mut client) = metered(ServeConfig {
+        session_idle_timeout_s: 0.3,
+        ..ServeConfig::default()
+    })
+    .await;
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 16);
+    let step = request(pb::session_request::Kind::Step(valid(kind, 0)));
+    // Idle: opens, steps, then sends nothing.
+    let (tx, mut out) = patch_call(&mut client).await;
+    for m in [open(c.clone(), false), step.clone()] {
+        tx.send(m).await.unwrap();
+        out.next().await.unwrap().unwrap();
+    }
+    assert!(metric(&server, "railcontact_session_bytes").await > 0.0);
+    let (_, status) = drain(out).await;
+    assert_eq!(status.unwrap().code(), Code::DeadlineExceeded);
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
+    drop(tx);
+    // Vanished: opens, steps, then drops its call.
+    let (tx, mut out) = patch_call(&mut client).await;
+    for m in [open(c, false), step] {
+        tx.send(m).await.unwrap();
+        out.next().await.unwrap().unwrap();
+    }
+    assert!(metric(&server, "railcontact_session_bytes").await > 0.0);
+    drop((tx, out));
+    let t = std::time::Instant::now();
+    while metric(&server, "railcontact_session_bytes").await > 0.0 {
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "the session's bytes stay counted"
+        );
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
     }
     server.shutdown().await;
 }
