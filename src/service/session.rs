@@ -103,7 +103,7 @@ pub struct Marks<T> {
 
 /// RESOURCE_EXHAUSTED for a session whose opening would take `live` bytes
 /// beyond `beyond`.
-pub fn open_refused(live: usize, beyond: Beyond) -> ServiceError {
+fn open_refused(live: usize, beyond: Beyond) -> ServiceError {
     let Beyond {
         key,
         max_bytes,
