@@ -71,13 +71,20 @@ pub struct ServeConfig {
     pub max_curve_points: usize,
     /// Sessions open at once (default 256); more get RESOURCE_EXHAUSTED.
     pub max_sessions: usize,
-    /// Memory the marks of one session may hold \[bytes\] (default 64 MiB:
-    /// 15 marks of an exact session on 256 x 256 elements, 66 bytes an
-    /// element each); a step whose mark would go beyond it is refused
-    /// in-band with RESOURCE_EXHAUSTED and not applied.
+    /// Memory one session may hold between its steps \[bytes\]: its live
+    /// working state (the exact solver's buffers, FFT workspaces and Newton
+    /// scratch, warm starts, a wheel/rail session's patch solvers; not the
+    /// influence kernels, which count against `kernel_cache_max_bytes`) and
+    /// its marks. Default 256 MiB: an exact steady-rolling session on the
+    /// largest grid (256 x 256, `max_grid_elements`) holds 116 MB (1771
+    /// bytes an element) and 4.3 MB a mark, 185 MB with all 16 marks. A
+    /// step that would leave the session beyond it is refused in-band with
+    /// RESOURCE_EXHAUSTED and not applied; a session whose solver does not
+    /// fit at all is not opened (RESOURCE_EXHAUSTED).
     pub max_session_bytes: usize,
-    /// Memory the marks of all sessions together may hold \[bytes\]
-    /// (default 1 GiB); beyond it as `max_session_bytes`.
+    /// Memory all sessions together may hold between their steps \[bytes\]
+    /// (default 1 GiB: nine exact sessions on 256 x 256 without marks);
+    /// beyond it as `max_session_bytes`.
     pub max_sessions_total_bytes: usize,
     /// A session that receives no message for this long is closed: its
     /// last message is an in-band error saying so, then the stream ends
@@ -185,7 +192,7 @@ impl Default for ServeConfig {
             max_batch_items: 1024,
             max_curve_points: 1000,
             max_sessions: 256,
-            max_session_bytes: 64 << 20,
+            max_session_bytes: 256 << 20,
             max_sessions_total_bytes: 1 << 30,
             session_idle_timeout_s: 300.0,
             max_grid_elements: 256 * 256,

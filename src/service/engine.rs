@@ -16,6 +16,7 @@ use crate::core::cache::KernelCache;
 use crate::core::force::{
     continued_start, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
 };
+use crate::core::memory::HeapBytes;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Creepages, Kinematics, ShiftStep};
 use crate::core::sensitivity::{
@@ -173,6 +174,32 @@ impl PatchEngine {
     pub fn state_bytes(&self) -> usize {
         std::mem::size_of::<EngineState>()
             + self.exact.as_ref().map_or(0, |e| e.solver.state_bytes())
+    }
+
+    /// The memory the engine holds between solves \[bytes\]: the exact
+    /// model's solver (its buffers, not the cache's kernels) and gap, the
+    /// conformal models' workspace.
+    pub fn heap_bytes(&self) -> usize {
+        let exact = self.exact.as_ref().map_or(0, |e| {
+            let extra = e.problem.extra_rigid_slip.as_ref().map_or(0, |x| {
+                x.slip_x.heap_bytes()
+                    + x.slip_y.heap_bytes()
+                    + x.shift_x_m.heap_bytes()
+                    + x.shift_y_m.heap_bytes()
+            });
+            e.solver.heap_bytes() + e.problem.gap_m.heap_bytes() + extra
+        });
+        exact + self.conformal.heap_bytes()
+    }
+
+    /// Frees the buffers that hold no state (the exact solver's Newton
+    /// scratch, the conformal workspace): the next solve allocates them
+    /// again and gives the same bits.
+    pub fn release_scratch(&mut self) {
+        if let Some(e) = &mut self.exact {
+            e.solver.release_scratch();
+        }
+        self.conformal = FrictionalWorkspace::default();
     }
 
     /// Computes the Jacobian of the forces with every solve from now on
@@ -446,6 +473,12 @@ impl Exact {
             &mut self.problem.gap_m,
         );
         self.gap_offset_m = offset_m;
+    }
+}
+
+impl HeapBytes for EngineState {
+    fn heap_bytes(&self) -> usize {
+        self.solver.heap_bytes()
     }
 }
 

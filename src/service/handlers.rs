@@ -20,11 +20,12 @@ use crate::problem::case::{Case, Model};
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::escaped;
+use crate::service::memory::SessionBudget;
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
 use crate::service::pool::{deadline_of, Admission, Lane, SolvePool, INLINE_FASTSIM_ELEMENTS};
-use crate::service::session::{MarkBudget, Session, SessionLimits};
+use crate::service::session::{Session, SessionLimits};
 use crate::service::status::{self, ServiceError};
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
@@ -43,9 +44,9 @@ pub struct RequestLimits {
     pub max_sessions: usize,
     /// Largest message \[bytes\] (a session step's response included).
     pub max_message_bytes: usize,
-    /// Memory of one session's marks \[bytes\].
+    /// Memory of one session, live state and marks \[bytes\].
     pub max_session_bytes: usize,
-    /// Memory of all sessions' marks \[bytes\].
+    /// Memory of all sessions together \[bytes\].
     pub max_sessions_total_bytes: usize,
     /// A session without a message for this long is closed.
     pub session_idle_timeout: Duration,
@@ -60,8 +61,8 @@ pub struct ContactHandlers {
     limits: RequestLimits,
     metrics: Arc<Metrics>,
     sessions: Arc<AtomicUsize>,
-    /// The memory of the sessions' marks.
-    marks: MarkBudget,
+    /// The memory of the sessions (live state and marks).
+    memory: SessionBudget,
     next_id: Arc<AtomicU64>,
     pairs: Arc<PairRegistry>,
 }
@@ -86,7 +87,7 @@ impl ContactHandlers {
             limits,
             metrics,
             sessions: Arc::new(AtomicUsize::new(0)),
-            marks: MarkBudget::new(limits.max_session_bytes, limits.max_sessions_total_bytes),
+            memory: SessionBudget::new(limits.max_session_bytes, limits.max_sessions_total_bytes),
             next_id: Arc::new(AtomicU64::new(1)),
             pairs,
         }
@@ -682,15 +683,15 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
 }
 
 /// Decrements the open-session count when a session ends, however it
-/// ends, and updates the marks' figures (declared before the session, it
-/// is dropped after it and its marks).
-struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>, MarkBudget);
+/// ends, and updates the sessions' memory figures (declared before the
+/// session, it is dropped after it and its memory).
+struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>, SessionBudget);
 
 impl Drop for SessionSlot {
     fn drop(&mut self) {
         self.0.fetch_sub(1, Ordering::Relaxed);
         self.1.session_closed();
-        self.1.session_marks(self.2.total_bytes(), self.2.refused());
+        self.1.session_memory(&self.2);
     }
 }
 
@@ -750,7 +751,7 @@ impl ContactHandlers {
         Ok(SessionSlot(
             self.sessions.clone(),
             self.metrics.clone(),
-            self.marks.clone(),
+            self.memory.clone(),
         ))
     }
 
@@ -758,7 +759,7 @@ impl ContactHandlers {
     fn session_limits(&self) -> SessionLimits {
         SessionLimits {
             max_response_bytes: self.limits.max_message_bytes,
-            marks: self.marks.clone(),
+            memory: self.memory.clone(),
             max_grid_elements: self.limits.case.max_grid_elements,
         }
     }
@@ -809,8 +810,7 @@ impl ContactHandlers {
     /// idle error when it read nothing for `session_idle_timeout` (the
     /// session is then closed, see [`ContactHandlers::receive`]).
     async fn send<R>(&self, tx: &mpsc::Sender<Result<R, Status>>, r: R) -> Result<bool, Status> {
-        self.metrics
-            .session_marks(self.marks.total_bytes(), self.marks.refused());
+        self.metrics.session_memory(&self.memory);
         match tokio::time::timeout(self.limits.session_idle_timeout, tx.send(Ok(r))).await {
             Ok(sent) => Ok(sent.is_ok()),
             Err(_) => Err(self.idle_closed().into()),
@@ -922,6 +922,7 @@ impl ContactHandlers {
         }
         tracing::info!(
             next_step = session.next_step(),
+            live_bytes = session.live_bytes(),
             mark_bytes = session.mark_bytes(),
             "wheel/rail session closed"
         );
@@ -1009,6 +1010,7 @@ impl ContactHandlers {
         }
         tracing::info!(
             next_step = session.next_step(),
+            live_bytes = session.live_bytes(),
             mark_bytes = session.mark_bytes(),
             "session closed"
         );

@@ -10,15 +10,14 @@
 //! | `railcontact_sessions_active` | | open co-simulation sessions |
 //! | `railcontact_sessions_opened_total` | | sessions opened |
 //! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
-//! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
-//! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
+//! | `railcontact_session_bytes` | | memory held by all open sessions, their live working state (solvers' buffers, warm starts) and marks, against `max_sessions_total_bytes` |
+//! | `railcontact_session_mark_bytes` | | the part of it that marks hold |
+//! | `railcontact_session_memory_refused_total` | | session opens and steps refused because the session would go beyond `max_session_bytes` or `max_sessions_total_bytes` |
+//! | `railcontact_session_marks_refused_total` | | marked steps among them that would have fitted without their mark |
 //! | `railcontact_solve_queue_admitted` | | requests admitted to the solve pool |
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
-//! | `railcontact_sessions_idle_closed_total` | | session streams closed because no message came (or no response was read) for `session_idle_timeout_s` |
-//! | `railcontact_session_mark_bytes` | | memory held by the marks of all open sessions (`max_sessions_total_bytes`) |
-//! | `railcontact_session_marks_refused_total` | | marked steps refused because the mark went beyond `max_session_bytes` or `max_sessions_total_bytes` |
 //! | `railcontact_streams_first_message_timed_out_total` | | session streams ended because no first message came within `stream_first_message_timeout_s` |
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
@@ -53,6 +52,7 @@ use tokio::net::TcpListener;
 
 use crate::core::cache::KernelCache;
 use crate::problem::case::Model;
+use crate::service::memory::SessionBudget;
 use crate::service::pool::SolvePool;
 
 /// Upper bounds of the latency buckets [s].
@@ -116,7 +116,9 @@ pub struct Metrics {
     auth_refused: Family<ReasonLabels, Counter>,
     sessions_idle_closed: Counter,
     first_message_timeouts: Counter,
+    session_bytes: Gauge,
     session_mark_bytes: Gauge,
+    session_memory_refused: Counter,
     session_marks_refused: Counter,
 }
 
@@ -134,7 +136,9 @@ impl Default for Metrics {
             auth_refused: Family::default(),
             sessions_idle_closed: Counter::default(),
             first_message_timeouts: Counter::default(),
+            session_bytes: Gauge::default(),
             session_mark_bytes: Gauge::default(),
+            session_memory_refused: Counter::default(),
             session_marks_refused: Counter::default(),
         };
         let mut r = m.registry;
@@ -150,8 +154,10 @@ impl Default for Metrics {
             "railcontact_auth_refused", "Calls refused by the bearer tokens, by reason" => m.auth_refused;
             "railcontact_sessions_idle_closed", "Sessions closed because they idled past session_idle_timeout_s" => m.sessions_idle_closed;
             "railcontact_streams_first_message_timed_out", "Session streams ended because no first message came within stream_first_message_timeout_s" => m.first_message_timeouts;
+            "railcontact_session_bytes", "Memory held by all sessions, live state and marks [bytes]" => m.session_bytes;
             "railcontact_session_mark_bytes", "Memory held by the marks of all sessions [bytes]" => m.session_mark_bytes;
-            "railcontact_session_marks_refused", "Marked steps refused by max_session_bytes or max_sessions_total_bytes" => m.session_marks_refused;
+            "railcontact_session_memory_refused", "Session opens and steps refused by max_session_bytes or max_sessions_total_bytes" => m.session_memory_refused;
+            "railcontact_session_marks_refused", "Marked steps refused by max_session_bytes or max_sessions_total_bytes that would have fitted without their mark" => m.session_marks_refused;
         );
         Self { registry: r, ..m }
     }
@@ -220,12 +226,18 @@ impl Metrics {
         self.first_message_timeouts.inc();
     }
 
-    /// The session marks now: `bytes` held, `refused` marks so far.
-    pub fn session_marks(&self, bytes: usize, refused: u64) {
-        self.session_mark_bytes.set(bytes as i64);
+    /// The sessions' memory now: bytes held (all, and by marks), opens,
+    /// steps and marks refused so far.
+    pub fn session_memory(&self, budget: &SessionBudget) {
+        use std::sync::atomic::Ordering::Relaxed;
+        self.session_bytes.set(budget.total_bytes() as i64);
+        self.session_mark_bytes.set(budget.mark_bytes() as i64);
+        self.session_memory_refused
+            .inner()
+            .store(budget.refused(), Relaxed);
         self.session_marks_refused
             .inner()
-            .store(refused, std::sync::atomic::Ordering::Relaxed);
+            .store(budget.refused_marks(), Relaxed);
     }
 
     /// A session ended.

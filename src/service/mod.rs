@@ -8,6 +8,7 @@
 //! | [`convert`] | wire <-> case file and results (the only place wire types are read) |
 //! | [`engine`] | one patch: a validated case and its persistent exact solver |
 //! | [`session`] | co-simulation sessions: step order, marks, rollback |
+//! | [`memory`] | the memory sessions hold (live state and marks) against the server's limits |
 //! | [`pairs`] | wheel/rail profile pairs: canonical form, content id, preparation, registry |
 //! | [`store`] | the embedded store (redb) of registered pairs |
 //! | [`wheelrail`] | wire <-> wheel/rail queries and results |
@@ -30,6 +31,7 @@ pub mod config;
 pub mod convert;
 pub mod engine;
 pub mod handlers;
+pub mod memory;
 pub mod metrics;
 pub mod pairs;
 pub mod pool;

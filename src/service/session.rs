@@ -17,19 +17,23 @@
 //!
 //! A marked step keeps a copy of that state (not the kernels or buffers);
 //! rolling back puts it back, so repeating the steps after it reproduces
-//! their outputs bit for bit. Marks count against a memory budget per
-//! session and for the whole server ([`MarkBudget`]).
+//! their outputs bit for bit. The session's live working state (the
+//! engine's solver and buffers, the undo copy) and its marks count against
+//! the memory limits per session and for the whole server
+//! ([`crate::service::memory`]), settled after every step: a step that
+//! would take the session beyond them is refused like any other, and the
+//! session then gives back the buffers that hold no state.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
-use std::sync::Arc;
 
 use crate::core::force::PrescribedForce;
+use crate::core::memory::HeapBytes;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::problem::case::{ranges, transient_step, Model, TransientStep};
 use crate::service::convert;
 use crate::service::engine::{EngineState, PatchEngine};
+use crate::service::memory::{Beyond, SessionBudget, SessionMemory};
 use crate::service::pb;
 use crate::service::status::ServiceError;
 
@@ -86,73 +90,52 @@ pub fn check_response_size<M: prost::Message>(
     )))
 }
 
-/// The memory the session marks of a server may hold: per session and all
-/// sessions together \[bytes\]. Clones share the server's count.
-#[derive(Debug, Clone)]
-pub struct MarkBudget {
-    session_max_bytes: usize,
-    total_max_bytes: usize,
-    total_bytes: Arc<AtomicUsize>,
-    refused: Arc<AtomicU64>,
-}
-
-impl MarkBudget {
-    /// At most `session_max_bytes` of marks per session and
-    /// `total_max_bytes` in all sessions together.
-    pub fn new(session_max_bytes: usize, total_max_bytes: usize) -> Self {
-        Self {
-            session_max_bytes,
-            total_max_bytes,
-            total_bytes: Arc::new(AtomicUsize::new(0)),
-            refused: Arc::new(AtomicU64::new(0)),
-        }
-    }
-
-    /// Bytes held by the marks of all open sessions now.
-    pub fn total_bytes(&self) -> usize {
-        self.total_bytes.load(Ordering::Relaxed)
-    }
-
-    /// Marks refused so far.
-    pub fn refused(&self) -> u64 {
-        self.refused.load(Ordering::Relaxed)
-    }
-}
-
 /// The step order and the marked states of a session (of any kind): the
-/// index the next step must have, and a state per marked step with its
-/// size in bytes.
+/// index the next step must have, a state per marked step with its size
+/// in bytes, and the session's memory in the server's count (its live
+/// state and its marks).
 #[derive(Debug)]
 pub struct Marks<T> {
     next_step: u64,
     marks: BTreeMap<u64, (T, usize)>,
-    /// Bytes of all marks (counted in the budget's total too).
-    bytes: usize,
-    budget: MarkBudget,
+    memory: SessionMemory,
 }
 
-impl<T> Drop for Marks<T> {
-    fn drop(&mut self) {
-        self.budget
-            .total_bytes
-            .fetch_sub(self.bytes, Ordering::Relaxed);
-    }
+/// RESOURCE_EXHAUSTED for a session whose opening would take `live` bytes
+/// beyond `beyond`.
+fn open_refused(live: usize, beyond: Beyond) -> ServiceError {
+    let Beyond {
+        key,
+        max_bytes,
+        whose,
+    } = beyond;
+    ServiceError::Exhausted(format!(
+        "opening this session takes {live} bytes of working state (its solvers' buffers), \
+         beyond {whose} limit, this server's {key} ({max_bytes} bytes): open it on a coarser \
+         grid, or retry when other sessions have closed"
+    ))
 }
 
 impl<T> Marks<T> {
-    /// No step yet, nothing marked; marks within `budget`.
-    pub fn new(budget: MarkBudget) -> Self {
-        Self {
+    /// No step yet, nothing marked; the session holds `live` bytes to
+    /// begin with. RESOURCE_EXHAUSTED when they do not fit `budget`.
+    pub fn open(budget: SessionBudget, live: usize) -> Result<Self, ServiceError> {
+        Ok(Self {
             next_step: 0,
             marks: BTreeMap::new(),
-            bytes: 0,
-            budget,
-        }
+            memory: SessionMemory::open(budget, live).map_err(|b| open_refused(live, b))?,
+        })
     }
 
     /// Bytes held by this session's marks.
     pub fn bytes(&self) -> usize {
-        self.bytes
+        self.memory.mark_bytes()
+    }
+
+    /// After a refused step: the session holds `live` bytes (it gave back
+    /// what the step allocated).
+    pub fn settle(&mut self, live: usize) {
+        self.memory.settle(live);
     }
 
     /// The index the next step must have.
@@ -176,55 +159,57 @@ impl<T> Marks<T> {
         ))
     }
 
-    /// Step `index` succeeded; `state` (the state after it, `bytes` in
-    /// size) is kept when the step is marked, dropping the oldest mark
-    /// beyond [`MAX_MARKS`]. RESOURCE_EXHAUSTED, and nothing changed, when
-    /// the mark would take this session's or the server's marks beyond
-    /// the budget.
+    /// Step `index` succeeded and leaves the session holding `live` bytes
+    /// of working state; `state` (the state after it, `bytes` in size) is
+    /// kept when the step is marked, dropping the oldest mark beyond
+    /// [`MAX_MARKS`]. RESOURCE_EXHAUSTED, and nothing changed, when the
+    /// live state and the marks would take the session or the server
+    /// beyond its limit.
     pub fn done(
         &mut self,
         index: u64,
         mark: bool,
+        live: usize,
         bytes: usize,
         state: impl FnOnce() -> T,
     ) -> Result<(), ServiceError> {
-        if mark {
-            let evicted = match self.marks.len() >= MAX_MARKS {
-                true => self.marks.first_key_value().map_or(0, |(_, m)| m.1),
-                false => 0,
+        let evicted = match mark && self.marks.len() >= MAX_MARKS {
+            true => self.marks.first_key_value().map_or(0, |(_, m)| m.1),
+            false => 0,
+        };
+        let own = if mark { bytes } else { 0 };
+        let marks = self.memory.mark_bytes() - evicted + own;
+        if let Err(Beyond {
+            key,
+            max_bytes,
+            whose,
+        }) = self.memory.reserve(live, marks, own)
+        {
+            let advice = match mark {
+                true => {
+                    "send it again without `mark`, or roll back to an earlier mark (later \
+                         marks are dropped)"
+                }
+                false => {
+                    "roll back to an earlier mark (later marks are dropped), open the \
+                          session on a coarser grid, or retry when other sessions have closed"
+                }
             };
-            let b = &self.budget;
-            let session = self.bytes - evicted + bytes;
-            // The server's count includes this session's evicted mark.
-            let reserved = session <= b.session_max_bytes
-                && b.total_bytes
-                    .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |t| {
-                        (t + bytes - evicted <= b.total_max_bytes).then_some(t + bytes)
-                    })
-                    .is_ok();
-            if !reserved {
-                b.refused.fetch_add(1, Ordering::Relaxed);
-                let (what, max, key) = match session > b.session_max_bytes {
-                    true => ("this session's", b.session_max_bytes, "max_session_bytes"),
-                    false => (
-                        "all sessions'",
-                        b.total_max_bytes,
-                        "max_sessions_total_bytes",
-                    ),
-                };
-                return Err(ServiceError::Exhausted(format!(
-                    "`step.mark`: keeping this step's state ({bytes} bytes) would take {what} \
-                     marks beyond this server's {key} ({max} bytes); the step was not applied: \
-                     send it again without `mark`, or roll back to an earlier mark (later marks \
-                     are dropped){}",
-                    self.list()
-                )));
-            }
+            let kept = match mark {
+                true => format!(" (this step's mark {bytes} bytes of them)"),
+                false => String::new(),
+            };
+            return Err(ServiceError::Exhausted(format!(
+                "this step would leave the session holding {live} bytes of working state and \
+                 {marks} bytes of marks{kept}, beyond {whose} limit, this server's {key} \
+                 ({max_bytes} bytes); the step was not applied: {advice}{}",
+                self.list()
+            )));
+        }
+        if mark {
             if evicted > 0 {
                 self.marks.pop_first();
-                b.total_bytes.fetch_sub(evicted, Ordering::Relaxed);
             }
-            self.bytes = session;
             self.marks.insert(index, (state(), bytes));
         }
         self.next_step = index + 1;
@@ -244,8 +229,7 @@ impl<T> Marks<T> {
             ));
         }
         let later: usize = self.marks.split_off(&(to + 1)).values().map(|m| m.1).sum();
-        self.bytes -= later;
-        self.budget.total_bytes.fetch_sub(later, Ordering::Relaxed);
+        self.memory.drop_marks(later);
         self.next_step = to + 1;
         Ok((
             &self.marks[&to].0,
@@ -272,8 +256,8 @@ impl<T> Marks<T> {
 pub struct SessionLimits {
     /// Largest step response \[bytes\] (`max_message_bytes`).
     pub max_response_bytes: usize,
-    /// The marks' memory.
-    pub marks: MarkBudget,
+    /// The sessions' memory (live state and marks).
+    pub memory: SessionBudget,
     /// Largest patch grid of a wheel/rail session, nx * ny elements
     /// (`max_grid_elements`).
     pub max_grid_elements: usize,
@@ -315,15 +299,25 @@ impl Session {
                 ))
             }
         };
+        // The copy a refused step is undone from, at its size from the start.
+        let mut undo = EngineState::default();
+        engine.save(&mut undo);
+        let live = engine.heap_bytes() + undo.heap_bytes();
         Ok(Self {
             default_load: case.load,
             engine,
             kind,
             fields,
-            marks: Marks::new(limits.marks),
-            undo: EngineState::default(),
+            marks: Marks::open(limits.memory, live)?,
+            undo,
             max_response_bytes: limits.max_response_bytes,
         })
+    }
+
+    /// The memory the session holds between steps, its marks aside
+    /// \[bytes\]: the engine's and the undo copy's.
+    pub fn live_bytes(&self) -> usize {
+        self.engine.heap_bytes() + self.undo.heap_bytes()
     }
 
     /// The session kind.
@@ -475,7 +469,10 @@ impl Session {
         self.engine.save(&mut self.undo);
         let r = self.try_step(input);
         if r.is_err() {
-            self.engine.restore(&self.undo)?;
+            let restored = self.engine.restore(&self.undo);
+            self.engine.release_scratch();
+            self.marks.settle(self.live_bytes());
+            restored?;
         }
         r
     }
@@ -507,9 +504,10 @@ impl Session {
             force_control: result.force_control,
         };
         check_response_size(&out, self.max_response_bytes)?;
+        let live = self.live_bytes();
         let engine = &self.engine;
         self.marks
-            .done(input.index, input.mark, engine.state_bytes(), || {
+            .done(input.index, input.mark, live, engine.state_bytes(), || {
                 let mut state = EngineState::default();
                 engine.save(&mut state);
                 state

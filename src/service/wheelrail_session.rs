@@ -10,17 +10,20 @@
 //! sequence of requests. A step is a transaction: it solves from a copy of
 //! the warm start, which replaces the session's only when the step is
 //! answered, so a refused step (its inputs, the solver, a non-finite
-//! result, a response too large to send, a mark beyond the budget) leaves
+//! result, a response too large to send, memory beyond the limits) leaves
 //! the session as it was. A marked step keeps a copy of the warm start
-//! after it (counted against the [`MarkBudget`](crate::service::session::MarkBudget)); a rollback restores it,
-//! so repeating the steps after the mark reproduces their outputs bit for
-//! bit. The search scratch holds buffers only (with each wheel's last
-//! exact patch solver, renewed for its kernels and buffers, none of its
-//! state): answers do not depend on it.
+//! after it; a rollback restores it, so repeating the steps after the mark
+//! reproduces their outputs bit for bit. The search scratch holds buffers
+//! only (with each wheel's last exact patch solver, renewed for its
+//! kernels and buffers, none of its state): answers do not depend on it.
+//! The scratch, the warm start and the marks count against the memory
+//! limits ([`crate::service::memory`]) after every step; a refused step
+//! drops the patch solvers (the next step builds them again).
 
 use std::sync::Arc;
 
 use crate::core::cache::KernelCache;
+use crate::core::memory::HeapBytes;
 use crate::service::pairs::{PairEntry, PreparedPair};
 use crate::service::pb;
 use crate::service::session::{check_response_size, Marks, SessionLimits};
@@ -78,17 +81,26 @@ impl WheelRailSession {
         .with_friction_table(open.friction_table.as_ref())?
         .with_temperature(open.temperature.as_ref())?
         .with_max_grid_elements(limits.max_grid_elements);
+        let (scratch, warm) = (SearchScratch::default(), WarmStart::default());
+        let live = scratch.heap_bytes() + warm.bytes();
         Ok(Self {
             settings,
             entry,
             prepared,
             table,
             fields: open.include_fields,
-            scratch: SearchScratch::default(),
-            warm: WarmStart::default(),
-            marks: Marks::new(limits.marks),
+            scratch,
+            warm,
+            marks: Marks::open(limits.memory, live)?,
             max_response_bytes: limits.max_response_bytes,
         })
+    }
+
+    /// The memory the session holds between steps, its marks aside
+    /// \[bytes\]: the search scratch (with each wheel's last exact patch
+    /// solver) and the warm start.
+    pub fn live_bytes(&self) -> usize {
+        self.scratch.heap_bytes() + self.warm.bytes()
     }
 
     /// The pair's id.
@@ -161,8 +173,22 @@ impl WheelRailSession {
     }
 
     /// Solves a checked step (CPU-bound: run it on the solve pool). A
-    /// refused step changes nothing.
+    /// refused step changes nothing but the buffers of the search scratch.
     pub fn step(
+        &mut self,
+        step: WheelRailStep,
+    ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
+        let r = self.try_step(step);
+        if r.is_err() {
+            self.scratch.release_solvers();
+            self.marks.settle(self.live_bytes());
+        }
+        r
+    }
+
+    /// [`WheelRailSession::step`] without giving back the scratch's
+    /// buffers when it fails.
+    fn try_step(
         &mut self,
         step: WheelRailStep,
     ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
@@ -202,8 +228,9 @@ impl WheelRailSession {
             marked: step.mark,
         };
         check_response_size(&out, self.max_response_bytes)?;
+        let live = self.scratch.heap_bytes() + warm.bytes();
         self.marks
-            .done(step.index, step.mark, warm.bytes(), || warm.clone())?;
+            .done(step.index, step.mark, live, warm.bytes(), || warm.clone())?;
         self.warm = warm;
         Ok(out)
     }

@@ -5,7 +5,8 @@
 //!   non-finite result) leaves the session bit for bit as it was: the
 //!   steps after it equal a replay that never sent it, for every patch
 //!   session kind and model and every wheel/rail model;
-//! - marks count against a memory budget per session and per server;
+//! - a session's live working state and its marks count against the
+//!   memory limits per session and per server, and return when it closes;
 //! - a step response above the message limit is refused in-band;
 //! - an idle session is closed with an in-band error and frees its slot.
 
@@ -446,21 +447,68 @@ async fn refused_patch_steps_leave_fastsim_hertz_and_cect_sessions_as_they_were(
     server.shutdown().await;
 }
 
+/// A server with `config`'s limits and a metrics port.
+async fn metered(config: ServeConfig) -> (RunningServer, Client) {
+    server_with(ServeConfig {
+        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+        ..config
+    })
+    .await
+}
+
+/// A patch session's call: the sender of its requests and its responses.
+async fn patch_call(
+    client: &mut Client,
+) -> (
+    mpsc::Sender<pb::SessionRequest>,
+    Streaming<pb::SessionResponse>,
+) {
+    let (tx, rx) = mpsc::channel(8);
+    let out = client.patch_session(ReceiverStream::new(rx)).await;
+    (tx, out.unwrap().into_inner())
+}
+
+/// The memory a session of `c` holds once opened, after its first and
+/// after its second (unmarked) step \[bytes\], its live working state:
+/// measured on a server of its own, from `railcontact_session_bytes` while
+/// it is the only session. (The first step allocates the solver's Newton
+/// scratch and prediction, the second the undo copy of the prediction.)
+async fn live_bytes(c: &pb::PatchCase, kind: Kind) -> [usize; 3] {
+    let (server, mut client) = metered(ServeConfig::default()).await;
+    let (tx, mut out) = patch_call(&mut client).await;
+    let mut held = Vec::new();
+    for m in [
+        open(c.clone(), false),
+        request(pb::session_request::Kind::Step(valid(kind, 0))),
+        request(pb::session_request::Kind::Step(valid(kind, 1))),
+    ] {
+        tx.send(m).await.unwrap();
+        let r = out.next().await.unwrap().unwrap().kind.unwrap();
+        assert!(matches!(r, Out::Opened(_) | Out::Step(_)), "{r:?}");
+        held.push(metric(&server, "railcontact_session_bytes").await as usize);
+    }
+    drop(tx);
+    assert!(out.next().await.is_none());
+    server.shutdown().await;
+    [held[0], held[1], held[2]]
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn marks_count_against_the_session_and_server_budgets() {
     // A mark of an exact session on n elements keeps 5 f64 fields, two
     // element states and the prediction's 3 f64 fields: 66 bytes an
-    // element and the few bytes of the state itself.
+    // element and the few bytes of the state itself. The limits hold the
+    // session's live working state besides (its solver's buffers).
     let n = 16 * 16;
     let mark = 66 * n;
-    let (server, mut client) = server_with(ServeConfig {
-        max_session_bytes: 3 * mark + mark / 2,
-        max_sessions_total_bytes: 4 * mark + mark / 2,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+    let kind = Kind::Rolling;
+    let [_, _, live] = live_bytes(&case(pb::Model::Exact, kind, 16), kind).await;
+    let (server, mut client) = metered(ServeConfig {
+        max_session_bytes: live + 3 * mark + mark / 2,
+        max_sessions_total_bytes: 2 * live + 4 * mark + mark / 2,
         ..ServeConfig::default()
     })
     .await;
-    let kind = Kind::Rolling;
     let marked = |k: u64| {
         let mut s = valid(kind, k);
         s.mark = true;
@@ -520,12 +568,7 @@ async fn marks_count_against_the_session_and_server_budgets() {
 
     // The server's total: a session holding three marks leaves room for one
     // more in another session, not two; closing it frees its marks.
-    let (tx, rx) = mpsc::channel(8);
-    let mut first = client
-        .patch_session(ReceiverStream::new(rx))
-        .await
-        .unwrap()
-        .into_inner();
+    let (tx, mut first) = patch_call(&mut client).await;
     for m in [open(c.clone(), false), marked(0), marked(1), marked(2)] {
         tx.send(m).await.unwrap();
         let r = first.next().await.unwrap().unwrap().kind.unwrap();
@@ -550,6 +593,165 @@ async fn marks_count_against_the_session_and_server_budgets() {
     assert!(first.next().await.is_none());
     let got = session(&mut client, other).await;
     assert!(matches!(got[2], Out::Step(_)), "{:?}", got[2]);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn live_state_counts_against_the_server_and_returns_when_sessions_close() {
+    // An exact rolling session on 24 x 24: its solver's buffers once
+    // opened, and after its first step also the Newton scratch and the
+    // prediction's fields. The server holds one such session and a second
+    // one opened, not two that have stepped.
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 24);
+    let [opened, stepped, steady] = live_bytes(&c, kind).await;
+    assert!(
+        opened < stepped && stepped <= steady,
+        "{opened} {stepped} {steady}"
+    );
+    let total = steady + (opened + stepped) / 2;
+    let (server, client) = metered(ServeConfig {
+        max_sessions_total_bytes: total,
+        ..ServeConfig::default()
+    })
+    .await;
+    let step = |k: u64| request(pb::session_request::Kind::Step(valid(kind, k)));
+    let held = || metric(&server, "railcontact_session_bytes");
+    let start = |c: pb::PatchCase| {
+        let mut client = client.clone();
+        async move {
+            let (tx, out) = patch_call(&mut client).await;
+            tx.send(open(c, false)).await.unwrap();
+            (tx, out)
+        }
+    };
+    async fn answer(out: &mut Streaming<pb::SessionResponse>) -> Out {
+        out.next().await.unwrap().unwrap().kind.unwrap()
+    }
+    let (first_tx, mut first) = start(c.clone()).await;
+    assert!(matches!(answer(&mut first).await, Out::Opened(_)));
+    for k in 0..2 {
+        first_tx.send(step(k)).await.unwrap();
+        assert!(matches!(answer(&mut first).await, Out::Step(_)));
+    }
+    assert_eq!(held().await as usize, steady);
+
+    // The second session opens; its first step would take the server
+    // beyond its total: refused in-band, twice, and it gives back what the
+    // step allocated. The first session keeps stepping meanwhile.
+    let (second_tx, mut second) = start(c.clone()).await;
+    assert!(matches!(answer(&mut second).await, Out::Opened(_)));
+    for k in 2..4 {
+        second_tx.send(step(0)).await.unwrap();
+        let e = item_error(&answer(&mut second).await).clone();
+        assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+        assert!(
+            e.message.contains("max_sessions_total_bytes")
+                && e.message.contains(&format!("({total} bytes)"))
+                && e.message
+                    .contains(&format!("{stepped} bytes of working state")),
+            "{}",
+            e.message
+        );
+        assert_eq!(held().await as usize, steady + opened);
+        first_tx.send(step(k)).await.unwrap();
+        assert!(matches!(answer(&mut first).await, Out::Step(_)));
+    }
+    assert_eq!(
+        metric(&server, "railcontact_session_memory_refused_total").await,
+        2.0
+    );
+
+    // The first session closes: its bytes return, and the second one's
+    // step fits.
+    drop(first_tx);
+    assert!(first.next().await.is_none());
+    second_tx.send(step(0)).await.unwrap();
+    assert!(matches!(answer(&mut second).await, Out::Step(_)));
+    assert_eq!(held().await as usize, stepped);
+    drop(second_tx);
+    assert!(second.next().await.is_none());
+    assert_eq!(held().await, 0.0);
+    assert_eq!(metric(&server, "railcontact_session_mark_bytes").await, 0.0);
+    server.shutdown().await;
+}
+
+/// An exact steady-rolling session on 256 x 256 elements (the largest
+/// grid by default), h = x² + y² (R = 0.5 m), 10 kN, mu 0.3, in process:
+/// after two steps its live state is the solver's buffers (the Newton
+/// scratch included), the gap and the undo copy; with `MAX_MARKS` marks
+/// of its state it fits the default `max_session_bytes`, and its live
+/// state alone is more than the 64 MiB that limit was when it counted
+/// marks only. Printed with `--nocapture`.
+#[test]
+fn an_exact_session_on_the_largest_grid_fits_the_default_limit() {
+    use railcontact::core::cache::KernelCache;
+    use railcontact::service::convert::{validate_case, CaseLimits};
+    use railcontact::service::engine::PatchEngine;
+    use railcontact::service::memory::SessionBudget;
+    use railcontact::service::session::{Session, SessionLimits, MAX_MARKS};
+    let n = 256;
+    let c = case(pb::Model::Exact, Kind::Rolling, n);
+    let config = ServeConfig::default();
+    let limits = CaseLimits {
+        max_grid_elements: config.max_grid_elements,
+    };
+    let engine = PatchEngine::new(validate_case(&c, limits).unwrap(), &KernelCache::default());
+    let budget = SessionBudget::new(config.max_session_bytes, config.max_sessions_total_bytes);
+    let limits = SessionLimits {
+        max_response_bytes: config.max_message_bytes,
+        memory: budget.clone(),
+        max_grid_elements: config.max_grid_elements,
+    };
+    let mut session = Session::open(engine.unwrap(), false, limits).unwrap();
+    let opened = session.live_bytes();
+    for k in 0..2 {
+        let input = session.check_step(&valid(Kind::Rolling, k)).unwrap();
+        session.step(input).unwrap();
+    }
+    let live = session.live_bytes();
+    assert_eq!(budget.total_bytes(), live);
+    let mark = session.engine().state_bytes();
+    let full = live + MAX_MARKS * mark;
+    println!(
+        "exact 256 x 256 session: {opened} bytes opened, {live} after two steps ({} an \
+         element), a mark {mark}: {full} with {MAX_MARKS} marks",
+        live / (n * n) as usize
+    );
+    assert!(full <= config.max_session_bytes, "{full}");
+    assert!(live > 64 << 20, "{live}");
+    drop(session);
+    assert_eq!(budget.total_bytes(), 0);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_session_whose_solver_does_not_fit_is_not_opened() {
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 24);
+    let [opened, _, _] = live_bytes(&c, kind).await;
+    let (server, mut client) = metered(ServeConfig {
+        max_session_bytes: opened - 1,
+        ..ServeConfig::default()
+    })
+    .await;
+    let out = client
+        .patch_session(tokio_stream::iter([open(c, false)]))
+        .await
+        .unwrap()
+        .into_inner();
+    let (messages, status) = drain(out).await;
+    assert!(messages.is_empty(), "{messages:?}");
+    let status = status.expect("the stream ends with a status");
+    assert_eq!(status.code(), Code::ResourceExhausted, "{status:?}");
+    assert!(
+        status.message().contains("max_session_bytes")
+            && status
+                .message()
+                .contains(&format!("takes {opened} bytes of working state")),
+        "{}",
+        status.message()
+    );
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
     server.shutdown().await;
 }
 
@@ -593,10 +795,9 @@ async fn a_step_response_above_the_message_limit_is_refused_in_band() {
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn idle_sessions_are_closed_in_band_and_free_their_slots() {
-    let (server, mut client) = server_with(ServeConfig {
+    let (server, mut client) = metered(ServeConfig {
         session_idle_timeout_s: 0.3,
         max_sessions: 1,
-        metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
         ..ServeConfig::default()
     })
     .await;
@@ -784,6 +985,194 @@ async fn refused_wheel_rail_steps_leave_every_model_as_it_was() {
                 "{model:?}: response {a}"
             );
         }
+    }
+    server.shutdown().await;
+}
+
+/// Two steps of a session opened by `open` (steps `step(0)`, `step(1)`)
+/// on a server that runs no other: what the server counts for it
+/// then, and after it closed \[bytes\].
+async fn held_by<I, O: std::fmt::Debug>(
+    server: &RunningServer,
+    run: impl FnOnce(ReceiverStream<I>) -> BoxFuture<Streaming<O>>,
+    messages: [I; 3],
+) -> (f64, f64) {
+    let (tx, rx) = mpsc::channel(8);
+    let mut out = run(ReceiverStream::new(rx)).await;
+    for m in messages {
+        tx.send(m).await.unwrap();
+        let r = out.next().await.unwrap().unwrap();
+        assert!(!format!("{r:?}").contains("Error("), "{r:?}");
+    }
+    let held = metric(server, "railcontact_session_bytes").await;
+    drop(tx);
+    assert!(out.next().await.is_none());
+    (held, metric(server, "railcontact_session_bytes").await)
+}
+
+type BoxFuture<T> = std::pin::Pin<Box<dyn std::future::Future<Output = T> + Send>>;
+
+/// What each kind of session holds between steps, counted by the server
+/// (printed with `--nocapture`), and given back when it closes: the exact
+/// model's solver buffers (steady and transient), a conformal patch's
+/// workspace, nothing for the fast patch models; on a wheelset (A-2.2
+/// near 3 mm) the exact model's two patch solvers and warm start, the
+/// others' contact search and warm start.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn every_session_kind_counts_what_it_holds_and_gives_it_back() {
+    let (server, client) = metered(ServeConfig::default()).await;
+    let patch = |c: pb::PatchCase, kind: Kind| {
+        let step = |k| request(pb::session_request::Kind::Step(valid(kind, k)));
+        [open(c, false), step(0), step(1)]
+    };
+    let patches = [
+        (
+            "exact rolling 24 x 24",
+            patch(case(pb::Model::Exact, Kind::Rolling, 24), Kind::Rolling),
+        ),
+        (
+            "exact transient 16 x 16",
+            patch(
+                case(pb::Model::Exact, Kind::TransientRolling, 16),
+                Kind::TransientRolling,
+            ),
+        ),
+        ("cect rolling 20 x 20", patch(cect_case(), Kind::Rolling)),
+        (
+            "fastsim rolling 16 x 16",
+            patch(case(pb::Model::Fastsim, Kind::Rolling, 16), Kind::Rolling),
+        ),
+        (
+            "hertz",
+            patch(
+                case(pb::Model::Hertz, Kind::Frictionless, 16),
+                Kind::Frictionless,
+            ),
+        ),
+    ];
+    for (what, messages) in patches {
+        let mut c = client.clone();
+        let run = move |rx| -> BoxFuture<_> {
+            Box::pin(async move { c.patch_session(rx).await.unwrap().into_inner() })
+        };
+        let (held, after) = held_by(&server, run, messages).await;
+        println!("patch session, {what}: {held} bytes");
+        assert_eq!(after, 0.0, "{what}");
+        if what.starts_with("exact") || what.starts_with("cect") {
+            assert!(held > 0.0, "{what}");
+        }
+    }
+    for model in [
+        pb::WheelRailModel::Exact,
+        pb::WheelRailModel::Cect,
+        pb::WheelRailModel::HertzFastsim,
+        pb::WheelRailModel::HertzFastsimTable,
+    ] {
+        let mut c = client.clone();
+        let run = move |rx| -> BoxFuture<_> {
+            Box::pin(async move { c.wheel_rail_session(rx).await.unwrap().into_inner() })
+        };
+        let messages = [
+            wr_open(model),
+            wr_request(wr_step(0)),
+            wr_request(wr_step(1)),
+        ];
+        let (held, after) = held_by(&server, run, messages).await;
+        println!("wheel/rail session, {model:?}: {held} bytes");
+        assert!(held > 0.0, "{model:?}");
+        assert_eq!(after, 0.0, "{model:?}");
+    }
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_wheel_rail_step_beyond_the_session_limit_is_refused_and_gives_back_its_solvers() {
+    // An exact wheel/rail session on A-2.2 holds megabytes of patch
+    // solvers after a step (see the test above), its contact search alone
+    // 0.4 MB: with 2 MB a session, its steps are refused in-band and the
+    // session keeps only the search; a Hertz+FASTSIM session fits.
+    let max = 2 << 20;
+    let (server, mut client) = metered(ServeConfig {
+        max_session_bytes: max,
+        ..ServeConfig::default()
+    })
+    .await;
+    let (tx, rx) = mpsc::channel(8);
+    let mut out = client
+        .wheel_rail_session(ReceiverStream::new(rx))
+        .await
+        .unwrap()
+        .into_inner();
+    tx.send(wr_open(pb::WheelRailModel::Exact)).await.unwrap();
+    let r = out.next().await.unwrap().unwrap().kind.unwrap();
+    assert!(matches!(r, WrOut::Opened(_)), "{r:?}");
+    for _ in 0..2 {
+        tx.send(wr_request(wr_step(0))).await.unwrap();
+        let r = out.next().await.unwrap().unwrap().kind.unwrap();
+        let WrOut::Error(e) = r else {
+            panic!("expected a refusal, got {r:?}")
+        };
+        assert_eq!(Code::from(e.code), Code::ResourceExhausted, "{}", e.message);
+        assert!(
+            e.message
+                .contains(&format!("max_session_bytes ({max} bytes)")),
+            "{}",
+            e.message
+        );
+        let held = metric(&server, "railcontact_session_bytes").await;
+        assert!(held > 0.0 && held < 0.5e6, "{held}");
+    }
+    let fast = wr_session(
+        &mut client,
+        vec![
+            wr_open(pb::WheelRailModel::HertzFastsim),
+            wr_request(wr_step(0)),
+        ],
+    )
+    .await;
+    assert!(matches!(fast[1], WrOut::Step(_)), "{:?}", fast[1]);
+    drop(tx);
+    assert!(out.next().await.is_none());
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
+    server.shutdown().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn idle_and_vanished_sessions_give_their_memory_back() {
+    let (server, mut client) = metered(ServeConfig {
+        session_idle_timeout_s: 0.3,
+        ..ServeConfig::default()
+    })
+    .await;
+    let kind = Kind::Rolling;
+    let c = case(pb::Model::Exact, kind, 16);
+    let step = request(pb::session_request::Kind::Step(valid(kind, 0)));
+    // Idle: opens, steps, then sends nothing.
+    let (tx, mut out) = patch_call(&mut client).await;
+    for m in [open(c.clone(), false), step.clone()] {
+        tx.send(m).await.unwrap();
+        out.next().await.unwrap().unwrap();
+    }
+    assert!(metric(&server, "railcontact_session_bytes").await > 0.0);
+    let (_, status) = drain(out).await;
+    assert_eq!(status.unwrap().code(), Code::DeadlineExceeded);
+    assert_eq!(metric(&server, "railcontact_session_bytes").await, 0.0);
+    drop(tx);
+    // Vanished: opens, steps, then drops its call.
+    let (tx, mut out) = patch_call(&mut client).await;
+    for m in [open(c, false), step] {
+        tx.send(m).await.unwrap();
+        out.next().await.unwrap().unwrap();
+    }
+    assert!(metric(&server, "railcontact_session_bytes").await > 0.0);
+    drop((tx, out));
+    let t = std::time::Instant::now();
+    while metric(&server, "railcontact_session_bytes").await > 0.0 {
+        assert!(
+            t.elapsed().as_secs_f64() < 5.0,
+            "the session's bytes stay counted"
+        );
+        tokio::time::sleep(std::time::Duration::from_millis(20)).await;
     }
     server.shutdown().await;
 }

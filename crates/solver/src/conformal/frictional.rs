@@ -42,6 +42,7 @@ use crate::core::fft::Precision;
 use crate::core::influence::Component;
 use crate::core::influence::KernelKind;
 use crate::core::material::CombinedMaterial;
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{solve_normal_with, NormalLoad, NormalScratch, NormalSettings};
 use crate::core::solution::{ElementState, SolveStatus};
 use crate::core::steady::{solve_coulomb_newton, LocalModel, SteadyScratch, TangentialOperator};
@@ -193,6 +194,38 @@ pub struct FrictionalWorkspace {
 impl Clone for FrictionalWorkspace {
     fn clone(&self) -> Self {
         Self::default()
+    }
+}
+
+/// The buffers of the last solve (operators, fields, normal and Newton
+/// scratch); not the kernels, which its operators share with the cache.
+impl HeapBytes for FrictionalWorkspace {
+    fn heap_bytes(&self) -> usize {
+        let f = self.fields.as_ref().map_or(0, |f| {
+            heap_bytes!(
+                f.pn,
+                f.px,
+                f.ps,
+                f.sx,
+                f.ss,
+                f.h_eff,
+                f.cx,
+                f.cs,
+                f.old_ux,
+                f.old_us,
+                f.last_pn,
+                f.last_px,
+                f.last_ps,
+                f.wx,
+                f.ws,
+                f.v,
+                f.state,
+                f.prev_state,
+                f.normal,
+                f.steady
+            )
+        });
+        f + heap_bytes!(self.a_op, self.b_op)
     }
 }
 

@@ -33,6 +33,7 @@ use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::Component;
 #[cfg(test)]
 use crate::core::influence::KernelKind;
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::steady::{PlanarTangential, TangentialOperator};
 
 /// Which influence coefficients a conformal solve uses.
@@ -56,6 +57,13 @@ pub struct ConformalOperator {
     ows: OperatorWorkspace,
     b: [Vec<f64>; 9],
     zero: Vec<f64>,
+}
+
+/// Its buffers, not its kernels (the cache's).
+impl HeapBytes for ConformalOperator {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.cos, self.sin, self.ows, self.b, self.zero)
+    }
 }
 
 impl ConformalOperator {

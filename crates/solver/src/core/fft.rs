@@ -36,6 +36,7 @@ use rustfft::num_traits::NumAssign;
 use rustfft::{Fft, FftNum, FftPlanner};
 
 use crate::core::influence::{Component, HalfSpaceInfluence, KernelKind};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::simd::multiversion;
 
 /// Smallest even 2-3-5-smooth number >= n (fast FFT sizes in `f64`).
@@ -175,6 +176,18 @@ pub struct Workspace<T: Real = f64> {
     r2c_scratch: Vec<Complex<T>>,
     /// Scratch of the complex FFTs (rows and columns).
     scratch: Vec<Complex<T>>,
+}
+
+impl<T: Real> HeapBytes for Workspace<T> {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(
+            self.row,
+            self.rowspec,
+            self.crow,
+            self.r2c_scratch,
+            self.scratch
+        )
+    }
 }
 
 #[inline(always)]
@@ -1318,6 +1331,12 @@ impl<T: Real> Buffers<T> {
     }
 }
 
+impl<T: Real> HeapBytes for Buffers<T> {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.ws, self.spec, self.out, self.block)
+    }
+}
+
 /// Buffers for [`KernelSet::apply`], [`KernelSet::apply_with`] and
 /// [`KernelSet::apply_normal_inverse`] (from [`KernelSet::workspace`]).
 #[derive(Clone)]
@@ -1369,6 +1388,13 @@ fn add_columns_body(
                 *o += c * k;
             }
         }
+    }
+}
+
+/// The buffers of all four plans (not the kernels, which the set holds).
+impl HeapBytes for OperatorWorkspace {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.main, self.pc, self.single, self.tangential_pc)
     }
 }
 

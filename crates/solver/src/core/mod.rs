@@ -17,6 +17,7 @@ pub mod hertz;
 pub mod influence;
 pub mod kikpiotrowski;
 pub mod material;
+pub mod memory;
 pub mod normal;
 pub mod polach;
 mod predict;

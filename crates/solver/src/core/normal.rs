@@ -26,6 +26,7 @@
 use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::influence::{Component, KernelKind};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::simd::multiversion;
 
 /// Normal load control.
@@ -129,6 +130,23 @@ impl NormalScratch {
         self.kept.on = true;
         self.kept.valid = false;
         self.kept.p.resize(self.u.len(), 0.0);
+    }
+}
+
+impl HeapBytes for NormalScratch {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(
+            self.u,
+            self.t,
+            self.r,
+            self.g,
+            self.p_old,
+            self.z,
+            self.free,
+            self.ones,
+            self.columns,
+            self.kept.p
+        )
     }
 }
 

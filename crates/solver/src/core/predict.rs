@@ -26,6 +26,7 @@
 
 use std::hash::{Hash, Hasher};
 
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{ContactProblem, Kinematics};
 
@@ -203,9 +204,23 @@ impl WarmPath {
         8 * (self.pn.len() + self.px.len() + self.py.len())
     }
 
+    /// Frees the kept solution's buffers when they hold none (no solve
+    /// before last); the next prediction allocates them again.
+    pub(crate) fn release(&mut self) {
+        if self.points[0].is_none() {
+            (self.pn, self.px, self.py) = Default::default();
+        }
+    }
+
     /// After a successful solve of `p`.
     pub(crate) fn push(&mut self, p: PathPoint) {
         self.points = [self.points[1], Some(p)];
+    }
+}
+
+impl HeapBytes for WarmPath {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.pn, self.px, self.py)
     }
 }
 

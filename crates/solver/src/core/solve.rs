@@ -14,6 +14,7 @@ use crate::core::frame::{direction, RollingFrame};
 use crate::core::friclaw::{SlipStart, SlipVelocityLaw};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
 use crate::core::predict::{PathPoint, WarmPath};
 use crate::core::problem::{Carry, ContactProblem, Kinematics, ShiftStep};
@@ -162,6 +163,69 @@ impl SolverState {
             + e(&self.state)
             + e(&self.prev_state)
             + self.path.bytes()
+    }
+}
+
+impl HeapBytes for SolverState {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(
+            self.pn,
+            self.px,
+            self.py,
+            self.sx,
+            self.sy,
+            self.state,
+            self.prev_state,
+            self.path,
+            self.mu,
+            self.mu_before,
+            self.slip_velocity
+        )
+    }
+}
+
+/// The solver's own buffers: FFT workspaces, the normal, tangential,
+/// marching and Newton scratch, fields, warm start and friction law; not
+/// the kernels, which it shares with the [`KernelCache`] they came from.
+/// On n elements: 332 bytes an element of fields and scratch, the FFT
+/// workspaces of the padded grid (373 bytes an element on 256 x 256), and
+/// once a frictional solve has run, the Newton scratch (969 bytes an
+/// element) and the prediction's fields (24): 111 MB on 256 x 256 (the
+/// test `a_solver_holds_its_buffers_and_not_its_kernels`).
+impl HeapBytes for ContactSolver {
+    fn heap_bytes(&self) -> usize {
+        let (tr, law) = (&self.tr, &self.law);
+        heap_bytes!(
+            self.newton_scratch,
+            self.ows,
+            self.normal_scratch,
+            self.tangential_scratch,
+            self.marching_scratch,
+            self.pn,
+            tr.px,
+            tr.py,
+            tr.sx,
+            tr.sy,
+            tr.state,
+            self.prev_state,
+            self.h_eff,
+            self.cx,
+            self.cy,
+            self.tmp_x,
+            self.tmp_y,
+            self.old_ux,
+            self.old_uy,
+            self.last_pn,
+            self.last_px,
+            self.last_py,
+            self.path,
+            law.mu,
+            law.mu_before,
+            law.velocity,
+            law.velocity_new,
+            law.bound,
+            self.row_scale
+        )
     }
 }
 
@@ -452,6 +516,16 @@ impl ContactSolver {
         // two element states; the path's three fields.
         let fields = if self.law.used { 8 } else { 5 };
         n * (fields * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+    }
+
+    /// Frees the buffers that solves allocate on first use and that hold
+    /// no state (the Newton scratch, the prediction's fields before a
+    /// second solve): the next solve gives the same bits and allocates
+    /// them again. For a caller that budgets memory and puts back the
+    /// state of a solve it refuses ([`ContactSolver::restore_state`]).
+    pub fn release_scratch(&mut self) {
+        self.newton_scratch = None;
+        self.path.release();
     }
 
     /// Makes the solution of the last solve the history the next transient
@@ -1335,6 +1409,62 @@ mod tests {
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
         }
+    }
+
+    /// What a solver holds between solves on 256 x 256 elements (the
+    /// service's largest grid by default): its fields and scratch, one
+    /// buffer of n items each, counted from the lists below; the FFT
+    /// workspaces; after a frictional solve, the Newton scratch and the
+    /// prediction's three fields. `release_scratch` gives the Newton
+    /// scratch back. Printed with `--nocapture`.
+    #[test]
+    fn a_solver_holds_its_buffers_and_not_its_kernels() {
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 1.0);
+        let g = p.grid;
+        p.grid = Grid::centered(256, 256, 8.0 * g.dx_m * 32.0, 8.0 * g.dy_m * 32.0).unwrap();
+        p.gap_m = ContactProblem::quadratic_gap(&p.grid, 1.0, 1.0);
+        let n = p.grid.len();
+        let mut s = ContactSolver::new(&p, &cache);
+        // Per element: pn, px, py, sx, sy, h_eff, cx, cy, tmp_x, tmp_y,
+        // old_ux, old_uy, last_pn, last_px, last_py; the law's mu,
+        // mu_before, velocity, velocity_new, bound; the normal scratch's u,
+        // t, r, g, p_old, z, ones (and `free`); the tangential scratch's
+        // six; the marching scratch's eight (and its states); the solver's
+        // two element states.
+        let f64s = 15 + 5 + 7 + 6 + 8;
+        let per_element = 8 * f64s + 3 * std::mem::size_of::<ElementState>() + 1;
+        let ows = s.ows.heap_bytes();
+        assert_eq!(s.heap_bytes(), per_element * n + ows);
+        // The FFT workspaces: per plan, six spectra (inputs and outputs of
+        // three components) of at most the padded grid's half spectrum;
+        // four plans (double, its preconditioner, single, the tangential
+        // preconditioner), none padded beyond 2 (nx + 1) x 2 (ny + 1).
+        let padded = 2 * (g.nx * 8 + 1) * 2 * (g.ny * 8 + 1);
+        assert!(ows < 4 * 6 * 16 * padded, "{ows}");
+        let kernels = s.displacement.bytes();
+        let fresh = s.heap_bytes();
+        solve_last(&mut s, &p);
+        let newton = s.newton_scratch.heap_bytes();
+        // The Newton scratch: at least its GMRES basis, RESTART + 1
+        // vectors of 2 n.
+        assert!(
+            newton >= 8 * (crate::core::steady::RESTART + 1) * 2 * n,
+            "{newton}"
+        );
+        assert_eq!(s.heap_bytes(), fresh + newton + 3 * 8 * n);
+        println!(
+            "256 x 256 solver: {fresh} bytes new ({} an element: {} fields and scratch, \
+             FFT workspaces {ows}), {} after a rolling solve (Newton scratch {newton}, {} an \
+             element); the kernels it shares with the cache: {kernels}",
+            fresh / n,
+            per_element,
+            s.heap_bytes(),
+            newton / n
+        );
+        // After one solve the prediction's fields hold nothing yet.
+        s.release_scratch();
+        assert_eq!(s.heap_bytes(), fresh);
     }
 
     fn solve_last(s: &mut ContactSolver, p: &ContactProblem) -> ContactSolution {

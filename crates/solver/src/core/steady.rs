@@ -48,6 +48,7 @@ use crate::core::cancel;
 use crate::core::creep::kalker_creep_coefficients;
 use crate::core::fft::{KernelSet, OperatorWorkspace, Precision};
 use crate::core::influence::{Component, KernelKind};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::simd::multiversion;
 use crate::core::solution::ElementState;
 use crate::core::tangential::{
@@ -252,6 +253,43 @@ impl SteadyScratch {
                 gam: z(RESTART + 1),
             },
         }
+    }
+}
+
+/// Most of it is the GMRES basis: `RESTART + 1` vectors of 2 n f64, 656
+/// bytes an element.
+impl HeapBytes for SteadyScratch {
+    fn heap_bytes(&self) -> usize {
+        let k = &self.krylov;
+        heap_bytes!(
+            self.role,
+            self.g,
+            self.tx,
+            self.ty,
+            self.ux,
+            self.uy,
+            self.sx,
+            self.sy,
+            self.px_old,
+            self.py_old,
+            self.rhs,
+            self.sol,
+            self.diff,
+            self.loaded,
+            self.coef,
+            self.order,
+            self.column_count,
+            self.xin,
+            self.yin,
+            k.tmp,
+            k.work,
+            k.zvec,
+            k.basis,
+            k.hess,
+            k.cs,
+            k.sn,
+            k.gam
+        )
     }
 }
 

@@ -40,6 +40,7 @@ use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::influence::Component;
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::problem::Carry;
 use crate::core::solution::ElementState;
 
@@ -191,6 +192,12 @@ impl TangentialScratch {
             qx: vec![0.0; n],
             qy: vec![0.0; n],
         }
+    }
+}
+
+impl HeapBytes for TangentialScratch {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.sx, self.sy, self.yx, self.yy, self.qx, self.qy)
     }
 }
 
@@ -513,6 +520,22 @@ impl MarchingScratch {
             apx: z(),
             apy: z(),
         }
+    }
+}
+
+impl HeapBytes for MarchingScratch {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(
+            self.shx,
+            self.shy,
+            self.ashx,
+            self.ashy,
+            self.cx,
+            self.cy,
+            self.prev_state,
+            self.apx,
+            self.apy
+        )
     }
 }
 

@@ -2912,6 +2912,58 @@ mod tests {
         out
     }
 
+    /// What an exact wheel/rail session keeps between steps on A-2.2 at 2
+    /// mm (0.2 mm elements, one patch a wheel): each wheel's last patch
+    /// solver, between a new solver on that patch's grid and one that also
+    /// holds the Newton scratch (`SteadyScratch::new`) and the
+    /// prediction's three fields; the loci and gaps of the search; and the
+    /// warm start (the pressures and tractions carried to the next step).
+    /// Printed with `--nocapture`.
+    #[test]
+    fn an_exact_wheelset_keeps_its_patch_solvers_between_steps() {
+        use crate::core::memory::HeapBytes;
+        use crate::core::steady::SteadyScratch;
+        let pair = mbench_pair().unwrap();
+        let input = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
+        let cache = KernelCache::default();
+        let mut scratch = SearchScratch::default();
+        let mut warm = WarmStart::default();
+        let solution = solve_wheelset_warm(&pair, &input, &cache, &mut scratch, &mut warm).unwrap();
+        let search = scratch.heap_bytes() - scratch.solvers.0.heap_bytes();
+        let (mut low, mut high, mut elements) = (0, 0, 0);
+        for w in &solution.wheels {
+            assert_eq!(w.patches.len(), 1, "one patch on {:?}", w.side);
+            let grid = w.patches[0].grid_geometry.unwrap();
+            let problem = ContactProblem {
+                material: input.material,
+                friction: input.friction,
+                grid,
+                gap_m: vec![0.0; grid.len()],
+                load: NormalLoad::Approach(0.0),
+                kinematics: Kinematics::Frictionless,
+                settings: Default::default(),
+                rolling_direction_rad: 0.0,
+                extra_rigid_slip: None,
+            };
+            let boxed = std::mem::size_of::<ContactSolver>();
+            let n = grid.len();
+            let new = boxed + ContactSolver::new(&problem, &cache).heap_bytes();
+            low += new;
+            high += new + SteadyScratch::new(n).heap_bytes() + 3 * 8 * n;
+            elements += n;
+        }
+        let kept = scratch.solvers.0.heap_bytes();
+        assert!((low..=high).contains(&kept), "{low} <= {kept} <= {high}");
+        println!(
+            "A-2.2 at 2 mm, exact: {elements} elements in two patches; the search scratch holds \
+             {} bytes (the patch solvers {kept}, loci and gaps {search}), the warm start {}",
+            scratch.heap_bytes(),
+            warm.bytes()
+        );
+        scratch.release_solvers();
+        assert_eq!(scratch.heap_bytes(), search);
+    }
+
     /// With yaw the wheel's closest points lie ahead of or behind the
     /// axle's plane, by lengths that vary along the profile (the lead of
     /// the contact point, r tan(delta) tan(psi), millimetres on a flange).

@@ -30,6 +30,7 @@
 //!    approach; k_x from the circle's and the profile's curvatures, see
 //!    [`LocusFrame::point`]).
 
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::solve::ContactSolver;
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, PlacedWheel, Side, WheelRailError, WheelRailPair, WheelsetPosition,
@@ -424,6 +425,27 @@ pub struct SearchScratch {
     pub gap: [VerticalGap; 2],
     /// Per side: the last exact patch solver.
     pub(crate) solvers: SpareSolvers,
+}
+
+/// The loci, gaps and kept solvers' buffers (not the solvers' kernels,
+/// the cache's).
+impl HeapBytes for SearchScratch {
+    fn heap_bytes(&self) -> usize {
+        let gaps = self
+            .gap
+            .iter()
+            .map(|g| heap_bytes!(g.z_rail_m, g.z_wheel_m, g.locus_index))
+            .sum::<usize>();
+        gaps + heap_bytes!(self.locus, self.solvers.0)
+    }
+}
+
+impl SearchScratch {
+    /// Drops each wheel's kept patch solver (buffers only: the next step
+    /// builds them again, to the same answers).
+    pub fn release_solvers(&mut self) {
+        self.solvers = SpareSolvers::default();
+    }
 }
 
 /// Per side (left, right): a patch solver kept for its kernels and buffers.

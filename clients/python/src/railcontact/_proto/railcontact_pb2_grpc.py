@@ -141,7 +141,12 @@ class ContactServiceServicer:
         message for the server's session_idle_timeout_s (default 300 s), or
         whose client reads none of its responses for that long, is closed:
         its last message is an error saying so, then the stream ends with
-        DEADLINE_EXCEEDED.
+        DEADLINE_EXCEEDED. What a session holds between steps (its solver's
+        buffers, warm starts and marks) counts against the server's
+        max_session_bytes and max_sessions_total_bytes: a step that would
+        exceed either is refused with RESOURCE_EXHAUSTED naming the limit
+        (not applied), and a session whose solver does not fit at all is not
+        opened (the stream ends with RESOURCE_EXHAUSTED).
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
@@ -227,8 +232,8 @@ class ContactServiceServicer:
         Steps must come in order; a client can mark steps and roll back to a
         marked one (the warm starts go back with it). The same sequence of
         requests gives bit-identical responses whether a session runs alone or
-        interleaved with others. Refused steps and idle sessions as in
-        PatchSession.
+        interleaved with others. Refused steps, idle sessions and the memory
+        limits as in PatchSession.
         """
         context.set_code(grpc.StatusCode.UNIMPLEMENTED)
         context.set_details('Method not implemented!')
