@@ -115,7 +115,7 @@ impl NormalScratch {
             z: vec![0.0; n],
             free: vec![false; n],
             ones: vec![1.0; n],
-            columns: Vec::new(),
+            columns: Vec::with_capacity(column_capacity(n)),
             kept: Kept::default(),
         }
     }
@@ -148,6 +148,15 @@ impl HeapBytes for NormalScratch {
             self.kept.p
         )
     }
+}
+
+/// Room for the clamped elements of one iteration in a [`NormalScratch`]
+/// of `n` elements: `3 log2(8 n) + 1`, at least the
+/// [`NormalOperator::column_limit`] of a planar grid of `n` elements (its
+/// FFT array pads each side to at most about 1.4 times twice the side, so
+/// holds at most 8 n values), so that a solve never allocates.
+pub(crate) fn column_capacity(n: usize) -> usize {
+    (3.0 * (8.0 * n.max(1) as f64).log2()) as usize + 1
 }
 
 /// The linear map p_n -> u_n (normal displacement differences of normal
@@ -397,10 +406,7 @@ fn solve_normal_body(
     // (NormalOperator::add_columns); it is recomputed after larger
     // projections, and every REFRESH iterations against drift.
     const REFRESH: usize = 25;
-    let column_limit = op.column_limit().min(n);
-    if columns.capacity() < column_limit {
-        columns.reserve(column_limit - columns.len());
-    }
+    let column_limit = op.column_limit().min(columns.capacity());
     let mut u_valid = false;
     let mut since_refresh = 0;
     if let (true, Some(c)) = (same_start, start_scale) {
