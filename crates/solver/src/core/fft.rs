@@ -906,8 +906,8 @@ impl KernelSet {
     /// multiply-adds streaming one kernel row per grid row, a product two
     /// transforms of `px * py` values: on the 2-core machine of
     /// `benches/README.md` (benches `matvec/normal` and
-    /// `matvec/normal_columns_16`) a product costs 43 to 83 columns from
-    /// 32x32 to 128x128, 3.1 to 5.2 log2(px py); the limit keeps below.
+    /// `matvec/normal_columns_16`) a product costs 48 to 76 columns from
+    /// 32x32 to 128x128, 3.4 to 5.7 log2(px py); the limit keeps below.
     pub fn normal_column_limit(&self) -> usize {
         if self.normal_table.is_none() {
             return 0;
