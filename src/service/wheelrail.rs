@@ -610,6 +610,7 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
         creepage_long: p.creepage_long,
         creepage_lat: p.creepage_lat,
         spin_per_m: p.spin_per_m,
+        rolling_speed_m_per_s: p.rolling_speed_m_per_s,
         normal_force_n: p.normal_force_n,
         fx_n: p.fx_n,
         fs_n: p.fs_n,

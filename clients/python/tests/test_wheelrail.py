@@ -68,6 +68,10 @@ def test_solve_wheelrail_with_flash_temperatures(client):
             assert t.max_body1.temperature_k > 293.15
             assert 293.15 < t.contact_temperature_k < 333.15
             assert 0.0 < p.friction_coefficient
+            # The creepages' rolling speed: the mean of the forward and the
+            # circumferential speed at the point, within 2 % of the forward
+            # speed on the tread (1.6 % above it on a flange).
+            assert p.rolling_speed_m_per_s == pytest.approx(V, rel=0.02)
     plain = client.solve_wheelrail(position={"lateral_m": 0.003}, velocity=V, load=LOAD, model="exact")
     assert all(p.temperature is None for w in plain.wheels for p in w.patches)
 

@@ -374,6 +374,7 @@ class WheelRailPatch:
     fields: Optional[ElementFields] = _given()
     friction_coefficient: float
     temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
+    rolling_speed_m_per_s: float
 
     @classmethod
     def from_pb(cls, message) -> "WheelRailPatch":
