@@ -181,13 +181,9 @@ impl PatchEngine {
     /// conformal models' workspace.
     pub fn heap_bytes(&self) -> usize {
         let exact = self.exact.as_ref().map_or(0, |e| {
-            let extra = e.problem.extra_rigid_slip.as_ref().map_or(0, |x| {
-                x.slip_x.heap_bytes()
-                    + x.slip_y.heap_bytes()
-                    + x.shift_x_m.heap_bytes()
-                    + x.shift_y_m.heap_bytes()
-            });
-            e.solver.heap_bytes() + e.problem.gap_m.heap_bytes() + extra
+            e.solver.heap_bytes()
+                + e.problem.gap_m.heap_bytes()
+                + e.problem.extra_rigid_slip.heap_bytes()
         });
         exact + self.conformal.heap_bytes()
     }

@@ -166,8 +166,7 @@ impl SessionMemory {
             budget,
             share: Share::default(),
         };
-        let budget = m.budget.clone();
-        budget.reserve(&mut m.share, live, 0)?;
+        m.budget.reserve(&mut m.share, live, 0)?;
         Ok(m)
     }
 
@@ -187,13 +186,13 @@ impl SessionMemory {
     /// step's own (0 without a mark): a refusal that they make counts as a
     /// refused mark.
     pub fn reserve(&mut self, live: usize, marks: usize, mark_bytes: usize) -> Result<(), Beyond> {
-        let budget = self.budget.clone();
-        let r = budget.reserve(&mut self.share, live, marks);
+        let Self { budget, share } = self;
+        let r = budget.reserve(share, live, marks);
         if let Err(b) = r {
             let without = live + marks - mark_bytes;
             let fits_session = without <= budget.session_max_bytes;
-            let fits_total = budget.total_bytes() + without
-                <= budget.total_max_bytes + self.share.live + self.share.marks;
+            let fits_total =
+                budget.total_bytes() + without <= budget.total_max_bytes + share.live + share.marks;
             if mark_bytes > 0 && fits_session && fits_total {
                 budget.refused_marks.fetch_add(1, Ordering::Relaxed);
             }

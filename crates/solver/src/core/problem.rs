@@ -58,6 +58,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::core::error::{require_finite, require_positive, ContactError, Range};
 use crate::core::friclaw::SlipVelocityLaw;
+use crate::core::memory::{heap_bytes, HeapBytes};
 
 /// Range of a friction coefficient [-] (dry steel on steel: about 0.3–0.6).
 pub const FRICTION_COEFFICIENT_RANGE: Range = Range::closed(0.0, 5.0, "");
@@ -445,6 +446,12 @@ pub struct ExtraRigidSlip {
     pub shift_x_m: Vec<f64>,
     /// y component \[m\] (empty with `shift_x_m`).
     pub shift_y_m: Vec<f64>,
+}
+
+impl HeapBytes for ExtraRigidSlip {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.slip_x, self.slip_y, self.shift_x_m, self.shift_y_m)
+    }
 }
 
 impl ExtraRigidSlip {

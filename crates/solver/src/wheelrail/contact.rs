@@ -339,8 +339,9 @@ pub fn wheelrail_solver_settings() -> SolverSettings {
 }
 
 /// The default tangential tolerance of wheel/rail patches
-/// ([`wheelrail_solver_settings`]).
-pub const WHEELRAIL_TANGENTIAL_TOLERANCE: f64 = 1e-4;
+/// ([`wheelrail_solver_settings`]), 1e-4: that of the load iteration's
+/// estimates, so that an estimate meeting the load is the answer.
+pub const WHEELRAIL_TANGENTIAL_TOLERANCE: f64 = ESTIMATE_TANGENTIAL_TOLERANCE;
 
 /// Everything a wheelset solution needs besides the profile pair.
 #[derive(Debug, Clone, PartialEq)]
