@@ -185,6 +185,21 @@ fn wheelset_step(c: &mut Criterion) {
         &exact,
         |input, warm| solve_wheelset_warm(&pair, input, &cache, &mut scratch, warm).unwrap(),
     );
+    // The same warm steps with the two wheels solved at once, on two
+    // threads (`SearchScratch::parallel_wheels`, as the service does when
+    // a second worker is free).
+    let mut two = SearchScratch::default();
+    two.parallel_wheels = true;
+    let mut g = c.benchmark_group("wheelset_path_exact_load_test_two_threads");
+    g.sample_size(20);
+    bench_path(
+        &mut g,
+        "warm",
+        &exact,
+        |_| {},
+        |input, warm| solve_wheelset_warm(&pair, input, &cache, &mut two, warm).unwrap(),
+    );
+    g.finish();
 }
 
 /// A group `name` of two benches along `path`: `warm`, each step from the

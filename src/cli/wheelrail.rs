@@ -544,6 +544,8 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
         other => other,
     })?;
     let mut scratch = SearchScratch::default();
+    // The two wheels at once where the machine has a second core.
+    scratch.parallel_wheels = std::thread::available_parallelism().is_ok_and(|n| n.get() > 1);
     let sol = solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch)?;
     if let (Some(path), Some(format)) = (&args.plot, format) {
         write_plot(path, format, &run, &sol, &scratch)

@@ -60,7 +60,8 @@ pub struct ServeConfig {
     /// Address of the Prometheus metrics endpoint (`GET /metrics`, plain
     /// HTTP); not set: no endpoint (default).
     pub metrics_listen: Option<SocketAddr>,
-    /// Solves running at once (default 0: one per core).
+    /// Solve threads at once, per lane (default 0: one per core). An exact
+    /// or conformal wheelset takes two when two are free, one per wheel.
     pub workers: usize,
     /// Requests admitted at once, running plus waiting (default 0: 16 per
     /// worker); more get RESOURCE_EXHAUSTED.
@@ -229,7 +230,8 @@ pub struct ServeFlags {
     /// Prometheus metrics address (GET /metrics); default: none.
     #[arg(long, value_name = "ADDR:PORT")]
     pub metrics_listen: Option<SocketAddr>,
-    /// Solves running at once (default: one per core).
+    /// Solve threads at once, per lane (default: one per core); an exact
+    /// or conformal wheelset takes two when two are free.
     #[arg(long)]
     pub workers: Option<usize>,
     /// Directory of the store of registered profile pairs (default

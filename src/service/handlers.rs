@@ -173,8 +173,9 @@ impl ContactHandlers {
         };
         let t0 = StdInstant::now();
         let solved = admission
-            .run_on(wheelrail_lane(model), move || {
+            .run_on_wide(wheelrail_lane(model), move |wide| {
                 let mut scratch = SearchScratch::default();
+                scratch.parallel_wheels = wide;
                 let cache = KernelCache::global();
                 match &table {
                     Some(t) => solve_wheelset_tabulated(t, &input, cache, &mut scratch),
@@ -894,8 +895,8 @@ impl ContactHandlers {
                             let (s, r) = self
                                 .pool
                                 .session()
-                                .run_on(lane, move || {
-                                    let r = session.step(input);
+                                .run_on_wide(lane, move |wide| {
+                                    let r = session.step(input, wide);
                                     (session, r)
                                 })
                                 .await?;

@@ -11,6 +11,14 @@
 //! or a creep curve takes one slot and runs its items on the worker
 //! permits. No lock is held across a solve.
 //!
+//! An exact or conformal wheelset (unary or a session step) solves its two
+//! wheels at once on two threads when a second heavy worker is free as it
+//! starts, and holds that worker's permit too ([`Admission::run_on_wide`]):
+//! an idle server answers such a step in about the time of its slower
+//! wheel, a busy one runs it on one thread like every other solve, and the
+//! solve threads never outnumber `workers`. The answer is the same bits
+//! either way.
+//!
 //! Two lanes: the fast models (Hertz, FASTSIM, Hertz+FASTSIM wheelsets:
 //! microseconds to a few milliseconds) have `workers` permits of their
 //! own, so they never queue behind exact solves that hold every heavy
@@ -251,6 +259,29 @@ impl Admission {
         T: Send + 'static,
         F: FnOnce() -> T + Send + 'static,
     {
+        self.run_spread(lane, false, move |_| f()).await
+    }
+
+    /// [`Admission::run_on`] for a solve that can use a second thread (an
+    /// exact or conformal wheelset's two wheels): `f` is told whether it
+    /// may. It may on the heavy lane when a second worker was free as the
+    /// solve got its own; the solve then holds both permits until it ends,
+    /// so the threads of the solves in flight never outnumber the workers.
+    /// On a busy server, on the other lanes and with one worker such
+    /// solves run on one thread, as every other.
+    pub async fn run_on_wide<T, F>(&self, lane: Lane, f: F) -> Result<T, ServiceError>
+    where
+        T: Send + 'static,
+        F: FnOnce(bool) -> T + Send + 'static,
+    {
+        self.run_spread(lane, true, f).await
+    }
+
+    async fn run_spread<T, F>(&self, lane: Lane, spread: bool, f: F) -> Result<T, ServiceError>
+    where
+        T: Send + 'static,
+        F: FnOnce(bool) -> T + Send + 'static,
+    {
         let workers = match lane {
             Lane::Heavy => self.pool.workers.clone(),
             Lane::Fast | Lane::Inline => self.pool.fast_workers.clone(),
@@ -266,6 +297,7 @@ impl Admission {
         let work = async move {
             let _stop = stop;
             let permit = workers
+                .clone()
                 .acquire_owned()
                 .await
                 .map_err(|_| ServiceError::Unavailable("the solve pool is closed".into()))?;
@@ -274,12 +306,20 @@ impl Admission {
             }
             if lane == Lane::Inline {
                 let _permit = permit;
-                return std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| token.scope(f)))
-                    .map_err(|_| ServiceError::Internal("a solve failed: it panicked".into()));
+                return std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    token.scope(|| f(false))
+                }))
+                .map_err(|_| ServiceError::Internal("a solve failed: it panicked".into()));
             }
+            // The fast lanes' solves are too short to gain from a thread.
+            let second = match spread && lane == Lane::Heavy {
+                true => workers.try_acquire_owned().ok(),
+                false => None,
+            };
+            let wide = second.is_some();
             let solve = tokio::task::spawn_blocking(move || {
-                let _permit = permit;
-                let out = token.scope(f);
+                let _permits = (permit, second);
+                let out = token.scope(|| f(wide));
                 if token.is_cancelled() {
                     cancelled.fetch_add(1, Ordering::Relaxed);
                 }
@@ -505,6 +545,41 @@ mod tests {
         assert!(at <= 4, "the small solve came {at}th: {order:?}");
         // The items come back in order.
         assert_eq!(order.len(), 51);
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_wide_solve_takes_a_second_worker_only_when_one_is_free() {
+        let pool = SolvePool::new(2, 4);
+        let a = pool.admit(None).unwrap();
+        // Idle: the second worker is free, and held while the solve runs.
+        let workers = pool.workers.clone();
+        let (wide, free) = a
+            .run_on_wide(Lane::Heavy, move |wide| (wide, workers.available_permits()))
+            .await
+            .unwrap();
+        assert!(wide);
+        assert_eq!(free, 0);
+        assert_eq!(pool.workers.available_permits(), 2, "both permits back");
+        // A plain solve on the lane leaves none to spare.
+        let (release, wait) = std::sync::mpsc::channel::<()>();
+        let (started, running) = tokio::sync::oneshot::channel::<()>();
+        let other = pool.admit(None).unwrap();
+        let busy = tokio::spawn(async move {
+            other
+                .run(move || {
+                    let _ = started.send(());
+                    wait.recv()
+                })
+                .await
+        });
+        running.await.unwrap();
+        assert!(!a.run_on_wide(Lane::Heavy, |wide| wide).await.unwrap());
+        release.send(()).unwrap();
+        busy.await.unwrap().unwrap().unwrap();
+        // Other lanes never spread; nor does a pool of one worker.
+        assert!(!a.run_on_wide(Lane::Inline, |wide| wide).await.unwrap());
+        let one = SolvePool::new(1, 4).admit(None).unwrap();
+        assert!(!one.run_on_wide(Lane::Heavy, |wide| wide).await.unwrap());
     }
 
     #[tokio::test]

@@ -172,12 +172,16 @@ impl WheelRailSession {
             && table.covers(p.lateral_m, roll)
     }
 
-    /// Solves a checked step (CPU-bound: run it on the solve pool). A
-    /// refused step changes nothing but the buffers of the search scratch.
+    /// Solves a checked step (CPU-bound: run it on the solve pool), the
+    /// two wheels at once on two threads when `two_threads` (the same
+    /// bits either way, [`SearchScratch::parallel_wheels`]). A refused
+    /// step changes nothing but the buffers of the search scratch.
     pub fn step(
         &mut self,
         step: WheelRailStep,
+        two_threads: bool,
     ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
+        self.scratch.parallel_wheels = two_threads;
         let r = self.try_step(step);
         if r.is_err() {
             self.scratch.release_solvers();

@@ -86,9 +86,41 @@ pub fn check() -> Result<(), ContactError> {
     }
 }
 
+/// Runs `a` on this thread and `b` on a scoped thread of its own at the
+/// same time, `b` under this thread's token (so a cancelled solve stops
+/// both); returns both results. A panic in `b` resumes on this thread
+/// once `a` is done.
+pub fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B)
+where
+    B: Send,
+{
+    let token = CancelToken::current();
+    std::thread::scope(|scope| {
+        let other = scope.spawn(move || match token {
+            Some(t) => t.scope(b),
+            None => b(),
+        });
+        let ra = a();
+        let rb = other
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (ra, rb)
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn join_runs_both_and_hands_the_token_on() {
+        let token = CancelToken::new();
+        token.cancel();
+        let (a, b) = token.scope(|| join(|| (requested(), 1), || (requested(), 2)));
+        assert_eq!((a, b), ((true, 1), (true, 2)));
+        let (a, b) = join(requested, requested);
+        assert!(!a && !b);
+    }
 
     #[test]
     fn a_token_is_seen_only_inside_its_scope_and_nests() {

@@ -77,6 +77,7 @@ use crate::conformal::geometry::{
 };
 use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
+use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
 use crate::core::friclaw::SlipVelocityLaw;
@@ -97,6 +98,7 @@ use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
     PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
+    WheelScratch,
 };
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
@@ -497,7 +499,9 @@ pub struct WheelResult {
     pub load_iterations: usize,
 }
 
-/// Where the time went \[s\].
+/// Where the time went \[s\]. With the wheels solved at once
+/// ([`SearchScratch::parallel_wheels`]) each part is the sum over both
+/// threads, so the parts add up to more than the step's wall time.
 #[derive(Debug, Clone, Copy, Default, Serialize)]
 pub struct Timing {
     /// Rigid position and contact loci.
@@ -514,6 +518,15 @@ pub struct Timing {
 }
 
 impl Timing {
+    /// Adds another part's times (the other wheel's, solved at once).
+    fn add(&mut self, other: &Timing) {
+        self.search_s += other.search_s;
+        self.geometry_s += other.geometry_s;
+        self.solve_s += other.solve_s;
+        self.normal_s += other.normal_s;
+        self.tangential_s += other.tangential_s;
+    }
+
     /// Adds the load iteration started at `since` on `patches`.
     fn add_solves(&mut self, since: Instant, patches: &[PatchWork]) {
         self.solve_s += since.elapsed().as_secs_f64();
@@ -1253,38 +1266,76 @@ pub fn solve_wheelset_warm(
             warm.tractions[i].clone()
         }
     });
+    // The two wheels at once when the scratch allows it and a wheel's
+    // solve is long enough to pay for a thread (not the fast models).
+    let parallel = scratch.parallel_wheels
+        && matches!(input.sides[..], [a, b] if a != b)
+        && !input.settings.model.is_fast();
+    let mut per_side = scratch.wheels();
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
     let (omega, mut wheels, pitch_control) = solve_pitch(pair, input, |omega| {
-        let mut wheels = Vec::with_capacity(input.sides.len());
-        for &side in &input.sides {
-            let i = side.index();
-            let (ratio, start) = if solved {
-                (normal_per_vertical[i], [tractions[i].as_ref(), None])
-            } else {
-                (
-                    first_start[i],
-                    [
-                        warm.tractions[i].as_ref(),
-                        warm.earlier_tractions[i].as_ref(),
-                    ],
-                )
+        let wheel_of = |side: Side,
+                        own: &mut WheelScratch,
+                        timing: &mut Timing,
+                        ratio: Option<f64>,
+                        start: [Option<&PatchTractions>; 2]| {
+            solve_wheel(
+                pair, input, &rigid, side, omega, cache, own, timing, ratio, start,
+            )
+        };
+        let starts: Vec<_> = input
+            .sides
+            .iter()
+            .map(|side| {
+                let i = side.index();
+                if solved {
+                    (normal_per_vertical[i], [tractions[i].as_ref(), None])
+                } else {
+                    (
+                        first_start[i],
+                        [
+                            warm.tractions[i].as_ref(),
+                            warm.earlier_tractions[i].as_ref(),
+                        ],
+                    )
+                }
+            })
+            .collect();
+        let results = if parallel {
+            let [left, right] = &mut per_side;
+            let (a, b) = (input.sides[0], input.sides[1]);
+            let (own_a, own_b) = match a {
+                Side::Left => (left, right),
+                Side::Right => (right, left),
             };
-            let (wheel, ratio, carried) = solve_wheel(
-                pair,
-                input,
-                &rigid,
-                side,
-                omega,
-                cache,
-                scratch,
-                &mut timing,
-                ratio,
-                start,
-            )?;
-            normal_per_vertical[i] = ratio;
-            tractions[i] = carried;
+            let mut timing_b = Timing::default();
+            let (ra, rb) = cancel::join(
+                || wheel_of(a, own_a, &mut timing, starts[0].0, starts[0].1),
+                || wheel_of(b, own_b, &mut timing_b, starts[1].0, starts[1].1),
+            );
+            timing.add(&timing_b);
+            vec![ra, rb]
+        } else {
+            // One after the other, up to the first that fails.
+            let mut results = Vec::with_capacity(starts.len());
+            for (&side, &(ratio, start)) in input.sides.iter().zip(&starts) {
+                let own = &mut per_side[side.index()];
+                let r = wheel_of(side, own, &mut timing, ratio, start);
+                let failed = r.is_err();
+                results.push(r);
+                if failed {
+                    break;
+                }
+            }
+            results
+        };
+        let mut wheels = Vec::with_capacity(input.sides.len());
+        for (&side, r) in input.sides.iter().zip(results) {
+            let (wheel, ratio, carried) = r?;
+            normal_per_vertical[side.index()] = ratio;
+            tractions[side.index()] = carried;
             wheels.push(wheel);
         }
         solved = true;
@@ -1592,15 +1643,14 @@ fn solve_wheel(
     side: Side,
     omega: f64,
     cache: &KernelCache,
-    scratch: &mut SearchScratch,
+    scratch: &mut WheelScratch,
     timing: &mut Timing,
     start: Option<f64>,
     [warm_tractions, earlier_tractions]: [Option<&PatchTractions>; 2],
 ) -> Result<(WheelResult, Option<f64>, Option<PatchTractions>), WheelRailError> {
     let i = side.index();
-    let mut spare = scratch.solvers.0[i].take();
-    let gap = &scratch.gap[i];
-    let locus = &scratch.locus[i];
+    let mut spare = scratch.solver.take();
+    let (gap, locus) = (scratch.gap, scratch.locus);
     let gmin = rigid.min_gap_m[i];
     let pose = rigid.pose(side, &input.position);
     let e = input.settings.element_size_m;
@@ -1612,7 +1662,7 @@ fn solve_wheel(
         // wheel lifted by a given roll): nothing to solve.
         WheelLoad::Approach(d) if d <= gmin => {
             let wheel = finish(pair, side, gmin, d, 0, Vec::new(), &mut spare);
-            scratch.solvers.0[i] = spare;
+            *scratch.solver = spare;
             return Ok((wheel, None, None));
         }
         WheelLoad::Approach(d) => gmin + d,
@@ -1730,7 +1780,7 @@ fn solve_wheel(
                             let ratio = normal_per_vertical(&patches, input);
                             let wheel =
                                 finish(pair, side, gmin, delta, iterations, patches, &mut spare);
-                            scratch.solvers.0[i] = spare;
+                            *scratch.solver = spare;
                             return Ok((wheel, ratio, None));
                         }
                         return Err(WheelRailError::Geometry {
@@ -1742,7 +1792,7 @@ fn solve_wheel(
                 let ratio = normal_per_vertical(&patches, input);
                 let carried = carried_tractions(&patches);
                 let wheel = finish(pair, side, gmin, delta, iterations, patches, &mut spare);
-                scratch.solvers.0[i] = spare;
+                *scratch.solver = spare;
                 return Ok((wheel, ratio, carried));
             }
             LoadResult::CapTooSmall if attempt < 4 => {
@@ -2847,7 +2897,7 @@ pub(crate) fn finish(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::wheelrail::builtin::{mbench_a22_input, mbench_pair};
+    use crate::wheelrail::builtin::{load_test_input, mbench_a22_input, mbench_pair};
     use crate::wheelrail::search::{gap_intervals, parabola_vertex, rigid_position};
 
     /// Per lateral grid line of the conformal geometry of the right
@@ -2963,6 +3013,71 @@ mod tests {
         );
         scratch.release_solvers();
         assert_eq!(scratch.heap_bytes(), search);
+    }
+
+    /// The two wheels solved at once (`SearchScratch::parallel_wheels`)
+    /// give the same bits as one after the other: the exact model on
+    /// at 5 mm (two patches on the right wheel, cold), at 2 mm with
+    /// a prescribed total longitudinal force (the pitch iteration solves
+    /// the wheels again and again), and 20 warm steps of the load test's
+    /// path, each step's warm start carried on either way.
+    #[test]
+    fn wheels_solved_at_once_give_the_same_bits() {
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        // Everything but the wall times.
+        let bits = |s: &WheelRailSolution| {
+            let mut s = s.clone();
+            for p in s.wheels.iter_mut().flat_map(|w| &mut w.patches) {
+                if let Some(sol) = &mut p.solution {
+                    (sol.info.solve_time_s, sol.info.normal_time_s) = (0.0, 0.0);
+                }
+            }
+            format!(
+                "{:?} {:?} {:?} {:?} {:?}",
+                s.center_z_m.to_bits(),
+                s.roll_rad.to_bits(),
+                s.pitch_rad_per_s.to_bits(),
+                s.pitch_control,
+                s.wheels
+            )
+        };
+        let mut braked = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
+        braked.total_longitudinal_force_n = Some(-3e3);
+        let mut inputs = vec![
+            mbench_a22_input(5.0, None, None, WheelRailModel::Exact),
+            braked,
+        ];
+        inputs.extend((0..20).map(|k| load_test_input(k, 4e-3, WheelRailModel::Exact)));
+        let mut scratch = [SearchScratch::default(), SearchScratch::default()];
+        scratch[1].parallel_wheels = true;
+        let mut warm = [WarmStart::default(), WarmStart::default()];
+        for (k, input) in inputs.iter().enumerate() {
+            // The first two cold, the path warm.
+            let solve = |i: usize, scratch: &mut SearchScratch, warm: &mut WarmStart| {
+                let mut cold = WarmStart::default();
+                let warm = if k < 2 { &mut cold } else { warm };
+                let s = solve_wheelset_warm(&pair, input, &cache, scratch, warm).unwrap();
+                assert_eq!(s.wheels.len(), 2, "input {k}, scratch {i}");
+                s
+            };
+            let [s0, s1] = &mut scratch;
+            let [w0, w1] = &mut warm;
+            let one = solve(0, s0, w0);
+            let both = solve(1, s1, w1);
+            assert_eq!(bits(&one), bits(&both), "input {k}");
+            if k == 0 {
+                assert_eq!(
+                    one.wheels[1].patches.len(),
+                    2,
+                    "two patches on the right at 5 mm"
+                );
+            }
+            if k == 1 {
+                assert!(one.pitch_control.is_some_and(|p| p.solves > 2));
+            }
+        }
+        assert_eq!(warm[0], warm[1]);
     }
 
     /// With yaw the wheel's closest points lie ahead of or behind the

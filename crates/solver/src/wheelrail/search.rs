@@ -425,6 +425,20 @@ pub struct SearchScratch {
     pub gap: [VerticalGap; 2],
     /// Per side: the last exact patch solver.
     pub(crate) solvers: SpareSolvers,
+    /// Whether a wheelset solve may solve its two wheels at once, on the
+    /// calling thread and one more (models other than the fast ones, whose
+    /// wheels take less than a thread costs to start). The results are the
+    /// same bits either way; the step's wall time is about that of its
+    /// slower wheel instead of their sum. Default false: one thread.
+    pub parallel_wheels: bool,
+}
+
+/// One wheel's part of a [`SearchScratch`]: its contact locus and vertical
+/// gap (read) and its kept patch solver.
+pub(crate) struct WheelScratch<'a> {
+    pub(crate) locus: &'a [LocusPoint],
+    pub(crate) gap: &'a VerticalGap,
+    pub(crate) solver: &'a mut Option<Box<ContactSolver>>,
 }
 
 /// The loci, gaps and kept solvers' buffers (not the solvers' kernels,
@@ -445,6 +459,17 @@ impl SearchScratch {
     /// builds them again, to the same answers).
     pub fn release_solvers(&mut self) {
         self.solvers = SpareSolvers::default();
+    }
+
+    /// The wheels' parts (left, right), each borrowed on its own.
+    pub(crate) fn wheels(&mut self) -> [WheelScratch<'_>; 2] {
+        let [l, r] = &mut self.solvers.0;
+        let part = |i: usize, solver| WheelScratch {
+            locus: &self.locus[i],
+            gap: &self.gap[i],
+            solver,
+        };
+        [part(0, l), part(1, r)]
     }
 }
 
