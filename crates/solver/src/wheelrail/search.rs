@@ -634,11 +634,15 @@ pub(crate) fn rigid_position_from(
 ) -> Result<RigidPosition, WheelRailError> {
     let z0 = -pair.wheelset().nominal_radius_m;
     let (y, yaw) = (position.lateral_m, position.yaw_rad);
+    // The roll search's last evaluation is at the roll it returns: its
+    // loci and gaps are already in `scratch`.
+    let mut last: Option<(f64, [f64; 2])> = None;
     let roll = match position.roll_rad {
         Some(r) => r,
         None => find_roll(
             |r| {
                 let g = min_gaps(pair, y, yaw, r, z0, scratch)?;
+                last = Some((r, g));
                 Ok(g[0] - g[1])
             },
             pair.track().gauge_m,
@@ -647,7 +651,10 @@ pub(crate) fn rigid_position_from(
             roll_start,
         )?,
     };
-    let g = min_gaps(pair, y, yaw, roll, z0, scratch)?;
+    let g = match last {
+        Some((r, g)) if r.to_bits() == roll.to_bits() => g,
+        _ => min_gaps(pair, y, yaw, roll, z0, scratch)?,
+    };
     // Translating the wheelset in z shifts every vertical gap equally.
     let dz = g[0].min(g[1]);
     let center_z_m = z0 + dz;
