@@ -4,8 +4,11 @@
 //! to 575 x 647 elements, solved cold, with the operator products, the time
 //! of one product and the growth against N log N. See benches/README.md.
 //!
-//! `cargo bench --bench perfc -- [normal] [shift] [steady] [--levels 0,1,2,3]
-//! [--runs N]`: the problems (default all three), the grids (0: 71 x 81 of
+//! `cargo bench --bench perfc -- [normal] [shift] [steady] [steady_nested]
+//! [--levels 0,1,2,3] [--runs N]`: the problems (default all four;
+//! `steady_nested` is steady rolling started as the command line and the
+//! service start it, [`ContactSolver::start_nested`], the coarse solves in
+//! its time and their kernels built beforehand too), the grids (0: 71 x 81 of
 //! 0.1 mm, 1: 143 x 163 of 0.05 mm, 2: 287 x 323 of 0.025 mm, 3: 575 x 647
 //! of 0.0125 mm; default all) and the runs per case whose median is printed
 //! (default 3). The kernels are built once per grid, outside the timing;
@@ -42,6 +45,7 @@ enum Kind {
     Normal,
     Shift,
     Steady,
+    SteadyNested,
 }
 
 impl Kind {
@@ -50,12 +54,13 @@ impl Kind {
             Kind::Normal => "normal",
             Kind::Shift => "shift",
             Kind::Steady => "steady",
+            Kind::SteadyNested => "steady_nested",
         }
     }
 
     /// Its column in [`CONTACT`].
     fn column(self) -> usize {
-        self as usize
+        (self as usize).min(2)
     }
 
     /// The shift of `tang_problm_*s.inp` and the steady rolling of
@@ -65,7 +70,7 @@ impl Kind {
             Kind::Normal => Kinematics::Frictionless,
             Kind::Shift => Kinematics::Transient(vec![shift_step()]),
             // CKSI = 0.0005, CETA = 0, CPHI = 0.0003 /mm.
-            Kind::Steady => Kinematics::SteadyRolling(Creepages {
+            Kind::Steady | Kind::SteadyNested => Kinematics::SteadyRolling(Creepages {
                 creepage_long: 0.0005,
                 creepage_lat: 0.0,
                 spin_per_m: 0.3,
@@ -148,6 +153,7 @@ fn options() -> Options {
             "normal" => o.kinds.push(Kind::Normal),
             "shift" => o.kinds.push(Kind::Shift),
             "steady" => o.kinds.push(Kind::Steady),
+            "steady_nested" => o.kinds.push(Kind::SteadyNested),
             "--levels" => {
                 o.levels = args
                     .next()
@@ -163,7 +169,7 @@ fn options() -> Options {
         }
     }
     if o.kinds.is_empty() {
-        o.kinds = vec![Kind::Normal, Kind::Shift, Kind::Steady];
+        o.kinds = vec![Kind::Normal, Kind::Shift, Kind::Steady, Kind::SteadyNested];
     }
     o
 }
@@ -183,19 +189,22 @@ fn main() {
             .iter()
             .map(|&k| problem(level, &heights, k))
             .collect();
-        for p in &problems {
-            ContactSolver::new(p, &cache);
+        for (p, &kind) in problems.iter().zip(&o.kinds) {
+            let mut s = ContactSolver::new(p, &cache);
+            if kind == Kind::SteadyNested {
+                s.start_nested(p, &cache).unwrap();
+            }
         }
         let [t_normal, t_tang, t_single] = product_times(&problems[0], o.runs);
         let mut runs: Vec<Option<Runs>> = o.kinds.iter().map(|_| None).collect();
         for _ in 0..o.runs.max(1) {
             for (k, p) in problems.iter().enumerate() {
                 let t0 = Instant::now();
-                let last = ContactSolver::new(p, &cache)
-                    .solve(p)
-                    .unwrap()
-                    .pop()
-                    .unwrap();
+                let mut solver = ContactSolver::new(p, &cache);
+                if o.kinds[k] == Kind::SteadyNested {
+                    solver.start_nested(p, &cache).unwrap();
+                }
+                let last = solver.solve(p).unwrap().pop().unwrap();
                 let dt = t0.elapsed().as_secs_f64();
                 let r = runs[k].get_or_insert_with(|| Runs {
                     time_s: vec![],

@@ -97,7 +97,10 @@ impl PatchEngine {
             for (h, e) in problem.gap_m.iter_mut().zip(&extra_gap_m) {
                 *h += e;
             }
-            let solver = ContactSolver::new(&problem, cache);
+            let mut solver = ContactSolver::new(&problem, cache);
+            // Large steady-rolling cases start from their solution on the
+            // grid of twice the element size (the first solve's start).
+            solver.start_nested(&problem, cache)?;
             Some(Exact {
                 problem,
                 solver,

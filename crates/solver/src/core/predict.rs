@@ -164,6 +164,11 @@ impl WarmPath {
         self.points = [None, None];
     }
 
+    /// Whether no solve is remembered.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.points.iter().all(Option::is_none)
+    }
+
     /// Before solving `next`: turns the solver's state (`pn`, `px`, `py`,
     /// the last solution) into the predicted start and keeps the last
     /// solution. Returns theta (0: the plain warm start).

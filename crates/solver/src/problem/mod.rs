@@ -311,7 +311,11 @@ impl ExactRun {
     pub fn solve(case: &Case) -> Result<Self, CaseError> {
         let t0 = Instant::now();
         let problem = case.problem()?;
-        let mut solver = ContactSolver::new(&problem, KernelCache::global());
+        let cache = KernelCache::global();
+        let mut solver = ContactSolver::new(&problem, cache);
+        // Large cold steady-rolling problems start from their solution on
+        // the grid of twice the element size.
+        solver.start_nested(&problem, cache)?;
         let solved = solve_exact(case, &mut solver, &problem)?;
         let (solutions, force_control, step_forces) =
             (solved.solutions, solved.force_control, solved.step_forces);
