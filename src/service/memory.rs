@@ -112,9 +112,9 @@ impl SessionBudget {
                 }));
             }
         } else {
-            self.total_bytes.fetch_sub(old - new, Ordering::Relaxed);
+            shift(&self.total_bytes, old, new);
         }
-        self.move_marks(share.marks, marks);
+        shift(&self.mark_bytes, share.marks, marks);
         (share.live, share.marks) = (live, marks);
         Ok(())
     }
@@ -123,13 +123,14 @@ impl SessionBudget {
         self.refused.fetch_add(1, Ordering::Relaxed);
         beyond
     }
+}
 
-    fn move_marks(&self, from: usize, to: usize) {
-        if to >= from {
-            self.mark_bytes.fetch_add(to - from, Ordering::Relaxed);
-        } else {
-            self.mark_bytes.fetch_sub(from - to, Ordering::Relaxed);
-        }
+/// Moves `counter` by `to - from` (either sign).
+fn shift(counter: &AtomicUsize, from: usize, to: usize) {
+    if to >= from {
+        counter.fetch_add(to - from, Ordering::Relaxed);
+    } else {
+        counter.fetch_sub(from - to, Ordering::Relaxed);
     }
 }
 
@@ -213,14 +214,7 @@ impl SessionMemory {
     /// holds after a refused step gave back its buffers (no more than
     /// before the step).
     pub fn settle(&mut self, live: usize) {
-        let b = &self.budget;
-        if live >= self.share.live {
-            b.total_bytes
-                .fetch_add(live - self.share.live, Ordering::Relaxed);
-        } else {
-            b.total_bytes
-                .fetch_sub(self.share.live - live, Ordering::Relaxed);
-        }
+        shift(&self.budget.total_bytes, self.share.live, live);
         self.share.live = live;
     }
 }

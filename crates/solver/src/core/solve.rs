@@ -1487,10 +1487,13 @@ fn interpolate(from: &Grid, v: &[f64], to: &Grid, out: &mut [f64]) {
     }
 }
 
-/// Solves `problem` with the process-wide kernel cache.
+/// Solves `problem` with the process-wide kernel cache, a large
+/// steady-rolling one from its nested start
+/// ([`ContactSolver::start_nested`]) as the command line and the service do.
 pub fn solve(problem: &ContactProblem) -> Result<Vec<ContactSolution>, ContactError> {
     let cache = KernelCache::global();
     let mut s = ContactSolver::new(problem, cache);
+    s.start_nested(problem, cache)?;
     s.solve(problem)
 }
 
@@ -1533,6 +1536,16 @@ mod tests {
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
         }
+    }
+
+    /// [`rolling`] (base load and creepages) on `n` x `n` elements over
+    /// the same window.
+    fn rolling_on(n: usize) -> ContactProblem {
+        let mut p = rolling(1.0, 1.0);
+        let (g, f) = (p.grid, 32.0 / n as f64);
+        p.grid = Grid::new(n, n, f * g.dx_m, f * g.dy_m, g.x0_m, g.y0_m).unwrap();
+        p.gap_m = ContactProblem::quadratic_gap(&p.grid, 1.0, 1.0);
+        p
     }
 
     /// What a solver holds between solves on 256 x 256 elements (the
@@ -1608,10 +1621,7 @@ mod tests {
     #[test]
     fn a_nested_start_gives_the_cold_answer() {
         let cache = KernelCache::default();
-        let mut p = rolling(1.0, 1.0);
-        let g = p.grid;
-        p.grid = Grid::new(64, 64, 0.5 * g.dx_m, 0.5 * g.dy_m, g.x0_m, g.y0_m).unwrap();
-        p.gap_m = ContactProblem::quadratic_gap(&p.grid, 1.0, 1.0);
+        let p = rolling_on(64);
         let cold = solve_last(&mut ContactSolver::new(&p, &cache), &p);
         let mut s = ContactSolver::new(&p, &cache);
         assert!(s.start_nested_from(&p, &cache, 256).unwrap());
@@ -1660,10 +1670,7 @@ mod tests {
     #[test]
     fn a_steady_solve_cancelled_in_its_newton_steps_stops() {
         let cache = KernelCache::default();
-        let mut p = rolling(1.0, 1.0);
-        let g = p.grid;
-        p.grid = Grid::new(256, 256, 0.125 * g.dx_m, 0.125 * g.dy_m, g.x0_m, g.y0_m).unwrap();
-        p.gap_m = ContactProblem::quadratic_gap(&p.grid, 1.0, 1.0);
+        let mut p = rolling_on(256);
         p.kinematics = Kinematics::SteadyRolling(Creepages {
             creepage_long: 2e-4,
             creepage_lat: 0.0,
