@@ -97,7 +97,7 @@ use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::search::{
     gap_intervals, patch_geometry, rigid_position_from, split_intervals, LateralSample, LocusPoint,
-    PatchGeometry, RigidPosition, SearchScratch, SearchSettings, SidePose, VerticalGap,
+    PatchGeometry, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
     WheelScratch,
 };
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
@@ -1035,9 +1035,21 @@ pub fn solve_wheelset(
 /// start gives the same bits.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct WarmStart {
-    /// Roll angle of the previous step \[rad\]: the roll search starts there
+    /// Roll angle of the previous step \[rad\]: the roll search starts
+    /// from its extrapolation with those of the two steps before
     /// (positions that leave the roll free).
     pub roll_rad: Option<f64>,
+    /// `roll_rad` of the two steps before the previous one (the nearer
+    /// first).
+    pub roll_earlier_rad: [Option<f64>; 2],
+    /// The slope of the left wheel's smallest gap less the right's over
+    /// roll \[m/rad\] at the last roll search's last secant step: the next
+    /// search's first step goes along it.
+    pub roll_slope_m_per_rad: Option<f64>,
+    /// Per wheel, the dense wheel-profile sample of the previous step's
+    /// smallest vertical gap ([`RigidPosition::contact_sample`]): the roll
+    /// search's first look goes near them.
+    pub contact_sample: Option<[usize; 2]>,
     /// Per wheel (`Side::index()`): the previous single-patch solve's normal
     /// force per vertical load [-], the load iteration's first normal force.
     pub normal_per_vertical: [Option<f64>; 2],
@@ -1071,18 +1083,42 @@ impl WarmStart {
         })
     }
 
-    /// The warm start after a step that found `roll_rad`, each wheel's
-    /// `normal_per_vertical` and `tractions`: the step's ratios become the
+    /// Where this step's roll search starts: the roll extrapolated from
+    /// the last three steps' (the parabola through them, the line through
+    /// two when only two are known; as [`extrapolated_start`]), the slope
+    /// the last search ended with.
+    pub(crate) fn roll_start(&self) -> RollStart {
+        let roll_rad = match (self.roll_rad, self.roll_earlier_rad) {
+            (Some(a), [Some(b), Some(c)]) => 3.0 * a - 3.0 * b + c,
+            (Some(a), [Some(b), None]) => 2.0 * a - b,
+            (a, _) => a.unwrap_or(0.0),
+        };
+        RollStart {
+            roll_rad,
+            slope_m_per_rad: self.roll_slope_m_per_rad,
+            contact_sample: self.contact_sample,
+        }
+    }
+
+    /// The warm start after a step that found `roll_rad` (its search ending
+    /// on `roll_slope_m_per_rad`, None where the roll was given; the
+    /// contacts at `contact_sample`, where known), each wheel's
+    /// `normal_per_vertical` and `tractions`: the step's values become the
     /// last ones, the last ones the earlier ones.
     pub fn advance(
         &mut self,
         roll_rad: f64,
+        roll_slope_m_per_rad: Option<f64>,
+        contact_sample: Option<[usize; 2]>,
         normal_per_vertical: [Option<f64>; 2],
         tractions: [Option<PatchTractions>; 2],
     ) {
         let earlier_tractions = std::mem::take(&mut self.tractions);
         *self = WarmStart {
             roll_rad: Some(roll_rad),
+            roll_earlier_rad: [self.roll_rad, self.roll_earlier_rad[0]],
+            roll_slope_m_per_rad: roll_slope_m_per_rad.or(self.roll_slope_m_per_rad),
+            contact_sample,
             normal_per_vertical,
             normal_per_vertical_earlier: [
                 self.normal_per_vertical,
@@ -1248,7 +1284,7 @@ pub fn solve_wheelset_warm(
         &input.position,
         &input.settings.search,
         scratch,
-        warm.roll_rad.unwrap_or(0.0),
+        warm.roll_start(),
     )?;
     let mut timing = Timing {
         search_s: t0.elapsed().as_secs_f64(),
@@ -1344,7 +1380,13 @@ pub fn solve_wheelset_warm(
     if let Some(thermal) = &input.temperature {
         add_temperatures(&mut wheels, thermal)?;
     }
-    warm.advance(rigid.roll_rad, normal_per_vertical, tractions);
+    warm.advance(
+        rigid.roll_rad,
+        rigid.roll_slope_m_per_rad,
+        Some(rigid.contact_sample),
+        normal_per_vertical,
+        tractions,
+    );
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
@@ -1659,8 +1701,9 @@ fn solve_wheel(
             gmin + CAP_FACTOR * approach_estimate(gap, locus, &input.material, f)
         }
         // Not reaching the rail (a centre height above the rigid one, or a
-        // wheel lifted by a given roll): nothing to solve.
-        WheelLoad::Approach(d) if d <= gmin => {
+        // wheel lifted by a given roll), or by less than the smallest gap
+        // resolves (no sample lies below the cap): nothing to solve.
+        WheelLoad::Approach(d) if d <= gmin || gmin + d == gmin => {
             let wheel = finish(pair, side, gmin, d, 0, Vec::new(), &mut spare);
             *scratch.solver = spare;
             return Ok((wheel, None, None));

@@ -97,7 +97,7 @@ use crate::wheelrail::contact::{
 };
 use crate::wheelrail::search::{
     find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
-    SearchScratch, SearchSettings, SidePose, VerticalGap,
+    RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
@@ -977,18 +977,30 @@ pub fn solve_wheelset_tabulated_warm(
         last = Some((r, c));
         Ok(d)
     };
+    let mut roll_slope_m_per_rad = None;
     let roll = match p.roll_rad {
         Some(r) => search(r).ok().map(|_| r),
-        None => find_roll(
-            &mut search,
-            pair.track().gauge_m,
-            SearchSettings::default().roll_tolerance_m,
-            p.lateral_m,
-            warm.roll_rad
-                .or_else(|| table.roll_estimate(p.lateral_m))
-                .unwrap_or(0.0),
-        )
-        .ok(),
+        None => {
+            let start = match warm.roll_rad {
+                Some(_) => warm.roll_start(),
+                None => RollStart {
+                    roll_rad: table.roll_estimate(p.lateral_m).unwrap_or(0.0),
+                    ..RollStart::default()
+                },
+            };
+            find_roll(
+                |r, _| Ok((search(r)?, true)),
+                pair.track().gauge_m,
+                SearchSettings::default().roll_tolerance_m,
+                p.lateral_m,
+                start,
+            )
+            .ok()
+            .map(|found| {
+                roll_slope_m_per_rad = Some(found.slope_m_per_rad);
+                found.roll_rad
+            })
+        }
     };
     let contacts = roll.and_then(|r| match last.take() {
         Some((lr, c)) if lr == r => Some(c),
@@ -1047,7 +1059,13 @@ pub fn solve_wheelset_tabulated_warm(
         }
         Ok(wheels)
     })?;
-    warm.advance(roll, normal_per_vertical, [None, None]);
+    warm.advance(
+        roll,
+        roll_slope_m_per_rad,
+        None,
+        normal_per_vertical,
+        [None, None],
+    );
     Ok(WheelRailSolution {
         center_z_m,
         roll_rad: roll,

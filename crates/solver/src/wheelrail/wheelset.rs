@@ -37,6 +37,7 @@
 //!   backwards).
 
 use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::wheelrail::search::VerticalGap;
 use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
 use crate::wheelrail::Profile;
 
@@ -247,6 +248,9 @@ pub struct PlacedRail {
     /// Shift from the inclined profile to the side frame (q, z) [m].
     offset_m: [f64; 2],
     samples: Vec<CurveSample>,
+    /// The surface on the search's lattice, which every contact search
+    /// copies instead of sampling the rail again.
+    surface: VerticalGap,
 }
 
 impl PlacedRail {
@@ -274,6 +278,11 @@ impl PlacedRail {
     /// The fitted profile (profile frame).
     pub fn spline(&self) -> &ProfileSpline {
         &self.spline
+    }
+
+    /// The surface height on the contact search's lattice (no wheel).
+    pub fn surface(&self) -> &VerticalGap {
+        &self.surface
     }
 }
 
@@ -412,6 +421,7 @@ fn place_rail(
         cant_rad: track.cant_rad,
         offset_m: [0.0, 0.0],
         samples: Vec::new(),
+        surface: VerticalGap::default(),
     };
     let inclined = sample(&rail.spline, |y, z| rail.to_side(y, z));
     let top = inclined.iter().map(|s| s.z_m).fold(f64::INFINITY, f64::min);
@@ -436,6 +446,7 @@ fn place_rail(
         })?;
     rail.offset_m = [0.5 * track.gauge_m - gauge_q, -top];
     rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
+    rail.surface = VerticalGap::surface_of(&rail.samples);
     Ok(rail)
 }
 
