@@ -121,6 +121,8 @@ pub struct LocusFrame {
     e1: [f64; 3],
     e2: [f64; 3],
     rm: f64,
+    /// 1 / rm (0 where rm is).
+    inv_rm: f64,
     /// cos and sin of theta0, the angle round the axle of the direction
     /// whose x part is largest.
     cos_theta0: f64,
@@ -157,6 +159,7 @@ impl LocusFrame {
             e1,
             e2,
             rm,
+            inv_rm: if rm > 0.0 { 1.0 / rm } else { 0.0 },
             cos_theta0,
             sin_theta0,
             axial_offset_m,
@@ -182,9 +185,18 @@ impl LocusFrame {
     /// [`crate::conformal::geometry`] finds the true undeformed distance
     /// along x at fixed s with this curvature.
     pub fn point(&self, s: &CurveSample) -> LocusPoint {
+        self.point_of(&LocusSample::of(
+            s,
+            self.axial_offset_m,
+            self.nominal_radius_m,
+        ))
+    }
+
+    /// [`LocusFrame::point`] of a sample's pose-independent part (the same
+    /// bits).
+    pub(crate) fn point_of(&self, s: &LocusSample) -> LocusPoint {
         let (a, c, e1, e2, rm) = (self.axle, self.center, self.e1, self.e2, self.rm);
         let limit = MAX_LOCUS_ANGLE_RAD.sin();
-        let [ty, tz] = s.tangent;
         // The outward wheel normal tz a - ty e_r(theta) (profile y along
         // the axle, z along e_r) has no x part:
         // ty (A cos theta + B sin theta) = ty rm cos(theta - theta0) = tz a_x,
@@ -192,13 +204,9 @@ impl LocusFrame {
         // two, the one with the larger cos theta (the lower point). No
         // trigonometric function is evaluated: with (cos d, sin d) the
         // angle sums give cos theta and sin theta directly.
-        let rhs = if ty.abs() > 1e-12 {
-            (tz * a[0] / ty).clamp(-limit * rm, limit * rm)
-        } else {
-            0.0
-        };
+        let rhs = (s.slope * a[0]).clamp(-limit * rm, limit * rm);
         let cd = if rm > 0.0 {
-            (rhs / rm).clamp(-1.0, 1.0)
+            (rhs * self.inv_rm).clamp(-1.0, 1.0)
         } else {
             0.0
         };
@@ -213,22 +221,57 @@ impl LocusFrame {
             ct * e1[1] + st * e2[1],
             ct * e1[2] + st * e2[2],
         ];
-        let u = self.axial_offset_m + s.q_m;
-        let r = self.nominal_radius_m + s.z_m;
+        let (u, r) = (s.axial_m, s.radius_m);
         // sin²(theta): the circle's unit tangent a x e_r has (1, 0, 0)
         // without yaw, exactly (a_x = e_r,x = 0), and then k_x is k_c bit
         // for bit.
         let tc = cross(a, er);
         let sin2 = tc[1] * tc[1] + tc[2] * tc[2];
-        let k_circle = -ty / r;
         LocusPoint {
             x_m: c[0] + u * a[0] + r * er[0],
             q_m: c[1] + u * a[1] + r * er[1],
             z_m: c[2] + u * a[2] + r * er[2],
-            kx_per_m: k_circle + (s.curvature_per_m - k_circle) * sin2,
+            kx_per_m: s.circle_curvature_per_m
+                + (s.curvature_per_m - s.circle_curvature_per_m) * sin2,
             radius_m: r,
-            profile_y_m: s.q_m,
+            profile_y_m: s.profile_y_m,
             lead_m: r * st,
+        }
+    }
+}
+
+/// The part of a wheel profile sample's locus point that does not depend
+/// on the pose, computed once per sample when the wheel is placed
+/// ([`PlacedWheel::locus_samples`]): a locus point then takes no division.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LocusSample {
+    /// tz / ty of the sample's unit tangent (0 where ty is 0 to 1e-12).
+    slope: f64,
+    /// Axial coordinate from the wheelset centre \[m\].
+    axial_m: f64,
+    /// Radius of its circle \[m\].
+    radius_m: f64,
+    /// The circle's normal curvature, -ty / r \[1/m\].
+    circle_curvature_per_m: f64,
+    /// The profile's curvature \[1/m\].
+    curvature_per_m: f64,
+    /// Profile y \[m\].
+    profile_y_m: f64,
+}
+
+impl LocusSample {
+    /// The sample `s` of a wheel whose profile y = 0 lies `axial_offset_m`
+    /// from the wheelset centre, on a wheelset of `nominal_radius_m`.
+    pub(crate) fn of(s: &CurveSample, axial_offset_m: f64, nominal_radius_m: f64) -> Self {
+        let [ty, tz] = s.tangent;
+        let radius_m = nominal_radius_m + s.z_m;
+        Self {
+            slope: if ty.abs() > 1e-12 { tz / ty } else { 0.0 },
+            axial_m: axial_offset_m + s.q_m,
+            radius_m,
+            circle_curvature_per_m: -ty / radius_m,
+            curvature_per_m: s.curvature_per_m,
+            profile_y_m: s.q_m,
         }
     }
 }
@@ -242,7 +285,10 @@ pub fn wheel_locus(
 ) {
     out.clear();
     let frame = LocusFrame::new(wheel, nominal_radius_m, pose);
-    out.extend(wheel.samples().iter().map(|s| frame.point(s)));
+    match wheel.locus_samples(nominal_radius_m) {
+        Some(pre) => out.extend(pre.iter().map(|s| frame.point_of(s))),
+        None => out.extend(wheel.samples().iter().map(|s| frame.point(s))),
+    }
 }
 
 /// The vertical gap of one side, sampled in q on the lattice q = k
@@ -424,12 +470,28 @@ impl VerticalGap {
 /// The smallest lattice index k with k [`SAMPLE_SPACING_M`] >= `q_m`
 /// (saturating for infinite `q_m`).
 fn lattice_ceil(q_m: f64) -> i64 {
-    (q_m / SAMPLE_SPACING_M).ceil() as i64
+    let f = q_m / SAMPLE_SPACING_M;
+    // f.ceil() as i64 without the call to libm's ceil that the baseline
+    // x86-64 target makes of it (two a locus segment: most of a raster's
+    // time); the same value for every f.
+    let t = f as i64;
+    if (t as f64) < f {
+        t.saturating_add(1)
+    } else {
+        t
+    }
 }
 
 /// The largest lattice index k with k [`SAMPLE_SPACING_M`] <= `q_m`.
 fn lattice_floor(q_m: f64) -> i64 {
-    (q_m / SAMPLE_SPACING_M).floor() as i64
+    let f = q_m / SAMPLE_SPACING_M;
+    // f.floor() as i64, as in lattice_ceil.
+    let t = f as i64;
+    if (t as f64) > f {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
 }
 
 fn range(it: impl Iterator<Item = f64>) -> (f64, f64) {
@@ -639,14 +701,20 @@ fn min_gaps_near(
         let i = side.index();
         let pose = SidePose::new(side, lateral_m, center_z_m, roll_rad, yaw_rad);
         let wheel = pair.wheel(side);
-        let frame = LocusFrame::new(wheel, pair.wheelset().nominal_radius_m, &pose);
+        let radius = pair.wheelset().nominal_radius_m;
+        let frame = LocusFrame::new(wheel, radius, &pose);
         let samples = wheel.samples();
         let lo = near[i].saturating_sub(NEAR_SAMPLES).min(samples.len());
         let hi = near[i].saturating_add(NEAR_SAMPLES + 1).min(samples.len());
         scratch.window_locus.clear();
-        scratch
-            .window_locus
-            .extend(samples[lo..hi].iter().map(|s| frame.point(s)));
+        match wheel.locus_samples(radius) {
+            Some(pre) => scratch
+                .window_locus
+                .extend(pre[lo..hi].iter().map(|s| frame.point_of(s))),
+            None => scratch
+                .window_locus
+                .extend(samples[lo..hi].iter().map(|s| frame.point(s))),
+        }
         scratch
             .window_gap
             .compute(pair.rail(side), &scratch.window_locus);
@@ -981,19 +1049,22 @@ pub fn split_intervals(
 }
 
 /// Samples (s, lambda) of a curve in the patch frame, increasing s, within
-/// `s_lim`: the run of points through `points[start]` along which s is
+/// `s_lim`, from its `len` points (`point(i)`: q, z and what rides along):
+/// the run of points through point `start` along which s is
 /// monotone (the part of the surface that faces the other body near the
 /// reference; a line along the normal may cross the profile again farther
 /// away, e.g. at the back of a flange).
 fn to_patch_frame<T: Copy>(
-    points: &[(f64, f64, T)],
+    len: usize,
+    point: impl Fn(usize) -> (f64, f64, T),
     start: usize,
     origin: [f64; 2],
     normal: [f64; 2],
     s_lim: [f64; 2],
 ) -> Vec<(f64, f64, T)> {
     let t = [normal[1], -normal[0]];
-    let map = |&(q, z, p): &(f64, f64, T)| {
+    let map = |i: usize| {
+        let (q, z, p) = point(i);
         let d = [q - origin[0], z - origin[1]];
         (
             d[0] * t[0] + d[1] * t[1],
@@ -1003,22 +1074,22 @@ fn to_patch_frame<T: Copy>(
     };
     let inside = |s: f64| s >= s_lim[0] && s <= s_lim[1];
     let mut v = Vec::new();
-    if points.is_empty() {
+    if len == 0 {
         return v;
     }
-    let start = start.min(points.len() - 1);
-    let first = map(&points[start]);
+    let start = start.min(len - 1);
+    let first = map(start);
     v.push(first);
     // Direction of s along increasing index, from the neighbours.
     let dir = |a: f64, b: f64| (b - a).signum();
-    let up = if start + 1 < points.len() {
-        dir(first.0, map(&points[start + 1]).0)
+    let up = if start + 1 < len {
+        dir(first.0, map(start + 1).0)
     } else {
-        -dir(first.0, map(&points[start - 1]).0)
+        -dir(first.0, map(start - 1).0)
     };
     let mut last = first.0;
-    for p in &points[start + 1..] {
-        let m = map(p);
+    for i in start + 1..len {
+        let m = map(i);
         if !inside(m.0) || dir(last, m.0) != up {
             break;
         }
@@ -1026,8 +1097,8 @@ fn to_patch_frame<T: Copy>(
         v.push(m);
     }
     last = first.0;
-    for p in points[..start].iter().rev() {
-        let m = map(p);
+    for i in (0..start).rev() {
+        let m = map(i);
         if !inside(m.0) || dir(last, m.0) != -up {
             break;
         }
@@ -1112,8 +1183,14 @@ pub fn patch_geometry(
     let s_range_m = [proj(k0) - margin_m, proj(k1) + margin_m];
     let lim = [s_range_m[0] - 1e-3, s_range_m[1] + 1e-3];
     let origin = [qref, zref];
-    let rail_all: Vec<_> = rs.iter().map(|s| (s.q_m, s.z_m, ())).collect();
-    let rail_pts = to_patch_frame(&rail_all, j, origin, normal, lim);
+    let rail_pts = to_patch_frame(
+        rs.len(),
+        |i| (rs[i].q_m, rs[i].z_m, ()),
+        j,
+        origin,
+        normal,
+        lim,
+    );
     let li = gap.locus_index[kmin];
     // The wheel as the load will place it: moved vertically into touch at
     // the minimum (by its vertical gap g there), its distance to the rail
@@ -1122,8 +1199,14 @@ pub fn patch_geometry(
     // where it lands (0.5 mm for a flank 1.8 mm off at 0.29 rad, as a
     // wheel lifted by a given roll is), which moves the minimum by tens of
     // micrometres and changes the curvature B on real profiles.
-    let wheel_all: Vec<_> = locus.iter().map(|p| (p.q_m, p.z_m + g, *p)).collect();
-    let wheel_pts = to_patch_frame(&wheel_all, li, origin, normal, lim);
+    let wheel_pts = to_patch_frame(
+        locus.len(),
+        |i| (locus[i].q_m, locus[i].z_m + g, locus[i]),
+        li,
+        origin,
+        normal,
+        lim,
+    );
     let lref = locus[li];
     // Samples at whole multiples of the spacing from the reference, so
     // that they (and the curvature and minimum taken from them) do not

@@ -37,7 +37,7 @@
 //!   backwards).
 
 use crate::core::error::{require_finite, require_positive, ContactError};
-use crate::wheelrail::search::VerticalGap;
+use crate::wheelrail::search::{LocusSample, VerticalGap};
 use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
 use crate::wheelrail::Profile;
 
@@ -294,6 +294,10 @@ pub struct PlacedWheel {
     axial_offset_m: f64,
     /// Dense samples in the profile frame (q = profile y), field face first.
     samples: Vec<CurveSample>,
+    /// Their locus points' pose-independent parts on a wheelset of
+    /// `locus_radius_m`.
+    locus_samples: Vec<LocusSample>,
+    locus_radius_m: f64,
 }
 
 impl PlacedWheel {
@@ -310,6 +314,15 @@ impl PlacedWheel {
     /// The fitted profile.
     pub fn spline(&self) -> &ProfileSpline {
         &self.spline
+    }
+
+    /// The pose-independent parts of the samples' locus points
+    /// ([`LocusFrame::point`](crate::wheelrail::search::LocusFrame::point)),
+    /// one per sample, on a wheelset of `nominal_radius_m` (None on
+    /// another than the one the wheel was placed for).
+    pub(crate) fn locus_samples(&self, nominal_radius_m: f64) -> Option<&[LocusSample]> {
+        (nominal_radius_m.to_bits() == self.locus_radius_m.to_bits())
+            .then_some(&self.locus_samples[..])
     }
 }
 
@@ -476,10 +489,17 @@ fn place_wheel(
         ));
     }
     let samples = sample(&spline, |y, z| [y, z]);
+    let axial_offset_m = 0.5 * ws.flange_back_distance_m - back;
+    let locus_samples = samples
+        .iter()
+        .map(|s| LocusSample::of(s, axial_offset_m, ws.nominal_radius_m))
+        .collect();
     Ok(PlacedWheel {
         spline,
-        axial_offset_m: 0.5 * ws.flange_back_distance_m - back,
+        axial_offset_m,
         samples,
+        locus_samples,
+        locus_radius_m: ws.nominal_radius_m,
     })
 }
 
