@@ -1088,13 +1088,10 @@ impl WarmStart {
     /// two when only two are known; as [`extrapolated_start`]), the slope
     /// the last search ended with.
     pub(crate) fn roll_start(&self) -> RollStart {
-        let roll_rad = match (self.roll_rad, self.roll_earlier_rad) {
-            (Some(a), [Some(b), Some(c)]) => 3.0 * a - 3.0 * b + c,
-            (Some(a), [Some(b), None]) => 2.0 * a - b,
-            (a, _) => a.unwrap_or(0.0),
-        };
         RollStart {
-            roll_rad,
+            roll_rad: extrapolate(self.roll_rad, self.roll_earlier_rad)
+                .or(self.roll_rad)
+                .unwrap_or(0.0),
             slope_m_per_rad: self.roll_slope_m_per_rad,
             contact_sample: self.contact_sample,
         }
@@ -1141,15 +1138,20 @@ impl WarmStart {
 /// (`warm_tabulated_steps_agree_with_the_direct_search`, 4 mm). A start
 /// only: the iteration converges from any.
 pub fn extrapolated_start(last: Option<f64>, earlier: [Option<f64>; 2]) -> Option<f64> {
-    let p = match (last, earlier) {
-        (Some(a), [Some(b), Some(c)]) => 3.0 * a - 3.0 * b + c,
-        (Some(a), [Some(b), None]) => 2.0 * a - b,
-        (a, _) => return a,
-    };
-    if p.is_finite() && p > 0.0 {
-        Some(p)
-    } else {
-        last
+    match extrapolate(last, earlier) {
+        Some(p) if p.is_finite() && p > 0.0 => Some(p),
+        _ => last,
+    }
+}
+
+/// The next step's value of a quantity known at the last steps (`last`,
+/// then `earlier`, the nearer first): on the parabola through three, the
+/// line through two; None with fewer.
+fn extrapolate(last: Option<f64>, earlier: [Option<f64>; 2]) -> Option<f64> {
+    match (last, earlier) {
+        (Some(a), [Some(b), Some(c)]) => Some(3.0 * a - 3.0 * b + c),
+        (Some(a), [Some(b), None]) => Some(2.0 * a - b),
+        _ => None,
     }
 }
 

@@ -284,10 +284,22 @@ pub fn wheel_locus(
     out: &mut Vec<LocusPoint>,
 ) {
     out.clear();
+    locus_part(wheel, nominal_radius_m, pose, 0..wheel.samples().len(), out);
+}
+
+/// Appends to `out` the locus points of `wheel`'s dense samples `part` in
+/// `pose`.
+fn locus_part(
+    wheel: &PlacedWheel,
+    nominal_radius_m: f64,
+    pose: &SidePose,
+    part: std::ops::Range<usize>,
+    out: &mut Vec<LocusPoint>,
+) {
     let frame = LocusFrame::new(wheel, nominal_radius_m, pose);
     match wheel.locus_samples(nominal_radius_m) {
-        Some(pre) => out.extend(pre.iter().map(|s| frame.point_of(s))),
-        None => out.extend(wheel.samples().iter().map(|s| frame.point(s))),
+        Some(pre) => out.extend(pre[part].iter().map(|s| frame.point_of(s))),
+        None => out.extend(wheel.samples()[part].iter().map(|s| frame.point(s))),
     }
 }
 
@@ -701,20 +713,12 @@ fn min_gaps_near(
         let i = side.index();
         let pose = SidePose::new(side, lateral_m, center_z_m, roll_rad, yaw_rad);
         let wheel = pair.wheel(side);
-        let radius = pair.wheelset().nominal_radius_m;
-        let frame = LocusFrame::new(wheel, radius, &pose);
-        let samples = wheel.samples();
-        let lo = near[i].saturating_sub(NEAR_SAMPLES).min(samples.len());
-        let hi = near[i].saturating_add(NEAR_SAMPLES + 1).min(samples.len());
+        let n = wheel.samples().len();
+        let lo = near[i].saturating_sub(NEAR_SAMPLES).min(n);
+        let hi = near[i].saturating_add(NEAR_SAMPLES + 1).min(n);
         scratch.window_locus.clear();
-        match wheel.locus_samples(radius) {
-            Some(pre) => scratch
-                .window_locus
-                .extend(pre[lo..hi].iter().map(|s| frame.point_of(s))),
-            None => scratch
-                .window_locus
-                .extend(samples[lo..hi].iter().map(|s| frame.point(s))),
-        }
+        let radius = pair.wheelset().nominal_radius_m;
+        locus_part(wheel, radius, &pose, lo..hi, &mut scratch.window_locus);
         scratch
             .window_gap
             .compute(pair.rail(side), &scratch.window_locus);
