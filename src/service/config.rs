@@ -77,14 +77,14 @@ pub struct ServeConfig {
     /// scratch, warm starts, a wheel/rail session's patch solvers; not the
     /// influence kernels, which count against `kernel_cache_max_bytes`) and
     /// its marks. Default 256 MiB: an exact steady-rolling session on the
-    /// largest grid (256 x 256, `max_grid_elements`) holds 116 MB (1771
-    /// bytes an element) and 4.3 MB a mark, 185 MB with all 16 marks. A
+    /// largest grid (256 x 256, `max_grid_elements`) holds 88 MB (1346
+    /// bytes an element) and 4.3 MB a mark, 157 MB with all 16 marks. A
     /// step that would leave the session beyond it is refused in-band with
     /// RESOURCE_EXHAUSTED and not applied; a session whose solver does not
     /// fit at all is not opened (RESOURCE_EXHAUSTED).
     pub max_session_bytes: usize,
     /// Memory all sessions together may hold between their steps \[bytes\]
-    /// (default 1 GiB: nine exact sessions on 256 x 256 without marks);
+    /// (default 1 GiB: twelve exact sessions on 256 x 256 without marks);
     /// beyond it as `max_session_bytes`.
     pub max_sessions_total_bytes: usize,
     /// A session that receives no message for this long is closed: its

@@ -1585,17 +1585,20 @@ mod tests {
         let fresh = s.heap_bytes();
         solve_last(&mut s, &p);
         let newton = s.newton_scratch.heap_bytes();
-        // The Newton scratch: at least its GMRES basis, RESTART + 1
-        // vectors of 2 n.
+        // The Newton scratch: its buffers, and the GMRES basis of the
+        // vectors used, at most RESTART + 1 of 2 n.
+        let buffers = crate::core::steady::SteadyScratch::new(n).heap_bytes();
+        let basis = newton - buffers;
         assert!(
-            newton >= 8 * (crate::core::steady::RESTART + 1) * 2 * n,
+            newton > buffers && basis <= 8 * (crate::core::steady::RESTART + 1) * 2 * n,
             "{newton}"
         );
         assert_eq!(s.heap_bytes(), fresh + newton + 3 * 8 * n);
         println!(
             "256 x 256 solver: {fresh} bytes new ({} an element: {} fields and scratch, \
              FFT workspaces {ows}), {} after a rolling solve (Newton scratch {newton}, {} an \
-             element); the kernels it shares with the cache: {kernels}",
+             element, of which the GMRES basis {basis}); the kernels it shares with the cache: \
+             {kernels}",
             fresh / n,
             per_element,
             s.heap_bytes(),

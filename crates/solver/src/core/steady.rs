@@ -57,6 +57,9 @@ use crate::core::tangential::{
 
 /// GMRES restart length (Krylov vectors kept).
 pub const RESTART: usize = 40;
+/// The Krylov vectors the GMRES basis grows by beyond the one it needs
+/// (a cycle that outgrows it copies the vectors before).
+pub const BASIS_SPARE: usize = 8;
 /// Largest number of step halvings per Newton step.
 pub const MAX_HALVINGS: usize = 4;
 /// Largest number of Newton steps (also bounded by the settings' iteration
@@ -210,11 +213,28 @@ struct Krylov {
     tmp: Vec<f64>,
     work: Vec<f64>,
     zvec: Vec<f64>,
+    /// The Krylov vectors of the current cycle, one compressed vector
+    /// after the other: grown to what the solves have used (see
+    /// [`basis_for`]), at most `RESTART + 1` vectors.
     basis: Vec<f64>,
     hess: Vec<f64>,
     cs: Vec<f64>,
     sn: Vec<f64>,
     gam: Vec<f64>,
+}
+
+/// Makes the GMRES `basis` hold at least `vectors` vectors of `len`,
+/// keeping the ones it holds: grown by [`BASIS_SPARE`] vectors more (at
+/// most `RESTART + 1`), so that a solver allocates it only while its cycles
+/// get longer than before.
+#[inline(always)]
+fn basis_for(basis: &mut Vec<f64>, vectors: usize, len: usize) {
+    let need = vectors * len;
+    if basis.len() < need {
+        let grown = ((vectors + BASIS_SPARE).min(RESTART + 1) * len).max(need);
+        basis.reserve_exact(grown - basis.len());
+        basis.resize(grown, 0.0);
+    }
 }
 
 impl SteadyScratch {
@@ -246,7 +266,7 @@ impl SteadyScratch {
                 tmp: z(2 * n),
                 work: z(2 * n),
                 zvec: z(2 * n),
-                basis: z((RESTART + 1) * 2 * n),
+                basis: Vec::new(),
                 hess: z((RESTART + 1) * RESTART),
                 cs: z(RESTART + 1),
                 sn: z(RESTART + 1),
@@ -256,8 +276,10 @@ impl SteadyScratch {
     }
 }
 
-/// Most of it is the GMRES basis: `RESTART + 1` vectors of 2 n f64, 656
-/// bytes an element.
+/// About 140 bytes an element when new, and the GMRES basis: as many
+/// compressed vectors (2 f64 a loaded element) as the longest GMRES cycle
+/// so far has used plus [`BASIS_SPARE`], up to `RESTART + 1` (656 bytes an
+/// element).
 impl HeapBytes for SteadyScratch {
     fn heap_bytes(&self) -> usize {
         let k = &self.krylov;
@@ -534,6 +556,7 @@ fn gmres_body(
     work.copy_from_slice(rhs);
     let mut beta = beta0;
     loop {
+        basis_for(&mut sc.basis, 1, m2);
         let v0 = &mut sc.basis[..m2];
         for (v, r) in v0.iter_mut().zip(work.iter()) {
             *v = r / beta;
@@ -544,6 +567,7 @@ fn gmres_body(
         let mut estimate = beta;
         for j in 0..RESTART {
             // w = A M⁻¹ v_j
+            basis_for(&mut sc.basis, j + 2, m2);
             let (head, tail) = sc.basis.split_at_mut((j + 1) * m2);
             let w = &mut tail[..m2];
             lin.precondition(

@@ -3011,14 +3011,14 @@ mod tests {
     /// What an exact wheel/rail session keeps between steps on at 2
     /// mm (0.2 mm elements, one patch a wheel): each wheel's last patch
     /// solver, between a new solver on that patch's grid and one that also
-    /// holds the Newton scratch (`SteadyScratch::new`) and the
-    /// prediction's three fields; the loci and gaps of the search; and the
+    /// holds the Newton scratch (`SteadyScratch::new` and a whole GMRES
+    /// basis) and the prediction's three fields; the loci and gaps of the search; and the
     /// warm start (the pressures and tractions carried to the next step).
     /// Printed with `--nocapture`.
     #[test]
     fn an_exact_wheelset_keeps_its_patch_solvers_between_steps() {
         use crate::core::memory::HeapBytes;
-        use crate::core::steady::SteadyScratch;
+        use crate::core::steady::{SteadyScratch, RESTART};
         let pair = mbench_pair().unwrap();
         let input = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
         let cache = KernelCache::default();
@@ -3045,7 +3045,8 @@ mod tests {
             let n = grid.len();
             let new = boxed + ContactSolver::new(&problem, &cache).heap_bytes();
             low += new;
-            high += new + SteadyScratch::new(n).heap_bytes() + 3 * 8 * n;
+            let basis = 8 * (RESTART + 1) * 2 * n;
+            high += new + SteadyScratch::new(n).heap_bytes() + basis + 3 * 8 * n;
             elements += n;
         }
         let kept = scratch.solvers.0.heap_bytes();
