@@ -194,12 +194,12 @@ pub struct SteadyScratch {
     /// Differenced tractions of [`PlanarSteady`].
     diff: [Vec<f64>; 2],
     /// The loaded elements (grid indices, in grid order) of the compressed
-    /// vectors, their coefficients and the order of the preconditioner's
-    /// sweep (see [`Linear`]).
+    /// vectors, their coefficients and the rows of the preconditioner's
+    /// sweep in its order (see [`Linear`]).
     loaded: Vec<usize>,
     coef: Vec<Coef>,
-    order: Vec<usize>,
-    /// Loaded elements per grid column (counting sort of `order`).
+    sweep: Vec<SweepRow>,
+    /// Loaded elements per grid column (counting sort of `sweep`).
     column_count: Vec<usize>,
     /// Full-grid inputs of the products of compressed vectors.
     xin: Vec<f64>,
@@ -258,7 +258,7 @@ impl SteadyScratch {
             diff: [z(n), z(n)],
             loaded: Vec::with_capacity(n),
             coef: Vec::with_capacity(n),
-            order: Vec::with_capacity(n),
+            sweep: Vec::with_capacity(n),
             column_count: Vec::with_capacity(n + 1),
             xin: z(n),
             yin: z(n),
@@ -276,7 +276,7 @@ impl SteadyScratch {
     }
 }
 
-/// About 140 bytes an element when new, and the GMRES basis: as many
+/// About 310 bytes an element when new, and the GMRES basis: as many
 /// compressed vectors (2 f64 a loaded element) as the longest GMRES cycle
 /// so far has used plus [`BASIS_SPARE`], up to `RESTART + 1` (656 bytes an
 /// element).
@@ -299,7 +299,7 @@ impl HeapBytes for SteadyScratch {
             self.diff,
             self.loaded,
             self.coef,
-            self.order,
+            self.sweep,
             self.column_count,
             self.xin,
             self.yin,
@@ -328,8 +328,9 @@ struct Linear<'a> {
     loaded: &'a [usize],
     /// By compressed element.
     coef: &'a [Coef],
-    /// The compressed elements in the order of the preconditioner's sweep.
-    order: &'a [usize],
+    /// The compressed elements' rows of the preconditioner's sweep, in its
+    /// order.
+    sweep: &'a [SweepRow],
     /// The scale (x, y) of the preconditioner's global part before the
     /// sweep (see [`Linear::precondition`]), None without it.
     global: Option<[f64; 2]>,
@@ -337,7 +338,10 @@ struct Linear<'a> {
 
 /// The coefficients of one compressed element k of [`Linear`], written so
 /// that adhesion and slip elements take the same branch-free arithmetic.
-#[derive(Clone, Copy)]
+/// The sweep's own are in [`SweepRow`], in the sweep's order, so that
+/// each pass over the elements reads only what it uses, in the order it
+/// goes.
+#[derive(Clone, Copy, Default)]
 struct Coef {
     /// Full-grid tractions from the compressed values (a, b) = (x[k],
     /// x[m + k]): (f0 a + f1 b, f2 a + f3 b); (1, 0, 0, 1) for adhesion,
@@ -346,17 +350,25 @@ struct Coef {
     full: [f64; 4],
     /// E, the turning of a slip element's direction (0 for adhesion).
     e: f64,
-    /// The local inverse (see [`Linear::sweep`]): z0 = s0 (r0 + s1 a_x +
-    /// s2 a_y), z1 = s3 (r1 + s4 a_x + s5 a_y), with (a_x, a_y) the full
-    /// tractions of the upwind neighbour. Adhesion: (1/d_x, d_x, 0, 1/d_y,
-    /// 0, d_y); slip: (1/(d_x t_x² + d_y t_y² + e), d_x t_x, d_y t_y, 0, 0, 0).
-    sweep: [f64; 6],
-    /// Compressed index of the upwind neighbour (ix + 1) when loaded and
-    /// the local model is upwind, else [`NONE`].
-    up: usize,
     /// The weight of the global part of the preconditioner in this
     /// element's row (see [`Linear::precondition`]): 1 for adhesion.
     global: f64,
+}
+
+/// One compressed element's row of the preconditioner's sweep
+/// ([`Linear::sweep`]).
+#[derive(Clone, Copy, Default)]
+struct SweepRow {
+    /// The element's compressed index.
+    k: usize,
+    /// Compressed index of the upwind neighbour (ix + 1) when loaded and
+    /// the local model is upwind, else [`NONE`].
+    up: usize,
+    /// The local inverse: z0 = s0 (r0 + s1 a_x + s2 a_y), z1 = s3 (r1 + s4
+    /// a_x + s5 a_y), with (a_x, a_y) the full tractions of the upwind
+    /// neighbour. Adhesion: (1/d_x, d_x, 0, 1/d_y, 0, d_y); slip: (1/(d_x
+    /// t_x² + d_y t_y² + e), d_x t_x, d_y t_y, 0, 0, 0).
+    s: [f64; 6],
 }
 
 impl Linear<'_> {
@@ -465,20 +477,19 @@ impl Linear<'_> {
 
     /// z = M⁻¹ r with M = P diag(B)(I - S) P + E: exact forward substitution
     /// from the leading edge (large x) along every grid line. The sweep
-    /// goes column by column ([`Linear::order`]), so that the elements in
-    /// flight are on different lines and independent (along a line, each
-    /// waits for its upwind neighbour). No matvec.
+    /// goes column by column ([`Linear::sweep`]'s rows), so that the
+    /// elements in flight are on different lines and independent (along a
+    /// line, each waits for its upwind neighbour). No matvec.
     #[inline(always)]
     fn sweep(&self, r: &[f64], z: &mut [f64]) {
         let m = self.loaded.len();
-        for &k in self.order {
-            let c = &self.coef[k];
-            let (ax, ay) = if c.up != NONE {
-                self.full(z, c.up)
+        for row in self.sweep {
+            let (ax, ay) = if row.up != NONE {
+                self.full(z, row.up)
             } else {
                 (0.0, 0.0)
             };
-            let s = &c.sweep;
+            let (s, k) = (&row.s, row.k);
             z[k] = s[0] * (r[k] + s[1] * ax + s[2] * ay);
             z[m + k] = s[3] * (r[m + k] + s[4] * ax + s[5] * ay);
         }
@@ -847,7 +858,7 @@ pub fn solve_coulomb_newton(
         krylov,
         loaded,
         coef,
-        order,
+        sweep,
         column_count,
         xin,
         yin,
@@ -1069,10 +1080,32 @@ pub fn solve_coulomb_newton(
         loaded.clear();
         loaded.extend((0..n).filter(|&i| role[i] != Role::Exterior));
         let m = loaded.len();
+        // The sweep's order: by grid column from the leading edge (a
+        // counting sort on the column's rank r = nx - 1 - ix; start[r] is
+        // where column r begins in `sweep`, then where its next goes).
+        let rank = |i: usize| nx - 1 - i % nx;
+        let start = &mut *column_count;
+        start.clear();
+        start.resize(nx + 1, 0);
+        for &i in loaded.iter() {
+            start[rank(i) + 1] += 1;
+        }
+        for r in 1..=nx {
+            start[r] += start[r - 1];
+        }
+        sweep.clear();
+        sweep.resize(m, SweepRow::default());
+        for (k, &i) in loaded.iter().enumerate() {
+            let slot = &mut start[rank(i)];
+            sweep[*slot].k = k;
+            *slot += 1;
+        }
         coef.clear();
-        for k in 0..m {
+        coef.resize(m, Coef::default());
+        for row in sweep.iter_mut() {
+            let k = row.k;
             let i = loaded[k];
-            let up = if local == LocalModel::Upwind
+            row.up = if local == LocalModel::Upwind
                 && k + 1 < m
                 && loaded[k + 1] == i + 1
                 && (i + 1) % nx != 0
@@ -1081,7 +1114,7 @@ pub fn solve_coulomb_newton(
             } else {
                 NONE
             };
-            coef.push(match role[i] {
+            (coef[k], row.s) = match role[i] {
                 Role::Slip => {
                     let (t0, t1) = (tx[i], ty[i]);
                     // n = (t1, -t0): e = max(-n·s, 0)/g.
@@ -1098,50 +1131,29 @@ pub fn solve_coulomb_newton(
                     };
                     rhs[k] = -(t0 * sx[i] + t1 * sy[i]);
                     rhs[m + k] = 0.0;
-                    Coef {
+                    let coef = Coef {
                         full: [t0, 0.0, t1, 0.0],
                         e,
-                        sweep: [1.0 / (dt + e), d[0] * t0, d[1] * t1, 0.0, 0.0, 0.0],
-                        up,
                         global: {
                             // (d_t/(d_t + e))^(3/4) without powf.
                             let r = (dt / (dt + e)).sqrt();
                             r * r.sqrt()
                         },
-                    }
+                    };
+                    let s = [1.0 / (dt + e), d[0] * t0, d[1] * t1, 0.0, 0.0, 0.0];
+                    (coef, s)
                 }
                 _ => {
                     rhs[k] = -sx[i];
                     rhs[m + k] = -sy[i];
-                    Coef {
+                    let coef = Coef {
                         full: [1.0, 0.0, 0.0, 1.0],
                         e: 0.0,
-                        sweep: [1.0 / d[0], d[0], 0.0, 1.0 / d[1], 0.0, d[1]],
-                        up,
                         global: 1.0,
-                    }
+                    };
+                    (coef, [1.0 / d[0], d[0], 0.0, 1.0 / d[1], 0.0, d[1]])
                 }
-            });
-        }
-        // The sweep's order: by grid column from the leading edge (a
-        // counting sort on the column's rank r = nx - 1 - ix; start[r] is
-        // where column r begins in `order`, then where its next goes).
-        let rank = |i: usize| nx - 1 - i % nx;
-        let start = &mut *column_count;
-        start.clear();
-        start.resize(nx + 1, 0);
-        for &i in loaded.iter() {
-            start[rank(i) + 1] += 1;
-        }
-        for r in 1..=nx {
-            start[r] += start[r - 1];
-        }
-        order.clear();
-        order.resize(m, 0);
-        for (k, &i) in loaded.iter().enumerate() {
-            let slot = &mut start[rank(i)];
-            order[*slot] = k;
-            *slot += 1;
+            };
         }
         xin.fill(0.0);
         yin.fill(0.0);
@@ -1150,7 +1162,7 @@ pub fn solve_coulomb_newton(
         let lin = Linear {
             loaded,
             coef,
-            order,
+            sweep,
             global: global.filter(|_| share >= GLOBAL_MIN_SHARE),
         };
         matvecs += gmres(
