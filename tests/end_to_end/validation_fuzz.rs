@@ -7,8 +7,10 @@
 //! position, velocity and load of wheel/rail session steps, where a refused
 //! step must also leave the session as it was. Then the profile
 //! readers on mutations of the real profiles in `../shared/profiles`: Ok
-//! or a ProfileError, never a panic. Seeded and bounded (a few hundred
-//! requests on 16 x 16 grids); the counts are printed at the end.
+//! or a ProfileError, never a panic. Then random wheel/rail queries with
+//! every input drawn at once, which must also carry their vertical loads.
+//! Seeded and bounded (a few hundred requests on 16 x 16 grids, 400
+//! wheel/rail queries); the counts are printed at the end.
 
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -923,6 +925,20 @@ impl Rng {
     fn below(&mut self, n: usize) -> usize {
         (self.next() % n.max(1) as u64) as usize
     }
+
+    /// Uniform in [a, b).
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    /// Log-uniform in [a, b), a > 0.
+    fn log_uniform(&mut self, a: f64, b: f64) -> f64 {
+        self.uniform(a.ln(), b.ln()).exp()
+    }
+
+    fn chance(&mut self, p: f64) -> bool {
+        self.uniform(0.0, 1.0) < p
+    }
 }
 
 /// One mutation of a profile's text.
@@ -1063,4 +1079,160 @@ async fn wheel_rail_patch_grids_obey_the_grid_limit() {
     let r = client.solve_wheel_rail(req).await.expect("solves");
     check_wheelrail_finite(r.get_ref().result.as_ref().unwrap()).unwrap();
     server.shutdown().await;
+}
+
+/// A wheel/rail query of the built-in pair with every input drawn at once
+/// over the range of a wheelset on its track and somewhat beyond: lateral
+/// shift within 12 mm (a sixth of them 20 mm), yaw 20 mrad, roll given in
+/// a fifth, speeds 0.5 to 100 m/s with lateral, vertical, roll and yaw
+/// rates, the pitch rate given in a fifth (2 % about rolling) or a total
+/// longitudinal force in some others, a vertical load of 1 to 250 kN
+/// (or an approach, or a centre height), friction 0.05 to 0.7; the fast
+/// models mostly, exact, cect and auto in one query of `heavy` on
+/// average, with the element size drawn in some.
+fn random_wheel_query(rng: &mut Rng, heavy: f64) -> pb::SolveWheelRailRequest {
+    use pb::wheel_load::Load;
+    use pb::WheelRailModel as M;
+    let heavy = rng.chance(heavy);
+    let model = if heavy {
+        [M::Exact, M::Cect, M::Auto][rng.below(3)]
+    } else {
+        [
+            M::HertzFastsim,
+            M::HertzFastsimTable,
+            M::HertzPolach,
+            M::HertzFastsimElliptic,
+            M::HertzStrip,
+            M::KikPiotrowski,
+            M::HertzFastsimModified,
+        ][rng.below(7)]
+    };
+    let reach = if rng.chance(0.15) { 20e-3 } else { 12e-3 };
+    let lateral_m = rng.uniform(-reach, reach);
+    let yaw_rad = rng.uniform(-20e-3, 20e-3);
+    let roll_rad = rng.chance(0.2).then(|| rng.uniform(-5e-3, 5e-3));
+    let forward_m_per_s = rng.log_uniform(0.5, 100.0);
+    let pitch_rad_per_s = rng
+        .chance(0.2)
+        .then(|| -forward_m_per_s / 0.46 * (1.0 + rng.uniform(-0.02, 0.02)));
+    let load = match rng.below(7) {
+        0 => Load::ApproachM(rng.log_uniform(1e-6, 5e-4)),
+        1 => Load::CenterZM(rng.uniform(-0.462, -0.455)),
+        _ => Load::VerticalForceN(rng.log_uniform(1e3, 2.5e5)),
+    };
+    let total_longitudinal_force_n =
+        (pitch_rad_per_s.is_none() && rng.chance(0.15)).then(|| rng.uniform(-3e4, 3e4));
+    let coefficient = Some(rng.uniform(0.05, 0.7));
+    let element_size_m = (heavy && rng.chance(0.3)).then(|| rng.uniform(1.2e-4, 5e-4));
+    pb::SolveWheelRailRequest {
+        pair_id: "mbench_s1002_uic60".into(),
+        model: model as i32,
+        position: Some(pb::WheelsetPosition {
+            lateral_m,
+            yaw_rad,
+            roll_rad,
+            ..Default::default()
+        }),
+        velocity: Some(pb::WheelsetVelocity {
+            forward_m_per_s,
+            lateral_m_per_s: rng.uniform(-1.0, 1.0),
+            vertical_m_per_s: rng.uniform(-0.1, 0.1),
+            roll_rad_per_s: rng.uniform(-0.3, 0.3),
+            yaw_rad_per_s: rng.uniform(-0.3, 0.3),
+            pitch_rad_per_s,
+        }),
+        load: Some(pb::WheelLoad {
+            load: Some(load),
+            total_longitudinal_force_n,
+        }),
+        friction: Some(pb::FrictionSection {
+            coefficient,
+            ..Default::default()
+        }),
+        element_size_m,
+        ..Default::default()
+    }
+}
+
+/// Random wheel/rail queries, every input drawn at once
+/// ([`random_wheel_query`], seeded: the same 400 every run), against the
+/// real server in-process. Each is answered with finite figures and, when
+/// the load is a vertical force, each wheel's vertical force within the
+/// load tolerance (1e-6) of it (within `LOAD_LIMIT_MISS` where the load
+/// iteration spent its solves), or refused with INVALID_ARGUMENT naming a
+/// field of the request. (Such queries found load iterations that answered
+/// 17 % short of a flange's load and with a negative vertical force on a
+/// steep flange, conformal surfaces refused naming `geometry` and
+/// Kik-Piotrowski's normal problem naming `kik_piotrowski`, fields of no
+/// wheel/rail request; this seed's 400 meet the first two.)
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn random_wheel_queries_carry_their_loads_or_are_refused_by_name() {
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
+    use railcontact::wheelrail::contact::{WheelRailSettings, LOAD_LIMIT_MISS};
+    let limit = WheelRailSettings::default().max_load_iterations;
+    let mut rng = Rng(3);
+    let fields = [
+        "position.",
+        "velocity.",
+        "load.",
+        "element_size_m",
+        "friction.",
+        "model",
+    ];
+    let (mut counts, mut wrong) = (BTreeMap::<String, usize>::new(), Vec::new());
+    for i in 0..400 {
+        let req = random_wheel_query(&mut rng, 0.08);
+        let vertical = match req.load.as_ref().and_then(|l| l.load.as_ref()) {
+            Some(pb::wheel_load::Load::VerticalForceN(f)) => Some(*f),
+            _ => None,
+        };
+        let what = format!("query {i}: {req:?}");
+        match client.solve_wheel_rail(req).await {
+            Ok(r) => {
+                *counts.entry("OK".into()).or_default() += 1;
+                let r = r.into_inner().result.expect("a result");
+                if let Err(e) = check_wheelrail_finite(&r) {
+                    wrong.push(format!("non-finite {e}: {what}"));
+                }
+                for w in r.wheels.iter().filter(|_| vertical.is_some()) {
+                    let (f, fz) = (vertical.unwrap(), w.force_track_n.unwrap().z_n);
+                    // The load tolerance, or the nearest solve of a load
+                    // iteration that spent its solves (a force that jumps
+                    // with the normal force) within LOAD_LIMIT_MISS.
+                    let spent = w.load_iterations as usize >= limit;
+                    if spent {
+                        *counts.entry("at the iteration limit".into()).or_default() += 1;
+                    }
+                    let allowed = if spent { LOAD_LIMIT_MISS } else { 1.01e-6 };
+                    if (fz - f).abs() > allowed * f {
+                        wrong.push(format!(
+                            "vertical force {fz} N against {f} N after {} load iterations: {what}",
+                            w.load_iterations
+                        ));
+                    }
+                }
+            }
+            Err(s) if s.code() == Code::InvalidArgument => {
+                let field = field_of(s.message()).unwrap_or("").to_string();
+                if !fields.iter().any(|f| field.starts_with(f)) {
+                    wrong.push(format!(
+                        "INVALID_ARGUMENT names `{field}`: {}: {what}",
+                        s.message()
+                    ));
+                }
+                *counts.entry(field).or_default() += 1;
+            }
+            Err(s) => wrong.push(format!("{:?} {}: {what}", s.code(), s.message())),
+        }
+    }
+    eprintln!("random wheel/rail queries: {counts:?}");
+    server.shutdown().await;
+    assert!(
+        wrong.is_empty(),
+        "{} wrong:\n{}",
+        wrong.len(),
+        wrong.join("\n")
+    );
+    // Most are answered.
+    assert!(counts["OK"] > 250, "{counts:?}");
 }
