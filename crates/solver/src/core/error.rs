@@ -12,9 +12,10 @@ pub enum ContactError {
     #[error("invalid input `{key}`: {reason}")]
     InvalidInput { key: String, reason: String },
     /// The potential contact grid does not hold the contact patch: loaded
-    /// elements touch its border. Enlarge the window (`grid.window_*`), or
-    /// leave it unset so it is sized from a Hertz estimate.
-    #[error("the contact patch reaches the border of the potential contact grid ({detail}); enlarge `{key}` or leave the windows unset")]
+    /// elements touch its border. Enlarge the window (`grid.window_*`);
+    /// an unset window is sized from a Hertz estimate, which a patch can
+    /// outgrow (the quasi-identity coupling, large shifts, a coarse grid).
+    #[error("the contact patch reaches the border of the potential contact grid ({detail}); enlarge `{key}` (an unset window is sized from the Hertz patch, which this contact outgrows: set it larger)")]
     GridTooSmall {
         /// The window to enlarge: `grid.window_x_m` when the loaded
         /// border element is on a border in x, else `grid.window_y_m`.
