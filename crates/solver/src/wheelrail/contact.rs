@@ -2283,9 +2283,9 @@ fn conformal_geometry(
     build().map_err(|e| WheelRailError::Geometry {
         side: side.name(),
         message: format!(
-            "the conformal method cannot lay its surfaces over the patch at {} mm lateral on \
+            "the conformal method cannot lay its surfaces over the patch at y = {:.2} mm on \
              the rail profile ({}); the exact model solves it",
-            show(geom.reference_m[0] * 1e3),
+            pair.rail(side).to_profile(q0, z0)[0] * 1e3,
             match e {
                 ContactError::InvalidInput { reason, .. } => reason,
                 other => other.to_string(),
