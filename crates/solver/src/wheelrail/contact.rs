@@ -2486,18 +2486,19 @@ pub(crate) fn normal_per_vertical(patches: &[PatchWork], input: &WheelRailInput)
 
 /// The share of the vertical load [-] by which a load iteration that has
 /// spent its solves (`WheelRailSettings::max_load_iterations`) without
-/// meeting its tolerance may still miss the load: its last solve (with a
-/// single patch the nearest) is then the answer. Beyond it, the wheel is
-/// refused naming the load. A model whose creep forces jump with the
-/// normal force (Kik-Piotrowski's and FASTSIM's discrete strips) can have
-/// no closer answer: 0.4 % of the load in one case of the random
-/// wheel/rail queries of the service's tests, against 17 % and more
-/// where the creep forces' vertical part cancels the normal force's.
+/// meeting its tolerance may still miss the load: its solve nearest to the
+/// load (the last one with conformal patches) is then the answer. Beyond
+/// it, the wheel is refused naming the load. A model whose creep forces
+/// jump with the normal force (Kik-Piotrowski's and FASTSIM's discrete
+/// strips) can have no closer answer: 0.4 % of the load in one case of
+/// the random wheel/rail queries of the service's tests, against 17 % and
+/// more where the creep forces' vertical part cancels the normal force's.
 pub const LOAD_LIMIT_MISS: f64 = 1e-2;
 
-/// The solves of a single patch's load iteration after which its steps
-/// bisect the bracket of the load, once there is one (see
-/// [`load_iteration`]); secant steps usually meet the tolerance within 5.
+/// The solves of a load iteration after which its steps bisect the
+/// bracket of the load, once there is one (see [`load_iteration`]; with
+/// several patches, of its frictional steps); secant steps usually meet
+/// the tolerance within 5.
 const BISECT_FROM: usize = 8;
 
 /// Ok when a load iteration that has spent its solves (`iterations`) ends
@@ -2738,13 +2739,34 @@ fn frictional_steps(
     let tol = input.settings.load_tolerance * target;
     let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
-    loop {
+    // As a single patch's iteration (see `load_iteration`): the final
+    // solves' approaches below and above the load and the one nearest to
+    // it; the steps bisect from BISECT_FROM, and an iteration that spends
+    // its solves answers with the nearest.
+    let (mut below, mut above) = (None::<f64>, None::<f64>);
+    let mut nearest: Option<(f64, f64)> = None;
+    for step in 1.. {
         let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it)
             .or_final(&input.settings.solver);
-        let fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
+        let mut fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
         iterations += 1;
+        if accuracy == Accuracy::Final {
+            if fz < target {
+                below = Some(delta);
+            } else {
+                above = Some(delta);
+            }
+            if nearest.is_none_or(|(_, f)| (fz - target).abs() < (f - target).abs()) {
+                nearest = Some((delta, fz));
+            }
+        }
         if accuracy == Accuracy::Final && ((fz - target).abs() <= tol || iterations >= max_it) {
             if (fz - target).abs() > tol {
+                let (d, _) = nearest.expect("this solve is final");
+                if d != delta {
+                    fz = solve_all(patches, d, true, accuracy, input, fastsim, cache)?;
+                    (delta, iterations) = (d, iterations + 1);
+                }
                 load_within_limit(fz, target, iterations).map_err(|e| (0, e))?;
             }
             break;
@@ -2757,6 +2779,9 @@ fn frictional_steps(
         }
         last = Some((delta, fz));
         delta -= (fz - target) / slope;
+        if let (true, Some(lo), Some(hi)) = (step >= BISECT_FROM, below, above) {
+            delta = 0.5 * (lo + hi);
+        }
         if delta > cap {
             return Ok(LoadResult::CapTooSmall);
         }
