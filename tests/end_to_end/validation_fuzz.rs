@@ -1194,8 +1194,8 @@ async fn random_wheel_queries_carry_their_loads_or_are_refused_by_name() {
                 if let Err(e) = check_wheelrail_finite(&r) {
                     wrong.push(format!("non-finite {e}: {what}"));
                 }
-                for w in r.wheels.iter().filter(|_| vertical.is_some()) {
-                    let (f, fz) = (vertical.unwrap(), w.force_track_n.unwrap().z_n);
+                for (w, f) in r.wheels.iter().filter_map(|w| Some((w, vertical?))) {
+                    let fz = w.force_track_n.unwrap().z_n;
                     // The load tolerance, or the nearest solve of a load
                     // iteration that spent its solves (a force that jumps
                     // with the normal force) within LOAD_LIMIT_MISS.

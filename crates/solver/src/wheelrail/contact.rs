@@ -282,9 +282,9 @@ pub struct WheelRailSettings {
     pub load_tolerance: f64,
     /// Iteration limit of the load iteration (solves of a wheel's
     /// patches). One that reaches it without meeting `load_tolerance`
-    /// answers with its last solve when that is within
-    /// [`LOAD_LIMIT_MISS`] of the load, and refuses the wheel naming the
-    /// load beyond.
+    /// answers with its solve nearest to the load when that is within
+    /// [`LOAD_LIMIT_MISS`] of it, and refuses the wheel naming the load
+    /// beyond.
     pub max_load_iterations: usize,
     /// Model `auto`: contact-angle variation over a loaded patch above which
     /// it is solved again with the conformal method \[rad\].
@@ -1811,28 +1811,20 @@ fn solve_wheel(
                     // Strongly curved patches whose conformal surfaces
                     // can be laid over them (else they stay exact).
                     let tc = Instant::now();
-                    let mut conformal = Vec::with_capacity(patches.len());
-                    for p in &patches {
-                        let PatchKind::Exact { problem, .. } = &p.kind else {
-                            unreachable!("model auto builds exact patches")
-                        };
-                        conformal.push(if exact_angle_variation(rail, p) > threshold {
-                            match conformal_geometry(
-                                pair,
-                                side,
-                                locus,
-                                &p.geom,
-                                &pose,
-                                problem.grid,
-                            ) {
-                                Ok(g) => Some(g),
-                                Err(WheelRailError::Geometry { .. }) => None,
-                                Err(e) => return Err(e),
-                            }
-                        } else {
-                            None
-                        });
-                    }
+                    let conformal: Vec<_> = patches
+                        .iter()
+                        .map(|p| {
+                            let PatchKind::Exact { problem, .. } = &p.kind else {
+                                unreachable!("model auto builds exact patches")
+                            };
+                            (exact_angle_variation(rail, p) > threshold)
+                                .then(|| {
+                                    let grid = problem.grid;
+                                    conformal_geometry(pair, side, locus, &p.geom, &pose, grid).ok()
+                                })
+                                .flatten()
+                        })
+                        .collect();
                     if conformal.iter().any(Option::is_some) {
                         // Solve them again with CECT on the same grids, the
                         // others staying exact (all at the wheel's approach).
@@ -2225,7 +2217,9 @@ const CONFORMAL_CURVE_MARGIN_M: f64 = 4e-3;
 /// the reference point, moved so that they touch at the origin (side frame,
 /// z down), each locus point with its lead (longitudinal position from the
 /// reference's, distance along its circle from the lowest point), the
-/// wheel rolling about its axis yawed by `pose`'s yaw.
+/// wheel rolling about its axis yawed by `pose`'s yaw. Its only error is
+/// [`WheelRailError::Geometry`]: the conformal surfaces cannot be laid
+/// over the patch.
 fn conformal_geometry(
     pair: &WheelRailPair,
     side: Side,
@@ -2496,10 +2490,53 @@ pub(crate) fn normal_per_vertical(patches: &[PatchWork], input: &WheelRailInput)
 pub const LOAD_LIMIT_MISS: f64 = 1e-2;
 
 /// The solves of a load iteration after which its steps bisect the
-/// bracket of the load, once there is one (see [`load_iteration`]; with
-/// several patches, of its frictional steps); secant steps usually meet
-/// the tolerance within 5.
+/// bracket of the load, once there is one ([`LoadBracket`]; with several
+/// patches, the solves of its frictional steps); secant steps usually
+/// meet the tolerance within 5.
 const BISECT_FROM: usize = 8;
+
+/// The final solves of a load iteration, by its unknown x (a single
+/// patch's normal force, several patches' approach) and the vertical
+/// force's residual r there: the last x below the load and above it, and
+/// the x nearest to the load. A vertical force that jumps with the normal
+/// force (as discrete strips' can) has no root, and the secant steps cycle
+/// across the jump: from [`BISECT_FROM`] solves the steps bisect the
+/// bracket, and an iteration that spends its solves answers with the
+/// nearest.
+#[derive(Debug, Default)]
+struct LoadBracket {
+    below: Option<f64>,
+    above: Option<f64>,
+    nearest: Option<(f64, f64)>,
+}
+
+impl LoadBracket {
+    /// Records a final solve at `x` with residual `r`.
+    fn record(&mut self, x: f64, r: f64) {
+        if r < 0.0 {
+            self.below = Some(x);
+        } else {
+            self.above = Some(x);
+        }
+        if self.nearest.is_none_or(|(_, rn)| r.abs() < rn.abs()) {
+            self.nearest = Some((x, r));
+        }
+    }
+
+    /// The next x after `solves` solves: `secant`, or the bracket's middle
+    /// from [`BISECT_FROM`] solves on.
+    fn next(&self, solves: usize, secant: f64) -> f64 {
+        match (solves >= BISECT_FROM, self.below, self.above) {
+            (true, Some(lo), Some(hi)) => 0.5 * (lo + hi),
+            _ => secant,
+        }
+    }
+
+    /// The x of the final solve nearest to the load.
+    fn nearest(&self) -> Option<f64> {
+        self.nearest.map(|(x, _)| x)
+    }
+}
 
 /// Ok when a load iteration that has spent its solves (`iterations`) ends
 /// with the vertical force `fz` within [`LOAD_LIMIT_MISS`] of `target`
@@ -2550,15 +2587,7 @@ pub(crate) fn load_iteration(
         // force make the vertical force, creep force included, the target.
         let mut fn_n = target * start.unwrap_or(1.0 / p.nz);
         let mut last: Option<(f64, f64)> = None;
-        // Final solves' normal forces below and above the load (their
-        // residuals), and the one nearest to it: where the secant steps
-        // have not met the tolerance by BISECT_FROM solves (a vertical force
-        // that jumps with the normal force, as discrete strips' can, has
-        // no root: the secant cycles across the jump), the steps bisect;
-        // a load iteration that spends its solves answers with the
-        // nearest.
-        let (mut below, mut above) = (None::<(f64, f64)>, None::<(f64, f64)>);
-        let mut nearest: Option<(f64, f64)> = None;
+        let mut bracket = LoadBracket::default();
         // The vertical force at a normal force.
         let mut solve_at = |p: &mut PatchWork, f: f64, accuracy| {
             p.solve(
@@ -2614,14 +2643,7 @@ pub(crate) fn load_iteration(
                 slope = fallback;
             }
             if accuracy == Accuracy::Final {
-                if r < 0.0 {
-                    below = Some((fn_n, r));
-                } else {
-                    above = Some((fn_n, r));
-                }
-                if nearest.is_none_or(|(_, rn)| r.abs() < rn.abs()) {
-                    nearest = Some((fn_n, r));
-                }
+                bracket.record(fn_n, r);
             }
             if accuracy == Accuracy::Final && (r.abs() <= tol || it == max_it) {
                 let mut iterations = it;
@@ -2629,10 +2651,10 @@ pub(crate) fn load_iteration(
                 if r.abs() > tol {
                     // The nearest solve is the answer: solved again unless
                     // it is this one.
-                    let (f, rn) = nearest.expect("this solve is final");
+                    let f = bracket.nearest().expect("this solve is final");
                     if f != fn_n {
-                        (fz, r) = (solve_at(p, f, accuracy)?, rn);
-                        (fn_n, iterations) = (f, it + 1);
+                        fz = solve_at(p, f, accuracy)?;
+                        (fn_n, r, iterations) = (f, fz - target, it + 1);
                     }
                     load_within_limit(fz, target, iterations).map_err(|e| (0, e))?;
                 }
@@ -2644,10 +2666,7 @@ pub(crate) fn load_iteration(
                 return Ok(LoadResult::Done { delta, iterations });
             }
             last = Some((fn_n, r));
-            fn_n -= r / slope;
-            if let (true, Some((lo, _)), Some((hi, _))) = (it >= BISECT_FROM, below, above) {
-                fn_n = 0.5 * (lo + hi);
-            }
+            fn_n = bracket.next(it, fn_n - r / slope);
         }
         unreachable!("the loop returns at it == max_it");
     }
@@ -2739,30 +2758,18 @@ fn frictional_steps(
     let tol = input.settings.load_tolerance * target;
     let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
-    // As a single patch's iteration (see `load_iteration`): the final
-    // solves' approaches below and above the load and the one nearest to
-    // it; the steps bisect from BISECT_FROM, and an iteration that spends
-    // its solves answers with the nearest.
-    let (mut below, mut above) = (None::<f64>, None::<f64>);
-    let mut nearest: Option<(f64, f64)> = None;
+    let mut bracket = LoadBracket::default();
     for step in 1.. {
         let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it)
             .or_final(&input.settings.solver);
         let mut fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
         iterations += 1;
         if accuracy == Accuracy::Final {
-            if fz < target {
-                below = Some(delta);
-            } else {
-                above = Some(delta);
-            }
-            if nearest.is_none_or(|(_, f)| (fz - target).abs() < (f - target).abs()) {
-                nearest = Some((delta, fz));
-            }
+            bracket.record(delta, fz - target);
         }
         if accuracy == Accuracy::Final && ((fz - target).abs() <= tol || iterations >= max_it) {
             if (fz - target).abs() > tol {
-                let (d, _) = nearest.expect("this solve is final");
+                let d = bracket.nearest().expect("this solve is final");
                 if d != delta {
                     fz = solve_all(patches, d, true, accuracy, input, fastsim, cache)?;
                     (delta, iterations) = (d, iterations + 1);
@@ -2778,10 +2785,7 @@ fn frictional_steps(
             }
         }
         last = Some((delta, fz));
-        delta -= (fz - target) / slope;
-        if let (true, Some(lo), Some(hi)) = (step >= BISECT_FROM, below, above) {
-            delta = 0.5 * (lo + hi);
-        }
+        delta = bracket.next(step, delta - (fz - target) / slope);
         if delta > cap {
             return Ok(LoadResult::CapTooSmall);
         }
@@ -3181,8 +3185,9 @@ mod tests {
     /// mm (0.2 mm elements, one patch a wheel): each wheel's last patch
     /// solver, between a new solver on that patch's grid and one that also
     /// holds the Newton scratch (`SteadyScratch::new` and a whole GMRES
-    /// basis) and the prediction's three fields; the loci and gaps of the search; and the
-    /// warm start (the pressures and tractions carried to the next step).
+    /// basis) and the prediction's three fields; the loci and gaps of the
+    /// search; and the warm start (the pressures and tractions carried to
+    /// the next step).
     /// Printed with `--nocapture`.
     #[test]
     fn an_exact_wheelset_keeps_its_patch_solvers_between_steps() {
