@@ -1309,13 +1309,13 @@ fn wheelrail_solves_with_the_elliptic_bound_strip_theory_and_kik_piotrowski() {
 /// MiniProf rail (mirrored into the right-hand convention), hertz_fastsim.
 #[test]
 fn wheelrail_reads_measured_profiles_by_path() {
-    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles");
+    let profiles = crate::common::profiles_dir();
     let text = example_text("wheelset_a22.toml")
         .replace(
             "rail_profile = \"builtin:MBench_UIC60_v3.prr\"",
             &format!(
                 "rail_profile = \"{}\"\nrail_mirror_y = true",
-                shared.join("avg_HR.BAN").display()
+                profiles.join("avg_HR.BAN").display()
             ),
         )
         .replace("cant_rad = 0.0", "cant_rad = 0.025")
@@ -1323,7 +1323,7 @@ fn wheelrail_reads_measured_profiles_by_path() {
             "wheel_profile = \"builtin:MBench_S1002_v3.prw\"",
             &format!(
                 "wheel_profile = \"{}\"",
-                shared.join("Car7216_0001r.whl").display()
+                profiles.join("Car7216_0001r.whl").display()
             ),
         )
         .replace("flange_back_y_m = -0.070\n", "")

@@ -10,6 +10,17 @@ use tonic::transport::Channel;
 
 pub type Client = ContactServiceClient<Channel>;
 
+/// A profile file of the repository's test data
+/// (`crates/solver/profiles`, with its licence and source).
+pub fn profile_path(name: &str) -> String {
+    profiles_dir().join(name).display().to_string()
+}
+
+/// The repository's profile test data: `crates/solver/profiles`.
+pub fn profiles_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/solver/profiles")
+}
+
 /// The server of `config` on an ephemeral loopback port (10 s shutdown
 /// grace) and a client of it.
 pub async fn serve(config: ServeConfig) -> (RunningServer, Client) {

@@ -6,7 +6,7 @@
 //! whose profiles do not touch, and the registry's limits. The real server
 //! runs in-process on an ephemeral loopback port with its store in a
 //! temporary directory (one test runs the binary); profiles come from
-//! `../shared/profiles`.
+//! `crates/solver/profiles`.
 
 use crate::common;
 use crate::support;
@@ -29,7 +29,7 @@ use tonic::Code;
 type Client = ContactServiceClient<Channel>;
 
 fn profile_path(name: &str) -> String {
-    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+    common::profile_path(name)
 }
 
 fn config(dir: &Path) -> ServeConfig {

@@ -4,7 +4,7 @@
 //! for bit, batches, flash temperatures per patch, and the errors of each
 //! kind of bad input. The real
 //! server runs on an ephemeral loopback port with its store in a temporary
-//! directory; profiles come from `../shared/profiles`.
+//! directory; profiles come from `crates/solver/profiles`.
 
 use crate::support;
 
@@ -34,7 +34,7 @@ use common::Client;
 const BUILTIN: &str = "mbench_s1002_uic60";
 
 fn profile_path(name: &str) -> String {
-    format!("{}/../shared/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+    common::profile_path(name)
 }
 
 async fn server_in(dir: &Path) -> (RunningServer, Client) {
@@ -96,7 +96,7 @@ fn worn_spec() -> pb::ProfilePairSpec {
     }
 }
 
-/// The library's pair of two profile files of `../shared/profiles`, read
+/// The library's pair of two profile files of `crates/solver/profiles`, read
 /// as `railcontact wheelrail` reads them, with the default smoothing.
 fn library_pair(
     rail: &str,

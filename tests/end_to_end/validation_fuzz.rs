@@ -6,7 +6,7 @@
 //! (or one of the documented dependent fields below). The same for the
 //! position, velocity and load of wheel/rail session steps, where a refused
 //! step must also leave the session as it was. Then the profile
-//! readers on mutations of the real profiles in `../shared/profiles`: Ok
+//! readers on mutations of the real profiles in `crates/solver/profiles`: Ok
 //! or a ProfileError, never a panic. Then random wheel/rail queries with
 //! every input drawn at once, which must also carry their vertical loads.
 //! Seeded and bounded (a few hundred requests on 16 x 16 grids, 400
@@ -1021,7 +1021,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
 
 #[test]
 fn mutated_profiles_read_or_fail_without_panicking() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/profiles");
+    let dir = crate::common::profiles_dir();
     let files = [
         "MBench_S1002_v3.prw",
         "MBench_UIC60_v3.prr",

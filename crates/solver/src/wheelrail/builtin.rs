@@ -1,6 +1,6 @@
-//! Profiles compiled into the binary (see `builtin/README.md`): the S1002
-//! wheel and UIC60 rail of the Manchester Contact Benchmark, and the
-//! benchmark's track and wheelset data.
+//! Profiles compiled into the binary (see `profiles/README.md` of this
+//! crate): the S1002 wheel and UIC60 rail of the Manchester Contact
+//! Benchmark, and the benchmark's track and wheelset data.
 
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::problem::Friction;
@@ -19,11 +19,11 @@ pub const PREFIX: &str = "builtin:";
 pub const FILES: [(&str, &str); 2] = [
     (
         "MBench_S1002_v3.prw",
-        include_str!("builtin/MBench_S1002_v3.prw"),
+        include_str!("../../profiles/MBench_S1002_v3.prw"),
     ),
     (
         "MBench_UIC60_v3.prr",
-        include_str!("builtin/MBench_UIC60_v3.prr"),
+        include_str!("../../profiles/MBench_UIC60_v3.prr"),
     ),
 ];
 

@@ -6,6 +6,12 @@
 //! temperatures (`wheelrail_temperature`). Each
 //! reference number names its source.
 
+/// A profile file of this crate's `profiles/` (test data with its licence
+/// and source beside it).
+pub fn profile_path(name: &str) -> String {
+    format!("{}/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
+}
+
 mod conformal;
 mod falling_friction;
 mod line_contact;

@@ -9,11 +9,7 @@ use railcontact_solver::wheelrail::{
 };
 
 fn path(name: &str) -> String {
-    format!(
-        "{}/../../../shared/profiles/{}",
-        env!("CARGO_MANIFEST_DIR"),
-        name
-    )
+    crate::profile_path(name)
 }
 
 fn text(name: &str) -> String {

@@ -17,11 +17,7 @@ use railcontact_solver::wheelrail::{
 };
 
 fn path(name: &str) -> String {
-    format!(
-        "{}/../../../shared/profiles/{}",
-        env!("CARGO_MANIFEST_DIR"),
-        name
-    )
+    crate::profile_path(name)
 }
 
 pub(crate) fn mbench_pair() -> WheelRailPair {
