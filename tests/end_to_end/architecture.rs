@@ -83,6 +83,29 @@ fn the_front_ends_stand_on_the_solver_crate() {
     }
 }
 
+/// The CONTACT-compatible library (`crates/cntc`) is a front end of its
+/// own over the solver crate: it names neither the service nor the
+/// command line (it cannot: they are not in its dependencies), and pulls
+/// in no transport or storage crate, so that a simulator loading it in
+/// process gets none of them.
+#[test]
+fn the_contact_library_stands_on_the_solver_crate_alone() {
+    let deps = dependencies("railcontact-cntc", "normal,build");
+    for needed in ["railcontact-cntc", "railcontact-solver"] {
+        assert!(deps.contains(needed), "{needed} missing from {deps:?}");
+    }
+    let bad: Vec<&str> = FORBIDDEN
+        .iter()
+        .copied()
+        .chain(["railcontact"])
+        .filter(|f| deps.contains(*f))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "railcontact-cntc depends on {bad:?}; it is a front end over the solver crate"
+    );
+}
+
 /// The code lines (comments left out) of the sources under `src/DIR` that
 /// name any of `names`.
 fn lines_naming(dir: &str, names: &[&str]) -> Vec<String> {

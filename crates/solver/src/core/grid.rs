@@ -217,6 +217,16 @@ impl Grid {
     pub fn on_border(&self, ix: usize, iy: usize) -> bool {
         ix == 0 || ix + 1 == self.nx || (!self.is_line() && (iy == 0 || iy + 1 == self.ny))
     }
+
+    /// The number of border elements ([`Grid::on_border`]) where
+    /// `field > 0`: the loaded elements at the border of a patch that
+    /// outgrew the grid.
+    pub fn loaded_border_elements(&self, field: &[f64]) -> usize {
+        (0..self.ny)
+            .flat_map(|iy| (0..self.nx).map(move |ix| (ix, iy)))
+            .filter(|&(ix, iy)| self.on_border(ix, iy) && field[self.index(ix, iy)] > 0.0)
+            .count()
+    }
 }
 
 #[cfg(test)]

@@ -402,6 +402,13 @@ pub struct SolverSettings {
     pub coupling_tolerance: f64,
     /// Alternation limit (default 30 when 0).
     pub coupling_max_iterations: usize,
+    /// Whether a patch may reach the border of the grid. False (the
+    /// default): a loaded border element is [`ContactError::GridTooSmall`]
+    /// naming the window to enlarge. True: the solution is returned, as
+    /// CONTACT does, and the caller counts the loaded border elements
+    /// ([`crate::core::grid::Grid::loaded_border_elements`]); the pressure
+    /// outside the grid is missing from it.
+    pub allow_border_contact: bool,
 }
 
 /// A complete, validated contact problem.

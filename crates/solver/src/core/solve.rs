@@ -593,6 +593,19 @@ impl ContactSolver {
         Ok(())
     }
 
+    /// The friction coefficient of each element [-] in the last solve
+    /// under a slip-velocity dependent law (its memory included), in the
+    /// problem's element order (index `iy * nx + ix`); None under
+    /// Coulomb's law (the coefficients are the problem's).
+    pub fn friction_coefficients(&self) -> Option<Vec<f64>> {
+        if !self.law.used {
+            return None;
+        }
+        let mut mu = vec![0.0; self.law.mu.len()];
+        self.frame.field_to_user(&self.law.mu, &mut mu);
+        Some(mu)
+    }
+
     /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
@@ -1071,8 +1084,9 @@ impl ContactSolver {
             self.tr.sx.fill(0.0);
             self.tr.sy.fill(0.0);
         }
-        // The patch must not touch the border of the grid.
-        for iy in 0..grid.ny {
+        // The patch must not touch the border of the grid (unless the
+        // caller counts those elements itself).
+        for iy in (0..grid.ny).filter(|_| !problem.settings.allow_border_contact) {
             for ix in 0..grid.nx {
                 if grid.on_border(ix, iy) && self.pn[grid.index(ix, iy)] > 0.0 {
                     return Err(ContactError::grid_too_small(

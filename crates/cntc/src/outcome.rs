@@ -1,0 +1,174 @@
+//! What a calculation leaves behind for the getters, in SI and the
+//! solver's sign conventions (forces on body 1), whichever module: one
+//! [`Outcome`] per contact patch. The getters convert to the caller's units
+//! ([`crate::units::Units`]) when they read it.
+
+use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::solution::{ElementFields, ElementState};
+
+/// A solved contact patch.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The potential contact grid, in the patch's contact frame
+    /// (x rolling, y lateral) \[m\].
+    pub grid: Grid,
+    /// Per-element fields on `grid` (index `iy * nx + ix`); empty vectors
+    /// when the model has no fields on this grid (FASTSIM's strips).
+    pub fields: ElementFields,
+    /// Friction coefficient per element [-] (empty: `friction_coefficient`
+    /// everywhere).
+    pub mu: Vec<f64>,
+    /// The static friction coefficient of the patch (FSTAT) [-].
+    pub friction_coefficient: f64,
+    /// Normal force on body 1 \[N\].
+    pub normal_force_n: f64,
+    /// Tangential forces on body 1 \[N\].
+    pub fx_n: f64,
+    /// See `fx_n`.
+    pub fy_n: f64,
+    /// Spin moment on body 1 about the patch's reference point \[N m\].
+    pub mz_nm: f64,
+    /// Approach \[m\].
+    pub approach_m: f64,
+    /// Creepages xi, eta [-] and spin phi \[1/m\] of the solution (those
+    /// found when forces were prescribed); a shift (T = 1): shifts \[m\]
+    /// and rotation \[rad\].
+    pub creepages: [f64; 3],
+    /// Whether `creepages` are a shift (T = 1).
+    pub is_shift: bool,
+    /// Rolling speed \[m/s\].
+    pub rolling_speed_m_per_s: f64,
+    /// Largest pressure \[Pa\].
+    pub max_pressure_pa: f64,
+    /// Largest tangential traction \[Pa\].
+    pub max_traction_pa: f64,
+    /// Contact, adhesion and slip areas \[m²\].
+    pub areas_m2: [f64; 3],
+    /// Frictional power per unit rolling speed \[N\] (steady rolling).
+    pub tgamma_n: f64,
+    /// Contact elements on the border of the grid (CONTACT's positive
+    /// `ierror`).
+    pub border_elements: usize,
+    /// The Hertzian problem behind the grid (module 3 Hertzian options).
+    pub hertz: Option<HertzInfo>,
+    /// Sensitivities dF/d(input), rows Fn, Fx, Fy, Mz, columns pen, xi,
+    /// eta, phi, in SI (computed when S >= 2).
+    pub sensitivities: Option<[[f64; 4]; 4]>,
+    /// Maximum surface temperatures of body 1 and 2 \[K\] (H = 3).
+    pub max_temperature_k: Option<[f64; 2]>,
+    /// Surface temperatures per element \[K\] (H = 3).
+    pub temperature_k: Option<[Vec<f64>; 2]>,
+    /// Rigid slip per element (x, y): per rolled distance [-] in rolling,
+    /// the shift \[m\] of a shift (T = 1); `None` without friction.
+    pub rigid_slip: Option<[Vec<f64>; 2]>,
+    /// Where a module 1 patch lies (module 3: `None`).
+    pub location: Option<Location>,
+    /// Wall and CPU time of the calculation \[s\].
+    pub time_s: f64,
+}
+
+/// The Hertzian solution behind a module 3 grid (`cntc_gethertzcontact`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzInfo {
+    /// Curvatures A, B \[1/m\].
+    pub a1_per_m: f64,
+    /// See `a1_per_m`.
+    pub b1_per_m: f64,
+    /// Semi-axes a, b \[m\].
+    pub aa_m: f64,
+    /// See `aa_m`.
+    pub bb_m: f64,
+    /// Scale factor of the potential contact area [-].
+    pub scale: f64,
+}
+
+/// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, right-hand
+/// side conventions (the getter mirrors a left wheel's y and angles).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Location {
+    /// Contact reference point in track coordinates (x, y, z) \[m\] and the
+    /// contact angle \[rad\].
+    pub track: [f64; 4],
+    /// In rail profile coordinates (x, y, z, s along the profile) \[m\] and
+    /// the angle \[rad\].
+    pub rail: [f64; 5],
+    /// In wheel profile coordinates (x, y, z, s) \[m\] and the angle \[rad\].
+    pub wheel: [f64; 5],
+    /// Pressure centre in track coordinates (x, y) \[m\].
+    pub pressure_centre: [f64; 2],
+    /// Wheel profile marker in track coordinates: x, y, z \[m\], roll, yaw
+    /// \[rad\].
+    pub wheel_marker_track: [f64; 5],
+    /// Rail profile marker in track coordinates: y, z \[m\], roll \[rad\].
+    pub rail_marker_track: [f64; 3],
+    /// Contact reference point in wheelset coordinates (x, y, z) \[m\] and
+    /// angle \[rad\].
+    pub wheelset: [f64; 4],
+    /// Wheel profile marker in wheelset coordinates: x, y, z \[m\], roll,
+    /// yaw \[rad\].
+    pub wheel_marker_wheelset: [f64; 5],
+    /// The contact patch's forces in the track frame on the rail (x, y,
+    /// z) \[N\].
+    pub force_track_n: [f64; 3],
+}
+
+impl Outcome {
+    /// An outcome of `grid` with every field zero and no contact (an
+    /// approach too small to touch).
+    pub fn no_contact(grid: Grid, gap_m: Vec<f64>, approach_m: f64) -> Self {
+        let n = grid.len();
+        Outcome {
+            grid,
+            fields: ElementFields {
+                pressure_pa: vec![0.0; n],
+                traction_x_pa: vec![0.0; n],
+                traction_y_pa: vec![0.0; n],
+                slip_x: vec![0.0; n],
+                slip_y: vec![0.0; n],
+                state: vec![ElementState::Exterior; n],
+                gap_m,
+            },
+            mu: Vec::new(),
+            friction_coefficient: 0.0,
+            normal_force_n: 0.0,
+            fx_n: 0.0,
+            fy_n: 0.0,
+            mz_nm: 0.0,
+            approach_m,
+            creepages: [0.0; 3],
+            is_shift: false,
+            rolling_speed_m_per_s: 0.0,
+            max_pressure_pa: 0.0,
+            max_traction_pa: 0.0,
+            areas_m2: [0.0; 3],
+            tgamma_n: 0.0,
+            border_elements: 0,
+            hertz: None,
+            sensitivities: None,
+            max_temperature_k: None,
+            temperature_k: None,
+            rigid_slip: None,
+            location: None,
+            time_s: 0.0,
+        }
+    }
+
+    /// Whether per-element fields are available on [`Outcome::grid`].
+    pub fn has_fields(&self) -> bool {
+        self.fields.pressure_pa.len() == self.grid.len()
+    }
+
+    /// Contact, adhesion and slip areas from the element states \[m²\].
+    pub fn areas_of(grid: &Grid, state: &[ElementState]) -> [f64; 3] {
+        let da = grid.dx_m * grid.dy_m;
+        let (mut adh, mut slip) = (0usize, 0usize);
+        for s in state {
+            match s {
+                ElementState::Adhesion => adh += 1,
+                ElementState::Slip => slip += 1,
+                ElementState::Exterior => {}
+            }
+        }
+        [(adh + slip) as f64 * da, adh as f64 * da, slip as f64 * da]
+    }
+}
