@@ -1,12 +1,168 @@
 //! Module 1: wheel/rail contact of one wheel on its rail (CONTACT's C1
-//! digit: 0 left, 1 right). Not in this build: every module 1 call answers
-//! `CNTC_err_notsupported` naming itself.
+//! digit: 0 left, 1 right), from profiles, track and wheelset data, the
+//! wheelset's position and velocity, and a vertical force or position; the
+//! contact search finds the patches, each solved as a module 3 problem.
+//!
+//! # How CONTACT's problem maps to the solver's
+//!
+//! CONTACT solves one half wheelset on one half track; internally a left
+//! side is solved as its mirror image, a right side (the "side frame" of
+//! [`railcontact_solver::wheelrail::wheelset`] is exactly that mirrored
+//! frame). Here the solver's wheelset carries the same rail and wheel
+//! profile on both sides and solves only the side of C1
+//! (`sides: vec![side]`), with the exact model (Kalker's theory on the
+//! planar patch) on square elements of size DX.
+//!
+//! * Profiles: CONTACT's canonical (right-hand) profiles, in metres here.
+//!   CONTACT multiplies the numbers read by the scale factor `rparam(1)`
+//!   to get millimetres; its default is the unit convention's (1 for
+//!   CONTACT's units, 1000 for SI and SIMPACK's). Simpack files are first
+//!   taken to millimetres by their own `units.len.f`, MiniProf and plain
+//!   files are numbers in millimetres, so a profile lies at
+//!   `reader's metres x scale factor`.
+//! * Track (Z digit): the gauge point placement (gauge height > 0), gauge
+//!   and cant. Absolute rail placement (gauge height <= 0), track
+//!   curvature, rail deviations and the massless rail (Z = 32, 33) are
+//!   refused. The roller radius (NOMRAD) is for roller rigs and ignored.
+//! * Wheelset (E digit): flange-back distance and position, nominal
+//!   radius and the optional tape circle; position s, y, z, roll, yaw
+//!   (pitch is stored: a round wheel does not depend on it); velocity;
+//!   flexibilities must be zero.
+//! * Load: N = 1 the vertical force FZ (`cntc_setverticalforce`), N = 0 the
+//!   wheelset height z_ws (zero at the nominal position, z_tr = -r_nom).
+//! * Discretisation (`cntc_setpotcontact`, icp = -1): DX = DS (square
+//!   elements), D_SEP the distance below which two regions of contact are
+//!   one patch (CONTACT's combined or blended patch); A_SEP, D_COMB,
+//!   D_TURN, G_MISS are stored without effect (the solver has no turning
+//!   or blending of patches).
+//! * Friction: L = 0 and the falling laws L = 2-5 (exact model), V = 0,
+//!   and V = 1 (by contact angle, CONTACT's angles of the right-hand side,
+//!   negative at the gauge face) as the solver's friction table.
+//! * Steady rolling only (T = 3).
+//!
+//! # Outcomes
+//!
+//! Each patch becomes an [`Outcome`] in CONTACT's reporting frame: for a
+//! left wheel the grid is mirrored (rows reversed, y negated), and the
+//! lateral traction and slip, lateral force, lateral and spin creepage and
+//! the spin moment change sign, as CONTACT's getters do. The contact
+//! reference point is the solver's (the point of smallest gap of the
+//! patch; CONTACT's is the weighted centre of the interpenetration area,
+//! which differs where the gap is nearly flat). `location` holds every
+//! value of `cntc_getcontactlocation` except the rail deflections (18, 19:
+//! no massless rail model, always zero).
+
+use std::collections::BTreeMap;
+use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::problem::Friction;
+use railcontact_solver::core::solution::{ElementFields, ElementState};
+use railcontact_solver::wheelrail::search::SearchSettings;
+use railcontact_solver::wheelrail::{
+    load_profile_with, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit, LoadOptions,
+    MirrorZ, PatchResult, Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
+};
 
-use crate::config::Config;
+use crate::config::{Config, FrictionLaw, MaterialModel};
 use crate::error::{CntcError, Result};
-use crate::outcome::Outcome;
+use crate::flags;
+use crate::library::MAX_ICP;
+use crate::outcome::{Location, Outcome};
+use crate::subsurface::Blocks;
+use crate::units::Units;
+
+/// Millimetres per metre: CONTACT's profile values and their smoothing
+/// parameters are in millimetres whatever the unit convention.
+const MM: f64 = 1e-3;
+
+/// A profile as given (canonical right-hand form, SI), with its smoothing.
+#[derive(Debug, Clone)]
+struct ProfileInput {
+    /// The checked points (metres, CONTACT order).
+    profile: Profile,
+    /// Cut-off wavelength of its smoothing spline \[m\] (0: interpolating).
+    smoothing_m: f64,
+}
+
+impl ProfileInput {
+    fn spline(&self) -> Result<ProfileSpline> {
+        self.profile
+            .spline(&SplineOptions::smoothing(self.smoothing_m))
+            .map_err(|e| {
+                CntcError::Profile(format!(
+                    "profile \"{}\" cannot be fitted: {e}",
+                    self.profile.name()
+                ))
+            })
+    }
+}
+
+/// A setting that may be missing or may have failed: a failure is kept and
+/// refused by every calculation until a good value replaces it (as
+/// CONTACT's profile error code).
+type Slot<T> = Option<std::result::Result<T, CntcError>>;
+
+/// Reads a slot for the calculation.
+fn slot<'a, T>(s: &'a Slot<T>, missing: &str) -> Result<&'a T> {
+    match s {
+        None => Err(CntcError::Input(missing.to_string())),
+        Some(Err(e)) => Err(e.clone()),
+        Some(Ok(v)) => Ok(v),
+    }
+}
+
+/// Track dimensions (Z = 1, 3), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Track {
+    gauge_height_m: f64,
+    gauge_m: f64,
+    cant_rad: f64,
+}
+
+/// Wheelset dimensions (E = 3, 5), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct WheelsetDims {
+    flange_back_distance_m: f64,
+    flange_back_y_m: f64,
+    nominal_radius_m: f64,
+    /// Y_TAPE \[m\], when the tape circle computation is on.
+    tape_y_m: Option<f64>,
+}
+
+/// Discretisation (`cntc_setpotcontact` with icp = -1), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Discretisation {
+    dx_m: f64,
+    ds_m: f64,
+    /// A_SEP \[rad\] (stored).
+    angle_sep_rad: f64,
+    /// D_SEP \[m\].
+    dist_sep_m: f64,
+    /// D_COMB \[m\] (stored).
+    dist_comb_m: f64,
+}
+
+/// What a calculation leaves besides the outcomes: the frames of the
+/// solved wheel (side frame: x, q, z; q = y on the right, -y on the left)
+/// and each patch's forces and moments for `cntc_getglobalforces`.
+#[derive(Debug, Clone)]
+struct Solved {
+    side: Side,
+    /// Wheelset axes in the side frame: forward, axle (outwards), down.
+    ws_axes: [[f64; 3]; 3],
+    /// Rail roll in the side frame \[rad\] (-cant).
+    rail_roll_rad: f64,
+    /// The loaded wheelset height z_ws (zero at the nominal position) \[m\].
+    z_ws_m: f64,
+    /// Per patch (side frame): force on the rail, its moment about the rail
+    /// profile marker, about the wheel profile marker.
+    globals: Vec<[[f64; 3]; 3]>,
+}
 
 /// A module 1 result element.
 #[derive(Default)]
@@ -20,134 +176,2103 @@ pub struct WheelRail {
     pub ncase: usize,
     /// Wall time of the calculations since the last reset \[s\].
     pub time_s: f64,
+    rail: Slot<ProfileInput>,
+    wheel: Slot<ProfileInput>,
+    track: Slot<Track>,
+    /// Rail deviations (Z = 2, 3): refused when not zero.
+    deviations: Slot<()>,
+    wheelset: Slot<WheelsetDims>,
+    /// s, y, z \[m\], roll, yaw, pitch \[rad\].
+    position: [f64; 6],
+    /// vs, vy, vz \[m/s\], vroll, vyaw, vpitch \[rad/s\].
+    velocity: [f64; 6],
+    /// Flexible wheelset deviations (E = 4, 5): refused when not zero.
+    flexibility: Slot<()>,
+    /// FZ \[N\] (N = 1).
+    vertical_force_n: Option<f64>,
+    discretisation: Option<Discretisation>,
+    /// DQREL (stored: steady rolling takes 1).
+    dqrel: f64,
+    /// The placed profiles, built at the first calculation after a change.
+    pair: Option<WheelRailPair>,
+    scratch: SearchScratch,
+    solved: Option<Solved>,
+    /// Subsurface blocks for every patch without its own (icp = -1).
+    subs_all: Blocks,
+    /// Subsurface blocks of one patch (icp >= 1).
+    subs_patch: BTreeMap<i32, Blocks>,
+    /// The blocks computed below each patch of the last calculation.
+    subs_done: Vec<Option<Blocks>>,
 }
 
-fn todo(call: &str) -> CntcError {
-    CntcError::NotSupported(format!("{call} (module 1) is not in this build"))
+// ---------------------------------------------------------------------
+// Small vector helpers (side frame: x, q, z).
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn scale(k: f64, a: [f64; 3]) -> [f64; 3] {
+    [k * a[0], k * a[1], k * a[2]]
+}
+
+/// Components of `v` along the axes `e` (rows).
+fn in_basis(v: [f64; 3], e: &[[f64; 3]; 3]) -> [f64; 3] {
+    [dot(v, e[0]), dot(v, e[1]), dot(v, e[2])]
+}
+
+/// `iparam(k)` (1-based as CONTACT numbers them), or `default`.
+fn ip(p: &[i32], k: usize, default: i32) -> i32 {
+    p.get(k - 1).copied().unwrap_or(default)
+}
+
+/// `rparam(k)` (1-based), or `default`.
+fn rp(p: &[f64], k: usize, default: f64) -> f64 {
+    p.get(k - 1).copied().unwrap_or(default)
+}
+
+/// Checks that every value is finite, naming the call and parameter list.
+fn finite(call: &str, names: &[&str], p: &[f64]) -> Result<()> {
+    for (i, v) in p.iter().enumerate() {
+        if !v.is_finite() {
+            let name = names.get(i).copied().unwrap_or("params");
+            return Err(CntcError::Input(format!(
+                "{call}: {name} (params({})) = {v} is not a finite number",
+                i + 1
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The arc length \[m\] of the spline where CONTACT's profile coordinate s
+/// is zero: at y = 0 when y runs monotonically along the profile, else at
+/// the point nearest to the profile origin (CONTACT's rule).
+fn arc_origin(spline: &ProfileSpline, origin_z_m: f64) -> f64 {
+    let knots = spline.knot_arc_lengths_m();
+    let ys: Vec<f64> = knots.iter().map(|t| spline.position(*t)[0]).collect();
+    let increasing = ys.windows(2).all(|w| w[1] > w[0]);
+    let decreasing = ys.windows(2).all(|w| w[1] < w[0]);
+    if increasing || decreasing {
+        if let Some(t) = spline.t_at_y(0.0) {
+            return t;
+        }
+    }
+    knots
+        .iter()
+        .map(|t| {
+            let p = spline.position(*t);
+            (*t, p[0] * p[0] + (p[1] - origin_z_m).powi(2))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0.0, |(t, _)| t)
+}
+
+/// Whether z of a profile of `kind` points up (CONTACT's z points down):
+/// a rail's highest point (smallest z) and a wheel's flange tip (largest
+/// z) lie inside the profile, its ends are low on a rail and high on a
+/// wheel. Used for `cntc_setprofileinputvalues` with MIRROR_Z = 0.
+fn z_points_up(kind: ProfileKind, pts: &[[f64; 2]]) -> bool {
+    let n = pts.len();
+    if n < 5 {
+        return false;
+    }
+    let outer = (n / 10).max(1);
+    let interior = |i: usize| i >= outer && i + outer < n;
+    let (mut imin, mut imax) = (0, 0);
+    for (i, p) in pts.iter().enumerate() {
+        if p[1] < pts[imin][1] {
+            imin = i;
+        }
+        if p[1] > pts[imax][1] {
+            imax = i;
+        }
+    }
+    match kind {
+        // The top of the rail (smallest z) lies inside; flipped when only
+        // the largest z does.
+        ProfileKind::Rail => !interior(imin) && interior(imax),
+        // The flange tip (largest z) lies inside; flipped when only the
+        // smallest z does.
+        ProfileKind::Wheel => !interior(imax) && interior(imin),
+    }
+}
+
+/// CONTACT's smoothing parameters as the solver's cut-off wavelength \[m\]:
+/// ISMOOTH = 1, 2 give L_FILT \[mm\] directly (2, CONTACT's third-order
+/// B-spline, is taken as the second-order spline of the same wavelength);
+/// ISMOOTH = 0, the unweighted spline with parameter LAMBDA, as the user
+/// guide relates it to the weighted one: lambda2 = mean(ds) LAMBDA,
+/// L_FILT = 2 pi lambda2^(1/4) (ds in mm).
+fn smoothing_wavelength_m(ismooth: i32, smooth: f64, points_m: &[[f64; 2]]) -> f64 {
+    if smooth <= 0.0 {
+        return 0.0;
+    }
+    if ismooth >= 1 {
+        return smooth * MM;
+    }
+    let n = points_m.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let total: f64 = points_m
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    let mean_ds_mm = total / MM / (n - 1) as f64;
+    2.0 * std::f64::consts::PI * (mean_ds_mm * smooth).powf(0.25) * MM
+}
+
+/// The profile smoothed by `wavelength_m` and sampled at its own points,
+/// for a pair whose other profile has another smoothing (the pair fits
+/// both with one option: then both are given smoothed and interpolated).
+fn presmoothed(p: &ProfileInput) -> Result<Profile> {
+    if p.smoothing_m <= 0.0 {
+        return Ok(p.profile.clone());
+    }
+    let spline = p.spline()?;
+    let pts: Vec<[f64; 2]> = spline
+        .knot_arc_lengths_m()
+        .iter()
+        .map(|t| spline.position(*t))
+        .collect();
+    Profile::from_points(
+        p.profile.name(),
+        p.profile.kind(),
+        &pts,
+        &ProfileChecks::default(),
+    )
+    .map_err(CntcError::from_profile)
+}
+
+/// Reads a profile file as CONTACT does: a relative name is relative to
+/// the process's working directory (said in the message when it cannot be
+/// read).
+fn read_profile_text(fname: &str, options: &LoadOptions) -> Result<Profile> {
+    const CALL: &str = "cntc_setprofileinputfname";
+    let path = std::path::Path::new(fname);
+    load_profile_with(path, options).map_err(|e| {
+        let cwd = match (&e, std::env::current_dir()) {
+            (ProfileError::Io { .. }, Ok(d)) if path.is_relative() => {
+                format!(" (relative to the working directory {})", d.display())
+            }
+            _ => String::new(),
+        };
+        CntcError::Profile(format!("{CALL}: {e}{cwd}"))
+    })
+}
+
+/// The rows of a per-element field in reverse order (a left wheel's grid
+/// mirrored in y), each value times `sign`.
+fn mirrored_rows(v: &[f64], nx: usize, ny: usize, sign: f64) -> Vec<f64> {
+    if v.len() != nx * ny {
+        return v.to_vec();
+    }
+    (0..ny)
+        .rev()
+        .flat_map(|iy| v[iy * nx..(iy + 1) * nx].iter().map(move |x| sign * x))
+        .collect()
+}
+
+fn mirrored_states(v: &[ElementState], nx: usize, ny: usize) -> Vec<ElementState> {
+    if v.len() != nx * ny {
+        return v.to_vec();
+    }
+    (0..ny)
+        .rev()
+        .flat_map(|iy| v[iy * nx..(iy + 1) * nx].iter().copied())
+        .collect()
 }
 
 impl WheelRail {
+    fn units(&self) -> Units {
+        self.config.units
+    }
+
+    /// Forgets the placed profiles (a profile, the track or the wheelset
+    /// changed).
+    fn invalidate(&mut self) {
+        self.pair = None;
+    }
+
+    /// The profile slot of `kind`.
+    fn profile_slot(&mut self, kind: ProfileKind) -> &mut Slot<ProfileInput> {
+        match kind {
+            ProfileKind::Rail => &mut self.rail,
+            ProfileKind::Wheel => &mut self.wheel,
+        }
+    }
+
+    /// Stores `r` (a profile or the error reading it) and returns its error.
+    fn store_profile(&mut self, kind: ProfileKind, r: Result<ProfileInput>) -> Result<()> {
+        self.invalidate();
+        let out = r.as_ref().map(|_| ()).map_err(Clone::clone);
+        *self.profile_slot(kind) = Some(r);
+        out
+    }
+
+    /// CONTACT's scale factor SCALE_YZ: `rparam(1)`, or (when <= 5e-4,
+    /// CONTACT's rule) the unit convention's millimetres per length unit.
+    fn profile_scale(&self, rparam: &[f64]) -> f64 {
+        let s = rp(rparam, 1, 0.0);
+        if s.is_finite() && s > 5e-4 {
+            s
+        } else {
+            self.units().length_m() / MM
+        }
+    }
+
     /// `cntc_setprofileinputfname`: a rail or wheel profile from a file.
-    pub fn set_profile_file(
-        &mut self,
-        _fname: &str,
-        _iparam: &[i32],
-        _rparam: &[f64],
-    ) -> Result<()> {
-        Err(todo("cntc_setprofileinputfname"))
+    pub fn set_profile_file(&mut self, fname: &str, iparam: &[i32], rparam: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setprofileinputfname";
+        let itype = ip(iparam, 1, -1);
+        let kind = match itype {
+            0 => ProfileKind::Rail,
+            1 => ProfileKind::Wheel,
+            _ => railcontact_solver::wheelrail::kind_from_extension(fname).ok_or_else(|| {
+                CntcError::Profile(format!(
+                    "{CALL}: cannot tell a rail from a wheel profile by the extension of \"{fname}\" \
+                     (.prr, .ban rail; .prw, .whl wheel): give ITYPE = 0 (rail) or 1 (wheel) in iparam(1)"
+                ))
+            })?,
+        };
+        let r = self.read_profile_file(fname, kind, iparam, rparam);
+        self.store_profile(kind, r)
+    }
+
+    fn read_profile_file(
+        &self,
+        fname: &str,
+        kind: ProfileKind,
+        iparam: &[i32],
+        rparam: &[f64],
+    ) -> Result<ProfileInput> {
+        const CALL: &str = "cntc_setprofileinputfname";
+        if fname.is_empty() {
+            return Err(CntcError::Profile(format!(
+                "{CALL}: the file name is empty"
+            )));
+        }
+        let mirror_z = match ip(iparam, 4, 0) {
+            0 => MirrorZ::Auto,
+            m if m < 0 => MirrorZ::Keep,
+            _ => MirrorZ::Flip,
+        };
+        let options = LoadOptions {
+            kind: Some(kind),
+            mirror_y: ip(iparam, 3, 0) >= 1,
+            mirror_z,
+            // CONTACT reads a two-column table as numbers in millimetres
+            // (times the scale factor).
+            plain_unit: Some(LengthUnit::Millimetre),
+            ..LoadOptions::default()
+        };
+        let read = read_profile_text(fname, &options)?;
+        let sclfac = self.profile_scale(rparam);
+        let profile = if (sclfac - 1.0).abs() < 1e-12 {
+            read
+        } else {
+            let pts: Vec<[f64; 2]> = read
+                .points()
+                .iter()
+                .map(|p| [p[0] * sclfac, p[1] * sclfac])
+                .collect();
+            Profile::from_points(read.name(), Some(kind), &pts, &ProfileChecks::default()).map_err(
+                |e| {
+                    CntcError::Profile(format!(
+                        "{CALL}: \"{fname}\" scaled by SCALE_YZ = {sclfac} (rparam(1)): {e}"
+                    ))
+                },
+            )?
+        };
+        let smooth = rp(rparam, 2, 0.0);
+        if !smooth.is_finite() {
+            return Err(CntcError::Profile(format!(
+                "{CALL}: SMOOTH (rparam(2)) = {smooth} is not a finite number"
+            )));
+        }
+        let smoothing_m = smoothing_wavelength_m(ip(iparam, 6, 0), smooth, profile.points());
+        Ok(ProfileInput {
+            profile,
+            smoothing_m,
+        })
     }
 
     /// `cntc_setprofileinputvalues`: a profile from `npoint` (y, z) pairs.
     pub fn set_profile_values(
         &mut self,
-        _npoint: usize,
-        _values: &[f64],
-        _iparam: &[i32],
-        _rparam: &[f64],
+        npoint: usize,
+        values: &[f64],
+        iparam: &[i32],
+        rparam: &[f64],
     ) -> Result<()> {
-        Err(todo("cntc_setprofileinputvalues"))
+        const CALL: &str = "cntc_setprofileinputvalues";
+        // CONTACT: ITYPE clamped to 0 (rail) or 1 (wheel); a wheel without
+        // iparam.
+        let kind = if iparam.is_empty() || ip(iparam, 1, 1) >= 1 {
+            ProfileKind::Wheel
+        } else {
+            ProfileKind::Rail
+        };
+        let r = (|| {
+            if values.len() < 2 * npoint {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: {npoint} points need {} values, got {}",
+                    2 * npoint,
+                    values.len()
+                )));
+            }
+            if npoint < 2 {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: a profile needs at least 2 points, got NPOINT = {npoint}"
+                )));
+            }
+            let sclfac = self.profile_scale(rparam) * MM;
+            let ysign = if ip(iparam, 3, 0) >= 1 { -1.0 } else { 1.0 };
+            let mut pts: Vec<[f64; 2]> = values[..2 * npoint]
+                .chunks(2)
+                .map(|c| [ysign * c[0] * sclfac, c[1] * sclfac])
+                .collect();
+            if let Some(i) = pts
+                .iter()
+                .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+            {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: point {} (values({}), values({})) is not finite",
+                    i + 1,
+                    2 * i + 1,
+                    2 * i + 2
+                )));
+            }
+            let flip = match ip(iparam, 4, 0) {
+                0 => z_points_up(kind, &pts),
+                m => m > 0,
+            };
+            if flip {
+                pts.iter_mut().for_each(|p| p[1] = -p[1]);
+            }
+            let profile =
+                Profile::from_points("<values>", Some(kind), &pts, &ProfileChecks::default())
+                    .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
+            let smooth = rp(rparam, 2, 0.0);
+            let smoothing_m = smoothing_wavelength_m(ip(iparam, 6, 0), smooth, profile.points());
+            Ok(ProfileInput {
+                profile,
+                smoothing_m,
+            })
+        })();
+        self.store_profile(kind, r)
     }
 
     /// `cntc_settrackdimensions`.
-    pub fn set_track_dimensions(&mut self, _ztrack: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_settrackdimensions"))
+    pub fn set_track_dimensions(&mut self, ztrack: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_settrackdimensions";
+        let (lo, hi) = match ztrack {
+            0 => (0, 0),
+            1 => (5, 6),
+            2 => (6, 6),
+            3 => (11, 12),
+            32 | 33 => (4, 5),
+            z => {
+                return Err(CntcError::Input(format!(
+                    "{CALL}: method Z = {z} does not exist (0-3, 32, 33)"
+                )))
+            }
+        };
+        if p.len() < lo || p.len() > hi {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method Z = {ztrack} needs {} parameters, got {}",
+                if lo == hi {
+                    lo.to_string()
+                } else {
+                    format!("{lo}-{hi}")
+                },
+                p.len()
+            )));
+        }
+        finite(CALL, &[], p)?;
+        if ztrack >= 32 {
+            return Err(CntcError::NotSupported(format!(
+                "{CALL}: Z = {ztrack}, the massless rail model (F = 3), is not supported"
+            )));
+        }
+        let u = self.units();
+        if ztrack == 1 || ztrack == 3 {
+            let gaught = u.len(p[0]);
+            let track = if gaught <= 0.0 {
+                Err(CntcError::NotSupported(format!(
+                    "{CALL}: GAUGHT = {} <= 0 selects absolute rail placement (RAILY0, RAILZ0), \
+                     which is not supported; give the gauge height > 0, GAUGWD and CANT",
+                    p[0]
+                )))
+            } else {
+                let curv_index = if ztrack == 1 { 6 } else { 12 };
+                let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
+                if curv != 0.0 {
+                    Err(CntcError::NotSupported(format!(
+                        "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
+                         tangent track (0)"
+                    )))
+                } else if p[2] <= 0.0 {
+                    Err(CntcError::Input(format!(
+                        "{CALL}: the gauge GAUGWD = {} (params(3)) must be > 0",
+                        p[2]
+                    )))
+                } else {
+                    Ok(Track {
+                        gauge_height_m: gaught,
+                        gauge_m: u.len(p[2]),
+                        cant_rad: p[3],
+                    })
+                }
+            };
+            // GAUGSQ (params(2)) is reserved in CONTACT; NOMRAD (params(5))
+            // is the roller radius of roller rigs.
+            self.invalidate();
+            let out = track.as_ref().map(|_| ()).map_err(Clone::clone);
+            self.track = Some(track);
+            out?;
+        }
+        if ztrack == 2 || ztrack == 3 {
+            let ofs = match ztrack {
+                2 => 0,
+                _ if p.len() >= 12 => 6,
+                _ => 5,
+            };
+            let dev = &p[ofs..ofs + 6];
+            let d = if dev.iter().all(|v| *v == 0.0) {
+                Ok(())
+            } else {
+                Err(CntcError::NotSupported(format!(
+                    "{CALL}: rail deviations DYRAIL, DZRAIL, DROLLR, VYRAIL, VZRAIL, VROLLR = {dev:?} \
+                     are not supported; give zeros"
+                )))
+            };
+            let out = d.clone();
+            self.deviations = Some(d);
+            out?;
+        }
+        Ok(())
     }
 
     /// `cntc_setwheelsetdimensions`.
-    pub fn set_wheelset_dimensions(&mut self, _ewheel: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_setwheelsetdimensions"))
+    pub fn set_wheelset_dimensions(&mut self, ewheel: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setwheelsetdimensions";
+        if !(0..=5).contains(&ewheel) {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} does not exist (0-5)"
+            )));
+        }
+        if ewheel != 3 && ewheel != 5 {
+            if !p.is_empty() {
+                return Err(CntcError::Input(format!(
+                    "{CALL}: method E = {ewheel} needs 0 parameters, got {}",
+                    p.len()
+                )));
+            }
+            return Ok(());
+        }
+        if p.len() < 3 || p.len() > 4 {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} needs 3 or 4 parameters (FBDIST, FBPOS, NOMRAD, \
+                 {{YTAPE}}), got {}",
+                p.len()
+            )));
+        }
+        finite(CALL, &["FBDIST", "FBPOS", "NOMRAD", "YTAPE"], p)?;
+        let u = self.units();
+        let dims = if p[0] <= 0.0 {
+            Err(CntcError::Input(format!(
+                "{CALL}: the flange-back distance FBDIST = {} (params(1)) must be > 0",
+                p[0]
+            )))
+        } else if p[2] <= 0.0 {
+            Err(CntcError::Input(format!(
+                "{CALL}: the nominal radius NOMRAD = {} (params(3)) must be > 0",
+                p[2]
+            )))
+        } else {
+            let tape = p.get(3).map(|y| u.len(*y)).filter(|y| y.abs() < 1.0);
+            Ok(WheelsetDims {
+                flange_back_distance_m: u.len(p[0]),
+                flange_back_y_m: u.len(p[1]),
+                nominal_radius_m: u.len(p[2]),
+                tape_y_m: tape,
+            })
+        };
+        self.invalidate();
+        let out = dims.as_ref().map(|_| ()).map_err(Clone::clone);
+        self.wheelset = Some(dims);
+        out
     }
 
     /// `cntc_setwheelsetposition`.
-    pub fn set_wheelset_position(&mut self, _ewheel: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_setwheelsetposition"))
+    pub fn set_wheelset_position(&mut self, ewheel: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setwheelsetposition";
+        if !(1..=5).contains(&ewheel) {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} does not exist (1-5)"
+            )));
+        }
+        if p.len() != 6 {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} needs 6 parameters (S_WS, Y_WS, Z_WS, ROLL, YAW, \
+                 PITCH), got {}",
+                p.len()
+            )));
+        }
+        finite(CALL, &["S_WS", "Y_WS", "Z_WS", "ROLL", "YAW", "PITCH"], p)?;
+        let u = self.units();
+        self.position = [u.len(p[0]), u.len(p[1]), u.len(p[2]), p[3], p[4], p[5]];
+        Ok(())
     }
 
     /// `cntc_setwheelsetvelocity`.
-    pub fn set_wheelset_velocity(&mut self, _ewheel: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_setwheelsetvelocity"))
+    pub fn set_wheelset_velocity(&mut self, ewheel: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setwheelsetvelocity";
+        // CONTACT maps the obsolete E = 1 with 6 values to E = 2.
+        let e = if ewheel == 1 && p.len() == 6 {
+            2
+        } else {
+            ewheel
+        };
+        if e == 1 && p.is_empty() {
+            return Ok(());
+        }
+        if !(2..=5).contains(&e) {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} does not exist for velocities (2-5)"
+            )));
+        }
+        if p.len() != 6 {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} needs 6 parameters (VS, VY, VZ, VROLL, VYAW, \
+                 VPITCH), got {}",
+                p.len()
+            )));
+        }
+        finite(CALL, &["VS", "VY", "VZ", "VROLL", "VYAW", "VPITCH"], p)?;
+        let u = self.units();
+        self.velocity = [
+            u.velocity(p[0]),
+            u.velocity(p[1]),
+            u.velocity(p[2]),
+            p[3],
+            p[4],
+            p[5],
+        ];
+        Ok(())
     }
 
     /// `cntc_setwheelsetflexibility`.
-    pub fn set_wheelset_flexibility(&mut self, _ewheel: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_setwheelsetflexibility"))
+    pub fn set_wheelset_flexibility(&mut self, ewheel: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setwheelsetflexibility";
+        if !(1..=5).contains(&ewheel) {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} does not exist (1-5)"
+            )));
+        }
+        if ewheel <= 3 {
+            // No flexibilities: any values given are not used.
+            self.flexibility = Some(Ok(()));
+            return Ok(());
+        }
+        if p.len() != 12 {
+            return Err(CntcError::Input(format!(
+                "{CALL}: method E = {ewheel} needs 12 parameters (DXWHL .. VPITCHW), got {}",
+                p.len()
+            )));
+        }
+        let r = if p.iter().all(|v| *v == 0.0) {
+            Ok(())
+        } else {
+            Err(CntcError::NotSupported(format!(
+                "{CALL}: flexible wheelset deviations (E = {ewheel}) {p:?} are not supported; \
+                 give zeros"
+            )))
+        };
+        let out = r.clone();
+        self.flexibility = Some(r);
+        out
     }
 
     /// `cntc_setverticalforce` (also sets N = 1).
-    pub fn set_vertical_force(&mut self, _fz: f64) -> Result<()> {
-        Err(todo("cntc_setverticalforce"))
+    pub fn set_vertical_force(&mut self, fz: f64) -> Result<()> {
+        if !fz.is_finite() {
+            return Err(CntcError::Input(format!(
+                "cntc_setverticalforce: FZ = {fz} is not a finite number"
+            )));
+        }
+        self.config.digits.norm = 1;
+        self.vertical_force_n = Some(fz);
+        Ok(())
     }
 
     /// `cntc_setpotcontact` with icp = -1: DX, DS, A_SEP, D_SEP, D_COMB, ...
-    pub fn set_discretisation(&mut self, _ipotcn: i32, _p: &[f64]) -> Result<()> {
-        Err(todo("cntc_setpotcontact"))
+    pub fn set_discretisation(&mut self, ipotcn: i32, p: &[f64]) -> Result<()> {
+        const CALL: &str = "cntc_setpotcontact";
+        let ok = match ipotcn {
+            -1 => (5..=7).contains(&p.len()),
+            0 => (2..=3).contains(&p.len()),
+            _ => {
+                return Err(CntcError::Discretisation(format!(
+                "{CALL}: IPOTCN = {ipotcn} does not exist for a wheel/rail problem (-1: DX, DS, \
+                     A_SEP, D_SEP, D_COMB; 0: DX, DS)"
+            )))
+            }
+        };
+        if !ok {
+            return Err(CntcError::Discretisation(format!(
+                "{CALL}: IPOTCN = {ipotcn} needs {} parameters, got {}",
+                if ipotcn == -1 { "5, 6 or 7" } else { "2 or 3" },
+                p.len()
+            )));
+        }
+        finite(
+            CALL,
+            &["DX", "DS", "A_SEP", "D_SEP", "D_COMB", "D_TURN", "G_MISS"],
+            p,
+        )?;
+        let u = self.units();
+        let old = self.discretisation;
+        let d = Discretisation {
+            dx_m: u.len(p[0].max(1e-12)),
+            ds_m: u.len(p[1].max(1e-12)),
+            angle_sep_rad: if ipotcn == -1 {
+                p[2].max(0.0)
+            } else {
+                old.map_or(std::f64::consts::FRAC_PI_2, |d| d.angle_sep_rad)
+            },
+            dist_sep_m: if ipotcn == -1 {
+                u.len(p[3].max(0.0))
+            } else {
+                old.map_or(8.0 * MM, |d| d.dist_sep_m)
+            },
+            dist_comb_m: if ipotcn == -1 {
+                u.len(p[4].max(0.0))
+            } else {
+                old.map_or(4.0 * MM, |d| d.dist_comb_m)
+            },
+        };
+        self.discretisation = Some(d);
+        Ok(())
     }
 
     /// `cntc_setrollingstepsize` with icp = -1: DQREL.
-    pub fn set_rolling_step(&mut self, _chi: f64, _dqrel: f64) -> Result<()> {
-        Err(todo("cntc_setrollingstepsize"))
+    pub fn set_rolling_step(&mut self, _chi: f64, dqrel: f64) -> Result<()> {
+        if !dqrel.is_finite() {
+            return Err(CntcError::Input(format!(
+                "cntc_setrollingstepsize: DQREL = {dqrel} is not a finite number"
+            )));
+        }
+        // Steady rolling (the only T supported) takes DQREL = 1.
+        self.dqrel = dqrel;
+        Ok(())
     }
 
-    /// `cntc_calculate` of the wheel.
-    pub fn calculate(&mut self, _cache: &KernelCache) -> Result<i32> {
-        Err(todo("cntc_calculate"))
+    // -----------------------------------------------------------------
+    // Calculation.
+
+    /// `cntc_calculate` of the wheel: `Ok(n)`, n >= 0 contact elements on
+    /// the border of the patches' grids.
+    pub fn calculate(&mut self, cache: &KernelCache) -> Result<i32> {
+        let t0 = Instant::now();
+        self.ncase += 1;
+        let r = self.calculate_timed(cache);
+        self.time_s += t0.elapsed().as_secs_f64();
+        if r.is_err() {
+            self.outcomes.clear();
+            self.solved = None;
+            self.subs_done.clear();
+        }
+        r
     }
 
-    /// `cntc_getgriddiscretization` with icp = -1: DX, DS.
+    /// The side of the C1 digit.
+    fn side(&self) -> Result<Side> {
+        match self.config.digits.config {
+            0 => Ok(Side::Left),
+            1 => Ok(Side::Right),
+            c => Err(CntcError::NotSupported(format!(
+                "C1 = {c} (CNTC_ic_config): roller rigs are not supported; 0 left rail, 1 right rail"
+            ))),
+        }
+    }
+
+    /// Checks the configuration for what this library solves.
+    fn check_configuration(&self) -> Result<()> {
+        self.config.check_supported()?;
+        let d = &self.config.digits;
+        if d.tang != 3 {
+            return Err(CntcError::NotSupported(format!(
+                "T = {} (CNTC_ic_tang) in module 1: only steady rolling (T = 3) is supported",
+                d.tang
+            )));
+        }
+        if d.force != 0 {
+            return Err(CntcError::NotSupported(format!(
+                "F = {} (CNTC_ic_force) in module 1 is not supported: give the pitch rate VPITCH",
+                d.force
+            )));
+        }
+        if d.discns >= 4 {
+            return Err(CntcError::NotSupported(format!(
+                "D = {} (CNTC_ic_discns): conformal contact in module 1 is not supported; D = 2",
+                d.discns
+            )));
+        }
+        if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
+            return Err(CntcError::NotSupported(
+                "M = 3 (modified FASTSIM) in module 1 is not supported: the wheel/rail patches \
+                 are solved with Kalker's exact theory (M = 0)"
+                    .into(),
+            ));
+        }
+        if d.heat == 3 {
+            return Err(CntcError::NotSupported(
+                "H = 3 (temperatures, cntc_settemperaturedata) in module 1 is not supported".into(),
+            ));
+        }
+        if let Some(Err(e)) = &self.deviations {
+            return Err(e.clone());
+        }
+        if let Some(Err(e)) = &self.flexibility {
+            return Err(e.clone());
+        }
+        Ok(())
+    }
+
+    /// The placed profiles (built when missing).
+    fn build_pair(&self) -> Result<WheelRailPair> {
+        let rail = slot(
+            &self.rail,
+            "the rail profile has not been set: cntc_setprofileinputfname or \
+             cntc_setprofileinputvalues with ITYPE = 0",
+        )
+        .map_err(|e| CntcError::Profile(e.to_string()))?;
+        let wheel = slot(
+            &self.wheel,
+            "the wheel profile has not been set: cntc_setprofileinputfname or \
+             cntc_setprofileinputvalues with ITYPE = 1",
+        )
+        .map_err(|e| CntcError::Profile(e.to_string()))?;
+        let track = slot(
+            &self.track,
+            "the track dimensions have not been set: cntc_settrackdimensions with Z = 1 or 3",
+        )?;
+        let dims = slot(
+            &self.wheelset,
+            "the wheelset dimensions have not been set: cntc_setwheelsetdimensions with E = 3 or 5",
+        )?;
+        // One spline option for both: the common smoothing, or each
+        // smoothed on its own and then interpolated.
+        let (rail_p, wheel_p, options) = if rail.smoothing_m == wheel.smoothing_m {
+            (
+                rail.profile.clone(),
+                wheel.profile.clone(),
+                SplineOptions::smoothing(rail.smoothing_m),
+            )
+        } else {
+            (
+                presmoothed(rail)?,
+                presmoothed(wheel)?,
+                SplineOptions::interpolating(),
+            )
+        };
+        // The tape circle: the wheel profile shifted so that its point at
+        // Y_TAPE lies at the nominal radius (CONTACT's dr_tape).
+        let wheel_p = match self.tape_shift(wheel)? {
+            0.0 => wheel_p,
+            dz => wheel_p.translated(0.0, dz),
+        };
+        WheelRailPair::new(
+            [&rail_p, &rail_p],
+            [&wheel_p, &wheel_p],
+            TrackData {
+                gauge_m: track.gauge_m,
+                gauge_height_m: track.gauge_height_m,
+                cant_rad: track.cant_rad,
+            },
+            WheelsetData {
+                flange_back_distance_m: dims.flange_back_distance_m,
+                nominal_radius_m: dims.nominal_radius_m,
+                flange_back_y_m: Some(dims.flange_back_y_m),
+            },
+            &options,
+        )
+        .map_err(CntcError::from_wheelrail)
+    }
+
+    /// CONTACT's dr_tape \[m\]: -z_w(Y_TAPE), 0 without a tape circle or
+    /// when Y_TAPE lies outside the profile.
+    fn tape_shift(&self, wheel: &ProfileInput) -> Result<f64> {
+        let Some(Ok(dims)) = &self.wheelset else {
+            return Ok(0.0);
+        };
+        let Some(y) = dims.tape_y_m else {
+            return Ok(0.0);
+        };
+        let (lo, hi) = wheel.profile.y_range_m();
+        if y < lo || y > hi {
+            return Ok(0.0);
+        }
+        Ok(wheel.spline()?.z_at_y(y).map_or(0.0, |z| -z))
+    }
+
+    fn calculate_timed(&mut self, cache: &KernelCache) -> Result<i32> {
+        self.check_configuration()?;
+        let side = self.side()?;
+        if self.config.digits.ret >= 2 {
+            return Ok(0); // R = 2, 3: check the input only
+        }
+        if self.pair.is_none() {
+            self.pair = Some(self.build_pair()?);
+        }
+        let input = self.solver_input(side)?;
+        let pair = self.pair.as_ref().expect("built above");
+        let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+            .map_err(CntcError::from_wheelrail)?;
+        self.finish(side, &input, &sol)
+    }
+
+    /// The solver's input of this problem.
+    fn solver_input(&self, side: Side) -> Result<WheelRailInput> {
+        let d = self.discretisation.ok_or_else(|| {
+            CntcError::Discretisation(
+                "the discretisation has not been set: cntc_setpotcontact with icp = -1, IPOTCN = -1 \
+                 (DX, DS, A_SEP, D_SEP, D_COMB)"
+                    .into(),
+            )
+        })?;
+        let u = self.units();
+        if (d.dx_m - d.ds_m).abs() > 1e-6 * d.dx_m.max(d.ds_m) {
+            return Err(CntcError::NotSupported(format!(
+                "DX = {}, DS = {} (cntc_setpotcontact): the patch grids have square elements; give \
+                 DX = DS",
+                u.len_out(d.dx_m),
+                u.len_out(d.ds_m)
+            )));
+        }
+        if !(1e-6..5e-3).contains(&d.dx_m) {
+            return Err(CntcError::Discretisation(format!(
+                "DX = DS = {} (cntc_setpotcontact) must lie between {} and {}",
+                u.len_out(d.dx_m),
+                u.len_out(1e-6),
+                u.len_out(5e-3)
+            )));
+        }
+        let dims = slot(&self.wheelset, "the wheelset dimensions have not been set")?;
+        let [s_ws, y_ws, z_ws, roll, yaw, _pitch] = self.position;
+        let [vs, vy, vz, vroll, vyaw, vpitch] = self.velocity;
+        if vs <= 0.0 {
+            return Err(CntcError::NotSupported(format!(
+                "VS_WS = {} (cntc_setwheelsetvelocity): only forward rolling (VS > 0) is supported",
+                u.velocity_out(vs)
+            )));
+        }
+        let load = if self.config.digits.norm == 1 {
+            let fz = self.vertical_force_n.ok_or_else(|| {
+                CntcError::Input("N = 1 needs the vertical force: cntc_setverticalforce".into())
+            })?;
+            if fz <= 0.0 {
+                return Err(CntcError::Input(format!(
+                    "FZ = {fz} N (cntc_setverticalforce) must be > 0"
+                )));
+            }
+            WheelLoad::VerticalForce(fz)
+        } else {
+            WheelLoad::CenterHeight(z_ws - dims.nominal_radius_m)
+        };
+        let material = self.config.material.combined()?;
+        let start = self.config.solver.start;
+        let (friction, friction_table) = match &self.config.friction_by_angle {
+            None => (self.config.friction.friction(vs, start), None),
+            Some((angles, laws)) => friction_by_angle(angles, laws, vs, start)?,
+        };
+        let o = SolverOrientation::of(roll, yaw, vroll, vyaw, vpitch);
+        Ok(WheelRailInput {
+            position: WheelsetPosition {
+                lateral_m: y_ws,
+                yaw_rad: o.yaw_rad,
+                roll_rad: Some(o.roll_rad),
+                track_s_m: s_ws,
+            },
+            velocity: WheelsetVelocity {
+                forward_m_per_s: vs,
+                lateral_m_per_s: vy,
+                vertical_m_per_s: vz,
+                roll_rad_per_s: o.roll_rate,
+                yaw_rad_per_s: o.yaw_rate,
+                pitch_rad_per_s: Some(o.pitch_rate),
+            },
+            load,
+            sides: vec![side],
+            material,
+            friction,
+            friction_table,
+            settings: WheelRailSettings {
+                model: WheelRailModel::Exact,
+                element_size_m: d.dx_m,
+                search: SearchSettings {
+                    merge_distance_m: d.dist_sep_m,
+                    ..SearchSettings::default()
+                },
+                ..WheelRailSettings::default()
+            },
+            total_longitudinal_force_n: None,
+            temperature: None,
+        })
+    }
+
+    /// The outcomes of a solution and the frames for the getters.
+    fn finish(
+        &mut self,
+        side: Side,
+        input: &WheelRailInput,
+        sol: &WheelRailSolution,
+    ) -> Result<i32> {
+        let pair = self.pair.as_ref().expect("solved on it");
+        let s = side.sign();
+        let dims = *slot(&self.wheelset, "the wheelset dimensions have not been set")?;
+        let wheel_in = slot(&self.wheel, "the wheel profile has not been set")?;
+        let dr_tape = self.tape_shift(wheel_in)?;
+        let Some(wheel) = sol.wheels.iter().find(|w| w.side == side) else {
+            return Err(CntcError::Other(format!(
+                "the solver returned no result for the {} wheel",
+                side.name()
+            )));
+        };
+        // The loaded wheelset (side frame).
+        let [_, y_ws, _, roll, yaw, _] = self.position;
+        let center_z = sol.center_z_m + wheel.vertical_approach_m;
+        let ws_axes = contact_ws_axes(side, roll, yaw);
+        let [_, a, e1] = ws_axes;
+        let c = [0.0, s * y_ws, center_z];
+        let axial = pair.wheel(side).axial_offset_m();
+        let r_marker = dims.nominal_radius_m + dr_tape;
+        let w_marker = add(c, add(scale(axial, a), scale(r_marker, e1)));
+        let rail = pair.rail(side);
+        let [rq, rz] = rail.to_side(0.0, 0.0);
+        let r_marker_pt = [0.0, rq, rz];
+        let rail_roll = -pair.track().cant_rad;
+        // Arc-length origins of the profiles (CONTACT's s = 0).
+        let rail_spline = rail.spline();
+        let wheel_spline = pair.wheel(side).spline();
+        let rail_s0 = arc_origin(rail_spline, 0.0);
+        let wheel_s0 = arc_origin(wheel_spline, dr_tape);
+
+        let mut outcomes = Vec::with_capacity(wheel.patches.len());
+        let mut globals = Vec::with_capacity(wheel.patches.len());
+        let mut border = 0usize;
+        for p in &wheel.patches {
+            let (o, g) = self.patch_outcome(
+                p,
+                side,
+                input,
+                PatchFrames {
+                    ws_axes,
+                    center: c,
+                    w_marker,
+                    r_marker: r_marker_pt,
+                    rail_roll,
+                    axial,
+                    r_marker_radius: r_marker,
+                    rail_s0,
+                    wheel_s0,
+                    rail_spline,
+                    wheel_spline,
+                    roll,
+                    yaw,
+                    sign: s,
+                },
+            );
+            border += o.border_elements;
+            outcomes.push(o);
+            globals.push(g);
+        }
+        self.outcomes = outcomes;
+        self.subs_done = vec![None; self.outcomes.len()];
+        self.solved = Some(Solved {
+            side,
+            ws_axes,
+            rail_roll_rad: rail_roll,
+            z_ws_m: center_z + dims.nominal_radius_m,
+            globals,
+        });
+        Ok(border.min(i32::MAX as usize) as i32)
+    }
+
+    /// One patch's outcome (CONTACT's reporting frame) and its forces and
+    /// moments (side frame).
+    fn patch_outcome(
+        &self,
+        p: &PatchResult,
+        side: Side,
+        input: &WheelRailInput,
+        f: PatchFrames<'_>,
+    ) -> (Outcome, [[f64; 3]; 3]) {
+        let s = f.sign;
+        let left = side == Side::Left;
+        let e = input.settings.element_size_m;
+        // The contact frame (side frame components): x, s (tangent), n.
+        let (st, ct) = p.contact_angle_rad.sin_cos();
+        let n = [0.0, st, ct];
+        let t = [0.0, ct, -st];
+        let ex_c = [1.0, 0.0, 0.0];
+        let origin = [p.track_x_m, s * p.track_y_m, p.track_z_m];
+        let ft = p.force_track_n;
+        let force = [ft[0], s * ft[1], ft[2]];
+
+        // Moments of the tractions about the reference (contact frame),
+        // the pressure centre, the grid and its fields.
+        let (grid, fields) = match (&p.grid_geometry, &p.solution) {
+            (Some(g), Some(sol)) if sol.fields.pressure_pa.len() == g.len() => {
+                (*g, Some(&sol.fields))
+            }
+            (Some(g), _) => (*g, None),
+            _ => (
+                Grid::new(4, 4, e, e, -2.0 * e, -2.0 * e).unwrap_or(Grid {
+                    nx: 4,
+                    ny: 4,
+                    dx_m: e,
+                    dy_m: e,
+                    x0_m: -2.0 * e,
+                    y0_m: -2.0 * e,
+                }),
+                None,
+            ),
+        };
+        let (mut ma, mut mb, mut mc) = (0.0, 0.0, p.mz_nm);
+        let (mut xc, mut sc) = (0.0, 0.0);
+        let mut max_traction: f64 = 0.0;
+        if let Some(fl) = fields {
+            let da = grid.element_area_m2();
+            let (mut sp, mut sxp, mut ssp) = (0.0, 0.0, 0.0);
+            mc = 0.0;
+            for iy in 0..grid.ny {
+                let y = grid.y_m(iy);
+                for ix in 0..grid.nx {
+                    let x = grid.x_m(ix);
+                    let k = grid.index(ix, iy);
+                    let (pn, px, py) =
+                        (fl.pressure_pa[k], fl.traction_x_pa[k], fl.traction_y_pa[k]);
+                    ma += y * pn * da;
+                    mb -= x * pn * da;
+                    mc += (x * py - y * px) * da;
+                    sp += pn;
+                    sxp += x * pn;
+                    ssp += y * pn;
+                    max_traction = max_traction.max(px.hypot(py));
+                }
+            }
+            if sp > 0.0 {
+                xc = sxp / sp;
+                sc = ssp / sp;
+            }
+        }
+        let m_local = add(add(scale(ma, ex_c), scale(mb, t)), scale(mc, n));
+        let m_rail = add(cross(sub(origin, f.r_marker), force), m_local);
+        let m_wheel = add(cross(sub(origin, f.w_marker), force), m_local);
+
+        // The outcome, mirrored for a left wheel.
+        let (ny, nx) = (grid.ny, grid.nx);
+        let out_grid = if left {
+            Grid {
+                y0_m: -(grid.y0_m + ny as f64 * grid.dy_m),
+                ..grid
+            }
+        } else {
+            grid
+        };
+        let out_fields = fields.map(|fl| {
+            if left {
+                ElementFields {
+                    pressure_pa: mirrored_rows(&fl.pressure_pa, nx, ny, 1.0),
+                    traction_x_pa: mirrored_rows(&fl.traction_x_pa, nx, ny, 1.0),
+                    traction_y_pa: mirrored_rows(&fl.traction_y_pa, nx, ny, -1.0),
+                    slip_x: mirrored_rows(&fl.slip_x, nx, ny, 1.0),
+                    slip_y: mirrored_rows(&fl.slip_y, nx, ny, -1.0),
+                    state: mirrored_states(&fl.state, nx, ny),
+                    gap_m: mirrored_rows(&fl.gap_m, nx, ny, 1.0),
+                }
+            } else {
+                fl.clone()
+            }
+        });
+        // CONTACT's undeformed distance has its minimum over the grid at 0
+        // and its approach PEN is the interpenetration there; the solver's
+        // is measured from the wheelset's rigid position, where this wheel
+        // may still have a gap (the other wheel touching first).
+        let hmin = out_fields
+            .as_ref()
+            .filter(|f| f.gap_m.len() == out_grid.len())
+            .map(|f| f.gap_m.iter().copied().fold(f64::INFINITY, f64::min))
+            .filter(|h| h.is_finite())
+            .unwrap_or(0.0);
+        let mut out_fields = out_fields;
+        if let Some(fl) = out_fields.as_mut() {
+            fl.gap_m.iter_mut().for_each(|h| *h -= hmin);
+        }
+        let gap = out_fields
+            .as_ref()
+            .filter(|f| f.gap_m.len() == out_grid.len())
+            .map(|f| f.gap_m.clone())
+            .unwrap_or_else(|| vec![0.0; out_grid.len()]);
+        let mut o = Outcome::no_contact(out_grid, gap, p.approach_m - hmin);
+        if let Some(fl) = out_fields {
+            if fl.state.len() == out_grid.len() {
+                o.areas_m2 = Outcome::areas_of(&out_grid, &fl.state);
+            }
+            o.border_elements = out_grid.loaded_border_elements(&fl.pressure_pa);
+            o.fields = fl;
+        } else {
+            o.areas_m2 = Outcome::areas_by_fraction(p.contact_area_m2, p.adhesion_fraction);
+        }
+        o.friction_coefficient = p.friction_coefficient;
+        o.normal_force_n = p.normal_force_n;
+        o.fx_n = p.fx_n;
+        o.fy_n = s * p.fs_n;
+        o.mz_nm = s * p.mz_nm;
+        o.creepages = [p.creepage_long, s * p.creepage_lat, s * p.spin_per_m];
+        o.is_shift = false;
+        o.rolling_speed_m_per_s = p.rolling_speed_m_per_s;
+        o.max_pressure_pa = p.max_pressure_pa;
+        o.max_traction_pa = max_traction;
+        o.tgamma_n = if p.rolling_speed_m_per_s > 0.0 {
+            p.frictional_power_w / p.rolling_speed_m_per_s
+        } else {
+            0.0
+        };
+
+        // Where the patch lies (CONTACT's reporting frame).
+        let delta_tr = -p.contact_angle_rad; // CONTACT's angle, side frame
+        let [ex, a, e1] = f.ws_axes;
+        let dw = sub(origin, f.w_marker);
+        let wheel_pt = [dot(dw, ex), dot(dw, a), dot(dw, e1)];
+        let n_ws = [dot(n, ex), dot(n, a), dot(n, e1)];
+        let delta_ws = (-n_ws[1]).atan2(n_ws[2]);
+        let rail_s = f
+            .rail_spline
+            .t_at_y(p.rail_y_m)
+            .map_or(0.0, |t| t - f.rail_s0);
+        let wheel_s = f
+            .wheel_spline
+            .t_at_y(wheel_pt[1])
+            .map_or(0.0, |t| t - f.wheel_s0);
+        let pc = add(origin, add(scale(xc, ex_c), scale(sc, t)));
+        let dc = sub(origin, f.center);
+        o.location = Some(Location {
+            track: [origin[0], s * origin[1], origin[2], s * delta_tr],
+            rail: [
+                origin[0],
+                s * p.rail_y_m,
+                p.rail_z_m,
+                rail_s,
+                s * (delta_tr - f.rail_roll),
+            ],
+            wheel: [
+                wheel_pt[0],
+                s * wheel_pt[1],
+                wheel_pt[2],
+                wheel_s,
+                s * delta_ws,
+            ],
+            pressure_centre: [pc[0], s * pc[1]],
+            wheel_marker_track: [
+                f.w_marker[0],
+                s * f.w_marker[1],
+                f.w_marker[2],
+                f.roll,
+                f.yaw,
+            ],
+            rail_marker_track: [s * f.r_marker[1], f.r_marker[2], s * f.rail_roll],
+            wheelset: [dot(dc, ex), s * dot(dc, a), dot(dc, e1), s * delta_ws],
+            wheel_marker_wheelset: [0.0, s * f.axial, f.r_marker_radius, 0.0, 0.0],
+            force_track_n: p.force_track_n,
+        });
+        (o, [force, m_rail, m_wheel])
+    }
+
+    // -----------------------------------------------------------------
+    // Getters.
+
+    /// `cntc_getgriddiscretization` with icp = -1: DX, DS in the caller's
+    /// units.
     pub fn grid_size(&self) -> Result<[f64; 2]> {
-        Err(todo("cntc_getgriddiscretization"))
+        let d = self.discretisation.ok_or_else(|| {
+            CntcError::Discretisation(
+                "the discretisation has not been set: cntc_setpotcontact with icp = -1".into(),
+            )
+        })?;
+        let u = self.units();
+        Ok([u.len_out(d.dx_m), u.len_out(d.ds_m)])
     }
 
-    /// `cntc_getwheelsetposition`.
+    /// `cntc_getwheelsetposition`: s, y, z, roll, yaw, pitch (caller's units).
+    /// After a calculation with a vertical force (N = 1), z is the height
+    /// found.
     pub fn wheelset_position(&self) -> Result<[f64; 6]> {
-        Err(todo("cntc_getwheelsetposition"))
+        let u = self.units();
+        let [s, y, mut z, roll, yaw, pitch] = self.position;
+        if self.config.digits.norm == 1 {
+            if let Some(sv) = &self.solved {
+                z = sv.z_ws_m;
+            }
+        }
+        Ok([u.len_out(s), u.len_out(y), u.len_out(z), roll, yaw, pitch])
     }
 
-    /// `cntc_getwheelsetvelocity`.
+    /// `cntc_getwheelsetvelocity`: vs, vy, vz, vroll, vyaw, vpitch.
     pub fn wheelset_velocity(&self) -> Result<[f64; 6]> {
-        Err(todo("cntc_getwheelsetvelocity"))
+        let u = self.units();
+        let [vs, vy, vz, vr, vyaw, vp] = self.velocity;
+        Ok([
+            u.velocity_out(vs),
+            u.velocity_out(vy),
+            u.velocity_out(vz),
+            vr,
+            vyaw,
+            vp,
+        ])
     }
 
-    /// `cntc_getglobalforces`.
-    pub fn global_forces(&self, _icp: Option<usize>) -> Result<[f64; 24]> {
-        Err(todo("cntc_getglobalforces"))
+    /// `cntc_getglobalforces` of patch `icp` (or all, `None`): the 24
+    /// values in the caller's units.
+    pub fn global_forces(&self, icp: Option<usize>) -> Result<[f64; 24]> {
+        let Some(sv) = &self.solved else {
+            return Err(CntcError::Input(
+                "cntc_getglobalforces: no results; call cntc_calculate first".into(),
+            ));
+        };
+        let zero = [[0.0; 3]; 3];
+        let [f, mr, mw] = match icp {
+            None => sv.globals.iter().fold(zero, |acc, g| {
+                [add(acc[0], g[0]), add(acc[1], g[1]), add(acc[2], g[2])]
+            }),
+            // CONTACT: zeros for a patch number beyond the last
+            // calculation's.
+            Some(k) => sv.globals.get(k.wrapping_sub(1)).copied().unwrap_or(zero),
+        };
+        let u = self.units();
+        let b = u.body_sign();
+        let s = sv.side.sign();
+        let l = |m: f64| u.len_out(m);
+        let (sr, cr) = sv.rail_roll_rad.sin_cos();
+        let rail_axes = [[1.0, 0.0, 0.0], [0.0, cr, sr], [0.0, -sr, cr]];
+        let f_ws = in_basis(f, &sv.ws_axes);
+        let mw_ws = in_basis(mw, &sv.ws_axes);
+        let f_r = in_basis(f, &rail_axes);
+        let mr_r = in_basis(mr, &rail_axes);
+        let mut v = [0.0; 24];
+        let block = |v: &mut [f64], fv: [f64; 3], mv: [f64; 3]| {
+            v[0] = b * fv[0];
+            v[1] = b * s * fv[1];
+            v[2] = b * fv[2];
+            v[3] = b * s * l(mv[0]);
+            v[4] = b * l(mv[1]);
+            v[5] = b * s * l(mv[2]);
+        };
+        block(&mut v[0..6], f, mr);
+        block(&mut v[6..12], f_ws, mw_ws);
+        block(&mut v[12..18], f_r, mr_r);
+        // The wheel profile's axes are the wheelset's (no flexibilities).
+        block(&mut v[18..24], f_ws, mw_ws);
+        Ok(v)
     }
 
-    /// `subs_addblock` for patch `icp`.
+    // -----------------------------------------------------------------
+    // Subsurface stresses.
+
+    fn check_subs_icp(icp: i32, call: &str) -> Result<()> {
+        if icp == -1 || (1..=MAX_ICP).contains(&icp) {
+            Ok(())
+        } else {
+            Err(CntcError::Icp(format!(
+                "{call}: icp = {icp}: -1 (every patch) or a contact patch 1 to {MAX_ICP}"
+            )))
+        }
+    }
+
+    /// `subs_addblock` for patch `icp` (-1: every patch without its own).
     pub fn subs_add(
         &mut self,
-        _icp: i32,
-        _iblk: i32,
-        _isubs: i32,
-        _x: &[f64],
-        _y: &[f64],
-        _z: &[f64],
+        icp: i32,
+        iblk: i32,
+        isubs: i32,
+        x: &[f64],
+        y: &[f64],
+        z: &[f64],
     ) -> Result<()> {
-        Err(todo("subs_addblock"))
+        Self::check_subs_icp(icp, "subs_addblock")?;
+        let u = self.units();
+        if icp == -1 {
+            self.subs_all.add(u, iblk, isubs, x, y, z)
+        } else {
+            self.subs_patch
+                .entry(icp)
+                .or_default()
+                .add(u, iblk, isubs, x, y, z)
+        }
     }
 
-    /// `subs_calculate` for patch `icp`.
-    pub fn subs_calculate(&mut self, _icp: i32) -> Result<()> {
-        Err(todo("subs_calculate"))
+    /// `subs_calculate` for patch `icp` (-1: all).
+    pub fn subs_calculate(&mut self, icp: i32) -> Result<()> {
+        Self::check_subs_icp(icp, "subs_calculate")?;
+        let n = self.outcomes.len();
+        if self.subs_done.len() != n {
+            self.subs_done = vec![None; n];
+        }
+        let which: Vec<usize> = if icp == -1 {
+            (1..=n).collect()
+        } else if (icp as usize) <= n {
+            vec![icp as usize]
+        } else {
+            return Err(CntcError::Icp(format!(
+                "subs_calculate: icp = {icp}: the last calculation found {n} contact patch(es)"
+            )));
+        };
+        let material = self.config.material.combined()?;
+        for k in which {
+            let mut blocks = self
+                .subs_patch
+                .get(&(k as i32))
+                .cloned()
+                .unwrap_or_else(|| self.subs_all.clone());
+            // The outcome is in CONTACT's reporting frame already (a left
+            // wheel's grid mirrored), where the blocks' points are given.
+            blocks.calculate_with(&self.outcomes[k - 1], &material, false)?;
+            self.subs_done[k - 1] = Some(blocks);
+        }
+        Ok(())
+    }
+
+    /// The blocks computed below patch `icp` (-1: the first patch).
+    fn subs_of(&self, icp: i32, call: &str) -> Result<&Blocks> {
+        Self::check_subs_icp(icp, call)?;
+        let k = if icp == -1 { 1 } else { icp as usize };
+        self.subs_done
+            .get(k - 1)
+            .and_then(|b| b.as_ref())
+            .ok_or_else(|| {
+                CntcError::Input(format!(
+                    "{call}: no subsurface stresses for patch {k}: call subs_calculate after \
+                     cntc_calculate"
+                ))
+            })
     }
 
     /// `subs_getblocksize` of block `iblk` of patch `icp`.
-    pub fn subs_block_size(&self, _icp: i32, _iblk: i32) -> Result<[usize; 3]> {
-        Err(todo("subs_getblocksize"))
+    pub fn subs_block_size(&self, icp: i32, iblk: i32) -> Result<[usize; 3]> {
+        self.subs_of(icp, "subs_getblocksize")?.block_size(iblk)
     }
 
     /// `subs_getresults`: columns `icol` of block `iblk` of patch `icp`.
-    pub fn subs_results(&self, _icp: i32, _iblk: i32, _icol: &[i32]) -> Result<Vec<f64>> {
-        Err(todo("subs_getresults"))
+    pub fn subs_results(&self, icp: i32, iblk: i32, icol: &[i32]) -> Result<Vec<f64>> {
+        self.subs_of(icp, "subs_getresults")?
+            .results(self.units(), iblk, icol)
     }
 
-    /// `cntc_getprofilevalues`.
-    pub fn profile_values(
-        &self,
-        _itask: i32,
-        _iparam: &[i32],
-        _rparam: &[f64],
-    ) -> Result<Vec<f64>> {
-        Err(todo("cntc_getprofilevalues"))
+    // -----------------------------------------------------------------
+    // Profiles.
+
+    /// `cntc_getprofilevalues`: a profile as a table of values. Tasks -1
+    /// (error code), 0 (number of points), 1 (y, z in profile coordinates),
+    /// 2 (y, z in track coordinates), 4 (arc length s), 5 (surface
+    /// inclination); sampling ISAMPL -1, 0 (the profile's points), 1
+    /// (every DS_OUT \[mm\]), 2-100 (points per interval). Lengths in mm
+    /// (CONTACT: no unit conversion for profile values).
+    pub fn profile_values(&self, itask: i32, iparam: &[i32], rparam: &[f64]) -> Result<Vec<f64>> {
+        const CALL: &str = "cntc_getprofilevalues";
+        let kind = if ip(iparam, 1, 0) >= 1 {
+            ProfileKind::Wheel
+        } else {
+            ProfileKind::Rail
+        };
+        let slot = match kind {
+            ProfileKind::Rail => &self.rail,
+            ProfileKind::Wheel => &self.wheel,
+        };
+        if itask == -1 {
+            return Ok(match slot {
+                Some(Ok(_)) => vec![0.0, 0.0],
+                None => vec![flags::err::PROFIL as f64, 1.0],
+                Some(Err(_)) => vec![flags::err::PROFIL as f64, -1.0],
+            });
+        }
+        let prf = match slot {
+            Some(Ok(p)) => p,
+            Some(Err(e)) => {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: the {kind} profile could not be loaded: {e}"
+                )))
+            }
+            None => {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: no {kind} profile has been set"
+                )))
+            }
+        };
+        match itask {
+            0..=2 | 4 | 5 => {}
+            3 => {
+                return Err(CntcError::NotSupported(format!(
+                    "{CALL}: task 3 (gauge point data) is not supported"
+                )))
+            }
+            6..=9 => {
+                return Err(CntcError::NotSupported(format!(
+                    "{CALL}: task {itask} needs a variable profile (slices files are not supported)"
+                )))
+            }
+            t => {
+                return Err(CntcError::Input(format!(
+                    "{CALL}: ITASK = {t} does not exist (-1 to 9)"
+                )))
+            }
+        }
+        let spline = prf.spline()?;
+        let knots = spline.knot_arc_lengths_m();
+        let (t0, t1) = (knots[0], knots[knots.len() - 1]);
+        let mut isampl = ip(iparam, 2, 0).clamp(-1, 100);
+        let ds_out = rp(rparam, 1, 1.0);
+        if isampl == 1 && !(ds_out.is_finite() && ds_out >= 1e-4) {
+            isampl = 0;
+        }
+        // Arc lengths of the samples.
+        let ts: Vec<f64> = match isampl {
+            -1 | 0 => knots.to_vec(),
+            1 => {
+                let ds = ds_out * MM;
+                let n = ((t1 - t0) / ds).floor() as usize + 1;
+                (0..n).map(|i| t0 + i as f64 * ds).collect()
+            }
+            k => {
+                let k = k as usize;
+                let mut v = vec![t0];
+                for w in knots.windows(2) {
+                    for j in 1..=k {
+                        v.push(w[0] + (w[1] - w[0]) * j as f64 / k as f64);
+                    }
+                }
+                v
+            }
+        };
+        let npnt = ts.len();
+        if itask == 0 {
+            return Ok(vec![npnt as f64]);
+        }
+        let pts: Vec<[f64; 2]> = if isampl == -1 && prf.profile.len() == npnt {
+            prf.profile.points().to_vec()
+        } else {
+            ts.iter().map(|t| spline.position(*t)).collect()
+        };
+        let mm = |v: f64| v / MM;
+        match itask {
+            1 => Ok(pts
+                .iter()
+                .map(|p| mm(p[0]))
+                .chain(pts.iter().map(|p| mm(p[1])))
+                .collect()),
+            2 => {
+                let track = self.profile_in_track(kind, &pts)?;
+                Ok(track
+                    .iter()
+                    .map(|p| mm(p[0]))
+                    .chain(track.iter().map(|p| mm(p[1])))
+                    .collect())
+            }
+            4 => {
+                let s0 = arc_origin(&spline, 0.0);
+                Ok(ts.iter().map(|t| mm(t - s0)).collect())
+            }
+            _ => Ok(ts
+                .iter()
+                .map(|t| {
+                    let d = spline.tangent(*t);
+                    d[1].atan2(d[0])
+                })
+                .collect()),
+        }
+    }
+
+    /// Profile points (y, z) \[m\] of `kind` in track coordinates (y of the
+    /// actual side, z down): the rail as placed on the track, the wheel at
+    /// the wheelset's position (the height found by the last calculation
+    /// with N = 1, else the one given).
+    fn profile_in_track(&self, kind: ProfileKind, pts: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
+        let side = self.side()?;
+        let s = side.sign();
+        let built;
+        let pair = match &self.pair {
+            Some(p) => p,
+            None => {
+                built = self.build_pair()?;
+                &built
+            }
+        };
+        match kind {
+            ProfileKind::Rail => {
+                let rail = pair.rail(side);
+                Ok(pts
+                    .iter()
+                    .map(|p| {
+                        let [q, z] = rail.to_side(p[0], p[1]);
+                        [s * q, z]
+                    })
+                    .collect())
+            }
+            ProfileKind::Wheel => {
+                let dims = slot(&self.wheelset, "the wheelset dimensions have not been set")?;
+                let wheel = slot(&self.wheel, "the wheel profile has not been set")?;
+                let dr_tape = self.tape_shift(wheel)?;
+                let [_, y_ws, z_in, roll, yaw, _] = self.position;
+                let z_ws = match (&self.solved, self.config.digits.norm) {
+                    (Some(sv), 1) => sv.z_ws_m,
+                    _ => z_in,
+                };
+                let [_, a, e1] = contact_ws_axes(side, roll, yaw);
+                let w = add(
+                    [0.0, s * y_ws, z_ws - dims.nominal_radius_m],
+                    add(
+                        scale(pair.wheel(side).axial_offset_m(), a),
+                        scale(dims.nominal_radius_m + dr_tape, e1),
+                    ),
+                );
+                Ok(pts
+                    .iter()
+                    .map(|p| {
+                        let q = add(w, add(scale(p[0], a), scale(p[1], e1)));
+                        [s * q[1], q[2]]
+                    })
+                    .collect())
+            }
+        }
+    }
+}
+
+/// CONTACT's wheelset orientation as the solver's. CONTACT rolls the
+/// wheelset about the track's x axis, then yaws it about its own rolled
+/// vertical axis (R = Rx(roll) Rz(yaw)); the solver yaws about the track's
+/// vertical axis (R = Rz(yaw') Rx(roll')). A wheel is a body of revolution:
+/// only its axle's direction counts, so (roll', yaw') are chosen to give
+/// CONTACT's axle (-sin yaw, cos yaw cos roll, cos yaw sin roll):
+/// sin roll' = cos yaw sin roll, sin yaw' = sin yaw / cos roll'. The
+/// rotation rates likewise: CONTACT's angular velocity (roll rate) e_x +
+/// (yaw rate) Rx(roll) e_z + (pitch rate) a is the solver's (roll', 0,
+/// yaw') + pitch' a with pitch' - pitch = -(yaw rate) sin roll / a_y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SolverOrientation {
+    roll_rad: f64,
+    yaw_rad: f64,
+    roll_rate: f64,
+    yaw_rate: f64,
+    pitch_rate: f64,
+}
+
+impl SolverOrientation {
+    fn of(roll: f64, yaw: f64, vroll: f64, vyaw: f64, vpitch: f64) -> Self {
+        let (sr, cr) = roll.sin_cos();
+        let (sy, cy) = yaw.sin_cos();
+        let a = [-sy, cy * cr, cy * sr];
+        let roll_p = (cy * sr).clamp(-1.0, 1.0).asin();
+        let yaw_p = (sy / roll_p.cos()).clamp(-1.0, 1.0).asin();
+        let d = -vyaw * sr / a[1];
+        SolverOrientation {
+            roll_rad: roll_p,
+            yaw_rad: yaw_p,
+            roll_rate: vroll - d * a[0],
+            yaw_rate: vyaw * cr - d * a[2],
+            pitch_rate: vpitch + d,
+        }
+    }
+}
+
+/// CONTACT's wheelset axes (forward, axle, down) in the side frame of
+/// `side` for roll and yaw of the actual track frame: the columns of
+/// Rx(s roll) Rz(s yaw).
+fn contact_ws_axes(side: Side, roll: f64, yaw: f64) -> [[f64; 3]; 3] {
+    let s = side.sign();
+    let (sr, cr) = (s * roll).sin_cos();
+    let (sy, cy) = (s * yaw).sin_cos();
+    [
+        [cy, sy * cr, sy * sr],
+        [-sy, cy * cr, cy * sr],
+        [0.0, -sr, cr],
+    ]
+}
+
+/// The frames a patch's location is computed in (side frame).
+struct PatchFrames<'a> {
+    ws_axes: [[f64; 3]; 3],
+    center: [f64; 3],
+    w_marker: [f64; 3],
+    r_marker: [f64; 3],
+    rail_roll: f64,
+    axial: f64,
+    r_marker_radius: f64,
+    rail_s0: f64,
+    wheel_s0: f64,
+    rail_spline: &'a ProfileSpline,
+    wheel_spline: &'a ProfileSpline,
+    roll: f64,
+    yaw: f64,
+    sign: f64,
+}
+
+/// V = 1: friction by contact angle as the solver's friction table. The
+/// angles are CONTACT's, of the right-hand side (the wheel's contact angle
+/// in CONTACT's internal frame, negative at the gauge face); the solver's
+/// are positive towards the gauge face: negated. One law's shape holds over
+/// the table (the solver scales it to each static coefficient).
+fn friction_by_angle(
+    angles: &[f64],
+    laws: &[FrictionLaw],
+    vs: f64,
+    start: railcontact_solver::core::friclaw::SlipStart,
+) -> Result<(Friction, Option<FrictionTable>)> {
+    let first = laws
+        .first()
+        .ok_or_else(|| CntcError::Friction("V = 1 (cntc_setfrictionmethod) without rows".into()))?;
+    let ratio = |l: &FrictionLaw| {
+        let f = l.friction(vs, start);
+        f.kinetic_coefficient / f.static_coefficient
+    };
+    let r0 = ratio(first);
+    for l in laws {
+        let same_kind = std::mem::discriminant(l) == std::mem::discriminant(first);
+        if !same_kind || (ratio(l) - r0).abs() > 1e-9 * r0.abs().max(1.0) {
+            return Err(CntcError::NotSupported(
+                "V = 1 (cntc_setfrictionmethod) with friction laws of different shapes per row: \
+                 the rows must share the law and its kinetic/static ratio"
+                    .into(),
+            ));
+        }
+    }
+    let mut rows: Vec<(f64, f64)> = angles
+        .iter()
+        .zip(laws)
+        .map(|(a, l)| (-a, l.static_coefficient()))
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let table = FrictionTable {
+        axis: FrictionAxis::ContactAngle,
+        positions: rows.iter().map(|r| r.0).collect(),
+        track_s_m: Vec::new(),
+        coefficients: rows.iter().map(|r| r.1).collect(),
+    };
+    Ok((first.friction(vs, start), Some(table)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn z_orientation_of_values() {
+        // A rail crown with z down: top (smallest z) inside.
+        let rail: Vec<[f64; 2]> = (0..21)
+            .map(|i| {
+                let y = (i as f64 - 10.0) * 1e-3;
+                [y, 2e3 * y * y]
+            })
+            .collect();
+        assert!(!z_points_up(ProfileKind::Rail, &rail));
+        let up: Vec<[f64; 2]> = rail.iter().map(|p| [p[0], -p[1]]).collect();
+        assert!(z_points_up(ProfileKind::Rail, &up));
+    }
+
+    /// The built-in Manchester benchmark profiles written to a scratch
+    /// folder (the library reads profiles from files), once per test run.
+    fn mbench_files() -> (std::path::PathBuf, std::path::PathBuf) {
+        static FILES: std::sync::OnceLock<(std::path::PathBuf, std::path::PathBuf)> =
+            std::sync::OnceLock::new();
+        FILES
+            .get_or_init(|| {
+                let dir = std::env::temp_dir().join(format!("cntc-module1-{}", std::process::id()));
+                std::fs::create_dir_all(&dir).expect("scratch folder");
+                let mut out = Vec::new();
+                for (name, text) in railcontact_solver::wheelrail::builtin::FILES {
+                    let f = dir.join(name);
+                    std::fs::write(&f, text).expect("profile written");
+                    out.push(f);
+                }
+                let find = |ext: &str| {
+                    out.iter()
+                        .find(|f| f.extension().is_some_and(|e| e == ext))
+                        .expect("built-in profile")
+                        .clone()
+                };
+                (find("prr"), find("prw"))
+            })
+            .clone()
+    }
+
+    /// A wheel/rail problem set up as CONTACT's `python_mbench.py` sets
+    /// it up (CONTACT's units), on side `c1` (0 left, 1 right).
+    fn mbench(c1: i32) -> WheelRail {
+        let (rail, wheel) = mbench_files();
+        let mut w = WheelRail::default();
+        for (code, value) in [
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_CONFIG, c1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, 1),
+            (flags::IC_DISCNS, 2),
+        ] {
+            assert_eq!(w.config.set_flag(1, code, value), None);
+        }
+        w.config
+            .set_material(0, &[0.28, 0.28, 82000.0, 82000.0])
+            .unwrap();
+        w.config.set_friction(1, 0, &[0.3, 0.3]).unwrap();
+        w.set_vertical_force(10000.0).unwrap();
+        let pi = std::f64::consts::PI;
+        w.set_discretisation(-1, &[0.2, 0.2, pi / 2.0, 8.0, 4.0])
+            .unwrap();
+        w.set_rolling_step(0.0, 1.0).unwrap();
+        let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        w.set_track_dimensions(3, &track).unwrap();
+        let rail = rail.to_str().expect("utf-8 path");
+        w.set_profile_file(rail, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+        w.set_wheelset_dimensions(3, &[1360.0, -70.0, 460.0])
+            .unwrap();
+        let wheel = wheel.to_str().expect("utf-8 path");
+        w.set_profile_file(wheel, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+        w.set_wheelset_flexibility(1, &[0.0; 12]).unwrap();
+        w
+    }
+
+    fn close(what: &str, ours: f64, contact: f64, tol: f64) {
+        assert!(
+            (ours - contact).abs() <= tol,
+            "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
+        );
+    }
+
+    /// CONTACT's library, python_mbench.py case 6 of the right wheel
+    /// (iwhe = 2: y = 2.5 mm, yaw 6 mrad, tread contact); CONTACT read the
+    /// rail from `MBench_UIC60_v3.ban` mirrored, the same profile as the
+    /// built-in `.prr` used here.
+    #[test]
+    fn right_wheel_tread_matches_contact() {
+        let mut w = mbench(1);
+        w.set_wheelset_position(2, &[0.0, 2.5, 0.0, -0.0001457, 0.006, 0.0])
+            .unwrap();
+        w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3455627])
+            .unwrap();
+        let cache = KernelCache::default();
+        assert_eq!(w.calculate(&cache).unwrap(), 0);
+        assert_eq!(w.outcomes.len(), 1);
+        let u = w.config.units;
+        let o = &w.outcomes[0];
+        let [fn_, fx, fs, _] = crate::getters::contact_forces(o, u);
+        close("FN", fn_, 9786.708448251455, 10.0);
+        close("FX", fx, -456.2094255489085, 10.0);
+        close("FS", fs, -2900.11251343709, 10.0);
+        let [cksi, ceta, cphi] = crate::getters::creepages(o, u);
+        close("CKSI", cksi, 0.000960668303628454, 1e-5);
+        close("CETA", ceta, 0.006025246165910956, 1e-5);
+        close("CPHI", cphi, 0.00018659783767993346, 2e-6);
+        close("PEN", u.len_out(o.approach_m), 0.024613233222704107, 2e-4);
+        let g = w.global_forces(None).unwrap();
+        close("FX_TR", g[0], -456.2094255489085, 10.0);
+        close("FY_TR", g[1], -2047.031651446247, 10.0);
+        close("FZ_TR", g[2], 9999.99881298233, 1.0);
+        close("MX_R_TR", g[3], -199219.16215762054, 500.0);
+        let loc = crate::library::location_values(o, u);
+        close("YCP_TR", loc[1], 740.4619949606438, 0.1);
+        close("DELTCP_TR", loc[3], -0.08617430578329278, 1e-3);
+        close("YW_TR", loc[21], 752.5535140797225, 1e-3);
+        close("ZW_TR", loc[22], 0.02516892142710958, 1e-3);
+        // z_ws puts the wheel marker there: z_ws - r + 750 cos(yaw) sin(roll)
+        // + 460 cos(roll).
+        let pos = w.wheelset_position().unwrap();
+        let (roll, yaw) = (-0.0001457f64, 0.006f64);
+        let zw = pos[2] - 460.0 + 750.0 * yaw.cos() * roll.sin() + 460.0 * roll.cos();
+        close("Z_WS", zw, loc[22], 1e-9);
+    }
+
+    /// CONTACT's library, python_mbench.py case 14 of the right wheel
+    /// (y = 6.5 mm, yaw 15.6 mrad): flange contact.
+    #[test]
+    fn right_wheel_flange_matches_contact() {
+        let mut w = mbench(1);
+        w.set_wheelset_position(2, &[0.0, 6.5, 0.0, -0.004376, 0.0156, 0.0])
+            .unwrap();
+        w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.2748834])
+            .unwrap();
+        let cache = KernelCache::default();
+        w.calculate(&cache).unwrap();
+        assert_eq!(w.outcomes.len(), 1);
+        let u = w.config.units;
+        let o = &w.outcomes[0];
+        let [fn_, fx, fs, _] = crate::getters::contact_forces(o, u);
+        close("FN", fn_, 15440.061402268091, 50.0);
+        close("FX", fx, -1986.6680261296483, 40.0);
+        close("FS", fs, -4170.188764096686, 40.0);
+        let g = w.global_forces(None).unwrap();
+        close("FY_TR", g[1], 12481.440988735432, 50.0);
+        close("FZ_TR", g[2], 9999.980063916239, 1.0);
+        close("MX_R_TR", g[3], -550303.8316066253, 2000.0);
+        let loc = crate::library::location_values(o, u);
+        close("DELTCP_TR", loc[3], -1.159126112966055, 2e-3);
+        close("ZCP_TR", loc[2], 10.365437584972096, 0.05);
+    }
+
+    /// CONTACT's library, python_mbench.py case 5 of the left wheel
+    /// (iwhe = 1: y = 2 mm, yaw 4.8 mrad): a left wheel is reported in the
+    /// track frame (y < 0) with its lateral force and creepages mirrored.
+    #[test]
+    fn left_wheel_is_mirrored_as_contact_reports_it() {
+        let mut w = mbench(0);
+        w.set_wheelset_position(2, &[0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0])
+            .unwrap();
+        w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3459197])
+            .unwrap();
+        let cache = KernelCache::default();
+        w.calculate(&cache).unwrap();
+        let u = w.config.units;
+        let o = &w.outcomes[0];
+        let [fn_, fx, fs, _] = crate::getters::contact_forces(o, u);
+        close("FN", fn_, 10040.715121559264, 10.0);
+        close("FX", fx, 546.2665948836895, 10.0);
+        close("FS", fs, -2961.0836757778825, 10.0);
+        let [_, ceta, _] = crate::getters::creepages(o, u);
+        close("CETA", ceta, 0.004798401609212832, 1e-5);
+        let g = w.global_forces(None).unwrap();
+        close("FY_TR", g[1], -3095.7975364776526, 10.0);
+        close("MX_R_TR", g[3], 40032.761166105505, 200.0);
+        close("MZ_R_TR", g[5], -13235.98784802425, 200.0);
+        let loc = crate::library::location_values(o, u);
+        close("YCP_TR", loc[1], -756.5055572557221, 0.3);
+        close("YR_TR", loc[25], -760.5325577483475, 1e-3);
+        // The grid is mirrored: its rows run the other way round.
+        let p = crate::getters::potcontact(o, u);
+        assert!(p[3] < 0.0 && p[3] + (p[1] - 1.0) * p[5] > 0.0, "{p:?}");
+    }
+
+    /// The same case by vertical position (N = 0), in SI and SIMPACK's
+    /// units, and with the wheel given by values: the same forces.
+    #[test]
+    fn position_units_and_values_give_the_same_forces() {
+        let cache = KernelCache::default();
+        let case = |w: &mut WheelRail, l: f64, v: f64| {
+            w.set_wheelset_position(2, &[0.0, 2.5 * l, 0.0, -0.0001457, 0.006, 0.0])
+                .unwrap();
+            w.set_wheelset_velocity(2, &[2000.0 * v, 0.0, 0.0, 0.0, 0.0, -4.3455627])
+                .unwrap();
+        };
+        let mut w = mbench(1);
+        case(&mut w, 1.0, 1.0);
+        w.calculate(&cache).unwrap();
+        let g = w.global_forces(None).unwrap();
+        let z = w.wheelset_position().unwrap()[2];
+
+        // N = 0 at the height found: the vertical force comes back.
+        assert_eq!(w.config.set_flag(1, flags::IC_NORM, 0), None);
+        w.set_wheelset_position(2, &[0.0, 2.5, z, -0.0001457, 0.006, 0.0])
+            .unwrap();
+        w.calculate(&cache).unwrap();
+        let g0 = w.global_forces(None).unwrap();
+        close("FZ_TR at the height found", g0[2], g[2], 2.0);
+        close("FY_TR at the height found", g0[1], g[1], 2.0);
+
+        // SI (profiles in mm: SCALE_YZ = 1) and SIMPACK's convention
+        // (forces on the wheel).
+        for (units, body) in [(flags::UN_SI, 1.0), (flags::UN_SPCK, -1.0)] {
+            let mut si = WheelRail::default();
+            si.config.set_flag(1, flags::IF_UNITS, units);
+            si.config.set_flag(1, flags::IC_CONFIG, 1);
+            si.config
+                .set_material(0, &[0.28, 0.28, 82e9, 82e9])
+                .unwrap();
+            si.config.set_friction(1, 0, &[0.3, 0.3]).unwrap();
+            si.set_vertical_force(10000.0).unwrap();
+            si.set_discretisation(-1, &[2e-4, 2e-4, std::f64::consts::FRAC_PI_2, 8e-3, 4e-3])
+                .unwrap();
+            let track = [0.014, 0.0, 1.435, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            si.set_track_dimensions(3, &track).unwrap();
+            si.set_wheelset_dimensions(3, &[1.360, -0.070, 0.460])
+                .unwrap();
+            let (rail, wheel) = mbench_files();
+            for f in [rail, wheel] {
+                let f = f.to_str().expect("utf-8 path").to_string();
+                si.set_profile_file(&f, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+            }
+            case(&mut si, 1e-3, 1e-3);
+            si.calculate(&cache).unwrap();
+            let gs = si.global_forces(None).unwrap();
+            close("FY_TR (SI)", gs[1], body * g[1], 1e-6 * g[1].abs());
+            close("MX_R_TR (SI)", gs[3] * 1e3, body * g[3], 1e-6 * g[3].abs());
+            let u = si.config.units;
+            let loc = crate::library::location_values(&si.outcomes[0], u);
+            let loc_mm = crate::library::location_values(&w.outcomes[0], w.config.units);
+            close("YCP_TR (SI)", loc[1] * 1e3, loc_mm[1], 1e-6);
+        }
+
+        // The wheel by values (mm, CONTACT's order) instead of the file.
+        let (_, wheel) = mbench_files();
+        let text = std::fs::read_to_string(wheel).unwrap();
+        let prof = railcontact_solver::wheelrail::parse_profile(
+            &text,
+            "MBench_S1002_v3.prw",
+            &LoadOptions::default(),
+        )
+        .unwrap();
+        let values: Vec<f64> = prof
+            .points()
+            .iter()
+            .flat_map(|p| [p[0] * 1e3, p[1] * 1e3])
+            .collect();
+        let mut wv = mbench(1);
+        wv.set_profile_values(prof.len(), &values, &[1], &[])
+            .unwrap();
+        case(&mut wv, 1.0, 1.0);
+        wv.calculate(&cache).unwrap();
+        let gv = wv.global_forces(None).unwrap();
+        close("FY_TR (values)", gv[1], g[1], 1e-6 * g[1].abs());
+    }
+
+    /// V = 1: friction by contact angle (CONTACT's angles, negative
+    /// towards the gauge face): a constant table is Coulomb's law; 0.2 at
+    /// the flange lowers its creep forces.
+    #[test]
+    fn friction_by_contact_angle() {
+        let cache = KernelCache::default();
+        let solve = |params: &[f64], imeth: i32| {
+            let mut w = mbench(1);
+            w.config.set_friction(1, imeth, params).unwrap();
+            w.set_wheelset_position(2, &[0.0, 6.5, 0.0, -0.004376, 0.0156, 0.0])
+                .unwrap();
+            w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.2748834])
+                .unwrap();
+            w.calculate(&cache).unwrap();
+            w.global_forces(None).unwrap()
+        };
+        let coulomb = solve(&[0.3, 0.3], 0);
+        let pi = std::f64::consts::PI;
+        let table = [
+            2.0,
+            -20.0 * pi / 180.0,
+            0.3,
+            0.3,
+            -10.0 * pi / 180.0,
+            0.3,
+            0.3,
+        ];
+        let constant = solve(&table, 10);
+        close("FX_TR, constant table", constant[0], coulomb[0], 1e-6);
+        let table = [
+            2.0,
+            -20.0 * pi / 180.0,
+            0.2,
+            0.2,
+            -10.0 * pi / 180.0,
+            0.3,
+            0.3,
+        ];
+        let low = solve(&table, 10);
+        // The flange (66 degrees) takes the table's end value 0.2.
+        assert!(
+            low[0].abs() < 0.85 * coulomb[0].abs(),
+            "{} {}",
+            low[0],
+            coulomb[0]
+        );
+    }
+
+    #[test]
+    fn unsupported_settings_are_refused_naming_the_parameter() {
+        let mut w = mbench(1);
+        let e = w.set_wheelset_flexibility(4, &[0.1; 12]).unwrap_err();
+        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
+        assert!(e.to_string().contains("cntc_setwheelsetflexibility"));
+        w.set_wheelset_position(1, &[0.0; 6]).unwrap();
+        w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3])
+            .unwrap();
+        let cache = KernelCache::default();
+        assert_eq!(
+            w.calculate(&cache).unwrap_err().ierror(),
+            flags::err::NOT_SUPPORTED
+        );
+        w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
+        assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
+        let e = w.calculate(&cache).unwrap_err();
+        assert!(e.to_string().contains("T = 2"), "{e}");
+        let e = w
+            .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
+            .unwrap_err();
+        assert!(e.to_string().contains("GAUGHT"), "{e}");
+        let e = w
+            .set_profile_file("no-such-file.prr", &[], &[])
+            .unwrap_err();
+        assert_eq!(e.ierror(), flags::err::PROFIL);
+        assert!(w.calculate(&cache).is_err());
+    }
+
+    #[test]
+    fn profile_values_give_the_points_in_mm() {
+        let w = mbench(1);
+        let n = w.profile_values(0, &[0, 0], &[]).unwrap()[0] as usize;
+        let v = w.profile_values(1, &[0, 0], &[]).unwrap();
+        assert_eq!(v.len(), 2 * n);
+        // The rail's points run from the gauge side to the field side.
+        assert!(v[0] < v[n - 1], "y from {} to {}", v[0], v[n - 1]);
+        let s = w.profile_values(4, &[1, 1], &[0.5]).unwrap();
+        assert!(s.windows(2).all(|p| (p[1] - p[0] - 0.5).abs() < 1e-9));
+        // The rail on the right side of the track lies near y = 760 mm.
+        let t = w.profile_values(2, &[0, 0], &[]).unwrap();
+        assert!(t[..n].iter().all(|y| (700.0..800.0).contains(y)));
+        assert_eq!(w.profile_values(-1, &[1], &[]).unwrap(), vec![0.0, 0.0]);
+    }
+
+    #[test]
+    fn orientation_gives_contacts_axle() {
+        let (roll, yaw) = (0.011, 0.024);
+        let o = SolverOrientation::of(roll, yaw, 0.0, 0.0, -4.0);
+        let ours = [
+            -o.yaw_rad.sin() * o.roll_rad.cos(),
+            o.yaw_rad.cos() * o.roll_rad.cos(),
+            o.roll_rad.sin(),
+        ];
+        let axes = contact_ws_axes(Side::Right, roll, yaw);
+        for k in 0..3 {
+            assert!(
+                (ours[k] - axes[1][k]).abs() < 1e-15,
+                "{ours:?} {:?}",
+                axes[1]
+            );
+        }
+        // Right-handed: forward x axle = down.
+        let z = cross(axes[0], axes[1]);
+        for k in 0..3 {
+            assert!((z[k] - axes[2][k]).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn rows_mirror() {
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
+        assert_eq!(
+            mirrored_rows(&v, 2, 3, -1.0),
+            vec![-5.0, -6.0, -3.0, -4.0, -1.0, -2.0]
+        );
     }
 }

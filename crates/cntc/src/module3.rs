@@ -742,12 +742,7 @@ impl Patch {
         o.rolling_speed_m_per_s = self.kin.veloc;
         o.max_pressure_pa = out.bound_peak_pressure_pa;
         o.max_traction_pa = out.max_traction_pa;
-        let area = sol.contact_area_m2;
-        o.areas_m2 = [
-            area,
-            area * out.adhesion_fraction,
-            area * (1.0 - out.adhesion_fraction),
-        ];
+        o.areas_m2 = Outcome::areas_by_fraction(sol.contact_area_m2, out.adhesion_fraction);
         o.tgamma_n = out.tgamma_n;
         Ok(o)
     }

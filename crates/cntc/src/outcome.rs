@@ -82,8 +82,9 @@ pub struct HertzInfo {
     pub scale: f64,
 }
 
-/// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, right-hand
-/// side conventions (the getter mirrors a left wheel's y and angles).
+/// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
+/// CONTACT's reporting frame: a left wheel's y and angles are already those
+/// of the actual (left) side; the getter converts units only.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Location {
     /// Contact reference point in track coordinates (x, y, z) \[m\] and the
@@ -156,6 +157,17 @@ impl Outcome {
     /// Whether per-element fields are available on [`Outcome::grid`].
     pub fn has_fields(&self) -> bool {
         self.fields.pressure_pa.len() == self.grid.len()
+    }
+
+    /// Contact, adhesion and slip areas \[m²\] of a contact area `area_m2`
+    /// with the share `adhesion_fraction` in adhesion (a model without
+    /// element states).
+    pub fn areas_by_fraction(area_m2: f64, adhesion_fraction: f64) -> [f64; 3] {
+        [
+            area_m2,
+            area_m2 * adhesion_fraction,
+            area_m2 * (1.0 - adhesion_fraction),
+        ]
     }
 
     /// Contact, adhesion and slip areas from the element states \[m²\].

@@ -52,8 +52,8 @@ fn tool(tool: &str, package: &str, what: &str) -> bool {
 }
 
 /// Links `source` (C or Fortran) with `compiler` against the library and
-/// runs it; its standard output.
-fn build_and_run(compiler: &str, source: &Path, name: &str) -> String {
+/// runs it with `args`; its standard output.
+fn build_and_run(compiler: &str, source: &Path, name: &str, args: &[&Path]) -> String {
     let lib = library_dir();
     let dir = scratch(name);
     let exe = dir.join(name);
@@ -75,7 +75,11 @@ fn build_and_run(compiler: &str, source: &Path, name: &str) -> String {
         &format!("{compiler} {}", source.display()),
         &cc.output().unwrap(),
     );
-    let out = Command::new(&exe).current_dir(&dir).output().unwrap();
+    let out = Command::new(&exe)
+        .args(args)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
     check(&format!("running {name}"), &out);
     let _ = std::fs::remove_dir_all(&dir);
     String::from_utf8(out.stdout).unwrap()
@@ -181,7 +185,12 @@ fn c_example_gives_contacts_results() {
     ) {
         return;
     }
-    let out = build_and_run("cc", &package().join("examples/c/module3.c"), "module3_c");
+    let out = build_and_run(
+        "cc",
+        &package().join("examples/c/module3.c"),
+        "module3_c",
+        &[],
+    );
     assert!(out.starts_with("ifcver 2520 ierror 0\n"), "{out}");
     matches_contact(&out);
 }
@@ -199,8 +208,14 @@ fn fortran_example_gives_the_c_examples_numbers() {
         "gfortran",
         &package().join("examples/fortran/module3.f90"),
         "module3_f",
+        &[],
     );
-    let c = build_and_run("cc", &package().join("examples/c/module3.c"), "module3_cf");
+    let c = build_and_run(
+        "cc",
+        &package().join("examples/c/module3.c"),
+        "module3_cf",
+        &[],
+    );
     // The same calls from Fortran: the same numbers to the digits printed.
     assert_eq!(parse(&f), parse(&c), "Fortran:\n{f}\nC:\n{c}");
 }
@@ -224,6 +239,70 @@ fn python_example_gives_the_c_examples_numbers() {
     let py = String::from_utf8(out.stdout).unwrap();
     assert!(py.starts_with("ifcver 2520 ierror 0\n"), "{py}");
     matches_contact(&py);
+}
+
+/// CONTACT's own library (as [`CONTACT_MODULE3`]) running
+/// `examples/c/module1.c` unchanged on the profiles of
+/// `crates/solver/profiles`: side, ierror, patches, FX, FY, FZ on the rail
+/// in track coordinates \[N\], the patch's FN, FX, FS \[N\] and contact
+/// angle \[rad\] (python_mbench.py's cases 5 of the left and 16 of the
+/// right wheel).
+const CONTACT_MODULE1: &str = "\
+left 0 1 5.462665949e+02 -3.095797536e+03 1.000000072e+04 1.004071512e+04 5.462665949e+02 -2.961083676e+03 1.344381436e-02
+right 0 1 -2.085857027e+03 9.343542301e+03 9.999979346e+03 1.326322813e+04 -2.085857027e+03 -3.374633187e+03 -1.000624095e+00
+";
+
+/// Runs a module 1 example's program (C or Fortran) on the repository's
+/// profiles.
+fn module1_output(compiler: &str, source: &str, name: &str) -> String {
+    let profiles = package().join("../solver/profiles");
+    build_and_run(compiler, &package().join(source), name, &[&profiles])
+}
+
+/// The module 1 example from C against [`CONTACT_MODULE1`]: the same
+/// ierror and number of patches, FZ within 1e-5, FN within 1 %, the
+/// creep forces within 1 % of FN, the contact angle within 0.01 rad
+/// (the contact reference point lies 0.1-0.4 mm from CONTACT's, see
+/// docs/cntc.md); and from Fortran the C program's numbers.
+#[test]
+fn module1_examples_give_contacts_results() {
+    if !tool(
+        "cc",
+        "gcc",
+        "the C example of the CONTACT-compatible library",
+    ) {
+        return;
+    }
+    let c = module1_output("cc", "examples/c/module1.c", "module1_c");
+    let ours = parse(&c);
+    let theirs = parse(CONTACT_MODULE1);
+    assert_eq!(ours.len(), 2, "{c}");
+    for ((tag, a), (_, b)) in ours.iter().zip(&theirs) {
+        assert_eq!(a[..2], b[..2], "{tag}: ierror, patches");
+        let fnn = b[5];
+        let within = |k: usize, tol: f64, what: &str| {
+            assert!(
+                (a[k] - b[k]).abs() <= tol,
+                "{tag} {what}: {} against CONTACT's {} (allowed {tol})",
+                a[k],
+                b[k]
+            )
+        };
+        within(4, 1e-5 * b[4].abs(), "FZ");
+        within(5, 0.01 * fnn, "FN");
+        for (k, what) in [(2, "FX"), (3, "FY"), (6, "patch FX"), (7, "patch FS")] {
+            within(k, 0.01 * fnn, what);
+        }
+        within(8, 0.01, "contact angle");
+    }
+    if tool(
+        "gfortran",
+        "gfortran",
+        "the Fortran example of the CONTACT-compatible library",
+    ) {
+        let f = module1_output("gfortran", "examples/fortran/module1.f90", "module1_f");
+        assert_eq!(parse(&f), ours, "Fortran:\n{f}\nC:\n{c}");
+    }
 }
 
 /// Every function of CONTACT's library: the 66 its Python interface binds
@@ -323,6 +402,6 @@ fn every_function_links_from_c() {
     }
     text.push_str("   };\n   printf(\"%zu\\n\", sizeof f / sizeof f[0]);\n   return 0;\n}\n");
     std::fs::write(&source, text).unwrap();
-    let out = build_and_run("cc", &source, "symbols");
+    let out = build_and_run("cc", &source, "symbols", &[]);
     assert_eq!(out.trim(), "70");
 }

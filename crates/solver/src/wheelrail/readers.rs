@@ -57,7 +57,9 @@
 //!   `ColumnDef` at least two numbers of which the first two are X and Y
 //!   (the text variants carry a third column that is ignored). Values are
 //!   in mm; `XOffset`/`YOffset` \[mm\] are added. A count different from
-//!   `XYPoints` is an error (truncated file).
+//!   `XYPoints` is an error (truncated file), unless the data lines
+//!   commented out with `"` make up the difference (a warning: points
+//!   removed by hand, as in CONTACT's `MBench_UIC60_v3.ban`).
 //! * Orientation: MiniProf's X is taken as y as it is; wheels have X = 0
 //!   at the back of the flange, growing towards the field side, which is
 //!   the profile frame already (origin at the flange back, the tape circle
@@ -713,6 +715,7 @@ pub(crate) fn read_miniprof(
     let mut header_lines = 0;
     let mut data_start: Option<usize> = None;
     let mut last_line = 0;
+    let mut commented_points = 0usize;
     let mut points: Vec<RawPoint> = Vec::new();
 
     for (idx, raw_line) in text.lines().enumerate() {
@@ -819,7 +822,15 @@ pub(crate) fn read_miniprof(
         }
 
         // Data section.
-        if t.is_empty() || is_miniprof_comment(t) {
+        if t.is_empty() {
+            continue;
+        }
+        if is_miniprof_comment(t) {
+            // A data line commented out with `"` (MiniProf's way of
+            // removing a point): counted against XYPoints below.
+            if t.starts_with('"') && numbers(t[1..].trim()).is_some_and(|v| v.len() >= 2) {
+                commented_points += 1;
+            }
             continue;
         }
         let content = strip_comment(t, &['!', '#', '%']).trim();
@@ -881,7 +892,19 @@ pub(crate) fn read_miniprof(
         ));
     }
     if let Some((n, n_line)) = xy_points {
-        if n != points.len() {
+        if n == points.len() + commented_points && commented_points > 0 {
+            // XYPoints counts the points commented out as well (CONTACT's
+            // MBench_UIC60_v3.ban: 495 = 476 + 19).
+            warnings.push(warn(
+                file,
+                Some(n_line),
+                format!(
+                    "XYPoints = {n} counts {commented_points} data lines commented out with `\"`; \
+                     read the other {}",
+                    points.len()
+                ),
+            ));
+        } else if n != points.len() {
             let what = if points.len() < n {
                 "truncated data: "
             } else {

@@ -104,6 +104,12 @@ fn every_test_bank_file_loads() {
             ProfileFormat::MiniProf(MiniProfVariant::KeyValue),
             146,
         ),
+        (
+            "MBench_UIC60_v3.ban",
+            ProfileKind::Rail,
+            ProfileFormat::MiniProf(MiniProfVariant::KeyValue),
+            476,
+        ),
     ];
     for (name, kind, format, n) in files {
         let p = load(name);
@@ -125,6 +131,21 @@ fn every_test_bank_file_loads() {
         let sp = p.spline(&SplineOptions::default()).unwrap();
         assert!(sp.length_m() > y1 - y0);
     }
+}
+
+/// CONTACT's `MBench_UIC60_v3.ban` says `XYPoints=495` and has 476 data
+/// lines and 19 more commented out with `"`: read, with a warning naming
+/// the 19 and the key's line.
+#[test]
+fn miniprof_points_commented_out_count_in_xypoints() {
+    let p = load("MBench_UIC60_v3.ban");
+    assert_eq!(p.len(), 476);
+    let w: Vec<String> = p.warnings().iter().map(|w| w.to_string()).collect();
+    assert!(
+        w.iter().any(|w| w.contains("line 7")
+            && w.contains("XYPoints = 495 counts 19 data lines commented out")),
+        "{w:?}"
+    );
 }
 
 #[test]

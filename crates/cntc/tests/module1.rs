@@ -1,0 +1,189 @@
+//! Module 1 (wheel/rail contact) called as a C caller calls it, with the
+//! Manchester benchmark set up as CONTACT's `python_mbench.py` sets it up,
+//! against the values CONTACT's own library returned there. Each test
+//! uses its own result element (the library is one per process).
+
+use std::ffi::c_char;
+use std::ptr::null;
+
+use contact_addon::ffi::*;
+use contact_addon::flags;
+
+/// A profile file of the repository's test data (`crates/solver/profiles`:
+/// CONTACT's test bank, with its licence and source).
+fn profile(name: &str) -> String {
+    format!("{}/../solver/profiles/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Configures result element `ire` as `python_mbench.py` does for its
+/// wheel `iwhe`: 1 the left wheel on the Simpack rail, 2 the right wheel on
+/// the MiniProf rail (mirrored in y: MiniProf measures from the gauge
+/// side).
+unsafe fn mbench(ire: i32, iwhe: i32) {
+    let (rail, wheel) = if iwhe == 1 {
+        (
+            profile("MBench_UIC60_v3.prr"),
+            profile("MBench_S1002_v3.prw"),
+        )
+    } else {
+        (
+            profile("MBench_UIC60_v3.ban"),
+            profile("MBench_S1002_v3.prw"),
+        )
+    };
+    let (mut ifcver, mut ierror) = (0, 0);
+    cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+    assert_eq!(ierror, 0);
+    let icp = -1;
+    let codes = [
+        flags::IF_UNITS,
+        flags::IC_CONFIG,
+        flags::IC_TANG,
+        flags::IC_PVTIME,
+        flags::IC_NORM,
+        flags::IC_DISCNS,
+    ];
+    let values = [flags::UN_CNTC, iwhe - 1, 3, 2, 1, 2];
+    cntc_setflags(&ire, &icp, &6, codes.as_ptr(), values.as_ptr());
+    let mat = [0.28, 0.28, 82000.0, 82000.0];
+    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+    let mu = [0.3, 0.3];
+    cntc_setfrictionmethod(&ire, &icp, &0, &2, mu.as_ptr());
+    cntc_setverticalforce(&ire, &10000.0);
+    let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+    cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+    let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
+    let rp = [1.0, 0.0];
+    let set_profile = |f: &str, mirror_y: i32| {
+        let ip = [-1, 0, mirror_y];
+        cntc_setprofileinputfname(
+            &ire,
+            f.as_ptr() as *const c_char,
+            &(f.len() as i32),
+            &3,
+            ip.as_ptr(),
+            &2,
+            rp.as_ptr(),
+        )
+    };
+    set_profile(&rail, if iwhe == 1 { 0 } else { 1 });
+    let dims = [1360.0, -70.0, 460.0];
+    cntc_setwheelsetdimensions(&ire, &3, &3, dims.as_ptr());
+    set_profile(&wheel, 0);
+    let flex = [0.0; 12];
+    cntc_setwheelsetflexibility(&ire, &1, &12, flex.as_ptr());
+}
+
+/// Sets the wheelset position `pos` (E = 2: s, y, z, roll, yaw, pitch)
+/// and the velocity of 2 m/s with pitch rate `vpitch`, solves, and checks
+/// that one patch is found without an error.
+unsafe fn solve_one_patch(ire: i32, pos: [f64; 6], vpitch: f64) {
+    cntc_setwheelsetposition(&ire, &2, &6, pos.as_ptr());
+    let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, vpitch];
+    cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
+    let mut ierror = -1;
+    cntc_calculate1(&ire, &mut ierror);
+    assert_eq!(ierror, 0);
+    let mut npatch = 0;
+    cntc_getnumcontactpatches(&ire, &mut npatch);
+    assert_eq!(npatch, 1);
+}
+
+fn close(what: &str, ours: f64, contact: f64, tol: f64) {
+    assert!(
+        (ours - contact).abs() <= tol,
+        "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
+    );
+}
+
+/// CONTACT's library, python_mbench.py case 5 of wheel 1 (the left wheel:
+/// y = 2 mm, yaw 4.8 mrad, tread contact).
+#[test]
+fn left_wheel_of_python_mbench_through_the_c_calls() {
+    let ire = 31;
+    unsafe {
+        mbench(ire, 1);
+        solve_one_patch(ire, [0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0], -4.3459197);
+
+        let icp = 1;
+        let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
+        cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+        close("FN", fn_, 10040.715121559264, 10.0);
+        close("FX", fx, 546.2665948836895, 10.0);
+        close("FS", fs, -2961.0836757778825, 10.0);
+        let (mut cksi, mut ceta, mut cphi) = (0.0, 0.0, 0.0);
+        cntc_getcreepages(&ire, &icp, &mut cksi, &mut ceta, &mut cphi);
+        close("CKSI", cksi, -0.0008651007927205669, 1e-5);
+        close("CETA", ceta, 0.004798401609212832, 1e-5);
+        let mut pen = 0.0;
+        cntc_getpenetration(&ire, &icp, &mut pen);
+        close("PEN", pen, 0.020543975556290815, 2e-4);
+        let mut veloc = 0.0;
+        cntc_getreferencevelocity(&ire, &icp, &mut veloc);
+        close("VELOC", veloc, 1999.13527324518, 0.05);
+
+        let mut g = [0.0; 24];
+        cntc_getglobalforces(&ire, &-1, &24, g.as_mut_ptr());
+        close("FX_TR", g[0], 546.2665948836895, 10.0);
+        close("FY_TR", g[1], -3095.7975364776526, 10.0);
+        close("FZ_TR", g[2], 10000.000715020276, 1.0);
+        close("MX_R_TR", g[3], 40032.761166105505, 200.0);
+        close("MZ_R_TR", g[5], -13235.98784802425, 200.0);
+
+        let mut loc = [0.0; 38];
+        cntc_getcontactlocation(&ire, &icp, &38, loc.as_mut_ptr());
+        close("YCP_TR", loc[1], -756.5055572557221, 0.3);
+        close("YW_TR", loc[21], -747.9394672453138, 1e-3);
+        close("YR_TR", loc[25], -760.5325577483475, 1e-3);
+        close("ZW_WS", loc[35], 460.0, 1e-9);
+
+        let mut ws = [0.0; 6];
+        cntc_getwheelsetposition(&ire, &6, ws.as_mut_ptr());
+        close("Y_WS", ws[1], 2.0, 1e-12);
+        cntc_finalize(&ire);
+    }
+}
+
+/// CONTACT's library, python_mbench.py case 16 of wheel 2 (the right
+/// wheel on the MiniProf rail: y = 7.5 mm, yaw 18 mrad, roll -7.642 mrad,
+/// flange contact at a contact angle of -1.0 rad in CONTACT's frame).
+#[test]
+fn right_wheel_flange_on_the_miniprof_rail() {
+    let ire = 33;
+    unsafe {
+        mbench(ire, 2);
+        solve_one_patch(ire, [0.0, 7.5, 0.0, -0.007642, 0.018, 0.0], -4.2575747);
+        let icp = 1;
+        let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
+        cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+        // Within 1 % of CONTACT's FN and of mu FN for the creep forces.
+        close("FN", fn_, 13263.228133151724, 133.0);
+        close("FX", fx, -2085.8570270052205, 40.0);
+        close("FS", fs, -3374.633186994974, 40.0);
+        let mut g = [0.0; 24];
+        cntc_getglobalforces(&ire, &-1, &24, g.as_mut_ptr());
+        close("FX_TR", g[0], -2085.8570270052205, 40.0);
+        close("FY_TR", g[1], 9343.542301339861, 100.0);
+        close("FZ_TR", g[2], 9999.979346072065, 1.0);
+        let mut loc = [0.0; 38];
+        cntc_getcontactlocation(&ire, &icp, &38, loc.as_mut_ptr());
+        close("DELTCP_TR", loc[3], -1.0006240948464022, 0.01);
+        cntc_finalize(&ire);
+    }
+}
+
+/// A missing profile is CONTACT's profile error (-32).
+#[test]
+fn missing_profile_is_a_profile_error() {
+    let ire = 32;
+    unsafe {
+        let (mut ifcver, mut ierror) = (0, 0);
+        cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+        let pot = [0.2, 0.2, 1.5, 8.0, 4.0];
+        cntc_setpotcontact(&ire, &-1, &-1, &5, pot.as_ptr());
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, flags::err::PROFIL);
+        cntc_finalize(&ire);
+    }
+}
