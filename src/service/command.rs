@@ -55,6 +55,10 @@ pub fn settings_help() -> String {
 /// [`EXIT_FAILURE`] otherwise. The error goes to stderr.
 pub fn run(args: &ServeArgs) -> i32 {
     let env = |name: &str| std::env::var(name).ok();
+    let names = std::env::vars_os().filter_map(|(k, _)| k.into_string().ok());
+    for warning in crate::service::config::unknown_env_vars(names) {
+        eprintln!("warning: {warning}");
+    }
     let result = match ServeConfig::load(args.config.as_deref(), &env, &args.flags) {
         Err(e) => Err((EXIT_BAD_INPUT, format!("serve settings: {e}"))),
         Ok(config) => crate::service::server::serve(&config).map_err(|e| match e.kind() {

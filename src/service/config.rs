@@ -17,6 +17,65 @@ use serde::Deserialize;
 /// Prefix of the environment variables.
 pub const ENV_PREFIX: &str = "RAILCONTACT_";
 
+/// Variables with the [`ENV_PREFIX`] that are not settings but are read by
+/// other parts of railcontact: the clients' token, the tests' switches.
+pub const OTHER_ENV_VARS: &[&str] = &[
+    "RAILCONTACT_TOKEN",
+    "RAILCONTACT_SKIP_CLIENT_TESTS",
+    "RAILCONTACT_SKIP_PROXY_TEST",
+    "RAILCONTACT_BIN",
+    "RAILCONTACT_PYTHON",
+];
+
+/// A warning for each of `names` (the process's variable names) that has
+/// the [`ENV_PREFIX`] but is neither a setting nor one of
+/// [`OTHER_ENV_VARS`]: most likely a misspelt setting, which would
+/// otherwise be ignored without a word. Names the nearest setting when one
+/// is close (at most 3 edits).
+pub fn unknown_env_vars(names: impl IntoIterator<Item = String>) -> Vec<String> {
+    let settings: Vec<String> = serde_aux::serde_introspection::serde_introspect::<ServeConfig>()
+        .iter()
+        .map(|k| format!("{ENV_PREFIX}{}", k.to_ascii_uppercase()))
+        .collect();
+    let mut out: Vec<String> = names
+        .into_iter()
+        .filter(|n| n.starts_with(ENV_PREFIX))
+        .filter(|n| !settings.contains(n) && !OTHER_ENV_VARS.contains(&n.as_str()))
+        .map(|n| {
+            let nearest = settings
+                .iter()
+                .map(|s| (edit_distance(&n, s), s))
+                .min()
+                .filter(|(d, _)| *d <= 3);
+            match nearest {
+                Some((_, s)) => format!("{n} is not a setting (did you mean {s}?); ignored"),
+                None => format!(
+                    "{n} is not a setting; ignored (`railcontact serve --help` lists the settings \
+                     and their variables)"
+                ),
+            }
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// Levenshtein distance of two ASCII names.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let here = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(here + 1);
+            prev = here;
+        }
+    }
+    row[b.len()]
+}
+
 /// `table` (the file's keys) with every key of [`ServeConfig`] that the
 /// environment sets (`RAILCONTACT_<KEY>`) put over it. A variable's text
 /// is read as a TOML value (`5`, `2.5`, `true`) or else as a string
@@ -456,6 +515,28 @@ mod tests {
             .map(|(k, v)| (k.to_string(), v.to_string()))
             .collect();
         move |k: &str| map.get(k).cloned()
+    }
+
+    #[test]
+    fn misspelt_variables_are_named_with_the_nearest_setting() {
+        let names = [
+            "RAILCONTACT_LISTNE",
+            "RAILCONTACT_LISTEN",
+            "RAILCONTACT_TOKEN",
+            "RAILCONTACT_SOMETHING_ELSE_ENTIRELY",
+            "PATH",
+        ]
+        .map(String::from);
+        let w = unknown_env_vars(names);
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(
+            w[0].contains("RAILCONTACT_LISTNE is not a setting (did you mean RAILCONTACT_LISTEN?)"),
+            "{w:?}"
+        );
+        assert!(
+            w[1].starts_with("RAILCONTACT_SOMETHING_ELSE_ENTIRELY is not a setting; ignored"),
+            "{w:?}"
+        );
     }
 
     #[test]

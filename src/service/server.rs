@@ -72,10 +72,33 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
     Ok(())
 }
 
+/// Binds `addr`; an error names the address, the setting that chose it
+/// (`setting`) and, for a port in use, what to do.
+async fn bind(addr: std::net::SocketAddr, setting: &str) -> std::io::Result<TcpListener> {
+    TcpListener::bind(addr).await.map_err(|e| {
+        let hint = match e.kind() {
+            std::io::ErrorKind::AddrInUse => format!(
+                ": another process listens there (another railcontact server?); stop it, or \
+                 choose another address with {setting}"
+            ),
+            std::io::ErrorKind::AddrNotAvailable => {
+                format!(": not an address of this host; choose another with {setting}")
+            }
+            std::io::ErrorKind::PermissionDenied => {
+                format!(": ports below 1024 need privileges; choose another with {setting}")
+            }
+            _ => String::new(),
+        };
+        std::io::Error::new(e.kind(), format!("cannot listen on {addr}: {e}{hint}"))
+    })
+}
+
 /// Binds the ports and starts serving `config` on the current runtime.
 /// Settings it refuses (a listen address beyond loopback without TLS and
 /// tokens, unreadable or invalid TLS or tokens files) are errors of kind
-/// `InvalidInput`, before any port is bound.
+/// `InvalidInput`, before any port is bound; a port it cannot bind is an
+/// error naming it (and what to do when it is in use), before the store is
+/// opened.
 pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let invalid = |e: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, e);
     if let Some(warning) = config.check_exposure().map_err(invalid)? {
@@ -103,6 +126,13 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         max_sessions_total_bytes: config.max_sessions_total_bytes,
         session_idle_timeout: Duration::from_secs_f64(config.session_idle_timeout_s),
         first_message_timeout: Duration::from_secs_f64(config.stream_first_message_timeout_s),
+    };
+    // Ports first: a port in use is said at once, naming it, before the
+    // store is opened and the built-in pair prepared.
+    let listener = bind(config.listen, "--listen / RAILCONTACT_LISTEN").await?;
+    let metrics_listener = match config.metrics_listen {
+        Some(a) => Some(bind(a, "--metrics-listen / RAILCONTACT_METRICS_LISTEN").await?),
+        None => None,
     };
     let store = match config.store_dir() {
         Some(dir) => {
@@ -169,11 +199,9 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .map_err(|e| invalid(crate::service::error_chain(&e)))?;
     }
 
-    let listener = TcpListener::bind(config.listen).await?;
     let addr = listener.local_addr()?;
-    let (metrics_addr, metrics_task) = match config.metrics_listen {
-        Some(a) => {
-            let l = TcpListener::bind(a).await?;
+    let (metrics_addr, metrics_task) = match metrics_listener {
+        Some(l) => {
             let bound = l.local_addr()?;
             let (stop, stopped) = oneshot::channel::<()>();
             let task = tokio::spawn(serve_metrics(l, metrics, pool, async {
@@ -239,20 +267,33 @@ impl RunningServer {
     /// Stops gracefully: NOT_SERVING, no new connections, in-flight work
     /// finishes within the grace period.
     pub async fn shutdown(self) {
+        self.shutdown_or(std::future::pending()).await
+    }
+
+    /// [`RunningServer::shutdown`], cut short when `now` completes first
+    /// (a second Ctrl-C): unfinished calls and sessions are dropped at
+    /// once.
+    pub async fn shutdown_or(self, now: impl std::future::Future<Output = ()>) {
         self.health
             .set_not_serving::<ContactServiceServer<ContactHandlers>>()
             .await;
         let _ = self.stop.send(());
         let mut task = self.task;
-        match tokio::time::timeout(self.grace, &mut task).await {
-            Ok(Ok(Ok(()))) => tracing::info!("stopped"),
-            Ok(Ok(Err(e))) => tracing::warn!(error = %e, "server error while stopping"),
-            Ok(Err(e)) => tracing::warn!(error = %e, "server task failed"),
-            Err(_) => {
-                tracing::warn!(
-                    grace_s = self.grace.as_secs_f64(),
-                    "grace period over: dropping unfinished calls"
-                );
+        tokio::select! {
+            done = tokio::time::timeout(self.grace, &mut task) => match done {
+                Ok(Ok(Ok(()))) => tracing::info!("stopped"),
+                Ok(Ok(Err(e))) => tracing::warn!(error = %e, "server error while stopping"),
+                Ok(Err(e)) => tracing::warn!(error = %e, "server task failed"),
+                Err(_) => {
+                    tracing::warn!(
+                        grace_s = self.grace.as_secs_f64(),
+                        "grace period over: dropping unfinished calls"
+                    );
+                    task.abort();
+                }
+            },
+            _ = now => {
+                tracing::warn!("stopping now: unfinished calls and sessions dropped");
                 task.abort();
             }
         }
@@ -364,8 +405,12 @@ pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
             let _ = out.flush();
         }
         termination().await;
-        tracing::info!("shutting down");
-        server.shutdown().await;
+        tracing::info!(
+            grace_s = config.shutdown_grace_s,
+            "shutting down: new calls refused, calls and sessions under way get the grace \
+             period to finish; a second Ctrl-C (or SIGTERM) stops at once"
+        );
+        server.shutdown_or(termination()).await;
         Ok(())
     })
 }

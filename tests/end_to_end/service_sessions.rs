@@ -1216,3 +1216,54 @@ async fn wheel_rail_session_patches_obey_max_grid_elements() {
     assert!(e.message.contains("400"), "{}", e.message);
     server.shutdown().await;
 }
+
+/// Ctrl-C while a session is open: the server refuses new calls and gives
+/// the session its grace period (60 s here), saying so in its log; a
+/// second Ctrl-C stops it at once.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_second_ctrl_c_stops_at_once() {
+    let mut server = crate::support::Server::start_with(
+        &["--data-dir", ""],
+        &[("RAILCONTACT_SHUTDOWN_GRACE_S", "60"), ("RUST_LOG", "info")],
+    );
+    let channel = tonic::transport::Endpoint::from_shared(format!("http://{}", server.addr))
+        .unwrap()
+        .connect()
+        .await
+        .unwrap();
+    let mut client = Client::new(channel);
+    let (tx, rx) = mpsc::channel(4);
+    tx.send(open(sphere(pb::Model::Exact, 16), false))
+        .await
+        .unwrap();
+    let mut answers = client
+        .patch_session(ReceiverStream::new(rx))
+        .await
+        .unwrap()
+        .into_inner();
+    assert!(matches!(
+        answers.next().await,
+        Some(Ok(pb::SessionResponse {
+            kind: Some(Out::Opened(_))
+        }))
+    ));
+    server.interrupt();
+    // The open session holds the server in its grace period.
+    assert!(
+        server
+            .wait_exit(std::time::Duration::from_millis(700))
+            .is_none(),
+        "{}",
+        server.log()
+    );
+    assert!(server.log().contains("a second Ctrl-C"), "{}", server.log());
+    server.interrupt();
+    let status = server.wait_exit(std::time::Duration::from_secs(10));
+    assert!(
+        status.is_some(),
+        "still running 10 s after the second Ctrl-C: {}",
+        server.log()
+    );
+    assert!(server.log().contains("stopping now"), "{}", server.log());
+    drop(tx);
+}

@@ -333,6 +333,43 @@ async fn empty_foreign_and_shared_store_files_refuse_the_start_naming_the_file()
     );
 }
 
+/// A port in use is said at once, naming the address and the setting to
+/// change, before the store is opened (no store file is created); a
+/// misspelt `RAILCONTACT_*` variable is named with the setting it most
+/// likely meant.
+#[test]
+fn a_busy_port_and_a_misspelt_variable_are_named() {
+    let busy = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = busy.local_addr().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(support::BIN)
+        .args(["serve", "--listen", &addr.to_string(), "--data-dir"])
+        .arg(dir.path())
+        .env("RAILCONTACT_WORKRES", "2")
+        .env("RUST_LOG", "warn")
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!("cannot listen on {addr}"))
+            && stderr.contains("another process listens there")
+            && stderr.contains("--listen / RAILCONTACT_LISTEN"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("RAILCONTACT_WORKRES is not a setting (did you mean RAILCONTACT_WORKERS?)"),
+        "{stderr}"
+    );
+    assert!(
+        !dir.path()
+            .join(railcontact::service::store::FILE_NAME)
+            .exists(),
+        "the store was opened before the port was checked"
+    );
+}
+
 /// A MiniProf wheel (key=value variant) with its header keys `keys` and one
 /// data line replaced by `line`.
 fn miniprof_wheel(keys: &str, line: &str) -> pb::ProfileSource {

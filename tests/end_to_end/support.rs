@@ -104,6 +104,11 @@ impl Server {
         signal(self.child.id(), "TERM");
     }
 
+    /// Sends SIGINT (Ctrl-C).
+    pub fn interrupt(&self) {
+        signal(self.child.id(), "INT");
+    }
+
     /// Its exit status once it has exited, waiting at most `limit`.
     pub fn wait_exit(&mut self, limit: std::time::Duration) -> Option<std::process::ExitStatus> {
         let start = std::time::Instant::now();
