@@ -72,10 +72,14 @@
 //! target in `targets`); otherwise a table. The exit code is 1 when there
 //! were errors or mismatches, 2 for bad options, and 1 when a target cannot
 //! be reached (checked first, by gRPC health of
-//! `railcontact.v1.ContactService`, before any load).
+//! `railcontact.v1.ContactService`, before any load). Ctrl-C stops the
+//! load after the steps under way and prints the report of what was done
+//! (`interrupted: true`, not replayed against the baseline; exit code 1);
+//! a second Ctrl-C exits at once (130).
 
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -647,8 +651,33 @@ struct Limits {
 
 impl Limits {
     fn go_on(&self, k: u64) -> bool {
-        k < self.steps && self.deadline.is_none_or(|d| Instant::now() < d)
+        k < self.steps
+            && self.deadline.is_none_or(|d| Instant::now() < d)
+            && !INTERRUPTED.load(Ordering::Relaxed)
     }
+}
+
+/// Set by the first Ctrl-C: every track stops after its step under way,
+/// the report is made of what was done (a second Ctrl-C exits at once).
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Watches for Ctrl-C: the first sets [`INTERRUPTED`] and says so, the
+/// second exits with 130 (128 + SIGINT).
+fn watch_interrupts() {
+    tokio::spawn(async {
+        if tokio::signal::ctrl_c().await.is_err() {
+            return;
+        }
+        INTERRUPTED.store(true, Ordering::Relaxed);
+        eprintln!(
+            "loadtest: interrupted: finishing the steps under way and reporting what was done \
+             (Ctrl-C again to exit at once)"
+        );
+        if tokio::signal::ctrl_c().await.is_ok() {
+            eprintln!("loadtest: interrupted twice: exiting without a report");
+            std::process::exit(130);
+        }
+    });
 }
 
 fn session_label(run: &str, index: usize, kind: Kind) -> String {
@@ -1105,6 +1134,9 @@ pub struct Report {
     pub verified_steps: usize,
     /// Wall time of the baseline replay \[s\].
     pub baseline_s: f64,
+    /// Whether Ctrl-C stopped the run: the figures are of the steps done
+    /// before it, and they were not replayed against the baseline.
+    pub interrupted: bool,
     /// Per kind.
     pub kinds: BTreeMap<String, Breakdown>,
     /// Per target (by address).
@@ -1332,6 +1364,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
         );
     }
 
+    watch_interrupts();
     let total = tracks.len() as u64 * args.steps;
     let progress = Arc::new(bar(total, args.json, "load"));
     let start = Instant::now();
@@ -1358,18 +1391,34 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     let wall_s = start.elapsed().as_secs_f64();
     progress.finish_and_clear();
 
-    // The baseline replay on one connection to the first target.
+    // The baseline replay on one connection to the first target (not
+    // after Ctrl-C: the user wants the figures now).
     let done: u64 = tracks.iter().map(|t| t.digests.len() as u64).sum();
-    let verify_bar = bar(done, args.json, "verify");
-    let mut client =
-        ContactServiceClient::new(connect(&targets[0], timeout, &args.security).await?)
-            .max_decoding_message_size(64 << 20)
-            .max_encoding_message_size(64 << 20);
-    let b0 = Instant::now();
-    let (mismatches, baseline_errors) =
-        baseline(&mut client, &tracks, &run, args.batch_items, &verify_bar).await;
-    let baseline_s = b0.elapsed().as_secs_f64();
-    verify_bar.finish_and_clear();
+    let interrupted = INTERRUPTED.load(Ordering::Relaxed);
+    let (mismatches, baseline_errors, baseline_s, verified) = if interrupted {
+        (vec![0; tracks.len()], Vec::new(), 0.0, 0)
+    } else {
+        let verify_bar = bar(done, args.json, "verify");
+        let mut client =
+            ContactServiceClient::new(connect(&targets[0], timeout, &args.security).await?)
+                .max_decoding_message_size(64 << 20)
+                .max_encoding_message_size(64 << 20);
+        let b0 = Instant::now();
+        let (mismatches, errors) =
+            baseline(&mut client, &tracks, &run, args.batch_items, &verify_bar).await;
+        verify_bar.finish_and_clear();
+        (
+            mismatches,
+            errors,
+            b0.elapsed().as_secs_f64(),
+            done as usize,
+        )
+    };
+    // A Ctrl-C during the replay stops it: then nothing counts as checked.
+    let (interrupted, verified) = match INTERRUPTED.load(Ordering::Relaxed) {
+        true => (true, 0),
+        false => (false, verified),
+    };
 
     let mut report = Report {
         target_addrs: targets.clone(),
@@ -1385,8 +1434,9 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
         throughput_per_s: 0.0,
         errors: 0,
         mismatches: 0,
-        verified_steps: done as usize,
+        verified_steps: verified,
         baseline_s,
+        interrupted,
         kinds: BTreeMap::new(),
         targets: BTreeMap::new(),
         first_errors: Vec::new(),
@@ -1518,11 +1568,20 @@ pub fn table(r: &Report) -> String {
         mismatches: r.mismatches,
     };
     row(&mut out, "all", &all);
-    let _ = writeln!(
-        out,
-        "\n{} steps checked against the baseline replay: {} mismatches, {} errors",
-        r.verified_steps, r.mismatches, r.errors
-    );
+    if r.interrupted {
+        let _ = writeln!(
+            out,
+            "\ninterrupted by Ctrl-C after {:.2} s: the figures are of the {} steps done; they \
+             were not checked against the baseline replay ({} errors)",
+            r.wall_s, r.steps, r.errors
+        );
+    } else {
+        let _ = writeln!(
+            out,
+            "\n{} steps checked against the baseline replay: {} mismatches, {} errors",
+            r.verified_steps, r.mismatches, r.errors
+        );
+    }
     for e in &r.first_errors {
         let _ = writeln!(out, "  {e}");
     }
@@ -1548,6 +1607,12 @@ pub fn run(args: &LoadtestArgs) -> Result<(), CliError> {
         table(&report)
     };
     super::write_stdout(&text)?;
+    if report.interrupted {
+        return Err(CliError::Failure(format!(
+            "interrupted by Ctrl-C after {:.2} s ({} steps done, not verified)",
+            report.wall_s, report.steps
+        )));
+    }
     if report.errors > 0 || report.mismatches > 0 {
         return Err(CliError::Failure(format!(
             "{} errors, {} mismatches",

@@ -96,6 +96,55 @@ fn loadtest_table_and_time_limit() {
     }
 }
 
+/// Ctrl-C during the load: the steps under way finish, the report of
+/// what was done is printed (no baseline replay), and the exit code says
+/// it was interrupted.
+#[test]
+fn loadtest_interrupted_reports_what_was_done() {
+    use std::process::{Command, Stdio};
+    let server = Server::start();
+    let child = Command::new(support::BIN)
+        .args([
+            "loadtest",
+            "--target",
+            &server.addr,
+            "--sessions",
+            "2",
+            "--steps",
+            "1000000",
+            "--seconds",
+            "60",
+            "--batch-clients",
+            "0",
+            "--mix",
+            "patch:fastsim",
+        ])
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Interrupt once the load runs (after the health checks and the
+    // connections).
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    support::signal(child.id(), "INT");
+    let start = std::time::Instant::now();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        start.elapsed() < std::time::Duration::from_secs(20),
+        "took {:?} after Ctrl-C",
+        start.elapsed()
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stdout}\n{stderr}");
+    assert!(
+        stdout.contains("p50 ms") && stdout.contains("interrupted by Ctrl-C after"),
+        "{stdout}"
+    );
+    assert!(stderr.contains("interrupted"), "{stderr}");
+}
+
 /// A loopback port with nothing listening on it.
 fn closed_port() -> String {
     let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
