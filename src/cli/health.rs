@@ -43,10 +43,11 @@ pub fn run(args: &HealthArgs) -> Result<(), CliError> {
         let channel = connect(&args.target, timeout, &args.security).await?;
         health(channel, &args.service, timeout).await.map_err(|s| {
             CliError::Failure(format!(
-                "{}: health check failed: {:?}: {}",
+                "{}: health check failed: {:?}: {}{}",
                 args.target,
                 s.code(),
-                s.message()
+                s.message(),
+                super::loadtest::tls_hint(s.message(), args.security.tls_ca.is_some())
             ))
         })
     })?;

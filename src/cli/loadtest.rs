@@ -580,7 +580,8 @@ pub(crate) async fn connect(
 ) -> Result<Connection, CliError> {
     let tls = client_tls(security)?;
     let token = bearer(security)?;
-    let uri = target_uri(target, tls.is_some())?;
+    let with_tls = tls.is_some();
+    let uri = target_uri(target, with_tls)?;
     let mut endpoint = Endpoint::from_shared(uri)
         .map_err(|e| CliError::BadInput(format!("--target `{target}`: {}", error_chain(&e))))?
         .connect_timeout(timeout)
@@ -592,14 +593,38 @@ pub(crate) async fn connect(
     }
     match tokio::time::timeout(timeout, endpoint.connect()).await {
         Ok(Ok(c)) => Ok(InterceptedService::new(c, token)),
-        Ok(Err(e)) => Err(CliError::Failure(format!(
-            "cannot connect to {target}: {}",
-            error_chain(&e)
-        ))),
+        Ok(Err(e)) => {
+            let text = error_chain(&e);
+            Err(CliError::Failure(format!(
+                "cannot connect to {target}: {text}{}",
+                tls_hint(&text, with_tls)
+            )))
+        }
         Err(_) => Err(CliError::Failure(format!(
             "cannot connect to {target}: no answer within {:.1} s",
             timeout.as_secs_f64()
         ))),
+    }
+}
+
+/// What a connection or call error most likely means for TLS, as a
+/// sentence to append to the error (empty when it is not about TLS):
+/// `text` the error, `with_tls` whether the client used TLS.
+pub(crate) fn tls_hint(text: &str, with_tls: bool) -> &'static str {
+    if text.contains("CaUsedAsEndEntity") {
+        "; the server's certificate is a CA certificate (what `openssl req -x509` makes), \
+         which TLS refuses as a server's: make a test CA and a server certificate signed by \
+         it (README, Security)"
+    } else if with_tls && text.contains("InvalidContentType") {
+        "; the server answered in plaintext: it does not use TLS (leave out --tls-ca)"
+    } else if !with_tls
+        && ["transport error", "connection reset", "h2 protocol error"]
+            .iter()
+            .any(|m| text.contains(m))
+    {
+        "; if the server uses TLS, connect with --tls-ca CA.pem"
+    } else {
+        ""
     }
 }
 
@@ -1676,6 +1701,21 @@ mod tests {
         );
         let one = Latency::of(&[3.0]);
         assert_eq!((one.p50_s, one.p99_s, one.max_s), (3.0, 3.0, 3.0));
+    }
+
+    /// The errors seen connecting (2026-12-06, tonic 0.14 with rustls): a
+    /// self-signed CA certificate on the server, a TLS client on a
+    /// plaintext port, a plaintext client on a TLS port.
+    #[test]
+    fn tls_mistakes_get_a_hint() {
+        let ca = "transport error: invalid peer certificate: Other(OtherError(CaUsedAsEndEntity))";
+        assert!(tls_hint(ca, true).contains("test CA"));
+        let plain = "transport error: received corrupt message of type InvalidContentType";
+        assert!(tls_hint(plain, true).contains("does not use TLS"));
+        for text in ["transport error", "h2 protocol error: http2 error"] {
+            assert!(tls_hint(text, false).contains("--tls-ca"), "{text}");
+        }
+        assert_eq!(tls_hint("Unavailable: too busy", false), "");
     }
 
     #[test]
