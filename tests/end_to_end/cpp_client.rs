@@ -258,6 +258,27 @@ fn cpp_cosim_wheelset_against_the_server() {
     check_trajectory(&parse_csv(&stdout));
     drop(server);
 
+    // A port with nothing listening: refused at once, not after the 10 s
+    // connect timeout.
+    let closed = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let addr = closed.local_addr().unwrap().to_string();
+    drop(closed);
+    let t = Instant::now();
+    let output = run_with_limit(
+        Command::new(&example).args([addr.as_str(), "--model", "hertz_fastsim"]),
+        Duration::from_secs(60),
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && stderr.contains("refused or unreachable"),
+        "{stderr}"
+    );
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "a refused port took {:.1} s",
+        t.elapsed().as_secs_f64()
+    );
+
     // The same over TLS with a bearer token (`--tls-ca`,
     // RAILCONTACT_TOKEN); without the token the session is refused.
     let dir = tempfile::tempdir().unwrap();

@@ -161,7 +161,8 @@ typedef struct rc_wheel_forces {
 /* Connects to `target` (e.g. "127.0.0.1:50051") and opens a session on the
  * profile pair `pair_id` (a registered id, or "mbench_s1002_uic60") with
  * the contact model `model` (RC_MODEL_*), both wheels. Waits up to 10 s
- * for the connection. Returns NULL on failure, with the reason in err. */
+ * for the connection; a refused or unreachable port fails at once.
+ * Returns NULL on failure, with the reason in err. */
 rc_session* rc_open(const char* target, const char* pair_id, int model, char* err,
                     size_t errlen);
 

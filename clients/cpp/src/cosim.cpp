@@ -190,11 +190,23 @@ CoSimSession::CoSimSession(const SessionOptions& options) : impl_(std::make_uniq
   const auto deadline =
       std::chrono::system_clock::now() +
       std::chrono::microseconds(static_cast<std::int64_t>(options.connect_timeout_s * 1e6));
-  if (!s.channel->WaitForConnected(deadline)) {
-    throw Error(grpc::StatusCode::UNAVAILABLE,
-                "could not connect to " + options.target + " within " +
-                    seconds(options.connect_timeout_s),
-                "", true);
+  // Wait for READY, but give up at the first failure (a refused or
+  // unreachable port fails at once instead of retrying until the deadline).
+  for (;;) {
+    const grpc_connectivity_state state = s.channel->GetState(true);
+    if (state == GRPC_CHANNEL_READY) break;
+    if (state == GRPC_CHANNEL_TRANSIENT_FAILURE || state == GRPC_CHANNEL_SHUTDOWN) {
+      throw Error(grpc::StatusCode::UNAVAILABLE,
+                  "could not connect to " + options.target +
+                      ": refused or unreachable (is the server running there?)",
+                  "", true);
+    }
+    if (!s.channel->WaitForStateChange(state, deadline)) {
+      throw Error(grpc::StatusCode::UNAVAILABLE,
+                  "could not connect to " + options.target + " within " +
+                      seconds(options.connect_timeout_s),
+                  "", true);
+    }
   }
   s.stub = pb::ContactService::NewStub(s.channel);
   if (!options.token.empty()) {
