@@ -85,7 +85,7 @@ fn main() {
             Side::Right => (1.0, -1.0),
             Side::Left => (-1.0, 1.0),
         };
-        println!("\n### {} wheel ({model:?})\n", side.name());
+        println!("\n### {} wheel (`{}`)\n", side.name(), model.name());
         println!(
             "| y mm | n | rail y mm (C) | delta rad (C) | FN N (C) | FX N (C) | FS N (C) | FY track N (C) | xi (C) | eta (C) | phi 1/mm (C) | pmax MPa (C) |"
         );

@@ -140,8 +140,11 @@ pub struct LoadtestArgs {
     #[arg(long, default_value_t = 8)]
     pub batch_items: usize,
     /// Session kinds and weights, KIND=WEIGHT,... (kinds: wheelrail:MODEL
-    /// with MODEL hertz_fastsim, exact, cect, auto; patch:hertz,
-    /// patch:fastsim, patch:exact, patch:exactN for an N x N grid).
+    /// with MODEL one of hertz_fastsim, hertz_fastsim_table,
+    /// hertz_fastsim_elliptic, hertz_polach, hertz_strip,
+    /// hertz_fastsim_modified, kik_piotrowski, exact, cect, auto;
+    /// patch:hertz, patch:fastsim, patch:exact, patch:exactN for an N x N
+    /// grid).
     #[arg(long, default_value = DEFAULT_MIX)]
     pub mix: String,
     /// Print one JSON object instead of the table (no progress bar).
@@ -1522,6 +1525,11 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
     Ok(report)
 }
 
+/// `n` with its noun: "1 session", "4 sessions".
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 fn ms(s: f64) -> String {
     format!("{:.3}", s * 1e3)
 }
@@ -1532,10 +1540,16 @@ pub fn table(r: &Report) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "railcontact loadtest: {} sessions + {} batch clients ({} items) on {}; mix {}",
-        r.sessions,
-        r.batch_clients,
-        r.batch_items,
+        "railcontact loadtest: {} on {}; mix {}",
+        counted(r.sessions, "session", "sessions")
+            + &match r.batch_clients {
+                0 => String::new(),
+                n => format!(
+                    " + {} ({} items)",
+                    counted(n, "batch client", "batch clients"),
+                    r.batch_items
+                ),
+            },
         r.target_addrs.join(", "),
         r.mix
     );
