@@ -228,6 +228,21 @@ pub struct ServeConfig {
     /// and tokens (default false: such a start is refused). A warning is
     /// logged at start.
     pub insecure: bool,
+    /// The log's format on stderr: `text` (default: one readable line per
+    /// event) or `json` (one JSON object per line, for log shippers:
+    /// `timestamp`, `level`, `fields`, `target`, `spans`).
+    pub log_format: LogFormat,
+}
+
+/// The log's format ([`ServeConfig::log_format`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LogFormat {
+    /// One readable line per event.
+    #[default]
+    Text,
+    /// One JSON object per line.
+    Json,
 }
 
 /// What to do at start with damaged records of the store; see
@@ -275,6 +290,7 @@ impl Default for ServeConfig {
             auth_tokens_file: None,
             reflection: true,
             insecure: false,
+            log_format: LogFormat::Text,
         }
     }
 }

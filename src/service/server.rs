@@ -22,7 +22,7 @@ use tokio::task::JoinHandle;
 use tonic::transport::server::TcpIncoming;
 
 use crate::service::auth::{AuthLayer, Tokens};
-use crate::service::config::ServeConfig;
+use crate::service::config::{LogFormat, ServeConfig};
 use crate::service::convert::CaseLimits;
 use crate::service::handlers::{ContactHandlers, RequestLimits};
 use crate::service::metrics::{serve_metrics, Metrics};
@@ -250,7 +250,8 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .to_string(),
         None => "memory only".to_string(),
     };
-    tracing::info!(%addr, ?metrics_addr, workers, queue = config.queue_count(), %store, %security, "railcontact serving");
+    let metrics_at = metrics_addr.map_or_else(|| "off".to_string(), |a| a.to_string());
+    tracing::info!(%addr, metrics = %metrics_at, workers, queue = config.queue_count(), %store, %security, "railcontact serving");
     Ok(RunningServer {
         addr,
         metrics_addr,
@@ -382,11 +383,13 @@ pub fn serve(config: &ServeConfig) -> std::io::Result<()> {
         std::env::var_os("NO_COLOR").as_deref(),
         std::io::stderr().is_terminal(),
     );
-    let _ = tracing_subscriber::fmt()
+    let logs = tracing_subscriber::fmt()
         .with_env_filter(filter)
-        .with_writer(std::io::stderr)
-        .with_ansi(colours)
-        .try_init();
+        .with_writer(std::io::stderr);
+    let _ = match config.log_format {
+        LogFormat::Text => logs.with_ansi(colours).try_init(),
+        LogFormat::Json => logs.json().with_ansi(false).try_init(),
+    };
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .thread_name("railcontact-io")

@@ -370,6 +370,30 @@ fn a_busy_port_and_a_misspelt_variable_are_named() {
     );
 }
 
+/// `log_format = "json"`: every log line on stderr is one JSON object with
+/// the level and the event's fields (the start-up line's too).
+#[test]
+fn logs_can_be_json_lines() {
+    let server = support::Server::start_with(
+        &[],
+        &[("RAILCONTACT_LOG_FORMAT", "json"), ("RUST_LOG", "info")],
+    );
+    let log = server.log();
+    let lines: Vec<&str> = log.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(!lines.is_empty());
+    for line in &lines {
+        let v: serde_json::Value =
+            serde_json::from_str(line).unwrap_or_else(|e| panic!("not JSON ({e}): {line}"));
+        assert!(v["level"].is_string() && v["fields"].is_object(), "{line}");
+    }
+    let serving = lines
+        .iter()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .find(|v| v["fields"]["message"] == "railcontact serving")
+        .unwrap_or_else(|| panic!("no start-up line: {log}"));
+    assert_eq!(serving["fields"]["metrics"], "off", "{serving}");
+}
+
 /// A MiniProf wheel (key=value variant) with its header keys `keys` and one
 /// data line replaced by `line`.
 fn miniprof_wheel(keys: &str, line: &str) -> pb::ProfileSource {
