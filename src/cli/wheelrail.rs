@@ -1,6 +1,10 @@
 //! `railcontact wheelrail CASE.toml [--json] [--plot FILE]`: a wheelset on
 //! its track, from profile files, position, velocity and load, with every
 //! contact patch of each wheel solved. Keys: see `examples/cases/README.md`.
+//! Answers that no elastic contact gives, and forces inconsistent with the
+//! kinematics given ([`check_plausibility`]), are said on stderr as
+//! `warning: KEY: ...` lines naming the case file's key at fault, and in
+//! the JSON's `warnings` array; the exit code stays 0.
 
 use std::path::{Path, PathBuf};
 
@@ -19,10 +23,11 @@ use crate::core::problem::Friction;
 use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing};
 use crate::wheelrail::{
-    builtin, load_profile_with, solve_wheelset, FrictionTable, LoadOptions, PatchResult, Profile,
-    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelRailThermal,
-    WheelsetData, WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, check_plausibility, load_profile_with, solve_wheelset, FrictionTable, LoadOptions,
+    PatchResult, PlausibilityWarning, Profile, SearchScratch, Side, SplineOptions, TrackData,
+    WheelLoad, WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
+    WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -445,6 +450,9 @@ struct JsonReport<'a> {
     pitch_control: Option<PitchControl>,
     wheels: serde_json::Map<String, serde_json::Value>,
     timing: Timing,
+    /// The solution's plausibility warnings (empty when it is plausible):
+    /// `kind`, `key`, `side`, `value`, `limit`, `message`.
+    warnings: &'a [PlausibilityWarning],
 }
 
 fn human(sol: &WheelRailSolution, model: &str) -> String {
@@ -547,6 +555,10 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
     // The two wheels at once where the machine has a second core.
     scratch.parallel_wheels = std::thread::available_parallelism().is_ok_and(|n| n.get() > 1);
     let sol = solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch)?;
+    let warnings = check_plausibility(&run.input, &sol);
+    for w in &warnings {
+        eprintln!("warning: {w}");
+    }
     if let (Some(path), Some(format)) = (&args.plot, format) {
         write_plot(path, format, &run, &sol, &scratch)
             .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
@@ -565,6 +577,7 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
             pitch_control: sol.pitch_control,
             wheels,
             timing: sol.timing,
+            warnings: &warnings,
         };
         let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
         write_stdout(&format!("{json}\n"))?;

@@ -29,7 +29,9 @@ use crate::service::session::{Session, SessionLimits};
 use crate::service::status::{self, ServiceError};
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
-use crate::wheelrail::{solve_wheelset, solve_wheelset_tabulated, SearchScratch, WheelRailModel};
+use crate::wheelrail::{
+    check_plausibility, solve_wheelset, solve_wheelset_tabulated, SearchScratch, WheelRailModel,
+};
 
 /// Limits of the requests, from the server settings.
 #[derive(Debug, Clone, Copy)]
@@ -181,6 +183,10 @@ impl ContactHandlers {
                     Some(t) => solve_wheelset_tabulated(t, &input, cache, &mut scratch),
                     None => solve_wheelset(&prepared.pair, &input, cache, &mut scratch),
                 }
+                .map(|s| {
+                    let w = check_plausibility(&input, &s);
+                    (s, w)
+                })
             })
             .await?
             .map_err(|e| {
@@ -194,7 +200,15 @@ impl ContactHandlers {
             t0.elapsed().as_secs_f64(),
             solved.is_ok(),
         );
-        let mut result = wheelrail::result(&entry.spec.id, model, &solved?, req.include_fields)?;
+        let (solution, warnings) = solved?;
+        let warnings = wheelrail::warnings(&warnings, prefix);
+        let mut result = wheelrail::result(
+            &entry.spec.id,
+            model,
+            &solution,
+            warnings,
+            req.include_fields,
+        )?;
         if tabulated {
             result.model = req.model;
         }

@@ -2,7 +2,9 @@
 //! library's [`WheelRailInput`] (the keys of a `railcontact wheelrail`
 //! case file, with the pair's materials, friction and element size unless
 //! the query overrides them), and a [`WheelRailSolution`] becomes a
-//! [`pb::WheelRailResult`]. The numbers themselves are checked by
+//! [`pb::WheelRailResult`], with the solution's plausibility warnings
+//! ([`check_plausibility`](crate::wheelrail::check_plausibility)) naming
+//! the request's fields at fault. The numbers themselves are checked by
 //! [`solve_wheelset`](crate::wheelrail::solve_wheelset), whose keys
 //! (`position.yaw_rad`, `velocity.forward_m_per_s`, `load.approach_m`) are
 //! the request's field paths.
@@ -25,9 +27,9 @@ use crate::service::status::ServiceError;
 use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
 use crate::wheelrail::temperature::{check_model, TEMPERATURE_KEY};
 use crate::wheelrail::{
-    FrictionAxis, FrictionTable, PatchResult, Side, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailSettings, WheelRailSolution, WheelRailThermal, WheelResult, WheelsetPosition,
-    WheelsetVelocity,
+    FrictionAxis, FrictionTable, PatchResult, PlausibilityWarning, Side, WarningKind, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelRailThermal,
+    WheelResult, WheelsetPosition, WheelsetVelocity,
 };
 
 /// The documented ranges of a wheel/rail query's motion and load (the
@@ -640,18 +642,45 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
     }
 }
 
+fn wire_side(side: Side) -> pb::WheelSide {
+    match side {
+        Side::Left => pb::WheelSide::Left,
+        Side::Right => pb::WheelSide::Right,
+    }
+}
+
 fn wheel(w: &WheelResult, fields: bool) -> pb::WheelRailWheel {
     pb::WheelRailWheel {
-        side: match w.side {
-            Side::Left => pb::WheelSide::Left,
-            Side::Right => pb::WheelSide::Right,
-        } as i32,
+        side: wire_side(w.side) as i32,
         vertical_approach_m: w.vertical_approach_m,
         min_gap_m: w.min_gap_m,
         patches: w.patches.iter().map(|p| patch(p, fields)).collect(),
         force_track_n: Some(force(w.force_track_n)),
         load_iterations: w.load_iterations as u32,
     }
+}
+
+/// The wire form of plausibility warnings, each naming its input by its
+/// path in the request under `prefix` (`""` for SolveWheelRail,
+/// `items[3]` in a batch, `step` in a session).
+pub fn warnings(w: &[PlausibilityWarning], prefix: &str) -> Vec<pb::WheelRailWarning> {
+    w.iter()
+        .map(|w| pb::WheelRailWarning {
+            kind: match w.kind {
+                WarningKind::Approach => pb::WheelRailWarningKind::Approach,
+                WarningKind::LongitudinalForce => pb::WheelRailWarningKind::LongitudinalForce,
+            } as i32,
+            field: if prefix.is_empty() {
+                w.key.to_string()
+            } else {
+                format!("{prefix}.{}", w.key)
+            },
+            side: w.side.map_or(pb::WheelSide::Unspecified, wire_side) as i32,
+            value: w.value,
+            limit: w.limit,
+            message: w.message.clone(),
+        })
+        .collect()
 }
 
 /// Checks every number of a wire wheel/rail result: a non-finite one is
@@ -674,6 +703,12 @@ pub fn check_finite(r: &pb::WheelRailResult) -> Result<(), ServiceError> {
                 ("force_n", c.force_n),
                 ("nominal_creepage", c.nominal_creepage),
             ],
+        )?;
+    }
+    for (i, w) in r.warnings.iter().enumerate() {
+        finite_values(
+            &format!("warnings[{i}]"),
+            [("value", w.value), ("limit", w.limit)],
         )?;
     }
     let track = |f: &Option<pb::TrackForce>| {
@@ -739,12 +774,14 @@ pub fn check_finite(r: &pb::WheelRailResult) -> Result<(), ServiceError> {
     Ok(())
 }
 
-/// The wire result of a solution; a non-finite number is refused
+/// The wire result of a solution with its plausibility warnings (the
+/// wire's form, [`warnings`]); a non-finite number is refused
 /// ([`check_finite`]), never sent as a silent NaN.
 pub fn result(
     pair_id: &str,
     model: WheelRailModel,
     s: &WheelRailSolution,
+    warnings: Vec<pb::WheelRailWarning>,
     fields: bool,
 ) -> Result<pb::WheelRailResult, ServiceError> {
     let r = pb::WheelRailResult {
@@ -767,6 +804,7 @@ pub fn result(
             solves: c.solves as u32,
             converged: c.converged,
         }),
+        warnings,
     };
     check_finite(&r)?;
     Ok(r)

@@ -30,8 +30,8 @@ use crate::service::session::{check_response_size, Marks, SessionLimits};
 use crate::service::status::ServiceError;
 use crate::service::wheelrail::{self, QuerySettings};
 use crate::wheelrail::{
-    solve_wheelset_tabulated_warm, solve_wheelset_warm, ContactTable, SearchScratch, WarmStart,
-    WheelRailInput, WheelRailModel,
+    check_plausibility, solve_wheelset_tabulated_warm, solve_wheelset_warm, ContactTable,
+    SearchScratch, WarmStart, WheelRailInput, WheelRailModel,
 };
 
 /// A validated step, ready to solve.
@@ -215,15 +215,22 @@ impl WheelRailSession {
                 .within("step")
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
-        let mut result = wheelrail::result(self.pair_id(), self.model(), &solution, self.fields)
-            .map_err(|e| match e {
-                ServiceError::Internal(_) => ServiceError::invalid(
-                    "step",
-                    "the solve gives non-finite figures for this position, velocity and load: \
+        let warnings = wheelrail::warnings(&check_plausibility(&step.input, &solution), "step");
+        let mut result = wheelrail::result(
+            self.pair_id(),
+            self.model(),
+            &solution,
+            warnings,
+            self.fields,
+        )
+        .map_err(|e| match e {
+            ServiceError::Internal(_) => ServiceError::invalid(
+                "step",
+                "the solve gives non-finite figures for this position, velocity and load: \
                      they are too far outside a wheelset on its track for the arithmetic",
-                ),
-                e => e.within("step"),
-            })?;
+            ),
+            e => e.within("step"),
+        })?;
         result.model = self.wire_model() as i32;
         let out = pb::WheelRailSessionStepResult {
             step_index: step.index,

@@ -985,6 +985,169 @@ fn wheelrail_plot_and_summary() {
     );
 }
 
+/// `wheelset_a22.toml` with issue 43's measured profiles in place of
+/// S1002 on UIC60 (`crates/solver/profiles`: the MiniProf rail measured
+/// from the gauge side, mirrored, and `wheel`), the flange back at the
+/// MiniProf wheel's smallest y; the benchmark's roll and pitch rate kept.
+fn measured_a22(wheel: &str) -> String {
+    let profiles = Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/solver/profiles");
+    let text = example_text("wheelset_a22.toml")
+        .replace(
+            "rail_profile = \"builtin:MBench_UIC60_v3.prr\"",
+            &format!(
+                "rail_profile = {:?}\nrail_mirror_y = true",
+                profiles.join("avg_HR.BAN")
+            ),
+        )
+        .replace(
+            "wheel_profile = \"builtin:MBench_S1002_v3.prw\"",
+            &format!("wheel_profile = {:?}", profiles.join(wheel)),
+        )
+        .replace("flange_back_y_m = -0.070\n", "");
+    assert!(
+        text.contains("avg_HR.BAN") && text.contains(wheel) && !text.contains("flange_back_y_m =")
+    );
+    text
+}
+
+/// The `warning: ` lines of stderr.
+fn warning_lines(stderr: &[u8]) -> Vec<String> {
+    String::from_utf8_lossy(stderr)
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn wheelrail_warns_of_answers_no_elastic_contact_gives_naming_the_key() {
+    // Issue 43: the example's roll and pitch rate (CONTACT's for S1002 on
+    // UIC60) on measured profiles: the right wheel pressed 5.6 mm into its
+    // rail at 10 kN, both wheels' Fx the same way. Exit 0, the answer as
+    // before, and warnings naming the keys.
+    let case = case_file("wr_measured_avg.toml", &measured_a22("avg_wheel.whl"));
+    let out = run(&["wheelrail", case.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8(out.stdout).unwrap();
+    assert!(summary.contains("approach 5.6279 mm"), "{summary}");
+    assert!(summary.contains("Fx 2310.8 N"), "{summary}");
+    let lines = warning_lines(&out.stderr);
+    assert_eq!(lines.len(), 2, "{lines:#?}");
+    assert!(
+        lines[0].starts_with("warning: position.roll_rad: the right wheel is pressed 5.628 mm"),
+        "{}",
+        lines[0]
+    );
+    assert!(
+        lines[0].contains("Leave position.roll_rad out"),
+        "{}",
+        lines[0]
+    );
+    assert!(
+        lines[1].starts_with("warning: velocity.pitch_rad_per_s: "),
+        "{}",
+        lines[1]
+    );
+    assert!(
+        lines[1].contains("set load.total_longitudinal_force_n = 0"),
+        "{}",
+        lines[1]
+    );
+
+    // --json: the same in `warnings`, the stdout one JSON object.
+    let out = run(&["wheelrail", case.to_str().unwrap(), "--json"]);
+    assert!(out.status.success());
+    assert_eq!(warning_lines(&out.stderr), lines);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let w = v["warnings"].as_array().unwrap();
+    assert_eq!(w.len(), 2, "{v}");
+    assert_eq!(
+        (&w[0]["kind"], &w[0]["key"], &w[0]["side"]),
+        (
+            &Value::from("approach"),
+            &Value::from("position.roll_rad"),
+            &Value::from("right")
+        ),
+        "{w:?}"
+    );
+    assert!(
+        f(&w[0], "value") > 100.0 && f(&w[0], "limit") == 10.0,
+        "{w:?}"
+    );
+    assert_eq!(
+        (&w[1]["kind"], &w[1]["key"], &w[1]["side"]),
+        (
+            &Value::from("longitudinal_force"),
+            &Value::from("velocity.pitch_rad_per_s"),
+            &Value::Null
+        ),
+        "{w:?}"
+    );
+    assert_eq!(
+        format!(
+            "warning: {}: {}",
+            w[1]["key"].as_str().unwrap(),
+            w[1]["message"].as_str().unwrap()
+        ),
+        lines[1]
+    );
+
+    // The other measured wheel: its left wheel hangs above its rail.
+    let case = case_file("wr_measured_car.toml", &measured_a22("Car7216_0001r.whl"));
+    let v = wheelrail_json(&case);
+    let w = v["warnings"].as_array().unwrap();
+    assert!(
+        w.iter()
+            .any(|w| w["key"] == "position.roll_rad" && w["side"] == "left"),
+        "{v}"
+    );
+
+    // Doing what the warnings say: the roll found, free rolling by a zero
+    // total longitudinal force. No warning.
+    let text = measured_a22("avg_wheel.whl")
+        .replace("roll_rad = -0.004376\n", "")
+        .replace("pitch_rad_per_s = -4.2748834\n", "")
+        .replace("[load]\n", "[load]\ntotal_longitudinal_force_n = 0.0\n");
+    let case = case_file("wr_measured_found.toml", &text);
+    let out = run(&["wheelrail", case.to_str().unwrap(), "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["warnings"], Value::Array(Vec::new()), "{v}");
+    assert!(v["roll_rad"].as_f64().unwrap() != -0.004376, "{v}");
+}
+
+#[test]
+fn wheelrail_examples_do_not_warn() {
+    for name in [
+        "wheelset_a22.toml",
+        "wheelset_a22_temperature.toml",
+        "wheelset_a22_varfric.toml",
+    ] {
+        let out = run(&["wheelrail", example(name).to_str().unwrap(), "--json"]);
+        assert!(out.status.success(), "{name}");
+        assert!(
+            out.stderr.is_empty(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["warnings"], Value::Array(Vec::new()), "{name}: {v}");
+    }
+}
+
 /// A bad wheelrail case: exit code 2, stderr names `key`.
 fn expect_bad_wheelrail(name: &str, text: &str, key: &str) {
     let p = case_file(name, text);

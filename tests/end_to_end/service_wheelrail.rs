@@ -1,7 +1,8 @@
 //! End-to-end tests of the wheel/rail part of the gRPC service: profile
 //! pairs (built-in, from file contents, idempotent ids, list/get/delete,
 //! persistence across a restart), SolveWheelRail against the library bit
-//! for bit, batches, flash temperatures per patch, and the errors of each
+//! for bit, batches, flash temperatures per patch, the plausibility
+//! warnings of answers no elastic contact gives, and the errors of each
 //! kind of bad input. The real
 //! server runs on an ephemeral loopback port with its store in a temporary
 //! directory; profiles come from `crates/solver/profiles`.
@@ -21,10 +22,11 @@ use railcontact::service::server::RunningServer;
 use railcontact::service::wheelrail::query_of;
 use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::{
-    load_profile, load_profile_with, pitch_force_tolerance, solve_wheelset,
+    check_plausibility, load_profile, load_profile_with, pitch_force_tolerance, solve_wheelset,
     solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, FrictionAxis, FrictionTable,
     LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
-    WheelRailModel, WheelRailPair, WheelRailSolution, WheelRailThermal, WheelsetData,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution, WheelRailThermal,
+    WheelsetData,
 };
 use tonic::Code;
 
@@ -1468,5 +1470,174 @@ async fn wheel_rail_temperatures_come_per_patch_as_the_library_and_replay_bit_fo
         "{}",
         e.message()
     );
+    server.shutdown().await;
+}
+
+/// Issue 43's pair: the measured MiniProf rail (mirrored) and wheel in
+/// place of the benchmark's S1002 on UIC60, on the benchmark's track and
+/// wheelset dimensions (the flange back at the MiniProf wheel's smallest y).
+fn measured_spec() -> pb::ProfilePairSpec {
+    pb::ProfilePairSpec {
+        wheel: Some(file_source("avg_wheel.whl", false)),
+        rail: Some(file_source("avg_HR.BAN", true)),
+        track: Some(track(MBENCH_TRACK)),
+        wheelset: Some(wheelset(WheelsetData {
+            flange_back_y_m: None,
+            ..MBENCH_WHEELSET
+        })),
+        ..Default::default()
+    }
+}
+
+/// The wire warnings as (kind, field, side), in order.
+fn warning_keys(r: &pb::WheelRailResult) -> Vec<(i32, String, i32)> {
+    r.warnings
+        .iter()
+        .map(|w| (w.kind, w.field.clone(), w.side))
+        .collect()
+}
+
+/// examples/cases/wheelset_a22.toml's roll and pitch rate (CONTACT's for
+/// S1002 on UIC60 at 6.5 mm) given to measured profiles: every wheel/rail
+/// answer (query, batch item, session step) says that the right wheel's
+/// approach is beyond elastic contact because of `position.roll_rad` and
+/// that the total longitudinal force saturates because of
+/// `velocity.pitch_rad_per_s`, as the library's check does; the benchmark
+/// itself warns of nothing.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn answers_no_elastic_contact_gives_carry_warnings_naming_the_input() {
+    use pb::wheel_rail_batch_item::Outcome;
+    use pb::wheel_rail_session_request::Kind as In;
+    use pb::wheel_rail_session_response::Kind as Out;
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let id = register_ready(&mut client, spec_request(measured_spec(), "measured"))
+        .await
+        .pair_id;
+    let input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::Exact,
+    );
+    let (approach, longitudinal) = (
+        pb::WheelRailWarningKind::Approach as i32,
+        pb::WheelRailWarningKind::LongitudinalForce as i32,
+    );
+    let (right, wheelset) = (
+        pb::WheelSide::Right as i32,
+        pb::WheelSide::Unspecified as i32,
+    );
+    let expected = |prefix: &str| {
+        vec![
+            (approach, format!("{prefix}position.roll_rad"), right),
+            (
+                longitudinal,
+                format!("{prefix}velocity.pitch_rad_per_s"),
+                wheelset,
+            ),
+        ]
+    };
+
+    // SolveWheelRail: the library's warnings, word for word.
+    let got = solve(&mut client, query_of(&id, &input)).await;
+    assert_eq!(warning_keys(&got), expected(""), "{:#?}", got.warnings);
+    let pair = library_pair(
+        "avg_HR.BAN",
+        true,
+        "avg_wheel.whl",
+        MBENCH_TRACK,
+        WheelsetData {
+            flange_back_y_m: None,
+            ..MBENCH_WHEELSET
+        },
+    );
+    let want = solve_wheelset(
+        &pair,
+        &input,
+        &KernelCache::default(),
+        &mut SearchScratch::default(),
+    )
+    .unwrap();
+    assert_same("measured", &got, &want);
+    let library = check_plausibility(&input, &want);
+    assert_eq!(library.len(), got.warnings.len());
+    for (w, l) in got.warnings.iter().zip(&library) {
+        assert_eq!(
+            (&w.message, w.value, w.limit),
+            (&l.message, l.value, l.limit)
+        );
+    }
+    assert!(got.warnings[0].value > 100.0 && got.warnings[0].limit == 10.0);
+    assert!(
+        got.warnings[0].message.contains("5.628 mm onto its rail"),
+        "{}",
+        got.warnings[0].message
+    );
+
+    // The benchmark's own pair at the same motion: nothing to say.
+    let a22 = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert!(a22.warnings.is_empty(), "{:#?}", a22.warnings);
+
+    // A batch: each item's warnings in its slot, named by the item's path.
+    let items = vec![query_of(BUILTIN, &input), query_of(&id, &input)];
+    let out = client
+        .solve_wheel_rail_batch(pb::SolveWheelRailBatchRequest { items })
+        .await
+        .unwrap()
+        .into_inner()
+        .items;
+    match (&out[0].outcome, &out[1].outcome) {
+        (Some(Outcome::Result(a)), Some(Outcome::Result(b))) => {
+            assert!(a.warnings.is_empty(), "{:#?}", a.warnings);
+            assert_eq!(warning_keys(b), expected("items[1]."), "{:#?}", b.warnings);
+        }
+        other => panic!("unexpected slots {other:?}"),
+    }
+
+    // A session (the table model, as MBS co-simulations run): the step
+    // with the benchmark's roll and pitch rate warns, then the same motion
+    // with the roll found and free rolling by a zero total longitudinal
+    // force does not.
+    let step = |k: u64, input: &WheelRailInput| {
+        let q = query_of(&id, input);
+        wr_request(In::Step(pb::WheelRailSessionStep {
+            step_index: k,
+            position: q.position,
+            velocity: q.velocity,
+            load: q.load,
+            ..Default::default()
+        }))
+    };
+    let mut found = input.clone();
+    found.position.roll_rad = None;
+    found.velocity.pitch_rad_per_s = None;
+    found.total_longitudinal_force_n = Some(0.0);
+    let open = In::Open(pb::WheelRailSessionOpen {
+        pair_id: id.clone(),
+        model: pb::WheelRailModel::HertzFastsimTable as i32,
+        ..Default::default()
+    });
+    let out = wr_session(
+        &mut client,
+        vec![wr_request(open), step(0, &input), step(1, &found)],
+    )
+    .await
+    .unwrap();
+    let steps: Vec<_> = out
+        .iter()
+        .filter_map(|o| match o {
+            Out::Step(s) => s.result.clone(),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(steps.len(), 2, "{out:?}");
+    assert_eq!(
+        warning_keys(&steps[0]),
+        expected("step."),
+        "{:#?}",
+        steps[0].warnings
+    );
+    assert!(steps[1].warnings.is_empty(), "{:#?}", steps[1].warnings);
     server.shutdown().await;
 }

@@ -1,6 +1,8 @@
 """Wheel/rail calls against the real server: pairs, SolveWheelRail, its
 batch and WheelRailSession."""
 
+import pathlib
+
 import grpc
 import numpy as np
 import pytest
@@ -260,3 +262,68 @@ def test_a_pair_the_server_lost_is_registered_again(client, server):
     with pytest.raises(railcontact.RailcontactError) as e:
         client.solve_wheelrail(info.pair_id, velocity=V, load=LOAD, model="hertz_fastsim")
     assert e.value.code == grpc.StatusCode.NOT_FOUND
+
+
+PROFILES = pathlib.Path(__file__).resolve().parents[3] / "crates" / "solver" / "profiles"
+
+
+def _file(name, mirror_y=False):
+    return {"file": {"content": (PROFILES / name).read_text(), "file_name": name}, "mirror_y": mirror_y}
+
+
+def test_answers_no_elastic_contact_gives_carry_warnings(client):
+    """examples/cases/wheelset_a22.toml's roll and pitch rate (CONTACT's
+    for S1002 on UIC60 at 6.5 mm) given to measured profiles: the right
+    wheel is pressed 5.6 mm into its rail by 10 kN and both wheels are
+    braked the same way; the result says so, naming the inputs. The
+    benchmark's own pair, and the measured one with roll and pitch rate
+    found, warn of nothing."""
+    measured = client.register_pair(
+        {
+            "wheel": _file("avg_wheel.whl"),
+            "rail": _file("avg_HR.BAN", mirror_y=True),
+            "track": {"gauge_m": 1.435, "gauge_height_m": 0.014, "cant_rad": 0.0},
+            "wheelset": {"flange_back_distance_m": 1.360, "nominal_radius_m": 0.46},
+        },
+        label="issue 43",
+    )
+    motion = dict(
+        position={"lateral_m": 0.0065, "yaw_rad": 0.0156, "roll_rad": -0.004376},
+        velocity={"forward_m_per_s": 2.0, "pitch_rad_per_s": -4.2748834},
+        load=1.0e4,
+        model="hertz_fastsim",
+    )
+    r = client.solve_wheelrail(measured.pair_id, **motion)
+    assert [(w.kind, w.field, w.side) for w in r.warnings] == [
+        ("approach", "position.roll_rad", "right"),
+        ("longitudinal_force", "velocity.pitch_rad_per_s", None),
+    ]
+    approach, longitudinal = r.warnings
+    assert isinstance(approach, railcontact.WheelRailWarning)
+    assert approach.value > 100 and approach.limit == 10.0
+    assert r.wheel("right").vertical_approach_m > 5e-3
+    assert "Leave position.roll_rad out" in approach.message
+    assert str(approach).startswith("position.roll_rad: the right wheel is pressed")
+    assert longitudinal.value > 0.9 and longitudinal.limit == 0.9
+    assert "load.total_longitudinal_force_n = 0" in longitudinal.message
+
+    assert client.solve_wheelrail(**motion).warnings == ()
+
+    found = client.solve_wheelrail(
+        measured.pair_id,
+        position={"lateral_m": 0.0065, "yaw_rad": 0.0156},
+        velocity=2.0,
+        load={"vertical_force_n": 1.0e4, "total_longitudinal_force_n": 0.0},
+        model="hertz_fastsim",
+    )
+    assert found.warnings == ()
+    assert abs(found.wheel("left").force_track_n.x_n) < 300.0
+
+    # In a session step, named under `step.`.
+    with client.wheelrail_session(measured.pair_id, model="hertz_fastsim") as s:
+        step = s.step(**{k: v for k, v in motion.items() if k != "model"})
+    assert [w.field for w in step.result.warnings] == [
+        "step.position.roll_rad",
+        "step.velocity.pitch_rad_per_s",
+    ]
+    client.delete_pair(measured.pair_id)

@@ -48,6 +48,7 @@ from .results import (
     WheelRailPatch,
     WheelRailResult,
     WheelRailStepResult,
+    WheelRailWarning,
     WheelRailWheel,
 )
 
@@ -77,6 +78,7 @@ __all__ = [
     "WheelRailResult",
     "WheelRailSession",
     "WheelRailStepResult",
+    "WheelRailWarning",
     "WheelRailWheel",
     "load_case",
     "patch_case",

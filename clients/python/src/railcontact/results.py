@@ -418,11 +418,48 @@ class PitchControl:
     converged: bool
 
 
+def _side_or_none():
+    """A WheelSide: its short name, ``None`` when unspecified."""
+    def convert(m, name):
+        number = getattr(m, name)
+        return enum_name(m.DESCRIPTOR.fields_by_name[name].enum_type, number) if number else None
+
+    return field(metadata={"pb": convert})
+
+
+@dataclass(frozen=True)
+class WheelRailWarning:
+    """A finding about a wheel/rail answer (the proto's WheelRailWarning):
+    what no elastic contact gives, or forces inconsistent with the motion
+    given. ``kind`` is ``"approach"`` (a wheel pressed into its rail far
+    beyond the elastic approach of its load) or ``"longitudinal_force"``
+    (both wheels driven or braked the same way to near saturation by the
+    pitch rate given); ``field`` the request path of the input at fault
+    (``"position.roll_rad"``, ``"velocity.pitch_rad_per_s"``,
+    ``"load.vertical_force_n"``; ``"items[3]."`` before it in a batch,
+    ``"step."`` in a session); ``side`` the wheel (``"left"``,
+    ``"right"``), ``None`` for the wheelset; ``value`` the measure that
+    exceeded its ``limit`` [-]; ``message`` what, why and what to do."""
+
+    kind: str = _enum()
+    field: str
+    side: Optional[str] = _side_or_none()
+    value: float
+    limit: float
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.field}: {self.message}"
+
+
 @dataclass(frozen=True)
 class WheelRailResult:
     """The solution of one wheelset query: the wheels solved, left first.
     ``pitch_control`` is set when the total longitudinal force was
-    prescribed."""
+    prescribed. ``warnings`` (a tuple of :class:`WheelRailWarning`, empty
+    for a plausible answer) says what in the answer no elastic contact
+    gives, naming the input at fault; the answer is the solver's all the
+    same."""
 
     pair_id: str
     model: str = _enum()
@@ -432,6 +469,7 @@ class WheelRailResult:
     wheels: tuple = _many(WheelRailWheel)
     timing: WheelRailTiming = _sub(WheelRailTiming)
     pitch_control: Optional[PitchControl] = _optional(PitchControl)
+    warnings: tuple = _many(WheelRailWarning)
 
     def wheel(self, side: str) -> WheelRailWheel:
         """The wheel of ``side`` (``"left"`` or ``"right"``)."""

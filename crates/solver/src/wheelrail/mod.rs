@@ -13,6 +13,9 @@
 //!   their planar geometry;
 //! * [`contact`]: creepages, the per-patch contact problems and the load
 //!   iteration ([`solve_wheelset`]);
+//! * [`plausibility`]: warnings about answers no elastic contact gives
+//!   and forces inconsistent with the kinematics given, naming the input
+//!   at fault ([`check_plausibility`]);
 //! * [`temperature`]: flash temperatures of the wheel and rail per patch
 //!   ([`WheelRailThermal`], [`PatchTemperatures`]);
 //! * [`table`]: contact tables per profile pair for the Hertz+FASTSIM fast
@@ -66,6 +69,7 @@
 pub mod builtin;
 pub mod contact;
 pub mod friction;
+pub mod plausibility;
 pub mod profile;
 pub mod readers;
 pub mod search;
@@ -80,6 +84,7 @@ pub use contact::{
     WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
+pub use plausibility::{check_plausibility, PlausibilityWarning, WarningKind};
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,
     LengthUnit, LoadOptions, MiniProfVariant, MirrorZ, Profile, ProfileChecks, ProfileError,

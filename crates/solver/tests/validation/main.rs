@@ -2,9 +2,9 @@
 //! one test binary: the physics of the planar core (`physics`), conformal
 //! contact (`conformal`), the profile readers (`profiles`), transient rolling
 //! against CONTACT (`transient`), wheel/rail contact (`wheelrail`), its
-//! friction varying over the profile (`variable_friction`) and its flash
-//! temperatures (`wheelrail_temperature`). Each
-//! reference number names its source.
+//! friction varying over the profile (`variable_friction`), its flash
+//! temperatures (`wheelrail_temperature`) and the plausibility warnings of
+//! its solutions (`plausibility`). Each reference number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
 /// and source beside it).
@@ -18,6 +18,7 @@ mod line_contact;
 mod perfc;
 mod perfc_case;
 mod physics;
+mod plausibility;
 mod profiles;
 mod rolling_direction;
 mod transient;

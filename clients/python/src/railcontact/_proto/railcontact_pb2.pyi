@@ -110,6 +110,12 @@ class WheelSide(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_SIDE_UNSPECIFIED: _ClassVar[WheelSide]
     WHEEL_SIDE_LEFT: _ClassVar[WheelSide]
     WHEEL_SIDE_RIGHT: _ClassVar[WheelSide]
+
+class WheelRailWarningKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    WHEEL_RAIL_WARNING_KIND_UNSPECIFIED: _ClassVar[WheelRailWarningKind]
+    WHEEL_RAIL_WARNING_KIND_APPROACH: _ClassVar[WheelRailWarningKind]
+    WHEEL_RAIL_WARNING_KIND_LONGITUDINAL_FORCE: _ClassVar[WheelRailWarningKind]
 MODEL_UNSPECIFIED: Model
 MODEL_HERTZ: Model
 MODEL_HERTZ_CORRECTED: Model
@@ -175,6 +181,9 @@ WHEEL_SIDES_RIGHT: WheelSides
 WHEEL_SIDE_UNSPECIFIED: WheelSide
 WHEEL_SIDE_LEFT: WheelSide
 WHEEL_SIDE_RIGHT: WheelSide
+WHEEL_RAIL_WARNING_KIND_UNSPECIFIED: WheelRailWarningKind
+WHEEL_RAIL_WARNING_KIND_APPROACH: WheelRailWarningKind
+WHEEL_RAIL_WARNING_KIND_LONGITUDINAL_FORCE: WheelRailWarningKind
 
 class Material(_message.Message):
     __slots__ = ("shear_modulus_pa", "poisson_ratio")
@@ -1288,7 +1297,7 @@ class WheelRailTiming(_message.Message):
     def __init__(self, search_s: _Optional[float] = ..., geometry_s: _Optional[float] = ..., solve_s: _Optional[float] = ...) -> None: ...
 
 class WheelRailResult(_message.Message):
-    __slots__ = ("pair_id", "model", "center_z_m", "roll_rad", "pitch_rad_per_s", "wheels", "timing", "pitch_control")
+    __slots__ = ("pair_id", "model", "center_z_m", "roll_rad", "pitch_rad_per_s", "wheels", "timing", "pitch_control", "warnings")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     CENTER_Z_M_FIELD_NUMBER: _ClassVar[int]
@@ -1297,6 +1306,7 @@ class WheelRailResult(_message.Message):
     WHEELS_FIELD_NUMBER: _ClassVar[int]
     TIMING_FIELD_NUMBER: _ClassVar[int]
     PITCH_CONTROL_FIELD_NUMBER: _ClassVar[int]
+    WARNINGS_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     center_z_m: float
@@ -1305,7 +1315,24 @@ class WheelRailResult(_message.Message):
     wheels: _containers.RepeatedCompositeFieldContainer[WheelRailWheel]
     timing: WheelRailTiming
     pitch_control: PitchControl
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., center_z_m: _Optional[float] = ..., roll_rad: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ..., wheels: _Optional[_Iterable[_Union[WheelRailWheel, _Mapping]]] = ..., timing: _Optional[_Union[WheelRailTiming, _Mapping]] = ..., pitch_control: _Optional[_Union[PitchControl, _Mapping]] = ...) -> None: ...
+    warnings: _containers.RepeatedCompositeFieldContainer[WheelRailWarning]
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., center_z_m: _Optional[float] = ..., roll_rad: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ..., wheels: _Optional[_Iterable[_Union[WheelRailWheel, _Mapping]]] = ..., timing: _Optional[_Union[WheelRailTiming, _Mapping]] = ..., pitch_control: _Optional[_Union[PitchControl, _Mapping]] = ..., warnings: _Optional[_Iterable[_Union[WheelRailWarning, _Mapping]]] = ...) -> None: ...
+
+class WheelRailWarning(_message.Message):
+    __slots__ = ("kind", "field", "side", "value", "limit", "message")
+    KIND_FIELD_NUMBER: _ClassVar[int]
+    FIELD_FIELD_NUMBER: _ClassVar[int]
+    SIDE_FIELD_NUMBER: _ClassVar[int]
+    VALUE_FIELD_NUMBER: _ClassVar[int]
+    LIMIT_FIELD_NUMBER: _ClassVar[int]
+    MESSAGE_FIELD_NUMBER: _ClassVar[int]
+    kind: WheelRailWarningKind
+    field: str
+    side: WheelSide
+    value: float
+    limit: float
+    message: str
+    def __init__(self, kind: _Optional[_Union[WheelRailWarningKind, str]] = ..., field: _Optional[str] = ..., side: _Optional[_Union[WheelSide, str]] = ..., value: _Optional[float] = ..., limit: _Optional[float] = ..., message: _Optional[str] = ...) -> None: ...
 
 class PitchControl(_message.Message):
     __slots__ = ("target_force_n", "force_n", "nominal_creepage", "iterations", "solves", "converged")
