@@ -46,9 +46,10 @@
 //! left wheel the grid is mirrored (rows reversed, y negated), and the
 //! lateral traction and slip, lateral force, lateral and spin creepage and
 //! the spin moment change sign, as CONTACT's getters do. The contact
-//! reference point is the solver's (the point of smallest gap of the
-//! patch; CONTACT's is the weighted centre of the interpenetration area,
-//! which differs where the gap is nearly flat). `location` holds every
+//! reference point is CONTACT's: the weighted centre of the
+//! interpenetration with its mean contact angle, and CONTACT's point for
+//! the creepages (the solver's `ReferencePoint::InterpenetrationCentre`).
+//! `location` holds every
 //! value of `cntc_getcontactlocation` except the rail deflections (18, 19:
 //! no massless rail model, always zero).
 
@@ -59,7 +60,7 @@ use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::problem::Friction;
 use railcontact_solver::core::solution::{ElementFields, ElementState};
-use railcontact_solver::wheelrail::search::SearchSettings;
+use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     load_profile_with, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit, LoadOptions,
     MirrorZ, PatchResult, Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline,
@@ -1131,6 +1132,9 @@ impl WheelRail {
                 element_size_m: d.dx_m,
                 search: SearchSettings {
                     merge_distance_m: d.dist_sep_m,
+                    // CONTACT's reference point: the weighted centre of
+                    // the interpenetration, its mean contact angle.
+                    reference_point: ReferencePoint::InterpenetrationCentre,
                     ..SearchSettings::default()
                 },
                 ..WheelRailSettings::default()

@@ -260,10 +260,10 @@ fn module1_output(compiler: &str, source: &str, name: &str) -> String {
 }
 
 /// The module 1 example from C against [`CONTACT_MODULE1`]: the same
-/// ierror and number of patches, FZ within 1e-5, FN within 1 %, the
-/// creep forces within 1 % of FN, the contact angle within 0.01 rad
-/// (the contact reference point lies 0.1-0.4 mm from CONTACT's, see
-/// docs/cntc.md); and from Fortran the C program's numbers.
+/// ierror and number of patches, FZ within 1e-5, FN within 0.1 %, the
+/// creep forces within 0.1 % of FN, the contact angle within 1e-4 rad
+/// (measured: 0.005 % of FN, 0.007 % of FN and 2e-7 rad); and from
+/// Fortran the C program's numbers.
 #[test]
 fn module1_examples_give_contacts_results() {
     if !tool(
@@ -289,11 +289,11 @@ fn module1_examples_give_contacts_results() {
             )
         };
         within(4, 1e-5 * b[4].abs(), "FZ");
-        within(5, 0.01 * fnn, "FN");
+        within(5, 1e-3 * fnn, "FN");
         for (k, what) in [(2, "FX"), (3, "FY"), (6, "patch FX"), (7, "patch FS")] {
-            within(k, 0.01 * fnn, what);
+            within(k, 1e-3 * fnn, what);
         }
-        within(8, 0.01, "contact angle");
+        within(8, 1e-4, "contact angle");
     }
     if tool(
         "gfortran",

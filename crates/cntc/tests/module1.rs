@@ -173,6 +173,93 @@ fn right_wheel_flange_on_the_miniprof_rail() {
     }
 }
 
+/// The patch's contact reference point, contact angle, creepages and spin
+/// moment (about that point) against CONTACT's library: module 1 places
+/// the point where CONTACT does, at the weighted centre of the
+/// interpenetration with its mean contact angle, and takes the creepages
+/// as CONTACT does. python_mbench.py case 1 of wheel 1 (the centred
+/// wheelset: a nearly flat gap, whose smallest-gap point lies 1.38 mm
+/// from CONTACT's reference) and case 3 of wheel 2 (y = 1 mm, yaw 2.4
+/// mrad, on the MiniProf rail: 0.30 mm). The values are those CONTACT's
+/// library returned in python_mbench.py (CONTACT revision 2707, its
+/// `cntc_getcontactlocation`, `cntc_getcreepages`,
+/// `cntc_getcontactforces`). Tolerances: 1 % on the scales the comparison
+/// of the two libraries uses, 0.01 mm of a location, 0.1 mrad of an
+/// angle, 1 % of a creepage (at least of 1e-4, of 1e-5 /mm for the spin)
+/// and of 0.3 FN mm of the spin moment.
+#[test]
+fn the_reference_point_is_contacts() {
+    #[allow(clippy::type_complexity)]
+    let cases: [(i32, i32, [f64; 6], f64, [f64; 4], [f64; 3], [f64; 2]); 2] = [
+        (
+            34,
+            1,
+            [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            -4.3481181,
+            // XCP_TR, YCP_TR, ZCP_TR, DELTCP_TR
+            [
+                0.0,
+                -751.8725957636389,
+                0.12518971129603756,
+                0.02899119814871976,
+            ],
+            // CKSI, CETA, CPHI
+            [-5.665316728041849e-05, 0.0, -6.302153306720445e-05],
+            // FN, MZ
+            [9996.844167070056, 4605.070749329929],
+        ),
+        (
+            35,
+            2,
+            [0.0, 1.0, 0.0, -5.049e-05, 0.0024, 0.0],
+            -4.3465752,
+            [
+                -1.7013335287921558,
+                741.9907813579974,
+                0.5753421618929782,
+                -0.06959780394225558,
+            ],
+            [
+                0.0006942547763011791,
+                0.0024066580550941726,
+                0.00015097164011809602,
+            ],
+            [9826.836124602472, -227.91440401376107],
+        ),
+    ];
+    for (ire, iwhe, pos, vpitch, location, creepages, [fn_ref, mz_ref]) in cases {
+        unsafe {
+            mbench(ire, iwhe);
+            solve_one_patch(ire, pos, vpitch);
+            let icp = 1;
+            let mut loc = [0.0; 38];
+            cntc_getcontactlocation(&ire, &icp, &38, loc.as_mut_ptr());
+            for (k, name) in ["XCP_TR", "YCP_TR", "ZCP_TR"].iter().enumerate() {
+                close(name, loc[k], location[k], 0.01);
+            }
+            close("DELTCP_TR", loc[3], location[3], 1e-4);
+            let mut c = [0.0; 3];
+            cntc_getcreepages(&ire, &icp, &mut c[0], &mut c[1], &mut c[2]);
+            for (k, (name, floor)) in [("CKSI", 1e-4), ("CETA", 1e-4), ("CPHI", 1e-5)]
+                .into_iter()
+                .enumerate()
+            {
+                close(
+                    name,
+                    c[k],
+                    creepages[k],
+                    0.01 * creepages[k].abs().max(floor),
+                );
+            }
+            let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
+            cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+            close("FN", fn_, fn_ref, 0.01 * fn_ref);
+            close("MZ", mz, mz_ref, 0.01 * 0.3 * fn_ref);
+            cntc_finalize(&ire);
+        }
+    }
+}
+
 /// A missing profile is CONTACT's profile error (-32).
 #[test]
 fn missing_profile_is_a_profile_error() {

@@ -10,7 +10,9 @@
 //! * [`wheelset`]: track and wheelset data, the placed profiles
 //!   ([`WheelRailPair`]), wheelset position and velocity, and the frames;
 //! * [`search`]: contact locus, rigid position (roll), contact patches and
-//!   their planar geometry;
+//!   their planar geometry, each about its contact reference point (the
+//!   smallest gap, or CONTACT's weighted centre of the interpenetration:
+//!   [`ReferencePoint`]);
 //! * [`contact`]: creepages, the per-patch contact problems and the load
 //!   iteration ([`solve_wheelset`]);
 //! * [`plausibility`]: warnings about answers no elastic contact gives
@@ -91,7 +93,7 @@ pub use profile::{
     ProfileFormat, ProfileKind, ProfileWarning, SourceLocation,
 };
 pub use readers::{parse_miniprof, parse_plain, parse_simpack};
-pub use search::{SearchScratch, SearchSettings};
+pub use search::{ReferencePoint, SearchScratch, SearchSettings};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
