@@ -290,20 +290,33 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
             )));
         }
     }
+    // Every output file writable before the solve, which may take long.
+    for (flag, path) in [
+        ("--plot", &args.plot),
+        ("--subsurface-csv", &args.subsurface_csv),
+        ("--subsurface-plot", &args.subsurface_plot),
+        ("--temperature-csv", &args.temperature_csv),
+    ] {
+        if let Some(path) = path {
+            check_writable(flag, path)?;
+        }
+    }
     let run = ModelRun::solve(&case, &mut FrictionalWorkspace::default())?;
     let mut report = run.report(&case, args.fields);
     if report.geometry.is_none() && case.geometry.is_conformal() {
         report.geometry = Some(case.geometry.describe());
     }
     report.notes.extend(case.notes.iter().cloned());
-    let mut out = if args.json {
+    // The answer first: a file that then fails to write loses nothing.
+    write_stdout(&if args.json {
         let mut s = serde_json::to_string(&report)
             .map_err(|e| CliError::Failure(format!("cannot write JSON: {e}")))?;
         s.push('\n');
         s
     } else {
         report.human()
-    };
+    })?;
+    let mut out = String::new();
     if let (Some(path), Some(format), ModelRun::Exact(run)) = (&args.plot, format, &run) {
         plot::write_plot(
             path,
@@ -359,6 +372,31 @@ fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         }
     }
     write_stdout(&out)
+}
+
+/// Checks that `path` (the value of option `flag`) can be written, before
+/// any work: an existing file is opened for writing (not truncated), a
+/// new one created and removed again. An error names the option and the
+/// path.
+pub(crate) fn check_writable(flag: &str, path: &Path) -> Result<(), CliError> {
+    let existed = path.exists();
+    let opened = std::fs::OpenOptions::new()
+        .write(true)
+        .create(!existed)
+        .truncate(false)
+        .open(path);
+    match opened {
+        Ok(_) => {
+            if !existed {
+                let _ = std::fs::remove_file(path);
+            }
+            Ok(())
+        }
+        Err(e) => Err(CliError::BadInput(format!(
+            "invalid option `{flag}`: cannot write {}: {e}",
+            path.display()
+        ))),
+    }
 }
 
 /// Writes `text` to stdout; a closed pipe (`| head`) is not an error.

@@ -551,6 +551,9 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
         CliError::BadInput(m) => bad(format!("{}: {m}", args.case.display())),
         other => other,
     })?;
+    if let Some(path) = &args.plot {
+        super::check_writable("--plot", path)?;
+    }
     let mut scratch = SearchScratch::default();
     // The two wheels at once where the machine has a second core.
     scratch.parallel_wheels = std::thread::available_parallelism().is_ok_and(|n| n.get() > 1);
@@ -559,10 +562,7 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
     for w in &warnings {
         eprintln!("warning: {w}");
     }
-    if let (Some(path), Some(format)) = (&args.plot, format) {
-        write_plot(path, format, &run, &sol, &scratch)
-            .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
-    }
+    // The answer first, then the plot: a plot that fails loses nothing.
     if args.json {
         let mut wheels = serde_json::Map::new();
         for w in &sol.wheels {
@@ -582,11 +582,14 @@ pub fn run(args: &WheelrailArgs) -> Result<(), CliError> {
         let json = serde_json::to_string(&report).map_err(|e| CliError::Failure(e.to_string()))?;
         write_stdout(&format!("{json}\n"))?;
     } else {
-        let mut out = human(&sol, run.model);
-        if let Some(path) = &args.plot {
-            out.push_str(&format!("plot written to {}\n", path.display()));
+        write_stdout(&human(&sol, run.model))?;
+    }
+    if let (Some(path), Some(format)) = (&args.plot, format) {
+        write_plot(path, format, &run, &sol, &scratch)
+            .map_err(|e| CliError::Failure(format!("cannot write {}: {e}", path.display())))?;
+        if !args.json {
+            write_stdout(&format!("plot written to {}\n", path.display()))?;
         }
-        write_stdout(&out)?;
     }
     Ok(())
 }

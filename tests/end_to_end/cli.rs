@@ -501,6 +501,47 @@ fn bad_plot_extension_is_rejected() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--plot"));
 }
 
+/// An output file that cannot be written is refused before the solve
+/// (exit 2, naming the option and the path), for `solve` and `wheelrail`;
+/// no empty file is left behind by the check.
+#[test]
+fn unwritable_outputs_are_refused_before_solving() {
+    let missing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-such-dir/plot.png");
+    for (command, case, flag) in [
+        ("solve", "hertz_circle.toml", "--plot"),
+        ("solve", "subsurface_rolling.toml", "--subsurface-csv"),
+        ("wheelrail", "wheelset_a22.toml", "--plot"),
+    ] {
+        let out = run(&[
+            command,
+            example(case).to_str().unwrap(),
+            flag,
+            missing.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command} {flag}: {stderr}");
+        assert!(
+            stderr.contains(&format!(
+                "invalid option `{flag}`: cannot write {}",
+                missing.display()
+            )),
+            "{command} {flag}: {stderr}"
+        );
+        assert!(out.stdout.is_empty(), "{command} {flag}: solved anyway");
+    }
+    // A writable new file passes the check and is written by the run only.
+    let fresh = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fresh-plot.png");
+    let _ = std::fs::remove_file(&fresh);
+    let out = run(&[
+        "solve",
+        example("hertz_circle.toml").to_str().unwrap(),
+        "--plot",
+        fresh.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    assert!(std::fs::metadata(&fresh).unwrap().len() > 10_000);
+}
+
 // ---------------------------------------------------------------------
 // Conformal contact (cect, cect_halfspace, hertz_corrected): paper Case 1
 // of Blanco-Lorenzo et al., Tribology International 2018; reference
