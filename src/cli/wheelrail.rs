@@ -22,6 +22,7 @@ use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
 use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing};
+use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, check_plausibility, load_profile_with, solve_wheelset, FrictionTable, LoadOptions,
     PatchResult, PlausibilityWarning, Profile, SearchScratch, Side, SplineOptions, TrackData,
@@ -357,19 +358,23 @@ impl WheelrailRun {
                 "invalid input `wheelset.smoothing_wavelength_m`: must be >= 0, got {wavelength}"
             )));
         }
+        let track = TrackData {
+            gauge_m: t.gauge_m,
+            gauge_height_m: t.gauge_height_m,
+            cant_rad: t.cant_rad,
+        };
+        let wheelset = WheelsetData {
+            flange_back_distance_m: w.flange_back_distance_m,
+            nominal_radius_m: w.nominal_radius_m,
+            flange_back_y_m: w.flange_back_y_m,
+        };
+        // The service's checks: the same ranges, the same keys.
+        ranges::check_geometry(&track, &wheelset).map_err(|e| bad(e.to_string()))?;
         let pair = WheelRailPair::new(
             [&rail_l, &rail_r],
             [&wheel_l, &wheel_r],
-            TrackData {
-                gauge_m: t.gauge_m,
-                gauge_height_m: t.gauge_height_m,
-                cant_rad: t.cant_rad,
-            },
-            WheelsetData {
-                flange_back_distance_m: w.flange_back_distance_m,
-                nominal_radius_m: w.nominal_radius_m,
-                flange_back_y_m: w.flange_back_y_m,
-            },
+            track,
+            wheelset,
             &SplineOptions::smoothing(wavelength),
         )?;
         let material = CombinedMaterial::identical(Material {
@@ -431,6 +436,13 @@ impl WheelrailRun {
             total_longitudinal_force_n: l.total_longitudinal_force_n,
             temperature: c.temperature,
         };
+        ranges::check_motion(
+            &input.position,
+            &input.velocity,
+            &input.load,
+            input.total_longitudinal_force_n,
+        )
+        .map_err(|e| bad(e.to_string()))?;
         Ok(Self {
             pair,
             input,

@@ -53,6 +53,7 @@ use crate::service::pool::Admission;
 use crate::service::status::ServiceError;
 use crate::service::store::PairStore;
 use crate::wheelrail::profile::quote;
+use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile, ProfileFormat,
     ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError, WheelRailPair,
@@ -78,20 +79,6 @@ pub const DEFAULT_ELEMENT_SIZE_M: f64 = 2.0e-4;
 /// does.
 const ID_TAG: &[u8] = b"railcontact.v1.ProfilePairSpec/1\n";
 
-/// Range of the track gauge \[m\]: narrow gauges (0.6 m) to broad (1.676
-/// m) with room on both sides.
-pub const GAUGE_RANGE_M: [f64; 2] = [0.3, 3.0];
-/// Range of the depth below the top of rail where the gauge is measured
-/// \[m\] (commonly 0.014).
-pub const GAUGE_HEIGHT_RANGE_M: [f64; 2] = [0.0, 0.05];
-/// Range of the rail inclination \[rad\] (1:40 is 0.025).
-pub const CANT_RANGE_RAD: [f64; 2] = [-0.2, 0.2];
-/// Range of the flange-back distance \[m\] (commonly 1.360).
-pub const FLANGE_BACK_DISTANCE_RANGE_M: [f64; 2] = [0.2, 3.0];
-/// Range of the nominal rolling radius \[m\] (commonly 0.3 to 0.6).
-pub const NOMINAL_RADIUS_RANGE_M: [f64; 2] = [0.05, 2.0];
-/// Range of the flange back's profile y \[m\]: that of profile points.
-pub const FLANGE_BACK_Y_RANGE_M: [f64; 2] = [-10.0, 10.0];
 /// Range of the shear moduli \[Pa\] (steel: about 80e9).
 pub const SHEAR_MODULUS_RANGE_PA: [f64; 2] = [1e9, 1e12];
 /// Range of the Poisson ratios \[-\].
@@ -126,37 +113,26 @@ fn check_ranges(
     spec: &pb::ProfilePairSpec,
     f: &dyn Fn(&str) -> String,
 ) -> Result<(), ServiceError> {
-    if let Some(t) = &spec.track {
-        check_range(&f("track.gauge_m"), t.gauge_m, GAUGE_RANGE_M, " m")?;
-        check_range(
-            &f("track.gauge_height_m"),
-            t.gauge_height_m,
-            GAUGE_HEIGHT_RANGE_M,
-            " m",
-        )?;
-        check_range(&f("track.cant_rad"), t.cant_rad, CANT_RANGE_RAD, " rad")?;
-    }
-    if let Some(w) = &spec.wheelset {
-        check_range(
-            &f("wheelset.flange_back_distance_m"),
-            w.flange_back_distance_m,
-            FLANGE_BACK_DISTANCE_RANGE_M,
-            " m",
-        )?;
-        check_range(
-            &f("wheelset.nominal_radius_m"),
-            w.nominal_radius_m,
-            NOMINAL_RADIUS_RANGE_M,
-            " m",
-        )?;
-        if let Some(y) = w.flange_back_y_m {
-            check_range(
-                &f("wheelset.flange_back_y_m"),
-                y,
-                FLANGE_BACK_Y_RANGE_M,
-                " m",
-            )?;
-        }
+    // Track and wheelset: the solver's ranges, which the command line
+    // checks too (unset parts are checked when defaulted).
+    let track = spec.track.as_ref().map(|t| TrackData {
+        gauge_m: t.gauge_m,
+        gauge_height_m: t.gauge_height_m,
+        cant_rad: t.cant_rad,
+    });
+    let wheelset = spec.wheelset.as_ref().map(|w| WheelsetData {
+        flange_back_distance_m: w.flange_back_distance_m,
+        nominal_radius_m: w.nominal_radius_m,
+        flange_back_y_m: w.flange_back_y_m,
+    });
+    let geometry = match (track, wheelset) {
+        (Some(t), Some(w)) => ranges::check_geometry(&t, &w),
+        (Some(t), None) => ranges::check_track(&t),
+        (None, Some(w)) => ranges::check_wheelset(&w),
+        (None, None) => Ok(()),
+    };
+    if let Err(crate::core::error::ContactError::InvalidInput { key, reason }) = geometry {
+        return Err(ServiceError::invalid(f(&key), reason));
     }
     if let Some(m) = &spec.material {
         let body = |prefix: &str, g: Option<f64>, nu: Option<f64>| {

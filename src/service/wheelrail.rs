@@ -10,7 +10,6 @@
 //! the request's field paths.
 
 use crate::conformal::geometry::RigidSlipSurface;
-use crate::core::error::{Range, UnitHint};
 use crate::core::fastsim::SlopeReduction;
 use crate::core::friclaw::{FallingShape, SlipStart};
 use crate::core::material::CombinedMaterial;
@@ -24,7 +23,6 @@ use crate::service::convert::{
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
-use crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY;
 use crate::wheelrail::temperature::{check_model, TEMPERATURE_KEY};
 use crate::wheelrail::{
     FrictionAxis, FrictionTable, PatchResult, PlausibilityWarning, Side, WarningKind, WheelLoad,
@@ -34,35 +32,9 @@ use crate::wheelrail::{
 
 /// The documented ranges of a wheel/rail query's motion and load (the
 /// proto's `WheelsetPosition`, `WheelsetVelocity`, `WheelLoad`), checked
-/// before anything is solved.
-pub mod ranges {
-    use super::{Range, UnitHint};
-
-    /// `position.lateral_m` \[m\] (flange contact is at about 8 mm).
-    pub const LATERAL: Range = Range::symmetric(0.02, "m").hint(UnitHint::Millimetre);
-    /// `position.yaw_rad` \[rad\].
-    pub const YAW: Range = Range::symmetric(0.05, "rad");
-    /// `position.roll_rad` \[rad\].
-    pub const ROLL: Range = Range::symmetric(0.05, "rad");
-    /// `velocity.forward_m_per_s` \[m/s\].
-    pub const FORWARD_SPEED: Range = Range::closed(1.0, 150.0, "m/s");
-    /// `velocity.lateral_m_per_s`, `velocity.vertical_m_per_s` \[m/s\].
-    pub const TRANSVERSE_SPEED: Range = Range::symmetric(5.0, "m/s");
-    /// `velocity.roll_rad_per_s`, `velocity.yaw_rad_per_s` \[rad/s\].
-    pub const TURN_RATE: Range = Range::symmetric(5.0, "rad/s");
-    /// `velocity.pitch_rad_per_s` \[rad/s\] (free rolling: -V/r0).
-    pub const PITCH_RATE: Range = Range::symmetric(1000.0, "rad/s");
-    /// `load.vertical_force_n` \[N\] (total on both wheels).
-    pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
-    /// `load.approach_m` \[m\].
-    pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
-    /// `load.total_longitudinal_force_n` \[N\] (its reach is checked
-    /// against saturation when solved).
-    pub const TOTAL_LONGITUDINAL_FORCE: Range = Range::symmetric(1e6, "N");
-    /// `load.center_z_m` \[m\]: z points down, so the centre of a wheelset
-    /// on its rails is at about minus the wheel radius.
-    pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
-}
+/// before anything is solved: the solver's, which the command line checks
+/// too.
+pub use crate::wheelrail::ranges;
 
 /// The request field of a wheel/rail load: `load.vertical_force_n`,
 /// `load.approach_m` or `load.center_z_m` (`load` when none is set).
@@ -335,60 +307,11 @@ impl QuerySettings {
                 ),
             )
         })?;
-        let check = |key: &str, v: f64, r: Range| r.check(key, v).map_err(ServiceError::from);
-        check("position.lateral_m", p.lateral_m, ranges::LATERAL)?;
-        check("position.yaw_rad", p.yaw_rad, ranges::YAW)?;
-        if !p.track_s_m.is_finite() {
-            return Err(ServiceError::invalid(
-                "position.track_s_m",
-                format!("must be finite, got {}", p.track_s_m),
-            ));
-        }
-        if let Some(r) = p.roll_rad {
-            check("position.roll_rad", r, ranges::ROLL)?;
-        }
-        check(
-            "velocity.forward_m_per_s",
-            v.forward_m_per_s,
-            ranges::FORWARD_SPEED,
-        )?;
-        check(
-            "velocity.lateral_m_per_s",
-            v.lateral_m_per_s,
-            ranges::TRANSVERSE_SPEED,
-        )?;
-        check(
-            "velocity.vertical_m_per_s",
-            v.vertical_m_per_s,
-            ranges::TRANSVERSE_SPEED,
-        )?;
-        check(
-            "velocity.roll_rad_per_s",
-            v.roll_rad_per_s,
-            ranges::TURN_RATE,
-        )?;
-        check("velocity.yaw_rad_per_s", v.yaw_rad_per_s, ranges::TURN_RATE)?;
-        if let Some(w) = v.pitch_rad_per_s {
-            check("velocity.pitch_rad_per_s", w, ranges::PITCH_RATE)?;
-        }
-        let total_longitudinal_force_n = match load.and_then(|l| l.total_longitudinal_force_n) {
-            Some(f) => Some(check(
-                TOTAL_LONGITUDINAL_FORCE_KEY,
-                f,
-                ranges::TOTAL_LONGITUDINAL_FORCE,
-            )?),
-            None => None,
-        };
+        let total_longitudinal_force_n = load.and_then(|l| l.total_longitudinal_force_n);
         let load = match load.and_then(|l| l.load) {
-            Some(pb::wheel_load::Load::VerticalForceN(f)) => {
-                WheelLoad::VerticalForce(check("load.vertical_force_n", f, ranges::VERTICAL_FORCE)?)
-            }
-            Some(pb::wheel_load::Load::ApproachM(d)) => {
-                WheelLoad::Approach(check("load.approach_m", d, ranges::APPROACH)?)
-            }
-            Some(pb::wheel_load::Load::CenterZM(z)) => {
-                WheelLoad::CenterHeight(check("load.center_z_m", z, ranges::CENTER_Z)?)
-            }
+            Some(pb::wheel_load::Load::VerticalForceN(f)) => WheelLoad::VerticalForce(f),
+            Some(pb::wheel_load::Load::ApproachM(d)) => WheelLoad::Approach(d),
+            Some(pb::wheel_load::Load::CenterZM(z)) => WheelLoad::CenterHeight(z),
             None => {
                 return Err(ServiceError::invalid(
                     "load",
@@ -396,21 +319,24 @@ impl QuerySettings {
                 ))
             }
         };
+        let position = WheelsetPosition {
+            lateral_m: p.lateral_m,
+            yaw_rad: p.yaw_rad,
+            roll_rad: p.roll_rad,
+            track_s_m: p.track_s_m,
+        };
+        let velocity = WheelsetVelocity {
+            forward_m_per_s: v.forward_m_per_s,
+            lateral_m_per_s: v.lateral_m_per_s,
+            vertical_m_per_s: v.vertical_m_per_s,
+            roll_rad_per_s: v.roll_rad_per_s,
+            yaw_rad_per_s: v.yaw_rad_per_s,
+            pitch_rad_per_s: v.pitch_rad_per_s,
+        };
+        ranges::check_motion(&position, &velocity, &load, total_longitudinal_force_n)?;
         Ok(WheelRailInput {
-            position: WheelsetPosition {
-                lateral_m: p.lateral_m,
-                yaw_rad: p.yaw_rad,
-                roll_rad: p.roll_rad,
-                track_s_m: p.track_s_m,
-            },
-            velocity: WheelsetVelocity {
-                forward_m_per_s: v.forward_m_per_s,
-                lateral_m_per_s: v.lateral_m_per_s,
-                vertical_m_per_s: v.vertical_m_per_s,
-                roll_rad_per_s: v.roll_rad_per_s,
-                yaw_rad_per_s: v.yaw_rad_per_s,
-                pitch_rad_per_s: v.pitch_rad_per_s,
-            },
+            position,
+            velocity,
             load,
             sides: self.sides.clone(),
             material: self.material,

@@ -501,6 +501,41 @@ fn bad_plot_extension_is_rejected() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("--plot"));
 }
 
+/// The three values out of range in a wheelset case: each named
+/// with the file, key and value (and the likely millimetres), as the
+/// service names them (one check: `wheelrail::ranges`), exit code 2.
+#[test]
+fn wheelset_values_out_of_range_name_file_key_and_value() {
+    for (from, to, needle) in [
+        (
+            "lateral_m = 0.0065",
+            "lateral_m = 6.5",
+            "`position.lateral_m`: must be in [-0.02, 0.02] m, got 6.5 (this looks like millimetres: did you mean 0.0065 m?)",
+        ),
+        (
+            "nominal_radius_m = 0.460",
+            "nominal_radius_m = 460",
+            "`wheelset.nominal_radius_m`: must be in [0.05, 2] m, got 460 (this looks like millimetres: did you mean 0.46 m?)",
+        ),
+        (
+            "roll_rad = -0.004376",
+            "roll_rad = -0.25",
+            "`position.roll_rad`: must be in [-0.05, 0.05] rad, got -0.25",
+        ),
+    ] {
+        let text = example_text("wheelset_a22.toml");
+        assert!(text.contains(from), "{from}");
+        let case = case_file("out_of_range.toml", &text.replace(from, to));
+        let out = run(&["wheelrail", case.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{to}: {stderr}");
+        assert!(
+            stderr.contains(case.to_str().unwrap()) && stderr.contains(needle),
+            "{to}: {stderr}"
+        );
+    }
+}
+
 /// An output file that cannot be written is refused before the solve
 /// (exit 2, naming the option and the path), for `solve` and `wheelrail`;
 /// no empty file is left behind by the check.

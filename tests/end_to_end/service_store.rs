@@ -427,7 +427,7 @@ async fn absurd_registrations_are_invalid_argument_naming_the_field() {
     };
     cases.push((
         with(&|s| s.track.as_mut().unwrap().gauge_m = 100.0),
-        vec!["spec.track.gauge_m", "1e2"],
+        vec!["spec.track.gauge_m", "got 100"],
     ));
     cases.push((
         with(&|s| s.wheelset.as_mut().unwrap().flange_back_distance_m = 1e300),
@@ -436,6 +436,11 @@ async fn absurd_registrations_are_invalid_argument_naming_the_field() {
     cases.push((
         with(&|s| s.wheelset.as_mut().unwrap().nominal_radius_m = 40.0),
         vec!["spec.wheelset.nominal_radius_m"],
+    ));
+    // In millimetres: the same check as the command line's, with the hint.
+    cases.push((
+        with(&|s| s.wheelset.as_mut().unwrap().nominal_radius_m = 460.0),
+        vec!["spec.wheelset.nominal_radius_m", "did you mean 0.46 m"],
     ));
     cases.push((
         with(&|s| {

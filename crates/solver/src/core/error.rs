@@ -238,9 +238,11 @@ impl Range {
             UnitHint::GigaPascal if v > 0.0 && v < self.min && self.contains(v * 1e9) => {
                 format!(" (did you mean {}e9, i.e. {} GPa?)", show(v), show(v))
             }
-            UnitHint::Millimetre if v.abs() > self.max && self.contains(v * 1e-3) => format!(
+            // Divided (not multiplied by 1e-3): 6.5 mm is 0.0065 m, not
+            // 0.006500000000000001.
+            UnitHint::Millimetre if v.abs() > self.max && self.contains(v / 1e3) => format!(
                 " (this looks like millimetres: did you mean {} m?)",
-                show(v * 1e-3)
+                show(v / 1e3)
             ),
             UnitHint::Celsius if self.contains(v + CELSIUS_ZERO_K) => format!(
                 " (this looks like degrees Celsius: did you mean {} K?)",

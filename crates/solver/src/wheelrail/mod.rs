@@ -15,6 +15,9 @@
 //!   [`ReferencePoint`]);
 //! * [`contact`]: creepages, the per-patch contact problems and the load
 //!   iteration ([`solve_wheelset`]);
+//! * [`ranges`]: the documented ranges of a case's numbers and their one
+//!   check ([`ranges::check_motion`], [`ranges::check_geometry`]), which
+//!   the command line and the service both run;
 //! * [`plausibility`]: warnings about answers no elastic contact gives
 //!   and forces inconsistent with the kinematics given, naming the input
 //!   at fault ([`check_plausibility`]);
@@ -73,6 +76,7 @@ pub mod contact;
 pub mod friction;
 pub mod plausibility;
 pub mod profile;
+pub mod ranges;
 pub mod readers;
 pub mod search;
 pub mod spline;

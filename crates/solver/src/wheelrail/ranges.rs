@@ -1,0 +1,175 @@
+//! The documented ranges of a wheel/rail case's numbers, and the one check
+//! of them that the command line (case files) and the service (requests)
+//! both run, so that a value is refused the same way, naming the same key
+//! (`position.lateral_m`, `wheelset.nominal_radius_m`), whichever way it
+//! came. A value that fits once read in other units is said to be likely
+//! in millimetres.
+
+use crate::core::error::{ContactError, Range, UnitHint};
+use crate::wheelrail::contact::WheelLoad;
+use crate::wheelrail::wheelset::{TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity};
+
+/// `position.lateral_m` \[m\] (flange contact is at about 8 mm).
+pub const LATERAL: Range = Range::symmetric(0.02, "m").hint(UnitHint::Millimetre);
+/// `position.yaw_rad` \[rad\].
+pub const YAW: Range = Range::symmetric(0.05, "rad");
+/// `position.roll_rad` \[rad\].
+pub const ROLL: Range = Range::symmetric(0.05, "rad");
+/// `velocity.forward_m_per_s` \[m/s\].
+pub const FORWARD_SPEED: Range = Range::closed(1.0, 150.0, "m/s");
+/// `velocity.lateral_m_per_s`, `velocity.vertical_m_per_s` \[m/s\].
+pub const TRANSVERSE_SPEED: Range = Range::symmetric(5.0, "m/s");
+/// `velocity.roll_rad_per_s`, `velocity.yaw_rad_per_s` \[rad/s\].
+pub const TURN_RATE: Range = Range::symmetric(5.0, "rad/s");
+/// `velocity.pitch_rad_per_s` \[rad/s\] (free rolling: -V/r0).
+pub const PITCH_RATE: Range = Range::symmetric(1000.0, "rad/s");
+/// `load.vertical_force_n` \[N\] (total on both wheels).
+pub const VERTICAL_FORCE: Range = Range::closed(1e2, 1e6, "N");
+/// `load.approach_m` \[m\].
+pub const APPROACH: Range = Range::positive(2e-3, "m").hint(UnitHint::Millimetre);
+/// `load.total_longitudinal_force_n` \[N\] (its reach is checked against
+/// saturation when solved).
+pub const TOTAL_LONGITUDINAL_FORCE: Range = Range::symmetric(1e6, "N");
+/// `load.center_z_m` \[m\]: z points down, so the centre of a wheelset on
+/// its rails is at about minus the wheel radius.
+pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
+
+/// `track.gauge_m` \[m\].
+pub const GAUGE: Range = Range::closed(0.3, 3.0, "m").hint(UnitHint::Millimetre);
+/// `track.gauge_height_m` \[m\]: depth below the top of the rail.
+pub const GAUGE_HEIGHT: Range = Range::closed(0.0, 0.05, "m").hint(UnitHint::Millimetre);
+/// `track.cant_rad` \[rad\]: rail inclination (1:40 is 0.025).
+pub const CANT: Range = Range::symmetric(0.2, "rad");
+/// `wheelset.flange_back_distance_m` \[m\].
+pub const FLANGE_BACK_DISTANCE: Range = Range::closed(0.2, 3.0, "m").hint(UnitHint::Millimetre);
+/// `wheelset.nominal_radius_m` \[m\].
+pub const NOMINAL_RADIUS: Range = Range::closed(0.05, 2.0, "m").hint(UnitHint::Millimetre);
+/// `wheelset.flange_back_y_m` \[m\] (the profile's y of the back of the
+/// flange; -0.070 for S1002).
+pub const FLANGE_BACK_Y: Range = Range::symmetric(0.5, "m").hint(UnitHint::Millimetre);
+
+/// Checks a motion and load against their ranges; the error names the
+/// key as a case file and a request both spell it.
+pub fn check_motion(
+    position: &WheelsetPosition,
+    velocity: &WheelsetVelocity,
+    load: &WheelLoad,
+    total_longitudinal_force_n: Option<f64>,
+) -> Result<(), ContactError> {
+    LATERAL.check("position.lateral_m", position.lateral_m)?;
+    YAW.check("position.yaw_rad", position.yaw_rad)?;
+    if let Some(r) = position.roll_rad {
+        ROLL.check("position.roll_rad", r)?;
+    }
+    if !position.track_s_m.is_finite() {
+        return Err(ContactError::invalid(
+            "position.track_s_m",
+            format!("must be finite, got {}", position.track_s_m),
+        ));
+    }
+    FORWARD_SPEED.check("velocity.forward_m_per_s", velocity.forward_m_per_s)?;
+    TRANSVERSE_SPEED.check("velocity.lateral_m_per_s", velocity.lateral_m_per_s)?;
+    TRANSVERSE_SPEED.check("velocity.vertical_m_per_s", velocity.vertical_m_per_s)?;
+    TURN_RATE.check("velocity.roll_rad_per_s", velocity.roll_rad_per_s)?;
+    TURN_RATE.check("velocity.yaw_rad_per_s", velocity.yaw_rad_per_s)?;
+    if let Some(w) = velocity.pitch_rad_per_s {
+        PITCH_RATE.check("velocity.pitch_rad_per_s", w)?;
+    }
+    if let Some(f) = total_longitudinal_force_n {
+        TOTAL_LONGITUDINAL_FORCE
+            .check(crate::wheelrail::contact::TOTAL_LONGITUDINAL_FORCE_KEY, f)?;
+    }
+    match *load {
+        WheelLoad::VerticalForce(f) => VERTICAL_FORCE.check("load.vertical_force_n", f),
+        WheelLoad::Approach(d) => APPROACH.check("load.approach_m", d),
+        WheelLoad::CenterHeight(z) => CENTER_Z.check("load.center_z_m", z),
+    }?;
+    Ok(())
+}
+
+/// Checks a track and wheelset against their ranges, naming the key.
+pub fn check_geometry(track: &TrackData, wheelset: &WheelsetData) -> Result<(), ContactError> {
+    check_track(track)?;
+    check_wheelset(wheelset)
+}
+
+/// Checks a track against its ranges, naming the key.
+pub fn check_track(track: &TrackData) -> Result<(), ContactError> {
+    GAUGE.check("track.gauge_m", track.gauge_m)?;
+    GAUGE_HEIGHT.check("track.gauge_height_m", track.gauge_height_m)?;
+    CANT.check("track.cant_rad", track.cant_rad)?;
+    Ok(())
+}
+
+/// Checks a wheelset's dimensions against their ranges, naming the key.
+pub fn check_wheelset(wheelset: &WheelsetData) -> Result<(), ContactError> {
+    FLANGE_BACK_DISTANCE.check(
+        "wheelset.flange_back_distance_m",
+        wheelset.flange_back_distance_m,
+    )?;
+    NOMINAL_RADIUS.check("wheelset.nominal_radius_m", wheelset.nominal_radius_m)?;
+    if let Some(y) = wheelset.flange_back_y_m {
+        FLANGE_BACK_Y.check("wheelset.flange_back_y_m", y)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The three: a lateral shift, a radius and a roll given in
+    /// millimetres or beyond reason, each named with its key and value.
+    #[test]
+    fn values_out_of_range_name_their_key_and_a_likely_unit() {
+        let position = WheelsetPosition {
+            lateral_m: 6.5,
+            yaw_rad: 0.0,
+            roll_rad: None,
+            track_s_m: 0.0,
+        };
+        let velocity = WheelsetVelocity {
+            forward_m_per_s: 2.0,
+            lateral_m_per_s: 0.0,
+            vertical_m_per_s: 0.0,
+            roll_rad_per_s: 0.0,
+            yaw_rad_per_s: 0.0,
+            pitch_rad_per_s: None,
+        };
+        let load = WheelLoad::VerticalForce(1e4);
+        let e = check_motion(&position, &velocity, &load, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("position.lateral_m") && e.contains("6.5") && e.contains("0.0065 m"),
+            "{e}"
+        );
+        let rolled = WheelsetPosition {
+            lateral_m: 0.0,
+            roll_rad: Some(-0.25),
+            ..position
+        };
+        let e = check_motion(&rolled, &velocity, &load, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("position.roll_rad") && e.contains("-0.25"),
+            "{e}"
+        );
+        let track = TrackData {
+            gauge_m: 1.435,
+            gauge_height_m: 0.014,
+            cant_rad: 0.0,
+        };
+        let wheelset = WheelsetData {
+            flange_back_distance_m: 1.36,
+            nominal_radius_m: 460.0,
+            flange_back_y_m: Some(-0.07),
+        };
+        let e = check_geometry(&track, &wheelset).unwrap_err().to_string();
+        assert!(
+            e.contains("wheelset.nominal_radius_m") && e.contains("0.46 m"),
+            "{e}"
+        );
+    }
+}
