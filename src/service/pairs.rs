@@ -699,8 +699,14 @@ pub fn prepare_with(
         &SplineOptions::smoothing(s.smoothing_wavelength_m),
     )
     .map_err(|e| match e {
+        // The case file's profile keys are the spec's sources.
         WheelRailError::Invalid { key, message } => {
-            ServiceError::invalid(format!("spec.{key}"), message)
+            let field = match key.as_str() {
+                "track.rail_profile" => "spec.rail".to_string(),
+                "wheelset.wheel_profile" => "spec.wheel".to_string(),
+                _ => format!("spec.{key}"),
+            };
+            ServiceError::invalid(field, message)
         }
         other => ServiceError::invalid("spec", other.to_string()),
     })?;

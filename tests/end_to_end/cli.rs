@@ -536,6 +536,46 @@ fn wheelset_values_out_of_range_name_file_key_and_value() {
     }
 }
 
+/// Profile-format mistakes are named with their likely cause: a wheel
+/// file as the rail, a rail file as the wheel, a MiniProf rail measured
+/// from the gauge side without `rail_mirror_y`.
+#[test]
+fn profile_mistakes_name_their_likely_cause() {
+    let profiles = crate::common::profiles_dir();
+    let text = example_text("wheelset_a22.toml")
+        .lines()
+        .filter(|l| !l.starts_with("roll_rad") && !l.starts_with("pitch_rad_per_s"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let rail = "rail_profile = \"builtin:MBench_UIC60_v3.prr\"";
+    let wheel = "wheel_profile = \"builtin:MBench_S1002_v3.prw\"";
+    let file = |name: &str| profiles.join(name).display().to_string();
+    for (from, to, needle) in [
+        (
+            rail,
+            format!("rail_profile = \"{}\"", file("MBench_S1002_v3.prw")),
+            "track.rail_profile: 'MBench_S1002_v3.prw' is a wheel profile",
+        ),
+        (
+            wheel,
+            format!("wheel_profile = \"{}\"", file("MBench_UIC60_v3.prr")),
+            "wheelset.wheel_profile: 'MBench_UIC60_v3.prr' is a rail profile",
+        ),
+        (
+            rail,
+            format!("rail_profile = \"{}\"", file("avg_HR.BAN")),
+            "its gauge face is at +y, as in a MiniProf rail measured from the gauge side",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let case = case_file("profile_mistake.toml", &text.replace(from, &to));
+        let out = run(&["wheelrail", case.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{to}: {stderr}");
+        assert!(stderr.contains(needle), "{to}: {stderr}");
+    }
+}
+
 /// An output file that cannot be written is refused before the solve
 /// (exit 2, naming the option and the path), for `solve` and `wheelrail`;
 /// no empty file is left behind by the check.

@@ -495,6 +495,11 @@ async fn absurd_registrations_are_invalid_argument_naming_the_field() {
         with(&|s| s.wheel = Some(miniprof_wheel("", &long))),
         vec!["spec.wheel", "w.whl line", "(10002 characters)"],
     ));
+    // A wheel file as the rail: the reader says so, naming the source.
+    cases.push((
+        with(&|s| s.rail = s.wheel.clone()),
+        vec!["spec.rail", "says wheel, but a rail profile was expected"],
+    ));
     // Within every range, but the wheels sit beside their rails: the trial
     // solve at the centred position refuses the pair.
     cases.push((

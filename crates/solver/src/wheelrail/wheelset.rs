@@ -39,7 +39,7 @@
 use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::wheelrail::search::{LocusSample, VerticalGap};
 use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
-use crate::wheelrail::Profile;
+use crate::wheelrail::{Profile, ProfileKind};
 
 /// Errors of the wheel/rail geometry and solution.
 #[derive(Debug, thiserror::Error)]
@@ -370,6 +370,37 @@ impl WheelRailPair {
         if let Some(y) = wheelset.flange_back_y_m {
             require_finite("wheelset.flange_back_y_m", y)?;
         }
+        // A wheel file as the rail, or a rail file as the wheel (by their
+        // extension or content; plain files have no kind): said at once.
+        for (profiles, key, wrong, right) in [
+            (
+                rails,
+                "track.rail_profile",
+                ProfileKind::Wheel,
+                "a rail's (.prr, .ban)",
+            ),
+            (
+                wheels,
+                "wheelset.wheel_profile",
+                ProfileKind::Rail,
+                "a wheel's (.prw, .whl)",
+            ),
+        ] {
+            if let Some(p) = profiles.iter().find(|p| p.kind() == Some(wrong)) {
+                return Err(WheelRailError::invalid(
+                    key,
+                    format!(
+                        "'{}' is a {} profile (by its extension or content): give {right}",
+                        p.name(),
+                        if wrong == ProfileKind::Wheel {
+                            "wheel"
+                        } else {
+                            "rail"
+                        }
+                    ),
+                ));
+            }
+        }
         let place = |side: Side| -> Result<(PlacedRail, PlacedWheel), WheelRailError> {
             let i = side.index();
             let rail = place_rail(rails[i], &track, spline, side)?;
@@ -452,15 +483,35 @@ fn place_rail(
             side: side.name(),
             message: format!(
                 "the rail profile '{}' does not reach {:.1} mm below its top on the gauge side, \
-                 where the gauge is measured (track.gauge_height_m)",
+                 where the gauge is measured (track.gauge_height_m){}",
                 profile.name(),
-                track.gauge_height_m * 1e3
+                track.gauge_height_m * 1e3,
+                rail_hint(&inclined, level)
             ),
         })?;
     rail.offset_m = [0.5 * track.gauge_m - gauge_q, -top];
     rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
     rail.surface = VerticalGap::surface_of(&rail.samples);
     Ok(rail)
+}
+
+/// The likely cause of a rail profile without a gauge face at the gauge
+/// height (`level`, in the side frame of the samples `inclined`): a rail
+/// whose gauge face is on its +y side (a MiniProf rail measured from the
+/// gauge side, not mirrored).
+fn rail_hint(inclined: &[CurveSample], level: f64) -> String {
+    let field_side_reaches = inclined
+        .windows(2)
+        .rev()
+        .any(|w| w[1].z_m > level && w[0].z_m <= level);
+    if field_side_reaches {
+        "; it reaches that depth on its +y side instead: its gauge face is at +y, as in a \
+         MiniProf rail measured from the gauge side; mirror it in y (case files: \
+         `track.rail_mirror_y = true`; the wire: the rail source's `mirror_y`)"
+            .to_string()
+    } else {
+        String::new()
+    }
 }
 
 fn place_wheel(
