@@ -6,9 +6,11 @@
 //! (license beside it), so plots render on headless machines without system
 //! fonts.
 
+use std::ops::Range;
 use std::path::Path;
 use std::sync::Once;
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -187,6 +189,72 @@ pub(crate) fn panel_note<DB: DrawingBackend>(
 
 /// One colour map of `values` [Pa] on the grid, with a colour bar; with
 /// `states`, slip elements are hatched and the adhesion/slip boundary drawn.
+/// The margin and label areas of a chart \[px\], so that its axes can be
+/// put at equal scale.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Frame {
+    /// Margin on every side.
+    pub margin: u32,
+    /// Height of the x labels' area below the plot.
+    pub x_labels: u32,
+    /// Width of the y labels' area left of the plot.
+    pub y_labels: u32,
+}
+
+impl Frame {
+    /// Ranges at equal scale (the same length per pixel on both axes) that
+    /// hold `x` and `y` in a plot of `px` pixels: the axis with less length
+    /// per pixel is widened about its centre.
+    pub(crate) fn ranges(
+        &self,
+        (w, h): (u32, u32),
+        x: Range<f64>,
+        y: Range<f64>,
+    ) -> (Range<f64>, Range<f64>) {
+        let pw = w.saturating_sub(2 * self.margin + self.y_labels).max(1) as f64;
+        let ph = h.saturating_sub(2 * self.margin + self.x_labels).max(1) as f64;
+        let per_px = ((x.end - x.start) / pw).max((y.end - y.start) / ph);
+        let widen = |r: Range<f64>, px: f64| {
+            let half = 0.5 * per_px * px;
+            let mid = 0.5 * (r.start + r.end);
+            (mid - half)..(mid + half)
+        };
+        (widen(x, pw), widen(y, ph))
+    }
+
+    /// A chart on `area` (its caption drawn already, e.g. by `titled`) at
+    /// equal scale holding `x` and `y`.
+    pub(crate) fn equal_scale<'a, DB: DrawingBackend>(
+        &self,
+        area: &'a DrawingArea<DB, Shift>,
+        x: Range<f64>,
+        y: Range<f64>,
+    ) -> ChartResult<'a, DB> {
+        let (xr, yr) = self.ranges(area.dim_in_pixel(), x, y);
+        self.chart(area, xr, yr)
+    }
+
+    /// A chart on `area` with this frame's margin and label areas.
+    pub(crate) fn chart<'a, DB: DrawingBackend>(
+        &self,
+        area: &'a DrawingArea<DB, Shift>,
+        x: Range<f64>,
+        y: Range<f64>,
+    ) -> ChartResult<'a, DB> {
+        ChartBuilder::on(area)
+            .margin(self.margin)
+            .x_label_area_size(self.x_labels)
+            .y_label_area_size(self.y_labels)
+            .build_cartesian_2d(x, y)
+    }
+}
+
+/// A chart with real axes, or the drawing area's error.
+pub(crate) type ChartResult<'a, DB> = Result<
+    ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>,
+>;
+
 fn map<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     grid: &Grid,
@@ -203,28 +271,12 @@ fn map<DB: DrawingBackend>(
     let (dx, dy) = (grid.dx_m * 1e3, grid.dy_m * 1e3);
     let (x1, y1) = (x0 + dx * grid.nx as f64, y0 + dy * grid.ny as f64);
     let main = main.titled(caption, (FONT, 17)).map_err(err)?;
-    // Equal scale: the plotting area is what the margins and label areas
-    // leave; the axis with less length per pixel is widened about the grid.
-    const MARGIN: u32 = 10;
-    const X_LABELS: u32 = 45;
-    const Y_LABELS: u32 = 60;
-    let (mw, mh) = main.dim_in_pixel();
-    let (pw, ph) = (
-        mw.saturating_sub(2 * MARGIN + Y_LABELS).max(1) as f64,
-        mh.saturating_sub(2 * MARGIN + X_LABELS).max(1) as f64,
-    );
-    let per_px = ((x1 - x0) / pw).max((y1 - y0) / ph);
-    let widen = |a: f64, b: f64, px: f64| {
-        let half = 0.5 * per_px * px;
-        let mid = 0.5 * (a + b);
-        (mid - half)..(mid + half)
+    let frame = Frame {
+        margin: 10,
+        x_labels: 45,
+        y_labels: 60,
     };
-    let mut chart = ChartBuilder::on(&main)
-        .margin(MARGIN)
-        .x_label_area_size(X_LABELS)
-        .y_label_area_size(Y_LABELS)
-        .build_cartesian_2d(widen(x0, x1, pw), widen(y0, y1, ph))
-        .map_err(err)?;
+    let mut chart = frame.equal_scale(&main, x0..x1, y0..y1).map_err(err)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -389,12 +441,13 @@ fn centre_line<DB: DrawingBackend>(
         .map(|&(_, v)| v.abs())
         .fold(0.0_f64, f64::max);
     let show_py = py.iter().any(|&(_, v)| v.abs() > 1e-3 * scale);
+    // Both bounds +-mu p_n, whichever sign the tractions have.
     let all = pn
         .iter()
         .chain(&px)
         .chain(&py)
-        .chain(&mupn)
-        .map(|&(_, v)| v);
+        .map(|&(_, v)| v)
+        .chain(mupn.iter().flat_map(|&(_, v)| [v, -v]));
     let (lo, hi) = all.fold((0.0_f64, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
     let pad = 0.08 * (hi - lo).max(1e-9);
     let (x0, x1) = (
@@ -513,4 +566,32 @@ fn centre_line<DB: DrawingBackend>(
         .draw()
         .map_err(err)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_ranges_are_at_equal_scale_and_hold_the_data() {
+        let frame = Frame {
+            margin: 10,
+            x_labels: 40,
+            y_labels: 60,
+        };
+        // 400 x 300 px leaves a 320 x 240 px plot.
+        for (x, y) in [(-4.0..4.0, -1.0..1.0), (0.0..1.0, -30.0..5.0)] {
+            let (xr, yr) = frame.ranges((400, 300), x.clone(), y.clone());
+            let (px, py) = ((xr.end - xr.start) / 320.0, (yr.end - yr.start) / 240.0);
+            assert!((px - py).abs() < 1e-12 * px, "{px} mm/px against {py}");
+            assert!(xr.start <= x.start && xr.end >= x.end);
+            assert!(yr.start <= y.start && yr.end >= y.end);
+            // Centred about the data; the tighter axis is not widened.
+            assert!((xr.start + xr.end - x.start - x.end).abs() < 1e-12);
+            assert!((yr.start + yr.end - y.start - y.end).abs() < 1e-12);
+            let len = |r: &Range<f64>| r.end - r.start;
+            let same = |a: &Range<f64>, b: &Range<f64>| (len(a) - len(b)).abs() < 1e-12;
+            assert!(same(&xr, &x) || same(&yr, &y));
+        }
+    }
 }

@@ -5,7 +5,8 @@
 //! The CSV has one row per body, depth and element; the plot shows the
 //! von Mises stress of both bodies in the x-n plane through the grid's
 //! centre row and the y-n plane through its centre column (body 1 at n > 0,
-//! body 2 at n < 0), and of each body at one depth.
+//! body 2 at n < 0), and of each body at one depth, every map at equal
+//! scale.
 
 use std::io::Write;
 use std::path::Path;
@@ -13,7 +14,7 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::plot::{colormap, colour_bar, err, register_fonts, Format, FONT, SIZE};
+use super::plot::{colormap, colour_bar, err, register_fonts, Format, Frame, FONT, SIZE};
 use crate::core::grid::Grid;
 use crate::core::subsurface::{Body, BodySubsurface};
 
@@ -222,7 +223,7 @@ fn draw<DB: DrawingBackend>(
     Ok(())
 }
 
-/// One colour map of rectangular cells with a colour bar.
+/// One colour map of rectangular cells with a colour bar, at equal scale.
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     cells: &[Cell],
@@ -234,13 +235,13 @@ fn panel<DB: DrawingBackend>(
     let (main, bar) = area.split_horizontally(w.saturating_sub(110));
     let vmax = cells.iter().map(|c| c.1).fold(0.0_f64, f64::max);
     let scale = if vmax > 0.0 { vmax } else { 1.0 };
-    let mut chart = ChartBuilder::on(&main)
-        .caption(caption, (FONT, 17))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(xr, yr)
-        .map_err(err)?;
+    let main = main.titled(caption, (FONT, 17)).map_err(err)?;
+    let frame = Frame {
+        margin: 10,
+        x_labels: 40,
+        y_labels: 60,
+    };
+    let mut chart = frame.equal_scale(&main, xr, yr).map_err(err)?;
     chart
         .configure_mesh()
         .disable_mesh()

@@ -12,7 +12,7 @@ use clap::Args;
 use plotters::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::cli::plot::{panel_note, register_fonts, Format, FONT, SIZE};
+use crate::cli::plot::{panel_note, register_fonts, Format, Frame, FONT, SIZE};
 use crate::cli::{plot_format, write_stdout, CliError};
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::cache::KernelCache;
@@ -680,20 +680,23 @@ where
         let qlo = (qc - 35.0).min(tip_q - 15.0);
         let qhi = (qlo + 70.0).max(qc + 25.0);
         let (ylo, yhi) = if s > 0.0 { (qlo, qhi) } else { (-qhi, -qlo) };
-        let rail: Vec<(f64, f64)> = run
+        let rail_all: Vec<(f64, f64)> = run
             .pair
             .rail(side)
             .samples()
             .iter()
             .map(|p| (s * p.q_m * 1e3, -p.z_m * 1e3))
-            .filter(|p| p.0 >= ylo && p.0 <= yhi)
             .collect();
-        let wheel: Vec<(f64, f64)> = scratch.locus[i]
+        let wheel_all: Vec<(f64, f64)> = scratch.locus[i]
             .iter()
             .map(|p| (s * p.q_m * 1e3, -(p.z_m + w.vertical_approach_m) * 1e3))
-            .filter(|p| p.0 >= ylo && p.0 <= yhi)
             .collect();
-        let zs = rail.iter().chain(&wheel).map(|p| p.1);
+        let inside = |lo: f64, hi: f64| move |p: &&(f64, f64)| p.0 >= lo && p.0 <= hi;
+        let zs = rail_all
+            .iter()
+            .chain(&wheel_all)
+            .filter(inside(ylo, yhi))
+            .map(|p| p.1);
         let (zlo, zhi) = zs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| {
             (a.min(z), b.max(z))
         });
@@ -702,20 +705,28 @@ where
         } else {
             (-20.0, 20.0)
         };
-        let mut chart = ChartBuilder::on(&cols[k])
-            .caption(
-                format!(
+        // Equal scale, so that flanks and flange are as steep as they are;
+        // the pressure panel below shares the widened y range.
+        let upper = cols[k]
+            .titled(
+                &format!(
                     "{} wheel ({}): profiles, contact points",
                     side.name(),
                     run.model
                 ),
                 (FONT, 22),
             )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d(ylo..yhi, zlo..zhi)
             .map_err(err)?;
+        let frame = Frame {
+            margin: 12,
+            x_labels: 40,
+            y_labels: 70,
+        };
+        let (yr, zr) = frame.ranges(upper.dim_in_pixel(), ylo..yhi, zlo..zhi);
+        let (ylo, yhi) = (yr.start, yr.end);
+        let rail: Vec<(f64, f64)> = rail_all.iter().filter(inside(ylo, yhi)).copied().collect();
+        let wheel: Vec<(f64, f64)> = wheel_all.iter().filter(inside(ylo, yhi)).copied().collect();
+        let mut chart = frame.chart(&upper, yr, zr).map_err(err)?;
         chart
             .configure_mesh()
             .x_desc("track y [mm]")
