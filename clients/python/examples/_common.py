@@ -1,9 +1,15 @@
-"""What every example shares: the command line, the connection and the
-figure's output (matplotlib's Agg backend: no display needed)."""
+"""What every example shares: the command line, the connection, the
+figure's output (matplotlib's Agg backend: no display needed) and Ctrl-C.
+
+Ctrl-C stops an example cleanly: it closes its session, plots what it has
+computed so far, writes the file and says so in one line (exit code 130),
+instead of a traceback through gRPC's threads.
+"""
 
 from __future__ import annotations
 
 import argparse
+import sys
 
 import matplotlib
 
@@ -11,6 +17,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import railcontact  # noqa: E402
+
+#: The exit code after Ctrl-C (128 + SIGINT, as shells report it).
+INTERRUPTED = 130
 
 
 def parser(doc: str, out: str) -> argparse.ArgumentParser:
@@ -22,6 +31,14 @@ def parser(doc: str, out: str) -> argparse.ArgumentParser:
     return p
 
 
+def wheelrail_model(name: str) -> str:
+    """An argparse type: a wheel/rail model name in any case, checked
+    against :data:`railcontact.WHEELRAIL_MODELS`."""
+    if name.lower() not in railcontact.WHEELRAIL_MODELS:
+        raise argparse.ArgumentTypeError(f"{name!r} is not one of {', '.join(railcontact.WHEELRAIL_MODELS)}")
+    return name.lower()
+
+
 def connect(target: str) -> railcontact.Client:
     """A client, once the server answers."""
     client = railcontact.Client(target)
@@ -29,8 +46,20 @@ def connect(target: str) -> railcontact.Client:
     return client
 
 
-def save(fig, out: str) -> None:
+def save(fig, out: str, interrupted: str = "") -> None:
+    """Writes ``fig`` to ``out`` and says so; ``interrupted`` (what was
+    done when Ctrl-C came) makes that line say it holds only that much."""
     fig.tight_layout()
     fig.savefig(out, dpi=110)
     plt.close(fig)
-    print(f"wrote {out}")
+    if interrupted:
+        print(f"interrupted (Ctrl-C) after {interrupted}: wrote {out} with what was computed")
+    else:
+        print(f"wrote {out}")
+
+
+def nothing_to_save(what: str) -> None:
+    """Says in one line that Ctrl-C came before anything was computed, and
+    exits with :data:`INTERRUPTED`."""
+    print(f"interrupted (Ctrl-C) {what}: nothing computed, nothing written", file=sys.stderr)
+    sys.exit(INTERRUPTED)

@@ -22,11 +22,15 @@ centre 3.1 mm off that point), and the same spin, times that offset, acts
 as a longitudinal creepage of about 1.6e-4: Fx/Fz = 0.029 at s = 0.
 The lateral forces of spin are equal and opposite on the two wheels and
 cancel in the total, so both lateral curves start at 0.
+
+Ctrl-C stops the sweep: the curves of the models done so far are plotted.
 """
+
+import sys
 
 import numpy as np
 
-from _common import connect, parser, plt, save
+from _common import INTERRUPTED, connect, nothing_to_save, parser, plt, save, wheelrail_model
 
 import railcontact
 
@@ -67,19 +71,31 @@ def main(argv=None):
     p = parser(__doc__, "creep_curve.png")
     p.add_argument("--points", type=int, default=13, help="points per curve (default %(default)s)")
     p.add_argument("--max-slip", type=float, default=0.006, help="largest creepage [-] (default %(default)s)")
-    p.add_argument("--models", default="hertz_fastsim,exact", help="comma-separated (default %(default)s)")
+    p.add_argument("--models", default="hertz_fastsim,exact",
+                   help=f"comma-separated, of {', '.join(railcontact.WHEELRAIL_MODELS)} (default %(default)s)")
     p.add_argument("--element-size", type=float, default=5e-4, help="patch element size [m] (default %(default)s)")
     p.add_argument("--speed", type=float, default=30.0, help="forward speed [m/s] (default %(default)s)")
     p.add_argument("--load", type=float, default=1e5, help="vertical force per wheel [N] (default %(default)s)")
     args = p.parse_args(argv)
+    try:
+        models = [wheelrail_model(m) for m in args.models.split(",")]
+    except Exception as e:  # argparse.ArgumentTypeError
+        p.error(f"argument --models: {e}")
     slips = np.linspace(0.0, args.max_slip, args.points)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
-    with connect(args.target) as client:
-        for model in args.models.split(","):
-            lateral, longitudinal = sweep(client, model, slips, args.load, args.speed, args.element_size)
-            axes[0].plot(slips * 100, longitudinal, "o-", ms=3, label=model)
-            axes[1].plot(slips * 100, lateral, "o-", ms=3, label=model)
-            print(f"{model}: Fx/Fz at {slips[-1]:.3g}: {longitudinal[-1]:.3f}, Fy/Fz: {lateral[-1]:.3f}")
+    done = []
+    try:
+        with connect(args.target) as client:
+            for model in models:
+                lateral, longitudinal = sweep(client, model, slips, args.load, args.speed, args.element_size)
+                axes[0].plot(slips * 100, longitudinal, "o-", ms=3, label=model)
+                axes[1].plot(slips * 100, lateral, "o-", ms=3, label=model)
+                done.append(model)
+                print(f"{model}: Fx/Fz at {slips[-1]:.3g}: {longitudinal[-1]:.3f}, Fy/Fz: {lateral[-1]:.3f}")
+    except KeyboardInterrupt:
+        if not done:
+            nothing_to_save("during the first model's curves")
+    interrupted = len(done) < len(models)
     axes[0].set(xlabel="longitudinal slip s = -(omega r / V) - 1 [%]", ylabel="force on wheelset / vertical load [-]")
     axes[0].set_title("longitudinal (traction)")
     axes[1].set(xlabel="lateral slip v_y / V [%]")
@@ -87,11 +103,12 @@ def main(argv=None):
     for ax in axes:
         ax.axhline(0.3, color="grey", lw=0.8, ls="--")
         ax.grid(alpha=0.3)
-        ax.legend()
+        ax.legend(loc="best")
     fig.suptitle(f"{railcontact.BUILTIN_PAIR}: centred wheelset, {args.load / 1e3:.0f} kN per wheel, "
                  f"V = {args.speed} m/s")
-    save(fig, args.out)
+    save(fig, args.out, interrupted=f"{len(done)} of {len(models)} models" if interrupted else "")
+    return INTERRUPTED if interrupted else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

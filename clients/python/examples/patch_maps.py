@@ -5,14 +5,17 @@ The case is examples/cases/hertz_ellipse_rolling.toml (elliptic Hertz
 geometry, 10 kN, mu = 0.3) with longitudinal, lateral and spin creepage.
 Rolling direction +x: material enters at the leading edge (right) and
 adheres; it slides near the trailing edge (left). Tractions are those on
-the rail.
+the rail. The maps are drawn to scale (equal x and y axes).
+
+Ctrl-C before the answer stops it without writing anything (one solve).
 """
 
 import pathlib
+import sys
 
 import numpy as np
 
-from _common import connect, parser, plt, save
+from _common import connect, nothing_to_save, parser, plt, save
 
 import railcontact
 
@@ -28,8 +31,11 @@ def main(argv=None):
     case = railcontact.load_case(CASE)
     case["rolling"] = dict(zip(("creepage_long", "creepage_lat", "spin_per_m"), args.creepages))
     case["grid"] = {"nx": args.n, "ny": args.n}
-    with connect(args.target) as client:
-        r = client.solve_patch(case, include_fields=True)
+    try:
+        with connect(args.target) as client:
+            r = client.solve_patch(case, include_fields=True)
+    except KeyboardInterrupt:
+        nothing_to_save("before the solve's answer")
     t, f, g = r.totals, r.fields, r.grid
     print(f"Fx = {t.fx_n:.1f} N, Fy = {t.fy_n:.1f} N, p_max = {t.max_pressure_pa / 1e6:.0f} MPa, "
           f"adhesion {t.adhesion_fraction:.0%}, {r.result.info.status}")
@@ -57,7 +63,9 @@ def main(argv=None):
     axes[2].imshow(f.state, cmap=colours, vmin=-0.5, vmax=2.5, **show)
     legend = (("tab:blue", "adhesion"), ("tab:red", "slip"))
     handles = [plt.matplotlib.patches.Patch(color=c, label=n) for c, n in legend]
-    axes[2].legend(handles=handles, loc="upper right", fontsize=8)
+    # Below the map: in a corner it would cover the patch's edge.
+    axes[2].legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=8,
+                   frameon=False)
     axes[2].set_title(f"adhesion / slip ({t.adhesion_fraction:.0%} adhesion)")
     for ax in axes:
         ax.set(xlabel="x (rolling) [mm]", ylabel="y [mm]")
@@ -65,7 +73,8 @@ def main(argv=None):
     fig.suptitle(f"exact, {g.nx} x {g.ny}: xi = {xi:g}, eta = {eta:g}, phi = {phi:g} 1/m; "
                  f"Fx = {t.fx_n / 1e3:.2f} kN, Fy = {t.fy_n / 1e3:.2f} kN on the rail")
     save(fig, args.out)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

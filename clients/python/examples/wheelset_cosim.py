@@ -31,13 +31,16 @@ starts go back with it), so the probes leave no trace.
 
 Starting 3 mm off centre, the wheelset performs the damped kinematic
 (Klingel) oscillation of a coned wheelset.
+
+Ctrl-C stops the integration: the session is closed and the steps done so
+far are plotted.
 """
 
 import sys
 
 import numpy as np
 
-from _common import connect, parser, plt, save
+from _common import INTERRUPTED, connect, nothing_to_save, parser, plt, save, wheelrail_model
 
 import railcontact
 
@@ -99,39 +102,46 @@ def contact_jacobian(session, wheelset, base_loads, time_s, marked_index):
 
 
 def simulate(session, wheelset, dt, steps, jacobian_every):
-    """Integrates ``steps`` steps; returns the history as a dict of arrays."""
+    """Integrates ``steps`` steps; returns the history as a dict of arrays
+    and whether Ctrl-C stopped it early (the history then holds the steps
+    done; the session has ended)."""
     history = {k: [] for k in ("t", "y", "psi", "fy_contact", "mz_contact", "q_left", "q_right", "fy_left", "fy_right")}
     jacobian = np.zeros((2, 2))
     report_every = max(1, steps // 10)
-    for n in range(steps):
-        t = n * dt
-        if n % report_every == 0:
-            print(f"step {n} of {steps} (t = {t:.3f} s)", file=sys.stderr, flush=True)
-        refresh = n % jacobian_every == 0
-        r = session.step(time_s=t, mark=refresh, **wheelset.contact_inputs(wheelset.q, wheelset.v))
-        contact = wheelset_loads(r.result, wheelset.q[0])
-        if refresh:
-            jacobian = contact_jacobian(session, wheelset, contact, t, r.step_index)
-        force = wheelset.suspension(wheelset.q, wheelset.v) + contact
-        system = wheelset.mass - dt * (jacobian - wheelset.damping)
-        wheelset.v = wheelset.v + np.linalg.solve(system, dt * force)
-        left, right = r.result.wheel("left"), r.result.wheel("right")
-        for key, value in (
-            ("t", t), ("y", wheelset.q[0]), ("psi", wheelset.q[1]),
-            ("fy_contact", contact[0]), ("mz_contact", contact[1]),
-            ("q_left", sum(p.normal_force_n for p in left.patches)),
-            ("q_right", sum(p.normal_force_n for p in right.patches)),
-            ("fy_left", -left.force_track_n.y_n), ("fy_right", -right.force_track_n.y_n),
-        ):
-            history[key].append(value)
-        wheelset.q = wheelset.q + dt * wheelset.v
-    return {k: np.array(v) for k, v in history.items()}
+    interrupted = False
+    try:
+        for n in range(steps):
+            t = n * dt
+            if n % report_every == 0:
+                print(f"step {n} of {steps} (t = {t:.3f} s)", file=sys.stderr, flush=True)
+            refresh = n % jacobian_every == 0
+            r = session.step(time_s=t, mark=refresh, **wheelset.contact_inputs(wheelset.q, wheelset.v))
+            contact = wheelset_loads(r.result, wheelset.q[0])
+            if refresh:
+                jacobian = contact_jacobian(session, wheelset, contact, t, r.step_index)
+            force = wheelset.suspension(wheelset.q, wheelset.v) + contact
+            system = wheelset.mass - dt * (jacobian - wheelset.damping)
+            wheelset.v = wheelset.v + np.linalg.solve(system, dt * force)
+            left, right = r.result.wheel("left"), r.result.wheel("right")
+            for key, value in (
+                ("t", t), ("y", wheelset.q[0]), ("psi", wheelset.q[1]),
+                ("fy_contact", contact[0]), ("mz_contact", contact[1]),
+                ("q_left", sum(p.normal_force_n for p in left.patches)),
+                ("q_right", sum(p.normal_force_n for p in right.patches)),
+                ("fy_left", -left.force_track_n.y_n), ("fy_right", -right.force_track_n.y_n),
+            ):
+                history[key].append(value)
+            wheelset.q = wheelset.q + dt * wheelset.v
+    except KeyboardInterrupt:
+        interrupted = True
+    done = min(len(v) for v in history.values())  # a step interrupted while recorded is dropped
+    return {k: np.array(v[:done]) for k, v in history.items()}, interrupted
 
 
 def main(argv=None):
     p = parser(__doc__, "wheelset_cosim.png")
-    p.add_argument("--model", default="hertz_fastsim",
-                   help="contact model: hertz_fastsim, exact, ... (default %(default)s)")
+    p.add_argument("--model", default="hertz_fastsim", type=wheelrail_model,
+                   help=f"contact model, one of {', '.join(railcontact.WHEELRAIL_MODELS)} (default %(default)s)")
     p.add_argument("--element-size", type=float, default=None,
                    help="patch element size [m] of the exact model (default: the pair's 2e-4; 5e-4 is much faster)")
     p.add_argument("--duration", type=float, default=1.0, help="simulated time [s] (default %(default)s)")
@@ -151,20 +161,27 @@ def main(argv=None):
     args = p.parse_args(argv)
     steps = args.steps if args.steps is not None else int(round(args.duration / args.dt))
     wheelset = Wheelset(args)
-    with connect(args.target) as client:
-        opened = client.wheelrail_session(
-            railcontact.BUILTIN_PAIR, model=args.model, element_size_m=args.element_size, label="wheelset_cosim"
-        )
-        with opened as session:
-            h = simulate(session, wheelset, args.dt, steps, args.jacobian_every)
-    print(f"{steps} steps of {args.dt * 1e3:g} ms ({args.model}): y from {h['y'][0] * 1e3:.2f} mm "
+    h, interrupted = None, False
+    try:
+        with connect(args.target) as client:
+            opened = client.wheelrail_session(
+                railcontact.BUILTIN_PAIR, model=args.model, element_size_m=args.element_size, label="wheelset_cosim"
+            )
+            with opened as session:
+                h, interrupted = simulate(session, wheelset, args.dt, steps, args.jacobian_every)
+    except KeyboardInterrupt:
+        interrupted = True  # while connecting, opening or closing
+    done = 0 if h is None else len(h["t"])
+    if done == 0:
+        nothing_to_save("before the first step")
+    print(f"{done} steps of {args.dt * 1e3:g} ms ({args.model}): y from {h['y'][0] * 1e3:.2f} mm "
           f"to {h['y'][-1] * 1e3:.3f} mm, largest |F_y| {np.abs(h['fy_contact']).max() / 1e3:.1f} kN")
 
-    fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(10.5, 8), sharex=True)
     axes[0].plot(h["t"], h["y"] * 1e3, label="lateral y [mm]")
     axes[0].plot(h["t"], h["psi"] * 1e3, label="yaw psi [mrad]")
     axes[0].set(ylabel="displacement")
-    axes[1].plot(h["t"], h["fy_contact"] / 1e3, label="total F_y on wheelset")
+    axes[1].plot(h["t"], h["fy_contact"] / 1e3, label="total F_y\non wheelset")
     axes[1].plot(h["t"], h["fy_left"] / 1e3, lw=0.8, label="left wheel")
     axes[1].plot(h["t"], h["fy_right"] / 1e3, lw=0.8, label="right wheel")
     axes[1].set(ylabel="lateral contact force [kN]")
@@ -173,10 +190,13 @@ def main(argv=None):
     axes[2].set(ylabel="normal force [kN]", xlabel="time [s]")
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper right")
-    fig.suptitle(f"Wheelset on tangent track, V = {args.speed} m/s, {args.model}, dt = {args.dt * 1e3:g} ms")
-    save(fig, args.out)
+        # Beside the axes: the curves fill them from end to end.
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    stopped = f", interrupted at t = {h['t'][-1]:.3f} s" if interrupted else ""
+    fig.suptitle(f"Wheelset on tangent track, V = {args.speed} m/s, {args.model}, dt = {args.dt * 1e3:g} ms{stopped}")
+    save(fig, args.out, interrupted=f"{done} of {steps} steps" if interrupted else "")
+    return INTERRUPTED if interrupted else 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

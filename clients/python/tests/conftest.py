@@ -93,6 +93,13 @@ def rolling_case(model: str = "exact", n: int = 20, creepages=(1e-3, 5e-4, 0.0))
     }
 
 
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    """Runs the command line of the server's binary (``railcontact ARGS``)."""
+    return subprocess.run(
+        [str(_binary()), *args], capture_output=True, text=True, timeout=300, stdin=subprocess.DEVNULL
+    )
+
+
 def run_example(name: str, server: str, out: pathlib.Path, *args: str) -> subprocess.CompletedProcess:
     """Runs ``examples/NAME`` against the test server, writing ``out``."""
     return subprocess.run(

@@ -1,9 +1,14 @@
 """The examples run end to end against the test server (few points and
-steps) and write their PNG."""
+steps) and write their PNG; Ctrl-C ends one cleanly with what it has."""
+
+import os
+import signal
+import subprocess
+import sys
 
 import pytest
 
-from conftest import run_example
+from conftest import EXAMPLES, run_example
 
 SMOKE = {
     "creep_curve.py": ["--points", "3", "--models", "hertz_fastsim"],
@@ -20,3 +25,32 @@ def test_example_writes_its_png(name, server, tmp_path):
     assert done.returncode == 0, f"{name} failed:\n{done.stdout}\n{done.stderr}"
     assert out.stat().st_size > 10_000 and out.read_bytes()[:4] == b"\x89PNG"
     assert f"wrote {out}" in done.stdout
+
+
+def test_ctrl_c_closes_the_session_and_writes_what_was_computed(server, tmp_path):
+    out = tmp_path / "cosim.png"
+    process = subprocess.Popen(
+        [sys.executable, str(EXAMPLES / "wheelset_cosim.py"), "--target", server, "--out", str(out),
+         "--steps", "20000", "--jacobian-every", "100000"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=dict(os.environ, MPLBACKEND="Agg"),
+        # Ctrl-C's signal reaches it even where this test runs with SIGINT ignored.
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    try:
+        # Progress every 2000 steps: interrupted after the first 2000.
+        assert process.stderr.readline().startswith("step 0 of 20000")
+        assert process.stderr.readline().startswith("step 2000 of 20000")
+        process.send_signal(signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130, f"{stdout}\n{stderr}"
+    assert "Traceback" not in stderr and stderr.strip() == "", stderr
+    said = [line for line in stdout.splitlines() if line.startswith("interrupted")]
+    assert len(said) == 1 and said[0].endswith(f"steps: wrote {out} with what was computed"), stdout
+    assert out.read_bytes()[:4] == b"\x89PNG"

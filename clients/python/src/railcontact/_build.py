@@ -5,9 +5,10 @@ itself, or as a mapping that mirrors it key for key (the keys of the
 ``railcontact solve`` case files, which equal the proto's field names), with
 these conveniences:
 
-* an enum as its short lower-case name: ``model="exact"``,
-  ``kind="conformal_circular"``, ``sides="left"`` (or its full name, or its
-  number);
+* an enum as its short name in any case: ``model="exact"`` (or
+  ``"Exact"``, as the command line takes it), ``kind="conformal_circular"``,
+  ``sides="left"`` (or its full name, or its number; :func:`enum_names`
+  lists the names);
 * a message whose fields are all numbers as a sequence, in field order:
   creepages ``(creepage_long, creepage_lat, spin_per_m)``, profile points
   ``(y_m, z_m)``;
@@ -46,17 +47,33 @@ def enum_name(enum_descriptor, number: int) -> str:
     return value.name[len(enum_prefix(enum_descriptor)):].lower()
 
 
+def enum_names(enum_descriptor) -> tuple:
+    """The short lower-case names a value of the enum may be given by, in
+    the proto's order (``exact``, ``hertz_fastsim``, ... of
+    ``WheelRailModel``); never its ``*_UNSPECIFIED`` value, which says
+    "not set" on the wire and is no name to give."""
+    return tuple(
+        enum_name(enum_descriptor, v.number)
+        for v in enum_descriptor.values
+        if not v.name.endswith("_UNSPECIFIED")
+    )
+
+
 def enum_number(enum_descriptor, value, path: str) -> int:
-    """An enum value's number from its short name, full name or number."""
+    """An enum value's number from its short name or full name, in any
+    case (``"Exact"``, ``"exact"``, ``"MODEL_EXACT"``), or its number. An
+    unknown name, or the ``unspecified`` one, raises
+    :class:`RailcontactError` (INVALID_ARGUMENT at ``path``) listing the
+    valid names."""
     if isinstance(value, numbers.Integral) and not isinstance(value, bool):
         return int(value)
     if isinstance(value, str):
         full = value.upper()
         for candidate in (full, enum_prefix(enum_descriptor) + full):
-            if candidate in enum_descriptor.values_by_name:
+            if candidate in enum_descriptor.values_by_name and not candidate.endswith("_UNSPECIFIED"):
                 return enum_descriptor.values_by_name[candidate].number
-    names = ", ".join(enum_name(enum_descriptor, v.number) for v in enum_descriptor.values)
-    raise invalid(path, f"{value!r} is not one of: {names}")
+    names = ", ".join(f'"{n}"' for n in enum_names(enum_descriptor))
+    raise invalid(path, f"{value!r} is not one of {names} (any case)")
 
 
 def build(message_class, value, path: str):

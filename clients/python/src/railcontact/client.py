@@ -10,9 +10,10 @@ from typing import Any, Optional, Union
 
 import grpc
 
-from ._build import build, enum_name
+from ._build import build, enum_name, enum_names
 from ._proto import railcontact_pb2 as pb
 from ._proto import railcontact_pb2_grpc as pb_grpc
+from .cases import WheelRailCase, load_wheelrail_case
 from .errors import RailcontactError, invalid
 from .results import (
     CreepCurvePoint,
@@ -34,6 +35,20 @@ CaseLike = Union[pb.PatchCase, Mapping, str, os.PathLike]
 BUILTIN_PAIR = "mbench_s1002_uic60"
 """The server's built-in profile pair (S1002 wheel on UIC60 rail)."""
 
+WHEELRAIL_MODELS: tuple = enum_names(pb.WheelRailModel.DESCRIPTOR)
+"""The wheel/rail models ``model=`` takes (any case): ``exact``,
+``hertz_fastsim``, ``cect``, ``auto``, ``hertz_fastsim_table``,
+``hertz_polach``, ``hertz_fastsim_elliptic``, ``hertz_strip``,
+``kik_piotrowski``, ``hertz_fastsim_modified``."""
+
+PATCH_MODELS: tuple = enum_names(pb.Model.DESCRIPTOR)
+"""The patch models of a patch case's ``model`` (any case): ``hertz``,
+``hertz_corrected``, ``fastsim``, ``exact``, ``cect``, ``cect_halfspace``."""
+
+#: A wheel/rail case: a :class:`WheelRailCase` or the path of a
+#: ``railcontact wheelrail`` case file.
+WheelRailCaseLike = Union[WheelRailCase, str, os.PathLike]
+
 
 def load_case(path: Union[str, os.PathLike]) -> dict:
     """A case file of ``railcontact solve`` (TOML) as a mapping.
@@ -50,9 +65,17 @@ def load_case(path: Union[str, os.PathLike]) -> dict:
 
 
 def patch_case(case: CaseLike, path: str = "case") -> pb.PatchCase:
-    """A ``PatchCase`` message from a message, a mapping or a TOML file."""
+    """A ``PatchCase`` message from a message, a mapping or a TOML file.
+    A wheel/rail case (with ``track`` and ``wheelset``) raises
+    :class:`RailcontactError` pointing to :meth:`Client.solve_wheelrail_case`."""
     if isinstance(case, (str, os.PathLike)):
         case = load_case(case)
+    if isinstance(case, Mapping) and "track" in case and "wheelset" in case:
+        raise invalid(
+            path,
+            "a wheel/rail case (`railcontact wheelrail`, with [track] and [wheelset]): solve it with "
+            "Client.solve_wheelrail_case, or read it with railcontact.load_wheelrail_case",
+        )
     return build(pb.PatchCase, case, path)
 
 
@@ -364,6 +387,10 @@ class Client:
         element_size_m: Optional[float] = None,
         include_fields: bool = False,
         temperature=None,
+        friction_table=None,
+        polach=None,
+        modified_fastsim=None,
+        conformal=None,
     ) -> WheelRailResult:
         """Solves a wheelset on a registered pair (``SolveWheelRail``).
 
@@ -376,15 +403,27 @@ class Client:
         ``total_longitudinal_force_n`` [N] the pitch rate is found for that
         traction (< 0) or braking (> 0) force, see
         ``WheelRailResult.pitch_control``), or a number: the vertical force
-        per wheel [N]; ``model``: ``"exact"``,
-        ``"hertz_fastsim"``, ``"hertz_fastsim_table"``, ``"cect"`` or ``"auto"``; ``sides``:
+        per wheel [N]; ``model``: one of :data:`WHEELRAIL_MODELS` in any
+        case, ``"exact"``, ``"hertz_fastsim"``, ``"cect"``, ``"auto"``,
+        ``"hertz_fastsim_table"``, ``"hertz_polach"``,
+        ``"hertz_fastsim_elliptic"``, ``"hertz_strip"``,
+        ``"kik_piotrowski"`` or ``"hertz_fastsim_modified"`` (see the
+        README's table of models); ``sides``:
         ``"both"``, ``"left"``, ``"right"``; ``friction``: a coefficient or a
         ``FrictionSection`` mapping (default: the pair's); ``temperature``:
         a ``TemperatureSection`` mapping (``body1``: the rail, ``body2``: the
         wheel, each ``bulk_temperature_k``, ``conductivity_w_per_m_k``,
         ``density_kg_per_m3``, ``specific_heat_j_per_kg_k``; models
         ``"exact"``, ``"cect"``, ``"auto"``): each patch's flash
-        temperatures in ``WheelRailPatch.temperature``.
+        temperatures in ``WheelRailPatch.temperature``; ``friction_table``:
+        a ``FrictionTable`` mapping (coefficients over the rail profile's
+        contact angles or lateral coordinates, and along the track);
+        ``polach``, ``modified_fastsim``: the parameters of the models
+        ``"hertz_polach"`` and ``"hertz_fastsim_modified"``
+        (``PolachParameters``, ``ModifiedFastsimParameters``);
+        ``conformal``: ``{"rigid_slip": ...}`` of the models ``"cect"`` and
+        ``"auto"``. :meth:`solve_wheelrail_case` takes them all from a case
+        file of ``railcontact wheelrail``.
         """
         request = wheelrail_request(
             pair_id,
@@ -397,6 +436,10 @@ class Client:
             element_size_m=element_size_m,
             include_fields=include_fields,
             temperature=temperature,
+            friction_table=friction_table,
+            polach=polach,
+            modified_fastsim=modified_fastsim,
+            conformal=conformal,
         )
         response = self._on_pair(
             pair_id, lambda: _call(self.stub.SolveWheelRail, request, timeout=self.timeout_s)
@@ -414,6 +457,34 @@ class Client:
                 raise
             self._register(request)
             return call()
+
+    def solve_wheelrail_case(self, case: WheelRailCaseLike, **overrides: Any) -> WheelRailResult:
+        """Solves a ``railcontact wheelrail`` case file as the command line
+        does, with the same forces: registers its profile pair (once per
+        client: a pair this client registered with the same profiles is
+        reused) and solves its motion with its settings.
+
+        ``case`` is the file's path or a :class:`WheelRailCase` of
+        :func:`load_wheelrail_case`; ``overrides`` replace the case's
+        keyword arguments of :meth:`solve_wheelrail` (``model=``,
+        ``position=``, ``include_fields=True``, ...)::
+
+            r = client.solve_wheelrail_case("examples/cases/wheelset_a22.toml")
+            print(r.wheel("right").force_track_n)
+        """
+        if not isinstance(case, WheelRailCase):
+            case = load_wheelrail_case(case)
+        pair_id = self._registered_pair(case)
+        return self.solve_wheelrail(pair_id, **case.solve_arguments(**overrides))
+
+    def _registered_pair(self, case: WheelRailCase) -> str:
+        """The id of ``case``'s pair: one this client registered with the
+        same spec, else registered now."""
+        spec = build(pb.ProfilePairSpec, case.pair, "pair")
+        for pair_id, request in self._registrations.items():
+            if request.HasField("spec") and request.spec == spec:
+                return pair_id
+        return self.register_pair(spec, label=case.label).pair_id
 
     def solve_wheelrail_batch(self, queries: Iterable[Union[Mapping, pb.SolveWheelRailRequest]]) -> list:
         """Solves many wheelset queries in parallel. Each query is a
@@ -446,10 +517,16 @@ class Client:
         include_fields: bool = False,
         label: str = "",
         temperature=None,
+        friction_table=None,
+        polach=None,
+        modified_fastsim=None,
+        conformal=None,
     ) -> "WheelRailSession":
         """Opens a co-simulation session on a wheelset (``WheelRailSession``);
         see :class:`WheelRailSession`. The settings hold for every step
-        (``temperature`` as in :meth:`solve_wheelrail`)."""
+        (``model``, ``temperature``, ``friction_table``, ``polach``,
+        ``modified_fastsim`` and ``conformal`` as in :meth:`solve_wheelrail`;
+        a case file's are ``WheelRailCase.settings``)."""
         values = _set_values(
             pair_id=pair_id,
             model=model,
@@ -459,6 +536,10 @@ class Client:
             include_fields=include_fields,
             client_label=label,
             temperature=temperature,
+            friction_table=friction_table,
+            polach=polach,
+            modified_fastsim=modified_fastsim,
+            conformal=conformal,
         )
         opening = build(pb.WheelRailSessionOpen, values, "open")
         return self._on_pair(
@@ -493,7 +574,12 @@ class _Session:
         self._responses = method(self._request_iterator())
         self._closed = False
         self.next_step_index = 0
-        opened = self._receive("opened")
+        try:
+            opened = self._receive("opened")
+        except BaseException as e:
+            if not isinstance(e, RailcontactError):
+                self._abort()  # Ctrl-C while opening
+            raise
         self.session_id: str = opened.session_id
         self._opened(opened)
 
@@ -527,7 +613,24 @@ class _Session:
         if self._closed:
             raise RailcontactError(grpc.StatusCode.FAILED_PRECONDITION, "the session is closed")
         self._requests.put(request)
-        return self._receive(expected)
+        try:
+            return self._receive(expected)
+        except BaseException as e:
+            # Interrupted (Ctrl-C) while the server answers: the answer would
+            # be taken for the next request's, so the session ends here.
+            if not isinstance(e, RailcontactError):
+                self._abort()
+            raise
+
+    def _abort(self) -> None:
+        """Cancels the stream at once (the server closes the session): after
+        an exception in a ``with`` block or an interrupted exchange. Later
+        steps raise FAILED_PRECONDITION."""
+        if self._closed:
+            return
+        self._closed = True
+        self._requests.put(None)  # ends the request iterator's thread
+        self._responses.cancel()
 
     def _step(self, step_class, step_index: Optional[int], **values):
         """Sends one step (index: the next one unless given) and returns the
@@ -566,8 +669,7 @@ class _Session:
 
     def __exit__(self, exc_type, *exc) -> None:
         if exc_type is not None:
-            self._responses.cancel()
-            self._closed = True
+            self._abort()
         self.close()
 
 

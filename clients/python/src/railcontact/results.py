@@ -5,14 +5,21 @@ Field names, units and meanings mirror the proto messages of the same name
 act ON THE RAIL). Enums are short lower-case names (``"exact"``,
 ``"converged"``, ``"left"``); optional messages are ``None`` when absent;
 repeated fields are tuples; per-element fields are read-only numpy arrays
-shaped ``(ny, nx)`` (row ``iy``, column ``ix``).
+shaped ``(ny, nx)`` (row ``iy``, column ``ix``); forces in the track frame
+are :class:`TrackForce` arrays of shape ``(3,)``.
+
+Results compare with ``==`` field by field (arrays by value) and print as
+indented summaries, one field a line, arrays as their shape and range
+(``repr(result)`` and ``str(result)``; the fields themselves hold
+everything).
 """
 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
@@ -75,8 +82,147 @@ def _given():
     return field(metadata={"pb": None})
 
 
-@dataclass(frozen=True)
-class Creepages:
+def _track_force():
+    """A TrackForce message: a :class:`TrackForce` array."""
+    return field(metadata={"pb": lambda m, name: TrackForce.from_pb(getattr(m, name))})
+
+
+# -- what every result shares: ==, hash and a readable repr -----------------
+
+#: Width up to which a value is written on one line.
+_LINE = 88
+#: Items of a longer tuple shown: the first ones and the last.
+_HEAD, _TAIL = 4, 1
+
+
+def _equal(a: Any, b: Any) -> bool:
+    """Whether two field values are equal, arrays by shape and value."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return (
+            isinstance(a, np.ndarray)
+            and isinstance(b, np.ndarray)
+            and a.shape == b.shape
+            and bool(np.array_equal(a, b))
+        )
+    if isinstance(a, tuple) and isinstance(b, tuple):
+        return len(a) == len(b) and all(_equal(x, y) for x, y in zip(a, b))
+    return bool(a == b)
+
+
+def _hashable(value: Any) -> Any:
+    """A hashable stand-in of a field value (arrays by shape and bytes)."""
+    if isinstance(value, np.ndarray):
+        return (value.shape, value.tobytes())
+    if isinstance(value, tuple):
+        return tuple(_hashable(v) for v in value)
+    return value
+
+
+def _number(value: Any) -> str:
+    """A number as the summaries write it (6 significant digits)."""
+    if isinstance(value, (bool, np.bool_)):
+        return str(bool(value))
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    return f"{float(value):.6g}"
+
+
+def _array_summary(array: np.ndarray) -> str:
+    """An array in a summary: its values when there are at most three,
+    else its shape and range."""
+    name = type(array).__name__ if isinstance(array, TrackForce) else "array"
+    if array.ndim == 1 and array.size <= 3:
+        return f"{name}([{', '.join(_number(v) for v in array)}])"
+    if array.size == 0:
+        return f"{name}(shape={array.shape})"
+    return f"{name}(shape={array.shape}, min={_number(array.min())}, max={_number(array.max())})"
+
+
+def _block(opening: str, items: list, closing: str, indent: str, single: str = "") -> str:
+    """``items`` (already formatted) between ``opening`` and ``closing``: on
+    one line when they fit (``single`` before the closing of one item:
+    ``(x,)``), else one a line, indented."""
+    one_line = f"{opening}{', '.join(items)}{single if len(items) == 1 else ''}{closing}"
+    if len(indent) + len(one_line) <= _LINE and "\n" not in one_line:
+        return one_line
+    inner = indent + "  "
+    lines = "".join(f"{inner}{item},\n" for item in items)
+    return f"{opening}\n{lines}{indent}{closing}"
+
+
+def summary(value: Any, indent: str = "") -> str:
+    """A readable, indented summary of a result (or of any value in one):
+    a dataclass one field a line, nested ones indented, arrays as their
+    shape and range, numbers to 6 significant digits, tuples of more than
+    five items as their first four and last, texts of several lines as
+    their size. What ``repr`` and ``str`` of every result give."""
+    inner = indent + "  "
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        items = [
+            f"{f.name}={summary(getattr(value, f.name), inner)}"
+            for f in dataclasses.fields(value)
+            if f.repr
+        ]
+        return _block(f"{type(value).__name__}(", items, ")", indent)
+    if isinstance(value, np.ndarray):
+        return _array_summary(value)
+    if isinstance(value, (tuple, list)):
+        shown = list(value)
+        if len(shown) > _HEAD + _TAIL:
+            hidden = len(shown) - _HEAD - _TAIL
+            items = [summary(v, inner) for v in shown[:_HEAD]]
+            items.append(f"... {hidden} more ...")
+            items += [summary(v, inner) for v in shown[-_TAIL:]]
+        else:
+            items = [summary(v, inner) for v in shown]
+        if isinstance(value, tuple):
+            return _block("(", items, ")", indent, single=",")
+        return _block("[", items, "]", indent)
+    if isinstance(value, Mapping):
+        items = [f"{k!r}: {summary(v, inner)}" for k, v in value.items()]
+        return _block("{", items, "}", indent)
+    if isinstance(value, (float, int, np.floating, np.integer, np.bool_)) and not isinstance(value, bool):
+        return _number(value)
+    if isinstance(value, str) and "\n" in value.strip():
+        lines = value.count("\n") + 1
+        return f"<text: {lines} lines, {len(value)} characters>"
+    return repr(value)
+
+
+class _Result:
+    """Base of the result dataclasses (declared ``eq=False, repr=False``):
+    ``==`` compares the fields, arrays by value; results with equal fields
+    hash equally; ``repr`` and ``str`` are :func:`summary`."""
+
+    __slots__ = ()
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return all(
+            _equal(getattr(self, f.name), getattr(other, f.name))
+            for f in dataclasses.fields(self)
+            if f.compare
+        )
+
+    def __hash__(self) -> int:
+        values = tuple(_hashable(getattr(self, f.name)) for f in dataclasses.fields(self) if f.compare)
+        return hash((type(self).__name__, values))
+
+    def __repr__(self) -> str:
+        return summary(self)
+
+    __str__ = __repr__
+
+
+def _result(cls):
+    """The dataclass decorator of the results: frozen, with
+    :class:`_Result`'s ``==``, hash and repr."""
+    return dataclass(frozen=True, eq=False, repr=False)(cls)
+
+
+@_result
+class Creepages(_Result):
     """Steady-rolling creepages: rail relative to wheel over the rolling speed."""
 
     creepage_long: float  # [-]
@@ -84,8 +230,8 @@ class Creepages:
     spin_per_m: float  # [1/m]
 
 
-@dataclass(frozen=True)
-class PatchTotals:
+@_result
+class PatchTotals(_Result):
     """Totals of one solution; forces and moment act on the rail."""
 
     normal_force_n: float
@@ -103,8 +249,8 @@ class PatchTotals:
     frictional_work_j: float
 
 
-@dataclass(frozen=True)
-class ConformalTotals:
+@_result
+class ConformalTotals(_Result):
     """Additional totals of the conformal models."""
 
     contact_angle_variation_deg: float
@@ -115,8 +261,8 @@ class ConformalTotals:
     fz_global_n: float
 
 
-@dataclass(frozen=True)
-class SolverInfo:
+@_result
+class SolverInfo(_Result):
     """Solver counters; ``status`` is ``"converged"`` or ``"max_iterations"``."""
 
     status: str = _enum()
@@ -129,8 +275,8 @@ class SolverInfo:
     solve_time_s: float
 
 
-@dataclass(frozen=True)
-class ForceDerivatives:
+@_result
+class ForceDerivatives(_Result):
     """Derivatives of (Fn, Fx, Fy, Mz) on the rail with respect to one input."""
 
     normal_force: float
@@ -139,8 +285,8 @@ class ForceDerivatives:
     mz: float
 
 
-@dataclass(frozen=True)
-class Sensitivities:
+@_result
+class Sensitivities(_Result):
     """The Jacobian of the patch forces at fixed approach."""
 
     per_approach_m: ForceDerivatives = _sub(ForceDerivatives)
@@ -150,8 +296,8 @@ class Sensitivities:
     solves: int
 
 
-@dataclass(frozen=True)
-class StepResult:
+@_result
+class StepResult(_Result):
     """One solution: totals, solver counters and the optional parts."""
 
     totals: PatchTotals = _sub(PatchTotals)
@@ -160,8 +306,8 @@ class StepResult:
     sensitivities: Optional[Sensitivities] = _optional(Sensitivities)
 
 
-@dataclass(frozen=True)
-class Grid:
+@_result
+class Grid(_Result):
     """The potential contact grid (y is s for the conformal models)."""
 
     nx: int
@@ -197,8 +343,8 @@ def _readonly(values, shape=None, dtype=float) -> np.ndarray:
     return array
 
 
-@dataclass(frozen=True, eq=False)
-class ElementFields:
+@_result
+class ElementFields(_Result):
     """Per-element fields on the grid, arrays shaped ``(ny, nx)``.
 
     ``state`` holds EXTERIOR (0), ADHESION (1) or SLIP (2). The conformal
@@ -252,8 +398,8 @@ def _gridded(cls, message):
     return from_pb(cls, message, fields=fields_of(message, grid))
 
 
-@dataclass(frozen=True)
-class TemperaturePeak:
+@_result
+class TemperaturePeak(_Result):
     """A surface's highest flash temperature [K] and where it is [m]."""
 
     temperature_k: float
@@ -261,8 +407,8 @@ class TemperaturePeak:
     y_m: float
 
 
-@dataclass(frozen=True, eq=False)
-class TemperatureResult:
+@_result
+class TemperatureResult(_Result):
     """Flash temperatures of a patch (the proto's TemperatureResult):
     body 1 is the rail in wheel/rail results, the wheel body 2. The
     per-element fields (index ``iy * nx + ix``) are empty unless fields
@@ -279,8 +425,8 @@ class TemperatureResult:
     heat_flux_w_per_m2: np.ndarray = _array()
 
 
-@dataclass(frozen=True)
-class PatchResult:
+@_result
+class PatchResult(_Result):
     """The result of one patch case (SolvePatch, a creep-curve point)."""
 
     model: str = _enum()
@@ -302,8 +448,8 @@ class PatchResult:
         return self.result.totals
 
 
-@dataclass(frozen=True)
-class CreepCurvePoint:
+@_result
+class CreepCurvePoint(_Result):
     """One point of a creep curve."""
 
     index: int
@@ -313,8 +459,8 @@ class CreepCurvePoint:
     )
 
 
-@dataclass(frozen=True)
-class SessionStepResult:
+@_result
+class SessionStepResult(_Result):
     """The answer to one patch-session step."""
 
     step_index: int
@@ -329,20 +475,60 @@ class SessionStepResult:
         return self.result.totals
 
 
-@dataclass(frozen=True)
-class TrackForce:
-    """A force in the track frame (x forward, y right, z down) on the rail [N]."""
+class TrackForce(np.ndarray):
+    """A force on the rail in the track frame (x forward, y to the right,
+    z down) [N]: a read-only numpy array ``[x, y, z]`` of shape ``(3,)``,
+    like :attr:`WheelRailResult.force_track_n`, with its components also as
+    ``x_n``, ``y_n`` and ``z_n``. Arithmetic on it gives plain arrays
+    (``left.force_track_n + right.force_track_n``), ``==`` compares
+    element by element as numpy does."""
 
-    x_n: float
-    y_n: float
-    z_n: float
+    def __new__(cls, x_n: float = 0.0, y_n: float = 0.0, z_n: float = 0.0) -> "TrackForce":
+        force = np.array((x_n, y_n, z_n), dtype=float).view(cls)
+        force.flags.writeable = False
+        return force
+
+    @classmethod
+    def from_pb(cls, message) -> "TrackForce":
+        """The force of a ``TrackForce`` message."""
+        return cls(message.x_n, message.y_n, message.z_n)
+
+    @property
+    def x_n(self) -> float:
+        """Longitudinal component [N] (forward)."""
+        return float(self.view(np.ndarray)[0])
+
+    @property
+    def y_n(self) -> float:
+        """Lateral component [N] (to the right)."""
+        return float(self.view(np.ndarray)[1])
+
+    @property
+    def z_n(self) -> float:
+        """Vertical component [N] (down)."""
+        return float(self.view(np.ndarray)[2])
 
     def as_array(self) -> np.ndarray:
-        return np.array([self.x_n, self.y_n, self.z_n])
+        """A plain, writable copy ``[x, y, z]`` [N]."""
+        return np.array(self.view(np.ndarray))
+
+    def __getitem__(self, key):
+        # Components and slices as plain numbers and arrays.
+        return self.view(np.ndarray)[key]
+
+    def __array_wrap__(self, array, context=None, return_scalar=False):
+        # Arithmetic and reductions give plain arrays and numbers (numpy 1
+        # passes no return_scalar: a 0-d result is a reduction's number).
+        array = array.view(np.ndarray)
+        return array[()] if return_scalar or array.ndim == 0 else array
+
+    def __reduce__(self):
+        # Pickled by its components (read-only again when unpickled).
+        return (TrackForce, tuple(float(v) for v in self.view(np.ndarray)))
 
 
-@dataclass(frozen=True)
-class WheelRailPatch:
+@_result
+class WheelRailPatch(_Result):
     """One contact patch of a wheel (see the proto's WheelRailPatch)."""
 
     method: str = _enum()
@@ -367,7 +553,7 @@ class WheelRailPatch:
     contact_area_m2: float
     adhesion_fraction: float
     frictional_power_w: float
-    force_track_n: TrackForce = _sub(TrackForce)
+    force_track_n: TrackForce = _track_force()
     grid_nx: int
     grid_ns: int
     grid: Optional[Grid] = _optional(Grid)
@@ -381,8 +567,8 @@ class WheelRailPatch:
         return _gridded(cls, message)
 
 
-@dataclass(frozen=True)
-class WheelRailWheel:
+@_result
+class WheelRailWheel(_Result):
     """One wheel: its patches (field side to gauge side) and totals."""
 
     side: str = _enum()
@@ -391,12 +577,12 @@ class WheelRailWheel:
     patches: tuple = field(
         metadata={"pb": lambda m, name: tuple(WheelRailPatch.from_pb(p) for p in m.patches)}
     )
-    force_track_n: TrackForce = _sub(TrackForce)
+    force_track_n: TrackForce = _track_force()
     load_iterations: int
 
 
-@dataclass(frozen=True)
-class WheelRailTiming:
+@_result
+class WheelRailTiming(_Result):
     """Where the server's solve time went [s]."""
 
     search_s: float
@@ -404,8 +590,8 @@ class WheelRailTiming:
     solve_s: float
 
 
-@dataclass(frozen=True)
-class PitchControl:
+@_result
+class PitchControl(_Result):
     """How the pitch rate was found for a prescribed total longitudinal
     force (``load={"total_longitudinal_force_n": ...}``): the force reached
     [N], the nominal longitudinal creepage [-], steps and solves."""
@@ -427,8 +613,8 @@ def _side_or_none():
     return field(metadata={"pb": convert})
 
 
-@dataclass(frozen=True)
-class WheelRailWarning:
+@_result
+class WheelRailWarning(_Result):
     """A finding about a wheel/rail answer (the proto's WheelRailWarning):
     what no elastic contact gives, or forces inconsistent with the motion
     given. ``kind`` is ``"approach"`` (a wheel pressed into its rail far
@@ -452,8 +638,8 @@ class WheelRailWarning:
         return f"{self.field}: {self.message}"
 
 
-@dataclass(frozen=True)
-class WheelRailResult:
+@_result
+class WheelRailResult(_Result):
     """The solution of one wheelset query: the wheels solved, left first.
     ``pitch_control`` is set when the total longitudinal force was
     prescribed. ``warnings`` (a tuple of :class:`WheelRailWarning`, empty
@@ -479,13 +665,15 @@ class WheelRailResult:
         raise KeyError(f"no {side} wheel in this result")
 
     @property
-    def force_track_n(self) -> np.ndarray:
-        """Sum of the wheels' forces on the rails, track frame [N] (x, y, z)."""
-        return sum((w.force_track_n.as_array() for w in self.wheels), np.zeros(3))
+    def force_track_n(self) -> TrackForce:
+        """Sum of the wheels' forces on the rails, track frame [N]: a
+        :class:`TrackForce` as each wheel's (``[x, y, z]``, ``.x_n``, ...)."""
+        total = sum((w.force_track_n.as_array() for w in self.wheels), np.zeros(3))
+        return TrackForce(*total)
 
 
-@dataclass(frozen=True)
-class WheelRailStepResult:
+@_result
+class WheelRailStepResult(_Result):
     """The answer to one wheel/rail session step."""
 
     step_index: int
@@ -494,8 +682,8 @@ class WheelRailStepResult:
     marked: bool
 
 
-@dataclass(frozen=True)
-class ProfilePairInfo:
+@_result
+class ProfilePairInfo(_Result):
     """A registered profile pair. ``raw`` is the full ProfilePairInfo
     message (profiles, track, wheelset, materials, friction)."""
 
@@ -511,8 +699,8 @@ class ProfilePairInfo:
     raw: object = field(metadata={"pb": lambda m, name: m}, compare=False, repr=False)
 
 
-@dataclass(frozen=True)
-class RegistrationProgress:
+@_result
+class RegistrationProgress(_Result):
     """One progress message of a registration (``stage`` e.g. ``"ready"``)."""
 
     stage: str = _enum()

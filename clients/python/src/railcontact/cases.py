@@ -1,0 +1,292 @@
+"""Case files of ``railcontact wheelrail`` (TOML) for the service.
+
+A wheel/rail case file (``examples/cases/wheelset_a22.toml``; keys in
+``examples/cases/README.md``, "Wheelset cases") holds three things the
+service takes apart: a profile pair (``[track]``, ``[wheelset]``,
+``[material]``: ``RegisterProfilePair``), the settings of a query or a
+session (``model``, ``side``, ``[friction]``, ``[grid]``, ``[polach]``,
+``[modified_fastsim]``, ``[conformal]``, ``[temperature]``) and the motion
+of one step (``[position]``, ``[velocity]``, ``[load]``).
+:func:`load_wheelrail_case` reads such a file into a :class:`WheelRailCase`
+holding the three as mappings for :meth:`Client.register_pair`,
+:meth:`Client.solve_wheelrail`, :meth:`Client.wheelrail_session` and
+:meth:`WheelRailSession.step`; :meth:`Client.solve_wheelrail_case` does all
+of it in one call, with the same answer as ``railcontact wheelrail
+CASE.toml``.
+"""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, Union
+
+from .errors import invalid
+from .results import summary
+
+#: A profile's name in a case file that names a built-in profile
+#: (``builtin:MBench_S1002_v3.prw``, ``builtin:MBench_UIC60_v3.prr``).
+BUILTIN_PREFIX = "builtin:"
+
+# The keys of each table as `railcontact wheelrail` reads them
+# (src/cli/wheelrail.rs), as (required, optional): every table rejects
+# other keys.
+_TABLES: dict = {
+    "": (
+        (),
+        ("model", "side", "material", "friction", "track", "wheelset", "position", "velocity",
+         "load", "grid", "polach", "modified_fastsim", "conformal", "temperature"),
+    ),
+    "material": (("shear_modulus_pa", "poisson_ratio"), ()),
+    "friction": (
+        (),
+        ("law", "coefficient", "static_coefficient", "kinetic_coefficient", "falling_coefficients",
+         "half_velocities_m_per_s", "rolling_speed_m_per_s", "memory_distance_m",
+         "memory_velocity_m_per_s", "start", "max_iterations", "contact_angles_rad", "rail_y_m",
+         "coefficients", "track_s_m"),
+    ),
+    "track": (
+        ("rail_profile", "gauge_m", "gauge_height_m"),
+        ("rail_profile_left", "rail_mirror_y", "cant_rad"),
+    ),
+    "wheelset": (
+        ("wheel_profile", "flange_back_distance_m", "nominal_radius_m"),
+        ("wheel_profile_left", "wheel_mirror_y", "flange_back_y_m", "smoothing_wavelength_m"),
+    ),
+    "position": ((), ("lateral_m", "yaw_rad", "roll_rad", "track_s_m")),
+    "velocity": (
+        ("forward_m_per_s",),
+        ("lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s", "pitch_rad_per_s"),
+    ),
+    "load": ((), ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")),
+    "grid": (("element_size_m",), ()),
+    "polach": (("k_adhesion", "k_slip", "limit_ratio", "decay_s_per_m"), ()),
+    "modified_fastsim": (
+        (),
+        ("initial_factor", "limit_ratio", "transition_rate", "friction_limit_ratio",
+         "friction_decay_s_per_m"),
+    ),
+    "conformal": ((), ("rigid_slip",)),
+    "temperature": (("rail", "wheel"), ()),
+    "temperature.rail": (
+        ("bulk_temperature_k", "conductivity_w_per_m_k", "density_kg_per_m3", "specific_heat_j_per_kg_k"),
+        (),
+    ),
+}
+_TABLES["temperature.wheel"] = _TABLES["temperature.rail"]
+
+#: The keys of ``[friction]`` that make a friction table (the wire's
+#: ``friction_table``); the others are its law (``friction``).
+_FRICTION_TABLE_KEYS = ("contact_angles_rad", "rail_y_m", "coefficients", "track_s_m")
+
+#: ``[modified_fastsim]``'s defaults, key by key (the command line's
+#: ``SlopeReduction::TRACTCURV``); the wire takes the section whole.
+_MODIFIED_FASTSIM_DEFAULTS = {
+    "initial_factor": 0.54,
+    "limit_ratio": 0.02,
+    "transition_rate": 0.62,
+    "friction_limit_ratio": 1.0,
+    "friction_decay_s_per_m": 0.0,
+}
+
+#: The vertical load's keys, exactly one of which a case gives.
+_LOAD_KINDS = ("vertical_force_n", "approach_m", "center_z_m")
+
+
+@dataclass(frozen=True)
+class WheelRailCase:
+    """A ``railcontact wheelrail`` case file, taken apart for the service.
+
+    ``pair``: the profile pair, a ``ProfilePairSpec`` mapping for
+    :meth:`Client.register_pair` (profile files read, relative to the case
+    file; ``builtin:`` names as built-in profiles). ``settings``: the
+    keyword arguments of :meth:`Client.wheelrail_session` (and of
+    :meth:`Client.solve_wheelrail`) the case gives: ``model``, ``sides``,
+    ``friction``, ``friction_table``, ``element_size_m``, ``polach``,
+    ``modified_fastsim``, ``conformal``, ``temperature``. ``motion``: those of
+    :meth:`WheelRailSession.step`, ``position``, ``velocity`` and ``load``.
+    ``label``: the case file's name, the pair's label when it is new.
+
+    ::
+
+        case = railcontact.load_wheelrail_case("examples/cases/wheelset_a22.toml")
+        pair = client.register_pair(case.pair, label=case.label)
+        r = client.solve_wheelrail(pair.pair_id, **case.solve_arguments())
+        with client.wheelrail_session(pair.pair_id, **case.settings) as s:
+            step = s.step(**case.motion)
+    """
+
+    path: pathlib.Path
+    label: str
+    pair: dict
+    settings: dict
+    motion: dict
+
+    def solve_arguments(self, **overrides: Any) -> dict:
+        """The keyword arguments of :meth:`Client.solve_wheelrail` after the
+        pair id: ``settings`` and ``motion``, with ``overrides`` in place
+        of the case's (``model="hertz_fastsim"``, ``position={...}``,
+        ``include_fields=True``)."""
+        return {**self.settings, **self.motion, **overrides}
+
+    def __repr__(self) -> str:
+        return summary(self)
+
+
+def load_wheelrail_case(path: Union[str, os.PathLike]) -> WheelRailCase:
+    """Reads a ``railcontact wheelrail`` case file (TOML) into a
+    :class:`WheelRailCase`: its profile pair, settings and motion.
+
+    The keys are the command line's (``examples/cases/README.md``,
+    "Wheelset cases"), with its defaults: model ``"exact"``, both wheels,
+    the pair's material (82 GPa, 0.28), friction (Coulomb 0.3) and element
+    size (0.2 mm) where the file gives none. Profile files are read
+    relative to the case file; ``builtin:NAME`` names a built-in profile.
+    A file that cannot be read or is not TOML, an unknown or missing key
+    and a profile file that cannot be read raise :class:`RailcontactError`
+    (INVALID_ARGUMENT) naming the case file's key (``case`` for the file
+    itself); the values are checked by the server.
+    """
+    path = pathlib.Path(path)
+    try:
+        with open(path, "rb") as f:
+            case = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise invalid("case", f"cannot read case file {os.fspath(path)}: {e}") from e
+    _check_table(case, "")
+    for key in ("track", "wheelset", "velocity", "load"):
+        if key not in case:
+            raise invalid(key, f"missing: a wheel/rail case file needs [{key}] ({path})")
+    tables = {
+        key: _check_table(case[key], key)
+        for key in _TABLES
+        if key and "." not in key and key in case
+    }
+    if "temperature" in tables:
+        for body in ("rail", "wheel"):
+            _check_table(tables["temperature"][body], f"temperature.{body}")
+
+    pair = _pair(tables["track"], tables["wheelset"], tables.get("material"), path.parent)
+    return WheelRailCase(
+        path=path,
+        label=path.name,
+        pair=pair,
+        settings=_settings(case, tables),
+        motion=_motion(tables),
+    )
+
+
+def _check_table(table: Any, key: str) -> dict:
+    """``table`` (the case file's table ``key``, ``""`` the top level) after
+    checking its keys: none unknown, none missing."""
+    if not isinstance(table, Mapping):
+        raise invalid(key, f"expected a table ([{key}]), got {table!r}")
+    required, optional = _TABLES[key]
+    for name in table:
+        if name not in required and name not in optional:
+            known = ", ".join(f"`{k}`" for k in required + optional)
+            raise invalid(_join(key, name), f"unknown key; expected one of {known}")
+    for name in required:
+        if name not in table:
+            raise invalid(_join(key, name), "missing: required")
+    return dict(table)
+
+
+def _join(table: str, key: str) -> str:
+    return f"{table}.{key}" if table else key
+
+
+def _profile(name: Any, mirror_y: Any, directory: pathlib.Path, key: str, mirror_key: str) -> dict:
+    """A ``ProfileSource`` mapping of the case file's profile ``name`` (a
+    path relative to ``directory`` or ``builtin:NAME``)."""
+    if not isinstance(name, str) or not name:
+        raise invalid(key, f"expected a file name or `{BUILTIN_PREFIX}NAME`, got {name!r}")
+    if not isinstance(mirror_y, bool):
+        raise invalid(mirror_key, f"expected true or false, got {mirror_y!r}")
+    if name.startswith(BUILTIN_PREFIX):
+        return {"builtin_name": name[len(BUILTIN_PREFIX):], "mirror_y": mirror_y}
+    file = directory / name
+    try:
+        raw = file.read_bytes()
+    except OSError as e:
+        raise invalid(key, f"cannot read profile file {file}: {e}") from e
+    try:
+        content = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        # MiniProf files written on Windows: their comments in Latin-1.
+        content = raw.decode("latin-1")
+    return {"file": {"content": content, "file_name": file.name}, "mirror_y": mirror_y}
+
+
+def _pair(track: dict, wheelset: dict, material: Any, directory: pathlib.Path) -> dict:
+    """The ``ProfilePairSpec`` mapping of ``[track]``, ``[wheelset]`` and
+    ``[material]``."""
+    rail_mirror = track.get("rail_mirror_y", False)
+    wheel_mirror = wheelset.get("wheel_mirror_y", False)
+    pair: dict = {
+        "wheel": _profile(
+            wheelset["wheel_profile"], wheel_mirror, directory, "wheelset.wheel_profile", "wheelset.wheel_mirror_y"
+        ),
+        "rail": _profile(track["rail_profile"], rail_mirror, directory, "track.rail_profile", "track.rail_mirror_y"),
+        "track": {k: track[k] for k in ("gauge_m", "gauge_height_m", "cant_rad") if k in track},
+        "wheelset": {
+            k: wheelset[k] for k in ("flange_back_distance_m", "nominal_radius_m", "flange_back_y_m") if k in wheelset
+        },
+    }
+    if "wheel_profile_left" in wheelset:
+        pair["wheel_left"] = _profile(
+            wheelset["wheel_profile_left"], wheel_mirror, directory, "wheelset.wheel_profile_left",
+            "wheelset.wheel_mirror_y",
+        )
+    if "rail_profile_left" in track:
+        pair["rail_left"] = _profile(
+            track["rail_profile_left"], rail_mirror, directory, "track.rail_profile_left", "track.rail_mirror_y"
+        )
+    if "smoothing_wavelength_m" in wheelset:
+        pair["smoothing_wavelength_m"] = wheelset["smoothing_wavelength_m"]
+    if material is not None:
+        pair["material"] = dict(material)
+    return pair
+
+
+def _settings(case: dict, tables: dict) -> dict:
+    """The query's or session's settings of the case file."""
+    settings: dict = {"model": case.get("model", "exact"), "sides": case.get("side", "both")}
+    friction = tables.get("friction")
+    if friction is not None:
+        law = {k: v for k, v in friction.items() if k not in _FRICTION_TABLE_KEYS}
+        table = {k: v for k, v in friction.items() if k in _FRICTION_TABLE_KEYS}
+        # A table alone scales the pair's Coulomb law to its coefficients,
+        # as the command line scales its Coulomb law of coefficient 1.
+        if law or not table:
+            settings["friction"] = law
+        if table:
+            settings["friction_table"] = table
+    if "grid" in tables:
+        settings["element_size_m"] = tables["grid"]["element_size_m"]
+    if "polach" in tables:
+        settings["polach"] = tables["polach"]
+    if "modified_fastsim" in tables:
+        settings["modified_fastsim"] = {**_MODIFIED_FASTSIM_DEFAULTS, **tables["modified_fastsim"]}
+    if "conformal" in tables:
+        settings["conformal"] = tables["conformal"]
+    if "temperature" in tables:
+        t = tables["temperature"]
+        settings["temperature"] = {"body1": dict(t["rail"]), "body2": dict(t["wheel"])}
+    return settings
+
+
+def _motion(tables: dict) -> dict:
+    """The step's position, velocity and load of the case file."""
+    load = tables["load"]
+    given = [k for k in _LOAD_KINDS if k in load]
+    if len(given) != 1:
+        raise invalid("load", "give exactly one of vertical_force_n, approach_m and center_z_m")
+    return {
+        "position": tables.get("position", {}),
+        "velocity": tables["velocity"],
+        "load": load,
+    }

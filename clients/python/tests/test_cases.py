@@ -1,0 +1,205 @@
+"""Case files of ``railcontact wheelrail`` through the client: the same
+forces as the command line on the same file."""
+
+import json
+import pathlib
+import shutil
+
+import grpc
+import numpy as np
+import pytest
+
+import railcontact
+from conftest import REPO, run_cli
+
+CASES = REPO / "examples" / "cases"
+PROFILES = REPO / "crates" / "solver" / "profiles"
+
+# Measured profiles (MiniProf: a rail measured from the gauge side, mirrored;
+# a wheel), the roll and the free-rolling pitch rate found.
+MEASURED = """
+model = "{model}"
+side = "{side}"
+
+[friction]
+coefficient = 0.35
+
+[track]
+rail_profile = "profiles/avg_HR.BAN"
+rail_mirror_y = true
+gauge_m = 1.435
+gauge_height_m = 0.014
+
+[wheelset]
+wheel_profile = "profiles/Car7216_0001r.whl"
+{left_wheel}flange_back_distance_m = 1.360
+nominal_radius_m = 0.46
+
+[position]
+lateral_m = 0.004
+yaw_rad = 0.001
+
+[velocity]
+forward_m_per_s = 20.0
+
+[load]
+vertical_force_n = 50000.0
+total_longitudinal_force_n = 0.0
+{extra}
+"""
+
+GENERATED = {
+    "measured_hertz_fastsim": dict(model="Hertz_FASTSIM", side="both", left_wheel="", extra=""),
+    "measured_exact_right": dict(
+        model="EXACT", side="Right", left_wheel="", extra="\n[grid]\nelement_size_m = 0.0004\n"
+    ),
+    "measured_polach_left_wheel": dict(
+        model="hertz_polach",
+        side="both",
+        left_wheel='wheel_profile_left = "profiles/avg_wheel.whl"\n',
+        extra="\n[polach]\nk_adhesion = 1.0\nk_slip = 0.4\nlimit_ratio = 0.4\ndecay_s_per_m = 0.6\n",
+    ),
+    "measured_modified_fastsim": dict(
+        model="hertz_fastsim_modified", side="both", left_wheel="", extra="\n[modified_fastsim]\ninitial_factor = 0.7\n"
+    ),
+}
+
+
+def _case_file(name: str, tmp_path: pathlib.Path) -> pathlib.Path:
+    """The case file ``name``: an example's, or one of GENERATED written to
+    ``tmp_path`` beside copies of its profiles (relative paths)."""
+    if name.endswith(".toml"):
+        return CASES / name
+    (tmp_path / "profiles").mkdir(exist_ok=True)
+    for profile in ("avg_HR.BAN", "Car7216_0001r.whl", "avg_wheel.whl"):
+        shutil.copy(PROFILES / profile, tmp_path / "profiles" / profile)
+    path = tmp_path / f"{name}.toml"
+    path.write_text(MEASURED.format(**GENERATED[name]))
+    return path
+
+
+def _cli(path: pathlib.Path) -> dict:
+    done = run_cli("wheelrail", str(path), "--json")
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["wheelset_a22.toml", "wheelset_a22_varfric.toml", "wheelset_a22_temperature.toml", *GENERATED],
+)
+def test_a_case_file_gives_the_forces_of_the_command_line(client, name, tmp_path):
+    path = _case_file(name, tmp_path)
+    expected = _cli(path)
+    r = client.solve_wheelrail_case(path)
+    assert r.model == expected["model"]
+    close = dict(rel=1e-9, abs=1e-6)
+    assert r.center_z_m == pytest.approx(expected["center_z_m"], **close)
+    assert r.roll_rad == pytest.approx(expected["roll_rad"], **close)
+    assert r.pitch_rad_per_s == pytest.approx(expected["pitch_rad_per_s"], **close)
+    assert [w.side for w in r.wheels] == list(expected["wheels"])
+    for wheel in r.wheels:
+        cli = expected["wheels"][wheel.side]
+        assert wheel.force_track_n == pytest.approx(cli["force_track_n"], **close)
+        assert len(wheel.patches) == len(cli["patches"])
+        for patch, cli_patch in zip(wheel.patches, cli["patches"]):
+            for key in ("normal_force_n", "fx_n", "fs_n", "mz_nm", "max_pressure_pa", "contact_angle_rad"):
+                assert getattr(patch, key) == pytest.approx(cli_patch[key], **close), key
+            if "temperature" in cli_patch:
+                assert patch.temperature.max_body1.temperature_k == pytest.approx(
+                    cli_patch["temperature"]["max_rail"]["temperature_k"], **close
+                )
+    assert [(w.kind, w.side) for w in r.warnings] == [(w["kind"], w["side"]) for w in expected["warnings"]]
+
+
+def test_the_a22_case_numbers(client):
+    # examples/cases/wheelset_a22.toml as `railcontact wheelrail` prints it:
+    # the flange patch of the right wheel, the tread of the left.
+    r = client.solve_wheelrail_case(CASES / "wheelset_a22.toml")
+    left, right = r.wheel("left").force_track_n, r.wheel("right").force_track_n
+    assert left == pytest.approx([2251.49, -2050.16, 10000.0], abs=0.01)
+    assert right == pytest.approx([-2003.28, 12501.27, 9999.99], abs=0.01)
+    # It is the built-in pair: the same profiles give the same id.
+    assert r.pair_id == client.get_pair(railcontact.BUILTIN_PAIR).pair_id
+
+
+def test_load_wheelrail_case_takes_the_file_apart(tmp_path):
+    path = _case_file("measured_polach_left_wheel", tmp_path)
+    case = railcontact.load_wheelrail_case(path)
+    assert case.path == path and case.label == path.name
+    pair = case.pair
+    assert pair["rail"]["mirror_y"] is True and pair["wheel"]["mirror_y"] is False
+    assert pair["rail"]["file"]["file_name"] == "avg_HR.BAN"
+    assert pair["rail"]["file"]["content"] == (PROFILES / "avg_HR.BAN").read_text()
+    assert pair["wheel_left"]["file"]["file_name"] == "avg_wheel.whl"
+    assert pair["track"] == {"gauge_m": 1.435, "gauge_height_m": 0.014}
+    assert case.settings == {
+        "model": "hertz_polach",
+        "sides": "both",
+        "friction": {"coefficient": 0.35},
+        "polach": {"k_adhesion": 1.0, "k_slip": 0.4, "limit_ratio": 0.4, "decay_s_per_m": 0.6},
+    }
+    assert case.motion == {
+        "position": {"lateral_m": 0.004, "yaw_rad": 0.001},
+        "velocity": {"forward_m_per_s": 20.0},
+        "load": {"vertical_force_n": 50000.0, "total_longitudinal_force_n": 0.0},
+    }
+    assert case.solve_arguments(model="exact")["model"] == "exact"
+    # Builtin names and the friction table of the examples.
+    varfric = railcontact.load_wheelrail_case(CASES / "wheelset_a22_varfric.toml")
+    assert varfric.pair["wheel"] == {"builtin_name": "MBench_S1002_v3.prw", "mirror_y": False}
+    assert "friction" not in varfric.settings
+    assert varfric.settings["friction_table"]["coefficients"] == [0.3, 0.2]
+    # Its summary names the profile file's size, not its text.
+    assert "<text: " in repr(case) and "Filename=" not in repr(case)
+
+
+def test_a_case_session_steps_as_the_solve(client):
+    case = railcontact.load_wheelrail_case(CASES / "wheelset_a22.toml")
+    pair = client.register_pair(case.pair, label=case.label)
+    alone = client.solve_wheelrail(pair.pair_id, **case.solve_arguments(model="hertz_fastsim"))
+    with client.wheelrail_session(pair.pair_id, **dict(case.settings, model="hertz_fastsim")) as s:
+        step = s.step(**case.motion)
+    assert np.array_equal(step.result.force_track_n, alone.force_track_n)
+
+
+def test_a_case_pair_is_registered_once_per_client(server, tmp_path):
+    path = _case_file("measured_hertz_fastsim", tmp_path)
+    with railcontact.Client(server, timeout_s=120) as client:
+        registered = []
+        register = client.register_pair
+        client.register_pair = lambda *a, **k: registered.append(a) or register(*a, **k)
+        first = client.solve_wheelrail_case(path)
+        again = client.solve_wheelrail_case(path, position={"lateral_m": 0.0})
+        assert len(registered) == 1 and again.pair_id == first.pair_id
+        assert first.pair_id in [p.pair_id for p in client.list_pairs()]
+        assert client.get_pair(first.pair_id).label == path.name
+        client.delete_pair(first.pair_id)
+
+
+@pytest.mark.parametrize(
+    "edit, field",
+    [
+        (lambda t: t.replace("yaw_rad = 0.001", "yaw_rad = 0.001\nroll = 0.0"), "position.roll"),
+        (lambda t: t.replace("gauge_m = 1.435\n", ""), "track.gauge_m"),
+        (lambda t: t.replace("profiles/avg_HR.BAN", "profiles/missing.BAN"), "track.rail_profile"),
+        (lambda t: t.replace("total_longitudinal_force_n", "approach_m"), "load"),
+        (lambda t: t.replace("[velocity]\nforward_m_per_s = 20.0\n", ""), "velocity"),
+        (lambda t: t.replace("rail_mirror_y = true", 'rail_mirror_y = "yes"'), "track.rail_mirror_y"),
+        (lambda t: t + "\n[grid]\n", "grid.element_size_m"),
+        (lambda t: "model = 'exact'\n" + t, "case"),  # not TOML: a key given twice
+    ],
+)
+def test_a_bad_case_file_names_its_key(tmp_path, edit, field):
+    path = _case_file("measured_hertz_fastsim", tmp_path)
+    path.write_text(edit(path.read_text()))
+    with pytest.raises(railcontact.RailcontactError) as e:
+        railcontact.load_wheelrail_case(path)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert e.value.field == field, e.value.message
+
+
+def test_a_wheelrail_case_given_as_a_patch_says_what_to_use(client):
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(CASES / "wheelset_a22.toml")
+    assert e.value.field == "case" and "solve_wheelrail_case" in e.value.message
