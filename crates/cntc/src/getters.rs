@@ -52,15 +52,14 @@ pub fn potcontact(o: &Outcome, u: Units) -> [f64; 6] {
     ]
 }
 
-/// Fails when the outcome has no fields on its grid (FASTSIM).
+/// Fails when the outcome has no fields on its grid (every model fills
+/// them; kept so that a getter never reads past a short field).
 fn require_fields(o: &Outcome) -> Result<()> {
     if o.has_fields() {
         Ok(())
     } else {
-        Err(CntcError::NotSupported(
-            "per-element results of FASTSIM (M = 3): it solves on strips of the Hertz ellipse, \
-             not on the potential contact grid; the totals are available"
-                .into(),
+        Err(CntcError::Input(
+            "the last calculation has no per-element results on its grid".into(),
         ))
     }
 }
@@ -124,8 +123,14 @@ pub fn field_data(o: &Outcome, u: Units, ifld: i32) -> Result<Vec<f64>> {
             )))
         }
         field::TAUCRT | field::UPLSX | field::UPLSY => vec![0.0; n],
+        // CONTACT returns the rigid slip's right-hand side, -w (m_sdis'
+        // set_tang_rhs stores -dq w, the getter divides by dq): the same
+        // sign here, so that a coupling reads what it reads from CONTACT.
         field::WX | field::WY => match &o.rigid_slip {
-            Some(w) => slip(&w[(ifld - field::WX) as usize]),
+            Some(w) => slip(&w[(ifld - field::WX) as usize])
+                .into_iter()
+                .map(|v| -v)
+                .collect(),
             None => vec![0.0; n],
         },
         other => {

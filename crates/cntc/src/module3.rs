@@ -7,7 +7,11 @@ use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::ContactError;
-use railcontact_solver::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
+use railcontact_solver::core::fastsim::{SlopeReduction, TractionBound};
+use railcontact_solver::core::fastsim_grid::{
+    equivalent_ellipse, BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput,
+    GridFlexibility, GridFriction, GridPressure, RollingSense,
+};
 use railcontact_solver::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
 };
@@ -16,7 +20,7 @@ use railcontact_solver::core::hertz::{complete_elliptic, hertz, HertzLoad};
 use railcontact_solver::core::material::CombinedMaterial;
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::problem::{
-    ContactProblem, Creepages, ExtraRigidSlip, Kinematics, ShiftStep, SolverSettings,
+    ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep, SolverSettings,
 };
 use railcontact_solver::core::sensitivity::exact_jacobian;
 use railcontact_solver::core::solution::{
@@ -225,6 +229,19 @@ struct SolverKey {
     chi: f64,
 }
 
+/// The exact normal problem's solution FASTSIM takes its pressure from
+/// (B = 0).
+struct NormalSolution {
+    /// Pressure per element \[Pa\].
+    pressure_pa: Vec<f64>,
+    /// Normal force \[N\].
+    normal_force_n: f64,
+    /// Approach \[m\].
+    approach_m: f64,
+    /// The error of an iteration limit reached.
+    status: Option<CntcError>,
+}
+
 /// The Hertzian semi-axes and curvatures of `spec` under `load` with
 /// `e_star` (= G/(1 - nu)).
 fn hertz_geometry(spec: HertzSpec, e_star: f64, load: NormalLoad) -> Result<(f64, f64, f64, f64)> {
@@ -380,7 +397,13 @@ impl Patch {
         let t0 = Instant::now();
         let mut outcome = match self.config.material.model {
             MaterialModel::ModifiedFastsim(reduction) => {
-                self.fastsim(&material, load, hertz, grid, reduction)?
+                let (outcome, status) =
+                    self.fastsim(cache, &material, load, hertz, grid, gap, reduction)?;
+                if let Some(e) = status {
+                    self.outcome = Some(Outcome { hertz, ..outcome });
+                    return Err(e);
+                }
+                outcome
             }
             MaterialModel::Elastic => {
                 let (outcome, status) = self.exact(cache, material, load, grid, gap)?;
@@ -660,91 +683,245 @@ impl Patch {
         Ok((outcome, status))
     }
 
-    /// FASTSIM (M = 3) on the Hertz ellipse: forces only (its strips are
-    /// not CONTACT's grid).
+    /// FASTSIM (M = 3) as CONTACT runs it: on the potential contact grid
+    /// ([`GridFastsim`]), steady rolling with creepages, the traction bound
+    /// Hertz's elliptic (B = 2) or Kalker's parabolic (B = 3) pressure of a
+    /// Hertzian problem, or the exact normal problem's pressure (B = 0); the
+    /// flexibilities those of the Hertz ellipse (a non-Hertzian grid: of
+    /// the contact area's equivalent ellipse), blended as CONTACT blends
+    /// them; Coulomb friction or a falling law (L = 2-5) at the global slip
+    /// velocity. The outcome has the per-element fields; with an iteration
+    /// limit of the normal problem (B = 0) its error too.
+    #[allow(clippy::too_many_arguments)]
     fn fastsim(
-        &self,
+        &mut self,
+        cache: &KernelCache,
         material: &CombinedMaterial,
         load: NormalLoad,
         info: Option<HertzInfo>,
         grid: Grid,
+        gap: Vec<f64>,
         reduction: SlopeReduction,
-    ) -> Result<Outcome> {
+    ) -> Result<(Outcome, Option<CntcError>)> {
         let d = self.config.digits;
-        let Some(h) = info else {
-            return Err(CntcError::NotSupported(
-                "FASTSIM (M = 3) on a non-Hertzian potential contact area: use cntc_sethertzcontact"
-                    .into(),
-            ));
-        };
-        let mu = match self.config.friction {
-            FrictionLaw::Coulomb(mu) => mu,
-            FrictionLaw::Falling(_) => {
-                return Err(CntcError::NotSupported(
-                    "FASTSIM (M = 3) with a falling friction law per element (L = 2-5)".into(),
-                ))
-            }
-        };
-        if self.config.thermal.is_some() {
-            return Err(CntcError::NotSupported(
-                "temperatures (H = 3) with FASTSIM (M = 3): they need the exact model's fields (M = 0)"
-                    .into(),
-            ));
-        }
         if d.tang != 3 || d.force != 0 {
             return Err(CntcError::NotSupported(format!(
                 "FASTSIM (M = 3) with T = {}, F = {}: steady rolling (T = 3) with creepages (F = 0)",
                 d.tang, d.force
             )));
         }
-        let bound = match d.bound {
-            2 => TractionBound::Elliptic,
-            3 => TractionBound::Parabolic,
-            b => {
+        if self.kin.extra.is_some() {
+            return Err(CntcError::NotSupported(
+                "FASTSIM (M = 3) with an extra rigid slip (E = 9, cntc_setextrarigidslip)".into(),
+            ));
+        }
+        let friction = match self.config.friction {
+            FrictionLaw::Coulomb(mu) => GridFriction::Coulomb(mu),
+            FrictionLaw::Falling(law) => GridFriction::SlipVelocity(law),
+        };
+        // CONTACT's FASTSIM rolls along +x or -x only; another CHI is
+        // taken as 0, as CONTACT does (check_roll_stepsize).
+        let rolling = if (self.kin.chi - std::f64::consts::PI).abs() < 0.01 {
+            RollingSense::MinusX
+        } else {
+            RollingSense::PlusX
+        };
+        // The traction bound's pressure, the ellipse of the flexibilities,
+        // the normal force and the approach.
+        let (pressure, bound, ellipse, fn_n, approach, status) = match (d.bound, info) {
+            (b @ (2 | 3), Some(h)) => {
+                let e_star = material.effective_modulus_pa();
+                let hload = match load {
+                    NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
+                    NormalLoad::Approach(a) => HertzLoad::Approach { approach_m: a },
+                };
+                let sol = hertz(h.a1_per_m, h.b1_per_m, e_star, hload)
+                    .map_err(|e| CntcError::Input(format!("FASTSIM's Hertz problem: {e}")))?;
+                let bound = if b == 2 {
+                    TractionBound::Elliptic
+                } else {
+                    TractionBound::Parabolic
+                };
+                let ellipse = [sol.semi_axis_x_m, sol.semi_axis_y_m];
+                (
+                    None,
+                    bound,
+                    ellipse,
+                    sol.normal_force_n,
+                    sol.approach_m,
+                    None,
+                )
+            }
+            (b @ (2 | 3), None) => {
                 return Err(CntcError::NotSupported(format!(
-                    "FASTSIM (M = 3) with B = {b}: B = 2 (elliptical) or 3 (parabolic) pressure"
+                    "FASTSIM (M = 3) with B = {b} on a non-Hertzian potential contact area: the \
+                     {} traction bound needs a Hertzian problem (cntc_sethertzcontact); B = 0 \
+                     solves the normal problem",
+                    if b == 2 { "elliptical" } else { "parabolic" }
+                )))
+            }
+            (0, _) => {
+                let Some(NormalSolution {
+                    pressure_pa: pn,
+                    normal_force_n: fn_n,
+                    approach_m: approach,
+                    status,
+                }) = self.normal_pressure(cache, *material, load, grid, &gap)?
+                else {
+                    let NormalLoad::Approach(pen) = load else {
+                        unreachable!("a normal force always makes contact")
+                    };
+                    return Ok((Outcome::no_contact(grid, gap, pen), None));
+                };
+                let ellipse = match info {
+                    Some(h) => [h.aa_m, h.bb_m],
+                    None => match equivalent_ellipse(&grid, &pn) {
+                        Some(e) => e,
+                        None => {
+                            let mut o = Outcome::no_contact(grid, gap, approach);
+                            o.fields.pressure_pa = pn;
+                            return Ok((o, status));
+                        }
+                    },
+                };
+                (
+                    Some(pn),
+                    TractionBound::Parabolic,
+                    ellipse,
+                    fn_n,
+                    approach,
+                    status,
+                )
+            }
+            (b, _) => {
+                return Err(CntcError::NotSupported(format!(
+                    "FASTSIM (M = 3) with B = {b}: B = 0 (the normal problem's pressure), 2 \
+                     (elliptical) or 3 (parabolic)"
                 )))
             }
         };
-        let e_star = material.effective_modulus_pa();
-        let hload = match load {
-            NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
-            NormalLoad::Approach(a) => HertzLoad::Approach { approach_m: a },
-        };
-        let sol = hertz(h.a1_per_m, h.b1_per_m, e_star, hload)
-            .map_err(|e| CntcError::Input(format!("FASTSIM's Hertz problem: {e}")))?;
-        let mut fs = Fastsim::totals_only(grid.nx, grid.ny)
-            .map_err(|e| CntcError::Discretisation(e.to_string()))?;
-        fs.set_traction_bound(bound);
-        let input = FastsimInput {
-            semi_axis_x_m: sol.semi_axis_x_m,
-            semi_axis_y_m: sol.semi_axis_y_m,
-            normal_force_n: sol.normal_force_n,
+        let mut fs = GridFastsim::new(grid).map_err(CntcError::from_contact)?;
+        let input = GridFastsimInput {
+            semi_axis_x_m: ellipse[0],
+            semi_axis_y_m: ellipse[1],
+            normal_force_n: fn_n,
             shear_modulus_pa: material.shear_modulus_pa,
             poisson_ratio: material.poisson_ratio,
-            friction_coefficient: mu,
-            static_friction_coefficient: mu,
             creepage_long: self.kin.creep[0],
             creepage_lat: self.kin.creep[1],
             spin_per_m: self.kin.creep[2],
+            rolling_speed_m_per_s: self.kin.veloc,
+            friction,
+            reduction,
+            flexibility: GridFlexibility::Kalker { blending: true },
+            rolling,
+            creep_table: CreepInterpolation::Contact,
+        };
+        let p = match &pressure {
+            Some(pn) => GridPressure::Given(pn),
+            None => GridPressure::Hertz {
+                bound,
+                scaling: BoundScaling::Analytic,
+            },
         };
         let out = fs
-            .solve_modified(&input, self.kin.veloc, &reduction)
+            .solve(&input, p)
             .map_err(|e| CntcError::Input(format!("FASTSIM: {e}")))?;
-        let mut o = Outcome::no_contact(grid, Vec::new(), sol.approach_m);
-        o.fields = Default::default();
-        o.friction_coefficient = mu;
-        o.normal_force_n = sol.normal_force_n;
+        let mut o = Outcome::no_contact(grid, Vec::new(), approach);
+        o.fields = fs.fields(gap);
+        o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
+        o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
+        o.rigid_slip = Some(fs.rigid_slip());
+        if let GridFriction::SlipVelocity(_) = friction {
+            o.mu = vec![out.friction_coefficient; grid.len()];
+        }
+        o.friction_coefficient = self.config.friction.static_coefficient();
+        // CONTACT reports a prescribed normal force, else the pressure's sum
+        // on the grid (soutpt).
+        o.normal_force_n = match load {
+            NormalLoad::NormalForce(_) => fn_n,
+            NormalLoad::Approach(_) => out.pressure_force_n,
+        };
         o.fx_n = out.fx_n;
         o.fy_n = out.fy_n;
         o.mz_nm = out.mz_nm;
         o.creepages = self.kin.creep;
         o.rolling_speed_m_per_s = self.kin.veloc;
-        o.max_pressure_pa = out.bound_peak_pressure_pa;
+        o.max_pressure_pa = out.max_pressure_pa;
         o.max_traction_pa = out.max_traction_pa;
-        o.areas_m2 = Outcome::areas_by_fraction(sol.contact_area_m2, out.adhesion_fraction);
         o.tgamma_n = out.tgamma_n;
-        Ok(o)
+        if let Some(t) = &self.config.thermal {
+            let temperatures =
+                flash_temperatures(&grid, &o.fields, &thermal_input(t, self.kin.veloc))
+                    .map_err(CntcError::from_contact)?;
+            o.max_temperature_k = Some([
+                temperatures.summary.max_body1.temperature_k,
+                temperatures.summary.max_body2.temperature_k,
+            ]);
+            o.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
+        }
+        Ok((o, status))
+    }
+
+    /// The exact normal problem on `grid` (FASTSIM's B = 0): the pressure,
+    /// the normal force, the approach and the error of an iteration limit;
+    /// None when a prescribed approach makes no contact.
+    fn normal_pressure(
+        &mut self,
+        cache: &KernelCache,
+        material: CombinedMaterial,
+        load: NormalLoad,
+        grid: Grid,
+        gap: &[f64],
+    ) -> Result<Option<NormalSolution>> {
+        let mut settings = SolverSettings::default();
+        let eps = self.config.solver.eps.clamp(1e-14, 0.1);
+        settings.normal.tolerance = eps;
+        settings.allow_border_contact = true;
+        let problem = ContactProblem {
+            material,
+            friction: Friction::coulomb(self.config.friction.static_coefficient()),
+            grid,
+            gap_m: gap.to_vec(),
+            load,
+            kinematics: Kinematics::Frictionless,
+            settings,
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
+        };
+        let key = SolverKey {
+            grid,
+            material,
+            chi: 0.0,
+        };
+        if !matches!(&self.solver, Some((k, _)) if *k == key) {
+            self.solver = Some((key, ContactSolver::new(&problem, cache)));
+        }
+        let solver = &mut self.solver.as_mut().expect("set above").1;
+        solver.reset();
+        let solution = match solver.solve(&problem) {
+            Ok(mut v) => v.pop().expect("one solution"),
+            Err(ContactError::NoContact { .. }) => {
+                self.solver = None;
+                return Ok(None);
+            }
+            Err(e) => {
+                self.solver = None;
+                return Err(CntcError::from_contact(e));
+            }
+        };
+        let status = (solution.info.status != SolveStatus::Converged).then(|| {
+            CntcError::Normal(format!(
+                "no convergence within the iteration limit (residual {:.3e})",
+                solution.info.normal_residual
+            ))
+        });
+        Ok(Some(NormalSolution {
+            pressure_pa: solution.fields.pressure_pa,
+            normal_force_n: solution.totals.normal_force_n,
+            approach_m: solution.totals.approach_m,
+            status,
+        }))
     }
 
     /// Forgets the solver's history (`cntc_finalize`, a new grid).

@@ -12,8 +12,8 @@ pub struct Outcome {
     /// The potential contact grid, in the patch's contact frame
     /// (x rolling, y lateral) \[m\].
     pub grid: Grid,
-    /// Per-element fields on `grid` (index `iy * nx + ix`); empty vectors
-    /// when the model has no fields on this grid (FASTSIM's strips).
+    /// Per-element fields on `grid` (index `iy * nx + ix`), of every
+    /// model (FASTSIM's on the same grid).
     pub fields: ElementFields,
     /// Friction coefficient per element [-] (empty: `friction_coefficient`
     /// everywhere).

@@ -205,3 +205,43 @@ fn threads_on_different_result_elements() {
         }
     }
 }
+
+/// The fields WX and WY are what CONTACT returns: the rigid slip's
+/// right-hand side, -w, with the spin's term a sixth of an element
+/// downstream.
+#[test]
+fn rigid_slip_fields_have_contacts_sign() {
+    let (ire, icp) = (140, 1);
+    let n = 400;
+    let (mut wx, mut wy) = (vec![0.0; n], vec![0.0; n]);
+    let mut ierror = 12345;
+    unsafe {
+        let codes = [
+            flags::IF_UNITS,
+            flags::IC_TANG,
+            flags::IC_NORM,
+            flags::IC_PVTIME,
+        ];
+        let values = [flags::UN_CNTC, 3, 1, 2];
+        cntc_setflags(&ire, &icp, &4, codes.as_ptr(), values.as_ptr());
+        let mat = [0.28, 0.28, 82000.0, 82000.0];
+        cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+        let hz = [20.0, 20.0, 0.0005, 0.0011, 1.2];
+        cntc_sethertzcontact(&ire, &icp, &-1, &5, hz.as_ptr());
+        cntc_setnormalforce(&ire, &icp, &50000.0);
+        cntc_setcreepages(&ire, &icp, &0.001, &0.0005, &0.0003);
+        cntc_calculate(&ire, &icp, &mut ierror);
+        cntc_getfielddata(&ire, &icp, &22, &(n as i32), wx.as_mut_ptr());
+        cntc_getfielddata(&ire, &icp, &23, &(n as i32), wy.as_mut_ptr());
+    }
+    assert_eq!(ierror, 0);
+    // CONTACT's own library (eve70a/CONTACT, built with the contact kit)
+    // on the same calls: elements 1, 38, 211 and 400 (Fortran numbering).
+    let contact_wx = [-0.002579906, -0.002413601, -0.000916847, 0.000579906];
+    let contact_wy = [0.002121717, -0.002653553, -0.000687266, -0.00321535];
+    for (k, &i) in [0, 37, 210, 399].iter().enumerate() {
+        assert!((wx[i] - contact_wx[k]).abs() < 1e-9, "WX[{i}] = {}", wx[i]);
+        assert!((wy[i] - contact_wy[k]).abs() < 1e-9, "WY[{i}] = {}", wy[i]);
+    }
+}

@@ -8,6 +8,7 @@ pub mod coupling;
 pub mod creep;
 pub mod error;
 pub mod fastsim;
+pub mod fastsim_grid;
 pub mod fft;
 pub mod force;
 pub mod frame;
