@@ -15,8 +15,17 @@
  * A step with a wrong index must be refused in-band with the session
  * staying usable.
  *
+ * The server's plausibility warnings (rc_step_warning) are printed on
+ * stderr, each once per step ("step K: warning: ..."; the steps solved
+ * again after the rollback are not printed again). The wheelset rotates
+ * at the server's default, -V / nominal radius, unless --pitch-rad-per-s
+ * prescribes its rotation rate [rad/s]: one far from free rolling (e.g.
+ * -68.5 rad/s, 5 % faster than -V / 0.46 m) drives both wheels to
+ * saturation, which the server warns about at every step.
+ *
  * Usage: cosim_wheelset TARGET [--model hertz_fastsim|exact|cect|auto]
  *                              [--pair PAIR_ID] [--steps N]
+ *                              [--pitch-rad-per-s RATE] [--tls-ca FILE.pem]
  * Prints a CSV on stdout: step, time_s, lateral_m, lateral_m_per_s,
  * contact_force_y_n (on the wheelset, track y to the right),
  * spring_force_y_n. Exits 1 on any error, 2 on bad usage. */
@@ -48,10 +57,50 @@ static int model_of(const char* name) {
 static int usage(const char* argv0) {
   fprintf(stderr,
           "usage: %s TARGET [--model hertz_fastsim|exact|cect|auto] [--pair PAIR_ID] "
-          "[--steps N] [--tls-ca FILE.pem]\n"
+          "[--steps N] [--pitch-rad-per-s RATE] [--tls-ca FILE.pem]\n"
           "(a bearer token, if the server needs one, from RAILCONTACT_TOKEN)\n",
           argv0);
   return 2;
+}
+
+static const char* warning_kind_name(int32_t kind) {
+  switch (kind) {
+    case RC_WARNING_APPROACH:
+      return "approach";
+    case RC_WARNING_LONGITUDINAL_FORCE:
+      return "longitudinal_force";
+    default:
+      return "unknown kind";
+  }
+}
+
+static const char* side_name(int32_t side) {
+  switch (side) {
+    case RC_LEFT:
+      return "left wheel";
+    case RC_RIGHT:
+      return "right wheel";
+    default:
+      return "wheelset";
+  }
+}
+
+/* Prints the plausibility warnings of step k (just solved) on stderr;
+ * returns nonzero when one cannot be read. */
+static int print_warnings(rc_session* s, long k, const rc_wheel_forces* f) {
+  char message[1024], err[256];
+  for (int32_t i = 0; i < f->n_warnings; ++i) {
+    int32_t kind = 0, side = 0;
+    double value = 0.0, limit = 0.0;
+    if (rc_step_warning(s, i, &kind, &side, &value, &limit, message, sizeof message, err,
+                        sizeof err) != 0) {
+      fprintf(stderr, "rc_step_warning %ld/%d: %s\n", k, (int)i, err);
+      return 1;
+    }
+    fprintf(stderr, "step %ld: warning: %s (%s), measure %.5g, limit %.4g: %s\n", k,
+            warning_kind_name(kind), side_name(side), value, limit, message);
+  }
+  return 0;
 }
 
 /* The lateral contact force on the wheelset [N]: minus the rails' forces. */
@@ -65,12 +114,19 @@ int main(int argc, char** argv) {
   int model = RC_MODEL_HERTZ_FASTSIM;
   long steps = 200;
   const char* tls_ca = NULL;
+  double pitch = 0.0;
+  int has_pitch = 0;
   for (int i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "--model") == 0 && i + 1 < argc) {
       model = model_of(argv[++i]);
       if (model == 0) return usage(argv[0]);
     } else if (strcmp(argv[i], "--tls-ca") == 0 && i + 1 < argc) {
       tls_ca = argv[++i];
+    } else if (strcmp(argv[i], "--pitch-rad-per-s") == 0 && i + 1 < argc) {
+      char* end = NULL;
+      pitch = strtod(argv[++i], &end);
+      if (end == argv[i] || *end != '\0' || !isfinite(pitch)) return usage(argv[0]);
+      has_pitch = 1;
     } else if (strcmp(argv[i], "--pair") == 0 && i + 1 < argc) {
       pair = argv[++i];
     } else if (strcmp(argv[i], "--steps") == 0 && i + 1 < argc) {
@@ -99,6 +155,8 @@ int main(int argc, char** argv) {
   memset(&in, 0, sizeof in);
   in.forward_m_per_s = SPEED_M_PER_S;
   in.vertical_force_n = WHEEL_LOAD_N;
+  in.has_pitch_rad_per_s = has_pitch;
+  in.pitch_rad_per_s = pitch;
 
   rc_wheel_forces out;
   rc_wheel_forces first_pass[REPLAY];
@@ -123,6 +181,10 @@ int main(int argc, char** argv) {
       status = 1;
       break;
     }
+    if (!replaying && print_warnings(s, k, &out) != 0) {
+      status = 1;
+      break;
+    }
     const double fc = contact_force_y(&out);
     const double fs = -SPRING_N_PER_M * y;
     if (!isfinite(fc)) {
@@ -135,6 +197,7 @@ int main(int argc, char** argv) {
       if (!replaying) {
         *saved = out;
       } else if (memcmp(saved->wheels, out.wheels, sizeof out.wheels) != 0 ||
+                 saved->n_warnings != out.n_warnings ||
                  memcmp(&saved->center_z_m, &out.center_z_m, sizeof out.center_z_m) != 0 ||
                  memcmp(&saved->roll_rad, &out.roll_rad, sizeof out.roll_rad) != 0) {
         fprintf(stderr, "step %ld after rollback: forces differ from the first pass\n", k);

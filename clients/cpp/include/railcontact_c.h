@@ -56,6 +56,21 @@ extern "C" {
 #define RC_LEFT 0
 #define RC_RIGHT 1
 
+/* Side of a warning about the wheelset as a whole rather than one wheel
+ * (rc_step_warning; the wheels are RC_LEFT and RC_RIGHT). */
+#define RC_WHEELSET (-1)
+
+/* Kinds of plausibility warning (WheelRailWarningKind in the proto), see
+ * rc_step_warning. */
+/* A wheel pressed into its rail far beyond the elastic approach of its
+ * load: a prescribed roll that leaves it above its rail (field
+ * step.position.roll_rad), else step.load.vertical_force_n. Per wheel. */
+#define RC_WARNING_APPROACH 1
+/* Both wheels driven or braked the same way to near saturation by a
+ * prescribed pitch rate far from free rolling (field
+ * step.velocity.pitch_rad_per_s). For the wheelset (side RC_WHEELSET). */
+#define RC_WARNING_LONGITUDINAL_FORCE 2
+
 /* Patches kept per wheel; a wheel with more reports the count in
  * n_patches_total and the first RC_MAX_PATCHES (field side first). Its
  * total force always covers every patch. */
@@ -155,7 +170,11 @@ typedef struct rc_wheel_forces {
   rc_wheel wheels[2];
   /* Nonzero when the state after this step was marked. */
   int32_t marked;
-  int32_t reserved;
+  /* Plausibility warnings the server sent with this step (0 for a
+   * plausible answer): what no elastic wheel/rail contact gives, each
+   * naming the input at fault. The forces are the solver's all the same.
+   * Read each with rc_step_warning(session, i, ...), 0 <= i < n_warnings. */
+  int32_t n_warnings;
 } rc_wheel_forces;
 
 /* Connects to `target` (e.g. "127.0.0.1:50051") and opens a session on the
@@ -180,6 +199,31 @@ rc_session* rc_open_secure(const char* target, const char* pair_id, int model,
  * error `out` is left unchanged. */
 int rc_step(rc_session* session, uint64_t step_index, double time_s,
             const rc_wheelset_state* in, rc_wheel_forces* out, char* err, size_t errlen);
+
+/* Reads warning `index` (0 <= index < n_warnings of the last rc_wheel_forces
+ * rc_step wrote) of the session's last successful step. They are kept
+ * until the next successful rc_step: a refused step and rc_rollback leave
+ * them as they are; before the first step there are none.
+ *   kind:    RC_WARNING_APPROACH or RC_WARNING_LONGITUDINAL_FORCE (another
+ *            positive value: a kind of a newer server).
+ *   side:    RC_LEFT or RC_RIGHT for the wheel concerned, RC_WHEELSET for
+ *            the wheelset as a whole.
+ *   value:   the measure that exceeded its limit [-]: the wheel's approach
+ *            over the elastic approach of its load (APPROACH), the wheels'
+ *            total longitudinal force over the adhesion their lateral
+ *            forces leave (LONGITUDINAL_FORCE).
+ *   limit:   its limit [-]: 10 (APPROACH), 0.9 (LONGITUDINAL_FORCE).
+ *   message: the server's text, with its numbers, the input at fault (e.g.
+ *            "velocity.pitch_rad_per_s") and what to do; copied NUL-terminated
+ *            into at most `message_len` bytes, truncated if longer (never
+ *            within a UTF-8 character). The messages run to about 800 bytes:
+ *            1024 holds them.
+ * Each output pointer may be NULL when not wanted (`message` when
+ * message_len is 0). Returns 0, or RC_ERR_USAGE for a NULL session or an
+ * index outside [0, n_warnings), outputs then unchanged. */
+int rc_step_warning(const rc_session* session, int32_t index, int32_t* kind, int32_t* side,
+                    double* value, double* limit, char* message, size_t message_len,
+                    char* err, size_t errlen);
 
 /* Returns to the state after the marked step `to_step_index` (marks after
  * it are dropped). On success writes the index the next step must have

@@ -98,6 +98,19 @@ StepOutput step_output(const pb::WheelRailSessionStepResult& r) {
     }
     out.wheels.push_back(std::move(wr));
   }
+  out.warnings.reserve(static_cast<std::size_t>(res.warnings_size()));
+  for (const pb::WheelRailWarning& w : res.warnings()) {
+    Warning warning;
+    warning.kind = static_cast<WarningKind>(w.kind());
+    warning.field = w.field();
+    if (w.side() != pb::WHEEL_SIDE_UNSPECIFIED) {
+      warning.side = static_cast<Side>(w.side());
+    }
+    warning.value = w.value();
+    warning.limit = w.limit();
+    warning.message = w.message();
+    out.warnings.push_back(std::move(warning));
+  }
   return out;
 }
 

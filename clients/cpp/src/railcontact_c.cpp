@@ -2,15 +2,20 @@
 // exception is caught here and turned into a return code and a message.
 #include "railcontact_c.h"
 
+#include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "railcontact/cosim.hpp"
 
 struct rc_session {
   railcontact::CoSimSession session;
+  // The warnings of the last successful step (rc_step_warning).
+  std::vector<railcontact::Warning> warnings;
   explicit rc_session(const railcontact::SessionOptions& options) : session(options) {}
 };
 
@@ -19,13 +24,26 @@ namespace {
 constexpr int kInternal = 13;
 constexpr int kResourceExhausted = 8;
 
-void write_err(char* err, std::size_t errlen, const std::string& text) {
-  if (err == nullptr || errlen == 0) {
+// Copies `text` NUL-terminated into `dst` (at most `len` bytes), cut short
+// where it does not fit, before a UTF-8 character rather than within it.
+void copy_text(char* dst, std::size_t len, const std::string& text) {
+  if (dst == nullptr || len == 0) {
     return;
   }
-  const std::size_t n = text.size() < errlen - 1 ? text.size() : errlen - 1;
-  std::memcpy(err, text.data(), n);
-  err[n] = '\0';
+  std::size_t n = text.size();
+  if (n > len - 1) {
+    n = len - 1;
+    // Back off the continuation bytes (10xxxxxx) of a cut character.
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) {
+      --n;
+    }
+  }
+  std::memcpy(dst, text.data(), n);
+  dst[n] = '\0';
+}
+
+void write_err(char* err, std::size_t errlen, const std::string& text) {
+  copy_text(err, errlen, text);
 }
 
 void clear_err(char* err, std::size_t errlen) {
@@ -91,6 +109,9 @@ void fill_patch(rc_patch& d, const railcontact::PatchSummary& p) {
 
 void fill_forces(rc_wheel_forces& d, const railcontact::StepOutput& s) {
   std::memset(&d, 0, sizeof d);
+  const std::size_t max_warnings = static_cast<std::size_t>(std::numeric_limits<int32_t>::max());
+  d.n_warnings = static_cast<int32_t>(s.warnings.size() < max_warnings ? s.warnings.size()
+                                                                         : max_warnings);
   d.step_index = s.step_index;
   d.time_s = s.time_s;
   d.center_z_m = s.center_z_m;
@@ -174,10 +195,49 @@ int rc_step(rc_session* session, uint64_t step_index, double time_s,
     return usage(err, errlen, "rc_step needs a session, an input and an output");
   }
   return guarded(err, errlen, [&] {
-    const railcontact::StepOutput result =
+    railcontact::StepOutput result =
         session->session.step(step_index, time_s, state_of(*in), in->mark != 0);
     fill_forces(*out, result);
+    session->warnings = std::move(result.warnings);
   });
+}
+
+int rc_step_warning(const rc_session* session, int32_t index, int32_t* kind, int32_t* side,
+                    double* value, double* limit, char* message, size_t message_len,
+                    char* err, size_t errlen) {
+  if (session == nullptr) {
+    return usage(err, errlen, "rc_step_warning needs a session");
+  }
+  if (message == nullptr && message_len > 0) {
+    return usage(err, errlen, "rc_step_warning: message is NULL with message_len > 0");
+  }
+  const std::size_t count = session->warnings.size();
+  if (index < 0 || static_cast<std::size_t>(index) >= count) {
+    char what[128];
+    std::snprintf(what, sizeof what,
+                  "rc_step_warning: index %ld is outside [0, n_warnings = %zu) of the last step",
+                  static_cast<long>(index), count);
+    return usage(err, errlen, what);
+  }
+  const railcontact::Warning& w = session->warnings[static_cast<std::size_t>(index)];
+  if (kind != nullptr) {
+    *kind = static_cast<int32_t>(w.kind);
+  }
+  if (side != nullptr) {
+    *side = !w.side                              ? RC_WHEELSET
+            : *w.side == railcontact::Side::Left  ? RC_LEFT
+            : *w.side == railcontact::Side::Right ? RC_RIGHT
+                                                  : RC_WHEELSET;
+  }
+  if (value != nullptr) {
+    *value = w.value;
+  }
+  if (limit != nullptr) {
+    *limit = w.limit;
+  }
+  copy_text(message, message_len, w.message);
+  clear_err(err, errlen);
+  return 0;
 }
 
 int rc_rollback(rc_session* session, uint64_t to_step_index, uint64_t* next_step_index,

@@ -43,6 +43,19 @@ enum class Side : int {
   Right = 2,
 };
 
+// What a plausibility warning finds (WheelRailWarningKind in the proto).
+// Another value: a kind of a newer server.
+enum class WarningKind : int {
+  // A wheel pressed into its rail far beyond the elastic approach of its
+  // load: a prescribed roll that leaves it above its rail (field
+  // step.position.roll_rad), else step.load.vertical_force_n. Per wheel.
+  Approach = 1,
+  // Both wheels driven or braked the same way to near saturation by a
+  // prescribed pitch rate far from free rolling (field
+  // step.velocity.pitch_rad_per_s). For the wheelset as a whole.
+  LongitudinalForce = 2,
+};
+
 // An error: a refused step or rollback (the session stays open) or a
 // failed stream (the session is closed). `code()` is the gRPC status
 // code, `message()` the server's text, `field()` the path of the field at
@@ -134,6 +147,26 @@ struct WheelResult {
   std::vector<PatchSummary> patches;
 };
 
+// A plausibility warning (WheelRailWarning in the proto): what in the
+// answer no elastic wheel/rail contact gives, naming the input at fault.
+// The answer is the solver's all the same: a warning is not an error.
+struct Warning {
+  WarningKind kind = WarningKind::Approach;
+  // Path of the input at fault in the step request, e.g.
+  // "step.velocity.pitch_rad_per_s".
+  std::string field;
+  // The wheel concerned; not set: the wheelset as a whole.
+  std::optional<Side> side;
+  // The measure that exceeded its limit [-]: the wheel's approach over the
+  // elastic approach of its load (Approach), the wheels' total longitudinal
+  // force over the adhesion their lateral forces leave (LongitudinalForce).
+  double value = 0.0;
+  // Its limit [-]: 10 (Approach), 0.9 (LongitudinalForce).
+  double limit = 0.0;
+  // What was found, with its numbers, why, and what to do.
+  std::string message;
+};
+
 // The answer to one step.
 struct StepOutput {
   std::uint64_t step_index = 0;
@@ -148,6 +181,8 @@ struct StepOutput {
   std::vector<WheelResult> wheels;
   // The server's solve time of this step [s] (search + geometry + solve).
   double server_time_s = 0.0;
+  // Plausibility warnings; empty for a plausible answer.
+  std::vector<Warning> warnings;
 };
 
 // Settings of a session.
