@@ -81,6 +81,7 @@ pub const CONTACT_METHODS: &[(&str, Role)] = &[
     ("SolveWheelRail", Role::Solve),
     ("SolveWheelRailBatch", Role::Solve),
     ("WheelRailSession", Role::Solve),
+    ("ContactLibrary", Role::Solve),
     ("GetProfilePair", Role::Solve),
     ("ListProfilePairs", Role::Solve),
     ("RegisterProfilePair", Role::Admin),

@@ -17,6 +17,7 @@ use tracing::Instrument;
 use crate::core::cache::KernelCache;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::problem::case::{Case, Model};
+use crate::service::contact_library::LibraryElement;
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::escaped;
@@ -674,6 +675,31 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
     }
 
+    type ContactLibraryStream = BoxStream<pb::ContactLibraryResponse>;
+
+    async fn contact_library(
+        &self,
+        req: Request<Streaming<pb::ContactLibraryRequest>>,
+    ) -> Result<Response<Self::ContactLibraryStream>, Status> {
+        let session_id = format!("c{}", self.next_id.fetch_add(1, Ordering::Relaxed));
+        let span = tracing::info_span!("ContactLibrary", request_id = %self.request_id(&req), session_id = %session_id);
+        let mut inbound = req.into_inner();
+        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let this = self.clone();
+        tokio::spawn(
+            async move {
+                if let Err(status) = this
+                    .run_contact_library(&mut inbound, &tx, session_id)
+                    .await
+                {
+                    this.end_stream(&tx, status).await;
+                }
+            }
+            .instrument(span),
+        );
+        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+    }
+
     type PatchSessionStream = BoxStream<pb::SessionResponse>;
 
     async fn patch_session(
@@ -941,6 +967,74 @@ impl ContactHandlers {
             mark_bytes = session.mark_bytes(),
             "wheel/rail session closed"
         );
+        Ok(())
+    }
+
+    /// Runs one `ContactLibrary` session (a copy of a result element of
+    /// CONTACT's library) until the client closes its stream; a request
+    /// refused before its calculation is answered in-band.
+    async fn run_contact_library(
+        &self,
+        inbound: &mut Streaming<pb::ContactLibraryRequest>,
+        tx: &mpsc::Sender<Result<pb::ContactLibraryResponse, Status>>,
+        session_id: String,
+    ) -> Result<(), Status> {
+        use pb::contact_library_request::Kind;
+        use pb::contact_library_response::Kind as Out;
+        let reply = |kind| pb::ContactLibraryResponse { kind: Some(kind) };
+        let in_band = |e| reply(Out::Error(e));
+        let open = match self.receive_first(inbound).await? {
+            Some(pb::ContactLibraryRequest {
+                kind: Some(Kind::Open(open)),
+            }) => open,
+            Some(_) => return Err(open_first().into()),
+            None => return Ok(()),
+        };
+        let _slot = self.session_slot()?;
+        let mut element = LibraryElement::open(
+            open.format_version,
+            open.module,
+            self.limits.case.max_grid_elements,
+        )?;
+        tracing::info!(label = %escaped(&open.client_label), ire = open.ire, module = element.module(), "contact library element opened");
+        let opened = Out::Opened(pb::ContactLibraryOpened {
+            session_id,
+            format_version: railcontact_cntc_core::remote::FORMAT_VERSION,
+        });
+        if !self.send(tx, reply(opened)).await? {
+            return Ok(());
+        }
+        let mut calculations = 0u64;
+        while let Some(msg) = self.receive(inbound, tx, in_band).await? {
+            let out = match msg.kind {
+                Some(Kind::Calculate(c)) => {
+                    let t0 = StdInstant::now();
+                    let (e, r) = self
+                        .pool
+                        .session()
+                        .run_on(Lane::Heavy, move || {
+                            let r = element.calculate(&c.request, KernelCache::global());
+                            (element, r)
+                        })
+                        .await?;
+                    element = e;
+                    calculations += 1;
+                    self.metrics.solved_as(
+                        "contact_library",
+                        t0.elapsed().as_secs_f64(),
+                        r.is_ok(),
+                    );
+                    r.map(Out::Reply)
+                }
+                Some(Kind::Open(_)) => Err(already_open()),
+                None => Err(ServiceError::invalid("kind", "missing: calculate")),
+            };
+            let out = out.unwrap_or_else(|e| Out::Error(refused(e)));
+            if !self.send(tx, reply(out)).await? {
+                break;
+            }
+        }
+        tracing::info!(calculations, "contact library element closed");
         Ok(())
     }
 

@@ -8,6 +8,7 @@
 //! | [`convert`] | wire <-> case file and results (the only place wire types are read) |
 //! | [`engine`] | one patch: a validated case and its persistent exact solver |
 //! | [`session`] | co-simulation sessions: step order, marks, rollback |
+//! | [`contact_library`] | the server's copy of a result element of CONTACT's library (`ContactLibrary`) |
 //! | [`memory`] | the memory sessions hold (live state and marks) against the server's limits |
 //! | [`pairs`] | wheel/rail profile pairs: canonical form, content id, preparation, registry |
 //! | [`store`] | the embedded store (redb) of registered pairs |
@@ -28,6 +29,7 @@
 pub mod auth;
 pub mod command;
 pub mod config;
+pub mod contact_library;
 pub mod convert;
 pub mod engine;
 pub mod handlers;

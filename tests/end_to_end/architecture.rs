@@ -84,25 +84,53 @@ fn the_front_ends_stand_on_the_solver_crate() {
 }
 
 /// The CONTACT-compatible library (`crates/cntc`) is a front end of its
-/// own over the solver crate: it names neither the service nor the
-/// command line (it cannot: they are not in its dependencies), and pulls
-/// in no transport or storage crate, so that a simulator loading it in
-/// process gets none of them.
+/// own over the solver crate and `railcontact-cntc-core`: it names neither
+/// the service nor the command line (it cannot: they are not in its
+/// dependencies). Its forwarding client brings the gRPC client stack
+/// (tonic's channel, tokio, hyper, h2, prost, and tonic's tracing), never
+/// the server's router, storage, command line or plots.
 #[test]
-fn the_contact_library_stands_on_the_solver_crate_alone() {
+fn the_contact_library_stands_on_the_solver_and_its_core() {
     let deps = dependencies("railcontact-cntc", "normal,build");
-    for needed in ["railcontact-cntc", "railcontact-solver"] {
+    for needed in [
+        "railcontact-cntc",
+        "railcontact-cntc-core",
+        "railcontact-solver",
+        "railcontact-proto",
+        "tonic",
+    ] {
         assert!(deps.contains(needed), "{needed} missing from {deps:?}");
     }
+    let client_stack = ["tonic", "tokio", "prost", "hyper", "h2", "tracing"];
     let bad: Vec<&str> = FORBIDDEN
         .iter()
         .copied()
-        .chain(["railcontact"])
+        .filter(|f| !client_stack.contains(f))
+        .chain(["railcontact", "tracing-subscriber"])
         .filter(|f| deps.contains(*f))
         .collect();
     assert!(
         bad.is_empty(),
-        "railcontact-cntc depends on {bad:?}; it is a front end over the solver crate"
+        "railcontact-cntc depends on {bad:?}; it is a front end over the solver crate with a \
+         gRPC client"
+    );
+}
+
+/// What the CONTACT library computes (`crates/cntc-core`), shared with
+/// the service, is as transport-free as the solver crate.
+#[test]
+fn the_contact_library_core_depends_on_no_transport() {
+    let deps = dependencies("railcontact-cntc-core", "normal,build");
+    assert!(deps.contains("railcontact-solver"), "{deps:?}");
+    let bad: Vec<&str> = FORBIDDEN
+        .iter()
+        .copied()
+        .chain(["railcontact", "railcontact-cntc", "railcontact-proto"])
+        .filter(|f| deps.contains(*f))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "railcontact-cntc-core depends on {bad:?}; keep transport in the front ends"
     );
 }
 

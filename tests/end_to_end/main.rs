@@ -15,6 +15,7 @@
 //! | [`architecture`] | the solver crate's dependency boundary (`cargo tree`) |
 //! | [`cli`] | `railcontact` subcommands on the example cases |
 //! | [`service`] | SolvePatch, batches, creep curves, queue, deadlines, health, reflection |
+//! | [`service_contact_library`] | `ContactLibrary` (CONTACT's library forwarding) against mismatched and hostile requests |
 //! | [`service_limits`] | per-request and per-solve limits |
 //! | [`service_security`] | TLS, mutual TLS, tokens and roles, loopback-only defaults, escaped logs |
 //! | [`service_sessions`] | co-simulation patch sessions: order, marks, rollback, memory |
@@ -43,6 +44,7 @@ mod proxy_fleet;
 mod python_client;
 mod scaleout;
 mod service;
+mod service_contact_library;
 mod service_limits;
 mod service_security;
 mod service_sessions;

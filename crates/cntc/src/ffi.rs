@@ -16,9 +16,11 @@ use std::ffi::c_char;
 use std::os::raw::c_int;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
+use crate::call::Call;
+use crate::element::{Element, INTERFACE_VERSION};
 use crate::error::{CntcError, Result};
 use crate::getters;
-use crate::library::{lock, Element, Library, INTERFACE_VERSION};
+use crate::library::{lock, Entry, Library};
 use crate::log;
 
 // ---------------------------------------------------------------------
@@ -175,16 +177,57 @@ unsafe fn run_ierror(
 
 /// Runs `f` on element `ire` (created on first use by `icp`'s rule).
 fn with_element<T>(ire: i32, icp: i32, f: impl FnOnce(&mut Element) -> Result<T>) -> Result<T> {
-    let e = Library::get().element(ire, icp)?;
-    let mut guard = lock(&e);
-    f(&mut guard)
+    with_entry(ire, icp, |e| f(&mut e.element))
 }
 
 /// Runs `f` on an existing element `ire`.
 fn with_existing<T>(ire: i32, f: impl FnOnce(&mut Element) -> Result<T>) -> Result<T> {
     let e = Library::get().existing(ire)?;
     let mut guard = lock(&e);
+    f(&mut guard.element)
+}
+
+/// Runs `f` on the entry of element `ire` (created on first use by
+/// `icp`'s rule): the element, its calls and its link to a server.
+fn with_entry<T>(ire: i32, icp: i32, f: impl FnOnce(&mut Entry) -> Result<T>) -> Result<T> {
+    let e = Library::get().element(ire, icp)?;
+    let mut guard = lock(&e);
     f(&mut guard)
+}
+
+/// Applies `call` to (ire, icp) and logs its warnings as `name`'s.
+fn apply(name: &'static str, ire: i32, icp: i32, call: Call) -> Result<i32> {
+    with_entry(ire, icp, |e| {
+        for w in e.apply(icp, call)? {
+            log::warning(name, Some(ire), Some(icp), &w);
+        }
+        Ok(0)
+    })
+}
+
+/// Runs setter `name` of (ire, icp): `args` reads its arguments into the
+/// call applied.
+unsafe fn setter(
+    name: &'static str,
+    ire: *const c_int,
+    icp: *const c_int,
+    args: impl FnOnce() -> Result<Call>,
+) {
+    run(name, ire, icp, || {
+        let (r, c) = (int(ire, "ire")?, int(icp, "icp")?);
+        apply(name, r, c, args()?)
+    });
+}
+
+/// Runs module 1 setter `name` of `ire` (icp = -1).
+unsafe fn wheelrail_setter(
+    name: &'static str,
+    ire: *const c_int,
+    args: impl FnOnce() -> Result<Call>,
+) {
+    run(name, ire, std::ptr::null(), || {
+        apply(name, int(ire, "ire")?, -1, args()?)
+    });
 }
 
 // ---------------------------------------------------------------------
@@ -344,17 +387,11 @@ pub unsafe extern "C" fn cntc_setflags(
         let (r, c) = (int(ire, "ire")?, int(icp, "icp")?);
         let n = len(lenflg, "lenflg")?;
         let (p, v) = (slice(params, n, "params")?, slice(values, n, "values")?);
-        with_element(r, c, |e| {
-            let module = e.module();
-            let cfg = e.config_mut(c)?;
-            for (code, value) in p.iter().zip(v) {
-                if let Some(w) = cfg.set_flag(module, *code, *value) {
-                    log::warning("cntc_setflags", Some(r), Some(c), &w);
-                }
-                crate::library::set_global_flag_from_setflags(*code, *value)?;
-            }
-            Ok(0)
-        })
+        for (&code, &value) in p.iter().zip(v) {
+            apply("cntc_setflags", r, c, Call::SetFlag { code, value })?;
+            crate::library::set_global_flag_from_setflags(code, value)?;
+        }
+        Ok(0)
     });
 }
 
@@ -373,7 +410,7 @@ pub unsafe extern "C" fn cntc_setmetadata(
         let n = len(lenmta, "lenmta")?;
         slice(params, n, "params")?;
         slice(values, n, "values")?;
-        with_element(r, c, |e| e.config_mut(c).map(|_| 0))
+        apply("cntc_setmetadata", r, c, Call::SetMetadata)
     });
 }
 
@@ -388,11 +425,12 @@ pub unsafe extern "C" fn cntc_setsolverflags(
     nreals: *const c_int,
     rparam: *const f64,
 ) {
-    run("cntc_setsolverflags", ire, icp, || {
-        let (r, c, g) = (int(ire, "ire")?, int(icp, "icp")?, int(gdigit, "gdigit")?);
-        let ip = slice(iparam, len(nints, "nints")?, "iparam")?;
-        let rp = slice(rparam, len(nreals, "nreals")?, "rparam")?;
-        with_element(r, c, |e| e.config_mut(c)?.set_solver(g, ip, rp).map(|_| 0))
+    setter("cntc_setsolverflags", ire, icp, || {
+        Ok(Call::SetSolverFlags {
+            gdigit: int(gdigit, "gdigit")?,
+            ints: slice(iparam, len(nints, "nints")?, "iparam")?.to_vec(),
+            reals: slice(rparam, len(nreals, "nreals")?, "rparam")?.to_vec(),
+        })
     });
 }
 
@@ -405,18 +443,10 @@ pub unsafe extern "C" fn cntc_setmaterialparameters(
     nparam: *const c_int,
     rparam: *const f64,
 ) {
-    run("cntc_setmaterialparameters", ire, icp, || {
-        let (r, c, m) = (int(ire, "ire")?, int(icp, "icp")?, int(mdigit, "mdigit")?);
-        let p = slice(rparam, len(nparam, "nparam")?, "rparam")?;
-        with_element(r, c, |e| {
-            let cfg = e.config_mut(c)?;
-            cfg.set_material(m, p)?;
-            if let Some((call, what)) = &cfg.unsupported {
-                if call.starts_with("cntc_setmaterialparameters") {
-                    log::warning("cntc_setmaterialparameters", Some(r), Some(c), what);
-                }
-            }
-            Ok(0)
+    setter("cntc_setmaterialparameters", ire, icp, || {
+        Ok(Call::SetMaterial {
+            mdigit: int(mdigit, "mdigit")?,
+            params: slice(rparam, len(nparam, "nparam")?, "rparam")?.to_vec(),
         })
     });
 }
@@ -430,16 +460,10 @@ pub unsafe extern "C" fn cntc_settemperaturedata(
     nparam: *const c_int,
     params: *const f64,
 ) {
-    run("cntc_settemperaturedata", ire, icp, || {
-        let (r, c, h) = (int(ire, "ire")?, int(icp, "icp")?, int(imeth, "imeth")?);
-        let p = slice(params, len(nparam, "nparam")?, "params")?;
-        with_element(r, c, |e| {
-            let cfg = e.config_mut(c)?;
-            cfg.set_temperature(h, p)?;
-            if let Some(("cntc_settemperaturedata", what)) = &cfg.unsupported {
-                log::warning("cntc_settemperaturedata", Some(r), Some(c), what);
-            }
-            Ok(0)
+    setter("cntc_settemperaturedata", ire, icp, || {
+        Ok(Call::SetTemperature {
+            imeth: int(imeth, "imeth")?,
+            params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
         })
     });
 }
@@ -453,44 +477,20 @@ pub unsafe extern "C" fn cntc_setfrictionmethod(
     nparam: *const c_int,
     params: *const f64,
 ) {
-    run("cntc_setfrictionmethod", ire, icp, || {
-        let (r, c, m) = (int(ire, "ire")?, int(icp, "icp")?, int(imeth, "imeth")?);
-        let p = slice(params, len(nparam, "nparam")?, "params")?;
-        with_element(r, c, |e| {
-            let module = e.module();
-            let cfg = e.config_mut(c)?;
-            cfg.set_friction(module, m, p)?;
-            if let Some((call, what)) = &cfg.unsupported {
-                if *call == "cntc_setfrictionmethod" {
-                    log::warning("cntc_setfrictionmethod", Some(r), Some(c), what);
-                }
-            }
-            Ok(0)
+    setter("cntc_setfrictionmethod", ire, icp, || {
+        Ok(Call::SetFriction {
+            imeth: int(imeth, "imeth")?,
+            params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
         })
-    });
-}
-
-/// Runs a module 3 patch setter on (ire, icp).
-unsafe fn patch_setter(
-    name: &'static str,
-    ire: *const c_int,
-    icp: *const c_int,
-    f: impl FnOnce(&mut crate::module3::Patch) -> Result<()>,
-) {
-    run(name, ire, icp, || {
-        let (r, c) = (int(ire, "ire")?, int(icp, "icp")?);
-        with_element(r, c, |e| e.patch_mut(c).and_then(f).map(|_| 0))
     });
 }
 
 /// `cntc_settimestep`: DT.
 #[no_mangle]
 pub unsafe extern "C" fn cntc_settimestep(ire: *const c_int, icp: *const c_int, dt: *const f64) {
-    run("cntc_settimestep", ire, icp, || {
-        let (r, c, dt) = (int(ire, "ire")?, int(icp, "icp")?, real(dt, "dt")?);
-        with_element(r, c, |e| match e {
-            Element::Basic(_) => e.patch_mut(c)?.set_timestep(dt).map(|_| 0),
-            Element::WheelRail(_) => Ok(0),
+    setter("cntc_settimestep", ire, icp, || {
+        Ok(Call::SetTimestep {
+            dt: real(dt, "dt")?,
         })
     });
 }
@@ -502,8 +502,10 @@ pub unsafe extern "C" fn cntc_setreferencevelocity(
     icp: *const c_int,
     veloc: *const f64,
 ) {
-    patch_setter("cntc_setreferencevelocity", ire, icp, |p| {
-        p.set_reference_velocity(real(veloc, "veloc")?)
+    setter("cntc_setreferencevelocity", ire, icp, || {
+        Ok(Call::SetReferenceVelocity {
+            veloc: real(veloc, "veloc")?,
+        })
     });
 }
 
@@ -515,19 +517,11 @@ pub unsafe extern "C" fn cntc_setrollingstepsize(
     chi: *const f64,
     dq: *const f64,
 ) {
-    run("cntc_setrollingstepsize", ire, icp, || {
-        let (r, c) = (int(ire, "ire")?, int(icp, "icp")?);
-        let dq = real(dq, "dq")?;
-        with_element(r, c, |e| match e {
-            Element::WheelRail(w) => {
-                // Module 1 reads DQREL only (Python passes no chi).
-                let chi = if chi.is_null() { 0.0 } else { *chi };
-                w.set_rolling_step(chi, dq).map(|_| 0)
-            }
-            Element::Basic(_) => {
-                let chi = real(chi, "chi")?;
-                e.patch_mut(c)?.set_rolling_step(chi, dq).map(|_| 0)
-            }
+    setter("cntc_setrollingstepsize", ire, icp, || {
+        // Module 1 reads DQREL only (CONTACT's Python passes no chi).
+        Ok(Call::SetRollingStep {
+            chi: (!chi.is_null()).then(|| *chi),
+            dq: real(dq, "dq")?,
         })
     });
 }
@@ -541,10 +535,11 @@ pub unsafe extern "C" fn cntc_sethertzcontact(
     nparam: *const c_int,
     params: *const f64,
 ) {
-    patch_setter("cntc_sethertzcontact", ire, icp, |p| {
-        let ipot = int(ipotcn, "ipotcn")?;
-        let v = slice(params, len(nparam, "nparam")?, "params")?;
-        p.set_hertz(ipot, v)
+    setter("cntc_sethertzcontact", ire, icp, || {
+        Ok(Call::SetHertz {
+            ipotcn: int(ipotcn, "ipotcn")?,
+            params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
+        })
     });
 }
 
@@ -558,12 +553,10 @@ pub unsafe extern "C" fn cntc_setpotcontact(
     nparam: *const c_int,
     params: *const f64,
 ) {
-    run("cntc_setpotcontact", ire, icp, || {
-        let (r, c, ipot) = (int(ire, "ire")?, int(icp, "icp")?, int(ipotcn, "ipotcn")?);
-        let v = slice(params, len(nparam, "nparam")?, "params")?;
-        with_element(r, c, |e| match e {
-            Element::WheelRail(w) => w.set_discretisation(ipot, v).map(|_| 0),
-            Element::Basic(_) => e.patch_mut(c)?.set_potcon(ipot, v).map(|_| 0),
+    setter("cntc_setpotcontact", ire, icp, || {
+        Ok(Call::SetPotcon {
+            ipotcn: int(ipotcn, "ipotcn")?,
+            params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
         })
     });
 }
@@ -571,10 +564,9 @@ pub unsafe extern "C" fn cntc_setpotcontact(
 /// `cntc_setverticalforce`: FZ of a wheel/rail problem (module 1).
 #[no_mangle]
 pub unsafe extern "C" fn cntc_setverticalforce(ire: *const c_int, fz: *const f64) {
-    run("cntc_setverticalforce", ire, std::ptr::null(), || {
-        let (r, fz) = (int(ire, "ire")?, real(fz, "fz")?);
-        with_element(r, -1, |e| {
-            e.wheelrail_mut()?.set_vertical_force(fz).map(|_| 0)
+    wheelrail_setter("cntc_setverticalforce", ire, || {
+        Ok(Call::SetVerticalForce {
+            fz: real(fz, "fz")?,
         })
     });
 }
@@ -586,8 +578,10 @@ pub unsafe extern "C" fn cntc_setpenetration(
     icp: *const c_int,
     pen: *const f64,
 ) {
-    patch_setter("cntc_setpenetration", ire, icp, |p| {
-        p.set_penetration(real(pen, "pen")?)
+    setter("cntc_setpenetration", ire, icp, || {
+        Ok(Call::SetPenetration {
+            pen: real(pen, "pen")?,
+        })
     });
 }
 
@@ -598,8 +592,10 @@ pub unsafe extern "C" fn cntc_setnormalforce(
     icp: *const c_int,
     fn_: *const f64,
 ) {
-    patch_setter("cntc_setnormalforce", ire, icp, |p| {
-        p.set_normal_force(real(fn_, "fn")?)
+    setter("cntc_setnormalforce", ire, icp, || {
+        Ok(Call::SetNormalForce {
+            fn_: real(fn_, "fn")?,
+        })
     });
 }
 
@@ -612,10 +608,11 @@ pub unsafe extern "C" fn cntc_setundeformeddistc(
     nparam: *const c_int,
     prmudf: *const f64,
 ) {
-    patch_setter("cntc_setundeformeddistc", ire, icp, |p| {
-        let b = int(ibase, "ibase")?;
-        let v = slice(prmudf, len(nparam, "nparam")?, "prmudf")?;
-        p.set_udist(b, v)
+    setter("cntc_setundeformeddistc", ire, icp, || {
+        Ok(Call::SetUndeformedDistance {
+            ibase: int(ibase, "ibase")?,
+            params: slice(prmudf, len(nparam, "nparam")?, "prmudf")?.to_vec(),
+        })
     });
 }
 
@@ -628,8 +625,12 @@ pub unsafe extern "C" fn cntc_setcreepages(
     vy: *const f64,
     phi: *const f64,
 ) {
-    patch_setter("cntc_setcreepages", ire, icp, |p| {
-        p.set_creepages(real(vx, "vx")?, real(vy, "vy")?, real(phi, "phi")?)
+    setter("cntc_setcreepages", ire, icp, || {
+        Ok(Call::SetCreepages {
+            vx: real(vx, "vx")?,
+            vy: real(vy, "vy")?,
+            phi: real(phi, "phi")?,
+        })
     });
 }
 
@@ -642,9 +643,12 @@ pub unsafe extern "C" fn cntc_setextrarigidslip(
     wx: *const f64,
     wy: *const f64,
 ) {
-    patch_setter("cntc_setextrarigidslip", ire, icp, |p| {
+    setter("cntc_setextrarigidslip", ire, icp, || {
         let n = len(lenarr, "lenarr")?;
-        p.set_extra_rigid_slip(slice(wx, n, "wx")?, slice(wy, n, "wy")?)
+        Ok(Call::SetExtraRigidSlip {
+            wx: slice(wx, n, "wx")?.to_vec(),
+            wy: slice(wy, n, "wy")?.to_vec(),
+        })
     });
 }
 
@@ -656,25 +660,16 @@ pub unsafe extern "C" fn cntc_settangentialforces(
     fx: *const f64,
     fy: *const f64,
 ) {
-    patch_setter("cntc_settangentialforces", ire, icp, |p| {
-        p.set_tangential_forces(real(fx, "fx")?, real(fy, "fy")?)
+    setter("cntc_settangentialforces", ire, icp, || {
+        Ok(Call::SetTangentialForces {
+            fx: real(fx, "fx")?,
+            fy: real(fy, "fy")?,
+        })
     });
 }
 
 // ---------------------------------------------------------------------
 // Wheel/rail configuration (module 1).
-
-/// Runs a module 1 setter on `ire`.
-unsafe fn wheelrail_setter(
-    name: &'static str,
-    ire: *const c_int,
-    f: impl FnOnce(&mut crate::module1::WheelRail) -> Result<()>,
-) {
-    run(name, ire, std::ptr::null(), || {
-        let r = int(ire, "ire")?;
-        with_element(r, -1, |e| e.wheelrail_mut().and_then(f).map(|_| 0))
-    });
-}
 
 /// `cntc_setprofileinputfname`: a profile from a file.
 #[no_mangle]
@@ -687,11 +682,14 @@ pub unsafe extern "C" fn cntc_setprofileinputfname(
     nreals: *const c_int,
     rparam: *const f64,
 ) {
-    wheelrail_setter("cntc_setprofileinputfname", ire, |w| {
-        let f = string(c_fname, len_fname, "c_fname")?;
-        let ip = slice(iparam, len(nints, "nints")?, "iparam")?;
-        let rp = slice(rparam, len(nreals, "nreals")?, "rparam")?;
-        w.set_profile_file(&f, ip, rp)
+    wheelrail_setter("cntc_setprofileinputfname", ire, || {
+        let fname = string(c_fname, len_fname, "c_fname")?;
+        Ok(Call::SetProfileFile {
+            content: crate::module1::read_profile_file(&fname),
+            fname,
+            ints: slice(iparam, len(nints, "nints")?, "iparam")?.to_vec(),
+            reals: slice(rparam, len(nreals, "nreals")?, "rparam")?.to_vec(),
+        })
     });
 }
 
@@ -706,12 +704,14 @@ pub unsafe extern "C" fn cntc_setprofileinputvalues(
     nreals: *const c_int,
     rparam: *const f64,
 ) {
-    wheelrail_setter("cntc_setprofileinputvalues", ire, |w| {
+    wheelrail_setter("cntc_setprofileinputvalues", ire, || {
         let n = len(npoint, "npoint")?;
-        let v = slice(values, 2 * n, "values")?;
-        let ip = slice(iparam, len(nints, "nints")?, "iparam")?;
-        let rp = slice(rparam, len(nreals, "nreals")?, "rparam")?;
-        w.set_profile_values(n, v, ip, rp)
+        Ok(Call::SetProfileValues {
+            npoint: n,
+            values: slice(values, 2 * n, "values")?.to_vec(),
+            ints: slice(iparam, len(nints, "nints")?, "iparam")?.to_vec(),
+            reals: slice(rparam, len(nreals, "nreals")?, "rparam")?.to_vec(),
+        })
     });
 }
 
@@ -723,14 +723,16 @@ pub unsafe extern "C" fn cntc_settrackdimensions(
     nparam: *const c_int,
     params: *const f64,
 ) {
-    wheelrail_setter("cntc_settrackdimensions", ire, |w| {
-        let z = int(ztrack, "ztrack")?;
-        w.set_track_dimensions(z, slice(params, len(nparam, "nparam")?, "params")?)
+    wheelrail_setter("cntc_settrackdimensions", ire, || {
+        Ok(Call::SetTrackDimensions {
+            ztrack: int(ztrack, "ztrack")?,
+            params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
+        })
     });
 }
 
 macro_rules! wheelset_setter {
-    ($name:ident, $method:ident) => {
+    ($name:ident, $call:ident) => {
         #[doc = concat!("`", stringify!($name), "`.")]
         #[no_mangle]
         pub unsafe extern "C" fn $name(
@@ -739,18 +741,20 @@ macro_rules! wheelset_setter {
             nparam: *const c_int,
             params: *const f64,
         ) {
-            wheelrail_setter(stringify!($name), ire, |w| {
-                let e = int(ewheel, "ewheel")?;
-                w.$method(e, slice(params, len(nparam, "nparam")?, "params")?)
+            wheelrail_setter(stringify!($name), ire, || {
+                Ok(Call::$call {
+                    ewheel: int(ewheel, "ewheel")?,
+                    params: slice(params, len(nparam, "nparam")?, "params")?.to_vec(),
+                })
             });
         }
     };
 }
 
-wheelset_setter!(cntc_setwheelsetdimensions, set_wheelset_dimensions);
-wheelset_setter!(cntc_setwheelsetposition, set_wheelset_position);
-wheelset_setter!(cntc_setwheelsetvelocity, set_wheelset_velocity);
-wheelset_setter!(cntc_setwheelsetflexibility, set_wheelset_flexibility);
+wheelset_setter!(cntc_setwheelsetdimensions, SetWheelsetDimensions);
+wheelset_setter!(cntc_setwheelsetposition, SetWheelsetPosition);
+wheelset_setter!(cntc_setwheelsetvelocity, SetWheelsetVelocity);
+wheelset_setter!(cntc_setwheelsetflexibility, SetWheelsetFlexibility);
 
 // ---------------------------------------------------------------------
 // Subsurface stresses.
@@ -905,10 +909,11 @@ pub unsafe extern "C" fn cntc_calculate3(ire: *const c_int, icp: *const c_int, i
 
 fn calculate(ire: i32, icp: i32) -> Result<i32> {
     let lib = Library::get();
-    with_element(ire, icp, |e| {
-        let code = match e {
-            Element::WheelRail(w) => w.calculate(lib.cache),
-            Element::Basic(_) => e.patch_mut(icp)?.calculate(lib.cache),
+    with_entry(ire, icp, |e| {
+        let code = if crate::forward::enabled() {
+            crate::forward::calculate(e, ire, icp)
+        } else {
+            e.element.calculate(icp, lib.cache)
         }?;
         if code > 0 {
             log::warning(
@@ -984,7 +989,7 @@ pub unsafe extern "C" fn cntc_getparameters(
     run("cntc_getparameters", ire, icp, || {
         let (r, c, t) = (int(ire, "ire")?, int(icp, "icp")?, int(itask, "itask")?);
         let n = len(lenarr, "lenarr")?;
-        let v = with_existing(r, |e| crate::library::parameters(e, c, t))?;
+        let v = with_existing(r, |e| crate::element::parameters(e, c, t))?;
         put_array(values, n, &v, "values").map(|_| 0)
     });
 }
@@ -1080,7 +1085,7 @@ pub unsafe extern "C" fn cntc_getcontactlocation(
             if c < 1 || c as usize > w.outcomes.len() {
                 return Ok(Vec::new());
             }
-            Ok(crate::library::location_values(
+            Ok(crate::element::location_values(
                 &w.outcomes[c as usize - 1],
                 w.config.units,
             ))

@@ -5,35 +5,29 @@
 //! user routines load `contact_addon_linux64.so` and call it with CONTACT's
 //! names, calling convention, units, flags and error codes; this crate
 //! builds that file (`crates/cntc/build-lib.sh`) and answers those calls
-//! with the solver crate, in process.
+//! with the solver crate, in process or, forwarded, on a railcontact
+//! server with the same code (`railcontact-cntc-core`).
 //!
 //! * [`ffi`]: the exported functions (every argument by reference; a null
 //!   pointer or a negative length is an error code, never a crash);
-//! * [`library`]: result elements (`ire`) and their patches (`icp`),
-//!   created on first use, each behind its own lock;
-//! * [`config`]: control digits, materials, friction and solver parameters
-//!   of a problem; [`units`]: the unit conventions and the one conversion
-//!   to SI; [`flags`]: CONTACT's magic numbers and error codes;
-//! * [`module3`]: one contact patch (Hertzian or given potential contact,
-//!   undeformed distance, creepages, shifts or forces; exact solver or
-//!   FASTSIM); [`module1`]: a wheel on its rail; [`subsurface`]: stresses
-//!   below a patch;
-//! * [`getters`] and [`outcome`]: what a calculation leaves and how each
-//!   getter reads it; [`error`]: errors and their `ierror` codes; [`log`]:
-//!   the library's messages.
+//! * [`library`]: the process's result elements (`ire`), created on first
+//!   use, each behind its own lock, and the global flags; [`log`]: the
+//!   library's messages; [`forward`]: calculations forwarded to a
+//!   railcontact server;
+//! * re-exported from `railcontact-cntc-core` (`crates/cntc-core`), what
+//!   a calculation is: [`element`] (a result element and its patches
+//!   `icp`), [`config`], [`units`], [`flags`], [`module3`], [`module1`],
+//!   [`subsurface`], [`getters`], [`outcome`], [`error`].
 //!
 //! `docs/cntc.md` is the user's page: which calls and flag values are
 //! supported and how to point an existing coupling at this library.
 
-pub mod config;
-pub mod error;
 pub mod ffi;
-pub mod flags;
-pub mod getters;
+pub mod forward;
 pub mod library;
 pub mod log;
-pub mod module1;
-pub mod module3;
-pub mod outcome;
-pub mod subsurface;
-pub mod units;
+
+pub use railcontact_cntc_core::{
+    call, config, element, error, flags, getters, module1, module3, outcome, remote, subsurface,
+    units,
+};

@@ -1,88 +1,42 @@
 //! The library as its users call it: the example programs in C, Fortran
 //! (ISO_C_BINDING) and Python (ctypes) built and run against the shared
 //! library this package builds, their results checked against CONTACT's
-//! own library, and every exported symbol linked from C.
+//! own library, and every exported symbol linked from C. The C examples
+//! and the Python one also run forwarded to a railcontact server in the
+//! test process (`RAILCONTACT_CNTC_SERVER`) and print the same digits.
 //!
 //! gcc, gfortran and python3 are needed; missing compilers are installed
 //! with apt-get (as root or through `sudo -n`, said on stderr first), or
 //! the test is skipped with a `skipped:` line when
 //! `RAILCONTACT_SKIP_CLIENT_TESTS` is set.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 use std::process::Command;
+use std::sync::OnceLock;
 
-use railcontact_testkit::{apt_install, check, skip_client_test};
+use common::{build, build_and_run, library_dir, package, run, scratch, tool, TestServer};
+use railcontact_testkit::check;
 
-/// The package's folder.
-fn package() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+/// The server the forwarded runs use (one per test binary).
+fn server() -> &'static TestServer {
+    static SERVER: OnceLock<TestServer> = OnceLock::new();
+    SERVER.get_or_init(|| TestServer::start("127.0.0.1:0"))
 }
 
-/// The folder of the shared library `libcontact_addon.so` cargo built for
-/// these tests (beside the test executable).
-fn library_dir() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().unwrap().to_path_buf();
-    assert!(
-        dir.join("libcontact_addon.so").exists(),
-        "no libcontact_addon.so in {}",
-        dir.display()
+/// Runs program `exe` with `args` in process and forwarded to
+/// [`server`]: the output of both, which must be the same to the last
+/// digit printed (the calculations are the same bit for bit).
+fn both_modes(exe: &Path, args: &[&Path]) -> String {
+    let local = run(exe, args, &[]);
+    let target = server().addr.to_string();
+    let forwarded = run(exe, args, &[("RAILCONTACT_CNTC_SERVER", target.as_str())]);
+    assert_eq!(
+        forwarded, local,
+        "forwarded to {target}:\n{forwarded}\nin process:\n{local}"
     );
-    dir
-}
-
-/// A fresh folder for a test's build products.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("railcontact-cntc-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// Makes sure the program `tool` exists, installing Debian `package` when
-/// it does not; false when the client tests are to be skipped.
-fn tool(tool: &str, package: &str, what: &str) -> bool {
-    if Command::new(tool).arg("--version").output().is_ok() {
-        return true;
-    }
-    if skip_client_test(what) {
-        return false;
-    }
-    apt_install(&[package], what, &format!("{tool} builds the example"));
-    true
-}
-
-/// Links `source` (C or Fortran) with `compiler` against the library and
-/// runs it with `args`; its standard output.
-fn build_and_run(compiler: &str, source: &Path, name: &str, args: &[&Path]) -> String {
-    let lib = library_dir();
-    let dir = scratch(name);
-    let exe = dir.join(name);
-    let mut cc = Command::new(compiler);
-    cc.arg(source)
-        .arg("-I")
-        .arg(package().join("include"))
-        .arg("-o")
-        .arg(&exe)
-        .arg("-L")
-        .arg(&lib)
-        .arg("-lcontact_addon")
-        .arg(format!("-Wl,-rpath,{}", lib.display()))
-        .current_dir(&dir);
-    if compiler == "cc" {
-        cc.args(["-Wall", "-Werror"]);
-    }
-    check(
-        &format!("{compiler} {}", source.display()),
-        &cc.output().unwrap(),
-    );
-    let out = Command::new(&exe)
-        .args(args)
-        .current_dir(&dir)
-        .output()
-        .unwrap();
-    check(&format!("running {name}"), &out);
-    let _ = std::fs::remove_dir_all(&dir);
-    String::from_utf8(out.stdout).unwrap()
+    local
 }
 
 /// One result line of the module 3 examples: tag, ierror, FN, FX, FY, MZ,
@@ -185,12 +139,8 @@ fn c_example_gives_contacts_results() {
     ) {
         return;
     }
-    let out = build_and_run(
-        "cc",
-        &package().join("examples/c/module3.c"),
-        "module3_c",
-        &[],
-    );
+    let exe = build("cc", &package().join("examples/c/module3.c"), "module3_c");
+    let out = both_modes(&exe, &[]);
     assert!(out.starts_with("ifcver 2520 ierror 0\n"), "{out}");
     matches_contact(&out);
 }
@@ -230,15 +180,22 @@ fn python_example_gives_the_c_examples_numbers() {
         return;
     }
     let lib = library_dir().join("libcontact_addon.so");
-    let out = Command::new("python3")
-        .arg(package().join("examples/python/module3.py"))
-        .arg(&lib)
-        .output()
-        .unwrap();
-    check("python3 examples/python/module3.py", &out);
-    let py = String::from_utf8(out.stdout).unwrap();
+    let python = |env: &[(&str, &str)]| {
+        let out = Command::new("python3")
+            .arg(package().join("examples/python/module3.py"))
+            .arg(&lib)
+            .envs(env.iter().copied())
+            .output()
+            .unwrap();
+        check("python3 examples/python/module3.py", &out);
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let py = python(&[]);
     assert!(py.starts_with("ifcver 2520 ierror 0\n"), "{py}");
     matches_contact(&py);
+    let target = server().addr.to_string();
+    let forwarded = python(&[("RAILCONTACT_CNTC_SERVER", target.as_str())]);
+    assert_eq!(forwarded, py, "forwarded to {target}");
 }
 
 /// CONTACT's own library (as [`CONTACT_MODULE3`]) running
@@ -273,7 +230,9 @@ fn module1_examples_give_contacts_results() {
     ) {
         return;
     }
-    let c = module1_output("cc", "examples/c/module1.c", "module1_c");
+    let profiles = package().join("../solver/profiles");
+    let exe = build("cc", &package().join("examples/c/module1.c"), "module1_c");
+    let c = both_modes(&exe, &[&profiles]);
     let ours = parse(&c);
     let theirs = parse(CONTACT_MODULE1);
     assert_eq!(ours.len(), 2, "{c}");

@@ -13,7 +13,7 @@
 //! ([`crate::core::influence`]). Its totals are forces per metre. Every
 //! other grid has at least [`MIN_ELEMENTS`] rows.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
@@ -23,8 +23,10 @@ pub const MIN_ELEMENTS: usize = 4;
 /// Largest number of elements accepted in one direction.
 pub const MAX_ELEMENTS_PER_DIRECTION: usize = 2048;
 
-/// A validated potential contact grid.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// A validated potential contact grid (read back from serde only through
+/// [`Grid::new`] or [`Grid::line_from`], so a deserialised grid is valid).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "GridFields")]
 pub struct Grid {
     /// Elements in x (rolling direction).
     pub nx: usize,
@@ -38,6 +40,36 @@ pub struct Grid {
     pub x0_m: f64,
     /// y of the grid's lower-left corner \[m\].
     pub y0_m: f64,
+}
+
+/// A grid's fields as serialised, before they are checked.
+#[derive(Deserialize)]
+struct GridFields {
+    nx: usize,
+    ny: usize,
+    dx_m: f64,
+    dy_m: f64,
+    x0_m: f64,
+    y0_m: f64,
+}
+
+impl TryFrom<GridFields> for Grid {
+    type Error = ContactError;
+
+    fn try_from(g: GridFields) -> Result<Self, ContactError> {
+        if g.ny == 1 {
+            let line = Grid::line_from(g.nx, g.dx_m, g.x0_m)?;
+            if line.dy_m != g.dy_m || line.y0_m != g.y0_m {
+                return Err(ContactError::invalid(
+                    "grid.dy_m",
+                    "a line-contact grid has the unit length's row",
+                ));
+            }
+            Ok(line)
+        } else {
+            Grid::new(g.nx, g.ny, g.dx_m, g.dy_m, g.x0_m, g.y0_m)
+        }
+    }
 }
 
 impl Grid {

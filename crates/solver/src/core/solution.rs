@@ -1,9 +1,9 @@
 //! What a solve returns: per-element fields, totals and solver information.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// State of one element of the potential contact grid.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum ElementState {
     /// Outside the contact area (p_n = 0).
@@ -108,7 +108,7 @@ pub struct SolveInfo {
 }
 
 /// Per-element results on the potential contact grid (index `iy * nx + ix`).
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 pub struct ElementFields {
     /// Normal pressure p_n on body 1 \[Pa\], >= 0.
     pub pressure_pa: Vec<f64>,

@@ -123,7 +123,7 @@ impl WheelRailError {
 }
 
 /// One side of the track and wheelset.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
     /// The left wheel and rail (y < 0).

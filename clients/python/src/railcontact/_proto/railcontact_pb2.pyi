@@ -1465,3 +1465,47 @@ class WheelRailSessionResponse(_message.Message):
     rolled_back: SessionRolledBack
     error: ItemError
     def __init__(self, opened: _Optional[_Union[WheelRailSessionOpened, _Mapping]] = ..., step: _Optional[_Union[WheelRailSessionStepResult, _Mapping]] = ..., rolled_back: _Optional[_Union[SessionRolledBack, _Mapping]] = ..., error: _Optional[_Union[ItemError, _Mapping]] = ...) -> None: ...
+
+class ContactLibraryRequest(_message.Message):
+    __slots__ = ("open", "calculate")
+    OPEN_FIELD_NUMBER: _ClassVar[int]
+    CALCULATE_FIELD_NUMBER: _ClassVar[int]
+    open: ContactLibraryOpen
+    calculate: ContactLibraryCalculate
+    def __init__(self, open: _Optional[_Union[ContactLibraryOpen, _Mapping]] = ..., calculate: _Optional[_Union[ContactLibraryCalculate, _Mapping]] = ...) -> None: ...
+
+class ContactLibraryOpen(_message.Message):
+    __slots__ = ("format_version", "module", "ire", "client_label")
+    FORMAT_VERSION_FIELD_NUMBER: _ClassVar[int]
+    MODULE_FIELD_NUMBER: _ClassVar[int]
+    IRE_FIELD_NUMBER: _ClassVar[int]
+    CLIENT_LABEL_FIELD_NUMBER: _ClassVar[int]
+    format_version: int
+    module: int
+    ire: int
+    client_label: str
+    def __init__(self, format_version: _Optional[int] = ..., module: _Optional[int] = ..., ire: _Optional[int] = ..., client_label: _Optional[str] = ...) -> None: ...
+
+class ContactLibraryCalculate(_message.Message):
+    __slots__ = ("request",)
+    REQUEST_FIELD_NUMBER: _ClassVar[int]
+    request: bytes
+    def __init__(self, request: _Optional[bytes] = ...) -> None: ...
+
+class ContactLibraryResponse(_message.Message):
+    __slots__ = ("opened", "reply", "error")
+    OPENED_FIELD_NUMBER: _ClassVar[int]
+    REPLY_FIELD_NUMBER: _ClassVar[int]
+    ERROR_FIELD_NUMBER: _ClassVar[int]
+    opened: ContactLibraryOpened
+    reply: bytes
+    error: ItemError
+    def __init__(self, opened: _Optional[_Union[ContactLibraryOpened, _Mapping]] = ..., reply: _Optional[bytes] = ..., error: _Optional[_Union[ItemError, _Mapping]] = ...) -> None: ...
+
+class ContactLibraryOpened(_message.Message):
+    __slots__ = ("session_id", "format_version")
+    SESSION_ID_FIELD_NUMBER: _ClassVar[int]
+    FORMAT_VERSION_FIELD_NUMBER: _ClassVar[int]
+    session_id: str
+    format_version: int
+    def __init__(self, session_id: _Optional[str] = ..., format_version: _Optional[int] = ...) -> None: ...

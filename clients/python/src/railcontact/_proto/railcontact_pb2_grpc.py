@@ -93,6 +93,11 @@ class ContactServiceStub:
                 request_serializer=railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionRequest.SerializeToString,
                 response_deserializer=railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionResponse.FromString,
                 _registered_method=True)
+        self.ContactLibrary = channel.stream_stream(
+                '/railcontact.v1.ContactService/ContactLibrary',
+                request_serializer=railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryRequest.SerializeToString,
+                response_deserializer=railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryResponse.FromString,
+                _registered_method=True)
 
 
 class ContactServiceServicer:
@@ -239,6 +244,23 @@ class ContactServiceServicer:
         context.set_details('Method not implemented!')
         raise NotImplementedError('Method not implemented!')
 
+    def ContactLibrary(self, request_iterator, context):
+        """CONTACT's library (crates/cntc, libcontact_addon.so) forwarding its
+        calculations: one stream per result element (`ire`). The first request
+        opens it (ContactLibraryOpen: the element's module); each calculation
+        sends the configuring calls made since the last one and the patch to
+        calculate, and gets the calculation's code and results back, so that
+        the server's copy of the element equals the library's and answers bit
+        for bit as the library would in process. The payloads are the
+        `railcontact-cntc-core` crate's (its `remote` module, postcard-encoded,
+        versioned by `format_version`): only that library speaks this call.
+        Sessions, idle timeout and limits as in PatchSession; a grid beyond
+        the server's `max_grid_elements` is refused in the reply.
+        """
+        context.set_code(grpc.StatusCode.UNIMPLEMENTED)
+        context.set_details('Method not implemented!')
+        raise NotImplementedError('Method not implemented!')
+
 
 def add_ContactServiceServicer_to_server(servicer, server):
     rpc_method_handlers = {
@@ -296,6 +318,11 @@ def add_ContactServiceServicer_to_server(servicer, server):
                     servicer.WheelRailSession,
                     request_deserializer=railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionRequest.FromString,
                     response_serializer=railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionResponse.SerializeToString,
+            ),
+            'ContactLibrary': grpc.stream_stream_rpc_method_handler(
+                    servicer.ContactLibrary,
+                    request_deserializer=railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryRequest.FromString,
+                    response_serializer=railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryResponse.SerializeToString,
             ),
     }
     generic_handler = grpc.method_handlers_generic_handler(
@@ -599,6 +626,33 @@ class ContactService:
             '/railcontact.v1.ContactService/WheelRailSession',
             railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionRequest.SerializeToString,
             railcontact_dot_v1_dot_railcontact__pb2.WheelRailSessionResponse.FromString,
+            options,
+            channel_credentials,
+            insecure,
+            call_credentials,
+            compression,
+            wait_for_ready,
+            timeout,
+            metadata,
+            _registered_method=True)
+
+    @staticmethod
+    def ContactLibrary(request_iterator,
+            target,
+            options=(),
+            channel_credentials=None,
+            call_credentials=None,
+            insecure=False,
+            compression=None,
+            wait_for_ready=None,
+            timeout=None,
+            metadata=None):
+        return grpc.experimental.stream_stream(
+            request_iterator,
+            target,
+            '/railcontact.v1.ContactService/ContactLibrary',
+            railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryRequest.SerializeToString,
+            railcontact_dot_v1_dot_railcontact__pb2.ContactLibraryResponse.FromString,
             options,
             channel_credentials,
             insecure,

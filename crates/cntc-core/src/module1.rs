@@ -62,17 +62,16 @@ use railcontact_solver::core::problem::Friction;
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
-    load_profile_with, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit, LoadOptions,
-    MirrorZ, PatchResult, Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline,
-    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
-    WheelsetVelocity,
+    parse_profile, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side,
+    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
+    WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
+use crate::element::MAX_ICP;
 use crate::error::{CntcError, Result};
 use crate::flags;
-use crate::library::MAX_ICP;
 use crate::outcome::{Location, Outcome};
 use crate::subsurface::Blocks;
 use crate::units::Units;
@@ -151,8 +150,8 @@ struct Discretisation {
 /// What a calculation leaves besides the outcomes: the frames of the
 /// solved wheel (side frame: x, q, z; q = y on the right, -y on the left)
 /// and each patch's forces and moments for `cntc_getglobalforces`.
-#[derive(Debug, Clone)]
-struct Solved {
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct Solved {
     side: Side,
     /// Wheelset axes in the side frame: forward, axle (outwards), down.
     ws_axes: [[f64; 3]; 3],
@@ -204,6 +203,9 @@ pub struct WheelRail {
     subs_patch: BTreeMap<i32, Blocks>,
     /// The blocks computed below each patch of the last calculation.
     subs_done: Vec<Option<Blocks>>,
+    /// The most elements a patch's grid may have (a server's limit;
+    /// `None`: the solver's).
+    max_grid_elements: Option<usize>,
 }
 
 // ---------------------------------------------------------------------
@@ -365,17 +367,35 @@ fn presmoothed(p: &ProfileInput) -> Result<Profile> {
 /// Reads a profile file as CONTACT does: a relative name is relative to
 /// the process's working directory (said in the message when it cannot be
 /// read).
-fn read_profile_text(fname: &str, options: &LoadOptions) -> Result<Profile> {
+fn read_profile_text(
+    fname: &str,
+    content: std::result::Result<&[u8], &String>,
+    options: &LoadOptions,
+) -> Result<Profile> {
     const CALL: &str = "cntc_setprofileinputfname";
+    let bytes = content.map_err(|why| CntcError::Profile(format!("{CALL}: {why}")))?;
+    let name = std::path::Path::new(fname)
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| fname.to_string());
+    // Profile files are ASCII; other code pages are tolerated in free text.
+    let text = String::from_utf8_lossy(bytes);
+    parse_profile(&text, &name, options).map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))
+}
+
+/// The bytes of profile file `fname` (a path as the caller gave it), or
+/// why they cannot be read (a relative path: with the working directory
+/// it is relative to).
+pub fn read_profile_file(fname: &str) -> std::result::Result<Vec<u8>, String> {
     let path = std::path::Path::new(fname);
-    load_profile_with(path, options).map_err(|e| {
-        let cwd = match (&e, std::env::current_dir()) {
-            (ProfileError::Io { .. }, Ok(d)) if path.is_relative() => {
+    std::fs::read(path).map_err(|e| {
+        let cwd = match std::env::current_dir() {
+            Ok(d) if path.is_relative() => {
                 format!(" (relative to the working directory {})", d.display())
             }
             _ => String::new(),
         };
-        CntcError::Profile(format!("{CALL}: {e}{cwd}"))
+        format!("cannot read \"{fname}\": {e}{cwd}")
     })
 }
 
@@ -439,8 +459,15 @@ impl WheelRail {
         }
     }
 
-    /// `cntc_setprofileinputfname`: a rail or wheel profile from a file.
-    pub fn set_profile_file(&mut self, fname: &str, iparam: &[i32], rparam: &[f64]) -> Result<()> {
+    /// `cntc_setprofileinputfname`: a rail or wheel profile from file
+    /// `fname`, whose bytes the caller read ([`read_profile_file`]).
+    pub fn set_profile_file(
+        &mut self,
+        fname: &str,
+        content: std::result::Result<&[u8], &String>,
+        iparam: &[i32],
+        rparam: &[f64],
+    ) -> Result<()> {
         const CALL: &str = "cntc_setprofileinputfname";
         let itype = ip(iparam, 1, -1);
         let kind = match itype {
@@ -453,13 +480,14 @@ impl WheelRail {
                 ))
             })?,
         };
-        let r = self.read_profile_file(fname, kind, iparam, rparam);
+        let r = self.read_profile(fname, content, kind, iparam, rparam);
         self.store_profile(kind, r)
     }
 
-    fn read_profile_file(
+    fn read_profile(
         &self,
         fname: &str,
+        content: std::result::Result<&[u8], &String>,
         kind: ProfileKind,
         iparam: &[i32],
         rparam: &[f64],
@@ -484,7 +512,7 @@ impl WheelRail {
             plain_unit: Some(LengthUnit::Millimetre),
             ..LoadOptions::default()
         };
-        let read = read_profile_text(fname, &options)?;
+        let read = read_profile_text(fname, content, &options)?;
         let sclfac = self.profile_scale(rparam);
         let profile = if (sclfac - 1.0).abs() < 1e-12 {
             read
@@ -905,6 +933,32 @@ impl WheelRail {
         r
     }
 
+    /// Limits each patch's grid to `max` elements (a server's limit).
+    pub fn limit_grid_elements(&mut self, max: usize) {
+        self.max_grid_elements = Some(max);
+    }
+
+    /// What the last calculation left (to send to a library that forwards
+    /// its calculations).
+    pub fn calculation_result(&self) -> (Vec<Outcome>, Option<Solved>) {
+        (self.outcomes.clone(), self.solved.clone())
+    }
+
+    /// Takes what a server's calculation left, as [`WheelRail::calculate`]
+    /// leaves it, counting the calculation and its `seconds`.
+    pub fn accept_calculation(
+        &mut self,
+        outcomes: Vec<Outcome>,
+        solved: Option<Solved>,
+        seconds: f64,
+    ) {
+        self.ncase += 1;
+        self.time_s += seconds;
+        self.subs_done = vec![None; outcomes.len()];
+        self.outcomes = outcomes;
+        self.solved = solved;
+    }
+
     /// The side of the C1 digit.
     fn side(&self) -> Result<Side> {
         match self.config.digits.config {
@@ -1137,6 +1191,7 @@ impl WheelRail {
                     reference_point: ReferencePoint::InterpenetrationCentre,
                     ..SearchSettings::default()
                 },
+                max_grid_elements: self.max_grid_elements.unwrap_or(usize::MAX),
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: None,
@@ -1903,6 +1958,13 @@ mod tests {
 
     /// The built-in Manchester benchmark profiles written to a scratch
     /// folder (the library reads profiles from files), once per test run.
+    /// `cntc_setprofileinputfname` of `path` with CONTACT's defaults.
+    fn set_file(w: &mut WheelRail, path: &str) {
+        let content = read_profile_file(path);
+        w.set_profile_file(path, content.as_deref(), &[-1, 0, 0], &[1.0, 0.0])
+            .unwrap();
+    }
+
     fn mbench_files() -> (std::path::PathBuf, std::path::PathBuf) {
         static FILES: std::sync::OnceLock<(std::path::PathBuf, std::path::PathBuf)> =
             std::sync::OnceLock::new();
@@ -1954,11 +2016,11 @@ mod tests {
         let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
         w.set_track_dimensions(3, &track).unwrap();
         let rail = rail.to_str().expect("utf-8 path");
-        w.set_profile_file(rail, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+        set_file(&mut w, rail);
         w.set_wheelset_dimensions(3, &[1360.0, -70.0, 460.0])
             .unwrap();
         let wheel = wheel.to_str().expect("utf-8 path");
-        w.set_profile_file(wheel, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+        set_file(&mut w, wheel);
         w.set_wheelset_flexibility(1, &[0.0; 12]).unwrap();
         w
     }
@@ -2000,7 +2062,7 @@ mod tests {
         close("FY_TR", g[1], -2047.031651446247, 10.0);
         close("FZ_TR", g[2], 9999.99881298233, 1.0);
         close("MX_R_TR", g[3], -199219.16215762054, 500.0);
-        let loc = crate::library::location_values(o, u);
+        let loc = crate::element::location_values(o, u);
         close("YCP_TR", loc[1], 740.4619949606438, 0.1);
         close("DELTCP_TR", loc[3], -0.08617430578329278, 1e-3);
         close("YW_TR", loc[21], 752.5535140797225, 1e-3);
@@ -2035,7 +2097,7 @@ mod tests {
         close("FY_TR", g[1], 12481.440988735432, 50.0);
         close("FZ_TR", g[2], 9999.980063916239, 1.0);
         close("MX_R_TR", g[3], -550303.8316066253, 2000.0);
-        let loc = crate::library::location_values(o, u);
+        let loc = crate::element::location_values(o, u);
         close("DELTCP_TR", loc[3], -1.159126112966055, 2e-3);
         close("ZCP_TR", loc[2], 10.365437584972096, 0.05);
     }
@@ -2064,7 +2126,7 @@ mod tests {
         close("FY_TR", g[1], -3095.7975364776526, 10.0);
         close("MX_R_TR", g[3], 40032.761166105505, 200.0);
         close("MZ_R_TR", g[5], -13235.98784802425, 200.0);
-        let loc = crate::library::location_values(o, u);
+        let loc = crate::element::location_values(o, u);
         close("YCP_TR", loc[1], -756.5055572557221, 0.3);
         close("YR_TR", loc[25], -760.5325577483475, 1e-3);
         // The grid is mirrored: its rows run the other way round.
@@ -2118,7 +2180,7 @@ mod tests {
             let (rail, wheel) = mbench_files();
             for f in [rail, wheel] {
                 let f = f.to_str().expect("utf-8 path").to_string();
-                si.set_profile_file(&f, &[-1, 0, 0], &[1.0, 0.0]).unwrap();
+                set_file(&mut si, &f);
             }
             case(&mut si, 1e-3, 1e-3);
             si.calculate(&cache).unwrap();
@@ -2126,8 +2188,8 @@ mod tests {
             close("FY_TR (SI)", gs[1], body * g[1], 1e-6 * g[1].abs());
             close("MX_R_TR (SI)", gs[3] * 1e3, body * g[3], 1e-6 * g[3].abs());
             let u = si.config.units;
-            let loc = crate::library::location_values(&si.outcomes[0], u);
-            let loc_mm = crate::library::location_values(&w.outcomes[0], w.config.units);
+            let loc = crate::element::location_values(&si.outcomes[0], u);
+            let loc_mm = crate::element::location_values(&w.outcomes[0], w.config.units);
             close("YCP_TR (SI)", loc[1] * 1e3, loc_mm[1], 1e-6);
         }
 
@@ -2224,8 +2286,9 @@ mod tests {
             .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
             .unwrap_err();
         assert!(e.to_string().contains("GAUGHT"), "{e}");
+        let missing = read_profile_file("no-such-file.prr");
         let e = w
-            .set_profile_file("no-such-file.prr", &[], &[])
+            .set_profile_file("no-such-file.prr", missing.as_deref(), &[], &[])
             .unwrap_err();
         assert_eq!(e.ierror(), flags::err::PROFIL);
         assert!(w.calculate(&cache).is_err());

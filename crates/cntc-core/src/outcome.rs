@@ -5,9 +5,10 @@
 
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::solution::{ElementFields, ElementState};
+use serde::{Deserialize, Serialize};
 
 /// A solved contact patch.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Outcome {
     /// The potential contact grid, in the patch's contact frame
     /// (x rolling, y lateral) \[m\].
@@ -68,7 +69,7 @@ pub struct Outcome {
 }
 
 /// The Hertzian solution behind a module 3 grid (`cntc_gethertzcontact`).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct HertzInfo {
     /// Curvatures A, B \[1/m\].
     pub a1_per_m: f64,
@@ -85,7 +86,7 @@ pub struct HertzInfo {
 /// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
 /// CONTACT's reporting frame: a left wheel's y and angles are already those
 /// of the actual (left) side; the getter converts units only.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Location {
     /// Contact reference point in track coordinates (x, y, z) \[m\] and the
     /// contact angle \[rad\].

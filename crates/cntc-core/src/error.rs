@@ -83,6 +83,44 @@ impl CntcError {
         }
     }
 
+    /// The message without the variant's prefix (what
+    /// [`CntcError::from_ierror`] takes back).
+    pub fn detail(&self) -> String {
+        match self {
+            CntcError::Icp(m)
+            | CntcError::NotSupported(m)
+            | CntcError::Friction(m)
+            | CntcError::Discretisation(m)
+            | CntcError::Profile(m)
+            | CntcError::Search(m)
+            | CntcError::ForceIteration(m)
+            | CntcError::Normal(m)
+            | CntcError::Tangential(m)
+            | CntcError::Input(m)
+            | CntcError::Server(m)
+            | CntcError::Other(m) => m.clone(),
+            CntcError::Argument { .. } | CntcError::Ire(_) => self.to_string(),
+        }
+    }
+
+    /// The error of code `ierror` with `detail` (an error that crossed
+    /// the wire); a code of no variant is [`CntcError::Other`].
+    pub fn from_ierror(ierror: i32, detail: String) -> Self {
+        match ierror {
+            err::ICP => CntcError::Icp(detail),
+            err::NOT_SUPPORTED => CntcError::NotSupported(detail),
+            err::FRCLAW => CntcError::Friction(detail),
+            err::DISCR => CntcError::Discretisation(detail),
+            err::PROFIL => CntcError::Profile(detail),
+            err::SEARCH => CntcError::Search(detail),
+            err::FTOT => CntcError::ForceIteration(detail),
+            err::NORM => CntcError::Normal(detail),
+            err::TANG => CntcError::Tangential(detail),
+            err::SERVER => CntcError::Server(detail),
+            _ => CntcError::Other(detail),
+        }
+    }
+
     /// A null or negative argument.
     pub fn argument(arg: &'static str, reason: impl Into<String>) -> Self {
         CntcError::Argument {

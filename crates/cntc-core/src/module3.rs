@@ -924,6 +924,25 @@ impl Patch {
         }))
     }
 
+    /// The number of elements of the potential contact grid set (`None`:
+    /// none set yet).
+    pub fn grid_elements(&self) -> Option<usize> {
+        match &self.potcon {
+            None => None,
+            Some(Potcon::Hertz { mx, my, .. }) => Some(mx.saturating_mul(*my)),
+            Some(Potcon::Grid(g)) => Some(g.len()),
+        }
+    }
+
+    /// Takes the outcome a server's calculation left, as
+    /// [`Patch::calculate`] leaves it, counting the calculation and its
+    /// `seconds`.
+    pub fn accept_calculation(&mut self, outcome: Option<Outcome>, seconds: f64) {
+        self.ncase += 1;
+        self.time_s += seconds;
+        self.outcome = outcome;
+    }
+
     /// Forgets the solver's history (`cntc_finalize`, a new grid).
     pub fn reset_solver(&mut self) {
         self.solver = None;

@@ -1,0 +1,345 @@
+//! The forwarding mode (`CNTC_if_mode` = 1, `RAILCONTACT_CNTC_SERVER`)
+//! against a railcontact server in the test process: every value a getter
+//! reads is the in-process one bit for bit (steady rolling, a transient
+//! sequence of shifts whose history lives on the server, FASTSIM, a prescribed
+//! force, a wheel on its rail); a lost server is `CNTC_err_server` and the
+//! next calculation catches a new server up; a transient sequence cannot
+//! continue on it; elements on several threads forward at once.
+//!
+//! The mode is the library's (global): the tests take turns ([`turn`]).
+
+mod common;
+
+use std::sync::{Mutex, MutexGuard, OnceLock};
+
+use common::TestServer;
+use contact_addon::ffi::*;
+use contact_addon::flags::{self, err};
+
+/// The test server, restartable on the same port; tests take turns.
+fn turn() -> MutexGuard<'static, Option<TestServer>> {
+    static SERVER: OnceLock<Mutex<Option<TestServer>>> = OnceLock::new();
+    let lock = SERVER.get_or_init(|| {
+        let server = TestServer::start("127.0.0.1:0");
+        // Read by the library at its first use, which comes after this.
+        std::env::set_var("RAILCONTACT_CNTC_SERVER", server.addr.to_string());
+        std::env::set_var("RAILCONTACT_CNTC_TIMEOUT_S", "30");
+        Mutex::new(Some(server))
+    });
+    let mut guard = lock.lock().unwrap_or_else(|p| p.into_inner());
+    if guard.is_none() {
+        // A test that failed while its server was down: start it again.
+        let addr = std::env::var("RAILCONTACT_CNTC_SERVER").unwrap();
+        *guard = Some(TestServer::start(&addr));
+    }
+    guard
+}
+
+/// Forwarding on (1) or off (0).
+fn mode(on: bool) {
+    let (codes, values) = ([flags::IF_MODE], [on as i32]);
+    unsafe { cntc_setglobalflags(&1, codes.as_ptr(), values.as_ptr()) };
+}
+
+fn set_flags(ire: i32, icp: i32, pairs: &[(i32, i32)]) {
+    let codes: Vec<i32> = pairs.iter().map(|p| p.0).collect();
+    let values: Vec<i32> = pairs.iter().map(|p| p.1).collect();
+    let n = pairs.len() as i32;
+    unsafe { cntc_setflags(&ire, &icp, &n, codes.as_ptr(), values.as_ptr()) };
+}
+
+/// Module 3 on (ire, 1): CONTACT's tractcurv ellipse (a/b = 0.5, 48 x 44
+/// elements, 106.7 kN, mu 0.33, CONTACT's units) with the T digit `tang`
+/// and the P digit `pvtime`.
+fn tractcurv(ire: i32, tang: i32, pvtime: i32) {
+    let icp = 1;
+    set_flags(
+        ire,
+        icp,
+        &[
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_TANG, tang),
+            (flags::IC_NORM, 1),
+            (flags::IC_PVTIME, pvtime),
+        ],
+    );
+    unsafe {
+        let mat = [0.28, 0.28, 82000.0, 82000.0];
+        cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.33, 0.33].as_ptr());
+        let hz = [48.0, 44.0, 0.0008, 0.5, 1.1];
+        cntc_sethertzcontact(&ire, &icp, &-2, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &10000.0);
+        cntc_setnormalforce(&ire, &icp, &106700.0);
+    }
+}
+
+/// Calculates (ire, 1) at creepages `c`: ierror.
+fn calculate(ire: i32, c: [f64; 3]) -> i32 {
+    let (icp, mut ierror) = (1, 12345);
+    unsafe {
+        cntc_setcreepages(&ire, &icp, &c[0], &c[1], &c[2]);
+        cntc_calculate(&ire, &icp, &mut ierror);
+    }
+    ierror
+}
+
+/// Every value the getters of module 3 patch (ire, 1) give, as bits.
+fn patch_values(ire: i32) -> Vec<u64> {
+    let icp = 1;
+    let mut v = Vec::new();
+    unsafe {
+        let (mut fn_, mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0, 0.0);
+        cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fy, &mut mz);
+        let (mut cx, mut cy, mut cp) = (0.0, 0.0, 0.0);
+        cntc_getcreepages(&ire, &icp, &mut cx, &mut cy, &mut cp);
+        let mut pen = 0.0;
+        cntc_getpenetration(&ire, &icp, &mut pen);
+        let (mut ca, mut ha, mut sa) = (0.0, 0.0, 0.0);
+        cntc_getcontactpatchareas(&ire, &icp, &mut ca, &mut ha, &mut sa);
+        let (mut pm, mut tm) = (0.0, 0.0);
+        cntc_getmaximumpressure(&ire, &icp, &mut pm);
+        cntc_getmaximumtraction(&ire, &icp, &mut tm);
+        v.extend([fn_, fx, fy, mz, cx, cy, cp, pen, ca, ha, sa, pm, tm].map(f64::to_bits));
+        let (mut mx, mut my) = (0, 0);
+        cntc_getnumelements(&ire, &icp, &mut mx, &mut my);
+        let n = mx * my;
+        assert!(n > 0, "no grid on element {ire}");
+        let mut arrays = vec![vec![0.0; n as usize]; 5];
+        let [pn, px, py, sx, sy] = &mut arrays[..] else {
+            unreachable!()
+        };
+        cntc_gettractions(
+            &ire,
+            &icp,
+            &n,
+            pn.as_mut_ptr(),
+            px.as_mut_ptr(),
+            py.as_mut_ptr(),
+        );
+        cntc_getmicroslip(&ire, &icp, &n, sx.as_mut_ptr(), sy.as_mut_ptr());
+        for a in &arrays {
+            v.extend(a.iter().map(|x| x.to_bits()));
+        }
+        let mut division = vec![0; n as usize];
+        cntc_getelementdivision(&ire, &icp, &n, division.as_mut_ptr());
+        v.extend(division.iter().map(|d| *d as u64));
+    }
+    v
+}
+
+/// The ierror and getter values of `scenario` run on element `ire` in
+/// process and on element `ire + 100` forwarded.
+fn both_modes(ire: i32, scenario: impl Fn(i32) -> Vec<(i32, Vec<u64>)>) {
+    mode(false);
+    let local = scenario(ire);
+    mode(true);
+    let forwarded = scenario(ire + 100);
+    mode(false);
+    assert_eq!(local.len(), forwarded.len());
+    for (k, (a, b)) in local.iter().zip(&forwarded).enumerate() {
+        assert_eq!(a.0, b.0, "calculation {k}: ierror in process, forwarded");
+        assert_eq!(a.1.len(), b.1.len(), "calculation {k}: values");
+        let differ = a.1.iter().zip(&b.1).filter(|(x, y)| x != y).count();
+        assert_eq!(differ, 0, "calculation {k}: {differ} values differ");
+    }
+    for e in [ire, ire + 100] {
+        unsafe { cntc_finalize(&e) };
+    }
+}
+
+#[test]
+fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
+    let _turn = turn();
+    // Steady rolling, exact: a creep curve and spin.
+    both_modes(1, |ire| {
+        tractcurv(ire, 3, 2);
+        [[1e-4, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 5e-4, 1e-4]]
+            .iter()
+            .map(|c| (calculate(ire, *c), patch_values(ire)))
+            .collect()
+    });
+    // A transient sequence of shifts continued (P = 1): the history is
+    // the server's.
+    both_modes(2, |ire| {
+        tractcurv(ire, 1, 2);
+        let first = (calculate(ire, [1e-3, 0.0, 0.0]), patch_values(ire));
+        set_flags(ire, 1, &[(flags::IC_PVTIME, 1)]);
+        let mut out = vec![first];
+        for k in 1..4 {
+            let c = [1e-3 + 5e-4 * k as f64, 2e-4 * k as f64, 0.0];
+            out.push((calculate(ire, c), patch_values(ire)));
+        }
+        out
+    });
+    // FASTSIM (M = 3) and a prescribed tangential force (F = 1).
+    both_modes(3, |ire| {
+        tractcurv(ire, 3, 2);
+        let mat = [0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0];
+        unsafe { cntc_setmaterialparameters(&ire, &1, &3, &7, mat.as_ptr()) };
+        let fastsim = (calculate(ire, [8e-4, 0.0, 0.0]), patch_values(ire));
+        let mat = [0.28, 0.28, 82000.0, 82000.0];
+        unsafe { cntc_setmaterialparameters(&ire, &1, &0, &4, mat.as_ptr()) };
+        set_flags(ire, 1, &[(flags::IC_FORCE, 1)]);
+        unsafe { cntc_settangentialforces(&ire, &1, &-0.4, &0.0) };
+        let force = (calculate(ire, [0.0, 0.0, 0.0]), patch_values(ire));
+        vec![fastsim, force]
+    });
+    // A wheel on its rail (module 1): the Manchester benchmark's right
+    // wheel in flange contact, its global forces and patch locations.
+    both_modes(4, |ire| {
+        let mut out = Vec::new();
+        for y in [2.0, 7.5] {
+            out.push(mbench_right_wheel(ire, y));
+        }
+        out
+    });
+}
+
+/// The Manchester benchmark's right wheel at lateral shift `y` [mm] on
+/// element `ire` (module 1, CONTACT's units, the MiniProf rail): ierror,
+/// and the global forces and every patch's location as bits.
+fn mbench_right_wheel(ire: i32, y: f64) -> (i32, Vec<u64>) {
+    let icp = -1;
+    let profiles = common::package().join("../solver/profiles");
+    set_flags(
+        ire,
+        icp,
+        &[
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_CONFIG, 1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, 1),
+            (flags::IC_DISCNS, 2),
+        ],
+    );
+    let mut ierror = 12345;
+    let mut v = Vec::new();
+    unsafe {
+        cntc_setmaterialparameters(&ire, &icp, &0, &4, [0.28, 0.28, 82000.0, 82000.0].as_ptr());
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+        cntc_setverticalforce(&ire, &10000.0);
+        let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+        cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+        let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
+        for (name, mirror) in [("MBench_UIC60_v3.ban", 1), ("MBench_S1002_v3.prw", 0)] {
+            let path = profiles.join(name).display().to_string();
+            let len = path.len() as i32;
+            let iparam = [-1, 0, mirror];
+            cntc_setprofileinputfname(
+                &ire,
+                path.as_ptr().cast(),
+                &len,
+                &3,
+                iparam.as_ptr(),
+                &2,
+                [1.0, 0.0].as_ptr(),
+            );
+        }
+        cntc_setwheelsetdimensions(&ire, &3, &3, [1360.0, -70.0, 460.0].as_ptr());
+        cntc_setwheelsetflexibility(&ire, &1, &12, [0.0; 12].as_ptr());
+        let pos = [0.0, y, 0.0, -0.007642, 0.018, 0.0];
+        cntc_setwheelsetposition(&ire, &2, &6, pos.as_ptr());
+        let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, -4.2575747];
+        cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
+        cntc_calculate1(&ire, &mut ierror);
+        let mut npatch = 0;
+        cntc_getnumcontactpatches(&ire, &mut npatch);
+        assert!(npatch >= 1, "ierror {ierror}: no patch at y = {y} mm");
+        let mut g = [0.0; 24];
+        cntc_getglobalforces(&ire, &icp, &24, g.as_mut_ptr());
+        v.extend(g.map(f64::to_bits));
+        for p in 1..=npatch {
+            let mut loc = [0.0; 38];
+            cntc_getcontactlocation(&ire, &p, &38, loc.as_mut_ptr());
+            v.extend(loc.map(f64::to_bits));
+        }
+    }
+    (ierror, v)
+}
+
+#[test]
+fn a_lost_server_is_a_server_error_and_the_next_calculation_catches_a_new_one_up() {
+    let mut server = turn();
+    let (local, fwd) = (11, 12);
+    mode(false);
+    tractcurv(local, 3, 2);
+    assert_eq!(calculate(local, [1e-3, 0.0, 0.0]), 0);
+    let expected = patch_values(local);
+    mode(true);
+    tractcurv(fwd, 3, 2);
+    assert_eq!(calculate(fwd, [2e-3, 0.0, 0.0]), 0);
+    // The server goes away: the calculation says so.
+    let addr = std::env::var("RAILCONTACT_CNTC_SERVER").unwrap();
+    server.take().unwrap().kill();
+    assert_eq!(calculate(fwd, [1e-3, 0.0, 0.0]), err::SERVER);
+    // A server on the same port: the element's calls are sent again and
+    // the calculation is the in-process one, bit for bit.
+    *server = Some(TestServer::start(&addr));
+    assert_eq!(calculate(fwd, [1e-3, 0.0, 0.0]), 0);
+    assert_eq!(patch_values(fwd), expected);
+    mode(false);
+    for e in [local, fwd] {
+        unsafe { cntc_finalize(&e) };
+    }
+}
+
+#[test]
+fn a_transient_sequence_does_not_continue_on_a_new_server() {
+    let mut server = turn();
+    let ire = 21;
+    mode(true);
+    tractcurv(ire, 1, 2);
+    assert_eq!(calculate(ire, [1e-3, 0.0, 0.0]), 0);
+    set_flags(ire, 1, &[(flags::IC_PVTIME, 1)]);
+    assert_eq!(calculate(ire, [2e-3, 0.0, 0.0]), 0);
+    let addr = std::env::var("RAILCONTACT_CNTC_SERVER").unwrap();
+    server.take().unwrap().kill();
+    *server = Some(TestServer::start(&addr));
+    // The element's stream went with the old server; the new copy has no
+    // history: continuing is refused, starting again (P = 2) is not.
+    assert_eq!(calculate(ire, [3e-3, 0.0, 0.0]), err::SERVER);
+    assert_eq!(calculate(ire, [3e-3, 0.0, 0.0]), err::SERVER);
+    set_flags(ire, 1, &[(flags::IC_PVTIME, 2)]);
+    assert_eq!(calculate(ire, [3e-3, 0.0, 0.0]), 0);
+    set_flags(ire, 1, &[(flags::IC_PVTIME, 1)]);
+    assert_eq!(calculate(ire, [4e-3, 0.0, 0.0]), 0);
+    mode(false);
+    unsafe { cntc_finalize(&ire) };
+}
+
+#[test]
+fn elements_on_several_threads_forward_at_once() {
+    let _turn = turn();
+    mode(false);
+    let expected: Vec<Vec<u64>> = (0..4)
+        .map(|t| {
+            let ire = 31 + t;
+            tractcurv(ire, 3, 2);
+            assert_eq!(calculate(ire, [2e-4 * (t + 1) as f64, 0.0, 0.0]), 0);
+            let v = patch_values(ire);
+            unsafe { cntc_finalize(&ire) };
+            v
+        })
+        .collect();
+    mode(true);
+    let got: Vec<Vec<u64>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..4)
+            .map(|t| {
+                s.spawn(move || {
+                    let ire = 41 + t;
+                    tractcurv(ire, 3, 2);
+                    assert_eq!(calculate(ire, [2e-4 * (t + 1) as f64, 0.0, 0.0]), 0);
+                    let v = patch_values(ire);
+                    unsafe { cntc_finalize(&ire) };
+                    v
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    mode(false);
+    assert_eq!(got, expected);
+}
