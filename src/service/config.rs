@@ -117,7 +117,8 @@ pub struct ServeConfig {
     /// free port).
     pub listen: SocketAddr,
     /// Address of the Prometheus metrics endpoint (`GET /metrics`, plain
-    /// HTTP); not set: no endpoint (default).
+    /// HTTP, no token); not set: no endpoint (default). An address other
+    /// than loopback needs `metrics_insecure`.
     pub metrics_listen: Option<SocketAddr>,
     /// Solve threads at once, per lane (default 0: one per core). An exact
     /// or conformal wheelset takes two when two are free, one per wheel.
@@ -228,6 +229,14 @@ pub struct ServeConfig {
     /// and tokens (default false: such a start is refused). A warning is
     /// logged at start.
     pub insecure: bool,
+    /// Allow `metrics_listen` on an address other than loopback (default
+    /// false: such a start is refused). The metrics port is plain HTTP
+    /// without a token whatever the gRPC port's TLS and tokens, so this is
+    /// for where something else keeps the port to the scraper: a
+    /// container whose port is published on loopback or a private
+    /// network, a Kubernetes NetworkPolicy, a firewall. A warning is
+    /// logged at start. Independent of `insecure`.
+    pub metrics_insecure: bool,
     /// The log's format on stderr: `text` (default: one readable line per
     /// event) or `json` (one JSON object per line, for log shippers:
     /// `timestamp`, `level`, `fields`, `target`, `spans`).
@@ -290,6 +299,7 @@ impl Default for ServeConfig {
             auth_tokens_file: None,
             reflection: true,
             insecure: false,
+            metrics_insecure: false,
             log_format: LogFormat::Text,
         }
     }
@@ -330,6 +340,10 @@ pub struct ServeFlags {
     /// and tokens (logs a warning).
     #[arg(long)]
     pub insecure: bool,
+    /// Allow --metrics-listen on an address other than loopback (plain
+    /// HTTP, no token; logs a warning).
+    #[arg(long)]
+    pub metrics_insecure: bool,
 }
 
 impl ServeConfig {
@@ -389,6 +403,7 @@ impl ServeConfig {
             }
         }
         c.insecure |= flags.insecure;
+        c.metrics_insecure |= flags.metrics_insecure;
         match (&c.tls_cert, &c.tls_key) {
             (Some(_), None) => {
                 errors.push("tls_cert is set but tls_key is not: set both (TLS) or neither".into())
@@ -461,11 +476,50 @@ impl ServeConfig {
         }
     }
 
-    /// Whether the gRPC port may listen where it is asked to. Loopback is
-    /// always allowed; any other address needs both TLS (`tls_cert`,
-    /// `tls_key`) and tokens (`auth_tokens_file`), or `insecure`. `Ok`
-    /// holds the warning to log when `insecure` is what allowed it.
+    /// Whether the ports may listen where they are asked to. The gRPC
+    /// port: loopback always; any other address needs both TLS
+    /// (`tls_cert`, `tls_key`) and tokens (`auth_tokens_file`), or
+    /// `insecure`. The metrics port, plain HTTP without a token whatever
+    /// the gRPC port has: loopback always; any other address needs
+    /// `metrics_insecure`. `Err` names every refusal; `Ok` holds the
+    /// warning to log when an override is what allowed a port (both in
+    /// one text when both did).
     pub fn check_exposure(&self) -> Result<Option<String>, String> {
+        let mut warnings = Vec::new();
+        let mut refusals = Vec::new();
+        match self.check_grpc_exposure() {
+            Ok(Some(w)) => warnings.push(w),
+            Ok(None) => {}
+            Err(e) => refusals.push(e),
+        }
+        if let Some(metrics) = self.metrics_listen.filter(|a| !a.ip().is_loopback()) {
+            if self.metrics_insecure {
+                warnings.push(format!(
+                    "serving metrics on {metrics}, which is not loopback, in plain HTTP without a \
+                     token: anyone who reaches the port reads them (metrics_insecure = true)"
+                ));
+            } else {
+                refusals.push(format!(
+                    "refusing to serve metrics on {metrics}, which is not loopback: the metrics \
+                     port is plain HTTP without a token. Bind it to loopback (metrics_listen = \
+                     \"127.0.0.1:9464\"), or, where a firewall, a network policy or a port \
+                     published on loopback keeps it to the scraper, allow it with \
+                     --metrics-insecure, metrics_insecure = true or \
+                     RAILCONTACT_METRICS_INSECURE=true"
+                ));
+            }
+        }
+        if !refusals.is_empty() {
+            Err(refusals.join("; "))
+        } else if warnings.is_empty() {
+            Ok(None)
+        } else {
+            Ok(Some(warnings.join("; ")))
+        }
+    }
+
+    /// [`Self::check_exposure`] of the gRPC port alone.
+    fn check_grpc_exposure(&self) -> Result<Option<String>, String> {
         if self.listen.ip().is_loopback() {
             return Ok(None);
         }
@@ -636,6 +690,73 @@ mod tests {
             "{err}"
         );
         assert_eq!(ServeConfig::default().check_exposure(), Ok(None));
+
+        // The metrics port: loopback always, any other address only with
+        // its own override, whatever the gRPC port has.
+        let metrics = |addr: &str, metrics_insecure: bool, insecure: bool| ServeConfig {
+            metrics_listen: Some(addr.parse().unwrap()),
+            metrics_insecure,
+            insecure,
+            ..ServeConfig::default()
+        };
+        assert_eq!(
+            metrics("127.0.0.1:9464", false, false).check_exposure(),
+            Ok(None)
+        );
+        assert_eq!(
+            metrics("[::1]:9464", false, false).check_exposure(),
+            Ok(None)
+        );
+        for addr in ["0.0.0.0:9464", "[::]:9464", "10.0.0.5:9464"] {
+            let err = metrics(addr, false, true).check_exposure().unwrap_err();
+            assert!(
+                err.contains("metrics")
+                    && err.contains("--metrics-insecure")
+                    && err.contains("RAILCONTACT_METRICS_INSECURE=true"),
+                "{err}"
+            );
+            let warning = metrics(addr, true, false)
+                .check_exposure()
+                .unwrap()
+                .unwrap();
+            assert!(warning.contains("metrics_insecure = true"), "{warning}");
+        }
+        // Both refusals at once, and both warnings.
+        let both = ServeConfig {
+            listen: "0.0.0.0:50051".parse().unwrap(),
+            ..metrics("0.0.0.0:9464", false, false)
+        };
+        let err = both.check_exposure().unwrap_err();
+        assert!(
+            err.contains("--insecure") && err.contains("--metrics-insecure"),
+            "{err}"
+        );
+        let warning = ServeConfig {
+            insecure: true,
+            metrics_insecure: true,
+            ..both
+        }
+        .check_exposure()
+        .unwrap()
+        .unwrap();
+        assert!(
+            warning.contains("insecure = true") && warning.contains("metrics_insecure = true"),
+            "{warning}"
+        );
+        // Set by its variable and by its flag.
+        let e = env(&[
+            ("RAILCONTACT_METRICS_LISTEN", "0.0.0.0:9464"),
+            ("RAILCONTACT_METRICS_INSECURE", "true"),
+        ]);
+        let c = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap();
+        assert!(c.metrics_insecure && c.check_exposure().is_ok());
+        let flags = ServeFlags {
+            metrics_listen: Some("0.0.0.0:9464".parse().unwrap()),
+            metrics_insecure: true,
+            ..Default::default()
+        };
+        let c = ServeConfig::load(None, &none, &flags).unwrap();
+        assert!(c.metrics_insecure && c.check_exposure().is_ok());
 
         std::fs::write(&file, "listen = \"127.0.0.1:6000\"\nworker = 3\n").unwrap();
         let err = ServeConfig::load(Some(&file), &none, &ServeFlags::default()).unwrap_err();

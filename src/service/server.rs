@@ -95,7 +95,8 @@ async fn bind(addr: std::net::SocketAddr, setting: &str) -> std::io::Result<TcpL
 
 /// Binds the ports and starts serving `config` on the current runtime.
 /// Settings it refuses (a listen address beyond loopback without TLS and
-/// tokens, unreadable or invalid TLS or tokens files) are errors of kind
+/// tokens, a metrics address beyond loopback without `metrics_insecure`,
+/// unreadable or invalid TLS or tokens files) are errors of kind
 /// `InvalidInput`, before any port is bound; a port it cannot bind is an
 /// error naming it (and what to do when it is in use), before the store is
 /// opened.

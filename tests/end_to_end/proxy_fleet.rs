@@ -1,11 +1,16 @@
 //! A real gRPC proxy in front of a fleet: Debian's nginx running
-//! deploy/nginx.conf (only its three replica addresses and its listen port
-//! replaced) before three `railcontact serve` processes on loopback.
+//! deploy/nginx.conf (only its three replica addresses, its listen port and
+//! its certificates' directory replaced) before three `railcontact serve`
+//! processes on loopback, TLS from the clients to nginx and from nginx to
+//! the replicas, bearer tokens checked by the replicas.
 //!
 //! It shows, each from what nginx logged (its access log names the
-//! replicas it tried for every call and stream) and what the replicas
-//! logged and counted:
+//! replicas it tried for every call and stream, and the gRPC status) and
+//! what the replicas logged and counted:
 //!
+//! * the proxy serves TLS only, and passes the clients' tokens to the
+//!   replicas, which check them: a call without a token is
+//!   UNAUTHENTICATED, a plaintext connection gets nowhere;
 //! * `railcontact loadtest` through the proxy, half of its sessions and
 //!   batch clients through nginx and half straight to the first replica,
 //!   answers every step exactly as that single server's replay;
@@ -22,7 +27,13 @@
 //!   connection); a session still open on it when its shutdown grace runs
 //!   out ends with an error at the client;
 //! * those sessions' and calls' answers equal a direct replay on one
-//!   server.
+//!   server;
+//! * replicas killed (SIGKILL): a session whose replica died reopens on
+//!   the survivor with its key; once no replica is left, a unary call in
+//!   flight on the last one, a session opened again with its key, a new
+//!   session, a new call and `railcontact health` all get UNAVAILABLE
+//!   with nginx's message (a trailers-only gRPC response), never
+//!   INTERNAL, UNKNOWN or an HTML page.
 //!
 //! nginx runs as the current user with its prefix, configuration, pid and
 //! logs in a temporary directory, and is stopped when the test ends. Where
@@ -46,7 +57,9 @@ use railcontact::service::pb::contact_service_client::ContactServiceClient;
 use support::{assert_clean, loadtest_json, num, Server};
 use tokio::sync::mpsc;
 use tokio_stream::wrappers::ReceiverStream;
-use tonic::transport::Channel;
+use tonic::metadata::{Ascii, MetadataValue};
+use tonic::service::interceptor::InterceptedService;
+use tonic::transport::{Certificate, Channel, ClientTlsConfig, Endpoint};
 
 /// Set to anything but "" or "0", skips this test.
 const SKIP_PROXY_TEST: &str = "RAILCONTACT_SKIP_PROXY_TEST";
@@ -54,6 +67,78 @@ const SKIP_PROXY_TEST: &str = "RAILCONTACT_SKIP_PROXY_TEST";
 /// The replicas' shutdown grace in this test \[s\]: long enough for the
 /// drain's steps, short enough to wait for.
 const GRACE_S: &str = "4";
+
+/// The directory of the proxy's certificates in deploy/nginx.conf.
+const TLS_DIR: &str = "/etc/railcontact/nginx-tls/";
+
+/// The name deploy/nginx.conf checks in the replicas' certificate
+/// (`grpc_ssl_name`).
+const REPLICA_NAME: &str = "railcontact.default.svc";
+
+/// The bearer token of the clients (role solve).
+const TOKEN: &str = "proxy-fleet-test-token-7c1e";
+
+/// The test's certificates and tokens, in one temporary directory laid
+/// out as deploy/nginx.conf expects /etc/railcontact/nginx-tls/.
+struct Pki {
+    dir: tempfile::TempDir,
+}
+
+impl Pki {
+    /// An authority (`replicas-ca.pem`, which the clients trust too), the
+    /// proxy's certificate for localhost and 127.0.0.1 (`proxy.crt`,
+    /// `proxy.key`), the replicas' for [`REPLICA_NAME`], localhost and
+    /// 127.0.0.1 (`replica.crt`, `replica.key`; the load test reaches
+    /// replica 0 straight), and `tokens.toml` with [`TOKEN`].
+    fn new() -> Pki {
+        use rcgen::{
+            BasicConstraints, CertificateParams, DnType, ExtendedKeyUsagePurpose, IsCa, Issuer,
+            KeyPair, KeyUsagePurpose,
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, text: String| std::fs::write(dir.path().join(name), text).unwrap();
+        let ca_key = KeyPair::generate().unwrap();
+        let mut ca = CertificateParams::new(Vec::<String>::new()).unwrap();
+        ca.is_ca = IsCa::Ca(BasicConstraints::Unconstrained);
+        ca.distinguished_name
+            .push(DnType::CommonName, "railcontact proxy test CA");
+        ca.key_usages = vec![
+            KeyUsagePurpose::KeyCertSign,
+            KeyUsagePurpose::CrlSign,
+            KeyUsagePurpose::DigitalSignature,
+        ];
+        write("replicas-ca.pem", ca.self_signed(&ca_key).unwrap().pem());
+        let issuer = Issuer::from_params(&ca, &ca_key);
+        for (name, sans) in [
+            ("proxy", vec!["localhost", "127.0.0.1"]),
+            ("replica", vec![REPLICA_NAME, "localhost", "127.0.0.1"]),
+        ] {
+            let key = KeyPair::generate().unwrap();
+            let mut params =
+                CertificateParams::new(sans.into_iter().map(String::from).collect::<Vec<_>>())
+                    .unwrap();
+            params.distinguished_name.push(DnType::CommonName, name);
+            params.extended_key_usages = vec![ExtendedKeyUsagePurpose::ServerAuth];
+            let cert = params.signed_by(&key, &issuer).unwrap();
+            write(&format!("{name}.crt"), cert.pem());
+            write(&format!("{name}.key"), key.serialize_pem());
+        }
+        write(
+            "tokens.toml",
+            format!("[[token]]\nname = \"proxy-fleet\"\nrole = \"solve\"\ntoken = \"{TOKEN}\"\n"),
+        );
+        Pki { dir }
+    }
+
+    fn path(&self, name: &str) -> String {
+        self.dir.path().join(name).display().to_string()
+    }
+
+    /// The authority clients trust.
+    fn ca(&self) -> String {
+        self.path("replicas-ca.pem")
+    }
+}
 
 fn set(var: &str) -> bool {
     std::env::var(var).is_ok_and(|v| !v.is_empty() && v != "0")
@@ -141,9 +226,9 @@ fn free_port() -> u16 {
 }
 
 /// deploy/nginx.conf with its replicas `192.0.2.11-13:50051` replaced by
-/// `replicas` and `listen 8080` by `listen`; fails when the file no longer
-/// has what this replaces.
-fn render(template: &str, replicas: &[String], listen: &str) -> String {
+/// `replicas`, `listen 8443` by `listen` and its certificates' directory
+/// by `tls_dir`; fails when the file no longer has what this replaces.
+fn render(template: &str, replicas: &[String], listen: &str, tls_dir: &str) -> String {
     let mut conf = template.to_string();
     for (i, addr) in replicas.iter().enumerate() {
         let example = format!("server 192.0.2.{}:50051 ", 11 + i);
@@ -155,16 +240,30 @@ fn render(template: &str, replicas: &[String], listen: &str) -> String {
         conf = conf.replace(&example, &format!("server {addr} "));
     }
     assert_eq!(
-        conf.matches("listen 8080 http2;").count(),
+        conf.matches("listen 8443 ssl http2;").count(),
         1,
         "the listen line"
     );
-    conf = conf.replace("listen 8080 http2;", &format!("listen {listen} http2;"));
-    let left: Vec<&str> = conf
-        .lines()
-        .filter(|l| !l.trim_start().starts_with('#') && l.contains("192.0.2."))
-        .collect();
+    conf = conf.replace(
+        "listen 8443 ssl http2;",
+        &format!("listen {listen} ssl http2;"),
+    );
+    let code = |conf: &str, what: &str| -> Vec<String> {
+        conf.lines()
+            .filter(|l| !l.trim_start().starts_with('#') && l.contains(what))
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(
+        code(&conf, TLS_DIR).len(),
+        3,
+        "the proxy's certificate, its key and the replicas' authority in {TLS_DIR}"
+    );
+    conf = conf.replace(TLS_DIR, tls_dir);
+    let left = code(&conf, "192.0.2.");
     assert!(left.is_empty(), "example addresses left: {left:?}");
+    let left = code(&conf, "/etc/");
+    assert!(left.is_empty(), "example paths left: {left:?}");
     conf
 }
 
@@ -177,10 +276,10 @@ struct Nginx {
 }
 
 impl Nginx {
-    /// Starts `nginx` on deploy/nginx.conf rendered for `replicas`, as
-    /// the current user, everything under a temporary prefix; waits until
-    /// it accepts connections.
-    fn start(nginx: &Path, replicas: &[String]) -> Nginx {
+    /// Starts `nginx` on deploy/nginx.conf rendered for `replicas` and
+    /// the certificates of `pki`, as the current user, everything under a
+    /// temporary prefix; waits until it accepts connections.
+    fn start(nginx: &Path, replicas: &[String], pki: &Pki) -> Nginx {
         let dir = tempfile::tempdir().unwrap();
         for sub in ["logs", "tmp"] {
             std::fs::create_dir(dir.path().join(sub)).unwrap();
@@ -188,7 +287,8 @@ impl Nginx {
         let template = std::fs::read_to_string(repo().join("deploy/nginx.conf")).unwrap();
         let addr = format!("127.0.0.1:{}", free_port());
         let conf = dir.path().join("nginx.conf");
-        std::fs::write(&conf, render(&template, replicas, &addr)).unwrap();
+        let tls_dir = format!("{}/", pki.dir.path().display());
+        std::fs::write(&conf, render(&template, replicas, &addr, &tls_dir)).unwrap();
         // Started as root, nginx would run its workers as nobody: keep
         // them as the current user.
         let globals = if support::is_root() {
@@ -241,11 +341,14 @@ impl Nginx {
         std::fs::read_to_string(self.dir.path().join("logs/error.log")).unwrap_or_default()
     }
 
-    /// Its access log, one entry per finished call or stream.
+    /// Its access log, one entry per finished call or stream (lines of
+    /// anything else, such as a plaintext client's garbage on the TLS
+    /// port, left out).
     fn access(&self) -> Vec<Entry> {
         std::fs::read_to_string(self.dir.path().join("logs/access.log"))
             .unwrap_or_default()
             .lines()
+            .filter(|l| l.contains("\"POST "))
             .map(Entry::parse)
             .collect()
     }
@@ -279,10 +382,16 @@ impl Drop for Nginx {
 struct Entry {
     /// The gRPC method's path.
     path: String,
+    /// The HTTP status nginx sent.
+    status: String,
     /// The `x-railcontact-session` header ("-" without).
     session: String,
-    /// The replicas nginx tried, in order (the last one answered).
+    /// The replicas nginx tried, in order (the last one answered), or
+    /// the upstream's name where none was left to try.
     upstreams: Vec<String>,
+    /// The gRPC status nginx sent, from the trailers or the headers ("-"
+    /// where none).
+    grpc_status: String,
     line: String,
 }
 
@@ -300,11 +409,13 @@ impl Entry {
         };
         Entry {
             path: between("\"POST ", " "),
+            status: between("HTTP/2.0\" ", " "),
             session: between("session=\"", "\""),
             upstreams: between("upstream=\"", "\"")
                 .split(", ")
                 .map(str::to_string)
                 .collect(),
+            grpc_status: between("grpc_status=", " "),
             line: line.to_string(),
         }
     }
@@ -340,12 +451,28 @@ fn nginx_spreads_calls_pins_sessions_and_routes_around_a_draining_replica() {
     let Some(nginx_bin) = nginx_binary() else {
         return;
     };
+    let pki = Pki::new();
+    let (cert, key, tokens) = (
+        pki.path("replica.crt"),
+        pki.path("replica.key"),
+        pki.path("tokens.toml"),
+    );
     let mut servers: Vec<Server> = std::thread::scope(|s| {
         let starts: Vec<_> = (0..3)
             .map(|_| {
                 s.spawn(|| {
+                    // As on a network: TLS and tokens.
                     Server::start_with(
-                        &["--metrics-listen", "127.0.0.1:0"],
+                        &[
+                            "--metrics-listen",
+                            "127.0.0.1:0",
+                            "--tls-cert",
+                            &cert,
+                            "--tls-key",
+                            &key,
+                            "--auth-tokens-file",
+                            &tokens,
+                        ],
                         &[
                             ("RUST_LOG", "warn,railcontact=info"),
                             ("RAILCONTACT_SHUTDOWN_GRACE_S", GRACE_S),
@@ -357,27 +484,81 @@ fn nginx_spreads_calls_pins_sessions_and_routes_around_a_draining_replica() {
         starts.into_iter().map(|h| h.join().unwrap()).collect()
     });
     let replicas: Vec<String> = servers.iter().map(|s| s.addr.clone()).collect();
-    let nginx = Nginx::start(&nginx_bin, &replicas);
+    let nginx = Nginx::start(&nginx_bin, &replicas, &pki);
     eprintln!("fleet and nginx up in {:.1} s", t0.elapsed().as_secs_f64());
-
-    load_through_the_proxy(&servers, &nginx);
-    eprintln!("load test done at {:.1} s", t0.elapsed().as_secs_f64());
 
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
         .build()
         .unwrap();
-    runtime.block_on(drain(&mut servers, &nginx));
+    runtime.block_on(tls_and_tokens(&nginx, &pki));
+
+    load_through_the_proxy(&servers, &nginx, &pki);
+    eprintln!("load test done at {:.1} s", t0.elapsed().as_secs_f64());
+
+    let (v, replay) = runtime.block_on(drain(&mut servers, &nginx, &pki));
+    eprintln!("drain done at {:.1} s", t0.elapsed().as_secs_f64());
+    runtime.block_on(kill(servers, v, &replay, &nginx, &pki));
     eprintln!("proxy fleet test: {:.1} s", t0.elapsed().as_secs_f64());
+}
+
+/// The proxy serves TLS only and passes the token on: with it a call is
+/// answered, without it the replica refuses it, and a plaintext client
+/// gets no answer at all.
+async fn tls_and_tokens(nginx: &Nginx, pki: &Pki) {
+    let solve = || pb::SolvePatchRequest {
+        case: Some(patch_case()),
+        ..Default::default()
+    };
+    client_of(&nginx.addr, pki, true)
+        .await
+        .solve_patch(solve())
+        .await
+        .unwrap_or_else(|s| panic!("SolvePatch through the proxy with TLS and a token: {s:?}"));
+    let refused = client_of(&nginx.addr, pki, false)
+        .await
+        .solve_patch(solve())
+        .await
+        .expect_err("a call without a token");
+    assert_eq!(refused.code(), tonic::Code::Unauthenticated, "{refused:?}");
+    // Health needs no token (what a load balancer's check would ask).
+    let out = support::run(&["health", "--target", &nginx.addr, "--tls-ca", &pki.ca()]);
+    support::check("railcontact health through the proxy", &out);
+    assert_eq!(String::from_utf8_lossy(&out.stdout).trim(), "SERVING");
+
+    let plain = async {
+        let channel = Endpoint::from_shared(format!("http://{}", nginx.addr))
+            .unwrap()
+            .connect()
+            .await
+            .map_err(|e| format!("connect: {e}"))?;
+        match ContactServiceClient::new(channel)
+            .solve_patch(solve())
+            .await
+        {
+            Ok(_) => Ok(()),
+            Err(s) => Err(format!("{:?}: {}", s.code(), s.message())),
+        }
+    };
+    match tokio::time::timeout(Duration::from_secs(10), plain).await {
+        Ok(Err(e)) => eprintln!("plaintext gRPC to the proxy: {e}"),
+        Ok(Ok(())) => panic!("the proxy answered a plaintext call"),
+        Err(_) => panic!("a plaintext call to the proxy hangs"),
+    }
 }
 
 /// `railcontact loadtest` with targets [replica 0, nginx]: even sessions
 /// and batch clients straight to replica 0, odd ones through nginx; the
 /// replay of all on replica 0 alone.
-fn load_through_the_proxy(servers: &[Server], nginx: &Nginx) {
+fn load_through_the_proxy(servers: &[Server], nginx: &Nginx, pki: &Pki) {
     let proxy = nginx.addr.as_str();
+    let ca = pki.ca();
     let (report, out) = loadtest_json(&[
+        "--tls-ca",
+        &ca,
+        "--token",
+        TOKEN,
         "--target",
         &servers[0].addr,
         "--target",
@@ -482,7 +663,20 @@ fn load_through_the_proxy(servers: &[Server], nginx: &Nginx) {
     }
 }
 
-type Client = ContactServiceClient<Channel>;
+type Client = ContactServiceClient<InterceptedService<Channel, Bearer>>;
+
+/// Adds `authorization: Bearer TOKEN` to every call, or nothing.
+#[derive(Clone)]
+struct Bearer(Option<MetadataValue<Ascii>>);
+
+impl tonic::service::Interceptor for Bearer {
+    fn call(&mut self, mut req: tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status> {
+        if let Some(v) = &self.0 {
+            req.metadata_mut().insert("authorization", v.clone());
+        }
+        Ok(req)
+    }
+}
 use pb::session_response::Kind as Out;
 
 /// Steady rolling with FASTSIM on `common::sphere`, mu = 0.3.
@@ -517,6 +711,14 @@ struct Session {
 impl Session {
     /// Opens a session with the session header `label`.
     async fn open(client: &Client, label: &str) -> Session {
+        Session::try_open(client, label)
+            .await
+            .unwrap_or_else(|s| panic!("open {label}: {s:?}"))
+    }
+
+    /// Opens a session with the session header `label`, or says how the
+    /// call ended.
+    async fn try_open(client: &Client, label: &str) -> Result<Session, tonic::Status> {
         let (tx, rx) = mpsc::channel(4);
         let open = pb::SessionRequest {
             kind: Some(pb::session_request::Kind::Open(pb::SessionOpen {
@@ -529,19 +731,15 @@ impl Session {
         let mut req = tonic::Request::new(ReceiverStream::new(rx));
         req.metadata_mut()
             .insert("x-railcontact-session", label.parse().unwrap());
-        let mut rx = client
-            .clone()
-            .patch_session(req)
-            .await
-            .unwrap_or_else(|s| panic!("open {label}: {s:?}"))
-            .into_inner();
+        let mut rx = client.clone().patch_session(req).await?.into_inner();
         match rx.message().await {
             Ok(Some(pb::SessionResponse {
                 kind: Some(Out::Opened(_)),
             })) => {}
+            Err(s) => return Err(s),
             other => panic!("open {label}: {other:?}"),
         }
-        Session { tx, rx, next: 0 }
+        Ok(Session { tx, rx, next: 0 })
     }
 
     /// The next step's result (its solve time cleared), or how the stream
@@ -614,13 +812,21 @@ impl Session {
     }
 }
 
-async fn client_of(addr: &str) -> Client {
-    let channel = tonic::transport::Endpoint::from_shared(format!("http://{addr}"))
+/// A TLS connection to `addr` (127.0.0.1:PORT) trusting the test's
+/// authority, with the token on every call when `token`.
+async fn client_of(addr: &str, pki: &Pki, token: bool) -> Client {
+    let tls = ClientTlsConfig::new().ca_certificate(Certificate::from_pem(
+        std::fs::read(pki.ca()).expect("the test authority"),
+    ));
+    let channel = Endpoint::from_shared(format!("https://{addr}"))
+        .unwrap()
+        .tls_config(tls)
         .unwrap()
         .connect()
         .await
         .unwrap_or_else(|e| panic!("connect to {addr}: {e}"));
-    ContactServiceClient::new(channel)
+    let bearer = Bearer(token.then(|| format!("Bearer {TOKEN}").parse().unwrap()));
+    ContactServiceClient::with_interceptor(channel, bearer)
 }
 
 /// The replica that opened the sessions labelled `label`; checks that
@@ -638,8 +844,10 @@ fn replica_of(servers: &[Server], label: &str, count: usize) -> usize {
 }
 
 /// One replica stopped with SIGTERM while sessions run through nginx.
-async fn drain(servers: &mut [Server], nginx: &Nginx) {
-    let proxy = client_of(&nginx.addr).await;
+/// Returns the stopped replica and the first 10 steps of the session
+/// replayed straight on a survivor.
+async fn drain(servers: &mut [Server], nginx: &Nginx, pki: &Pki) -> (usize, Vec<pb::StepResult>) {
+    let proxy = client_of(&nginx.addr, pki, true).await;
     const KEY: &str = "drain-victim";
 
     // Two sessions with one key: the same replica, V.
@@ -735,7 +943,7 @@ async fn drain(servers: &mut [Server], nginx: &Nginx) {
 
     // Every answer equals a direct replay on one surviving replica.
     let w = (v + 1) % servers.len();
-    let direct = client_of(&servers[w].addr).await;
+    let direct = client_of(&servers[w].addr, pki, true).await;
     let mut replay = Session::open(&direct, "direct-replay").await;
     let expected = replay.steps(10, "direct replay").await;
     replay.close("direct replay").await;
@@ -773,5 +981,165 @@ async fn drain(servers: &mut [Server], nginx: &Nginx) {
     for mut u in unary {
         clear(&mut u);
         assert_eq!(u, one, "SolvePatch through nginx");
+    }
+    (v, expected)
+}
+
+/// The value of a gauge or counter of `server`'s metrics page.
+fn metric(server: &Server, series: &str) -> f64 {
+    counter(&server.metrics_page(), series)
+}
+
+/// Replicas killed (SIGKILL, as a crash or the OOM killer would) while a
+/// session and a unary call run on them through nginx; `v`, stopped by
+/// [`drain`], is gone already, `replay` the first steps of a session
+/// replayed straight on one server.
+///
+/// The session's replica X dies first: its stream is cut, and the session
+/// opened again with its key reaches the survivor Y. Then Y dies while
+/// it runs a batch: the batch, a session opened again with the key, a new
+/// session, a new call and `railcontact health` all get UNAVAILABLE from
+/// nginx, with its message.
+async fn kill(servers: Vec<Server>, v: usize, replay: &[pb::StepResult], nginx: &Nginx, pki: &Pki) {
+    const KEY: &str = "kill-victim";
+    let proxy = client_of(&nginx.addr, pki, true).await;
+    let addrs: Vec<String> = servers.iter().map(|s| s.addr.clone()).collect();
+    let unavailable = |what: &str, s: &tonic::Status| {
+        assert_eq!(
+            s.code(),
+            tonic::Code::Unavailable,
+            "{what}: UNAVAILABLE from nginx, not {s:?}"
+        );
+        assert!(
+            s.message().starts_with("railcontact proxy: "),
+            "{what}: nginx's message: {s:?}"
+        );
+    };
+
+    let mut s1 = Session::open(&proxy, KEY).await;
+    let x = replica_of(&servers, KEY, 1);
+    assert_ne!(x, v, "no session on the stopped replica");
+    let y = (0..servers.len()).find(|&i| i != v && i != x).unwrap();
+    let mut answers = s1.steps(3, "s1 on X").await;
+    let mut fleet: Vec<Option<Server>> = servers.into_iter().map(Some).collect();
+
+    // X killed: s1's stream is cut. nginx had passed X's response
+    // headers on when s1 opened, so it cannot send a status any more: it
+    // resets the stream (INTERNAL_ERROR, which gRPC reads as INTERNAL).
+    let cut_stream = |what: &str, s: &tonic::Status| {
+        eprintln!("{what}: {:?} \"{}\"", s.code(), s.message());
+        assert!(
+            matches!(s.code(), tonic::Code::Internal | tonic::Code::Unavailable),
+            "{what}: the stream reset, not {s:?}"
+        );
+    };
+    drop(fleet[x].take());
+    let cut = s1.step().await.expect_err("s1 cut when X died");
+    cut_stream("session whose replica was killed", &cut);
+    // Opened again with its key: X refuses, nginx takes Y.
+    let mut s2 = Session::open(&proxy, KEY).await;
+    let on_y = |fleet: &[Option<Server>], label: &str| {
+        let needle = format!("label={label} ");
+        fleet[y].as_ref().unwrap().log().matches(&needle).count()
+    };
+    assert_eq!(on_y(&fleet, KEY), 1, "the session reopened on the survivor");
+    answers.extend(s2.steps(3, "s2 on Y").await);
+    for (i, (got, want)) in answers.iter().zip(replay[0..3].iter().cycle()).enumerate() {
+        assert_eq!(got, want, "answer {i} through nginx after X died");
+    }
+
+    // A batch long enough to be killed under: 1024 exact steady-rolling
+    // patches (about a second on two workers).
+    let exact = pb::SolvePatchRequest {
+        case: Some(pb::PatchCase {
+            model: pb::Model::Exact as i32,
+            grid: common::sphere(pb::Model::Exact, 48).grid,
+            ..patch_case()
+        }),
+        ..Default::default()
+    };
+    let batch = pb::SolvePatchBatchRequest {
+        items: vec![exact; 1024],
+    };
+    let mut client = proxy.clone();
+    let call = tokio::spawn(async move { client.solve_patch_batch(batch).await });
+    let t = Instant::now();
+    let admitted = "railcontact_solve_queue_admitted";
+    while metric(fleet[y].as_ref().unwrap(), admitted) < 1.0 {
+        assert!(
+            t.elapsed() < Duration::from_secs(20) && !call.is_finished(),
+            "the batch never ran on Y"
+        );
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    // Y killed with the batch on its workers: no replica is left.
+    drop(fleet[y].take());
+    let lost = call
+        .await
+        .unwrap()
+        .expect_err("the batch whose replica was killed");
+    eprintln!(
+        "batch whose replica was killed: {:?} \"{}\"",
+        lost.code(),
+        lost.message()
+    );
+    unavailable("the batch in flight on the killed replica", &lost);
+    let cut = s2.step().await.expect_err("s2 cut when Y died");
+    cut_stream("second session whose replica was killed", &cut);
+
+    // Nothing left: every new call is UNAVAILABLE, from nginx.
+    let again = Session::try_open(&proxy, KEY)
+        .await
+        .err()
+        .expect("no replica left for the session's key");
+    unavailable("the session opened again", &again);
+    let new = Session::try_open(&proxy, "kill-new")
+        .await
+        .err()
+        .expect("no replica left for a new session");
+    unavailable("a new session", &new);
+    let solve = proxy
+        .clone()
+        .solve_patch(pb::SolvePatchRequest {
+            case: Some(patch_case()),
+            ..Default::default()
+        })
+        .await
+        .expect_err("no replica left for a call");
+    unavailable("SolvePatch", &solve);
+    let out = support::run(&["health", "--target", &nginx.addr, "--tls-ca", &pki.ca()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.code() == Some(1)
+            && stderr.contains("Unavailable")
+            && stderr.contains("railcontact proxy: "),
+        "railcontact health through the proxy without replicas: {out:?}"
+    );
+
+    // What nginx logged: gRPC status 14 in HTTP 200 responses (its own,
+    // trailers-only), the batch's after trying Y.
+    let entries = nginx.access();
+    let ours: Vec<&Entry> = entries.iter().filter(|e| e.grpc_status == "14").collect();
+    for e in &ours {
+        assert_eq!(
+            e.status, "200",
+            "a gRPC response, not an error page: {}",
+            e.line
+        );
+    }
+    assert!(
+        ours.iter()
+            .any(|e| e.method() == "SolvePatchBatch" && e.upstreams.contains(&addrs[y])),
+        "the batch's line names Y and status 14: {ours:#?}"
+    );
+    assert!(
+        ours.iter().filter(|e| e.session == KEY).count() >= 1,
+        "the session's key refused with 14: {ours:#?}"
+    );
+    let errors = nginx.error_log();
+    for what in ["SolvePatchBatch", "no live upstreams"] {
+        if let Some(line) = errors.lines().find(|l| l.contains(what)) {
+            eprintln!("nginx: {line}");
+        }
     }
 }

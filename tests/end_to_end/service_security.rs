@@ -17,6 +17,9 @@
 //!   command exits 2 saying how to override; with `--insecure` it starts
 //!   and logs a warning); a missing key, an invalid PEM file are start
 //!   errors naming the file;
+//! - metrics on an address other than loopback are refused unless
+//!   `metrics_insecure` (TLS, tokens or `insecure` for the gRPC port do not
+//!   allow them; the command exits 2 saying how to override);
 //! - a client label holding a newline is logged escaped;
 //! - `railcontact health` and `railcontact loadtest` reach a server with
 //!   TLS and tokens through `--tls-ca` and `--token`;
@@ -631,6 +634,75 @@ fn health_and_loadtest_reach_a_server_with_tls_and_tokens() {
     assert!(support::num(&report, "errors") > 0.0, "{report}");
     let first = report["first_errors"].to_string();
     assert!(first.contains("nauthenticated"), "{first}");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn metrics_beyond_loopback_need_their_own_override() {
+    // gRPC on loopback or protected: only the metrics port is in question.
+    let pki = Pki::new();
+    let metrics_everywhere = |config: ServeConfig| ServeConfig {
+        metrics_listen: Some("0.0.0.0:0".parse().unwrap()),
+        data_dir: PathBuf::new(),
+        shutdown_grace_s: 1.0,
+        ..config
+    };
+    let loopback = ServeConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        ..ServeConfig::default()
+    };
+    let protected = pki.tls(
+        false,
+        ServeConfig {
+            listen: "0.0.0.0:0".parse().unwrap(),
+            auth_tokens_file: Some(tokens_file(pki.dir.path())),
+            ..ServeConfig::default()
+        },
+    );
+    for (what, config) in [
+        ("gRPC on loopback", loopback.clone()),
+        ("gRPC with TLS and tokens", protected),
+        (
+            "gRPC insecure",
+            ServeConfig {
+                listen: "0.0.0.0:0".parse().unwrap(),
+                insecure: true,
+                ..ServeConfig::default()
+            },
+        ),
+    ] {
+        let e = start(&metrics_everywhere(config))
+            .await
+            .err()
+            .unwrap_or_else(|| panic!("{what}: metrics on 0.0.0.0 refused"));
+        assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput, "{what}: {e}");
+        let m = e.to_string();
+        assert!(
+            m.contains("metrics on 0.0.0.0:0") && m.contains("--metrics-insecure"),
+            "{what}: {m}"
+        );
+    }
+    // With the override it serves them there.
+    let s = start(&metrics_everywhere(ServeConfig {
+        metrics_insecure: true,
+        ..loopback
+    }))
+    .await
+    .expect("metrics_insecure allows them");
+    let addr = s.metrics_addr.expect("a metrics address");
+    assert!(addr.ip().is_unspecified(), "{addr}");
+    let page = metrics_page(std::net::SocketAddr::from(([127, 0, 0, 1], addr.port()))).await;
+    assert!(page.contains("railcontact_sessions_active"), "{page}");
+    s.shutdown().await;
+
+    // The command: exit code 2 and how to override.
+    let out = support::run(&["serve", "--metrics-listen", "0.0.0.0:0", "--data-dir", ""]);
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--metrics-insecure")
+            && stderr.contains("RAILCONTACT_METRICS_INSECURE=true"),
+        "{stderr}"
+    );
 }
 
 #[test]
