@@ -97,11 +97,14 @@ use crate::core::tangential::TangentialSettings;
 /// slip-velocity dependent law ([`crate::core::friclaw`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Friction {
-    /// Static coefficient [-], bound for elements that were sticking (with
-    /// a slip-velocity law: its mu_s(0)).
+    /// Static coefficient [-], the bound of sticking elements: an element
+    /// enters slip when its traction would exceed it (with a slip-velocity
+    /// law: its mu_s(0)).
     pub static_coefficient: f64,
-    /// Kinetic coefficient [-], bound for elements that were sliding (with
-    /// a slip-velocity law: its limit mu_kin at large slip velocity).
+    /// Kinetic coefficient [-], the bound of sliding elements; an element
+    /// that slid in a solve sticks again only within it (the rule in
+    /// `ContactSolver`'s tangential solve, `core::solve`; with a
+    /// slip-velocity law: its limit mu_kin at large slip velocity).
     pub kinetic_coefficient: f64,
     /// A slip-velocity dependent law (exact model only): then the bound of
     /// every element is mu(s_a) p_n, and the two coefficients above are
@@ -121,7 +124,7 @@ impl Friction {
     }
 
     /// Static and kinetic coefficients (Coulomb's law with the static bound
-    /// where the material stuck just before, the kinetic one where it slid).
+    /// on sticking elements, the kinetic one on sliding elements).
     pub fn static_kinetic(static_coefficient: f64, kinetic_coefficient: f64) -> Self {
         Self {
             static_coefficient,
@@ -167,7 +170,7 @@ impl Friction {
     /// [`MIN_NONZERO_FRICTION`] (what the solver needs; a large
     /// coefficient models full adhesion). Any such pair is valid: a
     /// kinetic coefficient below the static one (also 0) bounds the
-    /// traction where the material slid just before.
+    /// traction where the material slides.
     pub fn validate(&self) -> Result<(), ContactError> {
         if let Some(law) = &self.slip_velocity_law {
             law.validate()?;

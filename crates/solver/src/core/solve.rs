@@ -62,7 +62,10 @@ pub struct ContactSolver {
     marching_scratch: MarchingScratch,
     pn: Vec<f64>,
     tr: Tractions,
-    prev_state: Vec<ElementState>,
+    /// The kinetic set of the tangential solve under way: the elements
+    /// marked [`ElementState::Slip`] are bounded by the kinetic coefficient
+    /// (see [`ContactSolver::tangential_pass`]).
+    kinetic: Vec<ElementState>,
     h_eff: Vec<f64>,
     cx: Vec<f64>,
     cy: Vec<f64>,
@@ -134,7 +137,6 @@ pub struct SolverState {
     sx: Vec<f64>,
     sy: Vec<f64>,
     state: Vec<ElementState>,
-    prev_state: Vec<ElementState>,
     transient_steps: usize,
     path: WarmPath,
     mu: Vec<f64>,
@@ -161,7 +163,6 @@ impl SolverState {
         .map(f)
         .sum::<usize>()
             + e(&self.state)
-            + e(&self.prev_state)
             + self.path.bytes()
     }
 }
@@ -175,7 +176,6 @@ impl HeapBytes for SolverState {
             self.sx,
             self.sy,
             self.state,
-            self.prev_state,
             self.path,
             self.mu,
             self.mu_before,
@@ -187,7 +187,7 @@ impl HeapBytes for SolverState {
 /// The solver's own buffers: FFT workspaces, the normal, tangential,
 /// marching and Newton scratch, fields, warm start and friction law; not
 /// the kernels, which it shares with the [`KernelCache`] they came from.
-/// On n elements: 332 bytes an element of fields and scratch, the FFT
+/// On n elements: 331 bytes an element of fields and scratch, the FFT
 /// workspaces of the padded grid (373 bytes an element on 256 x 256), and
 /// once a frictional solve has run, the Newton scratch (969 bytes an
 /// element) and the prediction's fields (24): 111 MB on 256 x 256 (the
@@ -207,7 +207,7 @@ impl HeapBytes for ContactSolver {
             tr.sx,
             tr.sy,
             tr.state,
-            self.prev_state,
+            self.kinetic,
             self.h_eff,
             self.cx,
             self.cy,
@@ -270,7 +270,7 @@ impl ContactSolver {
                 sy: z(),
                 state: vec![ElementState::Exterior; n],
             },
-            prev_state: vec![ElementState::Exterior; n],
+            kinetic: vec![ElementState::Exterior; n],
             h_eff: z(),
             cx: z(),
             cy: z(),
@@ -332,7 +332,7 @@ impl ContactSolver {
             v.fill(0.0);
         }
         self.tr.state.fill(ElementState::Exterior);
-        self.prev_state.fill(ElementState::Exterior);
+        self.kinetic.fill(ElementState::Exterior);
         self.transient_steps = 0;
         self.path.clear();
         let law = &mut self.law;
@@ -548,7 +548,6 @@ impl ContactSolver {
         to.sx.clone_from(&self.tr.sx);
         to.sy.clone_from(&self.tr.sy);
         to.state.clone_from(&self.tr.state);
-        to.prev_state.clone_from(&self.prev_state);
         to.transient_steps = self.transient_steps;
         to.path.copy_from(&self.path);
         for (to, from) in [
@@ -575,7 +574,6 @@ impl ContactSolver {
         self.tr.sx.copy_from_slice(&from.sx);
         self.tr.sy.copy_from_slice(&from.sy);
         self.tr.state.copy_from_slice(&from.state);
-        self.prev_state.copy_from_slice(&from.prev_state);
         self.transient_steps = from.transient_steps;
         self.path.copy_from(&from.path);
         for (to, from) in [
@@ -610,9 +608,9 @@ impl ContactSolver {
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
         // pn, px, py, sx, sy (and a law's mu, mu_before and slip velocity);
-        // two element states; the path's three fields.
+        // the element states; the path's three fields.
         let fields = if self.law.used { 8 } else { 5 };
-        n * (fields * 8 + 2 * std::mem::size_of::<ElementState>()) + self.path.bytes()
+        n * (fields * 8 + std::mem::size_of::<ElementState>()) + self.path.bytes()
     }
 
     /// Frees the buffers that solves allocate on first use and that hold
@@ -776,7 +774,7 @@ impl ContactSolver {
     /// One transient step from the current history (Kalker 1990 §5.2: the
     /// slip is the rigid shift plus the change of the displacement
     /// difference since the previous step; a rolling step first carries
-    /// the previous tractions and states upstream by the distance rolled,
+    /// the previous tractions upstream by the distance rolled,
     /// see [`crate::core::problem`]).
     fn transient_step(
         &mut self,
@@ -795,7 +793,6 @@ impl ContactSolver {
             std::mem::swap(&mut self.tr.px, &mut self.tmp_x);
             std::mem::swap(&mut self.tr.py, &mut self.tmp_y);
             carry_field(&grid, carry, &self.pn, &mut self.h_eff);
-            carry_field_nearest(&grid, carry, &self.tr.state, &mut self.prev_state);
             if problem.friction.slip_velocity_law.is_some() {
                 // A law's memory does not interpolate (0 is fresh material).
                 let law = &mut self.law;
@@ -806,7 +803,6 @@ impl ContactSolver {
             }
             &self.h_eff
         } else {
-            self.prev_state.copy_from_slice(&self.tr.state);
             &self.pn
         };
         // Displacement difference of the previous state.
@@ -1115,11 +1111,93 @@ impl ContactSolver {
         })
     }
 
-    /// One Coulomb solve of the tangential problem whose fixed slip is in
+    /// The tangential problem under Coulomb's law whose fixed slip is in
     /// `cx`, `cy`: steady rolling or a transient step; the bounds are
     /// `friction` times the pressures, or times `law.bound` when
     /// `law_bounds`.
+    ///
+    /// Static and kinetic coefficients: the static coefficient bounds the
+    /// traction of a sticking element, the kinetic one that of a sliding
+    /// element. An element enters slip when its traction would exceed
+    /// mu_static p_n; in slip its traction is mu_kinetic p_n opposite to
+    /// its slip; an element in slip keeps the kinetic bound for the rest of
+    /// the solve and sticks again only within mu_kinetic p_n. This is the
+    /// limit of CONTACT's slip-velocity laws (user guide, "Slip velocity
+    /// dependent friction") as the fall from mu_static at zero slip
+    /// velocity to mu_kinetic becomes a step, solved as CONTACT solves them
+    /// from zero slip velocity (INISLP 1): where both states are possible
+    /// (an adhesion traction between the two bounds) the element sticks
+    /// unless it has slid in an earlier pass. (CONTACT's Coulomb law, L 0,
+    /// takes one coefficient: it replaces FKIN by FSTAT.)
+    ///
+    /// The solve runs in passes, each a Coulomb problem with fixed bounds
+    /// ([`Self::coulomb_pass`]): mu_kinetic p_n on the kinetic set,
+    /// mu_static p_n elsewhere. The set starts empty and takes in, after
+    /// each pass, the elements in slip in its answer; the solve ends when a
+    /// pass adds none. Every element in slip is then bounded by mu_kinetic
+    /// p_n, every sticking one by mu_static p_n (by mu_kinetic p_n where it
+    /// slid in an earlier pass). The set only grows, so no element flips
+    /// between the two bounds from pass to pass (bounds that followed the
+    /// Newton iterate's states, kinetic behind an element sorted into slip,
+    /// did, and steady solves ran into their iteration limit), and each
+    /// pass's problem has one solution: the answer depends on the warm
+    /// start only through elements at the edge of slip within the
+    /// tolerance. Steady rolling and transient steps follow the same rule,
+    /// without a memory of the element upstream or the step before: a
+    /// steady state that transient rolling reaches meets the steady rule,
+    /// but with the static coefficient well above the kinetic one transient
+    /// rolling may instead settle into a stick-slip cycle, as it does in
+    /// CONTACT (`tests/validation/static_kinetic.rs`). Each pass starts from
+    /// the last one's tractions; the passes share
+    /// `settings.max_iterations`, and a pass that does not converge ends the
+    /// solve with its outcome. Equal coefficients take one pass.
     fn tangential_pass(
+        &mut self,
+        settings: &TangentialSettings,
+        friction: FrictionBounds,
+        steady: bool,
+        law_bounds: bool,
+    ) -> TangentialOutcome {
+        self.kinetic.fill(ElementState::Exterior);
+        let mut outcome = self.coulomb_pass(settings, friction, steady, law_bounds);
+        if friction.static_coefficient == friction.kinetic_coefficient {
+            return outcome;
+        }
+        while outcome.converged && !cancel::requested() && self.grow_kinetic_set() {
+            let left = settings.max_iterations.saturating_sub(outcome.iterations);
+            if left == 0 {
+                // The last pass's answer does not meet the grown set's
+                // bounds: the solve ends on its iteration limit.
+                outcome.converged = false;
+                break;
+            }
+            let limited = TangentialSettings {
+                max_iterations: left,
+                ..*settings
+            };
+            outcome = self
+                .coulomb_pass(&limited, friction, steady, law_bounds)
+                .after(&outcome);
+        }
+        outcome
+    }
+
+    /// Adds the elements in slip in the current answer to the kinetic set;
+    /// returns whether it grew.
+    fn grow_kinetic_set(&mut self) -> bool {
+        let mut grew = false;
+        for (k, &s) in self.kinetic.iter_mut().zip(&self.tr.state) {
+            if s == ElementState::Slip && *k != ElementState::Slip {
+                *k = ElementState::Slip;
+                grew = true;
+            }
+        }
+        grew
+    }
+
+    /// One Coulomb solve of the tangential problem with the bounds fixed by
+    /// the kinetic set (see [`Self::tangential_pass`]).
+    fn coulomb_pass(
         &mut self,
         settings: &TangentialSettings,
         friction: FrictionBounds,
@@ -1138,7 +1216,7 @@ impl ContactSolver {
             friction,
             cx: &self.cx,
             cy: &self.cy,
-            previous_state: &self.prev_state,
+            previous_state: &self.kinetic,
         };
         if steady {
             // The steady operator through the displacement kernels (real
@@ -1581,10 +1659,10 @@ mod tests {
         // old_ux, old_uy, last_pn, last_px, last_py; the law's mu,
         // mu_before, velocity, velocity_new, bound; the normal scratch's u,
         // t, r, g, p_old, z, ones (and `free`); the tangential scratch's
-        // six; the marching scratch's eight (and its states); the solver's
-        // two element states.
+        // six; the marching scratch's eight; the solver's two element
+        // states (the answer's and the kinetic set).
         let f64s = 15 + 5 + 7 + 6 + 8;
-        let per_element = 8 * f64s + 3 * std::mem::size_of::<ElementState>() + 1;
+        let per_element = 8 * f64s + 2 * std::mem::size_of::<ElementState>() + 1;
         let ows = s.ows.heap_bytes();
         // The normal solver's list of the elements one iteration clamps.
         let columns = std::mem::size_of::<(usize, f64)>() * crate::core::normal::column_capacity(n);
@@ -1944,6 +2022,135 @@ mod tests {
         assert!(d_mz < 1e-4 * steady.totals.mz_nm.abs(), "{d_mz:e}");
         // ... and the adhesion and slip areas are the steady ones.
         assert_eq!(last.fields.state, steady.fields.state);
+    }
+
+    /// Coulomb's law with static and kinetic coefficients checked element
+    /// by element: every traction within mu_static p_n, every slipping one
+    /// on mu_kinetic p_n opposite to its slip. Returns the adhesion and slip
+    /// counts and the adhesion elements whose traction is above
+    /// mu_kinetic p_n (those only the static coefficient allows).
+    fn check_static_kinetic(s: &ContactSolution, mus: f64, muk: f64) -> [usize; 3] {
+        let f = &s.fields;
+        let mut counts = [0; 3];
+        for i in 0..f.pressure_pa.len() {
+            let (pn, m) = (
+                f.pressure_pa[i],
+                f.traction_x_pa[i].hypot(f.traction_y_pa[i]),
+            );
+            assert!(
+                m <= mus * pn * (1.0 + 1e-12),
+                "element {i}: |p| {m} > mu_s p_n"
+            );
+            match f.state[i] {
+                ElementState::Slip => {
+                    counts[1] += 1;
+                    assert!(
+                        (m - muk * pn).abs() <= 1e-9 * muk * pn,
+                        "element {i} off mu_k p_n"
+                    );
+                    let s = f.slip_x[i].hypot(f.slip_y[i]);
+                    let cos = (f.traction_x_pa[i] * f.slip_x[i] + f.traction_y_pa[i] * f.slip_y[i])
+                        / (m * s);
+                    assert!(cos < -1.0 + 1e-6, "element {i}: traction not opposite slip");
+                }
+                ElementState::Adhesion => {
+                    counts[0] += 1;
+                    counts[2] += usize::from(m > muk * pn * (1.0 + 1e-6));
+                }
+                ElementState::Exterior => assert_eq!(pn, 0.0),
+            }
+        }
+        counts
+    }
+
+    #[test]
+    fn static_and_kinetic_coefficients_bound_adhesion_and_slip_whatever_the_start() {
+        // Static 0.35, kinetic 0.1 (issue 45: bounds that followed each
+        // Newton iterate's upstream states flipped elements between the
+        // two, and the solve ran its 2000 iterations). Every element in slip
+        // is on the kinetic bound; adhesion goes beyond it, up to the
+        // static one. The kinetic set only grows from empty, so the answer
+        // is the same from a cold start and from another solution's
+        // tractions (to the tolerance).
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 0.4);
+        p.friction = Friction::static_kinetic(0.35, 0.1);
+        let cold = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        assert_eq!(cold.info.status, SolveStatus::Converged, "{:?}", cold.info);
+        let [nadh, nslip, above] = check_static_kinetic(&cold, 0.35, 0.1);
+        assert!(
+            nadh > 20 && nslip > 20 && above > 10,
+            "{nadh} {nslip} {above}"
+        );
+        let mut warm = ContactSolver::new(&p, &cache);
+        let mut other = p.clone();
+        other.kinematics = rolling(1.0, 1.5).kinematics;
+        solve_last(&mut warm, &other);
+        let again = solve_last(&mut warm, &p);
+        assert_eq!(again.info.status, SolveStatus::Converged);
+        assert_eq!(again.fields.state, cold.fields.state);
+        let fmax = 0.35 * cold.totals.normal_force_n;
+        for (a, b) in [
+            (again.totals.fx_n, cold.totals.fx_n),
+            (again.totals.fy_n, cold.totals.fy_n),
+        ] {
+            assert!((a - b).abs() < 1e-6 * fmax, "{a} against {b}");
+        }
+        // In full slip the kinetic coefficient bounds every element,
+        // whatever the static one.
+        let mut full = p.clone();
+        full.kinematics = Kinematics::SteadyRolling(Creepages {
+            creepage_long: 5e-3,
+            creepage_lat: 2e-3,
+            spin_per_m: 0.0,
+        });
+        let s = solve_last(&mut ContactSolver::new(&full, &cache), &full);
+        assert_eq!(s.info.status, SolveStatus::Converged);
+        assert_eq!(check_static_kinetic(&s, 0.35, 0.1)[0], 0);
+        let f = s.totals.fx_n.hypot(s.totals.fy_n);
+        assert!(f < 0.1 * s.totals.normal_force_n, "{f}");
+    }
+
+    #[test]
+    fn static_and_kinetic_passes_end_on_the_iteration_limit_with_its_status() {
+        // The passes share the tangential iteration limit: a limit below
+        // what they need ends the solve on it, reported as such, without
+        // running further.
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 0.4);
+        p.friction = Friction::static_kinetic(0.35, 0.1);
+        let whole = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+        let need = whole.info.tangential_iterations;
+        assert_eq!(whole.info.status, SolveStatus::Converged);
+        for limit in [need / 2, need - 1] {
+            p.settings.tangential.max_iterations = limit;
+            let s = solve_last(&mut ContactSolver::new(&p, &cache), &p);
+            assert_eq!(s.info.status, SolveStatus::MaxIterations, "{limit}");
+            assert_eq!(s.info.limit, Some(IterationLimit::Tangential));
+            assert!(s.info.tangential_iterations <= limit, "{:?}", s.info);
+        }
+    }
+
+    #[test]
+    fn transient_rolling_steps_bound_slip_by_the_kinetic_coefficient() {
+        // The same rule in every transient step: the steps' slip on mu_k
+        // p_n, adhesion within mu_s p_n, from rest over three crossings.
+        let cache = KernelCache::default();
+        let mut p = rolling(1.0, 0.4);
+        p.friction = Friction::static_kinetic(0.35, 0.1);
+        let c = match p.kinematics {
+            Kinematics::SteadyRolling(c) => c,
+            _ => unreachable!(),
+        };
+        p.kinematics = Kinematics::Transient(vec![ShiftStep::rolling(p.load, p.grid.dx_m, &c); 80]);
+        let sols = ContactSolver::new(&p, &cache).solve(&p).unwrap();
+        let mut above = 0;
+        for s in &sols {
+            assert_eq!(s.info.status, SolveStatus::Converged, "{:?}", s.info);
+            above += check_static_kinetic(s, 0.35, 0.1)[2];
+        }
+        let [_, nslip, _] = check_static_kinetic(sols.last().unwrap(), 0.35, 0.1);
+        assert!(nslip > 20 && above > 0, "{nslip} {above}");
     }
 
     #[test]

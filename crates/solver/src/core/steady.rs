@@ -820,8 +820,10 @@ pub fn solve_steady_newton(
 /// rolling speed) or one transient step ([`LocalModel::Diagonal`], `op` the
 /// displacement operator A, slips as displacements per step). `cx`, `cy` in
 /// `input` hold everything of the slip that does not depend on p_t.
-/// `fastsim_material` = [G, nu] enables the FASTSIM cold start of steady
-/// rolling.
+/// Each element's bound is fixed for the solve: the kinetic coefficient on
+/// `input`'s kinetic set (`previous_state`, see [`crate::core::tangential`]),
+/// the static one elsewhere. `fastsim_material` = [G, nu] enables the
+/// FASTSIM cold start of steady rolling.
 pub fn solve_coulomb_newton(
     op: &mut dyn TangentialOperator,
     local: LocalModel,
@@ -895,25 +897,19 @@ pub fn solve_coulomb_newton(
             fastsim_guess(m, input, px, py);
         }
     }
-    let bounds = |role: &[Role], g: &mut [f64]| {
-        for iy in 0..ny {
-            for ix in 0..nx {
-                let i = iy * nx + ix;
-                // Kinetic friction where the material slid just before:
-                // upstream in steady rolling, in the previous step otherwise.
-                let up_slip = match local {
-                    LocalModel::Upwind => ix + 1 < nx && role[i + 1] == Role::Slip,
-                    LocalModel::Diagonal => input.previous_state[i] == ElementState::Slip,
-                };
-                g[i] = if pn[i] > 0.0 {
-                    pn[i] * if up_slip { muk } else { mus }
-                } else {
-                    0.0
-                };
-            }
-        }
-    };
-    bounds(role, g);
+    // The bounds, fixed for the whole solve: the kinetic coefficient on the
+    // kinetic set (see `core::tangential`), the static one elsewhere. (Bounds
+    // that followed the iterate's own states, e.g. kinetic behind an
+    // element sorted into slip, would flip elements between the two from
+    // one Newton step to the next.)
+    for i in 0..n {
+        let kinetic = input.previous_state[i] == ElementState::Slip;
+        g[i] = if pn[i] > 0.0 {
+            pn[i] * if kinetic { muk } else { mus }
+        } else {
+            0.0
+        };
+    }
     for i in 0..n {
         let m = norm(px[i], py[i]);
         if m > g[i] {
@@ -1036,7 +1032,6 @@ pub fn solve_coulomb_newton(
                 Role::Slip
             };
         }
-        bounds(role, g);
         for i in 0..n {
             if role[i] != Role::Slip {
                 continue;
@@ -1338,9 +1333,18 @@ mod tests {
     /// Newton with the kernel set `newton` (and the global preconditioner
     /// when `global` and the set has it), or time marching when None.
     fn run_with(c: &Case, mu: f64, newton: Option<&KernelSet>, global: bool) -> Answer {
+        let prev = vec![ElementState::Exterior; c.grid.len()];
+        run_input(c, &c.input(mu, &prev), newton, global)
+    }
+
+    /// [`run_with`] of any input on `c`'s grid.
+    fn run_input(
+        c: &Case,
+        input: &TangentialInput<'_>,
+        newton: Option<&KernelSet>,
+        global: bool,
+    ) -> Answer {
         let n = c.grid.len();
-        let prev = vec![ElementState::Exterior; n];
-        let input = c.input(mu, &prev);
         let mut a = Answer {
             px: vec![0.0; n],
             py: vec![0.0; n],
@@ -1369,13 +1373,13 @@ mod tests {
         a.outcome = if let Some(k) = newton {
             let mut ows = k.workspace();
             let mut sc = SteadyScratch::new(n);
-            solve_steady_newton(k, &mut ows, &input, out, &mut sc, &settings)
+            solve_steady_newton(k, &mut ows, input, out, &mut sc, &settings)
         } else {
             let mut ows = c.displacement.workspace();
             solve_steady_marching(
                 &c.displacement,
                 &mut ows,
-                &input,
+                input,
                 out,
                 &mut TangentialScratch::new(n),
                 &mut MarchingScratch::new(n),
@@ -1389,9 +1393,14 @@ mod tests {
     /// |p| <= mu p_n; slip elements on the bound with the traction opposite
     /// to the slip.
     fn check_coulomb(c: &Case, a: &Answer, mu: f64) -> (usize, usize) {
+        check_coulomb_bounds(c, a, |_| mu)
+    }
+
+    /// [`check_coulomb`] with the coefficient `mu(i)` of each element.
+    fn check_coulomb_bounds(c: &Case, a: &Answer, mu: impl Fn(usize) -> f64) -> (usize, usize) {
         let (mut nadh, mut nslip) = (0, 0);
         for i in 0..c.grid.len() {
-            let g = mu * c.pn[i];
+            let g = mu(i) * c.pn[i];
             let m = a.px[i].hypot(a.py[i]);
             assert!(
                 m <= g * (1.0 + 1e-12) + 1e-300,
@@ -1437,6 +1446,51 @@ mod tests {
         }
         // Far fewer products than marching.
         assert!(newton.outcome.matvecs * 10 < march.outcome.matvecs);
+    }
+
+    #[test]
+    fn newton_and_time_marching_bound_the_kinetic_set_by_the_kinetic_coefficient() {
+        // Static 0.35 and kinetic 0.1 with the kinetic set fixed (the
+        // elements behind the patch's centre line x < 0, where slip
+        // starts): both solvers solve Coulomb's problem with those bounds,
+        // and agree; the slip elements sit on their own element's bound.
+        let (mus, muk) = (0.35, 0.1);
+        let c = case(24, 4e-4, 3e-4, 0.5);
+        let n = c.grid.len();
+        let kinetic: Vec<ElementState> = (0..n)
+            .map(|i| match c.grid.x_m(i % c.grid.nx) < 0.0 {
+                true => ElementState::Slip,
+                false => ElementState::Exterior,
+            })
+            .collect();
+        let input = TangentialInput {
+            friction: FrictionBounds {
+                static_coefficient: mus,
+                kinetic_coefficient: muk,
+            },
+            ..c.input(mus, &kinetic)
+        };
+        let mu = |i: usize| match kinetic[i] {
+            ElementState::Slip => muk,
+            _ => mus,
+        };
+        let newton = run_input(&c, &input, Some(&c.displacement), true);
+        let march = run_input(&c, &input, None, true);
+        assert!(newton.outcome.converged, "{:?}", newton.outcome);
+        assert!(march.outcome.converged, "{:?}", march.outcome);
+        let (nadh, nslip) = check_coulomb_bounds(&c, &newton, mu);
+        assert!(nadh > 20 && nslip > 20, "{nadh} adhesion, {nslip} slip");
+        // Slip on both sides of the line: both bounds are met.
+        let slip_at = |kin: bool| {
+            (0..n).any(|i| newton.state[i] == ElementState::Slip && (mu(i) == muk) == kin)
+        };
+        assert!(slip_at(true) && slip_at(false));
+        check_coulomb_bounds(&c, &march, mu);
+        let fmax = c.pn.iter().fold(0.0f64, |m, &v| m.max(v)) * mus;
+        for i in 0..n {
+            let d = (newton.px[i] - march.px[i]).hypot(newton.py[i] - march.py[i]);
+            assert!(d <= 1e-6 * fmax, "element {i} differs by {d}");
+        }
     }
 
     #[test]

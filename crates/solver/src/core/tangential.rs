@@ -31,10 +31,16 @@
 //! two diagonal influence coefficients, is below the tolerance. It is zero
 //! exactly when Coulomb's law holds at every element.
 //!
-//! Static and kinetic friction: an element whose material was sliding just
-//! before (the upstream neighbour in steady rolling, the previous step in
-//! transient problems) is bounded by the kinetic coefficient, others by the
-//! static one.
+//! Static and kinetic friction: every solver here bounds each element by
+//! one fixed coefficient during a solve, the kinetic one on the elements
+//! marked [`ElementState::Slip`] in [`TangentialInput::previous_state`]
+//! (the kinetic set), the static one elsewhere: each solve is Coulomb's
+//! problem with fixed bounds. The driver ([`crate::core::solve`]) grows the
+//! kinetic set from pass to pass by the rule of Coulomb's law with two
+//! coefficients: the static coefficient bounds sticking elements, the
+//! kinetic one sliding elements; an element enters slip when its traction
+//! would exceed mu_static p_n, and once in slip it keeps the kinetic bound
+//! (it sticks again only within mu_kinetic p_n).
 
 use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
@@ -214,8 +220,11 @@ pub struct TangentialInput<'a> {
     pub cx: &'a [f64],
     /// Fixed part of the slip, y.
     pub cy: &'a [f64],
-    /// Element states before this solve (previous step / upstream), for the
-    /// static/kinetic choice in transient problems.
+    /// The kinetic set: the elements marked [`ElementState::Slip`] are
+    /// bounded by the kinetic coefficient, the others by the static one,
+    /// for the whole solve (see the module docs; the driver passes the
+    /// elements that slid in its earlier passes). Any marking will do when
+    /// the two coefficients are equal.
     pub previous_state: &'a [ElementState],
 }
 
@@ -255,7 +264,9 @@ fn tangential_matvec(
 /// the marching reaches the steady state once the material has crossed the
 /// patch (Kalker 1990, §5.4: the steady state is the limit of transient
 /// rolling). `k` is the displacement kernel set; `cx`, `cy` in `input` hold
-/// the steady rigid slip w (plus coupling) [-].
+/// the steady rigid slip w (plus coupling) [-]. Every step bounds the
+/// elements by `input`'s kinetic set, so the limit is the steady problem
+/// [`crate::core::steady::solve_steady_newton`] solves with those bounds.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_steady_marching(
     k: &KernelSet,
@@ -284,7 +295,6 @@ pub fn solve_steady_marching(
         ashy,
         cx,
         cy,
-        prev_state,
         apx,
         apy,
     } = marching;
@@ -324,26 +334,22 @@ pub fn solve_steady_marching(
         // Shifted tractions: material at I was at I+1 (upstream) one step ago.
         shift_upstream(grid, 1, px, shx);
         shift_upstream(grid, 1, py, shy);
-        shift_upstream(grid, 1, state, prev_state);
         tangential_matvec(k, ows, shx, shy, ashx, ashy);
         matvecs += 1;
         if step > 0 {
             // Steady residual of the current iterate: s = w + (A p - A S p)/dx.
             let mut res: f64 = 0.0;
-            for iy in 0..ny {
-                for ix in 0..nx {
-                    let i = iy * nx + ix;
-                    if input.pn[i] <= 0.0 {
-                        continue;
-                    }
-                    let up_slip = ix + 1 < nx && state[i + 1] == ElementState::Slip;
-                    let g = input.pn[i] * if up_slip { muk } else { mus };
-                    let s = [
-                        input.cx[i] + (apx[i] - ashx[i]) / dx,
-                        input.cy[i] + (apy[i] - ashy[i]) / dx,
-                    ];
-                    res = res.max(natural_residual([px[i], py[i]], s, dbar, g));
+            for i in 0..n {
+                if input.pn[i] <= 0.0 {
+                    continue;
                 }
+                let kinetic = input.previous_state[i] == ElementState::Slip;
+                let g = input.pn[i] * if kinetic { muk } else { mus };
+                let s = [
+                    input.cx[i] + (apx[i] - ashx[i]) / dx,
+                    input.cy[i] + (apy[i] - ashy[i]) / dx,
+                ];
+                res = res.max(natural_residual([px[i], py[i]], s, dbar, g));
             }
             residual = if gmax > 0.0 { res / gmax } else { 0.0 };
             if residual <= settings.tolerance || step == max_steps {
@@ -365,7 +371,9 @@ pub fn solve_steady_marching(
             cx[i] = dx * input.cx[i] - ashx[i];
             cy[i] = dx * input.cy[i] - ashy[i];
         }
-        // Warm start: the shifted tractions.
+        // Warm start: the shifted tractions. The steps keep the solve's
+        // kinetic set (not the states carried from the step before): their
+        // limit is the steady problem with those bounds.
         px.copy_from_slice(shx);
         py.copy_from_slice(shy);
         let step_input = TangentialInput {
@@ -374,7 +382,7 @@ pub fn solve_steady_marching(
             friction: input.friction,
             cx,
             cy,
-            previous_state: prev_state,
+            previous_state: input.previous_state,
         };
         let o = solve_transient(
             k,
@@ -500,7 +508,6 @@ pub struct MarchingScratch {
     ashy: Vec<f64>,
     cx: Vec<f64>,
     cy: Vec<f64>,
-    prev_state: Vec<ElementState>,
     apx: Vec<f64>,
     apy: Vec<f64>,
 }
@@ -516,7 +523,6 @@ impl MarchingScratch {
             ashy: z(),
             cx: z(),
             cy: z(),
-            prev_state: vec![ElementState::Exterior; n],
             apx: z(),
             apy: z(),
         }
@@ -525,20 +531,12 @@ impl MarchingScratch {
 
 impl HeapBytes for MarchingScratch {
     fn heap_bytes(&self) -> usize {
-        heap_bytes!(
-            self.shx,
-            self.shy,
-            self.ashx,
-            self.ashy,
-            self.cx,
-            self.cy,
-            self.prev_state,
-            self.apx,
-            self.apy
-        )
+        heap_bytes!(self.shx, self.shy, self.ashx, self.ashy, self.cx, self.cy, self.apx, self.apy)
     }
 }
 
+/// States and slips of a transient step's answer: each element sorted by
+/// its local problem with the bound it was solved with (the kinetic set's).
 #[allow(clippy::too_many_arguments)]
 fn finish_states(
     input: &TangentialInput<'_>,
@@ -550,39 +548,29 @@ fn finish_states(
     sx: &mut [f64],
     sy: &mut [f64],
     state: &mut [ElementState],
-    steady: bool,
 ) {
-    let grid = input.grid;
-    let (nx, ny) = (grid.nx, grid.ny);
     let (mus, muk) = (
         input.friction.static_coefficient,
         input.friction.kinetic_coefficient,
     );
-    for iy in 0..ny {
-        for ix in (0..nx).rev() {
-            let i = iy * nx + ix;
-            if input.pn[i] <= 0.0 {
-                state[i] = ElementState::Exterior;
-                sx[i] = 0.0;
-                sy[i] = 0.0;
-                continue;
-            }
-            let kinetic = if steady {
-                ix + 1 < nx && state[i + 1] == ElementState::Slip
-            } else {
-                input.previous_state[i] == ElementState::Slip
-            };
-            let gs = input.pn[i] * if kinetic { muk } else { mus };
-            let q = [ux[i] - d[0] * px[i], uy[i] - d[1] * py[i]];
-            let (_, st, _) = local_coulomb(q, d, gs, input.pn[i] * muk);
-            state[i] = st;
-            if st == ElementState::Adhesion {
-                sx[i] = 0.0;
-                sy[i] = 0.0;
-            } else {
-                sx[i] = ux[i];
-                sy[i] = uy[i];
-            }
+    for i in 0..input.pn.len() {
+        if input.pn[i] <= 0.0 {
+            state[i] = ElementState::Exterior;
+            sx[i] = 0.0;
+            sy[i] = 0.0;
+            continue;
+        }
+        let kinetic = input.previous_state[i] == ElementState::Slip;
+        let g = input.pn[i] * if kinetic { muk } else { mus };
+        let q = [ux[i] - d[0] * px[i], uy[i] - d[1] * py[i]];
+        let (_, st, _) = local_coulomb(q, d, g, g);
+        state[i] = st;
+        if st == ElementState::Adhesion {
+            sx[i] = 0.0;
+            sy[i] = 0.0;
+        } else {
+            sx[i] = ux[i];
+            sy[i] = uy[i];
         }
     }
 }
@@ -720,7 +708,7 @@ pub fn solve_transient(
         ));
     }
     let residual = if gmax > 0.0 { res / gmax } else { 0.0 };
-    finish_states(input, px, py, ux, uy, d, sx, sy, state, false);
+    finish_states(input, px, py, ux, uy, d, sx, sy, state);
     TangentialOutcome {
         iterations,
         matvecs,

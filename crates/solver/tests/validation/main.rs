@@ -3,8 +3,10 @@
 //! contact (`conformal`), the profile readers (`profiles`), transient rolling
 //! against CONTACT (`transient`), wheel/rail contact (`wheelrail`), its
 //! friction varying over the profile (`variable_friction`), its flash
-//! temperatures (`wheelrail_temperature`) and the plausibility warnings of
-//! its solutions (`plausibility`). Each reference number names its source.
+//! temperatures (`wheelrail_temperature`), the plausibility warnings of
+//! its solutions (`plausibility`) and Coulomb friction with static and
+//! kinetic coefficients against CONTACT (`static_kinetic`). Each reference
+//! number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
 /// and source beside it).
@@ -21,6 +23,7 @@ mod physics;
 mod plausibility;
 mod profiles;
 mod rolling_direction;
+mod static_kinetic;
 mod transient;
 mod variable_friction;
 mod wheelrail;
