@@ -183,7 +183,8 @@ impl Element {
                 Ok(())
             }
             (e @ Element::Basic(_), CalculationResult::Patch { outcome }) => {
-                e.patch_mut(icp)?.accept_calculation(outcome.map(|o| *o), seconds);
+                e.patch_mut(icp)?
+                    .accept_calculation(outcome.map(|o| *o), seconds);
                 Ok(())
             }
             _ => Err(CntcError::Server(
