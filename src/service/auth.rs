@@ -24,11 +24,26 @@
 //! A call without a usable token is UNAUTHENTICATED, one whose token's
 //! role may not call the method PERMISSION_DENIED naming the role needed;
 //! both are counted in `railcontact_auth_refused_total{reason}` and
-//! logged with the token's name, never the token. Presented tokens are
-//! hashed (SHA-256) and compared with every known digest in constant time.
+//! logged with the token's name, never the token (at most 20 lines per
+//! 10 s, [`crate::service::quota::LogLimiter`], so that a flood of
+//! refusals cannot flood the log). Presented tokens are hashed (SHA-256)
+//! and compared with every known digest in constant time.
+//!
+//! Guessing is slowed per peer address ([`AuthBackoff`]): an address may
+//! present `auth_failure_burst` unknown tokens, then one more every
+//! `1 / auth_failure_rate_per_s` seconds; meanwhile its calls that need a
+//! token are refused with RESOURCE_EXHAUSTED naming `auth_failure_burst`
+//! and how long to wait, without their token being checked.
+//!
+//! The layer also says who the client is, for the quotas
+//! ([`crate::service::quota::ClientId`] in the request's extensions): the
+//! token's name when one was checked, else the peer's address. And it
+//! marks the connection as having started a call
+//! ([`crate::service::connections`]).
 
 use std::collections::HashSet;
 use std::future::Future;
+use std::net::{IpAddr, Ipv4Addr};
 use std::path::{Path, PathBuf};
 use std::pin::Pin;
 use std::sync::Arc;
@@ -40,7 +55,10 @@ use subtle::ConstantTimeEq;
 use thiserror::Error;
 use tonic::codegen::http;
 
+use crate::service::connections::ConnInfo;
 use crate::service::metrics::Metrics;
+pub use crate::service::quota::AuthBackoff;
+use crate::service::quota::{peer_key, ClientId, REFUSED_CALLS_LOG};
 
 /// What a token may do.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
@@ -160,7 +178,7 @@ struct TokenEntry {
 /// One known token: its name, role and the SHA-256 of the token.
 #[derive(Clone)]
 struct Known {
-    name: String,
+    name: Arc<str>,
     role: Role,
     digest: [u8; 32],
 }
@@ -253,7 +271,7 @@ impl Tokens {
                 ));
             }
             known.push(Known {
-                name: t.name,
+                name: t.name.into(),
                 role: t.role,
                 digest,
             });
@@ -274,27 +292,29 @@ impl Tokens {
     /// The name and role of `presented`, if it is a known token. Compares
     /// its SHA-256 with every known digest, in constant time each, without
     /// stopping at a match.
-    fn find(&self, presented: &str) -> Option<(&str, Role)> {
+    fn find(&self, presented: &str) -> Option<(&Arc<str>, Role)> {
         let digest = sha256(presented);
         let mut found = None;
         for k in &self.known {
             if bool::from(k.digest.ct_eq(&digest)) {
-                found = Some((k.name.as_str(), k.role));
+                found = Some((&k.name, k.role));
             }
         }
         found
     }
 
     /// Whether a call to `path` with these `authorization` metadata may
-    /// go ahead: the refusal's reason (a metrics label) and status.
+    /// go ahead, with the name of the token checked (None for a call that
+    /// needs none); else the refusal's reason (a metrics label) and
+    /// status.
     pub fn check(
         &self,
         path: &str,
         authorization: Option<&[u8]>,
-    ) -> Result<(), (&'static str, tonic::Status)> {
+    ) -> Result<Option<Arc<str>>, (&'static str, tonic::Status)> {
         let needed = access(path);
         if needed == Access::Open {
-            return Ok(());
+            return Ok(None);
         }
         let token = authorization
             .and_then(|v| std::str::from_utf8(v).ok())
@@ -319,12 +339,15 @@ impl Tokens {
         };
         match needed {
             Access::Role(r) if !role.allows(r) => {
-                tracing::info!(
-                    path = %crate::service::escaped(path),
-                    token = %crate::service::escaped(name),
-                    role = role.name(),
-                    "call refused: role"
-                );
+                if let Some(left_out) = REFUSED_CALLS_LOG.allow() {
+                    tracing::info!(
+                        path = %crate::service::escaped(path),
+                        token = %crate::service::escaped(name),
+                        role = role.name(),
+                        left_out,
+                        "call refused: role"
+                    );
+                }
                 Err((
                     "forbidden",
                     tonic::Status::permission_denied(format!(
@@ -335,26 +358,29 @@ impl Tokens {
                     )),
                 ))
             }
-            _ => Ok(()),
+            _ => Ok(Some(name.clone())),
         }
     }
 }
 
 /// The tower layer that checks the bearer tokens of every call of the
 /// server (see the module documentation); without tokens it passes every
-/// call through.
+/// call through. Either way it puts the call's
+/// [`ClientId`] in the request's extensions.
 #[derive(Clone)]
 pub struct AuthLayer {
     tokens: Option<Arc<Tokens>>,
+    backoff: Arc<AuthBackoff>,
     metrics: Arc<Metrics>,
 }
 
 impl AuthLayer {
-    /// Checks against `tokens` (None: no checks), counting refusals into
-    /// `metrics`.
-    pub fn new(tokens: Option<Tokens>, metrics: Arc<Metrics>) -> Self {
+    /// Checks against `tokens` (None: no checks), slowing peers that fail
+    /// by `backoff`, counting refusals into `metrics`.
+    pub fn new(tokens: Option<Tokens>, backoff: AuthBackoff, metrics: Arc<Metrics>) -> Self {
         Self {
             tokens: tokens.map(Arc::new),
+            backoff: Arc::new(backoff),
             metrics,
         }
     }
@@ -394,25 +420,67 @@ where
         self.inner.poll_ready(cx)
     }
 
-    fn call(&mut self, req: http::Request<B>) -> Self::Future {
+    fn call(&mut self, mut req: http::Request<B>) -> Self::Future {
+        let peer = match req.extensions().get::<ConnInfo>() {
+            Some(conn) => {
+                conn.state.called();
+                peer_key(conn.remote.ip())
+            }
+            None => IpAddr::V4(Ipv4Addr::UNSPECIFIED),
+        };
+        let mut client = ClientId::Peer(peer);
         if let Some(tokens) = &self.layer.tokens {
+            let refuse = |status: tonic::Status| -> Self::Future {
+                Box::pin(std::future::ready(Ok(status.into_http())))
+            };
+            let path = req.uri().path();
+            if access(path) != Access::Open {
+                if let Some(wait) = self.layer.backoff.wait(peer) {
+                    self.layer.metrics.quota_refused("auth_failure_burst");
+                    let message = format!(
+                        "too many unknown tokens from {client}: its next token is checked in \
+                         {:.1} s (auth_failure_burst, auth_failure_rate_per_s); retry then",
+                        wait.as_secs_f64().max(0.1)
+                    );
+                    if let Some(left_out) = REFUSED_CALLS_LOG.allow() {
+                        tracing::info!(
+                            path = %crate::service::escaped(path),
+                            left_out,
+                            "call refused: {message}"
+                        );
+                    }
+                    return refuse(tonic::Status::resource_exhausted(message));
+                }
+            }
             let authorization = req
                 .headers()
                 .get(http::header::AUTHORIZATION)
                 .map(|v| v.as_bytes());
-            if let Err((reason, status)) = tokens.check(req.uri().path(), authorization) {
-                self.layer.metrics.auth_refused(reason);
-                // A `forbidden` refusal was logged with the token's name.
-                if reason != "forbidden" {
-                    tracing::info!(
-                        path = %crate::service::escaped(req.uri().path()),
-                        reason,
-                        "call refused: token"
-                    );
+            match tokens.check(path, authorization) {
+                Ok(Some(name)) => client = ClientId::Token(name),
+                Ok(None) => {}
+                Err((reason, status)) => {
+                    self.layer.metrics.auth_refused(reason);
+                    if reason == "unknown" {
+                        self.layer.backoff.failed(peer);
+                    }
+                    // A `forbidden` refusal was logged with the token's name.
+                    if reason != "forbidden" {
+                        if let Some(left_out) = REFUSED_CALLS_LOG.allow() {
+                            tracing::info!(
+                                path = %crate::service::escaped(path),
+                                peer = %client,
+                                reason,
+                                left_out,
+                                "call refused: token"
+                            );
+                        }
+                    }
+                    return refuse(status);
                 }
-                return Box::pin(std::future::ready(Ok(status.into_http())));
             }
         }
+        req.extensions_mut().insert(client);
         Box::pin(self.inner.call(req))
     }
 }

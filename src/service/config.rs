@@ -126,12 +126,22 @@ pub struct ServeConfig {
     /// Requests admitted at once, running plus waiting (default 0: 16 per
     /// worker); more get RESOURCE_EXHAUSTED.
     pub queue_capacity: usize,
+    /// Requests of one client (its token's name, or without tokens its
+    /// address) admitted at once, running plus waiting (default 0: half of
+    /// the queue's capacity, rounded up); more get RESOURCE_EXHAUSTED
+    /// naming this setting while other clients are admitted. The workers
+    /// serve the clients with solves waiting in turn, whatever this is.
+    pub client_max_admitted: usize,
     /// Largest number of items of one SolvePatchBatch (default 1024).
     pub max_batch_items: usize,
     /// Largest number of points of one CreepCurve (default 1000).
     pub max_curve_points: usize,
     /// Sessions open at once (default 256); more get RESOURCE_EXHAUSTED.
     pub max_sessions: usize,
+    /// Sessions of one client open at once (default 0: half of
+    /// `max_sessions`, rounded up: 128); more get RESOURCE_EXHAUSTED naming
+    /// this setting while other clients open theirs.
+    pub client_max_sessions: usize,
     /// Memory one session may hold between its steps \[bytes\]: its live
     /// working state (the exact solver's buffers, FFT workspaces and Newton
     /// scratch, warm starts, a wheel/rail session's patch solvers; not the
@@ -206,6 +216,32 @@ pub struct ServeConfig {
     /// Calls open at once on one HTTP/2 connection (default 256); a client
     /// needing more opens another connection.
     pub max_streams_per_connection: u32,
+    /// Calls open at once on the whole server, every connection's
+    /// together (default 4096: a silent stream holds about 60 kB, so about
+    /// 250 MB at most); more get RESOURCE_EXHAUSTED naming this setting. A
+    /// health check is never refused.
+    pub max_streams: usize,
+    /// Calls of one client open at once (default 0: half of
+    /// `max_streams`, rounded up); more get RESOURCE_EXHAUSTED naming this
+    /// setting.
+    pub client_max_streams: usize,
+    /// Connections open at once (default 1024); more are closed as soon as
+    /// they are accepted. Keep it below the process's limit of open files.
+    pub max_connections: usize,
+    /// Connections of one address open at once (default 0: half of
+    /// `max_connections`, rounded up); more are closed as soon as they are
+    /// accepted. By address even with tokens: a connection comes before
+    /// its first token.
+    pub client_max_connections: usize,
+    /// A connection that has not started a call (its TLS handshake, the
+    /// HTTP/2 preface and a request's headers) this long after it was
+    /// accepted is closed \[s\] (default 10).
+    pub connection_first_call_timeout_s: f64,
+    /// A streamed response (CreepCurve) whose client reads none of its
+    /// answers for this long is ended: its solve's queue slot and state
+    /// are freed and its connection is closed \[s\] (default 60).
+    /// Sessions have `session_idle_timeout_s` instead.
+    pub stream_write_timeout_s: f64,
     /// TLS on the gRPC port: the server's certificate chain, a PEM file
     /// (leaf first). Set together with `tls_key`; not set (default): plain
     /// HTTP/2 (h2c).
@@ -222,6 +258,14 @@ pub struct ServeConfig {
     /// every call but the health service's needs `authorization: Bearer
     /// TOKEN`. Not set (default): no tokens.
     pub auth_tokens_file: Option<PathBuf>,
+    /// Unknown tokens one address may present before it is slowed down
+    /// (default 10); then one more every `1 / auth_failure_rate_per_s`
+    /// seconds. Meanwhile its calls needing a token get RESOURCE_EXHAUSTED
+    /// naming this setting, their token unchecked.
+    pub auth_failure_burst: u32,
+    /// Unknown tokens per second an address may present once its
+    /// `auth_failure_burst` is spent (default 1).
+    pub auth_failure_rate_per_s: f64,
     /// Serve gRPC reflection (default true); with `auth_tokens_file` it
     /// needs a token of any role.
     pub reflection: bool,
@@ -273,9 +317,11 @@ impl Default for ServeConfig {
             metrics_listen: None,
             workers: 0,
             queue_capacity: 0,
+            client_max_admitted: 0,
             max_batch_items: 1024,
             max_curve_points: 1000,
             max_sessions: 256,
+            client_max_sessions: 0,
             max_session_bytes: 256 << 20,
             max_sessions_total_bytes: 1 << 30,
             session_idle_timeout_s: 300.0,
@@ -289,6 +335,12 @@ impl Default for ServeConfig {
             http2_keepalive_interval_s: 30.0,
             http2_keepalive_timeout_s: 20.0,
             max_streams_per_connection: 256,
+            max_streams: 4096,
+            client_max_streams: 0,
+            max_connections: 1024,
+            client_max_connections: 0,
+            connection_first_call_timeout_s: 10.0,
+            stream_write_timeout_s: 60.0,
             store_damaged: StoreDamaged::Start,
             max_profile_pairs: 256,
             max_profile_points: 20_000,
@@ -297,6 +349,8 @@ impl Default for ServeConfig {
             tls_key: None,
             tls_client_ca: None,
             auth_tokens_file: None,
+            auth_failure_burst: 10,
+            auth_failure_rate_per_s: 1.0,
             reflection: true,
             insecure: false,
             metrics_insecure: false,
@@ -438,6 +492,11 @@ impl ServeConfig {
                 c.stream_first_message_timeout_s,
             ),
             ("http2_keepalive_timeout_s", c.http2_keepalive_timeout_s),
+            (
+                "connection_first_call_timeout_s",
+                c.connection_first_call_timeout_s,
+            ),
+            ("stream_write_timeout_s", c.stream_write_timeout_s),
         ] {
             if !(0.001..=MAX_SECONDS).contains(&v) {
                 errors.push(format!(
@@ -447,6 +506,18 @@ impl ServeConfig {
         }
         if c.max_streams_per_connection == 0 {
             errors.push("max_streams_per_connection must be at least 1".into());
+        }
+        if c.auth_failure_burst == 0 {
+            errors.push("auth_failure_burst must be at least 1".into());
+        }
+        if !(c.auth_failure_rate_per_s.is_finite()
+            && c.auth_failure_rate_per_s > 0.0
+            && c.auth_failure_rate_per_s <= 1e6)
+        {
+            errors.push(format!(
+                "auth_failure_rate_per_s must be > 0 and at most 1e6, got {}",
+                c.auth_failure_rate_per_s
+            ));
         }
         // Up to a year: a Duration of it never overflows.
         if !(c.session_idle_timeout_s > 0.0 && c.session_idle_timeout_s <= 3.2e7) {
@@ -459,6 +530,8 @@ impl ServeConfig {
             ("max_batch_items", c.max_batch_items),
             ("max_curve_points", c.max_curve_points),
             ("max_sessions", c.max_sessions),
+            ("max_streams", c.max_streams),
+            ("max_connections", c.max_connections),
             ("max_grid_elements", c.max_grid_elements),
             ("max_message_bytes", c.max_message_bytes),
             ("max_profile_pairs", c.max_profile_pairs),
@@ -571,6 +644,30 @@ impl ServeConfig {
         } else {
             16 * self.worker_count()
         }
+    }
+
+    /// A warning when `max_connections` does not fit under the process's
+    /// limit of open files (Linux: `/proc/self/limits`; None elsewhere or
+    /// when it fits): connections beyond the limit fail at accept, before
+    /// the cap can refuse them, and the store needs descriptors too.
+    pub fn check_open_files(&self) -> Option<String> {
+        let limits = std::fs::read_to_string("/proc/self/limits").ok()?;
+        let soft: u64 = limits
+            .lines()
+            .find(|l| l.starts_with("Max open files"))?
+            .split_whitespace()
+            .nth(3)?
+            .parse()
+            .ok()?;
+        let needed = self.max_connections as u64 + 64;
+        (needed > soft).then(|| {
+            format!(
+                "max_connections = {} needs about {needed} open files, more than this process's \
+                 limit of {soft} (`ulimit -n`, LimitNOFILE in systemd): raise the limit or \
+                 lower max_connections",
+                self.max_connections
+            )
+        })
     }
 }
 

@@ -4,7 +4,7 @@
 //! of the request (`case.`, `items[3].case.`, `open.case.`, `step.`).
 
 use std::pin::Pin;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
@@ -17,6 +17,7 @@ use tracing::Instrument;
 use crate::core::cache::KernelCache;
 use crate::core::problem::{Creepages, Kinematics};
 use crate::problem::case::{Case, Model};
+use crate::service::connections::ConnInfo;
 use crate::service::contact_library::LibraryElement;
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
@@ -26,8 +27,10 @@ use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
 use crate::service::pool::{deadline_of, Admission, Lane, SolvePool, INLINE_FASTSIM_ELEMENTS};
+use crate::service::quota::{client_share, ClientId, Quota, QuotaGuard, Resource};
 use crate::service::session::{Session, SessionLimits};
 use crate::service::status::{self, ServiceError};
+use crate::service::streams::{outbound, Unsent};
 use crate::service::wheelrail;
 use crate::service::wheelrail_session::WheelRailSession;
 use crate::wheelrail::{
@@ -45,6 +48,8 @@ pub struct RequestLimits {
     pub max_curve_points: usize,
     /// Open sessions.
     pub max_sessions: usize,
+    /// Open sessions of one client (0: half of `max_sessions`).
+    pub client_max_sessions: usize,
     /// Largest message \[bytes\] (a session step's response included).
     pub max_message_bytes: usize,
     /// Memory of one session, live state and marks \[bytes\].
@@ -55,6 +60,9 @@ pub struct RequestLimits {
     pub session_idle_timeout: Duration,
     /// A session stream must send its first message (`open`) within this.
     pub first_message_timeout: Duration,
+    /// A streamed response whose client reads nothing for this long is
+    /// ended (`stream_write_timeout_s`).
+    pub stream_write_timeout: Duration,
 }
 
 /// The service: shared by all connections.
@@ -63,7 +71,8 @@ pub struct ContactHandlers {
     pool: SolvePool,
     limits: RequestLimits,
     metrics: Arc<Metrics>,
-    sessions: Arc<AtomicUsize>,
+    /// Open sessions, per client and in all.
+    sessions: Arc<Quota>,
     /// The memory of the sessions (live state and marks).
     memory: SessionBudget,
     next_id: Arc<AtomicU64>,
@@ -73,6 +82,10 @@ pub struct ContactHandlers {
 /// Messages buffered per streaming response before the solver waits for
 /// the client.
 const STREAM_BUFFER: usize = 8;
+
+/// Answers of a creep curve queued before its solve waits for the client
+/// (each may hold per-element fields: megabytes).
+const CURVE_BUFFER: usize = 2;
 
 type BoxStream<T> = Pin<Box<dyn Stream<Item = Result<T, Status>> + Send>>;
 
@@ -88,8 +101,13 @@ impl ContactHandlers {
         Self {
             pool,
             limits,
+            sessions: Quota::new(
+                Resource::Sessions,
+                Some(limits.max_sessions),
+                client_share(limits.client_max_sessions, limits.max_sessions),
+                metrics.clone(),
+            ),
             metrics,
-            sessions: Arc::new(AtomicUsize::new(0)),
             memory: SessionBudget::new(limits.max_session_bytes, limits.max_sessions_total_bytes),
             next_id: Arc::new(AtomicU64::new(1)),
             pairs,
@@ -223,6 +241,7 @@ impl ContactHandlers {
     /// order.
     async fn batch<T, R, F, Fut>(
         &self,
+        client: &ClientId,
         items: Vec<T>,
         deadline: Option<tokio::time::Instant>,
         solve: F,
@@ -243,7 +262,7 @@ impl ContactHandlers {
                 ),
             ));
         }
-        let admission = Arc::new(self.pool.admit(deadline)?);
+        let admission = Arc::new(self.pool.admit_for(client, deadline)?);
         self.pool
             .run_items(items, |i, item| {
                 let (this, admission, solve) = (self.clone(), admission.clone(), solve.clone());
@@ -376,8 +395,18 @@ fn finish<T>(
         t0.elapsed().as_secs_f64(),
         r.as_ref().err().map(|e| e.code()),
     );
-    if let Err(e) = &r {
-        tracing::info!(code = ?e.code(), error = %escaped(&e.to_string()), "request failed");
+    match &r {
+        // A client over its share may send thousands a second: those
+        // lines are limited.
+        Err(e @ ServiceError::Exhausted(_)) => {
+            if let Some(left_out) = crate::service::quota::REFUSED_CALLS_LOG.allow() {
+                tracing::info!(code = ?e.code(), error = %escaped(&e.to_string()), left_out, "request failed");
+            }
+        }
+        Err(e) => {
+            tracing::info!(code = ?e.code(), error = %escaped(&e.to_string()), "request failed")
+        }
+        Ok(_) => {}
     }
     r.map_err(Status::from)
 }
@@ -391,8 +420,9 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("SolvePatch", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let r = async {
-            let admission = self.pool.admit(deadline)?;
+            let admission = self.pool.admit_for(&client, deadline)?;
             let result = self.solve_one(&admission, req.into_inner(), "").await?;
             Ok(pb::SolvePatchResponse {
                 result: Some(result),
@@ -410,13 +440,14 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("SolvePatchBatch", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let r = async {
             let items = req.into_inner().items;
             let solve = |this: ContactHandlers, a: Arc<Admission>, item, prefix: String| async move {
                 this.solve_one(&a, item, &prefix).await
             };
             let slots = self
-                .batch(items, deadline, solve)
+                .batch(&client, items, deadline, solve)
                 .await?
                 .into_iter()
                 .map(|(index, r)| pb::BatchItemResult {
@@ -443,9 +474,10 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("RegisterProfilePair", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let checked = async {
             let spec = pairs::canonicalize(&req.into_inner())?;
-            let admission = self.pool.admit(deadline)?;
+            let admission = self.pool.admit_for(&client, deadline)?;
             Ok((spec, admission))
         }
         .instrument(span.clone())
@@ -491,9 +523,10 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("DeleteProfilePair", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let r = async {
             let id = self.pairs.lookup(&req.get_ref().pair_id)?.spec.id.clone();
-            let admission = self.pool.admit(deadline)?;
+            let admission = self.pool.admit_for(&client, deadline)?;
             let (registry, key) = (self.pairs.clone(), id.clone());
             admission.run(move || registry.delete(&key)).await??;
             tracing::info!(pair_id = %escaped(&id), "profile pair deleted");
@@ -511,8 +544,9 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("SolveWheelRail", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let r = async {
-            let admission = self.pool.admit(deadline)?;
+            let admission = self.pool.admit_for(&client, deadline)?;
             let result = self
                 .solve_wheel_rail_one(&admission, req.into_inner(), "")
                 .await?;
@@ -532,13 +566,14 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("SolveWheelRailBatch", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
         let r = async {
             let items = req.into_inner().items;
             let solve = |this: ContactHandlers, a: Arc<Admission>, item, prefix: String| async move {
                 this.solve_wheel_rail_one(&a, item, &prefix).await
             };
             let items = self
-                .batch(items, deadline, solve)
+                .batch(&client, items, deadline, solve)
                 .await?
                 .into_iter()
                 .map(|(index, r)| pb::WheelRailBatchItem {
@@ -565,6 +600,8 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let t0 = StdInstant::now();
         let span = tracing::info_span!("CreepCurve", request_id = %self.request_id(&req));
         let deadline = deadline_of(req.metadata());
+        let client = ClientId::of(&req);
+        let connection = req.extensions().get::<ConnInfo>().cloned();
         let prepared = async {
             let req = req.into_inner();
             let points = sweep_points(&req, self.limits.max_curve_points)?;
@@ -589,14 +626,47 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                     "the Hertz models compute no tangential forces: use exact, fastsim, cect or cect_halfspace",
                 ));
             }
-            let admission = self.pool.admit(deadline)?;
+            let admission = self.pool.admit_for(&client, deadline)?;
             Ok((valid, points, req.include_fields, admission))
         }
         .instrument(span.clone())
         .await;
         let (valid, points, fields, admission) = finish(&self.metrics, "CreepCurve", t0, prepared)?;
-        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let (tx, rx) = outbound(CURVE_BUFFER);
+        let tx = Arc::new(tx);
         let metrics = self.metrics.clone();
+        let stalls = self.metrics.clone();
+        let write_timeout = self.limits.stream_write_timeout;
+        // Queues an answer; false when the curve is to stop: its client is
+        // gone, or has read nothing for `stream_write_timeout_s` (then the
+        // stream is ended, and its connection closed, which frees what
+        // HTTP/2 buffered for it).
+        let send = move |msg: Result<pb::CreepCurvePoint, Status>, index: usize| {
+            let (tx, metrics, connection) = (tx.clone(), stalls.clone(), connection.clone());
+            async move {
+                match tx.send(msg, write_timeout).await {
+                    Ok(()) => true,
+                    Err(Unsent::Gone) => false,
+                    Err(Unsent::Stalled) => {
+                        metrics.stream_write_timed_out();
+                        let message = format!(
+                            "the client read none of this creep curve's answers for {} s, this \
+                             server's stream_write_timeout_s: the curve was stopped at point \
+                             {index} and its connection closed",
+                            write_timeout.as_secs_f64()
+                        );
+                        if let Some(left_out) = crate::service::quota::REFUSED_CALLS_LOG.allow() {
+                            tracing::info!(left_out, "{message}");
+                        }
+                        tx.fail(Status::deadline_exceeded(message));
+                        if let Some(c) = connection {
+                            c.state.abort();
+                        }
+                        false
+                    }
+                }
+            }
+        };
         tokio::spawn(
             async move {
                 let model = valid.case.model;
@@ -608,7 +678,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                 let mut engine = match built {
                     Ok(e) => e,
                     Err(e) => {
-                        let _ = tx.send(Err(Status::from(e.within("case")))).await;
+                        send(Err(Status::from(e.within("case"))), 0).await;
                         return;
                     }
                 };
@@ -627,7 +697,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                             r
                         }
                         Err(e) => {
-                            let _ = tx.send(Err(Status::from(e))).await;
+                            send(Err(Status::from(e)), index).await;
                             return;
                         }
                     };
@@ -640,14 +710,14 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                         })
                         .map_err(|e| Status::from(e.within("case")));
                     let failed = msg.is_err();
-                    if tx.send(msg).await.is_err() || failed {
+                    if !send(msg, index).await || failed {
                         return;
                     }
                 }
             }
             .instrument(span),
         );
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(Response::new(Box::pin(rx)))
     }
 
     type WheelRailSessionStream = BoxStream<pb::WheelRailSessionResponse>;
@@ -658,13 +728,14 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
     ) -> Result<Response<Self::WheelRailSessionStream>, Status> {
         let session_id = format!("w{}", self.next_id.fetch_add(1, Ordering::Relaxed));
         let span = tracing::info_span!("WheelRailSession", request_id = %self.request_id(&req), session_id = %session_id);
+        let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
         let (tx, rx) = mpsc::channel(STREAM_BUFFER);
         let this = self.clone();
         tokio::spawn(
             async move {
                 if let Err(status) = this
-                    .run_wheelrail_session(&mut inbound, &tx, session_id)
+                    .run_wheelrail_session(&mut inbound, &tx, session_id, client)
                     .await
                 {
                     this.end_stream(&tx, status).await;
@@ -683,13 +754,14 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
     ) -> Result<Response<Self::ContactLibraryStream>, Status> {
         let session_id = format!("c{}", self.next_id.fetch_add(1, Ordering::Relaxed));
         let span = tracing::info_span!("ContactLibrary", request_id = %self.request_id(&req), session_id = %session_id);
+        let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
         let (tx, rx) = mpsc::channel(STREAM_BUFFER);
         let this = self.clone();
         tokio::spawn(
             async move {
                 if let Err(status) = this
-                    .run_contact_library(&mut inbound, &tx, session_id)
+                    .run_contact_library(&mut inbound, &tx, session_id, client)
                     .await
                 {
                     this.end_stream(&tx, status).await;
@@ -708,12 +780,16 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
     ) -> Result<Response<Self::PatchSessionStream>, Status> {
         let session_id = format!("s{}", self.next_id.fetch_add(1, Ordering::Relaxed));
         let span = tracing::info_span!("PatchSession", request_id = %self.request_id(&req), session_id = %session_id);
+        let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
         let (tx, rx) = mpsc::channel(STREAM_BUFFER);
         let this = self.clone();
         tokio::spawn(
             async move {
-                if let Err(status) = this.run_session(&mut inbound, &tx, session_id).await {
+                if let Err(status) = this
+                    .run_session(&mut inbound, &tx, session_id, client)
+                    .await
+                {
                     this.end_stream(&tx, status).await;
                 }
             }
@@ -723,14 +799,15 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
     }
 }
 
-/// Decrements the open-session count when a session ends, however it
-/// ends, and updates the sessions' memory figures (declared before the
-/// session, it is dropped after it and its memory).
-struct SessionSlot(Arc<AtomicUsize>, Arc<Metrics>, SessionBudget);
+/// Gives the session's place back (the server's count and its client's)
+/// when a session ends, however it ends, and updates the sessions' memory
+/// figures (declared before the session, it is dropped after it and its
+/// memory).
+struct SessionSlot(Option<QuotaGuard>, Arc<Metrics>, SessionBudget);
 
 impl Drop for SessionSlot {
     fn drop(&mut self) {
-        self.0.fetch_sub(1, Ordering::Relaxed);
+        drop(self.0.take());
         self.1.session_closed();
         self.1.session_memory(&self.2);
     }
@@ -779,18 +856,14 @@ fn reply(kind: pb::session_response::Kind) -> pb::SessionResponse {
 }
 
 impl ContactHandlers {
-    /// Counts a session in, or RESOURCE_EXHAUSTED at the server's limit.
-    fn session_slot(&self) -> Result<SessionSlot, ServiceError> {
-        if self.sessions.fetch_add(1, Ordering::Relaxed) >= self.limits.max_sessions {
-            self.sessions.fetch_sub(1, Ordering::Relaxed);
-            return Err(ServiceError::Exhausted(format!(
-                "{} sessions are open, this server's limit; close one or retry later",
-                self.limits.max_sessions
-            )));
-        }
+    /// Counts a session of `client` in, or RESOURCE_EXHAUSTED at the
+    /// server's limit (`max_sessions`) or the client's share
+    /// (`client_max_sessions`), naming it.
+    fn session_slot(&self, client: &ClientId) -> Result<SessionSlot, ServiceError> {
+        let counted = self.sessions.take(client)?;
         self.metrics.session_opened();
         Ok(SessionSlot(
-            self.sessions.clone(),
+            Some(counted),
             self.metrics.clone(),
             self.memory.clone(),
         ))
@@ -884,6 +957,7 @@ impl ContactHandlers {
         inbound: &mut Streaming<pb::WheelRailSessionRequest>,
         tx: &mpsc::Sender<Result<pb::WheelRailSessionResponse, Status>>,
         session_id: String,
+        client: ClientId,
     ) -> Result<(), Status> {
         use pb::wheel_rail_session_request::Kind;
         use pb::wheel_rail_session_response::Kind as Out;
@@ -896,9 +970,9 @@ impl ContactHandlers {
             Some(_) => return Err(open_first().into()),
             None => return Ok(()),
         };
-        let _slot = self.session_slot()?;
+        let _slot = self.session_slot(&client)?;
         let entry = self.pairs.lookup(&open.pair_id)?;
-        let admission = self.pool.session();
+        let admission = self.pool.session(&client);
         let prepared = self
             .pairs
             .prepared(&entry, &admission, Arc::new(|_, _| {}))
@@ -934,7 +1008,7 @@ impl ContactHandlers {
                             };
                             let (s, r) = self
                                 .pool
-                                .session()
+                                .session(&client)
                                 .run_on_wide(lane, move |wide| {
                                     let r = session.step(input, wide);
                                     (session, r)
@@ -978,6 +1052,7 @@ impl ContactHandlers {
         inbound: &mut Streaming<pb::ContactLibraryRequest>,
         tx: &mpsc::Sender<Result<pb::ContactLibraryResponse, Status>>,
         session_id: String,
+        client: ClientId,
     ) -> Result<(), Status> {
         use pb::contact_library_request::Kind;
         use pb::contact_library_response::Kind as Out;
@@ -990,7 +1065,7 @@ impl ContactHandlers {
             Some(_) => return Err(open_first().into()),
             None => return Ok(()),
         };
-        let _slot = self.session_slot()?;
+        let _slot = self.session_slot(&client)?;
         let mut element = LibraryElement::open(
             open.format_version,
             open.module,
@@ -1011,7 +1086,7 @@ impl ContactHandlers {
                     let t0 = StdInstant::now();
                     let (e, r) = self
                         .pool
-                        .session()
+                        .session(&client)
                         .run_on(Lane::Heavy, move || {
                             let r = element.calculate(&c.request, KernelCache::global());
                             (element, r)
@@ -1045,6 +1120,7 @@ impl ContactHandlers {
         inbound: &mut Streaming<pb::SessionRequest>,
         tx: &SessionTx,
         session_id: String,
+        client: ClientId,
     ) -> Result<(), Status> {
         use pb::session_request::Kind;
         use pb::session_response::Kind as Out;
@@ -1058,7 +1134,7 @@ impl ContactHandlers {
             Some(_) => return Err(open_first().into()),
             None => return Ok(()),
         };
-        let _slot = self.session_slot()?;
+        let _slot = self.session_slot(&client)?;
         let case = open
             .case
             .as_ref()
@@ -1074,7 +1150,7 @@ impl ContactHandlers {
         let model = valid.case.model;
         let fields = open.include_fields;
         let limits = self.session_limits();
-        let admission = self.pool.session();
+        let admission = self.pool.session(&client);
         let mut session = admission
             .run(move || {
                 let mut engine =
@@ -1102,7 +1178,7 @@ impl ContactHandlers {
             let out = match msg.kind {
                 Some(Kind::Step(step)) => {
                     let t0 = StdInstant::now();
-                    let (s, r) = self.session_step(session, &step).await?;
+                    let (s, r) = self.session_step(session, &step, &client).await?;
                     session = s;
                     self.metrics
                         .solved(model, t0.elapsed().as_secs_f64(), r.is_ok());
@@ -1132,12 +1208,13 @@ impl ContactHandlers {
         &self,
         mut session: Session,
         step: &pb::SessionStep,
+        client: &ClientId,
     ) -> Result<(Session, Result<pb::SessionStepResult, ServiceError>), Status> {
         let input = match session.check_step(step) {
             Ok(i) => i,
             Err(e) => return Ok((session, Err(e))),
         };
-        let admission = self.pool.session();
+        let admission = self.pool.session(client);
         let engine = session.engine();
         let lane = patch_lane(engine.case(), engine.sensitivities());
         let (session, r) = admission

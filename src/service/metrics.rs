@@ -23,6 +23,12 @@
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
 //! | `railcontact_auth_refused_total` | `reason` | calls refused by the bearer tokens (`auth_tokens_file`): `missing` (no `authorization` metadata, or not `Bearer`), `unknown` (no such token), `forbidden` (the token's role may not call the method) |
+//! | `railcontact_quota_refused_total` | `quota` | calls, sessions and connections refused by a server-wide cap or a client's share, by the setting's name: `max_sessions`, `client_max_sessions`, `queue_capacity`, `client_max_admitted`, `max_streams`, `client_max_streams`, `max_connections`, `client_max_connections`, and `auth_failure_burst` (calls of a peer in back-off after failed token checks, not checked) |
+//! | `railcontact_connections_open` | | connections open (TLS handshakes under way included) |
+//! | `railcontact_streams_open` | | calls open (HTTP/2 streams), against `max_streams` |
+//! | `railcontact_connections_timed_out_total` | | connections closed because they sent no call within `connection_first_call_timeout_s` |
+//! | `railcontact_streams_write_timed_out_total` | | streamed responses (CreepCurve) ended because their client read nothing for `stream_write_timeout_s` |
+//! | `railcontact_memory_trimmed_bytes_total` | | memory the allocator returned to the system after calls and connections ended (`malloc_trim`, Linux with glibc) |
 //!
 //! Metrics that the handlers count are fields of [`Metrics`], registered in
 //! [`Metrics::default`] (a counter is registered without its `_total`
@@ -84,6 +90,11 @@ struct LimitLabels {
 }
 
 #[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
+struct QuotaLabels {
+    quota: &'static str,
+}
+
+#[derive(Clone, Debug, Hash, PartialEq, Eq, EncodeLabelSet)]
 struct ReasonLabels {
     reason: &'static str,
 }
@@ -120,6 +131,12 @@ pub struct Metrics {
     session_mark_bytes: Gauge,
     session_memory_refused: Counter,
     session_marks_refused: Counter,
+    quota_refused: Family<QuotaLabels, Counter>,
+    connections_open: Gauge,
+    streams_open: Gauge,
+    connections_timed_out: Counter,
+    streams_write_timed_out: Counter,
+    memory_trimmed_bytes: Counter,
 }
 
 impl Default for Metrics {
@@ -140,6 +157,12 @@ impl Default for Metrics {
             session_mark_bytes: Gauge::default(),
             session_memory_refused: Counter::default(),
             session_marks_refused: Counter::default(),
+            quota_refused: Family::default(),
+            connections_open: Gauge::default(),
+            streams_open: Gauge::default(),
+            connections_timed_out: Counter::default(),
+            streams_write_timed_out: Counter::default(),
+            memory_trimmed_bytes: Counter::default(),
         };
         let mut r = m.registry;
         // name (a counter's without `_total`), help, metric: one line each.
@@ -158,6 +181,12 @@ impl Default for Metrics {
             "railcontact_session_mark_bytes", "Memory held by the marks of all sessions [bytes]" => m.session_mark_bytes;
             "railcontact_session_memory_refused", "Session opens and steps refused by max_session_bytes or max_sessions_total_bytes" => m.session_memory_refused;
             "railcontact_session_marks_refused", "Marked steps refused by max_session_bytes or max_sessions_total_bytes that would have fitted without their mark" => m.session_marks_refused;
+            "railcontact_quota_refused", "Calls, sessions and connections refused by a server-wide cap or a client's share, by the setting's name" => m.quota_refused;
+            "railcontact_connections_open", "Connections open" => m.connections_open;
+            "railcontact_streams_open", "Calls open (HTTP/2 streams), against max_streams" => m.streams_open;
+            "railcontact_connections_timed_out", "Connections closed because they sent no call within connection_first_call_timeout_s" => m.connections_timed_out;
+            "railcontact_streams_write_timed_out", "Streamed responses ended because their client read nothing for stream_write_timeout_s" => m.streams_write_timed_out;
+            "railcontact_memory_trimmed_bytes", "Memory returned to the system by malloc_trim after calls and connections ended [bytes]" => m.memory_trimmed_bytes;
         );
         Self { registry: r, ..m }
     }
@@ -214,6 +243,39 @@ impl Metrics {
         self.auth_refused
             .get_or_create(&ReasonLabels { reason })
             .inc();
+    }
+
+    /// A call, session or connection refused by the limit of the setting
+    /// `quota` (`client_max_sessions`, `max_streams`, ...).
+    pub fn quota_refused(&self, quota: &'static str) {
+        self.quota_refused
+            .get_or_create(&QuotaLabels { quota })
+            .inc();
+    }
+
+    /// Connections open now.
+    pub fn connections_open(&self, n: usize) {
+        self.connections_open.set(n as i64);
+    }
+
+    /// Calls open now.
+    pub fn streams_open(&self, n: usize) {
+        self.streams_open.set(n as i64);
+    }
+
+    /// A connection closed for sending no call in time.
+    pub fn connection_timed_out(&self) {
+        self.connections_timed_out.inc();
+    }
+
+    /// A streamed response ended because its client read nothing.
+    pub fn stream_write_timed_out(&self) {
+        self.streams_write_timed_out.inc();
+    }
+
+    /// `bytes` returned to the system by trimming the allocator's heap.
+    pub fn memory_trimmed(&self, bytes: u64) {
+        self.memory_trimmed_bytes.inc_by(bytes);
     }
 
     /// A session was closed because it idled.

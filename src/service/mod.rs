@@ -13,7 +13,10 @@
 //! | [`pairs`] | wheel/rail profile pairs: canonical form, content id, preparation, registry |
 //! | [`store`] | the embedded store (redb) of registered pairs |
 //! | [`wheelrail`] | wire <-> wheel/rail queries and results |
-//! | [`pool`] | solve threads, bounded admission, deadlines |
+//! | [`pool`] | solve threads, bounded admission, deadlines, the clients' turns |
+//! | [`quota`] | who a client is; each client's share of sessions, solves, calls and connections |
+//! | [`streams`] | calls open per client and server; streamed responses whose client stops reading |
+//! | [`connections`] | accepting connections: their caps, first-call timeout, closing |
 //! | [`status`] | errors and their gRPC codes, in one place |
 //! | [`handlers`] | the RPC handlers |
 //! | [`auth`] | bearer tokens: roles, the table of who may call what, the tower layer |
@@ -29,6 +32,7 @@
 pub mod auth;
 pub mod command;
 pub mod config;
+pub mod connections;
 pub mod contact_library;
 pub mod convert;
 pub mod engine;
@@ -37,10 +41,12 @@ pub mod memory;
 pub mod metrics;
 pub mod pairs;
 pub mod pool;
+pub mod quota;
 pub mod server;
 pub mod session;
 pub mod status;
 pub mod store;
+pub mod streams;
 pub mod tls;
 pub mod wheelrail;
 pub mod wheelrail_session;

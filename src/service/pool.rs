@@ -45,23 +45,175 @@
 //! the client went away) and gives its permit back at the solver's next
 //! check, within one iteration (a Newton or CG step, an alternation, a
 //! load iteration), instead of finishing a solve that nobody waits for.
+//!
+//! Fair to clients ([`crate::service::quota`]): each admitted request and
+//! session belongs to a client (its token's name, or its address), and a
+//! client holds at most `client_max_admitted` of the queue's slots (beyond
+//! them RESOURCE_EXHAUSTED naming that setting, while other clients are
+//! admitted). A lane's workers go to the waiting solves client by client
+//! in turn ([`FairLane`]), first come first served within a client: a
+//! client that has sixteen solves waiting delays another client's one
+//! solve by at most one solve per worker, not by its sixteen; session
+//! steps queue the same way under their session's client.
 
+use std::collections::{HashMap, VecDeque};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use tokio::sync::{OwnedSemaphorePermit, Semaphore};
+use tokio::sync::{oneshot, OwnedSemaphorePermit, Semaphore};
 use tokio::time::Instant;
 
 use crate::core::cancel::CancelToken;
+use crate::service::metrics::Metrics;
+use crate::service::quota::{client_share, ClientId, Quota, QuotaGuard, Resource};
 use crate::service::status::ServiceError;
 
-/// The solve pool (cheap to clone: shared semaphores).
+/// The solve threads of one lane, handed to the waiting solves client by
+/// client in turn (round robin over the clients that have solves waiting;
+/// first come, first served within a client). Cheap to share (`Arc`); a
+/// short lock per acquire and release.
+#[derive(Debug)]
+pub struct FairLane {
+    state: Mutex<LaneState>,
+}
+
+#[derive(Debug)]
+struct LaneState {
+    free: usize,
+    /// Each waiting client's waiters, oldest first.
+    waiting: HashMap<ClientId, VecDeque<oneshot::Sender<()>>>,
+    /// The clients with waiters, in the order they are served.
+    turn: VecDeque<ClientId>,
+}
+
+/// A worker of a [`FairLane`], given back (to the next client in turn)
+/// when dropped.
+#[derive(Debug)]
+pub struct LanePermit {
+    lane: Arc<FairLane>,
+}
+
+impl Drop for LanePermit {
+    fn drop(&mut self) {
+        self.lane.release();
+    }
+}
+
+/// A waiter's place: if it is dropped after the lane granted it a worker
+/// but before it took it, the worker goes to the next in turn.
+struct Waiting {
+    lane: Arc<FairLane>,
+    granted: Option<oneshot::Receiver<()>>,
+}
+
+impl Drop for Waiting {
+    fn drop(&mut self) {
+        if let Some(mut rx) = self.granted.take() {
+            if rx.try_recv().is_ok() {
+                self.lane.release();
+            }
+        }
+    }
+}
+
+impl FairLane {
+    /// A lane of `workers` threads.
+    pub fn new(workers: usize) -> Arc<Self> {
+        Arc::new(Self {
+            state: Mutex::new(LaneState {
+                free: workers,
+                waiting: HashMap::new(),
+                turn: VecDeque::new(),
+            }),
+        })
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, LaneState> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// A worker for `client`: at once when one is free and nobody waits,
+    /// else when its turn comes.
+    pub async fn acquire(self: &Arc<Self>, client: &ClientId) -> LanePermit {
+        let rx = {
+            let mut s = self.lock();
+            if s.free > 0 && s.turn.is_empty() {
+                s.free -= 1;
+                return LanePermit { lane: self.clone() };
+            }
+            let (tx, rx) = oneshot::channel();
+            let queue = s.waiting.entry(client.clone()).or_default();
+            if queue.is_empty() {
+                s.turn.push_back(client.clone());
+                s.waiting.get_mut(client).unwrap().push_back(tx);
+            } else {
+                queue.push_back(tx);
+            }
+            rx
+        };
+        let mut waiting = Waiting {
+            lane: self.clone(),
+            granted: Some(rx),
+        };
+        let granted = waiting.granted.as_mut().unwrap().await;
+        waiting.granted = None;
+        // The sender lives in the lane until it grants: it never drops
+        // unsent while this waits.
+        debug_assert!(granted.is_ok());
+        LanePermit { lane: self.clone() }
+    }
+
+    /// A worker at once if one is free and nobody waits (who would then
+    /// go first).
+    pub fn try_acquire(self: &Arc<Self>) -> Option<LanePermit> {
+        let mut s = self.lock();
+        (s.free > 0 && s.turn.is_empty()).then(|| {
+            s.free -= 1;
+            LanePermit { lane: self.clone() }
+        })
+    }
+
+    /// Workers free now.
+    pub fn available_permits(&self) -> usize {
+        self.lock().free
+    }
+
+    /// A worker came back: to the first waiter of the client whose turn it
+    /// is (that client then goes to the end of the turn if it has more
+    /// waiting), or free.
+    fn release(&self) {
+        let mut s = self.lock();
+        while let Some(client) = s.turn.pop_front() {
+            let Some(queue) = s.waiting.get_mut(&client) else {
+                continue;
+            };
+            let next = queue.pop_front();
+            if queue.is_empty() {
+                s.waiting.remove(&client);
+            } else {
+                s.turn.push_back(client);
+            }
+            // A waiter that gave up (its request ended) has dropped its
+            // receiver: the worker goes on to the next.
+            if let Some(tx) = next {
+                if tx.send(()).is_ok() {
+                    return;
+                }
+            }
+        }
+        s.free += 1;
+    }
+}
+
+/// The solve pool (cheap to clone: shared lanes and counts).
 #[derive(Clone)]
 pub struct SolvePool {
-    workers: Arc<Semaphore>,
-    fast_workers: Arc<Semaphore>,
+    workers: Arc<FairLane>,
+    fast_workers: Arc<FairLane>,
     queue: Arc<Semaphore>,
+    /// Each client's admitted requests, against `client_max_admitted`.
+    admitted: Arc<Quota>,
     capacity: usize,
     /// Solve permits per lane.
     worker_count: usize,
@@ -104,24 +256,45 @@ impl Lane {
     }
 }
 
-/// An admitted request: holds a queue slot until dropped (none for the
-/// server's own work, see [`SolvePool::internal`]).
+/// An admitted request: holds a queue slot, and a unit of its client's
+/// share, until dropped (none for the server's own work, see
+/// [`SolvePool::internal`], nor for sessions, see [`SolvePool::session`]).
 pub struct Admission {
     pool: SolvePool,
+    client: ClientId,
     deadline: Option<Instant>,
-    _slot: Option<OwnedSemaphorePermit>,
+    _slot: Option<(QuotaGuard, OwnedSemaphorePermit)>,
 }
 
 impl SolvePool {
     /// A pool running at most `workers` solves at once, with at most
-    /// `queue_capacity` requests admitted (at least `workers`).
+    /// `queue_capacity` requests admitted (at least `workers`), half of
+    /// them (rounded up) per client.
     pub fn new(workers: usize, queue_capacity: usize) -> Self {
+        Self::with_client_share(workers, queue_capacity, 0, Arc::new(Metrics::default()))
+    }
+
+    /// [`SolvePool::new`] with at most `client_max_admitted` requests of
+    /// one client admitted at once (0: half the capacity, rounded up);
+    /// refusals counted into `metrics`.
+    pub fn with_client_share(
+        workers: usize,
+        queue_capacity: usize,
+        client_max_admitted: usize,
+        metrics: Arc<Metrics>,
+    ) -> Self {
         let workers = workers.max(1);
         let capacity = queue_capacity.max(workers);
         Self {
-            workers: Arc::new(Semaphore::new(workers)),
-            fast_workers: Arc::new(Semaphore::new(workers)),
+            workers: FairLane::new(workers),
+            fast_workers: FairLane::new(workers),
             queue: Arc::new(Semaphore::new(capacity)),
+            admitted: Quota::new(
+                Resource::Admitted,
+                None,
+                client_share(client_max_admitted, capacity),
+                metrics,
+            ),
             capacity,
             worker_count: workers,
             cancelled: Arc::new(AtomicU64::new(0)),
@@ -187,19 +360,34 @@ impl SolvePool {
         self.timed_out.load(Ordering::Relaxed)
     }
 
-    /// Admits a request with an optional deadline, or refuses it when the
-    /// queue is full.
+    /// Admits a request of the server's own with an optional deadline, or
+    /// refuses it when the queue is full.
     pub fn admit(&self, deadline: Option<Instant>) -> Result<Admission, ServiceError> {
+        self.admit_for(&ClientId::Server, deadline)
+    }
+
+    /// Admits a request of `client` with an optional deadline, or refuses
+    /// it (RESOURCE_EXHAUSTED) when the client holds its share of the
+    /// queue (`client_max_admitted`) or the queue is full.
+    pub fn admit_for(
+        &self,
+        client: &ClientId,
+        deadline: Option<Instant>,
+    ) -> Result<Admission, ServiceError> {
+        let share = self.admitted.take(client)?;
         let slot = self.queue.clone().try_acquire_owned().map_err(|_| {
+            self.admitted.refused_by(Resource::Admitted.total_setting());
             ServiceError::Exhausted(format!(
-                "the solve queue is full ({} requests admitted); retry with backoff",
+                "the solve queue is full ({} requests admitted, queue_capacity); retry with \
+                 backoff",
                 self.capacity
             ))
         })?;
         Ok(Admission {
             pool: self.clone(),
+            client: client.clone(),
             deadline,
-            _slot: Some(slot),
+            _slot: Some((share, slot)),
         })
     }
 
@@ -217,17 +405,27 @@ impl SolvePool {
     /// at most one solve in flight, so a server that admitted a session
     /// always has room for its steps (they wait for a worker like every
     /// solve). The queue bounds the unary requests and batches alone.
-    pub fn session(&self) -> Admission {
-        self.unqueued()
+    /// Its solves wait for a worker in `client`'s turn.
+    pub fn session(&self, client: &ClientId) -> Admission {
+        Admission {
+            client: client.clone(),
+            ..self.unqueued()
+        }
     }
 
-    /// An admission without a queue slot or deadline.
+    /// An admission without a queue slot or deadline, of the server.
     fn unqueued(&self) -> Admission {
         Admission {
             pool: self.clone(),
+            client: ClientId::Server,
             deadline: None,
             _slot: None,
         }
+    }
+
+    /// Requests of `client` admitted now.
+    pub fn admitted_by(&self, client: &ClientId) -> usize {
+        self.admitted.held_by(client)
     }
 
     /// Requests admitted now (running or waiting).
@@ -287,6 +485,7 @@ impl Admission {
             Lane::Fast | Lane::Inline => self.pool.fast_workers.clone(),
         };
         let deadline = self.deadline;
+        let client = self.client.clone();
         // Cancelled when this future ends, whichever way: the solve thread
         // stops at its next check once the deadline's timeout or a
         // client that went away has dropped the future.
@@ -296,11 +495,7 @@ impl Admission {
         let (limit, timed_out) = (self.pool.max_solve_time, self.pool.timed_out.clone());
         let work = async move {
             let _stop = stop;
-            let permit = workers
-                .clone()
-                .acquire_owned()
-                .await
-                .map_err(|_| ServiceError::Unavailable("the solve pool is closed".into()))?;
+            let permit = workers.acquire(&client).await;
             if deadline.is_some_and(|d| Instant::now() >= d) {
                 return Err(expired());
             }
@@ -313,7 +508,7 @@ impl Admission {
             }
             // The fast lanes' solves are too short to gain from a thread.
             let second = match spread && lane == Lane::Heavy {
-                true => workers.try_acquire_owned().ok(),
+                true => workers.try_acquire(),
                 false => None,
             };
             let wide = second.is_some();

@@ -19,10 +19,10 @@ use std::time::Duration;
 use tokio::net::TcpListener;
 use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
-use tonic::transport::server::TcpIncoming;
 
-use crate::service::auth::{AuthLayer, Tokens};
+use crate::service::auth::{AuthBackoff, AuthLayer, Tokens};
 use crate::service::config::{LogFormat, ServeConfig};
+use crate::service::connections::Incoming;
 use crate::service::convert::CaseLimits;
 use crate::service::handlers::{ContactHandlers, RequestLimits};
 use crate::service::metrics::{serve_metrics, Metrics};
@@ -30,8 +30,10 @@ use crate::service::pairs::{self, PairRegistry, RegistryLimits};
 use crate::service::pb;
 use crate::service::pb::contact_service_server::ContactServiceServer;
 use crate::service::pool::SolvePool;
+use crate::service::quota::{client_share, Quota, Resource};
 use crate::service::status;
 use crate::service::store::PairStore;
+use crate::service::streams::StreamsLayer;
 use crate::service::tls;
 
 /// A server running on the current tokio runtime.
@@ -110,11 +112,19 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         Some(path) => Some(Tokens::load(path).map_err(|e| invalid(e.to_string()))?),
         None => None,
     };
+    if let Some(warning) = config.check_open_files() {
+        tracing::warn!("{warning}");
+    }
     let workers = config.worker_count();
-    let pool = SolvePool::new(workers, config.queue_count())
-        .with_max_solve_time(Duration::from_secs_f64(config.max_solve_time_s));
-    crate::core::cache::KernelCache::global().set_max_bytes(config.kernel_cache_max_bytes);
     let metrics = Arc::new(Metrics::default());
+    let pool = SolvePool::with_client_share(
+        workers,
+        config.queue_count(),
+        config.client_max_admitted,
+        metrics.clone(),
+    )
+    .with_max_solve_time(Duration::from_secs_f64(config.max_solve_time_s));
+    crate::core::cache::KernelCache::global().set_max_bytes(config.kernel_cache_max_bytes);
     let limits = RequestLimits {
         case: CaseLimits {
             max_grid_elements: config.max_grid_elements,
@@ -122,11 +132,13 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         max_batch_items: config.max_batch_items,
         max_curve_points: config.max_curve_points,
         max_sessions: config.max_sessions,
+        client_max_sessions: config.client_max_sessions,
         max_message_bytes: config.max_message_bytes,
         max_session_bytes: config.max_session_bytes,
         max_sessions_total_bytes: config.max_sessions_total_bytes,
         session_idle_timeout: Duration::from_secs_f64(config.session_idle_timeout_s),
         first_message_timeout: Duration::from_secs_f64(config.stream_first_message_timeout_s),
+        stream_write_timeout: Duration::from_secs_f64(config.stream_write_timeout_s),
     };
     // Ports first: a port in use is said at once, naming it, before the
     // store is opened and the built-in pair prepared.
@@ -192,7 +204,33 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         tokens.as_ref().map_or(0, Tokens::len),
         config.reflection
     );
-    let auth = AuthLayer::new(tokens, metrics.clone());
+    let auth = AuthLayer::new(
+        tokens,
+        AuthBackoff::new(config.auth_failure_burst, config.auth_failure_rate_per_s),
+        metrics.clone(),
+    );
+    let streams = StreamsLayer::new(Quota::new(
+        Resource::Streams,
+        Some(config.max_streams),
+        client_share(config.client_max_streams, config.max_streams),
+        metrics.clone(),
+    ));
+    let connections = Quota::new(
+        Resource::Connections,
+        Some(config.max_connections),
+        client_share(config.client_max_connections, config.max_connections),
+        metrics.clone(),
+    );
+    let shares = format!(
+        "per client: {} sessions, {} admitted, {} calls, {} connections; in all: {} calls, {} \
+         connections",
+        client_share(config.client_max_sessions, config.max_sessions),
+        client_share(config.client_max_admitted, config.queue_count()),
+        client_share(config.client_max_streams, config.max_streams),
+        client_share(config.client_max_connections, config.max_connections),
+        config.max_streams,
+        config.max_connections,
+    );
     let mut builder = tonic::transport::Server::builder();
     if let Some(tls) = tls {
         builder = builder
@@ -205,18 +243,26 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         Some(l) => {
             let bound = l.local_addr()?;
             let (stop, stopped) = oneshot::channel::<()>();
-            let task = tokio::spawn(serve_metrics(l, metrics, pool, async {
+            let task = tokio::spawn(serve_metrics(l, metrics.clone(), pool, async {
                 let _ = stopped.await;
             }));
             (Some(bound), Some((stop, task)))
         }
         None => (None, None),
     };
+    let incoming = Incoming::new(
+        listener,
+        connections,
+        Duration::from_secs_f64(config.connection_first_call_timeout_s),
+        metrics,
+    );
     let (stop, stopped) = oneshot::channel::<()>();
     let task = tokio::spawn(
         builder
-            // Every call passes the token check first.
+            // Every call passes the token check first (which says who the
+            // client is), then the count of open calls.
             .layer(auth)
+            .layer(streams)
             .layer(tower::util::MapResponseLayer::new(
                 oversize_request_is_resource_exhausted,
             ))
@@ -235,14 +281,10 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .add_optional_service(reflection_v1)
             .add_optional_service(reflection_v1alpha)
             .add_service(service)
-            // TCP_NODELAY: without it, a response written in two segments
-            // waits for the client's delayed ACK (about 40 ms a call).
-            .serve_with_incoming_shutdown(
-                TcpIncoming::from(listener).with_nodelay(Some(true)),
-                async {
-                    let _ = stopped.await;
-                },
-            ),
+            // Counted connections with TCP_NODELAY (service::connections).
+            .serve_with_incoming_shutdown(incoming, async {
+                let _ = stopped.await;
+            }),
     );
     let store = match config.store_dir() {
         Some(dir) => dir
@@ -252,7 +294,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         None => "memory only".to_string(),
     };
     let metrics_at = metrics_addr.map_or_else(|| "off".to_string(), |a| a.to_string());
-    tracing::info!(%addr, metrics = %metrics_at, workers, queue = config.queue_count(), %store, %security, "railcontact serving");
+    tracing::info!(%addr, metrics = %metrics_at, workers, queue = config.queue_count(), %store, %security, %shares, "railcontact serving");
     Ok(RunningServer {
         addr,
         metrics_addr,

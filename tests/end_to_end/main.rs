@@ -16,6 +16,7 @@
 //! | [`cli`] | `railcontact` subcommands on the example cases |
 //! | [`service`] | SolvePatch, batches, creep curves, queue, deadlines, health, reflection |
 //! | [`service_contact_library`] | `ContactLibrary` (CONTACT's library forwarding) against mismatched and hostile requests |
+//! | [`service_fairness`] | one client hoarding each resource (solve slots, sessions, streams, connections, token guesses) while another is served |
 //! | [`service_limits`] | per-request and per-solve limits |
 //! | [`service_security`] | TLS, mutual TLS, tokens and roles, loopback-only defaults, escaped logs |
 //! | [`service_sessions`] | co-simulation patch sessions: order, marks, rollback, memory |
@@ -45,6 +46,7 @@ mod python_client;
 mod scaleout;
 mod service;
 mod service_contact_library;
+mod service_fairness;
 mod service_limits;
 mod service_security;
 mod service_sessions;

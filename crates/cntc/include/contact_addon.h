@@ -72,7 +72,7 @@ enum {
    CNTC_if_openmp  = 2003,
    CNTC_if_timers  = 2004,
    CNTC_if_ncase   = 2005,
-   CNTC_if_mode    = 2099   /* railcontact: 0 in process (the only mode of this build) */
+   CNTC_if_mode    = 2099   /* railcontact: 0 in process (default), 1 forwarded to a railcontact server (RAILCONTACT_CNTC_SERVER, docs/cntc.md) */
 };
 
 /* ---- field codes (cntc_getfielddata) ---- */
@@ -105,7 +105,7 @@ enum {
    CNTC_err_input        =  -39,
    CNTC_err_notsupported =  -40,  /* railcontact: a flag value or method this library does not have */
    CNTC_err_argument     =  -41,  /* railcontact: null pointer or negative length */
-   CNTC_err_server       =  -42,  /* railcontact: server unreachable (server mode) */
+   CNTC_err_server       =  -42,  /* railcontact: forwarded, the server could not be reached, refused or went away */
    CNTC_err_other        =  -99,
    CNTC_err_ire          = -101   /* ire outside [1, 999] */
 };

@@ -29,6 +29,8 @@ struct Key {
     dx: u64,
     dy: u64,
     mat: [u64; 4],
+    /// An interfacial layer's flexibility (bits; 0 without).
+    layer: u64,
     kind: KernelKind,
 }
 
@@ -140,7 +142,21 @@ impl KernelCache {
         material: &CombinedMaterial,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, kind, None)
+        self.get_with(grid, material, 0.0, kind, None)
+    }
+
+    /// [`KernelCache::get`] with an interfacial layer of tangential
+    /// flexibility `layer_flexibility_m_per_pa` between the bodies
+    /// ([`HalfSpaceInfluence::with_layer_flexibility`]); 0 is
+    /// [`KernelCache::get`]'s set.
+    pub fn get_layered(
+        &self,
+        grid: &Grid,
+        material: &CombinedMaterial,
+        layer_flexibility_m_per_pa: f64,
+        kind: KernelKind,
+    ) -> Arc<KernelSet> {
+        self.get_with(grid, material, layer_flexibility_m_per_pa, kind, None)
     }
 
     /// [`KernelCache::get`] for a caller that holds the other kind's set of
@@ -154,16 +170,25 @@ impl KernelCache {
         kind: KernelKind,
         other: &KernelSet,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, kind, Some(other))
+        self.get_with(
+            grid,
+            material,
+            other.influence.layer_flexibility_m_per_pa(),
+            kind,
+            Some(other),
+        )
     }
 
     fn get_with(
         &self,
         grid: &Grid,
         material: &CombinedMaterial,
+        layer: f64,
         kind: KernelKind,
         other: Option<&KernelSet>,
     ) -> Arc<KernelSet> {
+        // -0 and 0 are the same layer (none).
+        let layer = if layer == 0.0 { 0.0 } else { layer };
         let key = Key {
             nx: grid.nx,
             ny: grid.ny,
@@ -175,6 +200,7 @@ impl KernelCache {
                 material.body2.shear_modulus_pa.to_bits(),
                 material.body2.poisson_ratio.to_bits(),
             ],
+            layer: layer.to_bits(),
             kind,
         };
         let (cell, plan) = {
@@ -207,7 +233,8 @@ impl KernelCache {
                     HalfSpaceInfluence::plane_strain(grid.dx_m, material)
                 } else {
                     HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
-                };
+                }
+                .with_layer_flexibility(layer);
                 Arc::new(match other {
                     Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
                     None => KernelSet::new(plan, influence, kind),

@@ -159,6 +159,10 @@ pub struct HalfSpaceInfluence {
     nu: f64,
     k: f64,
     elasticity: Elasticity,
+    /// Tangential flexibility of an interfacial layer \[m/Pa\], added to
+    /// the self-influence coefficients A_xx(I, I) and A_yy(I, I)
+    /// ([`HalfSpaceInfluence::with_layer_flexibility`]).
+    layer: f64,
 }
 
 impl HalfSpaceInfluence {
@@ -171,6 +175,36 @@ impl HalfSpaceInfluence {
             nu: material.poisson_ratio,
             k: material.kalker_k,
             elasticity: Elasticity::HalfSpace,
+            layer: 0.0,
+        }
+    }
+
+    /// These coefficients with an interfacial layer of tangential
+    /// flexibility `flexibility_m_per_pa` = h/G3 between the bodies
+    /// ([`crate::core::layer`], CONTACT's M = 4): the layer shears by F p
+    /// under the traction p of its own element, so F adds to A_xx and
+    /// A_yy of every element on itself (offset 0) and to nothing else.
+    /// 0 leaves the coefficients as they are.
+    pub fn with_layer_flexibility(self, flexibility_m_per_pa: f64) -> Self {
+        Self {
+            layer: flexibility_m_per_pa,
+            ..self
+        }
+    }
+
+    /// The interfacial layer's flexibility \[m/Pa\] (0: none).
+    pub fn layer_flexibility_m_per_pa(&self) -> f64 {
+        self.layer
+    }
+
+    /// The layer's flexibility if (`x`, `y`) lies on the loaded element
+    /// itself (its centre: offset 0), else 0.
+    #[inline]
+    fn layer_at(&self, x: f64, y: f64) -> f64 {
+        if self.layer != 0.0 && x.abs() < 0.5 * self.dx && y.abs() < 0.5 * self.dy {
+            self.layer
+        } else {
+            0.0
         }
     }
 
@@ -195,9 +229,11 @@ impl HalfSpaceInfluence {
         let h = 0.5 * self.dx;
         let c = self.inv_pi_g;
         let pi_c = std::f64::consts::PI * c;
+        let layer = || self.layer_at(x, 0.0);
         match (i, j) {
-            (X, X) | (N, N) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h),
-            (Y, Y) => 2.0 * c * strip_log(x, h),
+            (X, X) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h) + layer(),
+            (N, N) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h),
+            (Y, Y) => 2.0 * c * strip_log(x, h) + layer(),
             (N, X) => pi_c * self.k * strip_sign(x, h),
             (X, N) => -pi_c * self.k * strip_sign(x, h),
             (X, Y) | (Y, X) | (N, Y) | (Y, N) => 0.0,
@@ -205,7 +241,9 @@ impl HalfSpaceInfluence {
     }
 
     /// Displacement difference component `i` \[m\] at offset (x, y) \[m\] from the
-    /// centre of an element loaded by a unit uniform traction \[Pa\] in `j`.
+    /// centre of an element loaded by a unit uniform traction \[Pa\] in `j`
+    /// (on the element itself, with an interfacial layer's shear:
+    /// [`HalfSpaceInfluence::with_layer_flexibility`]).
     /// A line contact's coefficients do not depend on y.
     pub fn coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
         use Component::*;
@@ -219,10 +257,12 @@ impl HalfSpaceInfluence {
             (X, X) => {
                 c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
                     + nu * corners(prim_x2_over_r3, x, y, hx, hy))
+                    + self.layer_at(x, y)
             }
             (Y, Y) => {
                 c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
                     + nu * corners(prim_y2_over_r3, x, y, hx, hy))
+                    + self.layer_at(x, y)
             }
             (X, Y) | (Y, X) => c * nu * corners(prim_xy_over_r3, x, y, hx, hy),
             (N, N) => c * (1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy),

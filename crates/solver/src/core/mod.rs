@@ -17,6 +17,7 @@ pub mod grid;
 pub mod hertz;
 pub mod influence;
 pub mod kikpiotrowski;
+pub mod layer;
 pub mod material;
 pub mod memory;
 pub mod normal;

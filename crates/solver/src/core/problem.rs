@@ -89,6 +89,7 @@ pub const CREEPAGE_RANGE: Range = Range::symmetric(1.0, "");
 /// Range of the spin creepage of an input \[1/m\].
 pub const SPIN_RANGE: Range = Range::symmetric(1e3, "1/m");
 use crate::core::grid::Grid;
+use crate::core::layer::InterfacialLayer;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
 use crate::core::tangential::TangentialSettings;
@@ -412,6 +413,15 @@ pub struct SolverSettings {
     /// ([`crate::core::grid::Grid::loaded_border_elements`]); the pressure
     /// outside the grid is missing from it.
     pub allow_border_contact: bool,
+    /// An interfacial (third-body) layer between the bodies, elastic or
+    /// elasto-plastic (CONTACT's M = 4, [`crate::core::layer`]); None (the
+    /// default): the bodies touch. Part of the problem's physics, kept
+    /// here so that every problem carries it without a change of its
+    /// statement: the exact model's solver takes it (its kernels include
+    /// the layer's flexibility, its history the plastic state), checked
+    /// by [`ContactProblem::validate`]. The other models (FASTSIM, the
+    /// conformal solvers, the wheel/rail patches) do not read it.
+    pub interfacial_layer: Option<InterfacialLayer>,
 }
 
 /// A complete, validated contact problem.
@@ -601,6 +611,9 @@ impl ExtraRigidSlip {
     }
 }
 
+/// The key of [`SolverSettings::interfacial_layer`] in errors.
+pub const INTERFACIAL_LAYER_KEY: &str = "interfacial_layer";
+
 /// Checks a normal load; `key` names it.
 pub fn validate_load(key: &str, load: &NormalLoad) -> Result<(), ContactError> {
     match *load {
@@ -630,6 +643,10 @@ impl ContactProblem {
             ));
         }
         validate_load("load", &self.load)?;
+        if let Some(layer) = &self.settings.interfacial_layer {
+            layer.validate(INTERFACIAL_LAYER_KEY)?;
+            layer.check_friction(INTERFACIAL_LAYER_KEY, &self.friction)?;
+        }
         // Rolling steps roll whole elements of the rolling frame's grid, or
         // any distance off its axes.
         let direction =

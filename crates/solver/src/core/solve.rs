@@ -14,10 +14,15 @@ use crate::core::frame::{direction, RollingFrame};
 use crate::core::friclaw::{SlipStart, SlipVelocityLaw};
 use crate::core::grid::Grid;
 use crate::core::influence::{Component, KernelKind};
+use crate::core::layer::{
+    CoulombBound, InterfacialLayer, LayerFields, LayerState, MAX_LAYER_PASSES,
+};
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
 use crate::core::predict::{PathPoint, WarmPath};
-use crate::core::problem::{Carry, ContactProblem, Kinematics, ShiftStep};
+use crate::core::problem::{
+    Carry, ContactProblem, Kinematics, ShiftStep, INTERFACIAL_LAYER_KEY,
+};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, IterationLimit, SolveInfo, SolveStatus, Totals,
 };
@@ -86,6 +91,9 @@ pub struct ContactSolver {
     /// Factor on the friction coefficients of each grid row (empty: 1
     /// everywhere): [`ContactSolver::set_row_friction_scale`].
     row_scale: Vec<f64>,
+    /// An elasto-plastic interfacial layer's history and buffers
+    /// ([`crate::core::layer`]), allocated at the first solve with one.
+    layer: Option<Box<LayerState>>,
 }
 
 /// Buffers of a slip-velocity dependent friction law
@@ -142,6 +150,11 @@ pub struct SolverState {
     mu: Vec<f64>,
     mu_before: Vec<f64>,
     slip_velocity: Vec<f64>,
+    /// An elasto-plastic layer's history (empty without one): hardening,
+    /// plastic deformation (x, y), generalised slip, flow flags.
+    layer: [Vec<f64>; 4],
+    layer_flow: Vec<bool>,
+    layer_used: bool,
 }
 
 impl SolverState {
@@ -160,9 +173,11 @@ impl SolverState {
             &self.slip_velocity,
         ]
         .into_iter()
+        .chain(&self.layer)
         .map(f)
         .sum::<usize>()
             + e(&self.state)
+            + std::mem::size_of_val(self.layer_flow.as_slice())
             + self.path.bytes()
     }
 }
@@ -179,7 +194,9 @@ impl HeapBytes for SolverState {
             self.path,
             self.mu,
             self.mu_before,
-            self.slip_velocity
+            self.slip_velocity,
+            self.layer,
+            self.layer_flow
         )
     }
 }
@@ -224,7 +241,8 @@ impl HeapBytes for ContactSolver {
             law.velocity,
             law.velocity_new,
             law.bound,
-            self.row_scale
+            self.row_scale,
+            self.layer
         )
     }
 }
@@ -250,7 +268,12 @@ impl ContactSolver {
             direction(problem.rolling_direction_rad, problem.grid.is_line()).map_or(0, |d| d.turns);
         let frame = RollingFrame::new(turns, problem.grid);
         let grid = frame.rolling_grid();
-        let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
+        let displacement = cache.get_layered(
+            &grid,
+            &problem.material,
+            layer_flexibility(problem),
+            KernelKind::Displacement,
+        );
         let n = grid.len();
         let z = || vec![0.0; n];
         Self {
@@ -285,6 +308,7 @@ impl ContactSolver {
             path: WarmPath::default(),
             law: LawState::new(n),
             row_scale: Vec::new(),
+            layer: None,
         }
     }
 
@@ -305,7 +329,12 @@ impl ContactSolver {
         let grid = frame.rolling_grid();
         let same_shape = (grid.nx, grid.ny, grid.dx_m, grid.dy_m)
             == (self.grid.nx, self.grid.ny, self.grid.dx_m, self.grid.dy_m);
-        let displacement = cache.get(&grid, &problem.material, KernelKind::Displacement);
+        let displacement = cache.get_layered(
+            &grid,
+            &problem.material,
+            layer_flexibility(problem),
+            KernelKind::Displacement,
+        );
         if !(same_shape && Arc::ptr_eq(&displacement, &self.displacement)) {
             *self = Self::new(problem, cache);
             return;
@@ -347,6 +376,9 @@ impl ContactSolver {
         }
         law.used = false;
         self.row_scale.clear();
+        if let Some(l) = &mut self.layer {
+            l.clear();
+        }
     }
 
     /// Friction varying across the rolling direction, one grid row at a
@@ -454,6 +486,7 @@ impl ContactSolver {
         let plain = matches!(problem.kinematics, Kinematics::SteadyRolling(_))
             && problem.extra_rigid_slip.is_none()
             && problem.friction.slip_velocity_law.is_none()
+            && plastic_layer(problem).is_none()
             && self.row_scale.is_empty()
             && self.frame.is_identity()
             && g == self.grid;
@@ -561,6 +594,24 @@ impl ContactSolver {
                 to.clear();
             }
         }
+        match &self.layer {
+            Some(l) => {
+                for (to, from) in to
+                    .layer
+                    .iter_mut()
+                    .zip([&l.hardening, &l.plastic_x, &l.plastic_y, &l.slid])
+                {
+                    to.clone_from(from);
+                }
+                to.layer_flow.clone_from(&l.flow);
+                to.layer_used = l.used;
+            }
+            None => {
+                to.layer.iter_mut().for_each(Vec::clear);
+                to.layer_flow.clear();
+                to.layer_used = false;
+            }
+        }
     }
 
     /// Puts back a state saved from this solver (or one of the same grid):
@@ -588,6 +639,25 @@ impl ContactSolver {
                 to.fill(0.0);
             }
         }
+        let n = self.pn.len();
+        if from.layer_flow.len() == n {
+            let l = self.layer.get_or_insert_with(|| Box::new(LayerState::new(n)));
+            for (to, from) in [
+                &mut l.hardening,
+                &mut l.plastic_x,
+                &mut l.plastic_y,
+                &mut l.slid,
+            ]
+            .into_iter()
+            .zip(&from.layer)
+            {
+                to.copy_from_slice(from);
+            }
+            l.flow.copy_from_slice(&from.layer_flow);
+            l.used = from.layer_used;
+        } else if let Some(l) = &mut self.layer {
+            l.clear();
+        }
         Ok(())
     }
 
@@ -610,7 +680,13 @@ impl ContactSolver {
         // pn, px, py, sx, sy (and a law's mu, mu_before and slip velocity);
         // the element states; the path's three fields.
         let fields = if self.law.used { 8 } else { 5 };
-        n * (fields * 8 + std::mem::size_of::<ElementState>()) + self.path.bytes()
+        // An elasto-plastic layer's four fields and flags.
+        let layer = if self.layer.is_some() {
+            4 * 8 + std::mem::size_of::<bool>()
+        } else {
+            0
+        };
+        n * (fields * 8 + std::mem::size_of::<ElementState>() + layer) + self.path.bytes()
     }
 
     /// Frees the buffers that solves allocate on first use and that hold
@@ -644,6 +720,9 @@ impl ContactSolver {
         self.path.clear();
         for v in [&mut self.law.mu_before, &mut self.law.velocity] {
             v.fill(0.0);
+        }
+        if let Some(l) = &mut self.layer {
+            l.clear();
         }
     }
 
@@ -683,6 +762,18 @@ impl ContactSolver {
             return Err(ContactError::invalid(
                 crate::core::frame::ROLLING_DIRECTION_KEY,
                 "differs from the rolling direction this solver was built for",
+            ));
+        }
+        let built = self.displacement.influence.layer_flexibility_m_per_pa();
+        if layer_flexibility(problem) != built {
+            return Err(ContactError::invalid(
+                INTERFACIAL_LAYER_KEY,
+                format!(
+                    "has the flexibility thickness / shear modulus = {:e} m/Pa; this solver was \
+                     built for {:e} m/Pa (its kernels include it): build a solver for the problem",
+                    layer_flexibility(problem),
+                    built
+                ),
             ));
         }
         Ok(())
@@ -805,6 +896,16 @@ impl ContactSolver {
         } else {
             &self.pn
         };
+        if plastic_layer(problem).is_some() {
+            // The layer's history: the material's yield limit and plastic
+            // deformation before the step, carried with it.
+            let n = grid.len();
+            let l = self.layer.get_or_insert_with(|| Box::new(LayerState::new(n)));
+            if first {
+                l.clear();
+            }
+            l.begin_step(&grid, carry);
+        }
         // Displacement difference of the previous state.
         if first {
             self.old_ux.fill(0.0);
@@ -908,6 +1009,15 @@ impl ContactSolver {
             },
         };
         let mut law_ok = true;
+        // An elasto-plastic layer (friction then has one coefficient).
+        let plastic = plastic_layer(problem).filter(|_| frictional);
+        match (&plastic, &mut self.layer) {
+            (Some(_), l) => {
+                l.get_or_insert_with(|| Box::new(LayerState::new(n)));
+            }
+            (None, Some(l)) => l.used = false,
+            (None, None) => {}
+        }
         let mut monitor = CouplingMonitor::default();
         for c in 0..cmax {
             cancel::check()?;
@@ -1017,6 +1127,12 @@ impl ContactSolver {
                 }
             };
             let outcome = match &law {
+                None if plastic.is_some() => self.plastic_layer_passes(
+                    plastic.as_ref().expect("matched"),
+                    problem.friction.static_coefficient,
+                    &s.tangential,
+                    steady,
+                ),
                 None if !self.row_scale.is_empty() => {
                     // The row factors go into the bounds handed over as
                     // pressures, with the problem's coefficients.
@@ -1053,6 +1169,32 @@ impl ContactSolver {
         }
         // The loops above stop early once cancelled: no answer then.
         cancel::check()?;
+        // The layer's plastic flow out of the generalised slips, and its
+        // work: per element rolled in steady rolling, per unit rolled
+        // distance in the totals.
+        let plastic_work = match &plastic {
+            Some(layer) => {
+                let steady = matches!(problem.kinematics, Kinematics::SteadyRolling(_));
+                let coulomb = CoulombBound {
+                    pn: &self.pn,
+                    mu: problem.friction.static_coefficient,
+                    row_scale: &self.row_scale,
+                    nx: grid.nx,
+                };
+                let l = self.layer.as_mut().expect("allocated above");
+                let work = l.finish(
+                    layer,
+                    &grid,
+                    steady,
+                    coulomb,
+                    [&self.tr.px, &self.tr.py],
+                    [&mut self.tr.sx, &mut self.tr.sy],
+                    &mut self.tr.state,
+                );
+                area * if steady { work / grid.dx_m } else { work }
+            }
+            None => 0.0,
+        };
         if !(normal_ok && tangential_ok && law_ok) {
             info.status = SolveStatus::MaxIterations;
             if info.limit.is_none() {
@@ -1095,7 +1237,7 @@ impl ContactSolver {
                 }
             }
         }
-        let totals = self.totals(approach, frictional, shift.is_some());
+        let totals = self.totals(approach, frictional, shift.is_some(), plastic_work);
         Ok(ContactSolution {
             totals,
             info,
@@ -1385,6 +1527,134 @@ impl ContactSolver {
         (total, false)
     }
 
+    /// The tangential problem with the elasto-plastic interfacial `layer`
+    /// and Coulomb's coefficient `mu` (steady rolling or a transient
+    /// step): passes of Coulomb's problem with fixed bounds, the bounds
+    /// from the last pass's generalised slips by one local Newton step of
+    /// the layer's law, relaxed (halved, down to 1/16, when the law's
+    /// residual grows; lengthened again when it shrinks), until the bounds
+    /// of an answer's own slips differ from those it was solved with by
+    /// at most ten times the tangential tolerance (root mean square,
+    /// relative), at most [`MAX_LAYER_PASSES`] passes sharing
+    /// `settings.max_iterations` (see [`crate::core::layer`]). The first
+    /// pass takes the law's bounds of the slips the last solve left.
+    fn plastic_layer_passes(
+        &mut self,
+        layer: &InterfacialLayer,
+        mu: f64,
+        settings: &TangentialSettings,
+        steady: bool,
+    ) -> TangentialOutcome {
+        let grid = self.grid;
+        // Each element's own compliance: the response of its generalised
+        // slip to its bound, the others held (with the layer's F).
+        let compliance = if steady {
+            let b = self.displacement.steady_diagonal();
+            grid.dx_m * 0.5 * (b[0] + b[1])
+        } else {
+            0.5 * (self.displacement.value(Component::X, Component::X, 0, 0)
+                + self.displacement.value(Component::Y, Component::Y, 0, 0))
+        };
+        let scale = if steady { grid.dx_m } else { 1.0 };
+        let tol = 10.0 * settings.tolerance;
+        let unit = FrictionBounds {
+            static_coefficient: 1.0,
+            kinetic_coefficient: 1.0,
+        };
+        fn coulomb<'a>(pn: &'a [f64], mu: f64, row_scale: &'a [f64], nx: usize) -> CoulombBound<'a> {
+            CoulombBound {
+                pn,
+                mu,
+                row_scale,
+                nx,
+            }
+        }
+        let l = self.layer.as_mut().expect("allocated by the caller");
+        l.bounds(
+            layer,
+            &grid,
+            steady,
+            coulomb(&self.pn, mu, &self.row_scale, grid.nx),
+            None,
+            &mut self.law.bound,
+        );
+        let mut total = TangentialOutcome::default();
+        let (mut omega, mut last_change) = (1.0f64, f64::INFINITY);
+        for _ in 0..MAX_LAYER_PASSES {
+            let left = settings.max_iterations.saturating_sub(total.iterations);
+            if left == 0 {
+                total.converged = false;
+                return total;
+            }
+            let limited = TangentialSettings {
+                max_iterations: left,
+                ..*settings
+            };
+            let o = self.tangential_pass(&limited, unit, steady, true);
+            total = o.after(&total);
+            if cancel::requested() || !o.converged {
+                return total;
+            }
+            let l = self.layer.as_mut().expect("allocated by the caller");
+            l.set_slid(&self.tr.sx, &self.tr.sy, scale);
+            let (change, size) = l.bounds(
+                layer,
+                &grid,
+                steady,
+                coulomb(&self.pn, mu, &self.row_scale, grid.nx),
+                Some(compliance),
+                &mut self.law.bound,
+            );
+            let change = if size > 0.0 {
+                (change / size).sqrt()
+            } else {
+                0.0
+            };
+            if change <= tol {
+                // This pass's tractions meet the bounds of their own slips.
+                return total;
+            }
+            omega = if change > last_change {
+                (0.5 * omega).max(1.0 / 16.0)
+            } else {
+                (1.5 * omega).min(1.0)
+            };
+            last_change = change;
+            for (g, &next) in self.law.bound.iter_mut().zip(&l.next) {
+                *g += omega * (next - *g);
+            }
+        }
+        total.converged = false;
+        total
+    }
+
+    /// The interfacial layer's state per element after the last solve,
+    /// in the problem's frame (index `iy * nx + ix`): the yield limit,
+    /// the accumulated plastic deformation and where the layer flowed
+    /// without slip (CONTACT's TAUCRT, UPLSX, UPLSY and plasticity area;
+    /// [`crate::core::layer`]). None unless the last solve had an
+    /// elasto-plastic layer (an elastic one has no state).
+    pub fn layer_fields(&self) -> Option<LayerFields> {
+        let l = self.layer.as_ref().filter(|l| l.used)?;
+        let n = l.hardening.len();
+        let mut f = LayerFields {
+            yield_limit_pa: vec![0.0; n],
+            plastic_x_m: vec![0.0; n],
+            plastic_y_m: vec![0.0; n],
+            plastic: vec![false; n],
+        };
+        let tau: Vec<f64> = l.hardening.iter().map(|h| l.yield_limit + h).collect();
+        self.frame.field_to_user(&tau, &mut f.yield_limit_pa);
+        self.frame.field_to_user(&l.flow, &mut f.plastic);
+        let (mut x, mut y) = (vec![0.0; n], vec![0.0; n]);
+        for i in 0..n {
+            [x[i], y[i]] = self.frame.to_user([l.plastic_x[i], l.plastic_y[i]]);
+        }
+        self.frame.field_to_user(&x, &mut f.plastic_x_m);
+        self.frame.field_to_user(&y, &mut f.plastic_y_m);
+        Some(f)
+    }
+
     /// `law.mu` from `law.velocity`: along the rows in steady rolling, from
     /// the previous step's coefficients in a transient step of `dt_s` \[s\].
     fn law_coefficients(&mut self, law: &SlipVelocityLaw, steady: bool, dt_s: f64) {
@@ -1396,7 +1666,10 @@ impl ContactSolver {
         }
     }
 
-    fn totals(&self, approach: f64, frictional: bool, transient: bool) -> Totals {
+    /// The totals of the current solution; `plastic_work` an interfacial
+    /// layer's plastic work \[J\] (steady rolling: per unit rolled
+    /// distance, \[N\]), part of the frictional work.
+    fn totals(&self, approach: f64, frictional: bool, transient: bool, plastic_work: f64) -> Totals {
         let g = &self.grid;
         let area = g.element_area_m2();
         let mut t = Totals {
@@ -1433,6 +1706,7 @@ impl ContactSolver {
             t.adhesion_fraction = nadh as f64 / ncontact as f64;
         }
         if frictional {
+            dissipation += plastic_work;
             if transient {
                 t.frictional_work_j = dissipation;
             } else {
@@ -1441,6 +1715,28 @@ impl ContactSolver {
         }
         t
     }
+}
+
+/// The flexibility of `problem`'s interfacial layer \[m/Pa\] (0 without
+/// one, and for a layer that validation refuses).
+fn layer_flexibility(problem: &ContactProblem) -> f64 {
+    let f = problem
+        .settings
+        .interfacial_layer
+        .map_or(0.0, |l| l.flexibility_m_per_pa());
+    if f.is_finite() && f > 0.0 {
+        f
+    } else {
+        0.0
+    }
+}
+
+/// `problem`'s interfacial layer when it deforms plastically.
+fn plastic_layer(problem: &ContactProblem) -> Option<InterfacialLayer> {
+    problem
+        .settings
+        .interfacial_layer
+        .filter(InterfacialLayer::is_plastic)
 }
 
 /// Tangential tractions, slips and element states of the current solution.
