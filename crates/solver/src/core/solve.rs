@@ -20,9 +20,7 @@ use crate::core::layer::{
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
 use crate::core::predict::{PathPoint, WarmPath};
-use crate::core::problem::{
-    Carry, ContactProblem, Kinematics, ShiftStep, INTERFACIAL_LAYER_KEY,
-};
+use crate::core::problem::{Carry, ContactProblem, Kinematics, ShiftStep, INTERFACIAL_LAYER_KEY};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, IterationLimit, SolveInfo, SolveStatus, Totals,
 };
@@ -596,10 +594,10 @@ impl ContactSolver {
         }
         match &self.layer {
             Some(l) => {
-                for (to, from) in to
-                    .layer
-                    .iter_mut()
-                    .zip([&l.hardening, &l.plastic_x, &l.plastic_y, &l.slid])
+                for (to, from) in
+                    to.layer
+                        .iter_mut()
+                        .zip([&l.hardening, &l.plastic_x, &l.plastic_y, &l.slid])
                 {
                     to.clone_from(from);
                 }
@@ -641,7 +639,9 @@ impl ContactSolver {
         }
         let n = self.pn.len();
         if from.layer_flow.len() == n {
-            let l = self.layer.get_or_insert_with(|| Box::new(LayerState::new(n)));
+            let l = self
+                .layer
+                .get_or_insert_with(|| Box::new(LayerState::new(n)));
             for (to, from) in [
                 &mut l.hardening,
                 &mut l.plastic_x,
@@ -900,7 +900,9 @@ impl ContactSolver {
             // The layer's history: the material's yield limit and plastic
             // deformation before the step, carried with it.
             let n = grid.len();
-            let l = self.layer.get_or_insert_with(|| Box::new(LayerState::new(n)));
+            let l = self
+                .layer
+                .get_or_insert_with(|| Box::new(LayerState::new(n)));
             if first {
                 l.clear();
             }
@@ -1561,7 +1563,12 @@ impl ContactSolver {
             static_coefficient: 1.0,
             kinetic_coefficient: 1.0,
         };
-        fn coulomb<'a>(pn: &'a [f64], mu: f64, row_scale: &'a [f64], nx: usize) -> CoulombBound<'a> {
+        fn coulomb<'a>(
+            pn: &'a [f64],
+            mu: f64,
+            row_scale: &'a [f64],
+            nx: usize,
+        ) -> CoulombBound<'a> {
             CoulombBound {
                 pn,
                 mu,
@@ -1669,7 +1676,13 @@ impl ContactSolver {
     /// The totals of the current solution; `plastic_work` an interfacial
     /// layer's plastic work \[J\] (steady rolling: per unit rolled
     /// distance, \[N\]), part of the frictional work.
-    fn totals(&self, approach: f64, frictional: bool, transient: bool, plastic_work: f64) -> Totals {
+    fn totals(
+        &self,
+        approach: f64,
+        frictional: bool,
+        transient: bool,
+        plastic_work: f64,
+    ) -> Totals {
         let g = &self.grid;
         let area = g.element_area_m2();
         let mut t = Totals {
