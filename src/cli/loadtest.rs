@@ -620,6 +620,8 @@ pub(crate) fn tls_hint(text: &str, with_tls: bool) -> &'static str {
          it (README, Security)"
     } else if with_tls && text.contains("InvalidContentType") {
         "; the server answered in plaintext: it does not use TLS (leave out --tls-ca)"
+    } else if text.contains("Connection refused") {
+        ""
     } else if !with_tls
         && ["transport error", "connection reset", "h2 protocol error"]
             .iter()
@@ -1730,6 +1732,8 @@ mod tests {
             assert!(tls_hint(text, false).contains("--tls-ca"), "{text}");
         }
         assert_eq!(tls_hint("Unavailable: too busy", false), "");
+        let refused = "transport error: tcp connect error: Connection refused (os error 111)";
+        assert_eq!(tls_hint(refused, false), "");
     }
 
     #[test]

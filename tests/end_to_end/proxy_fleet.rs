@@ -91,38 +91,22 @@ impl Pki {
     /// 127.0.0.1 (`replica.crt`, `replica.key`; the load test reaches
     /// replica 0 straight), and `tokens.toml` with [`TOKEN`].
     fn new() -> Pki {
-        use rcgen::{
-            BasicConstraints, CertificateParams, DnType, ExtendedKeyUsagePurpose, IsCa, Issuer,
-            KeyPair, KeyUsagePurpose,
-        };
         let dir = tempfile::tempdir().unwrap();
-        let write = |name: &str, text: String| std::fs::write(dir.path().join(name), text).unwrap();
-        let ca_key = KeyPair::generate().unwrap();
-        let mut ca = CertificateParams::new(Vec::<String>::new()).unwrap();
-        ca.is_ca = IsCa::Ca(BasicConstraints::Unconstrained);
-        ca.distinguished_name
-            .push(DnType::CommonName, "railcontact proxy test CA");
-        ca.key_usages = vec![
-            KeyUsagePurpose::KeyCertSign,
-            KeyUsagePurpose::CrlSign,
-            KeyUsagePurpose::DigitalSignature,
-        ];
-        write("replicas-ca.pem", ca.self_signed(&ca_key).unwrap().pem());
-        let issuer = Issuer::from_params(&ca, &ca_key);
+        let path = |name: &str| dir.path().join(name);
+        let ca = railcontact_testkit::TestAuthority::new("railcontact proxy test CA");
+        ca.write(&path("replicas-ca.pem"));
         for (name, sans) in [
             ("proxy", vec!["localhost", "127.0.0.1"]),
             ("replica", vec![REPLICA_NAME, "localhost", "127.0.0.1"]),
         ] {
-            let key = KeyPair::generate().unwrap();
-            let mut params =
-                CertificateParams::new(sans.into_iter().map(String::from).collect::<Vec<_>>())
-                    .unwrap();
-            params.distinguished_name.push(DnType::CommonName, name);
-            params.extended_key_usages = vec![ExtendedKeyUsagePurpose::ServerAuth];
-            let cert = params.signed_by(&key, &issuer).unwrap();
-            write(&format!("{name}.crt"), cert.pem());
-            write(&format!("{name}.key"), key.serialize_pem());
+            ca.sign(
+                &sans,
+                true,
+                &path(&format!("{name}.crt")),
+                &path(&format!("{name}.key")),
+            );
         }
+        let write = |name: &str, text: String| std::fs::write(path(name), text).unwrap();
         write(
             "tokens.toml",
             format!("[[token]]\nname = \"proxy-fleet\"\nrole = \"solve\"\ntoken = \"{TOKEN}\"\n"),

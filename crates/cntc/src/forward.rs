@@ -240,7 +240,11 @@ async fn connect(s: &Settings) -> Result<Client> {
         Ok(Ok(channel)) => Ok(ContactServiceClient::with_interceptor(channel, token)
             .max_decoding_message_size(usize::MAX)
             .max_encoding_message_size(usize::MAX)),
-        Ok(Err(e)) => Err(bad(format!("cannot connect to {uri}: {}", chain(&e)))),
+        Ok(Err(e)) => {
+            let text = chain(&e);
+            let hint = tls_hint(&text, s.tls_ca.is_some());
+            Err(bad(format!("cannot connect to {uri}: {text}{hint}")))
+        }
         Err(_) => Err(bad(format!(
             "cannot connect to {uri}: no answer within {:.0} s",
             s.timeout.as_secs_f64()
@@ -263,20 +267,45 @@ fn chain(e: &dyn std::error::Error) -> String {
     s
 }
 
-/// What a status from the server means to the caller.
-fn status_error(st: &tonic::Status) -> CntcError {
+/// What a status from the server `s` names means to the caller.
+fn status_error(s: &Settings, st: &tonic::Status) -> CntcError {
     let hint = match st.code() {
         tonic::Code::Unauthenticated | tonic::Code::PermissionDenied => {
             " (RAILCONTACT_CNTC_TOKEN: a token the server accepts)"
         }
         tonic::Code::Unimplemented => " (the server is older than this library)",
-        _ => "",
+        _ => tls_hint(st.message(), s.tls_ca.is_some()),
     };
     CntcError::Server(format!(
-        "the server answered {:?}: {}{hint}",
+        "{} answered {:?}: {}{hint}",
+        s.target,
         st.code(),
         st.message()
     ))
+}
+
+/// What a connection or call error most likely means for TLS, as words to
+/// append to it ("" when it is not about TLS): `text` the error,
+/// `with_tls` whether the library used TLS.
+fn tls_hint(text: &str, with_tls: bool) -> &'static str {
+    if text.contains("CaUsedAsEndEntity") {
+        " (the server's certificate is an authority's, which TLS refuses as a server's: sign \
+         a server certificate with a test authority, as railcontact's README shows)"
+    } else if with_tls && text.contains("InvalidContentType") {
+        " (the server answered in plaintext: it does not use TLS; unset \
+         RAILCONTACT_CNTC_TLS_CA)"
+    } else if text.contains("Connection refused") {
+        " (no server listens there: start one, or set RAILCONTACT_CNTC_SERVER to its HOST:PORT)"
+    } else if !with_tls
+        && ["transport error", "connection reset", "h2 protocol error"]
+            .iter()
+            .any(|m| text.contains(m))
+    {
+        " (if the server uses TLS, set RAILCONTACT_CNTC_TLS_CA to the authority of its \
+         certificate)"
+    } else {
+        ""
+    }
 }
 
 /// One element's stream to the server.
@@ -310,7 +339,7 @@ impl Link {
                 if st.code() == tonic::Code::Unavailable {
                     drop_client();
                 }
-                return Err(status_error(&st));
+                return Err(status_error(&s, &st));
             }
             Err(_) => return Err(timeout_error(&s)),
         };
@@ -332,13 +361,14 @@ impl Link {
             Ok(Ok(_)) => Err(CntcError::Server(
                 "the server did not open the element's stream".into(),
             )),
-            Ok(Err(st)) => Err(status_error(&st)),
+            Ok(Err(st)) => Err(status_error(&s, &st)),
             Err(_) => Err(timeout_error(&s)),
         }
     }
 
     /// Sends `request` and waits for its reply.
-    async fn exchange(&mut self, request: Vec<u8>, timeout: Duration) -> Result<Reply> {
+    async fn exchange(&mut self, s: &Settings, request: Vec<u8>) -> Result<Reply> {
+        let timeout = s.timeout;
         let msg = ContactLibraryRequest {
             kind: Some(In::Calculate(ContactLibraryCalculate { request })),
         };
@@ -360,7 +390,7 @@ impl Link {
             Ok(Ok(_)) => Err(CntcError::Server(
                 "the server closed the element's stream".into(),
             )),
-            Ok(Err(st)) => Err(status_error(&st)),
+            Ok(Err(st)) => Err(status_error(s, &st)),
             Err(_) => Err(CntcError::Server(format!(
                 "no answer within {:.0} s (RAILCONTACT_CNTC_TIMEOUT_S)",
                 timeout.as_secs_f64()
@@ -418,9 +448,9 @@ pub fn calculate(entry: &mut Entry, ire: i32, icp: i32) -> Result<i32> {
             return Err(e);
         }
     };
-    let timeout = s.timeout;
+    let settings = s.clone();
     let (result, link) = block_on(async move {
-        let r = link.exchange(request, timeout).await;
+        let r = link.exchange(&settings, request).await;
         Ok((r, link))
     })?;
     match result {
@@ -459,5 +489,31 @@ fn continues_transient(entry: &mut Entry, icp: i32) -> bool {
             })
             .unwrap_or(false),
         crate::element::Element::WheelRail(_) => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tls_hint;
+
+    /// The errors seen connecting (tonic 0.14 with rustls): a CA
+    /// certificate as the server's, TLS to a plaintext port, plaintext to
+    /// a TLS port (the text varies with when the server's alert arrives),
+    /// no server at all.
+    #[test]
+    fn connection_mistakes_get_a_hint() {
+        let ca = "transport error: invalid peer certificate: Other(OtherError(CaUsedAsEndEntity))";
+        assert!(tls_hint(ca, true).contains("test authority"));
+        let plain = "transport error: received corrupt message of type InvalidContentType";
+        assert!(tls_hint(plain, true).contains("unset RAILCONTACT_CNTC_TLS_CA"));
+        for text in ["transport error", "h2 protocol error: http2 error"] {
+            assert!(
+                tls_hint(text, false).contains("set RAILCONTACT_CNTC_TLS_CA"),
+                "{text}"
+            );
+        }
+        let refused = "transport error: tcp connect error: Connection refused (os error 111)";
+        assert!(tls_hint(refused, false).contains("no server listens"));
+        assert_eq!(tls_hint("Unavailable: too busy", false), "");
     }
 }

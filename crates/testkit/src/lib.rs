@@ -1,8 +1,10 @@
 //! What the workspace's tests share: installing the Debian packages a
 //! test of another language's program needs (as root or through `sudo
 //! -n`, saying so on stderr first), and skipping those tests when
-//! [`SKIP_CLIENT_TESTS`] asks.
+//! [`SKIP_CLIENT_TESTS`] asks; and a test PKI for the TLS tests
+//! ([`write_test_pki`]).
 
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 /// Set to anything but "" or "0", skips the tests that install things
@@ -117,5 +119,82 @@ pub fn check(what: &str, output: &Output) {
         output.status,
         String::from_utf8_lossy(&output.stdout),
         String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// A certificate authority for tests (rcgen, ring): its certificate and
+/// the certificates it signs are written as PEM files.
+pub struct TestAuthority {
+    params: rcgen::CertificateParams,
+    key: rcgen::KeyPair,
+}
+
+impl TestAuthority {
+    /// A new authority named `common_name`.
+    pub fn new(common_name: &str) -> TestAuthority {
+        use rcgen::{BasicConstraints, CertificateParams, DnType, IsCa, KeyPair, KeyUsagePurpose};
+        let mut params = CertificateParams::new(Vec::<String>::new()).unwrap();
+        params.is_ca = IsCa::Ca(BasicConstraints::Unconstrained);
+        params
+            .distinguished_name
+            .push(DnType::CommonName, common_name);
+        params.key_usages = vec![
+            KeyUsagePurpose::KeyCertSign,
+            KeyUsagePurpose::CrlSign,
+            KeyUsagePurpose::DigitalSignature,
+        ];
+        TestAuthority {
+            params,
+            key: KeyPair::generate().unwrap(),
+        }
+    }
+
+    /// Writes the authority's certificate to `path`.
+    pub fn write(&self, path: &Path) {
+        let cert = self.params.self_signed(&self.key).unwrap();
+        std::fs::write(path, cert.pem()).unwrap();
+    }
+
+    /// Writes a certificate it signs for `names` (subject alternative
+    /// names, DNS names or IP addresses) to `cert` and its key to `key`:
+    /// a server's (`server` true) or a client's.
+    pub fn sign(&self, names: &[&str], server: bool, cert: &Path, key: &Path) {
+        use rcgen::{CertificateParams, DnType, ExtendedKeyUsagePurpose, Issuer, KeyPair};
+        let issuer = Issuer::from_params(&self.params, &self.key);
+        let pair = KeyPair::generate().unwrap();
+        let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+        let mut params = CertificateParams::new(names.clone()).unwrap();
+        params
+            .distinguished_name
+            .push(DnType::CommonName, names.first().map_or("", String::as_str));
+        params.extended_key_usages = vec![if server {
+            ExtendedKeyUsagePurpose::ServerAuth
+        } else {
+            ExtendedKeyUsagePurpose::ClientAuth
+        }];
+        let signed = params.signed_by(&pair, &issuer).unwrap();
+        std::fs::write(cert, signed.pem()).unwrap();
+        std::fs::write(key, pair.serialize_pem()).unwrap();
+    }
+}
+
+/// Writes a test PKI into `dir`: `ca.pem` (a [`TestAuthority`]),
+/// `server.pem` and `server-key.pem` (for localhost and 127.0.0.1, signed
+/// by it), `client.pem` and `client-key.pem` (a client certificate signed
+/// by it).
+pub fn write_test_pki(dir: &Path) {
+    let ca = TestAuthority::new("railcontact test CA");
+    ca.write(&dir.join("ca.pem"));
+    ca.sign(
+        &["localhost", "127.0.0.1"],
+        true,
+        &dir.join("server.pem"),
+        &dir.join("server-key.pem"),
+    );
+    ca.sign(
+        &["railcontact-test-client"],
+        false,
+        &dir.join("client.pem"),
+        &dir.join("client-key.pem"),
     );
 }

@@ -1,13 +1,16 @@
 //! What the library's tests share: the shared library's folder, scratch
 //! folders, compilers, building and running a C or Fortran program against
 //! the library, and a railcontact server in the test process for the
-//! forwarding mode.
+//! forwarding mode, and the calls of a module 3 patch as a C caller makes
+//! them.
 #![allow(dead_code)]
 
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use contact_addon::ffi::*;
+use contact_addon::flags;
 use railcontact::service::config::ServeConfig;
 use railcontact::service::server::{start, RunningServer};
 use railcontact_testkit::{apt_install, check, skip_client_test};
@@ -111,17 +114,23 @@ pub struct TestServer {
 impl TestServer {
     /// A server on `listen` (`127.0.0.1:0`: any free port).
     pub fn start(listen: &str) -> TestServer {
+        TestServer::start_with(listen, |_| {})
+    }
+
+    /// [`TestServer::start`] with the settings `edit` changes.
+    pub fn start_with(listen: &str, edit: impl FnOnce(&mut ServeConfig)) -> TestServer {
         let rt = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(2)
             .enable_all()
             .build()
             .unwrap();
-        let config = ServeConfig {
+        let mut config = ServeConfig {
             listen: listen.parse().unwrap(),
             data_dir: Default::default(),
             shutdown_grace_s: 1.0,
             ..ServeConfig::default()
         };
+        edit(&mut config);
         let server = rt.block_on(start(&config)).expect("the server starts");
         TestServer {
             addr: server.addr,
@@ -136,4 +145,100 @@ impl TestServer {
             self.rt.block_on(s.shutdown_or(async {}));
         }
     }
+}
+
+// ---------------------------------------------------------------------
+// Calls on module 3 patches, as a C caller makes them.
+
+/// Forwarding on (1) or off (0).
+pub fn mode(on: bool) {
+    let (codes, values) = ([flags::IF_MODE], [on as i32]);
+    unsafe { cntc_setglobalflags(&1, codes.as_ptr(), values.as_ptr()) };
+}
+
+pub fn set_flags(ire: i32, icp: i32, pairs: &[(i32, i32)]) {
+    let codes: Vec<i32> = pairs.iter().map(|p| p.0).collect();
+    let values: Vec<i32> = pairs.iter().map(|p| p.1).collect();
+    let n = pairs.len() as i32;
+    unsafe { cntc_setflags(&ire, &icp, &n, codes.as_ptr(), values.as_ptr()) };
+}
+
+/// Module 3 on (ire, 1): CONTACT's tractcurv ellipse (a/b = 0.5, 48 x 44
+/// elements, 106.7 kN, mu 0.33, CONTACT's units) with the T digit `tang`
+/// and the P digit `pvtime`.
+pub fn tractcurv(ire: i32, tang: i32, pvtime: i32) {
+    let icp = 1;
+    set_flags(
+        ire,
+        icp,
+        &[
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_TANG, tang),
+            (flags::IC_NORM, 1),
+            (flags::IC_PVTIME, pvtime),
+        ],
+    );
+    unsafe {
+        let mat = [0.28, 0.28, 82000.0, 82000.0];
+        cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.33, 0.33].as_ptr());
+        let hz = [48.0, 44.0, 0.0008, 0.5, 1.1];
+        cntc_sethertzcontact(&ire, &icp, &-2, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &10000.0);
+        cntc_setnormalforce(&ire, &icp, &106700.0);
+    }
+}
+
+/// Calculates (ire, 1) at creepages `c`: ierror.
+pub fn calculate(ire: i32, c: [f64; 3]) -> i32 {
+    let (icp, mut ierror) = (1, 12345);
+    unsafe {
+        cntc_setcreepages(&ire, &icp, &c[0], &c[1], &c[2]);
+        cntc_calculate(&ire, &icp, &mut ierror);
+    }
+    ierror
+}
+
+/// Every value the getters of module 3 patch (ire, 1) give, as bits.
+pub fn patch_values(ire: i32) -> Vec<u64> {
+    let icp = 1;
+    let mut v = Vec::new();
+    unsafe {
+        let (mut fn_, mut fx, mut fy, mut mz) = (0.0, 0.0, 0.0, 0.0);
+        cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fy, &mut mz);
+        let (mut cx, mut cy, mut cp) = (0.0, 0.0, 0.0);
+        cntc_getcreepages(&ire, &icp, &mut cx, &mut cy, &mut cp);
+        let mut pen = 0.0;
+        cntc_getpenetration(&ire, &icp, &mut pen);
+        let (mut ca, mut ha, mut sa) = (0.0, 0.0, 0.0);
+        cntc_getcontactpatchareas(&ire, &icp, &mut ca, &mut ha, &mut sa);
+        let (mut pm, mut tm) = (0.0, 0.0);
+        cntc_getmaximumpressure(&ire, &icp, &mut pm);
+        cntc_getmaximumtraction(&ire, &icp, &mut tm);
+        v.extend([fn_, fx, fy, mz, cx, cy, cp, pen, ca, ha, sa, pm, tm].map(f64::to_bits));
+        let (mut mx, mut my) = (0, 0);
+        cntc_getnumelements(&ire, &icp, &mut mx, &mut my);
+        let n = mx * my;
+        assert!(n > 0, "no grid on element {ire}");
+        let mut arrays = vec![vec![0.0; n as usize]; 5];
+        let [pn, px, py, sx, sy] = &mut arrays[..] else {
+            unreachable!()
+        };
+        cntc_gettractions(
+            &ire,
+            &icp,
+            &n,
+            pn.as_mut_ptr(),
+            px.as_mut_ptr(),
+            py.as_mut_ptr(),
+        );
+        cntc_getmicroslip(&ire, &icp, &n, sx.as_mut_ptr(), sy.as_mut_ptr());
+        for a in &arrays {
+            v.extend(a.iter().map(|x| x.to_bits()));
+        }
+        let mut division = vec![0; n as usize];
+        cntc_getelementdivision(&ire, &icp, &n, division.as_mut_ptr());
+        v.extend(division.iter().map(|d| *d as u64));
+    }
+    v
 }
