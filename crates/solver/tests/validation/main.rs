@@ -4,9 +4,10 @@
 //! against CONTACT (`transient`), wheel/rail contact (`wheelrail`), its
 //! friction varying over the profile (`variable_friction`), its flash
 //! temperatures (`wheelrail_temperature`), the plausibility warnings of
-//! its solutions (`plausibility`) and Coulomb friction with static and
-//! kinetic coefficients against CONTACT (`static_kinetic`). Each reference
-//! number names its source.
+//! its solutions (`plausibility`), Coulomb friction with static and
+//! kinetic coefficients against CONTACT (`static_kinetic`) and the
+//! interfacial (third-body) layer, elastic and elasto-plastic, against
+//! CONTACT (`interfacial_layer`). Each reference number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
 /// and source beside it).
@@ -16,6 +17,7 @@ pub fn profile_path(name: &str) -> String {
 
 mod conformal;
 mod falling_friction;
+mod interfacial_layer;
 mod line_contact;
 mod perfc;
 mod perfc_case;
