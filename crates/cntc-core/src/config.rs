@@ -12,6 +12,7 @@
 
 use railcontact_solver::core::fastsim::SlopeReduction;
 use railcontact_solver::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw};
+use railcontact_solver::core::layer::InterfacialLayer;
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::problem::Friction;
 
@@ -111,7 +112,33 @@ pub enum MaterialModel {
     /// M = 3: FASTSIM with Spiryagin-Polach-Cole's slope reduction (k0,
     /// alpha_inf, beta); k0 = alpha = beta = 1 is Kalker's FASTSIM.
     ModifiedFastsim(SlopeReduction),
+    /// M = 4: elastic half-spaces with an interfacial (third-body) layer
+    /// between them, elastic or elasto-plastic (GG3, LAYTHK, TAU_C0,
+    /// K_TAU; [`railcontact_solver::core::layer`]), Kalker's exact theory.
+    InterfacialLayer(InterfacialLayer),
 }
+
+impl MaterialModel {
+    /// The interfacial layer of M = 4.
+    pub fn layer(&self) -> Option<InterfacialLayer> {
+        match *self {
+            MaterialModel::InterfacialLayer(l) => Some(l),
+            _ => None,
+        }
+    }
+}
+
+/// CONTACT's smallest layer shear modulus GG3, 1e-6 N/mm² \[Pa\]
+/// (`cntc_setmaterialparameters`: `max(1d-6, gg3)` in its internal units).
+const MIN_LAYER_MODULUS_PA: f64 = 1.0;
+
+/// CONTACT's smallest layer thickness LAYTHK, 1e-9 mm \[m\] (`max(1d-9,
+/// laythk)`): a layer is always there with M = 4, if thin.
+const MIN_LAYER_THICKNESS_M: f64 = 1e-12;
+
+/// A yield limit TAU_C0 from 1e10 N/mm² \[Pa\] on is none (CONTACT sets
+/// it to 0: an elastic layer).
+const NO_YIELD_LIMIT_PA: f64 = 1e16;
 
 /// Materials, in SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -396,13 +423,16 @@ impl Config {
     /// Hertzian pressure for FASTSIM; 4-6 are SDEC/KPEC/ANALYN bounds).
     fn check_bound(&mut self) {
         let what = match (self.digits.bound, self.material.model) {
-            (0, MaterialModel::Elastic) => None,
+            (0, MaterialModel::Elastic | MaterialModel::InterfacialLayer(_)) => None,
             (0 | 2 | 3, MaterialModel::ModifiedFastsim(_)) => None,
-            (b @ (2 | 3), MaterialModel::Elastic) => Some(format!(
-                "B = {b} (CNTC_ic_bound) with M = 0: a prescribed {} pressure under Kalker's exact \
-                 theory is not supported (B = 2, 3 are for FASTSIM, M = 2, 3)",
-                if b == 2 { "elliptical" } else { "parabolic" }
-            )),
+            (b @ (2 | 3), MaterialModel::Elastic | MaterialModel::InterfacialLayer(_)) => {
+                Some(format!(
+                    "B = {b} (CNTC_ic_bound) with M = {}: a prescribed {} pressure under Kalker's \
+                     exact theory is not supported (B = 2, 3 are for FASTSIM, M = 2, 3)",
+                    self.digits.mater,
+                    if b == 2 { "elliptical" } else { "parabolic" }
+                ))
+            }
             (b, _) => Some(format!(
                 "B = {b} (CNTC_ic_bound): the SDEC, KPEC and ANALYN traction bounds are not supported"
             )),
@@ -458,10 +488,23 @@ impl Config {
                  FASTSIM with Kalker's flexibilities) is"
                     .to_string(),
             ),
-            4 => Some(
-                "M = 4 (an interfacial layer, elastic or elasto-plastic) is not supported"
-                    .to_string(),
-            ),
+            4 => {
+                // GG3, LAYTHK, TAU_C0 and K_TAU, clamped as CONTACT clamps
+                // them; a negative TAU_C0 is refused at calculation
+                // (naming interfacial_layer.yield_limit_pa).
+                let tau_c0 = u.stress(p[6]);
+                self.material.model = MaterialModel::InterfacialLayer(InterfacialLayer {
+                    thickness_m: u.len(p[5]).max(MIN_LAYER_THICKNESS_M),
+                    shear_modulus_pa: u.stress(p[4]).max(MIN_LAYER_MODULUS_PA),
+                    yield_limit_pa: if tau_c0 >= NO_YIELD_LIMIT_PA {
+                        0.0
+                    } else {
+                        tau_c0
+                    },
+                    hardening_pa_per_m: u.stress(p[7]) / u.length_m(),
+                });
+                None
+            }
             5 => Some("M = 5 (FaStrip) is not supported".to_string()),
             _ => Some(format!(
                 "M = {m} (numerical influence coefficients) is not supported"

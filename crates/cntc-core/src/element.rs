@@ -261,12 +261,21 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 u.len_out(dq),
                 0.0,
                 0.0,
-                0.0,
+                m.model
+                    .layer()
+                    .map_or(0.0, |l| u.stress_out(l.yield_limit_pa)),
             ])
         }
         2 => {
             let c = m.combined()?;
             let g_out = |g: f64| u.stress_out(g);
+            // M = 4: the layer's flexibility LAYTHK / GG3 in FLX(1:3)
+            // \[length/stress\] and its parameters in values 15-18
+            // (CONTACT's k_eff, value 14, is FASTSIM's: 0).
+            let layer = m.model.layer();
+            let flx = layer.map_or(0.0, |l| {
+                u.len_out(l.flexibility_m_per_pa()) / u.stress_out(1.0)
+            });
             let mut v = vec![
                 g_out(m.shear_modulus_pa[0]),
                 g_out(m.shear_modulus_pa[1]),
@@ -275,17 +284,27 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 m.poisson[1],
                 c.poisson_ratio,
                 c.kalker_k,
-                0.0,
-                0.0,
-                0.0,
+                flx,
+                flx,
+                flx,
             ];
             let (k0, a, b) = match m.model {
                 crate::config::MaterialModel::ModifiedFastsim(r) => {
                     (r.initial_factor, r.limit_ratio, r.transition_rate)
                 }
-                crate::config::MaterialModel::Elastic => (1.0, 1.0, 1.0),
+                crate::config::MaterialModel::Elastic
+                | crate::config::MaterialModel::InterfacialLayer(_) => (1.0, 1.0, 1.0),
             };
             v.extend([k0, a, b]);
+            if let Some(l) = layer {
+                v.extend([
+                    0.0,
+                    g_out(l.shear_modulus_pa),
+                    u.len_out(l.thickness_m),
+                    g_out(l.yield_limit_pa),
+                    g_out(l.hardening_pa_per_m) * u.length_m(),
+                ]);
+            }
             Ok(v)
         }
         3 => {

@@ -33,7 +33,8 @@ pub fn creepages(o: &Outcome, u: Units) -> [f64; 3] {
 }
 
 /// `cntc_getcontactpatchareas`: contact, adhesion and slip areas
-/// \[area\].
+/// \[area\] (an elasto-plastic layer's plasticity area is contact minus
+/// adhesion minus slip, as CONTACT's).
 pub fn areas(o: &Outcome, u: Units) -> [f64; 3] {
     let l2 = u.length_m() * u.length_m();
     o.areas_m2.map(|a| a / l2)
@@ -64,14 +65,18 @@ fn require_fields(o: &Outcome) -> Result<()> {
     }
 }
 
-/// `cntc_getelementdivision`: 0 exterior, 1 adhesion, 2 slip.
+/// `cntc_getelementdivision`: 0 exterior, 1 adhesion, 2 slip, 3
+/// plasticity (an elasto-plastic layer flowing without slip).
 pub fn element_division(o: &Outcome) -> Result<Vec<i32>> {
     require_fields(o)?;
+    let plastic = o.layer.as_ref().map_or(&[][..], |l| &l.plastic);
     Ok(o.fields
         .state
         .iter()
-        .map(|s| match s {
+        .enumerate()
+        .map(|(i, s)| match s {
             ElementState::Exterior => 0,
+            ElementState::Adhesion if plastic.get(i) == Some(&true) => 3,
             ElementState::Adhesion => 1,
             ElementState::Slip => 2,
         })
@@ -122,7 +127,17 @@ pub fn field_data(o: &Outcome, u: Units, ifld: i32) -> Result<Vec<f64>> {
                 "field {ifld} (displacement differences) is not available from this library"
             )))
         }
-        field::TAUCRT | field::UPLSX | field::UPLSY => vec![0.0; n],
+        // An elasto-plastic layer's yield limit and plastic deformation
+        // (zero without one). CONTACT scales UPLSX, UPLSY by the length
+        // unit only, without the output body's sign: the same here.
+        field::TAUCRT | field::UPLSX | field::UPLSY => match &o.layer {
+            Some(l) if l.yield_limit_pa.len() == n => match ifld {
+                field::TAUCRT => stress(&l.yield_limit_pa, 1.0),
+                field::UPLSX => l.plastic_x_m.iter().map(|x| u.len_out(*x)).collect(),
+                _ => l.plastic_y_m.iter().map(|y| u.len_out(*y)).collect(),
+            },
+            _ => vec![0.0; n],
+        },
         // CONTACT returns the rigid slip's right-hand side, -w (m_sdis'
         // set_tang_rhs stores -dq w, the getter divides by dq): the same
         // sign here, so that a coupling reads what it reads from CONTACT.

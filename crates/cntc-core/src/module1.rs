@@ -992,6 +992,13 @@ impl WheelRail {
                 d.discns
             )));
         }
+        if let MaterialModel::InterfacialLayer(_) = self.config.material.model {
+            return Err(CntcError::NotSupported(
+                "M = 4 (an interfacial layer) in module 1 is not supported: the wheel/rail \
+                 patches are solved without a layer; module 3 takes it"
+                    .into(),
+            ));
+        }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             return Err(CntcError::NotSupported(
                 "M = 3 (modified FASTSIM) in module 1 is not supported: the wheel/rail patches \
@@ -1396,7 +1403,7 @@ impl WheelRail {
         let mut o = Outcome::no_contact(out_grid, gap, p.approach_m - hmin);
         if let Some(fl) = out_fields {
             if fl.state.len() == out_grid.len() {
-                o.areas_m2 = Outcome::areas_of(&out_grid, &fl.state);
+                o.areas_m2 = Outcome::areas_of(&out_grid, &fl.state, &[]);
             }
             o.border_elements = out_grid.loaded_border_elements(&fl.pressure_pa);
             o.fields = fl;

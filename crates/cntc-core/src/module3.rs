@@ -17,6 +17,7 @@ use railcontact_solver::core::force::{
 };
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::hertz::{complete_elliptic, hertz, HertzLoad};
+use railcontact_solver::core::layer::InterfacialLayer;
 use railcontact_solver::core::material::CombinedMaterial;
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::problem::{
@@ -227,6 +228,9 @@ struct SolverKey {
     grid: Grid,
     material: CombinedMaterial,
     chi: f64,
+    /// M = 4's layer (its flexibility is in the solver's kernels, its
+    /// yield limit and hardening in its history).
+    layer: Option<InterfacialLayer>,
 }
 
 /// The exact normal problem's solution FASTSIM takes its pressure from
@@ -405,7 +409,7 @@ impl Patch {
                 }
                 outcome
             }
-            MaterialModel::Elastic => {
+            MaterialModel::Elastic | MaterialModel::InterfacialLayer(_) => {
                 let (outcome, status) = self.exact(cache, material, load, grid, gap)?;
                 if let Some(e) = status {
                     self.outcome = Some(Outcome { hertz, ..outcome });
@@ -449,6 +453,9 @@ impl Patch {
         settings.tangential.tolerance = eps;
         settings.coupling_max_iterations = self.config.solver.maxout.clamp(1, 1000);
         settings.allow_border_contact = true;
+        // M = 4: the interfacial layer between the bodies.
+        let layer = self.config.material.model.layer();
+        settings.interfacial_layer = layer;
         let step = match d.tang {
             1 => Some(ShiftStep {
                 load,
@@ -548,6 +555,7 @@ impl Patch {
             grid,
             material,
             chi: problem.rolling_direction_rad,
+            layer,
         };
         let reuse = matches!(&self.solver, Some((k, _)) if *k == key);
         let continues = d.pvtime <= 1 && reuse;
@@ -641,6 +649,13 @@ impl Patch {
         let mut outcome = Outcome::no_contact(grid, gap, t.approach_m);
         outcome.border_elements = grid.loaded_border_elements(&solution.fields.pressure_pa);
         let mut fields = solution.fields;
+        // An elasto-plastic layer's state per element (None for an
+        // elastic one, or without friction).
+        let layer_fields = self
+            .solver
+            .as_ref()
+            .and_then(|(_, s)| s.layer_fields())
+            .filter(|_| d.tang != 0);
         if d.tang == 0 {
             // Without friction CONTACT counts the contact area as adhesion.
             for s in fields.state.iter_mut() {
@@ -649,7 +664,12 @@ impl Patch {
                 }
             }
         }
-        outcome.areas_m2 = Outcome::areas_of(&grid, &fields.state);
+        outcome.areas_m2 = Outcome::areas_of(
+            &grid,
+            &fields.state,
+            layer_fields.as_ref().map_or(&[][..], |l| &l.plastic),
+        );
+        outcome.layer = layer_fields;
         outcome.rigid_slip = problem_rigid_slip(&grid, d.tang, &creepages, &problem);
         if let Some(t) = &self.config.thermal {
             let temperatures = flash_temperatures(&grid, &fields, &thermal_input(t, k.veloc))
@@ -893,6 +913,7 @@ impl Patch {
             grid,
             material,
             chi: 0.0,
+            layer: None,
         };
         if !matches!(&self.solver, Some((k, _)) if *k == key) {
             self.solver = Some((key, ContactSolver::new(&problem, cache)));

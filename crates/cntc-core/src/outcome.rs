@@ -4,6 +4,7 @@
 //! ([`crate::units::Units`]) when they read it.
 
 use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::layer::LayerFields;
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +17,12 @@ pub struct Outcome {
     /// Per-element fields on `grid` (index `iy * nx + ix`), of every
     /// model (FASTSIM's on the same grid).
     pub fields: ElementFields,
+    /// An elasto-plastic interfacial layer's state per element on `grid`
+    /// (M = 4 with TAU_C0 > 0): the yield limit, the plastic deformation
+    /// and where the layer flowed without slip (CONTACT's TAUCRT, UPLSX,
+    /// UPLSY and plasticity area; those elements are adhesion in
+    /// `fields.state`).
+    pub layer: Option<LayerFields>,
     /// Friction coefficient per element [-] (empty: `friction_coefficient`
     /// everywhere).
     pub mu: Vec<f64>,
@@ -130,6 +137,7 @@ impl Outcome {
                 state: vec![ElementState::Exterior; n],
                 gap_m,
             },
+            layer: None,
             mu: Vec::new(),
             friction_coefficient: 0.0,
             normal_force_n: 0.0,
@@ -171,17 +179,26 @@ impl Outcome {
         ]
     }
 
-    /// Contact, adhesion and slip areas from the element states \[m²\].
-    pub fn areas_of(grid: &Grid, state: &[ElementState]) -> [f64; 3] {
+    /// Contact, adhesion and slip areas from the element states \[m²\];
+    /// with an elasto-plastic layer's flags (`plastic`, empty without),
+    /// the elements that flowed are in contact but neither adhesion nor
+    /// slip (CONTACT's plasticity area, contact minus adhesion minus
+    /// slip).
+    pub fn areas_of(grid: &Grid, state: &[ElementState], plastic: &[bool]) -> [f64; 3] {
         let da = grid.dx_m * grid.dy_m;
-        let (mut adh, mut slip) = (0usize, 0usize);
-        for s in state {
+        let (mut adh, mut slip, mut plast) = (0usize, 0usize, 0usize);
+        for (i, s) in state.iter().enumerate() {
             match s {
+                ElementState::Adhesion if plastic.get(i) == Some(&true) => plast += 1,
                 ElementState::Adhesion => adh += 1,
                 ElementState::Slip => slip += 1,
                 ElementState::Exterior => {}
             }
         }
-        [(adh + slip) as f64 * da, adh as f64 * da, slip as f64 * da]
+        [
+            (adh + slip + plast) as f64 * da,
+            adh as f64 * da,
+            slip as f64 * da,
+        ]
     }
 }

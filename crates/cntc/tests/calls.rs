@@ -122,9 +122,9 @@ fn methods_the_library_lacks_are_named_at_calculation() {
     tractcurv(ire);
     let mut ierror = 0;
     unsafe {
-        // M = 4 (an interfacial layer): refused until replaced.
-        let layer = [0.28, 0.28, 82000.0, 82000.0, 8200.0, 1.25, 0.0, 0.0];
-        cntc_setmaterialparameters(&ire, &icp, &4, &8, layer.as_ptr());
+        // M = 1 (viscoelastic bodies): refused until replaced.
+        let visco = [0.28, 0.28, 82000.0, 82000.0, 0.5, 0.5, 0.1, 0.1];
+        cntc_setmaterialparameters(&ire, &icp, &1, &8, visco.as_ptr());
         cntc_calculate(&ire, &icp, &mut ierror);
         assert_eq!(ierror, err::NOT_SUPPORTED);
         let elastic = [0.28, 0.28, 82000.0, 82000.0];
