@@ -28,7 +28,6 @@
 //! | `railcontact_streams_open` | | calls open (HTTP/2 streams), against `max_streams` |
 //! | `railcontact_connections_timed_out_total` | | connections closed because they sent no call within `connection_first_call_timeout_s` |
 //! | `railcontact_streams_write_timed_out_total` | | streamed responses (CreepCurve) ended because their client read nothing for `stream_write_timeout_s` |
-//! | `railcontact_memory_trimmed_bytes_total` | | memory the allocator returned to the system after calls and connections ended (`malloc_trim`, Linux with glibc) |
 //!
 //! Metrics that the handlers count are fields of [`Metrics`], registered in
 //! [`Metrics::default`] (a counter is registered without its `_total`
@@ -136,7 +135,6 @@ pub struct Metrics {
     streams_open: Gauge,
     connections_timed_out: Counter,
     streams_write_timed_out: Counter,
-    memory_trimmed_bytes: Counter,
 }
 
 impl Default for Metrics {
@@ -162,7 +160,6 @@ impl Default for Metrics {
             streams_open: Gauge::default(),
             connections_timed_out: Counter::default(),
             streams_write_timed_out: Counter::default(),
-            memory_trimmed_bytes: Counter::default(),
         };
         let mut r = m.registry;
         // name (a counter's without `_total`), help, metric: one line each.
@@ -186,7 +183,6 @@ impl Default for Metrics {
             "railcontact_streams_open", "Calls open (HTTP/2 streams), against max_streams" => m.streams_open;
             "railcontact_connections_timed_out", "Connections closed because they sent no call within connection_first_call_timeout_s" => m.connections_timed_out;
             "railcontact_streams_write_timed_out", "Streamed responses ended because their client read nothing for stream_write_timeout_s" => m.streams_write_timed_out;
-            "railcontact_memory_trimmed_bytes", "Memory returned to the system by malloc_trim after calls and connections ended [bytes]" => m.memory_trimmed_bytes;
         );
         Self { registry: r, ..m }
     }
@@ -271,11 +267,6 @@ impl Metrics {
     /// A streamed response ended because its client read nothing.
     pub fn stream_write_timed_out(&self) {
         self.streams_write_timed_out.inc();
-    }
-
-    /// `bytes` returned to the system by trimming the allocator's heap.
-    pub fn memory_trimmed(&self, bytes: u64) {
-        self.memory_trimmed_bytes.inc_by(bytes);
     }
 
     /// A session was closed because it idled.

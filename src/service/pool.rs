@@ -600,6 +600,60 @@ mod tests {
     }
 
     #[tokio::test]
+    async fn a_lane_serves_the_waiting_clients_in_turn() {
+        let lane = FairLane::new(1);
+        let (a, b) = (
+            ClientId::peer("10.0.0.1".parse().unwrap()),
+            ClientId::peer("10.0.0.2".parse().unwrap()),
+        );
+        let held = lane.acquire(&a).await;
+        assert!(lane.try_acquire().is_none());
+        // Three of a's wait, then one of b's: each waiter sends its name
+        // when it gets the worker, and gives the worker back at once.
+        let (tx, mut order) = tokio::sync::mpsc::unbounded_channel();
+        let mut tasks = tokio::task::JoinSet::new();
+        let waiters = [(&a, "a1"), (&a, "a2"), (&a, "a3"), (&b, "b1")];
+        for (client, name) in waiters {
+            let (mine, client, tx) = (lane.clone(), client.clone(), tx.clone());
+            tasks.spawn(async move {
+                let _permit = mine.acquire(&client).await;
+                tx.send(name).unwrap();
+            });
+            // Queued in this order (each task waits before the next starts).
+            while lane
+                .lock()
+                .waiting
+                .values()
+                .map(VecDeque::len)
+                .sum::<usize>()
+                < tasks.len()
+            {
+                tokio::task::yield_now().await;
+            }
+        }
+        // One that gives up while waiting passes its turn on.
+        let (lane2, a2) = (lane.clone(), a.clone());
+        let gone = tokio::spawn(async move { lane2.acquire(&a2).await });
+        while lane.lock().waiting[&a].len() < 4 {
+            tokio::task::yield_now().await;
+        }
+        gone.abort();
+        let _ = gone.await;
+        drop(held);
+        while tasks.join_next().await.is_some() {}
+        drop(tx);
+        let mut served = Vec::new();
+        while let Some(name) = order.recv().await {
+            served.push(name);
+        }
+        // First come, first served would be a1 a2 a3 b1.
+        assert_eq!(served, ["a1", "b1", "a2", "a3"]);
+        assert_eq!(lane.available_permits(), 1, "the worker is back");
+        let state = lane.lock();
+        assert!(state.turn.is_empty() && state.waiting.is_empty());
+    }
+
+    #[tokio::test]
     async fn a_passed_deadline_is_not_started_and_a_panic_is_internal() {
         let pool = SolvePool::new(1, 4);
         let late = pool.admit(Some(Instant::now())).unwrap();

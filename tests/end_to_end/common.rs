@@ -58,6 +58,34 @@ pub async fn metrics_page(addr: std::net::SocketAddr) -> String {
     page
 }
 
+/// `sphere` in steady rolling with mu = 0.3.
+pub fn rolling(model: pb::Model, n: u32, creepage_long: f64) -> pb::PatchCase {
+    pb::PatchCase {
+        friction: Some(pb::FrictionSection {
+            coefficient: Some(0.3),
+            ..Default::default()
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            creepage_long,
+            ..Default::default()
+        })),
+        ..sphere(model, n)
+    }
+}
+
+/// A creep curve's sweep from zero creepage to `creepage_long` [-] in
+/// `points` points.
+pub fn linear_sweep(creepage_long: f64, points: u32) -> Option<pb::creep_curve_request::Sweep> {
+    Some(pb::creep_curve_request::Sweep::Linear(pb::LinearSweep {
+        from: Some(pb::Creepages::default()),
+        to: Some(pb::Creepages {
+            creepage_long,
+            ..Default::default()
+        }),
+        points,
+    }))
+}
+
 pub fn steel() -> pb::MaterialSection {
     pb::MaterialSection {
         shear_modulus_pa: Some(81.0e9),

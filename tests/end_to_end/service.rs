@@ -19,26 +19,11 @@ use tonic::transport::Channel;
 use tonic::Code;
 
 use crate::common;
-use common::{metrics_page, server_with, sphere, steel, Client};
+use common::{metrics_page, rolling, server_with, sphere, steel, Client};
 
 /// A server on an ephemeral port; pairs in memory only (no store).
 async fn server() -> (RunningServer, Client) {
     server_with(ServeConfig::default()).await
-}
-
-/// `sphere` in steady rolling with mu = 0.3.
-fn rolling(model: pb::Model, n: u32, creepage_long: f64) -> pb::PatchCase {
-    pb::PatchCase {
-        friction: Some(pb::FrictionSection {
-            coefficient: Some(0.3),
-            ..Default::default()
-        }),
-        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
-            creepage_long,
-            ..Default::default()
-        })),
-        ..sphere(model, n)
-    }
 }
 
 fn shift(x: f64) -> pb::ShiftStep {
@@ -247,14 +232,7 @@ async fn creep_curve_streams_one_point_each_in_order_and_saturates() {
     let (server, mut client) = server().await;
     let req = pb::CreepCurveRequest {
         case: Some(rolling(pb::Model::Exact, 20, 0.0)),
-        sweep: Some(pb::creep_curve_request::Sweep::Linear(pb::LinearSweep {
-            from: Some(pb::Creepages::default()),
-            to: Some(pb::Creepages {
-                creepage_long: 4e-3,
-                ..Default::default()
-            }),
-            points: 5,
-        })),
+        sweep: common::linear_sweep(4e-3, 5),
         include_fields: false,
     };
     let mut stream = client.creep_curve(req).await.unwrap().into_inner();

@@ -1,0 +1,307 @@
+//! The server's connections: accepted here, counted against
+//! `max_connections` and each address's `client_max_connections`, and
+//! closed when they start no call in time or when the server ends one of
+//! their streams whose client reads nothing.
+//!
+//! tonic's own listener accepts every connection and keeps it as long as
+//! the peer keeps its socket open: a client that connects (plain TCP, or
+//! TLS without finishing its handshake) and never sends a byte holds a
+//! descriptor forever. Here each accepted socket is:
+//!
+//! - refused (closed at once) when the server holds `max_connections`, or
+//!   the peer's address `client_max_connections` (a quota by address:
+//!   connections come before any token); counted in
+//!   `railcontact_quota_refused_total{quota}`;
+//! - closed when it has not started its first call (a TLS handshake, the
+//!   HTTP/2 preface and a request's headers) within
+//!   `connection_first_call_timeout_s`; counted in
+//!   `railcontact_connections_timed_out_total`. Once a call came, HTTP/2
+//!   keepalive (`http2_keepalive_interval_s`) finds a peer that vanished;
+//! - closed when a handler aborts it ([`ConnState::abort`]): a streamed
+//!   response whose client read nothing for `stream_write_timeout_s`
+//!   ([`crate::service::streams`]). HTTP/2 keeps what it has buffered for
+//!   a stream until that stream or its connection ends, and only the
+//!   client can end a stream it does not read; closing the connection
+//!   gives all of it back.
+//!
+//! [`ConnInfo`] reaches every request's extensions (tonic puts the
+//! connection's [`Connected::connect_info`] there, behind TLS too): the
+//! token check marks the connection as having started a call, and reads
+//! the peer's address from it.
+
+use std::future::Future;
+use std::io;
+use std::net::SocketAddr;
+use std::pin::Pin;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::task::{Context, Poll, Waker};
+use std::time::Duration;
+
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::net::{TcpListener, TcpStream};
+use tokio::time::Sleep;
+use tokio_stream::Stream;
+use tonic::transport::server::Connected;
+
+use crate::service::metrics::Metrics;
+use crate::service::quota::{ClientId, Quota, QuotaGuard, CONNECTIONS_LOG};
+
+/// What a connection's requests and its socket share.
+#[derive(Debug, Default)]
+pub struct ConnState {
+    /// A call has started on it.
+    called: AtomicBool,
+    /// The server ends it.
+    aborted: AtomicBool,
+    /// The task reading the socket, woken to close it.
+    reader: Mutex<Option<Waker>>,
+}
+
+impl ConnState {
+    /// A call started on the connection: it stays open past
+    /// `connection_first_call_timeout_s`.
+    pub fn called(&self) {
+        if !self.called.load(Ordering::Relaxed) {
+            self.called.store(true, Ordering::Relaxed);
+        }
+    }
+
+    /// Closes the connection (its socket reports an error to HTTP/2 at the
+    /// next read, which ends every stream on it and frees their buffers).
+    pub fn abort(&self) {
+        self.aborted.store(true, Ordering::Relaxed);
+        let waker = self.reader.lock().unwrap_or_else(|e| e.into_inner()).take();
+        if let Some(w) = waker {
+            w.wake();
+        }
+    }
+
+    /// Whether [`ConnState::abort`] was called.
+    pub fn is_aborted(&self) -> bool {
+        self.aborted.load(Ordering::Relaxed)
+    }
+}
+
+/// The connect info of a connection, in every request's extensions.
+#[derive(Debug, Clone)]
+pub struct ConnInfo {
+    /// The peer's address.
+    pub remote: SocketAddr,
+    /// Shared with the socket.
+    pub state: Arc<ConnState>,
+}
+
+/// An accepted connection: the socket, its count in the quotas (given back
+/// when it closes), and the time limit for its first call.
+pub struct Conn {
+    io: TcpStream,
+    info: ConnInfo,
+    first_call: Option<Pin<Box<Sleep>>>,
+    metrics: Arc<Metrics>,
+    _counted: QuotaGuard,
+}
+
+impl Connected for Conn {
+    type ConnectInfo = ConnInfo;
+
+    fn connect_info(&self) -> ConnInfo {
+        self.info.clone()
+    }
+}
+
+impl Conn {
+    /// An error when the connection is to be closed: the server aborted
+    /// it, or it started no call in time (registering the timer's wake-up
+    /// while it waits).
+    fn check(&mut self, cx: &mut Context<'_>) -> io::Result<()> {
+        let state = &self.info.state;
+        if state.is_aborted() {
+            return Err(io::Error::new(
+                io::ErrorKind::ConnectionAborted,
+                "closed by the server",
+            ));
+        }
+        if let Some(timer) = &mut self.first_call {
+            if state.called.load(Ordering::Relaxed) {
+                self.first_call = None;
+            } else if timer.as_mut().poll(cx).is_ready() {
+                self.first_call = None;
+                self.metrics.connection_timed_out();
+                if let Some(left_out) = CONNECTIONS_LOG.allow() {
+                    tracing::info!(
+                        peer = %self.info.remote,
+                        left_out,
+                        "connection closed: no call within connection_first_call_timeout_s"
+                    );
+                }
+                // Not counted as called: the next poll fails again.
+                state.aborted.store(true, Ordering::Relaxed);
+                return Err(io::Error::new(
+                    io::ErrorKind::TimedOut,
+                    "no call within connection_first_call_timeout_s",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl AsyncRead for Conn {
+    fn poll_read(
+        self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
+        let this = self.get_mut();
+        {
+            let mut reader = this
+                .info
+                .state
+                .reader
+                .lock()
+                .unwrap_or_else(|e| e.into_inner());
+            if !reader.as_ref().is_some_and(|w| w.will_wake(cx.waker())) {
+                *reader = Some(cx.waker().clone());
+            }
+        }
+        this.check(cx)?;
+        Pin::new(&mut this.io).poll_read(cx, buf)
+    }
+}
+
+impl AsyncWrite for Conn {
+    fn poll_write(
+        self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<io::Result<usize>> {
+        let this = self.get_mut();
+        this.check(cx)?;
+        Pin::new(&mut this.io).poll_write(cx, buf)
+    }
+
+    fn poll_write_vectored(
+        self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        bufs: &[io::IoSlice<'_>],
+    ) -> Poll<io::Result<usize>> {
+        let this = self.get_mut();
+        this.check(cx)?;
+        Pin::new(&mut this.io).poll_write_vectored(cx, bufs)
+    }
+
+    fn is_write_vectored(&self) -> bool {
+        self.io.is_write_vectored()
+    }
+
+    fn poll_flush(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        Pin::new(&mut self.get_mut().io).poll_flush(cx)
+    }
+
+    fn poll_shutdown(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        Pin::new(&mut self.get_mut().io).poll_shutdown(cx)
+    }
+}
+
+/// The listener's connections, as tonic takes them
+/// (`serve_with_incoming_shutdown`): counted, with TCP_NODELAY (without
+/// it, a response written in two segments waits for the client's delayed
+/// ACK, about 40 ms a call), and with their first-call timer. Dropping it
+/// closes the listening socket.
+pub struct Incoming {
+    listener: TcpListener,
+    quota: Arc<Quota>,
+    first_call: Duration,
+    metrics: Arc<Metrics>,
+    /// After an accept error such as too many open files: a pause, so that
+    /// the loop does not spin while the error lasts.
+    pause: Option<Pin<Box<Sleep>>>,
+}
+
+impl Incoming {
+    /// Accepts on `listener`, counting into `quota`, closing connections
+    /// without a call after `first_call`.
+    pub fn new(
+        listener: TcpListener,
+        quota: Arc<Quota>,
+        first_call: Duration,
+        metrics: Arc<Metrics>,
+    ) -> Self {
+        Self {
+            listener,
+            quota,
+            first_call,
+            metrics,
+            pause: None,
+        }
+    }
+}
+
+impl Stream for Incoming {
+    type Item = io::Result<Conn>;
+
+    fn poll_next(self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<Option<Self::Item>> {
+        let this = self.get_mut();
+        loop {
+            if let Some(pause) = &mut this.pause {
+                std::task::ready!(pause.as_mut().poll(cx));
+                this.pause = None;
+            }
+            match std::task::ready!(this.listener.poll_accept(cx)) {
+                Ok((io, remote)) => {
+                    let client = ClientId::peer(remote.ip());
+                    match this.quota.take(&client) {
+                        Ok(counted) => {
+                            let _ = io.set_nodelay(true);
+                            let info = ConnInfo {
+                                remote,
+                                state: Arc::default(),
+                            };
+                            return Poll::Ready(Some(Ok(Conn {
+                                io,
+                                info,
+                                first_call: Some(Box::pin(tokio::time::sleep(this.first_call))),
+                                metrics: this.metrics.clone(),
+                                _counted: counted,
+                            })));
+                        }
+                        Err(refusal) => {
+                            if let Some(left_out) = CONNECTIONS_LOG.allow() {
+                                tracing::info!(
+                                    peer = %remote,
+                                    quota = refusal.setting,
+                                    left_out,
+                                    "connection refused: {}",
+                                    refusal.message
+                                );
+                            }
+                            drop(io);
+                        }
+                    }
+                }
+                Err(e) => {
+                    // Connection errors (reset before accepted) concern one
+                    // connection; resource errors (descriptors, memory)
+                    // last a while.
+                    use io::ErrorKind as K;
+                    let transient = matches!(
+                        e.kind(),
+                        K::ConnectionAborted | K::ConnectionReset | K::Interrupted | K::WouldBlock
+                    );
+                    if !transient {
+                        if let Some(left_out) = CONNECTIONS_LOG.allow() {
+                            tracing::warn!(
+                                error = %e,
+                                left_out,
+                                "cannot accept a connection (out of file descriptors? raise the \
+                                 limit or lower max_connections); pausing 100 ms"
+                            );
+                        }
+                        this.pause = Some(Box::pin(tokio::time::sleep(Duration::from_millis(100))));
+                    }
+                }
+            }
+        }
+    }
+}
