@@ -53,7 +53,8 @@
 //! admitted). A lane's workers go to the waiting solves client by client
 //! in turn ([`FairLane`]), first come first served within a client: a
 //! client that has sixteen solves waiting delays another client's one
-//! solve by at most one solve per worker, not by its sixteen; session
+//! solve by the solves running and at most one more per worker, not by
+//! its sixteen; session
 //! steps queue the same way under their session's client.
 
 use std::collections::{HashMap, VecDeque};

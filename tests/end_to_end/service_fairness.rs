@@ -17,8 +17,8 @@
 //!   `auth_failure_burst`, and its refusals are logged at a bounded rate,
 //!   while a known token from another address is served;
 //! - a client with many solves waiting delays another client's solve by
-//!   about one solve, not by all of them (the workers serve the clients in
-//!   turn).
+//!   the one running and one more, not by all of them (the workers serve
+//!   the clients in turn).
 //!
 //! Clients are told apart by address: the hoarders connect through a
 //! relay ([`relay`]) whose connections to the server come from another
