@@ -2333,6 +2333,118 @@ mod tests {
         assert_eq!(last.fields.state, steady.fields.state);
     }
 
+    /// [`rolling`] with an elasto-plastic layer: 10 um of G3 = 1 GPa
+    /// (F = 1e-14 m/Pa, about three times an element's own compliance),
+    /// yield limit 50 MPa (a third of mu p_n at the centre) hardening by
+    /// 1e13 Pa/m.
+    fn rolling_on_a_layer() -> ContactProblem {
+        let mut p = rolling(1.0, 1.0);
+        p.settings.interfacial_layer = Some(InterfacialLayer {
+            thickness_m: 10e-6,
+            shear_modulus_pa: 1e9,
+            yield_limit_pa: 50e6,
+            hardening_pa_per_m: 1e13,
+        });
+        p
+    }
+
+    #[test]
+    fn transient_rolling_on_a_plastic_layer_tends_to_its_steady_state() {
+        // As without a layer (above): steps of dq = dx carry the tractions
+        // and the material's yield limit and plastic deformation upstream;
+        // once they stop changing, the step is the steady problem, whose
+        // material enters fresh at the leading edge and hardens along each
+        // row.
+        let cache = KernelCache::default();
+        let steady_problem = rolling_on_a_layer();
+        let mut solver = ContactSolver::new(&steady_problem, &cache);
+        let steady = solve_last(&mut solver, &steady_problem);
+        let steady_layer = solver.layer_fields().expect("a plastic layer");
+        let flowing = steady_layer.plastic.iter().filter(|&&f| f).count();
+        let hardened = steady_layer
+            .yield_limit_pa
+            .iter()
+            .filter(|&&t| t > 50e6)
+            .count();
+        assert!(flowing > 0 && hardened > flowing, "{flowing} {hardened}");
+        let mut p = steady_problem.clone();
+        let step = ShiftStep::rolling(p.load, p.grid.dx_m, &base_creepages());
+        p.kinematics = Kinematics::Transient(vec![step; 160]);
+        let mut transient = ContactSolver::new(&p, &cache);
+        let last = transient.solve(&p).unwrap().pop().unwrap();
+        let layer = transient.layer_fields().expect("a plastic layer");
+        assert_eq!(last.info.status, SolveStatus::Converged);
+        let fmax = 0.3 * steady.totals.normal_force_n;
+        let gap = (last.totals.fx_n - steady.totals.fx_n)
+            .abs()
+            .max((last.totals.fy_n - steady.totals.fy_n).abs())
+            / fmax;
+        let tau_gap = layer
+            .yield_limit_pa
+            .iter()
+            .zip(&steady_layer.yield_limit_pa)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / 50e6;
+        let u_max = steady_layer
+            .plastic_x_m
+            .iter()
+            .chain(&steady_layer.plastic_y_m)
+            .fold(0.0f64, |m, u| m.max(u.abs()));
+        let u_gap = layer
+            .plastic_x_m
+            .iter()
+            .zip(&steady_layer.plastic_x_m)
+            .chain(layer.plastic_y_m.iter().zip(&steady_layer.plastic_y_m))
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / u_max;
+        eprintln!(
+            "forces {gap:e} of mu Fn, yield limits {tau_gap:e} of tau_c0, plastic deformation \
+             {u_gap:e} of its largest ({u_max:e} m); {flowing} elements flowing, {hardened} \
+             hardened"
+        );
+        // Measured after 160 steps: 2.5e-7, 4.7e-7 and 8.7e-7 (331
+        // elements flowing, 511 hardened); the bounds' iteration stops at
+        // ten times the tangential tolerance.
+        assert!(gap < 1e-5, "{gap:e}");
+        assert!(tau_gap < 1e-5, "{tau_gap:e}");
+        assert!(u_gap < 1e-5, "{u_gap:e}");
+        assert_eq!(layer.plastic, steady_layer.plastic);
+        assert_eq!(last.fields.state, steady.fields.state);
+    }
+
+    #[test]
+    fn a_restored_state_carries_the_plastic_layers_history() {
+        // Two shift steps on the layer; the second again after restoring
+        // the state saved between them: the same bits, tractions and the
+        // layer's state.
+        let cache = KernelCache::default();
+        let mut p = rolling_on_a_layer();
+        let c = base_creepages();
+        let step = ShiftStep::rolling(p.load, 4.0 * p.grid.dx_m, &c);
+        let shift = ShiftStep {
+            rolling_m: 0.0,
+            ..step
+        };
+        p.kinematics = Kinematics::Transient(vec![shift]);
+        let mut s = ContactSolver::new(&p, &cache);
+        s.solve_next_step(&p, &shift).unwrap();
+        let mut saved = SolverState::default();
+        s.save_state(&mut saved);
+        assert_eq!(saved.bytes(), s.state_bytes());
+        let a = s.solve_next_step(&p, &step).unwrap();
+        let a_layer = s.layer_fields().unwrap();
+        assert!(a_layer.plastic_x_m.iter().any(|&u| u != 0.0));
+        // Another step in between, then back.
+        s.solve_next_step(&p, &shift).unwrap();
+        s.restore_state(&saved).unwrap();
+        let b = s.solve_next_step(&p, &step).unwrap();
+        assert_eq!(format!("{:?}", a.totals), format!("{:?}", b.totals));
+        assert_eq!(a.fields, b.fields);
+        assert_eq!(s.layer_fields().unwrap(), a_layer);
+    }
+
     /// Coulomb's law with static and kinetic coefficients checked element
     /// by element: every traction within mu_static p_n, every slipping one
     /// on mu_kinetic p_n opposite to its slip. Returns the adhesion and slip
