@@ -418,3 +418,97 @@ fn a_plastic_layer_refuses_a_falling_law_and_module_1() {
     }
     assert_eq!(ierror, contact_addon::flags::err::NOT_SUPPORTED);
 }
+
+/// Prescribed forces on the catt3d_plast problem (above): F = 1 with
+/// FX/(mu FN) = -0.6918 (catt3d_plast's value), in steady rolling (P =
+/// 2), then a rolling step of DQ from zero tractions (P = 2) and two more
+/// continuing (P = 0): the creepage each needs, the element counts and
+/// the sum of UPLSX [mm] against CONTACT's library (the creepage found
+/// by its iteration, to its tolerance).
+#[test]
+fn prescribed_forces_on_a_plastic_layer_find_contacts_creepages() {
+    let ire = 406;
+    let n = 34 * 33;
+    flags3(ire, 3, 2);
+    unsafe {
+        cntc_setflags(&ire, &1, &1, &flags::IC_FORCE, &1);
+        let mat = [0.28, 0.28, 1.0, 1.0, 1.0, 0.0, 0.005, 0.42857];
+        cntc_setmaterialparameters(&ire, &1, &4, &8, mat.as_ptr());
+        let pot = [34.0, 33.0, -4.125, -4.125, 0.25, 0.25];
+        cntc_setpotcontact(&ire, &1, &1, &6, pot.as_ptr());
+        let b = [0.002963, 0.0, 0.002963, 0.0, 0.0, 0.0];
+        cntc_setundeformeddistc(&ire, &1, &1, &6, b.as_ptr());
+        cntc_setfrictionmethod(&ire, &1, &0, &2, [0.4013, 0.4013].as_ptr());
+        cntc_setreferencevelocity(&ire, &1, &1000.0);
+        cntc_setrollingstepsize(&ire, &1, &0.0, &0.25);
+        cntc_setnormalforce(&ire, &1, &0.4705);
+        let (ip, rp) = ([999, 100, 30, 1], [1e-8]);
+        cntc_setsolverflags(&ire, &1, &0, &4, ip.as_ptr(), &1, rp.as_ptr());
+    }
+    for (k, ((tang, pvtime), cksi, counts, sum_ux)) in [
+        (
+            (3, 2),
+            0.00340018565023407,
+            [282, 245, 94],
+            -0.6316447065567488,
+        ),
+        (
+            (2, 2),
+            0.07570738663495462,
+            [277, 300, 44],
+            -0.01022696592954657,
+        ),
+        (
+            (2, 0),
+            0.00197929498338184,
+            [369, 193, 59],
+            -0.018206462823908122,
+        ),
+        (
+            (2, 0),
+            0.0020906896965123913,
+            [352, 193, 76],
+            -0.030712566968287898,
+        ),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        flags3(ire, tang, pvtime);
+        let (mut ierror, mut f, mut c) = (12345, [0.0; 4], [0.0; 3]);
+        unsafe {
+            cntc_setflags(&ire, &1, &1, &flags::IC_FORCE, &1);
+            cntc_settangentialforces(&ire, &1, &-0.6918, &0.0);
+            cntc_calculate(&ire, &1, &mut ierror);
+            let [fn_, fx, fy, mz] = &mut f;
+            cntc_getcontactforces(&ire, &1, fn_, fx, fy, mz);
+            let [a, b, cc] = &mut c;
+            cntc_getcreepages(&ire, &1, a, b, cc);
+        }
+        let d = division(ire, n);
+        let ux: f64 = field(ire, n, field::UPLSX).iter().sum();
+        let ours = [count(&d, 1), count(&d, 2), count(&d, 3)];
+        eprintln!(
+            "case {k} (T {tang}, P {pvtime}): FX {} CKSI {} against {cksi} ({:.1e}), counts \
+             {ours:?} against {counts:?}, sum UPLSX {ux} against {sum_ux}",
+            f[1],
+            c[0],
+            rel(c[0], cksi)
+        );
+        assert_eq!(ierror, 0, "case {k}");
+        // CONTACT: -0.13061989947 N in every case.
+        assert!(rel(f[1], -0.13061989947) < FORCE_TOL, "case {k}: FX");
+        assert!(rel(c[0], cksi) < FORCE_TOL, "case {k}: CKSI");
+        assert_eq!(ours, counts, "case {k}");
+        assert!(
+            (ux - sum_ux).abs() < FORCE_TOL * 0.0014 * n as f64,
+            "case {k}: sum UPLSX"
+        );
+    }
+}
+
+/// The prescribed force's case allowed from CONTACT's, relative: both
+/// iterate on the creepage to their tolerance (EPS 1e-8); measured FX
+/// within 4e-9, CKSI within 1.1e-7 (case 3: 0.00209068993 against
+/// 0.00209068970), the sum of UPLSX within 2e-8 mm.
+const FORCE_TOL: f64 = 5e-7;
