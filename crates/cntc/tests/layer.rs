@@ -382,6 +382,22 @@ fn plasticity_in_steady_rolling_shifts_and_rolling_steps_matches_contact() {
             );
         }
     }
+    // cntc_getparameters 1's TAU_C0 (value 6) and 2's FLX(1:3), K_EFF,
+    // GG3, LAYTHK, TAU_C0, K_TAU as CONTACT's library returns them for
+    // this problem: 0.005; 1e-9 (x3), 0, 1.0, 1e-9 (LAYTHK 0 taken as
+    // 1e-9 mm), 0.005, 0.42857.
+    let (mut p1, mut p2) = ([f64::NAN; 6], [f64::NAN; 18]);
+    unsafe {
+        cntc_getparameters(&ire, &1, &1, &6, p1.as_mut_ptr());
+        cntc_getparameters(&ire, &1, &2, &18, p2.as_mut_ptr());
+    }
+    assert_eq!(p1[5], 0.005);
+    for k in 7..10 {
+        assert!(rel(p2[k], 1e-9) < 1e-12, "FLX {}", p2[k]);
+    }
+    assert_eq!((p2[13], p2[14]), (0.0, 1.0));
+    assert!(rel(p2[15], 1e-9) < 1e-12, "LAYTHK {}", p2[15]);
+    assert!(rel(p2[16], 0.005) < 1e-15 && rel(p2[17], 0.42857) < 1e-15);
 }
 
 /// Our difference from CONTACT's library allowed in the plastic cases,
