@@ -37,7 +37,9 @@
 //!
 //! The layer also says who the client is, for the quotas
 //! ([`crate::service::quota::ClientId`] in the request's extensions): the
-//! token's name when one was checked, else the peer's address. And it
+//! token's name when one was checked, else the peer's address (behind a
+//! proxy of `trusted_proxies`, the address it forwarded, which the
+//! back-off goes by too). And it
 //! marks the connection as having started a call
 //! ([`crate::service::connections`]).
 
@@ -58,7 +60,7 @@ use tonic::codegen::http;
 use crate::service::connections::ConnInfo;
 use crate::service::metrics::Metrics;
 pub use crate::service::quota::AuthBackoff;
-use crate::service::quota::{peer_key, ClientId, REFUSED_CALLS_LOG};
+use crate::service::quota::{peer_key, ClientId, TrustedProxies, REFUSED_CALLS_LOG};
 
 /// What a token may do.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
@@ -371,16 +373,24 @@ impl Tokens {
 pub struct AuthLayer {
     tokens: Option<Arc<Tokens>>,
     backoff: Arc<AuthBackoff>,
+    proxies: Arc<TrustedProxies>,
     metrics: Arc<Metrics>,
 }
 
 impl AuthLayer {
     /// Checks against `tokens` (None: no checks), slowing peers that fail
-    /// by `backoff`, counting refusals into `metrics`.
-    pub fn new(tokens: Option<Tokens>, backoff: AuthBackoff, metrics: Arc<Metrics>) -> Self {
+    /// by `backoff` (the clients behind `proxies` by the address each
+    /// forwarded), counting refusals into `metrics`.
+    pub fn new(
+        tokens: Option<Tokens>,
+        backoff: AuthBackoff,
+        proxies: TrustedProxies,
+        metrics: Arc<Metrics>,
+    ) -> Self {
         Self {
             tokens: tokens.map(Arc::new),
             backoff: Arc::new(backoff),
+            proxies: Arc::new(proxies),
             metrics,
         }
     }
@@ -424,7 +434,12 @@ where
         let peer = match req.extensions().get::<ConnInfo>() {
             Some(conn) => {
                 conn.state.called();
-                peer_key(conn.remote.ip())
+                let forwarded = req.headers().get("x-forwarded-for").map(|v| v.as_bytes());
+                peer_key(
+                    self.layer
+                        .proxies
+                        .client_address(conn.remote.ip(), forwarded),
+                )
             }
             None => IpAddr::V4(Ipv4Addr::UNSPECIFIED),
         };

@@ -266,6 +266,15 @@ pub struct ServeConfig {
     /// Unknown tokens per second an address may present once its
     /// `auth_failure_burst` is spent (default 1).
     pub auth_failure_rate_per_s: f64,
+    /// Addresses of proxies in front of this server (nginx, Envoy) whose
+    /// calls carry their client's address as the last entry of
+    /// `x-forwarded-for` (default none). A call from one of them is that
+    /// client for the quotas by address and the token back-off (without
+    /// it, every client behind the proxy is the proxy: one guessing tokens
+    /// slows them all), and their connections count against
+    /// `max_connections` only. Anyone else's `x-forwarded-for` is ignored;
+    /// list only proxies that set it themselves.
+    pub trusted_proxies: Vec<std::net::IpAddr>,
     /// Serve gRPC reflection (default true); with `auth_tokens_file` it
     /// needs a token of any role.
     pub reflection: bool,
@@ -351,6 +360,7 @@ impl Default for ServeConfig {
             auth_tokens_file: None,
             auth_failure_burst: 10,
             auth_failure_rate_per_s: 1.0,
+            trusted_proxies: Vec::new(),
             reflection: true,
             insecure: false,
             metrics_insecure: false,

@@ -10,8 +10,8 @@
 //!
 //! - refused (closed at once) when the server holds `max_connections`, or
 //!   the peer's address `client_max_connections` (a quota by address:
-//!   connections come before any token); counted in
-//!   `railcontact_quota_refused_total{quota}`;
+//!   connections come before any token; a proxy of `trusted_proxies` has
+//!   none); counted in `railcontact_quota_refused_total{quota}`;
 //! - closed when it has not started its first call (a TLS handshake, the
 //!   HTTP/2 preface and a request's headers) within
 //!   `connection_first_call_timeout_s`; counted in
@@ -45,7 +45,7 @@ use tokio_stream::Stream;
 use tonic::transport::server::Connected;
 
 use crate::service::metrics::Metrics;
-use crate::service::quota::{ClientId, Quota, QuotaGuard, CONNECTIONS_LOG};
+use crate::service::quota::{ClientId, Quota, QuotaGuard, TrustedProxies, CONNECTIONS_LOG};
 
 /// What a connection's requests and its socket share.
 #[derive(Debug, Default)]
@@ -212,6 +212,7 @@ impl AsyncWrite for Conn {
 pub struct Incoming {
     listener: TcpListener,
     quota: Arc<Quota>,
+    proxies: TrustedProxies,
     first_call: Duration,
     metrics: Arc<Metrics>,
     /// After an accept error such as too many open files: a pause, so that
@@ -220,17 +221,20 @@ pub struct Incoming {
 }
 
 impl Incoming {
-    /// Accepts on `listener`, counting into `quota`, closing connections
+    /// Accepts on `listener`, counting into `quota` (the connections of
+    /// `proxies` against its server-wide cap only), closing connections
     /// without a call after `first_call`.
     pub fn new(
         listener: TcpListener,
         quota: Arc<Quota>,
+        proxies: TrustedProxies,
         first_call: Duration,
         metrics: Arc<Metrics>,
     ) -> Self {
         Self {
             listener,
             quota,
+            proxies,
             first_call,
             metrics,
             pause: None,
@@ -250,7 +254,10 @@ impl Stream for Incoming {
             }
             match std::task::ready!(this.listener.poll_accept(cx)) {
                 Ok((io, remote)) => {
-                    let client = ClientId::peer(remote.ip());
+                    let client = match this.proxies.trusts(remote.ip()) {
+                        true => ClientId::Proxy(remote.ip()),
+                        false => ClientId::peer(remote.ip()),
+                    };
                     match this.quota.take(&client) {
                         Ok(counted) => {
                             let _ = io.set_nodelay(true);

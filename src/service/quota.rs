@@ -10,6 +10,14 @@
 //! prefix, which one host commonly holds whole). Connections are counted
 //! before any token is seen, so always by address.
 //!
+//! Behind a proxy every peer address is the proxy's. The addresses listed
+//! in `trusted_proxies` ([`TrustedProxies`]) are taken at their word: a
+//! call from one of them is the client whose address ends its
+//! `x-forwarded-for` metadata (the address the proxy saw; what a client
+//! wrote there itself comes before it), for the quotas and the token
+//! back-off alike, and their connections count against `max_connections`
+//! only ([`ClientId::Proxy`]). Anyone else's `x-forwarded-for` is ignored.
+//!
 //! | resource | server-wide | per client | counted where |
 //! |---|---|---|---|
 //! | sessions (PatchSession, WheelRailSession, ContactLibrary) | `max_sessions` | `client_max_sessions` | the handlers, from `open` to the stream's end |
@@ -40,6 +48,9 @@ pub enum ClientId {
     Token(Arc<str>),
     /// A peer address (IPv4, or an IPv6 /64 prefix; see [`ClientId::peer`]).
     Peer(IpAddr),
+    /// A connection of a trusted proxy (`trusted_proxies`): no
+    /// per-client quota, its calls are counted by the clients behind it.
+    Proxy(IpAddr),
     /// The server's own work (the built-in pair at start): no quota.
     Server,
 }
@@ -83,6 +94,7 @@ impl std::fmt::Display for ClientId {
             ClientId::Token(name) => write!(f, "token `{}`", crate::service::escaped(name)),
             ClientId::Peer(IpAddr::V6(v6)) => write!(f, "address {v6}/64"),
             ClientId::Peer(ip) => write!(f, "address {ip}"),
+            ClientId::Proxy(ip) => write!(f, "proxy {ip}"),
             ClientId::Server => f.write_str("the server"),
         }
     }
@@ -228,7 +240,8 @@ impl Quota {
             })
         } else {
             let held = c.per_client.get(client).copied().unwrap_or(0);
-            (*client != ClientId::Server && held >= self.max_client).then(|| Refusal {
+            let shared = !matches!(client, ClientId::Server | ClientId::Proxy(_));
+            (shared && held >= self.max_client).then(|| Refusal {
                 setting: r.client_setting(),
                 message: format!(
                     "{client} has {held} {}, its share of this server ({} = {}); {}",
@@ -307,6 +320,56 @@ pub struct QuotaGuard {
 impl Drop for QuotaGuard {
     fn drop(&mut self) {
         self.quota.release(&self.client);
+    }
+}
+
+/// The proxies whose `x-forwarded-for` says who the client is
+/// (`trusted_proxies`; see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub struct TrustedProxies {
+    addresses: Vec<IpAddr>,
+}
+
+impl TrustedProxies {
+    /// Trusts the proxies at `addresses` (IPv4-mapped IPv6 addresses and
+    /// their IPv4 form alike).
+    pub fn new(addresses: &[IpAddr]) -> Self {
+        Self {
+            addresses: addresses.iter().map(|&a| unmapped(a)).collect(),
+        }
+    }
+
+    /// Whether `remote` is a trusted proxy.
+    pub fn trusts(&self, remote: IpAddr) -> bool {
+        self.addresses.contains(&unmapped(remote))
+    }
+
+    /// The address of the client of a call that came from `remote` with
+    /// the metadata `x_forwarded_for`: the last address listed there when
+    /// `remote` is a trusted proxy and it is an address, else `remote`.
+    pub fn client_address(&self, remote: IpAddr, x_forwarded_for: Option<&[u8]>) -> IpAddr {
+        let forwarded = || {
+            let last = std::str::from_utf8(x_forwarded_for?)
+                .ok()?
+                .rsplit(',')
+                .next()?
+                .trim();
+            last.parse::<IpAddr>()
+                .ok()
+                .or_else(|| last.parse::<std::net::SocketAddr>().ok().map(|a| a.ip()))
+        };
+        match self.trusts(remote).then(forwarded).flatten() {
+            Some(client) => client,
+            None => remote,
+        }
+    }
+}
+
+/// An IPv4-mapped IPv6 address as its IPv4 address; others as they are.
+fn unmapped(ip: IpAddr) -> IpAddr {
+    match ip {
+        IpAddr::V6(v6) => v6.to_ipv4_mapped().map_or(ip, IpAddr::V4),
+        IpAddr::V4(_) => ip,
     }
 }
 
@@ -486,6 +549,39 @@ mod tests {
             "address 2001:db8:1:2::/64"
         );
         assert_eq!(ClientId::Token("a\nb".into()).to_string(), "token `a\\nb`");
+    }
+
+    #[test]
+    fn only_a_trusted_proxy_says_who_its_client_is() {
+        let proxy: IpAddr = "10.0.0.5".parse().unwrap();
+        let other: IpAddr = "10.0.0.6".parse().unwrap();
+        let t = TrustedProxies::new(&[proxy]);
+        let ip = |s: &str| s.parse::<IpAddr>().unwrap();
+        // The last entry is the one the proxy appended.
+        let h = b"1.2.3.4, 192.0.2.7".as_slice();
+        assert_eq!(t.client_address(proxy, Some(h)), ip("192.0.2.7"));
+        assert_eq!(
+            t.client_address(proxy, Some(b"[2001:db8::1]:443".as_slice())),
+            ip("2001:db8::1")
+        );
+        assert_eq!(t.client_address(other, Some(h)), other, "not trusted");
+        assert_eq!(t.client_address(proxy, None), proxy);
+        assert_eq!(t.client_address(proxy, Some(b"unknown".as_slice())), proxy);
+        assert!(t.trusts("::ffff:10.0.0.5".parse().unwrap()));
+        // A proxy's connections have no per-client share.
+        let q = Quota::new(
+            Resource::Connections,
+            Some(3),
+            1,
+            Arc::new(Metrics::default()),
+        );
+        let _c: Vec<_> = (0..3)
+            .map(|_| q.take(&ClientId::Proxy(proxy)).unwrap())
+            .collect();
+        assert_eq!(
+            q.take(&ClientId::Proxy(proxy)).unwrap_err().setting,
+            "max_connections"
+        );
     }
 
     #[test]

@@ -30,7 +30,7 @@ use crate::service::pairs::{self, PairRegistry, RegistryLimits};
 use crate::service::pb;
 use crate::service::pb::contact_service_server::ContactServiceServer;
 use crate::service::pool::SolvePool;
-use crate::service::quota::{client_share, Quota, Resource};
+use crate::service::quota::{client_share, Quota, Resource, TrustedProxies};
 use crate::service::status;
 use crate::service::store::PairStore;
 use crate::service::streams::StreamsLayer;
@@ -204,9 +204,11 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         tokens.as_ref().map_or(0, Tokens::len),
         config.reflection
     );
+    let proxies = TrustedProxies::new(&config.trusted_proxies);
     let auth = AuthLayer::new(
         tokens,
         AuthBackoff::new(config.auth_failure_burst, config.auth_failure_rate_per_s),
+        proxies.clone(),
         metrics.clone(),
     );
     let streams = StreamsLayer::new(Quota::new(
@@ -221,7 +223,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         client_share(config.client_max_connections, config.max_connections),
         metrics.clone(),
     );
-    let shares = format!(
+    let mut shares = format!(
         "per client: {} sessions, {} admitted, {} calls, {} connections; in all: {} calls, {} \
          connections",
         client_share(config.client_max_sessions, config.max_sessions),
@@ -231,6 +233,14 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         config.max_streams,
         config.max_connections,
     );
+    if !config.trusted_proxies.is_empty() {
+        let listed: Vec<String> = config
+            .trusted_proxies
+            .iter()
+            .map(|a| a.to_string())
+            .collect();
+        shares.push_str(&format!("; trusted proxies: {}", listed.join(", ")));
+    }
     let mut builder = tonic::transport::Server::builder();
     if let Some(tls) = tls {
         builder = builder
@@ -253,6 +263,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     let incoming = Incoming::new(
         listener,
         connections,
+        proxies,
         Duration::from_secs_f64(config.connection_first_call_timeout_s),
         metrics,
     );

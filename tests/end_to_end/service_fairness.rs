@@ -16,6 +16,10 @@
 //! - a peer guessing tokens is slowed to `auth_failure_rate_per_s` after
 //!   `auth_failure_burst`, and its refusals are logged at a bounded rate,
 //!   while a known token from another address is served;
+//! - behind a proxy of `trusted_proxies`, clients are told apart by the
+//!   address it forwards (a guesser does not slow another client; the
+//!   proxy's connections have no per-address share), and nobody else's
+//!   `x-forwarded-for` is believed;
 //! - a client with many solves waiting delays another client's solve by
 //!   the one running and one more, not by all of them (the workers serve
 //!   the clients in turn).
@@ -252,31 +256,33 @@ fn two_tokens(dir: &std::path::Path) -> std::path::PathBuf {
     path
 }
 
-type TokenClient = ContactServiceClient<
-    tonic::service::interceptor::InterceptedService<
-        Channel,
-        fn(tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status>,
-    >,
->;
+/// Fixed metadata added to every call: a token, a forwarded address.
+#[derive(Clone)]
+struct WithMetadata(Vec<(&'static str, String)>);
 
-fn with_token(channel: Channel, token: &'static str) -> TokenClient {
-    let bearer: fn(tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status> = match token {
-        "hoarder" => |mut r| {
-            r.metadata_mut().insert(
-                "authorization",
-                "Bearer hoarder-token-0123456789".parse().unwrap(),
-            );
-            Ok(r)
-        },
-        _ => |mut r| {
-            r.metadata_mut().insert(
-                "authorization",
-                "Bearer legit-token-0123456789".parse().unwrap(),
-            );
-            Ok(r)
-        },
+impl tonic::service::Interceptor for WithMetadata {
+    fn call(&mut self, mut r: tonic::Request<()>) -> Result<tonic::Request<()>, tonic::Status> {
+        for (key, value) in &self.0 {
+            r.metadata_mut().insert(*key, value.parse().unwrap());
+        }
+        Ok(r)
+    }
+}
+
+type TokenClient =
+    ContactServiceClient<tonic::service::interceptor::InterceptedService<Channel, WithMetadata>>;
+
+/// A client on `channel` presenting the token of [`two_tokens`] named
+/// `name`.
+fn with_token(channel: Channel, name: &str) -> TokenClient {
+    let token = match name {
+        "hoarder" => "hoarder-token-0123456789",
+        _ => "legit-token-0123456789",
     };
-    ContactServiceClient::with_interceptor(channel, bearer)
+    ContactServiceClient::with_interceptor(
+        channel,
+        WithMetadata(vec![("authorization", format!("Bearer {token}"))]),
+    )
 }
 
 fn hertz_open() -> pb::SessionRequest {
@@ -770,5 +776,93 @@ async fn a_client_with_many_solves_waiting_delays_another_by_about_one() {
         "{before} of the hoarder's solves were answered before the other client called"
     );
     assert!(ahead <= 4, "{ahead} of the hoarder's solves went first");
+    server.shutdown().await;
+}
+
+/// A client through `channel` presenting `bearer` as its token and
+/// `forwarded` as `x-forwarded-for` (what a proxy would add).
+fn forwarded_client(channel: Channel, bearer: &str, forwarded: &str) -> TokenClient {
+    ContactServiceClient::with_interceptor(
+        channel,
+        WithMetadata(vec![
+            ("authorization", bearer.to_string()),
+            ("x-forwarded-for", forwarded.to_string()),
+        ]),
+    )
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_trusted_proxy_tells_its_clients_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = server(ServeConfig {
+        auth_tokens_file: Some(two_tokens(dir.path())),
+        auth_failure_burst: 3,
+        // No refill within the test.
+        auth_failure_rate_per_s: 0.001,
+        max_connections: 12,
+        trusted_proxies: vec!["127.0.0.2".parse().unwrap()],
+        ..ServeConfig::default()
+    })
+    .await;
+    let solve = || solve_request(sphere(pb::Model::Hertz, 8));
+    // Behind the proxy (127.0.0.2), a guesser at 192.0.2.1 spends its
+    // burst; the proxy appended that address after one the client wrote.
+    let proxy = relay("127.0.0.2", server.addr).await;
+    let mut guesser = forwarded_client(
+        channel_at(proxy).await,
+        "Bearer guess-0123456789",
+        "203.0.113.9, 192.0.2.1",
+    );
+    for _ in 0..3 {
+        let s = guesser.solve_patch(solve()).await.unwrap_err();
+        assert_eq!(s.code(), Code::Unauthenticated, "{s:?}");
+    }
+    let s = guesser.solve_patch(solve()).await.unwrap_err();
+    assert_exhausted(&s, "auth_failure_burst");
+    assert!(s.message().contains("address 192.0.2.1"), "{s:?}");
+    // Another client behind the same proxy, with a known token, is served.
+    let mut legit = forwarded_client(
+        channel_at(proxy).await,
+        "Bearer legit-token-0123456789",
+        "192.0.2.2",
+    );
+    legit
+        .solve_patch(solve())
+        .await
+        .expect("a client behind the proxy is not slowed by another");
+    // Anyone else's x-forwarded-for is ignored: a guesser at 127.0.0.3
+    // naming a new address each time is slowed after its burst all the
+    // same.
+    let untrusted = channel_at(relay("127.0.0.3", server.addr).await).await;
+    let names = ["192.0.2.11", "192.0.2.12", "192.0.2.13", "192.0.2.14"];
+    let mut codes = Vec::new();
+    for name in names {
+        let mut g = forwarded_client(untrusted.clone(), "Bearer guess-0123456789", name);
+        codes.push(g.solve_patch(solve()).await.unwrap_err().code());
+    }
+    assert_eq!(
+        codes,
+        [
+            Code::Unauthenticated,
+            Code::Unauthenticated,
+            Code::Unauthenticated,
+            Code::ResourceExhausted
+        ]
+    );
+    // The proxy's connections have no per-address share (6 of 12 here):
+    // with its two above, six more from its address are all kept.
+    let proxy_ip: IpAddr = "127.0.0.2".parse().unwrap();
+    let mut held = Vec::new();
+    for _ in 0..6 {
+        held.push(connect_from(proxy_ip, server.addr).await.unwrap());
+    }
+    assert!(
+        eventually(Duration::from_secs(10), || async {
+            metric(&server, "railcontact_connections_open").await >= 9.0
+        })
+        .await
+    );
+    assert_eq!(refused(&server, "client_max_connections").await, 0.0);
+    drop(held);
     server.shutdown().await;
 }
