@@ -2415,6 +2415,28 @@ mod tests {
     }
 
     #[test]
+    fn a_layer_without_thickness_or_yield_limit_is_no_layer() {
+        // h = 0 adds no flexibility (the plain kernels) and tau_c0 = 0 no
+        // plasticity: the bits of the problem without a layer; a layer
+        // of some thickness softens the tangential problem.
+        let cache = KernelCache::default();
+        let plain = rolling(1.0, 1.0);
+        let mut none = plain.clone();
+        none.settings.interfacial_layer = Some(InterfacialLayer::elastic(0.0, 1e9));
+        let a = solve_last(&mut ContactSolver::new(&plain, &cache), &plain);
+        let b = solve_last(&mut ContactSolver::new(&none, &cache), &none);
+        assert_eq!(format!("{:?}", a.totals), format!("{:?}", b.totals));
+        assert_eq!(a.fields, b.fields);
+        let mut soft = plain.clone();
+        soft.settings.interfacial_layer = Some(InterfacialLayer::elastic(10e-6, 1e9));
+        let c = solve_last(&mut ContactSolver::new(&soft, &cache), &soft);
+        // The normal problem does not see the layer (identical bodies: no
+        // coupling), the tangential one is softer.
+        assert_eq!(c.fields.pressure_pa, a.fields.pressure_pa);
+        assert!(c.totals.fx_n.abs() < a.totals.fx_n.abs());
+    }
+
+    #[test]
     fn a_restored_state_carries_the_plastic_layers_history() {
         // Two shift steps on the layer; the second again after restoring
         // the state saved between them: the same bits, tractions and the
