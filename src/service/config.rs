@@ -717,6 +717,21 @@ mod tests {
     }
 
     #[test]
+    fn trusted_proxies_from_the_environment_are_a_list_of_addresses() {
+        let e = env(&[("RAILCONTACT_TRUSTED_PROXIES", r#"["10.0.0.5", "fd00::7"]"#)]);
+        let c = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap();
+        let want: Vec<std::net::IpAddr> =
+            vec!["10.0.0.5".parse().unwrap(), "fd00::7".parse().unwrap()];
+        assert_eq!(c.trusted_proxies, want);
+        // A bare address is not a list; a name is not an address.
+        for bad in ["10.0.0.5", r#"["proxy.example"]"#] {
+            let e = env(&[("RAILCONTACT_TRUSTED_PROXIES", bad)]);
+            let err = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap_err();
+            assert!(err.contains("RAILCONTACT_TRUSTED_PROXIES"), "{err}");
+        }
+    }
+
+    #[test]
     fn layers_apply_in_order_and_errors_are_collected() {
         let none = env(&[]);
         let c = ServeConfig::load(None, &none, &ServeFlags::default()).unwrap();
