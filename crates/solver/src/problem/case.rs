@@ -2069,7 +2069,11 @@ impl Case {
             }
             let axis_step = file.transient.as_ref().and_then(|t| t.rolling_step_m);
             if let Some(dq) = axis_step.filter(|_| direction.is_axis()) {
-                let grid = Grid::centered(nx, ny, window_x_m, window_y_m)?;
+                let grid = if line {
+                    Grid::line(nx, window_x_m)?
+                } else {
+                    Grid::centered(nx, ny, window_x_m, window_y_m)?
+                };
                 // Whole elements along the rolling direction.
                 let grid = RollingFrame::new(turns, grid).rolling_grid();
                 let key = "transient.rolling_step_m";
@@ -3794,6 +3798,27 @@ nx = 55
         let force = LINE.replace("creepage_long = -2.4e-4", "force_x_n_per_m = 30000.0");
         let c = Case::from_toml(&force).unwrap();
         assert_eq!(c.prescribed_force.force_x_n, Some(30_000.0));
+    }
+
+    #[test]
+    fn a_line_case_rolls_transient_steps_of_whole_elements() {
+        // 55 elements over 2.2 mm: 0.04 mm each.
+        let transient = LINE
+            .replace("[rolling]\ncreepage_long = -2.4e-4\n", "")
+            .replace(
+                "nx = 55",
+                "nx = 55\nwindow_x_m = 2.2e-3\n[transient]\nrolling_step_m = 4e-5\nsteps = [ \
+             { shift_x_m = 1e-7 }, { creepage_long = -2.4e-4 } ]",
+            );
+        let c = Case::from_toml(&transient).unwrap();
+        assert_eq!(c.rolling_step_m, Some(4e-5));
+        // Half an element: named as the step, with the line's own grid.
+        let m = err(&transient.replace("rolling_step_m = 4e-5", "rolling_step_m = 2e-5"));
+        assert!(
+            m.contains("`transient.rolling_step_m`") && m.contains("grid.window_x_m / grid.nx"),
+            "{m}"
+        );
+        assert!(!m.contains("grid.ny"), "{m}");
     }
 }
 
