@@ -286,9 +286,10 @@ impl Call {
                 e.patch_mut(icp)?.set_creepages(*vx, *vy, *phi)?
             }
             Call::SetExtraRigidSlip { wx, wy } => e.patch_mut(icp)?.set_extra_rigid_slip(wx, wy)?,
-            Call::SetTangentialForces { fx, fy } => {
-                e.patch_mut(icp)?.set_tangential_forces(*fx, *fy)?
-            }
+            Call::SetTangentialForces { fx, fy } => match e {
+                Element::WheelRail(w) => w.set_longitudinal_force(icp, *fx)?,
+                Element::Basic(_) => e.patch_mut(icp)?.set_tangential_forces(*fx, *fy)?,
+            },
             Call::SetProfileFile {
                 fname,
                 content,

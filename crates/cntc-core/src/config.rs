@@ -353,10 +353,10 @@ impl Config {
                 } else {
                     clamp(value, 0, 3)
                 };
-                if module == 1 && d.force != 0 {
+                if module == 1 && d.force >= 2 {
                     let what = format!(
-                        "F = {} (CNTC_ic_force) in module 1: a prescribed total force of a wheel/rail \
-                         problem is not supported; give the pitch rate",
+                        "F = {} (CNTC_ic_force) in module 1 is not supported: give the pitch rate \
+                         VPITCH (F = 0) or the total force FX_WS (F = 1)",
                         d.force
                     );
                     self.mark("cntc_setflags F", Some(what.clone()));

@@ -57,15 +57,18 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::error::Range;
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::problem::Friction;
+use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
-    parse_profile, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side,
-    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    parse_profile, pitch_force_tolerance, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit,
+    LoadOptions, MirrorZ, PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -159,6 +162,8 @@ pub struct Solved {
     rail_roll_rad: f64,
     /// The loaded wheelset height z_ws (zero at the nominal position) \[m\].
     z_ws_m: f64,
+    /// The pitch rate VPITCH found for a prescribed FX_WS (F = 1) \[rad/s\].
+    vpitch_found: Option<f64>,
     /// Per patch (side frame): force on the rail, its moment about the rail
     /// profile marker, about the wheel profile marker.
     globals: Vec<[[f64; 3]; 3]>,
@@ -190,6 +195,9 @@ pub struct WheelRail {
     flexibility: Slot<()>,
     /// FZ \[N\] (N = 1).
     vertical_force_n: Option<f64>,
+    /// FX_WS \[N\] (F = 1): the total force on the rail along the
+    /// wheelset's longitudinal axis.
+    longitudinal_force_n: Option<f64>,
     discretisation: Option<Discretisation>,
     /// DQREL (stored: steady rolling takes 1).
     dqrel: f64,
@@ -853,6 +861,25 @@ impl WheelRail {
         Ok(())
     }
 
+    /// `cntc_settangentialforces` of module 1 (icp <= 0): FX_WS, the total
+    /// force on the rail along the wheelset's longitudinal axis \[N\] (on
+    /// the wheel under SIMPACK's convention), for F = 1; FY is not used.
+    pub fn set_longitudinal_force(&mut self, icp: i32, fx: f64) -> Result<()> {
+        if icp > 0 {
+            return Err(CntcError::Icp(format!(
+                "cntc_settangentialforces: icp = {icp}; module 1 takes its total force FX_WS \
+                 with icp = -1"
+            )));
+        }
+        if !fx.is_finite() {
+            return Err(CntcError::Input(format!(
+                "cntc_settangentialforces: FX_WS = {fx} is not a finite number"
+            )));
+        }
+        self.longitudinal_force_n = Some(fx * self.units().body_sign());
+        Ok(())
+    }
+
     /// `cntc_setpotcontact` with icp = -1: DX, DS, A_SEP, D_SEP, D_COMB, ...
     pub fn set_discretisation(&mut self, ipotcn: i32, p: &[f64]) -> Result<()> {
         const CALL: &str = "cntc_setpotcontact";
@@ -980,11 +1007,30 @@ impl WheelRail {
                 d.tang
             )));
         }
-        if d.force != 0 {
-            return Err(CntcError::NotSupported(format!(
-                "F = {} (CNTC_ic_force) in module 1 is not supported: give the pitch rate VPITCH",
-                d.force
-            )));
+        match d.force {
+            0 => {}
+            1 => {
+                if d.norm != 1 {
+                    return Err(CntcError::Input(
+                        "F = 1 (a prescribed total force FX_WS) needs N = 1 (a vertical force: \
+                         cntc_setverticalforce)"
+                            .into(),
+                    ));
+                }
+                if self.longitudinal_force_n.is_none() {
+                    return Err(CntcError::Input(
+                        "F = 1 needs the total force FX_WS: cntc_settangentialforces(ire, -1, \
+                         fx, 0)"
+                            .into(),
+                    ));
+                }
+            }
+            f => {
+                return Err(CntcError::NotSupported(format!(
+                    "F = {f} (CNTC_ic_force) in module 1 is not supported: give the pitch rate \
+                     VPITCH (F = 0) or the total force FX_WS (F = 1)"
+                )))
+            }
         }
         if d.discns >= 4 {
             return Err(CntcError::NotSupported(format!(
@@ -1108,9 +1154,34 @@ impl WheelRail {
         }
         let input = self.solver_input(side)?;
         let pair = self.pair.as_ref().expect("built above");
-        let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
-            .map_err(CntcError::from_wheelrail)?;
-        self.finish(side, &input, &sol)
+        let (input, sol, vpitch_found) = match self.longitudinal_force_n {
+            Some(target) if self.config.digits.force == 1 => {
+                let [_, _, _, roll, yaw, _] = self.position;
+                let nominal_radius_m =
+                    slot(&self.wheelset, "the wheelset dimensions have not been set")?
+                        .nominal_radius_m;
+                let problem = PitchProblem {
+                    side,
+                    axis: contact_ws_axes(side, roll, yaw)[0],
+                    target_n: target,
+                    vpitch: self.velocity[5],
+                    nominal_radius_m,
+                    eps: self.config.solver.eps,
+                };
+                let (input, sol, vpitch) = problem.solve(pair, input, cache, &mut self.scratch)?;
+                (input, sol, Some(vpitch))
+            }
+            _ => {
+                let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                    .map_err(CntcError::from_wheelrail)?;
+                (input, sol, None)
+            }
+        };
+        let ierror = self.finish(side, &input, &sol)?;
+        if let Some(sv) = &mut self.solved {
+            sv.vpitch_found = vpitch_found;
+        }
+        Ok(ierror)
     }
 
     /// The solver's input of this problem.
@@ -1279,6 +1350,7 @@ impl WheelRail {
             ws_axes,
             rail_roll_rad: rail_roll,
             z_ws_m: center_z + dims.nominal_radius_m,
+            vpitch_found: None,
             globals,
         });
         Ok(border.min(i32::MAX as usize) as i32)
@@ -1507,7 +1579,10 @@ impl WheelRail {
     /// `cntc_getwheelsetvelocity`: vs, vy, vz, vroll, vyaw, vpitch.
     pub fn wheelset_velocity(&self) -> Result<[f64; 6]> {
         let u = self.units();
-        let [vs, vy, vz, vr, vyaw, vp] = self.velocity;
+        let [vs, vy, vz, vr, vyaw, mut vp] = self.velocity;
+        if let Some(found) = self.solved.as_ref().and_then(|sv| sv.vpitch_found) {
+            vp = found;
+        }
         Ok([
             u.velocity_out(vs),
             u.velocity_out(vy),
@@ -1866,6 +1941,119 @@ impl SolverOrientation {
             yaw_rate: vyaw * cr - d * a[2],
             pitch_rate: vpitch + d,
         }
+    }
+}
+
+/// F = 1: the pitch rate VPITCH at which the wheel's total force on the
+/// rail along the wheelset's longitudinal axis (CONTACT's FX_WS) is the one
+/// prescribed, found as the solver finds a wheelset's for a prescribed
+/// total longitudinal force ([`decreasing_root`] on the nominal
+/// longitudinal creepage xi0 = -1 - VPITCH r0 / VS, each step a solve of
+/// the wheel at its vertical force), from the VPITCH given; to within
+/// max(EPS, the tangential tolerance) of mu FZ, as CONTACT's EPS mu FZ.
+struct PitchProblem {
+    side: Side,
+    /// The wheelset's longitudinal axis in the side frame.
+    axis: [f64; 3],
+    target_n: f64,
+    /// The caller's VPITCH, the first estimate \[rad/s\].
+    vpitch: f64,
+    nominal_radius_m: f64,
+    eps: f64,
+}
+
+impl PitchProblem {
+    /// Step limit (as the solver's).
+    const MAX_ITERATIONS: usize = 60;
+
+    /// FX_WS of a solution \[N\].
+    fn force_n(&self, sol: &WheelRailSolution) -> f64 {
+        let s = self.side.sign();
+        sol.wheels
+            .iter()
+            .filter(|w| w.side == self.side)
+            .map(|w| {
+                let f = w.force_track_n;
+                dot([f[0], s * f[1], f[2]], self.axis)
+            })
+            .sum()
+    }
+
+    /// The solution at the pitch rate found, its input and VPITCH.
+    fn solve(
+        &self,
+        pair: &WheelRailPair,
+        input: WheelRailInput,
+        cache: &KernelCache,
+        scratch: &mut SearchScratch,
+    ) -> Result<(WheelRailInput, WheelRailSolution, f64)> {
+        let v = input.velocity.forward_m_per_s;
+        let r0 = self.nominal_radius_m;
+        // The solver's pitch rate is VPITCH plus a term of the roll and yaw
+        // rates (SolverOrientation), which does not depend on VPITCH.
+        let offset = input.velocity.pitch_rad_per_s.unwrap_or(0.0) - self.vpitch;
+        let vpitch_of = |xi0: f64| -(1.0 + xi0) * v / r0;
+        let xi_start = -1.0 - self.vpitch * r0 / v;
+        let xi_start = if (-0.5..=0.5).contains(&xi_start) {
+            xi_start
+        } else {
+            0.0
+        };
+        let at = |xi0: f64, scratch: &mut SearchScratch| -> Result<_> {
+            let mut inp = input.clone();
+            inp.velocity.pitch_rad_per_s = Some(vpitch_of(xi0) + offset);
+            let sol =
+                solve_wheelset(pair, &inp, cache, scratch).map_err(CntcError::from_wheelrail)?;
+            Ok((self.force_n(&sol) - self.target_n, (inp, sol)))
+        };
+        let (r0_force, first) = at(xi_start, scratch)?;
+        let patches = || first.1.wheels.iter().flat_map(|w| &w.patches);
+        let normal: f64 = patches().map(|p| p.normal_force_n).sum();
+        let limit: f64 = patches()
+            .map(|p| p.friction_coefficient * p.normal_force_n)
+            .sum();
+        if self.target_n.abs() >= limit {
+            return Err(CntcError::ForceIteration(format!(
+                "FX_WS = {} N is at or beyond saturation mu FN = {} N (FN = {} N): no pitch \
+                 rate gives it",
+                self.target_n, limit, normal
+            )));
+        }
+        // Kalker's linear slope of the wheel's patches, as the solver's.
+        let g = input.material.shear_modulus_pa;
+        let area: f64 = patches().map(|p| p.contact_area_m2).sum();
+        let settings = RootSettings {
+            tolerance: self.eps.max(pitch_force_tolerance(&input.settings)) * limit,
+            max_iterations: Self::MAX_ITERATIONS,
+            slope: -g * area / std::f64::consts::PI * 4.0,
+        };
+        let root = decreasing_root(
+            xi_start,
+            r0_force,
+            first,
+            settings,
+            Range::closed(-1.0, 1.0, ""),
+            |xi0| at(xi0, scratch),
+        )
+        .map_err(|e| match e {
+            RootError::Eval(e) => e,
+            RootError::OutOfRange { next } => CntcError::ForceIteration(format!(
+                "FX_WS = {} N is out of reach with this motion: the nominal longitudinal \
+                 creepage would leave [-1, 1] (last {next})",
+                self.target_n
+            )),
+        })?;
+        if root.end != RootEnd::Converged {
+            return Err(CntcError::ForceIteration(format!(
+                "FX_WS = {} N not reached in {} solves ({:?}): the last gave {} N",
+                self.target_n,
+                root.evaluations,
+                root.end,
+                root.residual + self.target_n
+            )));
+        }
+        let (input, sol) = root.state;
+        Ok((input, sol, vpitch_of(root.x)))
     }
 }
 

@@ -242,3 +242,76 @@ pub fn patch_values(ire: i32) -> Vec<u64> {
     }
     v
 }
+
+/// The Manchester benchmark's right wheel at lateral shift `y` [mm] on
+/// element `ire` (module 1, CONTACT's units, the MiniProf rail), at
+/// CONTACT's pitch rate for the benchmark or (F = 1) at the pitch rate
+/// found for the total force `fx_ws` [N]: ierror, and the global forces,
+/// every patch's location and the wheelset's velocity as bits.
+pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64>) {
+    let icp = -1;
+    let profiles = package().join("../solver/profiles");
+    set_flags(
+        ire,
+        icp,
+        &[
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_CONFIG, 1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, 1),
+            (flags::IC_DISCNS, 2),
+            (flags::IC_FORCE, fx_ws.is_some() as i32),
+        ],
+    );
+    let mut ierror = 12345;
+    let mut v = Vec::new();
+    unsafe {
+        cntc_setmaterialparameters(&ire, &icp, &0, &4, [0.28, 0.28, 82000.0, 82000.0].as_ptr());
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+        cntc_setverticalforce(&ire, &10000.0);
+        let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+        cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+        let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
+        for (name, mirror) in [("MBench_UIC60_v3.ban", 1), ("MBench_S1002_v3.prw", 0)] {
+            let path = profiles.join(name).display().to_string();
+            let len = path.len() as i32;
+            let iparam = [-1, 0, mirror];
+            cntc_setprofileinputfname(
+                &ire,
+                path.as_ptr().cast(),
+                &len,
+                &3,
+                iparam.as_ptr(),
+                &2,
+                [1.0, 0.0].as_ptr(),
+            );
+        }
+        cntc_setwheelsetdimensions(&ire, &3, &3, [1360.0, -70.0, 460.0].as_ptr());
+        cntc_setwheelsetflexibility(&ire, &1, &12, [0.0; 12].as_ptr());
+        let pos = [0.0, y, 0.0, -0.007642, 0.018, 0.0];
+        cntc_setwheelsetposition(&ire, &2, &6, pos.as_ptr());
+        let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, -4.2575747];
+        cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
+        if let Some(fx) = fx_ws {
+            cntc_settangentialforces(&ire, &-1, &fx, &0.0);
+        }
+        cntc_calculate1(&ire, &mut ierror);
+        let mut npatch = 0;
+        cntc_getnumcontactpatches(&ire, &mut npatch);
+        assert!(npatch >= 1, "ierror {ierror}: no patch at y = {y} mm");
+        let mut g = [0.0; 24];
+        cntc_getglobalforces(&ire, &icp, &24, g.as_mut_ptr());
+        v.extend(g.map(f64::to_bits));
+        for p in 1..=npatch {
+            let mut loc = [0.0; 38];
+            cntc_getcontactlocation(&ire, &p, &38, loc.as_mut_ptr());
+            v.extend(loc.map(f64::to_bits));
+        }
+        let mut vel = [0.0; 6];
+        cntc_getwheelsetvelocity(&ire, &6, vel.as_mut_ptr());
+        v.extend(vel.map(f64::to_bits));
+    }
+    (ierror, v)
+}

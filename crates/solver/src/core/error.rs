@@ -236,7 +236,11 @@ impl Range {
         }
         let hint = match self.hint {
             UnitHint::GigaPascal if v > 0.0 && v < self.min && self.contains(v * 1e9) => {
-                format!(" (did you mean {}e9, i.e. {} GPa?)", show(v), show(v))
+                format!(
+                    " (did you mean {} Pa, i.e. {} GPa?)",
+                    show(v * 1e9),
+                    show(v)
+                )
             }
             // Divided (not multiplied by 1e-3): 6.5 mm is 0.0065 m, not
             // 0.006500000000000001.

@@ -13,12 +13,37 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::core::error::{ContactError, Range, UnitHint};
+use crate::core::error::{show, ContactError, Range, UnitHint};
 
-/// Range of a shear modulus \[Pa\]: from soft rubber (1 MPa) to a body
+/// Range of a shear modulus \[Pa\]: from the softest gels (1 Pa) to a body
 /// that stands in for a rigid one (1e18 Pa). Below it, a value that is in
-/// range times 1e9 is reported as a likely modulus in GPa.
-pub const SHEAR_MODULUS_RANGE: Range = Range::closed(1e6, 1e18, "Pa").hint(UnitHint::GigaPascal);
+/// range times 1e9 is reported as a likely modulus in GPa. A modulus below
+/// [`SOFT_SHEAR_MODULUS_PA`] is solved as given, with a note
+/// ([`soft_modulus_note`]).
+pub const SHEAR_MODULUS_RANGE: Range = Range::closed(1.0, 1e18, "Pa").hint(UnitHint::GigaPascal);
+
+/// A shear modulus below this is as soft as rubber or softer \[Pa\]
+/// (natural rubber about 0.4 MPa, CONTACT's scaled example spence35 0.5
+/// MPa, steel 81 GPa).
+pub const SOFT_SHEAR_MODULUS_PA: f64 = 1e6;
+
+/// A note on a shear modulus `g` \[Pa\] given as `key`, below
+/// [`SOFT_SHEAR_MODULUS_PA`]: valid physics (rubber, polymers, gels, scaled
+/// cases), and also what a modulus in GPa (`81`) or MPa (`81000`) written
+/// as Pa gives, so the note names both readings; `None` at or above it.
+pub fn soft_modulus_note(key: &str, g: f64) -> Option<String> {
+    if !(g < SOFT_SHEAR_MODULUS_PA) {
+        return None;
+    }
+    let (unit, factor) = if g <= 1e3 { ("GPa", 1e9) } else { ("MPa", 1e6) };
+    Some(format!(
+        "`{key}` = {} Pa ({} MPa) is as soft as rubber or softer: solved as given; if it is in \
+         {unit}, write {}",
+        show(g),
+        show(g / 1e6),
+        show(g * factor)
+    ))
+}
 /// Range of a Poisson ratio [-].
 pub const POISSON_RATIO_RANGE: Range = Range {
     max_inclusive: false,
@@ -29,7 +54,8 @@ pub const POISSON_RATIO_RANGE: Range = Range {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
-    /// Shear modulus G \[Pa\], in [1e6, 1e18] ([`SHEAR_MODULUS_RANGE`]).
+    /// Shear modulus G \[Pa\], in [1, 1e18] ([`SHEAR_MODULUS_RANGE`]; below
+    /// 1e6, rubber-soft, with a note: [`soft_modulus_note`]).
     /// Steel: about 80e9.
     pub shear_modulus_pa: f64,
     /// Poisson ratio nu [-], in [0, 0.5) ([`POISSON_RATIO_RANGE`]). Steel: about 0.28–0.30.
@@ -149,15 +175,36 @@ mod tests {
         .validate("material")
         .unwrap_err();
         assert!(e.to_string().contains("poisson_ratio"));
-        // A modulus in GPa: the message suggests the unit.
+        // Below the range: the message suggests the unit, formatted.
         let e = Material {
-            shear_modulus_pa: 81.0,
+            shear_modulus_pa: 0.081,
             poisson_ratio: 0.3,
         }
         .validate("material")
         .unwrap_err()
         .to_string();
-        assert!(e.contains("did you mean 81e9"), "{e}");
-        assert!(e.contains("[1e6, 1e18] Pa, got 81"), "{e}");
+        assert!(e.contains("[1, 1e18] Pa, got 0.081"), "{e}");
+        assert!(e.contains("did you mean 8.1e7 Pa, i.e. 0.081 GPa"), "{e}");
+    }
+
+    #[test]
+    fn soft_bodies_are_accepted_with_a_note() {
+        // CONTACT's spence35 (G = 0.5 MPa), a modulus in GPa, one in MPa.
+        for (g, says) in [
+            (5e5, "5e5 Pa (0.5 MPa) is as soft as rubber or softer: solved as given; if it is in MPa, write 5e11"),
+            (81.0, "81 Pa (8.1e-5 MPa)"),
+            (81.0, "if it is in GPa, write 8.1e10"),
+            (81e3, "if it is in MPa, write 8.1e10"),
+        ] {
+            let m = Material {
+                shear_modulus_pa: g,
+                poisson_ratio: 0.3,
+            };
+            m.validate("material").unwrap();
+            let note = soft_modulus_note("material.shear_modulus_pa", g).unwrap();
+            assert!(note.contains(says) && note.contains("`material.shear_modulus_pa`"), "{note}");
+        }
+        assert_eq!(soft_modulus_note("k", 1e6), None);
+        assert_eq!(soft_modulus_note("k", 81e9), None);
     }
 }

@@ -19,7 +19,7 @@ use crate::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw, DEFAULT_LAW
 use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
 use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
-use crate::core::material::{CombinedMaterial, Material};
+use crate::core::material::{soft_modulus_note, CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
@@ -1702,11 +1702,39 @@ impl Case {
         Case::from_file(file)
     }
 
-    /// Validates a parsed case file.
+    /// Validates a parsed case file. A body softer than rubber gets a note
+    /// ([`soft_modulus_note`]), which a refusal of the case also carries:
+    /// a modulus in GPa written as Pa is valid physics, but usually makes
+    /// the load's patch absurd.
     pub fn from_file(file: CaseFile) -> Result<Case, CaseError> {
-        let mut notes = Vec::new();
-        let model = file.model;
         let material = file.material.combine()?;
+        let bodies = if file.material.body1.is_some() {
+            vec![
+                ("material.body1.shear_modulus_pa", material.body1),
+                ("material.body2.shear_modulus_pa", material.body2),
+            ]
+        } else {
+            vec![("material.shear_modulus_pa", material.body1)]
+        };
+        let soft: Vec<String> = bodies
+            .into_iter()
+            .filter_map(|(key, m)| soft_modulus_note(key, m.shear_modulus_pa))
+            .collect();
+        match Case::validate(file, material, soft.clone()) {
+            Err(CaseError::BadInput(m)) if !soft.is_empty() => Err(CaseError::BadInput(format!(
+                "{m} (note: {})",
+                soft.join("; ")
+            ))),
+            r => r,
+        }
+    }
+
+    fn validate(
+        file: CaseFile,
+        material: CombinedMaterial,
+        mut notes: Vec<String>,
+    ) -> Result<Case, CaseError> {
+        let model = file.model;
 
         let (geometry, a_per_m, b_per_m) = file.geometry.validate()?;
         check_model_geometry(model, &geometry)?;
@@ -2069,7 +2097,11 @@ impl Case {
             }
             let axis_step = file.transient.as_ref().and_then(|t| t.rolling_step_m);
             if let Some(dq) = axis_step.filter(|_| direction.is_axis()) {
-                let grid = Grid::centered(nx, ny, window_x_m, window_y_m)?;
+                let grid = if line {
+                    Grid::line(nx, window_x_m)?
+                } else {
+                    Grid::centered(nx, ny, window_x_m, window_y_m)?
+                };
                 // Whole elements along the rolling direction.
                 let grid = RollingFrame::new(turns, grid).rolling_grid();
                 let key = "transient.rolling_step_m";
@@ -3253,12 +3285,28 @@ ny = 16
 
     #[test]
     fn likely_unit_mistakes_are_named() {
-        // A modulus in GPa.
+        // A modulus in GPa: valid physics (a gel), but this load's patch
+        // would be metres long; the refusal names the likely unit.
         let m = bad_key(&ROLLING.replace("81.0e9", "81"));
         assert!(
-            m.contains("`material.shear_modulus_pa`") && m.contains("did you mean 81e9"),
+            m.contains("check the units")
+                && m.contains("`material.shear_modulus_pa` = 81 Pa")
+                && m.contains("if it is in GPa, write 8.1e10"),
             "{m}"
         );
+        // A soft body whose load suits it: solved, with the note.
+        let soft = ROLLING
+            .replace("81.0e9", "5e5")
+            .replace("normal_force_n = 10000.0", "normal_force_n = 0.01");
+        let c = Case::from_toml(&soft).unwrap();
+        assert!(
+            c.notes.iter().any(|n| n.contains("5e5 Pa (0.5 MPa)")),
+            "{:?}",
+            c.notes
+        );
+        // Steel has none.
+        let c = Case::from_toml(ROLLING).unwrap();
+        assert!(!c.notes.iter().any(|n| n.contains("shear_modulus")));
         // A rolling radius in mm.
         let m = bad_key(&CASE_1.replace(
             "wheel_rolling_radius_m = 0.5",
@@ -3794,6 +3842,27 @@ nx = 55
         let force = LINE.replace("creepage_long = -2.4e-4", "force_x_n_per_m = 30000.0");
         let c = Case::from_toml(&force).unwrap();
         assert_eq!(c.prescribed_force.force_x_n, Some(30_000.0));
+    }
+
+    #[test]
+    fn a_line_case_rolls_transient_steps_of_whole_elements() {
+        // 55 elements over 2.2 mm: 0.04 mm each.
+        let transient = LINE
+            .replace("[rolling]\ncreepage_long = -2.4e-4\n", "")
+            .replace(
+                "nx = 55",
+                "nx = 55\nwindow_x_m = 2.2e-3\n[transient]\nrolling_step_m = 4e-5\nsteps = [ \
+             { shift_x_m = 1e-7 }, { creepage_long = -2.4e-4 } ]",
+            );
+        let c = Case::from_toml(&transient).unwrap();
+        assert_eq!(c.rolling_step_m, Some(4e-5));
+        // Half an element: named as the step, with the line's own grid.
+        let m = err(&transient.replace("rolling_step_m = 4e-5", "rolling_step_m = 2e-5"));
+        assert!(
+            m.contains("`transient.rolling_step_m`") && m.contains("grid.window_x_m / grid.nx"),
+            "{m}"
+        );
+        assert!(!m.contains("grid.ny"), "{m}");
     }
 }
 
