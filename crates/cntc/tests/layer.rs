@@ -392,8 +392,8 @@ fn plasticity_in_steady_rolling_shifts_and_rolling_steps_matches_contact() {
         cntc_getparameters(&ire, &1, &2, &18, p2.as_mut_ptr());
     }
     assert_eq!(p1[5], 0.005);
-    for k in 7..10 {
-        assert!(rel(p2[k], 1e-9) < 1e-12, "FLX {}", p2[k]);
+    for flx in &p2[7..10] {
+        assert!(rel(*flx, 1e-9) < 1e-12, "FLX {flx}");
     }
     assert_eq!((p2[13], p2[14]), (0.0, 1.0));
     assert!(rel(p2[15], 1e-9) < 1e-12, "LAYTHK {}", p2[15]);

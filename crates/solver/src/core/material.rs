@@ -32,7 +32,7 @@ pub const SOFT_SHEAR_MODULUS_PA: f64 = 1e6;
 /// cases), and also what a modulus in GPa (`81`) or MPa (`81000`) written
 /// as Pa gives, so the note names both readings; `None` at or above it.
 pub fn soft_modulus_note(key: &str, g: f64) -> Option<String> {
-    if !(g < SOFT_SHEAR_MODULUS_PA) {
+    if g.is_nan() || g >= SOFT_SHEAR_MODULUS_PA {
         return None;
     }
     let (unit, factor) = if g <= 1e3 { ("GPa", 1e9) } else { ("MPa", 1e6) };
