@@ -29,15 +29,24 @@ def test_example_writes_its_png(name, server, tmp_path):
 
 def test_ctrl_c_closes_the_session_and_writes_what_was_computed(server, tmp_path):
     out = tmp_path / "cosim.png"
+    example = EXAMPLES / "wheelset_cosim.py"
+    args = ["--target", server, "--out", str(out), "--steps", "20000", "--jacobian-every", "100000"]
+    # Ctrl-C's signal reaches it even where this test runs with SIGINT
+    # ignored (a shell's background job): the child sets Python's own
+    # handler before it runs the example. Not with preexec_fn: forking this
+    # process (which holds gRPC) runs gRPC's fork handlers, which may write
+    # to the child's stderr.
+    start = (
+        "import os, runpy, signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+        "sys.argv = sys.argv[1:]; sys.path.insert(0, os.path.dirname(sys.argv[0])); "
+        "runpy.run_path(sys.argv[0], run_name='__main__')"
+    )
     process = subprocess.Popen(
-        [sys.executable, str(EXAMPLES / "wheelset_cosim.py"), "--target", server, "--out", str(out),
-         "--steps", "20000", "--jacobian-every", "100000"],
+        [sys.executable, "-c", start, str(example), *args],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         env=dict(os.environ, MPLBACKEND="Agg"),
-        # Ctrl-C's signal reaches it even where this test runs with SIGINT ignored.
-        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         # Progress every 2000 steps: interrupted after the first 2000.
