@@ -19,6 +19,7 @@ use std::time::Duration;
 use tokio::net::TcpListener;
 use tokio::sync::oneshot;
 use tokio::task::JoinHandle;
+use tonic::codec::CompressionEncoding;
 
 use crate::service::auth::{AuthBackoff, AuthLayer, Tokens};
 use crate::service::config::{LogFormat, ServeConfig};
@@ -189,9 +190,14 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
     } else {
         (None, None)
     };
+    // gzip: requests may come compressed, and answers go compressed to a
+    // client that says it accepts gzip (grpc-accept-encoding); others get
+    // them as they are.
     let service = ContactServiceServer::new(handlers)
         .max_decoding_message_size(config.max_message_bytes)
-        .max_encoding_message_size(config.max_message_bytes);
+        .max_encoding_message_size(config.max_message_bytes)
+        .accept_compressed(CompressionEncoding::Gzip)
+        .send_compressed(CompressionEncoding::Gzip);
 
     let security = format!(
         "tls: {}, client certificates: {}, tokens: {}, reflection: {}",

@@ -19,7 +19,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use prost::Message;
 use redb::{
-    Database, DatabaseError, ReadableDatabase, ReadableTable, ReadableTableMetadata,
+    Database, DatabaseError, ReadableDatabase, ReadableTable, ReadableTableMetadata, StorageError,
     TableDefinition, TableError,
 };
 use thiserror::Error;
@@ -133,6 +133,21 @@ impl PairStore {
         };
         let db = opened.map_err(|e| match e {
             DatabaseError::DatabaseAlreadyOpen => StoreError::Locked { path: path.clone() },
+            // The file cannot be read (permissions, a directory in its
+            // place): say so, not that it is some other file.
+            DatabaseError::Storage(StorageError::Io(e))
+                if e.kind() == std::io::ErrorKind::PermissionDenied =>
+            {
+                io(
+                    "cannot open it",
+                    &format!("{e} (the server's user must be able to read and write it)"),
+                )
+            }
+            DatabaseError::Storage(StorageError::Io(e))
+                if e.kind() == std::io::ErrorKind::IsADirectory =>
+            {
+                io("cannot open it", &e)
+            }
             other if existing.is_some() => StoreError::Foreign {
                 path: path.clone(),
                 reason: format!("redb cannot open it: {other}"),
@@ -362,5 +377,25 @@ mod tests {
                 && m.contains("--data-dir"),
             "{m}"
         );
+    }
+
+    /// A file that cannot be opened is reported as such, not as a file of
+    /// another kind (a directory in its place; permissions, which a test
+    /// run as root cannot take away, give the same error with a hint).
+    #[test]
+    fn a_file_that_cannot_be_opened_is_not_called_foreign() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(FILE_NAME);
+        std::fs::create_dir(&path).unwrap();
+        let e = PairStore::open(dir.path())
+            .err()
+            .expect("a directory refused");
+        let m = e.to_string();
+        assert!(matches!(e, StoreError::Io { .. }), "{m}");
+        assert!(
+            m.contains("cannot open it") && m.contains(&path.display().to_string()),
+            "{m}"
+        );
+        assert!(!m.contains("not a railcontact"), "{m}");
     }
 }

@@ -1642,3 +1642,41 @@ async fn flash_temperatures_only_when_asked_and_fields_only_with_include_fields(
     );
     server.shutdown().await;
 }
+
+/// gzip both ways: a compressed request is read, and a client that
+/// accepts gzip gets its answer compressed, with the numbers of a plain
+/// call.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn gzip_requests_are_read_and_answers_compressed_on_request() {
+    use tonic::codec::CompressionEncoding::Gzip;
+    let (server, client) = server_with(ServeConfig::default()).await;
+    let request = || pb::SolvePatchRequest {
+        case: Some(rolling(pb::Model::Exact, 24, 1e-3)),
+        ..Default::default()
+    };
+    let plain = client
+        .clone()
+        .solve_patch(request())
+        .await
+        .expect("plain call")
+        .into_inner();
+    let answer = client
+        .clone()
+        .send_compressed(Gzip)
+        .accept_compressed(Gzip)
+        .solve_patch(request())
+        .await
+        .expect("gzip call");
+    assert_eq!(
+        answer
+            .metadata()
+            .get("grpc-encoding")
+            .and_then(|v| v.to_str().ok()),
+        Some("gzip"),
+        "{:?}",
+        answer.metadata()
+    );
+    let totals = |r: Option<pb::PatchResult>| r.and_then(|r| r.result).and_then(|s| s.totals);
+    assert_eq!(totals(answer.into_inner().result), totals(plain.result));
+    server.shutdown().await;
+}
