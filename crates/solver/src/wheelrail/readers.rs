@@ -816,6 +816,18 @@ pub(crate) fn read_miniprof(
                         "filename" if !value.is_empty() => description = Some(value.to_string()),
                         _ => {}
                     }
+                } else if matches!(variant, MiniProfVariant::KeyValue) && !is_miniprof_comment(t) {
+                    // The other variants' headers hold free text; this
+                    // one's are keys (a line that lost its `=` is one).
+                    warnings.push(warn(
+                        file,
+                        Some(line),
+                        format!(
+                            "header line '{}' is not `Key=Value`: ignored (give `Key=Value`, or \
+                             start it with `\"` to keep it as a comment)",
+                            quote(t)
+                        ),
+                    ));
                 }
                 continue;
             }
@@ -1178,6 +1190,28 @@ mod tests {
             s.push('\n');
         }
         s
+    }
+
+    #[test]
+    fn a_miniprof_header_line_that_is_not_a_key_is_named() {
+        // `XOffset 1.5` lost its `=`: read without it, with a warning that
+        // names the line.
+        let text = miniprof("0", "0", "2 0").replace("XOffset=0\n", "XOffset 1.5\n");
+        let p = parse_miniprof(&text, "r.ban").unwrap();
+        let w: Vec<String> = p.warnings().iter().map(|w| w.to_string()).collect();
+        assert!(
+            w.iter()
+                .any(|w| w.contains("r.ban line 2")
+                    && w.contains("'XOffset 1.5' is not `Key=Value`")),
+            "{w:?}"
+        );
+        // Comments and a well-formed header give none.
+        let p = parse_miniprof(
+            &miniprof("0", "0", "2 0").replace("XOffset=0\n", "\"note\n"),
+            "r.ban",
+        )
+        .unwrap();
+        assert!(p.warnings().is_empty(), "{:?}", p.warnings());
     }
 
     #[test]
