@@ -588,18 +588,21 @@ fn wheel(w: &WheelResult, fields: bool) -> pb::WheelRailWheel {
 
 /// The wire form of plausibility warnings, each naming its input by its
 /// path in the request under `prefix` (`""` for SolveWheelRail,
-/// `items[3]` in a batch, `step` in a session).
+/// `items[3]` in a batch, `step` in a session, whose model is
+/// `open.model`).
 pub fn warnings(w: &[PlausibilityWarning], prefix: &str) -> Vec<pb::WheelRailWarning> {
     w.iter()
         .map(|w| pb::WheelRailWarning {
             kind: match w.kind {
                 WarningKind::Approach => pb::WheelRailWarningKind::Approach,
                 WarningKind::LongitudinalForce => pb::WheelRailWarningKind::LongitudinalForce,
+                WarningKind::Unconverged => pb::WheelRailWarningKind::Unconverged,
             } as i32,
-            field: if prefix.is_empty() {
-                w.key.to_string()
-            } else {
-                format!("{prefix}.{}", w.key)
+            field: match (prefix, w.kind) {
+                ("", _) => w.key.to_string(),
+                // A session's model is its opening's.
+                ("step", WarningKind::Unconverged) => format!("open.{}", w.key),
+                _ => format!("{prefix}.{}", w.key),
             },
             side: w.side.map_or(pb::WheelSide::Unspecified, wire_side) as i32,
             value: w.value,

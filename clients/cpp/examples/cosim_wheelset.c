@@ -69,6 +69,8 @@ static const char* warning_kind_name(int32_t kind) {
       return "approach";
     case RC_WARNING_LONGITUDINAL_FORCE:
       return "longitudinal_force";
+    case RC_WARNING_UNCONVERGED:
+      return "unconverged";
     default:
       return "unknown kind";
   }

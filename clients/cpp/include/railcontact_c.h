@@ -70,6 +70,10 @@ extern "C" {
  * prescribed pitch rate far from free rolling (field
  * step.velocity.pitch_rad_per_s). For the wheelset (side RC_WHEELSET). */
 #define RC_WARNING_LONGITUDINAL_FORCE 2
+/* The exact solver of some of a wheel's patches stopped at its iteration
+ * limit: the wheel's forces include a last iterate (field open.model; the
+ * value counts those patches, the limit is 0). Per wheel. */
+#define RC_WARNING_UNCONVERGED 3
 
 /* Patches kept per wheel; a wheel with more reports the count in
  * n_patches_total and the first RC_MAX_PATCHES (field side first). Its

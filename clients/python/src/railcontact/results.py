@@ -618,12 +618,14 @@ class WheelRailWarning(_Result):
     """A finding about a wheel/rail answer (the proto's WheelRailWarning):
     what no elastic contact gives, or forces inconsistent with the motion
     given. ``kind`` is ``"approach"`` (a wheel pressed into its rail far
-    beyond the elastic approach of its load) or ``"longitudinal_force"``
+    beyond the elastic approach of its load), ``"longitudinal_force"``
     (both wheels driven or braked the same way to near saturation by the
-    pitch rate given); ``field`` the request path of the input at fault
+    pitch rate given) or ``"unconverged"`` (patches of the wheel whose exact
+    solver stopped at its iteration limit: ``value`` counts them);
+    ``field`` the request path of the input at fault
     (``"position.roll_rad"``, ``"velocity.pitch_rad_per_s"``,
-    ``"load.vertical_force_n"``; ``"items[3]."`` before it in a batch,
-    ``"step."`` in a session); ``side`` the wheel (``"left"``,
+    ``"load.vertical_force_n"``, ``"model"``; ``"items[3]."`` before it in
+    a batch, ``"step."`` in a session, whose model is ``"open.model"``); ``side`` the wheel (``"left"``,
     ``"right"``), ``None`` for the wheelset; ``value`` the measure that
     exceeded its ``limit`` [-]; ``message`` what, why and what to do."""
 

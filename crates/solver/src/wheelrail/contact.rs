@@ -94,7 +94,7 @@ use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
 };
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
-use crate::core::solution::{ContactSolution, ElementFields};
+use crate::core::solution::{ContactSolution, ElementFields, SolveStatus};
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
@@ -475,6 +475,11 @@ pub struct PatchResult {
     pub force_track_n: [f64; 3],
     /// Grid size (nx, ns) of the exact model; (0, 0) for Hertz+FASTSIM.
     pub grid: [usize; 2],
+    /// The exact or conformal solver stopped at its iteration limit before
+    /// its tolerances were met: the patch's values are its last iterate
+    /// ([`crate::wheelrail::plausibility`] warns). Always false for the
+    /// closed-form models.
+    pub unconverged: bool,
     /// The patch's exact solution (per-element fields), for plots.
     #[serde(skip)]
     pub solution: Option<ContactSolution>,
@@ -669,6 +674,9 @@ struct PatchOutcome {
     /// beyond the solution's (within the load tolerance of it) \[N\]; the
     /// next time step's start ([`normal_per_vertical`]).
     root_normal_force_n: Option<f64>,
+    /// The iterative solver stopped at an iteration limit (exact and
+    /// conformal patches); the outcome is its last iterate.
+    unconverged: bool,
 }
 
 impl PatchWork {
@@ -738,6 +746,7 @@ impl PatchWork {
                     area_m2: t.contact_area_m2,
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
+                    unconverged: sol.info.status != SolveStatus::Converged,
                     solution: frictional.then_some(sol),
                     ..PatchOutcome::default()
                 };
@@ -811,6 +820,7 @@ impl PatchWork {
                     area_m2: t.contact_area_m2,
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
+                    unconverged: sol.status != SolveStatus::Converged,
                     conformal_fields: input.temperature.map(|_| ElementFields {
                         pressure_pa: sol.pressure_pa,
                         traction_x_pa: sol.traction_x_pa,
@@ -3225,6 +3235,7 @@ pub(crate) fn finish(
             frictional_power_w: o.tgamma_n * p.speed,
             force_track_n: f,
             grid: grid_n,
+            unconverged: o.unconverged,
             solution,
             grid_geometry,
             conformal_fields,

@@ -75,6 +75,13 @@
 //! it brakes the wheelset with 0.36-0.44 of mu times its normal force, the
 //! first measure 0.895-0.915; along the load test's motion, 4 mm at 20 m/s
 //! and 50 kN a wheel, 0.41 and 0.40 with Hertz+FASTSIM).
+//!
+//! **Iteration limit** ([`WarningKind::Unconverged`], models `exact`,
+//! `cect` and `auto`). A patch whose exact or conformal solver stopped at
+//! its iteration limit before its tolerances were met reports its last
+//! iterate ([`PatchResult::unconverged`]); its wheel warns once, naming
+//! [`MODEL_KEY`], with the number of such patches. Seen: none on A-2.2 at
+//! CONTACT's rolls and pitch rates (exact, 0 to 10 mm).
 
 use std::fmt;
 
@@ -93,6 +100,8 @@ pub const ROLL_KEY: &str = "position.roll_rad";
 pub const PITCH_RATE_KEY: &str = "velocity.pitch_rad_per_s";
 /// Key of the vertical force per wheel (case file and wire).
 pub const VERTICAL_FORCE_KEY: &str = "load.vertical_force_n";
+/// Key of the contact model (case file and wire).
+pub const MODEL_KEY: &str = "model";
 
 /// A wheel's approach above this multiple of its patches' elastic approach
 /// ([`elastic_approach_m`]) warns (see the module docs).
@@ -115,6 +124,9 @@ pub enum WarningKind {
     /// The wheels' total longitudinal force saturates in one direction:
     /// the pitch rate is far from free rolling.
     LongitudinalForce,
+    /// A patch's exact or conformal solver stopped at its iteration limit:
+    /// the wheel's forces include a last iterate, not a solution.
+    Unconverged,
 }
 
 impl WarningKind {
@@ -123,6 +135,7 @@ impl WarningKind {
         match self {
             WarningKind::Approach => "approach",
             WarningKind::LongitudinalForce => "longitudinal_force",
+            WarningKind::Unconverged => "unconverged",
         }
     }
 }
@@ -133,8 +146,8 @@ pub struct PlausibilityWarning {
     /// What is implausible.
     pub kind: WarningKind,
     /// The input that causes it, by its case-file key, which is also its
-    /// path in a wire request: [`ROLL_KEY`], [`PITCH_RATE_KEY`] or
-    /// [`VERTICAL_FORCE_KEY`].
+    /// path in a wire request: [`ROLL_KEY`], [`PITCH_RATE_KEY`],
+    /// [`VERTICAL_FORCE_KEY`] or [`MODEL_KEY`].
     pub key: &'static str,
     /// The wheel concerned; `None` for the wheelset as a whole.
     pub side: Option<Side>,
@@ -143,7 +156,8 @@ pub struct PlausibilityWarning {
     /// longitudinal force's share of the adhesion the lateral forces leave
     /// ([`WarningKind::LongitudinalForce`]).
     pub value: f64,
-    /// Its limit: [`APPROACH_LIMIT`] or [`SATURATION_LIMIT`].
+    /// Its limit: [`APPROACH_LIMIT`], [`SATURATION_LIMIT`], or 0 for
+    /// [`WarningKind::Unconverged`] (whose value counts the patches).
     pub limit: f64,
     /// What was found, with its numbers, why, and what to do.
     pub message: String,
@@ -186,7 +200,34 @@ pub fn check_plausibility(
         }
     }
     out.extend(longitudinal_warning(input, solution));
+    out.extend(solution.wheels.iter().filter_map(unconverged_warning));
     out
+}
+
+/// A wheel with patches whose iterative solver stopped at its iteration
+/// limit: one warning, naming [`MODEL_KEY`], its value the number of such
+/// patches (limit 0).
+fn unconverged_warning(w: &WheelResult) -> Option<PlausibilityWarning> {
+    let stopped: Vec<&PatchResult> = w.patches.iter().filter(|p| p.unconverged).collect();
+    let first = stopped.first()?;
+    Some(PlausibilityWarning {
+        kind: WarningKind::Unconverged,
+        key: MODEL_KEY,
+        side: Some(w.side),
+        value: stopped.len() as f64,
+        limit: 0.0,
+        message: format!(
+            "{} of the {} wheel's {} patches (the first at track y = {:.2} mm, model {}) \
+             stopped at the solver's iteration limit before its tolerances were met: their \
+             forces are the last iterate, not a solution; a coarser `element_size_m` or a fast \
+             model gives a converged answer",
+            stopped.len(),
+            w.side.name(),
+            w.patches.len(),
+            first.track_y_m * 1e3,
+            first.method
+        ),
+    })
 }
 
 /// A wheel's approach check (load given as a vertical force `load_n`).

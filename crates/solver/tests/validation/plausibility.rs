@@ -8,8 +8,8 @@
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::wheelrail::builtin::{load_test_input, mbench_a22_input};
 use railcontact_solver::wheelrail::plausibility::{
-    elastic_approach_m, APPROACH_LIMIT, LONGITUDINAL_SHARE_LIMIT, PITCH_RATE_KEY, ROLL_KEY,
-    SATURATION_LIMIT,
+    elastic_approach_m, APPROACH_LIMIT, LONGITUDINAL_SHARE_LIMIT, MODEL_KEY, PITCH_RATE_KEY,
+    ROLL_KEY, SATURATION_LIMIT,
 };
 use railcontact_solver::wheelrail::{
     check_plausibility, load_profile, load_profile_with, solve_wheelset, LoadOptions,
@@ -273,4 +273,36 @@ fn the_benchmarks_roll_and_pitch_rate_on_measured_profiles_warn() {
         "{:?}",
         left.force_track_n
     );
+}
+
+#[test]
+fn patches_stopped_at_the_iteration_limit_warn_naming_the_model() {
+    // at 6.5 mm (tread and flange), exact, at CONTACT's roll and
+    // pitch rate: converged, no warning of this kind.
+    let mut input = mbench_a22_input(6.5, Some(A22_ROLL), Some(A22_PITCH), WheelRailModel::Exact);
+    let pair = mbench_pair();
+    let s = solve(&pair, &input);
+    assert!(s
+        .wheels
+        .iter()
+        .flat_map(|w| &w.patches)
+        .all(|p| !p.unconverged));
+    assert!(of_kind(&check_plausibility(&input, &s), WarningKind::Unconverged).is_empty());
+    // The tangential solver held to one iteration and a tolerance it
+    // cannot reach in one: every frictional patch stops at the limit, and
+    // each wheel says so once, naming the model.
+    input.settings.solver.tangential.max_iterations = 1;
+    input.settings.solver.tangential.tolerance = 1e-14;
+    let s = solve(&pair, &input);
+    let w = check_plausibility(&input, &s);
+    let stopped = of_kind(&w, WarningKind::Unconverged);
+    assert_eq!(stopped.len(), 2, "{w:#?}");
+    for (warning, wheel) in stopped.iter().zip(&s.wheels) {
+        let n = wheel.patches.iter().filter(|p| p.unconverged).count();
+        assert!(n >= 1, "{wheel:#?}");
+        assert_eq!(warning.key, MODEL_KEY);
+        assert_eq!(warning.side, Some(wheel.side));
+        assert_eq!((warning.value, warning.limit), (n as f64, 0.0));
+        assert!(warning.message.contains("iteration limit"), "{warning}");
+    }
 }
