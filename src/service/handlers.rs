@@ -411,6 +411,29 @@ fn finish<T>(
     r.map_err(Status::from)
 }
 
+/// What to do about an answer larger than `max_message_bytes`.
+const ANSWER_REMEDY: &str =
+    "ask without per-element fields (`include_fields`) or on a coarser grid";
+/// ... about a batch's answer.
+const BATCH_REMEDY: &str =
+    "split the batch into smaller ones, or ask without per-element fields (`include_fields`)";
+
+impl ContactHandlers {
+    /// `answer` when it fits in one message (`max_message_bytes`), else
+    /// RESOURCE_EXHAUSTED saying its size, the limit and `remedy` (tonic
+    /// would refuse to send it with OUT_OF_RANGE and its own text).
+    fn sized<M: prost::Message>(&self, answer: M, remedy: &str) -> Result<M, ServiceError> {
+        let (len, max) = (answer.encoded_len(), self.limits.max_message_bytes);
+        if len <= max {
+            return Ok(answer);
+        }
+        Err(ServiceError::Exhausted(format!(
+            "the answer would be {len} bytes, more than this server's max_message_bytes ({max}): \
+             {remedy}"
+        )))
+    }
+}
+
 #[tonic::async_trait]
 impl pb::contact_service_server::ContactService for ContactHandlers {
     async fn solve_patch(
@@ -424,9 +447,12 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let r = async {
             let admission = self.pool.admit_for(&client, deadline)?;
             let result = self.solve_one(&admission, req.into_inner(), "").await?;
-            Ok(pb::SolvePatchResponse {
-                result: Some(result),
-            })
+            self.sized(
+                pb::SolvePatchResponse {
+                    result: Some(result),
+                },
+                ANSWER_REMEDY,
+            )
         }
         .instrument(span)
         .await;
@@ -458,7 +484,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                     }),
                 })
                 .collect();
-            Ok(pb::SolvePatchBatchResponse { items: slots })
+            self.sized(pb::SolvePatchBatchResponse { items: slots }, BATCH_REMEDY)
         }
         .instrument(span)
         .await;
@@ -550,9 +576,12 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
             let result = self
                 .solve_wheel_rail_one(&admission, req.into_inner(), "")
                 .await?;
-            Ok(pb::SolveWheelRailResponse {
-                result: Some(result),
-            })
+            self.sized(
+                pb::SolveWheelRailResponse {
+                    result: Some(result),
+                },
+                ANSWER_REMEDY,
+            )
         }
         .instrument(span)
         .await;
@@ -584,7 +613,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
                     }),
                 })
                 .collect();
-            Ok(pb::SolveWheelRailBatchResponse { items })
+            self.sized(pb::SolveWheelRailBatchResponse { items }, BATCH_REMEDY)
         }
         .instrument(span)
         .await;

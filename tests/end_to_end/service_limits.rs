@@ -68,6 +68,44 @@ async fn an_oversize_request_is_resource_exhausted_and_the_server_goes_on() {
     server.shutdown().await;
 }
 
+/// An answer larger than `max_message_bytes` (fields of a 64 x 64 grid,
+/// about 200 kB, against 64 kB): RESOURCE_EXHAUSTED saying its size and
+/// naming `include_fields`, not tonic's OUT_OF_RANGE; without the fields
+/// the same case is answered.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_oversize_answer_is_resource_exhausted_naming_include_fields() {
+    let (server, mut client) = server_with(ServeConfig {
+        max_message_bytes: 64 * 1024,
+        ..Default::default()
+    })
+    .await;
+    let with_fields = pb::SolvePatchRequest {
+        include_fields: true,
+        ..request(exact(64, None))
+    };
+    let s = client
+        .solve_patch(with_fields.clone())
+        .await
+        .expect_err("an oversize answer is refused");
+    assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
+    let m = s.message();
+    assert!(
+        m.contains("max_message_bytes (65536)") && m.contains("`include_fields`"),
+        "{m}"
+    );
+    let s = client
+        .solve_patch_batch(pb::SolvePatchBatchRequest {
+            items: vec![with_fields; 2],
+        })
+        .await
+        .expect_err("an oversize batch answer is refused");
+    assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
+    assert!(s.message().contains("split the batch"), "{}", s.message());
+    let ok = client.solve_patch(request(exact(64, None))).await;
+    assert!(ok.is_ok(), "{ok:?}");
+    server.shutdown().await;
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_solve_past_the_servers_time_limit_is_stopped_with_resource_exhausted() {
     let (server, mut client) = server_with(ServeConfig {
