@@ -9,6 +9,7 @@ instead of a traceback through gRPC's threads.
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 
 import matplotlib
@@ -20,6 +21,30 @@ import railcontact  # noqa: E402
 
 #: The exit code after Ctrl-C (128 + SIGINT, as shells report it).
 INTERRUPTED = 130
+
+
+class StopOnCtrlC:
+    """Ctrl-C as a request to stop between steps, for a loop of gRPC calls:
+    the first SIGINT sets ``requested`` (the loop ends after the step in
+    flight, so no call is broken off halfway and the session closes
+    normally); a second one raises KeyboardInterrupt at once. The previous
+    handler is back after the ``with`` block."""
+
+    def __init__(self):
+        self.requested = False
+        self._previous = None
+
+    def __enter__(self) -> "StopOnCtrlC":
+        self._previous = signal.signal(signal.SIGINT, self._handle)
+        return self
+
+    def _handle(self, signum, frame) -> None:
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+
+    def __exit__(self, *exc) -> None:
+        signal.signal(signal.SIGINT, self._previous)
 
 
 def parser(doc: str, out: str) -> argparse.ArgumentParser:

@@ -40,7 +40,7 @@ import sys
 
 import numpy as np
 
-from _common import INTERRUPTED, connect, nothing_to_save, parser, plt, save, wheelrail_model
+from _common import INTERRUPTED, StopOnCtrlC, connect, nothing_to_save, parser, plt, save, wheelrail_model
 
 import railcontact
 
@@ -110,28 +110,32 @@ def simulate(session, wheelset, dt, steps, jacobian_every):
     report_every = max(1, steps // 10)
     interrupted = False
     try:
-        for n in range(steps):
-            t = n * dt
-            if n % report_every == 0:
-                print(f"step {n} of {steps} (t = {t:.3f} s)", file=sys.stderr, flush=True)
-            refresh = n % jacobian_every == 0
-            r = session.step(time_s=t, mark=refresh, **wheelset.contact_inputs(wheelset.q, wheelset.v))
-            contact = wheelset_loads(r.result, wheelset.q[0])
-            if refresh:
-                jacobian = contact_jacobian(session, wheelset, contact, t, r.step_index)
-            force = wheelset.suspension(wheelset.q, wheelset.v) + contact
-            system = wheelset.mass - dt * (jacobian - wheelset.damping)
-            wheelset.v = wheelset.v + np.linalg.solve(system, dt * force)
-            left, right = r.result.wheel("left"), r.result.wheel("right")
-            for key, value in (
-                ("t", t), ("y", wheelset.q[0]), ("psi", wheelset.q[1]),
-                ("fy_contact", contact[0]), ("mz_contact", contact[1]),
-                ("q_left", sum(p.normal_force_n for p in left.patches)),
-                ("q_right", sum(p.normal_force_n for p in right.patches)),
-                ("fy_left", -left.force_track_n.y_n), ("fy_right", -right.force_track_n.y_n),
-            ):
-                history[key].append(value)
-            wheelset.q = wheelset.q + dt * wheelset.v
+        with StopOnCtrlC() as stop:
+            for n in range(steps):
+                if stop.requested:
+                    interrupted = True
+                    break
+                t = n * dt
+                if n % report_every == 0:
+                    print(f"step {n} of {steps} (t = {t:.3f} s)", file=sys.stderr, flush=True)
+                refresh = n % jacobian_every == 0
+                r = session.step(time_s=t, mark=refresh, **wheelset.contact_inputs(wheelset.q, wheelset.v))
+                contact = wheelset_loads(r.result, wheelset.q[0])
+                if refresh:
+                    jacobian = contact_jacobian(session, wheelset, contact, t, r.step_index)
+                force = wheelset.suspension(wheelset.q, wheelset.v) + contact
+                system = wheelset.mass - dt * (jacobian - wheelset.damping)
+                wheelset.v = wheelset.v + np.linalg.solve(system, dt * force)
+                left, right = r.result.wheel("left"), r.result.wheel("right")
+                for key, value in (
+                    ("t", t), ("y", wheelset.q[0]), ("psi", wheelset.q[1]),
+                    ("fy_contact", contact[0]), ("mz_contact", contact[1]),
+                    ("q_left", sum(p.normal_force_n for p in left.patches)),
+                    ("q_right", sum(p.normal_force_n for p in right.patches)),
+                    ("fy_left", -left.force_track_n.y_n), ("fy_right", -right.force_track_n.y_n),
+                ):
+                    history[key].append(value)
+                wheelset.q = wheelset.q + dt * wheelset.v
     except KeyboardInterrupt:
         interrupted = True
     done = min(len(v) for v in history.values())  # a step interrupted while recorded is dropped
