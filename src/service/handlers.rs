@@ -759,20 +759,10 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let span = tracing::info_span!("WheelRailSession", request_id = %self.request_id(&req), session_id = %session_id);
         let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
-        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
-        let this = self.clone();
-        tokio::spawn(
-            async move {
-                if let Err(status) = this
-                    .run_wheelrail_session(&mut inbound, &tx, session_id, client)
-                    .await
-                {
-                    this.end_stream(&tx, status).await;
-                }
-            }
-            .instrument(span),
-        );
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(self.serve_stream(span, move |this, tx| async move {
+            this.run_wheelrail_session(&mut inbound, &tx, session_id, client)
+                .await
+        }))
     }
 
     type ContactLibraryStream = BoxStream<pb::ContactLibraryResponse>;
@@ -785,20 +775,10 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let span = tracing::info_span!("ContactLibrary", request_id = %self.request_id(&req), session_id = %session_id);
         let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
-        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
-        let this = self.clone();
-        tokio::spawn(
-            async move {
-                if let Err(status) = this
-                    .run_contact_library(&mut inbound, &tx, session_id, client)
-                    .await
-                {
-                    this.end_stream(&tx, status).await;
-                }
-            }
-            .instrument(span),
-        );
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(self.serve_stream(span, move |this, tx| async move {
+            this.run_contact_library(&mut inbound, &tx, session_id, client)
+                .await
+        }))
     }
 
     type PatchSessionStream = BoxStream<pb::SessionResponse>;
@@ -811,20 +791,10 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         let span = tracing::info_span!("PatchSession", request_id = %self.request_id(&req), session_id = %session_id);
         let client = ClientId::of(&req);
         let mut inbound = req.into_inner();
-        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
-        let this = self.clone();
-        tokio::spawn(
-            async move {
-                if let Err(status) = this
-                    .run_session(&mut inbound, &tx, session_id, client)
-                    .await
-                {
-                    this.end_stream(&tx, status).await;
-                }
-            }
-            .instrument(span),
-        );
-        Ok(Response::new(Box::pin(ReceiverStream::new(rx))))
+        Ok(self.serve_stream(span, move |this, tx| async move {
+            this.run_session(&mut inbound, &tx, session_id, client)
+                .await
+        }))
     }
 }
 
@@ -975,6 +945,29 @@ impl ContactHandlers {
 
     /// Ends a stream with `status` (given up after `session_idle_timeout`
     /// when the client reads nothing).
+    /// A streamed answer whose messages `run` sends on its channel, run on
+    /// its own task in `span`; an error it returns ends the stream with
+    /// that status ([`ContactHandlers::end_stream`]).
+    fn serve_stream<R, Run, Fut>(&self, span: tracing::Span, run: Run) -> Response<BoxStream<R>>
+    where
+        R: Send + 'static,
+        Run: FnOnce(ContactHandlers, mpsc::Sender<Result<R, Status>>) -> Fut + Send + 'static,
+        Fut: std::future::Future<Output = Result<(), Status>> + Send + 'static,
+    {
+        let (tx, rx) = mpsc::channel(STREAM_BUFFER);
+        let this = self.clone();
+        tokio::spawn(
+            async move {
+                let errors = tx.clone();
+                if let Err(status) = run(this.clone(), tx).await {
+                    this.end_stream(&errors, status).await;
+                }
+            }
+            .instrument(span),
+        );
+        Response::new(Box::pin(ReceiverStream::new(rx)))
+    }
+
     async fn end_stream<R>(&self, tx: &mpsc::Sender<Result<R, Status>>, status: Status) {
         let _ = tokio::time::timeout(self.limits.session_idle_timeout, tx.send(Err(status))).await;
     }
