@@ -18,6 +18,7 @@
 //! | `railcontact_solves_cancelled_total` | | solves told to stop because their request ended while they ran (deadline, client gone, shutdown; see `core::cancel`) |
 //! | `railcontact_kernel_cache_hits_total`, `..._misses_total`, `..._evictions_total` | | influence-kernel cache look-ups and least-recently-used evictions |
 //! | `railcontact_kernel_cache_entries`, `..._bytes`, `..._max_bytes` | | kernel sets held, their memory and the cap |
+//! | `railcontact_library_pairs_live`, `railcontact_library_pair_hits_total`, `..._builds_total` | | placed profile pairs of the CONTACT-compatible library's elements (`ContactLibrary` sessions), shared by content: pairs held now, requests answered by a pair already placed, pairs placed |
 //! | `railcontact_streams_first_message_timed_out_total` | | session streams ended because no first message came within `stream_first_message_timeout_s` |
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
@@ -59,6 +60,7 @@ use crate::core::cache::KernelCache;
 use crate::problem::case::Model;
 use crate::service::memory::SessionBudget;
 use crate::service::pool::SolvePool;
+use crate::wheelrail::PairCache;
 
 /// Upper bounds of the latency buckets [s].
 const BUCKETS_S: [f64; 14] = [
@@ -306,6 +308,7 @@ impl Metrics {
     /// and the kernel cache's figures.
     pub fn render(&self, pool: &SolvePool, cache: &KernelCache) -> String {
         let f = cache.figures();
+        let pairs = PairCache::global().stats();
         let mut scrape = Registry::default();
         scrape.register_collector(Box::new(Figures(vec![
             Figure::gauge(
@@ -352,6 +355,21 @@ impl Metrics {
                 "railcontact_kernel_cache_max_bytes",
                 "Memory cap of the kernel cache [bytes].",
                 f.max_bytes as u64,
+            ),
+            Figure::gauge(
+                "railcontact_library_pairs_live",
+                "Placed profile pairs held by ContactLibrary sessions, shared by content.",
+                pairs.live as u64,
+            ),
+            Figure::counter(
+                "railcontact_library_pair_hits",
+                "ContactLibrary pair requests answered by a pair already placed.",
+                pairs.hits,
+            ),
+            Figure::counter(
+                "railcontact_library_pair_builds",
+                "Profile pairs placed for ContactLibrary sessions.",
+                pairs.builds,
             ),
         ])));
         let mut text = String::new();

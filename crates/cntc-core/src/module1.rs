@@ -54,6 +54,7 @@
 //! no massless rail model, always zero).
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
@@ -65,10 +66,10 @@ use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit,
-    LoadOptions, MirrorZ, PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline,
-    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
-    WheelsetVelocity,
+    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileKind,
+    ProfileSpline, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
+    WheelsetPosition, WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -201,8 +202,13 @@ pub struct WheelRail {
     discretisation: Option<Discretisation>,
     /// DQREL (stored: steady rolling takes 1).
     dqrel: f64,
-    /// The placed profiles, built at the first calculation after a change.
-    pair: Option<WheelRailPair>,
+    /// The placed profiles, found at the first calculation after a change:
+    /// shared with every element of the process that placed the same
+    /// profiles on the same track and wheelset ([`PairCache`]).
+    pair: Option<Arc<WheelRailPair>>,
+    /// The pair before the last change, held until the next one is found,
+    /// so that inputs set again to equal values find it in the cache.
+    pair_before: Option<Arc<WheelRailPair>>,
     scratch: SearchScratch,
     solved: Option<Solved>,
     /// Subsurface blocks for every patch without its own (icp = -1).
@@ -437,7 +443,9 @@ impl WheelRail {
     /// Forgets the placed profiles (a profile, the track or the wheelset
     /// changed).
     fn invalidate(&mut self) {
-        self.pair = None;
+        if let Some(pair) = self.pair.take() {
+            self.pair_before = Some(pair);
+        }
     }
 
     /// The profile slot of `kind`.
@@ -1067,7 +1075,7 @@ impl WheelRail {
     }
 
     /// The placed profiles (built when missing).
-    fn build_pair(&self) -> Result<WheelRailPair> {
+    fn build_pair(&self) -> Result<Arc<WheelRailPair>> {
         let rail = slot(
             &self.rail,
             "the rail profile has not been set: cntc_setprofileinputfname or \
@@ -1109,22 +1117,23 @@ impl WheelRail {
             0.0 => wheel_p,
             dz => wheel_p.translated(0.0, dz),
         };
-        WheelRailPair::new(
-            [&rail_p, &rail_p],
-            [&wheel_p, &wheel_p],
-            TrackData {
-                gauge_m: track.gauge_m,
-                gauge_height_m: track.gauge_height_m,
-                cant_rad: track.cant_rad,
-            },
-            WheelsetData {
-                flange_back_distance_m: dims.flange_back_distance_m,
-                nominal_radius_m: dims.nominal_radius_m,
-                flange_back_y_m: Some(dims.flange_back_y_m),
-            },
-            &options,
-        )
-        .map_err(CntcError::from_wheelrail)
+        PairCache::global()
+            .get_or_build(
+                [&rail_p, &rail_p],
+                [&wheel_p, &wheel_p],
+                TrackData {
+                    gauge_m: track.gauge_m,
+                    gauge_height_m: track.gauge_height_m,
+                    cant_rad: track.cant_rad,
+                },
+                WheelsetData {
+                    flange_back_distance_m: dims.flange_back_distance_m,
+                    nominal_radius_m: dims.nominal_radius_m,
+                    flange_back_y_m: Some(dims.flange_back_y_m),
+                },
+                &options,
+            )
+            .map_err(CntcError::from_wheelrail)
     }
 
     /// CONTACT's dr_tape \[m\]: -z_w(Y_TAPE), 0 without a tape circle or
@@ -1150,7 +1159,9 @@ impl WheelRail {
             return Ok(0); // R = 2, 3: check the input only
         }
         if self.pair.is_none() {
-            self.pair = Some(self.build_pair()?);
+            let pair = self.build_pair();
+            self.pair_before = None;
+            self.pair = Some(pair?);
         }
         let input = self.solver_input(side)?;
         let pair = self.pair.as_ref().expect("built above");
@@ -2225,6 +2236,43 @@ mod tests {
             (ours - contact).abs() <= tol,
             "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
         );
+    }
+
+    /// Elements that place the same profiles on the same track share one
+    /// placed pair, also after their inputs are set again to equal values
+    /// (a simulator that sets the track every step); another track gets
+    /// its own.
+    #[test]
+    fn elements_with_equal_profiles_share_their_placed_pair() {
+        let cache = KernelCache::default();
+        let solve = |w: &mut WheelRail| {
+            w.set_wheelset_position(2, &[0.0, 2.5, 0.0, -0.0001457, 0.006, 0.0])
+                .unwrap();
+            w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3455627])
+                .unwrap();
+            w.calculate(&cache).unwrap();
+            w.pair.clone().expect("placed")
+        };
+        let (mut a, mut b) = (mbench(1), mbench(1));
+        let pa = solve(&mut a);
+        assert!(Arc::ptr_eq(&pa, &solve(&mut b)));
+        // One element alone on its track (gauge 1436 mm): set again to
+        // equal values, it keeps its pair although no one else holds it.
+        let track = [14.0, 0.0, 1436.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        b.set_track_dimensions(3, &track).unwrap();
+        let pb = solve(&mut b);
+        assert!(!Arc::ptr_eq(&pa, &pb));
+        let held = Arc::downgrade(&pb);
+        drop(pb);
+        b.set_track_dimensions(3, &track).unwrap();
+        let again = solve(&mut b);
+        assert!(Arc::ptr_eq(&held.upgrade().expect("kept"), &again));
+        let wider = [14.0, 0.0, 1437.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        b.set_track_dimensions(3, &wider).unwrap();
+        assert!(!Arc::ptr_eq(&again, &solve(&mut b)));
+        // The replaced pair is freed once the new one is found.
+        drop(again);
+        assert!(held.upgrade().is_none());
     }
 
     /// CONTACT's library, python_mbench.py case 6 of the right wheel

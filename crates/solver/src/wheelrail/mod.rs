@@ -9,6 +9,8 @@
 //!   inclination and curvature at any arc length, and z at a given y;
 //! * [`wheelset`]: track and wheelset data, the placed profiles
 //!   ([`WheelRailPair`]), wheelset position and velocity, and the frames;
+//! * [`pair_cache`]: placed pairs shared by content while they are used
+//!   ([`PairCache`]);
 //! * [`search`]: contact locus, rigid position (roll), contact patches and
 //!   their planar geometry, each about its contact reference point (the
 //!   smallest gap, or CONTACT's weighted centre of the interpenetration:
@@ -74,6 +76,7 @@
 pub mod builtin;
 pub mod contact;
 pub mod friction;
+pub mod pair_cache;
 pub mod plausibility;
 pub mod profile;
 pub mod ranges;
@@ -90,6 +93,7 @@ pub use contact::{
     WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
+pub use pair_cache::{PairCache, PairCacheStats};
 pub use plausibility::{check_plausibility, PlausibilityWarning, WarningKind};
 pub use profile::{
     detect_format, kind_from_extension, load_profile, load_profile_with, parse_profile, CheckKind,
