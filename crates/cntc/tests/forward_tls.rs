@@ -4,7 +4,8 @@
 //! (`RAILCONTACT_CNTC_TOKEN`) every getter reads the in-process values bit
 //! for bit; a refused token, a missing token and a plaintext attempt on
 //! the TLS port are each `CNTC_err_server` with a message that names the
-//! setting to mend.
+//! setting to mend; so is a calculation beyond the server's
+//! `max_solve_time_s`, after which the element calculates again.
 //!
 //! The library reads its environment once per process, so each case runs
 //! in a child process of this test executable ([`client`], ignored when
@@ -31,6 +32,22 @@ const TOKEN: &str = "cntc-test-token-0123456789abcdef";
 #[ignore = "a child process of tls_and_tokens_as_a_fleet_is_deployed"]
 fn client() {
     let expect = std::env::var(EXPECT).expect("run by tls_and_tokens_as_a_fleet_is_deployed");
+    if expect == "time_limit" {
+        // 400 x 400 elements in steady rolling take more than a second
+        // here; the server stops them at its limit. The element's next
+        // calculation, on the usual grid, goes on a new session.
+        mode(true);
+        tractcurv(3, 3, 2);
+        let hz = [400.0, 400.0, 0.0008, 0.5, 1.1];
+        unsafe { cntc_sethertzcontact(&3, &1, &-2, &5, hz.as_ptr()) };
+        assert_eq!(calculate(3, [1e-3, 0.0, 0.0]), err::SERVER, "400 x 400");
+        let hz = [48.0, 44.0, 0.0008, 0.5, 1.1];
+        unsafe { cntc_sethertzcontact(&3, &1, &-2, &5, hz.as_ptr()) };
+        assert_eq!(calculate(3, [1e-3, 0.0, 0.0]), 0, "48 x 44 after it");
+        mode(false);
+        unsafe { cntc_finalize(&3) };
+        return;
+    }
     let creepages = [[1e-4, 0.0, 0.0], [1e-3, 2e-4, 1e-4]];
     mode(false);
     tractcurv(1, 3, 2);
@@ -157,4 +174,18 @@ fn tls_and_tokens_as_a_fleet_is_deployed() {
     );
     assert!(log.contains(&addr), "{log}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A forwarded calculation longer than the server's `max_solve_time_s`
+/// is stopped there: `CNTC_err_server` with the limit named on the log,
+/// and the element calculates again at its next call.
+#[test]
+fn a_calculation_beyond_the_servers_time_limit_is_a_server_error() {
+    let server = TestServer::start_with("127.0.0.1:0", |c| {
+        c.max_solve_time_s = 0.3;
+        c.max_grid_elements = 200_000;
+    });
+    let addr = server.addr.to_string();
+    let log = run_client("time_limit", &[("RAILCONTACT_CNTC_SERVER", &addr)]);
+    assert!(log.contains("max_solve_time_s"), "{log}");
 }
