@@ -46,7 +46,7 @@ enum {
    CNTC_ic_bound   = 1971,  /* B: traction bound */
    CNTC_ic_tang    = 1972,  /* T: 0 none, 1 shift, 2 transient rolling, 3 steady rolling */
    CNTC_ic_norm    = 1973,  /* N: module 1 0 position/1 vertical force; module 3 0 approach/1 normal force */
-   CNTC_ic_force   = 1974,  /* F: 0 creepages, 1 Fx and eta, 2 Fx and Fy (module 3) */
+   CNTC_ic_force   = 1974,  /* F: 0 creepages; module 3 1 Fx and eta, 2 Fx and Fy; module 1 1 total force FX_WS (pitch rate found) */
    CNTC_ic_frclaw  = 1976,  /* L (read only) */
    CNTC_ic_discns  = 1977,  /* D: module 1 discretisation */
    CNTC_ic_inflcf  = 1978,  /* C3: influence coefficients */
