@@ -164,6 +164,9 @@ pub struct ServeConfig {
     /// Largest grid, nx * ny elements (default 65536 = 256 x 256).
     pub max_grid_elements: usize,
     /// Largest gRPC message, either direction \[bytes\] (default 16 MiB).
+    /// An answer that would be larger is RESOURCE_EXHAUSTED; a batch is
+    /// refused as soon as the results it has built exceed it, without
+    /// solving its other items.
     pub max_message_bytes: usize,
     /// Memory cap of the influence-kernel cache \[bytes\] (default 1 GiB);
     /// beyond it the least recently used kernel sets are dropped.

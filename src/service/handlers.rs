@@ -4,7 +4,7 @@
 //! of the request (`case.`, `items[3].case.`, `open.case.`, `step.`).
 
 use std::pin::Pin;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant as StdInstant};
 
@@ -239,6 +239,13 @@ impl ContactHandlers {
     /// do not wait for the whole batch, see [`SolvePool::run_items`]):
     /// `solve(handlers, admission, item, "items[i]")`. Outcomes in request
     /// order.
+    ///
+    /// The answer is counted as it is built: once the results solved so
+    /// far are larger than one message may be (`max_message_bytes`), the
+    /// items not yet started are not solved and the batch is refused
+    /// (RESOURCE_EXHAUSTED naming `include_fields` and the batch's size),
+    /// so a batch holds at most about one message of results, not all of
+    /// them, before it is found too large.
     async fn batch<T, R, F, Fut>(
         &self,
         client: &ClientId,
@@ -248,7 +255,7 @@ impl ContactHandlers {
     ) -> Result<Vec<(u32, Result<R, ServiceError>)>, ServiceError>
     where
         T: Send + 'static,
-        R: Send + 'static,
+        R: prost::Message + Send + 'static,
         F: Fn(ContactHandlers, Arc<Admission>, T, String) -> Fut + Clone + Send + 'static,
         Fut: std::future::Future<Output = Result<R, ServiceError>> + Send + 'static,
     {
@@ -263,18 +270,40 @@ impl ContactHandlers {
             ));
         }
         let admission = Arc::new(self.pool.admit_for(client, deadline)?);
-        self.pool
+        let (n, max) = (items.len(), self.limits.max_message_bytes);
+        // Bytes of the results built so far, and the items solved.
+        let built = Arc::new((AtomicUsize::new(0), AtomicUsize::new(0)));
+        let outcomes = self
+            .pool
             .run_items(items, |i, item| {
                 let (this, admission, solve) = (self.clone(), admission.clone(), solve.clone());
+                let built = built.clone();
                 async move {
-                    (
-                        i as u32,
-                        solve(this, admission, item, format!("items[{i}]")).await,
-                    )
+                    if built.0.load(Ordering::Relaxed) > max {
+                        return (i as u32, Err(ServiceError::Exhausted(String::new())));
+                    }
+                    let r = solve(this, admission, item, format!("items[{i}]")).await;
+                    if let Ok(result) = &r {
+                        built.0.fetch_add(result.encoded_len(), Ordering::Relaxed);
+                        built.1.fetch_add(1, Ordering::Relaxed);
+                    }
+                    (i as u32, r)
                 }
                 .in_current_span()
             })
-            .await
+            .await?;
+        let (bytes, solved) = (
+            built.0.load(Ordering::Relaxed),
+            built.1.load(Ordering::Relaxed),
+        );
+        if bytes > max {
+            return Err(ServiceError::Exhausted(format!(
+                "the answer would be more than {bytes} bytes (the results of {solved} of the \
+                 batch's {n} items), more than this server's max_message_bytes ({max}); the \
+                 other items were not solved: {BATCH_REMEDY}"
+            )));
+        }
+        Ok(outcomes)
     }
 }
 

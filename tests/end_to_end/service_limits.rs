@@ -70,12 +70,14 @@ async fn an_oversize_request_is_resource_exhausted_and_the_server_goes_on() {
 
 /// An answer larger than `max_message_bytes` (fields of a 64 x 64 grid,
 /// about 200 kB, against 64 kB): RESOURCE_EXHAUSTED saying its size and
-/// naming `include_fields`, not tonic's OUT_OF_RANGE; without the fields
-/// the same case is answered.
+/// naming `include_fields`, not tonic's OUT_OF_RANGE, for a batch as soon
+/// as the results built are too large; without the fields the same case
+/// is answered.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn an_oversize_answer_is_resource_exhausted_naming_include_fields() {
     let (server, mut client) = server_with(ServeConfig {
         max_message_bytes: 64 * 1024,
+        workers: 2,
         ..Default::default()
     })
     .await;
@@ -93,14 +95,25 @@ async fn an_oversize_answer_is_resource_exhausted_naming_include_fields() {
         m.contains("max_message_bytes (65536)") && m.contains("`include_fields`"),
         "{m}"
     );
+    // A batch is refused once the results built exceed the limit: the
+    // items not started by then are not solved (at most one item per
+    // worker is in flight when the first result arrives).
     let s = client
         .solve_patch_batch(pb::SolvePatchBatchRequest {
-            items: vec![with_fields; 2],
+            items: vec![with_fields; 64],
         })
         .await
         .expect_err("an oversize batch answer is refused");
     assert_eq!(s.code(), Code::ResourceExhausted, "{s:?}");
-    assert!(s.message().contains("split the batch"), "{}", s.message());
+    let m = s.message();
+    assert!(m.contains("split the batch"), "{m}");
+    let solved: usize = m
+        .split("the results of ")
+        .nth(1)
+        .and_then(|t| t.split(" of the batch's 64 items").next())
+        .and_then(|k| k.parse().ok())
+        .unwrap_or_else(|| panic!("no count of solved items: {m}"));
+    assert!((1..=4).contains(&solved), "{solved} solved: {m}");
     let ok = client.solve_patch(request(exact(64, None))).await;
     assert!(ok.is_ok(), "{ok:?}");
     server.shutdown().await;
