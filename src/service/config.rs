@@ -194,9 +194,10 @@ pub struct ServeConfig {
     /// 20000; measured profiles have a few hundred to a few thousand); more
     /// get INVALID_ARGUMENT naming the profile's field.
     pub max_profile_points: usize,
-    /// Largest size of the registrations in the store, their encoded bytes
-    /// summed \[bytes\] (default 256 MiB); a registration beyond it gets
-    /// RESOURCE_EXHAUSTED. The file itself is somewhat larger (redb's
+    /// Largest size of the registrations held, their encoded bytes summed
+    /// \[bytes\] (default 256 MiB): in the store, or in memory on a server
+    /// without one (an empty `data_dir`); a registration beyond it gets
+    /// RESOURCE_EXHAUSTED. The store's file is somewhat larger (redb's
     /// pages and free space).
     pub max_store_bytes: u64,
     /// Longest one solve may run on a worker \[s\] (default 120): a unary

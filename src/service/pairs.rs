@@ -848,7 +848,8 @@ pub struct RegistryLimits {
     pub max_pairs: usize,
     /// Most points of one profile.
     pub max_profile_points: usize,
-    /// Most encoded bytes of the registrations in the store.
+    /// Most encoded bytes of the registrations held (in the store, or in
+    /// memory without one).
     pub max_store_bytes: u64,
     /// What a start does with damaged records.
     pub store_damaged: StoreDamaged,
@@ -1014,9 +1015,10 @@ impl PairRegistry {
     /// The entry of `spec`: the existing one (true) or a new one in state
     /// PREPARING (false). A stored record that could not be used is
     /// replaced by the new registration. A new pair beyond
-    /// `max_profile_pairs`, or whose registration would take the store
-    /// beyond `max_store_bytes`, gets RESOURCE_EXHAUSTED (the built-in pair
-    /// is not counted).
+    /// `max_profile_pairs`, or whose registration would take the
+    /// registrations held (in the store, or in memory without one) beyond
+    /// `max_store_bytes`, gets RESOURCE_EXHAUSTED (the built-in pair is not
+    /// counted).
     pub fn begin(&self, spec: PairSpec) -> Result<(Arc<PairEntry>, bool), ServiceError> {
         let store = self.store();
         let mut entries = self.write();
@@ -1041,28 +1043,34 @@ impl PairRegistry {
                     limits.max_pairs
                 ),
             ))
-        } else if let Some(s) = store.as_ref() {
-            // The store's records plus the registrations not written yet.
-            let pending: u64 = entries
+        } else {
+            // The registrations held: the store's records plus those not
+            // written yet, or without a store every registration in memory.
+            let held: u64 = entries
                 .values()
-                .filter(|e| e.spec.builtin_pair.is_none() && !e.persisted.load(Ordering::Relaxed))
+                .filter(|e| {
+                    e.spec.builtin_pair.is_none()
+                        && (store.is_none() || !e.persisted.load(Ordering::Relaxed))
+                })
                 .map(|e| e.spec.registration().encoded_len() as u64)
                 .sum();
             let size = spec.registration().encoded_len() as u64;
-            let total = s.bytes() + pending + size;
+            let total = store.as_ref().map_or(0, |s| s.bytes()) + held + size;
+            let whose = match store.as_ref() {
+                Some(_) => "the profile pair store",
+                None => "the registrations this server holds in memory",
+            };
             (total > limits.max_store_bytes).then(|| {
                 self.refuse(
                     "max_store_bytes",
                     format!(
-                        "the registration ({size} bytes) would take the profile pair store to \
-                         {total} bytes, more than its limit of {} (max_store_bytes): delete \
-                         pairs first (DeleteProfilePair)",
+                        "the registration ({size} bytes) would take {whose} to {total} bytes, \
+                         more than the limit of {} (max_store_bytes): delete pairs first \
+                         (DeleteProfilePair)",
                         limits.max_store_bytes
                     ),
                 )
             })
-        } else {
-            None
         };
         if let Some(e) = refused {
             if let Some(old) = replaced {

@@ -579,6 +579,21 @@ async fn registry_limits_answer_resource_exhausted_or_invalid_argument() {
     assert_eq!(metric(&server, &refused("max_store_bytes")).await, 1.0);
     server.shutdown().await;
 
+    // Without a store, the same budget holds for the registrations in
+    // memory.
+    let mut c = config(dir.path());
+    c.data_dir = Default::default();
+    c.max_store_bytes = size(&small) + size(&small) / 2;
+    let (server, mut client) = server_with(&c).await;
+    register(&mut client, small.clone()).await.unwrap();
+    let e = register(&mut client, other.clone()).await.unwrap_err();
+    assert_eq!(e.code(), Code::ResourceExhausted, "{e:?}");
+    assert!(
+        e.message().contains("max_store_bytes") && e.message().contains("in memory"),
+        "{e:?}"
+    );
+    server.shutdown().await;
+
     // At most one pair (the built-in one not counted).
     let dir = tempfile::tempdir().unwrap();
     let mut c = config(dir.path());
