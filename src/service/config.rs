@@ -272,13 +272,16 @@ pub struct ServeConfig {
     pub auth_failure_rate_per_s: f64,
     /// Addresses of proxies in front of this server (nginx, Envoy) whose
     /// calls carry their client's address as the last entry of
-    /// `x-forwarded-for` (default none). A call from one of them is that
-    /// client for the quotas by address and the token back-off (without
-    /// it, every client behind the proxy is the proxy: one guessing tokens
-    /// slows them all), and their connections count against
-    /// `max_connections` only. Anyone else's `x-forwarded-for` is ignored;
-    /// list only proxies that set it themselves.
-    pub trusted_proxies: Vec<std::net::IpAddr>,
+    /// `x-forwarded-for` (default none): single addresses (`10.0.0.5`,
+    /// `fd00::7`) or ranges in CIDR notation (`10.244.0.0/16`, a
+    /// Kubernetes cluster's pod network, where the proxy's address is not
+    /// fixed). A call from one of them is that client for the quotas by
+    /// address and the token back-off (without it, every client behind the
+    /// proxy is the proxy: one guessing tokens slows them all), and their
+    /// connections count against `max_connections` only. Anyone else's
+    /// `x-forwarded-for` is ignored; list only proxies that set it
+    /// themselves (a range that holds clients lets them name any address).
+    pub trusted_proxies: Vec<crate::service::quota::ProxyRange>,
     /// Serve gRPC reflection (default true); with `auth_tokens_file` it
     /// needs a token of any role.
     pub reflection: bool,
@@ -721,14 +724,29 @@ mod tests {
     }
 
     #[test]
-    fn trusted_proxies_from_the_environment_are_a_list_of_addresses() {
-        let e = env(&[("RAILCONTACT_TRUSTED_PROXIES", r#"["10.0.0.5", "fd00::7"]"#)]);
+    fn trusted_proxies_from_the_environment_are_a_list_of_addresses_or_ranges() {
+        let e = env(&[(
+            "RAILCONTACT_TRUSTED_PROXIES",
+            r#"["10.0.0.5", "fd00::7", "10.244.0.0/16"]"#,
+        )]);
         let c = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap();
-        let want: Vec<std::net::IpAddr> =
-            vec!["10.0.0.5".parse().unwrap(), "fd00::7".parse().unwrap()];
+        use crate::service::quota::ProxyRange;
+        let want: Vec<ProxyRange> = ["10.0.0.5/32", "fd00::7/128", "10.244.0.0/16"]
+            .iter()
+            .map(|s| ProxyRange(s.parse().unwrap()))
+            .collect();
         assert_eq!(c.trusted_proxies, want);
-        // A bare address is not a list; a name is not an address.
-        for bad in ["10.0.0.5", r#"["proxy.example"]"#] {
+        let shown: Vec<String> = c.trusted_proxies.iter().map(|p| p.to_string()).collect();
+        assert_eq!(shown, ["10.0.0.5", "fd00::7", "10.244.0.0/16"]);
+        let ip = |s: &str| s.parse::<std::net::IpAddr>().unwrap();
+        let pods = c.trusted_proxies[2];
+        assert!(pods.contains(ip("10.244.3.17")) && pods.contains(ip("::ffff:10.244.0.1")));
+        assert!(!pods.contains(ip("10.245.0.1")));
+        let mapped: ProxyRange = "::ffff:10.244.0.0/112".parse().unwrap();
+        assert!(mapped.contains(ip("10.244.9.9")) && !mapped.contains(ip("10.245.0.1")));
+        // A bare address is not a list; a name is not an address, nor is
+        // a range with a bad prefix.
+        for bad in ["10.0.0.5", r#"["proxy.example"]"#, r#"["10.0.0.0/33"]"#] {
             let e = env(&[("RAILCONTACT_TRUSTED_PROXIES", bad)]);
             let err = ServeConfig::load(None, &e, &ServeFlags::default()).unwrap_err();
             assert!(err.contains("RAILCONTACT_TRUSTED_PROXIES"), "{err}");

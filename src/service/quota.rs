@@ -323,25 +323,80 @@ impl Drop for QuotaGuard {
     }
 }
 
+/// A trusted proxy's address, or a range of them
+/// ([`ServeConfig::trusted_proxies`]): `10.0.0.5` or `10.244.0.0/16`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ProxyRange(pub ipnet::IpNet);
+
+impl ProxyRange {
+    /// Whether `address` lies in the range (IPv4-mapped IPv6 addresses
+    /// and their IPv4 form alike).
+    pub fn contains(&self, address: IpAddr) -> bool {
+        let net = match self.0 {
+            ipnet::IpNet::V6(n) => match n.addr().to_ipv4_mapped() {
+                // ::ffff:10.0.0.0/112 is 10.0.0.0/16.
+                Some(v4) if n.prefix_len() >= 96 => {
+                    ipnet::Ipv4Net::new(v4, n.prefix_len() - 96).map_or(self.0, ipnet::IpNet::V4)
+                }
+                _ => self.0,
+            },
+            v4 => v4,
+        };
+        net.contains(&unmapped(address))
+    }
+}
+
+impl std::str::FromStr for ProxyRange {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let t = s.trim();
+        t.parse::<ipnet::IpNet>()
+            .or_else(|_| t.parse::<IpAddr>().map(ipnet::IpNet::from))
+            .map(ProxyRange)
+            .map_err(|_| {
+                format!(
+                    "{s:?} is not an IP address (10.0.0.5, fd00::7) or a range in CIDR notation \
+                     (10.244.0.0/16)"
+                )
+            })
+    }
+}
+
+impl std::fmt::Display for ProxyRange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0.prefix_len() == self.0.max_prefix_len() {
+            true => write!(f, "{}", self.0.addr()),
+            false => write!(f, "{}", self.0),
+        }
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for ProxyRange {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = <String as serde::Deserialize>::deserialize(d)?;
+        s.parse().map_err(serde::de::Error::custom)
+    }
+}
+
 /// The proxies whose `x-forwarded-for` says who the client is
 /// (`trusted_proxies`; see the module documentation).
 #[derive(Debug, Clone, Default)]
 pub struct TrustedProxies {
-    addresses: Vec<IpAddr>,
+    ranges: Vec<ProxyRange>,
 }
 
 impl TrustedProxies {
-    /// Trusts the proxies at `addresses` (IPv4-mapped IPv6 addresses and
-    /// their IPv4 form alike).
-    pub fn new(addresses: &[IpAddr]) -> Self {
+    /// Trusts the proxies in `ranges`.
+    pub fn new(ranges: &[ProxyRange]) -> Self {
         Self {
-            addresses: addresses.iter().map(|&a| unmapped(a)).collect(),
+            ranges: ranges.to_vec(),
         }
     }
 
     /// Whether `remote` is a trusted proxy.
     pub fn trusts(&self, remote: IpAddr) -> bool {
-        self.addresses.contains(&unmapped(remote))
+        self.ranges.iter().any(|r| r.contains(remote))
     }
 
     /// The address of the client of a call that came from `remote` with
@@ -555,7 +610,7 @@ mod tests {
     fn only_a_trusted_proxy_says_who_its_client_is() {
         let proxy: IpAddr = "10.0.0.5".parse().unwrap();
         let other: IpAddr = "10.0.0.6".parse().unwrap();
-        let t = TrustedProxies::new(&[proxy]);
+        let t = TrustedProxies::new(&["10.0.0.5".parse().unwrap()]);
         let ip = |s: &str| s.parse::<IpAddr>().unwrap();
         // The last entry is the one the proxy appended.
         let h = b"1.2.3.4, 192.0.2.7".as_slice();

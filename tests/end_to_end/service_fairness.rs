@@ -26,7 +26,7 @@
 //!
 //! Clients are told apart by address: the hoarders connect through a
 //! relay ([`relay`]) whose connections to the server come from another
-//! loopback address (127.0.0.2, 127.0.0.3), or bind their sockets there.
+//! loopback address (127.0.0.2 to 127.0.0.4), or bind their sockets there.
 
 use std::net::{IpAddr, SocketAddr};
 use std::time::{Duration, Instant};
@@ -800,7 +800,8 @@ async fn a_trusted_proxy_tells_its_clients_apart() {
         // No refill within the test.
         auth_failure_rate_per_s: 0.001,
         max_connections: 12,
-        trusted_proxies: vec!["127.0.0.2".parse().unwrap()],
+        // A range (127.0.0.2-3), as a pod network is given.
+        trusted_proxies: vec!["127.0.0.2/31".parse().unwrap()],
         ..ServeConfig::default()
     })
     .await;
@@ -830,10 +831,10 @@ async fn a_trusted_proxy_tells_its_clients_apart() {
         .solve_patch(solve())
         .await
         .expect("a client behind the proxy is not slowed by another");
-    // Anyone else's x-forwarded-for is ignored: a guesser at 127.0.0.3
-    // naming a new address each time is slowed after its burst all the
-    // same.
-    let untrusted = channel_at(relay("127.0.0.3", server.addr).await).await;
+    // Anyone else's x-forwarded-for is ignored: a guesser at 127.0.0.4
+    // (outside the range) naming a new address each time is slowed after
+    // its burst all the same.
+    let untrusted = channel_at(relay("127.0.0.4", server.addr).await).await;
     let names = ["192.0.2.11", "192.0.2.12", "192.0.2.13", "192.0.2.14"];
     let mut codes = Vec::new();
     for name in names {
