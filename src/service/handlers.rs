@@ -22,7 +22,7 @@ use crate::service::contact_library::LibraryElement;
 use crate::service::convert::{self, CaseLimits};
 use crate::service::engine::{check_sensitivities, PatchEngine};
 use crate::service::escaped;
-use crate::service::memory::SessionBudget;
+use crate::service::memory::{ReturnMemoryOnDrop, SessionBudget};
 use crate::service::metrics::Metrics;
 use crate::service::pairs::{self, PairRegistry, PairSpec, Progress};
 use crate::service::pb;
@@ -270,6 +270,7 @@ impl ContactHandlers {
             ));
         }
         let admission = Arc::new(self.pool.admit_for(client, deadline)?);
+        let _trim = ReturnMemoryOnDrop;
         let (n, max) = (items.len(), self.limits.max_message_bytes);
         // Bytes of the results built so far, and the items solved.
         let built = Arc::new((AtomicUsize::new(0), AtomicUsize::new(0)));
@@ -727,6 +728,7 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
         };
         tokio::spawn(
             async move {
+                let _trim = ReturnMemoryOnDrop;
                 let model = valid.case.model;
                 let lane = patch_lane(&valid.case, false);
                 let built = admission
@@ -987,6 +989,7 @@ impl ContactHandlers {
         let this = self.clone();
         tokio::spawn(
             async move {
+                let _trim = ReturnMemoryOnDrop;
                 let errors = tx.clone();
                 if let Err(status) = run(this.clone(), tx).await {
                     this.end_stream(&errors, status).await;
