@@ -59,9 +59,11 @@ use std::time::Instant;
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::Range;
 use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::influence::KernelKind;
 use railcontact_solver::core::problem::Friction;
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
+use railcontact_solver::core::solve::displacement_differences;
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit,
@@ -1177,7 +1179,7 @@ impl WheelRail {
                 (input, sol, None)
             }
         };
-        let ierror = self.finish(side, &input, &sol)?;
+        let ierror = self.finish(side, &input, &sol, cache)?;
         if let Some(sv) = &mut self.solved {
             sv.vpitch_found = vpitch_found;
         }
@@ -1283,6 +1285,7 @@ impl WheelRail {
         side: Side,
         input: &WheelRailInput,
         sol: &WheelRailSolution,
+        cache: &KernelCache,
     ) -> Result<i32> {
         let pair = self.pair.as_ref().expect("solved on it");
         let s = side.sign();
@@ -1318,7 +1321,7 @@ impl WheelRail {
         let mut globals = Vec::with_capacity(wheel.patches.len());
         let mut border = 0usize;
         for p in &wheel.patches {
-            let (o, g) = self.patch_outcome(
+            let (mut o, g) = self.patch_outcome(
                 p,
                 side,
                 input,
@@ -1339,6 +1342,18 @@ impl WheelRail {
                     sign: s,
                 },
             );
+            if o.has_fields() {
+                // CONTACT's US of the patch (its getters read the patch's
+                // data): u = A p on the patch's grid, with the kernels of
+                // the wheel/rail solver (a cache hit); the interaction of
+                // patches ignored, as CONTACT ignores it.
+                let kernels = cache.get(&o.grid, &input.material, KernelKind::Displacement);
+                let f = &o.fields;
+                let p = [&f.traction_x_pa[..], &f.traction_y_pa, &f.pressure_pa];
+                let mut u = o.displacements_m.take().expect("no_contact sets them");
+                displacement_differences(&kernels, &mut kernels.workspace(), p, &mut u);
+                o.displacements_m = Some(u);
+            }
             border += o.border_elements;
             outcomes.push(o);
             globals.push(g);

@@ -10,7 +10,7 @@ use railcontact_solver::core::error::ContactError;
 use railcontact_solver::core::fastsim::{SlopeReduction, TractionBound};
 use railcontact_solver::core::fastsim_grid::{
     equivalent_ellipse, BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput,
-    GridFlexibility, GridFriction, GridPressure, RollingSense,
+    GridFastsimOutput, GridFlexibility, GridFriction, GridPressure, RollingSense,
 };
 use railcontact_solver::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
@@ -25,7 +25,7 @@ use railcontact_solver::core::problem::{
 };
 use railcontact_solver::core::sensitivity::exact_jacobian;
 use railcontact_solver::core::solution::{
-    ContactSolution, ElementState, IterationLimit, SolveStatus,
+    ContactSolution, ElementFields, ElementState, IterationLimit, SolveStatus,
 };
 use railcontact_solver::core::solve::ContactSolver;
 use railcontact_solver::core::temperature::{flash_temperatures, ThermalBody, ThermalInput};
@@ -680,6 +680,13 @@ impl Patch {
             ]);
             outcome.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
         }
+        // CONTACT's US: u = A p of the converged tractions, one product.
+        let solver = &mut self.solver.as_mut().expect("solved above").1;
+        outcome.displacements_m = Some(
+            solver
+                .displacement_differences(&fields)
+                .map_err(CntcError::from_contact)?,
+        );
         outcome.fields = fields;
         outcome.friction_coefficient = fstat;
         outcome.normal_force_n = t.normal_force_n;
@@ -852,6 +859,8 @@ impl Patch {
         o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
         o.rigid_slip = Some(fs.rigid_slip());
+        o.displacements_m =
+            Some(self.fastsim_displacements(&o.fields, &out, pressure.is_some())?);
         if let GridFriction::SlipVelocity(_) = friction {
             o.mu = vec![out.friction_coefficient; grid.len()];
         }
@@ -881,6 +890,32 @@ impl Patch {
             o.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
         }
         Ok((o, status))
+    }
+
+    /// FASTSIM's displacement differences, as CONTACT's: x, y the
+    /// flexibilities L1/k, L2/k times the tractions (its springs, zero
+    /// outside contact); n the normal problem's A_nn p_n (with `solved`,
+    /// B = 0, from the solver `normal_pressure` left), else zero (a
+    /// Hertzian traction bound, B = 2, 3: CONTACT sets it to 0).
+    fn fastsim_displacements(
+        &mut self,
+        fields: &ElementFields,
+        out: &GridFastsimOutput,
+        solved: bool,
+    ) -> Result<[Vec<f64>; 3]> {
+        let [l1, l2, _] = out.flexibilities_m_per_pa.map(|l| l / out.slope_factor);
+        let ux = fields.traction_x_pa.iter().map(|p| l1 * p).collect();
+        let uy = fields.traction_y_pa.iter().map(|p| l2 * p).collect();
+        let un = match (&mut self.solver, solved) {
+            (Some((_, solver)), true) => {
+                let [_, _, un] = solver
+                    .displacement_differences(fields)
+                    .map_err(CntcError::from_contact)?;
+                un
+            }
+            _ => vec![0.0; fields.pressure_pa.len()],
+        };
+        Ok([ux, uy, un])
     }
 
     /// The exact normal problem on `grid` (FASTSIM's B = 0): the pressure,

@@ -69,6 +69,19 @@ pub struct Outcome {
     /// Rigid slip per element (x, y): per rolled distance [-] in rolling,
     /// the shift \[m\] of a shift (T = 1); `None` without friction.
     pub rigid_slip: Option<[Vec<f64>; 2]>,
+    /// Displacement differences per element on `grid` (x, y, n) \[m\]:
+    /// body 1's elastic surface displacement minus body 2's under the
+    /// tractions on body 1 (CONTACT's US, which it computes after the
+    /// solve in `soutpt`), at every element, the exterior ones too. The
+    /// exact model: u = A p with the solver's influence operator, an
+    /// interfacial layer's shear (M = 4) included, its plastic deformation
+    /// not (that is `layer`); in contact u_n = approach - h; in a transient
+    /// step the displacement of the step's tractions. FASTSIM (M = 3): u_x,
+    /// u_y its flexibilities L1/k, L2/k times the tractions (zero outside
+    /// contact), u_n = A_nn p_n with the normal problem solved (B = 0),
+    /// zero with a Hertzian traction bound (B = 2, 3), as CONTACT's.
+    /// `None`: not available (the getters say why).
+    pub displacements_m: Option<[Vec<f64>; 3]>,
     /// Where a module 1 patch lies (module 3: `None`).
     pub location: Option<Location>,
     /// Wall and CPU time of the calculation \[s\].
@@ -158,6 +171,8 @@ impl Outcome {
             max_temperature_k: None,
             temperature_k: None,
             rigid_slip: None,
+            // No tractions, no displacement.
+            displacements_m: Some([vec![0.0; n], vec![0.0; n], vec![0.0; n]]),
             location: None,
             time_s: 0.0,
         }

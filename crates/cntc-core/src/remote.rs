@@ -16,7 +16,7 @@ use crate::error::{CntcError, Result};
 
 /// The version of the payload's encoding (of [`Call`], [`Request`] and
 /// [`Reply`] and the types they hold).
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 
 /// A calculation asked of the server.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -88,6 +88,7 @@ mod tests {
         let mut outcome = Outcome::no_contact(grid, vec![0.1 + 0.2; 20], 1.0 / 3.0);
         outcome.fields.pressure_pa[3] = f64::MIN_POSITIVE;
         outcome.fx_n = -0.0;
+        outcome.displacements_m.as_mut().unwrap()[2][7] = -1.0 / 3.0;
         let reply = Reply {
             code: Err(WireError::from(&CntcError::Friction("mu < 0".into()))),
             result: CalculationResult::Patch {
@@ -106,6 +107,8 @@ mod tests {
             bits(&o.fields.pressure_pa),
             bits(&outcome.fields.pressure_pa)
         );
+        let (d, e) = (o.displacements_m.as_ref(), outcome.displacements_m.as_ref());
+        assert_eq!(bits(&d.unwrap()[2]), bits(&e.unwrap()[2]));
         assert_eq!(o.approach_m.to_bits(), (1.0f64 / 3.0).to_bits());
         assert_eq!(o.fx_n.to_bits(), (-0.0f64).to_bits());
         let e = CntcError::from(back.code.unwrap_err());

@@ -674,6 +674,36 @@ impl ContactSolver {
         Some(mu)
     }
 
+    /// The displacement differences u = A p (x, y, n) \[m\] of the
+    /// tractions of `fields`, a solution of this solver in the problem's
+    /// frame: body 1's elastic surface displacement minus body 2's under
+    /// the tractions on body 1, an interfacial layer's shear included
+    /// ([`crate::core::influence::HalfSpaceInfluence::with_layer_flexibility`]),
+    /// at every element of the grid, outside the contact area too, in the
+    /// problem's frame and element order. In contact u_n = approach - h
+    /// (the deformed distance h - approach + u_n is zero there); in a
+    /// transient step u is the displacement of the step's tractions.
+    /// One product of the solver's own operator
+    /// ([`displacement_differences`]); allocates its answer.
+    pub fn displacement_differences(
+        &mut self,
+        fields: &ElementFields,
+    ) -> Result<[Vec<f64>; 3], ContactError> {
+        let n = self.grid.len();
+        per_element("pressure_pa", &fields.pressure_pa, n)?;
+        per_element("traction_x_pa", &fields.traction_x_pa, n)?;
+        per_element("traction_y_pa", &fields.traction_y_pa, n)?;
+        let f = &self.frame;
+        let [px, py] = f.vectors_to_rolling(&fields.traction_x_pa, &fields.traction_y_pa);
+        let mut pn = vec![0.0; n];
+        f.field_to_rolling(&fields.pressure_pa, &mut pn);
+        let mut u = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        displacement_differences(&self.displacement, &mut self.ows, [&px, &py, &pn], &mut u);
+        let [ux, uy] = f.vectors_to_user(&u[0], &u[1]);
+        f.field_to_user(&u[2], &mut pn);
+        Ok([ux, uy, pn])
+    }
+
     /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
@@ -1820,6 +1850,37 @@ fn newton_with_restarts(
 /// Rigid slip of body 1 relative to body 2 at every element centre:
 /// w = (a_x - rot y, a_y + rot x), for creepages and spin (steady rolling) or
 /// shifts and rotation (transient step).
+/// `u = A p` on the grid of `kernels` (a [`KernelKind::Displacement`] set):
+/// the displacement differences (x, y, n) \[m\] of the tractions (x, y, n)
+/// \[Pa\] `p`, every element, in one product (a traction component that
+/// is zero everywhere is not transformed; an output nothing feeds is
+/// zero). `ows` must fit `kernels` ([`KernelSet::fits`]).
+pub fn displacement_differences(
+    kernels: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    [px, py, pn]: [&[f64]; 3],
+    [ux, uy, un]: &mut [Vec<f64>; 3],
+) {
+    let loaded = [(Component::X, px), (Component::Y, py), (Component::N, pn)];
+    let mut inputs: [(Component, &[f64]); 3] = loaded;
+    let mut used = 0;
+    for (c, p) in loaded {
+        if p.iter().any(|&v| v != 0.0) {
+            inputs[used] = (c, p);
+            used += 1;
+        }
+    }
+    kernels.apply(
+        ows,
+        &inputs[..used],
+        &mut [
+            (Component::X, ux.as_mut_slice()),
+            (Component::Y, uy.as_mut_slice()),
+            (Component::N, un.as_mut_slice()),
+        ],
+    );
+}
+
 fn rigid_slip(grid: &Grid, a: [f64; 2], rot: f64, wx: &mut [f64], wy: &mut [f64]) {
     for iy in 0..grid.ny {
         let y = grid.y_m(iy);
