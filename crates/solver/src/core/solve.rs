@@ -1847,9 +1847,6 @@ fn newton_with_restarts(
     }
 }
 
-/// Rigid slip of body 1 relative to body 2 at every element centre:
-/// w = (a_x - rot y, a_y + rot x), for creepages and spin (steady rolling) or
-/// shifts and rotation (transient step).
 /// `u = A p` on the grid of `kernels` (a [`KernelKind::Displacement`] set):
 /// the displacement differences (x, y, n) \[m\] of the tractions (x, y, n)
 /// \[Pa\] `p`, every element, in one product (a traction component that
@@ -1881,6 +1878,9 @@ pub fn displacement_differences(
     );
 }
 
+/// Rigid slip of body 1 relative to body 2 at every element centre:
+/// w = (a_x - rot y, a_y + rot x), for creepages and spin (steady rolling) or
+/// shifts and rotation (transient step).
 fn rigid_slip(grid: &Grid, a: [f64; 2], rot: f64, wx: &mut [f64], wy: &mut [f64]) {
     for iy in 0..grid.ny {
         let y = grid.y_m(iy);
