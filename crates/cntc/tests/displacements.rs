@@ -585,6 +585,45 @@ fn steady_rolling_matches_contact() {
     compare("steady rolling, SIMPACK's units", ire, &STEADY_SIMPACK, TOL);
 }
 
+/// `r` turned a half turn about n on a grid of `n` elements symmetric
+/// about the origin (the tractcurv grid): element i goes to n - 1 - i,
+/// UX and UY change sign (their largest and smallest values exchanged),
+/// UN stays.
+fn half_turn(r: &Reference, n: usize) -> Reference {
+    let turn = |[un, ux, uy]: [f64; 3]| [un, -ux, -uy];
+    Reference {
+        elements: r.elements.map(|(i, v)| (n - 1 - i, turn(v))),
+        max: [r.max[0], -r.min[1], -r.min[2]],
+        min: [r.min[0], -r.max[1], -r.max[2]],
+    }
+}
+
+/// Steady rolling along -x (CHI = 180°) at the creepages of
+/// [`steady_rolling_matches_contact`] turned a half turn (-xi, -eta, phi):
+/// the solution is that one turned, so CONTACT's values of it turned are
+/// the reference (the solver turns its grid to roll along +x; the
+/// displacement differences are computed on the problem's grid).
+#[test]
+fn rolling_along_minus_x_matches_contact_turned() {
+    let ire = 713;
+    tractcurv(ire, 3, 2);
+    let chi = std::f64::consts::PI;
+    unsafe { cntc_setrollingstepsize(&ire, &1, &chi, &0.2889148735610571) };
+    assert_eq!(calculate(ire, [-0.0007, 0.0004, 0.00003]), 0);
+    let n = elements(ire);
+    // mx, my, xc1, yc1, dx, dy: element centres symmetric about the origin.
+    let mut g = [0.0; 6];
+    unsafe { cntc_getpotcontact(&ire, &1, &6, g.as_mut_ptr()) };
+    let [mx, my, x1, y1, dx, dy] = g;
+    let xc = x1 + 0.5 * (mx - 1.0) * dx;
+    let yc = y1 + 0.5 * (my - 1.0) * dy;
+    assert!(
+        xc.abs() < 1e-9 * dx && yc.abs() < 1e-9 * dy,
+        "grid centre {xc}, {yc}"
+    );
+    compare("steady rolling along -x", ire, &half_turn(&STEADY, n), TOL);
+}
+
 /// Transient shifts (T = 1) from rest and continuing (P = 0), and four
 /// transient rolling steps (T = 2) of one element from rest: the
 /// displacement differences of the current tractions (in adhesion UX, UY
