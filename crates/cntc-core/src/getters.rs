@@ -8,10 +8,6 @@ use crate::flags::field;
 use crate::outcome::Outcome;
 use crate::units::Units;
 
-/// Why an outcome has no displacement differences (every calculation of
-/// this crate leaves them; an outcome built elsewhere may not).
-const DISPLACEMENTS_MISSING: &str = "the last calculation did not compute them";
-
 /// `cntc_getcontactforces`: FN, FX, FY \[force\], MZ \[force.length\] on
 /// the output body.
 pub fn contact_forces(o: &Outcome, u: Units) -> [f64; 4] {
@@ -130,18 +126,13 @@ pub fn field_data(o: &Outcome, u: Units, ifld: i32) -> Result<Vec<f64>> {
         // UX, UY, UN by the length unit only, without the output body's
         // sign (cntc_getfielddata); a left wheel's y is mirrored in the
         // outcome already.
-        field::UX | field::UY | field::UN => match &o.displacements_m {
-            Some(d) if d.iter().all(|c| c.len() == n) => d[(ifld - field::UX) as usize]
+        field::UX | field::UY | field::UN => {
+            let d = o.displacements_m()?;
+            d[(ifld - field::UX) as usize]
                 .iter()
                 .map(|x| u.len_out(*x))
-                .collect(),
-            _ => {
-                return Err(CntcError::NotSupported(format!(
-                    "field {ifld} (displacement differences): {}",
-                    DISPLACEMENTS_MISSING
-                )))
-            }
-        },
+                .collect()
+        }
         // An elasto-plastic layer's yield limit and plastic deformation
         // (zero without one). CONTACT scales UPLSX, UPLSY by the length
         // unit only, without the output body's sign: the same here.

@@ -59,11 +59,9 @@ use std::time::Instant;
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::Range;
 use railcontact_solver::core::grid::Grid;
-use railcontact_solver::core::influence::KernelKind;
 use railcontact_solver::core::problem::Friction;
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
-use railcontact_solver::core::solve::displacement_differences;
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit,
@@ -77,7 +75,7 @@ use crate::config::{Config, FrictionLaw, MaterialModel};
 use crate::element::MAX_ICP;
 use crate::error::{CntcError, Result};
 use crate::flags;
-use crate::outcome::{Location, Outcome};
+use crate::outcome::{DisplacementSource, Location, Outcome};
 use crate::subsurface::Blocks;
 use crate::units::Units;
 
@@ -1179,7 +1177,7 @@ impl WheelRail {
                 (input, sol, None)
             }
         };
-        let ierror = self.finish(side, &input, &sol, cache)?;
+        let ierror = self.finish(side, &input, &sol)?;
         if let Some(sv) = &mut self.solved {
             sv.vpitch_found = vpitch_found;
         }
@@ -1285,7 +1283,6 @@ impl WheelRail {
         side: Side,
         input: &WheelRailInput,
         sol: &WheelRailSolution,
-        cache: &KernelCache,
     ) -> Result<i32> {
         let pair = self.pair.as_ref().expect("solved on it");
         let s = side.sign();
@@ -1344,15 +1341,15 @@ impl WheelRail {
             );
             if o.has_fields() {
                 // CONTACT's US of the patch (its getters read the patch's
-                // data): u = A p on the patch's grid, with the kernels of
-                // the wheel/rail solver (a cache hit); the interaction of
+                // data), computed when a getter asks: u = A p on the
+                // patch's grid with the wheel/rail solver's materials (its
+                // kernels, a hit of the process cache); the interaction of
                 // patches ignored, as CONTACT ignores it.
-                let kernels = cache.get(&o.grid, &input.material, KernelKind::Displacement);
-                let f = &o.fields;
-                let p = [&f.traction_x_pa[..], &f.traction_y_pa, &f.pressure_pa];
-                let mut u = o.displacements_m.take().expect("no_contact sets them");
-                displacement_differences(&kernels, &mut kernels.workspace(), p, &mut u);
-                o.displacements_m = Some(u);
+                o.displacement_source = Some(DisplacementSource::Influence {
+                    body1: input.material.body1,
+                    body2: input.material.body2,
+                    layer_flexibility_m_per_pa: 0.0,
+                });
             }
             border += o.border_elements;
             outcomes.push(o);

@@ -10,7 +10,7 @@ use railcontact_solver::core::error::ContactError;
 use railcontact_solver::core::fastsim::{SlopeReduction, TractionBound};
 use railcontact_solver::core::fastsim_grid::{
     equivalent_ellipse, BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput,
-    GridFastsimOutput, GridFlexibility, GridFriction, GridPressure, RollingSense,
+    GridFlexibility, GridFriction, GridPressure, RollingSense,
 };
 use railcontact_solver::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
@@ -25,14 +25,14 @@ use railcontact_solver::core::problem::{
 };
 use railcontact_solver::core::sensitivity::exact_jacobian;
 use railcontact_solver::core::solution::{
-    ContactSolution, ElementFields, ElementState, IterationLimit, SolveStatus,
+    ContactSolution, ElementState, IterationLimit, SolveStatus,
 };
-use railcontact_solver::core::solve::ContactSolver;
+use railcontact_solver::core::solve::{layer_flexibility, ContactSolver};
 use railcontact_solver::core::temperature::{flash_temperatures, ThermalBody, ThermalInput};
 
 use crate::config::{Config, FrictionLaw, MaterialModel, Thermal};
 use crate::error::{CntcError, Result};
-use crate::outcome::{HertzInfo, Outcome};
+use crate::outcome::{DisplacementSource, HertzInfo, Outcome};
 
 /// The potential contact area (`cntc_sethertzcontact`,
 /// `cntc_setpotcontact`), SI.
@@ -401,18 +401,20 @@ impl Patch {
         let t0 = Instant::now();
         let mut outcome = match self.config.material.model {
             MaterialModel::ModifiedFastsim(reduction) => {
-                let (outcome, status) =
+                let (mut outcome, status) =
                     self.fastsim(cache, &material, load, hertz, grid, gap, reduction)?;
                 if let Some(e) = status {
-                    self.outcome = Some(Outcome { hertz, ..outcome });
+                    outcome.hertz = hertz;
+                    self.outcome = Some(outcome);
                     return Err(e);
                 }
                 outcome
             }
             MaterialModel::Elastic | MaterialModel::InterfacialLayer(_) => {
-                let (outcome, status) = self.exact(cache, material, load, grid, gap)?;
+                let (mut outcome, status) = self.exact(cache, material, load, grid, gap)?;
                 if let Some(e) = status {
-                    self.outcome = Some(Outcome { hertz, ..outcome });
+                    outcome.hertz = hertz;
+                    self.outcome = Some(outcome);
                     return Err(e);
                 }
                 outcome
@@ -680,13 +682,13 @@ impl Patch {
             ]);
             outcome.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
         }
-        // CONTACT's US: u = A p of the converged tractions, one product.
-        let solver = &mut self.solver.as_mut().expect("solved above").1;
-        outcome.displacements_m = Some(
-            solver
-                .displacement_differences(&fields)
-                .map_err(CntcError::from_contact)?,
-        );
+        // CONTACT's US, computed when a getter asks: u = A p of the
+        // tractions with the solver's materials and layer.
+        outcome.displacement_source = Some(DisplacementSource::Influence {
+            body1: problem.material.body1,
+            body2: problem.material.body2,
+            layer_flexibility_m_per_pa: layer_flexibility(&problem),
+        });
         outcome.fields = fields;
         outcome.friction_coefficient = fstat;
         outcome.normal_force_n = t.normal_force_n;
@@ -859,8 +861,13 @@ impl Patch {
         o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
         o.rigid_slip = Some(fs.rigid_slip());
-        o.displacements_m =
-            Some(self.fastsim_displacements(&o.fields, &out, pressure.is_some())?);
+        let [l1, l2, _] = out.flexibilities_m_per_pa.map(|l| l / out.slope_factor);
+        o.displacement_source = Some(DisplacementSource::Fastsim {
+            flexibilities_m_per_pa: [l1, l2],
+            normal: pressure
+                .is_some()
+                .then_some([material.body1, material.body2]),
+        });
         if let GridFriction::SlipVelocity(_) = friction {
             o.mu = vec![out.friction_coefficient; grid.len()];
         }
@@ -890,32 +897,6 @@ impl Patch {
             o.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
         }
         Ok((o, status))
-    }
-
-    /// FASTSIM's displacement differences, as CONTACT's: x, y the
-    /// flexibilities L1/k, L2/k times the tractions (its springs, zero
-    /// outside contact); n the normal problem's A_nn p_n (with `solved`,
-    /// B = 0, from the solver `normal_pressure` left), else zero (a
-    /// Hertzian traction bound, B = 2, 3: CONTACT sets it to 0).
-    fn fastsim_displacements(
-        &mut self,
-        fields: &ElementFields,
-        out: &GridFastsimOutput,
-        solved: bool,
-    ) -> Result<[Vec<f64>; 3]> {
-        let [l1, l2, _] = out.flexibilities_m_per_pa.map(|l| l / out.slope_factor);
-        let ux = fields.traction_x_pa.iter().map(|p| l1 * p).collect();
-        let uy = fields.traction_y_pa.iter().map(|p| l2 * p).collect();
-        let un = match (&mut self.solver, solved) {
-            (Some((_, solver)), true) => {
-                let [_, _, un] = solver
-                    .displacement_differences(fields)
-                    .map_err(CntcError::from_contact)?;
-                un
-            }
-            _ => vec![0.0; fields.pressure_pa.len()],
-        };
-        Ok([ux, uy, un])
     }
 
     /// The exact normal problem on `grid` (FASTSIM's B = 0): the pressure,

@@ -263,7 +263,7 @@ impl RollingFrame {
 
     /// A per-element vector field (`x`, `y`) of the rolling grid on the
     /// problem's grid, turned back.
-    pub fn vectors_to_user(&self, x: &[f64], y: &[f64]) -> [Vec<f64>; 2] {
+    fn vectors_to_user(&self, x: &[f64], y: &[f64]) -> [Vec<f64>; 2] {
         self.turn_vectors(x, y, false)
     }
 

@@ -674,36 +674,6 @@ impl ContactSolver {
         Some(mu)
     }
 
-    /// The displacement differences u = A p (x, y, n) \[m\] of the
-    /// tractions of `fields`, a solution of this solver in the problem's
-    /// frame: body 1's elastic surface displacement minus body 2's under
-    /// the tractions on body 1, an interfacial layer's shear included
-    /// ([`crate::core::influence::HalfSpaceInfluence::with_layer_flexibility`]),
-    /// at every element of the grid, outside the contact area too, in the
-    /// problem's frame and element order. In contact u_n = approach - h
-    /// (the deformed distance h - approach + u_n is zero there); in a
-    /// transient step u is the displacement of the step's tractions.
-    /// One product of the solver's own operator
-    /// ([`displacement_differences`]); allocates its answer.
-    pub fn displacement_differences(
-        &mut self,
-        fields: &ElementFields,
-    ) -> Result<[Vec<f64>; 3], ContactError> {
-        let n = self.grid.len();
-        per_element("pressure_pa", &fields.pressure_pa, n)?;
-        per_element("traction_x_pa", &fields.traction_x_pa, n)?;
-        per_element("traction_y_pa", &fields.traction_y_pa, n)?;
-        let f = &self.frame;
-        let [px, py] = f.vectors_to_rolling(&fields.traction_x_pa, &fields.traction_y_pa);
-        let mut pn = vec![0.0; n];
-        f.field_to_rolling(&fields.pressure_pa, &mut pn);
-        let mut u = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
-        displacement_differences(&self.displacement, &mut self.ows, [&px, &py, &pn], &mut u);
-        let [ux, uy] = f.vectors_to_user(&u[0], &u[1]);
-        f.field_to_user(&u[2], &mut pn);
-        Ok([ux, uy, pn])
-    }
-
     /// The size of [`ContactSolver::save_state`]'s copy \[bytes\].
     pub fn state_bytes(&self) -> usize {
         let n = self.grid.len();
@@ -1761,8 +1731,10 @@ impl ContactSolver {
 }
 
 /// The flexibility of `problem`'s interfacial layer \[m/Pa\] (0 without
-/// one, and for a layer that validation refuses).
-fn layer_flexibility(problem: &ContactProblem) -> f64 {
+/// one, and for a layer that validation refuses): the one the kernels of
+/// [`ContactSolver::new`] include
+/// ([`KernelCache::get_layered`]).
+pub fn layer_flexibility(problem: &ContactProblem) -> f64 {
     let f = problem
         .settings
         .interfacial_layer
