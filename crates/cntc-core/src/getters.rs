@@ -122,10 +122,16 @@ pub fn field_data(o: &Outcome, u: Units, ifld: i32) -> Result<Vec<f64>> {
                 ))
             }
         },
+        // Body 1's minus body 2's whatever the convention: CONTACT scales
+        // UX, UY, UN by the length unit only, without the output body's
+        // sign (cntc_getfielddata); a left wheel's y is mirrored in the
+        // outcome already.
         field::UX | field::UY | field::UN => {
-            return Err(CntcError::NotSupported(format!(
-                "field {ifld} (displacement differences) is not available from this library"
-            )))
+            let d = o.displacements_m()?;
+            d[(ifld - field::UX) as usize]
+                .iter()
+                .map(|x| u.len_out(*x))
+                .collect()
         }
         // An elasto-plastic layer's yield limit and plastic deformation
         // (zero without one). CONTACT scales UPLSX, UPLSY by the length

@@ -76,7 +76,7 @@ use crate::config::{Config, FrictionLaw, MaterialModel};
 use crate::element::MAX_ICP;
 use crate::error::{CntcError, Result};
 use crate::flags;
-use crate::outcome::{Location, Outcome};
+use crate::outcome::{DisplacementSource, Location, Outcome};
 use crate::subsurface::Blocks;
 use crate::units::Units;
 
@@ -1329,7 +1329,7 @@ impl WheelRail {
         let mut globals = Vec::with_capacity(wheel.patches.len());
         let mut border = 0usize;
         for p in &wheel.patches {
-            let (o, g) = self.patch_outcome(
+            let (mut o, g) = self.patch_outcome(
                 p,
                 side,
                 input,
@@ -1350,6 +1350,18 @@ impl WheelRail {
                     sign: s,
                 },
             );
+            if o.has_fields() {
+                // CONTACT's US of the patch (its getters read the patch's
+                // data), computed when a getter asks: u = A p on the
+                // patch's grid with the wheel/rail solver's materials (its
+                // kernels, a hit of the process cache); the interaction of
+                // patches ignored, as CONTACT ignores it.
+                o.displacement_source = Some(DisplacementSource::Influence {
+                    body1: input.material.body1,
+                    body2: input.material.body2,
+                    layer_flexibility_m_per_pa: 0.0,
+                });
+            }
             border += o.border_elements;
             outcomes.push(o);
             globals.push(g);

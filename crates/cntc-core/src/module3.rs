@@ -27,12 +27,12 @@ use railcontact_solver::core::sensitivity::exact_jacobian;
 use railcontact_solver::core::solution::{
     ContactSolution, ElementState, IterationLimit, SolveStatus,
 };
-use railcontact_solver::core::solve::ContactSolver;
+use railcontact_solver::core::solve::{layer_flexibility, ContactSolver};
 use railcontact_solver::core::temperature::{flash_temperatures, ThermalBody, ThermalInput};
 
 use crate::config::{Config, FrictionLaw, MaterialModel, Thermal};
 use crate::error::{CntcError, Result};
-use crate::outcome::{HertzInfo, Outcome};
+use crate::outcome::{DisplacementSource, HertzInfo, Outcome};
 
 /// The potential contact area (`cntc_sethertzcontact`,
 /// `cntc_setpotcontact`), SI.
@@ -401,18 +401,20 @@ impl Patch {
         let t0 = Instant::now();
         let mut outcome = match self.config.material.model {
             MaterialModel::ModifiedFastsim(reduction) => {
-                let (outcome, status) =
+                let (mut outcome, status) =
                     self.fastsim(cache, &material, load, hertz, grid, gap, reduction)?;
                 if let Some(e) = status {
-                    self.outcome = Some(Outcome { hertz, ..outcome });
+                    outcome.hertz = hertz;
+                    self.outcome = Some(outcome);
                     return Err(e);
                 }
                 outcome
             }
             MaterialModel::Elastic | MaterialModel::InterfacialLayer(_) => {
-                let (outcome, status) = self.exact(cache, material, load, grid, gap)?;
+                let (mut outcome, status) = self.exact(cache, material, load, grid, gap)?;
                 if let Some(e) = status {
-                    self.outcome = Some(Outcome { hertz, ..outcome });
+                    outcome.hertz = hertz;
+                    self.outcome = Some(outcome);
                     return Err(e);
                 }
                 outcome
@@ -680,6 +682,13 @@ impl Patch {
             ]);
             outcome.temperature_k = Some([temperatures.body1_k, temperatures.body2_k]);
         }
+        // CONTACT's US, computed when a getter asks: u = A p of the
+        // tractions with the solver's materials and layer.
+        outcome.displacement_source = Some(DisplacementSource::Influence {
+            body1: problem.material.body1,
+            body2: problem.material.body2,
+            layer_flexibility_m_per_pa: layer_flexibility(&problem),
+        });
         outcome.fields = fields;
         outcome.friction_coefficient = fstat;
         outcome.normal_force_n = t.normal_force_n;
@@ -852,6 +861,13 @@ impl Patch {
         o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
         o.rigid_slip = Some(fs.rigid_slip());
+        let [l1, l2, _] = out.flexibilities_m_per_pa.map(|l| l / out.slope_factor);
+        o.displacement_source = Some(DisplacementSource::Fastsim {
+            flexibilities_m_per_pa: [l1, l2],
+            normal: pressure
+                .is_some()
+                .then_some([material.body1, material.body2]),
+        });
         if let GridFriction::SlipVelocity(_) = friction {
             o.mu = vec![out.friction_coefficient; grid.len()];
         }

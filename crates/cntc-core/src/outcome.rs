@@ -3,10 +3,18 @@
 //! [`Outcome`] per contact patch. The getters convert to the caller's units
 //! ([`crate::units::Units`]) when they read it.
 
+use std::sync::OnceLock;
+
+use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::influence::KernelKind;
 use railcontact_solver::core::layer::LayerFields;
+use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
+use railcontact_solver::core::solve::displacement_differences;
 use serde::{Deserialize, Serialize};
+
+use crate::error::{CntcError, Result};
 
 /// A solved contact patch.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -69,6 +77,18 @@ pub struct Outcome {
     /// Rigid slip per element (x, y): per rolled distance [-] in rolling,
     /// the shift \[m\] of a shift (T = 1); `None` without friction.
     pub rigid_slip: Option<[Vec<f64>; 2]>,
+    /// How [`Outcome::displacements_m`] computes the displacement
+    /// differences from `grid` and `fields` when a getter first asks for
+    /// them (CONTACT's US, which it computes after the solve in `soutpt`);
+    /// `None`: not available (the getters say why). The calculation does
+    /// not compute them: most callers never read them.
+    pub displacement_source: Option<DisplacementSource>,
+    /// The displacement differences once computed (never serialised: a
+    /// receiver computes them from the source as the sender would). The
+    /// calculation that makes an outcome sets `grid`, `fields` and the
+    /// source before any getter reads it; nothing changes them after.
+    #[serde(skip)]
+    displacements: OnceLock<[Vec<f64>; 3]>,
     /// Where a module 1 patch lies (module 3: `None`).
     pub location: Option<Location>,
     /// Wall and CPU time of the calculation \[s\].
@@ -88,6 +108,44 @@ pub struct HertzInfo {
     pub bb_m: f64,
     /// Scale factor of the potential contact area [-].
     pub scale: f64,
+}
+
+/// How an outcome's displacement differences (x, y, n) \[m\] follow from
+/// its grid and tractions: body 1's elastic surface displacement minus
+/// body 2's under the tractions on body 1, at every element of the grid,
+/// the exterior ones too (CONTACT computes those only with A = 2), in the
+/// outcome's frame and element order.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum DisplacementSource {
+    /// No tractions: zero everywhere.
+    Unloaded,
+    /// The exact model: u = A p, one product of the half-space influence
+    /// operator of the two materials on the outcome's grid (the solver's
+    /// operator: the influence functions do not depend on the rolling
+    /// direction the solver turns its grid to), an interfacial layer's
+    /// shear (M = 4) included, its plastic deformation not (that is
+    /// [`Outcome::layer`]). In contact u_n = approach - h; in a transient
+    /// step the displacement of the step's tractions.
+    Influence {
+        /// Body 1's material.
+        body1: Material,
+        /// Body 2's material.
+        body2: Material,
+        /// The interfacial layer's tangential flexibility \[m/Pa\] (0
+        /// without one).
+        layer_flexibility_m_per_pa: f64,
+    },
+    /// FASTSIM (M = 3), as CONTACT's: u_x, u_y the flexibilities L1/k,
+    /// L2/k times the tractions (zero outside contact); u_n the normal
+    /// row of u = A p with the two materials when the normal problem was
+    /// solved (B = 0), zero with a Hertzian traction bound (B = 2, 3, as
+    /// CONTACT sets it).
+    Fastsim {
+        /// L1/k, L2/k \[m/Pa\].
+        flexibilities_m_per_pa: [f64; 2],
+        /// Body 1's and body 2's materials with B = 0.
+        normal: Option<[Material; 2]>,
+    },
 }
 
 /// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
@@ -158,6 +216,9 @@ impl Outcome {
             max_temperature_k: None,
             temperature_k: None,
             rigid_slip: None,
+            // No tractions, no displacement.
+            displacement_source: Some(DisplacementSource::Unloaded),
+            displacements: OnceLock::new(),
             location: None,
             time_s: 0.0,
         }
@@ -166,6 +227,80 @@ impl Outcome {
     /// Whether per-element fields are available on [`Outcome::grid`].
     pub fn has_fields(&self) -> bool {
         self.fields.pressure_pa.len() == self.grid.len()
+    }
+
+    /// The displacement differences (x, y, n) \[m\] per element on
+    /// `grid` ([`DisplacementSource`]): computed on the first call from
+    /// `grid`, `fields` and [`Outcome::displacement_source`] (one product
+    /// of the influence operator, kernels from [`KernelCache::global`]),
+    /// the same afterwards. An error when the source is missing or does
+    /// not fit the fields.
+    pub fn displacements_m(&self) -> Result<&[Vec<f64>; 3]> {
+        if let Some(u) = self.displacements.get() {
+            return Ok(u);
+        }
+        let u = self.compute_displacements()?;
+        Ok(self.displacements.get_or_init(|| u))
+    }
+
+    fn compute_displacements(&self) -> Result<[Vec<f64>; 3]> {
+        let missing =
+            |why: &str| CntcError::NotSupported(format!("displacement differences: {why}"));
+        let n = self.grid.len();
+        let zero = || vec![0.0; n];
+        let f = &self.fields;
+        let p = [&f.traction_x_pa[..], &f.traction_y_pa, &f.pressure_pa];
+        match self.displacement_source {
+            None => return Err(missing("the last calculation did not leave them")),
+            Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
+            Some(_) => {}
+        }
+        if !p.iter().all(|c| c.len() == n) {
+            return Err(missing("no tractions on every element of the grid"));
+        }
+        // u = A p with the kernels of `grid` (a hit of the process cache
+        // after a calculation in this process).
+        let product = |body1, body2, layer: f64| -> Result<[Vec<f64>; 3]> {
+            if !(layer.is_finite() && layer >= 0.0) {
+                return Err(CntcError::Input(format!(
+                    "displacement differences: the layer flexibility {layer} is not a \
+                     finite value >= 0"
+                )));
+            }
+            let material = CombinedMaterial::new(body1, body2).map_err(CntcError::from_contact)?;
+            let kernels = KernelCache::global().get_layered(
+                &self.grid,
+                &material,
+                layer,
+                KernelKind::Displacement,
+            );
+            let mut u = [zero(), zero(), zero()];
+            displacement_differences(&kernels, &mut kernels.workspace(), p, &mut u);
+            Ok(u)
+        };
+        match self.displacement_source {
+            None | Some(DisplacementSource::Unloaded) => Ok([zero(), zero(), zero()]),
+            Some(DisplacementSource::Influence {
+                body1,
+                body2,
+                layer_flexibility_m_per_pa,
+            }) => product(body1, body2, layer_flexibility_m_per_pa),
+            Some(DisplacementSource::Fastsim {
+                flexibilities_m_per_pa: [l1, l2],
+                normal,
+            }) => {
+                let ux = f.traction_x_pa.iter().map(|p| l1 * p).collect();
+                let uy = f.traction_y_pa.iter().map(|p| l2 * p).collect();
+                let un = match normal {
+                    Some([body1, body2]) => {
+                        let [_, _, un] = product(body1, body2, 0.0)?;
+                        un
+                    }
+                    None => zero(),
+                };
+                Ok([ux, uy, un])
+            }
+        }
     }
 
     /// Contact, adhesion and slip areas \[m²\] of a contact area `area_m2`
@@ -200,5 +335,49 @@ impl Outcome {
             adh as f64 * da,
             slip as f64 * da,
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn displacements_are_computed_once_or_refused_with_a_typed_error() {
+        fn shared<T: Send + Sync + Clone>() {}
+        shared::<Outcome>();
+        let grid = Grid::new(6, 5, 1e-3, 1e-3, -3e-3, -2.5e-3).unwrap();
+        let o = Outcome::no_contact(grid, vec![0.0; 30], 0.0);
+        assert!(o
+            .displacements_m()
+            .unwrap()
+            .iter()
+            .flatten()
+            .all(|u| *u == 0.0));
+        let mut o = Outcome::no_contact(grid, vec![0.0; 30], 0.0);
+        o.displacement_source = None;
+        assert!(matches!(
+            o.displacements_m(),
+            Err(CntcError::NotSupported(m)) if m.contains("did not leave them")
+        ));
+        let mut o = Outcome::no_contact(grid, vec![0.0; 30], 0.0);
+        o.fields.pressure_pa[14] = 1e8;
+        o.fields.traction_y_pa.pop();
+        o.displacement_source = Some(DisplacementSource::Influence {
+            body1: Material::STEEL,
+            body2: Material::STEEL,
+            layer_flexibility_m_per_pa: 0.0,
+        });
+        assert!(matches!(
+            o.displacements_m(),
+            Err(CntcError::NotSupported(_))
+        ));
+        o.fields.traction_y_pa.push(0.0);
+        let first = o.displacements_m().unwrap() as *const _;
+        assert!(o.displacements_m().unwrap()[2][14] > 0.0);
+        assert_eq!(o.displacements_m().unwrap() as *const _, first);
+        // A clone carries the values computed.
+        let c = o.clone();
+        assert_eq!(c.displacements_m().unwrap(), o.displacements_m().unwrap());
     }
 }

@@ -16,7 +16,7 @@ use crate::error::{CntcError, Result};
 
 /// The version of the payload's encoding (of [`Call`], [`Request`] and
 /// [`Reply`] and the types they hold).
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 
 /// A calculation asked of the server.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -79,8 +79,9 @@ pub fn decode<'a, T: Deserialize<'a>>(bytes: &'a [u8], what: &str) -> Result<T> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::outcome::Outcome;
+    use crate::outcome::{DisplacementSource, Outcome};
     use railcontact_solver::core::grid::Grid;
+    use railcontact_solver::core::material::Material;
 
     #[test]
     fn a_reply_crosses_bit_for_bit() {
@@ -88,6 +89,16 @@ mod tests {
         let mut outcome = Outcome::no_contact(grid, vec![0.1 + 0.2; 20], 1.0 / 3.0);
         outcome.fields.pressure_pa[3] = f64::MIN_POSITIVE;
         outcome.fx_n = -0.0;
+        outcome.fields.pressure_pa[7] = 1e6 / 3.0;
+        outcome.fields.traction_x_pa[7] = -1e5 / 3.0;
+        outcome.displacement_source = Some(DisplacementSource::Influence {
+            body1: Material::STEEL,
+            body2: Material::STEEL,
+            layer_flexibility_m_per_pa: 1e-12 / 3.0,
+        });
+        // Computed before sending: the memo does not travel, the receiver
+        // computes the same from the source.
+        let sent = outcome.displacements_m().unwrap().clone();
         let reply = Reply {
             code: Err(WireError::from(&CntcError::Friction("mu < 0".into()))),
             result: CalculationResult::Patch {
@@ -106,6 +117,12 @@ mod tests {
             bits(&o.fields.pressure_pa),
             bits(&outcome.fields.pressure_pa)
         );
+        assert_eq!(o.displacement_source, outcome.displacement_source);
+        let received = o.displacements_m().unwrap();
+        assert!(sent[0][7] < 0.0 && sent[2][7] > 0.0);
+        for (d, e) in received.iter().zip(&sent) {
+            assert_eq!(bits(d), bits(e));
+        }
         assert_eq!(o.approach_m.to_bits(), (1.0f64 / 3.0).to_bits());
         assert_eq!(o.fx_n.to_bits(), (-0.0f64).to_bits());
         let e = CntcError::from(back.code.unwrap_err());

@@ -12,8 +12,9 @@
 //!
 //! Forces are in N and angles in rad in all three. Body 1 is the upper
 //! body of module 3 and the rail of module 1; under SIMPACK's convention
-//! forces, tractions, creepages, slips and displacement differences change
-//! sign (they are those on, or of, body 2). Wheel and rail profiles are in
+//! forces, tractions, creepages and slips change sign (they are those on,
+//! or of, body 2); displacement differences stay body 1's minus body 2's,
+//! as CONTACT's library returns them. Wheel and rail profiles are in
 //! mm whatever the convention (CONTACT's rule), unless their own scale
 //! factor says otherwise.
 

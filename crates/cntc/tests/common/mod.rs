@@ -199,7 +199,8 @@ pub fn calculate(ire: i32, c: [f64; 3]) -> i32 {
     ierror
 }
 
-/// Every value the getters of module 3 patch (ire, 1) give, as bits.
+/// Every value the getters of module 3 patch (ire, 1) give (the
+/// displacement differences too), as bits.
 pub fn patch_values(ire: i32) -> Vec<u64> {
     let icp = 1;
     let mut v = Vec::new();
@@ -220,8 +221,8 @@ pub fn patch_values(ire: i32) -> Vec<u64> {
         cntc_getnumelements(&ire, &icp, &mut mx, &mut my);
         let n = mx * my;
         assert!(n > 0, "no grid on element {ire}");
-        let mut arrays = vec![vec![0.0; n as usize]; 5];
-        let [pn, px, py, sx, sy] = &mut arrays[..] else {
+        let mut arrays = vec![vec![0.0; n as usize]; 8];
+        let [pn, px, py, sx, sy, un, ux, uy] = &mut arrays[..] else {
             unreachable!()
         };
         cntc_gettractions(
@@ -233,6 +234,14 @@ pub fn patch_values(ire: i32) -> Vec<u64> {
             py.as_mut_ptr(),
         );
         cntc_getmicroslip(&ire, &icp, &n, sx.as_mut_ptr(), sy.as_mut_ptr());
+        cntc_getdisplacements(
+            &ire,
+            &icp,
+            &n,
+            un.as_mut_ptr(),
+            ux.as_mut_ptr(),
+            uy.as_mut_ptr(),
+        );
         for a in &arrays {
             v.extend(a.iter().map(|x| x.to_bits()));
         }

@@ -1731,8 +1731,10 @@ impl ContactSolver {
 }
 
 /// The flexibility of `problem`'s interfacial layer \[m/Pa\] (0 without
-/// one, and for a layer that validation refuses).
-fn layer_flexibility(problem: &ContactProblem) -> f64 {
+/// one, and for a layer that validation refuses): the one the kernels of
+/// [`ContactSolver::new`] include
+/// ([`KernelCache::get_layered`]).
+pub fn layer_flexibility(problem: &ContactProblem) -> f64 {
     let f = problem
         .settings
         .interfacial_layer
@@ -1815,6 +1817,37 @@ fn newton_with_restarts(
         }
         newton = !newton;
     }
+}
+
+/// `u = A p` on the grid of `kernels` (a [`KernelKind::Displacement`] set):
+/// the displacement differences (x, y, n) \[m\] of the tractions (x, y, n)
+/// \[Pa\] `p`, every element, in one product (a traction component that
+/// is zero everywhere is not transformed; an output nothing feeds is
+/// zero). `ows` must fit `kernels` ([`KernelSet::fits`]).
+pub fn displacement_differences(
+    kernels: &KernelSet,
+    ows: &mut OperatorWorkspace,
+    [px, py, pn]: [&[f64]; 3],
+    [ux, uy, un]: &mut [Vec<f64>; 3],
+) {
+    let loaded = [(Component::X, px), (Component::Y, py), (Component::N, pn)];
+    let mut inputs: [(Component, &[f64]); 3] = loaded;
+    let mut used = 0;
+    for (c, p) in loaded {
+        if p.iter().any(|&v| v != 0.0) {
+            inputs[used] = (c, p);
+            used += 1;
+        }
+    }
+    kernels.apply(
+        ows,
+        &inputs[..used],
+        &mut [
+            (Component::X, ux.as_mut_slice()),
+            (Component::Y, uy.as_mut_slice()),
+            (Component::N, un.as_mut_slice()),
+        ],
+    );
 }
 
 /// Rigid slip of body 1 relative to body 2 at every element centre:
