@@ -46,9 +46,18 @@ pub struct RunningServer {
     stop: oneshot::Sender<()>,
     task: JoinHandle<Result<(), tonic::transport::Error>>,
     metrics_task: Option<(oneshot::Sender<()>, JoinHandle<std::io::Result<()>>)>,
+    /// The daily check of the TLS certificates' validity.
+    validity_task: Option<JoinHandle<()>>,
     health: tonic_health::server::HealthReporter,
     grace: Duration,
     pairs: Arc<PairRegistry>,
+}
+
+/// Seconds since 1970 now (0 on a clock before it).
+fn unix_now() -> i64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs() as i64)
 }
 
 /// Registers and prepares the built-in pair.
@@ -109,6 +118,11 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         tracing::warn!("{warning}");
     }
     let tls = tls::server_tls(config).map_err(|e| invalid(e.to_string()))?;
+    let validity = tls::Validity::of(config);
+    let with_tls = tls.is_some();
+    for w in validity.warnings(unix_now()) {
+        tracing::warn!("{w}");
+    }
     let tokens = match &config.auth_tokens_file {
         Some(path) => Some(Tokens::load(path).map_err(|e| invalid(e.to_string()))?),
         None => None,
@@ -274,6 +288,19 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         metrics,
     );
     let (stop, stopped) = oneshot::channel::<()>();
+    // The certificates' validity, again every day while the server runs.
+    let validity_task = with_tls.then(|| {
+        tokio::spawn(async move {
+            let day = Duration::from_secs(86_400);
+            let mut every_day = tokio::time::interval_at(tokio::time::Instant::now() + day, day);
+            loop {
+                every_day.tick().await;
+                for w in validity.warnings(unix_now()) {
+                    tracing::warn!("{w}");
+                }
+            }
+        })
+    });
     let task = tokio::spawn(
         builder
             // Every call passes the token check first (which says who the
@@ -318,6 +345,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         stop,
         task,
         metrics_task,
+        validity_task,
         health,
         grace: Duration::from_secs_f64(config.shutdown_grace_s),
         pairs,
@@ -339,6 +367,9 @@ impl RunningServer {
             .set_not_serving::<ContactServiceServer<ContactHandlers>>()
             .await;
         let _ = self.stop.send(());
+        if let Some(t) = &self.validity_task {
+            t.abort();
+        }
         let mut task = self.task;
         tokio::select! {
             done = tokio::time::timeout(self.grace, &mut task) => match done {
