@@ -17,6 +17,13 @@
 //!   `connection_first_call_timeout_s`; counted in
 //!   `railcontact_connections_timed_out_total`. Once a call came, HTTP/2
 //!   keepalive (`http2_keepalive_interval_s`) finds a peer that vanished;
+//! - logged (rate-limited, with the peer) and counted in
+//!   `railcontact_connections_failed_before_call_total` when it sent bytes
+//!   but ended before its first call: with TLS, a failed handshake (an
+//!   untrusted or expired certificate, a missing client certificate,
+//!   plaintext to the TLS port; tonic drops such connections silently),
+//!   without TLS a client speaking something else (TLS to this plaintext
+//!   port). A connection that sent nothing (a port check) is not;
 //! - closed when a handler aborts it ([`ConnState::abort`]): a streamed
 //!   response whose client read nothing for `stream_write_timeout_s`
 //!   ([`crate::service::streams`]). HTTP/2 keeps what it has buffered for
@@ -99,7 +106,34 @@ pub struct Conn {
     info: ConnInfo,
     first_call: Option<Pin<Box<Sleep>>>,
     metrics: Arc<Metrics>,
+    /// The server speaks TLS on it.
+    tls: bool,
+    /// The peer sent at least one byte.
+    sent_bytes: bool,
     _counted: QuotaGuard,
+}
+
+impl Drop for Conn {
+    fn drop(&mut self) {
+        let state = &self.info.state;
+        if !self.sent_bytes || state.called.load(Ordering::Relaxed) || state.is_aborted() {
+            return;
+        }
+        self.metrics.connection_failed_before_call();
+        if let Some(left_out) = CONNECTIONS_LOG.allow() {
+            let why = match self.tls {
+                true => {
+                    "its TLS handshake failed (a certificate the client does not trust or that \
+                     expired, a client certificate missing or not trusted under tls_client_ca, \
+                     or plaintext sent to this TLS port)"
+                }
+                false => {
+                    "it did not speak gRPC over plaintext HTTP/2 (TLS sent to this plaintext port?)"
+                }
+            };
+            tracing::info!(peer = %self.info.remote, left_out, "connection ended before its first call: {why}");
+        }
+    }
 }
 
 impl Connected for Conn {
@@ -166,7 +200,12 @@ impl AsyncRead for Conn {
             }
         }
         this.check(cx)?;
-        Pin::new(&mut this.io).poll_read(cx, buf)
+        let before = buf.filled().len();
+        let r = Pin::new(&mut this.io).poll_read(cx, buf);
+        if buf.filled().len() > before {
+            this.sent_bytes = true;
+        }
+        r
     }
 }
 
@@ -215,6 +254,8 @@ pub struct Incoming {
     proxies: TrustedProxies,
     first_call: Duration,
     metrics: Arc<Metrics>,
+    /// The server speaks TLS on these connections.
+    tls: bool,
     /// After an accept error such as too many open files: a pause, so that
     /// the loop does not spin while the error lasts.
     pause: Option<Pin<Box<Sleep>>>,
@@ -223,13 +264,15 @@ pub struct Incoming {
 impl Incoming {
     /// Accepts on `listener`, counting into `quota` (the connections of
     /// `proxies` against its server-wide cap only), closing connections
-    /// without a call after `first_call`.
+    /// without a call after `first_call`; `tls`: the server speaks TLS on
+    /// them (for the log of connections that fail before a call).
     pub fn new(
         listener: TcpListener,
         quota: Arc<Quota>,
         proxies: TrustedProxies,
         first_call: Duration,
         metrics: Arc<Metrics>,
+        tls: bool,
     ) -> Self {
         Self {
             listener,
@@ -237,6 +280,7 @@ impl Incoming {
             proxies,
             first_call,
             metrics,
+            tls,
             pause: None,
         }
     }
@@ -270,6 +314,8 @@ impl Stream for Incoming {
                                 info,
                                 first_call: Some(Box::pin(tokio::time::sleep(this.first_call))),
                                 metrics: this.metrics.clone(),
+                                tls: this.tls,
+                                sent_bytes: false,
                                 _counted: counted,
                             })));
                         }

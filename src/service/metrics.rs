@@ -28,6 +28,7 @@
 //! | `railcontact_connections_open` | | connections open (TLS handshakes under way included) |
 //! | `railcontact_streams_open` | | calls open (HTTP/2 streams), against `max_streams` |
 //! | `railcontact_connections_timed_out_total` | | connections closed because they sent no call within `connection_first_call_timeout_s` |
+//! | `railcontact_connections_failed_before_call_total` | | connections that sent bytes but ended before their first call: with TLS a failed handshake (an untrusted or expired certificate, a missing client certificate, plaintext to the TLS port), without it a client speaking something other than gRPC (TLS to a plaintext port) |
 //! | `railcontact_streams_write_timed_out_total` | | streamed responses (CreepCurve) ended because their client read nothing for `stream_write_timeout_s` |
 //!
 //! Metrics that the handlers count are fields of [`Metrics`], registered in
@@ -136,6 +137,7 @@ pub struct Metrics {
     connections_open: Gauge,
     streams_open: Gauge,
     connections_timed_out: Counter,
+    connections_failed_before_call: Counter,
     streams_write_timed_out: Counter,
 }
 
@@ -161,6 +163,7 @@ impl Default for Metrics {
             connections_open: Gauge::default(),
             streams_open: Gauge::default(),
             connections_timed_out: Counter::default(),
+            connections_failed_before_call: Counter::default(),
             streams_write_timed_out: Counter::default(),
         };
         let mut r = m.registry;
@@ -184,6 +187,7 @@ impl Default for Metrics {
             "railcontact_connections_open", "Connections open" => m.connections_open;
             "railcontact_streams_open", "Calls open (HTTP/2 streams), against max_streams" => m.streams_open;
             "railcontact_connections_timed_out", "Connections closed because they sent no call within connection_first_call_timeout_s" => m.connections_timed_out;
+            "railcontact_connections_failed_before_call", "Connections that sent bytes but ended before their first call (a failed TLS handshake)" => m.connections_failed_before_call;
             "railcontact_streams_write_timed_out", "Streamed responses ended because their client read nothing for stream_write_timeout_s" => m.streams_write_timed_out;
         );
         Self { registry: r, ..m }
@@ -264,6 +268,11 @@ impl Metrics {
     /// A connection closed for sending no call in time.
     pub fn connection_timed_out(&self) {
         self.connections_timed_out.inc();
+    }
+
+    /// A connection that sent bytes ended before its first call.
+    pub fn connection_failed_before_call(&self) {
+        self.connections_failed_before_call.inc();
     }
 
     /// A streamed response ended because its client read nothing.

@@ -286,6 +286,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         proxies,
         Duration::from_secs_f64(config.connection_first_call_timeout_s),
         metrics,
+        with_tls,
     );
     let (stop, stopped) = oneshot::channel::<()>();
     // The certificates' validity, again every day while the server runs.

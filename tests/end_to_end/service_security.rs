@@ -158,7 +158,27 @@ async fn health(channel: Channel) -> i32 {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn tls_refuses_plaintext_and_serves_clients_that_trust_its_ca() {
     let pki = Pki::new();
-    let server = server(pki.tls(false, ServeConfig::default())).await;
+    let server = server(pki.tls(
+        false,
+        ServeConfig {
+            metrics_listen: Some("127.0.0.1:0".parse().unwrap()),
+            ..ServeConfig::default()
+        },
+    ))
+    .await;
+    // Connections that ended before a call after sending bytes (a failed
+    // handshake), once the server has dropped them.
+    let failed = || async {
+        let page = metrics_page(server.metrics_addr.unwrap()).await;
+        page.lines()
+            .find_map(|l| l.strip_prefix("railcontact_connections_failed_before_call_total "))
+            .and_then(|v| v.trim().parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("no failed-connections counter in {page}"))
+    };
+    // A port check (connect, send nothing, close) is no failed handshake.
+    drop(tokio::net::TcpStream::connect(server.addr).await.unwrap());
+    tokio::time::sleep(std::time::Duration::from_millis(200)).await;
+    assert_eq!(failed().await, 0.0);
     // Plaintext HTTP/2 to a TLS port: no answer of the service.
     let plain = async {
         let channel = Endpoint::from_shared(format!("http://{}", server.addr))
@@ -175,6 +195,16 @@ async fn tls_refuses_plaintext_and_serves_clients_that_trust_its_ca() {
         .await
         .expect("the plaintext attempt ends");
     assert!(refused.is_err(), "a plaintext client was served");
+    // Counted (and logged) as a connection that failed before a call.
+    let mut counted = 0.0;
+    for _ in 0..50 {
+        counted = failed().await;
+        if counted >= 1.0 {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+    }
+    assert!(counted >= 1.0, "the failed handshake was not counted");
 
     let channel = pki.connect(&server, false).await.expect("TLS connects");
     let r = client(channel.clone(), None)
@@ -183,6 +213,7 @@ async fn tls_refuses_plaintext_and_serves_clients_that_trust_its_ca() {
         .expect("served over TLS");
     assert!(r.into_inner().result.is_some());
     assert_eq!(health(channel).await, 1, "SERVING");
+    assert_eq!(failed().await, counted, "a served TLS client is no failure");
     server.shutdown().await;
 }
 
