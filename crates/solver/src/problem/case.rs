@@ -998,11 +998,24 @@ impl GeometrySection {
                 ranges::ROLLING_RADIUS.check("geometry.wheel_rolling_radius_m", x)?;
                 let b = 0.5 * (1.0 / r + 1.0 / w);
                 if b.is_nan() || b <= 0.0 {
+                    // The concave one of the two is named: a wheel/rail
+                    // pair has a convex rail, so a concave rail is the
+                    // likely slip.
+                    let (field, hint) = match r < 0.0 {
+                        true => (
+                            "geometry.rail_lateral_radius_m",
+                            "a concave rail, R_yr < 0, must be wider than a convex wheel: |R_yr| > R_yw",
+                        ),
+                        false => (
+                            "geometry.wheel_lateral_radius_m",
+                            "a concave wheel, R_yw < 0, must be wider than a convex rail: |R_yw| > R_yr",
+                        ),
+                    };
                     return Err(bad(
-                        "geometry.wheel_lateral_radius_m",
+                        field,
                         format!(
-                            "the profiles do not touch in one point: 1/R_yr + 1/R_yw = {:.6e} 1/m must be > 0 \
-                             (a concave wheel, R_yw < 0, must be wider than a convex rail: |R_yw| > R_yr)",
+                            "the profiles do not touch in one point: 1/R_yr + 1/R_yw = {:.6e} 1/m must \
+                             be > 0 ({hint})",
                             2.0 * b
                         ),
                     ));
@@ -2940,6 +2953,26 @@ normal_force_n = 80000.0
             Err(CaseError::BadInput(m)) => m,
             other => panic!("expected bad input, got {other:?}"),
         }
+    }
+
+    /// Profiles that do not touch in one point: the concave one is named.
+    #[test]
+    fn a_non_touching_conformal_pair_names_its_concave_profile() {
+        let concave_rail = CASE_1.replace(
+            "rail_lateral_radius_m = 0.010",
+            "rail_lateral_radius_m = -1.0",
+        );
+        let m = bad_key(&concave_rail);
+        assert!(
+            m.contains("`geometry.rail_lateral_radius_m`") && m.contains("concave rail"),
+            "{m}"
+        );
+        let narrow_wheel = CASE_1.replace("-0.0101", "-0.0099");
+        let m = bad_key(&narrow_wheel);
+        assert!(
+            m.contains("`geometry.wheel_lateral_radius_m`") && m.contains("concave wheel"),
+            "{m}"
+        );
     }
 
     #[test]
