@@ -2583,6 +2583,21 @@ mod tests {
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
         let e = w.calculate(&cache).unwrap_err();
         assert!(e.to_string().contains("T = 2"), "{e}");
+        // M = 3 takes the exact pressure as its bound (B = 0) only.
+        assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
+        w.config
+            .set_material(3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
+            .unwrap();
+        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 2), None);
+        let e = w.calculate(&cache).unwrap_err();
+        assert!(e.to_string().contains("B = 2"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 0), None);
+        // T = 0 has no creep forces to prescribe.
+        assert_eq!(w.config.set_flag(1, flags::IC_TANG, 0), None);
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);
+        let e = w.calculate(&cache).unwrap_err();
+        assert!(e.to_string().contains("T = 3"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         let e = w
             .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
             .unwrap_err();

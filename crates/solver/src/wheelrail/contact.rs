@@ -3545,6 +3545,70 @@ mod tests {
         assert_eq!(scratch.heap_bytes(), search);
     }
 
+    /// The exact patches' other tangential problems: frictionless (no
+    /// creep forces, the vertical force the normal force's part) and grid
+    /// FASTSIM on the exact pressure (tractions within mu p_n; the vertical
+    /// load met with its creep forces; with Kalker's flexibilities near
+    /// Kalker's exact normal and creep forces here). at 2 mm, one
+    /// patch a wheel.
+    #[test]
+    fn exact_patches_solve_frictionless_or_with_fastsim() {
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        let solve = |tangential| {
+            let mut input = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
+            input.settings.exact_tangential = tangential;
+            solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap()
+        };
+        let kalker = solve(ExactTangential::Kalker);
+        let frictionless = solve(ExactTangential::Frictionless);
+        let fastsim = solve(ExactTangential::Fastsim(SlopeReduction::NONE));
+        for (k, ((wk, w0), wf)) in kalker
+            .wheels
+            .iter()
+            .zip(&frictionless.wheels)
+            .zip(&fastsim.wheels)
+            .enumerate()
+        {
+            let (pk, p0, pf) = (&wk.patches[0], &w0.patches[0], &wf.patches[0]);
+            assert_eq!([p0.fx_n, p0.fs_n, p0.mz_nm], [0.0; 3], "wheel {k}");
+            let f0 = p0.solution.as_ref().unwrap();
+            assert!(f0.fields.traction_x_pa.iter().all(|&t| t == 0.0));
+            for w in [w0, wf] {
+                assert!(
+                    (w.force_track_n[2] - 1e4).abs() < 0.1,
+                    "wheel {k}: {:?}",
+                    w.force_track_n
+                );
+            }
+            let ff = &pf.solution.as_ref().unwrap().fields;
+            // The same load, creep forces of about the same size.
+            let fn_ratio = pf.normal_force_n / pk.normal_force_n;
+            assert!(
+                (fn_ratio - 1.0).abs() < 5e-3,
+                "wheel {k}: FN ratio {fn_ratio}"
+            );
+            for i in 0..ff.pressure_pa.len() {
+                let t = ff.traction_x_pa[i].hypot(ff.traction_y_pa[i]);
+                assert!(
+                    t <= 0.3 * ff.pressure_pa[i] * (1.0 + 1e-9),
+                    "wheel {k}, element {i}"
+                );
+            }
+            let scale = 0.3 * pk.normal_force_n;
+            for (a, b) in [(pf.fx_n, pk.fx_n), (pf.fs_n, pk.fs_n)] {
+                assert!(
+                    (a - b).abs() < 0.1 * scale,
+                    "wheel {k}: FASTSIM {a}, Kalker {b}"
+                );
+            }
+        }
+        let mut input = mbench_a22_input(2.0, None, None, WheelRailModel::HertzFastsim);
+        input.settings.exact_tangential = ExactTangential::Frictionless;
+        let e = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap_err();
+        assert!(e.to_string().contains("exact_tangential"), "{e}");
+    }
+
     /// A wheel on its flange (contact angle 1.05 rad) at a small vertical
     /// load and a large lateral creepage (0.42 m/s sideways at 1.59 m/s):
     /// its creep force slides at 0.55 of the normal force, whose vertical
