@@ -38,7 +38,25 @@
 //! * Friction: L = 0 and the falling laws L = 2-5 (exact model), V = 0,
 //!   and V = 1 (by contact angle, CONTACT's angles of the right-hand side,
 //!   negative at the gauge face) as the solver's friction table.
-//! * Steady rolling only (T = 3).
+//! * Steady rolling (T = 3), or the normal problem only (T = 0: the
+//!   solver's `ExactTangential::Frictionless`; zero tractions, creep
+//!   forces and creepages, the contact area all adhesion, as CONTACT
+//!   reports them). Transient contact (T = 1, 2) is refused.
+//! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
+//!   (CONTACT's modified FASTSIM on each patch, the solver's
+//!   `ExactTangential::Fastsim`): the normal problem of each patch exact
+//!   as with M = 0, then FASTSIM on the patch's own grid with that
+//!   pressure as its traction bound (B = 0, the only bound allowed here;
+//!   CONTACT's user guide: B = 2-4 are not available in module 1), Kalker's
+//!   three flexibilities of the equivalent ellipse of the loaded elements
+//!   (Kik and Piotrowski's, CONTACT's `equiv_ellipse`: CONTACT's module 1
+//!   patches are non-Hertzian, IPOTCN = 1), blended, with the slope
+//!   reduction k0, alpha_inf, beta and the friction law at the global slip
+//!   velocity, as module 3 runs it on a non-Hertzian grid. As in CONTACT's
+//!   `panprc`, FASTSIM's tractions do not act back on the pressure; the
+//!   load iteration meets FZ with FASTSIM's creep forces included (CONTACT
+//!   iterates on the total force in the track frame). V = 1 (friction by
+//!   contact angle) is refused with M = 3.
 //!
 //! # Outcomes
 //!
@@ -65,11 +83,11 @@ use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSe
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
-    parse_profile, pitch_force_tolerance, solve_wheelset, FrictionAxis, FrictionTable, LengthUnit,
-    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileKind,
-    ProfileSpline, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
-    WheelsetPosition, WheelsetVelocity,
+    parse_profile, pitch_force_tolerance, solve_wheelset, ExactTangential, FrictionAxis,
+    FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
+    ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side, SplineOptions, TrackData,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelsetData, WheelsetPosition, WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1009,14 +1027,22 @@ impl WheelRail {
     fn check_configuration(&self) -> Result<()> {
         self.config.check_supported()?;
         let d = &self.config.digits;
-        if d.tang != 3 {
+        if d.tang != 0 && d.tang != 3 {
             return Err(CntcError::NotSupported(format!(
-                "T = {} (CNTC_ic_tang) in module 1: only steady rolling (T = 3) is supported",
+                "T = {} (CNTC_ic_tang, transient contact) in module 1 is not supported: steady \
+                 rolling (T = 3) or the normal problem only (T = 0)",
                 d.tang
             )));
         }
         match d.force {
             0 => {}
+            1 if d.tang == 0 => {
+                return Err(CntcError::Input(
+                    "F = 1 (a prescribed total force FX_WS) needs creep forces: T = 3 (T = 0 \
+                     solves the normal problem only)"
+                        .into(),
+                ))
+            }
             1 => {
                 if d.norm != 1 {
                     return Err(CntcError::Input(
@@ -1054,11 +1080,21 @@ impl WheelRail {
             ));
         }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
-            return Err(CntcError::NotSupported(
-                "M = 3 (modified FASTSIM) in module 1 is not supported: the wheel/rail patches \
-                 are solved with Kalker's exact theory (M = 0)"
-                    .into(),
-            ));
+            if d.bound != 0 {
+                return Err(CntcError::NotSupported(format!(
+                    "B = {} (CNTC_ic_bound) with M = 3 in module 1 is not supported: FASTSIM on \
+                     a wheel/rail patch takes its exact normal problem's pressure as the \
+                     traction bound (B = 0); CONTACT's B = 2-4 are not available in module 1",
+                    d.bound
+                )));
+            }
+            if d.tang == 3 && self.config.friction_by_angle.is_some() {
+                return Err(CntcError::NotSupported(
+                    "V = 1 (friction varying with the contact angle) with M = 3 in module 1 is \
+                     not supported: FASTSIM takes one friction law per patch (V = 0)"
+                        .into(),
+                ));
+            }
         }
         if d.heat == 3 {
             return Err(CntcError::NotSupported(
@@ -1281,6 +1317,13 @@ impl WheelRail {
                     ..SearchSettings::default()
                 },
                 max_grid_elements: self.max_grid_elements.unwrap_or(usize::MAX),
+                exact_tangential: match (self.config.digits.tang, self.config.material.model) {
+                    (0, _) => ExactTangential::Frictionless,
+                    (_, MaterialModel::ModifiedFastsim(reduction)) => {
+                        ExactTangential::Fastsim(reduction)
+                    }
+                    _ => ExactTangential::Kalker,
+                },
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: None,
@@ -1487,8 +1530,18 @@ impl WheelRail {
             .filter(|h| h.is_finite())
             .unwrap_or(0.0);
         let mut out_fields = out_fields;
+        let frictionless = self.config.digits.tang == 0;
         if let Some(fl) = out_fields.as_mut() {
             fl.gap_m.iter_mut().for_each(|h| *h -= hmin);
+            if frictionless {
+                // Without friction CONTACT counts the contact area as
+                // adhesion (as module 3 does).
+                for st in fl.state.iter_mut() {
+                    if *st == ElementState::Slip {
+                        *st = ElementState::Adhesion;
+                    }
+                }
+            }
         }
         let gap = out_fields
             .as_ref()
@@ -1510,7 +1563,12 @@ impl WheelRail {
         o.fx_n = p.fx_n;
         o.fy_n = s * p.fs_n;
         o.mz_nm = s * p.mz_nm;
-        o.creepages = [p.creepage_long, s * p.creepage_lat, s * p.spin_per_m];
+        // CONTACT reports zero creepages without a tangential problem.
+        o.creepages = if frictionless {
+            [0.0; 3]
+        } else {
+            [p.creepage_long, s * p.creepage_lat, s * p.spin_per_m]
+        };
         o.is_shift = false;
         o.rolling_speed_m_per_s = p.rolling_speed_m_per_s;
         o.max_pressure_pa = p.max_pressure_pa;
@@ -2537,6 +2595,21 @@ mod tests {
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
         let e = w.calculate(&cache).unwrap_err();
         assert!(e.to_string().contains("T = 2"), "{e}");
+        // M = 3 takes the exact pressure as its bound (B = 0) only.
+        assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
+        w.config
+            .set_material(3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
+            .unwrap();
+        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 2), None);
+        let e = w.calculate(&cache).unwrap_err();
+        assert!(e.to_string().contains("B = 2"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 0), None);
+        // T = 0 has no creep forces to prescribe.
+        assert_eq!(w.config.set_flag(1, flags::IC_TANG, 0), None);
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);
+        let e = w.calculate(&cache).unwrap_err();
+        assert!(e.to_string().contains("T = 3"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         let e = w
             .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
             .unwrap_err();

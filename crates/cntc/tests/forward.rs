@@ -12,7 +12,10 @@ mod common;
 
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
-use common::{calculate, mbench_right_wheel, mode, patch_values, set_flags, tractcurv, TestServer};
+use common::{
+    calculate, mbench_right_wheel, mbench_right_wheel_with, mode, patch_values, set_flags,
+    tractcurv, TestServer,
+};
 use contact_addon::ffi::*;
 use contact_addon::flags::{self, err};
 
@@ -101,6 +104,16 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
         }
         // F = 1: the pitch rate found for a total force FX_WS.
         out.push(mbench_right_wheel(ire, 3.0, Some(1500.0)));
+        // M = 3 (modified FASTSIM on each patch): tread and flange; T = 0.
+        // Every patch getter of the first patch too (fields included).
+        for (y, tang, fastsim) in [
+            (2.0, 3, Some([0.54, 0.02, 0.62])),
+            (7.5, 3, Some([0.54, 0.02, 0.62])),
+            (7.5, 0, None),
+        ] {
+            out.push(mbench_right_wheel_with(ire, y, None, tang, fastsim));
+            out.push((0, patch_values(ire)));
+        }
         out
     });
 }

@@ -258,6 +258,18 @@ pub fn patch_values(ire: i32) -> Vec<u64> {
 /// found for the total force `fx_ws` [N]: ierror, and the global forces,
 /// every patch's location and the wheelset's velocity as bits.
 pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64>) {
+    mbench_right_wheel_with(ire, y, fx_ws, 3, None)
+}
+
+/// [`mbench_right_wheel`] with the T digit `tang` and, with `Some`, M = 3
+/// (modified FASTSIM) with the slope reduction [k0, alpha_inf, beta].
+pub fn mbench_right_wheel_with(
+    ire: i32,
+    y: f64,
+    fx_ws: Option<f64>,
+    tang: i32,
+    fastsim: Option<[f64; 3]>,
+) -> (i32, Vec<u64>) {
     let icp = -1;
     let profiles = package().join("../solver/profiles");
     set_flags(
@@ -266,7 +278,7 @@ pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64
         &[
             (flags::IF_UNITS, flags::UN_CNTC),
             (flags::IC_CONFIG, 1),
-            (flags::IC_TANG, 3),
+            (flags::IC_TANG, tang),
             (flags::IC_PVTIME, 2),
             (flags::IC_NORM, 1),
             (flags::IC_DISCNS, 2),
@@ -276,7 +288,16 @@ pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64
     let mut ierror = 12345;
     let mut v = Vec::new();
     unsafe {
-        cntc_setmaterialparameters(&ire, &icp, &0, &4, [0.28, 0.28, 82000.0, 82000.0].as_ptr());
+        match fastsim {
+            None => {
+                let mat = [0.28, 0.28, 82000.0, 82000.0];
+                cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+            }
+            Some([k0, alpha, beta]) => {
+                let mat = [0.28, 0.28, 82000.0, 82000.0, k0, alpha, beta];
+                cntc_setmaterialparameters(&ire, &icp, &3, &7, mat.as_ptr());
+            }
+        }
         cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
         cntc_setverticalforce(&ire, &10000.0);
         let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];

@@ -83,6 +83,10 @@ use crate::core::cache::KernelCache;
 use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
+use crate::core::fastsim_grid::{
+    equivalent_ellipse, CreepInterpolation, GridFastsim, GridFastsimInput, GridFlexibility,
+    GridFriction, GridPressure, RollingSense,
+};
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
@@ -241,6 +245,34 @@ impl WheelRailModel {
     }
 }
 
+/// The tangential problem of the exact model's patches
+/// ([`WheelRailSettings::exact_tangential`]; other models ignore it).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ExactTangential {
+    /// Kalker's exact theory on the patch's grid, coupled to the normal
+    /// problem as the materials need.
+    #[default]
+    Kalker,
+    /// None (CONTACT's `T = 0`): the frictionless normal problem only, the
+    /// tractions and creep forces zero; the vertical force is the normal
+    /// force's part.
+    Frictionless,
+    /// CONTACT's modified FASTSIM on the patch's own grid (its `M = 3`
+    /// with `B = 0` on a non-Hertzian patch, [`crate::core::fastsim_grid`]):
+    /// the frictionless normal problem as [`ExactTangential::Frictionless`],
+    /// then FASTSIM with that pressure as its traction bound, Kalker's
+    /// three flexibilities of the loaded elements' equivalent ellipse
+    /// ([`equivalent_ellipse`]) blended as CONTACT blends them, this slope
+    /// reduction, and the patch's friction (Coulomb with its kinetic
+    /// coefficient, or its slip-velocity law at the global slip velocity
+    /// `V sqrt(xi^2 + eta^2)`, `V` the patch's rolling speed). The
+    /// tangential tractions do not act back on the pressure; the load
+    /// iteration meets the vertical force with FASTSIM's creep forces
+    /// included, as with Kalker's theory. No friction table
+    /// ([`WheelRailInput::friction_table`]).
+    Fastsim(SlopeReduction),
+}
+
 /// Strips across a patch of model `kik_piotrowski`
 /// ([`crate::core::kikpiotrowski::DEFAULT_STRIPS`]; FASTSIM takes the 40
 /// elements per strip of the wheel/rail solver's).
@@ -308,6 +340,9 @@ pub struct WheelRailSettings {
     /// rigid velocities (default on the actual surfaces, see
     /// [`RigidSlipSurface`]).
     pub rigid_slip: RigidSlipSurface,
+    /// Model `exact`: how its patches solve the tangential problem
+    /// (default Kalker's exact theory).
+    pub exact_tangential: ExactTangential,
 }
 
 impl Default for WheelRailSettings {
@@ -324,6 +359,7 @@ impl Default for WheelRailSettings {
             polach: PolachParameters::default(),
             modified_fastsim: SlopeReduction::TRACTCURV,
             rigid_slip: RigidSlipSurface::default(),
+            exact_tangential: ExactTangential::Kalker,
         }
     }
 }
@@ -619,6 +655,9 @@ pub(crate) struct PatchWork {
     /// Time of this patch's exact solves in their normal problems and the
     /// rest \[s\] ([`Timing::normal_s`], [`Timing::tangential_s`]).
     solver_s: [f64; 2],
+    /// FASTSIM's buffers on an exact patch's grid
+    /// ([`ExactTangential::Fastsim`]), built at its first frictional solve.
+    grid_fastsim: Option<Box<GridFastsim>>,
 }
 
 // One per patch and few patches per wheel: the size of the exact variant
@@ -708,10 +747,14 @@ impl PatchWork {
         }
         match &mut self.kind {
             PatchKind::Exact { problem, solver } => {
+                let mode = input.settings.exact_tangential;
+                // Kalker's tangential problem in the core solver; else the
+                // normal problem only (FASTSIM follows on its pressure).
+                let kalker = frictional && mode == ExactTangential::Kalker;
                 if let Some(pn) = self.warm_pressure.take() {
                     solver.set_pressure_warm_start(&pn)?;
                 }
-                if frictional {
+                if kalker {
                     if let Some([px, py]) = self.warm_tractions.take() {
                         solver.set_traction_warm_start(&px, &py)?;
                     }
@@ -720,18 +763,30 @@ impl PatchWork {
                     }
                 }
                 problem.load = load;
-                problem.kinematics = if frictional {
+                problem.kinematics = if kalker {
                     Kinematics::SteadyRolling(self.creep)
                 } else {
                     Kinematics::Frictionless
                 };
                 problem.settings = accuracy.settings(&input.settings.solver);
-                let sol = solver
+                let mut sol = solver
                     .solve(problem)?
                     .pop()
                     .ok_or(ContactError::NoContact {
                         detail: "no solution".into(),
                     })?;
+                if let (true, ExactTangential::Fastsim(reduction)) = (frictional, mode) {
+                    let t0 = Instant::now();
+                    let on = FastsimOn {
+                        grid: &problem.grid,
+                        creep: &self.creep,
+                        speed: self.speed,
+                        friction: &self.friction,
+                        reduction,
+                    };
+                    on.solve(&mut self.grid_fastsim, &mut sol, input)?;
+                    self.solver_s[1] += t0.elapsed().as_secs_f64();
+                }
                 let info = &sol.info;
                 self.solver_s[0] += info.normal_time_s;
                 self.solver_s[1] += info.solve_time_s - info.normal_time_s;
@@ -950,6 +1005,89 @@ impl PatchWork {
             }
         }
         Ok(())
+    }
+}
+
+/// FASTSIM on an exact patch's grid ([`ExactTangential::Fastsim`]).
+struct FastsimOn<'a> {
+    grid: &'a Grid,
+    creep: &'a Creepages,
+    /// The patch's rolling speed \[m/s\].
+    speed: f64,
+    friction: &'a Friction,
+    reduction: SlopeReduction,
+}
+
+impl FastsimOn<'_> {
+    /// Replaces the tangential part of `sol`, a frictionless solution on
+    /// the grid, by FASTSIM's with its pressure as the traction bound:
+    /// tractions, slips, element states and the totals they give. Without
+    /// loaded elements it is left as it is. Allocates only the solver's
+    /// buffers at its first use on a grid.
+    fn solve(
+        &self,
+        buffers: &mut Option<Box<GridFastsim>>,
+        sol: &mut ContactSolution,
+        input: &WheelRailInput,
+    ) -> Result<(), ContactError> {
+        let fl = &mut sol.fields;
+        let Some([a, b]) = equivalent_ellipse(self.grid, &fl.pressure_pa) else {
+            return Ok(());
+        };
+        let fs = match buffers {
+            Some(fs) if fs.grid() == self.grid => fs,
+            _ => buffers.insert(Box::new(GridFastsim::new(*self.grid)?)),
+        };
+        let friction = match self.friction.slip_velocity_law {
+            Some(law) => GridFriction::SlipVelocity(law),
+            None => GridFriction::Coulomb(self.friction.kinetic_coefficient),
+        };
+        let t = &mut sol.totals;
+        let out = fs.solve(
+            &GridFastsimInput {
+                semi_axis_x_m: a,
+                semi_axis_y_m: b,
+                normal_force_n: t.normal_force_n,
+                shear_modulus_pa: input.material.shear_modulus_pa,
+                poisson_ratio: input.material.poisson_ratio,
+                creepage_long: self.creep.creepage_long,
+                creepage_lat: self.creep.creepage_lat,
+                spin_per_m: self.creep.spin_per_m,
+                rolling_speed_m_per_s: self.speed,
+                friction,
+                reduction: self.reduction,
+                flexibility: GridFlexibility::Kalker { blending: true },
+                // The exact patches roll along +x (rolling direction 0).
+                rolling: RollingSense::PlusX,
+                creep_table: CreepInterpolation::Contact,
+            },
+            GridPressure::Given(&fl.pressure_pa),
+        )?;
+        fill(&mut fl.traction_x_pa, fs.traction_x_pa());
+        fill(&mut fl.traction_y_pa, fs.traction_y_pa());
+        fill(&mut fl.slip_x, fs.slip_x());
+        fill(&mut fl.slip_y, fs.slip_y());
+        fill(&mut fl.state, fs.state());
+        t.fx_n = out.fx_n;
+        t.fy_n = out.fy_n;
+        t.mz_nm = out.mz_nm;
+        t.max_traction_pa = out.max_traction_pa;
+        t.tgamma_n = out.tgamma_n;
+        t.adhesion_fraction = if out.contact_area_m2 > 0.0 {
+            out.adhesion_area_m2 / out.contact_area_m2
+        } else {
+            0.0
+        };
+        Ok(())
+    }
+}
+
+/// Copies `src` into `dst`, in place when their lengths agree.
+fn fill<T: Copy>(dst: &mut Vec<T>, src: &[T]) {
+    if dst.len() == src.len() {
+        dst.copy_from_slice(src);
+    } else {
+        *dst = src.to_vec();
     }
 }
 
@@ -1652,6 +1790,28 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             ));
         }
     }
+    if input.settings.exact_tangential != ExactTangential::Kalker
+        && input.settings.model != WheelRailModel::Exact
+    {
+        return Err(WheelRailError::invalid(
+            "exact_tangential",
+            format!(
+                "a frictionless or FASTSIM tangential problem of exact patches needs model = \
+                 \"exact\", not \"{}\"",
+                input.settings.model.name()
+            ),
+        ));
+    }
+    if let ExactTangential::Fastsim(reduction) = input.settings.exact_tangential {
+        reduction.validate_as("exact_tangential")?;
+        if input.friction_table.is_some() {
+            return Err(WheelRailError::invalid(
+                "exact_tangential",
+                "FASTSIM on the exact patches takes one friction law per patch, not a friction \
+                 table",
+            ));
+        }
+    }
     if let Some(law) = input.friction.slip_velocity_law {
         if input.settings.model != WheelRailModel::Exact {
             return Err(WheelRailError::invalid(
@@ -2153,6 +2313,7 @@ fn build_patch(
         warm_tractions: None,
         warm_slip_velocity: None,
         solver_s: [0.0; 2],
+        grid_fastsim: None,
     })
 }
 
@@ -2235,6 +2396,7 @@ pub(crate) fn hertz_patch(
         warm_tractions: None,
         warm_slip_velocity: None,
         solver_s: [0.0; 2],
+        grid_fastsim: None,
     }
 }
 
@@ -3381,6 +3543,70 @@ mod tests {
         );
         scratch.release_solvers();
         assert_eq!(scratch.heap_bytes(), search);
+    }
+
+    /// The exact patches' other tangential problems: frictionless (no
+    /// creep forces, the vertical force the normal force's part) and grid
+    /// FASTSIM on the exact pressure (tractions within mu p_n; the vertical
+    /// load met with its creep forces; with Kalker's flexibilities near
+    /// Kalker's exact normal and creep forces here). A-2.2 at 2 mm, one
+    /// patch a wheel.
+    #[test]
+    fn exact_patches_solve_frictionless_or_with_fastsim() {
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        let solve = |tangential| {
+            let mut input = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
+            input.settings.exact_tangential = tangential;
+            solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap()
+        };
+        let kalker = solve(ExactTangential::Kalker);
+        let frictionless = solve(ExactTangential::Frictionless);
+        let fastsim = solve(ExactTangential::Fastsim(SlopeReduction::NONE));
+        for (k, ((wk, w0), wf)) in kalker
+            .wheels
+            .iter()
+            .zip(&frictionless.wheels)
+            .zip(&fastsim.wheels)
+            .enumerate()
+        {
+            let (pk, p0, pf) = (&wk.patches[0], &w0.patches[0], &wf.patches[0]);
+            assert_eq!([p0.fx_n, p0.fs_n, p0.mz_nm], [0.0; 3], "wheel {k}");
+            let f0 = p0.solution.as_ref().unwrap();
+            assert!(f0.fields.traction_x_pa.iter().all(|&t| t == 0.0));
+            for w in [w0, wf] {
+                assert!(
+                    (w.force_track_n[2] - 1e4).abs() < 0.1,
+                    "wheel {k}: {:?}",
+                    w.force_track_n
+                );
+            }
+            let ff = &pf.solution.as_ref().unwrap().fields;
+            // The same load, creep forces of about the same size.
+            let fn_ratio = pf.normal_force_n / pk.normal_force_n;
+            assert!(
+                (fn_ratio - 1.0).abs() < 5e-3,
+                "wheel {k}: FN ratio {fn_ratio}"
+            );
+            for i in 0..ff.pressure_pa.len() {
+                let t = ff.traction_x_pa[i].hypot(ff.traction_y_pa[i]);
+                assert!(
+                    t <= 0.3 * ff.pressure_pa[i] * (1.0 + 1e-9),
+                    "wheel {k}, element {i}"
+                );
+            }
+            let scale = 0.3 * pk.normal_force_n;
+            for (a, b) in [(pf.fx_n, pk.fx_n), (pf.fs_n, pk.fs_n)] {
+                assert!(
+                    (a - b).abs() < 0.1 * scale,
+                    "wheel {k}: FASTSIM {a}, Kalker {b}"
+                );
+            }
+        }
+        let mut input = mbench_a22_input(2.0, None, None, WheelRailModel::HertzFastsim);
+        input.settings.exact_tangential = ExactTangential::Frictionless;
+        let e = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap_err();
+        assert!(e.to_string().contains("exact_tangential"), "{e}");
     }
 
     /// A wheel on its flange (contact angle 1.05 rad) at a small vertical

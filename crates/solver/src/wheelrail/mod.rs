@@ -89,8 +89,8 @@ pub mod wheelset;
 
 pub use contact::{
     pitch_force_tolerance, solve_wheelset, solve_wheelset_warm, wheelrail_solver_settings,
-    PatchResult, PatchTractions, WarmStart, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailSettings, WheelRailSolution, WheelResult,
+    ExactTangential, PatchResult, PatchTractions, WarmStart, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
 pub use pair_cache::{PairCache, PairCacheStats};
