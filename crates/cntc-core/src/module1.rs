@@ -1399,10 +1399,13 @@ impl WheelRail {
                 // patch's grid with the wheel/rail solver's materials (its
                 // kernels, a hit of the process cache); the interaction of
                 // patches ignored, as CONTACT ignores it.
-                o.displacement_source = Some(DisplacementSource::Influence {
-                    body1: input.material.body1,
-                    body2: input.material.body2,
-                    layer_flexibility_m_per_pa: 0.0,
+                o.displacement_source = Some(match input.settings.exact_tangential {
+                    ExactTangential::Fastsim(_) => DisplacementSource::WheelRailFastsim,
+                    _ => DisplacementSource::Influence {
+                        body1: input.material.body1,
+                        body2: input.material.body2,
+                        layer_flexibility_m_per_pa: 0.0,
+                    },
                 });
             }
             border += o.border_elements;
@@ -2306,6 +2309,27 @@ mod tests {
             (ours - contact).abs() <= tol,
             "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
         );
+    }
+
+    /// A patch solved with FASTSIM (M = 3) refuses its displacement
+    /// differences, naming M = 3; the exact model's (M = 0) gives them.
+    #[test]
+    fn displacements_of_fastsim_patches_are_refused_by_name() {
+        let cache = KernelCache::default();
+        let mut w = mbench(1);
+        w.set_wheelset_position(2, &[0.0, 2.5, 0.0, -0.0001457, 0.006, 0.0])
+            .unwrap();
+        w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3455627])
+            .unwrap();
+        w.calculate(&cache).unwrap();
+        assert!(w.outcomes[0].displacements_m().is_ok());
+        w.config
+            .set_material(3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
+            .unwrap();
+        w.calculate(&cache).unwrap();
+        let e = w.outcomes[0].displacements_m().unwrap_err();
+        assert_eq!(e.ierror(), crate::flags::err::NOT_SUPPORTED, "{e}");
+        assert!(e.detail().contains("M = 3"), "{e}");
     }
 
     /// Elements that place the same profiles on the same track share one

@@ -146,6 +146,10 @@ pub enum DisplacementSource {
         /// Body 1's and body 2's materials with B = 0.
         normal: Option<[Material; 2]>,
     },
+    /// A module 1 patch solved with FASTSIM (M = 3): the solver does not
+    /// report the flexibilities of its patches, so the getters refuse
+    /// rather than give the exact model's u = A p.
+    WheelRailFastsim,
 }
 
 /// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
@@ -253,6 +257,13 @@ impl Outcome {
         match self.displacement_source {
             None => return Err(missing("the last calculation did not leave them")),
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
+            Some(DisplacementSource::WheelRailFastsim) => {
+                return Err(missing(
+                    "module 1 with M = 3 (FASTSIM on the wheel/rail patches) does not give them \
+                     (CONTACT's are FASTSIM's flexibilities times the tractions, which this \
+                     library does not keep per patch); M = 0 does",
+                ))
+            }
             Some(_) => {}
         }
         if !p.iter().all(|c| c.len() == n) {
@@ -279,7 +290,9 @@ impl Outcome {
             Ok(u)
         };
         match self.displacement_source {
-            None | Some(DisplacementSource::Unloaded) => Ok([zero(), zero(), zero()]),
+            None
+            | Some(DisplacementSource::Unloaded)
+            | Some(DisplacementSource::WheelRailFastsim) => Ok([zero(), zero(), zero()]),
             Some(DisplacementSource::Influence {
                 body1,
                 body2,
