@@ -354,6 +354,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
                 })
             })
             .transpose()?,
+        interfacial_layer: None,
     })
 }
 
