@@ -731,7 +731,8 @@ pub struct GeometrySection {
     /// nx), each in [-1, 1] m, at the element centres of the grid, which
     /// must be given (`nx`, `ny`, and the windows). A and B still estimate
     /// the Hertz patch that checks the window, so give those of the
-    /// best-fitting quadric.
+    /// best-fitting quadric; the patch may span fewer elements than a
+    /// quadratic gap needs (the grid is the user's).
     #[serde(default)]
     pub gap_m: Option<Vec<f64>>,
 }
@@ -2139,8 +2140,11 @@ impl Case {
                         ),
                     ));
                 }
+                // A gap given per element (CONTACT's IBASE = 9) comes
+                // with the grid it was given on: its user chose the
+                // elements, down to CONTACT's one-element stiffness cases.
                 let across = 2.0 * s / (w / n as f64);
-                if across < ranges::MIN_ELEMENTS_ACROSS_PATCH {
+                if across < ranges::MIN_ELEMENTS_ACROSS_PATCH && file.geometry.gap_m.is_none() {
                     return Err(bad(
                         key,
                         format!(
