@@ -10,6 +10,7 @@
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::friclaw::SlipStart;
 use crate::core::grid::Grid;
+use crate::core::layer::{InterfacialLayer, LayerFields};
 use crate::core::material::Material;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::Creepages;
@@ -354,6 +355,12 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
                 })
             })
             .transpose()?,
+        interfacial_layer: c.interfacial_layer.as_ref().map(|l| InterfacialLayer {
+            thickness_m: l.thickness_m,
+            shear_modulus_pa: l.shear_modulus_pa,
+            yield_limit_pa: l.yield_limit_pa,
+            hardening_pa_per_m: l.hardening_pa_per_m,
+        }),
     })
 }
 
@@ -667,7 +674,16 @@ fn conformal_fields(f: &ConformalFieldsReport<'_>) -> pb::ElementFields {
             })
             .collect(),
         wfric_lateral_j_per_m2: Vec::new(),
+        ..Default::default()
     }
+}
+
+/// Adds an elasto-plastic interfacial layer's fields to the wire fields.
+pub fn add_layer_fields(f: &mut pb::ElementFields, layer: &LayerFields) {
+    f.layer_yield_limit_pa = layer.yield_limit_pa.clone();
+    f.layer_plastic_x_m = layer.plastic_x_m.clone();
+    f.layer_plastic_y_m = layer.plastic_y_m.clone();
+    f.layer_plastic = layer.plastic.clone();
 }
 
 /// The wire result of a CLI report (models hertz, hertz_corrected,
@@ -682,6 +698,12 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         Fields::Planar(p) => planar_fields(p.fields),
         Fields::Conformal(c) => conformal_fields(c),
     });
+    if let (Some(f), Some(l)) = (
+        fields.as_mut(),
+        r.interfacial_layer.as_ref().and_then(|l| l.fields),
+    ) {
+        add_layer_fields(f, l);
+    }
     if let (Some(f), Some(w)) = (fields.as_mut(), &r.wfric_lateral) {
         f.wfric_lateral_j_per_m2 = w.w_j_per_m2.clone();
     }

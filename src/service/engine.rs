@@ -450,9 +450,13 @@ impl PatchEngine {
             },
             grid: self.grid(),
             notes: case.notes.clone(),
-            fields: last
-                .filter(|_| fields)
-                .map(|s| convert::planar_fields(&s.fields)),
+            fields: last.filter(|_| fields).map(|s| {
+                let mut f = convert::planar_fields(&s.fields);
+                if let Some(l) = self.exact.as_ref().and_then(|e| e.solver.layer_fields()) {
+                    convert::add_layer_fields(&mut f, &l);
+                }
+                f
+            }),
             force_control: None,
             subsurface: None,
             temperature: None,

@@ -1680,3 +1680,77 @@ async fn gzip_requests_are_read_and_answers_compressed_on_request() {
     assert_eq!(totals(answer.into_inner().result), totals(plain.result));
     server.shutdown().await;
 }
+
+/// An interfacial layer (`case.interfacial_layer`, CONTACT's M = 4) on the
+/// wire: a rolling sphere under a plastic layer gives the numbers of
+/// `railcontact solve` on the same case file bit for bit, with the layer's
+/// fields; a bad value is refused naming its field.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_interfacial_layer_on_the_wire_solves_as_the_case_file() {
+    let (server, mut client) = server().await;
+    // A thin layer whose yield limit (30 MPa) is below mu p0 (the Hertz
+    // p0 of this sphere: 3 F / (2 pi a^2) = 468 MPa, a = 3.19 mm), so it
+    // flows where the rolling traction reaches it (300 of the 24 x 24
+    // elements at a creepage of 1e-3).
+    let layer = pb::InterfacialLayerSection {
+        thickness_m: 2.0e-5,
+        shear_modulus_pa: 1.0e10,
+        yield_limit_pa: 3.0e7,
+        hardening_pa_per_m: 0.0,
+    };
+    let case = pb::PatchCase {
+        interfacial_layer: Some(layer),
+        ..rolling(pb::Model::Exact, 24, 1e-3)
+    };
+    let r = solve_patch_with_fields(&mut client, case.clone()).await;
+    let toml = "model = \"exact\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.30\n\
+                [friction]\ncoefficient = 0.3\n\
+                [geometry]\nkind = \"quadratic\"\na_per_m = 1.0\nb_per_m = 1.0\n\
+                [load]\nnormal_force_n = 10000.0\n[grid]\nnx = 24\nny = 24\n\
+                [rolling]\ncreepage_long = 1e-3\n\
+                [interfacial_layer]\nthickness_m = 2.0e-5\nshear_modulus_pa = 1.0e10\n\
+                yield_limit_pa = 3.0e7\n";
+    let cli = solve(&Case::from_toml(toml).unwrap().problem().unwrap()).unwrap();
+    let t = totals(r.result.as_ref().unwrap());
+    assert_eq!(t.fx_n.to_bits(), cli[0].totals.fx_n.to_bits());
+    assert_eq!(t.approach_m.to_bits(), cli[0].totals.approach_m.to_bits());
+    let f = r.fields.as_ref().expect("fields");
+    assert_eq!(f.layer_yield_limit_pa.len(), 24 * 24);
+    assert!(f.layer_plastic.iter().any(|p| *p), "the layer flowed");
+    assert!(f.layer_yield_limit_pa.iter().all(|t| *t == 3.0e7));
+    // Without the layer the same case gives another force.
+    let plain = solve_patch(&mut client, rolling(pb::Model::Exact, 24, 1e-3)).await;
+    assert_ne!(totals(plain.result.as_ref().unwrap()).fx_n, t.fx_n);
+    for (bad, field) in [
+        (
+            pb::InterfacialLayerSection {
+                shear_modulus_pa: -1.0,
+                ..layer
+            },
+            "case.interfacial_layer.shear_modulus_pa",
+        ),
+        (
+            pb::InterfacialLayerSection {
+                thickness_m: f64::NAN,
+                ..layer
+            },
+            "case.interfacial_layer.thickness_m",
+        ),
+    ] {
+        let c = pb::PatchCase {
+            interfacial_layer: Some(bad),
+            ..case.clone()
+        };
+        let (code, msg) = failure(client.solve_patch(request(c)).await);
+        assert_eq!(code, Code::InvalidArgument, "{field}: {msg}");
+        assert!(msg.contains(field), "{field}: {msg}");
+    }
+    let c = pb::PatchCase {
+        interfacial_layer: Some(layer),
+        ..rolling(pb::Model::Fastsim, 24, 1e-3)
+    };
+    let (code, msg) = failure(client.solve_patch(request(c)).await);
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(msg.contains("case.interfacial_layer"), "{msg}");
+    server.shutdown().await;
+}

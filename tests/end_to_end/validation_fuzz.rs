@@ -176,6 +176,7 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
         conformal: None,
+        interfacial_layer: None,
     }
 }
 

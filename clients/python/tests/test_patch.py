@@ -163,3 +163,20 @@ def test_sensitivities_of_a_rolling_patch(client):
         again = step.result.sensitivities
         assert again.per_creepage_long.fx == pytest.approx(s.per_creepage_long.fx, rel=1e-6)
         assert again.per_approach_m.normal_force == pytest.approx(s.per_approach_m.normal_force, rel=1e-6)
+
+
+def test_an_interfacial_layer_case_file_gives_the_layers_fields(client):
+    # CONTACT's plastic_3bl.inp cases 15-31 (examples/cases): the last
+    # step's FX = 424.1 N and tau_c = 424.1 N/mm² on the one plastic
+    # element (plastic_3bl.ref_out, case 31).
+    path = REPO / "examples" / "cases" / "layer_plastic_3bl.toml"
+    r = client.solve_patch(path, include_fields=True)
+    assert r.totals.fx_n == pytest.approx(424.1, abs=0.05)
+    f = r.fields
+    assert f.layer_plastic.shape == (5, 5)
+    assert f.layer_plastic.sum() == 1 and f.layer_plastic[2, 2]
+    assert f.layer_yield_limit_pa[2, 2] == pytest.approx(424.1e6, abs=0.05e6)
+    assert f.layer_plastic_x_m.shape == (5, 5)
+    # Without a layer the layer's fields are empty.
+    plain = client.solve_patch(rolling_case("exact"), include_fields=True)
+    assert plain.fields.layer_plastic.size == 0

@@ -343,13 +343,23 @@ def _readonly(values, shape=None, dtype=float) -> np.ndarray:
     return array
 
 
+def _layer(values, shape, dtype=float) -> np.ndarray:
+    """An interfacial layer's field: shaped as the grid, empty without."""
+    return _readonly(values, shape if len(values) else None, dtype)
+
+
 @_result
 class ElementFields(_Result):
     """Per-element fields on the grid, arrays shaped ``(ny, nx)``.
 
     ``state`` holds EXTERIOR (0), ADHESION (1) or SLIP (2). The conformal
     models add ``delta_rad`` and ``wfric_lateral_j_per_m2`` (``ny`` values)
-    and ``reference_points_m`` (``(ny, 2)``: y, z); empty otherwise.
+    and ``reference_points_m`` (``(ny, 2)``: y, z); empty otherwise. A
+    case with an elasto-plastic ``interfacial_layer`` (model exact) adds
+    the layer's state after the solve, shaped ``(ny, nx)``:
+    ``layer_yield_limit_pa`` (CONTACT's TAUCRT), ``layer_plastic_x_m``,
+    ``layer_plastic_y_m`` (UPLSX, UPLSY) and ``layer_plastic`` (bool, the
+    plasticity area); empty otherwise.
     """
 
     pressure_pa: np.ndarray
@@ -362,6 +372,10 @@ class ElementFields(_Result):
     delta_rad: np.ndarray
     reference_points_m: np.ndarray
     wfric_lateral_j_per_m2: np.ndarray
+    layer_yield_limit_pa: np.ndarray
+    layer_plastic_x_m: np.ndarray
+    layer_plastic_y_m: np.ndarray
+    layer_plastic: np.ndarray
 
     @classmethod
     def from_pb(cls, message, grid: Grid) -> "ElementFields":
@@ -377,6 +391,10 @@ class ElementFields(_Result):
             delta_rad=_readonly(message.delta_rad),
             reference_points_m=_readonly([(p.y_m, p.z_m) for p in message.reference_points_m]).reshape(-1, 2),
             wfric_lateral_j_per_m2=_readonly(message.wfric_lateral_j_per_m2),
+            layer_yield_limit_pa=_layer(message.layer_yield_limit_pa, shape),
+            layer_plastic_x_m=_layer(message.layer_plastic_x_m, shape),
+            layer_plastic_y_m=_layer(message.layer_plastic_y_m, shape),
+            layer_plastic=_layer(message.layer_plastic, shape, bool),
         )
 
     @property

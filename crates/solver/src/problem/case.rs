@@ -19,12 +19,13 @@ use crate::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw, DEFAULT_LAW
 use crate::core::grid::{Grid, MIN_ELEMENTS};
 use crate::core::hertz::HertzSolution;
 use crate::core::influence::{LINE_LENGTH_M, LINE_REFERENCE_DISTANCE_M};
+use crate::core::layer::InterfacialLayer;
 use crate::core::material::{soft_modulus_note, CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
     rolling_elements, ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep,
-    SolverSettings, CREEPAGE_RANGE, SPIN_RANGE,
+    SolverSettings, CREEPAGE_RANGE, INTERFACIAL_LAYER_KEY, SPIN_RANGE,
 };
 use crate::core::tangential::TangentialSettings;
 use crate::core::temperature::ThermalInput;
@@ -256,6 +257,13 @@ pub struct CaseFile {
     /// optional).
     #[serde(default)]
     pub conformal: Option<ConformalSection>,
+    /// `[interfacial_layer]`: a third-body layer between the bodies,
+    /// elastic or elasto-plastic (CONTACT's M = 4; exact model, see
+    /// [`crate::core::layer`]): `thickness_m` \[m\], `shear_modulus_pa`
+    /// \[Pa\], optional `yield_limit_pa` \[Pa\] (absent or 0: elastic) and
+    /// `hardening_pa_per_m` \[Pa/m\] (absent: 0, perfectly plastic).
+    #[serde(default)]
+    pub interfacial_layer: Option<InterfacialLayer>,
 }
 
 /// `[extra_rigid_slip]`: a rigid slip [-] added at each element to the
@@ -334,6 +342,44 @@ fn temperature_request(
 /// rigid slip surface (the default without the section). The section
 /// belongs to the conformal models; outside steady rolling its rigid slip
 /// is unused (a note says so).
+/// The case's `[interfacial_layer]`, checked (each value naming its key
+/// `interfacial_layer.<key>`, and against the friction law) for the exact
+/// model; refused, naming `interfacial_layer`, with another model (FASTSIM,
+/// the closed forms and the conformal solvers do not take it). A
+/// frictionless case gets a note: the normal problem does not see the
+/// layer.
+fn interfacial_layer(
+    section: Option<InterfacialLayer>,
+    model: Model,
+    friction: &Friction,
+    kinematics: &Kinematics,
+    notes: &mut Vec<String>,
+) -> Result<Option<InterfacialLayer>, CaseError> {
+    let Some(layer) = section else {
+        return Ok(None);
+    };
+    if model != Model::Exact {
+        return Err(bad(
+            INTERFACIAL_LAYER_KEY,
+            format!(
+                "an interfacial layer is taken by model = \"exact\" only (steady rolling and \
+                 transient steps), not by \"{}\"",
+                model.name()
+            ),
+        ));
+    }
+    layer.validate(INTERFACIAL_LAYER_KEY)?;
+    layer.check_friction(INTERFACIAL_LAYER_KEY, friction)?;
+    if matches!(kinematics, Kinematics::Frictionless) {
+        notes.push(
+            "interfacial_layer: a frictionless normal problem does not see the layer (it acts on \
+             the tangential tractions): give [rolling] or [transient]"
+                .to_string(),
+        );
+    }
+    Ok(Some(layer))
+}
+
 fn conformal_options(
     section: Option<ConformalSection>,
     model: Model,
@@ -685,7 +731,8 @@ pub struct GeometrySection {
     /// nx), each in [-1, 1] m, at the element centres of the grid, which
     /// must be given (`nx`, `ny`, and the windows). A and B still estimate
     /// the Hertz patch that checks the window, so give those of the
-    /// best-fitting quadric.
+    /// best-fitting quadric; the patch may span fewer elements than a
+    /// quadratic gap needs (the grid is the user's).
     #[serde(default)]
     pub gap_m: Option<Vec<f64>>,
 }
@@ -2093,8 +2140,11 @@ impl Case {
                         ),
                     ));
                 }
+                // A gap given per element (CONTACT's IBASE = 9) comes
+                // with the grid it was given on: its user chose the
+                // elements, down to CONTACT's one-element stiffness cases.
                 let across = 2.0 * s / (w / n as f64);
-                if across < ranges::MIN_ELEMENTS_ACROSS_PATCH {
+                if across < ranges::MIN_ELEMENTS_ACROSS_PATCH && file.geometry.gap_m.is_none() {
                     return Err(bad(
                         key,
                         format!(
@@ -2191,6 +2241,13 @@ impl Case {
         let gap_m = given_gap(&file, model, &geometry, [nx, ny], grid_given)?;
         let extra_rigid_slip = extra_rigid_slip(&file, model, &kinematics, [nx, ny], grid_given)?;
         let rigid_slip = conformal_options(file.conformal, model, &kinematics, &mut notes)?;
+        settings.interfacial_layer = interfacial_layer(
+            file.interfacial_layer,
+            model,
+            &friction,
+            &kinematics,
+            &mut notes,
+        )?;
         Ok(Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
@@ -4177,5 +4234,163 @@ window_y_m = 14e-3
             m.contains("`rolling_direction_rad`") && m.contains("steady"),
             "{m}"
         );
+    }
+}
+
+#[cfg(test)]
+mod layer_tests {
+    use super::*;
+    use crate::core::solution::SolveStatus;
+    use crate::problem::ExactRun;
+
+    const EXAMPLE: &str = include_str!("../../../../examples/cases/layer_plastic_3bl.toml");
+
+    /// CONTACT's FX \[N\] of `plastic_3bl.ref_out` cases 15-31 as printed
+    /// (the clay series the example states), and whether the element flows
+    /// (NPLAST = 1).
+    const CLAY_FX: [(&str, bool); 17] = [
+        ("200.0", false),
+        ("216.0", true),
+        ("232.0", true),
+        ("248.0", true),
+        ("262.4", true),
+        ("262.4", false),
+        ("82.43", false),
+        ("82.43", false),
+        ("266.4", true),
+        ("284.0", true),
+        ("304.0", true),
+        ("324.1", true),
+        ("344.1", true),
+        ("364.1", true),
+        ("384.1", true),
+        ("404.1", true),
+        ("424.1", true),
+    ];
+
+    /// Half a unit of the last digit of a printed decimal.
+    fn half_unit(s: &str) -> f64 {
+        let decimals = s.find('.').map_or(0, |i| s.len() - i - 1) as i32;
+        0.5 * 10f64.powi(-decimals)
+    }
+
+    fn message(r: Result<Case, CaseError>) -> String {
+        match r {
+            Err(CaseError::BadInput(m)) => m,
+            other => panic!("expected bad input, got {:?}", other.map(|c| c.model)),
+        }
+    }
+
+    #[test]
+    fn layer_plastic_3bl_example_matches_contacts_forces() {
+        let case = Case::from_toml(EXAMPLE).unwrap();
+        let layer = case.settings.interfacial_layer.expect("the layer");
+        assert_eq!(layer.thickness_m, 2.0e-5);
+        assert_eq!(layer.hardening_pa_per_m, 4.35e11);
+        let run = ExactRun::solve(&case).unwrap();
+        assert_eq!(run.solutions().len(), CLAY_FX.len());
+        for (k, (s, (fx, _))) in run.solutions().iter().zip(CLAY_FX).enumerate() {
+            let want: f64 = fx.parse().unwrap();
+            assert_eq!(s.info.status, SolveStatus::Converged, "case {}", 15 + k);
+            assert!(
+                (s.totals.fx_n - want).abs() <= half_unit(fx) * (1.0 + 1e-9),
+                "case {}: FX {} N against CONTACT's {fx}",
+                15 + k,
+                s.totals.fx_n
+            );
+            assert!((s.totals.normal_force_n - 900.0).abs() < 1e-6 * 900.0);
+        }
+        // The last step (case 31) flows: one plastic element of 1 mm²,
+        // tau_c = FX / 1 mm² = 424.1 N/mm² as CONTACT prints.
+        let report = run.report(&case, true);
+        let l = report
+            .interfacial_layer
+            .as_ref()
+            .expect("a plastic layer's state");
+        assert_eq!(l.plastic_elements, 1);
+        assert!((l.plastic_area_m2 - 1e-6).abs() < 1e-15);
+        assert!((l.max_yield_limit_pa - 424.1e6).abs() <= 0.05e6 * (1.0 + 1e-9));
+        assert_eq!(l.min_yield_limit_pa, 2.0e8);
+        // tau_c = tau_c0 + k_tau u_pl.
+        let u_pl = (l.max_yield_limit_pa - 2.0e8) / 4.35e11;
+        assert!((l.max_plastic_deformation_m - u_pl).abs() <= 1e-9 * u_pl);
+        let json = serde_json::to_value(&report).unwrap();
+        let fields = &json["interfacial_layer"]["fields"];
+        assert_eq!(fields["yield_limit_pa"].as_array().unwrap().len(), 25);
+        assert_eq!(fields["plastic"][12], serde_json::Value::Bool(true));
+        assert!(run
+            .report(&case, false)
+            .interfacial_layer
+            .unwrap()
+            .fields
+            .is_none());
+        assert!(report.human().contains("layer plastic area"));
+    }
+
+    #[test]
+    fn a_bad_layer_value_is_refused_naming_its_key() {
+        for (from, to, key) in [
+            (
+                "thickness_m = 2.0e-5",
+                "thickness_m = -1e-5",
+                "interfacial_layer.thickness_m",
+            ),
+            (
+                "shear_modulus_pa = 1.0625e8",
+                "shear_modulus_pa = 0.0",
+                "interfacial_layer.shear_modulus_pa",
+            ),
+            (
+                "yield_limit_pa = 2.0e8",
+                "yield_limit_pa = -1.0",
+                "interfacial_layer.yield_limit_pa",
+            ),
+            (
+                "hardening_pa_per_m = 4.35e11",
+                "hardening_pa_per_m = nan",
+                "interfacial_layer.hardening_pa_per_m",
+            ),
+            // A plastic layer needs one friction coefficient.
+            (
+                "coefficient = 0.7",
+                "static_coefficient = 0.7\nkinetic_coefficient = 0.6",
+                "interfacial_layer.yield_limit_pa",
+            ),
+            (
+                "hardening_pa_per_m = 4.35e11",
+                "hardening = 1.0",
+                "hardening",
+            ),
+        ] {
+            assert!(EXAMPLE.contains(from), "{from}");
+            let m = message(Case::from_toml(&EXAMPLE.replacen(from, to, 1)));
+            assert!(m.contains(key), "{to}: {m}");
+        }
+        // Only the exact model takes it.
+        for model in ["fastsim", "hertz"] {
+            let m = message(Case::from_toml(&format!(
+                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
+                 [interfacial_layer]\nthickness_m = 2e-5\nshear_modulus_pa = 1e8\n"
+            )));
+            assert!(
+                m.contains("`interfacial_layer`") && m.contains(model),
+                "{m}"
+            );
+        }
+        // Without a yield limit the layer is elastic; without thickness_m
+        // the section is incomplete.
+        let elastic = EXAMPLE
+            .replacen("yield_limit_pa = 2.0e8\n", "", 1)
+            .replacen("hardening_pa_per_m = 4.35e11\n", "", 1);
+        let c = Case::from_toml(&elastic).unwrap();
+        assert!(!c.settings.interfacial_layer.unwrap().is_plastic());
+        let m = message(Case::from_toml(&EXAMPLE.replacen(
+            "thickness_m = 2.0e-5\n",
+            "",
+            1,
+        )));
+        assert!(m.contains("thickness_m"), "{m}");
     }
 }

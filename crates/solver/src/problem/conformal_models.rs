@@ -297,6 +297,7 @@ impl ConformalRun {
             force_control: None,
             subsurface: None,
             temperature: None,
+            interfacial_layer: None,
         }
     }
 }

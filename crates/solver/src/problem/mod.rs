@@ -28,6 +28,7 @@ use crate::core::force::{
     solve_prescribed_force, solve_steps_with_forces, ForceControlSettings, PrescribedForce,
 };
 use crate::core::grid::Grid;
+use crate::core::layer::LayerFields;
 use crate::core::problem::{ContactProblem, Kinematics};
 use crate::core::solution::{ContactSolution, SolveStatus};
 use crate::core::solve::ContactSolver;
@@ -37,7 +38,8 @@ use crate::core::temperature::{flash_temperatures, SurfaceTemperatures};
 use case::{Case, Model};
 use conformal_models::ConformalRun;
 use report::{
-    Fields, FieldsReport, ForceControlReport, Report, StepForceReport, StepReport, SubsurfaceReport,
+    Fields, FieldsReport, ForceControlReport, LayerReport, Report, StepForceReport, StepReport,
+    SubsurfaceReport,
 };
 
 /// Why a case could not be solved.
@@ -130,6 +132,9 @@ pub struct ExactRun {
     /// The flash temperatures of both surfaces of the solution, when the
     /// case asks for them (`[temperature]`).
     pub temperature: Option<Box<SurfaceTemperatures>>,
+    /// An elasto-plastic interfacial layer's state after the last solve
+    /// (`[interfacial_layer]` with a yield limit).
+    pub layer: Option<LayerFields>,
 }
 
 /// The exact model's solutions of a case, with what its prescribed forces
@@ -317,6 +322,7 @@ impl ExactRun {
         // the grid of twice the element size.
         solver.start_nested(&problem, cache)?;
         let solved = solve_exact(case, &mut solver, &problem)?;
+        let layer = solver.layer_fields();
         let (solutions, force_control, step_forces) =
             (solved.solutions, solved.force_control, solved.step_forces);
         let Some(last) = solutions.last() else {
@@ -331,6 +337,7 @@ impl ExactRun {
             force_control,
             subsurface: extras.subsurface.map(Box::new),
             temperature: extras.temperature.map(Box::new),
+            layer,
         })
     }
 
@@ -410,6 +417,10 @@ impl ExactRun {
             force_control: self.force_control,
             subsurface: self.subsurface.as_ref().map(|s| s.report(&self.grid)),
             temperature: self.temperature.as_ref().map(|t| t.summary),
+            interfacial_layer: self
+                .layer
+                .as_ref()
+                .map(|l| LayerReport::of(&self.grid, l, with_fields)),
         }
     }
 }

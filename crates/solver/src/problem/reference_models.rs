@@ -75,6 +75,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         force_control: None,
         subsurface: None,
         temperature: None,
+        interfacial_layer: None,
     })
 }
 
@@ -127,6 +128,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         force_control: None,
         subsurface: None,
         temperature: None,
+        interfacial_layer: None,
     })
 }
 
@@ -200,5 +202,6 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         force_control: None,
         subsurface: None,
         temperature: None,
+        interfacial_layer: None,
     })
 }

@@ -8,6 +8,7 @@ use serde::Serialize;
 use crate::core::error::ContactError;
 use crate::core::force::{ForceSolution, PrescribedForce, StepForceSolution};
 use crate::core::grid::Grid;
+use crate::core::layer::LayerFields;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::SubsurfaceSummary;
 use crate::core::temperature::TemperatureSummary;
@@ -203,6 +204,56 @@ pub struct Report<'a> {
     /// steady rolling; see [`crate::core::temperature`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub temperature: Option<TemperatureSummary>,
+    /// The interfacial layer's state after the (last) solve, with an
+    /// elasto-plastic `[interfacial_layer]` (exact model; an elastic layer
+    /// has no state).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interfacial_layer: Option<LayerReport<'a>>,
+}
+
+/// An elasto-plastic interfacial layer's state after a solve (see
+/// [`crate::core::layer`]): CONTACT's plasticity area and the extremes of
+/// TAUCRT and the plastic deformation, with `--fields` the fields.
+#[derive(Debug, Clone, Serialize)]
+pub struct LayerReport<'a> {
+    /// Elements where the layer flowed without slip at the interface
+    /// (CONTACT's plasticity area, NPLAST) [-].
+    pub plastic_elements: usize,
+    /// Their area \[m²\] (a line contact: per metre, \[m²/m\]).
+    pub plastic_area_m2: f64,
+    /// Largest yield limit tau_c of the material on the grid \[Pa\].
+    pub max_yield_limit_pa: f64,
+    /// Smallest yield limit tau_c on the grid \[Pa\].
+    pub min_yield_limit_pa: f64,
+    /// Largest magnitude of the accumulated plastic deformation u_pl \[m\].
+    pub max_plastic_deformation_m: f64,
+    /// The per-element fields (`--fields`): `yield_limit_pa`,
+    /// `plastic_x_m`, `plastic_y_m` and `plastic` (bool), index
+    /// `iy * nx + ix`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fields: Option<&'a LayerFields>,
+}
+
+impl<'a> LayerReport<'a> {
+    /// The summary of `layer` on `grid`, with the fields when `fields`.
+    pub fn of(grid: &Grid, layer: &'a LayerFields, fields: bool) -> Self {
+        let plastic_elements = layer.plastic.iter().filter(|&&p| p).count();
+        let fold =
+            |init: f64, f: fn(f64, f64) -> f64| layer.yield_limit_pa.iter().copied().fold(init, f);
+        LayerReport {
+            plastic_elements,
+            plastic_area_m2: plastic_elements as f64 * grid.element_area_m2(),
+            max_yield_limit_pa: fold(0.0, f64::max),
+            min_yield_limit_pa: fold(f64::INFINITY, f64::min),
+            max_plastic_deformation_m: layer
+                .plastic_x_m
+                .iter()
+                .zip(&layer.plastic_y_m)
+                .map(|(x, y)| x.hypot(*y))
+                .fold(0.0, f64::max),
+            fields: fields.then_some(layer),
+        }
+    }
 }
 
 /// The peaks of the subsurface stresses of both bodies (see
@@ -582,6 +633,28 @@ impl Report<'_> {
                 format!("{:.4}", t.heat_share_body1),
             );
             line("Peclet number [-]", format!("{:.1}", t.peclet_number));
+        }
+        if let Some(l) = &self.interfacial_layer {
+            line(
+                "layer plastic area [mm²]",
+                format!(
+                    "{:.4} ({} elements)",
+                    l.plastic_area_m2 * 1e6,
+                    l.plastic_elements
+                ),
+            );
+            line(
+                "layer yield limit [MPa]",
+                format!(
+                    "{:.4} to {:.4}",
+                    mpa(l.min_yield_limit_pa),
+                    mpa(l.max_yield_limit_pa)
+                ),
+            );
+            line(
+                "layer max plastic def. [mm]",
+                format!("{:.6e}", mm(l.max_plastic_deformation_m)),
+            );
         }
         for n in &self.notes {
             let _ = writeln!(o, "  note: {n}");

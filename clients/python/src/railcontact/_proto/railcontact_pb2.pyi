@@ -358,7 +358,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -373,6 +373,7 @@ class PatchCase(_message.Message):
     ROLLING_DIRECTION_RAD_FIELD_NUMBER: _ClassVar[int]
     EXTRA_RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
+    INTERFACIAL_LAYER_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -387,7 +388,20 @@ class PatchCase(_message.Message):
     rolling_direction_rad: float
     extra_rigid_slip: ExtraRigidSlip
     conformal: ConformalSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ...) -> None: ...
+    interfacial_layer: InterfacialLayerSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ...) -> None: ...
+
+class InterfacialLayerSection(_message.Message):
+    __slots__ = ("thickness_m", "shear_modulus_pa", "yield_limit_pa", "hardening_pa_per_m")
+    THICKNESS_M_FIELD_NUMBER: _ClassVar[int]
+    SHEAR_MODULUS_PA_FIELD_NUMBER: _ClassVar[int]
+    YIELD_LIMIT_PA_FIELD_NUMBER: _ClassVar[int]
+    HARDENING_PA_PER_M_FIELD_NUMBER: _ClassVar[int]
+    thickness_m: float
+    shear_modulus_pa: float
+    yield_limit_pa: float
+    hardening_pa_per_m: float
+    def __init__(self, thickness_m: _Optional[float] = ..., shear_modulus_pa: _Optional[float] = ..., yield_limit_pa: _Optional[float] = ..., hardening_pa_per_m: _Optional[float] = ...) -> None: ...
 
 class ExtraRigidSlip(_message.Message):
     __slots__ = ("slip_x", "slip_y", "shift_x_m", "shift_y_m")
@@ -582,7 +596,7 @@ class GridInfo(_message.Message):
     def __init__(self, nx: _Optional[int] = ..., ny: _Optional[int] = ..., element_size_x_m: _Optional[float] = ..., element_size_y_m: _Optional[float] = ..., x0_m: _Optional[float] = ..., y0_m: _Optional[float] = ...) -> None: ...
 
 class ElementFields(_message.Message):
-    __slots__ = ("pressure_pa", "traction_x_pa", "traction_y_pa", "slip_x", "slip_y", "state", "gap_m", "delta_rad", "reference_points_m", "wfric_lateral_j_per_m2")
+    __slots__ = ("pressure_pa", "traction_x_pa", "traction_y_pa", "slip_x", "slip_y", "state", "gap_m", "delta_rad", "reference_points_m", "wfric_lateral_j_per_m2", "layer_yield_limit_pa", "layer_plastic_x_m", "layer_plastic_y_m", "layer_plastic")
     PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
     TRACTION_X_PA_FIELD_NUMBER: _ClassVar[int]
     TRACTION_Y_PA_FIELD_NUMBER: _ClassVar[int]
@@ -593,6 +607,10 @@ class ElementFields(_message.Message):
     DELTA_RAD_FIELD_NUMBER: _ClassVar[int]
     REFERENCE_POINTS_M_FIELD_NUMBER: _ClassVar[int]
     WFRIC_LATERAL_J_PER_M2_FIELD_NUMBER: _ClassVar[int]
+    LAYER_YIELD_LIMIT_PA_FIELD_NUMBER: _ClassVar[int]
+    LAYER_PLASTIC_X_M_FIELD_NUMBER: _ClassVar[int]
+    LAYER_PLASTIC_Y_M_FIELD_NUMBER: _ClassVar[int]
+    LAYER_PLASTIC_FIELD_NUMBER: _ClassVar[int]
     pressure_pa: _containers.RepeatedScalarFieldContainer[float]
     traction_x_pa: _containers.RepeatedScalarFieldContainer[float]
     traction_y_pa: _containers.RepeatedScalarFieldContainer[float]
@@ -603,7 +621,11 @@ class ElementFields(_message.Message):
     delta_rad: _containers.RepeatedScalarFieldContainer[float]
     reference_points_m: _containers.RepeatedCompositeFieldContainer[ProfilePoint]
     wfric_lateral_j_per_m2: _containers.RepeatedScalarFieldContainer[float]
-    def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ...) -> None: ...
+    layer_yield_limit_pa: _containers.RepeatedScalarFieldContainer[float]
+    layer_plastic_x_m: _containers.RepeatedScalarFieldContainer[float]
+    layer_plastic_y_m: _containers.RepeatedScalarFieldContainer[float]
+    layer_plastic: _containers.RepeatedScalarFieldContainer[bool]
+    def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ..., layer_yield_limit_pa: _Optional[_Iterable[float]] = ..., layer_plastic_x_m: _Optional[_Iterable[float]] = ..., layer_plastic_y_m: _Optional[_Iterable[float]] = ..., layer_plastic: _Optional[_Iterable[bool]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
     __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature")
