@@ -1754,3 +1754,56 @@ async fn an_interfacial_layer_on_the_wire_solves_as_the_case_file() {
     assert!(msg.contains("case.interfacial_layer"), "{msg}");
     server.shutdown().await;
 }
+
+/// A plastic interfacial layer's history in a session: transient shift
+/// steps under a layer that flows give the batch solve's numbers, and a
+/// rollback to a mark brings the layer's state back with the tractions
+/// (the replay gives the same bits, the layer's fields included).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_plastic_layers_history_rolls_back_with_its_session() {
+    let (server, mut client) = server().await;
+    let shifts = [1e-6, 1e-6, -2e-6, 1e-6];
+    let case = pb::PatchCase {
+        interfacial_layer: Some(pb::InterfacialLayerSection {
+            thickness_m: 2.0e-5,
+            shear_modulus_pa: 1.0e10,
+            yield_limit_pa: 2.0e7,
+            hardening_pa_per_m: 1.0e12,
+        }),
+        ..transient(20, &shifts)
+    };
+    let whole = solve_patch(&mut client, case.clone()).await;
+    assert_eq!(whole.steps.len(), 4);
+    let mut msgs = vec![
+        open(case, true),
+        step(0, StepMotion::Shift(shifts[0]), true),
+    ];
+    for _ in 0..2 {
+        msgs.extend((1..4).map(|k| step(k, StepMotion::Shift(shifts[k as usize]), false)));
+        msgs.push(rollback(0));
+    }
+    let r = session(&mut client, msgs).await;
+    for k in 0..4 {
+        assert_eq!(
+            bits(totals(step_result(&r[1 + k]).result.as_ref().unwrap())),
+            bits(totals(&whole.steps[k])),
+            "step {k}"
+        );
+    }
+    let fields = |k: usize| step_result(&r[k]).fields.clone().expect("fields");
+    assert!(
+        fields(2).layer_plastic.iter().any(|p| *p),
+        "the layer flows in the second step"
+    );
+    // Hardened where it flowed: the yield limit rose above tau_c0.
+    assert!(fields(4).layer_yield_limit_pa.iter().any(|t| *t > 2.0e7));
+    for k in 1..4 {
+        let (a, b) = (step_result(&r[1 + k]), step_result(&r[5 + k]));
+        assert_eq!(
+            bits(totals(a.result.as_ref().unwrap())),
+            bits(totals(b.result.as_ref().unwrap()))
+        );
+        assert_eq!(a.fields, b.fields, "step {k}");
+    }
+    server.shutdown().await;
+}
