@@ -366,6 +366,21 @@ fn step_result(r: &pb::SessionResponse) -> &pb::SessionStepResult {
     }
 }
 
+/// Steps `steps` of a session's responses `r` (step k at `r[1 + k]`)
+/// replayed `offset` responses later (after a rollback to step 0's mark)
+/// give the same bits, their fields included.
+fn assert_replayed(r: &[pb::SessionResponse], steps: std::ops::Range<usize>, offset: usize) {
+    for k in steps {
+        let (a, b) = (step_result(&r[1 + k]), step_result(&r[1 + offset + k]));
+        assert_eq!(
+            bits(totals(a.result.as_ref().unwrap())),
+            bits(totals(b.result.as_ref().unwrap())),
+            "step {k}"
+        );
+        assert_eq!(a.fields, b.fields, "step {k}");
+    }
+}
+
 fn error(r: &pb::SessionResponse) -> &pb::ItemError {
     match &r.kind {
         Some(pb::session_response::Kind::Error(e)) => e,
@@ -404,14 +419,7 @@ async fn transient_rolling_session_matches_the_batch_solve_and_replays_bit_for_b
     // The tractions roll along: the same creepage, another answer.
     assert_ne!(bits(totals(&whole.steps[2])), bits(totals(&whole.steps[3])));
     // Replayed from the mark: the same bits, fields included.
-    for k in 1..4 {
-        let (a, b) = (step_result(&r[1 + k]), step_result(&r[5 + k]));
-        assert_eq!(
-            bits(totals(a.result.as_ref().unwrap())),
-            bits(totals(b.result.as_ref().unwrap()))
-        );
-        assert_eq!(a.fields, b.fields, "step {k}");
-    }
+    assert_replayed(&r, 1..4, 4);
     server.shutdown().await;
 }
 
@@ -1797,13 +1805,6 @@ async fn a_plastic_layers_history_rolls_back_with_its_session() {
     );
     // Hardened where it flowed: the yield limit rose above tau_c0.
     assert!(fields(4).layer_yield_limit_pa.iter().any(|t| *t > 2.0e7));
-    for k in 1..4 {
-        let (a, b) = (step_result(&r[1 + k]), step_result(&r[5 + k]));
-        assert_eq!(
-            bits(totals(a.result.as_ref().unwrap())),
-            bits(totals(b.result.as_ref().unwrap()))
-        );
-        assert_eq!(a.fields, b.fields, "step {k}");
-    }
+    assert_replayed(&r, 1..4, 4);
     server.shutdown().await;
 }
