@@ -366,6 +366,33 @@ fn step_result(r: &pb::SessionResponse) -> &pb::SessionStepResult {
     }
 }
 
+/// A session on `case` (with fields): step 0 `first`, marked, then the
+/// `rest` twice, each pass followed by a rollback to step 0.
+fn marked_twice(
+    case: pb::PatchCase,
+    first: StepMotion,
+    rest: &[StepMotion],
+) -> Vec<pb::SessionRequest> {
+    let mut msgs = vec![open(case, true), step(0, first, true)];
+    for _ in 0..2 {
+        msgs.extend((1..).zip(rest).map(|(k, m)| step(k, *m, false)));
+        msgs.push(rollback(0));
+    }
+    msgs
+}
+
+/// The first pass of [`marked_twice`]'s responses `r` gives the bits of
+/// the batch solve `whole`, step by step.
+fn assert_first_pass_is_the_batch(r: &[pb::SessionResponse], whole: &pb::PatchResult) {
+    for (k, want) in whole.steps.iter().enumerate() {
+        assert_eq!(
+            bits(totals(step_result(&r[1 + k]).result.as_ref().unwrap())),
+            bits(totals(want)),
+            "step {k}"
+        );
+    }
+}
+
 /// Steps `steps` of a session's responses `r` (step k at `r[1 + k]`)
 /// replayed `offset` responses later (after a rollback to step 0's mark)
 /// give the same bits, their fields included.
@@ -403,19 +430,13 @@ async fn transient_rolling_session_matches_the_batch_solve_and_replays_bit_for_b
     g.window_y_m = Some(1e-2);
     let whole = solve_patch(&mut client, case.clone()).await;
     assert_eq!(whole.steps.len(), 4);
-    let mut msgs = vec![open(case, true), step(0, StepMotion::Shift(1e-6), true)];
-    for _ in 0..2 {
-        msgs.extend((1..4).map(|k| step(k, StepMotion::Roll(creepages[k as usize - 1]), false)));
-        msgs.push(rollback(0));
-    }
-    let r = session(&mut client, msgs).await;
-    for k in 0..4 {
-        assert_eq!(
-            bits(totals(step_result(&r[1 + k]).result.as_ref().unwrap())),
-            bits(totals(&whole.steps[k])),
-            "step {k}"
-        );
-    }
+    let rest: Vec<_> = creepages.iter().map(|&c| StepMotion::Roll(c)).collect();
+    let r = session(
+        &mut client,
+        marked_twice(case, StepMotion::Shift(1e-6), &rest),
+    )
+    .await;
+    assert_first_pass_is_the_batch(&r, &whole);
     // The tractions roll along: the same creepage, another answer.
     assert_ne!(bits(totals(&whole.steps[2])), bits(totals(&whole.steps[3])));
     // Replayed from the mark: the same bits, fields included.
@@ -1782,22 +1803,13 @@ async fn a_plastic_layers_history_rolls_back_with_its_session() {
     };
     let whole = solve_patch(&mut client, case.clone()).await;
     assert_eq!(whole.steps.len(), 4);
-    let mut msgs = vec![
-        open(case, true),
-        step(0, StepMotion::Shift(shifts[0]), true),
-    ];
-    for _ in 0..2 {
-        msgs.extend((1..4).map(|k| step(k, StepMotion::Shift(shifts[k as usize]), false)));
-        msgs.push(rollback(0));
-    }
-    let r = session(&mut client, msgs).await;
-    for k in 0..4 {
-        assert_eq!(
-            bits(totals(step_result(&r[1 + k]).result.as_ref().unwrap())),
-            bits(totals(&whole.steps[k])),
-            "step {k}"
-        );
-    }
+    let rest: Vec<_> = shifts[1..].iter().map(|&x| StepMotion::Shift(x)).collect();
+    let r = session(
+        &mut client,
+        marked_twice(case, StepMotion::Shift(shifts[0]), &rest),
+    )
+    .await;
+    assert_first_pass_is_the_batch(&r, &whole);
     let fields = |k: usize| step_result(&r[k]).fields.clone().expect("fields");
     assert!(
         fields(2).layer_plastic.iter().any(|p| *p),
