@@ -2235,8 +2235,6 @@ mod tests {
         assert!(z_points_up(ProfileKind::Rail, &up));
     }
 
-    /// The built-in Manchester benchmark profiles written to a scratch
-    /// folder (the library reads profiles from files), once per test run.
     /// `cntc_setprofileinputfname` of `path` with CONTACT's defaults.
     fn set_file(w: &mut WheelRail, path: &str) {
         let content = read_profile_file(path);
@@ -2244,28 +2242,14 @@ mod tests {
             .unwrap();
     }
 
+    /// The Manchester benchmark's profile files in the repository (the
+    /// library reads profiles from files): rail, wheel.
     fn mbench_files() -> (std::path::PathBuf, std::path::PathBuf) {
-        static FILES: std::sync::OnceLock<(std::path::PathBuf, std::path::PathBuf)> =
-            std::sync::OnceLock::new();
-        FILES
-            .get_or_init(|| {
-                let dir = std::env::temp_dir().join(format!("cntc-module1-{}", std::process::id()));
-                std::fs::create_dir_all(&dir).expect("scratch folder");
-                let mut out = Vec::new();
-                for (name, text) in railcontact_solver::wheelrail::builtin::FILES {
-                    let f = dir.join(name);
-                    std::fs::write(&f, text).expect("profile written");
-                    out.push(f);
-                }
-                let find = |ext: &str| {
-                    out.iter()
-                        .find(|f| f.extension().is_some_and(|e| e == ext))
-                        .expect("built-in profile")
-                        .clone()
-                };
-                (find("prr"), find("prw"))
-            })
-            .clone()
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../solver/profiles");
+        (
+            dir.join("MBench_UIC60_v3.prr"),
+            dir.join("MBench_S1002_v3.prw"),
+        )
     }
 
     /// A wheel/rail problem set up as CONTACT's `python_mbench.py` sets

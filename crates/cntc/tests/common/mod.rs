@@ -33,9 +33,11 @@ pub fn library_dir() -> PathBuf {
     dir
 }
 
-/// A fresh folder for a test's build products.
+/// The folder for a test's build products, under cargo's target folder
+/// (`CARGO_TARGET_TMPDIR`), so that runs leave nothing in the system's
+/// temporary folder; a name is one test's, and its files are rewritten.
 pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("railcontact-cntc-{name}-{}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cntc-{name}"));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
