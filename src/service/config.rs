@@ -200,6 +200,15 @@ pub struct ServeConfig {
     /// RESOURCE_EXHAUSTED. The store's file is somewhat larger (redb's
     /// pages and free space).
     pub max_store_bytes: u64,
+    /// Largest memory of the prepared pairs the registry holds \[bytes\]
+    /// (default 1 GiB): each registered pair's placed profiles (about 1 MB
+    /// for the Manchester benchmark's, growing with the points) and, once
+    /// model hertz_fastsim_table has used it, its contact table (about as
+    /// much again). Beyond it the least recently used pairs are let go and
+    /// prepared again on their next use (a few ms to a second); a pair
+    /// alone larger than the limit gets RESOURCE_EXHAUSTED. Sessions keep
+    /// their pair while they run.
+    pub max_prepared_bytes: u64,
     /// Longest one solve may run on a worker \[s\] (default 120): a unary
     /// solve, one item of a batch or creep curve, one session step, a
     /// pair's preparation. A solve still running then is stopped and
@@ -361,6 +370,7 @@ impl Default for ServeConfig {
             max_profile_pairs: 256,
             max_profile_points: 20_000,
             max_store_bytes: 256 << 20,
+            max_prepared_bytes: 1 << 30,
             tls_cert: None,
             tls_key: None,
             tls_client_ca: None,
@@ -554,6 +564,7 @@ impl ServeConfig {
             ("max_profile_pairs", c.max_profile_pairs),
             ("max_profile_points", c.max_profile_points),
             ("max_store_bytes", c.max_store_bytes as usize),
+            ("max_prepared_bytes", c.max_prepared_bytes as usize),
         ] {
             if v == 0 {
                 errors.push(format!("{key} must be at least 1"));

@@ -189,7 +189,7 @@ impl ContactHandlers {
             .await?;
         let tabulated = wheelrail::tabulated(req.model);
         let table = match tabulated {
-            true => Some(prepared.table(admission).await?),
+            true => Some(self.pairs.table(&prepared, admission).await?),
             false => None,
         };
         let t0 = StdInstant::now();
@@ -372,7 +372,7 @@ async fn register(
         };
         // The contact table: only model hertz_fastsim_table needs it, so a
         // pair whose table cannot be built is still registered.
-        let message = match prepared.table(admission).await {
+        let message = match registry.table(&prepared, admission).await {
             Ok(t) => format!(
                 "contact table built: {} nodes in {:.2} s",
                 t.node_count(),
@@ -1032,7 +1032,7 @@ impl ContactHandlers {
             .prepared(&entry, &admission, Arc::new(|_, _| {}))
             .await?;
         let table = match wheelrail::tabulated(open.model) {
-            true => Some(prepared.table(&admission).await?),
+            true => Some(self.pairs.table(&prepared, &admission).await?),
             false => None,
         };
         drop(admission);

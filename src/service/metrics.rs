@@ -21,6 +21,8 @@
 //! | `railcontact_library_pairs_live`, `railcontact_library_pair_hits_total`, `..._builds_total` | | placed profile pairs of the CONTACT-compatible library's elements (`ContactLibrary` sessions), shared by content: pairs held now, requests answered by a pair already placed, pairs placed |
 //! | `railcontact_streams_first_message_timed_out_total` | | session streams ended because no first message came within `stream_first_message_timeout_s` |
 //! | `railcontact_solves_timed_out_total` | | solves stopped at the server's limit `max_solve_time_s` |
+//! | `railcontact_prepared_pairs`, `railcontact_prepared_pair_bytes` | | registered pairs the registry holds prepared (placed profiles, and their contact tables once built) and their memory, against `max_prepared_bytes` |
+//! | `railcontact_prepared_pairs_released_total` | | prepared pairs let go, least recently used first, to stay within `max_prepared_bytes` (each is prepared again on its next use) |
 //! | `railcontact_store_damaged_records` | | records of the profile pair store found damaged at start and still there (listed as FAILED pairs) |
 //! | `railcontact_registrations_refused_total` | `limit` | registrations refused by a limit: `max_profile_pairs`, `max_store_bytes`, `max_profile_points` |
 //! | `railcontact_auth_refused_total` | `reason` | calls refused by the bearer tokens (`auth_tokens_file`): `missing` (no `authorization` metadata, or not `Bearer`), `unknown` (no such token), `forbidden` (the token's role may not call the method) |
@@ -125,6 +127,9 @@ pub struct Metrics {
     sessions_active: Gauge,
     sessions_opened: Counter,
     store_damaged_records: Gauge,
+    prepared_pairs: Gauge,
+    prepared_pair_bytes: Gauge,
+    prepared_pairs_released: Counter,
     registrations_refused: Family<LimitLabels, Counter>,
     auth_refused: Family<ReasonLabels, Counter>,
     sessions_idle_closed: Counter,
@@ -151,6 +156,9 @@ impl Default for Metrics {
             sessions_active: Gauge::default(),
             sessions_opened: Counter::default(),
             store_damaged_records: Gauge::default(),
+            prepared_pairs: Gauge::default(),
+            prepared_pair_bytes: Gauge::default(),
+            prepared_pairs_released: Counter::default(),
             registrations_refused: Family::default(),
             auth_refused: Family::default(),
             sessions_idle_closed: Counter::default(),
@@ -175,6 +183,9 @@ impl Default for Metrics {
             "railcontact_sessions_active", "Open co-simulation sessions" => m.sessions_active;
             "railcontact_sessions_opened", "Co-simulation sessions opened" => m.sessions_opened;
             "railcontact_store_damaged_records", "Damaged records of the profile pair store, listed as FAILED pairs" => m.store_damaged_records;
+            "railcontact_prepared_pairs", "Registered pairs held prepared" => m.prepared_pairs;
+            "railcontact_prepared_pair_bytes", "Memory of the registered pairs held prepared, against max_prepared_bytes [bytes]" => m.prepared_pair_bytes;
+            "railcontact_prepared_pairs_released", "Prepared pairs let go to stay within max_prepared_bytes" => m.prepared_pairs_released;
             "railcontact_registrations_refused", "Registrations refused by a limit" => m.registrations_refused;
             "railcontact_auth_refused", "Calls refused by the bearer tokens, by reason" => m.auth_refused;
             "railcontact_sessions_idle_closed", "Sessions closed because they idled past session_idle_timeout_s" => m.sessions_idle_closed;
@@ -230,6 +241,14 @@ impl Metrics {
     /// `n` damaged records of the store are listed as FAILED pairs.
     pub fn store_damaged_records(&self, n: u64) {
         self.store_damaged_records.set(n as i64);
+    }
+
+    /// The registry holds `pairs` prepared pairs of `bytes` in all, having
+    /// let go of `released` more.
+    pub fn prepared_pairs(&self, pairs: usize, bytes: usize, released: u64) {
+        self.prepared_pairs.set(pairs as i64);
+        self.prepared_pair_bytes.set(bytes as i64);
+        self.prepared_pairs_released.inc_by(released);
     }
 
     /// A registration was refused by the limit named `limit`.

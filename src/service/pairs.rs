@@ -28,14 +28,17 @@
 //! or that cannot be decoded, is a FAILED entry that is never served, see
 //! [`PairRegistry::open`]) and are prepared, and their tables built, on
 //! first use; the preparation of an entry runs once however
-//! many requests ask for it at the same time (a [`tokio::sync::OnceCell`]).
-//! No lock is held across an await or a preparation; store writes and the
+//! many requests ask for it at the same time (the entry's `preparing`
+//! lock). The prepared pairs held stay within `max_prepared_bytes`: the
+//! least recently used are let go and prepared again on their next use
+//! ([`PairRegistry::prepared`]). Only the preparation lock is held across
+//! an await or a preparation; store writes and the
 //! registry's map change together under the store's lock, so a delete and
 //! a registration of the same pair cannot leave them disagreeing.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, RwLock};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, OnceLock, RwLock, Weak};
 use std::time::Instant;
 
 use prost::Message;
@@ -43,6 +46,7 @@ use sha2::{Digest, Sha256};
 
 use crate::core::cache::KernelCache;
 use crate::core::material::{CombinedMaterial, Material};
+use crate::core::memory::HeapBytes;
 use crate::core::problem::Friction;
 use crate::problem::case::MaterialSection;
 use crate::service::config::{ServeConfig, StoreDamaged};
@@ -487,15 +491,25 @@ pub struct PreparedPair {
     summaries: [Option<pb::ProfileSummary>; 4],
     /// Preparation time [s].
     prepare_time_s: f64,
+    /// Heap memory of `pair` \[bytes\].
+    pair_bytes: usize,
     /// The contact table: built at registration, or on first use (pairs
     /// restored after a restart).
     table: tokio::sync::OnceCell<Arc<ContactTable>>,
 }
 
 impl PreparedPair {
+    /// Memory it holds: itself, the placed profiles and the contact table
+    /// once built \[bytes\].
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + self.pair_bytes
+            + self.table.get().map_or(0, |t| t.heap_bytes())
+    }
+
     /// The pair's contact table (default grid), built on the pool on the
     /// first call; concurrent first calls build it once.
-    pub async fn table(&self, admission: &Admission) -> Result<Arc<ContactTable>, ServiceError> {
+    async fn table(&self, admission: &Admission) -> Result<Arc<ContactTable>, ServiceError> {
         self.table
             .get_or_try_init(|| async {
                 let pair = self.pair.clone();
@@ -728,6 +742,7 @@ pub fn prepare_with(
         c.rail_left.as_ref().map(|s| summary(s, rail_left.as_ref())),
     ];
     Ok(PreparedPair {
+        pair_bytes: pair.heap_bytes(),
         pair,
         summaries,
         prepare_time_s,
@@ -740,7 +755,15 @@ pub struct PairEntry {
     /// Its registration (for a damaged record, a placeholder with the
     /// record's id: see `PairEntry::damaged`).
     pub spec: PairSpec,
-    prepared: tokio::sync::OnceCell<Arc<PreparedPair>>,
+    /// The prepared pair, while the registry holds it.
+    held: Mutex<Held>,
+    /// One preparation at a time.
+    preparing: tokio::sync::Mutex<()>,
+    /// Set at the first preparation: READY, and what `info` reports even
+    /// when the registry has let the prepared pair go.
+    ready: OnceLock<ReadyInfo>,
+    /// When it was last used, on the registry's clock.
+    last_used: AtomicU64,
     persisted: AtomicBool,
     /// Restored from the store (not registered in this run).
     restored: bool,
@@ -756,7 +779,10 @@ impl PairEntry {
     fn new(spec: PairSpec, restored: bool) -> Self {
         Self {
             spec,
-            prepared: tokio::sync::OnceCell::new(),
+            held: Mutex::new(Held::default()),
+            preparing: tokio::sync::Mutex::new(()),
+            ready: OnceLock::new(),
+            last_used: AtomicU64::new(0),
             persisted: AtomicBool::new(restored),
             restored,
             failure: Mutex::new(None),
@@ -784,9 +810,24 @@ impl PairEntry {
         })
     }
 
-    /// Whether the pair is prepared.
+    /// Whether the pair has been prepared (it is READY, even when the
+    /// registry has let the prepared pair go since).
     pub fn is_ready(&self) -> bool {
-        self.prepared.initialized()
+        self.ready.get().is_some()
+    }
+
+    fn held(&self) -> std::sync::MutexGuard<'_, Held> {
+        self.held.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The prepared pair if the registry holds it, or a session still
+    /// holds it (then the registry holds it again).
+    fn current(&self) -> Option<Arc<PreparedPair>> {
+        let mut held = self.held();
+        if held.pair.is_none() {
+            held.pair = held.released.upgrade();
+        }
+        held.pair.clone()
     }
 
     /// Whether its stored record is damaged.
@@ -797,7 +838,7 @@ impl PairEntry {
     /// The wire description.
     pub fn info(&self) -> pb::ProfilePairInfo {
         let c = &self.spec.canonical;
-        let prepared = self.prepared.get();
+        let prepared = self.ready.get();
         let failure = self
             .failure
             .lock()
@@ -841,6 +882,21 @@ impl PairEntry {
     }
 }
 
+/// What a pair's first preparation found, kept while the pair is
+/// registered.
+struct ReadyInfo {
+    summaries: [Option<pb::ProfileSummary>; 4],
+    prepare_time_s: f64,
+}
+
+/// A pair's prepared state: held by the registry, or let go (then only
+/// sessions that still use it keep it alive).
+#[derive(Default)]
+struct Held {
+    pair: Option<Arc<PreparedPair>>,
+    released: Weak<PreparedPair>,
+}
+
 /// Limits and policies of the registry, from the server settings.
 #[derive(Debug, Clone, Copy)]
 pub struct RegistryLimits {
@@ -851,6 +907,8 @@ pub struct RegistryLimits {
     /// Most encoded bytes of the registrations held (in the store, or in
     /// memory without one).
     pub max_store_bytes: u64,
+    /// Most memory of the prepared pairs held.
+    pub max_prepared_bytes: u64,
     /// What a start does with damaged records.
     pub store_damaged: StoreDamaged,
 }
@@ -862,6 +920,7 @@ impl RegistryLimits {
             max_pairs: config.max_profile_pairs,
             max_profile_points: config.max_profile_points,
             max_store_bytes: config.max_store_bytes,
+            max_prepared_bytes: config.max_prepared_bytes,
             store_damaged: config.store_damaged,
         }
     }
@@ -873,6 +932,8 @@ pub struct PairRegistry {
     store: Mutex<Option<PairStore>>,
     limits: RegistryLimits,
     metrics: Arc<Metrics>,
+    /// Ticks at each use of a prepared pair, for least-recently-used.
+    clock: AtomicU64,
 }
 
 /// Why a stored record under `id` cannot be served: it cannot be decoded,
@@ -962,6 +1023,7 @@ impl PairRegistry {
             store: Mutex::new(store),
             limits,
             metrics,
+            clock: AtomicU64::new(0),
         })
     }
 
@@ -1096,10 +1158,13 @@ impl PairRegistry {
     }
 
     /// The prepared pair of `entry`, preparing it on `admission`'s worker
-    /// if nobody has yet (concurrent callers wait for the one preparation).
-    /// A restored pair whose preparation fails gets FAILED_PRECONDITION
-    /// (the request did nothing wrong) and state FAILED; so does a stored
-    /// record that cannot be used, at once.
+    /// if the registry does not hold it (concurrent callers wait for the
+    /// one preparation): at first use, or again after the registry let it
+    /// go to stay within `max_prepared_bytes`.
+    /// A pair alone larger than that limit gets RESOURCE_EXHAUSTED. A
+    /// restored pair whose preparation fails gets FAILED_PRECONDITION (the
+    /// request did nothing wrong) and state FAILED; so does a stored record
+    /// that cannot be used, at once.
     pub async fn prepared(
         &self,
         entry: &Arc<PairEntry>,
@@ -1112,26 +1177,45 @@ impl PairRegistry {
                 format!("profile pair {}: {reason}", entry.spec.id),
             ));
         }
+        if let Some(p) = self.use_held(entry) {
+            return Ok(p);
+        }
+        let _one = entry.preparing.lock().await;
+        if let Some(p) = self.use_held(entry) {
+            return Ok(p);
+        }
         let e = entry.clone();
         let (max_points, metrics) = (self.limits.max_profile_points, self.metrics.clone());
-        let r = entry
-            .prepared
-            .get_or_try_init(|| async move {
-                let e2 = e.clone();
-                admission
-                    .run(move || {
-                        let limit = PointLimit {
-                            max_points,
-                            metrics: Some(&metrics),
-                        };
-                        prepare_with(&e2.spec, &*progress, limit).map(Arc::new)
-                    })
-                    .await
-                    .and_then(|r| r)
+        let r = admission
+            .run(move || {
+                let limit = PointLimit {
+                    max_points,
+                    metrics: Some(&metrics),
+                };
+                prepare_with(&e.spec, &*progress, limit).map(Arc::new)
             })
             .await
-            .cloned();
+            .and_then(|r| r);
         match r {
+            Ok(p) => {
+                let bytes = p.bytes() as u64;
+                if bytes > self.limits.max_prepared_bytes {
+                    return Err(ServiceError::Exhausted(format!(
+                        "profile pair {} takes {bytes} bytes prepared, more than the limit of {} \
+                         for all prepared pairs (max_prepared_bytes): register profiles with \
+                         fewer points, or raise the limit",
+                        entry.spec.id, self.limits.max_prepared_bytes
+                    )));
+                }
+                entry.ready.get_or_init(|| ReadyInfo {
+                    summaries: p.summaries.clone(),
+                    prepare_time_s: p.prepare_time_s,
+                });
+                entry.held().pair = Some(p.clone());
+                self.use_held(entry);
+                self.hold_within_budget();
+                Ok(p)
+            }
             Err(ServiceError::Invalid { field, reason }) if entry.restored => {
                 let m = format!(
                     "profile pair {} was restored from the store but cannot be prepared: {field}: {reason}",
@@ -1140,8 +1224,67 @@ impl PairRegistry {
                 *entry.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(m.clone());
                 Err(ServiceError::precondition("", m))
             }
-            other => other,
+            Err(e) => Err(e),
         }
+    }
+
+    /// The contact table of `entry`'s `prepared` pair, built on
+    /// `admission`'s worker on first use; a
+    /// table built now counts against `max_prepared_bytes`.
+    pub async fn table(
+        &self,
+        prepared: &PreparedPair,
+        admission: &Admission,
+    ) -> Result<Arc<ContactTable>, ServiceError> {
+        let built = prepared.table.initialized();
+        let t = prepared.table(admission).await?;
+        if !built {
+            self.hold_within_budget();
+        }
+        Ok(t)
+    }
+
+    /// `entry`'s prepared pair if held (or still alive in a session), as
+    /// used now.
+    fn use_held(&self, entry: &PairEntry) -> Option<Arc<PreparedPair>> {
+        let p = entry.current()?;
+        let now = self.clock.fetch_add(1, Ordering::Relaxed) + 1;
+        entry.last_used.store(now, Ordering::Relaxed);
+        Some(p)
+    }
+
+    /// Lets go of the least recently used prepared pairs until those held
+    /// take at most `max_prepared_bytes` (a pair let go stays alive while a
+    /// session uses it, and is prepared again on its next use otherwise);
+    /// tells the metrics.
+    fn hold_within_budget(&self) {
+        let entries = self.read();
+        let mut held: Vec<(u64, usize, &Arc<PairEntry>)> = entries
+            .values()
+            .filter_map(|e| {
+                let bytes = e.held().pair.as_ref()?.bytes();
+                Some((e.last_used.load(Ordering::Relaxed), bytes, e))
+            })
+            .collect();
+        held.sort_by_key(|&(used, _, _)| used);
+        let mut total: usize = held.iter().map(|&(_, b, _)| b).sum();
+        let mut released = 0;
+        // The most recently used is kept whatever its size: it is in use.
+        let keep = held.len().saturating_sub(1);
+        for &(_, bytes, e) in &held[..keep] {
+            if total as u64 <= self.limits.max_prepared_bytes {
+                break;
+            }
+            let mut h = e.held();
+            if let Some(p) = h.pair.take() {
+                h.released = Arc::downgrade(&p);
+                total -= bytes;
+                released += 1;
+                tracing::info!(pair_id = %e.spec.id, bytes, "prepared profile pair let go to stay within max_prepared_bytes; it is prepared again on its next use");
+            }
+        }
+        self.metrics
+            .prepared_pairs(held.len() - released as usize, total, released);
     }
 
     /// Writes the registration of a prepared `entry` to the store (on the

@@ -324,7 +324,7 @@ impl Drop for QuotaGuard {
 }
 
 /// A trusted proxy's address, or a range of them
-/// ([`ServeConfig::trusted_proxies`]): `10.0.0.5` or `10.244.0.0/16`.
+/// ([`crate::service::config::ServeConfig::trusted_proxies`]): `10.0.0.5` or `10.244.0.0/16`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ProxyRange(pub ipnet::IpNet);
 

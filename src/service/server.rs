@@ -61,7 +61,7 @@ fn unix_now() -> i64 {
 }
 
 /// Registers and prepares the built-in pair.
-async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Result<()> {
+async fn register_builtin(pairs: &Arc<PairRegistry>, pool: &SolvePool) -> std::io::Result<()> {
     let t0 = std::time::Instant::now();
     let spec =
         pairs::canonicalize(&pairs::builtin_registration()).map_err(std::io::Error::other)?;
@@ -76,8 +76,9 @@ async fn register_builtin(pairs: &PairRegistry, pool: &SolvePool) -> std::io::Re
     // that the server listens at once; a hertz_fastsim_table request that
     // comes first waits for the same build.
     let background = pool.internal();
+    let pairs = pairs.clone();
     tokio::spawn(async move {
-        if let Err(e) = prepared.table(&background).await {
+        if let Err(e) = pairs.table(&prepared, &background).await {
             tracing::warn!(error = %e, "contact table of the built-in pair not built");
         }
     });

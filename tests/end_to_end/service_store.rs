@@ -620,3 +620,67 @@ async fn registry_limits_answer_resource_exhausted_or_invalid_argument() {
     assert_eq!(metric(&server, &refused("max_profile_pairs")).await, 1.0);
     server.shutdown().await;
 }
+
+/// Memory of `spec`'s pair prepared, without its contact table \[bytes\].
+fn prepared_bytes(spec: &pb::ProfilePairSpec) -> u64 {
+    let s = pairs::canonicalize(&request(spec.clone())).unwrap();
+    pairs::prepare(&s, &|_, _| {}).unwrap().bytes() as u64
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn prepared_pairs_stay_within_max_prepared_bytes_and_are_prepared_again_on_use() {
+    // A limit that holds one benchmark pair: of the built-in pair and two
+    // registered ones, only the one used last is held.
+    let (a, b) = (mbench_spec(0.25), mbench_spec(0.35));
+    let limit = prepared_bytes(&a);
+    let big = worn_spec("prepared");
+    let big_bytes = prepared_bytes(&big);
+    assert!(big_bytes > limit, "{big_bytes} against {limit}");
+    let mut c = config(Path::new(""));
+    c.data_dir = Default::default();
+    c.max_prepared_bytes = limit;
+    let (server, mut client) = server_with(&c).await;
+    let id_a = register(&mut client, a).await.unwrap().pair_id;
+    let untimed = |mut r: pb::WheelRailResult| {
+        r.timing = None;
+        r
+    };
+    let first = untimed(solve(&mut client, &id_a).await.unwrap());
+    let id_b = register(&mut client, b).await.unwrap().pair_id;
+    solve(&mut client, &id_b).await.unwrap();
+    assert_eq!(metric(&server, "railcontact_prepared_pairs ").await, 1.0);
+    let released = metric(&server, "railcontact_prepared_pairs_released_total ").await;
+    assert!(released >= 2.0, "{released}");
+    // A, let go, is prepared again and answers the same bits; it is
+    // still READY.
+    let again = untimed(solve(&mut client, &id_a).await.unwrap());
+    assert_eq!(again, first);
+    let info = client
+        .get_profile_pair(pb::GetProfilePairRequest {
+            pair_id: id_b.clone(),
+        })
+        .await
+        .unwrap()
+        .into_inner();
+    assert_eq!(info.state, pb::ProfilePairState::Ready as i32, "{info:?}");
+    assert!(info.prepare_time_s > 0.0, "{info:?}");
+    assert_eq!(metric(&server, "railcontact_prepared_pairs ").await, 1.0);
+    assert!(metric(&server, "railcontact_prepared_pairs_released_total ").await > released);
+    // A pair larger than the limit alone is refused, naming it, and is
+    // not registered.
+    let e = register(&mut client, big).await.unwrap_err();
+    assert_eq!(e.code(), Code::ResourceExhausted, "{e:?}");
+    assert!(
+        e.message().contains("max_prepared_bytes") && e.message().contains(&big_bytes.to_string()),
+        "{e:?}"
+    );
+    let listed = client
+        .list_profile_pairs(pb::ListProfilePairsRequest::default())
+        .await
+        .unwrap()
+        .into_inner()
+        .pairs
+        .len();
+    assert_eq!(listed, 3, "the built-in pair, A and B");
+    server.shutdown().await;
+}

@@ -549,6 +549,12 @@ pub(crate) struct WheelScratch<'a> {
     pub(crate) solver: &'a mut Option<Box<ContactSolver>>,
 }
 
+impl HeapBytes for VerticalGap {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.z_rail_m, self.z_wheel_m, self.locus_index)
+    }
+}
+
 /// The loci, gaps and kept solvers' buffers (not the solvers' kernels,
 /// the cache's).
 impl HeapBytes for SearchScratch {
@@ -557,7 +563,7 @@ impl HeapBytes for SearchScratch {
             .gap
             .iter()
             .chain([&self.window_gap])
-            .map(|g| heap_bytes!(g.z_rail_m, g.z_wheel_m, g.locus_index))
+            .map(HeapBytes::heap_bytes)
             .sum::<usize>();
         gaps + heap_bytes!(self.locus, self.window_locus, self.solvers.0)
     }

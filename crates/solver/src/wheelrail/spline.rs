@@ -81,6 +81,8 @@
 
 use thiserror::Error;
 
+use crate::core::memory::{heap_bytes, HeapBytes};
+
 /// Default cut-off wavelength of the smoothing \[m\]: 2 mm. See the module
 /// documentation for the choice.
 pub const DEFAULT_SMOOTHING_WAVELENGTH_M: f64 = 2e-3;
@@ -237,6 +239,23 @@ pub struct ProfileSpline {
     samples: Vec<(f64, f64)>,
     pieces: Vec<MonotonePiece>,
     smoothing_wavelength_m: f64,
+}
+
+/// Its knots, samples and monotone pieces.
+impl HeapBytes for ProfileSpline {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(
+            self.u,
+            self.gy,
+            self.gz,
+            self.cy,
+            self.cz,
+            self.s,
+            self.end_speed,
+            self.samples,
+            self.pieces
+        )
+    }
 }
 
 /// Value, first and second derivative in u of one coordinate on interval i.

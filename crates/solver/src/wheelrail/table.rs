@@ -90,6 +90,7 @@ use crate::core::cache::KernelCache;
 use crate::core::cancel::{self, CancelToken};
 use crate::core::error::ContactError;
 use crate::core::hertz::{hertz, HertzLoad};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::wheelrail::contact::{
     finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch, solve_wheelset_warm,
     validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad, WheelRailInput,
@@ -277,6 +278,21 @@ fn build_rolls(
 /// Arc-length step of the (uniform) wheel samples [m].
 fn wheel_step_m(samples: &[CurveSample]) -> f64 {
     samples[1].t_m - samples[0].t_m
+}
+
+/// Its copy of the pair, its nodes' contacts and gaps, and the rails.
+impl HeapBytes for ContactTable {
+    fn heap_bytes(&self) -> usize {
+        let contacts = self
+            .nodes
+            .iter()
+            .map(|side| {
+                side.capacity() * std::mem::size_of::<Vec<NodeContact>>()
+                    + side.iter().map(HeapBytes::heap_bytes).sum::<usize>()
+            })
+            .sum::<usize>();
+        contacts + heap_bytes!(self.pair, self.min_gap_m, self.rails)
+    }
 }
 
 impl ContactTable {

@@ -37,6 +37,7 @@
 //!   backwards).
 
 use crate::core::error::{require_finite, require_positive, ContactError};
+use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::wheelrail::search::{LocusSample, VerticalGap};
 use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
 use crate::wheelrail::{Profile, ProfileKind};
@@ -253,6 +254,13 @@ pub struct PlacedRail {
     surface: VerticalGap,
 }
 
+/// Its spline, samples and surface.
+impl HeapBytes for PlacedRail {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.spline, self.samples, self.surface)
+    }
+}
+
 impl PlacedRail {
     /// Side-frame point (q, z) of a profile point (y, z).
     pub fn to_side(&self, y: f64, z: f64) -> [f64; 2] {
@@ -300,6 +308,13 @@ pub struct PlacedWheel {
     locus_radius_m: f64,
 }
 
+/// Its spline and samples.
+impl HeapBytes for PlacedWheel {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.spline, self.samples, self.locus_samples)
+    }
+}
+
 impl PlacedWheel {
     /// Axial coordinate of profile y = 0 \[m\] (the tape circle for S1002).
     pub fn axial_offset_m(&self) -> f64 {
@@ -335,6 +350,14 @@ pub struct WheelRailPair {
     wheels: [PlacedWheel; 2],
     track: TrackData,
     wheelset: WheelsetData,
+}
+
+/// The placed profiles: what a registered pair keeps in memory (1.1 MB
+/// for the Manchester benchmark's profiles, growing with the points).
+impl HeapBytes for WheelRailPair {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.rails, self.wheels)
+    }
 }
 
 impl WheelRailPair {
