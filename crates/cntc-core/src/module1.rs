@@ -78,16 +78,16 @@ use std::time::Instant;
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::Range;
 use railcontact_solver::core::grid::Grid;
-use railcontact_solver::core::problem::Friction;
+use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
-    parse_profile, pitch_force_tolerance, solve_wheelset, ExactTangential, FrictionAxis,
-    FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
-    ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side, SplineOptions, TrackData,
-    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelsetData, WheelsetPosition, WheelsetVelocity,
+    parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
+    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side,
+    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
+    WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1072,12 +1072,15 @@ impl WheelRail {
                 d.discns
             )));
         }
-        if let MaterialModel::InterfacialLayer(_) = self.config.material.model {
-            return Err(CntcError::NotSupported(
-                "M = 4 (an interfacial layer) in module 1 is not supported: the wheel/rail \
-                 patches are solved without a layer; module 3 takes it"
-                    .into(),
-            ));
+        if let MaterialModel::InterfacialLayer(l) = self.config.material.model {
+            if l.is_plastic() {
+                return Err(CntcError::NotSupported(
+                    "M = 4 with a yield limit TAU_C0 > 0 (an elasto-plastic interfacial layer) \
+                     in module 1 is not supported: the wheel/rail patches take an elastic layer \
+                     (TAU_C0 = 0); module 3 takes the plastic one"
+                        .into(),
+                ));
+            }
         }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
@@ -1324,6 +1327,12 @@ impl WheelRail {
                     }
                     _ => ExactTangential::Kalker,
                 },
+                // M = 4: the elastic layer's flexibility in the patches'
+                // tangential kernels (the normal problem does not see it).
+                solver: SolverSettings {
+                    interfacial_layer: self.config.material.model.layer(),
+                    ..wheelrail_solver_settings()
+                },
                 ..WheelRailSettings::default()
             },
             total_longitudinal_force_n: None,
@@ -1404,7 +1413,11 @@ impl WheelRail {
                     _ => DisplacementSource::Influence {
                         body1: input.material.body1,
                         body2: input.material.body2,
-                        layer_flexibility_m_per_pa: 0.0,
+                        layer_flexibility_m_per_pa: input
+                            .settings
+                            .solver
+                            .interfacial_layer
+                            .map_or(0.0, |l| l.flexibility_m_per_pa()),
                     },
                 });
             }

@@ -410,10 +410,11 @@ fn plasticity_in_steady_rolling_shifts_and_rolling_steps_matches_contact() {
 const TOL: f64 = 5e-7;
 
 /// What M = 4 refuses: an elasto-plastic layer with a falling friction
-/// law (-99, at calculation), M = 4 in module 1 (-40); an elastic layer
-/// takes the law (above), and Coulomb's law makes the plastic one run.
+/// law (-99, at calculation); an elastic layer takes the law (above), and
+/// Coulomb's law makes the plastic one run. (Module 1 with a plastic
+/// layer: `module1.rs`.)
 #[test]
-fn a_plastic_layer_refuses_a_falling_law_and_module_1() {
+fn a_plastic_layer_refuses_a_falling_law() {
     let ire = 404;
     tractcurv_falling(
         ire,
@@ -425,14 +426,6 @@ fn a_plastic_layer_refuses_a_falling_law_and_module_1() {
     let (ierror, f) = solve(ire, 0.003);
     assert_eq!(ierror, 0);
     assert!(f[1] < 0.0);
-    let (ire, mut ifcver, mut ierror) = (405, 0, 0);
-    unsafe {
-        cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, std::ptr::null(), &0);
-        let mat = [0.28, 0.28, 82000.0, 82000.0, 8200.0, 1.25, 0.0, 0.0];
-        cntc_setmaterialparameters(&ire, &-1, &4, &8, mat.as_ptr());
-        cntc_calculate(&ire, &-1, &mut ierror);
-    }
-    assert_eq!(ierror, contact_addon::flags::err::NOT_SUPPORTED);
 }
 
 /// Prescribed forces on the catt3d_plast problem (above): F = 1 with

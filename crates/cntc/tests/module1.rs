@@ -312,22 +312,34 @@ fn tread_and_flange(ire: i32, values: &[([f64; 3], [f64; 6]); 2]) -> [Reference;
     ]
 }
 
+/// M = 3 with the slope reduction [k0, alpha_inf, beta], as
+/// `cntc_setmaterialparameters`'s M digit and parameters.
+fn modified_fastsim(k0: f64, alpha_inf: f64, beta: f64) -> (i32, Vec<f64>) {
+    (3, vec![0.28, 0.28, 82000.0, 82000.0, k0, alpha_inf, beta])
+}
+
+/// M = 4 with an elastic interfacial layer of shear modulus `g3` [N/mm²]
+/// and thickness `laythk` [mm] (TAU_C0 = 0).
+fn elastic_layer(g3: f64, laythk: f64) -> (i32, Vec<f64>) {
+    (4, vec![0.28, 0.28, 82000.0, 82000.0, g3, laythk, 0.0, 0.0])
+}
+
 /// Solves `r` on its element, set up as `mbench` with the T digit `tang`
-/// and, with `Some`, M = 3 with the slope reduction [k0, alpha_inf,
-/// beta]; compares against CONTACT's values with the tolerances `tol`:
+/// and, with `Some`, the M digit and material parameters `material`;
+/// compares against CONTACT's values with the tolerances `tol`:
 /// [N] of the forces (global FX_TR, FY_TR and the patch's FN, FX, FS),
 /// relative of the contact area and of the maximum pressure, [mm²] of the
 /// adhesion area. FZ_TR is the load, met to 1 N.
-fn compare(r: &Reference, tang: i32, fastsim: Option<[f64; 3]>, tol: [f64; 4]) {
+fn compare(r: &Reference, tang: i32, material: Option<(i32, Vec<f64>)>, tol: [f64; 4]) {
     let [force_tol, area_tol, pmax_tol, adh_tol] = tol;
     let ire = r.ire;
     unsafe {
         mbench(ire, r.iwhe);
         let (codes, values) = ([flags::IC_TANG], [tang]);
         cntc_setflags(&ire, &-1, &1, codes.as_ptr(), values.as_ptr());
-        if let Some([k0, alpha, beta]) = fastsim {
-            let mat = [0.28, 0.28, 82000.0, 82000.0, k0, alpha, beta];
-            cntc_setmaterialparameters(&ire, &-1, &3, &7, mat.as_ptr());
+        if let Some((m, params)) = material {
+            let n = params.len() as i32;
+            cntc_setmaterialparameters(&ire, &-1, &m, &n, params.as_ptr());
         }
         solve_one_patch(ire, r.pos, r.vpitch);
         let case = format!("ire {ire}");
@@ -408,8 +420,9 @@ const CONTACT: [[([f64; 3], [f64; 6]); 2]; 3] = [
 #[test]
 fn fastsim_on_tread_and_flange_matches_contacts_library() {
     let [tread, flange] = tread_and_flange(41, &CONTACT[0]);
-    compare(&tread, 3, Some([1.0, 1.0, 0.0]), [10.0, 0.02, 0.01, 0.4]);
-    compare(&flange, 3, Some([1.0, 1.0, 0.0]), [10.0, 0.06, 0.03, 0.4]);
+    let kalker = || Some(modified_fastsim(1.0, 1.0, 0.0));
+    compare(&tread, 3, kalker(), [10.0, 0.02, 0.01, 0.4]);
+    compare(&flange, 3, kalker(), [10.0, 0.06, 0.03, 0.4]);
 }
 
 /// M = 3 with the slope reduction of CONTACT's tractcurv example (k0 =
@@ -426,9 +439,9 @@ fn fastsim_on_tread_and_flange_matches_contacts_library() {
 #[test]
 fn modified_fastsim_on_tread_and_flange_matches_contacts_library() {
     let [tread, flange] = tread_and_flange(43, &CONTACT[1]);
-    let reduction = Some([0.54, 0.02, 0.62]);
-    compare(&tread, 3, reduction, [25.0, 0.02, 0.01, 0.4]);
-    compare(&flange, 3, reduction, [80.0, 0.06, 0.03, 0.4]);
+    let reduction = || Some(modified_fastsim(0.54, 0.02, 0.62));
+    compare(&tread, 3, reduction(), [25.0, 0.02, 0.01, 0.4]);
+    compare(&flange, 3, reduction(), [80.0, 0.06, 0.03, 0.4]);
 }
 
 /// T = 0 (the normal problem only, M = 0): measured FN within 0.2 N,
@@ -441,4 +454,57 @@ fn frictionless_tread_and_flange_match_contacts_library() {
     let [tread, flange] = tread_and_flange(45, &CONTACT[2]);
     compare(&tread, 0, None, [2.0, 0.02, 0.01, 0.02 * 33.04]);
     compare(&flange, 0, None, [2.0, 0.07, 0.03, 0.07 * 10.84]);
+}
+
+// M = 4 with an elastic interfacial layer on the same two cases: CONTACT's
+// own library (d431cdb, built and driven as above) with
+// cntc_setmaterialparameters(ire, -1, 4, [0.28, 0.28, 82000, 82000, G3,
+// LAYTHK, 0, 0]): first G3 = 500 N/mm², LAYTHK = 0.1 mm (the layer halves
+// the tread's creep forces), then G3 = 1000 N/mm², LAYTHK = 0.01 mm.
+// Tread then flange: (FX_TR, FY_TR, FZ_TR), (FN, FX, FS, CAREA, HAREA,
+// PMAX).
+#[rustfmt::skip]
+const CONTACT_LAYER: [[([f64; 3], [f64; 6]); 2]; 2] = [
+    [([292.329078, -1717.51399, 10000.001], [10022.1854, 292.329078, -1582.93218, 33.12, 26.32, 465.65945]),
+     ([-1880.83795, 9293.22286, 9999.99028], [13220.8744, -1880.83795, -3401.80506, 8.32, 1.2, 2627.0609])],
+    [([549.155499, -3095.25047, 10000.0007], [10040.7078, 549.155499, -2960.53666, 33.2, 0.04, 465.94537]),
+     ([-2072.04775, 9332.81914, 10000.0039], [13254.2145, -2072.04775, -3380.4423, 8.32, 0.0, 2629.15392])],
+];
+
+/// M = 4 with an elastic layer (its flexibility LAYTHK/G3 in the patches'
+/// tangential influence coefficients). Measured: the forces within 14.0 N
+/// (the flange's FY_TR, 0.14 % of FZ; the tread's within 4.8 N), the
+/// adhesion area within 0.24 mm² (six elements), the areas and maximum
+/// pressures apart as without a layer (the flange's area 4.8 % larger,
+/// its pressure 2.7 % lower: the normal problem, which the layer does not
+/// change). Tolerances: 20 N (0.2 % of FZ), areas and pressures as with
+/// M = 3, the adhesion area 0.4 mm².
+#[test]
+fn elastic_layer_on_tread_and_flange_matches_contacts_library() {
+    for (k, (g3, laythk)) in [(500.0, 0.1), (1000.0, 0.01)].into_iter().enumerate() {
+        let ire = 47 + 2 * k as i32;
+        let [tread, flange] = tread_and_flange(ire, &CONTACT_LAYER[k]);
+        let layer = || Some(elastic_layer(g3, laythk));
+        compare(&tread, 3, layer(), [20.0, 0.02, 0.01, 0.4]);
+        compare(&flange, 3, layer(), [20.0, 0.06, 0.03, 0.4]);
+    }
+}
+
+/// M = 4 with a yield limit in module 1 is refused naming it (-40).
+#[test]
+fn plastic_layer_in_module_1_is_refused() {
+    let ire = 51;
+    unsafe {
+        mbench(ire, 1);
+        let mat = [0.28, 0.28, 82000.0, 82000.0, 500.0, 0.1, 100.0, 0.0];
+        cntc_setmaterialparameters(&ire, &-1, &4, &8, mat.as_ptr());
+        let pos = [0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0];
+        cntc_setwheelsetposition(&ire, &2, &6, pos.as_ptr());
+        let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, -4.3459197];
+        cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
+        let mut ierror = 0;
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, flags::err::NOT_SUPPORTED, "ierror {ierror}");
+        cntc_finalize(&ire);
+    }
 }

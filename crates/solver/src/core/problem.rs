@@ -419,8 +419,9 @@ pub struct SolverSettings {
     /// here so that every problem carries it without a change of its
     /// statement: the exact model's solver takes it (its kernels include
     /// the layer's flexibility, its history the plastic state), checked
-    /// by [`ContactProblem::validate`]. The other models (FASTSIM, the
-    /// conformal solvers, the wheel/rail patches) do not read it.
+    /// by [`ContactProblem::validate`]; so do the exact wheel/rail patches,
+    /// whose problems take the wheel/rail settings' solver settings. The
+    /// other models (FASTSIM, the conformal solvers) do not read it.
     pub interfacial_layer: Option<InterfacialLayer>,
 }
 
