@@ -160,6 +160,11 @@ pub struct WheelRailInp {
     pub kind: InpType,
     /// The control digits (a Simpack file's reverted ones replaced).
     pub digits: Lined<InpDigits>,
+    /// What the digits ask for that no `cntc_set*` call carries and this
+    /// library does not have, refused as `CNTC_err_notsupported` before
+    /// anything is applied: subsurface points (S), a gap weighting, a new
+    /// M digit without its material parameters (C3 = 0, 1).
+    pub unsupported: Option<Lined<String>>,
     /// G: the solver's parameters.
     pub solver: Option<Lined<SolverInp>>,
     /// V, L: `cntc_setfrictionmethod`'s `params`.
@@ -439,10 +444,11 @@ pub fn parse(
             ),
         });
     }
-    let digits = read_digits(&mut r, kind, held, &mut warnings)?;
+    let (digits, unsupported) = read_digits(&mut r, kind, held, &mut warnings)?;
     let d = digits.value;
     let mut inp = WheelRailInp {
         kind,
+        unsupported,
         digits,
         solver: None,
         friction: None,
@@ -498,13 +504,15 @@ pub fn parse(
 
 /// The three (four with X = 1) lines of control digits, checked as
 /// CONTACT checks a module 1 case's; a Simpack file's digits C1, P, N,
-/// F1, H, S and I reverted to the element's, and T, S, Z1, E1 limited.
+/// F1, H, S and I reverted to the element's, and T, S, Z1, E1 limited;
+/// and what they ask for that the library does not have
+/// ([`unsupported_digits`]).
 fn read_digits(
     r: &mut Reader,
     kind: InpType,
     held: &Held,
     warnings: &mut Vec<String>,
-) -> Result<Lined<InpDigits>, InpError> {
+) -> Result<(Lined<InpDigits>, Option<Lined<String>>), InpError> {
     let what1 = "the control digits C-P-B-T-N-F-S (an integer of 7 digits)";
     let v1 = r.read(what1, "i")?;
     let v2 = r.read(
@@ -641,9 +649,8 @@ fn read_digits(
             v2.line
         ));
     }
-    let fail = |line: usize, message: String| -> Result<Lined<InpDigits>, InpError> {
-        Err(InpError { line, message })
-    };
+    let fail =
+        |line: usize, message: String| -> Result<_, InpError> { Err(InpError { line, message }) };
     if d.force == 1 && d.norm != 1 {
         return fail(
             v1.line,
@@ -674,10 +681,63 @@ fn read_digits(
             "temperature-dependent friction (L = 6) requires temperatures, H >= 1".into(),
         );
     }
-    Ok(Lined {
-        line: v1.line,
-        value: d,
-    })
+    if d.frclaw == 1 && d.varfrc != held.digits.varfrc {
+        return fail(
+            v2.line,
+            format!(
+                "a new friction variation V = {} (was {}) needs new friction parameters, L != 1",
+                d.varfrc, held.digits.varfrc
+            ),
+        );
+    }
+    let unsupported = unsupported_digits(&d, held, v1.line, v2.line);
+    Ok((
+        Lined {
+            line: v1.line,
+            value: d,
+        },
+        unsupported,
+    ))
+}
+
+/// What the digits (of the lines C-P-B-T-N-F-S `line1` and V-L-D-C-M-Z-E
+/// `line2`) ask for that no call carries and the library does not have.
+fn unsupported_digits(
+    d: &InpDigits,
+    held: &Held,
+    line1: usize,
+    line2: usize,
+) -> Option<Lined<String>> {
+    let (line, what) = if d.stress != 0 {
+        (
+            line1,
+            format!(
+                "S = {}: subsurface points in the input file are not read; give S = 0 and use \
+             subs_addblock and subs_calculate",
+                d.stress
+            ),
+        )
+    } else if d.gapwgt != 0 {
+        (
+            line2,
+            format!(
+                "gap weighting {} (the tens of the M2 value) is not supported; 0",
+                d.gapwgt
+            ),
+        )
+    } else if d.inflcf <= 1 && d.mater != held.digits.mater {
+        (
+            line2,
+            format!(
+            "M = {} (was {}) with C3 = {}: a new M digit is read with its material parameters, \
+             C3 = 2 or 3",
+            d.mater, held.digits.mater, d.inflcf
+        ),
+        )
+    } else {
+        return None;
+    };
+    Some(Lined { line, value: what })
 }
 
 /// G != 1: the iteration parameters, as `cntc_setsolverflags` takes them.
@@ -1283,33 +1343,6 @@ impl WheelRailInp {
             ));
         }
         out
-    }
-
-    /// What the file asks for that no `cntc_set*` call carries and this
-    /// library does not have (refused as `CNTC_err_notsupported`): the
-    /// subsurface stresses of the S digit, the gap weighting.
-    pub fn unsupported(&self) -> Option<(usize, String)> {
-        let d = &self.digits.value;
-        if d.stress != 0 {
-            return Some((
-                self.digits.line,
-                format!(
-                    "S = {}: subsurface points in the input file are not read; give S = 0 and \
-                     use subs_addblock and subs_calculate",
-                    d.stress
-                ),
-            ));
-        }
-        if d.gapwgt != 0 {
-            return Some((
-                self.digits.line,
-                format!(
-                    "gap weighting {} (the tens of the M2 value) is not supported; 0",
-                    d.gapwgt
-                ),
-            ));
-        }
-        None
     }
 }
 

@@ -204,8 +204,12 @@ impl Entry {
         warnings
             .into_iter()
             .for_each(|m| warn(format!("\"{shown}\", {m}")));
-        if let Some((line, what)) = inp.unsupported() {
-            return Err(CntcError::NotSupported(format!("{}: {what}", at(line))));
+        if let Some(u) = &inp.unsupported {
+            return Err(CntcError::NotSupported(format!(
+                "{}: {}",
+                at(u.line),
+                u.value
+            )));
         }
         let dir = path.parent().unwrap_or(Path::new(""));
         let calls = inp.calls(dir, &held);

@@ -347,7 +347,16 @@ fn unsupported_digits_are_refused_naming_the_line() {
     let text = MBENCH_RIGHT_INP.replacen(" 1203100 ", " 1203103 ", 1);
     let e = refused(&dir, ire, "subs.inp", &text, err::NOT_SUPPORTED);
     assert!(e.contains("line 4: S = 3"), "{e}");
-    unsafe { cntc_finalize(&ire) };
+    // A new M digit without its material parameters (C3 = 1 keeps them),
+    // on a new element (M = 0).
+    let text = MBENCH_RIGHT_INP
+        .replacen(" 0022033 ", " 0021333 ", 1)
+        .replacen("  0.280,  0.280,  82000., 82000.", "%", 1);
+    let e = refused(&dir, 42, "m3.inp", &text, err::NOT_SUPPORTED);
+    assert!(e.contains("line 5: M = 3 (was 0) with C3 = 1"), "{e}");
+    for ire in [41, 42] {
+        unsafe { cntc_finalize(&ire) };
+    }
 }
 
 /// A Simpack file: the same sections without rail deviations, positions
