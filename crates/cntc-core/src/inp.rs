@@ -1371,4 +1371,114 @@ mod tests {
         assert!(e.message.contains("value 2 \"x\""), "{e}");
         assert_eq!(digits_of::<7>(203100), [0, 2, 0, 3, 1, 0, 0]);
     }
+
+    /// The sections the digits ask for become their calls' arguments:
+    /// friction by contact angle (V = 1, L = 4) with its memory on every
+    /// row, G = 2's relaxation, M = 3's slope reduction, D_TURN and G_MISS,
+    /// N = 0's height, E1 = 5's deviations.
+    #[test]
+    fn sections_become_their_calls() {
+        let text = "\
+  1 MODULE
+ 0200000     C-P-B-T-N-F-S
+ 1423335  1  V-L-D-C-M-Z-E  M2
+ 0200021     H-G-I-A-O-W-R
+ 999 100 30 5 1e-6 5000
+ 0.7 0.8 1 0.1
+ 2
+ -90d 0.2 0.1 10 0 5000
+  90d 0.25, 0.1, 10, 0, 5000
+ 0.01 5
+ 0.28 0.28 82000 82000
+ 0.54 0.02 0.62
+ 0.2 0.2 1 30d 8 4 7 0.1
+ 14 0 1435 0.001
+ 'r.prr' 0 1 0
+ 0 0 0 0 0 0
+ 1360 -70 460
+ 'w.prw' 0 1 0
+ 0 1 -0.5 0 0.002 0
+ 2000 0 0 0 0 -4.3
+ 0 0 0 0 0 0
+ 0 0 0 0 0 0
+";
+        let held = Held {
+            digits: Digits::default(),
+            z_mm: 0.0,
+            vpitch: 0.0,
+        };
+        let (inp, warnings) = parse(text, InpType::Module1, &held).unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(inp.unsupported, None);
+        let calls: Vec<Call> = inp
+            .calls(Path::new("/p"), &held)
+            .into_iter()
+            .map(|(_, c)| c)
+            .collect();
+        let deg = |x: f64| x * std::f64::consts::PI / 180.0;
+        for want in [
+            Call::SetFlag {
+                code: flags::IC_DISCNS,
+                value: 2,
+            },
+            Call::SetSolverFlags {
+                gdigit: 2,
+                ints: vec![999, 100, 30, 5, 1],
+                reals: vec![1e-6, 0.7, 0.8, 0.1],
+            },
+            Call::SetFriction {
+                imeth: 14,
+                params: vec![
+                    2.0,
+                    deg(-90.0),
+                    0.2,
+                    0.1,
+                    10.0,
+                    0.0,
+                    5000.0,
+                    0.01,
+                    5.0,
+                    deg(90.0),
+                    0.25,
+                    0.1,
+                    10.0,
+                    0.0,
+                    5000.0,
+                    0.01,
+                    5.0,
+                ],
+            },
+            Call::SetMaterial {
+                mdigit: 3,
+                params: vec![0.28, 0.28, 82000.0, 82000.0, 0.54, 0.02, 0.62],
+            },
+            Call::SetPotcon {
+                ipotcn: -1,
+                params: vec![0.2, 0.2, deg(30.0), 8.0, 4.0, 7.0, 0.1],
+            },
+            Call::SetRollingStep { chi: None, dq: 1.0 },
+            Call::SetTrackDimensions {
+                ztrack: 1,
+                params: vec![14.0, 0.0, 1435.0, 0.001, 0.0],
+            },
+            Call::SetWheelsetPosition {
+                ewheel: 1,
+                params: vec![0.0, 1.0, -0.5, 0.0, 0.002, 0.0],
+            },
+            Call::SetWheelsetFlexibility {
+                ewheel: 5,
+                params: vec![0.0; 12],
+            },
+        ] {
+            assert!(calls.contains(&want), "{want:?} not in {calls:#?}");
+        }
+        assert!(!calls
+            .iter()
+            .any(|c| matches!(c, Call::SetVerticalForce { .. })));
+        let rail = calls.iter().find_map(|c| match c {
+            Call::SetProfileFile { fname, ints, .. } => Some((fname.clone(), ints.clone())),
+            _ => None,
+        });
+        assert_eq!(rail, Some(("/p/r.prr".to_string(), vec![0, 0, 0, 0])));
+    }
 }
