@@ -1428,25 +1428,15 @@ mod tests {
             },
             Call::SetFriction {
                 imeth: 14,
-                params: vec![
-                    2.0,
-                    deg(-90.0),
-                    0.2,
-                    0.1,
-                    10.0,
-                    0.0,
-                    5000.0,
-                    0.01,
-                    5.0,
-                    deg(90.0),
-                    0.25,
-                    0.1,
-                    10.0,
-                    0.0,
-                    5000.0,
-                    0.01,
-                    5.0,
-                ],
+                // NVF, then per row ALPHA, FKIN, FEXP1, SABSH1, FEXP2,
+                // SABSH2, MEMDST, MEM_S0.
+                params: [(-90.0, 0.2), (90.0, 0.25)].iter().fold(
+                    vec![2.0],
+                    |mut p, &(alpha, fkin)| {
+                        p.extend([deg(alpha), fkin, 0.1, 10.0, 0.0, 5000.0, 0.01, 5.0]);
+                        p
+                    },
+                ),
             },
             Call::SetMaterial {
                 mdigit: 3,

@@ -329,8 +329,9 @@ pub fn mbench_right_wheel_with(
 }
 
 /// Calculates wheel/rail element `ire` (at least one patch): ierror, and
-/// its number of patches, global forces, every patch's location, contact
-/// forces and creepages, and the wheelset's velocity, as bits.
+/// its 24 global forces, number of patches, every patch's location,
+/// contact forces and creepages, and the wheelset's velocity (last), as
+/// bits.
 pub fn wheel_results(ire: i32) -> (i32, Vec<u64>) {
     let mut ierror = 12345;
     let mut v = Vec::new();
@@ -339,10 +340,10 @@ pub fn wheel_results(ire: i32) -> (i32, Vec<u64>) {
         let mut npatch = 0;
         cntc_getnumcontactpatches(&ire, &mut npatch);
         assert!(npatch >= 1, "ierror {ierror}: no patch on element {ire}");
-        v.push(npatch as u64);
         let mut g = [0.0; 24];
         cntc_getglobalforces(&ire, &-1, &24, g.as_mut_ptr());
         v.extend(g.map(f64::to_bits));
+        v.push(npatch as u64);
         for p in 1..=npatch {
             let mut loc = [0.0; 38];
             cntc_getcontactlocation(&ire, &p, &38, loc.as_mut_ptr());
