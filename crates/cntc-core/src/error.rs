@@ -53,6 +53,10 @@ pub enum CntcError {
     /// An input value is out of range or missing.
     #[error("{0}")]
     Input(String),
+    /// An input file (`cntc_readinpfile`) could not be opened or read, or
+    /// a value in it is wrong (named with its file and line).
+    #[error("{0}")]
+    InputFile(String),
     /// A railcontact server could not be reached or refused the call
     /// (server mode).
     #[error("server: {0}")]
@@ -78,6 +82,7 @@ impl CntcError {
             CntcError::Normal(_) => err::NORM,
             CntcError::Tangential(_) => err::TANG,
             CntcError::Input(_) => err::OTHER,
+            CntcError::InputFile(_) => err::INPUT,
             CntcError::Server(_) => err::SERVER,
             CntcError::Other(_) => err::OTHER,
         }
@@ -97,6 +102,7 @@ impl CntcError {
             | CntcError::Normal(m)
             | CntcError::Tangential(m)
             | CntcError::Input(m)
+            | CntcError::InputFile(m)
             | CntcError::Server(m)
             | CntcError::Other(m) => m.clone(),
             CntcError::Argument { .. } | CntcError::Ire(_) => self.to_string(),
@@ -117,6 +123,7 @@ impl CntcError {
             err::NORM => CntcError::Normal(detail),
             err::TANG => CntcError::Tangential(detail),
             err::SERVER => CntcError::Server(detail),
+            err::INPUT => CntcError::InputFile(detail),
             _ => CntcError::Other(detail),
         }
     }

@@ -68,6 +68,12 @@ pub const IC_SBSFIL: i32 = 1992;
 /// Largest number of elements of a potential contact area (module 1).
 pub const IC_NPOMAX: i32 = 1993;
 
+/// `cntc_readinpfile`'s `inp_type`: a module 1 input file.
+pub const INP_MODUL1: i32 = 1988;
+/// `cntc_readinpfile`'s `inp_type`: the input file of CONTACT's Simpack
+/// user routine.
+pub const INP_SPCK: i32 = 1990;
+
 /// Print level of the library itself (global).
 pub const IF_IDEBUG: i32 = 2000;
 /// Licence tracing (global; there is no licence).

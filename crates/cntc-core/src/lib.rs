@@ -14,6 +14,8 @@
 //!   undeformed distance, creepages, shifts or forces; exact solver or
 //!   FASTSIM); [`module1`]: a wheel on its rail; [`subsurface`]: stresses
 //!   below a patch;
+//! * [`inp`]: CONTACT's input files of a wheel on its rail
+//!   (`cntc_readinpfile`), read into the calls that configure an element;
 //! * [`getters`] and [`outcome`]: what a calculation leaves and how each
 //!   getter reads it; [`error`]: errors and their `ierror` codes.
 
@@ -23,6 +25,7 @@ pub mod element;
 pub mod error;
 pub mod flags;
 pub mod getters;
+pub mod inp;
 pub mod module1;
 pub mod module3;
 pub mod outcome;

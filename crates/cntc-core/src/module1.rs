@@ -1659,6 +1659,13 @@ impl WheelRail {
         Ok([u.len_out(d.dx_m), u.len_out(d.ds_m)])
     }
 
+    /// The inputs an input file may leave as they are: the wheelset's
+    /// height Z_WS \[m\] (given under N = 0) and pitch rate VPITCH
+    /// \[rad/s\] (given under F = 0), as last set.
+    pub fn held_z_and_vpitch(&self) -> (f64, f64) {
+        (self.position[2], self.velocity[5])
+    }
+
     /// `cntc_getwheelsetposition`: s, y, z, roll, yaw, pitch (caller's units).
     /// After a calculation with a vertical force (N = 1), z is the height
     /// found.

@@ -75,6 +75,12 @@ enum {
    CNTC_if_mode    = 2099   /* railcontact: 0 in process (default), 1 forwarded to a railcontact server (RAILCONTACT_CNTC_SERVER, docs/cntc.md) */
 };
 
+/* ---- input file types (cntc_readinpfile) ---- */
+enum {
+   CNTC_inp_modul1 = 1988,  /* a module 1 input file (its first case) */
+   CNTC_inp_spck   = 1990   /* the input file of CONTACT's Simpack user routine */
+};
+
 /* ---- field codes (cntc_getfielddata) ---- */
 enum {
    CNTC_fld_h = 1, CNTC_fld_mu = 2, CNTC_fld_px = 3, CNTC_fld_py = 4, CNTC_fld_pn = 5,
@@ -102,7 +108,7 @@ enum {
    CNTC_err_profil       =  -32,  /* profile could not be read */
    CNTC_err_frclaw       =  -33,  /* invalid friction parameters */
    CNTC_err_discr        =  -34,  /* invalid discretisation */
-   CNTC_err_input        =  -39,
+   CNTC_err_input        =  -39,  /* an input file (cntc_readinpfile) could not be read or has an error */
    CNTC_err_notsupported =  -40,  /* railcontact: a flag value or method this library does not have */
    CNTC_err_argument     =  -41,  /* railcontact: null pointer or negative length */
    CNTC_err_server       =  -42,  /* railcontact: forwarded, the server could not be reached, refused or went away */

@@ -233,8 +233,9 @@ unsafe fn wheelrail_setter(
 // ---------------------------------------------------------------------
 // Preparations.
 
-/// `cntc_initializefirst`: the interface version; the folders and the
-/// experiment name are accepted (this library writes no files).
+/// `cntc_initializefirst`: the interface version; the working folder (that
+/// of relative input file names, `cntc_readinpfile`); the output folder
+/// and the experiment name are accepted (this library writes no files).
 #[no_mangle]
 pub unsafe extern "C" fn cntc_initializefirst(
     ifcver: *mut c_int,
@@ -253,11 +254,12 @@ pub unsafe extern "C" fn cntc_initializefirst(
         std::ptr::null(),
         ierror,
         || {
-            string(c_wrkdir, len_wrkdir, "c_wrkdir")?;
+            let wrkdir = string(c_wrkdir, len_wrkdir, "c_wrkdir")?;
             string(c_outdir, len_outdir, "c_outdir")?;
             string(c_expnam, len_expnam, "c_expnam")?;
             put(ifcver, INTERFACE_VERSION, "ifcver")?;
             Library::get();
+            crate::library::set_work_dir(&wrkdir);
             Ok(0)
         },
     )
@@ -353,21 +355,25 @@ pub unsafe extern "C" fn cntc_setglobalflags(
     );
 }
 
-/// `cntc_readinpfile`: reading CONTACT's input files is not supported.
+/// `cntc_readinpfile`: configures wheel/rail element `ire` from a CONTACT
+/// input file (`inp_type` 1988 module 1, 1990 Simpack's), as the
+/// `cntc_set*` calls the file stands for would.
 #[no_mangle]
 pub unsafe extern "C" fn cntc_readinpfile(
     ire: *const c_int,
-    _inp_type: *const c_int,
+    inp_type: *const c_int,
     c_fname: *const c_char,
     len_fname: *const c_int,
     ierror: *mut c_int,
 ) {
-    run_ierror("cntc_readinpfile", ire, std::ptr::null(), ierror, || {
+    const NAME: &str = "cntc_readinpfile";
+    run_ierror(NAME, ire, std::ptr::null(), ierror, || {
+        let (r, t) = (int(ire, "ire")?, int(inp_type, "inp_type")?);
         let f = string(c_fname, len_fname, "c_fname")?;
-        Err(CntcError::NotSupported(format!(
-            "reading CONTACT's input file \"{f}\" (cntc_readinpfile): configure the problem \
-             with the cntc_set* calls"
-        )))
+        with_entry(r, -1, |e| {
+            e.read_inp(t, &f, &mut |m| log::warning(NAME, Some(r), None, &m))
+        })?;
+        Ok(0)
     })
 }
 

@@ -17,7 +17,7 @@
 //! * re-exported from `railcontact-cntc-core` (`crates/cntc-core`), what
 //!   a calculation is: [`element`] (a result element and its patches
 //!   `icp`), [`config`], [`units`], [`flags`], [`module3`], [`module1`],
-//!   [`subsurface`], [`getters`], [`outcome`], [`error`].
+//!   [`subsurface`], [`inp`], [`getters`], [`outcome`], [`error`].
 //!
 //! `docs/cntc.md` is the user's page: which calls and flag values are
 //! supported and how to point an existing coupling at this library.
@@ -28,6 +28,6 @@ pub mod library;
 pub mod log;
 
 pub use railcontact_cntc_core::{
-    call, config, element, error, flags, getters, module1, module3, outcome, remote, subsurface,
-    units,
+    call, config, element, error, flags, getters, inp, module1, module3, outcome, remote,
+    subsurface, units,
 };

@@ -9,6 +9,7 @@
 //! they are merely serialised).
 
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, RwLock};
 
 use railcontact_solver::core::cache::KernelCache;
@@ -17,6 +18,9 @@ use crate::call::{Call, CallLog};
 use crate::config::Config;
 use crate::element::{Element, MAX_IRE};
 use crate::error::{CntcError, Result};
+use crate::flags;
+use crate::inp::{self, Held, InpType};
+use crate::units::Units;
 
 /// A result element with the calls that configured it and, when the
 /// library forwards its calculations, its link to the server.
@@ -142,6 +146,121 @@ impl Library {
 
     fn write(&self) -> std::sync::RwLockWriteGuard<'_, BTreeMap<i32, Arc<Mutex<Entry>>>> {
         self.elements.write().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+/// The working folder `cntc_initializefirst` gave (empty: the process's).
+static WORK_DIR: Mutex<String> = Mutex::new(String::new());
+
+/// `cntc_initializefirst`'s working folder, which relative input file
+/// names are taken in (as CONTACT's `make_absolute_path` takes them).
+pub fn set_work_dir(dir: &str) {
+    *WORK_DIR.lock().unwrap_or_else(|p| p.into_inner()) = dir.to_string();
+}
+
+/// `fname` in the working folder, when relative and one was given.
+fn in_work_dir(fname: &str) -> PathBuf {
+    let dir = WORK_DIR.lock().unwrap_or_else(|p| p.into_inner()).clone();
+    Path::new(&dir).join(fname)
+}
+
+impl Entry {
+    /// `cntc_readinpfile`: configures this wheel/rail element from input
+    /// file `fname` of code `inp_type`, applying the calls the file stands
+    /// for ([`crate::inp`]) in CONTACT's units, and then the element's own
+    /// unit convention again. `warn` gets each warning. A value the
+    /// library does not have is applied and then refused, as a setter's
+    /// is; any other error stops at its line.
+    pub fn read_inp(
+        &mut self,
+        inp_type: i32,
+        fname: &str,
+        warn: &mut dyn FnMut(String),
+    ) -> Result<()> {
+        let w = self.element.wheelrail()?;
+        let kind = InpType::from_code(inp_type).ok_or_else(|| {
+            CntcError::InputFile(format!(
+                "unknown input file type inp_type = {inp_type}: {} (CNTC_inp_modul1) or {} \
+                 (CNTC_inp_spck)",
+                flags::INP_MODUL1,
+                flags::INP_SPCK
+            ))
+        })?;
+        let path = in_work_dir(fname);
+        let shown = path.display().to_string();
+        let text = std::fs::read(&path).map_err(|e| {
+            CntcError::InputFile(format!("cannot open the input file \"{shown}\": {e}"))
+        })?;
+        let (z_m, vpitch) = w.held_z_and_vpitch();
+        let held = Held {
+            digits: w.config.digits,
+            z_mm: Units::Contact.len_out(z_m),
+            vpitch,
+        };
+        let units = w.config.units;
+        let at = |line: usize| format!("\"{shown}\", line {line}");
+        let (inp, warnings) = inp::parse(&String::from_utf8_lossy(&text), kind, &held)
+            .map_err(|e| CntcError::InputFile(format!("\"{shown}\", {e}")))?;
+        warnings
+            .into_iter()
+            .for_each(|m| warn(format!("\"{shown}\", {m}")));
+        if let Some(u) = &inp.unsupported {
+            return Err(CntcError::NotSupported(format!(
+                "{}: {}",
+                at(u.line),
+                u.value
+            )));
+        }
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let calls = inp.calls(dir, &held);
+        let unit_flag = |u: Units| Call::SetFlag {
+            code: flags::IF_UNITS,
+            value: u.code(),
+        };
+        if units != Units::Contact {
+            self.apply(-1, unit_flag(Units::Contact))?;
+        }
+        let unsupported = |e: &Entry| {
+            e.element
+                .config(-1)
+                .ok()
+                .and_then(|c| c.unsupported.clone())
+        };
+        let mut refused = None;
+        let mut result = Ok(());
+        for (line, call) in calls {
+            let name = call.name();
+            match self.apply(-1, call) {
+                Ok(ws) => ws
+                    .into_iter()
+                    .for_each(|m| warn(format!("{} ({name}): {m}", at(line)))),
+                Err(e) => {
+                    let msg = format!("{} ({name}): {}", at(line), e.detail());
+                    result = Err(match e {
+                        CntcError::NotSupported(_) => CntcError::NotSupported(msg),
+                        _ => CntcError::InputFile(msg),
+                    });
+                    break;
+                }
+            }
+            // The configuration this call left unsupported, if any (its
+            // setter's mark).
+            if let Some((tag, what)) = unsupported(self) {
+                if tag.starts_with(name) {
+                    refused = Some((line, name, what));
+                }
+            }
+        }
+        if units != Units::Contact {
+            self.apply(-1, unit_flag(units))?;
+        }
+        result?;
+        match (refused, unsupported(self)) {
+            (Some((line, name, what)), Some((_, now))) if now == what => Err(
+                CntcError::NotSupported(format!("{} ({name}): {what}", at(line))),
+            ),
+            _ => Ok(()),
+        }
     }
 }
 

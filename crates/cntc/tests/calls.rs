@@ -148,16 +148,6 @@ fn methods_the_library_lacks_are_named_at_calculation() {
         // A friction method with the wrong number of parameters is
         // refused at once; the law stays as it was.
         cntc_setfrictionmethod(&ire, &icp, &4, &3, mu.as_ptr());
-        // Reading CONTACT's input files.
-        let name = b"tractcurv.inp";
-        cntc_readinpfile(
-            &ire,
-            &1988,
-            name.as_ptr().cast(),
-            &(name.len() as i32),
-            &mut ierror,
-        );
-        assert_eq!(ierror, err::NOT_SUPPORTED);
     }
     let (ierror, fx) = fx_at(ire, 0.0004);
     assert_eq!(ierror, 0);

@@ -1,10 +1,11 @@
 //! The forwarding mode (`CNTC_if_mode` = 1, `RAILCONTACT_CNTC_SERVER`)
 //! against a railcontact server in the test process: every value a getter
 //! reads is the in-process one bit for bit (steady rolling, a transient
-//! sequence of shifts whose history lives on the server, FASTSIM, a prescribed
-//! force, a wheel on its rail); a lost server is `CNTC_err_server` and the
-//! next calculation catches a new server up; a transient sequence cannot
-//! continue on it; elements on several threads forward at once.
+//! sequence of shifts whose history lives on the server, FASTSIM, a
+//! prescribed force, a wheel on its rail, an element configured by an input
+//! file); a lost server is `CNTC_err_server` and the next calculation
+//! catches a new server up; a transient sequence cannot continue on it;
+//! elements on several threads forward at once.
 //!
 //! The mode is the library's (global): the tests take turns ([`turn`]).
 
@@ -13,8 +14,8 @@ mod common;
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use common::{
-    calculate, mbench_right_wheel, mbench_right_wheel_with, mode, patch_values, set_flags,
-    tractcurv, TestServer,
+    calculate, mbench_right_wheel, mbench_right_wheel_with, mode, patch_values, read_inp,
+    set_flags, tractcurv, wheel_results, InpDir, TestServer, MBENCH_RIGHT_INP,
 };
 use contact_addon::ffi::*;
 use contact_addon::flags::{self, err};
@@ -115,6 +116,19 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
             out.push((0, patch_values(ire)));
         }
         out
+    });
+}
+
+/// An element configured by an input file (`cntc_readinpfile`): its calls
+/// reach the server as a setter's do, the same bits in both modes.
+#[test]
+fn an_input_file_reaches_the_server_as_its_calls() {
+    let _turn = turn();
+    let dir = InpDir::new("forward");
+    let inp = dir.write("mbench.inp", MBENCH_RIGHT_INP);
+    both_modes(5, |ire| {
+        assert_eq!(read_inp(ire, flags::INP_MODUL1, &inp), 0);
+        vec![wheel_results(ire)]
     });
 }
 

@@ -257,8 +257,7 @@ pub fn patch_values(ire: i32) -> Vec<u64> {
 /// The Manchester benchmark's right wheel at lateral shift `y` [mm] on
 /// element `ire` (module 1, CONTACT's units, the MiniProf rail), at
 /// CONTACT's pitch rate for the benchmark or (F = 1) at the pitch rate
-/// found for the total force `fx_ws` [N]: ierror, and the global forces,
-/// every patch's location and the wheelset's velocity as bits.
+/// found for the total force `fx_ws` [N]: [`wheel_results`].
 pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64>) {
     mbench_right_wheel_with(ire, y, fx_ws, 3, None)
 }
@@ -287,8 +286,6 @@ pub fn mbench_right_wheel_with(
             (flags::IC_FORCE, fx_ws.is_some() as i32),
         ],
     );
-    let mut ierror = 12345;
-    let mut v = Vec::new();
     unsafe {
         match fastsim {
             None => {
@@ -329,21 +326,116 @@ pub fn mbench_right_wheel_with(
         if let Some(fx) = fx_ws {
             cntc_settangentialforces(&ire, &-1, &fx, &0.0);
         }
+    }
+    wheel_results(ire)
+}
+
+/// Calculates wheel/rail element `ire` (at least one patch): ierror, and
+/// its 24 global forces, number of patches, every patch's location,
+/// contact forces and creepages, and the wheelset's velocity (last), as
+/// bits.
+pub fn wheel_results(ire: i32) -> (i32, Vec<u64>) {
+    let mut ierror = 12345;
+    let mut v = Vec::new();
+    unsafe {
         cntc_calculate1(&ire, &mut ierror);
         let mut npatch = 0;
         cntc_getnumcontactpatches(&ire, &mut npatch);
-        assert!(npatch >= 1, "ierror {ierror}: no patch at y = {y} mm");
+        assert!(npatch >= 1, "ierror {ierror}: no patch on element {ire}");
         let mut g = [0.0; 24];
-        cntc_getglobalforces(&ire, &icp, &24, g.as_mut_ptr());
+        cntc_getglobalforces(&ire, &-1, &24, g.as_mut_ptr());
         v.extend(g.map(f64::to_bits));
+        v.push(npatch as u64);
         for p in 1..=npatch {
             let mut loc = [0.0; 38];
             cntc_getcontactlocation(&ire, &p, &38, loc.as_mut_ptr());
             v.extend(loc.map(f64::to_bits));
+            let mut f = [0.0; 7];
+            let [fn_, fx, fs, mz, cksi, ceta, cphi] = &mut f;
+            cntc_getcontactforces(&ire, &p, fn_, fx, fs, mz);
+            cntc_getcreepages(&ire, &p, cksi, ceta, cphi);
+            v.extend(f.map(f64::to_bits));
         }
         let mut vel = [0.0; 6];
         cntc_getwheelsetvelocity(&ire, &6, vel.as_mut_ptr());
         v.extend(vel.map(f64::to_bits));
     }
     (ierror, v)
+}
+
+/// CONTACT's module 1 input file of the Manchester benchmark's right wheel
+/// (A-2.2, the first case of CONTACT's `examples/mbench_a22_right.inp`, at
+/// its case 7: 3 mm lateral shift, 7.2 mrad yaw), its profiles named
+/// relative to the file's folder, and a second case that is not read.
+pub const MBENCH_RIGHT_INP: &str = "\
+% Manchester benchmark A-2.2, right wheel, y = 3 mm, yaw 7.2 mrad.
+
+  1 MODULE
+ 1203100    C-P-B-T-N-F-S   CONFIG, PVTIME, BOUND,  TANG,   NORM,   FORCE,  STRESS
+ 0022033    V-L-D-C-M-Z-E   VARFRC, FRCLAW, DISCNS, INFLCF, MATER,  ZTRACK, EWHEEL
+ 0000321    H-G-I-A-O-W-R     HEAT, GAUSEI, IESTIM, MATFIL, OUTPUT, FLOW,   RETURN
+    999     100    30    1     1d-5         MAXGS , MAXIN , MAXNR , MAXOUT, EPS
+  0.300   0.300                                 FSTAT, FKIN
+  0.280,  0.280,  82000., 82000.                POISS 1,2,  GG 1,2
+  0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB
+   14.0     0    1435.0   0.000                 GAUGHT, GAUGSQ, GAUGWD, CANT
+  'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH
+     0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL
+  1360.0  -70.0   460.0                         FBDIST, FBPOS, NOMRAD
+  'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH
+  0.0  3.0  10000. -0.00018030 0.0072  0.0      S, Y, FZ, ROLL, YAW, PITCH
+ 2000. 0.0    0.0   0.0        0.0  -4.34515030 VS,VY,VZ, VROLL,VYAW,VPITCH
+
+% The next case is not read.
+  1 MODULE
+ 1203100    C-P-B-T-N-F-S
+";
+
+/// A scratch folder holding the benchmark's rail and wheel profiles, for
+/// input files that name them relative to their own folder; removed when
+/// dropped.
+pub struct InpDir(pub PathBuf);
+
+impl InpDir {
+    /// A fresh folder `tag` with the profiles.
+    pub fn new(tag: &str) -> InpDir {
+        let dir = scratch(&format!("inp-{tag}"));
+        for name in ["MBench_UIC60_v3.prr", "MBench_S1002_v3.prw"] {
+            std::fs::copy(
+                package().join("../solver/profiles").join(name),
+                dir.join(name),
+            )
+            .unwrap();
+        }
+        InpDir(dir)
+    }
+
+    /// Writes input file `name` with `text`; its path.
+    pub fn write(&self, name: &str, text: &str) -> PathBuf {
+        let path = self.0.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+}
+
+impl Drop for InpDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// `cntc_readinpfile(ire, inp_type, path)`: ierror.
+pub fn read_inp(ire: i32, inp_type: i32, path: &Path) -> i32 {
+    let name = path.display().to_string();
+    let mut ierror = 12345;
+    unsafe {
+        cntc_readinpfile(
+            &ire,
+            &inp_type,
+            name.as_ptr().cast(),
+            &(name.len() as i32),
+            &mut ierror,
+        )
+    };
+    ierror
 }
