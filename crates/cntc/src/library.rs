@@ -235,7 +235,13 @@ impl Entry {
                     .into_iter()
                     .for_each(|m| warn(format!("{} ({name}): {m}", at(line)))),
                 Err(e) => {
-                    let msg = format!("{} ({name}): {}", at(line), e.detail());
+                    // A setter's message may name the call already.
+                    let detail = e.detail();
+                    let detail = detail
+                        .strip_prefix(name)
+                        .and_then(|d| d.strip_prefix(": "))
+                        .unwrap_or(&detail);
+                    let msg = format!("{} ({name}): {detail}", at(line));
                     result = Err(match e {
                         CntcError::NotSupported(_) => CntcError::NotSupported(msg),
                         _ => CntcError::InputFile(msg),

@@ -361,7 +361,9 @@ fn input_errors_name_the_file_and_line() {
     let text = MBENCH_RIGHT_INP.replacen("MBench_S1002_v3.prw", "nowheel.prw", 1);
     let e = input_error("noprofile.inp", &text);
     assert!(
-        e.contains("line 15 (cntc_setprofileinputfname)") && e.contains("nowheel.prw"),
+        e.contains("line 15 (cntc_setprofileinputfname)")
+            && e.matches("cntc_setprofileinputfname").count() == 1
+            && e.contains("nowheel.prw"),
         "{e}"
     );
     // A module 3 element: the call is for module 1.
