@@ -78,6 +78,7 @@ use std::time::Instant;
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::Range;
 use railcontact_solver::core::grid::Grid;
+use railcontact_solver::core::layer::LayerFields;
 use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
@@ -443,7 +444,7 @@ fn mirrored_rows(v: &[f64], nx: usize, ny: usize, sign: f64) -> Vec<f64> {
         .collect()
 }
 
-fn mirrored_states(v: &[ElementState], nx: usize, ny: usize) -> Vec<ElementState> {
+fn mirrored<T: Copy>(v: &[T], nx: usize, ny: usize) -> Vec<T> {
     if v.len() != nx * ny {
         return v.to_vec();
     }
@@ -1072,16 +1073,6 @@ impl WheelRail {
                 d.discns
             )));
         }
-        if let MaterialModel::InterfacialLayer(l) = self.config.material.model {
-            if l.is_plastic() {
-                return Err(CntcError::NotSupported(
-                    "M = 4 with a yield limit TAU_C0 > 0 (an elasto-plastic interfacial layer) \
-                     in module 1 is not supported: the wheel/rail patches take an elastic layer \
-                     (TAU_C0 = 0); module 3 takes the plastic one"
-                        .into(),
-                ));
-            }
-        }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(
@@ -1327,8 +1318,9 @@ impl WheelRail {
                     }
                     _ => ExactTangential::Kalker,
                 },
-                // M = 4: the elastic layer's flexibility in the patches'
-                // tangential kernels (the normal problem does not see it).
+                // M = 4: the layer's flexibility in the patches' tangential
+                // kernels (the normal problem does not see it), its
+                // plasticity in their tangential solvers.
                 solver: SolverSettings {
                     interfacial_layer: self.config.material.model.layer(),
                     ..wheelrail_solver_settings()
@@ -1528,7 +1520,7 @@ impl WheelRail {
                     traction_y_pa: mirrored_rows(&fl.traction_y_pa, nx, ny, -1.0),
                     slip_x: mirrored_rows(&fl.slip_x, nx, ny, 1.0),
                     slip_y: mirrored_rows(&fl.slip_y, nx, ny, -1.0),
-                    state: mirrored_states(&fl.state, nx, ny),
+                    state: mirrored(&fl.state, nx, ny),
                     gap_m: mirrored_rows(&fl.gap_m, nx, ny, 1.0),
                 }
             } else {
@@ -1564,13 +1556,33 @@ impl WheelRail {
             .filter(|f| f.gap_m.len() == out_grid.len())
             .map(|f| f.gap_m.clone())
             .unwrap_or_else(|| vec![0.0; out_grid.len()]);
+        // A plastic layer's state (CONTACT's TAUCRT, UPLSX, UPLSY and the
+        // plasticity area), mirrored as the fields.
+        let layer = p
+            .layer
+            .as_ref()
+            .filter(|l| l.plastic.len() == out_grid.len())
+            .map(|l| {
+                if left {
+                    LayerFields {
+                        yield_limit_pa: mirrored_rows(&l.yield_limit_pa, nx, ny, 1.0),
+                        plastic_x_m: mirrored_rows(&l.plastic_x_m, nx, ny, 1.0),
+                        plastic_y_m: mirrored_rows(&l.plastic_y_m, nx, ny, -1.0),
+                        plastic: mirrored(&l.plastic, nx, ny),
+                    }
+                } else {
+                    l.clone()
+                }
+            });
         let mut o = Outcome::no_contact(out_grid, gap, p.approach_m - hmin);
         if let Some(fl) = out_fields {
             if fl.state.len() == out_grid.len() {
-                o.areas_m2 = Outcome::areas_of(&out_grid, &fl.state, &[]);
+                let plastic = layer.as_ref().map_or(&[][..], |l| &l.plastic);
+                o.areas_m2 = Outcome::areas_of(&out_grid, &fl.state, plastic);
             }
             o.border_elements = out_grid.loaded_border_elements(&fl.pressure_pa);
             o.fields = fl;
+            o.layer = layer;
         } else {
             o.areas_m2 = Outcome::areas_by_fraction(p.contact_area_m2, p.adhesion_fraction);
         }

@@ -318,10 +318,14 @@ fn modified_fastsim(k0: f64, alpha_inf: f64, beta: f64) -> (i32, Vec<f64>) {
     (3, vec![0.28, 0.28, 82000.0, 82000.0, k0, alpha_inf, beta])
 }
 
-/// M = 4 with an elastic interfacial layer of shear modulus `g3` [N/mm²]
-/// and thickness `laythk` [mm] (TAU_C0 = 0).
-fn elastic_layer(g3: f64, laythk: f64) -> (i32, Vec<f64>) {
-    (4, vec![0.28, 0.28, 82000.0, 82000.0, g3, laythk, 0.0, 0.0])
+/// M = 4 with an interfacial layer of shear modulus `g3` [N/mm²],
+/// thickness `laythk` [mm] and yield limit `tau_c0` [N/mm²] (0: elastic),
+/// without hardening.
+fn layer(g3: f64, laythk: f64, tau_c0: f64) -> (i32, Vec<f64>) {
+    (
+        4,
+        vec![0.28, 0.28, 82000.0, 82000.0, g3, laythk, tau_c0, 0.0],
+    )
 }
 
 /// Solves `r` on its element, set up as `mbench` with the T digit `tang`
@@ -333,6 +337,9 @@ fn elastic_layer(g3: f64, laythk: f64) -> (i32, Vec<f64>) {
 fn compare(r: &Reference, tang: i32, material: Option<(i32, Vec<f64>)>, tol: [f64; 4]) {
     let [force_tol, area_tol, pmax_tol, adh_tol] = tol;
     let ire = r.ire;
+    // An elasto-plastic layer's plastic elements are neither adhesion nor
+    // slip.
+    let plastic = matches!(&material, Some((4, p)) if p[6] > 0.0);
     unsafe {
         mbench(ire, r.iwhe);
         let (codes, values) = ([flags::IC_TANG], [tang]);
@@ -363,7 +370,11 @@ fn compare(r: &Reference, tang: i32, material: Option<(i32, Vec<f64>)>, tol: [f6
             area_tol * r.patch[3],
         );
         close(&format!("{case} HAREA"), ha, r.patch[4], adh_tol);
-        close(&format!("{case} CAREA = HAREA + SAREA"), ha + sa, ca, 1e-9);
+        if plastic {
+            assert!(ha + sa <= ca + 1e-9, "{case}: HAREA + SAREA > CAREA");
+        } else {
+            close(&format!("{case} CAREA = HAREA + SAREA"), ha + sa, ca, 1e-9);
+        }
         let mut pmax = 0.0;
         cntc_getmaximumpressure(&ire, &icp, &mut pmax);
         close(
@@ -456,55 +467,53 @@ fn frictionless_tread_and_flange_match_contacts_library() {
     compare(&flange, 0, None, [2.0, 0.07, 0.03, 0.07 * 10.84]);
 }
 
-// M = 4 with an elastic interfacial layer on the same two cases: CONTACT's
-// own library (d431cdb, built and driven as above) with
+// M = 4 with an interfacial layer on the same two cases: CONTACT's own
+// library (d431cdb, built and driven as above) with
 // cntc_setmaterialparameters(ire, -1, 4, [0.28, 0.28, 82000, 82000, G3,
-// LAYTHK, 0, 0]): first G3 = 500 N/mm², LAYTHK = 0.1 mm (the layer halves
-// the tread's creep forces), then G3 = 1000 N/mm², LAYTHK = 0.01 mm.
-// Tread then flange: (FX_TR, FY_TR, FZ_TR), (FN, FX, FS, CAREA, HAREA,
-// PMAX).
+// LAYTHK, TAU_C0, 0]), per row (G3 [N/mm²], LAYTHK [mm], TAU_C0 [N/mm²]):
+// elastic (500, 0.1, 0), the layer halving the tread's creep forces, and
+// (1000, 0.01, 0); elasto-plastic (500, 0.1, 60), flowing on the tread and
+// the flange, and (5000, 0.01, 80). Tread then flange: (FX_TR, FY_TR,
+// FZ_TR), (FN, FX, FS, CAREA, HAREA, PMAX).
+const LAYERS: [(f64, f64, f64); 4] = [
+    (500.0, 0.1, 0.0),
+    (1000.0, 0.01, 0.0),
+    (500.0, 0.1, 60.0),
+    (5000.0, 0.01, 80.0),
+];
 #[rustfmt::skip]
-const CONTACT_LAYER: [[([f64; 3], [f64; 6]); 2]; 2] = [
+const CONTACT_LAYER: [[([f64; 3], [f64; 6]); 2]; 4] = [
     [([292.329078, -1717.51399, 10000.001], [10022.1854, 292.329078, -1582.93218, 33.12, 26.32, 465.65945]),
      ([-1880.83795, 9293.22286, 9999.99028], [13220.8744, -1880.83795, -3401.80506, 8.32, 1.2, 2627.0609])],
     [([549.155499, -3095.25047, 10000.0007], [10040.7078, 549.155499, -2960.53666, 33.2, 0.04, 465.94537]),
      ([-2072.04775, 9332.81914, 10000.0039], [13254.2145, -2072.04775, -3380.4423, 8.32, 0.0, 2629.15392])],
+    [([248.421793, -1486.09073, 10000.0011], [10019.0744, 248.421793, -1351.5311, 33.12, 17.68, 465.611406]),
+     ([-317.380065, 14652.0914, 9999.99939], [17732.0254, -317.380065, -508.96474, 10.48, 0.04, 2882.89669])],
+    [([414.903163, -2406.63221, 10000.0008], [10031.4496, 414.903163, -2271.98439, 33.12, 0.0, 465.802499]),
+     ([-417.957207, 14375.6874, 9999.94775], [17499.3201, -417.957207, -658.132675, 10.32, 0.0, 2871.24608])],
 ];
 
-/// M = 4 with an elastic layer (its flexibility LAYTHK/G3 in the patches'
-/// tangential influence coefficients). Measured: the forces within 14.0 N
-/// (the flange's FY_TR, 0.14 % of FZ; the tread's within 4.8 N), the
-/// adhesion area within 0.24 mm² (six elements), the areas and maximum
-/// pressures apart as without a layer (the flange's area 4.8 % larger,
-/// its pressure 2.7 % lower: the normal problem, which the layer does not
-/// change). Tolerances: 20 N (0.2 % of FZ), areas and pressures as with
-/// M = 3, the adhesion area 0.4 mm².
+/// M = 4 (the layer's flexibility LAYTHK/G3 in the patches' tangential
+/// influence coefficients, its plasticity in their tangential solvers).
+/// Measured: the forces within 14.0 N (0.14 % of FZ: the elastic layer's
+/// FY_TR on the flange; the tread's within 4.8 N), the adhesion area
+/// within 0.24 mm² (six elements; the plastic elements counted apart as
+/// CONTACT counts them), the areas and maximum pressures apart as without
+/// a layer (the flange's area up to 4.8 % larger and its pressure up to
+/// 3.1 % lower: the normal problem, which the layer does not change).
+/// Where the flange's plastic zone depends on that pressure the forces
+/// part further: with TAU_C0 = 250 N/mm² (plastic where mu p > 833 MPa,
+/// near the flange's peak of 2.7-2.8 GPa) FY_TR is 202 N (2 % of FZ)
+/// below CONTACT's. Tolerances: 20 N (0.2 % of FZ), areas and pressures
+/// as with M = 3 (the pressure 3.5 % on the flange), the adhesion area
+/// 0.4 mm².
 #[test]
-fn elastic_layer_on_tread_and_flange_matches_contacts_library() {
-    for (k, (g3, laythk)) in [(500.0, 0.1), (1000.0, 0.01)].into_iter().enumerate() {
+fn layers_on_tread_and_flange_match_contacts_library() {
+    for (k, (g3, laythk, tau_c0)) in LAYERS.into_iter().enumerate() {
         let ire = 47 + 2 * k as i32;
         let [tread, flange] = tread_and_flange(ire, &CONTACT_LAYER[k]);
-        let layer = || Some(elastic_layer(g3, laythk));
-        compare(&tread, 3, layer(), [20.0, 0.02, 0.01, 0.4]);
-        compare(&flange, 3, layer(), [20.0, 0.06, 0.03, 0.4]);
-    }
-}
-
-/// M = 4 with a yield limit in module 1 is refused naming it (-40).
-#[test]
-fn plastic_layer_in_module_1_is_refused() {
-    let ire = 51;
-    unsafe {
-        mbench(ire, 1);
-        let mat = [0.28, 0.28, 82000.0, 82000.0, 500.0, 0.1, 100.0, 0.0];
-        cntc_setmaterialparameters(&ire, &-1, &4, &8, mat.as_ptr());
-        let pos = [0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0];
-        cntc_setwheelsetposition(&ire, &2, &6, pos.as_ptr());
-        let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, -4.3459197];
-        cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
-        let mut ierror = 0;
-        cntc_calculate1(&ire, &mut ierror);
-        assert_eq!(ierror, flags::err::NOT_SUPPORTED, "ierror {ierror}");
-        cntc_finalize(&ire);
+        let m4 = || Some(layer(g3, laythk, tau_c0));
+        compare(&tread, 3, m4(), [20.0, 0.02, 0.01, 0.4]);
+        compare(&flange, 3, m4(), [20.0, 0.06, 0.035, 0.4]);
     }
 }

@@ -420,7 +420,8 @@ pub struct SolverSettings {
     /// statement: the exact model's solver takes it (its kernels include
     /// the layer's flexibility, its history the plastic state), checked
     /// by [`ContactProblem::validate`]; so do the exact wheel/rail patches,
-    /// whose problems take the wheel/rail settings' solver settings. The
+    /// whose problems take the wheel/rail settings' solver settings (their
+    /// plastic state: [`crate::wheelrail::PatchResult::layer`]). The
     /// other models (FASTSIM, the conformal solvers) do not read it.
     pub interfacial_layer: Option<InterfacialLayer>,
 }

@@ -91,6 +91,7 @@ use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection, DEFAULT_STRIPS};
+use crate::core::layer::LayerFields;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
 use crate::core::polach::{polach, PolachParameters};
@@ -527,6 +528,11 @@ pub struct PatchResult {
     /// curved surface), kept when the input asks for temperatures.
     #[serde(skip)]
     pub conformal_fields: Option<ElementFields>,
+    /// An exact patch's elasto-plastic interfacial layer state per element
+    /// of `grid_geometry`, with its `solution` (None for an elastic layer
+    /// or none; [`crate::core::problem::SolverSettings::interfacial_layer`]).
+    #[serde(skip)]
+    pub layer: Option<LayerFields>,
     /// Flash temperatures of the rail and wheel surfaces, when the input
     /// asked for them ([`WheelRailInput::temperature`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -3341,8 +3347,13 @@ pub(crate) fn finish(
             PatchKind::KikPiotrowski { .. } => ("kik_piotrowski", 0.0),
             PatchKind::Conformal { .. } => ("cect", p.out.angle_variation_rad),
         };
-        // The patch is consumed: hand its per-element solution over.
+        // The patch is consumed: hand its per-element solution over, and
+        // a plastic layer's state of the same solve.
         let solution = p.out.solution.take();
+        let layer = match &p.kind {
+            PatchKind::Exact { solver, .. } if solution.is_some() => solver.layer_fields(),
+            _ => None,
+        };
         let conformal_fields = p.out.conformal_fields.take();
         let g = &p.geom;
         let t = g.tangent();
@@ -3401,6 +3412,7 @@ pub(crate) fn finish(
             solution,
             grid_geometry,
             conformal_fields,
+            layer,
             temperature: None,
         });
         if let PatchKind::Exact { solver, .. } = p.kind {
