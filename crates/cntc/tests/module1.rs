@@ -497,7 +497,7 @@ const CONTACT_LAYER: [[([f64; 3], [f64; 6]); 2]; 4] = [
 /// influence coefficients, its plasticity in their tangential solvers).
 /// Measured: the forces within 14.0 N (0.14 % of FZ: the elastic layer's
 /// FY_TR on the flange; the tread's within 4.8 N), the adhesion area
-/// within 0.24 mm² (six elements; the plastic elements counted apart as
+/// within 0.12 mm² (three elements; the plastic elements counted apart as
 /// CONTACT counts them), the areas and maximum pressures apart as without
 /// a layer (the flange's area up to 4.8 % larger and its pressure up to
 /// 3.1 % lower: the normal problem, which the layer does not change).
