@@ -105,14 +105,18 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
         }
         // F = 1: the pitch rate found for a total force FX_WS.
         out.push(mbench_right_wheel(ire, 3.0, Some(1500.0)));
-        // M = 3 (modified FASTSIM on each patch): tread and flange; T = 0.
-        // Every patch getter of the first patch too (fields included).
-        for (y, tang, fastsim) in [
-            (2.0, 3, Some([0.54, 0.02, 0.62])),
-            (7.5, 3, Some([0.54, 0.02, 0.62])),
+        // M = 3 (modified FASTSIM on each patch): tread and flange; T = 0;
+        // M = 4, an elasto-plastic layer on the flange. Every patch getter
+        // of the first patch too (fields included).
+        let fastsim: &[f64] = &[0.54, 0.02, 0.62];
+        let layer: &[f64] = &[500.0, 0.1, 60.0, 0.0];
+        for (y, tang, material) in [
+            (2.0, 3, Some((3, fastsim))),
+            (7.5, 3, Some((3, fastsim))),
             (7.5, 0, None),
+            (7.5, 3, Some((4, layer))),
         ] {
-            out.push(mbench_right_wheel_with(ire, y, None, tang, fastsim));
+            out.push(mbench_right_wheel_with(ire, y, None, tang, material));
             out.push((0, patch_values(ire)));
         }
         out

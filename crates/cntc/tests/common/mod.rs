@@ -262,14 +262,15 @@ pub fn mbench_right_wheel(ire: i32, y: f64, fx_ws: Option<f64>) -> (i32, Vec<u64
     mbench_right_wheel_with(ire, y, fx_ws, 3, None)
 }
 
-/// [`mbench_right_wheel`] with the T digit `tang` and, with `Some`, M = 3
-/// (modified FASTSIM) with the slope reduction [k0, alpha_inf, beta].
+/// [`mbench_right_wheel`] with the T digit `tang` and, with `Some`, the M
+/// digit and its material parameters after [nu1, nu2, G1, G2] (M = 3:
+/// k0, alpha_inf, beta; M = 4: G3, LAYTHK, TAU_C0, K_TAU).
 pub fn mbench_right_wheel_with(
     ire: i32,
     y: f64,
     fx_ws: Option<f64>,
     tang: i32,
-    fastsim: Option<[f64; 3]>,
+    material: Option<(i32, &[f64])>,
 ) -> (i32, Vec<u64>) {
     let icp = -1;
     let profiles = package().join("../solver/profiles");
@@ -287,16 +288,12 @@ pub fn mbench_right_wheel_with(
         ],
     );
     unsafe {
-        match fastsim {
-            None => {
-                let mat = [0.28, 0.28, 82000.0, 82000.0];
-                cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
-            }
-            Some([k0, alpha, beta]) => {
-                let mat = [0.28, 0.28, 82000.0, 82000.0, k0, alpha, beta];
-                cntc_setmaterialparameters(&ire, &icp, &3, &7, mat.as_ptr());
-            }
-        }
+        let (m, extra) = material.unwrap_or((0, &[]));
+        let mat: Vec<f64> = [0.28, 0.28, 82000.0, 82000.0]
+            .into_iter()
+            .chain(extra.iter().copied())
+            .collect();
+        cntc_setmaterialparameters(&ire, &icp, &m, &(mat.len() as i32), mat.as_ptr());
         cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
         cntc_setverticalforce(&ire, &10000.0);
         let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
