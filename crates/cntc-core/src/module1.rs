@@ -1079,6 +1079,13 @@ impl WheelRail {
                     .into(),
             ));
         }
+        if let MaterialModel::Viscoelastic(_) = self.config.material.model {
+            return Err(CntcError::NotSupported(
+                "M = 1 (viscoelastic bodies) in module 1 is not supported: module 3 takes it, in \
+                 steady rolling"
+                    .into(),
+            ));
+        }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(
@@ -1405,6 +1412,7 @@ impl WheelRail {
                         body1: input.material.body1,
                         body2: input.material.body2,
                         layer_flexibility_m_per_pa: 0.0,
+                        viscoelastic: None,
                     },
                 });
             }

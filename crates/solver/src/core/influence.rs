@@ -743,6 +743,17 @@ mod tests {
         );
         assert!(g < up && up < r && up < down, "{g} {up} {r} {down}");
         assert!(v.is_viscoelastic() && !ic.is_viscoelastic());
+        // A relaxation length below the element size (0.1 mm on 0.55 mm):
+        // finite coefficients near (1 + f_g) times the elastic ones.
+        let ic = HalfSpaceInfluence::new(0.55e-3, 1.1e-3, &m);
+        let v = ic.with_viscoelastic(&m, &visc(1.0, 1e-4));
+        for k in -3..4 {
+            for (i, j) in [(X, X), (Y, Y), (N, N)] {
+                let x = k as f64 * 0.55e-3;
+                let ratio = v.coefficient(i, j, x, 0.0) / ic.coefficient(i, j, x, 0.0);
+                assert!((1.8..2.3).contains(&ratio), "{i:?}{j:?} at {x}: {ratio}");
+            }
+        }
         // Elastic bodies given as viscoelastic (f_g = 0): the same bits.
         assert_eq!(ic.with_viscoelastic(&m, &visc(0.0, 1.0)), ic);
     }

@@ -67,7 +67,8 @@
 //! by adaptive Gauss-Kronrod (7/15 points) to [`QUADRATURE_TOLERANCE`] of
 //! the size of the self coefficient. As u -> 1 the integrand grows like
 //! ln ln(1/(1 - u)) in a line contact and decays like 1/xi on the
-//! half-space: integrable, and the adaptive rule resolves it.
+//! half-space: the quadrature ends at 1 - u = 1e-15 (xi = 34.5 L), the
+//! weight beyond is negligible.
 //!
 //! Only the surface's influence coefficients are viscoelastic: subsurface
 //! stresses stay those of the elastic half-space (as CONTACT's). Other
@@ -81,6 +82,12 @@ use crate::core::error::{show, ContactError};
 /// Relative accuracy of the viscoelastic part of an influence
 /// coefficient, against the size of the elastic self coefficient.
 pub const QUADRATURE_TOLERANCE: f64 = 1e-12;
+
+/// Where the quadrature in u = 1 - exp(-xi/L) ends: the weight beyond,
+/// exp(-xi/L) = 1e-15, is left out (an integrand bounded there, or growing
+/// like ln xi in a line contact, adds less than [`QUADRATURE_TOLERANCE`]),
+/// and the integrand stays finite (xi <= 34.5 L).
+const TAIL_END: f64 = 1.0 - 1e-15;
 
 /// Largest bisection depth of the adaptive quadrature.
 const MAX_DEPTH: u32 = 30;
@@ -187,21 +194,22 @@ pub fn relaxed_average(
     if length_m == 0.0 {
         return f(x);
     }
-    // The edges as u = 1 - exp(-xi/L) in (0, 1), ascending.
-    let mut cuts = [0.0, 1.0, 1.0, 1.0];
+    // The edges as u = 1 - exp(-xi/L) in (0, 1), ascending; the domain
+    // ends at TAIL_END (xi = 34.5 L, the weight left out 1e-15).
+    let mut cuts = [0.0, TAIL_END, TAIL_END, TAIL_END];
     let mut n = 1;
     for &e in edges {
         let xi = e - x;
         if xi > 0.0 {
             let u = -(-xi / length_m).exp_m1();
-            if u < 1.0 {
+            if u < TAIL_END {
                 cuts[n] = u;
                 n += 1;
             }
         }
     }
     cuts[1..n].sort_by(f64::total_cmp);
-    cuts[n] = 1.0;
+    cuts[n] = TAIL_END;
     let g = |u: f64| f(x - length_m * (-u).ln_1p());
     let mut sum = 0.0;
     for k in 0..n {

@@ -353,3 +353,57 @@ fn viscoelastic_hertz_limits_in_two_dimensions() {
         assert!((half - a).abs() < grid.dx_m, "TC {tc}: half-width {half}");
     }
 }
+
+#[test]
+fn viscoelastic_ellipse_tends_to_both_elastic_limits() {
+    // Three dimensions: an ellipse (A = 0.8 /m, B = 0.2814 /m: CONTACT's
+    // tractcurv example, steel G_g = 82 GPa, nu 0.28, FN 106.7 kN, mu
+    // 0.33) rolling at creepage -3e-4 on 40 x 40 elements of 0.55 x 1.1
+    // mm. Relaxation lengths from below an element (0.1 mm) to far beyond
+    // the patch (1 km) take Fx from the relaxed bodies' (G_g/2) to the
+    // glassy ones'.
+    let grid = Grid::new(40, 40, 0.55e-3, 1.1e-3, -11e-3, -22e-3).unwrap();
+    let fx = |g: f64, l: Option<f64>| {
+        let sls = Sls {
+            relaxation_ratio: 1.0,
+            creep_relaxation_time_s: l.unwrap_or(0.0),
+        };
+        let p = ContactProblem {
+            material: CombinedMaterial::identical(Material {
+                shear_modulus_pa: g,
+                poisson_ratio: 0.28,
+            })
+            .unwrap(),
+            friction: Friction::coulomb(0.33),
+            gap_m: ContactProblem::quadratic_gap(&grid, 0.8, 0.2814),
+            grid,
+            load: NormalLoad::NormalForce(106_700.0),
+            kinematics: Kinematics::SteadyRolling(Creepages {
+                creepage_long: -3e-4,
+                creepage_lat: 0.0,
+                spin_per_m: 0.0,
+            }),
+            settings: SolverSettings {
+                viscoelastic: l.map(|_| Viscoelastic {
+                    rolling_speed_m_per_s: 1.0,
+                    body1: sls,
+                    body2: sls,
+                }),
+                ..SolverSettings::default()
+            },
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
+        };
+        one(&p).totals.fx_n
+    };
+    let (relaxed, glassy) = (fx(41e9, None), fx(82e9, None));
+    for (l, want, within) in [
+        (0.0, relaxed, 1e-6),
+        (1e-4, relaxed, 0.01),
+        (1e3, glassy, 1e-3),
+    ] {
+        let got = fx(82e9, Some(l));
+        eprintln!("L = {l} m: Fx {got:.2} N (relaxed {relaxed:.2}, glassy {glassy:.2})");
+        assert!(rel(got, want) < within, "L {l}: {got} vs {want}");
+    }
+}
