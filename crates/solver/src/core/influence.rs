@@ -754,6 +754,46 @@ mod tests {
                 assert!((1.8..2.3).contains(&ratio), "{i:?}{j:?} at {x}: {ratio}");
             }
         }
+        // The quadrature converges: to a thousandth of its tolerance the
+        // coefficients change by less than the tolerance (relative to the
+        // self coefficient), on the half-space and the half-plane, for
+        // relaxation lengths from a fifth of an element to 10^4 elements.
+        for ic in [
+            HalfSpaceInfluence::new(0.55e-3, 1.1e-3, &m),
+            HalfSpaceInfluence::plane_strain(0.55e-3, &m),
+        ] {
+            let scale = ic.coefficient(N, N, 0.0, 0.0);
+            for l in [1e-4, 3e-3, 5.0] {
+                let v = ic.with_viscoelastic(&m, &visc(1.0, l));
+                let Some(t) = v.visc.map(|t| t.terms[0]) else {
+                    panic!("no relaxation term")
+                };
+                let body = HalfSpaceInfluence {
+                    visc: None,
+                    visc_input: None,
+                    ..v
+                };
+                for k in [-7, -1, 0, 1, 4] {
+                    let x = k as f64 * 0.55e-3;
+                    let at = |tol: f64| {
+                        relaxed_average(
+                            |s| body.relaxation_integrand(X, X, s, 0.0),
+                            x,
+                            t.length_m,
+                            &[-0.275e-3, 0.275e-3],
+                            tol * ic.inv_pi_g * ic.dx,
+                        )
+                    };
+                    let (normal, tight) =
+                        (at(QUADRATURE_TOLERANCE), at(1e-3 * QUADRATURE_TOLERANCE));
+                    assert!(
+                        (normal - tight).abs() <= QUADRATURE_TOLERANCE * scale,
+                        "{:?} L {l} at {x}: {normal} vs {tight}",
+                        ic.elasticity
+                    );
+                }
+            }
+        }
         // Elastic bodies given as viscoelastic (f_g = 0): the same bits.
         assert_eq!(ic.with_viscoelastic(&m, &visc(0.0, 1.0)), ic);
     }

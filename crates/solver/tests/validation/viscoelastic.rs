@@ -266,7 +266,8 @@ fn contact_visc_cylindr() {
         let approach = t.approach_m * 1e3;
         eprintln!(
             "visc_cylindr case {}: xi {xi:.4e} (CONTACT {:.3e}), pmax {:.2} N/mm² ({}), approach {:.5} mm, \
-             on CONTACT's 1 m strip {:.5} mm ({}), counts {:?} ({:?}), Fx {:.4e}, Fn {:.4e}, {time:.3} s",
+             on CONTACT's 1 m strip {:.5} mm ({}), counts {:?} ({:?}), Fx {:.4e}, Fn {:.4e}, {time:.3} s \
+             (the last solve {:.4} s)",
             r.case,
             r.creep,
             t.max_pressure_pa / 1e6,
@@ -278,6 +279,7 @@ fn contact_visc_cylindr() {
             r.counts,
             t.fx_n,
             t.normal_force_n,
+            s.info.solve_time_s,
         );
         let case = r.case;
         assert!(rel(t.normal_force_n, FN) < 1e-9, "case {case}: Fn");
