@@ -361,6 +361,8 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             yield_limit_pa: l.yield_limit_pa,
             hardening_pa_per_m: l.hardening_pa_per_m,
         }),
+        // Viscoelastic bodies are a case file's (not on the wire).
+        viscoelastic: None,
     })
 }
 

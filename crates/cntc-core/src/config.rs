@@ -4,7 +4,7 @@
 //! `cntc_setflags`, `cntc_setmaterialparameters`, `cntc_setfrictionmethod`,
 //! `cntc_setsolverflags` and `cntc_settemperaturedata`.
 //!
-//! A value the library does not have (an M digit of a viscoelastic body, a
+//! A value the library does not have (an M digit of FaStrip, a
 //! temperature-dependent friction law) is kept as the problem's
 //! [`Config::unsupported`]: the setter logs it at once and every
 //! `cntc_calculate` refuses with `CNTC_err_notsupported` naming it, until a
@@ -15,6 +15,7 @@ use railcontact_solver::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw
 use railcontact_solver::core::layer::InterfacialLayer;
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::problem::Friction;
+use railcontact_solver::core::viscoelastic::{Sls, Viscoelastic};
 
 use crate::error::{CntcError, Result};
 use crate::flags;
@@ -116,9 +117,26 @@ pub enum MaterialModel {
     /// between them, elastic or elasto-plastic (GG3, LAYTHK, TAU_C0,
     /// K_TAU; [`railcontact_solver::core::layer`]), Kalker's exact theory.
     InterfacialLayer(InterfacialLayer),
+    /// M = 1: viscoelastic bodies, standard linear solids (FG and TC per
+    /// body; [`railcontact_solver::core::viscoelastic`]), Kalker's exact
+    /// theory in steady rolling; the shear moduli are the glassy ones.
+    Viscoelastic([Sls; 2]),
 }
 
 impl MaterialModel {
+    /// The viscoelastic bodies of M = 1 rolling at `veloc_m_per_s`
+    /// (CONTACT's VELOC).
+    pub fn viscoelastic(&self, veloc_m_per_s: f64) -> Option<Viscoelastic> {
+        match *self {
+            MaterialModel::Viscoelastic([body1, body2]) => Some(Viscoelastic {
+                rolling_speed_m_per_s: veloc_m_per_s,
+                body1,
+                body2,
+            }),
+            _ => None,
+        }
+    }
+
     /// The interfacial layer of M = 4.
     pub fn layer(&self) -> Option<InterfacialLayer> {
         match *self {
@@ -423,9 +441,9 @@ impl Config {
     /// Hertzian pressure for FASTSIM; 4-6 are SDEC/KPEC/ANALYN bounds).
     fn check_bound(&mut self) {
         let what = match (self.digits.bound, self.material.model) {
-            (0, MaterialModel::Elastic | MaterialModel::InterfacialLayer(_)) => None,
-            (0 | 2 | 3, MaterialModel::ModifiedFastsim(_)) => None,
-            (b @ (2 | 3), MaterialModel::Elastic | MaterialModel::InterfacialLayer(_)) => {
+            (0, _) => None,
+            (2 | 3, MaterialModel::ModifiedFastsim(_)) => None,
+            (b @ (2 | 3), _) => {
                 Some(format!(
                     "B = {b} (CNTC_ic_bound) with M = {}: a prescribed {} pressure under Kalker's \
                      exact theory is not supported (B = 2, 3 are for FASTSIM, M = 2, 3)",
@@ -482,7 +500,17 @@ impl Config {
                 });
                 None
             }
-            1 => Some("M = 1 (viscoelastic bodies) is not supported".to_string()),
+            1 => {
+                // FG and TC per body (TC in seconds, whatever the units);
+                // checked at calculation (naming viscoelastic.body1...).
+                let sls = |fg: f64, tc: f64| Sls {
+                    relaxation_ratio: fg,
+                    creep_relaxation_time_s: tc,
+                };
+                self.material.model =
+                    MaterialModel::Viscoelastic([sls(p[4], p[6]), sls(p[5], p[7])]);
+                None
+            }
             2 => Some(
                 "M = 2 (FASTSIM with a given flexibility) is not supported; M = 3 (modified \
                  FASTSIM with Kalker's flexibilities) is"

@@ -293,7 +293,8 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                     (r.initial_factor, r.limit_ratio, r.transition_rate)
                 }
                 crate::config::MaterialModel::Elastic
-                | crate::config::MaterialModel::InterfacialLayer(_) => (1.0, 1.0, 1.0),
+                | crate::config::MaterialModel::InterfacialLayer(_)
+                | crate::config::MaterialModel::Viscoelastic(_) => (1.0, 1.0, 1.0),
             };
             v.extend([k0, a, b]);
             if let Some(l) = layer {

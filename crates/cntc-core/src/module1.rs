@@ -1073,6 +1073,13 @@ impl WheelRail {
                 d.discns
             )));
         }
+        if let MaterialModel::Viscoelastic(_) = self.config.material.model {
+            return Err(CntcError::NotSupported(
+                "M = 1 (viscoelastic bodies) in module 1 is not supported: module 3 takes it, in \
+                 steady rolling"
+                    .into(),
+            ));
+        }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(
@@ -1410,6 +1417,7 @@ impl WheelRail {
                             .solver
                             .interfacial_layer
                             .map_or(0.0, |l| l.flexibility_m_per_pa()),
+                        viscoelastic: None,
                     },
                 });
             }

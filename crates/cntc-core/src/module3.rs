@@ -29,6 +29,7 @@ use railcontact_solver::core::solution::{
 };
 use railcontact_solver::core::solve::{layer_flexibility, ContactSolver};
 use railcontact_solver::core::temperature::{flash_temperatures, ThermalBody, ThermalInput};
+use railcontact_solver::core::viscoelastic::Viscoelastic;
 
 use crate::config::{Config, FrictionLaw, MaterialModel, Thermal};
 use crate::error::{CntcError, Result};
@@ -231,6 +232,8 @@ struct SolverKey {
     /// M = 4's layer (its flexibility is in the solver's kernels, its
     /// yield limit and hardening in its history).
     layer: Option<InterfacialLayer>,
+    /// M = 1's viscoelastic bodies (in the solver's kernels).
+    viscoelastic: Option<Viscoelastic>,
 }
 
 /// The exact normal problem's solution FASTSIM takes its pressure from
@@ -410,7 +413,9 @@ impl Patch {
                 }
                 outcome
             }
-            MaterialModel::Elastic | MaterialModel::InterfacialLayer(_) => {
+            MaterialModel::Elastic
+            | MaterialModel::InterfacialLayer(_)
+            | MaterialModel::Viscoelastic(_) => {
                 let (mut outcome, status) = self.exact(cache, material, load, grid, gap)?;
                 if let Some(e) = status {
                     outcome.hertz = hertz;
@@ -458,6 +463,8 @@ impl Patch {
         // M = 4: the interfacial layer between the bodies.
         let layer = self.config.material.model.layer();
         settings.interfacial_layer = layer;
+        // M = 1: viscoelastic bodies rolling at VELOC.
+        settings.viscoelastic = self.config.material.model.viscoelastic(k.veloc);
         let step = match d.tang {
             1 => Some(ShiftStep {
                 load,
@@ -558,6 +565,7 @@ impl Patch {
             material,
             chi: problem.rolling_direction_rad,
             layer,
+            viscoelastic: problem.settings.viscoelastic,
         };
         let reuse = matches!(&self.solver, Some((k, _)) if *k == key);
         let continues = d.pvtime <= 1 && reuse;
@@ -688,6 +696,7 @@ impl Patch {
             body1: problem.material.body1,
             body2: problem.material.body2,
             layer_flexibility_m_per_pa: layer_flexibility(&problem),
+            viscoelastic: problem.settings.viscoelastic,
         });
         outcome.fields = fields;
         outcome.friction_coefficient = fstat;
@@ -930,6 +939,7 @@ impl Patch {
             material,
             chi: 0.0,
             layer: None,
+            viscoelastic: None,
         };
         if !matches!(&self.solver, Some((k, _)) if *k == key) {
             self.solver = Some((key, ContactSolver::new(&problem, cache)));

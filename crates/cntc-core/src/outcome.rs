@@ -12,6 +12,7 @@ use railcontact_solver::core::layer::LayerFields;
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::core::solve::displacement_differences;
+use railcontact_solver::core::viscoelastic::Viscoelastic;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CntcError, Result};
@@ -134,6 +135,8 @@ pub enum DisplacementSource {
         /// The interfacial layer's tangential flexibility \[m/Pa\] (0
         /// without one).
         layer_flexibility_m_per_pa: f64,
+        /// Viscoelastic bodies (M = 1; None: elastic).
+        viscoelastic: Option<Viscoelastic>,
     },
     /// FASTSIM (M = 3), as CONTACT's: u_x, u_y the flexibilities L1/k,
     /// L2/k times the tractions (zero outside contact); u_n the normal
@@ -271,24 +274,27 @@ impl Outcome {
         }
         // u = A p with the kernels of `grid` (a hit of the process cache
         // after a calculation in this process).
-        let product = |body1, body2, layer: f64| -> Result<[Vec<f64>; 3]> {
-            if !(layer.is_finite() && layer >= 0.0) {
-                return Err(CntcError::Input(format!(
-                    "displacement differences: the layer flexibility {layer} is not a \
+        let product =
+            |body1, body2, layer: f64, visc: Option<&Viscoelastic>| -> Result<[Vec<f64>; 3]> {
+                if !(layer.is_finite() && layer >= 0.0) {
+                    return Err(CntcError::Input(format!(
+                        "displacement differences: the layer flexibility {layer} is not a \
                      finite value >= 0"
-                )));
-            }
-            let material = CombinedMaterial::new(body1, body2).map_err(CntcError::from_contact)?;
-            let kernels = KernelCache::global().get_layered(
-                &self.grid,
-                &material,
-                layer,
-                KernelKind::Displacement,
-            );
-            let mut u = [zero(), zero(), zero()];
-            displacement_differences(&kernels, &mut kernels.workspace(), p, &mut u);
-            Ok(u)
-        };
+                    )));
+                }
+                let material =
+                    CombinedMaterial::new(body1, body2).map_err(CntcError::from_contact)?;
+                let kernels = KernelCache::global().get_viscoelastic(
+                    &self.grid,
+                    &material,
+                    layer,
+                    visc,
+                    KernelKind::Displacement,
+                );
+                let mut u = [zero(), zero(), zero()];
+                displacement_differences(&kernels, &mut kernels.workspace(), p, &mut u);
+                Ok(u)
+            };
         match self.displacement_source {
             None
             | Some(DisplacementSource::Unloaded)
@@ -297,7 +303,13 @@ impl Outcome {
                 body1,
                 body2,
                 layer_flexibility_m_per_pa,
-            }) => product(body1, body2, layer_flexibility_m_per_pa),
+                viscoelastic,
+            }) => product(
+                body1,
+                body2,
+                layer_flexibility_m_per_pa,
+                viscoelastic.as_ref(),
+            ),
             Some(DisplacementSource::Fastsim {
                 flexibilities_m_per_pa: [l1, l2],
                 normal,
@@ -306,7 +318,7 @@ impl Outcome {
                 let uy = f.traction_y_pa.iter().map(|p| l2 * p).collect();
                 let un = match normal {
                     Some([body1, body2]) => {
-                        let [_, _, un] = product(body1, body2, 0.0)?;
+                        let [_, _, un] = product(body1, body2, 0.0, None)?;
                         un
                     }
                     None => zero(),
@@ -380,6 +392,7 @@ mod tests {
             body1: Material::STEEL,
             body2: Material::STEEL,
             layer_flexibility_m_per_pa: 0.0,
+            viscoelastic: None,
         });
         assert!(matches!(
             o.displacements_m(),

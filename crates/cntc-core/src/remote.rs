@@ -95,6 +95,7 @@ mod tests {
             body1: Material::STEEL,
             body2: Material::STEEL,
             layer_flexibility_m_per_pa: 1e-12 / 3.0,
+            viscoelastic: None,
         });
         // Computed before sending: the memo does not travel, the receiver
         // computes the same from the source.

@@ -117,14 +117,65 @@ fn unknown_result_elements_and_patches_are_refused() {
 }
 
 #[test]
+fn viscoelastic_bodies_relaxing_at_once_are_elastic_with_the_final_modulus() {
+    // M = 1 (FG, TC per body) in steady rolling: TC = 0 relaxes at once,
+    // the elastic bodies of G_g/(1 + FG) (CONTACT's user guide,
+    // §"Viscoelastic materials"); TC = 0.1 s at VELOC = 10 m/s relaxes
+    // over 1 m, a hundred times the patch's size: between the two elastic
+    // moduli, near the glassy one.
+    // T = 1 (a shift) is refused. The grid is given (40 x 40 elements over
+    // 22 x 44 mm, h = 0.0008 x² + 0.0002814 y² per mm), the same for all.
+    let (ire, icp) = (111, 1);
+    tractcurv(ire);
+    unsafe {
+        let pot = [40.0, 40.0, -10.725, -21.45, 0.55, 1.1];
+        cntc_setpotcontact(&ire, &icp, &3, &6, pot.as_ptr());
+        let udist = [0.0008, 0.0, 0.0002814, 0.0, 0.0, 0.0];
+        cntc_setundeformeddistc(&ire, &icp, &1, &6, udist.as_ptr());
+    }
+    let visco = |fg: f64, tc: f64| {
+        let p = [0.28, 0.28, 82000.0, 82000.0, fg, fg, tc, tc];
+        unsafe { cntc_setmaterialparameters(&ire, &icp, &1, &8, p.as_ptr()) };
+    };
+    let elastic = |g: f64| {
+        let p = [0.28, 0.28, g, g];
+        unsafe { cntc_setmaterialparameters(&ire, &icp, &0, &4, p.as_ptr()) };
+    };
+    let cksi = -3e-4;
+    visco(1.0, 0.0);
+    let (e1, at_once) = fx_at(ire, cksi);
+    elastic(41000.0);
+    let (e2, relaxed) = fx_at(ire, cksi);
+    elastic(82000.0);
+    let (e3, glassy) = fx_at(ire, cksi);
+    visco(1.0, 0.1);
+    let (e4, between) = fx_at(ire, cksi);
+    assert_eq!([e1, e2, e3, e4], [0; 4]);
+    assert!(
+        (at_once / relaxed - 1.0).abs() < 1e-6,
+        "{at_once} vs {relaxed}"
+    );
+    assert!(
+        relaxed.abs() < between.abs() && between.abs() < glassy.abs(),
+        "{relaxed} {between} {glassy}"
+    );
+    let mut ierror = 0;
+    unsafe {
+        cntc_setflags(&ire, &icp, &1, &flags::IC_TANG, &1);
+        cntc_calculate(&ire, &icp, &mut ierror);
+    }
+    assert!(ierror < 0, "{ierror}");
+}
+
+#[test]
 fn methods_the_library_lacks_are_named_at_calculation() {
     let (ire, icp) = (110, 1);
     tractcurv(ire);
     let mut ierror = 0;
     unsafe {
-        // M = 1 (viscoelastic bodies): refused until replaced.
-        let visco = [0.28, 0.28, 82000.0, 82000.0, 0.5, 0.5, 0.1, 0.1];
-        cntc_setmaterialparameters(&ire, &icp, &1, &8, visco.as_ptr());
+        // M = 2 (FASTSIM with a given flexibility): refused until replaced.
+        let given = [0.28, 0.28, 82000.0, 82000.0, 1e-5, 1e-5, 1e-5, 1e-5];
+        cntc_setmaterialparameters(&ire, &icp, &2, &8, given.as_ptr());
         cntc_calculate(&ire, &icp, &mut ierror);
         assert_eq!(ierror, err::NOT_SUPPORTED);
         let elastic = [0.28, 0.28, 82000.0, 82000.0];

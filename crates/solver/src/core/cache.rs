@@ -17,6 +17,7 @@ use crate::core::fft::{ConvolutionPlan, KernelSet};
 use crate::core::grid::Grid;
 use crate::core::influence::{HalfSpaceInfluence, KernelKind};
 use crate::core::material::CombinedMaterial;
+use crate::core::viscoelastic::Viscoelastic;
 
 /// Default memory cap of the kernels held \[bytes\]: 1 GiB, some 600 sets of
 /// 64 x 64 steady-rolling kernels.
@@ -31,6 +32,9 @@ struct Key {
     mat: [u64; 4],
     /// An interfacial layer's flexibility (bits; 0 without).
     layer: u64,
+    /// Viscoelastic bodies' (f_g, relaxation length) per body (bits;
+    /// zeros for elastic bodies).
+    visc: [u64; 4],
     kind: KernelKind,
 }
 
@@ -142,7 +146,7 @@ impl KernelCache {
         material: &CombinedMaterial,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, 0.0, kind, None)
+        self.get_with(grid, material, 0.0, None, kind, None)
     }
 
     /// [`KernelCache::get`] with an interfacial layer of tangential
@@ -156,7 +160,20 @@ impl KernelCache {
         layer_flexibility_m_per_pa: f64,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, layer_flexibility_m_per_pa, kind, None)
+        self.get_with(grid, material, layer_flexibility_m_per_pa, None, kind, None)
+    }
+
+    /// [`KernelCache::get_layered`] with viscoelastic bodies in steady
+    /// rolling ([`HalfSpaceInfluence::with_viscoelastic`]; None: elastic).
+    pub fn get_viscoelastic(
+        &self,
+        grid: &Grid,
+        material: &CombinedMaterial,
+        layer_flexibility_m_per_pa: f64,
+        visc: Option<&Viscoelastic>,
+        kind: KernelKind,
+    ) -> Arc<KernelSet> {
+        self.get_with(grid, material, layer_flexibility_m_per_pa, visc, kind, None)
     }
 
     /// [`KernelCache::get`] for a caller that holds the other kind's set of
@@ -174,6 +191,7 @@ impl KernelCache {
             grid,
             material,
             other.influence.layer_flexibility_m_per_pa(),
+            other.influence.viscoelastic().as_ref(),
             kind,
             Some(other),
         )
@@ -184,11 +202,15 @@ impl KernelCache {
         grid: &Grid,
         material: &CombinedMaterial,
         layer: f64,
+        visc: Option<&Viscoelastic>,
         kind: KernelKind,
         other: Option<&KernelSet>,
     ) -> Arc<KernelSet> {
         // -0 and 0 are the same layer (none).
         let layer = if layer == 0.0 { 0.0 } else { layer };
+        // Elastic bodies given as viscoelastic ones (f_g = 0) are elastic.
+        let visc = visc.filter(|v| !(v.body1.is_elastic() && v.body2.is_elastic()));
+        let relaxation = visc.map_or([(0.0, 0.0); 2], |v| v.relaxation());
         let key = Key {
             nx: grid.nx,
             ny: grid.ny,
@@ -201,6 +223,12 @@ impl KernelCache {
                 material.body2.poisson_ratio.to_bits(),
             ],
             layer: layer.to_bits(),
+            visc: [
+                relaxation[0].0.to_bits(),
+                relaxation[0].1.to_bits(),
+                relaxation[1].0.to_bits(),
+                relaxation[1].1.to_bits(),
+            ],
             kind,
         };
         let (cell, plan) = {
@@ -235,6 +263,10 @@ impl KernelCache {
                     HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
                 }
                 .with_layer_flexibility(layer);
+                let influence = match visc {
+                    Some(v) => influence.with_viscoelastic(material, v),
+                    None => influence,
+                };
                 Arc::new(match other {
                     Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
                     None => KernelSet::new(plan, influence, kind),

@@ -55,7 +55,8 @@
 //! length); [`crate::core::grid::Grid::line`] keeps windows within R.
 //! A_yy is the antiplane (lateral) shear of the half-plane.
 
-use crate::core::material::CombinedMaterial;
+use crate::core::material::{CombinedMaterial, Material};
+use crate::core::viscoelastic::{relaxed_average, Viscoelastic, QUADRATURE_TOLERANCE};
 
 /// Traction / displacement components, in matrix order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -135,6 +136,36 @@ fn strip_sign(x: f64, h: f64) -> f64 {
     2.0 * x.clamp(-h, h)
 }
 
+/// The integrals over an element of the point kernels 1/r, x²/r³, y²/r³,
+/// xy/r³, x/r² and y/r² (see the module docs).
+#[derive(Debug, Clone, Copy)]
+enum ElementIntegral {
+    One,
+    Xx,
+    Yy,
+    Xy,
+    X,
+    Y,
+}
+
+/// Offsets from this many half-widths of an element on take
+/// [`HalfSpaceInfluence::far_coefficient`] in the relaxation terms: the
+/// 8-point Gauss rule is then exact to about 1e-16 (Bernstein ellipse of
+/// parameter 16 for the nearest singularity).
+pub const FAR_FIELD_HALF_WIDTHS: f64 = 8.0;
+
+/// The 8-point Gauss-Legendre rule on [-1, 1] (node, weight).
+const GAUSS_8: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+];
+
 #[inline]
 fn corners(f: impl Fn(f64, f64) -> f64, x: f64, y: f64, hx: f64, hy: f64) -> f64 {
     f(x + hx, y + hy) - f(x - hx, y + hy) - f(x + hx, y - hy) + f(x - hx, y - hy)
@@ -163,6 +194,30 @@ pub struct HalfSpaceInfluence {
     /// the self-influence coefficients A_xx(I, I) and A_yy(I, I)
     /// ([`HalfSpaceInfluence::with_layer_flexibility`]).
     layer: f64,
+    /// The viscoelastic bodies' relaxation terms
+    /// ([`HalfSpaceInfluence::with_viscoelastic`]); None: elastic.
+    visc: Option<ViscoTerms>,
+    /// What the relaxation terms were built from.
+    visc_input: Option<Viscoelastic>,
+}
+
+/// The relaxation terms of viscoelastic bodies (see
+/// [`crate::core::viscoelastic`]): up to two (one per body; one for both
+/// when they relax alike), each the elastic coefficients of its share
+/// (`inv_pi_g`, `nu`, `k`), its ratio f_g and relaxation length L \[m\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ViscoTerms {
+    terms: [ViscoTerm; 2],
+    count: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ViscoTerm {
+    inv_pi_g: f64,
+    nu: f64,
+    k: f64,
+    ratio: f64,
+    length_m: f64,
 }
 
 impl HalfSpaceInfluence {
@@ -176,7 +231,101 @@ impl HalfSpaceInfluence {
             k: material.kalker_k,
             elasticity: Elasticity::HalfSpace,
             layer: 0.0,
+            visc: None,
+            visc_input: None,
         }
+    }
+
+    /// These coefficients for viscoelastic bodies: `material`'s shear
+    /// moduli are the glassy ones G_g, `visc` the bodies' standard linear
+    /// solids and the rolling speed ([`crate::core::viscoelastic`]; the
+    /// coefficients of steady rolling in +x). Bodies with f_g = 0 add
+    /// nothing; both elastic leave the coefficients as they are.
+    pub fn with_viscoelastic(self, material: &CombinedMaterial, visc: &Viscoelastic) -> Self {
+        let [(f1, l1), (f2, l2)] = visc.relaxation();
+        let share = |m: &Material, sign: f64| {
+            // A body's share of Kalker's combined constants: 1/G =
+            // (1/G1 + 1/G2)/2, nu/G = (nu1/G1 + nu2/G2)/2, K/G = ((1 -
+            // 2 nu1)/G1 - (1 - 2 nu2)/G2)/4 (crate::core::material).
+            let g = 2.0 * m.shear_modulus_pa;
+            ViscoTerm {
+                inv_pi_g: 1.0 / (std::f64::consts::PI * g),
+                nu: m.poisson_ratio,
+                k: sign * 0.5 * (1.0 - 2.0 * m.poisson_ratio),
+                ratio: 0.0,
+                length_m: 0.0,
+            }
+        };
+        let mut terms = [share(&material.body1, 1.0), share(&material.body2, -1.0)];
+        terms[0].ratio = f1;
+        terms[0].length_m = l1;
+        terms[1].ratio = f2;
+        terms[1].length_m = l2;
+        let count = if (f1, l1) == (f2, l2) {
+            // Both bodies relax alike: one term of the combined constants.
+            terms[0] = ViscoTerm {
+                inv_pi_g: self.inv_pi_g,
+                nu: self.nu,
+                k: self.k,
+                ratio: f1,
+                length_m: l1,
+            };
+            usize::from(f1 != 0.0)
+        } else {
+            if f1 == 0.0 {
+                terms[0] = terms[1];
+            }
+            usize::from(f1 != 0.0) + usize::from(f2 != 0.0)
+        };
+        Self {
+            visc: (count > 0).then_some(ViscoTerms { terms, count }),
+            visc_input: (count > 0).then_some(*visc),
+            ..self
+        }
+    }
+
+    /// The viscoelastic bodies these coefficients were built for (None:
+    /// elastic bodies).
+    pub fn viscoelastic(&self) -> Option<Viscoelastic> {
+        self.visc_input
+    }
+
+    /// Whether the coefficients are those of viscoelastic bodies (not
+    /// symmetric: see [`crate::core::viscoelastic`]).
+    pub fn is_viscoelastic(&self) -> bool {
+        self.visc.is_some()
+    }
+
+    /// The elastic coefficient (i, j) at (x, y) plus the viscoelastic
+    /// bodies' relaxation terms.
+    fn with_relaxation(&self, i: Component, j: Component, x: f64, y: f64, elastic: f64) -> f64 {
+        let Some(v) = &self.visc else {
+            return elastic;
+        };
+        let h = 0.5 * self.dx;
+        // Accuracy against the size of the self coefficient (A_xx >= A_nn).
+        let tol = QUADRATURE_TOLERANCE * self.inv_pi_g * self.dx;
+        let mut sum = elastic;
+        for t in &v.terms[..v.count] {
+            let body = Self {
+                inv_pi_g: t.inv_pi_g,
+                nu: t.nu,
+                k: t.k,
+                layer: 0.0,
+                visc: None,
+                visc_input: None,
+                ..*self
+            };
+            sum += t.ratio
+                * relaxed_average(
+                    |s| body.relaxation_integrand(i, j, s, y),
+                    x,
+                    t.length_m,
+                    &[-h, h],
+                    tol,
+                );
+        }
+        sum
     }
 
     /// These coefficients with an interfacial layer of tangential
@@ -225,19 +374,78 @@ impl HalfSpaceInfluence {
     /// The plane-strain coefficient (i, j) at offset x from the strip's
     /// centre.
     fn plane_strain_coefficient(&self, i: Component, j: Component, x: f64) -> f64 {
-        use Component::*;
         let h = 0.5 * self.dx;
+        self.plane_strain_of(i, j, x, strip_log(x, h), strip_sign(x, h))
+    }
+
+    /// The plane-strain coefficient (i, j) at offset x of the strip
+    /// integrals `l` = L(x) and `s` = S(x).
+    fn plane_strain_of(&self, i: Component, j: Component, x: f64, l: f64, s: f64) -> f64 {
+        use Component::*;
         let c = self.inv_pi_g;
         let pi_c = std::f64::consts::PI * c;
         let layer = || self.layer_at(x, 0.0);
         match (i, j) {
-            (X, X) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h) + layer(),
-            (N, N) => 2.0 * c * (1.0 - self.nu) * strip_log(x, h),
-            (Y, Y) => 2.0 * c * strip_log(x, h) + layer(),
-            (N, X) => pi_c * self.k * strip_sign(x, h),
-            (X, N) => -pi_c * self.k * strip_sign(x, h),
+            (X, X) => 2.0 * c * (1.0 - self.nu) * l + layer(),
+            (N, N) => 2.0 * c * (1.0 - self.nu) * l,
+            (Y, Y) => 2.0 * c * l + layer(),
+            (N, X) => pi_c * self.k * s,
+            (X, N) => -pi_c * self.k * s,
             (X, Y) | (Y, X) | (N, Y) | (Y, N) => 0.0,
         }
+    }
+
+    /// The elastic coefficient far from the element (|x| at least
+    /// [`FAR_FIELD_HALF_WIDTHS`] times its larger half-width), from Gauss
+    /// quadrature of the point kernels over the element instead of the
+    /// closed forms' differences of primitives, which lose the digits of
+    /// a coefficient 1e5 element widths away or more to cancellation
+    /// (the relaxation terms of a viscoelastic body reach that far).
+    /// None nearer.
+    fn far_coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> Option<f64> {
+        let (hx, hy) = (0.5 * self.dx, 0.5 * self.dy);
+        let reach = match self.elasticity {
+            Elasticity::PlaneStrain => hx,
+            Elasticity::HalfSpace => hx.max(hy),
+        };
+        if x.abs() < FAR_FIELD_HALF_WIDTHS * reach {
+            return None;
+        }
+        if self.elasticity == Elasticity::PlaneStrain {
+            let l: f64 = GAUSS_8
+                .iter()
+                .map(|&(t, w)| -w * hx * ((x - hx * t).abs() / LINE_REFERENCE_DISTANCE_M).ln())
+                .sum();
+            return Some(self.plane_strain_of(i, j, x, l, 2.0 * hx * x.signum()));
+        }
+        Some(self.half_space_of(i, j, x, y, |kernel| {
+            let mut sum = 0.0;
+            for &(a, wa) in &GAUSS_8 {
+                for &(b, wb) in &GAUSS_8 {
+                    let (px, py) = (x - hx * a, y - hy * b);
+                    let r2 = px * px + py * py;
+                    let r = r2.sqrt();
+                    let v = match kernel {
+                        ElementIntegral::One => 1.0 / r,
+                        ElementIntegral::Xx => px * px / (r2 * r),
+                        ElementIntegral::Yy => py * py / (r2 * r),
+                        ElementIntegral::Xy => px * py / (r2 * r),
+                        ElementIntegral::X => px / r2,
+                        ElementIntegral::Y => py / r2,
+                    };
+                    sum += wa * wb * v;
+                }
+            }
+            sum * hx * hy
+        }))
+    }
+
+    /// The elastic coefficient for the relaxation terms of viscoelastic
+    /// bodies: [`HalfSpaceInfluence::far_coefficient`] far from the
+    /// element, the closed forms nearer.
+    fn relaxation_integrand(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
+        self.far_coefficient(i, j, x, y)
+            .unwrap_or_else(|| self.elastic_coefficient(i, j, x, y))
     }
 
     /// Displacement difference component `i` \[m\] at offset (x, y) \[m\] from the
@@ -245,32 +453,54 @@ impl HalfSpaceInfluence {
     /// (on the element itself, with an interfacial layer's shear:
     /// [`HalfSpaceInfluence::with_layer_flexibility`]).
     /// A line contact's coefficients do not depend on y.
+    /// With viscoelastic bodies ([`HalfSpaceInfluence::with_viscoelastic`]),
+    /// their relaxation terms included.
     pub fn coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
-        use Component::*;
+        let elastic = self.elastic_coefficient(i, j, x, y);
+        self.with_relaxation(i, j, x, y, elastic)
+    }
+
+    /// [`HalfSpaceInfluence::coefficient`] of the elastic bodies (the
+    /// glassy moduli of viscoelastic ones).
+    fn elastic_coefficient(&self, i: Component, j: Component, x: f64, y: f64) -> f64 {
         if self.elasticity == Elasticity::PlaneStrain {
             return self.plane_strain_coefficient(i, j, x);
         }
         let (hx, hy) = (0.5 * self.dx, 0.5 * self.dy);
+        self.half_space_of(i, j, x, y, |kernel| match kernel {
+            ElementIntegral::One => corners(prim_1_over_r, x, y, hx, hy),
+            ElementIntegral::Xx => corners(prim_x2_over_r3, x, y, hx, hy),
+            ElementIntegral::Yy => corners(prim_y2_over_r3, x, y, hx, hy),
+            ElementIntegral::Xy => corners(prim_xy_over_r3, x, y, hx, hy),
+            ElementIntegral::X => corners(prim_x_over_r2, x, y, hx, hy),
+            // y/r² is x/r² with the axes swapped.
+            ElementIntegral::Y => corners(prim_x_over_r2, y, x, hy, hx),
+        })
+    }
+
+    /// The half-space coefficient (i, j) at (x, y) of the element
+    /// integrals `f` of the point kernels.
+    fn half_space_of(
+        &self,
+        i: Component,
+        j: Component,
+        x: f64,
+        y: f64,
+        f: impl Fn(ElementIntegral) -> f64,
+    ) -> f64 {
+        use Component::*;
+        use ElementIntegral as F;
         let c = self.inv_pi_g;
         let nu = self.nu;
         match (i, j) {
-            (X, X) => {
-                c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
-                    + nu * corners(prim_x2_over_r3, x, y, hx, hy))
-                    + self.layer_at(x, y)
-            }
-            (Y, Y) => {
-                c * ((1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy)
-                    + nu * corners(prim_y2_over_r3, x, y, hx, hy))
-                    + self.layer_at(x, y)
-            }
-            (X, Y) | (Y, X) => c * nu * corners(prim_xy_over_r3, x, y, hx, hy),
-            (N, N) => c * (1.0 - nu) * corners(prim_1_over_r, x, y, hx, hy),
-            (N, X) => c * self.k * corners(prim_x_over_r2, x, y, hx, hy),
-            (X, N) => -c * self.k * corners(prim_x_over_r2, x, y, hx, hy),
-            // y/r² is x/r² with the axes swapped.
-            (N, Y) => c * self.k * corners(prim_x_over_r2, y, x, hy, hx),
-            (Y, N) => -c * self.k * corners(prim_x_over_r2, y, x, hy, hx),
+            (X, X) => c * ((1.0 - nu) * f(F::One) + nu * f(F::Xx)) + self.layer_at(x, y),
+            (Y, Y) => c * ((1.0 - nu) * f(F::One) + nu * f(F::Yy)) + self.layer_at(x, y),
+            (X, Y) | (Y, X) => c * nu * f(F::Xy),
+            (N, N) => c * (1.0 - nu) * f(F::One),
+            (N, X) => c * self.k * f(F::X),
+            (X, N) => -c * self.k * f(F::X),
+            (N, Y) => c * self.k * f(F::Y),
+            (Y, N) => -c * self.k * f(F::Y),
         }
     }
 
@@ -296,7 +526,11 @@ impl HalfSpaceInfluence {
 
     /// True when the normal/tangential coupling coefficients are non-zero.
     pub fn coupled(&self) -> bool {
+        // Viscoelastic bodies that relax differently: each body's share.
         self.k.abs() > 1e-12
+            || self
+                .visc
+                .is_some_and(|v| v.terms[..v.count].iter().any(|t| t.k.abs() > 1e-12))
     }
 }
 
@@ -393,9 +627,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn matrix_is_symmetric_by_reciprocity() {
-        let m = CombinedMaterial::new(
+    /// Steel on a softer body (K != 0).
+    fn dissimilar() -> CombinedMaterial {
+        CombinedMaterial::new(
             Material {
                 shear_modulus_pa: 80e9,
                 poisson_ratio: 0.28,
@@ -405,7 +639,12 @@ mod tests {
                 poisson_ratio: 0.35,
             },
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn matrix_is_symmetric_by_reciprocity() {
+        let m = dissimilar();
         let ic = HalfSpaceInfluence::new(1e-4, 1.5e-4, &m);
         use Component::*;
         let comps = [X, Y, N];
@@ -421,5 +660,141 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn far_field_quadrature_matches_the_closed_forms() {
+        // Where the closed forms are still accurate (tens of elements),
+        // the Gauss rule of far_coefficient agrees with them.
+        let m = dissimilar();
+        use Component::*;
+        let comps = [X, Y, N];
+        for ic in [
+            HalfSpaceInfluence::new(1e-4, 1.5e-4, &m),
+            HalfSpaceInfluence::plane_strain(1e-4, &m),
+        ] {
+            for &(x, y) in &[(6e-4, 0.0), (-1.3e-3, 4.5e-4), (5e-3, -3e-4)] {
+                for &i in &comps {
+                    for &j in &comps {
+                        let exact = ic.coefficient(i, j, x, y);
+                        let far = ic.far_coefficient(i, j, x, y).unwrap();
+                        let scale = ic.coefficient(N, N, 0.0, 0.0);
+                        assert!(
+                            (far - exact).abs() <= 1e-12 * scale,
+                            "{:?} {i:?}{j:?} at ({x},{y}): {far} vs {exact}",
+                            ic.elasticity
+                        );
+                    }
+                }
+            }
+            assert!(ic.far_coefficient(N, N, 7e-5, 0.0).is_none());
+        }
+    }
+
+    #[test]
+    fn viscoelastic_coefficients_tend_to_the_elastic_limits() {
+        use crate::core::viscoelastic::{Sls, Viscoelastic};
+        use Component::*;
+        let m = steel();
+        let visc = |ratio: f64, tc: f64| Viscoelastic {
+            rolling_speed_m_per_s: 1.0,
+            body1: Sls {
+                relaxation_ratio: ratio,
+                creep_relaxation_time_s: tc,
+            },
+            body2: Sls {
+                relaxation_ratio: ratio,
+                creep_relaxation_time_s: tc,
+            },
+        };
+        let (dx, dy) = (1e-4, 1.2e-4);
+        let ic = HalfSpaceInfluence::new(dx, dy, &m);
+        // Relaxing at once: (1 + f_g) times the elastic coefficients.
+        let v = ic.with_viscoelastic(&m, &visc(3.0, 0.0));
+        for &(x, y) in &[(0.0, 0.0), (2e-4, -1.2e-4), (-5e-4, 0.0)] {
+            for (i, j) in [(X, X), (Y, Y), (N, N), (X, Y)] {
+                let want = 4.0 * ic.coefficient(i, j, x, y);
+                let got = v.coefficient(i, j, x, y);
+                assert!(
+                    (got - want).abs() <= 1e-14 * want.abs().max(1e-20),
+                    "{got} {want}"
+                );
+            }
+        }
+        // Relaxing slowly (L = 1e4 m on 0.1 mm elements): the relaxation
+        // term fades like ln(L)/L on the half-space.
+        let v = ic.with_viscoelastic(&m, &visc(1.0, 1e4));
+        let a = ic.coefficient(N, N, 0.0, 0.0);
+        let got = v.coefficient(N, N, 0.0, 0.0);
+        assert!((got / a - 1.0).abs() < 1e-6, "{got} vs {a}");
+        // In between, the term adds the average upstream (+x), where the
+        // material was: not symmetric. Downstream of the loaded element
+        // (X < 0) the material passed under it and remembers,
+        // A(-X) > A(X) for X > 0; upstream it lies between the glassy and
+        // the relaxed coefficient.
+        let v = ic.with_viscoelastic(&m, &visc(1.0, 5e-4));
+        let (up, down) = (
+            v.coefficient(N, N, 3e-4, 0.0),
+            v.coefficient(N, N, -3e-4, 0.0),
+        );
+        let (g, r) = (
+            ic.coefficient(N, N, 3e-4, 0.0),
+            2.0 * ic.coefficient(N, N, 3e-4, 0.0),
+        );
+        assert!(g < up && up < r && up < down, "{g} {up} {r} {down}");
+        assert!(v.is_viscoelastic() && !ic.is_viscoelastic());
+        // A relaxation length below the element size (0.1 mm on 0.55 mm):
+        // finite coefficients near (1 + f_g) times the elastic ones.
+        let ic = HalfSpaceInfluence::new(0.55e-3, 1.1e-3, &m);
+        let v = ic.with_viscoelastic(&m, &visc(1.0, 1e-4));
+        for k in -3..4 {
+            for (i, j) in [(X, X), (Y, Y), (N, N)] {
+                let x = k as f64 * 0.55e-3;
+                let ratio = v.coefficient(i, j, x, 0.0) / ic.coefficient(i, j, x, 0.0);
+                assert!((1.8..2.3).contains(&ratio), "{i:?}{j:?} at {x}: {ratio}");
+            }
+        }
+        // The quadrature converges: to a thousandth of its tolerance the
+        // coefficients change by less than the tolerance (relative to the
+        // self coefficient), on the half-space and the half-plane, for
+        // relaxation lengths from a fifth of an element to 10^4 elements.
+        for ic in [
+            HalfSpaceInfluence::new(0.55e-3, 1.1e-3, &m),
+            HalfSpaceInfluence::plane_strain(0.55e-3, &m),
+        ] {
+            let scale = ic.coefficient(N, N, 0.0, 0.0);
+            for l in [1e-4, 3e-3, 5.0] {
+                let v = ic.with_viscoelastic(&m, &visc(1.0, l));
+                let Some(t) = v.visc.map(|t| t.terms[0]) else {
+                    panic!("no relaxation term")
+                };
+                let body = HalfSpaceInfluence {
+                    visc: None,
+                    visc_input: None,
+                    ..v
+                };
+                for k in [-7, -1, 0, 1, 4] {
+                    let x = k as f64 * 0.55e-3;
+                    let at = |tol: f64| {
+                        relaxed_average(
+                            |s| body.relaxation_integrand(X, X, s, 0.0),
+                            x,
+                            t.length_m,
+                            &[-0.275e-3, 0.275e-3],
+                            tol * ic.inv_pi_g * ic.dx,
+                        )
+                    };
+                    let (normal, tight) =
+                        (at(QUADRATURE_TOLERANCE), at(1e-3 * QUADRATURE_TOLERANCE));
+                    assert!(
+                        (normal - tight).abs() <= QUADRATURE_TOLERANCE * scale,
+                        "{:?} L {l} at {x}: {normal} vs {tight}",
+                        ic.elasticity
+                    );
+                }
+            }
+        }
+        // Elastic bodies given as viscoelastic (f_g = 0): the same bits.
+        assert_eq!(ic.with_viscoelastic(&m, &visc(0.0, 1.0)), ic);
     }
 }

@@ -34,3 +34,4 @@ pub mod strip;
 pub mod subsurface;
 pub mod tangential;
 pub mod temperature;
+pub mod viscoelastic;

@@ -91,6 +91,8 @@ pub struct NormalScratch {
     /// pressure changes beyond the step (see [`NormalOperator::add_columns`]).
     columns: Vec<(usize, f64)>,
     kept: Kept,
+    /// Buffers of [`solve_normal_active_set`], allocated at its first use.
+    active: Option<Box<ActiveSetScratch>>,
 }
 
 /// The last solve's pressures and the age of their product in `u` (see
@@ -117,6 +119,7 @@ impl NormalScratch {
             ones: vec![1.0; n],
             columns: Vec::with_capacity(column_capacity(n)),
             kept: Kept::default(),
+            active: None,
         }
     }
 
@@ -146,7 +149,7 @@ impl HeapBytes for NormalScratch {
             self.ones,
             self.columns,
             self.kept.p
-        )
+        ) + self.active.as_ref().map_or(0, |a| a.heap_bytes())
     }
 }
 
@@ -380,6 +383,7 @@ fn solve_normal_body(
         ones,
         columns,
         kept,
+        active: _,
     } = scratch;
     // Unit weights are exact: w x = x, w w = 1.
     let w: &[f64] = weights.unwrap_or(ones);
@@ -715,6 +719,355 @@ fn hertz_like_guess(h: &[f64], force: f64, area: f64, a_self: f64, pn: &mut [f64
         // Degenerate gap: the element of smallest gap carries the load.
         let i = h.iter().position(|&v| v == hmin).unwrap_or(0);
         pn[i] = 1.0;
+    }
+}
+
+/// Krylov vectors of the GMRES of [`solve_normal_active_set`] between
+/// restarts.
+pub const ACTIVE_SET_RESTART: usize = 30;
+
+/// Active-set iterations of [`solve_normal_active_set`] after which each
+/// iteration adds at most one element (the most penetrating), against
+/// cycling.
+const ACTIVE_SET_FREE_ADDS: usize = 20;
+
+/// Buffers of [`solve_normal_active_set`], allocated at its first use.
+#[derive(Clone)]
+struct ActiveSetScratch {
+    krylov: Krylov,
+    /// Solutions of the two systems (gap, unit approach), a right-hand
+    /// side, the displacements.
+    x: Vec<f64>,
+    y: Vec<f64>,
+    b: Vec<f64>,
+    u: Vec<f64>,
+    /// The contact set.
+    on: Vec<bool>,
+}
+
+/// The GMRES buffers of [`gmres_on`].
+#[derive(Clone)]
+struct Krylov {
+    /// Basis, (restart + 1) vectors of n.
+    basis: Vec<f64>,
+    /// Hessenberg matrix, column-major (restart + 1) x restart.
+    hess: Vec<f64>,
+    /// Givens rotations and the rotated right-hand side.
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    rhs: Vec<f64>,
+    /// Work vectors.
+    w: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl ActiveSetScratch {
+    fn new(n: usize) -> Self {
+        let m = ACTIVE_SET_RESTART;
+        Self {
+            krylov: Krylov {
+                basis: vec![0.0; (m + 1) * n],
+                hess: vec![0.0; (m + 1) * m],
+                cs: vec![0.0; m],
+                sn: vec![0.0; m],
+                rhs: vec![0.0; m + 1],
+                w: vec![0.0; n],
+                z: vec![0.0; n],
+            },
+            x: vec![0.0; n],
+            y: vec![0.0; n],
+            b: vec![0.0; n],
+            u: vec![0.0; n],
+            on: vec![false; n],
+        }
+    }
+}
+
+impl HeapBytes for ActiveSetScratch {
+    fn heap_bytes(&self) -> usize {
+        let k = &self.krylov;
+        heap_bytes!(
+            k.basis, k.hess, k.cs, k.sn, k.rhs, k.w, k.z, self.x, self.y, self.b, self.u, self.on
+        )
+    }
+}
+
+/// Counts of one GMRES solve.
+#[derive(Default)]
+struct Counts {
+    iterations: usize,
+    matvecs: usize,
+    preconditioner_applications: usize,
+}
+
+/// `out = M v` on the set `on` (zero elsewhere), M the operator's
+/// preconditioner, the identity without one.
+fn precondition_on(
+    op: &mut dyn NormalOperator,
+    on: &[bool],
+    v: &[f64],
+    out: &mut [f64],
+    c: &mut Counts,
+) {
+    if op.precondition(v, out) {
+        c.preconditioner_applications += 1;
+    } else {
+        out.copy_from_slice(v);
+    }
+    out.iter_mut().zip(on).for_each(|(o, &on)| {
+        if !on {
+            *o = 0.0;
+        }
+    });
+}
+
+/// `out = A v` on the set `on` (zero elsewhere).
+fn apply_on(op: &mut dyn NormalOperator, on: &[bool], v: &[f64], out: &mut [f64], c: &mut Counts) {
+    op.apply_normal(v, out);
+    c.matvecs += 1;
+    out.iter_mut().zip(on).for_each(|(o, &on)| {
+        if !on {
+            *o = 0.0;
+        }
+    });
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(a, b)| a * b).sum()
+}
+
+/// Solves A x = b on the set `on` (b and x zero elsewhere; x the start on
+/// entry) by restarted GMRES, right-preconditioned by the operator's
+/// preconditioner, to the relative residual `tol` or `max_iterations`
+/// iterations. Returns the relative residual reached.
+#[allow(clippy::too_many_arguments)]
+fn gmres_on(
+    op: &mut dyn NormalOperator,
+    on: &[bool],
+    b: &[f64],
+    x: &mut [f64],
+    s: &mut Krylov,
+    tol: f64,
+    max_iterations: usize,
+    c: &mut Counts,
+) -> f64 {
+    let n = b.len();
+    let m = ACTIVE_SET_RESTART;
+    let b_norm = dot(b, b).sqrt();
+    if b_norm == 0.0 {
+        x.fill(0.0);
+        return 0.0;
+    }
+    let Krylov {
+        basis,
+        hess,
+        cs,
+        sn,
+        rhs,
+        w,
+        z,
+    } = s;
+    let mut done = 0;
+    loop {
+        // r = b - A x into the first basis vector.
+        apply_on(op, on, x, w, c);
+        let v0 = &mut basis[..n];
+        for i in 0..n {
+            v0[i] = b[i] - w[i];
+        }
+        let beta = dot(v0, v0).sqrt();
+        if beta <= tol * b_norm || done >= max_iterations || cancel::requested() {
+            return beta / b_norm;
+        }
+        v0.iter_mut().for_each(|v| *v /= beta);
+        rhs.fill(0.0);
+        rhs[0] = beta;
+        let mut k_used = 0;
+        for k in 0..m {
+            let (head, tail) = basis.split_at_mut((k + 1) * n);
+            precondition_on(op, on, &head[k * n..], z, c);
+            let next = &mut tail[..n];
+            apply_on(op, on, z, next, c);
+            // Modified Gram-Schmidt.
+            let col = &mut hess[k * (m + 1)..(k + 1) * (m + 1)];
+            for j in 0..=k {
+                let vj = &head[j * n..(j + 1) * n];
+                let hj = dot(next, vj);
+                col[j] = hj;
+                next.iter_mut().zip(vj).for_each(|(v, &q)| *v -= hj * q);
+            }
+            let hk = dot(next, next).sqrt();
+            col[k + 1] = hk;
+            if hk > 0.0 {
+                next.iter_mut().for_each(|v| *v /= hk);
+            }
+            // The previous rotations, then a new one zeroing col[k + 1].
+            for j in 0..k {
+                let (a, bb) = (col[j], col[j + 1]);
+                col[j] = cs[j] * a + sn[j] * bb;
+                col[j + 1] = -sn[j] * a + cs[j] * bb;
+            }
+            let r = col[k].hypot(col[k + 1]);
+            (cs[k], sn[k]) = if r > 0.0 {
+                (col[k] / r, col[k + 1] / r)
+            } else {
+                (1.0, 0.0)
+            };
+            col[k] = r;
+            col[k + 1] = 0.0;
+            rhs[k + 1] = -sn[k] * rhs[k];
+            rhs[k] *= cs[k];
+            c.iterations += 1;
+            done += 1;
+            k_used = k + 1;
+            if rhs[k + 1].abs() <= tol * b_norm || hk == 0.0 || done >= max_iterations {
+                break;
+            }
+        }
+        // Back substitution H y = rhs (y into rhs), then x += M V y.
+        for k in (0..k_used).rev() {
+            let mut v = rhs[k];
+            for j in k + 1..k_used {
+                v -= hess[j * (m + 1) + k] * rhs[j];
+            }
+            rhs[k] = v / hess[k * (m + 1) + k];
+        }
+        w.fill(0.0);
+        for k in 0..k_used {
+            let vk = &basis[k * n..(k + 1) * n];
+            w.iter_mut().zip(vk).for_each(|(w, &v)| *w += rhs[k] * v);
+        }
+        precondition_on(op, on, w, z, c);
+        x.iter_mut().zip(z.iter()).for_each(|(x, &z)| *x += z);
+    }
+}
+
+/// The normal problem for an operator that is not symmetric (viscoelastic
+/// bodies in steady rolling, [`crate::core::viscoelastic`]), where the
+/// conjugate gradients of [`solve_normal_with`] do not apply: Kalker's
+/// active-set iteration (Kalker 1990, §5.3, NORM). Each iteration solves
+/// the contact conditions g = h - delta + A p = 0 on the contact set by
+/// GMRES (right-preconditioned like the conjugate gradients; under force
+/// control a second solve for the approach, so that sum p area = F), then
+/// drops the elements of negative pressure from the set and adds those
+/// outside it that penetrate, until the set stays. The same arguments as
+/// [`solve_normal`] (unit approach weights); the residual is GMRES's
+/// relative residual, to a thousandth of `settings.tolerance`.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_normal_active_set(
+    op: &mut dyn NormalOperator,
+    h: &[f64],
+    area: f64,
+    load: NormalLoad,
+    pn: &mut [f64],
+    scratch: &mut NormalScratch,
+    settings: &NormalSettings,
+) -> NormalOutcome {
+    let n = h.len();
+    let ActiveSetScratch {
+        krylov,
+        x,
+        y,
+        b,
+        u,
+        on,
+    } = &mut **scratch
+        .active
+        .get_or_insert_with(|| Box::new(ActiveSetScratch::new(n)));
+    let tol = (1e-3 * settings.tolerance).max(1e-14);
+    initial_guess(h, &|_| 1.0, area, load, op.diagonal(), pn);
+    for (on, &p) in on.iter_mut().zip(pn.iter()) {
+        *on = p > 0.0;
+    }
+    // Warm starts of the two solves: the pressures (x), nothing (y).
+    x.copy_from_slice(pn);
+    y.fill(0.0);
+    let mut c = Counts::default();
+    // The approach in the gap's system: the prescribed one, or 0 (and
+    // the force's approach from the second system).
+    let (base, force) = match load {
+        NormalLoad::Approach(d) => (d, None),
+        NormalLoad::NormalForce(f) => (0.0, Some(f)),
+    };
+    let mut delta = base;
+    let mut residual = f64::INFINITY;
+    let mut settled = false;
+    let mut outer = 0;
+    while outer < settings.max_iterations && !cancel::requested() {
+        outer += 1;
+        for i in 0..n {
+            b[i] = if on[i] { base - h[i] } else { 0.0 };
+            if !on[i] {
+                x[i] = 0.0;
+                y[i] = 0.0;
+            }
+        }
+        residual = gmres_on(op, on, b, x, krylov, tol, settings.max_iterations, &mut c);
+        if let Some(f) = force {
+            for i in 0..n {
+                b[i] = if on[i] { 1.0 } else { 0.0 };
+            }
+            let r = gmres_on(op, on, b, y, krylov, tol, settings.max_iterations, &mut c);
+            residual = residual.max(r);
+            let (sx, sy): (f64, f64) = (x.iter().sum(), y.iter().sum());
+            delta = (f / area - sx) / sy;
+            for i in 0..n {
+                pn[i] = x[i] + delta * y[i];
+            }
+        } else {
+            pn.copy_from_slice(x);
+        }
+        // The gaps, and the changes of the set.
+        op.apply_normal(pn, u);
+        c.matvecs += 1;
+        let (umax, pmax) = u
+            .iter()
+            .zip(pn.iter())
+            .fold((0.0f64, 0.0f64), |(m, q), (&a, &p)| {
+                (m.max(a.abs()), q.max(p))
+            });
+        let (gap_tol, p_tol) = (1e-9 * umax, 1e-9 * pmax);
+        let mut changed = false;
+        let mut deepest: Option<(usize, f64)> = None;
+        for i in 0..n {
+            if on[i] {
+                if pn[i] < -p_tol {
+                    on[i] = false;
+                    changed = true;
+                }
+            } else {
+                let g = h[i] - delta + u[i];
+                if g < -gap_tol {
+                    if outer <= ACTIVE_SET_FREE_ADDS {
+                        on[i] = true;
+                        changed = true;
+                    } else if deepest.is_none_or(|(_, d)| g < d) {
+                        deepest = Some((i, g));
+                    }
+                }
+            }
+        }
+        if let Some((i, _)) = deepest {
+            on[i] = true;
+            changed = true;
+        }
+        for (p, &on) in pn.iter_mut().zip(on.iter()) {
+            if !on || *p < 0.0 {
+                *p = 0.0;
+            }
+        }
+        if !changed {
+            settled = true;
+            break;
+        }
+    }
+    NormalOutcome {
+        iterations: outer,
+        matvecs: c.matvecs,
+        preconditioner_applications: c.preconditioner_applications,
+        approach_m: delta,
+        residual,
+        converged: settled && residual <= tol,
     }
 }
 

@@ -93,6 +93,7 @@ use crate::core::layer::InterfacialLayer;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
 use crate::core::tangential::TangentialSettings;
+use crate::core::viscoelastic::Viscoelastic;
 
 /// Friction: Coulomb's law with static and kinetic coefficients, or a
 /// slip-velocity dependent law ([`crate::core::friclaw`]).
@@ -424,6 +425,15 @@ pub struct SolverSettings {
     /// plastic state: [`crate::wheelrail::PatchResult::layer`]). The
     /// other models (FASTSIM, the conformal solvers) do not read it.
     pub interfacial_layer: Option<InterfacialLayer>,
+    /// Viscoelastic bodies (CONTACT's M = 1, [`crate::core::viscoelastic`]):
+    /// the materials' shear moduli are then the glassy ones; None (the
+    /// default): elastic bodies. Steady rolling in +x and the frictionless
+    /// normal problem of bodies rolling so, exact model: checked by
+    /// [`ContactProblem::validate`] (a transient problem, or rolling in
+    /// another direction, is refused naming [`VISCOELASTIC_KEY`]). Kept
+    /// here, as the layer, so that every problem carries it; the other
+    /// models do not read it.
+    pub viscoelastic: Option<Viscoelastic>,
 }
 
 /// A complete, validated contact problem.
@@ -616,6 +626,9 @@ impl ExtraRigidSlip {
 /// The key of [`SolverSettings::interfacial_layer`] in errors.
 pub const INTERFACIAL_LAYER_KEY: &str = "interfacial_layer";
 
+/// The key of [`SolverSettings::viscoelastic`] in errors.
+pub const VISCOELASTIC_KEY: &str = "viscoelastic";
+
 /// Checks a normal load; `key` names it.
 pub fn validate_load(key: &str, load: &NormalLoad) -> Result<(), ContactError> {
     match *load {
@@ -648,6 +661,22 @@ impl ContactProblem {
         if let Some(layer) = &self.settings.interfacial_layer {
             layer.validate(INTERFACIAL_LAYER_KEY)?;
             layer.check_friction(INTERFACIAL_LAYER_KEY, &self.friction)?;
+        }
+        if let Some(visc) = &self.settings.viscoelastic {
+            visc.validate(VISCOELASTIC_KEY)?;
+            if matches!(self.kinematics, Kinematics::Transient(_)) {
+                return Err(ContactError::invalid(
+                    VISCOELASTIC_KEY,
+                    "viscoelastic bodies are taken in steady rolling (and its frictionless \
+                     normal problem) only, not in transient steps",
+                ));
+            }
+            if self.rolling_direction_rad != 0.0 {
+                return Err(ContactError::invalid(
+                    crate::core::frame::ROLLING_DIRECTION_KEY,
+                    "viscoelastic bodies roll in +x only (0)",
+                ));
+            }
         }
         // Rolling steps roll whole elements of the rolling frame's grid, or
         // any distance off its axes.

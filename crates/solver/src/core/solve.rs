@@ -18,9 +18,13 @@ use crate::core::layer::{
     CoulombBound, InterfacialLayer, LayerFields, LayerState, MAX_LAYER_PASSES,
 };
 use crate::core::memory::{heap_bytes, HeapBytes};
-use crate::core::normal::{solve_normal, NormalLoad, NormalScratch, PlanarNormal};
+use crate::core::normal::{
+    solve_normal_active_set, solve_normal_with, NormalLoad, NormalScratch, PlanarNormal,
+};
 use crate::core::predict::{PathPoint, WarmPath};
-use crate::core::problem::{Carry, ContactProblem, Kinematics, ShiftStep, INTERFACIAL_LAYER_KEY};
+use crate::core::problem::{
+    Carry, ContactProblem, Kinematics, ShiftStep, INTERFACIAL_LAYER_KEY, VISCOELASTIC_KEY,
+};
 use crate::core::solution::{
     ContactSolution, ElementFields, ElementState, IterationLimit, SolveInfo, SolveStatus, Totals,
 };
@@ -32,6 +36,7 @@ use crate::core::tangential::{
     FrictionBounds, MarchingScratch, TangentialInput, TangentialOutcome, TangentialOutput,
     TangentialScratch, TangentialSettings,
 };
+use crate::core::viscoelastic::Viscoelastic;
 
 /// Iterations of the fallback (time marching in steady rolling, FISTA in
 /// a transient step) between two Newton attempts of a tangential solve
@@ -266,10 +271,11 @@ impl ContactSolver {
             direction(problem.rolling_direction_rad, problem.grid.is_line()).map_or(0, |d| d.turns);
         let frame = RollingFrame::new(turns, problem.grid);
         let grid = frame.rolling_grid();
-        let displacement = cache.get_layered(
+        let displacement = cache.get_viscoelastic(
             &grid,
             &problem.material,
             layer_flexibility(problem),
+            problem.settings.viscoelastic.as_ref(),
             KernelKind::Displacement,
         );
         let n = grid.len();
@@ -327,10 +333,11 @@ impl ContactSolver {
         let grid = frame.rolling_grid();
         let same_shape = (grid.nx, grid.ny, grid.dx_m, grid.dy_m)
             == (self.grid.nx, self.grid.ny, self.grid.dx_m, self.grid.dy_m);
-        let displacement = cache.get_layered(
+        let displacement = cache.get_viscoelastic(
             &grid,
             &problem.material,
             layer_flexibility(problem),
+            problem.settings.viscoelastic.as_ref(),
             KernelKind::Displacement,
         );
         if !(same_shape && Arc::ptr_eq(&displacement, &self.displacement)) {
@@ -776,6 +783,19 @@ impl ContactSolver {
                 ),
             ));
         }
+        let relaxation = |v: Option<Viscoelastic>| {
+            v.filter(|v| !(v.body1.is_elastic() && v.body2.is_elastic()))
+                .map(|v| v.relaxation())
+        };
+        if relaxation(problem.settings.viscoelastic)
+            != relaxation(self.displacement.influence.viscoelastic())
+        {
+            return Err(ContactError::invalid(
+                VISCOELASTIC_KEY,
+                "differs from the viscoelastic bodies (relaxation ratios and lengths) this solver \
+                 was built for (its kernels include them): build a solver for the problem",
+            ));
+        }
         Ok(())
     }
 
@@ -955,7 +975,9 @@ impl ContactSolver {
         let grid = self.grid;
         let n = grid.len();
         let area = grid.element_area_m2();
-        let coupled = problem.material.is_coupled();
+        // Viscoelastic bodies that relax differently couple through their
+        // shares even when elastically alike.
+        let coupled = self.displacement.influence.coupled();
         let frictional = !matches!(problem.kinematics, Kinematics::Frictionless);
         if let NormalLoad::Approach(d) = load {
             if problem.gap_m.iter().all(|&h| h >= d) {
@@ -1041,16 +1063,17 @@ impl ContactSolver {
                 }
             }
             let tn = Instant::now();
-            let no = solve_normal(
-                &self.displacement,
-                &mut self.ows,
-                &self.h_eff,
-                area,
-                load,
-                &mut self.pn,
-                &mut self.normal_scratch,
-                &s.normal,
-            );
+            let mut op = PlanarNormal {
+                kernels: &self.displacement,
+                ows: &mut self.ows,
+            };
+            let (h, pn, scratch) = (&self.h_eff, &mut self.pn, &mut self.normal_scratch);
+            let no = if self.displacement.influence.is_viscoelastic() {
+                // Not symmetric: the active-set method.
+                solve_normal_active_set(&mut op, h, area, load, pn, scratch, &s.normal)
+            } else {
+                solve_normal_with(&mut op, h, None, area, load, pn, scratch, &s.normal)
+            };
             info.normal_time_s += tn.elapsed().as_secs_f64();
             info.normal_iterations += no.iterations;
             info.matvecs += no.matvecs;

@@ -25,10 +25,11 @@ use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
     rolling_elements, ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep,
-    SolverSettings, CREEPAGE_RANGE, INTERFACIAL_LAYER_KEY, SPIN_RANGE,
+    SolverSettings, CREEPAGE_RANGE, INTERFACIAL_LAYER_KEY, SPIN_RANGE, VISCOELASTIC_KEY,
 };
 use crate::core::tangential::TangentialSettings;
 use crate::core::temperature::ThermalInput;
+use crate::core::viscoelastic::Viscoelastic;
 use crate::problem::reference_models::hertz_of;
 use crate::problem::CaseError;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
@@ -264,6 +265,16 @@ pub struct CaseFile {
     /// `hardening_pa_per_m` \[Pa/m\] (absent: 0, perfectly plastic).
     #[serde(default)]
     pub interfacial_layer: Option<InterfacialLayer>,
+    /// `[viscoelastic]`: viscoelastic bodies, standard linear solids
+    /// (CONTACT's M = 1; exact model, steady rolling in +x or its
+    /// frictionless normal problem, see [`crate::core::viscoelastic`]):
+    /// `rolling_speed_m_per_s` \[m/s\] and per body `[viscoelastic.body1]`,
+    /// `[viscoelastic.body2]` (absent: elastic) with `relaxation_ratio`
+    /// f_g = C_v/C_g [-] and `creep_relaxation_time_s` \[s\]. The bodies'
+    /// `shear_modulus_pa` are then their initial (glassy) moduli G_g; the
+    /// final ones are G_g/(1 + f_g).
+    #[serde(default)]
+    pub viscoelastic: Option<Viscoelastic>,
 }
 
 /// `[extra_rigid_slip]`: a rigid slip [-] added at each element to the
@@ -378,6 +389,48 @@ fn interfacial_layer(
         );
     }
     Ok(Some(layer))
+}
+
+/// The case's `[viscoelastic]`, checked (each value naming its key
+/// `viscoelastic.<key>`) for the exact model in steady rolling in +x or
+/// frictionless; refused, naming `viscoelastic`, with another model or
+/// transient steps, and naming `rolling_direction_rad` for another
+/// rolling direction (CONTACT takes M = 1 in steady rolling with CHI = 0
+/// only).
+fn viscoelastic(
+    section: Option<Viscoelastic>,
+    model: Model,
+    kinematics: &Kinematics,
+    rolling_direction_rad: f64,
+) -> Result<Option<Viscoelastic>, CaseError> {
+    let Some(visc) = section else {
+        return Ok(None);
+    };
+    if model != Model::Exact {
+        return Err(bad(
+            VISCOELASTIC_KEY,
+            format!(
+                "viscoelastic bodies are taken by model = \"exact\" only (steady rolling), not by \
+                 \"{}\"",
+                model.name()
+            ),
+        ));
+    }
+    visc.validate(VISCOELASTIC_KEY)?;
+    if matches!(kinematics, Kinematics::Transient(_)) {
+        return Err(bad(
+            VISCOELASTIC_KEY,
+            "viscoelastic bodies are taken in steady rolling ([rolling], or no [rolling] for its \
+             frictionless normal problem) only, not with [transient]",
+        ));
+    }
+    if rolling_direction_rad != 0.0 {
+        return Err(bad(
+            ROLLING_DIRECTION_KEY,
+            "viscoelastic bodies roll in +x only: give 0",
+        ));
+    }
+    Ok(Some(visc))
 }
 
 fn conformal_options(
@@ -2247,6 +2300,12 @@ impl Case {
             &friction,
             &kinematics,
             &mut notes,
+        )?;
+        settings.viscoelastic = viscoelastic(
+            file.viscoelastic,
+            model,
+            &kinematics,
+            file.rolling_direction_rad,
         )?;
         Ok(Case {
             rolling_direction_rad: file.rolling_direction_rad,
@@ -4274,7 +4333,8 @@ mod layer_tests {
         0.5 * 10f64.powi(-decimals)
     }
 
-    fn message(r: Result<Case, CaseError>) -> String {
+    /// The message of a case refused as bad input.
+    pub(super) fn message(r: Result<Case, CaseError>) -> String {
         match r {
             Err(CaseError::BadInput(m)) => m,
             other => panic!("expected bad input, got {:?}", other.map(|c| c.model)),
@@ -4392,5 +4452,109 @@ mod layer_tests {
             1,
         )));
         assert!(m.contains("thickness_m"), "{m}");
+    }
+}
+
+#[cfg(test)]
+mod viscoelastic_tests {
+    use super::*;
+    use crate::core::solution::{ElementState, SolveStatus};
+    use crate::problem::ExactRun;
+
+    use super::layer_tests::message;
+
+    const EXAMPLE: &str = include_str!("../../../../examples/cases/visc_cylindr.toml");
+
+    #[test]
+    fn visc_cylindr_example_matches_contacts_case_3() {
+        // visc_cylindr.ref_out, case 3 (TC = 0.045 s): CREEP X 1.152E-02,
+        // PMAX 84.72 N/mm², NCON 57, NADH 36, NSLIP 21 (the example gives
+        // CONTACT's gap at its element centres).
+        let case = Case::from_toml(EXAMPLE).unwrap();
+        let visc = case.settings.viscoelastic.expect("viscoelastic bodies");
+        assert_eq!(visc.body2.creep_relaxation_time_s, 0.045);
+        let run = ExactRun::solve(&case).unwrap();
+        let s = run.last();
+        assert_eq!(s.info.status, SolveStatus::Converged);
+        let xi = run
+            .force_control
+            .as_ref()
+            .expect("Fx prescribed")
+            .creepage_long;
+        assert!((xi / 1.152e-2 - 1.0).abs() < 0.01, "creepage {xi}");
+        assert!((s.totals.max_pressure_pa / 84.72e6 - 1.0).abs() < 0.01);
+        let n = |st: ElementState| s.fields.state.iter().filter(|&&e| e == st).count();
+        let contact = s.fields.pressure_pa.iter().filter(|&&p| p > 0.0).count();
+        for (got, want) in [
+            (contact, 57),
+            (n(ElementState::Adhesion), 36),
+            (n(ElementState::Slip), 21),
+        ] {
+            assert!(got.abs_diff(want) <= 2, "{got} vs CONTACT's {want}");
+        }
+    }
+
+    #[test]
+    fn viscoelastic_bodies_are_refused_where_they_are_not_taken() {
+        for (from, to, key) in [
+            (
+                "relaxation_ratio = 1.0",
+                "relaxation_ratio = -1.0",
+                "viscoelastic.body1.relaxation_ratio",
+            ),
+            (
+                "creep_relaxation_time_s = 0.045\n\n[grid]",
+                "creep_relaxation_time_s = inf\n\n[grid]",
+                "viscoelastic.body2.creep_relaxation_time_s",
+            ),
+            (
+                "rolling_speed_m_per_s = 1.0",
+                "rolling_speed_m_per_s = 0.0",
+                "viscoelastic.rolling_speed_m_per_s",
+            ),
+            // CONTACT's M = 1 rolls in +x only (CHI = 0).
+            (
+                "model = \"exact\"",
+                "model = \"exact\"\nrolling_direction_rad = 3.141592653589793",
+                "`rolling_direction_rad`",
+            ),
+            // Steady rolling only: not transient steps.
+            (
+                "[rolling]\nforce_x_n_per_m = -1.08e5",
+                "[transient]\nsteps = [{ shift_x_m = 1e-6 }]",
+                "`viscoelastic`",
+            ),
+            ("relaxation_ratio = 1.0", "ratio = 1.0", "ratio"),
+        ] {
+            assert!(EXAMPLE.contains(from), "{from}");
+            let m = message(Case::from_toml(&EXAMPLE.replacen(from, to, 1)));
+            assert!(m.contains(key), "{to}: {m}");
+        }
+        // Only the exact model takes it.
+        for model in ["fastsim", "hertz"] {
+            let m = message(Case::from_toml(&format!(
+                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
+                 [viscoelastic]\nrolling_speed_m_per_s = 1.0\n[viscoelastic.body1]\n\
+                 relaxation_ratio = 1.0\ncreep_relaxation_time_s = 0.01\n"
+            )));
+            assert!(m.contains("`viscoelastic`") && m.contains(model), "{m}");
+        }
+        // The frictionless normal problem of the rolling bodies is taken;
+        // a body left out is elastic.
+        let c = Case::from_toml(
+            &EXAMPLE
+                .replacen("[rolling]\nforce_x_n_per_m = -1.08e5\n", "", 1)
+                .replacen(
+                    "[viscoelastic.body2]\nrelaxation_ratio = 1.0\ncreep_relaxation_time_s = 0.045\n",
+                    "",
+                    1,
+                ),
+        )
+        .unwrap();
+        assert!(matches!(c.kinematics, Kinematics::Frictionless));
+        assert!(c.settings.viscoelastic.unwrap().body2.is_elastic());
+        assert!(ExactRun::solve(&c).is_ok());
     }
 }

@@ -54,14 +54,14 @@ fn rolling_line(
     }
 }
 
-fn one(p: &ContactProblem) -> ContactSolution {
+pub(crate) fn one(p: &ContactProblem) -> ContactSolution {
     let s = solve(p).unwrap().pop().unwrap();
     assert_eq!(s.info.status, SolveStatus::Converged, "{:?}", s.info);
     s
 }
 
 /// Elements in contact, in adhesion and in slip.
-fn counts(s: &ContactSolution) -> [usize; 3] {
+pub(crate) fn counts(s: &ContactSolution) -> [usize; 3] {
     let n = |st: ElementState| s.fields.state.iter().filter(|&&e| e == st).count();
     let contact = s.fields.pressure_pa.iter().filter(|&&p| p > 0.0).count();
     [contact, n(ElementState::Adhesion), n(ElementState::Slip)]
@@ -76,7 +76,7 @@ fn within_one(got: [usize; 3], want: [usize; 3], what: &str) {
     }
 }
 
-fn rel(got: f64, want: f64) -> f64 {
+pub(crate) fn rel(got: f64, want: f64) -> f64 {
     (got / want - 1.0).abs()
 }
 
@@ -226,7 +226,7 @@ fn bentall(mu: f64) -> ContactProblem {
 }
 
 /// Solves `p` for the longitudinal force per metre `fx`.
-fn with_force(p: &ContactProblem, fx: f64) -> (ContactSolution, f64) {
+pub(crate) fn with_force(p: &ContactProblem, fx: f64) -> (ContactSolution, f64) {
     let mut solver = ContactSolver::new(p, KernelCache::global());
     let f = solve_prescribed_force(
         &mut solver,

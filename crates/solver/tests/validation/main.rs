@@ -7,7 +7,9 @@
 //! its solutions (`plausibility`), Coulomb friction with static and
 //! kinetic coefficients against CONTACT (`static_kinetic`) and the
 //! interfacial (third-body) layer, elastic and elasto-plastic, against
-//! CONTACT (`interfacial_layer`). Each reference number names its source.
+//! CONTACT (`interfacial_layer`), and viscoelastic bodies in steady
+//! rolling against their elastic limits and CONTACT (`viscoelastic`). Each
+//! reference number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
 /// and source beside it).
@@ -28,5 +30,6 @@ mod rolling_direction;
 mod static_kinetic;
 mod transient;
 mod variable_friction;
+mod viscoelastic;
 mod wheelrail;
 mod wheelrail_temperature;
