@@ -396,7 +396,9 @@ fn input_errors_name_the_file_and_line() {
 fn unsupported_digits_are_refused_naming_the_line() {
     let dir = InpDir::new("unsupported");
     let ire = 41;
-    // M = 1 (viscoelastic bodies) with its four constants.
+    // M = 1 (viscoelastic bodies) with its four constants: read (the
+    // setter takes M = 1, module 3 solves it), refused when module 1
+    // calculates.
     let text = MBENCH_RIGHT_INP
         .replacen(" 0022033 ", " 0022133 ", 1)
         .replacen(
@@ -404,11 +406,8 @@ fn unsupported_digits_are_refused_naming_the_line() {
             "82000., 82000.                POISS 1,2,  GG 1,2\n  0.5 0.5 0.1 0.1   FG, TC\n",
             1,
         );
-    let e = refused(&dir, ire, "visco.inp", &text, err::NOT_SUPPORTED);
-    assert!(
-        e.contains("line 10 (cntc_setmaterialparameters)") && e.contains("M = 1"),
-        "{e}"
-    );
+    let f = dir.write("visco.inp", &text);
+    assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "visco.inp");
     let mut ierror = 0;
     unsafe { cntc_calculate1(&ire, &mut ierror) };
     assert_eq!(ierror, err::NOT_SUPPORTED);
