@@ -409,3 +409,31 @@ fn viscoelastic_ellipse_tends_to_both_elastic_limits() {
         assert!(rel(got, want) < within, "L {l}: {got} vs {want}");
     }
 }
+
+#[test]
+fn viscoelastic_surface_grids_are_bounded() {
+    // A surface grid beyond 64 x 64 elements is refused naming
+    // `viscoelastic` before any coefficient is integrated; 64 x 64 is
+    // valid, and so is a larger grid of elastic bodies (FG = 0).
+    let problem = |n: usize, ratio: f64| {
+        let grid = Grid::new(n, n, 0.5e-3, 0.5e-3, -16e-3, -16e-3).unwrap();
+        ContactProblem {
+            material: material(1143e6),
+            friction: Friction::coulomb(0.3),
+            gap_m: ContactProblem::quadratic_gap(&grid, 10.0, 10.0),
+            grid,
+            load: NormalLoad::NormalForce(100.0),
+            kinematics: Kinematics::Frictionless,
+            settings: SolverSettings {
+                viscoelastic: Some(sls(ratio, 0.045)),
+                ..SolverSettings::default()
+            },
+            rolling_direction_rad: 0.0,
+            extra_rigid_slip: None,
+        }
+    };
+    let e = problem(65, 1.0).validate().unwrap_err().to_string();
+    assert!(e.contains("viscoelastic") && e.contains("4225"), "{e}");
+    problem(64, 1.0).validate().unwrap();
+    problem(65, 0.0).validate().unwrap();
+}
