@@ -1200,11 +1200,17 @@ impl PairRegistry {
             Ok(p) => {
                 let bytes = p.bytes() as u64;
                 if bytes > self.limits.max_prepared_bytes {
+                    let (pair, advice) = match entry.spec.builtin_pair {
+                        Some(name) => (format!("the built-in pair '{name}'"), "raise the limit"),
+                        None => (
+                            format!("profile pair {}", entry.spec.id),
+                            "register profiles with fewer points, or raise the limit",
+                        ),
+                    };
                     return Err(ServiceError::Exhausted(format!(
-                        "profile pair {} takes {bytes} bytes prepared, more than the limit of {} \
-                         for all prepared pairs (max_prepared_bytes): register profiles with \
-                         fewer points, or raise the limit",
-                        entry.spec.id, self.limits.max_prepared_bytes
+                        "{pair} takes {bytes} bytes prepared, more than the limit of {} for all \
+                         prepared pairs (max_prepared_bytes): {advice}",
+                        self.limits.max_prepared_bytes
                     )));
                 }
                 entry.ready.get_or_init(|| ReadyInfo {

@@ -683,4 +683,12 @@ async fn prepared_pairs_stay_within_max_prepared_bytes_and_are_prepared_again_on
         .len();
     assert_eq!(listed, 3, "the built-in pair, A and B");
     server.shutdown().await;
+    // A limit below the built-in pair: the server does not start, and
+    // says so.
+    c.max_prepared_bytes = 1000;
+    let e = start(&c).await.err().expect("refused").to_string();
+    assert!(
+        e.contains("the built-in pair") && e.contains("max_prepared_bytes"),
+        "{e}"
+    );
 }
