@@ -4387,6 +4387,21 @@ mod layer_tests {
         assert!(report.human().contains("layer plastic area"));
     }
 
+    /// A rolling ellipse with `section` (TOML) under models fastsim and
+    /// hertz: refused naming `key` and the model (only the exact model
+    /// takes the section).
+    pub(super) fn only_the_exact_model_takes(key: &str, section: &str) {
+        for model in ["fastsim", "hertz"] {
+            let m = message(Case::from_toml(&format!(
+                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
+                 {section}"
+            )));
+            assert!(m.contains(&format!("`{key}`")) && m.contains(model), "{m}");
+        }
+    }
+
     #[test]
     fn a_bad_layer_value_is_refused_naming_its_key() {
         for (from, to, key) in [
@@ -4426,19 +4441,10 @@ mod layer_tests {
             let m = message(Case::from_toml(&EXAMPLE.replacen(from, to, 1)));
             assert!(m.contains(key), "{to}: {m}");
         }
-        // Only the exact model takes it.
-        for model in ["fastsim", "hertz"] {
-            let m = message(Case::from_toml(&format!(
-                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
-                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
-                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
-                 [interfacial_layer]\nthickness_m = 2e-5\nshear_modulus_pa = 1e8\n"
-            )));
-            assert!(
-                m.contains("`interfacial_layer`") && m.contains(model),
-                "{m}"
-            );
-        }
+        only_the_exact_model_takes(
+            "interfacial_layer",
+            "[interfacial_layer]\nthickness_m = 2e-5\nshear_modulus_pa = 1e8\n",
+        );
         // Without a yield limit the layer is elastic; without thickness_m
         // the section is incomplete.
         let elastic = EXAMPLE
@@ -4461,7 +4467,7 @@ mod viscoelastic_tests {
     use crate::core::solution::{ElementState, SolveStatus};
     use crate::problem::ExactRun;
 
-    use super::layer_tests::message;
+    use super::layer_tests::{message, only_the_exact_model_takes};
 
     const EXAMPLE: &str = include_str!("../../../../examples/cases/visc_cylindr.toml");
 
@@ -4530,17 +4536,11 @@ mod viscoelastic_tests {
             let m = message(Case::from_toml(&EXAMPLE.replacen(from, to, 1)));
             assert!(m.contains(key), "{to}: {m}");
         }
-        // Only the exact model takes it.
-        for model in ["fastsim", "hertz"] {
-            let m = message(Case::from_toml(&format!(
-                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
-                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
-                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
-                 [viscoelastic]\nrolling_speed_m_per_s = 1.0\n[viscoelastic.body1]\n\
-                 relaxation_ratio = 1.0\ncreep_relaxation_time_s = 0.01\n"
-            )));
-            assert!(m.contains("`viscoelastic`") && m.contains(model), "{m}");
-        }
+        only_the_exact_model_takes(
+            "viscoelastic",
+            "[viscoelastic]\nrolling_speed_m_per_s = 1.0\n[viscoelastic.body1]\n\
+             relaxation_ratio = 1.0\ncreep_relaxation_time_s = 0.01\n",
+        );
         // The frictionless normal problem of the rolling bodies is taken;
         // a body left out is elastic.
         let c = Case::from_toml(
