@@ -496,15 +496,16 @@ pub struct PreparedPair {
     /// The contact table: built at registration, or on first use (pairs
     /// restored after a restart).
     table: tokio::sync::OnceCell<Arc<ContactTable>>,
+    /// Heap memory of `table` once built \[bytes\], counted on the pool
+    /// where it is built.
+    table_bytes: OnceLock<usize>,
 }
 
 impl PreparedPair {
     /// Memory it holds: itself, the placed profiles and the contact table
     /// once built \[bytes\].
     pub fn bytes(&self) -> usize {
-        std::mem::size_of::<Self>()
-            + self.pair_bytes
-            + self.table.get().map_or(0, |t| t.heap_bytes())
+        std::mem::size_of::<Self>() + self.pair_bytes + self.table_bytes.get().copied().unwrap_or(0)
     }
 
     /// The pair's contact table (default grid), built on the pool on the
@@ -521,10 +522,15 @@ impl PreparedPair {
                             nodes = t.node_count(),
                             "contact table built"
                         );
-                        Ok::<_, ServiceError>(Arc::new(t))
+                        let bytes = t.heap_bytes();
+                        Ok::<_, ServiceError>((Arc::new(t), bytes))
                     })
                     .await
                     .and_then(|r| r)
+                    .map(|(t, bytes)| {
+                        let _ = self.table_bytes.set(bytes);
+                        t
+                    })
             })
             .await
             .cloned()
@@ -747,6 +753,7 @@ pub fn prepare_with(
         summaries,
         prepare_time_s,
         table: tokio::sync::OnceCell::new(),
+        table_bytes: OnceLock::new(),
     })
 }
 
