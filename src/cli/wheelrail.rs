@@ -21,7 +21,7 @@ use crate::core::material::{CombinedMaterial, Material};
 use crate::core::polach::PolachParameters;
 use crate::core::problem::Friction;
 use crate::problem::case::FrictionSection;
-use crate::wheelrail::contact::{PitchControl, Timing};
+use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, check_plausibility, load_profile_with, solve_wheelset, FrictionTable, LoadOptions,
@@ -217,15 +217,17 @@ struct LoadKeys {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 struct GridKeys {
     element_size_m: f64,
+    min_elements_across: usize,
 }
 
 impl Default for GridKeys {
     fn default() -> Self {
         Self {
             element_size_m: 2.0e-4,
+            min_elements_across: MIN_ELEMENTS_ACROSS,
         }
     }
 }
@@ -407,6 +409,7 @@ impl WheelrailRun {
             settings: WheelRailSettings {
                 model,
                 element_size_m: c.grid.element_size_m,
+                min_elements_across: c.grid.min_elements_across,
                 polach: match &c.polach {
                     Some(p) => PolachParameters {
                         k_adhesion: p.k_adhesion,

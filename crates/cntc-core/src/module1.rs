@@ -1318,6 +1318,8 @@ impl WheelRail {
                     ..SearchSettings::default()
                 },
                 max_grid_elements: self.max_grid_elements.unwrap_or(usize::MAX),
+                // CONTACT's elements are DX by DS on every patch.
+                min_elements_across: 0,
                 exact_tangential: match (self.config.digits.tang, self.config.material.model) {
                     (0, _) => ExactTangential::Frictionless,
                     (_, MaterialModel::ModifiedFastsim(reduction)) => {

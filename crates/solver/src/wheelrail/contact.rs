@@ -329,6 +329,15 @@ pub struct WheelRailSettings {
     /// Largest nx * ns of a patch grid: a patch that needs more elements
     /// is refused (naming `grid.element_size_m`) before it is solved.
     pub max_grid_elements: usize,
+    /// Models `exact`, `auto` and `cect`: the fewest elements across
+    /// (along s) a patch is solved on. A patch whose expected loaded width (the
+    /// interpenetration's at the expected approach, over sqrt 2 as in
+    /// Hertz's contact) spans fewer elements of `element_size_m` is solved
+    /// on elements 2, 3 or at most [`MAX_ACROSS_REFINEMENT`] times
+    /// narrower across (the length along x stays `element_size_m`), as far
+    /// as the grid limits allow (default [`MIN_ELEMENTS_ACROSS`]; 0 never
+    /// refines, as CONTACT, whose elements are DX by DS).
+    pub min_elements_across: usize,
     /// Model `hertz_polach`: the reduction factors and falling friction of
     /// Polach's model (default: none, his 1999 model).
     pub polach: PolachParameters,
@@ -357,6 +366,7 @@ impl Default for WheelRailSettings {
             max_load_iterations: 40,
             auto_conformal_angle_rad: AUTO_CONFORMAL_ANGLE_RAD,
             max_grid_elements: usize::MAX,
+            min_elements_across: MIN_ELEMENTS_ACROSS,
             polach: PolachParameters::default(),
             modified_fastsim: SlopeReduction::TRACTCURV,
             rigid_slip: RigidSlipSurface::default(),
@@ -628,6 +638,14 @@ fn ladder(n: usize) -> Option<usize> {
 
 /// Margin of potential contact around the interpenetration, in elements.
 const MARGIN_ELEMENTS: f64 = 2.0;
+
+/// Default of [`WheelRailSettings::min_elements_across`].
+pub const MIN_ELEMENTS_ACROSS: usize = 8;
+
+/// The most a patch's elements are narrowed across
+/// ([`WheelRailSettings::min_elements_across`]): a few refinements, so that
+/// the kernels of similar patches are shared.
+pub const MAX_ACROSS_REFINEMENT: usize = 4;
 
 /// Potential contact: where the vertical gap is below this multiple of the
 /// Hertz estimate of the approach (enlarged when the load needs more).
@@ -1977,7 +1995,19 @@ fn solve_wheel(
             }
             let loaded = centred.then_some(reference_delta);
             patches.push(build_patch(
-                pair, locus, geom, cap, &pose, side, input, omega, cache, last, &mut spare, loaded,
+                pair,
+                locus,
+                geom,
+                cap,
+                reference_delta,
+                &pose,
+                side,
+                input,
+                omega,
+                cache,
+                last,
+                &mut spare,
+                loaded,
             )?);
         }
         if patches.is_empty() {
@@ -2216,6 +2246,7 @@ fn build_patch(
     locus: &[LocusPoint],
     geom: PatchGeometry,
     cap: f64,
+    expected: f64,
     pose: &SidePose,
     side: Side,
     input: &WheelRailInput,
@@ -2242,7 +2273,8 @@ fn build_patch(
         | WheelRailModel::HertzStrip
         | WheelRailModel::HertzFastsimModified => hertz_kind(kx0, b, input.settings.model),
         WheelRailModel::Exact | WheelRailModel::Auto => {
-            let grid = patch_grid(&geom, cap, input, last)?;
+            let across = across_refinement(&geom, expected, input, last);
+            let grid = patch_grid(&geom, cap, across, input, last)?;
             let mut gap_m = vec![0.0; grid.len()];
             for is in 0..grid.ny {
                 let s = grid.y_m(is);
@@ -2285,7 +2317,8 @@ fn build_patch(
         }
         WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom)?,
         WheelRailModel::Cect => {
-            let grid = patch_grid(&geom, cap, input, None)?;
+            let across = across_refinement(&geom, expected, input, None);
+            let grid = patch_grid(&geom, cap, across, input, None)?;
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, pose, grid)?),
                 workspace: Box::default(),
@@ -2406,10 +2439,53 @@ pub(crate) fn hertz_patch(
     }
 }
 
+/// How many times narrower across than `element_size_m` a patch's
+/// elements are ([`WheelRailSettings::min_elements_across`]): 1, or the
+/// factor that puts that many elements across the patch's expected loaded
+/// width, at most [`MAX_ACROSS_REFINEMENT`]. `expected` is the vertical
+/// approach at which the patch is expected loaded (the gap's threshold,
+/// as `cap`). With `last` on the same element length, its factor stays
+/// while the new one is within one of it, so that a session's steps keep
+/// their grids' lattice (and warm starts) as a patch narrows or widens.
+fn across_refinement(
+    geom: &PatchGeometry,
+    expected: f64,
+    input: &WheelRailInput,
+    last: Option<&PatchTractions>,
+) -> usize {
+    let n = input.settings.min_elements_across;
+    if n == 0 {
+        return 1;
+    }
+    let e = input.settings.element_size_m;
+    let dn = expected * geom.normal[1];
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for l in geom.lateral.iter().filter(|l| l.gap_m < dn) {
+        lo = lo.min(l.s_m);
+        hi = hi.max(l.s_m);
+    }
+    if hi <= lo {
+        return 1;
+    }
+    // Hertz: the loaded half-width is the interpenetration's over sqrt 2.
+    let width = (hi - lo) * std::f64::consts::FRAC_1_SQRT_2;
+    let k = ((n as f64 * e / width).ceil() as usize).clamp(1, MAX_ACROSS_REFINEMENT);
+    let kept = last
+        .filter(|t| (t.grid.dx_m - e).abs() <= 1e-9 * e)
+        .map(|t| e / t.grid.dy_m)
+        .filter(|f| (f - f.round()).abs() <= 1e-9 * f)
+        .map(|f| f.round() as usize)
+        .filter(|&f| (1..=MAX_ACROSS_REFINEMENT).contains(&f) && f.abs_diff(k) <= 1);
+    kept.unwrap_or(k)
+}
+
 /// The (x, s) grid of a patch: where h(x, s) is below the normal approach
-/// of `cap`, with a margin, rounded up to the grid ladder. With `last`, the
-/// last time step's solution of the patch on a grid of the same element
-/// size: around where that was loaded, [`LAST_CONTACT_MARGIN`] elements
+/// of `cap`, with a margin, rounded up to the grid ladder, on elements of
+/// `element_size_m` along x and `across` times narrower along s
+/// ([`across_refinement`]; narrowed less where the grid limits allow no
+/// more). With `last`, the last time step's solution of the patch on a
+/// grid of the same element sizes: around where that was loaded,
+/// [`LAST_CONTACT_MARGIN`] elements of `element_size_m`
 /// wider on each side (a patch moves by less than an element in a time
 /// step; where the pressure reaches the border, the caller sizes the grid
 /// again without `last`), and of the shape of the last grid (whose
@@ -2421,10 +2497,26 @@ pub(crate) fn hertz_patch(
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
+    across: usize,
+    input: &WheelRailInput,
+    last: Option<&PatchTractions>,
+) -> Result<Grid, WheelRailError> {
+    match patch_grid_on(geom, cap, across, input, last) {
+        Err(_) if across > 1 => patch_grid(geom, cap, across - 1, input, last),
+        r => r,
+    }
+}
+
+/// [`patch_grid`] on elements exactly `across` times narrower along s.
+fn patch_grid_on(
+    geom: &PatchGeometry,
+    cap: f64,
+    across: usize,
     input: &WheelRailInput,
     last: Option<&PatchTractions>,
 ) -> Result<Grid, WheelRailError> {
     let e = input.settings.element_size_m;
+    let ds = e / across as f64;
     let dn = cap * geom.normal[1];
     let (mut xlo, mut xhi) = (f64::INFINITY, f64::NEG_INFINITY);
     for l in &geom.lateral {
@@ -2440,8 +2532,8 @@ fn patch_grid(
     let margin = MARGIN_ELEMENTS * e;
     let (mut xlo, mut xhi) = (xlo - margin, xhi + margin);
     let [mut slo, mut shi] = geom.s_range_m;
-    let same = |a: f64| (a - e).abs() <= 1e-9 * e;
-    let last = last.filter(|t| same(t.grid.dx_m) && same(t.grid.dy_m));
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+    let last = last.filter(|t| same(t.grid.dx_m, e) && same(t.grid.dy_m, ds));
     if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
         let m = LAST_CONTACT_MARGIN * e;
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
@@ -2460,7 +2552,7 @@ fn patch_grid(
             ),
         )
     };
-    let (need_x, need_s) = (((xhi - xlo) / e).ceil(), ((shi - slo) / e).ceil());
+    let (need_x, need_s) = (((xhi - xlo) / e).ceil(), ((shi - slo) / ds).ceil());
     let mut nx = ladder(need_x as usize).ok_or_else(too_big)?;
     let mut ns = ladder(need_s as usize).ok_or_else(too_big)?;
     // One element to spare: the grid may sit half an element off the
@@ -2489,21 +2581,16 @@ fn patch_grid(
         ));
     }
     let mut x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
-    let mut s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * e;
+    let mut s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * ds;
     if let Some(k) = kept {
         // Whole elements from the last grid: its tractions then fall on
         // this grid's elements, not half an element off.
         x0 = k.x0_m + ((x0 - k.x0_m) / e).round() * e;
-        s0 = k.y0_m + ((s0 - k.y0_m) / e).round() * e;
+        s0 = k.y0_m + ((s0 - k.y0_m) / ds).round() * ds;
     }
-    Ok(Grid::new(nx, ns, e, e, x0, s0)?)
+    Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
 }
 
-/// Whether the undeformed distance of `lateral` (its smallest over x at each
-/// s) never falls moving away from \[`s0`, `s1`\] on either side (by more
-/// than 10 nm, the samples' interpolation noise): then no other valley of
-/// the potential contact area lies outside, where a grid on \[`s0`, `s1`\]
-/// would miss a second region of contact.
 fn one_valley(lateral: &[LateralSample], s0: f64, s1: f64) -> bool {
     const NOISE_M: f64 = 1e-8;
     let rises = |a: &LateralSample, b: &LateralSample| b.gap_m >= a.gap_m - NOISE_M;
@@ -3466,7 +3553,7 @@ mod tests {
             .unwrap();
         let e = input.settings.element_size_m;
         let geom = patch_geometry(pair.rail(side), locus, gap, iv, MARGIN_ELEMENTS * e).unwrap();
-        let grid = patch_grid(&geom, cap, &input, None).unwrap();
+        let grid = patch_grid(&geom, cap, 1, &input, None).unwrap();
         let cg = conformal_geometry(&pair, side, locus, &geom, &pose, grid).unwrap();
         let lowest = cg.gap_m.iter().copied().fold(f64::INFINITY, f64::min);
         let mut out = Vec::new();
