@@ -508,3 +508,72 @@ impl Stream for Incoming {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use rustls_pki_types::pem::PemObject;
+    use rustls_pki_types::PrivateKeyDer;
+    use tokio_rustls::rustls::{ClientConfig, RootCertStore};
+    use tokio_stream::StreamExt;
+
+    use super::*;
+    use crate::service::config::ServeConfig;
+    use crate::service::quota::Resource;
+
+    /// Under mutual TLS the client's certificate chain reaches the connect
+    /// info that every request of the connection carries (what tonic's
+    /// `TlsConnectInfo::peer_certs` gave when tonic did the handshake).
+    #[tokio::test]
+    async fn a_client_certificate_reaches_the_connect_info() {
+        let dir = tempfile::tempdir().unwrap();
+        railcontact_testkit::write_test_pki(dir.path());
+        let path = |name: &str| dir.path().join(name);
+        let config = ServeConfig {
+            tls_cert: Some(path("server.pem")),
+            tls_key: Some(path("server-key.pem")),
+            tls_client_ca: Some(path("ca.pem")),
+            ..ServeConfig::default()
+        };
+        let tls = crate::service::tls::server_tls(&config).unwrap();
+        let listener = TcpListener::bind("127.0.0.1:0").await.unwrap();
+        let addr = listener.local_addr().unwrap();
+        let metrics = Arc::new(Metrics::default());
+        let quota = Quota::new(Resource::Connections, Some(4), 4, metrics.clone());
+        let mut incoming = Incoming::new(
+            listener,
+            quota,
+            TrustedProxies::new(&[]),
+            Duration::from_secs(10),
+            metrics,
+            tls,
+        );
+
+        let pem = |name: &str| std::fs::read(path(name)).unwrap();
+        let certs = |name: &str| -> Vec<CertificateDer<'static>> {
+            CertificateDer::pem_slice_iter(&pem(name))
+                .map(Result::unwrap)
+                .collect()
+        };
+        let mut roots = RootCertStore::empty();
+        roots.add_parsable_certificates(certs("ca.pem"));
+        let chain = certs("client.pem");
+        let key = PrivateKeyDer::from_pem_slice(&pem("client-key.pem")).unwrap();
+        let client = ClientConfig::builder()
+            .with_root_certificates(roots)
+            .with_client_auth_cert(chain.clone(), key)
+            .unwrap();
+        let connector = tokio_rustls::TlsConnector::from(Arc::new(client));
+        let dial = async {
+            let tcp = TcpStream::connect(addr).await.unwrap();
+            let local = tcp.local_addr().unwrap();
+            let name = "localhost".try_into().unwrap();
+            (connector.connect(name, tcp).await.unwrap(), local)
+        };
+        let ((_stream, local), accepted) = tokio::join!(dial, incoming.next());
+        let conn = accepted.expect("a connection").expect("accepted");
+        assert!(matches!(conn, ServerConn::Tls(_)));
+        let info = conn.connect_info();
+        assert_eq!(info.remote, local);
+        assert_eq!(info.peer_certs.as_deref(), Some(&chain));
+    }
+}
