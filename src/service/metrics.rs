@@ -30,7 +30,8 @@
 //! | `railcontact_connections_open` | | connections open (TLS handshakes under way included) |
 //! | `railcontact_streams_open` | | calls open (HTTP/2 streams), against `max_streams` |
 //! | `railcontact_connections_timed_out_total` | | connections closed because they sent no call within `connection_first_call_timeout_s` |
-//! | `railcontact_connections_failed_before_call_total` | | connections that sent bytes but ended before their first call: with TLS a failed handshake (an untrusted or expired certificate, a missing client certificate, plaintext to the TLS port), without it a client speaking something other than gRPC (TLS to a plaintext port) |
+//! | `railcontact_connections_failed_before_call_total` | | connections that sent bytes but ended before their first call: with TLS a failed handshake (by reason in `railcontact_tls_handshakes_failed_total`) or a client that spoke no gRPC after it, without TLS a client speaking something other than gRPC (TLS to a plaintext port) |
+//! | `railcontact_tls_handshakes_failed_total` | `reason` | TLS handshakes of the gRPC port that failed, each also a (rate-limited) WARN line with the peer and rustls' reason: `not_tls` (plaintext to the TLS port), `client_alert` (the client refused the handshake with an alert, most often because it does not trust the server's certificate or finds it expired), `no_client_cert` and `client_cert_untrusted`, `client_cert_expired` (mTLS: no client certificate, one not signed by `tls_client_ca`, one expired or not valid yet), `incompatible` (no protocol version, cipher suite or ALPN `h2` in common), `timeout` (no handshake within `connection_first_call_timeout_s`, also in `railcontact_connections_timed_out_total`), `closed` (the client closed mid-handshake after sending bytes), `other` |
 //! | `railcontact_streams_write_timed_out_total` | | streamed responses (CreepCurve) ended because their client read nothing for `stream_write_timeout_s` |
 //!
 //! Metrics that the handlers count are fields of [`Metrics`], registered in
@@ -143,6 +144,7 @@ pub struct Metrics {
     streams_open: Gauge,
     connections_timed_out: Counter,
     connections_failed_before_call: Counter,
+    tls_handshakes_failed: Family<ReasonLabels, Counter>,
     streams_write_timed_out: Counter,
 }
 
@@ -172,6 +174,7 @@ impl Default for Metrics {
             streams_open: Gauge::default(),
             connections_timed_out: Counter::default(),
             connections_failed_before_call: Counter::default(),
+            tls_handshakes_failed: Family::default(),
             streams_write_timed_out: Counter::default(),
         };
         let mut r = m.registry;
@@ -198,7 +201,8 @@ impl Default for Metrics {
             "railcontact_connections_open", "Connections open" => m.connections_open;
             "railcontact_streams_open", "Calls open (HTTP/2 streams), against max_streams" => m.streams_open;
             "railcontact_connections_timed_out", "Connections closed because they sent no call within connection_first_call_timeout_s" => m.connections_timed_out;
-            "railcontact_connections_failed_before_call", "Connections that sent bytes but ended before their first call (a failed TLS handshake)" => m.connections_failed_before_call;
+            "railcontact_connections_failed_before_call", "Connections that sent bytes but ended before their first call (a failed TLS handshake among them)" => m.connections_failed_before_call;
+            "railcontact_tls_handshakes_failed", "TLS handshakes of the gRPC port that failed, by reason" => m.tls_handshakes_failed;
             "railcontact_streams_write_timed_out", "Streamed responses ended because their client read nothing for stream_write_timeout_s" => m.streams_write_timed_out;
         );
         Self { registry: r, ..m }
@@ -292,6 +296,14 @@ impl Metrics {
     /// A connection that sent bytes ended before its first call.
     pub fn connection_failed_before_call(&self) {
         self.connections_failed_before_call.inc();
+    }
+
+    /// A TLS handshake failed, for `reason` (a label of
+    /// [`crate::service::tls::HandshakeFailure`]).
+    pub fn tls_handshake_failed(&self, reason: &'static str) {
+        self.tls_handshakes_failed
+            .get_or_create(&ReasonLabels { reason })
+            .inc();
     }
 
     /// A streamed response ended because its client read nothing.

@@ -262,12 +262,9 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .collect();
         shares.push_str(&format!("; trusted proxies: {}", listed.join(", ")));
     }
-    let mut builder = tonic::transport::Server::builder();
-    if let Some(tls) = tls {
-        builder = builder
-            .tls_config(tls)
-            .map_err(|e| invalid(crate::service::error_chain(&e)))?;
-    }
+    // TLS, if on, is the listener's (service::connections): tonic serves
+    // the streams its handshakes give.
+    let builder = tonic::transport::Server::builder();
 
     let addr = listener.local_addr()?;
     let (metrics_addr, metrics_task) = match metrics_listener {
@@ -287,7 +284,7 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
         proxies,
         Duration::from_secs_f64(config.connection_first_call_timeout_s),
         metrics,
-        with_tls,
+        tls,
     );
     let (stop, stopped) = oneshot::channel::<()>();
     // The certificates' validity, again every day while the server runs.
@@ -327,7 +324,8 @@ pub async fn start(config: &ServeConfig) -> std::io::Result<RunningServer> {
             .add_optional_service(reflection_v1)
             .add_optional_service(reflection_v1alpha)
             .add_service(service)
-            // Counted connections with TCP_NODELAY (service::connections).
+            // Counted connections with TCP_NODELAY, TLS after its handshake
+            // (service::connections).
             .serve_with_incoming_shutdown(incoming, async {
                 let _ = stopped.await;
             }),

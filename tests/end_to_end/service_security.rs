@@ -7,6 +7,11 @@
 //!   trusts the CA does;
 //! - with `tls_client_ca`, a client without a certificate is refused, one
 //!   with a certificate the CA signed is served;
+//! - a failed handshake is logged with the peer and its reason and counted
+//!   by reason: plaintext to the TLS port, a client certificate of another
+//!   CA, none, a client that does not trust the server's certificate (its
+//!   alert), a silent connection at `connection_first_call_timeout_s`; a
+//!   port check is none; a good client is still served;
 //! - without a token a call is UNAUTHENTICATED (unary, streaming,
 //!   reflection); a `solve` token may solve and read pairs but not
 //!   register or delete them (PERMISSION_DENIED naming `admin`); an
@@ -77,22 +82,51 @@ impl Pki {
         server: &RunningServer,
         identity: bool,
     ) -> Result<Channel, tonic::transport::Error> {
-        let read = |name: &str| std::fs::read(self.path(name)).unwrap();
+        let client = identity.then(|| (self.path("client.pem"), self.path("client-key.pem")));
+        self.connect_as(server.addr.port(), &self.path("ca.pem"), client)
+            .await
+    }
+
+    /// A TLS connection to `port` of localhost trusting the authorities of
+    /// `ca`, with the client certificate and key of `identity`.
+    async fn connect_as(
+        &self,
+        port: u16,
+        ca: &Path,
+        identity: Option<(PathBuf, PathBuf)>,
+    ) -> Result<Channel, tonic::transport::Error> {
+        let read = |path: &Path| std::fs::read(path).unwrap();
         let mut tls = ClientTlsConfig::new()
-            .ca_certificate(Certificate::from_pem(read("ca.pem")))
+            .ca_certificate(Certificate::from_pem(read(ca)))
             .domain_name("localhost");
-        if identity {
-            tls = tls.identity(Identity::from_pem(
-                read("client.pem"),
-                read("client-key.pem"),
-            ));
+        if let Some((cert, key)) = identity {
+            tls = tls.identity(Identity::from_pem(read(&cert), read(&key)));
         }
-        Endpoint::from_shared(format!("https://localhost:{}", server.addr.port()))
+        Endpoint::from_shared(format!("https://localhost:{port}"))
             .unwrap()
             .tls_config(tls)
             .unwrap()
             .connect()
             .await
+    }
+
+    /// A solve over [`Pki::connect_as`]: Ok when served, else what the
+    /// client was told.
+    async fn solve_as(
+        &self,
+        port: u16,
+        ca: &Path,
+        identity: Option<(PathBuf, PathBuf)>,
+    ) -> Result<(), String> {
+        let channel = self
+            .connect_as(port, ca, identity)
+            .await
+            .map_err(|e| e.to_string())?;
+        client(channel, None)
+            .solve_patch(solve_request())
+            .await
+            .map(drop)
+            .map_err(|s| s.to_string())
     }
 }
 
@@ -249,6 +283,141 @@ async fn mutual_tls_refuses_a_client_without_a_certificate() {
         .await
         .expect("a client with a certificate of the CA is served");
     server.shutdown().await;
+}
+
+/// `railcontact_tls_handshakes_failed_total` of `reason` on `server`'s
+/// metrics page (0 before the first).
+fn handshakes_failed(server: &support::Server, reason: &str) -> f64 {
+    let prefix = format!("railcontact_tls_handshakes_failed_total{{reason=\"{reason}\"}} ");
+    server
+        .metrics_page()
+        .lines()
+        .find_map(|l| l.strip_prefix(&prefix))
+        .map_or(0.0, |v| v.trim().parse().unwrap())
+}
+
+/// Waits up to 5 s for a failed handshake of `reason` beyond `before`
+/// and for its log line holding `words`.
+async fn handshake_failure_seen(server: &support::Server, reason: &str, before: f64, words: &str) {
+    let line = |log: String| {
+        log.lines()
+            .find(|l| {
+                l.contains("TLS handshake failed") && l.contains(&format!("reason=\"{reason}\""))
+            })
+            .map(str::to_string)
+    };
+    for _ in 0..50 {
+        if handshakes_failed(server, reason) > before && line(server.log()).is_some() {
+            break;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+    }
+    assert!(
+        handshakes_failed(server, reason) > before,
+        "no failed handshake counted as {reason}:\n{}",
+        server.metrics_page()
+    );
+    let line =
+        line(server.log()).unwrap_or_else(|| panic!("no log line of {reason}:\n{}", server.log()));
+    assert!(
+        line.contains("WARN") && line.contains("peer=127.0.0.1:") && line.contains(words),
+        "{reason}: {line}"
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn failed_handshakes_are_logged_and_counted_by_reason() {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let pki = Pki::new();
+    // A second authority: a client certificate it signs is not trusted by
+    // the server, and a client trusting only it does not trust the
+    // server's certificate.
+    let other = railcontact_testkit::TestAuthority::new("another CA");
+    other.write(&pki.path("other-ca.pem"));
+    other.sign(
+        &["stranger"],
+        false,
+        &pki.path("stranger.pem"),
+        &pki.path("stranger-key.pem"),
+    );
+    let path = |name: &str| pki.path(name).display().to_string();
+    let server = support::Server::start_with(
+        &[
+            "--tls-cert",
+            &path("server.pem"),
+            "--tls-key",
+            &path("server-key.pem"),
+            "--tls-client-ca",
+            &path("ca.pem"),
+            "--metrics-listen",
+            "127.0.0.1:0",
+        ],
+        &[("RAILCONTACT_CONNECTION_FIRST_CALL_TIMEOUT_S", "1")],
+    );
+    let port: u16 = server.addr.rsplit(':').next().unwrap().parse().unwrap();
+    let client_cert = || Some((pki.path("client.pem"), pki.path("client-key.pem")));
+    let ca = pki.path("ca.pem");
+    let served = || async {
+        pki.solve_as(port, &ca, client_cert())
+            .await
+            .expect("a client with a certificate of the CA is served")
+    };
+    served().await;
+
+    // A port check (connect, close) is no failed handshake.
+    drop(tokio::net::TcpStream::connect(&server.addr).await.unwrap());
+    tokio::time::sleep(std::time::Duration::from_millis(300)).await;
+    assert_eq!(handshakes_failed(&server, "closed"), 0.0);
+
+    // Plaintext: the HTTP/2 preface to the TLS port.
+    let mut plain = tokio::net::TcpStream::connect(&server.addr).await.unwrap();
+    plain
+        .write_all(b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n")
+        .await
+        .unwrap();
+    let mut answer = Vec::new();
+    let _ = plain.read_to_end(&mut answer).await;
+    handshake_failure_seen(&server, "not_tls", 0.0, "plaintext").await;
+
+    // mTLS: a client certificate of another authority, and none.
+    let stranger = Some((pki.path("stranger.pem"), pki.path("stranger-key.pem")));
+    let refused = pki.solve_as(port, &ca, stranger).await;
+    assert!(refused.is_err(), "a stranger was served");
+    handshake_failure_seen(&server, "client_cert_untrusted", 0.0, "UnknownIssuer").await;
+    let refused = pki.solve_as(port, &ca, None).await;
+    assert!(
+        refused.is_err(),
+        "a client without a certificate was served"
+    );
+    handshake_failure_seen(&server, "no_client_cert", 0.0, "no client certificate").await;
+
+    // A client that does not trust the server's certificate refuses it
+    // with an alert (rustls: unknown_ca for an unknown issuer).
+    let distrust = pki
+        .solve_as(port, &pki.path("other-ca.pem"), client_cert())
+        .await;
+    assert!(distrust.is_err(), "a client trusting another CA was served");
+    handshake_failure_seen(
+        &server,
+        "client_alert",
+        0.0,
+        "unknown_ca (the client does not trust this server's certificate",
+    )
+    .await;
+
+    // A connection that sends nothing: closed at
+    // connection_first_call_timeout_s, its handshake timed out.
+    let mut silent = tokio::net::TcpStream::connect(&server.addr).await.unwrap();
+    let mut byte = [0u8; 1];
+    let read = tokio::time::timeout(std::time::Duration::from_secs(5), silent.read(&mut byte))
+        .await
+        .expect("the silent connection is closed");
+    assert!(!matches!(read, Ok(1)), "{read:?}");
+    handshake_failure_seen(&server, "timeout", 0.0, "handshake timed out").await;
+
+    // None of them left the server unable to serve.
+    served().await;
+    assert_eq!(handshakes_failed(&server, "closed"), 0.0);
 }
 
 const SOLVE_TOKEN: &str = "solve-token-0123456789";
