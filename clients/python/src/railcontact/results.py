@@ -444,8 +444,24 @@ class TemperatureResult(_Result):
 
 
 @_result
+class ForceControl(_Result):
+    """The outcome of a prescribed-force solve (a patch case's
+    ``force_x_n``, ``force_y_n`` or ``force_x_n_per_m``): the creepages that
+    give the prescribed forces (the given ones in the other directions) and
+    the outer iteration's count of iterations and exact solves."""
+
+    creepage_long: float
+    creepage_lat: float
+    spin_per_m: float
+    force_iterations: int
+    force_solves: int
+
+
+@_result
 class PatchResult(_Result):
-    """The result of one patch case (SolvePatch, a creep-curve point)."""
+    """The result of one patch case (SolvePatch, a creep-curve point).
+    ``force_control`` is set when the case prescribes a force in steady
+    rolling (None otherwise)."""
 
     model: str = _enum()
     result: StepResult = _sub(StepResult)
@@ -455,6 +471,7 @@ class PatchResult(_Result):
     notes: tuple = _many()
     fields: Optional[ElementFields] = _given()
     temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
+    force_control: Optional[ForceControl] = _optional(ForceControl)
 
     @classmethod
     def from_pb(cls, message) -> "PatchResult":

@@ -358,7 +358,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer", "viscoelastic")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -374,6 +374,7 @@ class PatchCase(_message.Message):
     EXTRA_RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     INTERFACIAL_LAYER_FIELD_NUMBER: _ClassVar[int]
+    VISCOELASTIC_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -389,7 +390,26 @@ class PatchCase(_message.Message):
     extra_rigid_slip: ExtraRigidSlip
     conformal: ConformalSection
     interfacial_layer: InterfacialLayerSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ...) -> None: ...
+    viscoelastic: ViscoelasticSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ..., viscoelastic: _Optional[_Union[ViscoelasticSection, _Mapping]] = ...) -> None: ...
+
+class ViscoelasticSection(_message.Message):
+    __slots__ = ("rolling_speed_m_per_s", "body1", "body2")
+    ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    BODY1_FIELD_NUMBER: _ClassVar[int]
+    BODY2_FIELD_NUMBER: _ClassVar[int]
+    rolling_speed_m_per_s: float
+    body1: ViscoelasticBody
+    body2: ViscoelasticBody
+    def __init__(self, rolling_speed_m_per_s: _Optional[float] = ..., body1: _Optional[_Union[ViscoelasticBody, _Mapping]] = ..., body2: _Optional[_Union[ViscoelasticBody, _Mapping]] = ...) -> None: ...
+
+class ViscoelasticBody(_message.Message):
+    __slots__ = ("relaxation_ratio", "creep_relaxation_time_s")
+    RELAXATION_RATIO_FIELD_NUMBER: _ClassVar[int]
+    CREEP_RELAXATION_TIME_S_FIELD_NUMBER: _ClassVar[int]
+    relaxation_ratio: float
+    creep_relaxation_time_s: float
+    def __init__(self, relaxation_ratio: _Optional[float] = ..., creep_relaxation_time_s: _Optional[float] = ...) -> None: ...
 
 class InterfacialLayerSection(_message.Message):
     __slots__ = ("thickness_m", "shear_modulus_pa", "yield_limit_pa", "hardening_pa_per_m")
