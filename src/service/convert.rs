@@ -737,6 +737,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         force_control: r.force_control.as_ref().map(force_control),
         subsurface: None,
         temperature: None,
+        fastsim_max_pressure_pa: r.fastsim_max_pressure_pa,
     }
 }
 

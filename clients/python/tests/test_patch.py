@@ -201,3 +201,12 @@ def test_a_viscoelastic_case_file_solves_as_contacts_visc_cylindr(client):
     with pytest.raises(railcontact.RailcontactError) as e:
         client.solve_patch(case)
     assert e.value.field == "case.viscoelastic.body1.relaxation_ratio", e.value.message
+
+
+def test_fastsim_reports_hertz_p0_and_its_bound_peak(client):
+    # totals.max_pressure_pa is Hertz's p0; fastsim_max_pressure_pa the
+    # peak of FASTSIM's parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0
+    # (CONTACT's FASTSIM PMAX), scaled so that its elements sum to Fn.
+    r = client.solve_patch(rolling_case("fastsim", n=24))
+    assert r.fastsim_max_pressure_pa == pytest.approx(4 / 3 * r.totals.max_pressure_pa, rel=3e-3)
+    assert client.solve_patch(rolling_case("hertz")).fastsim_max_pressure_pa is None

@@ -648,7 +648,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ..., layer_yield_limit_pa: _Optional[_Iterable[float]] = ..., layer_plastic_x_m: _Optional[_Iterable[float]] = ..., layer_plastic_y_m: _Optional[_Iterable[float]] = ..., layer_plastic: _Optional[_Iterable[bool]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature", "fastsim_max_pressure_pa")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -659,6 +659,7 @@ class PatchResult(_message.Message):
     FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
+    FASTSIM_MAX_PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -669,7 +670,8 @@ class PatchResult(_message.Message):
     force_control: ForceControl
     subsurface: SubsurfaceResult
     temperature: TemperatureResult
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ...) -> None: ...
+    fastsim_max_pressure_pa: float
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., fastsim_max_pressure_pa: _Optional[float] = ...) -> None: ...
 
 class TemperaturePeak(_message.Message):
     __slots__ = ("temperature_k", "x_m", "y_m")
@@ -1251,7 +1253,7 @@ class TrackForce(_message.Message):
     def __init__(self, x_n: _Optional[float] = ..., y_n: _Optional[float] = ..., z_n: _Optional[float] = ...) -> None: ...
 
 class WheelRailPatch(_message.Message):
-    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient", "temperature", "rolling_speed_m_per_s")
+    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient", "temperature", "rolling_speed_m_per_s", "fastsim_max_pressure_pa")
     METHOD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_RAD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_VARIATION_RAD_FIELD_NUMBER: _ClassVar[int]
@@ -1282,6 +1284,7 @@ class WheelRailPatch(_message.Message):
     FRICTION_COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    FASTSIM_MAX_PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
     method: WheelRailModel
     contact_angle_rad: float
     contact_angle_variation_rad: float
@@ -1312,7 +1315,8 @@ class WheelRailPatch(_message.Message):
     friction_coefficient: float
     temperature: TemperatureResult
     rolling_speed_m_per_s: float
-    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., rolling_speed_m_per_s: _Optional[float] = ...) -> None: ...
+    fastsim_max_pressure_pa: float
+    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., rolling_speed_m_per_s: _Optional[float] = ..., fastsim_max_pressure_pa: _Optional[float] = ...) -> None: ...
 
 class WheelRailWheel(_message.Message):
     __slots__ = ("side", "vertical_approach_m", "min_gap_m", "patches", "force_track_n", "load_iterations")
