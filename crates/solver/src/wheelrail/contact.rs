@@ -135,7 +135,8 @@ pub enum WheelRailModel {
     /// elliptic pressure in the traction bound
     /// ([`crate::core::fastsim::TractionBound::Elliptic`]) instead of the
     /// parabolic one. The patch's `max_pressure_pa` is Hertz's p0 with
-    /// either FASTSIM bound.
+    /// either FASTSIM bound, its `fastsim_max_pressure_pa` the bound's
+    /// peak (p0 here, 4/3 p0 with the parabolic bound).
     HertzFastsimElliptic,
     /// Hertz as [`WheelRailModel::HertzFastsim`], strip theory with
     /// Kalker's coefficients for the tangential forces
