@@ -18,6 +18,7 @@ use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::core::temperature::{SurfaceTemperatures, TemperaturePeak, ThermalBody, ThermalInput};
+use crate::core::viscoelastic::{Sls, Viscoelastic};
 use crate::problem::case::{
     ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FrictionLawName,
     FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection, MaterialSection,
@@ -361,8 +362,19 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             yield_limit_pa: l.yield_limit_pa,
             hardening_pa_per_m: l.hardening_pa_per_m,
         }),
-        // Viscoelastic bodies are a case file's (not on the wire).
-        viscoelastic: None,
+        viscoelastic: c.viscoelastic.as_ref().map(|v| {
+            let body = |b: &Option<pb::ViscoelasticBody>| {
+                b.as_ref().map_or_else(Sls::default, |b| Sls {
+                    relaxation_ratio: b.relaxation_ratio,
+                    creep_relaxation_time_s: b.creep_relaxation_time_s,
+                })
+            };
+            Viscoelastic {
+                rolling_speed_m_per_s: v.rolling_speed_m_per_s,
+                body1: body(&v.body1),
+                body2: body(&v.body2),
+            }
+        }),
     })
 }
 
@@ -725,6 +737,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         force_control: r.force_control.as_ref().map(force_control),
         subsurface: None,
         temperature: None,
+        fastsim_max_pressure_pa: r.fastsim_max_pressure_pa,
     }
 }
 

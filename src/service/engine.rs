@@ -460,6 +460,7 @@ impl PatchEngine {
             force_control: None,
             subsurface: None,
             temperature: None,
+            fastsim_max_pressure_pa: None,
         }
     }
 }

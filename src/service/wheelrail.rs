@@ -545,6 +545,7 @@ fn patch(p: &PatchResult, fields: bool) -> pb::WheelRailPatch {
         mz_nm: p.mz_nm,
         approach_m: p.approach_m,
         max_pressure_pa: p.max_pressure_pa,
+        fastsim_max_pressure_pa: p.fastsim_max_pressure_pa,
         contact_area_m2: p.contact_area_m2,
         adhesion_fraction: p.adhesion_fraction,
         frictional_power_w: p.frictional_power_w,

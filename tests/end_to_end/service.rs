@@ -4,14 +4,17 @@
 
 use std::time::Duration;
 
+use railcontact::conformal::frictional::FrictionalWorkspace;
 use railcontact::core::creep::kalker_creep_coefficients;
 use railcontact::core::problem::Creepages;
 use railcontact::core::sensitivity::{central_differences, JacobianPoint, JacobianSteps};
 use railcontact::core::solution::Totals;
 use railcontact::core::solve::solve;
-use railcontact::problem::case::Case;
+use railcontact::core::viscoelastic::Sls;
+use railcontact::problem::case::{Case, CaseFile};
+use railcontact::problem::ModelRun;
 use railcontact::service::config::ServeConfig;
-use railcontact::service::convert::total_values;
+use railcontact::service::convert::{result_of_report, total_values};
 use railcontact::service::pb;
 use railcontact::service::server::RunningServer;
 use tokio_stream::StreamExt;
@@ -1781,6 +1784,221 @@ async fn an_interfacial_layer_on_the_wire_solves_as_the_case_file() {
     let (code, msg) = failure(client.solve_patch(request(c)).await);
     assert_eq!(code, Code::InvalidArgument, "{msg}");
     assert!(msg.contains("case.interfacial_layer"), "{msg}");
+    server.shutdown().await;
+}
+
+/// `examples/cases/visc_cylindr.toml` (CONTACT's `visc_cylindr` case 3:
+/// two viscoelastic PA6 cylinders braked at Fx = -0.6 mu Fn) read as the
+/// command line reads it, and its wire form built section by section from
+/// the file's values.
+fn visc_cylindr() -> (Case, pb::PatchCase) {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/cases/visc_cylindr.toml"
+    );
+    let text = std::fs::read_to_string(path).expect("the example case file");
+    let f: CaseFile = toml::from_str(&text).expect("a case file");
+    let body = |s: Sls| {
+        Some(pb::ViscoelasticBody {
+            relaxation_ratio: s.relaxation_ratio,
+            creep_relaxation_time_s: s.creep_relaxation_time_s,
+        })
+    };
+    let visc = f.viscoelastic.expect("[viscoelastic]");
+    let rolling = f.rolling.as_ref().expect("[rolling]");
+    let grid = f.grid.as_ref().expect("[grid]");
+    let wire = pb::PatchCase {
+        model: pb::Model::Exact as i32,
+        material: Some(pb::MaterialSection {
+            shear_modulus_pa: f.material.shear_modulus_pa,
+            poisson_ratio: f.material.poisson_ratio,
+            ..Default::default()
+        }),
+        friction: Some(pb::FrictionSection {
+            coefficient: f.friction.as_ref().and_then(|f| f.coefficient),
+            ..Default::default()
+        }),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Line as i32,
+            a_per_m: f.geometry.a_per_m,
+            gap_m: f.geometry.gap_m.clone().expect("gap_m"),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: f
+                .load
+                .normal_force_n_per_m
+                .map(pb::load_section::Load::NormalForceNPerM),
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Rolling(pb::Creepages {
+            force_x_n_per_m: rolling.force_x_n_per_m,
+            ..Default::default()
+        })),
+        grid: Some(pb::GridSection {
+            nx: grid.nx.map(|n| n as u32),
+            window_x_m: grid.window_x_m,
+            ..Default::default()
+        }),
+        viscoelastic: Some(pb::ViscoelasticSection {
+            rolling_speed_m_per_s: visc.rolling_speed_m_per_s,
+            body1: body(visc.body1),
+            body2: body(visc.body2),
+        }),
+        ..Default::default()
+    };
+    (Case::from_file(f).expect("a valid case"), wire)
+}
+
+/// Viscoelastic bodies (`case.viscoelastic`, CONTACT's M = 1) on the wire:
+/// SolvePatch of `examples/cases/visc_cylindr.toml` gives the numbers of
+/// `railcontact solve` on the file bit for bit (totals, the creepage of
+/// the prescribed force, every field); bad values are refused naming
+/// their field, and another model, transient steps, another rolling
+/// direction and a surface grid over 64 x 64 naming what refuses them.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn viscoelastic_bodies_on_the_wire_solve_as_the_case_file() {
+    let (server, mut client) = server().await;
+    let (file, case) = visc_cylindr();
+    let r = solve_patch_with_fields(&mut client, case.clone()).await;
+    let cli = match ModelRun::solve(&file, &mut FrictionalWorkspace::default()) {
+        Ok(ModelRun::Exact(run)) => result_of_report(&run.report(&file, true)),
+        Ok(_) => panic!("the exact model"),
+        Err(e) => panic!("{e}"),
+    };
+    let (t, want) = (r.result.as_ref().unwrap(), cli.result.as_ref().unwrap());
+    assert_eq!(bits(totals(t)), bits(totals(want)));
+    let creepage = |r: &pb::PatchResult| r.force_control.as_ref().unwrap().creepage_long;
+    assert_eq!(creepage(&r).to_bits(), creepage(&cli).to_bits());
+    let (f, g) = (r.fields.as_ref().unwrap(), cli.fields.as_ref().unwrap());
+    let field_bits = |f: &pb::ElementFields| -> Vec<u64> {
+        [&f.pressure_pa, &f.traction_x_pa, &f.slip_x]
+            .iter()
+            .flat_map(|v| v.iter().map(|x| x.to_bits()))
+            .collect()
+    };
+    assert_eq!(field_bits(f), field_bits(g));
+    assert_eq!(f.state, g.state);
+    // CONTACT's visc_cylindr.ref_out, case 3: 57 elements in contact, 36
+    // in adhesion, 21 in slip.
+    let count = |s: pb::ElementState| f.state.iter().filter(|&&e| e == s as i32).count();
+    assert_eq!(
+        (
+            count(pb::ElementState::Adhesion),
+            count(pb::ElementState::Slip)
+        ),
+        (36, 21)
+    );
+    // Elastic cylinders of the same (glassy) modulus give another creepage.
+    let elastic = solve_patch(
+        &mut client,
+        pb::PatchCase {
+            viscoelastic: None,
+            ..case.clone()
+        },
+    )
+    .await;
+    assert_ne!(creepage(&elastic).to_bits(), creepage(&r).to_bits());
+
+    let visc = case.viscoelastic.unwrap();
+    let body = visc.body1.unwrap();
+    let with = |v: pb::ViscoelasticSection| pb::PatchCase {
+        viscoelastic: Some(v),
+        ..case.clone()
+    };
+    for (bad, field) in [
+        (
+            with(pb::ViscoelasticSection {
+                rolling_speed_m_per_s: 0.0,
+                ..visc
+            }),
+            "case.viscoelastic.rolling_speed_m_per_s",
+        ),
+        (
+            with(pb::ViscoelasticSection {
+                body1: Some(pb::ViscoelasticBody {
+                    relaxation_ratio: -1.0,
+                    ..body
+                }),
+                ..visc
+            }),
+            "case.viscoelastic.body1.relaxation_ratio",
+        ),
+        (
+            with(pb::ViscoelasticSection {
+                body2: Some(pb::ViscoelasticBody {
+                    creep_relaxation_time_s: f64::NAN,
+                    ..body
+                }),
+                ..visc
+            }),
+            "case.viscoelastic.body2.creep_relaxation_time_s",
+        ),
+        (
+            with(pb::ViscoelasticSection {
+                rolling_speed_m_per_s: 1e300,
+                body2: Some(pb::ViscoelasticBody {
+                    creep_relaxation_time_s: 1e300,
+                    ..body
+                }),
+                ..visc
+            }),
+            "case.viscoelastic.body2.creep_relaxation_time_s",
+        ),
+        (
+            pb::PatchCase {
+                rolling_direction_rad: std::f64::consts::PI,
+                ..case.clone()
+            },
+            "case.rolling_direction_rad",
+        ),
+        (
+            pb::PatchCase {
+                viscoelastic: Some(visc),
+                ..transient(16, &[1e-5])
+            },
+            "case.viscoelastic",
+        ),
+        // A surface grid of 65 x 65 elements: over the 4096 (64 x 64)
+        // whose coefficients are integrated, refused before any work.
+        (
+            pb::PatchCase {
+                viscoelastic: Some(visc),
+                ..rolling(pb::Model::Exact, 65, 1e-3)
+            },
+            "case.viscoelastic",
+        ),
+    ] {
+        let (code, msg) = failure(client.solve_patch(request(bad)).await);
+        assert_eq!(code, Code::InvalidArgument, "{field}: {msg}");
+        assert!(msg.contains(&format!("`{field}`")), "{field}: {msg}");
+    }
+    // The exact model only: every other refuses the section by its name
+    // (the conformal ones on a conformal geometry, which they need).
+    let conformal = Some(pb::GeometrySection {
+        kind: pb::GeometryKind::ConformalCircular as i32,
+        rail_lateral_radius_m: Some(0.010),
+        wheel_lateral_radius_m: Some(-0.0101),
+        wheel_rolling_radius_m: Some(0.5),
+        ..Default::default()
+    });
+    for (model, geometry) in [
+        (pb::Model::Hertz, None),
+        (pb::Model::Fastsim, None),
+        (pb::Model::HertzCorrected, conformal.clone()),
+        (pb::Model::Cect, conformal.clone()),
+        (pb::Model::CectHalfspace, conformal),
+    ] {
+        let mut c = pb::PatchCase {
+            viscoelastic: Some(visc),
+            ..rolling(model, 16, 1e-3)
+        };
+        if geometry.is_some() {
+            c.geometry = geometry;
+        }
+        let (code, msg) = failure(client.solve_patch(request(c)).await);
+        assert_eq!(code, Code::InvalidArgument, "{model:?}: {msg}");
+        assert!(msg.contains("`case.viscoelastic`"), "{model:?}: {msg}");
+    }
     server.shutdown().await;
 }
 

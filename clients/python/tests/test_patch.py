@@ -180,3 +180,33 @@ def test_an_interfacial_layer_case_file_gives_the_layers_fields(client):
     # Without a layer the layer's fields are empty.
     plain = client.solve_patch(rolling_case("exact"), include_fields=True)
     assert plain.fields.layer_plastic.size == 0
+
+
+def test_a_viscoelastic_case_file_solves_as_contacts_visc_cylindr(client):
+    # CONTACT's visc_cylindr.inp case 3 (examples/cases/visc_cylindr.toml:
+    # two viscoelastic PA6 cylinders braked at Fx = -0.6 mu Fn):
+    # visc_cylindr.ref_out gives CREEP X 1.152e-2, PMAX 84.72 N/mm², 36
+    # elements in adhesion and 21 in slip.
+    path = REPO / "examples" / "cases" / "visc_cylindr.toml"
+    r = client.solve_patch(path, include_fields=True)
+    assert r.force_control.creepage_long == pytest.approx(1.152e-2, rel=0.01)
+    assert r.totals.max_pressure_pa == pytest.approx(84.72e6, rel=0.01)
+    assert (r.fields.state == railcontact.ADHESION).sum() == 36
+    assert (r.fields.state == railcontact.SLIP).sum() == 21
+    # Without prescribed forces there is no force control.
+    assert client.solve_patch(rolling_case("exact")).force_control is None
+    # A bad value is refused naming its field.
+    case = railcontact.load_case(path)
+    case["viscoelastic"]["body1"]["relaxation_ratio"] = -1.0
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(case)
+    assert e.value.field == "case.viscoelastic.body1.relaxation_ratio", e.value.message
+
+
+def test_fastsim_reports_hertz_p0_and_its_bound_peak(client):
+    # totals.max_pressure_pa is Hertz's p0; fastsim_max_pressure_pa the
+    # peak of FASTSIM's parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0
+    # (CONTACT's FASTSIM PMAX), scaled so that its elements sum to Fn.
+    r = client.solve_patch(rolling_case("fastsim", n=24))
+    assert r.fastsim_max_pressure_pa == pytest.approx(4 / 3 * r.totals.max_pressure_pa, rel=3e-3)
+    assert client.solve_patch(rolling_case("hertz")).fastsim_max_pressure_pa is None

@@ -327,3 +327,17 @@ def test_answers_no_elastic_contact_gives_carry_warnings(client):
         "step.velocity.pitch_rad_per_s",
     ]
     client.delete_pair(measured.pair_id)
+
+
+def test_fastsim_patches_report_hertz_p0_and_fastsims_bound_peak(client):
+    # A Hertz patch's max_pressure_pa is Hertz's p0; FASTSIM's parabolic
+    # bound peaks at 2 Fn/(pi a b) = 4/3 p0 (CONTACT's FASTSIM PMAX), the
+    # elliptic one at p0, each scaled so that the elements' pressures sum
+    # to Fn (well within 1 %); the exact model has no such number.
+    kw = dict(position={"lateral_m": 0.003}, velocity=V, load=LOAD)
+    for model, ratio in (("hertz_fastsim", 4 / 3), ("hertz_fastsim_elliptic", 1.0)):
+        r = client.solve_wheelrail(model=model, **kw)
+        for p in (p for w in r.wheels for p in w.patches):
+            assert p.fastsim_max_pressure_pa == pytest.approx(ratio * p.max_pressure_pa, rel=1e-2), model
+    exact = client.solve_wheelrail(model="exact", **kw)
+    assert all(p.fastsim_max_pressure_pa is None for w in exact.wheels for p in w.patches)

@@ -58,6 +58,11 @@ def _optional(cls):
     )
 
 
+def _optional_number():
+    """An optional scalar field: None when not set."""
+    return field(metadata={"pb": lambda m, name: getattr(m, name) if m.HasField(name) else None})
+
+
 def _many(cls=None):
     """A repeated field: a tuple (of dataclasses when ``cls`` is given)."""
     if cls is None:
@@ -444,8 +449,27 @@ class TemperatureResult(_Result):
 
 
 @_result
+class ForceControl(_Result):
+    """The outcome of a prescribed-force solve (a patch case's
+    ``force_x_n``, ``force_y_n`` or ``force_x_n_per_m``): the creepages that
+    give the prescribed forces (the given ones in the other directions) and
+    the outer iteration's count of iterations and exact solves."""
+
+    creepage_long: float
+    creepage_lat: float
+    spin_per_m: float
+    force_iterations: int
+    force_solves: int
+
+
+@_result
 class PatchResult(_Result):
-    """The result of one patch case (SolvePatch, a creep-curve point)."""
+    """The result of one patch case (SolvePatch, a creep-curve point).
+    ``force_control`` is set when the case prescribes a force in steady
+    rolling (None otherwise). Model ``fastsim``: ``totals.max_pressure_pa``
+    is Hertz's p0, ``fastsim_max_pressure_pa`` the peak of FASTSIM's
+    parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0 (the maximum pressure
+    CONTACT's FASTSIM reports); None with the other models."""
 
     model: str = _enum()
     result: StepResult = _sub(StepResult)
@@ -455,6 +479,8 @@ class PatchResult(_Result):
     notes: tuple = _many()
     fields: Optional[ElementFields] = _given()
     temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
+    force_control: Optional[ForceControl] = _optional(ForceControl)
+    fastsim_max_pressure_pa: Optional[float] = _optional_number()
 
     @classmethod
     def from_pb(cls, message) -> "PatchResult":
@@ -547,7 +573,13 @@ class TrackForce(np.ndarray):
 
 @_result
 class WheelRailPatch(_Result):
-    """One contact patch of a wheel (see the proto's WheelRailPatch)."""
+    """One contact patch of a wheel (see the proto's WheelRailPatch).
+
+    ``max_pressure_pa`` of a Hertz patch is Hertz's p0;
+    ``fastsim_max_pressure_pa`` (None unless FASTSIM solved the patch) the
+    peak of the pressure bounding FASTSIM's tractions: 2 Fn/(pi a b) =
+    4/3 p0 with the parabolic bound (CONTACT's FASTSIM PMAX), p0 with the
+    elliptic bound of ``hertz_fastsim_elliptic``."""
 
     method: str = _enum()
     contact_angle_rad: float
@@ -579,6 +611,7 @@ class WheelRailPatch(_Result):
     friction_coefficient: float
     temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
     rolling_speed_m_per_s: float
+    fastsim_max_pressure_pa: Optional[float] = _optional_number()
 
     @classmethod
     def from_pb(cls, message) -> "WheelRailPatch":

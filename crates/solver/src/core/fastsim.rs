@@ -1252,6 +1252,71 @@ pub(crate) mod tests {
         Fastsim::new(nx, ny).unwrap().solve(inp).unwrap()
     }
 
+    /// The peak of the traction bound's pressure (the patch model's and
+    /// the wheel/rail patches' `fastsim_max_pressure_pa`) against the
+    /// maximum pressure CONTACT's FASTSIM prints: CONTACT's
+    /// `examples/fastsim.inp` (revision in the mirror of
+    /// github.com/eve70a/CONTACT), AA = 8 mm, BB = 4 mm, FN = 82000 N,
+    /// GG = 82000 N/mm², POISS 0.28, mu 0.3, CETA -0.000625, CPHI
+    /// 0.000625 /mm; `fastsim.ref_out` prints PMAX 1629. N/mm² for case 2
+    /// (M = 3, B = 3: parabolic bound, 40 x 40 elements in the ellipse),
+    /// 1223. for case 3 (B = 2: elliptic bound, 40 x 40) and 1631. for case
+    /// 5 (parabolic, 200 x 200). Analytically 2 Fn/(pi a b) = 1631.2 and
+    /// p0 = 3 Fn/(2 pi a b) = 1223.4 N/mm²; CONTACT's PMAX is the largest
+    /// pressure at its element centres, the nearest to the patch centre
+    /// at (+-a/n, +-b/n), where the parabola is 1 - 2/n² of its peak
+    /// (case 2: 1629.2), the elliptic pressure sqrt(1 - 2/n²); ours is the
+    /// peak itself, scaled so that the elements' pressures sum to Fn. So
+    /// ours may exceed CONTACT's by that sampling, plus half its last
+    /// printed digit: 2.5 N/mm² on 40 x 40 (0.16 %), 0.6 on 200 x 200;
+    /// the elliptic bound's scaling adds n^-3/2 (case 3: 1221.6 against
+    /// 1223).
+    /// Hertz's p0 (our max_pressure_pa) is 25 % below PMAX with the
+    /// parabolic bound.
+    #[test]
+    fn bound_peak_pressure_is_contacts_fastsim_pmax() {
+        let input = FastsimInput {
+            semi_axis_x_m: 8e-3,
+            semi_axis_y_m: 4e-3,
+            normal_force_n: 82_000.0,
+            shear_modulus_pa: 82.0e9,
+            poisson_ratio: 0.28,
+            friction_coefficient: 0.3,
+            static_friction_coefficient: 0.3,
+            creepage_long: 0.0,
+            creepage_lat: -0.000625,
+            spin_per_m: 0.625,
+        };
+        let p0 = 3.0 * 82_000.0 / (2.0 * PI * 8e-3 * 4e-3);
+        for (n, bound, pmax_n_per_mm2) in [
+            (40, TractionBound::Parabolic, 1629.0),
+            (40, TractionBound::Elliptic, 1223.0),
+            (200, TractionBound::Parabolic, 1631.0),
+        ] {
+            let mut fs = Fastsim::new(n, n).unwrap();
+            fs.set_traction_bound(bound);
+            let o = fs.solve(&input).unwrap();
+            let ours = o.bound_peak_pressure_pa * 1e-6;
+            let centre = 1.0 - 2.0 / (n * n) as f64;
+            // The elliptic bound's scaling differs from 1 by O(n^-3/2)
+            // (its midpoint sum, module docs), the parabolic one's by
+            // O(n^-2), within the sampling.
+            let (peak, sampled, scaling) = match bound {
+                TractionBound::Parabolic => (4.0 / 3.0 * p0 * 1e-6, centre, 0.0),
+                TractionBound::Elliptic => (p0 * 1e-6, centre.sqrt(), (n as f64).powf(-1.5)),
+            };
+            let tolerance = 0.5 + peak * (1.0 - sampled + scaling);
+            assert!(
+                (ours - pmax_n_per_mm2).abs() <= tolerance,
+                "{n} x {n} {bound:?}: {ours} N/mm² against CONTACT's {pmax_n_per_mm2} \
+                 (tolerance {tolerance})"
+            );
+            if bound == TractionBound::Parabolic {
+                assert!(rel(p0, o.bound_peak_pressure_pa * 0.75) < 2e-3);
+            }
+        }
+    }
+
     /// A totals-only solver gives the same totals, bit for bit, in
     /// adhesion, partial slip and full sliding, with both bounds and a
     /// static coefficient above the kinetic one, in its AVX2 copy and its

@@ -635,6 +635,33 @@ pub const MAX_VISCOELASTIC_ELEMENTS: usize = 4096;
 /// The key of [`SolverSettings::viscoelastic`] in errors.
 pub const VISCOELASTIC_KEY: &str = "viscoelastic";
 
+/// Refuses viscoelastic bodies (not both elastic) on a surface grid of
+/// `nx` x `ny` elements over [`MAX_VISCOELASTIC_ELEMENTS`], naming
+/// [`VISCOELASTIC_KEY`]; a line contact (`line`) has no limit. Checked
+/// before any coefficient is integrated (by [`ContactProblem::validate`]
+/// and by the case file's validation, before a solver is built).
+pub fn check_viscoelastic_grid(
+    visc: &Viscoelastic,
+    nx: usize,
+    ny: usize,
+    line: bool,
+) -> Result<(), ContactError> {
+    let elements = nx.saturating_mul(ny);
+    let elastic = visc.body1.is_elastic() && visc.body2.is_elastic();
+    if !elastic && !line && elements > MAX_VISCOELASTIC_ELEMENTS {
+        return Err(ContactError::invalid(
+            VISCOELASTIC_KEY,
+            format!(
+                "viscoelastic bodies on a grid of {nx} x {ny} = {elements} elements: at most \
+                 {MAX_VISCOELASTIC_ELEMENTS} (64 x 64) on a surface, whose coefficients are \
+                 integrated numerically per element offset (about 10 s at 48 x 48, growing with \
+                 the elements); line contact has no limit"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Checks a normal load; `key` names it.
 pub fn validate_load(key: &str, load: &NormalLoad) -> Result<(), ContactError> {
     match *load {
@@ -683,20 +710,7 @@ impl ContactProblem {
                     "viscoelastic bodies roll in +x only (0)",
                 ));
             }
-            let elements = self.grid.nx * self.grid.ny;
-            let elastic = visc.body1.is_elastic() && visc.body2.is_elastic();
-            if !elastic && !self.grid.is_line() && elements > MAX_VISCOELASTIC_ELEMENTS {
-                return Err(ContactError::invalid(
-                    VISCOELASTIC_KEY,
-                    format!(
-                        "viscoelastic bodies on a grid of {} x {} = {elements} elements: at \
-                         most {MAX_VISCOELASTIC_ELEMENTS} (64 x 64) on a surface, whose \
-                         coefficients are integrated numerically per element offset (about 10 s \
-                         at 48 x 48, growing with the elements); line contact has no limit",
-                        self.grid.nx, self.grid.ny
-                    ),
-                ));
-            }
+            check_viscoelastic_grid(visc, self.grid.nx, self.grid.ny, self.grid.is_line())?;
         }
         // Rolling steps roll whole elements of the rolling frame's grid, or
         // any distance off its axes.

@@ -97,12 +97,17 @@ const MAX_DEPTH: u32 = 30;
 /// of the integrand's values).
 const RELATIVE_FLOOR: f64 = 1e-13;
 
+/// Largest relaxation ratio f_g [-]: the final modulus G_g/(1 + f_g) at
+/// least a millionth of the initial one. Beyond, the relaxed compliance
+/// outgrows the arithmetic (f_g = 1e300 gives non-finite forces).
+pub const MAX_RELAXATION_RATIO: f64 = 1e6;
+
 /// The standard linear solid of one body (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Sls {
-    /// f_g = C_v/C_g [-], >= 0 (CONTACT's `FG`): the final modulus is
-    /// G_r = G_g/(1 + f_g). 0: an elastic body.
+    /// f_g = C_v/C_g [-], in [0, [`MAX_RELAXATION_RATIO`]] (CONTACT's
+    /// `FG`): the final modulus is G_r = G_g/(1 + f_g). 0: an elastic body.
     pub relaxation_ratio: f64,
     /// The creep relaxation time tau_c \[s\], >= 0 (CONTACT's `TC`); 0:
     /// the body relaxes at once, elastic with G_r.
@@ -122,6 +127,16 @@ impl Sls {
                     format!("must be finite and >= 0, got {}", show(v)),
                 ));
             }
+        }
+        if self.relaxation_ratio > MAX_RELAXATION_RATIO {
+            return Err(ContactError::invalid(
+                format!("{key}.relaxation_ratio"),
+                format!(
+                    "must be at most {MAX_RELAXATION_RATIO:e} (a final modulus G_g/(1 + f_g) of at \
+                     least a millionth of the initial one), got {}",
+                    show(self.relaxation_ratio)
+                ),
+            ));
         }
         Ok(())
     }

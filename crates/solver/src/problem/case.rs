@@ -24,8 +24,9 @@ use crate::core::material::{soft_modulus_note, CombinedMaterial, Material};
 use crate::core::normal::NormalLoad;
 use crate::core::normal::NormalSettings;
 use crate::core::problem::{
-    rolling_elements, ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics, ShiftStep,
-    SolverSettings, CREEPAGE_RANGE, INTERFACIAL_LAYER_KEY, SPIN_RANGE, VISCOELASTIC_KEY,
+    check_viscoelastic_grid, rolling_elements, ContactProblem, Creepages, ExtraRigidSlip, Friction,
+    Kinematics, ShiftStep, SolverSettings, CREEPAGE_RANGE, INTERFACIAL_LAYER_KEY, SPIN_RANGE,
+    VISCOELASTIC_KEY,
 };
 use crate::core::tangential::TangentialSettings;
 use crate::core::temperature::ThermalInput;
@@ -2307,6 +2308,10 @@ impl Case {
             &kinematics,
             file.rolling_direction_rad,
         )?;
+        if let Some(visc) = &settings.viscoelastic {
+            // Before any solver integrates the coefficients (seconds).
+            check_viscoelastic_grid(visc, nx, ny, geometry.is_line())?;
+        }
         Ok(Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
@@ -4508,6 +4513,12 @@ mod viscoelastic_tests {
                 "relaxation_ratio = -1.0",
                 "viscoelastic.body1.relaxation_ratio",
             ),
+            // Over 1e6 (1e300 made the forces non-finite).
+            (
+                "relaxation_ratio = 1.0",
+                "relaxation_ratio = 1.0e7",
+                "viscoelastic.body1.relaxation_ratio",
+            ),
             (
                 "creep_relaxation_time_s = 0.045\n\n[grid]",
                 "creep_relaxation_time_s = inf\n\n[grid]",
@@ -4556,5 +4567,26 @@ mod viscoelastic_tests {
         assert!(matches!(c.kinematics, Kinematics::Frictionless));
         assert!(c.settings.viscoelastic.unwrap().body2.is_elastic());
         assert!(ExactRun::solve(&c).is_ok());
+    }
+
+    #[test]
+    fn a_surface_grid_over_64_x_64_is_refused_by_the_case_before_a_solver_is_built() {
+        // The case's validation refuses it (in microseconds), not the
+        // solve after `ContactSolver::new` integrated the coefficients
+        // (14 s at 65 x 65); 64 x 64 and elastic bodies on 65 x 65 pass it.
+        let sphere = |n: usize, ratio: f64| {
+            format!(
+                "model = \"exact\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 1.0\n\
+                 b_per_m = 1.0\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
+                 [grid]\nnx = {n}\nny = {n}\n\
+                 [viscoelastic]\nrolling_speed_m_per_s = 1.0\n[viscoelastic.body1]\n\
+                 relaxation_ratio = {ratio:?}\ncreep_relaxation_time_s = 0.01\n"
+            )
+        };
+        let m = message(Case::from_toml(&sphere(65, 1.0)));
+        assert!(m.contains("`viscoelastic`") && m.contains("65 x 65"), "{m}");
+        assert!(Case::from_toml(&sphere(64, 1.0)).is_ok());
+        assert!(Case::from_toml(&sphere(65, 0.0)).is_ok());
     }
 }

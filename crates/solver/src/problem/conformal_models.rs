@@ -268,6 +268,7 @@ impl ConformalRun {
         Report {
             model: case.model,
             totals,
+            fastsim_max_pressure_pa: None,
             friction_coefficient: if frictional {
                 case.friction.kinetic_coefficient
             } else {

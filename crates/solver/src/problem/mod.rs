@@ -399,6 +399,7 @@ impl ExactRun {
         Report {
             model: Model::Exact,
             totals,
+            fastsim_max_pressure_pa: None,
             friction_coefficient: if frictional {
                 case.friction.kinetic_coefficient
             } else {

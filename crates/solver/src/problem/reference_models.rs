@@ -65,6 +65,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         model: Model::Hertz,
         totals,
         friction_coefficient: 0.0,
+        fastsim_max_pressure_pa: None,
         grid: None,
         window_m: None,
         wfric_lateral: None,
@@ -80,7 +81,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
 }
 
 /// What the FASTSIM model reports, and which pressure.
-pub const NOTE_FASTSIM: &str = "normal quantities from Hertz; tangential from FASTSIM (Kalker's simplified theory); max_pressure_pa is Hertz's p0 = 3 Fn / (2 pi a b); FASTSIM's traction bound mu p uses the parabolic pressure of the simplified theory, whose maximum 2 Fn / (pi a b) = 4/3 p0 is the maximum pressure CONTACT's FASTSIM reports";
+pub const NOTE_FASTSIM: &str = "normal quantities from Hertz; tangential from FASTSIM (Kalker's simplified theory); max_pressure_pa is Hertz's p0 = 3 Fn / (2 pi a b); FASTSIM's traction bound mu p uses the parabolic pressure of the simplified theory, whose maximum 2 Fn / (pi a b) = 4/3 p0 is fastsim_max_pressure_pa (the maximum pressure CONTACT's FASTSIM reports)";
 
 /// Model `fastsim`: the Hertz ellipse, then FASTSIM with the case's creepages
 /// on `nx` x `ny` elements.
@@ -118,6 +119,7 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         model: Model::Fastsim,
         totals: StepReport::closed_form(totals, t0.elapsed().as_secs_f64()),
         friction_coefficient: case.friction.kinetic_coefficient,
+        fastsim_max_pressure_pa: Some(out.bound_peak_pressure_pa),
         grid: Some([case.nx, case.ny]),
         window_m: None,
         wfric_lateral: None,
@@ -192,6 +194,7 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         model: case.model,
         totals: step,
         friction_coefficient: 0.0,
+        fastsim_max_pressure_pa: None,
         grid: None,
         window_m: None,
         wfric_lateral: None,
@@ -204,4 +207,46 @@ pub fn solve_conformal_hertz(case: &Case, corrected: bool) -> Result<Report<'sta
         temperature: None,
         interfacial_layer: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Model `fastsim` reports both maxima, named: Hertz's p0 in the
+    /// totals and FASTSIM's parabolic bound's peak 2 Fn/(pi a b) = 4/3 p0
+    /// in `fastsim_max_pressure_pa` (within the bound's discrete scaling,
+    /// O(1/n²) on 24 x 24), in the JSON and the summary; the other models
+    /// have no such number.
+    #[test]
+    fn fastsim_reports_hertz_p0_and_its_bound_peak() {
+        let case = |model: &str| {
+            Case::from_toml(&format!(
+                "model = \"{model}\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 2.6\n\
+                 b_per_m = 0.92\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-3\n\
+                 [grid]\nnx = 24\nny = 24\n"
+            ))
+            .unwrap()
+        };
+        let r = solve_fastsim(&case("fastsim")).unwrap();
+        let h = case("fastsim").hertz().unwrap();
+        let p0 = h.max_pressure_pa;
+        let pi = std::f64::consts::PI;
+        let parabolic = 2.0 * h.normal_force_n / (pi * h.semi_axis_x_m * h.semi_axis_y_m);
+        assert_eq!(r.totals.totals.max_pressure_pa, p0);
+        let peak = r.fastsim_max_pressure_pa.expect("FASTSIM's bound peak");
+        assert!(
+            (peak / parabolic - 1.0).abs() < 2e-3,
+            "{peak} vs {parabolic}"
+        );
+        assert!((peak / p0 - 4.0 / 3.0).abs() < 3e-3, "{peak} vs {p0}");
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["fastsim_max_pressure_pa"].as_f64(), Some(peak));
+        assert!(r.human().contains("FASTSIM bound max p [MPa]"));
+        let hertz = solve_hertz(&case("hertz")).unwrap();
+        assert!(hertz.fastsim_max_pressure_pa.is_none());
+        let json = serde_json::to_value(&hertz).unwrap();
+        assert!(json.get("fastsim_max_pressure_pa").is_none());
+    }
 }

@@ -173,6 +173,15 @@ pub struct Report<'a> {
     pub totals: StepReport,
     /// Kinetic friction coefficient used [-] (0 for frictionless cases).
     pub friction_coefficient: f64,
+    /// Model `fastsim`: the peak of the pressure whose multiple mu p
+    /// bounds FASTSIM's tractions \[Pa\], Kalker's parabolic pressure of
+    /// the simplified theory, 2 Fn/(pi a b) = 4/3 p0 (the maximum pressure
+    /// CONTACT's FASTSIM reports, its PMAX), scaled so that the elements'
+    /// pressures sum to Fn (within O(1/nx + 1/ny) of it). The totals'
+    /// `max_pressure_pa` stays Hertz's p0 = 3 Fn/(2 pi a b). None for the
+    /// other models.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fastsim_max_pressure_pa: Option<f64>,
     /// Grid used: `[nx, ny]` (elements of the exact model, strips x elements of FASTSIM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<[usize; 2]>,
@@ -550,6 +559,12 @@ impl Report<'_> {
             );
         }
         patch_lines(&mut line, t, tangential, "");
+        if let Some(p) = self.fastsim_max_pressure_pa {
+            line(
+                "FASTSIM bound max p [MPa]",
+                format!("{:.2}   (parabolic, 4/3 p0)", mpa(p)),
+            );
+        }
         if tangential && mu > 0.0 {
             line(
                 "adhesion fraction [-]",

@@ -82,7 +82,7 @@ use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
+use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
     equivalent_ellipse, CreepInterpolation, GridFastsim, GridFastsimInput, GridFlexibility,
     GridFriction, GridPressure, RollingSense,
@@ -135,7 +135,8 @@ pub enum WheelRailModel {
     /// elliptic pressure in the traction bound
     /// ([`crate::core::fastsim::TractionBound::Elliptic`]) instead of the
     /// parabolic one. The patch's `max_pressure_pa` is Hertz's p0 with
-    /// either FASTSIM bound.
+    /// either FASTSIM bound, its `fastsim_max_pressure_pa` the bound's
+    /// peak (p0 here, 4/3 p0 with the parabolic bound).
     HertzFastsimElliptic,
     /// Hertz as [`WheelRailModel::HertzFastsim`], strip theory with
     /// Kalker's coefficients for the tangential forces
@@ -512,6 +513,17 @@ pub struct PatchResult {
     /// `kik_piotrowski` patch the peak of its pressure, which its FASTSIM
     /// bound shares.
     pub max_pressure_pa: f64,
+    /// Patches solved by FASTSIM (models `hertz_fastsim`,
+    /// `hertz_fastsim_elliptic`, `hertz_fastsim_modified`, `auto`'s Hertz
+    /// patches; None otherwise and without friction): the peak of the
+    /// pressure whose multiple mu p bounds FASTSIM's tractions \[Pa\]:
+    /// with the parabolic bound Kalker's parabolic pressure, 2 Fn/(pi a b)
+    /// = 4/3 p0 (the maximum pressure CONTACT's FASTSIM reports), with the
+    /// elliptic bound (`hertz_fastsim_elliptic`) Hertz's p0; either scaled
+    /// so that the elements' pressures sum to Fn
+    /// ([`crate::core::fastsim::FastsimOutput::bound_peak_pressure_pa`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fastsim_max_pressure_pa: Option<f64>,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
     /// Share of the contact area in adhesion [-].
@@ -725,6 +737,8 @@ struct PatchOutcome {
     mz_nm: f64,
     approach_m: f64,
     max_pressure_pa: f64,
+    /// FASTSIM's traction bound's peak pressure (patches it solved).
+    fastsim_max_pressure_pa: Option<f64>,
     area_m2: f64,
     adhesion: f64,
     tgamma_n: f64,
@@ -740,6 +754,17 @@ struct PatchOutcome {
     /// The iterative solver stopped at an iteration limit (exact and
     /// conformal patches); the outcome is its last iterate.
     unconverged: bool,
+}
+
+/// A FASTSIM solve's (Fx, Fs, Mz, adhesion fraction, T gamma) and its
+/// traction bound's peak pressure.
+type TangentialForces = ((f64, f64, f64, f64, f64), Option<f64>);
+
+fn fastsim_forces(f: &FastsimOutput) -> TangentialForces {
+    (
+        (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n),
+        Some(f.bound_peak_pressure_pa),
+    )
 }
 
 impl PatchWork {
@@ -983,11 +1008,12 @@ impl PatchWork {
                         h.semi_axis_y_m,
                         h.normal_force_n,
                     );
-                    // (Fx, Fs, Mz, adhesion fraction, T gamma) of the model.
-                    let (fx, fs, mz, adhesion, tgamma) = match model {
+                    // (Fx, Fs, Mz, adhesion fraction, T gamma) of the model,
+                    // and FASTSIM's bound peak.
+                    let ((fx, fs, mz, adhesion, tgamma), peak) = match model {
                         WheelRailModel::HertzPolach => {
                             let f = polach(&tangential, self.speed, &input.settings.polach)?;
-                            (f.fx_n, f.fy_n, 0.0, f.adhesion_fraction, f.tgamma_n)
+                            ((f.fx_n, f.fy_n, 0.0, f.adhesion_fraction, f.tgamma_n), None)
                         }
                         WheelRailModel::HertzFastsimModified => {
                             fastsim.set_traction_bound(TractionBound::Parabolic);
@@ -998,12 +1024,15 @@ impl PatchWork {
                                     &input.settings.modified_fastsim,
                                 )
                                 .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
-                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
+                            fastsim_forces(&f)
                         }
                         WheelRailModel::HertzStrip => {
                             let f = strip_theory(&tangential, HERTZ_STRIPS)
                                 .map_err(|e| ContactError::invalid("strip", e.to_string()))?;
-                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
+                            (
+                                (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n),
+                                None,
+                            )
                         }
                         _ => {
                             fastsim.set_traction_bound(
@@ -1016,9 +1045,10 @@ impl PatchWork {
                             let f = fastsim
                                 .solve(&tangential)
                                 .map_err(|e| ContactError::invalid("fastsim", e.to_string()))?;
-                            (f.fx_n, f.fy_n, f.mz_nm, f.adhesion_fraction, f.tgamma_n)
+                            fastsim_forces(&f)
                         }
                     };
+                    out.fastsim_max_pressure_pa = peak;
                     out.fx_n = fx;
                     out.fs_n = fs;
                     out.mz_nm = mz;
@@ -3488,6 +3518,7 @@ pub(crate) fn finish(
             mz_nm: o.mz_nm,
             approach_m: o.approach_m,
             max_pressure_pa: o.max_pressure_pa,
+            fastsim_max_pressure_pa: o.fastsim_max_pressure_pa,
             contact_area_m2: o.area_m2,
             adhesion_fraction: o.adhesion,
             rolling_speed_m_per_s: p.speed,

@@ -358,7 +358,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer", "viscoelastic")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -374,6 +374,7 @@ class PatchCase(_message.Message):
     EXTRA_RIGID_SLIP_FIELD_NUMBER: _ClassVar[int]
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     INTERFACIAL_LAYER_FIELD_NUMBER: _ClassVar[int]
+    VISCOELASTIC_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -389,7 +390,26 @@ class PatchCase(_message.Message):
     extra_rigid_slip: ExtraRigidSlip
     conformal: ConformalSection
     interfacial_layer: InterfacialLayerSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ...) -> None: ...
+    viscoelastic: ViscoelasticSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ..., viscoelastic: _Optional[_Union[ViscoelasticSection, _Mapping]] = ...) -> None: ...
+
+class ViscoelasticSection(_message.Message):
+    __slots__ = ("rolling_speed_m_per_s", "body1", "body2")
+    ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    BODY1_FIELD_NUMBER: _ClassVar[int]
+    BODY2_FIELD_NUMBER: _ClassVar[int]
+    rolling_speed_m_per_s: float
+    body1: ViscoelasticBody
+    body2: ViscoelasticBody
+    def __init__(self, rolling_speed_m_per_s: _Optional[float] = ..., body1: _Optional[_Union[ViscoelasticBody, _Mapping]] = ..., body2: _Optional[_Union[ViscoelasticBody, _Mapping]] = ...) -> None: ...
+
+class ViscoelasticBody(_message.Message):
+    __slots__ = ("relaxation_ratio", "creep_relaxation_time_s")
+    RELAXATION_RATIO_FIELD_NUMBER: _ClassVar[int]
+    CREEP_RELAXATION_TIME_S_FIELD_NUMBER: _ClassVar[int]
+    relaxation_ratio: float
+    creep_relaxation_time_s: float
+    def __init__(self, relaxation_ratio: _Optional[float] = ..., creep_relaxation_time_s: _Optional[float] = ...) -> None: ...
 
 class InterfacialLayerSection(_message.Message):
     __slots__ = ("thickness_m", "shear_modulus_pa", "yield_limit_pa", "hardening_pa_per_m")
@@ -628,7 +648,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ..., layer_yield_limit_pa: _Optional[_Iterable[float]] = ..., layer_plastic_x_m: _Optional[_Iterable[float]] = ..., layer_plastic_y_m: _Optional[_Iterable[float]] = ..., layer_plastic: _Optional[_Iterable[bool]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature", "fastsim_max_pressure_pa")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -639,6 +659,7 @@ class PatchResult(_message.Message):
     FORCE_CONTROL_FIELD_NUMBER: _ClassVar[int]
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
+    FASTSIM_MAX_PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -649,7 +670,8 @@ class PatchResult(_message.Message):
     force_control: ForceControl
     subsurface: SubsurfaceResult
     temperature: TemperatureResult
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ...) -> None: ...
+    fastsim_max_pressure_pa: float
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., fastsim_max_pressure_pa: _Optional[float] = ...) -> None: ...
 
 class TemperaturePeak(_message.Message):
     __slots__ = ("temperature_k", "x_m", "y_m")
@@ -1231,7 +1253,7 @@ class TrackForce(_message.Message):
     def __init__(self, x_n: _Optional[float] = ..., y_n: _Optional[float] = ..., z_n: _Optional[float] = ...) -> None: ...
 
 class WheelRailPatch(_message.Message):
-    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient", "temperature", "rolling_speed_m_per_s")
+    __slots__ = ("method", "contact_angle_rad", "contact_angle_variation_rad", "rail_y_m", "rail_z_m", "wheel_y_m", "track_x_m", "track_y_m", "track_z_m", "rolling_radius_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n", "fx_n", "fs_n", "mz_nm", "approach_m", "max_pressure_pa", "contact_area_m2", "adhesion_fraction", "frictional_power_w", "force_track_n", "grid_nx", "grid_ns", "grid", "fields", "friction_coefficient", "temperature", "rolling_speed_m_per_s", "fastsim_max_pressure_pa")
     METHOD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_RAD_FIELD_NUMBER: _ClassVar[int]
     CONTACT_ANGLE_VARIATION_RAD_FIELD_NUMBER: _ClassVar[int]
@@ -1262,6 +1284,7 @@ class WheelRailPatch(_message.Message):
     FRICTION_COEFFICIENT_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    FASTSIM_MAX_PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
     method: WheelRailModel
     contact_angle_rad: float
     contact_angle_variation_rad: float
@@ -1292,7 +1315,8 @@ class WheelRailPatch(_message.Message):
     friction_coefficient: float
     temperature: TemperatureResult
     rolling_speed_m_per_s: float
-    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., rolling_speed_m_per_s: _Optional[float] = ...) -> None: ...
+    fastsim_max_pressure_pa: float
+    def __init__(self, method: _Optional[_Union[WheelRailModel, str]] = ..., contact_angle_rad: _Optional[float] = ..., contact_angle_variation_rad: _Optional[float] = ..., rail_y_m: _Optional[float] = ..., rail_z_m: _Optional[float] = ..., wheel_y_m: _Optional[float] = ..., track_x_m: _Optional[float] = ..., track_y_m: _Optional[float] = ..., track_z_m: _Optional[float] = ..., rolling_radius_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., fx_n: _Optional[float] = ..., fs_n: _Optional[float] = ..., mz_nm: _Optional[float] = ..., approach_m: _Optional[float] = ..., max_pressure_pa: _Optional[float] = ..., contact_area_m2: _Optional[float] = ..., adhesion_fraction: _Optional[float] = ..., frictional_power_w: _Optional[float] = ..., force_track_n: _Optional[_Union[TrackForce, _Mapping]] = ..., grid_nx: _Optional[int] = ..., grid_ns: _Optional[int] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., friction_coefficient: _Optional[float] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., rolling_speed_m_per_s: _Optional[float] = ..., fastsim_max_pressure_pa: _Optional[float] = ...) -> None: ...
 
 class WheelRailWheel(_message.Message):
     __slots__ = ("side", "vertical_approach_m", "min_gap_m", "patches", "force_track_n", "load_iterations")
