@@ -148,8 +148,8 @@ enum ElementIntegral {
     Y,
 }
 
-/// Offsets from this many half-widths of an element on take
-/// [`HalfSpaceInfluence::far_coefficient`] in the relaxation terms: the
+/// Offsets from this many half-widths of an element on take the far-field
+/// coefficient of [`HalfSpaceInfluence`] in the relaxation terms: the
 /// 8-point Gauss rule is then exact to about 1e-16 (Bernstein ellipse of
 /// parameter 16 for the nearest singularity).
 pub const FAR_FIELD_HALF_WIDTHS: f64 = 8.0;
