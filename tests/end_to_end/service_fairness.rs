@@ -22,7 +22,10 @@
 //!   `x-forwarded-for` is believed;
 //! - a client with many solves waiting delays another client's solve by
 //!   the one running and one more, not by all of them (the workers serve
-//!   the clients in turn).
+//!   the clients in turn);
+//! - viscoelastic coefficients whose callers gave up (their deadline
+//!   passed) stop being integrated, and the workers are free for the next
+//!   solve at once.
 //!
 //! Clients are told apart by address: the hoarders connect through a
 //! relay ([`relay`]) whose connections to the server come from another
@@ -866,4 +869,45 @@ async fn a_trusted_proxy_tells_its_clients_apart() {
     assert_eq!(refused(&server, "client_max_connections").await, 0.0);
     drop(held);
     server.shutdown().await;
+}
+
+/// Two viscoelastic 48 x 48 solves (about 10 s of coefficient integration
+/// each, one per heavy worker) whose clients give up after 1 s: their
+/// builds stop with their deadlines, and the next exact solve is served
+/// at once (before, it waited for both builds to finish).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn abandoned_viscoelastic_builds_free_their_workers() {
+    let server = server(ServeConfig::default()).await;
+    let addr = server.addr;
+    let visc = |tc: f64| {
+        let mut case = rolling(48, 1e-3);
+        case.viscoelastic = Some(pb::ViscoelasticSection {
+            rolling_speed_m_per_s: 10.0,
+            body1: Some(pb::ViscoelasticBody {
+                relaxation_ratio: 2.0,
+                creep_relaxation_time_s: tc,
+            }),
+            body2: None,
+        });
+        case
+    };
+    let abandon = |case: pb::PatchCase| async move {
+        let mut client = client_at(addr).await;
+        let mut request = tonic::Request::new(solve_request(case));
+        request.set_timeout(Duration::from_secs(1));
+        client.solve_patch(request).await
+    };
+    let (a, b) = tokio::join!(abandon(visc(1e-4)), abandon(visc(2e-4)));
+    for r in [a, b] {
+        assert_eq!(r.unwrap_err().code(), Code::DeadlineExceeded);
+    }
+    let mut client = client_at(addr).await;
+    let t0 = Instant::now();
+    let r = tokio::time::timeout(
+        Duration::from_secs(5),
+        client.solve_patch(solve_request(rolling(16, 1e-3))),
+    )
+    .await
+    .unwrap_or_else(|_| panic!("the exact solve waited for the abandoned builds"));
+    r.unwrap_or_else(|s| panic!("refused after {:?}: {s:?}", t0.elapsed()));
 }

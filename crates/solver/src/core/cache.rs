@@ -8,11 +8,18 @@
 //! until they finish; the cache only forgets it). The first use of a key
 //! builds its kernels once, however many threads ask at the same time: the
 //! others wait for that build instead of repeating it.
+//!
+//! A viscoelastic set (seconds of numerical integration) built for a caller
+//! that is cancelled ([`crate::core::cancel`]) stops integrating at once:
+//! that caller gets the unfinished set (its solve then answers Cancelled
+//! without using it), the cache forgets it, and a caller that waited for
+//! the same build and is not cancelled builds it again.
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use crate::core::cancel;
 use crate::core::fft::{ConvolutionPlan, KernelSet};
 use crate::core::grid::Grid;
 use crate::core::influence::{HalfSpaceInfluence, KernelKind};
@@ -39,8 +46,12 @@ struct Key {
 }
 
 /// One entry: the kernels once built, when it was last used, its size.
+/// A build: the set, and whether it is whole (false: a cancelled
+/// caller's viscoelastic build, which stopped integrating).
+type Built = (Arc<KernelSet>, bool);
+
 struct Entry {
-    cell: Arc<OnceLock<Arc<KernelSet>>>,
+    cell: Arc<OnceLock<Built>>,
     last_used: u64,
     /// 0 until the build is accounted.
     bytes: usize,
@@ -231,66 +242,88 @@ impl KernelCache {
             ],
             kind,
         };
-        let (cell, plan) = {
-            let mut inner = self.lock();
-            inner.clock += 1;
-            let now = inner.clock;
-            let entry = inner.map.entry(key).or_insert_with(|| Entry {
-                cell: Arc::new(OnceLock::new()),
-                last_used: now,
-                bytes: 0,
-            });
-            entry.last_used = now;
-            let cell = entry.cell.clone();
-            if let Some(set) = cell.get() {
-                self.hits.fetch_add(1, Relaxed);
-                return set.clone();
-            }
-            let plan = inner
-                .plans
-                .entry((grid.nx, grid.ny))
-                .or_insert_with(|| Arc::new(ConvolutionPlan::new(grid.nx, grid.ny)))
-                .clone();
-            (cell, plan)
-        };
-        let mut built = false;
-        let set = cell
-            .get_or_init(|| {
-                built = true;
-                let influence = if grid.is_line() {
-                    HalfSpaceInfluence::plane_strain(grid.dx_m, material)
-                } else {
-                    HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
+        loop {
+            let (cell, plan) = {
+                let mut inner = self.lock();
+                inner.clock += 1;
+                let now = inner.clock;
+                let entry = inner.map.entry(key).or_insert_with(|| Entry {
+                    cell: Arc::new(OnceLock::new()),
+                    last_used: now,
+                    bytes: 0,
+                });
+                entry.last_used = now;
+                let cell = entry.cell.clone();
+                if let Some((set, true)) = cell.get() {
+                    self.hits.fetch_add(1, Relaxed);
+                    return set.clone();
                 }
-                .with_layer_flexibility(layer);
-                let influence = match visc {
-                    Some(v) => influence.with_viscoelastic(material, v),
-                    None => influence,
-                };
-                Arc::new(match other {
-                    Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
-                    None => KernelSet::new(plan, influence, kind),
+                let plan = inner
+                    .plans
+                    .entry((grid.nx, grid.ny))
+                    .or_insert_with(|| Arc::new(ConvolutionPlan::new(grid.nx, grid.ny)))
+                    .clone();
+                (cell, plan)
+            };
+            let mut built = false;
+            let (set, whole) = cell
+                .get_or_init(|| {
+                    built = true;
+                    let influence = if grid.is_line() {
+                        HalfSpaceInfluence::plane_strain(grid.dx_m, material)
+                    } else {
+                        HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
+                    }
+                    .with_layer_flexibility(layer);
+                    let influence = match visc {
+                        Some(v) => influence.with_viscoelastic(material, v),
+                        None => influence,
+                    };
+                    let set = Arc::new(match other {
+                        Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
+                        None => KernelSet::new(plan, influence, kind),
+                    });
+                    // Cancellation stays once asked: a build it did not cut
+                    // short is whole.
+                    (set, visc.is_none() || !cancel::requested())
                 })
-            })
-            .clone();
-        if !built {
-            // Another thread built it while this one waited.
-            self.hits.fetch_add(1, Relaxed);
+                .clone();
+            if !whole {
+                // Forgotten by whoever sees it first; built again for a
+                // caller that is not cancelled.
+                let mut inner = self.lock();
+                if inner
+                    .map
+                    .get(&key)
+                    .is_some_and(|e| Arc::ptr_eq(&e.cell, &cell))
+                {
+                    inner.map.remove(&key);
+                }
+                drop(inner);
+                if cancel::requested() {
+                    return set;
+                }
+                continue;
+            }
+            if !built {
+                // Another thread built it while this one waited.
+                self.hits.fetch_add(1, Relaxed);
+                return set;
+            }
+            self.misses.fetch_add(1, Relaxed);
+            let mut inner = self.lock();
+            let bytes = set.bytes();
+            // The entry may have been evicted (and even re-created)
+            // meanwhile: account only the entry this build belongs to.
+            if let Some(e) = inner.map.get_mut(&key) {
+                if Arc::ptr_eq(&e.cell, &cell) && e.bytes == 0 {
+                    e.bytes = bytes;
+                    inner.bytes += bytes;
+                }
+            }
+            self.evict(&mut inner, Some(key));
             return set;
         }
-        self.misses.fetch_add(1, Relaxed);
-        let mut inner = self.lock();
-        let bytes = set.bytes();
-        // The entry may have been evicted (and even re-created) meanwhile:
-        // account only the entry this build belongs to.
-        if let Some(e) = inner.map.get_mut(&key) {
-            if Arc::ptr_eq(&e.cell, &cell) && e.bytes == 0 {
-                e.bytes = bytes;
-                inner.bytes += bytes;
-            }
-        }
-        self.evict(&mut inner, Some(key));
-        set
     }
 
     /// Drops least recently used entries until the cap holds, never `keep`
@@ -327,6 +360,40 @@ mod tests {
 
     fn grid(n: usize) -> Grid {
         Grid::centered(n, n, 0.01, 0.01).unwrap()
+    }
+
+    /// A viscoelastic build for a cancelled caller stops integrating, and
+    /// the cache does not keep it: the next caller's set is the whole one,
+    /// the same as a fresh cache builds.
+    #[test]
+    fn a_cancelled_viscoelastic_build_is_cut_short_and_not_kept() {
+        use crate::core::cancel::CancelToken;
+        use crate::core::viscoelastic::Sls;
+        let (m, g, k) = (material(), grid(8), KernelKind::SteadyRolling);
+        let sls = Sls {
+            relaxation_ratio: 2.0,
+            creep_relaxation_time_s: 0.002,
+        };
+        let visc = Viscoelastic {
+            rolling_speed_m_per_s: 10.0,
+            body1: sls,
+            body2: sls,
+        };
+        let whole = KernelCache::default()
+            .get_viscoelastic(&g, &m, 0.0, Some(&visc), k)
+            .tangential_norm_bound;
+        let cache = KernelCache::default();
+        let token = CancelToken::new();
+        token.cancel();
+        let cut = token.scope(|| cache.get_viscoelastic(&g, &m, 0.0, Some(&visc), k));
+        assert_ne!(cut.tangential_norm_bound, whole, "the integration stopped");
+        assert_eq!(cache.figures().entries, 0, "not kept");
+        let again = cache.get_viscoelastic(&g, &m, 0.0, Some(&visc), k);
+        assert_eq!(again.tangential_norm_bound.to_bits(), whole.to_bits());
+        assert!(Arc::ptr_eq(
+            &again,
+            &cache.get_viscoelastic(&g, &m, 0.0, Some(&visc), k)
+        ));
     }
 
     #[test]

@@ -55,6 +55,7 @@
 //! length); [`crate::core::grid::Grid::line`] keeps windows within R.
 //! A_yy is the antiplane (lateral) shear of the half-plane.
 
+use crate::core::cancel;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::viscoelastic::{relaxed_average, Viscoelastic, QUADRATURE_TOLERANCE};
 
@@ -302,6 +303,12 @@ impl HalfSpaceInfluence {
         let Some(v) = &self.visc else {
             return elastic;
         };
+        // A cancelled caller's kernel build stops integrating (about 0.1 ms
+        // a coefficient; the cache keeps no set built so:
+        // [`crate::core::cache::KernelCache`]).
+        if cancel::requested() {
+            return elastic;
+        }
         let h = 0.5 * self.dx;
         // Accuracy against the size of the self coefficient (A_xx >= A_nn).
         let tol = QUADRATURE_TOLERANCE * self.inv_pi_g * self.dx;

@@ -628,8 +628,9 @@ pub const INTERFACIAL_LAYER_KEY: &str = "interfacial_layer";
 
 /// Most elements of a surface grid (not a line contact) with viscoelastic
 /// bodies: their coefficients are integrated numerically for each element
-/// offset (2 nx x 2 ny of them), about 10 s at 48 x 48 on a 2-core Xeon,
-/// and the build cannot be cancelled; this bounds what one problem costs.
+/// offset (2 nx x 2 ny of them), about 10 s at 48 x 48 on a 2-core Xeon;
+/// this bounds what one problem costs (a cancelled caller's build stops at
+/// once: [`crate::core::cache`]).
 pub const MAX_VISCOELASTIC_ELEMENTS: usize = 4096;
 
 /// The key of [`SolverSettings::viscoelastic`] in errors.
