@@ -21,9 +21,17 @@
 //!   files are numbers in millimetres, so a profile lies at
 //!   `reader's metres x scale factor`.
 //! * Track (Z digit): the gauge point placement (gauge height > 0), gauge
-//!   and cant. Absolute rail placement (gauge height <= 0), track
-//!   curvature, rail deviations and the massless rail (Z = 32, 33) are
-//!   refused. The roller radius (NOMRAD) is for roller rigs and ignored.
+//!   and cant; or the absolute placement (gauge height <= 0), the rail
+//!   profile's origin at (RAILY0, RAILZ0) of the track (RAILY0 a track y,
+//!   positive for a right rail), rotated by the cant about it and not
+//!   shifted to touch the track plane (the solver's `RailPlacement::Origin`, at
+//!   q = sign(side) RAILY0 of the side frame). Track curvature, rail
+//!   deviations and the massless rail (Z = 32, 33) are refused. The
+//!   roller radius (NOMRAD) is for roller rigs and ignored.
+//! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
+//!   from the wheelset centre) and may lie outside the profile, as in
+//!   CONTACT; the solver is given the same placement from the profile's
+//!   smallest y.
 //! * Wheelset (E digit): flange-back distance and position, nominal
 //!   radius and the optional tape circle; position s, y, z, roll, yaw
 //!   (pitch is stored: a round wheel does not depend on it); velocity;
@@ -86,8 +94,8 @@ use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
     ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side,
-    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailPlacement, SearchScratch,
+    Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
     WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
 };
 
@@ -142,9 +150,40 @@ fn slot<'a, T>(s: &'a Slot<T>, missing: &str) -> Result<&'a T> {
 /// Track dimensions (Z = 1, 3), SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Track {
-    gauge_height_m: f64,
-    gauge_m: f64,
+    placement: Placement,
     cant_rad: f64,
+}
+
+/// The rail placement of `cntc_settrackdimensions`, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Placement {
+    /// GAUGHT > 0: GAUGHT and GAUGWD.
+    GaugePoint { gauge_height_m: f64, gauge_m: f64 },
+    /// GAUGHT <= 0: RAILY0 (track y, not mirrored) and RAILZ0.
+    Absolute { rail_y_m: f64, rail_z_m: f64 },
+}
+
+impl Track {
+    /// The solver's track for the rail of `side`: RAILY0 in the side frame.
+    fn for_side(&self, side: Side) -> TrackData {
+        let placement = match self.placement {
+            Placement::GaugePoint {
+                gauge_height_m,
+                gauge_m,
+            } => RailPlacement::GaugePoint {
+                gauge_m,
+                gauge_height_m,
+            },
+            Placement::Absolute { rail_y_m, rail_z_m } => RailPlacement::Origin {
+                q_m: side.sign() * rail_y_m,
+                z_m: rail_z_m,
+            },
+        };
+        TrackData {
+            placement,
+            cant_rad: self.cant_rad,
+        }
+    }
 }
 
 /// Wheelset dimensions (E = 3, 5), SI.
@@ -679,32 +718,36 @@ impl WheelRail {
         let u = self.units();
         if ztrack == 1 || ztrack == 3 {
             let gaught = u.len(p[0]);
-            let track = if gaught <= 0.0 {
+            let curv_index = if ztrack == 1 { 6 } else { 12 };
+            let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
+            let track = if curv != 0.0 {
                 Err(CntcError::NotSupported(format!(
-                    "{CALL}: GAUGHT = {} <= 0 selects absolute rail placement (RAILY0, RAILZ0), \
-                     which is not supported; give the gauge height > 0, GAUGWD and CANT",
-                    p[0]
+                    "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
+                     tangent track (0)"
+                )))
+            } else if gaught <= 0.0 {
+                // Absolute placement: the rail profile's origin at
+                // (RAILY0, RAILZ0) of the track.
+                Ok(Track {
+                    placement: Placement::Absolute {
+                        rail_y_m: u.len(p[1]),
+                        rail_z_m: u.len(p[2]),
+                    },
+                    cant_rad: p[3],
+                })
+            } else if p[2] <= 0.0 {
+                Err(CntcError::Input(format!(
+                    "{CALL}: the gauge GAUGWD = {} (params(3)) must be > 0",
+                    p[2]
                 )))
             } else {
-                let curv_index = if ztrack == 1 { 6 } else { 12 };
-                let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
-                if curv != 0.0 {
-                    Err(CntcError::NotSupported(format!(
-                        "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
-                         tangent track (0)"
-                    )))
-                } else if p[2] <= 0.0 {
-                    Err(CntcError::Input(format!(
-                        "{CALL}: the gauge GAUGWD = {} (params(3)) must be > 0",
-                        p[2]
-                    )))
-                } else {
-                    Ok(Track {
+                Ok(Track {
+                    placement: Placement::GaugePoint {
                         gauge_height_m: gaught,
                         gauge_m: u.len(p[2]),
-                        cant_rad: p[3],
-                    })
-                }
+                    },
+                    cant_rad: p[3],
+                })
             };
             // GAUGSQ (params(2)) is reserved in CONTACT; NOMRAD (params(5))
             // is the roller radius of roller rigs.
@@ -1111,8 +1154,18 @@ impl WheelRail {
         Ok(())
     }
 
+    /// Whether `pair` was placed for the rail of `side`: a rail placed
+    /// absolutely sits at RAILY0 of its own side, and the pair placed for
+    /// the other side does not serve.
+    fn fits(&self, pair: &WheelRailPair, side: Side) -> bool {
+        match &self.track {
+            Some(Ok(track)) => *pair.track() == track.for_side(side),
+            _ => true,
+        }
+    }
+
     /// The placed profiles (built when missing).
-    fn build_pair(&self) -> Result<Arc<WheelRailPair>> {
+    fn build_pair(&self, side: Side) -> Result<Arc<WheelRailPair>> {
         let rail = slot(
             &self.rail,
             "the rail profile has not been set: cntc_setprofileinputfname or \
@@ -1154,19 +1207,39 @@ impl WheelRail {
             0.0 => wheel_p,
             dz => wheel_p.translated(0.0, dz),
         };
+        // FBPOS only places the profile (its y = 0 at FBDIST/2 - FBPOS from
+        // the wheelset centre) and may lie outside it (test-rollers2.inp:
+        // FBPOS = -100 mm on a sphere of y -50..50 mm); the solver takes
+        // the back of the flange on the profile: the same placement from
+        // the profile's smallest y.
+        let (lo, hi) = wheel_p.y_range_m();
+        let (fb_distance_m, fb_y_m) = if (lo..=hi).contains(&dims.flange_back_y_m) {
+            (dims.flange_back_distance_m, dims.flange_back_y_m)
+        } else {
+            (
+                dims.flange_back_distance_m - 2.0 * (dims.flange_back_y_m - lo),
+                lo,
+            )
+        };
+        if fb_distance_m <= 0.0 {
+            return Err(CntcError::Input(format!(
+                "cntc_setwheelsetdimensions: FBDIST/2 - FBPOS = {} puts the wheel profile \
+                 (y from {} to {}) across the wheelset centre",
+                self.units()
+                    .len_out(0.5 * dims.flange_back_distance_m - dims.flange_back_y_m),
+                self.units().len_out(lo),
+                self.units().len_out(hi)
+            )));
+        }
         PairCache::global()
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
-                TrackData {
-                    gauge_m: track.gauge_m,
-                    gauge_height_m: track.gauge_height_m,
-                    cant_rad: track.cant_rad,
-                },
+                track.for_side(side),
                 WheelsetData {
-                    flange_back_distance_m: dims.flange_back_distance_m,
+                    flange_back_distance_m: fb_distance_m,
                     nominal_radius_m: dims.nominal_radius_m,
-                    flange_back_y_m: Some(dims.flange_back_y_m),
+                    flange_back_y_m: Some(fb_y_m),
                 },
                 &options,
             )
@@ -1195,8 +1268,8 @@ impl WheelRail {
         if self.config.digits.ret >= 2 {
             return Ok(0); // R = 2, 3: check the input only
         }
-        if self.pair.is_none() {
-            let pair = self.build_pair();
+        if !self.pair.as_ref().is_some_and(|p| self.fits(p, side)) {
+            let pair = self.build_pair(side);
             self.pair_before = None;
             self.pair = Some(pair?);
         }
@@ -1985,9 +2058,9 @@ impl WheelRail {
         let s = side.sign();
         let built;
         let pair = match &self.pair {
-            Some(p) => p,
-            None => {
-                built = self.build_pair()?;
+            Some(p) if self.fits(p, side) => p,
+            _ => {
+                built = self.build_pair(side)?;
                 &built
             }
         };
@@ -2659,15 +2732,56 @@ mod tests {
         assert!(e.to_string().contains("T = 3"), "{e}");
         assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         let e = w
-            .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
+            .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0, 1e-3])
             .unwrap_err();
-        assert!(e.to_string().contains("GAUGHT"), "{e}");
+        assert!(e.to_string().contains("CURV"), "{e}");
         let missing = read_profile_file("no-such-file.prr");
         let e = w
             .set_profile_file("no-such-file.prr", missing.as_deref(), &[], &[])
             .unwrap_err();
         assert_eq!(e.ierror(), flags::err::PROFIL);
         assert!(w.calculate(&cache).is_err());
+    }
+
+    /// The sphere of test-rollers2.inp on its plane placed absolutely at
+    /// RAILY0 = 200 mm (CONTACT's units), on side `c1`.
+    fn sphere_on_plane(c1: i32) -> WheelRail {
+        let mut w = mbench(c1);
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../solver/profiles");
+        w.set_track_dimensions(
+            3,
+            &[-1.0, 200.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        )
+        .unwrap();
+        set_file(&mut w, dir.join("flat_plane.prr").to_str().unwrap());
+        w.set_wheelset_dimensions(3, &[200.0, -100.0, 100.0])
+            .unwrap();
+        set_file(&mut w, dir.join("circ_r100.prw").to_str().unwrap());
+        w.set_wheelset_position(2, &[0.0; 6]).unwrap();
+        w.set_wheelset_velocity(2, &[100.0, 0.0, 0.0, 0.0, 0.0, -1.0])
+            .unwrap();
+        w.set_vertical_force(5e4).unwrap();
+        w
+    }
+
+    /// RAILY0 is a track y: the plane at +200 mm lies under the right wheel
+    /// (at +200 mm), not under the left one (at -200 mm), and the pair
+    /// placed for the right side is not used for the left.
+    #[test]
+    fn an_absolute_rail_is_placed_on_its_own_side() {
+        let cache = KernelCache::default();
+        let mut w = sphere_on_plane(1);
+        w.calculate(&cache).unwrap();
+        let track_y = |w: &WheelRail| w.outcomes[0].location.as_ref().unwrap().track[1];
+        close("YCP_TR", track_y(&w), 0.2, 1e-9);
+        assert_eq!(w.config.set_flag(1, flags::IC_CONFIG, 0), None);
+        assert!(w.calculate(&cache).is_err());
+        let mut left = sphere_on_plane(0);
+        left.calculate(&cache).unwrap_err();
+        left.set_track_dimensions(1, &[-1.0, -200.0, 0.0, 0.0, 0.0])
+            .unwrap();
+        left.calculate(&cache).unwrap();
+        close("YCP_TR", track_y(&left), -0.2, 1e-9);
     }
 
     #[test]

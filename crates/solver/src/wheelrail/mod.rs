@@ -110,6 +110,6 @@ pub use table::{
 };
 pub use temperature::{PatchTemperatures, WheelRailThermal};
 pub use wheelset::{
-    Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
+    RailPlacement, Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
     WheelsetVelocity,
 };
