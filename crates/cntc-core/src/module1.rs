@@ -34,8 +34,23 @@
 //!   smallest y.
 //! * Wheelset (E digit): flange-back distance and position, nominal
 //!   radius and the optional tape circle; position s, y, z, roll, yaw
-//!   (pitch is stored: a round wheel does not depend on it); velocity;
-//!   flexibilities must be zero.
+//!   (pitch is stored: a round wheel does not depend on it); velocity.
+//! * Flexible wheelset deviations (E = 4, 5): the wheel profile's marker
+//!   displaced by DXWHL, DYWHL, DZWHL and the wheel turned about it by
+//!   DROLLW, DYAWW in wheelset coordinates, as CONTACT's
+//!   `wr_set_wheel_marker` places it; DPITCHW turns a round wheel onto
+//!   itself. A wheel is a body of revolution: the solver takes the
+//!   deflected wheel as a wheelset pose, its axis where the wheel's is
+//!   (`FlexedWheel`), and its rigid motion as CONTACT's wheel point velocity:
+//!   the wheelset's motion (pitch about the wheelset's axle) plus the
+//!   deviations' rates VXWHL .. VPITCHW about the marker. So DYAWW gives no
+//!   lateral creepage and DROLLW no spin by themselves (CONTACT's
+//!   test-rollers2.inp cases 1b, 1e). The creepages are relative to the
+//!   rolling speed of the deflected wheel about its own axle, CONTACT's to
+//!   that about the wheelset's: 0.15 % apart with DROLLW = 0.02 rad on a
+//!   100 mm wheel. Not with F = 1 (FX_WS given): refused. The solver's
+//!   limit of 0.2 rad on a wheel's roll and yaw holds for the deflected
+//!   wheel (test-rollers2 case 1b, DYAWW = -0.3 rad, is refused by it).
 //! * Load: N = 1 the vertical force FZ (`cntc_setverticalforce`), N = 0 the
 //!   wheelset height z_ws (zero at the nominal position, z_tr = -r_nom).
 //! * Discretisation (`cntc_setpotcontact`, icp = -1): DX = DS (square
@@ -217,6 +232,9 @@ pub struct Solved {
     side: Side,
     /// Wheelset axes in the side frame: forward, axle (outwards), down.
     ws_axes: [[f64; 3]; 3],
+    /// The wheel's turn from the wheelset's axes, DROLLW and DYAWW
+    /// \[rad\] (track frame).
+    wheel_turn_rad: [f64; 2],
     /// Rail roll in the side frame \[rad\] (-cant).
     rail_roll_rad: f64,
     /// The loaded wheelset height z_ws (zero at the nominal position) \[m\].
@@ -250,8 +268,10 @@ pub struct WheelRail {
     position: [f64; 6],
     /// vs, vy, vz \[m/s\], vroll, vyaw, vpitch \[rad/s\].
     velocity: [f64; 6],
-    /// Flexible wheelset deviations (E = 4, 5): refused when not zero.
-    flexibility: Slot<()>,
+    /// Flexible wheelset deviations (E = 4, 5), SI: DXWHL, DYWHL, DZWHL
+    /// \[m\], DROLLW, DYAWW, DPITCHW \[rad\], VXWHL, VYWHL, VZWHL \[m/s\],
+    /// VROLLW, VYAWW, VPITCHW \[rad/s\]; zeros without them.
+    flexibility: [f64; 12],
     /// FZ \[N\] (N = 1).
     vertical_force_n: Option<f64>,
     /// FX_WS \[N\] (F = 1): the total force on the rail along the
@@ -310,6 +330,17 @@ fn scale(k: f64, a: [f64; 3]) -> [f64; 3] {
 /// Components of `v` along the axes `e` (rows).
 fn in_basis(v: [f64; 3], e: &[[f64; 3]; 3]) -> [f64; 3] {
     [dot(v, e[0]), dot(v, e[1]), dot(v, e[2])]
+}
+
+/// The vector with components `v` along the axes `e` (rows).
+fn of_basis(v: [f64; 3], e: &[[f64; 3]; 3]) -> [f64; 3] {
+    add(scale(v[0], e[0]), add(scale(v[1], e[1]), scale(v[2], e[2])))
+}
+
+/// The axes `e` (rows) turned by the rotation whose columns, in `e`'s
+/// coordinates, are the rows of `r`: R_e R.
+fn turned(e: &[[f64; 3]; 3], r: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    [of_basis(r[0], e), of_basis(r[1], e), of_basis(r[2], e)]
 }
 
 /// `iparam(k)` (1-based as CONTACT numbers them), or `default`.
@@ -897,7 +928,7 @@ impl WheelRail {
         }
         if ewheel <= 3 {
             // No flexibilities: any values given are not used.
-            self.flexibility = Some(Ok(()));
+            self.flexibility = [0.0; 12];
             return Ok(());
         }
         if p.len() != 12 {
@@ -906,17 +937,24 @@ impl WheelRail {
                 p.len()
             )));
         }
-        let r = if p.iter().all(|v| *v == 0.0) {
-            Ok(())
-        } else {
-            Err(CntcError::NotSupported(format!(
-                "{CALL}: flexible wheelset deviations (E = {ewheel}) {p:?} are not supported; \
-                 give zeros"
-            )))
-        };
-        let out = r.clone();
-        self.flexibility = Some(r);
-        out
+        finite(
+            CALL,
+            &[
+                "DXWHL", "DYWHL", "DZWHL", "DROLLW", "DYAWW", "DPITCHW", "VXWHL", "VYWHL", "VZWHL",
+                "VROLLW", "VYAWW", "VPITCHW",
+            ],
+            p,
+        )?;
+        let u = self.units();
+        let mut f = [0.0; 12];
+        for k in 0..3 {
+            f[k] = u.len(p[k]);
+            f[k + 3] = p[k + 3];
+            f[k + 6] = u.velocity(p[k + 6]);
+            f[k + 9] = p[k + 9];
+        }
+        self.flexibility = f;
+        Ok(())
     }
 
     /// `cntc_setverticalforce` (also sets N = 1).
@@ -1148,8 +1186,13 @@ impl WheelRail {
         if let Some(Err(e)) = &self.deviations {
             return Err(e.clone());
         }
-        if let Some(Err(e)) = &self.flexibility {
-            return Err(e.clone());
+        if d.force == 1 && self.flexibility.iter().any(|v| *v != 0.0) {
+            return Err(CntcError::NotSupported(
+                "F = 1 (a prescribed total force FX_WS) with flexible wheelset deviations \
+                 (cntc_setwheelsetflexibility, E = 4, 5) is not supported: give the pitch rate \
+                 VPITCH (F = 0)"
+                    .into(),
+            ));
         }
         Ok(())
     }
@@ -1305,6 +1348,29 @@ impl WheelRail {
         Ok(ierror)
     }
 
+    /// The wheel deflected by the flexible wheelset deviations (E = 4, 5)
+    /// on the wheelset rolled and yawed by CONTACT's `roll`, `yaw`; `None`
+    /// without deviations (all zero: the undeflected wheel, bit for bit).
+    fn flexed_wheel(&self, side: Side, roll: f64, yaw: f64) -> Result<Option<FlexedWheel>> {
+        if self.flexibility.iter().all(|v| *v == 0.0) {
+            return Ok(None);
+        }
+        let dims = slot(&self.wheelset, "the wheelset dimensions have not been set")?;
+        let wheel = slot(&self.wheel, "the wheel profile has not been set")?;
+        let pair = self.pair.as_ref().ok_or_else(|| {
+            CntcError::Other("the profiles are placed before the deviations".into())
+        })?;
+        let r_marker = dims.nominal_radius_m + self.tape_shift(wheel)?;
+        Ok(Some(FlexedWheel::new(
+            side,
+            roll,
+            yaw,
+            pair.wheel(side).axial_offset_m(),
+            r_marker,
+            &self.flexibility,
+        )))
+    }
+
     /// The solver's input of this problem.
     fn solver_input(&self, side: Side) -> Result<WheelRailInput> {
         let d = self.discretisation.ok_or_else(|| {
@@ -1360,21 +1426,51 @@ impl WheelRail {
             Some((angles, laws)) => friction_by_angle(angles, laws, vs, start)?,
         };
         let o = SolverOrientation::of(roll, yaw, vroll, vyaw, vpitch);
+        let mut position = WheelsetPosition {
+            lateral_m: y_ws,
+            yaw_rad: o.yaw_rad,
+            roll_rad: Some(o.roll_rad),
+            track_s_m: s_ws,
+        };
+        let mut velocity = WheelsetVelocity {
+            forward_m_per_s: vs,
+            lateral_m_per_s: vy,
+            vertical_m_per_s: vz,
+            roll_rad_per_s: o.roll_rate,
+            yaw_rad_per_s: o.yaw_rate,
+            pitch_rad_per_s: Some(o.pitch_rate),
+        };
+        let mut load = load;
+        if let Some(fw) = self.flexed_wheel(side, roll, yaw)? {
+            // The deflected wheel as the solver's wheelset: its axis
+            // through the wheelset centre moved by center_rel, its rigid
+            // motion CONTACT's wheelset motion plus the deviations' rates.
+            let s = side.sign();
+            let (roll_w, yaw_w) = fw.solver_roll_yaw(side);
+            position.lateral_m = y_ws + s * fw.center_rel[1];
+            position.roll_rad = Some(roll_w);
+            position.yaw_rad = yaw_w;
+            if let WheelLoad::CenterHeight(z) = load {
+                load = WheelLoad::CenterHeight(z + fw.center_rel[2]);
+            }
+            let w_ws = add(
+                [s * o.roll_rate, 0.0, s * o.yaw_rate],
+                scale(o.pitch_rate, fw.ws_axes[1]),
+            );
+            let [fwd, lat, vert, roll_rate, yaw_rate, pitch] =
+                fw.solver_velocity(side, [vs, s * vy, vz], w_ws, &self.flexibility);
+            velocity = WheelsetVelocity {
+                forward_m_per_s: fwd,
+                lateral_m_per_s: lat,
+                vertical_m_per_s: vert,
+                roll_rad_per_s: roll_rate,
+                yaw_rad_per_s: yaw_rate,
+                pitch_rad_per_s: Some(pitch),
+            };
+        }
         Ok(WheelRailInput {
-            position: WheelsetPosition {
-                lateral_m: y_ws,
-                yaw_rad: o.yaw_rad,
-                roll_rad: Some(o.roll_rad),
-                track_s_m: s_ws,
-            },
-            velocity: WheelsetVelocity {
-                forward_m_per_s: vs,
-                lateral_m_per_s: vy,
-                vertical_m_per_s: vz,
-                roll_rad_per_s: o.roll_rate,
-                yaw_rad_per_s: o.yaw_rate,
-                pitch_rad_per_s: Some(o.pitch_rate),
-            },
+            position,
+            velocity,
             load,
             sides: vec![side],
             material,
@@ -1432,13 +1528,35 @@ impl WheelRail {
         };
         // The loaded wheelset (side frame).
         let [_, y_ws, _, roll, yaw, _] = self.position;
-        let center_z = sol.center_z_m + wheel.vertical_approach_m;
+        let flexed = self.flexed_wheel(side, roll, yaw)?;
+        // The solver's wheelset is the deflected wheel's (its centre
+        // center_rel from the wheelset's).
+        let shift = flexed.map_or([0.0; 3], |f| f.center_rel);
+        let center_z = sol.center_z_m + wheel.vertical_approach_m - shift[2];
         let ws_axes = contact_ws_axes(side, roll, yaw);
         let [_, a, e1] = ws_axes;
         let c = [0.0, s * y_ws, center_z];
         let axial = pair.wheel(side).axial_offset_m();
         let r_marker = dims.nominal_radius_m + dr_tape;
-        let w_marker = add(c, add(scale(axial, a), scale(r_marker, e1)));
+        let (wheel_axes, w_marker, wheel_marker_ws, wheel_angles) = match flexed {
+            None => (
+                ws_axes,
+                add(c, add(scale(axial, a), scale(r_marker, e1))),
+                [0.0, s * axial, r_marker, 0.0, 0.0],
+                [roll, yaw],
+            ),
+            Some(f) => {
+                let (roll_w, yaw_w) = f.contact_roll_yaw(side);
+                let m = f.marker_ws;
+                let flex = &self.flexibility;
+                (
+                    f.axes,
+                    add(c, f.marker_rel),
+                    [m[0], s * m[1], m[2], flex[3], flex[4]],
+                    [roll_w, yaw_w],
+                )
+            }
+        };
         let rail = pair.rail(side);
         let [rq, rz] = rail.to_side(0.0, 0.0);
         let r_marker_pt = [0.0, rq, rz];
@@ -1459,18 +1577,18 @@ impl WheelRail {
                 input,
                 PatchFrames {
                     ws_axes,
+                    wheel_axes,
                     center: c,
                     w_marker,
                     r_marker: r_marker_pt,
                     rail_roll,
-                    axial,
-                    r_marker_radius: r_marker,
+                    wheel_marker_ws,
+                    wheel_angles,
+                    x_shift_m: shift[0],
                     rail_s0,
                     wheel_s0,
                     rail_spline,
                     wheel_spline,
-                    roll,
-                    yaw,
                     sign: s,
                 },
             );
@@ -1503,6 +1621,7 @@ impl WheelRail {
         self.solved = Some(Solved {
             side,
             ws_axes,
+            wheel_turn_rad: [self.flexibility[3], self.flexibility[4]],
             rail_roll_rad: rail_roll,
             z_ws_m: center_z + dims.nominal_radius_m,
             vpitch_found: None,
@@ -1528,7 +1647,7 @@ impl WheelRail {
         let n = [0.0, st, ct];
         let t = [0.0, ct, -st];
         let ex_c = [1.0, 0.0, 0.0];
-        let origin = [p.track_x_m, s * p.track_y_m, p.track_z_m];
+        let origin = [p.track_x_m + f.x_shift_m, s * p.track_y_m, p.track_z_m];
         let ft = p.force_track_n;
         let force = [ft[0], s * ft[1], ft[2]];
 
@@ -1692,9 +1811,11 @@ impl WheelRail {
         let delta_tr = -p.contact_angle_rad; // CONTACT's angle, side frame
         let [ex, a, e1] = f.ws_axes;
         let dw = sub(origin, f.w_marker);
-        let wheel_pt = [dot(dw, ex), dot(dw, a), dot(dw, e1)];
+        let wheel_pt = in_basis(dw, &f.wheel_axes);
         let n_ws = [dot(n, ex), dot(n, a), dot(n, e1)];
         let delta_ws = (-n_ws[1]).atan2(n_ws[2]);
+        let n_w = in_basis(n, &f.wheel_axes);
+        let delta_w = (-n_w[1]).atan2(n_w[2]);
         let rail_s = f
             .rail_spline
             .t_at_y(p.rail_y_m)
@@ -1719,19 +1840,19 @@ impl WheelRail {
                 s * wheel_pt[1],
                 wheel_pt[2],
                 wheel_s,
-                s * delta_ws,
+                s * delta_w,
             ],
             pressure_centre: [pc[0], s * pc[1]],
             wheel_marker_track: [
                 f.w_marker[0],
                 s * f.w_marker[1],
                 f.w_marker[2],
-                f.roll,
-                f.yaw,
+                f.wheel_angles[0],
+                f.wheel_angles[1],
             ],
             rail_marker_track: [s * f.r_marker[1], f.r_marker[2], s * f.rail_roll],
             wheelset: [dot(dc, ex), s * dot(dc, a), dot(dc, e1), s * delta_ws],
-            wheel_marker_wheelset: [0.0, s * f.axial, f.r_marker_radius, 0.0, 0.0],
+            wheel_marker_wheelset: f.wheel_marker_ws,
             force_track_n: p.force_track_n,
         });
         (o, [force, m_rail, m_wheel])
@@ -1815,6 +1936,13 @@ impl WheelRail {
         let rail_axes = [[1.0, 0.0, 0.0], [0.0, cr, sr], [0.0, -sr, cr]];
         let f_ws = in_basis(f, &sv.ws_axes);
         let mw_ws = in_basis(mw, &sv.ws_axes);
+        // The wheel's axes: the wheelset's, turned by DROLLW and DYAWW.
+        let wheel_axes = match sv.wheel_turn_rad {
+            [0.0, 0.0] => sv.ws_axes,
+            [droll, dyaw] => turned(&sv.ws_axes, &contact_ws_axes(sv.side, droll, dyaw)),
+        };
+        let f_w = in_basis(f, &wheel_axes);
+        let mw_w = in_basis(mw, &wheel_axes);
         let f_r = in_basis(f, &rail_axes);
         let mr_r = in_basis(mr, &rail_axes);
         let mut v = [0.0; 24];
@@ -1829,8 +1957,7 @@ impl WheelRail {
         block(&mut v[0..6], f, mr);
         block(&mut v[6..12], f_ws, mw_ws);
         block(&mut v[12..18], f_r, mr_r);
-        // The wheel profile's axes are the wheelset's (no flexibilities).
-        block(&mut v[18..24], f_ws, mw_ws);
+        block(&mut v[18..24], f_w, mw_w);
         Ok(v)
     }
 
@@ -2271,19 +2398,119 @@ fn contact_ws_axes(side: Side, roll: f64, yaw: f64) -> [[f64; 3]; 3] {
 /// The frames a patch's location is computed in (side frame).
 struct PatchFrames<'a> {
     ws_axes: [[f64; 3]; 3],
+    /// The wheel profile's axes (the wheelset's turned by DROLLW, DYAWW).
+    wheel_axes: [[f64; 3]; 3],
     center: [f64; 3],
     w_marker: [f64; 3],
     r_marker: [f64; 3],
     rail_roll: f64,
-    axial: f64,
-    r_marker_radius: f64,
+    /// The wheel marker in wheelset coordinates (CONTACT's reporting
+    /// frame): x, y, z \[m\], roll, yaw \[rad\].
+    wheel_marker_ws: [f64; 5],
+    /// The wheel marker's roll and yaw in the track \[rad\].
+    wheel_angles: [f64; 2],
+    /// The solver's x of the wheel (the wheel's axis placed at x = 0)
+    /// less the track's \[m\]: added to the solver's x.
+    x_shift_m: f64,
     rail_s0: f64,
     wheel_s0: f64,
     rail_spline: &'a ProfileSpline,
     wheel_spline: &'a ProfileSpline,
-    roll: f64,
-    yaw: f64,
     sign: f64,
+}
+
+/// The wheel of one side in the side frame with CONTACT's flexible
+/// wheelset deviations (`wr_set_wheel_marker`): its profile marker at
+/// (DXWHL, FBDIST/2 - FBPOS + DYWHL, r_nom + dr_tape + DZWHL) of the
+/// wheelset (DYWHL a wheelset y: mirrored on the left), its axes the
+/// wheelset's turned by Rx(DROLLW) Rz(DYAWW) about the marker (DPITCHW
+/// turns a round wheel onto itself). The solver takes the wheel as a
+/// wheelset pose: the wheel's axis through `center_rel` with the
+/// profile's y = 0 at `axial` along it, as an undeflected wheel's axis runs
+/// through the wheelset centre.
+#[derive(Debug, Clone, Copy)]
+struct FlexedWheel {
+    /// Wheelset axes (rows: forward, axle outwards, down), CONTACT's.
+    ws_axes: [[f64; 3]; 3],
+    /// The wheel's axes, likewise.
+    axes: [[f64; 3]; 3],
+    /// The profile marker relative to the wheelset centre \[m\].
+    marker_rel: [f64; 3],
+    /// The marker in wheelset coordinates (side frame) \[m\].
+    marker_ws: [f64; 3],
+    /// The point of the wheel's axis `axial` inside the profile's y = 0,
+    /// relative to the wheelset centre \[m\]: the solver's wheelset centre.
+    center_rel: [f64; 3],
+}
+
+impl FlexedWheel {
+    /// `flex` as stored (SI); `axial` the profile's y = 0 from the
+    /// wheelset centre, `r_marker` the marker's radius \[m\].
+    fn new(side: Side, roll: f64, yaw: f64, axial: f64, r_marker: f64, flex: &[f64; 12]) -> Self {
+        let s = side.sign();
+        let ws_axes = contact_ws_axes(side, roll, yaw);
+        // The deviation's rotation in wheelset coordinates has the same
+        // form, Rx(s droll) Rz(s dyaw): its columns in the rows.
+        let rf = contact_ws_axes(side, flex[3], flex[4]);
+        let axes = turned(&ws_axes, &rf);
+        let marker_ws = [flex[0], axial + s * flex[1], r_marker + flex[2]];
+        let marker_rel = of_basis(marker_ws, &ws_axes);
+        let axis_point = sub(marker_rel, scale(r_marker, axes[2]));
+        Self {
+            ws_axes,
+            axes,
+            marker_rel,
+            marker_ws,
+            center_rel: sub(axis_point, scale(axial, axes[1])),
+        }
+    }
+
+    /// The solver's track-frame roll and yaw of the wheel's axle: its
+    /// axle (-sin yaw cos roll, cos yaw cos roll, sin roll) in the side
+    /// frame.
+    fn solver_roll_yaw(&self, side: Side) -> (f64, f64) {
+        let a = self.axes[1];
+        let roll = a[2].clamp(-1.0, 1.0).asin();
+        let yaw = (-a[0] / roll.cos()).clamp(-1.0, 1.0).asin();
+        (side.sign() * roll, side.sign() * yaw)
+    }
+
+    /// CONTACT's roll and yaw (track frame) of the wheel marker: Euler
+    /// angles of Rx(roll) Rz(yaw), from its axle.
+    fn contact_roll_yaw(&self, side: Side) -> (f64, f64) {
+        let a = self.axes[1];
+        let yaw = (-a[0]).clamp(-1.0, 1.0).asin();
+        (side.sign() * a[2].atan2(a[1]), side.sign() * yaw)
+    }
+
+    /// The solver's velocity of the wheel (its centre's [forward, lateral,
+    /// vertical] \[m/s\] in the track frame, roll, yaw and pitch rates
+    /// \[rad/s\]) for the wheelset's velocity `v_ws` (side frame, at its
+    /// centre) and angular velocity `w_ws` (side frame) and the
+    /// deviations' rates: CONTACT's velocity of a wheel point,
+    /// v_ws + w_ws x (Q - c_ws) + R_ws (v_w + w_w x (Q_ws - m)) (its
+    /// `wr_creep_cref`), as the solver's rigid motion about the wheel's
+    /// own axle.
+    fn solver_velocity(
+        &self,
+        side: Side,
+        v_ws: [f64; 3],
+        w_ws: [f64; 3],
+        flex: &[f64; 12],
+    ) -> [f64; 6] {
+        let s = side.sign();
+        let v_w = of_basis([flex[6], s * flex[7], flex[8]], &self.ws_axes);
+        let w_w = of_basis([s * flex[9], flex[11], s * flex[10]], &self.ws_axes);
+        let w = add(w_ws, w_w);
+        let v = add(
+            add(v_ws, cross(w_ws, self.center_rel)),
+            add(v_w, cross(w_w, sub(self.center_rel, self.marker_rel))),
+        );
+        let a = self.axes[1];
+        let pitch = w[1] / a[1];
+        let rest = sub(w, scale(pitch, a));
+        [v[0], s * v[1], v[2], s * rest[0], s * rest[2], pitch]
+    }
 }
 
 /// V = 1: friction by contact angle as the solver's friction table. The
@@ -2701,17 +2928,38 @@ mod tests {
     #[test]
     fn unsupported_settings_are_refused_naming_the_parameter() {
         let mut w = mbench(1);
-        let e = w.set_wheelset_flexibility(4, &[0.1; 12]).unwrap_err();
-        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
-        assert!(e.to_string().contains("cntc_setwheelsetflexibility"));
+        let e = w
+            .set_wheelset_flexibility(
+                4,
+                &[
+                    0.1,
+                    f64::NAN,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ],
+            )
+            .unwrap_err();
+        assert!(e.to_string().contains("DYWHL"), "{e}");
+        w.set_wheelset_flexibility(4, &[0.1; 12]).unwrap();
         w.set_wheelset_position(1, &[0.0; 6]).unwrap();
         w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3])
             .unwrap();
         let cache = KernelCache::default();
-        assert_eq!(
-            w.calculate(&cache).unwrap_err().ierror(),
-            flags::err::NOT_SUPPORTED
-        );
+        // A prescribed FX_WS with deviations.
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);
+        w.set_longitudinal_force(-1, 100.0).unwrap();
+        let e = w.calculate(&cache).unwrap_err();
+        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
+        assert!(e.to_string().contains("cntc_setwheelsetflexibility"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
         let e = w.calculate(&cache).unwrap_err();

@@ -213,3 +213,115 @@ fn absolute_placement_with_cant_and_load_matches_contacts_library() {
         ]);
     }
 }
+
+/// test-rollers2.inp case 1e: the sphere deflected by DROLLW = 0.1 rad and
+/// DZWHL = -0.4996 mm (E = 4), so that its lowest point moves 100 sin(0.1)
+/// = 9.98 mm outwards at the same height. Its `.ref_out` (Case 5): FN
+/// 9.720E+04 N, the contact at track y 209.9833, wheel profile (9.9674,
+/// -0.6588), APPROACH 0.160018; CKSI 1.767E-07 and FX -0.9974 N, no spin
+/// (DROLLW turns the wheel but gives no spin: only VROLLW would), which
+/// ours meets within 1e-6 and 0.5 % of mu FN.
+#[test]
+fn case_1e_a_rolled_wheel_moves_its_contact_without_spin() {
+    let case = Case {
+        flex: Some([
+            0.0, 0.0, -0.4996, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        ]),
+        ..CASE_1A
+    };
+    unsafe {
+        #[rustfmt::skip]
+        check(44, &case, &[
+            9.720e4, -0.9974, 0.0, 0.0, 1.767e-7, 0.0, 0.0,
+            0.0, 209.9833, 0.0, 0.0, 9.9833, 0.0, 9.9674, -0.6588,
+        ]);
+    }
+}
+
+/// `placement_cases.py` cases `flex` and `flex-left`: every deviation and
+/// rate of the wheel at once (DXWHL 0.5, DYWHL 0.3, DZWHL -0.2 mm, DROLLW
+/// 0.02, DYAWW 0.03, DPITCHW 0.1 rad; 0.04, 0.03, 0.02 mm/s, 0.1, 0.2,
+/// 0.3 mrad/s) on a rolled and yawed wheelset moving laterally and
+/// vertically, FZ = 50 kN. The contact location matches CONTACT's library
+/// to its printed digits; the creepages lie 0.15-0.19 % below CONTACT's
+/// (all three by about the same factor): CONTACT divides the slip by the
+/// rolling speed of the wheelset's pitch about the wheelset's axle, the
+/// solver by that of the deflected wheel about its own axle, whose lever
+/// arm to the contact differs by the axle's shift (DROLLW 0.02 rad over
+/// 100 mm: 0.15 %). Creepages are therefore compared to 0.25 % here.
+#[test]
+fn flexible_wheelset_deviations_match_contacts_library() {
+    let flex = [
+        0.5, 0.3, -0.2, 0.02, 0.03, 0.1, 0.04, 0.03, 0.02, 0.0001, 0.0002, 0.0003,
+    ];
+    let right = Case {
+        position: [0.0, 1.0, 0.0, 0.002, 0.003, 0.0],
+        velocity: [100.0, 0.02, 0.01, 0.0002, 0.0003, -1.0],
+        flex: Some(flex),
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let left = Case {
+        c1: 0,
+        track: absolute_track(-200.0, 0.0, 0.0, NO_DEVIATION),
+        ..right
+    };
+    #[rustfmt::skip]
+    let contact = [
+        [50000.0, 4606.77, -6970.68, 4908.32, -0.0015955, 0.00270734, 1.5009e-05,
+         -0.1069, 203.30045, 0.0, 0.0, 3.30045, 0.0, 2.19659, -0.12693],
+        [50000.0, 7564.18, -6531.69, 3706.86, -0.00279503, 0.00270051, 1.5e-05,
+         1.09309, -196.69695, 0.0, 0.0, 3.30305, 0.0, 2.19659, -0.12693],
+    ];
+    for (k, (case, r)) in [(right, contact[0]), (left, contact[1])].iter().enumerate() {
+        let ire = 45 + k as i32;
+        unsafe {
+            assert_eq!(solve(ire, case), 0);
+            let (mut cksi, mut ceta, mut cphi) = (0.0, 0.0, 0.0);
+            cntc_getcreepages(&ire, &1, &mut cksi, &mut ceta, &mut cphi);
+            for (name, ours, theirs) in [
+                ("CKSI", cksi, r[4]),
+                ("CETA", ceta, r[5]),
+                ("CPHI", cphi, r[6]),
+            ] {
+                close(name, ours, theirs, 2.5e-3 * theirs.abs());
+            }
+            // The rest as compare() checks it, with our creepages.
+            let mut r = *r;
+            r[4..7].copy_from_slice(&[cksi, ceta, cphi]);
+            compare(ire, &r);
+            cntc_finalize(&ire);
+        }
+    }
+}
+
+/// Zero deviations given (E = 5) are no deviations (E = 3), bit for bit;
+/// DYWHL = d on the right wheel of an unrolled, unyawed wheelset is the
+/// wheelset moved by d (Y_WS), to rounding.
+#[test]
+fn flexibility_conventions() {
+    let with_zeros = Case {
+        flex: Some([0.0; 12]),
+        ..CASE_1A
+    };
+    unsafe {
+        assert_eq!(solve(47, &CASE_1A), 0);
+        assert_eq!(solve(48, &with_zeros), 0);
+        assert_eq!(common::wheel_results(47), common::wheel_results(48));
+        let mut shifted = CASE_1A;
+        shifted.position[1] = 0.7;
+        let mut deflected = CASE_1A;
+        deflected.flex = Some([0.0, 0.7, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(solve(49, &shifted), 0);
+        assert_eq!(solve(50, &deflected), 0);
+        let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
+        cntc_getcontactforces(&49, &1, &mut a[0], &mut a[1], &mut a[2], &mut a[3]);
+        cntc_getcontactforces(&50, &1, &mut b[0], &mut b[1], &mut b[2], &mut b[3]);
+        for k in 0..4 {
+            close("force", b[k], a[k], 1e-9 * a[0]);
+        }
+        for ire in 47..=50 {
+            cntc_finalize(&ire);
+        }
+    }
+}
