@@ -382,6 +382,7 @@ impl WheelrailRun {
         let track = TrackData {
             placement,
             cant_rad: t.cant_rad,
+            deviations: Default::default(),
         };
         let wheelset = WheelsetData {
             flange_back_distance_m: w.flange_back_distance_m,

@@ -25,9 +25,20 @@
 //!   profile's origin at (RAILY0, RAILZ0) of the track (RAILY0 a track y,
 //!   positive for a right rail), rotated by the cant about it and not
 //!   shifted to touch the track plane (the solver's `RailPlacement::Origin`, at
-//!   q = sign(side) RAILY0 of the side frame). Track curvature, rail
-//!   deviations and the massless rail (Z = 32, 33) are refused. The
-//!   roller radius (NOMRAD) is for roller rigs and ignored.
+//!   q = sign(side) RAILY0 of the side frame). Track curvature and the
+//!   massless rail (Z = 32, 33) are refused. The roller radius (NOMRAD) is
+//!   for roller rigs and ignored.
+//! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0
+//!   towards the track centre for a left rail) and DROLLR turn and shift
+//!   the placed rail about its profile's origin (the solver's
+//!   `RailDeviation`; the gauge point is found on the rail inclined by the
+//!   cant alone, as CONTACT's `wr_set_rail_marker` does). VYRAIL, VZRAIL,
+//!   VROLLR move the rail: its velocity is taken off the wheel's rigid
+//!   motion (a roll rate and a velocity at the wheel's centre, whose
+//!   height a vertical force load finds: solved again there). The solver
+//!   takes the rail's velocity at the wheel's point of the contact,
+//!   CONTACT at the rail's, PEN along the normal from it: CETA differs by
+//!   VROLLR PEN / V. F = 1 with VROLLR is refused.
 //! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
 //!   from the wheelset centre) and may lie outside the profile, as in
 //!   CONTACT; the solver is given the same placement from the profile's
@@ -109,9 +120,10 @@ use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
     ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailPlacement, SearchScratch,
-    Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailDeviation, RailPlacement,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -180,7 +192,7 @@ enum Placement {
 
 impl Track {
     /// The solver's track for the rail of `side`: RAILY0 in the side frame.
-    fn for_side(&self, side: Side) -> TrackData {
+    fn for_side(&self, side: Side, deviation: &[f64; 6]) -> TrackData {
         let placement = match self.placement {
             Placement::GaugePoint {
                 gauge_height_m,
@@ -194,9 +206,16 @@ impl Track {
                 z_m: rail_z_m,
             },
         };
+        let mut deviations = [RailDeviation::default(); 2];
+        deviations[side.index()] = RailDeviation {
+            dy_m: deviation[0],
+            dz_m: deviation[1],
+            droll_rad: deviation[2],
+        };
         TrackData {
             placement,
             cant_rad: self.cant_rad,
+            deviations,
         }
     }
 }
@@ -261,8 +280,9 @@ pub struct WheelRail {
     rail: Slot<ProfileInput>,
     wheel: Slot<ProfileInput>,
     track: Slot<Track>,
-    /// Rail deviations (Z = 2, 3): refused when not zero.
-    deviations: Slot<()>,
+    /// Rail deviations (Z = 2, 3), SI: DYRAIL, DZRAIL \[m\], DROLLR
+    /// \[rad\], VYRAIL, VZRAIL \[m/s\], VROLLR \[rad/s\] (track frame).
+    rail_deviation: [f64; 6],
     wheelset: Slot<WheelsetDims>,
     /// s, y, z \[m\], roll, yaw, pitch \[rad\].
     position: [f64; 6],
@@ -793,18 +813,15 @@ impl WheelRail {
                 _ if p.len() >= 12 => 6,
                 _ => 5,
             };
-            let dev = &p[ofs..ofs + 6];
-            let d = if dev.iter().all(|v| *v == 0.0) {
-                Ok(())
-            } else {
-                Err(CntcError::NotSupported(format!(
-                    "{CALL}: rail deviations DYRAIL, DZRAIL, DROLLR, VYRAIL, VZRAIL, VROLLR = {dev:?} \
-                     are not supported; give zeros"
-                )))
-            };
-            let out = d.clone();
-            self.deviations = Some(d);
-            out?;
+            let d = &p[ofs..ofs + 6];
+            self.rail_deviation = [
+                u.len(d[0]),
+                u.len(d[1]),
+                d[2],
+                u.velocity(d[3]),
+                u.velocity(d[4]),
+                d[5],
+            ];
         }
         Ok(())
     }
@@ -1183,8 +1200,13 @@ impl WheelRail {
                 "H = 3 (temperatures, cntc_settemperaturedata) in module 1 is not supported".into(),
             ));
         }
-        if let Some(Err(e)) = &self.deviations {
-            return Err(e.clone());
+        if d.force == 1 && self.rail_deviation[5] != 0.0 {
+            return Err(CntcError::NotSupported(
+                "F = 1 (a prescribed total force FX_WS) with a rail roll rate VROLLR \
+                 (cntc_settrackdimensions, Z = 2, 3) is not supported: give the pitch rate \
+                 VPITCH (F = 0)"
+                    .into(),
+            ));
         }
         if d.force == 1 && self.flexibility.iter().any(|v| *v != 0.0) {
             return Err(CntcError::NotSupported(
@@ -1202,7 +1224,7 @@ impl WheelRail {
     /// the other side does not serve.
     fn fits(&self, pair: &WheelRailPair, side: Side) -> bool {
         match &self.track {
-            Some(Ok(track)) => *pair.track() == track.for_side(side),
+            Some(Ok(track)) => *pair.track() == track.for_side(side, &self.rail_deviation),
             _ => true,
         }
     }
@@ -1278,7 +1300,7 @@ impl WheelRail {
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
-                track.for_side(side),
+                track.for_side(side, &self.rail_deviation),
                 WheelsetData {
                     flange_back_distance_m: fb_distance_m,
                     nominal_radius_m: dims.nominal_radius_m,
@@ -1316,7 +1338,7 @@ impl WheelRail {
             self.pair_before = None;
             self.pair = Some(pair?);
         }
-        let input = self.solver_input(side)?;
+        let input = self.solver_input(side, None)?;
         let pair = self.pair.as_ref().expect("built above");
         let (input, sol, vpitch_found) = match self.longitudinal_force_n {
             Some(target) if self.config.digits.force == 1 => {
@@ -1336,8 +1358,28 @@ impl WheelRail {
                 (input, sol, Some(vpitch))
             }
             _ => {
-                let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                let mut input = input;
+                let mut sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
                     .map_err(CntcError::from_wheelrail)?;
+                // The rail's roll rate turns about the wheel's centre,
+                // whose height a vertical force load finds: solved again
+                // at the height found (twice: the second moves it by
+                // the first's change of the approach, well below a
+                // nanometre).
+                if self.rail_deviation[5] != 0.0
+                    && !matches!(input.load, WheelLoad::CenterHeight(_))
+                {
+                    for _ in 0..2 {
+                        let cz = sol
+                            .wheels
+                            .iter()
+                            .find(|w| w.side == side)
+                            .map(|w| sol.center_z_m + w.vertical_approach_m);
+                        input = self.solver_input(side, cz)?;
+                        sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                            .map_err(CntcError::from_wheelrail)?;
+                    }
+                }
                 (input, sol, None)
             }
         };
@@ -1372,7 +1414,11 @@ impl WheelRail {
     }
 
     /// The solver's input of this problem.
-    fn solver_input(&self, side: Side) -> Result<WheelRailInput> {
+    ///
+    /// `center_z_hint_m`: the wheel's centre height (the solver's) where
+    /// the rail's roll rate VROLLR turns it, for a vertical force load
+    /// (N = 1), whose height is found by the solve; `None`: -NOMRAD.
+    fn solver_input(&self, side: Side, center_z_hint_m: Option<f64>) -> Result<WheelRailInput> {
         let d = self.discretisation.ok_or_else(|| {
             CntcError::Discretisation(
                 "the discretisation has not been set: cntc_setpotcontact with icp = -1, IPOTCN = -1 \
@@ -1468,6 +1514,31 @@ impl WheelRail {
                 pitch_rad_per_s: Some(pitch),
             };
         }
+        let [_, _, _, vy_r, vz_r, vroll_r] = self.rail_deviation;
+        if [vy_r, vz_r, vroll_r] != [0.0; 3] {
+            // The rail moves: its velocity at the wheel's point Q,
+            // v_r + w_r x (Q - O_r) (CONTACT's `wr_creep_cref`), taken off
+            // the wheel's rigid motion about its centre c: -w_r x (Q - c)
+            // as a roll rate, -v_r - w_r x (c - O_r) at c (side frame,
+            // w_r = (s VROLLR, 0, 0)).
+            let s = side.sign();
+            let pair = self.pair.as_ref().ok_or_else(|| {
+                CntcError::Other("the profiles are placed before the rail's rates".into())
+            })?;
+            let [oq, oz] = pair.rail(side).to_side(0.0, 0.0);
+            let cz = match load {
+                WheelLoad::CenterHeight(z) => z,
+                _ => center_z_hint_m.unwrap_or(-dims.nominal_radius_m),
+            };
+            let cq = s * position.lateral_m;
+            let at_c = [
+                s * vy_r - s * vroll_r * (cz - oz),
+                vz_r + s * vroll_r * (cq - oq),
+            ];
+            velocity.lateral_m_per_s -= s * at_c[0];
+            velocity.vertical_m_per_s -= at_c[1];
+            velocity.roll_rad_per_s -= vroll_r;
+        }
         Ok(WheelRailInput {
             position,
             velocity,
@@ -1560,7 +1631,7 @@ impl WheelRail {
         let rail = pair.rail(side);
         let [rq, rz] = rail.to_side(0.0, 0.0);
         let r_marker_pt = [0.0, rq, rz];
-        let rail_roll = -pair.track().cant_rad;
+        let rail_roll = -rail.inclination_rad();
         // Arc-length origins of the profiles (CONTACT's s = 0).
         let rail_spline = rail.spline();
         let wheel_spline = pair.wheel(side).spline();

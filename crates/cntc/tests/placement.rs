@@ -19,6 +19,7 @@ use contact_addon::flags;
 /// (Z = 3: 11 values), the wheelset position (its Z_WS the height with
 /// N = 0) and velocity (E = 3, or 5 with the flexibility `flex`), a vertical
 /// force `fz` (N = 1) or none (N = 0).
+#[derive(Clone, Copy)]
 struct Case {
     c1: i32,
     track: [f64; 11],
@@ -137,6 +138,41 @@ unsafe fn check(ire: i32, case: &Case, r: &Reference) {
 }
 
 const NO_DEVIATION: [f64; 6] = [0.0; 6];
+
+/// Solves `case` on element `ire`, checks its creepages against `r`'s to
+/// `tol` and the rest as [`compare`] does.
+unsafe fn check_creepages_apart(ire: i32, case: &Case, r: &Reference, tol: [f64; 3]) {
+    assert_eq!(solve(ire, case), 0);
+    let mut c = [0.0; 3];
+    cntc_getcreepages(&ire, &1, &mut c[0], &mut c[1], &mut c[2]);
+    for (j, name) in ["CKSI", "CETA", "CPHI"].iter().enumerate() {
+        close(name, c[j], r[4 + j], tol[j]);
+    }
+    let mut r = *r;
+    r[4..7].copy_from_slice(&c);
+    compare(ire, &r);
+}
+
+/// Solves `a` on element `ia` and `b` on `ib` and asserts the same FN,
+/// FX, FS, MZ to rounding (1e-9 FN).
+unsafe fn same_forces(ia: i32, a: &Case, ib: i32, b: &Case) {
+    assert_eq!(solve(ia, a), 0);
+    assert_eq!(solve(ib, b), 0);
+    let (mut fa, mut fb) = ([0.0; 4], [0.0; 4]);
+    cntc_getcontactforces(&ia, &1, &mut fa[0], &mut fa[1], &mut fa[2], &mut fa[3]);
+    cntc_getcontactforces(&ib, &1, &mut fb[0], &mut fb[1], &mut fb[2], &mut fb[3]);
+    for k in 0..4 {
+        close("force", fb[k], fa[k], 1e-9 * fa[0]);
+    }
+}
+
+/// `case` on the left rail (C1 = 0), its RAILY0 mirrored.
+fn on_the_left(case: Case) -> Case {
+    let mut left = case;
+    left.c1 = 0;
+    left.track[1] = -case.track[1];
+    left
+}
 
 /// test-rollers2.inp case 1a: the sphere at Z_WS = 0.16 mm on the plane at
 /// RAILY0 = 200 mm, rolling at 100 mm/s with VPITCH = -1 rad/s.
@@ -261,13 +297,9 @@ fn flexible_wheelset_deviations_match_contacts_library() {
         fz: Some(5.0e4),
         ..CASE_1A
     };
-    let left = Case {
-        c1: 0,
-        track: absolute_track(-200.0, 0.0, 0.0, NO_DEVIATION),
-        ..right
-    };
+    let left = on_the_left(right);
     #[rustfmt::skip]
-    let contact = [
+    let contact: [Reference; 2] = [
         [50000.0, 4606.77, -6970.68, 4908.32, -0.0015955, 0.00270734, 1.5009e-05,
          -0.1069, 203.30045, 0.0, 0.0, 3.30045, 0.0, 2.19659, -0.12693],
         [50000.0, 7564.18, -6531.69, 3706.86, -0.00279503, 0.00270051, 1.5e-05,
@@ -275,21 +307,9 @@ fn flexible_wheelset_deviations_match_contacts_library() {
     ];
     for (k, (case, r)) in [(right, contact[0]), (left, contact[1])].iter().enumerate() {
         let ire = 45 + k as i32;
+        let tol = [r[4], r[5], r[6]].map(|c: f64| 2.5e-3 * c.abs());
         unsafe {
-            assert_eq!(solve(ire, case), 0);
-            let (mut cksi, mut ceta, mut cphi) = (0.0, 0.0, 0.0);
-            cntc_getcreepages(&ire, &1, &mut cksi, &mut ceta, &mut cphi);
-            for (name, ours, theirs) in [
-                ("CKSI", cksi, r[4]),
-                ("CETA", ceta, r[5]),
-                ("CPHI", cphi, r[6]),
-            ] {
-                close(name, ours, theirs, 2.5e-3 * theirs.abs());
-            }
-            // The rest as compare() checks it, with our creepages.
-            let mut r = *r;
-            r[4..7].copy_from_slice(&[cksi, ceta, cphi]);
-            compare(ire, &r);
+            check_creepages_apart(ire, case, r, tol);
             cntc_finalize(&ire);
         }
     }
@@ -312,16 +332,74 @@ fn flexibility_conventions() {
         shifted.position[1] = 0.7;
         let mut deflected = CASE_1A;
         deflected.flex = Some([0.0, 0.7, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
-        assert_eq!(solve(49, &shifted), 0);
-        assert_eq!(solve(50, &deflected), 0);
-        let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
-        cntc_getcontactforces(&49, &1, &mut a[0], &mut a[1], &mut a[2], &mut a[3]);
-        cntc_getcontactforces(&50, &1, &mut b[0], &mut b[1], &mut b[2], &mut b[3]);
-        for k in 0..4 {
-            close("force", b[k], a[k], 1e-9 * a[0]);
-        }
+        same_forces(49, &shifted, 50, &deflected);
         for ire in 47..=50 {
             cntc_finalize(&ire);
         }
+    }
+}
+
+/// `placement_cases.py` cases `dev` and `dev-left`: the plane at RAILY0 =
+/// +-200 mm deviated by DYRAIL 2 mm, DZRAIL 0.3 mm, DROLLR 0.02 rad and
+/// moving at VYRAIL 1 mm/s, VZRAIL 0.5 mm/s, VROLLR 0.01 rad/s (Z = 3),
+/// the wheelset at Y_WS = 1 mm, FZ = 50 kN. DYRAIL is a track y: the left
+/// rail moves towards the track centre, the right one outwards, and both
+/// give the same forces. The rail's marker and the contact match CONTACT's
+/// library to its printed digits; CETA lies 1.03e-5 below CONTACT's
+/// 0.010099: CONTACT takes the rail's velocity at the rail's point of the
+/// contact, the solver at the wheel's, PEN = 0.103 mm along the normal
+/// (VROLLR PEN / V = 0.01 x 0.103 / 100 = 1.03e-5); compared to 1.1e-5.
+#[test]
+fn rail_deviations_match_contacts_library() {
+    let deviation = [2.0, 0.3, 0.02, 1.0, 0.5, 0.01];
+    let right = Case {
+        track: absolute_track(200.0, 0.0, 0.0, deviation),
+        position: [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let left = on_the_left(right);
+    #[rustfmt::skip]
+    let contact: [Reference; 2] = [
+        [50305.2, 325.48, -14759.5, 2355.76, -0.000199809, 0.010099, -0.000200007,
+         0.0, 199.00087, 0.24001, 0.02, -2.99973, 0.0, -1.99913, -0.12311],
+        [50305.2, 325.477, -14759.5, 2355.75, -0.000199809, 0.010099, -0.000200007,
+         0.0, -200.99913, 0.24001, 0.02, -2.99973, 0.0, -1.99913, -0.12311],
+    ];
+    let markers = [[202.0, 0.3, 0.02], [-198.0, 0.3, 0.02]];
+    for (k, (case, r)) in [(right, contact[0]), (left, contact[1])].iter().enumerate() {
+        let ire = 51 + k as i32;
+        unsafe {
+            check_creepages_apart(ire, case, r, [1e-6, 1.1e-5, 1e-7]);
+            let mut loc = [0.0; 38];
+            cntc_getcontactlocation(&ire, &1, &38, loc.as_mut_ptr());
+            for (j, name) in ["YR_TR", "ZR_TR", "ROLLR_TR"].iter().enumerate() {
+                close(name, loc[25 + j], markers[k][j], 1e-9);
+            }
+            cntc_finalize(&ire);
+        }
+    }
+}
+
+/// A rail shifted by DYRAIL = d is the wheelset shifted by -d: the same
+/// forces and creepages (to rounding), the contact d further.
+#[test]
+fn a_rail_deviation_is_the_wheelset_moved_the_other_way() {
+    let rail_moved = Case {
+        track: absolute_track(200.0, 0.0, 0.0, [0.8, 0.0, 0.0, 0.0, 0.0, 0.0]),
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let mut wheelset_moved = rail_moved;
+    wheelset_moved.track = CASE_1A.track;
+    wheelset_moved.position[1] = -0.8;
+    unsafe {
+        same_forces(53, &rail_moved, 54, &wheelset_moved);
+        let (mut la, mut lb) = ([0.0; 38], [0.0; 38]);
+        cntc_getcontactlocation(&53, &1, &38, la.as_mut_ptr());
+        cntc_getcontactlocation(&54, &1, &38, lb.as_mut_ptr());
+        close("YCP_TR", la[1] - lb[1], 0.8, 1e-9);
+        cntc_finalize(&53);
+        cntc_finalize(&54);
     }
 }

@@ -22,6 +22,8 @@
 //!   and its gauge face, `gauge_height_m` below that, lies at q = gauge/2;
 //!   absolutely ([`RailPlacement::Origin`], CONTACT's GAUGHT <= 0) so that
 //!   its origin lies at (q, z) = (`q_m`, `z_m`), wherever its top then is.
+//!   A rail's [`RailDeviation`] then turns it about its origin and shifts
+//!   it (CONTACT's DYRAIL, DZRAIL, DROLLR).
 //! * **Wheel placement**: the wheel profile's y axis runs along the axle,
 //!   outwards; its point at y = `flange_back_y_m` (the back of the flange,
 //!   by default the profile's smallest y) lies at half the flange-back
@@ -206,6 +208,21 @@ impl std::fmt::Display for RailPlacement {
     }
 }
 
+/// A rail's deviation from its placement (CONTACT's rail irregularities
+/// DYRAIL, DZRAIL, DROLLR), in the track frame: dy > 0 to the right
+/// (towards the track centre for the left rail, to the field side for the
+/// right one).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RailDeviation {
+    /// Lateral shift of the rail profile's origin \[m\] (track y).
+    pub dy_m: f64,
+    /// Vertical shift \[m\] (z down).
+    pub dz_m: f64,
+    /// Rotation about the track's x axis, about the profile's origin
+    /// \[rad\] (right-hand rule).
+    pub droll_rad: f64,
+}
+
 /// Track data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrackData {
@@ -215,6 +232,12 @@ pub struct TrackData {
     /// applied to the rail profile as given; 0 for profiles already
     /// inclined, like `MBench_UIC60_v3.prr`.
     pub cant_rad: f64,
+    /// Each rail's deviation from its placement (`[left, right]`, default
+    /// none): the rail placed by `placement` and `cant_rad` (the gauge
+    /// point found on the rail inclined by the cant alone), then turned by
+    /// `droll_rad` about its profile's origin and shifted, as CONTACT's
+    /// `wr_set_rail_marker` does.
+    pub deviations: [RailDeviation; 2],
 }
 
 /// Smallest distance between the rails taken as the roll search's scale
@@ -230,6 +253,11 @@ impl TrackData {
                 gauge_height_m,
             },
             cant_rad,
+            deviations: [RailDeviation {
+                dy_m: 0.0,
+                dz_m: 0.0,
+                droll_rad: 0.0,
+            }; 2],
         }
     }
 
@@ -266,6 +294,11 @@ impl TrackData {
             }
         }
         require_finite("track.cant_rad", self.cant_rad)?;
+        for d in &self.deviations {
+            require_finite("track.rail_deviation.dy_m", d.dy_m)?;
+            require_finite("track.rail_deviation.dz_m", d.dz_m)?;
+            require_finite("track.rail_deviation.droll_rad", d.droll_rad)?;
+        }
         if self.cant_rad.abs() > 0.2 {
             return Err(WheelRailError::invalid(
                 "track.cant_rad",
@@ -377,6 +410,12 @@ impl PlacedRail {
         let (s, c) = self.cant_rad.sin_cos();
         let (a, b) = (q - self.offset_m[0], z - self.offset_m[1]);
         [c * a - s * b, s * a + c * b]
+    }
+
+    /// The rail's inclination in the side frame \[rad\]: the track's cant
+    /// less the deviation's roll (towards the gauge side positive).
+    pub fn inclination_rad(&self) -> f64 {
+        self.cant_rad
     }
 
     /// Dense samples in the side frame, gauge face first.
@@ -577,13 +616,19 @@ fn place_rail(
         samples: Vec::new(),
         surface: VerticalGap::default(),
     };
-    rail.offset_m = match track.placement {
+    let [q, z] = match track.placement {
         RailPlacement::GaugePoint {
             gauge_m,
             gauge_height_m,
         } => gauge_point_offset(&rail, profile.name(), gauge_m, gauge_height_m, side)?,
         RailPlacement::Origin { q_m, z_m } => [q_m, z_m],
     };
+    // The deviation in the side frame: q = s y, a roll about x turns by s
+    // droll (a rotation of -cant_rad inclines the rail).
+    let d = track.deviations[side.index()];
+    let s = side.sign();
+    rail.offset_m = [q + s * d.dy_m, z + d.dz_m];
+    rail.cant_rad = track.cant_rad - s * d.droll_rad;
     rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
     rail.surface = VerticalGap::surface_of(&rail.samples);
     Ok(rail)
@@ -776,6 +821,7 @@ mod tests {
                 z_m: 0.5e-3,
             },
             cant_rad: 0.05,
+            deviations: Default::default(),
         };
         let pair = placed(&plane, track).unwrap();
         for side in Side::BOTH {
@@ -801,6 +847,7 @@ mod tests {
         let origin = TrackData {
             placement: RailPlacement::Origin { q_m, z_m },
             cant_rad: MBENCH_TRACK.cant_rad,
+            deviations: Default::default(),
         };
         let by_origin = placed(&rail, origin).unwrap();
         for side in Side::BOTH {
@@ -821,6 +868,7 @@ mod tests {
                 z_m: 0.0,
             },
             cant_rad: 0.0,
+            deviations: Default::default(),
         };
         let e = placed(&rail, track).unwrap_err();
         assert!(e.to_string().contains("track.rail_origin_y_m"), "{e}");
