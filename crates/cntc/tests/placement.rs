@@ -403,3 +403,53 @@ fn a_rail_deviation_is_the_wheelset_moved_the_other_way() {
         cntc_finalize(&54);
     }
 }
+
+/// test-rollers2.inp's first case as CONTACT's input file reader takes it
+/// (`cntc_readinpfile`, CNTC_inp_modul1): the file's lines of case 1a
+/// (eve70a/CONTACT, testbank/examples_conformal, Apache-2.0) with the
+/// profiles' paths those of this repository. It sets GAUGHT = -1 with
+/// RAILY0 = 200 (Z = 3) and is solved as `case_1a` is: the `.ref_out`'s
+/// FN 9.722E+04 N within 0.05 % and the contact at track y 200 mm.
+#[test]
+fn case_1a_read_from_contacts_input_file() {
+    let inp = format!(
+        "  1 MODULE
+ 1203000    C-P-B-T-N-F-S  CONFIG, PVTIME, BOUND, TANG, NORM, FORCE, STRESS
+ 0022033    V-L-D-C-M-Z-E    FRCLAW, DISCNS, INFLCF, MATER , ZTRACK, EWHEEL
+ 0000321    H-G-I-A-O-W-R    GAUSEI, IESTIM, MATFIL, OUTPUT, FLOW  , RETURN
+    999     100    10    1     1e-7  MAXGS , MAXIN , MAXNR , MAXOUT, EPS
+  0.300   0.300                                 FSTAT, FKIN
+  0.280   0.280   82000.  82000.                POISS 1,2,  GG 1,2
+  0.200   0.200   1.000   90d   8.0   4.0       DX,DS, DQREL, A_SEP, D_SEP, D_COMB
+   -1.0   200.0   0.000   0.000                 GAUGHT, RAILY0, RAILZ0, CANT
+  '{}'   0  1.0   0.0   RFNAME, MIRRORY, SCALE, SMOOTH
+     0.0    0.0   0.000   0.0    0.0   0.000    DY, DZ, ROLL, VY, VZ, VROLL
+   200.0 -100.0   100.0                         FBDIST, FBPOS, NOMRAD_W
+  '{}'    0  1.0   0.0   WFNAME, MIRRORY, SCALE, SMOOTH
+     0.0    0.0     0.160                       % X_WS, Y_WS, Z_WS
+     0.0    0.0     0.0                         % ROLL_WS, YAW_WS, PITCH_WS
+   100.0    0.0     0.0                         % VS_WS, VY_WS, VZ_WS
+     0.0    0.0    -1.000                       % VROLL, VYAW, VPITCH_WS
+  0 MODULE
+",
+        profile("flat_plane.prr"),
+        profile("circ_r100.prw")
+    );
+    let path = common::scratch("placement").join("test-rollers2-1a.inp");
+    std::fs::write(&path, inp).unwrap();
+    let ire = 55;
+    unsafe {
+        let (mut ifcver, mut ierror) = (0, 0);
+        cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+        assert_eq!(common::read_inp(ire, flags::INP_MODUL1, &path), 0);
+        let mut ierror = -1;
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, 0);
+        let mut r = [0.0; 15];
+        r[0] = 9.722e4;
+        r[8] = 200.0;
+        r[14] = -0.16;
+        compare(ire, &r);
+        cntc_finalize(&ire);
+    }
+}
