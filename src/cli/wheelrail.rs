@@ -25,10 +25,10 @@ use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, check_plausibility, load_profile_with, solve_wheelset, FrictionTable, LoadOptions,
-    PatchResult, PlausibilityWarning, Profile, SearchScratch, Side, SplineOptions, TrackData,
-    WheelLoad, WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
-    WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
-    DEFAULT_SMOOTHING_WAVELENGTH_M,
+    PatchResult, PlausibilityWarning, Profile, RailPlacement, SearchScratch, Side, SplineOptions,
+    TrackData, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair,
+    WheelRailSettings, WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition,
+    WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -161,8 +161,10 @@ struct TrackKeys {
     rail_profile_left: Option<String>,
     #[serde(default)]
     rail_mirror_y: bool,
-    gauge_m: f64,
-    gauge_height_m: f64,
+    gauge_m: Option<f64>,
+    gauge_height_m: Option<f64>,
+    rail_origin_y_m: Option<f64>,
+    rail_origin_z_m: Option<f64>,
     #[serde(default)]
     cant_rad: f64,
 }
@@ -337,6 +339,25 @@ impl WheelrailRun {
             };
         let t = &c.track;
         let w = &c.wheelset;
+        let placement = match (
+            t.gauge_m,
+            t.gauge_height_m,
+            t.rail_origin_y_m,
+            t.rail_origin_z_m,
+        ) {
+            (Some(gauge_m), Some(gauge_height_m), None, None) => RailPlacement::GaugePoint {
+                gauge_m,
+                gauge_height_m,
+            },
+            (None, None, Some(q_m), Some(z_m)) => RailPlacement::Origin { q_m, z_m },
+            _ => {
+                return Err(bad(
+                    "invalid input `track`: give either gauge_m and gauge_height_m (the rails \
+                     placed by the gauge point) or rail_origin_y_m and rail_origin_z_m (the rail \
+                     profiles' origins placed absolutely)",
+                ))
+            }
+        };
         let rail_r = read_profile(&t.rail_profile, dir, t.rail_mirror_y, "track.rail_profile")?;
         let rail_l = match &t.rail_profile_left {
             Some(n) => read_profile(n, dir, t.rail_mirror_y, "track.rail_profile_left")?,
@@ -361,9 +382,9 @@ impl WheelrailRun {
             )));
         }
         let track = TrackData {
-            gauge_m: t.gauge_m,
-            gauge_height_m: t.gauge_height_m,
+            placement,
             cant_rad: t.cant_rad,
+            deviations: Default::default(),
         };
         let wheelset = WheelsetData {
             flange_back_distance_m: w.flange_back_distance_m,
@@ -814,4 +835,79 @@ where
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wheelrail::solve_wheelset;
+
+    /// CONTACT's test-rollers2.inp case 1a as a case file: the sphere of
+    /// radius 100 mm (`circ_r100.prw` at a nominal radius of 0.1 m, its
+    /// profile y = 0 at 0.2 m from the wheelset centre) on the flat plane
+    /// whose origin is placed at y = 0.2 m, z = 0 (`rail_origin_y_m`), at
+    /// an approach of 0.16 mm.
+    const SPHERE_ON_PLANE: &str = r#"
+model = "exact"
+side = "right"
+[track]
+rail_profile = "crates/solver/profiles/flat_plane.prr"
+rail_origin_y_m = 0.2
+rail_origin_z_m = 0.0
+[wheelset]
+wheel_profile = "crates/solver/profiles/circ_r100.prw"
+flange_back_distance_m = 0.3
+flange_back_y_m = -0.05
+nominal_radius_m = 0.1
+[position]
+roll_rad = 0.0
+[velocity]
+forward_m_per_s = 1.0
+pitch_rad_per_s = -10.0
+[load]
+approach_m = 0.16e-3
+[grid]
+element_size_m = 0.0002
+"#;
+
+    fn root() -> &'static Path {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+    }
+
+    /// test-rollers2.ref_out, Case 1: FN 9.722E+04 N at track y 200 mm.
+    /// Within 0.05 %: the patch's grid has no element centred on the
+    /// sphere's lowest point (CONTACT's has), whose h(0.1 mm) = 0.1^2 /
+    /// (2 R) = 5e-5 mm of the approach is not loaded.
+    #[test]
+    fn a_rail_placed_by_its_origin_carries_contacts_sphere() {
+        let run = WheelrailRun::from_toml(SPHERE_ON_PLANE, root()).unwrap();
+        let mut scratch = SearchScratch::default();
+        let sol =
+            solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch).unwrap();
+        let patches = &sol.wheels[0].patches;
+        assert_eq!(patches.len(), 1);
+        let p = &patches[0];
+        assert!((p.track_y_m - 0.2).abs() < 1e-9, "{}", p.track_y_m);
+        let fn_n = p.normal_force_n;
+        assert!((fn_n - 9.722e4).abs() < 5e-4 * 9.722e4, "{fn_n}");
+    }
+
+    /// Both placements, or neither, are refused naming `track`.
+    #[test]
+    fn a_track_is_placed_one_way() {
+        let both = SPHERE_ON_PLANE.replace(
+            "rail_origin_z_m = 0.0",
+            "rail_origin_z_m = 0.0\ngauge_m = 1.435\ngauge_height_m = 0.014",
+        );
+        let neither = SPHERE_ON_PLANE
+            .replace("rail_origin_y_m = 0.2\n", "")
+            .replace("rail_origin_z_m = 0.0\n", "");
+        for text in [both, neither] {
+            let e = WheelrailRun::from_toml(&text, root()).err().unwrap();
+            assert!(e.to_string().contains("`track`"), "{e}");
+        }
+        let far = SPHERE_ON_PLANE.replace("rail_origin_y_m = 0.2", "rail_origin_y_m = 200.0");
+        let e = WheelrailRun::from_toml(&far, root()).err().unwrap();
+        assert!(e.to_string().contains("track.rail_origin_y_m"), "{e}");
+    }
 }

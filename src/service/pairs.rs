@@ -119,11 +119,10 @@ fn check_ranges(
 ) -> Result<(), ServiceError> {
     // Track and wheelset: the solver's ranges, which the command line
     // checks too (unset parts are checked when defaulted).
-    let track = spec.track.as_ref().map(|t| TrackData {
-        gauge_m: t.gauge_m,
-        gauge_height_m: t.gauge_height_m,
-        cant_rad: t.cant_rad,
-    });
+    let track = spec
+        .track
+        .as_ref()
+        .map(|t| TrackData::gauge_point(t.gauge_m, t.gauge_height_m, t.cant_rad));
     let wheelset = spec.wheelset.as_ref().map(|w| WheelsetData {
         flange_back_distance_m: w.flange_back_distance_m,
         nominal_radius_m: w.nominal_radius_m,
@@ -236,8 +235,8 @@ fn builtin_spec() -> pb::ProfilePairSpec {
         wheel: Some(src("MBench_S1002_v3.prw")),
         rail: Some(src("MBench_UIC60_v3.prr")),
         track: Some(pb::TrackSpec {
-            gauge_m: t.gauge_m,
-            gauge_height_m: t.gauge_height_m,
+            gauge_m: builtin::MBENCH_GAUGE_M,
+            gauge_height_m: builtin::MBENCH_GAUGE_HEIGHT_M,
             cant_rad: t.cant_rad,
         }),
         wheelset: Some(pb::WheelsetSpec {
@@ -459,11 +458,7 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
             friction,
             element_size_m,
             smoothing_wavelength_m,
-            track: TrackData {
-                gauge_m: track.gauge_m,
-                gauge_height_m: track.gauge_height_m,
-                cant_rad: track.cant_rad,
-            },
+            track: TrackData::gauge_point(track.gauge_m, track.gauge_height_m, track.cant_rad),
             wheelset: WheelsetData {
                 flange_back_distance_m: wheelset.flange_back_distance_m,
                 nominal_radius_m: wheelset.nominal_radius_m,
@@ -650,9 +645,9 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
                 "spec",
                 format!(
                     "the wheels do not make contact with their rails at the centred position \
-                     (gauge {} m, flange backs {} m apart, flange back at wheel profile y = \
+                     ({}, flange backs {} m apart, flange back at wheel profile y = \
                      {}): {e}; check spec.track, spec.wheelset and the profiles' origins",
-                    s.track.gauge_m,
+                    s.track.placement,
                     s.wheelset.flange_back_distance_m,
                     s.wheelset
                         .flange_back_y_m

@@ -24,8 +24,8 @@ use railcontact::wheelrail::builtin::{mbench_a22_input, MBENCH_TRACK, MBENCH_WHE
 use railcontact::wheelrail::{
     check_plausibility, load_profile, load_profile_with, pitch_force_tolerance, solve_wheelset,
     solve_wheelset_tabulated, solve_wheelset_warm, ContactTable, FrictionAxis, FrictionTable,
-    LoadOptions, SearchScratch, Side, SplineOptions, TableSettings, TrackData, WarmStart,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution, WheelRailThermal,
+    LoadOptions, RailPlacement, SearchScratch, Side, SplineOptions, TableSettings, TrackData,
+    WarmStart, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSolution, WheelRailThermal,
     WheelsetData,
 };
 use tonic::Code;
@@ -59,9 +59,16 @@ fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {
 }
 
 fn track(t: TrackData) -> pb::TrackSpec {
+    let RailPlacement::GaugePoint {
+        gauge_m,
+        gauge_height_m,
+    } = t.placement
+    else {
+        panic!("the wire places rails by the gauge point only: {t:?}")
+    };
     pb::TrackSpec {
-        gauge_m: t.gauge_m,
-        gauge_height_m: t.gauge_height_m,
+        gauge_m,
+        gauge_height_m,
         cant_rad: t.cant_rad,
     }
 }
@@ -74,11 +81,7 @@ fn wheelset(w: WheelsetData) -> pb::WheelsetSpec {
     }
 }
 
-const WORN_TRACK: TrackData = TrackData {
-    gauge_m: 1.435,
-    gauge_height_m: 0.014,
-    cant_rad: 0.025,
-};
+const WORN_TRACK: TrackData = TrackData::gauge_point(1.435, 0.014, 0.025);
 
 const WORN_WHEELSET: WheelsetData = WheelsetData {
     flange_back_distance_m: 1.360,

@@ -21,13 +21,47 @@
 //!   files are numbers in millimetres, so a profile lies at
 //!   `reader's metres x scale factor`.
 //! * Track (Z digit): the gauge point placement (gauge height > 0), gauge
-//!   and cant. Absolute rail placement (gauge height <= 0), track
-//!   curvature, rail deviations and the massless rail (Z = 32, 33) are
-//!   refused. The roller radius (NOMRAD) is for roller rigs and ignored.
+//!   and cant; or the absolute placement (gauge height <= 0), the rail
+//!   profile's origin at (RAILY0, RAILZ0) of the track (RAILY0 a track y,
+//!   positive for a right rail), rotated by the cant about it and not
+//!   shifted to touch the track plane (the solver's `RailPlacement::Origin`, at
+//!   q = sign(side) RAILY0 of the side frame). Track curvature and the
+//!   massless rail (Z = 32, 33) are refused. The roller radius (NOMRAD) is
+//!   for roller rigs and ignored.
+//! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0
+//!   towards the track centre for a left rail) and DROLLR turn and shift
+//!   the placed rail about its profile's origin (the solver's
+//!   `RailDeviation`; the gauge point is found on the rail inclined by the
+//!   cant alone, as CONTACT's `wr_set_rail_marker` does). VYRAIL, VZRAIL,
+//!   VROLLR move the rail: its velocity is taken off the wheel's rigid
+//!   motion (a roll rate and a velocity at the wheel's centre, whose
+//!   height a vertical force load finds: solved again there). The solver
+//!   takes the rail's velocity at the wheel's point of the contact,
+//!   CONTACT at the rail's, PEN along the normal from it: CETA differs by
+//!   VROLLR PEN / V. F = 1 with VROLLR is refused.
+//! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
+//!   from the wheelset centre) and may lie outside the profile, as in
+//!   CONTACT; the solver is given the same placement from the profile's
+//!   smallest y.
 //! * Wheelset (E digit): flange-back distance and position, nominal
 //!   radius and the optional tape circle; position s, y, z, roll, yaw
-//!   (pitch is stored: a round wheel does not depend on it); velocity;
-//!   flexibilities must be zero.
+//!   (pitch is stored: a round wheel does not depend on it); velocity.
+//! * Flexible wheelset deviations (E = 4, 5): the wheel profile's marker
+//!   displaced by DXWHL, DYWHL, DZWHL and the wheel turned about it by
+//!   DROLLW, DYAWW in wheelset coordinates, as CONTACT's
+//!   `wr_set_wheel_marker` places it; DPITCHW turns a round wheel onto
+//!   itself. A wheel is a body of revolution: the solver takes the
+//!   deflected wheel as a wheelset pose, its axis where the wheel's is
+//!   (`FlexedWheel`), and its rigid motion as CONTACT's wheel point velocity:
+//!   the wheelset's motion (pitch about the wheelset's axle) plus the
+//!   deviations' rates VXWHL .. VPITCHW about the marker. So DYAWW gives no
+//!   lateral creepage and DROLLW no spin by themselves (CONTACT's
+//!   test-rollers2.inp cases 1b, 1e). The creepages are relative to the
+//!   rolling speed of the deflected wheel about its own axle, CONTACT's to
+//!   that about the wheelset's: 0.15 % apart with DROLLW = 0.02 rad on a
+//!   100 mm wheel. Not with F = 1 (FX_WS given): refused. The solver's
+//!   limit of 0.2 rad on a wheel's roll and yaw holds for the deflected
+//!   wheel (test-rollers2 case 1b, DYAWW = -0.3 rad, is refused by it).
 //! * Load: N = 1 the vertical force FZ (`cntc_setverticalforce`), N = 0 the
 //!   wheelset height z_ws (zero at the nominal position, z_tr = -r_nom).
 //! * Discretisation (`cntc_setpotcontact`, icp = -1): DX = DS (square
@@ -86,9 +120,10 @@ use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
     ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, SearchScratch, Side,
-    SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailDeviation, RailPlacement,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
+    WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -142,9 +177,47 @@ fn slot<'a, T>(s: &'a Slot<T>, missing: &str) -> Result<&'a T> {
 /// Track dimensions (Z = 1, 3), SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Track {
-    gauge_height_m: f64,
-    gauge_m: f64,
+    placement: Placement,
     cant_rad: f64,
+}
+
+/// The rail placement of `cntc_settrackdimensions`, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Placement {
+    /// GAUGHT > 0: GAUGHT and GAUGWD.
+    GaugePoint { gauge_height_m: f64, gauge_m: f64 },
+    /// GAUGHT <= 0: RAILY0 (track y, not mirrored) and RAILZ0.
+    Absolute { rail_y_m: f64, rail_z_m: f64 },
+}
+
+impl Track {
+    /// The solver's track for the rail of `side`: RAILY0 in the side frame.
+    fn for_side(&self, side: Side, deviation: &[f64; 6]) -> TrackData {
+        let placement = match self.placement {
+            Placement::GaugePoint {
+                gauge_height_m,
+                gauge_m,
+            } => RailPlacement::GaugePoint {
+                gauge_m,
+                gauge_height_m,
+            },
+            Placement::Absolute { rail_y_m, rail_z_m } => RailPlacement::Origin {
+                q_m: side.sign() * rail_y_m,
+                z_m: rail_z_m,
+            },
+        };
+        let mut deviations = [RailDeviation::default(); 2];
+        deviations[side.index()] = RailDeviation {
+            dy_m: deviation[0],
+            dz_m: deviation[1],
+            droll_rad: deviation[2],
+        };
+        TrackData {
+            placement,
+            cant_rad: self.cant_rad,
+            deviations,
+        }
+    }
 }
 
 /// Wheelset dimensions (E = 3, 5), SI.
@@ -178,6 +251,9 @@ pub struct Solved {
     side: Side,
     /// Wheelset axes in the side frame: forward, axle (outwards), down.
     ws_axes: [[f64; 3]; 3],
+    /// The wheel's turn from the wheelset's axes, DROLLW and DYAWW
+    /// \[rad\] (track frame).
+    wheel_turn_rad: [f64; 2],
     /// Rail roll in the side frame \[rad\] (-cant).
     rail_roll_rad: f64,
     /// The loaded wheelset height z_ws (zero at the nominal position) \[m\].
@@ -204,15 +280,18 @@ pub struct WheelRail {
     rail: Slot<ProfileInput>,
     wheel: Slot<ProfileInput>,
     track: Slot<Track>,
-    /// Rail deviations (Z = 2, 3): refused when not zero.
-    deviations: Slot<()>,
+    /// Rail deviations (Z = 2, 3), SI: DYRAIL, DZRAIL \[m\], DROLLR
+    /// \[rad\], VYRAIL, VZRAIL \[m/s\], VROLLR \[rad/s\] (track frame).
+    rail_deviation: [f64; 6],
     wheelset: Slot<WheelsetDims>,
     /// s, y, z \[m\], roll, yaw, pitch \[rad\].
     position: [f64; 6],
     /// vs, vy, vz \[m/s\], vroll, vyaw, vpitch \[rad/s\].
     velocity: [f64; 6],
-    /// Flexible wheelset deviations (E = 4, 5): refused when not zero.
-    flexibility: Slot<()>,
+    /// Flexible wheelset deviations (E = 4, 5), SI: DXWHL, DYWHL, DZWHL
+    /// \[m\], DROLLW, DYAWW, DPITCHW \[rad\], VXWHL, VYWHL, VZWHL \[m/s\],
+    /// VROLLW, VYAWW, VPITCHW \[rad/s\]; zeros without them.
+    flexibility: [f64; 12],
     /// FZ \[N\] (N = 1).
     vertical_force_n: Option<f64>,
     /// FX_WS \[N\] (F = 1): the total force on the rail along the
@@ -271,6 +350,17 @@ fn scale(k: f64, a: [f64; 3]) -> [f64; 3] {
 /// Components of `v` along the axes `e` (rows).
 fn in_basis(v: [f64; 3], e: &[[f64; 3]; 3]) -> [f64; 3] {
     [dot(v, e[0]), dot(v, e[1]), dot(v, e[2])]
+}
+
+/// The vector with components `v` along the axes `e` (rows).
+fn of_basis(v: [f64; 3], e: &[[f64; 3]; 3]) -> [f64; 3] {
+    add(scale(v[0], e[0]), add(scale(v[1], e[1]), scale(v[2], e[2])))
+}
+
+/// The axes `e` (rows) turned by the rotation whose columns, in `e`'s
+/// coordinates, are the rows of `r`: R_e R.
+fn turned(e: &[[f64; 3]; 3], r: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    [of_basis(r[0], e), of_basis(r[1], e), of_basis(r[2], e)]
 }
 
 /// `iparam(k)` (1-based as CONTACT numbers them), or `default`.
@@ -679,32 +769,36 @@ impl WheelRail {
         let u = self.units();
         if ztrack == 1 || ztrack == 3 {
             let gaught = u.len(p[0]);
-            let track = if gaught <= 0.0 {
+            let curv_index = if ztrack == 1 { 6 } else { 12 };
+            let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
+            let track = if curv != 0.0 {
                 Err(CntcError::NotSupported(format!(
-                    "{CALL}: GAUGHT = {} <= 0 selects absolute rail placement (RAILY0, RAILZ0), \
-                     which is not supported; give the gauge height > 0, GAUGWD and CANT",
-                    p[0]
+                    "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
+                     tangent track (0)"
+                )))
+            } else if gaught <= 0.0 {
+                // Absolute placement: the rail profile's origin at
+                // (RAILY0, RAILZ0) of the track.
+                Ok(Track {
+                    placement: Placement::Absolute {
+                        rail_y_m: u.len(p[1]),
+                        rail_z_m: u.len(p[2]),
+                    },
+                    cant_rad: p[3],
+                })
+            } else if p[2] <= 0.0 {
+                Err(CntcError::Input(format!(
+                    "{CALL}: the gauge GAUGWD = {} (params(3)) must be > 0",
+                    p[2]
                 )))
             } else {
-                let curv_index = if ztrack == 1 { 6 } else { 12 };
-                let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
-                if curv != 0.0 {
-                    Err(CntcError::NotSupported(format!(
-                        "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
-                         tangent track (0)"
-                    )))
-                } else if p[2] <= 0.0 {
-                    Err(CntcError::Input(format!(
-                        "{CALL}: the gauge GAUGWD = {} (params(3)) must be > 0",
-                        p[2]
-                    )))
-                } else {
-                    Ok(Track {
+                Ok(Track {
+                    placement: Placement::GaugePoint {
                         gauge_height_m: gaught,
                         gauge_m: u.len(p[2]),
-                        cant_rad: p[3],
-                    })
-                }
+                    },
+                    cant_rad: p[3],
+                })
             };
             // GAUGSQ (params(2)) is reserved in CONTACT; NOMRAD (params(5))
             // is the roller radius of roller rigs.
@@ -719,18 +813,15 @@ impl WheelRail {
                 _ if p.len() >= 12 => 6,
                 _ => 5,
             };
-            let dev = &p[ofs..ofs + 6];
-            let d = if dev.iter().all(|v| *v == 0.0) {
-                Ok(())
-            } else {
-                Err(CntcError::NotSupported(format!(
-                    "{CALL}: rail deviations DYRAIL, DZRAIL, DROLLR, VYRAIL, VZRAIL, VROLLR = {dev:?} \
-                     are not supported; give zeros"
-                )))
-            };
-            let out = d.clone();
-            self.deviations = Some(d);
-            out?;
+            let d = &p[ofs..ofs + 6];
+            self.rail_deviation = [
+                u.len(d[0]),
+                u.len(d[1]),
+                d[2],
+                u.velocity(d[3]),
+                u.velocity(d[4]),
+                d[5],
+            ];
         }
         Ok(())
     }
@@ -854,7 +945,7 @@ impl WheelRail {
         }
         if ewheel <= 3 {
             // No flexibilities: any values given are not used.
-            self.flexibility = Some(Ok(()));
+            self.flexibility = [0.0; 12];
             return Ok(());
         }
         if p.len() != 12 {
@@ -863,17 +954,24 @@ impl WheelRail {
                 p.len()
             )));
         }
-        let r = if p.iter().all(|v| *v == 0.0) {
-            Ok(())
-        } else {
-            Err(CntcError::NotSupported(format!(
-                "{CALL}: flexible wheelset deviations (E = {ewheel}) {p:?} are not supported; \
-                 give zeros"
-            )))
-        };
-        let out = r.clone();
-        self.flexibility = Some(r);
-        out
+        finite(
+            CALL,
+            &[
+                "DXWHL", "DYWHL", "DZWHL", "DROLLW", "DYAWW", "DPITCHW", "VXWHL", "VYWHL", "VZWHL",
+                "VROLLW", "VYAWW", "VPITCHW",
+            ],
+            p,
+        )?;
+        let u = self.units();
+        let mut f = [0.0; 12];
+        for k in 0..3 {
+            f[k] = u.len(p[k]);
+            f[k + 3] = p[k + 3];
+            f[k + 6] = u.velocity(p[k + 6]);
+            f[k + 9] = p[k + 9];
+        }
+        self.flexibility = f;
+        Ok(())
     }
 
     /// `cntc_setverticalforce` (also sets N = 1).
@@ -1102,17 +1200,37 @@ impl WheelRail {
                 "H = 3 (temperatures, cntc_settemperaturedata) in module 1 is not supported".into(),
             ));
         }
-        if let Some(Err(e)) = &self.deviations {
-            return Err(e.clone());
+        if d.force == 1 && self.rail_deviation[5] != 0.0 {
+            return Err(CntcError::NotSupported(
+                "F = 1 (a prescribed total force FX_WS) with a rail roll rate VROLLR \
+                 (cntc_settrackdimensions, Z = 2, 3) is not supported: give the pitch rate \
+                 VPITCH (F = 0)"
+                    .into(),
+            ));
         }
-        if let Some(Err(e)) = &self.flexibility {
-            return Err(e.clone());
+        if d.force == 1 && self.flexibility.iter().any(|v| *v != 0.0) {
+            return Err(CntcError::NotSupported(
+                "F = 1 (a prescribed total force FX_WS) with flexible wheelset deviations \
+                 (cntc_setwheelsetflexibility, E = 4, 5) is not supported: give the pitch rate \
+                 VPITCH (F = 0)"
+                    .into(),
+            ));
         }
         Ok(())
     }
 
+    /// Whether `pair` was placed for the rail of `side`: a rail placed
+    /// absolutely sits at RAILY0 of its own side, and the pair placed for
+    /// the other side does not serve.
+    fn fits(&self, pair: &WheelRailPair, side: Side) -> bool {
+        match &self.track {
+            Some(Ok(track)) => *pair.track() == track.for_side(side, &self.rail_deviation),
+            _ => true,
+        }
+    }
+
     /// The placed profiles (built when missing).
-    fn build_pair(&self) -> Result<Arc<WheelRailPair>> {
+    fn build_pair(&self, side: Side) -> Result<Arc<WheelRailPair>> {
         let rail = slot(
             &self.rail,
             "the rail profile has not been set: cntc_setprofileinputfname or \
@@ -1154,19 +1272,39 @@ impl WheelRail {
             0.0 => wheel_p,
             dz => wheel_p.translated(0.0, dz),
         };
+        // FBPOS only places the profile (its y = 0 at FBDIST/2 - FBPOS from
+        // the wheelset centre) and may lie outside it (test-rollers2.inp:
+        // FBPOS = -100 mm on a sphere of y -50..50 mm); the solver takes
+        // the back of the flange on the profile: the same placement from
+        // the profile's smallest y.
+        let (lo, hi) = wheel_p.y_range_m();
+        let (fb_distance_m, fb_y_m) = if (lo..=hi).contains(&dims.flange_back_y_m) {
+            (dims.flange_back_distance_m, dims.flange_back_y_m)
+        } else {
+            (
+                dims.flange_back_distance_m - 2.0 * (dims.flange_back_y_m - lo),
+                lo,
+            )
+        };
+        if fb_distance_m <= 0.0 {
+            return Err(CntcError::Input(format!(
+                "cntc_setwheelsetdimensions: FBDIST/2 - FBPOS = {} puts the wheel profile \
+                 (y from {} to {}) across the wheelset centre",
+                self.units()
+                    .len_out(0.5 * dims.flange_back_distance_m - dims.flange_back_y_m),
+                self.units().len_out(lo),
+                self.units().len_out(hi)
+            )));
+        }
         PairCache::global()
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
-                TrackData {
-                    gauge_m: track.gauge_m,
-                    gauge_height_m: track.gauge_height_m,
-                    cant_rad: track.cant_rad,
-                },
+                track.for_side(side, &self.rail_deviation),
                 WheelsetData {
-                    flange_back_distance_m: dims.flange_back_distance_m,
+                    flange_back_distance_m: fb_distance_m,
                     nominal_radius_m: dims.nominal_radius_m,
-                    flange_back_y_m: Some(dims.flange_back_y_m),
+                    flange_back_y_m: Some(fb_y_m),
                 },
                 &options,
             )
@@ -1195,12 +1333,12 @@ impl WheelRail {
         if self.config.digits.ret >= 2 {
             return Ok(0); // R = 2, 3: check the input only
         }
-        if self.pair.is_none() {
-            let pair = self.build_pair();
+        if !self.pair.as_ref().is_some_and(|p| self.fits(p, side)) {
+            let pair = self.build_pair(side);
             self.pair_before = None;
             self.pair = Some(pair?);
         }
-        let input = self.solver_input(side)?;
+        let input = self.solver_input(side, None)?;
         let pair = self.pair.as_ref().expect("built above");
         let (input, sol, vpitch_found) = match self.longitudinal_force_n {
             Some(target) if self.config.digits.force == 1 => {
@@ -1220,8 +1358,28 @@ impl WheelRail {
                 (input, sol, Some(vpitch))
             }
             _ => {
-                let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                let mut input = input;
+                let mut sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
                     .map_err(CntcError::from_wheelrail)?;
+                // The rail's roll rate turns about the wheel's centre,
+                // whose height a vertical force load finds: solved again
+                // at the height found (twice: the second moves it by
+                // the first's change of the approach, well below a
+                // nanometre).
+                if self.rail_deviation[5] != 0.0
+                    && !matches!(input.load, WheelLoad::CenterHeight(_))
+                {
+                    for _ in 0..2 {
+                        let cz = sol
+                            .wheels
+                            .iter()
+                            .find(|w| w.side == side)
+                            .map(|w| sol.center_z_m + w.vertical_approach_m);
+                        input = self.solver_input(side, cz)?;
+                        sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                            .map_err(CntcError::from_wheelrail)?;
+                    }
+                }
                 (input, sol, None)
             }
         };
@@ -1232,8 +1390,35 @@ impl WheelRail {
         Ok(ierror)
     }
 
+    /// The wheel deflected by the flexible wheelset deviations (E = 4, 5)
+    /// on the wheelset rolled and yawed by CONTACT's `roll`, `yaw`; `None`
+    /// without deviations (all zero: the undeflected wheel, bit for bit).
+    fn flexed_wheel(&self, side: Side, roll: f64, yaw: f64) -> Result<Option<FlexedWheel>> {
+        if self.flexibility.iter().all(|v| *v == 0.0) {
+            return Ok(None);
+        }
+        let dims = slot(&self.wheelset, "the wheelset dimensions have not been set")?;
+        let wheel = slot(&self.wheel, "the wheel profile has not been set")?;
+        let pair = self.pair.as_ref().ok_or_else(|| {
+            CntcError::Other("the profiles are placed before the deviations".into())
+        })?;
+        let r_marker = dims.nominal_radius_m + self.tape_shift(wheel)?;
+        Ok(Some(FlexedWheel::new(
+            side,
+            roll,
+            yaw,
+            pair.wheel(side).axial_offset_m(),
+            r_marker,
+            &self.flexibility,
+        )))
+    }
+
     /// The solver's input of this problem.
-    fn solver_input(&self, side: Side) -> Result<WheelRailInput> {
+    ///
+    /// `center_z_hint_m`: the wheel's centre height (the solver's) where
+    /// the rail's roll rate VROLLR turns it, for a vertical force load
+    /// (N = 1), whose height is found by the solve; `None`: -NOMRAD.
+    fn solver_input(&self, side: Side, center_z_hint_m: Option<f64>) -> Result<WheelRailInput> {
         let d = self.discretisation.ok_or_else(|| {
             CntcError::Discretisation(
                 "the discretisation has not been set: cntc_setpotcontact with icp = -1, IPOTCN = -1 \
@@ -1287,21 +1472,76 @@ impl WheelRail {
             Some((angles, laws)) => friction_by_angle(angles, laws, vs, start)?,
         };
         let o = SolverOrientation::of(roll, yaw, vroll, vyaw, vpitch);
+        let mut position = WheelsetPosition {
+            lateral_m: y_ws,
+            yaw_rad: o.yaw_rad,
+            roll_rad: Some(o.roll_rad),
+            track_s_m: s_ws,
+        };
+        let mut velocity = WheelsetVelocity {
+            forward_m_per_s: vs,
+            lateral_m_per_s: vy,
+            vertical_m_per_s: vz,
+            roll_rad_per_s: o.roll_rate,
+            yaw_rad_per_s: o.yaw_rate,
+            pitch_rad_per_s: Some(o.pitch_rate),
+        };
+        let mut load = load;
+        if let Some(fw) = self.flexed_wheel(side, roll, yaw)? {
+            // The deflected wheel as the solver's wheelset: its axis
+            // through the wheelset centre moved by center_rel, its rigid
+            // motion CONTACT's wheelset motion plus the deviations' rates.
+            let s = side.sign();
+            let (roll_w, yaw_w) = fw.solver_roll_yaw(side);
+            position.lateral_m = y_ws + s * fw.center_rel[1];
+            position.roll_rad = Some(roll_w);
+            position.yaw_rad = yaw_w;
+            if let WheelLoad::CenterHeight(z) = load {
+                load = WheelLoad::CenterHeight(z + fw.center_rel[2]);
+            }
+            let w_ws = add(
+                [s * o.roll_rate, 0.0, s * o.yaw_rate],
+                scale(o.pitch_rate, fw.ws_axes[1]),
+            );
+            let [fwd, lat, vert, roll_rate, yaw_rate, pitch] =
+                fw.solver_velocity(side, [vs, s * vy, vz], w_ws, &self.flexibility);
+            velocity = WheelsetVelocity {
+                forward_m_per_s: fwd,
+                lateral_m_per_s: lat,
+                vertical_m_per_s: vert,
+                roll_rad_per_s: roll_rate,
+                yaw_rad_per_s: yaw_rate,
+                pitch_rad_per_s: Some(pitch),
+            };
+        }
+        let [_, _, _, vy_r, vz_r, vroll_r] = self.rail_deviation;
+        if [vy_r, vz_r, vroll_r] != [0.0; 3] {
+            // The rail moves: its velocity at the wheel's point Q,
+            // v_r + w_r x (Q - O_r) (CONTACT's `wr_creep_cref`), taken off
+            // the wheel's rigid motion about its centre c: -w_r x (Q - c)
+            // as a roll rate, -v_r - w_r x (c - O_r) at c (side frame,
+            // w_r = (s VROLLR, 0, 0)).
+            let s = side.sign();
+            let pair = self.pair.as_ref().ok_or_else(|| {
+                CntcError::Other("the profiles are placed before the rail's rates".into())
+            })?;
+            let [oq, oz] = pair.rail(side).to_side(0.0, 0.0);
+            let cz = match load {
+                WheelLoad::CenterHeight(z) => z,
+                _ => center_z_hint_m.unwrap_or(-dims.nominal_radius_m),
+            };
+            let cq = s * position.lateral_m;
+            let at_c = [
+                s * vy_r - s * vroll_r * (cz - oz),
+                vz_r + s * vroll_r * (cq - oq),
+            ];
+            velocity.lateral_m_per_s -= s * at_c[0];
+            velocity.vertical_m_per_s -= at_c[1];
+            velocity.roll_rad_per_s -= vroll_r;
+        }
         Ok(WheelRailInput {
-            position: WheelsetPosition {
-                lateral_m: y_ws,
-                yaw_rad: o.yaw_rad,
-                roll_rad: Some(o.roll_rad),
-                track_s_m: s_ws,
-            },
-            velocity: WheelsetVelocity {
-                forward_m_per_s: vs,
-                lateral_m_per_s: vy,
-                vertical_m_per_s: vz,
-                roll_rad_per_s: o.roll_rate,
-                yaw_rad_per_s: o.yaw_rate,
-                pitch_rad_per_s: Some(o.pitch_rate),
-            },
+            position,
+            velocity,
             load,
             sides: vec![side],
             material,
@@ -1361,17 +1601,39 @@ impl WheelRail {
         };
         // The loaded wheelset (side frame).
         let [_, y_ws, _, roll, yaw, _] = self.position;
-        let center_z = sol.center_z_m + wheel.vertical_approach_m;
+        let flexed = self.flexed_wheel(side, roll, yaw)?;
+        // The solver's wheelset is the deflected wheel's (its centre
+        // center_rel from the wheelset's).
+        let shift = flexed.map_or([0.0; 3], |f| f.center_rel);
+        let center_z = sol.center_z_m + wheel.vertical_approach_m - shift[2];
         let ws_axes = contact_ws_axes(side, roll, yaw);
         let [_, a, e1] = ws_axes;
         let c = [0.0, s * y_ws, center_z];
         let axial = pair.wheel(side).axial_offset_m();
         let r_marker = dims.nominal_radius_m + dr_tape;
-        let w_marker = add(c, add(scale(axial, a), scale(r_marker, e1)));
+        let (wheel_axes, w_marker, wheel_marker_ws, wheel_angles) = match flexed {
+            None => (
+                ws_axes,
+                add(c, add(scale(axial, a), scale(r_marker, e1))),
+                [0.0, s * axial, r_marker, 0.0, 0.0],
+                [roll, yaw],
+            ),
+            Some(f) => {
+                let (roll_w, yaw_w) = f.contact_roll_yaw(side);
+                let m = f.marker_ws;
+                let flex = &self.flexibility;
+                (
+                    f.axes,
+                    add(c, f.marker_rel),
+                    [m[0], s * m[1], m[2], flex[3], flex[4]],
+                    [roll_w, yaw_w],
+                )
+            }
+        };
         let rail = pair.rail(side);
         let [rq, rz] = rail.to_side(0.0, 0.0);
         let r_marker_pt = [0.0, rq, rz];
-        let rail_roll = -pair.track().cant_rad;
+        let rail_roll = -rail.inclination_rad();
         // Arc-length origins of the profiles (CONTACT's s = 0).
         let rail_spline = rail.spline();
         let wheel_spline = pair.wheel(side).spline();
@@ -1388,18 +1650,18 @@ impl WheelRail {
                 input,
                 PatchFrames {
                     ws_axes,
+                    wheel_axes,
                     center: c,
                     w_marker,
                     r_marker: r_marker_pt,
                     rail_roll,
-                    axial,
-                    r_marker_radius: r_marker,
+                    wheel_marker_ws,
+                    wheel_angles,
+                    x_shift_m: shift[0],
                     rail_s0,
                     wheel_s0,
                     rail_spline,
                     wheel_spline,
-                    roll,
-                    yaw,
                     sign: s,
                 },
             );
@@ -1432,6 +1694,7 @@ impl WheelRail {
         self.solved = Some(Solved {
             side,
             ws_axes,
+            wheel_turn_rad: [self.flexibility[3], self.flexibility[4]],
             rail_roll_rad: rail_roll,
             z_ws_m: center_z + dims.nominal_radius_m,
             vpitch_found: None,
@@ -1457,7 +1720,7 @@ impl WheelRail {
         let n = [0.0, st, ct];
         let t = [0.0, ct, -st];
         let ex_c = [1.0, 0.0, 0.0];
-        let origin = [p.track_x_m, s * p.track_y_m, p.track_z_m];
+        let origin = [p.track_x_m + f.x_shift_m, s * p.track_y_m, p.track_z_m];
         let ft = p.force_track_n;
         let force = [ft[0], s * ft[1], ft[2]];
 
@@ -1621,9 +1884,11 @@ impl WheelRail {
         let delta_tr = -p.contact_angle_rad; // CONTACT's angle, side frame
         let [ex, a, e1] = f.ws_axes;
         let dw = sub(origin, f.w_marker);
-        let wheel_pt = [dot(dw, ex), dot(dw, a), dot(dw, e1)];
+        let wheel_pt = in_basis(dw, &f.wheel_axes);
         let n_ws = [dot(n, ex), dot(n, a), dot(n, e1)];
         let delta_ws = (-n_ws[1]).atan2(n_ws[2]);
+        let n_w = in_basis(n, &f.wheel_axes);
+        let delta_w = (-n_w[1]).atan2(n_w[2]);
         let rail_s = f
             .rail_spline
             .t_at_y(p.rail_y_m)
@@ -1648,19 +1913,19 @@ impl WheelRail {
                 s * wheel_pt[1],
                 wheel_pt[2],
                 wheel_s,
-                s * delta_ws,
+                s * delta_w,
             ],
             pressure_centre: [pc[0], s * pc[1]],
             wheel_marker_track: [
                 f.w_marker[0],
                 s * f.w_marker[1],
                 f.w_marker[2],
-                f.roll,
-                f.yaw,
+                f.wheel_angles[0],
+                f.wheel_angles[1],
             ],
             rail_marker_track: [s * f.r_marker[1], f.r_marker[2], s * f.rail_roll],
             wheelset: [dot(dc, ex), s * dot(dc, a), dot(dc, e1), s * delta_ws],
-            wheel_marker_wheelset: [0.0, s * f.axial, f.r_marker_radius, 0.0, 0.0],
+            wheel_marker_wheelset: f.wheel_marker_ws,
             force_track_n: p.force_track_n,
         });
         (o, [force, m_rail, m_wheel])
@@ -1744,6 +2009,13 @@ impl WheelRail {
         let rail_axes = [[1.0, 0.0, 0.0], [0.0, cr, sr], [0.0, -sr, cr]];
         let f_ws = in_basis(f, &sv.ws_axes);
         let mw_ws = in_basis(mw, &sv.ws_axes);
+        // The wheel's axes: the wheelset's, turned by DROLLW and DYAWW.
+        let wheel_axes = match sv.wheel_turn_rad {
+            [0.0, 0.0] => sv.ws_axes,
+            [droll, dyaw] => turned(&sv.ws_axes, &contact_ws_axes(sv.side, droll, dyaw)),
+        };
+        let f_w = in_basis(f, &wheel_axes);
+        let mw_w = in_basis(mw, &wheel_axes);
         let f_r = in_basis(f, &rail_axes);
         let mr_r = in_basis(mr, &rail_axes);
         let mut v = [0.0; 24];
@@ -1758,8 +2030,7 @@ impl WheelRail {
         block(&mut v[0..6], f, mr);
         block(&mut v[6..12], f_ws, mw_ws);
         block(&mut v[12..18], f_r, mr_r);
-        // The wheel profile's axes are the wheelset's (no flexibilities).
-        block(&mut v[18..24], f_ws, mw_ws);
+        block(&mut v[18..24], f_w, mw_w);
         Ok(v)
     }
 
@@ -1987,9 +2258,9 @@ impl WheelRail {
         let s = side.sign();
         let built;
         let pair = match &self.pair {
-            Some(p) => p,
-            None => {
-                built = self.build_pair()?;
+            Some(p) if self.fits(p, side) => p,
+            _ => {
+                built = self.build_pair(side)?;
                 &built
             }
         };
@@ -2200,19 +2471,119 @@ fn contact_ws_axes(side: Side, roll: f64, yaw: f64) -> [[f64; 3]; 3] {
 /// The frames a patch's location is computed in (side frame).
 struct PatchFrames<'a> {
     ws_axes: [[f64; 3]; 3],
+    /// The wheel profile's axes (the wheelset's turned by DROLLW, DYAWW).
+    wheel_axes: [[f64; 3]; 3],
     center: [f64; 3],
     w_marker: [f64; 3],
     r_marker: [f64; 3],
     rail_roll: f64,
-    axial: f64,
-    r_marker_radius: f64,
+    /// The wheel marker in wheelset coordinates (CONTACT's reporting
+    /// frame): x, y, z \[m\], roll, yaw \[rad\].
+    wheel_marker_ws: [f64; 5],
+    /// The wheel marker's roll and yaw in the track \[rad\].
+    wheel_angles: [f64; 2],
+    /// The solver's x of the wheel (the wheel's axis placed at x = 0)
+    /// less the track's \[m\]: added to the solver's x.
+    x_shift_m: f64,
     rail_s0: f64,
     wheel_s0: f64,
     rail_spline: &'a ProfileSpline,
     wheel_spline: &'a ProfileSpline,
-    roll: f64,
-    yaw: f64,
     sign: f64,
+}
+
+/// The wheel of one side in the side frame with CONTACT's flexible
+/// wheelset deviations (`wr_set_wheel_marker`): its profile marker at
+/// (DXWHL, FBDIST/2 - FBPOS + DYWHL, r_nom + dr_tape + DZWHL) of the
+/// wheelset (DYWHL a wheelset y: mirrored on the left), its axes the
+/// wheelset's turned by Rx(DROLLW) Rz(DYAWW) about the marker (DPITCHW
+/// turns a round wheel onto itself). The solver takes the wheel as a
+/// wheelset pose: the wheel's axis through `center_rel` with the
+/// profile's y = 0 at `axial` along it, as an undeflected wheel's axis runs
+/// through the wheelset centre.
+#[derive(Debug, Clone, Copy)]
+struct FlexedWheel {
+    /// Wheelset axes (rows: forward, axle outwards, down), CONTACT's.
+    ws_axes: [[f64; 3]; 3],
+    /// The wheel's axes, likewise.
+    axes: [[f64; 3]; 3],
+    /// The profile marker relative to the wheelset centre \[m\].
+    marker_rel: [f64; 3],
+    /// The marker in wheelset coordinates (side frame) \[m\].
+    marker_ws: [f64; 3],
+    /// The point of the wheel's axis `axial` inside the profile's y = 0,
+    /// relative to the wheelset centre \[m\]: the solver's wheelset centre.
+    center_rel: [f64; 3],
+}
+
+impl FlexedWheel {
+    /// `flex` as stored (SI); `axial` the profile's y = 0 from the
+    /// wheelset centre, `r_marker` the marker's radius \[m\].
+    fn new(side: Side, roll: f64, yaw: f64, axial: f64, r_marker: f64, flex: &[f64; 12]) -> Self {
+        let s = side.sign();
+        let ws_axes = contact_ws_axes(side, roll, yaw);
+        // The deviation's rotation in wheelset coordinates has the same
+        // form, Rx(s droll) Rz(s dyaw): its columns in the rows.
+        let rf = contact_ws_axes(side, flex[3], flex[4]);
+        let axes = turned(&ws_axes, &rf);
+        let marker_ws = [flex[0], axial + s * flex[1], r_marker + flex[2]];
+        let marker_rel = of_basis(marker_ws, &ws_axes);
+        let axis_point = sub(marker_rel, scale(r_marker, axes[2]));
+        Self {
+            ws_axes,
+            axes,
+            marker_rel,
+            marker_ws,
+            center_rel: sub(axis_point, scale(axial, axes[1])),
+        }
+    }
+
+    /// The solver's track-frame roll and yaw of the wheel's axle: its
+    /// axle (-sin yaw cos roll, cos yaw cos roll, sin roll) in the side
+    /// frame.
+    fn solver_roll_yaw(&self, side: Side) -> (f64, f64) {
+        let a = self.axes[1];
+        let roll = a[2].clamp(-1.0, 1.0).asin();
+        let yaw = (-a[0] / roll.cos()).clamp(-1.0, 1.0).asin();
+        (side.sign() * roll, side.sign() * yaw)
+    }
+
+    /// CONTACT's roll and yaw (track frame) of the wheel marker: Euler
+    /// angles of Rx(roll) Rz(yaw), from its axle.
+    fn contact_roll_yaw(&self, side: Side) -> (f64, f64) {
+        let a = self.axes[1];
+        let yaw = (-a[0]).clamp(-1.0, 1.0).asin();
+        (side.sign() * a[2].atan2(a[1]), side.sign() * yaw)
+    }
+
+    /// The solver's velocity of the wheel (its centre's [forward, lateral,
+    /// vertical] \[m/s\] in the track frame, roll, yaw and pitch rates
+    /// \[rad/s\]) for the wheelset's velocity `v_ws` (side frame, at its
+    /// centre) and angular velocity `w_ws` (side frame) and the
+    /// deviations' rates: CONTACT's velocity of a wheel point,
+    /// v_ws + w_ws x (Q - c_ws) + R_ws (v_w + w_w x (Q_ws - m)) (its
+    /// `wr_creep_cref`), as the solver's rigid motion about the wheel's
+    /// own axle.
+    fn solver_velocity(
+        &self,
+        side: Side,
+        v_ws: [f64; 3],
+        w_ws: [f64; 3],
+        flex: &[f64; 12],
+    ) -> [f64; 6] {
+        let s = side.sign();
+        let v_w = of_basis([flex[6], s * flex[7], flex[8]], &self.ws_axes);
+        let w_w = of_basis([s * flex[9], flex[11], s * flex[10]], &self.ws_axes);
+        let w = add(w_ws, w_w);
+        let v = add(
+            add(v_ws, cross(w_ws, self.center_rel)),
+            add(v_w, cross(w_w, sub(self.center_rel, self.marker_rel))),
+        );
+        let a = self.axes[1];
+        let pitch = w[1] / a[1];
+        let rest = sub(w, scale(pitch, a));
+        [v[0], s * v[1], v[2], s * rest[0], s * rest[2], pitch]
+    }
 }
 
 /// V = 1: friction by contact angle as the solver's friction table. The
@@ -2630,17 +3001,38 @@ mod tests {
     #[test]
     fn unsupported_settings_are_refused_naming_the_parameter() {
         let mut w = mbench(1);
-        let e = w.set_wheelset_flexibility(4, &[0.1; 12]).unwrap_err();
-        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
-        assert!(e.to_string().contains("cntc_setwheelsetflexibility"));
+        let e = w
+            .set_wheelset_flexibility(
+                4,
+                &[
+                    0.1,
+                    f64::NAN,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ],
+            )
+            .unwrap_err();
+        assert!(e.to_string().contains("DYWHL"), "{e}");
+        w.set_wheelset_flexibility(4, &[0.1; 12]).unwrap();
         w.set_wheelset_position(1, &[0.0; 6]).unwrap();
         w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3])
             .unwrap();
         let cache = KernelCache::default();
-        assert_eq!(
-            w.calculate(&cache).unwrap_err().ierror(),
-            flags::err::NOT_SUPPORTED
-        );
+        // A prescribed FX_WS with deviations.
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);
+        w.set_longitudinal_force(-1, 100.0).unwrap();
+        let e = w.calculate(&cache).unwrap_err();
+        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
+        assert!(e.to_string().contains("cntc_setwheelsetflexibility"), "{e}");
+        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
         let e = w.calculate(&cache).unwrap_err();
@@ -2661,15 +3053,56 @@ mod tests {
         assert!(e.to_string().contains("T = 3"), "{e}");
         assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         let e = w
-            .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0])
+            .set_track_dimensions(1, &[-1.0, 0.0, 0.0, 0.0, 0.0, 1e-3])
             .unwrap_err();
-        assert!(e.to_string().contains("GAUGHT"), "{e}");
+        assert!(e.to_string().contains("CURV"), "{e}");
         let missing = read_profile_file("no-such-file.prr");
         let e = w
             .set_profile_file("no-such-file.prr", missing.as_deref(), &[], &[])
             .unwrap_err();
         assert_eq!(e.ierror(), flags::err::PROFIL);
         assert!(w.calculate(&cache).is_err());
+    }
+
+    /// The sphere of test-rollers2.inp on its plane placed absolutely at
+    /// RAILY0 = 200 mm (CONTACT's units), on side `c1`.
+    fn sphere_on_plane(c1: i32) -> WheelRail {
+        let mut w = mbench(c1);
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../solver/profiles");
+        w.set_track_dimensions(
+            3,
+            &[-1.0, 200.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        )
+        .unwrap();
+        set_file(&mut w, dir.join("flat_plane.prr").to_str().unwrap());
+        w.set_wheelset_dimensions(3, &[200.0, -100.0, 100.0])
+            .unwrap();
+        set_file(&mut w, dir.join("circ_r100.prw").to_str().unwrap());
+        w.set_wheelset_position(2, &[0.0; 6]).unwrap();
+        w.set_wheelset_velocity(2, &[100.0, 0.0, 0.0, 0.0, 0.0, -1.0])
+            .unwrap();
+        w.set_vertical_force(5e4).unwrap();
+        w
+    }
+
+    /// RAILY0 is a track y: the plane at +200 mm lies under the right wheel
+    /// (at +200 mm), not under the left one (at -200 mm), and the pair
+    /// placed for the right side is not used for the left.
+    #[test]
+    fn an_absolute_rail_is_placed_on_its_own_side() {
+        let cache = KernelCache::default();
+        let mut w = sphere_on_plane(1);
+        w.calculate(&cache).unwrap();
+        let track_y = |w: &WheelRail| w.outcomes[0].location.as_ref().unwrap().track[1];
+        close("YCP_TR", track_y(&w), 0.2, 1e-9);
+        assert_eq!(w.config.set_flag(1, flags::IC_CONFIG, 0), None);
+        assert!(w.calculate(&cache).is_err());
+        let mut left = sphere_on_plane(0);
+        left.calculate(&cache).unwrap_err();
+        left.set_track_dimensions(1, &[-1.0, -200.0, 0.0, 0.0, 0.0])
+            .unwrap();
+        left.calculate(&cache).unwrap();
+        close("YCP_TR", track_y(&left), -0.2, 1e-9);
     }
 
     #[test]

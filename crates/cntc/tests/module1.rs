@@ -3,17 +3,13 @@
 //! against the values CONTACT's own library returned there. Each test
 //! uses its own result element (the library is one per process).
 
-use std::ffi::c_char;
+mod common;
+
 use std::ptr::null;
 
+use common::{close, profile, set_profile_file};
 use contact_addon::ffi::*;
 use contact_addon::flags;
-
-/// A profile file of the repository's test data (`crates/solver/profiles`:
-/// CONTACT's test bank, with its licence and source).
-fn profile(name: &str) -> String {
-    format!("{}/../solver/profiles/{name}", env!("CARGO_MANIFEST_DIR"))
-}
 
 /// Configures result element `ire` as `python_mbench.py` does for its
 /// wheel `iwhe`: 1 the left wheel on the Simpack rail, 2 the right wheel on
@@ -54,23 +50,10 @@ unsafe fn mbench(ire: i32, iwhe: i32) {
     cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
     let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
     cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
-    let rp = [1.0, 0.0];
-    let set_profile = |f: &str, mirror_y: i32| {
-        let ip = [-1, 0, mirror_y];
-        cntc_setprofileinputfname(
-            &ire,
-            f.as_ptr() as *const c_char,
-            &(f.len() as i32),
-            &3,
-            ip.as_ptr(),
-            &2,
-            rp.as_ptr(),
-        )
-    };
-    set_profile(&rail, if iwhe == 1 { 0 } else { 1 });
+    set_profile_file(ire, &rail, if iwhe == 1 { 0 } else { 1 });
     let dims = [1360.0, -70.0, 460.0];
     cntc_setwheelsetdimensions(&ire, &3, &3, dims.as_ptr());
-    set_profile(&wheel, 0);
+    set_profile_file(ire, &wheel, 0);
     let flex = [0.0; 12];
     cntc_setwheelsetflexibility(&ire, &1, &12, flex.as_ptr());
 }
@@ -88,13 +71,6 @@ unsafe fn solve_one_patch(ire: i32, pos: [f64; 6], vpitch: f64) {
     let mut npatch = 0;
     cntc_getnumcontactpatches(&ire, &mut npatch);
     assert_eq!(npatch, 1);
-}
-
-fn close(what: &str, ours: f64, contact: f64, tol: f64) {
-    assert!(
-        (ours - contact).abs() <= tol,
-        "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
-    );
 }
 
 /// CONTACT's library, python_mbench.py case 5 of wheel 1 (the left wheel:

@@ -150,6 +150,42 @@ impl TestServer {
 }
 
 // ---------------------------------------------------------------------
+// Module 1: profiles and comparisons.
+
+/// A profile file of the repository's test data (`crates/solver/profiles`:
+/// CONTACT's test bank, with its licence and source).
+pub fn profile(name: &str) -> String {
+    format!("{}/../solver/profiles/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `cntc_setprofileinputfname` of the file `path` on element `ire`: the
+/// type from its extension (ITYPE = -1), mirrored in y with `mirror_y` = 1,
+/// scale factor 1, no smoothing.
+pub fn set_profile_file(ire: i32, path: &str, mirror_y: i32) {
+    let ip = [-1, 0, mirror_y];
+    let rp = [1.0, 0.0];
+    unsafe {
+        cntc_setprofileinputfname(
+            &ire,
+            path.as_ptr() as *const std::ffi::c_char,
+            &(path.len() as i32),
+            &3,
+            ip.as_ptr(),
+            &2,
+            rp.as_ptr(),
+        )
+    }
+}
+
+/// Asserts |ours - contact| <= tol, naming `what`.
+pub fn close(what: &str, ours: f64, contact: f64, tol: f64) {
+    assert!(
+        (ours - contact).abs() <= tol,
+        "{what}: ours {ours}, CONTACT's {contact} (tolerance {tol})"
+    );
+}
+
+// ---------------------------------------------------------------------
 // Calls on module 3 patches, as a C caller makes them.
 
 /// Forwarding on (1) or off (0).

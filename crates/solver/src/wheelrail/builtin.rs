@@ -38,11 +38,15 @@ pub fn profile(name: &str, options: &LoadOptions) -> Option<Result<Profile, Prof
 
 /// Track of the Manchester benchmark: gauge 1435 mm measured 14 mm below the
 /// top of rail; the rail profile is already inclined 1:40.
-pub const MBENCH_TRACK: TrackData = TrackData {
-    gauge_m: 1.435,
-    gauge_height_m: 0.014,
-    cant_rad: 0.0,
-};
+pub const MBENCH_TRACK: TrackData =
+    TrackData::gauge_point(MBENCH_GAUGE_M, MBENCH_GAUGE_HEIGHT_M, 0.0);
+
+/// The Manchester benchmark's gauge \[m\] ([`MBENCH_TRACK`]).
+pub const MBENCH_GAUGE_M: f64 = 1.435;
+
+/// The depth below the top of rail where the Manchester benchmark's gauge
+/// is measured \[m\] ([`MBENCH_TRACK`]).
+pub const MBENCH_GAUGE_HEIGHT_M: f64 = 0.014;
 
 /// Wheelset of the Manchester benchmark: flange-back distance 1360 mm with
 /// the flange back at profile y = -70 mm, nominal rolling radius 460 mm.

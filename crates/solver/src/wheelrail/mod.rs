@@ -110,6 +110,6 @@ pub use table::{
 };
 pub use temperature::{PatchTemperatures, WheelRailThermal};
 pub use wheelset::{
-    Side, TrackData, WheelRailError, WheelRailPair, WheelsetData, WheelsetPosition,
-    WheelsetVelocity,
+    RailDeviation, RailPlacement, Side, TrackData, WheelRailError, WheelRailPair, WheelsetData,
+    WheelsetPosition, WheelsetVelocity,
 };

@@ -26,7 +26,7 @@ use std::sync::{Arc, Mutex, OnceLock, Weak};
 
 use crate::wheelrail::profile::ProfileKind;
 use crate::wheelrail::{
-    Profile, SplineOptions, TrackData, WheelRailError, WheelRailPair, WheelsetData,
+    Profile, RailPlacement, SplineOptions, TrackData, WheelRailError, WheelRailPair, WheelsetData,
 };
 
 /// Placed profile pairs by content, held weakly (module docs).
@@ -140,10 +140,24 @@ fn key(
             num(&mut k, *w);
         }
     }
+    let (tag, [a, b]) = match track.placement {
+        RailPlacement::GaugePoint {
+            gauge_m,
+            gauge_height_m,
+        } => (0, [gauge_m, gauge_height_m]),
+        RailPlacement::Origin { q_m, z_m } => (1, [q_m, z_m]),
+    };
+    k.push(tag);
     for v in [
-        track.gauge_m,
-        track.gauge_height_m,
+        a,
+        b,
         track.cant_rad,
+        track.deviations[0].dy_m,
+        track.deviations[0].dz_m,
+        track.deviations[0].droll_rad,
+        track.deviations[1].dy_m,
+        track.deviations[1].dz_m,
+        track.deviations[1].droll_rad,
         wheelset.flange_back_distance_m,
         wheelset.nominal_radius_m,
         spline.smoothing_wavelength_m,
@@ -192,10 +206,7 @@ mod tests {
         let a = build(&cache, track);
         let b = build(&cache, track);
         assert!(Arc::ptr_eq(&a, &b));
-        let wider = TrackData {
-            gauge_m: 1.436,
-            ..track
-        };
+        let wider = TrackData::gauge_point(1.436, 0.014, track.cant_rad);
         let c = build(&cache, wider);
         assert!(!Arc::ptr_eq(&a, &c));
         assert_eq!(

@@ -7,7 +7,9 @@
 
 use crate::core::error::{ContactError, Range, UnitHint};
 use crate::wheelrail::contact::WheelLoad;
-use crate::wheelrail::wheelset::{TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity};
+use crate::wheelrail::wheelset::{
+    RailPlacement, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
+};
 
 /// `position.lateral_m` \[m\] (flange contact is at about 8 mm).
 pub const LATERAL: Range = Range::symmetric(0.02, "m").hint(UnitHint::Millimetre);
@@ -38,6 +40,11 @@ pub const CENTER_Z: Range = Range::closed(-1.5, 0.0, "m");
 pub const GAUGE: Range = Range::closed(0.3, 3.0, "m").hint(UnitHint::Millimetre);
 /// `track.gauge_height_m` \[m\]: depth below the top of the rail.
 pub const GAUGE_HEIGHT: Range = Range::closed(0.0, 0.05, "m").hint(UnitHint::Millimetre);
+/// `track.rail_origin_y_m` \[m\]: the right rail profile's origin (the
+/// left's mirrored), absolute placement.
+pub const RAIL_ORIGIN_Y: Range = Range::symmetric(3.0, "m").hint(UnitHint::Millimetre);
+/// `track.rail_origin_z_m` \[m\] (z down).
+pub const RAIL_ORIGIN_Z: Range = Range::symmetric(0.5, "m").hint(UnitHint::Millimetre);
 /// `track.cant_rad` \[rad\]: rail inclination (1:40 is 0.025).
 pub const CANT: Range = Range::symmetric(0.2, "rad");
 /// `wheelset.flange_back_distance_m` \[m\].
@@ -95,8 +102,19 @@ pub fn check_geometry(track: &TrackData, wheelset: &WheelsetData) -> Result<(), 
 
 /// Checks a track against its ranges, naming the key.
 pub fn check_track(track: &TrackData) -> Result<(), ContactError> {
-    GAUGE.check("track.gauge_m", track.gauge_m)?;
-    GAUGE_HEIGHT.check("track.gauge_height_m", track.gauge_height_m)?;
+    match track.placement {
+        RailPlacement::GaugePoint {
+            gauge_m,
+            gauge_height_m,
+        } => {
+            GAUGE.check("track.gauge_m", gauge_m)?;
+            GAUGE_HEIGHT.check("track.gauge_height_m", gauge_height_m)?;
+        }
+        RailPlacement::Origin { q_m, z_m } => {
+            RAIL_ORIGIN_Y.check("track.rail_origin_y_m", q_m)?;
+            RAIL_ORIGIN_Z.check("track.rail_origin_z_m", z_m)?;
+        }
+    }
     CANT.check("track.cant_rad", track.cant_rad)?;
     Ok(())
 }
@@ -156,11 +174,7 @@ mod tests {
             e.contains("position.roll_rad") && e.contains("-0.25"),
             "{e}"
         );
-        let track = TrackData {
-            gauge_m: 1.435,
-            gauge_height_m: 0.014,
-            cant_rad: 0.0,
-        };
+        let track = TrackData::gauge_point(1.435, 0.014, 0.0);
         let wheelset = WheelsetData {
             flange_back_distance_m: 1.36,
             nominal_radius_m: 460.0,

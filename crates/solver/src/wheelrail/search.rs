@@ -939,7 +939,8 @@ pub(crate) struct RollFound {
 /// it is exact; with `rough` (the first look only) it may be an estimate,
 /// which the search never returns on: the roll it returns is that of its
 /// last call, an exact one. D grows with roll (positive roll lowers
-/// the right wheel) at about the track width `gauge_m` per radian; a
+/// the right wheel) at about the track width `gauge_m` per radian
+/// ([`TrackData::rail_spacing_m`](crate::wheelrail::TrackData::rail_spacing_m)); a
 /// slope below a tenth of that is not used (the start's slope or `gauge_m`
 /// instead). `lateral_m` names the position in the error.
 pub(crate) fn find_roll(
@@ -1043,7 +1044,7 @@ pub(crate) fn rigid_position_from(
                     last = Some((r, g));
                     Ok((g.gap_m[0] - g.gap_m[1], true))
                 },
-                pair.track().gauge_m,
+                pair.track().rail_spacing_m(),
                 settings.roll_tolerance_m,
                 y,
                 roll_start,

@@ -1006,7 +1006,7 @@ pub fn solve_wheelset_tabulated_warm(
             };
             find_roll(
                 |r, _| Ok((search(r)?, true)),
-                pair.track().gauge_m,
+                pair.track().rail_spacing_m(),
                 SearchSettings::default().roll_tolerance_m,
                 p.lateral_m,
                 start,

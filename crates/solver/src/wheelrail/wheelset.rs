@@ -15,10 +15,15 @@
 //!   centre) at -q, and the same profile files serve both sides. Vectors
 //!   map as v_side = (v_x, s v_y, v_z) and rotation rates (pseudo-vectors)
 //!   as w_side = (s w_x, w_y, s w_z), with s = +1 right, -1 left.
-//! * **Rail placement**: the rail profile is inclined by the track's
-//!   `cant_rad` (rail inclination, towards the track centre), then shifted
-//!   so that its highest point is at z = 0 and its gauge face, `gauge_height_m`
-//!   below that, lies at q = gauge/2.
+//! * **Rail placement** ([`RailPlacement`]): the rail profile is inclined
+//!   by the track's `cant_rad` (rail inclination, towards the track centre)
+//!   about its origin, then shifted: at the gauge point
+//!   ([`RailPlacement::GaugePoint`]) so that its highest point is at z = 0
+//!   and its gauge face, `gauge_height_m` below that, lies at q = gauge/2;
+//!   absolutely ([`RailPlacement::Origin`], CONTACT's GAUGHT <= 0) so that
+//!   its origin lies at (q, z) = (`q_m`, `z_m`), wherever its top then is.
+//!   A rail's [`RailDeviation`] then turns it about its origin and shifts
+//!   it (CONTACT's DYRAIL, DZRAIL, DROLLR).
 //! * **Wheel placement**: the wheel profile's y axis runs along the axle,
 //!   outwards; its point at y = `flange_back_y_m` (the back of the flange,
 //!   by default the profile's smallest y) lies at half the flange-back
@@ -162,17 +167,146 @@ impl Side {
     }
 }
 
+/// Where the rail profiles sit on the track (both rails alike, each in its
+/// side frame; see the module's frames).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RailPlacement {
+    /// By the gauge (CONTACT's GAUGHT > 0): the inclined profile's highest
+    /// point at z = 0 and its gauge face, `gauge_height_m` below that, at
+    /// q = `gauge_m` / 2.
+    GaugePoint {
+        /// Track gauge between the gauge faces \[m\], > 0.
+        gauge_m: f64,
+        /// Depth below the top of the rail at which the gauge is measured
+        /// \[m\], >= 0.
+        gauge_height_m: f64,
+    },
+    /// Absolute (CONTACT's GAUGHT <= 0 with RAILY0, RAILZ0): the rail
+    /// profile's origin at (q, z) = (`q_m`, `z_m`) of the side frame, the
+    /// profile inclined by the cant about it and not shifted to touch
+    /// z = 0. For a test rig or one wheel on one rail (a flat plane, a
+    /// roller's profile), where there is no gauge face to measure.
+    Origin {
+        /// Lateral position of the origin \[m\], towards the field side
+        /// (track y for the right rail, -y for the left; a case file's
+        /// `track.rail_origin_y_m`).
+        q_m: f64,
+        /// Vertical position of the origin \[m\] (z down).
+        z_m: f64,
+    },
+}
+
+/// "gauge 1.435 m" or "rail origin at q = 0.2 m, z = 0 m".
+impl std::fmt::Display for RailPlacement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RailPlacement::GaugePoint { gauge_m, .. } => write!(f, "gauge {gauge_m} m"),
+            RailPlacement::Origin { q_m, z_m } => {
+                write!(f, "rail origin at q = {q_m} m, z = {z_m} m")
+            }
+        }
+    }
+}
+
+/// A rail's deviation from its placement (CONTACT's rail irregularities
+/// DYRAIL, DZRAIL, DROLLR), in the track frame: dy > 0 to the right
+/// (towards the track centre for the left rail, to the field side for the
+/// right one).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RailDeviation {
+    /// Lateral shift of the rail profile's origin \[m\] (track y).
+    pub dy_m: f64,
+    /// Vertical shift \[m\] (z down).
+    pub dz_m: f64,
+    /// Rotation about the track's x axis, about the profile's origin
+    /// \[rad\] (right-hand rule).
+    pub droll_rad: f64,
+}
+
 /// Track data.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrackData {
-    /// Track gauge between the gauge faces \[m\].
-    pub gauge_m: f64,
-    /// Depth below the top of the rail at which the gauge is measured \[m\].
-    pub gauge_height_m: f64,
+    /// Where the rails sit.
+    pub placement: RailPlacement,
     /// Rail inclination towards the track centre \[rad\] (1:40 is 0.025),
     /// applied to the rail profile as given; 0 for profiles already
     /// inclined, like `MBench_UIC60_v3.prr`.
     pub cant_rad: f64,
+    /// Each rail's deviation from its placement (`[left, right]`, default
+    /// none): the rail placed by `placement` and `cant_rad` (the gauge
+    /// point found on the rail inclined by the cant alone), then turned by
+    /// `droll_rad` about its profile's origin and shifted, as CONTACT's
+    /// `wr_set_rail_marker` does.
+    pub deviations: [RailDeviation; 2],
+}
+
+/// Smallest distance between the rails taken as the roll search's scale
+/// with [`RailPlacement::Origin`] \[m\] (see [`TrackData::rail_spacing_m`]).
+const MIN_RAIL_SPACING_M: f64 = 0.1;
+
+impl TrackData {
+    /// Rails placed by the gauge point ([`RailPlacement::GaugePoint`]).
+    pub const fn gauge_point(gauge_m: f64, gauge_height_m: f64, cant_rad: f64) -> Self {
+        Self {
+            placement: RailPlacement::GaugePoint {
+                gauge_m,
+                gauge_height_m,
+            },
+            cant_rad,
+            deviations: [RailDeviation {
+                dy_m: 0.0,
+                dz_m: 0.0,
+                droll_rad: 0.0,
+            }; 2],
+        }
+    }
+
+    /// The distance between the rails that scales the roll search (the
+    /// roll that levels both wheels changes their gap difference by about
+    /// this much per radian) \[m\]: the gauge, or twice the origins' `q_m`
+    /// (at least 0.1 m).
+    pub fn rail_spacing_m(&self) -> f64 {
+        match self.placement {
+            RailPlacement::GaugePoint { gauge_m, .. } => gauge_m,
+            RailPlacement::Origin { q_m, .. } => (2.0 * q_m.abs()).max(MIN_RAIL_SPACING_M),
+        }
+    }
+
+    /// Checks the numbers, naming the field (`track.gauge_m`, ...).
+    fn validate(&self) -> Result<(), WheelRailError> {
+        match self.placement {
+            RailPlacement::GaugePoint {
+                gauge_m,
+                gauge_height_m,
+            } => {
+                require_positive("track.gauge_m", gauge_m)?;
+                require_finite("track.gauge_height_m", gauge_height_m)?;
+                if gauge_height_m < 0.0 {
+                    return Err(WheelRailError::invalid(
+                        "track.gauge_height_m",
+                        "must be >= 0 (a depth below the top of the rail)",
+                    ));
+                }
+            }
+            RailPlacement::Origin { q_m, z_m } => {
+                require_finite("track.rail_origin_y_m", q_m)?;
+                require_finite("track.rail_origin_z_m", z_m)?;
+            }
+        }
+        require_finite("track.cant_rad", self.cant_rad)?;
+        for d in &self.deviations {
+            require_finite("track.rail_deviation.dy_m", d.dy_m)?;
+            require_finite("track.rail_deviation.dz_m", d.dz_m)?;
+            require_finite("track.rail_deviation.droll_rad", d.droll_rad)?;
+        }
+        if self.cant_rad.abs() > 0.2 {
+            return Err(WheelRailError::invalid(
+                "track.cant_rad",
+                format!("{} rad is not a rail inclination", self.cant_rad),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// Wheelset data.
@@ -278,6 +412,12 @@ impl PlacedRail {
         [c * a - s * b, s * a + c * b]
     }
 
+    /// The rail's inclination in the side frame \[rad\]: the track's cant
+    /// less the deviation's roll (towards the gauge side positive).
+    pub fn inclination_rad(&self) -> f64 {
+        self.cant_rad
+    }
+
     /// Dense samples in the side frame, gauge face first.
     pub fn samples(&self) -> &[CurveSample] {
         &self.samples
@@ -370,21 +510,7 @@ impl WheelRailPair {
         wheelset: WheelsetData,
         spline: &SplineOptions,
     ) -> Result<Self, WheelRailError> {
-        require_positive("track.gauge_m", track.gauge_m)?;
-        require_finite("track.gauge_height_m", track.gauge_height_m)?;
-        if track.gauge_height_m < 0.0 {
-            return Err(WheelRailError::invalid(
-                "track.gauge_height_m",
-                "must be >= 0 (a depth below the top of the rail)",
-            ));
-        }
-        require_finite("track.cant_rad", track.cant_rad)?;
-        if track.cant_rad.abs() > 0.2 {
-            return Err(WheelRailError::invalid(
-                "track.cant_rad",
-                format!("{} rad is not a rail inclination", track.cant_rad),
-            ));
-        }
+        track.validate()?;
         require_positive(
             "wheelset.flange_back_distance_m",
             wheelset.flange_back_distance_m,
@@ -490,11 +616,38 @@ fn place_rail(
         samples: Vec::new(),
         surface: VerticalGap::default(),
     };
+    let [q, z] = match track.placement {
+        RailPlacement::GaugePoint {
+            gauge_m,
+            gauge_height_m,
+        } => gauge_point_offset(&rail, profile.name(), gauge_m, gauge_height_m, side)?,
+        RailPlacement::Origin { q_m, z_m } => [q_m, z_m],
+    };
+    // The deviation in the side frame: q = s y, a roll about x turns by s
+    // droll (a rotation of -cant_rad inclines the rail).
+    let d = track.deviations[side.index()];
+    let s = side.sign();
+    rail.offset_m = [q + s * d.dy_m, z + d.dz_m];
+    rail.cant_rad = track.cant_rad - s * d.droll_rad;
+    rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
+    rail.surface = VerticalGap::surface_of(&rail.samples);
+    Ok(rail)
+}
+
+/// The shift (q, z) of the inclined profile of `rail` (offset still zero)
+/// that puts its highest point at z = 0 and its gauge face at q = gauge/2.
+fn gauge_point_offset(
+    rail: &PlacedRail,
+    name: &str,
+    gauge_m: f64,
+    gauge_height_m: f64,
+    side: Side,
+) -> Result<[f64; 2], WheelRailError> {
     let inclined = sample(&rail.spline, |y, z| rail.to_side(y, z));
     let top = inclined.iter().map(|s| s.z_m).fold(f64::INFINITY, f64::min);
     // Gauge face: the first point, walking from the gauge side (CONTACT
     // order for rails), that rises to the gauge height.
-    let level = top + track.gauge_height_m;
+    let level = top + gauge_height_m;
     let gauge_q = inclined
         .windows(2)
         .find(|w| w[0].z_m > level && w[1].z_m <= level)
@@ -505,17 +658,13 @@ fn place_rail(
         .ok_or_else(|| WheelRailError::Geometry {
             side: side.name(),
             message: format!(
-                "the rail profile '{}' does not reach {:.1} mm below its top on the gauge side, \
+                "the rail profile '{name}' does not reach {:.1} mm below its top on the gauge side, \
                  where the gauge is measured (track.gauge_height_m){}",
-                profile.name(),
-                track.gauge_height_m * 1e3,
+                gauge_height_m * 1e3,
                 rail_hint(&inclined, level)
             ),
         })?;
-    rail.offset_m = [0.5 * track.gauge_m - gauge_q, -top];
-    rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
-    rail.surface = VerticalGap::surface_of(&rail.samples);
-    Ok(rail)
+    Ok([0.5 * gauge_m - gauge_q, -top])
 }
 
 /// The likely cause of a rail profile without a gauge face at the gauge
@@ -622,5 +771,106 @@ impl WheelsetVelocity {
             yaw_rad_per_s: 0.0,
             pitch_rad_per_s: None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wheelrail::builtin::{self, MBENCH_TRACK, MBENCH_WHEELSET};
+    use crate::wheelrail::parse_profile;
+
+    /// The built-in rail and wheel.
+    fn mbench_profiles() -> (Profile, Profile) {
+        let load = |name| {
+            builtin::profile(name, &Default::default())
+                .unwrap()
+                .unwrap()
+        };
+        (load("MBench_UIC60_v3.prr"), load("MBench_S1002_v3.prw"))
+    }
+
+    /// `rail` on both sides of `track` under the built-in wheels.
+    fn placed(rail: &Profile, track: TrackData) -> Result<WheelRailPair, WheelRailError> {
+        let (_, wheel) = mbench_profiles();
+        WheelRailPair::new(
+            [rail, rail],
+            [&wheel, &wheel],
+            track,
+            MBENCH_WHEELSET,
+            &SplineOptions::default(),
+        )
+    }
+
+    /// The absolute placement puts the profile's origin where it is told,
+    /// inclined by the cant about it: a plane rail at (0.2, 0.5e-3) with
+    /// a cant of 0.05 rad has its origin there and its surface sloping by
+    /// the cant (z = z0 - tan(0.05) (q - q0) seen from the side frame).
+    #[test]
+    fn an_origin_placement_puts_the_profile_origin_there() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/profiles/flat_plane.prr"
+        ))
+        .unwrap();
+        let plane = parse_profile(&text, "flat_plane.prr", &Default::default()).unwrap();
+        assert_eq!(plane.points()[0][0], -0.05);
+        let track = TrackData {
+            placement: RailPlacement::Origin {
+                q_m: 0.2,
+                z_m: 0.5e-3,
+            },
+            cant_rad: 0.05,
+            deviations: Default::default(),
+        };
+        let pair = placed(&plane, track).unwrap();
+        for side in Side::BOTH {
+            let rail = pair.rail(side);
+            let [q, z] = rail.to_side(0.0, 0.0);
+            assert!((q - 0.2).abs() < 1e-15 && (z - 0.5e-3).abs() < 1e-15);
+            for s in rail.samples() {
+                let slope = -(0.05f64).tan() * (s.q_m - 0.2);
+                assert!((s.z_m - 0.5e-3 - slope).abs() < 1e-12, "{s:?}");
+            }
+        }
+        // The roll search's scale: twice the origin's q.
+        assert_eq!(track.rail_spacing_m(), 0.4);
+    }
+
+    /// The gauge point placement is an origin placement at the origin it
+    /// finds: placed there absolutely, the rail is the same bit for bit.
+    #[test]
+    fn the_gauge_point_placement_is_an_origin_placement() {
+        let (rail, _) = mbench_profiles();
+        let by_gauge = placed(&rail, MBENCH_TRACK).unwrap();
+        let [q_m, z_m] = by_gauge.rail(Side::Right).offset_m;
+        let origin = TrackData {
+            placement: RailPlacement::Origin { q_m, z_m },
+            cant_rad: MBENCH_TRACK.cant_rad,
+            deviations: Default::default(),
+        };
+        let by_origin = placed(&rail, origin).unwrap();
+        for side in Side::BOTH {
+            assert_eq!(
+                by_gauge.rail(side).samples(),
+                by_origin.rail(side).samples()
+            );
+        }
+    }
+
+    /// A non-finite origin is refused naming the case file's key.
+    #[test]
+    fn a_bad_origin_is_refused_naming_its_key() {
+        let (rail, _) = mbench_profiles();
+        let track = TrackData {
+            placement: RailPlacement::Origin {
+                q_m: f64::NAN,
+                z_m: 0.0,
+            },
+            cant_rad: 0.0,
+            deviations: Default::default(),
+        };
+        let e = placed(&rail, track).unwrap_err();
+        assert!(e.to_string().contains("track.rail_origin_y_m"), "{e}");
     }
 }

@@ -188,11 +188,7 @@ fn measured_pair(wheel: &str) -> WheelRailPair {
     WheelRailPair::new(
         [&rail, &rail],
         [&wheel, &wheel],
-        TrackData {
-            gauge_m: 1.435,
-            gauge_height_m: 0.014,
-            cant_rad: 0.0,
-        },
+        TrackData::gauge_point(1.435, 0.014, 0.0),
         WheelsetData {
             flange_back_distance_m: 1.360,
             nominal_radius_m: 0.46,

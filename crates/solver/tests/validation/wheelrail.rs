@@ -26,11 +26,7 @@ pub(crate) fn mbench_pair() -> WheelRailPair {
     WheelRailPair::new(
         [&rail, &rail],
         [&wheel, &wheel],
-        TrackData {
-            gauge_m: 1.435,
-            gauge_height_m: 0.014,
-            cant_rad: 0.0,
-        },
+        TrackData::gauge_point(1.435, 0.014, 0.0),
         WheelsetData {
             flange_back_distance_m: 1.360,
             nominal_radius_m: 0.460,
@@ -617,11 +613,7 @@ fn worn_pair() -> WheelRailPair {
     WheelRailPair::new(
         [&rail, &rail],
         [&wheel, &wheel],
-        TrackData {
-            gauge_m: 1.435,
-            gauge_height_m: 0.014,
-            cant_rad: 0.025,
-        },
+        TrackData::gauge_point(1.435, 0.014, 0.025),
         WheelsetData {
             flange_back_distance_m: 1.360,
             nominal_radius_m: 0.46,
@@ -812,11 +804,7 @@ fn bad_inputs_give_errors_naming_the_key() {
     let wide = WheelRailPair::new(
         [&rail, &rail],
         [&wheel, &wheel],
-        TrackData {
-            gauge_m: 2.0,
-            gauge_height_m: 0.014,
-            cant_rad: 0.0,
-        },
+        TrackData::gauge_point(2.0, 0.014, 0.0),
         WheelsetData {
             flange_back_distance_m: 1.360,
             nominal_radius_m: 0.460,

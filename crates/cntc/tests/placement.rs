@@ -1,0 +1,455 @@
+//! Module 1 with the rail placed absolutely (GAUGHT <= 0: the rail
+//! profile's origin at RAILY0, RAILZ0 of the track), called as a C caller
+//! calls it, against CONTACT's `test-rollers2.inp` (testbank/
+//! examples_conformal, its `.ref_out`) and against the values CONTACT's own
+//! library (revision 2707) returned for the same calls through its
+//! `python_intfc` (`crates/cntc/bench/placement_cases.py`, the case named
+//! in each test). The sphere of radius 100 mm (`circ_r100.prw`) rolls on a
+//! flat plane (`flat_plane.prr`), CONTACT's units (mm, N).
+
+mod common;
+
+use std::ptr::null;
+
+use common::{close, profile, set_flags, set_profile_file};
+use contact_addon::ffi::*;
+use contact_addon::flags;
+
+/// One case of `placement_cases.py`: the wheel side `c1`, the track
+/// (Z = 3: 11 values), the wheelset position (its Z_WS the height with
+/// N = 0) and velocity (E = 3, or 5 with the flexibility `flex`), a vertical
+/// force `fz` (N = 1) or none (N = 0).
+#[derive(Clone, Copy)]
+struct Case {
+    c1: i32,
+    track: [f64; 11],
+    position: [f64; 6],
+    velocity: [f64; 6],
+    flex: Option<[f64; 12]>,
+    fz: Option<f64>,
+}
+
+/// Sets up result element `ire` with `case` and calculates it: ierror.
+unsafe fn solve(ire: i32, case: &Case) -> i32 {
+    let (mut ifcver, mut ierror) = (0, 0);
+    cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+    assert_eq!(ierror, 0);
+    let icp = -1;
+    set_flags(
+        ire,
+        icp,
+        &[
+            (flags::IF_UNITS, flags::UN_CNTC),
+            (flags::IC_CONFIG, case.c1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, case.fz.is_some() as i32),
+            (flags::IC_DISCNS, 2),
+        ],
+    );
+    let mat = [0.28, 0.28, 82000.0, 82000.0];
+    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+    cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+    if let Some(fz) = case.fz {
+        cntc_setverticalforce(&ire, &fz);
+    }
+    let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+    cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+    cntc_settrackdimensions(&ire, &3, &11, case.track.as_ptr());
+    set_profile_file(ire, &profile("flat_plane.prr"), 0);
+    cntc_setwheelsetdimensions(&ire, &3, &3, [200.0, -100.0, 100.0].as_ptr());
+    set_profile_file(ire, &profile("circ_r100.prw"), 0);
+    let e = if case.flex.is_some() { 5 } else { 3 };
+    cntc_setwheelsetposition(&ire, &e, &6, case.position.as_ptr());
+    cntc_setwheelsetvelocity(&ire, &e, &6, case.velocity.as_ptr());
+    if let Some(flex) = case.flex {
+        cntc_setwheelsetflexibility(&ire, &e, &12, flex.as_ptr());
+    }
+    let mut ierror = -1;
+    cntc_calculate1(&ire, &mut ierror);
+    let mut npatch = 0;
+    cntc_getnumcontactpatches(&ire, &mut npatch);
+    assert_eq!(npatch, 1);
+    ierror
+}
+
+/// What CONTACT's library returned for one patch: FN, FX, FS, MZ; CKSI,
+/// CETA, CPHI; `cntc_getcontactlocation` 1-4 (XCP, YCP, ZCP, DELTCP in the
+/// track), 6, 7 (YCP, ZCP on the rail), 11, 12 (YCP, ZCP on the wheel).
+type Reference = [f64; 15];
+
+/// Compares patch 1 of `ire` with `r`: the location to 0.01 mm and 0.1
+/// mrad, creepages to 1e-6 (1e-7 /mm for the spin), FN to 0.05 % (our
+/// grid has no element centred on the reference point, CONTACT's has:
+/// h(0.1 mm) = 0.1^2 / (2 R) = 5e-5 mm of the sphere's approach of 0.16 mm
+/// is not loaded), FX and FS to 0.5 % of mu FN (on `abs-load`, FS differs
+/// by 41 N = 0.27 % of mu FN, a difference that stays when both grids are
+/// refined to 0.1 mm: CONTACT -2006.9 N, ours -1975.2 N), MZ to 0.01 FN mm.
+unsafe fn compare(ire: i32, r: &Reference) {
+    let icp = 1;
+    let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
+    cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+    let (mut cksi, mut ceta, mut cphi) = (0.0, 0.0, 0.0);
+    cntc_getcreepages(&ire, &icp, &mut cksi, &mut ceta, &mut cphi);
+    let mut loc = [0.0; 38];
+    cntc_getcontactlocation(&ire, &icp, &38, loc.as_mut_ptr());
+    let ours = [
+        fn_, fx, fs, mz, cksi, ceta, cphi, loc[0], loc[1], loc[2], loc[3], loc[5], loc[6], loc[10],
+        loc[11],
+    ];
+    let names = [
+        "FN",
+        "FX",
+        "FS",
+        "MZ",
+        "CKSI",
+        "CETA",
+        "CPHI",
+        "XCP_TR",
+        "YCP_TR",
+        "ZCP_TR",
+        "DELTCP_TR",
+        "YCP_R",
+        "ZCP_R",
+        "YCP_W",
+        "ZCP_W",
+    ];
+    let mu_fn = 0.3 * r[0];
+    for k in 0..15 {
+        let tol = match k {
+            0 => 5e-4 * r[0],
+            1 | 2 => 5e-3 * mu_fn,
+            3 => 0.01 * r[0],
+            4 | 5 => 1e-6,
+            6 => 1e-7,
+            10 => 1e-4,
+            _ => 0.01,
+        };
+        close(names[k], ours[k], r[k], tol);
+    }
+}
+
+/// Solves `case` on element `ire`, compares it with `r` and frees the
+/// element.
+unsafe fn check(ire: i32, case: &Case, r: &Reference) {
+    assert_eq!(solve(ire, case), 0);
+    compare(ire, r);
+    cntc_finalize(&ire);
+}
+
+const NO_DEVIATION: [f64; 6] = [0.0; 6];
+
+/// Solves `case` on element `ire`, checks its creepages against `r`'s to
+/// `tol` and the rest as [`compare`] does.
+unsafe fn check_creepages_apart(ire: i32, case: &Case, r: &Reference, tol: [f64; 3]) {
+    assert_eq!(solve(ire, case), 0);
+    let mut c = [0.0; 3];
+    cntc_getcreepages(&ire, &1, &mut c[0], &mut c[1], &mut c[2]);
+    for (j, name) in ["CKSI", "CETA", "CPHI"].iter().enumerate() {
+        close(name, c[j], r[4 + j], tol[j]);
+    }
+    let mut r = *r;
+    r[4..7].copy_from_slice(&c);
+    compare(ire, &r);
+}
+
+/// Solves `a` on element `ia` and `b` on `ib` and asserts the same FN,
+/// FX, FS, MZ to rounding (1e-9 FN).
+unsafe fn same_forces(ia: i32, a: &Case, ib: i32, b: &Case) {
+    assert_eq!(solve(ia, a), 0);
+    assert_eq!(solve(ib, b), 0);
+    let (mut fa, mut fb) = ([0.0; 4], [0.0; 4]);
+    cntc_getcontactforces(&ia, &1, &mut fa[0], &mut fa[1], &mut fa[2], &mut fa[3]);
+    cntc_getcontactforces(&ib, &1, &mut fb[0], &mut fb[1], &mut fb[2], &mut fb[3]);
+    for k in 0..4 {
+        close("force", fb[k], fa[k], 1e-9 * fa[0]);
+    }
+}
+
+/// `case` on the left rail (C1 = 0), its RAILY0 mirrored.
+fn on_the_left(case: Case) -> Case {
+    let mut left = case;
+    left.c1 = 0;
+    left.track[1] = -case.track[1];
+    left
+}
+
+/// test-rollers2.inp case 1a: the sphere at Z_WS = 0.16 mm on the plane at
+/// RAILY0 = 200 mm, rolling at 100 mm/s with VPITCH = -1 rad/s.
+const CASE_1A: Case = Case {
+    c1: 1,
+    track: [-1.0, 200.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    position: [0.0, 0.0, 0.16, 0.0, 0.0, 0.0],
+    velocity: [100.0, 0.0, 0.0, 0.0, 0.0, -1.0],
+    flex: None,
+    fz: None,
+};
+
+/// The track of test-rollers2.inp case 1a: GAUGHT = -1, the plane's origin
+/// at RAILY0 = `y0`, RAILZ0 = `z0`, cant `cant`.
+fn absolute_track(y0: f64, z0: f64, cant: f64, deviation: [f64; 6]) -> [f64; 11] {
+    let mut t = [-1.0, y0, z0, cant, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    t[5..].copy_from_slice(&deviation);
+    t
+}
+
+/// test-rollers2.inp case 1a ([`CASE_1A`]). Its `.ref_out` (Case 1): FN
+/// 9.722E+04 N, no creep forces, the contact at (0, 200, 0) of the track
+/// and (0, 0, -0.16) of the wheel profile, APPROACH 0.160000.
+#[test]
+fn case_1a_sphere_on_a_plane_placed_absolutely() {
+    let ire = 41;
+    unsafe {
+        assert_eq!(solve(ire, &CASE_1A), 0);
+        let mut r = [0.0; 15];
+        r[0] = 9.722e4;
+        r[8] = 200.0;
+        r[14] = -0.16;
+        compare(ire, &r);
+        // The rail profile marker (cntc_getcontactlocation 26-28) at
+        // (RAILY0, RAILZ0), not rolled.
+        let mut loc = [0.0; 38];
+        cntc_getcontactlocation(&ire, &1, &38, loc.as_mut_ptr());
+        assert_eq!(&loc[25..28], &[200.0, 0.0, 0.0]);
+        cntc_finalize(&ire);
+    }
+}
+
+/// `placement_cases.py` cases `abs-load` (right) and `abs-load-left`: the
+/// plane at RAILZ0 = 0.5 mm with a cant of 0.05 rad at RAILY0 = 200 mm,
+/// -200 mm on the left, the wheelset at Y_WS = 3 mm (rolled and yawed on
+/// the left), FZ = 50 kN, VPITCH = -1.002 rad/s: the contact where the
+/// sphere's normal is the canted plane's, with longitudinal and spin
+/// creepage.
+#[test]
+fn absolute_placement_with_cant_and_load_matches_contacts_library() {
+    let right = Case {
+        track: absolute_track(200.0, 0.5, 0.05, NO_DEVIATION),
+        position: [0.0, 3.0, 0.0, 0.0, 0.0, 0.0],
+        velocity: [100.0, 0.0, 0.0, 0.0, 0.0, -1.002],
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let left = Case {
+        c1: 0,
+        track: absolute_track(-200.0, 0.5, 0.05, NO_DEVIATION),
+        position: [0.0, 3.0, 0.0, 0.001, 0.002, 0.0],
+        ..right
+    };
+    unsafe {
+        #[rustfmt::skip]
+        check(42, &right, &[
+            49962.0, -2375.92, -2008.94, -4477.25, 0.000746317, 0.0, 0.000500604,
+            0.0, 207.99599, 0.09987, -0.05, 8.006, 0.0, 4.99599, -0.22764,
+        ]);
+        #[rustfmt::skip]
+        check(43, &left, &[
+            50241.6, -2389.84, -3576.99, 9174.21, 0.000793883, 0.0020032, -0.000490588,
+            0.4, -201.99549, 0.40014, 0.05, -1.99798, 0.0, -4.8962, -0.22308,
+        ]);
+    }
+}
+
+/// test-rollers2.inp case 1e: the sphere deflected by DROLLW = 0.1 rad and
+/// DZWHL = -0.4996 mm (E = 4), so that its lowest point moves 100 sin(0.1)
+/// = 9.98 mm outwards at the same height. Its `.ref_out` (Case 5): FN
+/// 9.720E+04 N, the contact at track y 209.9833, wheel profile (9.9674,
+/// -0.6588), APPROACH 0.160018; CKSI 1.767E-07 and FX -0.9974 N, no spin
+/// (DROLLW turns the wheel but gives no spin: only VROLLW would), which
+/// ours meets within 1e-6 and 0.5 % of mu FN.
+#[test]
+fn case_1e_a_rolled_wheel_moves_its_contact_without_spin() {
+    let case = Case {
+        flex: Some([
+            0.0, 0.0, -0.4996, 0.1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        ]),
+        ..CASE_1A
+    };
+    unsafe {
+        #[rustfmt::skip]
+        check(44, &case, &[
+            9.720e4, -0.9974, 0.0, 0.0, 1.767e-7, 0.0, 0.0,
+            0.0, 209.9833, 0.0, 0.0, 9.9833, 0.0, 9.9674, -0.6588,
+        ]);
+    }
+}
+
+/// `placement_cases.py` cases `flex` and `flex-left`: every deviation and
+/// rate of the wheel at once (DXWHL 0.5, DYWHL 0.3, DZWHL -0.2 mm, DROLLW
+/// 0.02, DYAWW 0.03, DPITCHW 0.1 rad; 0.04, 0.03, 0.02 mm/s, 0.1, 0.2,
+/// 0.3 mrad/s) on a rolled and yawed wheelset moving laterally and
+/// vertically, FZ = 50 kN. The contact location matches CONTACT's library
+/// to its printed digits; the creepages lie 0.15-0.19 % below CONTACT's
+/// (all three by about the same factor): CONTACT divides the slip by the
+/// rolling speed of the wheelset's pitch about the wheelset's axle, the
+/// solver by that of the deflected wheel about its own axle, whose lever
+/// arm to the contact differs by the axle's shift (DROLLW 0.02 rad over
+/// 100 mm: 0.15 %). Creepages are therefore compared to 0.25 % here.
+#[test]
+fn flexible_wheelset_deviations_match_contacts_library() {
+    let flex = [
+        0.5, 0.3, -0.2, 0.02, 0.03, 0.1, 0.04, 0.03, 0.02, 0.0001, 0.0002, 0.0003,
+    ];
+    let right = Case {
+        position: [0.0, 1.0, 0.0, 0.002, 0.003, 0.0],
+        velocity: [100.0, 0.02, 0.01, 0.0002, 0.0003, -1.0],
+        flex: Some(flex),
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let left = on_the_left(right);
+    #[rustfmt::skip]
+    let contact: [Reference; 2] = [
+        [50000.0, 4606.77, -6970.68, 4908.32, -0.0015955, 0.00270734, 1.5009e-05,
+         -0.1069, 203.30045, 0.0, 0.0, 3.30045, 0.0, 2.19659, -0.12693],
+        [50000.0, 7564.18, -6531.69, 3706.86, -0.00279503, 0.00270051, 1.5e-05,
+         1.09309, -196.69695, 0.0, 0.0, 3.30305, 0.0, 2.19659, -0.12693],
+    ];
+    for (k, (case, r)) in [(right, contact[0]), (left, contact[1])].iter().enumerate() {
+        let ire = 45 + k as i32;
+        let tol = [r[4], r[5], r[6]].map(|c: f64| 2.5e-3 * c.abs());
+        unsafe {
+            check_creepages_apart(ire, case, r, tol);
+            cntc_finalize(&ire);
+        }
+    }
+}
+
+/// Zero deviations given (E = 5) are no deviations (E = 3), bit for bit;
+/// DYWHL = d on the right wheel of an unrolled, unyawed wheelset is the
+/// wheelset moved by d (Y_WS), to rounding.
+#[test]
+fn flexibility_conventions() {
+    let with_zeros = Case {
+        flex: Some([0.0; 12]),
+        ..CASE_1A
+    };
+    unsafe {
+        assert_eq!(solve(47, &CASE_1A), 0);
+        assert_eq!(solve(48, &with_zeros), 0);
+        assert_eq!(common::wheel_results(47), common::wheel_results(48));
+        let mut shifted = CASE_1A;
+        shifted.position[1] = 0.7;
+        let mut deflected = CASE_1A;
+        deflected.flex = Some([0.0, 0.7, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        same_forces(49, &shifted, 50, &deflected);
+        for ire in 47..=50 {
+            cntc_finalize(&ire);
+        }
+    }
+}
+
+/// `placement_cases.py` cases `dev` and `dev-left`: the plane at RAILY0 =
+/// +-200 mm deviated by DYRAIL 2 mm, DZRAIL 0.3 mm, DROLLR 0.02 rad and
+/// moving at VYRAIL 1 mm/s, VZRAIL 0.5 mm/s, VROLLR 0.01 rad/s (Z = 3),
+/// the wheelset at Y_WS = 1 mm, FZ = 50 kN. DYRAIL is a track y: the left
+/// rail moves towards the track centre, the right one outwards, and both
+/// give the same forces. The rail's marker and the contact match CONTACT's
+/// library to its printed digits; CETA lies 1.03e-5 below CONTACT's
+/// 0.010099: CONTACT takes the rail's velocity at the rail's point of the
+/// contact, the solver at the wheel's, PEN = 0.103 mm along the normal
+/// (VROLLR PEN / V = 0.01 x 0.103 / 100 = 1.03e-5); compared to 1.1e-5.
+#[test]
+fn rail_deviations_match_contacts_library() {
+    let deviation = [2.0, 0.3, 0.02, 1.0, 0.5, 0.01];
+    let right = Case {
+        track: absolute_track(200.0, 0.0, 0.0, deviation),
+        position: [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let left = on_the_left(right);
+    #[rustfmt::skip]
+    let contact: [Reference; 2] = [
+        [50305.2, 325.48, -14759.5, 2355.76, -0.000199809, 0.010099, -0.000200007,
+         0.0, 199.00087, 0.24001, 0.02, -2.99973, 0.0, -1.99913, -0.12311],
+        [50305.2, 325.477, -14759.5, 2355.75, -0.000199809, 0.010099, -0.000200007,
+         0.0, -200.99913, 0.24001, 0.02, -2.99973, 0.0, -1.99913, -0.12311],
+    ];
+    let markers = [[202.0, 0.3, 0.02], [-198.0, 0.3, 0.02]];
+    for (k, (case, r)) in [(right, contact[0]), (left, contact[1])].iter().enumerate() {
+        let ire = 51 + k as i32;
+        unsafe {
+            check_creepages_apart(ire, case, r, [1e-6, 1.1e-5, 1e-7]);
+            let mut loc = [0.0; 38];
+            cntc_getcontactlocation(&ire, &1, &38, loc.as_mut_ptr());
+            for (j, name) in ["YR_TR", "ZR_TR", "ROLLR_TR"].iter().enumerate() {
+                close(name, loc[25 + j], markers[k][j], 1e-9);
+            }
+            cntc_finalize(&ire);
+        }
+    }
+}
+
+/// A rail shifted by DYRAIL = d is the wheelset shifted by -d: the same
+/// forces and creepages (to rounding), the contact d further.
+#[test]
+fn a_rail_deviation_is_the_wheelset_moved_the_other_way() {
+    let rail_moved = Case {
+        track: absolute_track(200.0, 0.0, 0.0, [0.8, 0.0, 0.0, 0.0, 0.0, 0.0]),
+        fz: Some(5.0e4),
+        ..CASE_1A
+    };
+    let mut wheelset_moved = rail_moved;
+    wheelset_moved.track = CASE_1A.track;
+    wheelset_moved.position[1] = -0.8;
+    unsafe {
+        same_forces(53, &rail_moved, 54, &wheelset_moved);
+        let (mut la, mut lb) = ([0.0; 38], [0.0; 38]);
+        cntc_getcontactlocation(&53, &1, &38, la.as_mut_ptr());
+        cntc_getcontactlocation(&54, &1, &38, lb.as_mut_ptr());
+        close("YCP_TR", la[1] - lb[1], 0.8, 1e-9);
+        cntc_finalize(&53);
+        cntc_finalize(&54);
+    }
+}
+
+/// test-rollers2.inp's first case as CONTACT's input file reader takes it
+/// (`cntc_readinpfile`, CNTC_inp_modul1): the file's lines of case 1a
+/// (eve70a/CONTACT, testbank/examples_conformal, Apache-2.0) with the
+/// profiles' paths those of this repository. It sets GAUGHT = -1 with
+/// RAILY0 = 200 (Z = 3) and is solved as `case_1a` is: the `.ref_out`'s
+/// FN 9.722E+04 N within 0.05 % and the contact at track y 200 mm.
+#[test]
+fn case_1a_read_from_contacts_input_file() {
+    let inp = format!(
+        "  1 MODULE
+ 1203000    C-P-B-T-N-F-S  CONFIG, PVTIME, BOUND, TANG, NORM, FORCE, STRESS
+ 0022033    V-L-D-C-M-Z-E    FRCLAW, DISCNS, INFLCF, MATER , ZTRACK, EWHEEL
+ 0000321    H-G-I-A-O-W-R    GAUSEI, IESTIM, MATFIL, OUTPUT, FLOW  , RETURN
+    999     100    10    1     1e-7  MAXGS , MAXIN , MAXNR , MAXOUT, EPS
+  0.300   0.300                                 FSTAT, FKIN
+  0.280   0.280   82000.  82000.                POISS 1,2,  GG 1,2
+  0.200   0.200   1.000   90d   8.0   4.0       DX,DS, DQREL, A_SEP, D_SEP, D_COMB
+   -1.0   200.0   0.000   0.000                 GAUGHT, RAILY0, RAILZ0, CANT
+  '{}'   0  1.0   0.0   RFNAME, MIRRORY, SCALE, SMOOTH
+     0.0    0.0   0.000   0.0    0.0   0.000    DY, DZ, ROLL, VY, VZ, VROLL
+   200.0 -100.0   100.0                         FBDIST, FBPOS, NOMRAD_W
+  '{}'    0  1.0   0.0   WFNAME, MIRRORY, SCALE, SMOOTH
+     0.0    0.0     0.160                       % X_WS, Y_WS, Z_WS
+     0.0    0.0     0.0                         % ROLL_WS, YAW_WS, PITCH_WS
+   100.0    0.0     0.0                         % VS_WS, VY_WS, VZ_WS
+     0.0    0.0    -1.000                       % VROLL, VYAW, VPITCH_WS
+  0 MODULE
+",
+        profile("flat_plane.prr"),
+        profile("circ_r100.prw")
+    );
+    let path = common::scratch("placement").join("test-rollers2-1a.inp");
+    std::fs::write(&path, inp).unwrap();
+    let ire = 55;
+    unsafe {
+        let (mut ifcver, mut ierror) = (0, 0);
+        cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+        assert_eq!(common::read_inp(ire, flags::INP_MODUL1, &path), 0);
+        let mut ierror = -1;
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, 0);
+        let mut r = [0.0; 15];
+        r[0] = 9.722e4;
+        r[8] = 200.0;
+        r[14] = -0.16;
+        compare(ire, &r);
+        cntc_finalize(&ire);
+    }
+}
