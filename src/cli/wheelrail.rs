@@ -459,6 +459,7 @@ impl WheelrailRun {
             },
             total_longitudinal_force_n: l.total_longitudinal_force_n,
             temperature: c.temperature,
+            rail_motion: Default::default(),
         };
         ranges::check_motion(
             &input.position,

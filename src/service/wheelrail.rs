@@ -345,6 +345,7 @@ impl QuerySettings {
             settings: self.settings,
             total_longitudinal_force_n,
             temperature: self.temperature,
+            rail_motion: Default::default(),
         })
     }
 }

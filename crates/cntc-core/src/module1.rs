@@ -33,12 +33,9 @@
 //!   the placed rail about its profile's origin (the solver's
 //!   `RailDeviation`; the gauge point is found on the rail inclined by the
 //!   cant alone, as CONTACT's `wr_set_rail_marker` does). VYRAIL, VZRAIL,
-//!   VROLLR move the rail: its velocity is taken off the wheel's rigid
-//!   motion (a roll rate and a velocity at the wheel's centre, whose
-//!   height a vertical force load finds: solved again there). The solver
-//!   takes the rail's velocity at the wheel's point of the contact,
-//!   CONTACT at the rail's, PEN along the normal from it: CETA differs by
-//!   VROLLR PEN / V. F = 1 with VROLLR is refused.
+//!   VROLLR move the rail: the solver's `RailMotion`, whose velocity at
+//!   the rail's point of each patch (CONTACT's) it takes off the wheel's.
+//!   F = 1 with VROLLR is refused.
 //! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
 //!   from the wheelset centre) and may lie outside the profile, as in
 //!   CONTACT; the solver is given the same placement from the profile's
@@ -120,10 +117,10 @@ use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::{
     parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
     ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailDeviation, RailPlacement,
-    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData, WheelsetPosition,
-    WheelsetVelocity,
+    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
+    RailPlacement, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
+    WheelsetPosition, WheelsetVelocity,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1338,7 +1335,7 @@ impl WheelRail {
             self.pair_before = None;
             self.pair = Some(pair?);
         }
-        let input = self.solver_input(side, None)?;
+        let input = self.solver_input(side)?;
         let pair = self.pair.as_ref().expect("built above");
         let (input, sol, vpitch_found) = match self.longitudinal_force_n {
             Some(target) if self.config.digits.force == 1 => {
@@ -1358,28 +1355,8 @@ impl WheelRail {
                 (input, sol, Some(vpitch))
             }
             _ => {
-                let mut input = input;
-                let mut sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
                     .map_err(CntcError::from_wheelrail)?;
-                // The rail's roll rate turns about the wheel's centre,
-                // whose height a vertical force load finds: solved again
-                // at the height found (twice: the second moves it by
-                // the first's change of the approach, well below a
-                // nanometre).
-                if self.rail_deviation[5] != 0.0
-                    && !matches!(input.load, WheelLoad::CenterHeight(_))
-                {
-                    for _ in 0..2 {
-                        let cz = sol
-                            .wheels
-                            .iter()
-                            .find(|w| w.side == side)
-                            .map(|w| sol.center_z_m + w.vertical_approach_m);
-                        input = self.solver_input(side, cz)?;
-                        sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
-                            .map_err(CntcError::from_wheelrail)?;
-                    }
-                }
                 (input, sol, None)
             }
         };
@@ -1414,11 +1391,7 @@ impl WheelRail {
     }
 
     /// The solver's input of this problem.
-    ///
-    /// `center_z_hint_m`: the wheel's centre height (the solver's) where
-    /// the rail's roll rate VROLLR turns it, for a vertical force load
-    /// (N = 1), whose height is found by the solve; `None`: -NOMRAD.
-    fn solver_input(&self, side: Side, center_z_hint_m: Option<f64>) -> Result<WheelRailInput> {
+    fn solver_input(&self, side: Side) -> Result<WheelRailInput> {
         let d = self.discretisation.ok_or_else(|| {
             CntcError::Discretisation(
                 "the discretisation has not been set: cntc_setpotcontact with icp = -1, IPOTCN = -1 \
@@ -1514,31 +1487,15 @@ impl WheelRail {
                 pitch_rad_per_s: Some(pitch),
             };
         }
+        // The rail's own motion (Z = 2, 3), taken at the rail's point of
+        // each patch by the solver (CONTACT's `wr_creep_cref`).
         let [_, _, _, vy_r, vz_r, vroll_r] = self.rail_deviation;
-        if [vy_r, vz_r, vroll_r] != [0.0; 3] {
-            // The rail moves: its velocity at the wheel's point Q,
-            // v_r + w_r x (Q - O_r) (CONTACT's `wr_creep_cref`), taken off
-            // the wheel's rigid motion about its centre c: -w_r x (Q - c)
-            // as a roll rate, -v_r - w_r x (c - O_r) at c (side frame,
-            // w_r = (s VROLLR, 0, 0)).
-            let s = side.sign();
-            let pair = self.pair.as_ref().ok_or_else(|| {
-                CntcError::Other("the profiles are placed before the rail's rates".into())
-            })?;
-            let [oq, oz] = pair.rail(side).to_side(0.0, 0.0);
-            let cz = match load {
-                WheelLoad::CenterHeight(z) => z,
-                _ => center_z_hint_m.unwrap_or(-dims.nominal_radius_m),
-            };
-            let cq = s * position.lateral_m;
-            let at_c = [
-                s * vy_r - s * vroll_r * (cz - oz),
-                vz_r + s * vroll_r * (cq - oq),
-            ];
-            velocity.lateral_m_per_s -= s * at_c[0];
-            velocity.vertical_m_per_s -= at_c[1];
-            velocity.roll_rad_per_s -= vroll_r;
-        }
+        let mut rail_motion = [RailMotion::default(); 2];
+        rail_motion[side.index()] = RailMotion {
+            lateral_m_per_s: vy_r,
+            vertical_m_per_s: vz_r,
+            roll_rad_per_s: vroll_r,
+        };
         Ok(WheelRailInput {
             position,
             velocity,
@@ -1578,6 +1535,7 @@ impl WheelRail {
             },
             total_longitudinal_force_n: None,
             temperature: None,
+            rail_motion,
         })
     }
 

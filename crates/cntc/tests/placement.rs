@@ -345,10 +345,9 @@ fn flexibility_conventions() {
 /// the wheelset at Y_WS = 1 mm, FZ = 50 kN. DYRAIL is a track y: the left
 /// rail moves towards the track centre, the right one outwards, and both
 /// give the same forces. The rail's marker and the contact match CONTACT's
-/// library to its printed digits; CETA lies 1.03e-5 below CONTACT's
-/// 0.010099: CONTACT takes the rail's velocity at the rail's point of the
-/// contact, the solver at the wheel's, PEN = 0.103 mm along the normal
-/// (VROLLR PEN / V = 0.01 x 0.103 / 100 = 1.03e-5); compared to 1.1e-5.
+/// library to its printed digits, and so do the creepages (CETA
+/// 0.0100990 against CONTACT's 0.010099, the rail's velocity taken at the
+/// rail's point of the patch as CONTACT does); compared to 1.1e-5.
 #[test]
 fn rail_deviations_match_contacts_library() {
     let deviation = [2.0, 0.3, 0.02, 1.0, 0.5, 0.01];

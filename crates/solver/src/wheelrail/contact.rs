@@ -440,6 +440,40 @@ pub struct WheelRailInput {
     /// `auto`), each patch's [`PatchResult::temperature`]; `None`: none
     /// (and no cost).
     pub temperature: Option<WheelRailThermal>,
+    /// Each rail's own motion (`[left, right]`, default at rest): its
+    /// velocity enters the creepages at the rail's point of each patch.
+    pub rail_motion: [RailMotion; 2],
+}
+
+/// A rail's rigid motion in the track frame (CONTACT's VYRAIL, VZRAIL,
+/// VROLLR): a velocity of its profile's origin and a rotation rate about
+/// the track's x axis through that origin.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RailMotion {
+    /// Lateral velocity \[m/s\] (track y, to the right).
+    pub lateral_m_per_s: f64,
+    /// Vertical velocity \[m/s\] (z down).
+    pub vertical_m_per_s: f64,
+    /// Rotation rate about x \[rad/s\] (right-hand rule).
+    pub roll_rad_per_s: f64,
+}
+
+impl RailMotion {
+    /// Velocity and rotation rate in the side frame of `side` (see
+    /// [`crate::wheelrail::wheelset`]'s frames) at the side-frame point
+    /// (q, z), of the rail whose profile origin lies at `origin` (q, z).
+    fn in_side_frame(&self, side: Side, origin: [f64; 2], q: f64, z: f64) -> ([f64; 3], [f64; 3]) {
+        let s = side.sign();
+        let w = s * self.roll_rad_per_s;
+        (
+            [
+                0.0,
+                s * self.lateral_m_per_s - w * (z - origin[1]),
+                self.vertical_m_per_s + w * (q - origin[0]),
+            ],
+            [w, 0.0, 0.0],
+        )
+    }
 }
 
 impl WheelRailInput {
@@ -1201,11 +1235,13 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// CONTACT's (`m_wr_rigslip.f90`, `wr_creep_cref`): the wheel lowered by
 /// Delta and its point pen from the reference along the normal, into the
 /// rail ([`ReferencePoint::InterpenetrationCentre`]).
+#[allow(clippy::too_many_arguments)]
 fn creepages(
     geom: &PatchGeometry,
     pose: &SidePose,
     side: Side,
     velocity: &WheelsetVelocity,
+    rail: (&RailMotion, &PlacedRail),
     omega: f64,
     loaded: Option<(f64, f64)>,
 ) -> (Creepages, f64) {
@@ -1230,14 +1266,24 @@ fn creepages(
     for k in 0..3 {
         w[k] += omega * a[k];
     }
-    let vw = [
+    let mut vw = [
         v[0] + rest[0] + spin[0],
         v[1] + rest[1] + spin[1],
         v[2] + rest[2] + spin[2],
     ];
+    // The rail's own motion at its point of the patch (CONTACT's), taken
+    // off the wheel's.
+    let (motion, placed) = rail;
+    if *motion != RailMotion::default() {
+        let (vr, wr) = motion.in_side_frame(side, placed.to_side(0.0, 0.0), p[1], p[2]);
+        for k in 0..3 {
+            vw[k] -= vr[k];
+            w[k] -= wr[k];
+        }
+    }
     let t = geom.tangent();
     let n = [0.0, geom.normal[0], geom.normal[1]];
-    // Rail at rest: its velocity relative to the wheel is -vw.
+    // The rail's velocity relative to the wheel is -vw.
     let creep = Creepages {
         creepage_long: -vw[0] / speed,
         creepage_lat: -dot(vw, [0.0, t[0], t[1]]) / speed,
@@ -2289,7 +2335,8 @@ fn build_patch(
     // With `loaded`, the wheel's vertical approach (CONTACT's creepages,
     // see [`creepages`]): the patch's normal interpenetration at it.
     let loaded = loaded.map(|delta| (delta, delta * geom.normal[1] - lateral_curvature(&geom).0));
-    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega, loaded);
+    let motion = (&input.rail_motion[side.index()], pair.rail(side));
+    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, loaded);
     let rail = pair.rail(side);
     let friction = patch_friction(rail, &geom, input, speed);
     let nz = geom.normal[1];
@@ -2450,7 +2497,8 @@ pub(crate) fn hertz_patch(
     input: &WheelRailInput,
     omega: f64,
 ) -> PatchWork {
-    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, omega, None);
+    let motion = (&input.rail_motion[side.index()], rail);
+    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, None);
     PatchWork {
         friction: patch_friction(rail, &geom, input, speed),
         creep,
@@ -3681,6 +3729,47 @@ mod tests {
     /// load met with its creep forces; with Kalker's flexibilities near
     /// Kalker's exact normal and creep forces here). at 2 mm, one
     /// patch a wheel.
+    /// A rail's own motion is relative motion: both rails moving sideways
+    /// and up give the creepages of the wheelset moving the other way (to
+    /// rounding).
+    #[test]
+    fn a_moving_rail_is_the_wheelset_moving_the_other_way() {
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        let base = mbench_a22_input(2.0, None, None, WheelRailModel::HertzFastsim);
+        let solve = |input: &WheelRailInput| {
+            let sol = solve_wheelset(&pair, input, &cache, &mut SearchScratch::default()).unwrap();
+            sol.wheels
+                .iter()
+                .map(|w| w.patches[0].clone())
+                .collect::<Vec<_>>()
+        };
+        let (vy, vz) = (0.01, -0.004);
+        let mut rail_moves = base.clone();
+        rail_moves.rail_motion = [RailMotion {
+            lateral_m_per_s: vy,
+            vertical_m_per_s: vz,
+            roll_rad_per_s: 0.0,
+        }; 2];
+        let mut wheelset_moves = base.clone();
+        wheelset_moves.velocity.lateral_m_per_s = -vy;
+        wheelset_moves.velocity.vertical_m_per_s = -vz;
+        let (a, b, at_rest) = (solve(&rail_moves), solve(&wheelset_moves), solve(&base));
+        for ((p, q), r) in a.iter().zip(&b).zip(&at_rest) {
+            for (x, y) in [
+                (p.creepage_long, q.creepage_long),
+                (p.creepage_lat, q.creepage_lat),
+                (p.spin_per_m, q.spin_per_m),
+            ] {
+                assert!((x - y).abs() <= 1e-12, "{x} against {y}");
+            }
+            assert!(
+                (p.creepage_lat - r.creepage_lat).abs() > 1e-4,
+                "the motion counts"
+            );
+        }
+    }
+
     #[test]
     fn exact_patches_solve_frictionless_or_with_fastsim() {
         let pair = mbench_pair().unwrap();

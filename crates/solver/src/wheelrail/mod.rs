@@ -89,7 +89,7 @@ pub mod wheelset;
 
 pub use contact::{
     pitch_force_tolerance, solve_wheelset, solve_wheelset_warm, wheelrail_solver_settings,
-    ExactTangential, PatchResult, PatchTractions, WarmStart, WheelLoad, WheelRailInput,
+    ExactTangential, PatchResult, PatchTractions, RailMotion, WarmStart, WheelLoad, WheelRailInput,
     WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
