@@ -22,7 +22,8 @@ use crate::core::viscoelastic::{Sls, Viscoelastic};
 use crate::problem::case::{
     ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FrictionLawName,
     FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection, MaterialSection,
-    Model, RollingSection, SolverSection, StepSection, SubsurfaceSection, TransientSection,
+    Model, RollingSection, SolverSection, SteadyStartSection, StepSection, SubsurfaceSection,
+    TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepForceReport,
@@ -243,9 +244,9 @@ pub fn wire_creepages(c: &Creepages) -> pb::Creepages {
     }
 }
 
-/// The case file's step section of a wire step.
-pub fn step_section(s: &pb::ShiftStep) -> StepSection {
-    StepSection {
+/// The case file's step section of a wire step (`key` names it).
+pub fn step_section(key: &str, s: &pb::ShiftStep) -> Result<StepSection, ServiceError> {
+    Ok(StepSection {
         shift_x_m: s.shift_x_m,
         shift_y_m: s.shift_y_m,
         rotation_rad: s.rotation_rad,
@@ -260,6 +261,18 @@ pub fn step_section(s: &pb::ShiftStep) -> StepSection {
         force_x_n_per_m: s.force_x_n_per_m,
         rolling_m: s.rolling_m,
         gap_travel_x_m: s.gap_travel_x_m,
+        friction_start: slip_start(&format!("{key}.friction_start"), s.friction_start)?,
+    })
+}
+
+/// A wire slip start named `key` (unspecified: None, the default).
+fn slip_start(key: &str, v: i32) -> Result<Option<SlipStart>, ServiceError> {
+    match pb::SlipStart::try_from(v) {
+        Ok(pb::SlipStart::Unspecified) => Ok(None),
+        Ok(pb::SlipStart::Previous) => Ok(Some(SlipStart::Previous)),
+        Ok(pb::SlipStart::Sticking) => Ok(Some(SlipStart::Sticking)),
+        Ok(pb::SlipStart::Sliding) => Ok(Some(SlipStart::Sliding)),
+        Err(_) => Err(ServiceError::invalid(key, format!("unknown value {v}"))),
     }
 }
 
@@ -316,7 +329,17 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         transient: match &c.kinematics {
             Some(pb::patch_case::Kinematics::Transient(t)) => Some(TransientSection {
                 rolling_step_m: t.rolling_step_m,
-                steps: t.steps.iter().map(step_section).collect(),
+                steady_start: t.steady_start.as_ref().map(|s| SteadyStartSection {
+                    creepage_long: s.creepage_long,
+                    creepage_lat: s.creepage_lat,
+                    spin_per_m: s.spin_per_m,
+                }),
+                steps: t
+                    .steps
+                    .iter()
+                    .enumerate()
+                    .map(|(k, s)| step_section(&format!("transient.steps[{k}]"), s))
+                    .collect::<Result<_, _>>()?,
             }),
             _ => None,
         },
@@ -735,6 +758,7 @@ pub fn result_of_report(r: &Report<'_>) -> pb::PatchResult {
         notes: r.notes.clone(),
         fields,
         force_control: r.force_control.as_ref().map(force_control),
+        steady_start: r.steady_start.as_ref().map(step_of_report),
         subsurface: None,
         temperature: None,
         fastsim_max_pressure_pa: r.fastsim_max_pressure_pa,
@@ -940,18 +964,7 @@ pub fn friction_section(f: &pb::FrictionSection) -> Result<FrictionSection, Serv
             ))
         }
     };
-    let start = match pb::SlipStart::try_from(f.start) {
-        Ok(pb::SlipStart::Unspecified) => None,
-        Ok(pb::SlipStart::Previous) => Some(SlipStart::Previous),
-        Ok(pb::SlipStart::Sticking) => Some(SlipStart::Sticking),
-        Ok(pb::SlipStart::Sliding) => Some(SlipStart::Sliding),
-        Err(_) => {
-            return Err(ServiceError::invalid(
-                "friction.start",
-                format!("unknown value {}", f.start),
-            ))
-        }
-    };
+    let start = slip_start("friction.start", f.start)?;
     let list = |v: &[f64]| (!v.is_empty()).then(|| v.to_vec());
     Ok(FrictionSection {
         law,

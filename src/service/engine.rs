@@ -252,7 +252,8 @@ impl PatchEngine {
     }
 
     /// Solves the case: one solution, or one per transient step (which
-    /// then start from the unloaded state). Steady-rolling and static
+    /// then start from the unloaded state, or from the steady rolling
+    /// state of `transient.steady_start`). Steady-rolling and static
     /// solves of the exact model warm-start from the previous solve.
     pub fn solve(&mut self, fields: bool) -> Result<pb::PatchResult, ServiceError> {
         let (mut result, jacobian) = match &mut self.exact {
@@ -279,6 +280,7 @@ impl PatchEngine {
                 };
                 let mut result = self.exact_result(&solutions, &solved.step_forces, fields);
                 result.force_control = force.as_ref().map(convert::force_control);
+                result.steady_start = solved.steady_start.as_ref().map(convert::step_of_solution);
                 if let Some(last) = solutions.last() {
                     let extras = SolutionExtras::of(&self.case, &grid, last)?;
                     result.temperature = extras
@@ -461,6 +463,7 @@ impl PatchEngine {
             subsurface: None,
             temperature: None,
             fastsim_max_pressure_pa: None,
+            steady_start: None,
         }
     }
 }

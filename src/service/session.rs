@@ -403,7 +403,14 @@ impl Session {
                         "give the step's load in step.normal_force_n or step.approach_m",
                     ));
                 }
-                let section = convert::step_section(sh);
+                if sh.friction_start != 0 {
+                    return Err(ServiceError::invalid(
+                        "step.shift.friction_start",
+                        "a session's steps take the falling law's start of its case \
+                         (friction.start): leave it unspecified",
+                    ));
+                }
+                let section = convert::step_section("step.shift", sh)?;
                 let case = self.engine.case();
                 let shift = transient_step(
                     "step.shift",

@@ -1784,6 +1784,85 @@ fn the_falling_friction_example_is_contacts_veldep_fric_case_1() {
     assert!(err.contains("friction.falling_coefficients"), "{err}");
 }
 
+/// Adhesion and slip element counts of a report entry of a line contact
+/// on 0.1 mm elements (its area per metre over the element length).
+fn line_counts(s: &Value) -> [usize; 2] {
+    let n = f(s, "contact_area_m2") / 1e-4;
+    let adhesion = n * f(s, "adhesion_fraction");
+    [adhesion.round() as usize, (n - adhesion).round() as usize]
+}
+
+#[test]
+fn transient_steps_start_from_a_steady_state_each_at_its_own_friction_start() {
+    // examples/cases/line_veldep_fric_steps.toml: CONTACT's veldep_fric,
+    // case 3 (steady, INISLP 1) then cases 4-6 (rolling steps from the
+    // slip velocity V, INISLP -1); veldep_fric.ref_out, revision 2356: FX
+    // over DY = 200 mm and "final element division: A, S=". Per metre:
+    // case 3 1.109E+05 -> 5.545e5 N/m, 45/36; case 4 1.064E+05 -> 5.320e5,
+    // 34/47; case 5 1.071E+05 -> 5.355e5, 79/2; case 6 1.078E+05 ->
+    // 5.390e5, 77/4; case 2 (one step from case 1 at INISLP 1) 1.116E+05
+    // -> 5.580e5, 77/4. The validation suite holds all 53 cases within
+    // 0.83 % (crates/solver/tests/validation/falling_friction.rs); the
+    // grid here has one element more (93 centred against CONTACT's 92).
+    let check = |what: &str, s: &Value, fx: f64, counts: [usize; 2]| {
+        let got = f(s, "fx_n");
+        assert!(
+            (got / fx - 1.0).abs() < 0.01,
+            "{what}: Fx {got} N/m vs {fx}"
+        );
+        assert_eq!(line_counts(s), counts, "{what}: adhesion/slip");
+    };
+    let v = solve_json(&example("line_veldep_fric_steps.toml"), &[]);
+    assert_eq!(v["status"], "converged");
+    check("case 3", &v["steady_start"], 5.545e5, [45, 36]);
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 3);
+    for (k, (fx, counts)) in [(5.320e5, [34, 47]), (5.355e5, [79, 2]), (5.390e5, [77, 4])]
+        .into_iter()
+        .enumerate()
+    {
+        check(&format!("case {}", k + 4), &steps[k], fx, counts);
+    }
+    // The first step from the slip velocity 0: the low-slip branch.
+    let text = example_text("line_veldep_fric_steps.toml").replacen(
+        "friction_start = \"sliding\"",
+        "friction_start = \"sticking\"",
+        1,
+    );
+    let v = solve_json(&case_file("veldep_sticking.toml", &text), &[]);
+    check("case 2", &v["steps"][0], 5.580e5, [77, 4]);
+    // A friction start without a falling law is refused naming it, and a
+    // line contact's steady start rolls in x only.
+    let coulomb = {
+        let (i, j) = (
+            text.find("[friction]").unwrap(),
+            text.find("[geometry]").unwrap(),
+        );
+        format!(
+            "{}[friction]\ncoefficient = 0.3\n\n{}",
+            &text[..i],
+            &text[j..]
+        )
+    };
+    for (name, text, key) in [
+        (
+            "veldep_coulomb_steps.toml",
+            coulomb,
+            "transient.steps[0].friction_start",
+        ),
+        (
+            "veldep_lateral_start.toml",
+            text.replace("{ creepage_long = -0.0009999 }", "{ creepage_lat = 0.001 }"),
+            "transient.steady_start.creepage_lat",
+        ),
+    ] {
+        let out = run(&["solve", case_file(name, &text).to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(key), "{name}: {err}");
+    }
+}
+
 #[test]
 fn the_line_contact_example_is_carters_rolling_per_metre() {
     // examples/cases/line_carter.toml: CONTACT's carter2d on 200 strips.

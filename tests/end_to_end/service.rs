@@ -1787,6 +1787,91 @@ async fn an_interfacial_layer_on_the_wire_solves_as_the_case_file() {
     server.shutdown().await;
 }
 
+/// Transient steps from a steady rolling state on the wire
+/// (`TransientSection.steady_start`, `ShiftStep.friction_start`):
+/// SolvePatch of `examples/cases/line_veldep_fric_steps.toml`'s values
+/// gives the command line's numbers bit for bit, the steady state as
+/// `steady_start` and each step; a friction start outside the enum is
+/// refused naming its step.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn transient_steps_from_a_steady_state_on_the_wire_solve_as_the_case_file() {
+    let (server, mut client) = server().await;
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/cases/line_veldep_fric_steps.toml"
+    );
+    let file = Case::from_toml(&std::fs::read_to_string(path).unwrap()).expect("a valid case");
+    let cli = match ModelRun::solve(&file, &mut FrictionalWorkspace::default()) {
+        Ok(ModelRun::Exact(run)) => result_of_report(&run.report(&file, false)),
+        Ok(_) => panic!("the exact model"),
+        Err(e) => panic!("{e}"),
+    };
+    let sliding = pb::ShiftStep {
+        creepage_long: Some(-0.001),
+        friction_start: pb::SlipStart::Sliding as i32,
+        ..Default::default()
+    };
+    let case = pb::PatchCase {
+        model: pb::Model::Exact as i32,
+        material: Some(pb::MaterialSection {
+            shear_modulus_pa: Some(82.0e9),
+            poisson_ratio: Some(0.28),
+            ..Default::default()
+        }),
+        friction: Some(pb::FrictionSection {
+            law: pb::FrictionLaw::Exponential as i32,
+            kinetic_coefficient: Some(0.18),
+            falling_coefficients: vec![0.12],
+            half_velocities_m_per_s: vec![0.1],
+            rolling_speed_m_per_s: Some(45.0),
+            start: pb::SlipStart::Sticking as i32,
+            ..Default::default()
+        }),
+        geometry: Some(pb::GeometrySection {
+            kind: pb::GeometryKind::Line as i32,
+            a_per_m: Some(1.0869565217391304),
+            ..Default::default()
+        }),
+        load: Some(pb::LoadSection {
+            load: Some(pb::load_section::Load::NormalForceNPerM(3111080.0)),
+        }),
+        kinematics: Some(pb::patch_case::Kinematics::Transient(
+            pb::TransientSection {
+                steps: vec![sliding; 3],
+                rolling_step_m: Some(1.0e-4),
+                steady_start: Some(pb::SteadyStart {
+                    creepage_long: -0.0009999,
+                    ..Default::default()
+                }),
+            },
+        )),
+        grid: Some(pb::GridSection {
+            nx: Some(93),
+            window_x_m: Some(9.3e-3),
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let r = solve_patch(&mut client, case.clone()).await;
+    let start = |r: &pb::PatchResult| bits(totals(r.steady_start.as_ref().unwrap()));
+    assert_eq!(start(&r), start(&cli));
+    assert_eq!(r.steps.len(), 3);
+    for (k, (a, b)) in r.steps.iter().zip(&cli.steps).enumerate() {
+        assert_eq!(bits(totals(a)), bits(totals(b)), "step {k}");
+    }
+    let mut bad = case;
+    if let Some(pb::patch_case::Kinematics::Transient(t)) = &mut bad.kinematics {
+        t.steps[1].friction_start = 7;
+    }
+    let (code, msg) = failure(client.solve_patch(request(bad)).await);
+    assert_eq!(code, Code::InvalidArgument, "{msg}");
+    assert!(
+        msg.contains("case.transient.steps[1].friction_start"),
+        "{msg}"
+    );
+    server.shutdown().await;
+}
+
 /// `examples/cases/visc_cylindr.toml` (CONTACT's `visc_cylindr` case 3:
 /// two viscoelastic PA6 cylinders braked at Fx = -0.6 mu Fn) read as the
 /// command line reads it, and its wire form built section by section from

@@ -96,6 +96,7 @@ fn case(model: pb::Model, kind: Kind, n: u32) -> pb::PatchCase {
                         ..Default::default()
                     }],
                     rolling_step_m: rolling.then_some(6e-4),
+                    steady_start: None,
                 },
             ));
             if rolling {

@@ -203,6 +203,22 @@ def test_a_viscoelastic_case_file_solves_as_contacts_visc_cylindr(client):
     assert e.value.field == "case.viscoelastic.body1.relaxation_ratio", e.value.message
 
 
+def test_transient_steps_start_from_a_steady_state_at_their_friction_start(client):
+    # CONTACT's veldep_fric.inp case 3 (steady), then cases 4-6 (rolling
+    # steps from the slip velocity V), examples/cases/
+    # line_veldep_fric_steps.toml: veldep_fric.ref_out FX 1.109e5,
+    # 1.064e5, 1.071e5, 1.078e5 N over DY = 200 mm (x 5 per metre).
+    path = REPO / "examples" / "cases" / "line_veldep_fric_steps.toml"
+    r = client.solve_patch(path)
+    assert r.steady_start.totals.fx_n == pytest.approx(5.545e5, rel=0.01)
+    assert [s.totals.fx_n for s in r.steps] == pytest.approx([5.320e5, 5.355e5, 5.390e5], rel=0.01)
+    # From the slip velocity 0 the first step is CONTACT's case 2 (1.116e5).
+    case = railcontact.load_case(path)
+    case["transient"]["steps"][0]["friction_start"] = "sticking"
+    assert client.solve_patch(case).steps[0].totals.fx_n == pytest.approx(5.580e5, rel=0.01)
+    assert client.solve_patch(rolling_case("exact")).steady_start is None
+
+
 def test_fastsim_reports_hertz_p0_and_its_bound_peak(client):
     # totals.max_pressure_pa is Hertz's p0; fastsim_max_pressure_pa the
     # peak of FASTSIM's parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0

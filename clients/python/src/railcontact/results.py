@@ -469,7 +469,9 @@ class PatchResult(_Result):
     rolling (None otherwise). Model ``fastsim``: ``totals.max_pressure_pa``
     is Hertz's p0, ``fastsim_max_pressure_pa`` the peak of FASTSIM's
     parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0 (the maximum pressure
-    CONTACT's FASTSIM reports); None with the other models."""
+    CONTACT's FASTSIM reports); None with the other models.
+    ``steady_start`` is the steady rolling state transient steps started
+    from (``transient.steady_start``; None otherwise)."""
 
     model: str = _enum()
     result: StepResult = _sub(StepResult)
@@ -481,6 +483,7 @@ class PatchResult(_Result):
     temperature: Optional[TemperatureResult] = _optional(TemperatureResult)
     force_control: Optional[ForceControl] = _optional(ForceControl)
     fastsim_max_pressure_pa: Optional[float] = _optional_number()
+    steady_start: Optional[StepResult] = _optional(StepResult)
 
     @classmethod
     def from_pb(cls, message) -> "PatchResult":

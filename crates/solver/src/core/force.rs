@@ -365,8 +365,11 @@ fn shifts_for_force(
     })
 }
 
-/// Solves every step of the transient `problem` from the unloaded state
-/// (as [`ContactSolver::solve`] does), each step with a prescribed force in
+/// Solves every step of the transient `problem` on from the solver's
+/// state (after [`ContactSolver::reset`] from the unloaded state, as
+/// [`ContactSolver::solve`] does; after a steady solve and
+/// [`ContactSolver::continue_from_last_solution`] from that steady
+/// rolling state), each step with a prescribed force in
 /// `forces` (one entry per step; `PrescribedForce::default()` for a step
 /// solved as given) for its shift ([`solve_prescribed_force_step`]), the
 /// secant of a step starting where [`continued_start`] puts it.
@@ -399,7 +402,6 @@ pub fn solve_steps_with_forces(
             ),
         ));
     }
-    solver.reset();
     let mut work = problem.clone();
     let mut out: Vec<StepForceSolution> = Vec::with_capacity(steps.len());
     for (k, (step, &target)) in steps.iter().zip(forces).enumerate() {
@@ -1295,6 +1297,7 @@ mod tests {
             kinematics: Kinematics::Transient(start),
             ..p.clone()
         };
+        s.reset();
         let r = solve_steps_with_forces(
             &mut s,
             &q,
@@ -1322,6 +1325,7 @@ mod tests {
         // A force beyond saturation names its step.
         let mut bad = forces;
         bad[2].force_x_n = Some(2.0 * MU * FN);
+        s.reset();
         let e = solve_steps_with_forces(
             &mut s,
             &q,

@@ -281,6 +281,7 @@ impl ConformalRun {
                 w_j_per_m2: last.wfric_lateral_j_per_m2.clone(),
             }),
             notes,
+            steady_start: None,
             steps: (frictional && !self.steady).then_some(steps),
             fields: with_fields.then_some(Fields::Conformal(ConformalFieldsReport {
                 grid,

@@ -126,6 +126,9 @@ pub struct ExactRun {
     force_control: Option<ForceControlReport>,
     /// Prescribed step forces: the shifts found, per step.
     step_forces: Vec<Option<StepForceReport>>,
+    /// The steady rolling state the transient steps started from
+    /// (`transient.steady_start`).
+    steady_start: Option<Box<ContactSolution>>,
     /// The subsurface fields of both bodies below the (last) solution,
     /// when the case asks for them (`[subsurface]`).
     pub subsurface: Option<Box<SubsurfaceRun>>,
@@ -148,14 +151,18 @@ pub struct ExactSolves {
     /// Per transient step with a prescribed force: the shift found (empty
     /// when no step prescribes one).
     pub step_forces: Vec<Option<StepForceReport>>,
+    /// The steady rolling state the transient steps started from
+    /// (`transient.steady_start`).
+    pub steady_start: Option<ContactSolution>,
 }
 
 /// Solves `case` with the exact model on `solver`, which was built for
 /// `problem` (the case's problem, its undeformed distance as the caller
 /// needs it): the creepages of prescribed forces in steady rolling, the
-/// shifts of prescribed step forces in a transient case (from the
-/// unloaded state), or the problem as given (steady and static solves
-/// warm-start from the solver's last).
+/// transient steps (from the unloaded state, or from the steady rolling
+/// state of `transient.steady_start`, each at its own friction start,
+/// solved for the shifts of prescribed step forces), or the problem as
+/// given (steady and static solves warm-start from the solver's last).
 pub fn solve_exact(
     case: &Case,
     solver: &mut ContactSolver,
@@ -169,15 +176,40 @@ pub fn solve_exact(
             solutions: vec![f.solution],
             force_control: Some(report),
             step_forces: Vec::new(),
+            steady_start: None,
         });
     }
-    if case.step_forces.is_empty() && case.step_gap_offsets_m.is_empty() {
+    if case.step_forces.is_empty()
+        && case.step_gap_offsets_m.is_empty()
+        && case.steady_start.is_none()
+        && case.step_slip_starts.is_empty()
+    {
         return Ok(ExactSolves {
             solutions: solver.solve(problem)?,
             force_control: None,
             step_forces: Vec::new(),
+            steady_start: None,
         });
     }
+    let steady_start = match case.steady_start {
+        Some(creepages) => {
+            let steady = ContactProblem {
+                kinematics: Kinematics::SteadyRolling(creepages),
+                ..problem.clone()
+            };
+            solver.reset();
+            let solved = solver
+                .solve(&steady)
+                .map_err(|e| e.with_key_prefix("rolling", "transient.steady_start"))?;
+            solver.continue_from_last_solution();
+            solved.into_iter().next_back()
+        }
+        None => {
+            solver.reset();
+            None
+        }
+    };
+    let default_start = problem.friction.slip_velocity_law.map(|l| l.start);
     let steps = match &problem.kinematics {
         Kinematics::Transient(steps) => steps.len(),
         _ => 0,
@@ -193,6 +225,14 @@ pub fn solve_exact(
     let step = std::cell::Cell::new(0);
     let travel = |k: usize, p: &mut ContactProblem| {
         step.set(k);
+        if let (Some(law), Some(start)) = (&mut p.friction.slip_velocity_law, default_start) {
+            law.start = case
+                .step_slip_starts
+                .get(k)
+                .copied()
+                .flatten()
+                .unwrap_or(start);
+        }
         if let Some(&offset) = case.step_gap_offsets_m.get(k) {
             if offset != at {
                 let grid = p.grid;
@@ -244,6 +284,7 @@ pub fn solve_exact(
         solutions,
         force_control: None,
         step_forces,
+        steady_start,
     })
 }
 
@@ -323,8 +364,12 @@ impl ExactRun {
         solver.start_nested(&problem, cache)?;
         let solved = solve_exact(case, &mut solver, &problem)?;
         let layer = solver.layer_fields();
-        let (solutions, force_control, step_forces) =
-            (solved.solutions, solved.force_control, solved.step_forces);
+        let (solutions, force_control, step_forces, steady_start) = (
+            solved.solutions,
+            solved.force_control,
+            solved.step_forces,
+            solved.steady_start.map(Box::new),
+        );
         let Some(last) = solutions.last() else {
             return Err(CaseError::Failure("the solver returned no solution".into()));
         };
@@ -333,6 +378,7 @@ impl ExactRun {
             grid: problem.grid,
             solutions,
             step_forces,
+            steady_start,
             elapsed_s: t0.elapsed().as_secs_f64(),
             force_control,
             subsurface: extras.subsurface.map(Box::new),
@@ -344,6 +390,12 @@ impl ExactRun {
     /// The solutions: one, or one per transient step.
     pub fn solutions(&self) -> &[ContactSolution] {
         &self.solutions
+    }
+
+    /// The steady rolling state the transient steps started from
+    /// (`transient.steady_start`).
+    pub fn steady_start(&self) -> Option<&ContactSolution> {
+        self.steady_start.as_deref()
     }
 
     /// The (last) solution.
@@ -362,14 +414,14 @@ impl ExactRun {
                 ..StepReport::from_solution(s)
             })
             .collect();
+        let steady_start = self.steady_start.as_deref().map(StepReport::from_solution);
+        let all = || steady_start.iter().chain(&steps);
         let mut totals = StepReport::from_solution(self.last());
         totals.solve_time_s = self.elapsed_s;
-        totals.normal_iterations = steps.iter().map(|s| s.normal_iterations).sum();
-        totals.tangential_iterations = steps.iter().map(|s| s.tangential_iterations).sum();
-        totals.iterations = steps.iter().map(|s| s.iterations).sum();
-        totals.status = steps
-            .iter()
-            .fold(SolveStatus::Converged, |a, s| a.worst(s.status));
+        totals.normal_iterations = all().map(|s| s.normal_iterations).sum();
+        totals.tangential_iterations = all().map(|s| s.tangential_iterations).sum();
+        totals.iterations = all().map(|s| s.iterations).sum();
+        totals.status = all().fold(SolveStatus::Converged, |a, s| a.worst(s.status));
         let mut notes = Vec::new();
         if self.grid.is_line() {
             notes.push(
@@ -381,8 +433,10 @@ impl ExactRun {
         if totals.status != SolveStatus::Converged {
             // Name the limit each failed step stopped at (that key raises it).
             let mut keys: Vec<&str> = self
-                .solutions
-                .iter()
+                .steady_start
+                .as_deref()
+                .into_iter()
+                .chain(&self.solutions)
                 .filter_map(|s| s.info.limit.map(|l| l.key()))
                 .collect();
             keys.sort_unstable();
@@ -409,6 +463,7 @@ impl ExactRun {
             window_m: Some([case.window_x_m, case.window_y_m]),
             wfric_lateral: None,
             notes,
+            steady_start,
             steps: matches!(case.kinematics, Kinematics::Transient(_)).then_some(steps),
             fields: with_fields.then_some(Fields::Planar(FieldsReport {
                 grid: &self.grid,

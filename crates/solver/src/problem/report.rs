@@ -194,6 +194,10 @@ pub struct Report<'a> {
     pub wfric_lateral: Option<WfricReport>,
     /// Remarks: ignored sections, quantities a model does not compute.
     pub notes: Vec<String>,
+    /// The steady rolling state the transient steps started from
+    /// (`transient.steady_start`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady_start: Option<StepReport>,
     /// One entry per transient step.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub steps: Option<Vec<StepReport>>,

@@ -292,7 +292,7 @@ class Creepages(_message.Message):
     def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ...) -> None: ...
 
 class ShiftStep(_message.Message):
-    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n_per_m", "force_x_n", "force_y_n", "force_x_n_per_m", "rolling_m", "gap_travel_x_m")
+    __slots__ = ("shift_x_m", "shift_y_m", "rotation_rad", "normal_force_n", "approach_m", "creepage_long", "creepage_lat", "spin_per_m", "normal_force_n_per_m", "force_x_n", "force_y_n", "force_x_n_per_m", "rolling_m", "gap_travel_x_m", "friction_start")
     SHIFT_X_M_FIELD_NUMBER: _ClassVar[int]
     SHIFT_Y_M_FIELD_NUMBER: _ClassVar[int]
     ROTATION_RAD_FIELD_NUMBER: _ClassVar[int]
@@ -307,6 +307,7 @@ class ShiftStep(_message.Message):
     FORCE_X_N_PER_M_FIELD_NUMBER: _ClassVar[int]
     ROLLING_M_FIELD_NUMBER: _ClassVar[int]
     GAP_TRAVEL_X_M_FIELD_NUMBER: _ClassVar[int]
+    FRICTION_START_FIELD_NUMBER: _ClassVar[int]
     shift_x_m: float
     shift_y_m: float
     rotation_rad: float
@@ -321,15 +322,28 @@ class ShiftStep(_message.Message):
     force_x_n_per_m: float
     rolling_m: float
     gap_travel_x_m: float
-    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ..., rolling_m: _Optional[float] = ..., gap_travel_x_m: _Optional[float] = ...) -> None: ...
+    friction_start: SlipStart
+    def __init__(self, shift_x_m: _Optional[float] = ..., shift_y_m: _Optional[float] = ..., rotation_rad: _Optional[float] = ..., normal_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ..., normal_force_n_per_m: _Optional[float] = ..., force_x_n: _Optional[float] = ..., force_y_n: _Optional[float] = ..., force_x_n_per_m: _Optional[float] = ..., rolling_m: _Optional[float] = ..., gap_travel_x_m: _Optional[float] = ..., friction_start: _Optional[_Union[SlipStart, str]] = ...) -> None: ...
+
+class SteadyStart(_message.Message):
+    __slots__ = ("creepage_long", "creepage_lat", "spin_per_m")
+    CREEPAGE_LONG_FIELD_NUMBER: _ClassVar[int]
+    CREEPAGE_LAT_FIELD_NUMBER: _ClassVar[int]
+    SPIN_PER_M_FIELD_NUMBER: _ClassVar[int]
+    creepage_long: float
+    creepage_lat: float
+    spin_per_m: float
+    def __init__(self, creepage_long: _Optional[float] = ..., creepage_lat: _Optional[float] = ..., spin_per_m: _Optional[float] = ...) -> None: ...
 
 class TransientSection(_message.Message):
-    __slots__ = ("steps", "rolling_step_m")
+    __slots__ = ("steps", "rolling_step_m", "steady_start")
     STEPS_FIELD_NUMBER: _ClassVar[int]
     ROLLING_STEP_M_FIELD_NUMBER: _ClassVar[int]
+    STEADY_START_FIELD_NUMBER: _ClassVar[int]
     steps: _containers.RepeatedCompositeFieldContainer[ShiftStep]
     rolling_step_m: float
-    def __init__(self, steps: _Optional[_Iterable[_Union[ShiftStep, _Mapping]]] = ..., rolling_step_m: _Optional[float] = ...) -> None: ...
+    steady_start: SteadyStart
+    def __init__(self, steps: _Optional[_Iterable[_Union[ShiftStep, _Mapping]]] = ..., rolling_step_m: _Optional[float] = ..., steady_start: _Optional[_Union[SteadyStart, _Mapping]] = ...) -> None: ...
 
 class GridSection(_message.Message):
     __slots__ = ("nx", "ny", "window_x_m", "window_y_m")
@@ -648,7 +662,7 @@ class ElementFields(_message.Message):
     def __init__(self, pressure_pa: _Optional[_Iterable[float]] = ..., traction_x_pa: _Optional[_Iterable[float]] = ..., traction_y_pa: _Optional[_Iterable[float]] = ..., slip_x: _Optional[_Iterable[float]] = ..., slip_y: _Optional[_Iterable[float]] = ..., state: _Optional[_Iterable[_Union[ElementState, str]]] = ..., gap_m: _Optional[_Iterable[float]] = ..., delta_rad: _Optional[_Iterable[float]] = ..., reference_points_m: _Optional[_Iterable[_Union[ProfilePoint, _Mapping]]] = ..., wfric_lateral_j_per_m2: _Optional[_Iterable[float]] = ..., layer_yield_limit_pa: _Optional[_Iterable[float]] = ..., layer_plastic_x_m: _Optional[_Iterable[float]] = ..., layer_plastic_y_m: _Optional[_Iterable[float]] = ..., layer_plastic: _Optional[_Iterable[bool]] = ...) -> None: ...
 
 class PatchResult(_message.Message):
-    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature", "fastsim_max_pressure_pa")
+    __slots__ = ("model", "result", "steps", "friction_coefficient", "grid", "notes", "fields", "force_control", "subsurface", "temperature", "fastsim_max_pressure_pa", "steady_start")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     RESULT_FIELD_NUMBER: _ClassVar[int]
     STEPS_FIELD_NUMBER: _ClassVar[int]
@@ -660,6 +674,7 @@ class PatchResult(_message.Message):
     SUBSURFACE_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     FASTSIM_MAX_PRESSURE_PA_FIELD_NUMBER: _ClassVar[int]
+    STEADY_START_FIELD_NUMBER: _ClassVar[int]
     model: Model
     result: StepResult
     steps: _containers.RepeatedCompositeFieldContainer[StepResult]
@@ -671,7 +686,8 @@ class PatchResult(_message.Message):
     subsurface: SubsurfaceResult
     temperature: TemperatureResult
     fastsim_max_pressure_pa: float
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., fastsim_max_pressure_pa: _Optional[float] = ...) -> None: ...
+    steady_start: StepResult
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., result: _Optional[_Union[StepResult, _Mapping]] = ..., steps: _Optional[_Iterable[_Union[StepResult, _Mapping]]] = ..., friction_coefficient: _Optional[float] = ..., grid: _Optional[_Union[GridInfo, _Mapping]] = ..., notes: _Optional[_Iterable[str]] = ..., fields: _Optional[_Union[ElementFields, _Mapping]] = ..., force_control: _Optional[_Union[ForceControl, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceResult, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureResult, _Mapping]] = ..., fastsim_max_pressure_pa: _Optional[float] = ..., steady_start: _Optional[_Union[StepResult, _Mapping]] = ...) -> None: ...
 
 class TemperaturePeak(_message.Message):
     __slots__ = ("temperature_k", "x_m", "y_m")

@@ -8,6 +8,7 @@ use super::{bad, per_element_values, ranges, CaseFile, GeometryKind, GridSection
 use crate::core::error::Range;
 use crate::core::force::PrescribedForce;
 use crate::core::frame::{axis_turns, direction, Direction, ROLLING_DIRECTION_KEY};
+use crate::core::friclaw::SlipStart;
 use crate::core::normal::NormalLoad;
 use crate::core::problem::{
     Creepages, ExtraRigidSlip, Kinematics, ShiftStep, CREEPAGE_RANGE, SPIN_RANGE,
@@ -143,10 +144,17 @@ pub struct LoadSection {
 }
 
 /// `[transient]`: a sequence of shift and rolling steps from the unloaded
-/// state, each from the tractions of the step before.
+/// state (or from a steady rolling state, `steady_start`), each from the
+/// tractions of the step before.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TransientSection {
+    /// The steps start from the steady rolling state at these creepages
+    /// instead of the unloaded state (exact model): that state is solved
+    /// first, at the `[load]`, and reported as `steady_start` ahead of
+    /// the steps (CONTACT's steady case, T = 3, followed by transient
+    /// cases continuing it, T = 2 with P = 0).
+    pub steady_start: Option<SteadyStartSection>,
     /// Distance the contact patch rolls in +x in each rolling step \[m\]
     /// (moving coordinates, see [`crate::core::problem`]): a whole number
     /// of elements `grid.window_x_m / grid.nx`, in (0, 1] m. Needed when a
@@ -154,6 +162,22 @@ pub struct TransientSection {
     pub rolling_step_m: Option<f64>,
     /// The steps, at least one.
     pub steps: Vec<StepSection>,
+}
+
+/// `transient.steady_start`: the creepages of the steady rolling state the
+/// steps start from (each default 0).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SteadyStartSection {
+    /// Longitudinal creepage xi [-], in [-1, 1].
+    #[serde(default)]
+    pub creepage_long: f64,
+    /// Lateral creepage eta [-], in [-1, 1] (0 for a line contact).
+    #[serde(default)]
+    pub creepage_lat: f64,
+    /// Spin creepage phi \[1/m\], in [-1000, 1000] (0 for a line contact).
+    #[serde(default)]
+    pub spin_per_m: f64,
 }
 
 /// One step in `transient.steps`: a shift step (`shift_*`,
@@ -222,6 +246,12 @@ pub struct StepSection {
     /// t_k (exact model, without `geometry.gap_m`).
     #[serde(default)]
     pub gap_travel_x_m: Option<f64>,
+    /// Where this step's iteration on the slip velocities starts
+    /// (`"previous"`, `"sticking"`, `"sliding"`, as `friction.start`;
+    /// CONTACT's INISLP of each case); default `friction.start`. Needs a
+    /// falling law (`friction.law`).
+    #[serde(default)]
+    pub friction_start: Option<SlipStart>,
 }
 
 impl StepSection {
@@ -411,7 +441,13 @@ pub(super) fn rolling_direction(
             "the flash temperatures are computed for rolling in +x: leave it 0 or leave out [temperature]",
         ));
     }
-    if !d.is_axis() && file.transient.is_none() {
+    // Steady rolling (a case's, or the steady start of its steps) rolls
+    // along a grid axis.
+    let steady = file
+        .transient
+        .as_ref()
+        .is_none_or(|t| t.steady_start.is_some());
+    if !d.is_axis() && steady {
         axis_turns(file.rolling_direction_rad, line)?;
     }
     Ok(d)
@@ -755,6 +791,10 @@ pub(super) struct CaseMotion {
     pub(super) prescribed_force: PrescribedForce,
     pub(super) step_forces: Vec<PrescribedForce>,
     pub(super) step_gap_offsets_m: Vec<f64>,
+    /// `transient.steady_start`, checked.
+    pub(super) steady_start: Option<Creepages>,
+    /// Each step's `friction_start` (empty when no step gives one).
+    pub(super) step_slip_starts: Vec<Option<SlipStart>>,
 }
 
 /// The `[rolling]` or `[transient]` of `file` (neither: frictionless
@@ -769,6 +809,8 @@ pub(super) fn case_motion(
     let mut prescribed_force = PrescribedForce::default();
     let mut step_forces = Vec::new();
     let mut step_gap_offsets_m = Vec::new();
+    let mut steady_start = None;
+    let mut step_slip_starts = Vec::new();
     let kinematics = match (&file.rolling, &file.transient) {
         (Some(_), Some(_)) => {
             return Err(bad(
@@ -821,6 +863,12 @@ pub(super) fn case_motion(
             if let Some(dq) = t.rolling_step_m {
                 ranges::ROLLING_STEP.check("transient.rolling_step_m", dq)?;
             }
+            if let Some(s) = &t.steady_start {
+                steady_start = Some(s.creepages(model, line)?);
+            }
+            if t.steps.iter().any(|s| s.friction_start.is_some()) {
+                step_slip_starts = t.steps.iter().map(|s| s.friction_start).collect();
+            }
             if model.is_cect() {
                 Kinematics::Transient(static_compression(model, t)?)
             } else {
@@ -863,7 +911,44 @@ pub(super) fn case_motion(
         prescribed_force,
         step_forces,
         step_gap_offsets_m,
+        steady_start,
+        step_slip_starts,
     })
+}
+
+impl SteadyStartSection {
+    /// The creepages, checked against their ranges (a line contact rolls
+    /// with longitudinal creepage only) and `model` (exact only).
+    fn creepages(&self, model: Model, line: bool) -> Result<Creepages, CaseError> {
+        const KEY: &str = "transient.steady_start";
+        if model != Model::Exact {
+            return Err(bad(
+                KEY,
+                format!(
+                    "a steady rolling start is solved with the exact model only, not {}",
+                    model.name()
+                ),
+            ));
+        }
+        CREEPAGE_RANGE.check(&format!("{KEY}.creepage_long"), self.creepage_long)?;
+        CREEPAGE_RANGE.check(&format!("{KEY}.creepage_lat"), self.creepage_lat)?;
+        SPIN_RANGE.check(&format!("{KEY}.spin_per_m"), self.spin_per_m)?;
+        if line {
+            refuse_lateral(
+                KEY,
+                "rolls",
+                &[
+                    ("creepage_lat", self.creepage_lat != 0.0),
+                    ("spin_per_m", self.spin_per_m != 0.0),
+                ],
+            )?;
+        }
+        Ok(Creepages {
+            creepage_long: self.creepage_long,
+            creepage_lat: self.creepage_lat,
+            spin_per_m: self.spin_per_m,
+        })
+    }
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ use crate::conformal::geometry::{ConformalCreepages, ConformalGeometry, RigidSli
 use crate::conformal::operator::InfluenceModel;
 use crate::core::error::ContactError;
 use crate::core::force::PrescribedForce;
+use crate::core::friclaw::SlipStart;
 use crate::core::grid::Grid;
 use crate::core::hertz::HertzSolution;
 use crate::core::layer::InterfacialLayer;
@@ -45,7 +46,7 @@ pub use grid::{GridSection, SolverSection};
 use kinematics::{case_motion, extra_rigid_slip, one_load, rolling_direction, CaseMotion};
 pub use kinematics::{
     check_shift_step, transient_step, ExtraRigidSlipSection, LoadSection, RollingSection,
-    StepSection, TransientSection, TransientStep,
+    SteadyStartSection, StepSection, TransientSection, TransientStep,
 };
 pub use materials::MaterialSection;
 use materials::{interfacial_layer, viscoelastic};
@@ -360,6 +361,13 @@ pub struct Case {
     /// Conformal models: where steady rolling takes the rigid velocities
     /// (`conformal.rigid_slip`).
     pub rigid_slip: RigidSlipSurface,
+    /// `transient.steady_start`: the transient steps start from the steady
+    /// rolling state at these creepages (exact model).
+    pub steady_start: Option<Creepages>,
+    /// Each transient step's `friction_start`: where its falling law's
+    /// iteration starts (None: `friction.start`); empty when no step
+    /// gives one.
+    pub step_slip_starts: Vec<Option<SlipStart>>,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -445,11 +453,21 @@ impl Case {
             prescribed_force,
             step_forces,
             step_gap_offsets_m,
+            steady_start,
+            step_slip_starts,
         } = case_motion(&file, model, load, line)?;
 
         let needs_friction = needs_friction(model, &kinematics);
         let (friction, has_friction) =
             case_friction(file.friction.as_ref(), model, needs_friction)?;
+        if friction.slip_velocity_law.is_none() {
+            if let Some(k) = step_slip_starts.iter().position(Option::is_some) {
+                return Err(bad(
+                    format!("transient.steps[{k}].friction_start"),
+                    "belongs to a falling law: set `friction.law` to \"linear\", \"rational\" or \"exponential\"",
+                ));
+            }
+        }
 
         match model {
             Model::Hertz | Model::HertzCorrected => {
@@ -556,6 +574,8 @@ impl Case {
             prescribed_force,
             step_forces,
             step_gap_offsets_m,
+            steady_start,
+            step_slip_starts,
             geometry,
             a_per_m,
             b_per_m,
