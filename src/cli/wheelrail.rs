@@ -543,10 +543,13 @@ fn human(sol: &WheelRailSolution, model: &str) -> String {
                 p.fx_n,
                 p.fs_n,
                 p.max_pressure_pa * 1e-6,
-                match p.method {
-                    "hertz_fastsim" => " (Hertz p0; FASTSIM's parabolic bound peaks at 4/3 p0)",
-                    m if m.starts_with("hertz_") => " (Hertz p0)",
-                    _ => "",
+                match (p.fastsim_max_pressure_pa, p.method) {
+                    (Some(b), _) => format!(
+                        " (Hertz p0; FASTSIM's traction bound peaks at {:.0} MPa)",
+                        b * 1e-6
+                    ),
+                    (None, m) if m.starts_with("hertz_") => " (Hertz p0)".into(),
+                    _ => String::new(),
                 },
                 p.contact_area_m2 * 1e6
             );

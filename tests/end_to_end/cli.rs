@@ -1136,6 +1136,33 @@ fn warning_lines(stderr: &[u8]) -> Vec<String> {
 }
 
 #[test]
+fn the_wheelrail_summary_names_fastsims_traction_bound_peak() {
+    // Model hertz_fastsim: each patch's pmax is Hertz's p0, and the line
+    // names the peak of FASTSIM's parabolic traction bound, 4/3 p0, the
+    // JSON's fastsim_max_pressure_pa.
+    let text =
+        example_text("wheelset_a22.toml").replace("model = \"exact\"", "model = \"hertz_fastsim\"");
+    let case = case_file("wr_a22_fastsim.toml", &text);
+    let out = run(&["wheelrail", case.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let summary = String::from_utf8(out.stdout).unwrap();
+    let v = wheelrail_json(&case);
+    let patch = &v["wheels"]["left"]["patches"][0];
+    let (p0, bound) = (
+        f(patch, "max_pressure_pa") * 1e-6,
+        f(patch, "fastsim_max_pressure_pa") * 1e-6,
+    );
+    assert!((bound / p0 - 4.0 / 3.0).abs() < 0.01, "{p0} {bound}");
+    let want =
+        format!("pmax {p0:.0} MPa (Hertz p0; FASTSIM's traction bound peaks at {bound:.0} MPa)");
+    assert!(summary.contains(&want), "{want}\n{summary}");
+}
+
+#[test]
 fn wheelrail_warns_of_answers_no_elastic_contact_gives_naming_the_key() {
     // Issue 43: the example's roll and pitch rate (CONTACT's for S1002 on
     // UIC60) on measured profiles: the right wheel pressed 5.6 mm into its
