@@ -159,6 +159,15 @@ impl QuerySettings {
         })
     }
 
+    /// The settings with the request's `min_elements_across` (not set: the
+    /// solver's default, [`WheelRailSettings::min_elements_across`]).
+    pub fn with_min_elements_across(mut self, n: Option<u32>) -> Self {
+        if let Some(n) = n {
+            self.settings.min_elements_across = n as usize;
+        }
+        self
+    }
+
     /// The settings with the request's flash temperatures (field
     /// `temperature`: body1 the rail, body2 the wheel, the rolling speed
     /// left 0; models exact, cect and auto; not set: none).
@@ -370,13 +379,14 @@ pub fn input(
     .with_conformal(req.conformal.as_ref())?
     .with_friction_table(req.friction_table.as_ref())?
     .with_temperature(req.temperature.as_ref())?
+    .with_min_elements_across(req.min_elements_across)
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
 
 /// The wire query of a library input on the pair `pair_id` (the inverse
-/// of [`input`] for the input's own friction and element size, which it
-/// always sends): for clients written in Rust, tests and benchmarks.
+/// of [`input`] for the input's own friction, element size and narrow
+/// patches' refinement, which it always sends): for clients written in Rust, tests and benchmarks.
 pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequest {
     let p = input.position;
     let v = input.velocity;
@@ -426,6 +436,7 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
             }
         }),
         element_size_m: Some(input.settings.element_size_m),
+        min_elements_across: u32::try_from(input.settings.min_elements_across).ok(),
         include_fields: false,
         polach: (input.settings.model == WheelRailModel::HertzPolach).then(|| {
             let p = input.settings.polach;

@@ -326,6 +326,7 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         let mut defaults = query_of(BUILTIN, &input);
         defaults.friction = None;
         defaults.element_size_m = None;
+        defaults.min_elements_across = None;
         let defaults = solve(&mut client, defaults).await;
         assert_eq!(untimed(defaults), untimed(by_name.clone()));
         assert_eq!(by_name.pair_id, builtin.pair_id);
@@ -336,6 +337,30 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
             .sum();
         assert!((total - 20_000.0).abs() < 1e-2, "{total}");
     }
+
+    // Narrow patches on narrower elements (min_elements_across): off (0,
+    // CONTACT's DX by DS), the right wheel's flange patch is solved on the
+    // element size's squares, as the library solves it; contact area 9.96
+    // mm² against 9.16 narrowed (9.14 on 0.1 mm squares; the validation
+    // test a_narrow_flange_patch_is_solved_on_narrower_elements).
+    let mut input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::Exact,
+    );
+    let area = |r: &pb::WheelRailResult| r.wheels[1].patches[0].contact_area_m2;
+    let narrowed = solve(&mut client, query_of(BUILTIN, &input)).await;
+    input.settings.min_elements_across = 0;
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let squares = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("min_elements_across 0", &squares, &want);
+    assert!(
+        area(&squares) / area(&narrowed) > 1.05,
+        "{} against {} m²",
+        area(&squares),
+        area(&narrowed)
+    );
 
     // Fields only when asked, for exact patches with friction.
     let input = mbench_a22_input(

@@ -123,6 +123,24 @@ def test_the_a22_case_numbers(client):
     assert r.pair_id == client.get_pair(railcontact.BUILTIN_PAIR).pair_id
 
 
+def test_narrow_patches_keep_the_element_size_with_min_elements_across_0(client, tmp_path):
+    # grid.min_elements_across = 0 (CONTACT's DX by DS): the right wheel's
+    # flange patch of at 6.5 mm on 0.2 mm squares, contact area 9.96
+    # mm² against 9.16 mm² narrowed (the default, 8), as the command line.
+    text = (CASES / "wheelset_a22.toml").read_text()
+    grid = "\n[grid]\nelement_size_m = 0.0002\n"
+    assert grid in text
+    path = tmp_path / "a22_squares.toml"
+    path.write_text(text.replace(grid, grid + "min_elements_across = 0\n"))
+    assert railcontact.load_wheelrail_case(path).settings["min_elements_across"] == 0
+    squares = client.solve_wheelrail_case(path)
+    cli = _cli(path)["wheels"]["right"]["patches"][0]
+    flange = squares.wheel("right").patches[0]
+    assert flange.contact_area_m2 == pytest.approx(cli["contact_area_m2"], rel=1e-9)
+    narrowed = client.solve_wheelrail_case(CASES / "wheelset_a22.toml").wheel("right").patches[0]
+    assert flange.contact_area_m2 / narrowed.contact_area_m2 > 1.05
+
+
 def test_load_wheelrail_case_takes_the_file_apart(tmp_path):
     path = _case_file("measured_polach_left_wheel", tmp_path)
     case = railcontact.load_wheelrail_case(path)

@@ -62,7 +62,7 @@ _TABLES: dict = {
         ("lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s", "pitch_rad_per_s"),
     ),
     "load": ((), ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")),
-    "grid": (("element_size_m",), ()),
+    "grid": (("element_size_m",), ("min_elements_across",)),
     "polach": (("k_adhesion", "k_slip", "limit_ratio", "decay_s_per_m"), ()),
     "modified_fastsim": (
         (),
@@ -105,7 +105,8 @@ class WheelRailCase:
     file; ``builtin:`` names as built-in profiles). ``settings``: the
     keyword arguments of :meth:`Client.wheelrail_session` (and of
     :meth:`Client.solve_wheelrail`) the case gives: ``model``, ``sides``,
-    ``friction``, ``friction_table``, ``element_size_m``, ``polach``,
+    ``friction``, ``friction_table``, ``element_size_m``,
+    ``min_elements_across``, ``polach``,
     ``modified_fastsim``, ``conformal``, ``temperature``. ``motion``: those of
     :meth:`WheelRailSession.step`, ``position``, ``velocity`` and ``load``.
     ``label``: the case file's name, the pair's label when it is new.
@@ -267,6 +268,8 @@ def _settings(case: dict, tables: dict) -> dict:
             settings["friction_table"] = table
     if "grid" in tables:
         settings["element_size_m"] = tables["grid"]["element_size_m"]
+        if "min_elements_across" in tables["grid"]:
+            settings["min_elements_across"] = tables["grid"]["min_elements_across"]
     if "polach" in tables:
         settings["polach"] = tables["polach"]
     if "modified_fastsim" in tables:

@@ -385,6 +385,7 @@ class Client:
         sides="both",
         friction=None,
         element_size_m: Optional[float] = None,
+        min_elements_across: Optional[int] = None,
         include_fields: bool = False,
         temperature=None,
         friction_table=None,
@@ -422,7 +423,10 @@ class Client:
         ``"hertz_polach"`` and ``"hertz_fastsim_modified"``
         (``PolachParameters``, ``ModifiedFastsimParameters``);
         ``conformal``: ``{"rigid_slip": ...}`` of the models ``"cect"`` and
-        ``"auto"``. :meth:`solve_wheelrail_case` takes them all from a case
+        ``"auto"``; ``min_elements_across``: a patch of the models
+        ``"exact"``, ``"cect"``, ``"auto"`` expected narrower than this many
+        elements is solved on elements 2-4 times narrower along s (default
+        8; 0 never narrows them, CONTACT's DX by DS). :meth:`solve_wheelrail_case` takes them all from a case
         file of ``railcontact wheelrail``.
         """
         request = wheelrail_request(
@@ -434,6 +438,7 @@ class Client:
             sides=sides,
             friction=friction,
             element_size_m=element_size_m,
+            min_elements_across=min_elements_across,
             include_fields=include_fields,
             temperature=temperature,
             friction_table=friction_table,
@@ -514,6 +519,7 @@ class Client:
         sides="both",
         friction=None,
         element_size_m: Optional[float] = None,
+        min_elements_across: Optional[int] = None,
         include_fields: bool = False,
         label: str = "",
         temperature=None,
@@ -533,6 +539,7 @@ class Client:
             sides=sides,
             friction=friction,
             element_size_m=element_size_m,
+            min_elements_across=min_elements_across,
             include_fields=include_fields,
             client_label=label,
             temperature=temperature,
