@@ -221,6 +221,18 @@ fn rolling_shift(s: &mut Step) {
     s.shift.as_mut().unwrap().shift_x_m = Some(1e-6);
 }
 
+/// A step that sets its own falling-law start (a case's transient steps
+/// take one; a session's take the case's friction.start).
+fn friction_start(s: &mut Step) {
+    s.shift.as_mut().unwrap().friction_start = pb::SlipStart::Sliding as i32;
+}
+
+const FRICTION_START: Refusal = Refusal {
+    what: "a step's own friction start",
+    change: friction_start,
+    code: Code::InvalidArgument,
+    field: "step.shift.friction_start",
+};
 const ROLLING_SHIFT: Refusal = Refusal {
     what: "rolling step with a shift",
     change: rolling_shift,
@@ -412,7 +424,7 @@ async fn refused_steps_leave_falling_friction_sessions_bit_for_bit_as_they_were(
         c,
         Kind::TransientRolling,
         true,
-        &[NEGATIVE_LOAD, BEYOND_GRID, ROLLING_SHIFT],
+        &[NEGATIVE_LOAD, BEYOND_GRID, ROLLING_SHIFT, FRICTION_START],
     )
     .await;
     server.shutdown().await;
