@@ -296,8 +296,10 @@ fn handshakes_failed(server: &support::Server, reason: &str) -> f64 {
         .map_or(0.0, |v| v.trim().parse().unwrap())
 }
 
-/// Waits up to 5 s for a failed handshake of `reason` beyond `before`
-/// and for its log line holding `words`.
+/// Waits up to 30 s (a loaded machine can starve the server's process
+/// for seconds; the wait ends as soon as both are there) for a failed
+/// handshake of `reason` beyond `before` and for its log line holding
+/// `words`.
 async fn handshake_failure_seen(server: &support::Server, reason: &str, before: f64, words: &str) {
     let line = |log: String| {
         log.lines()
@@ -306,7 +308,7 @@ async fn handshake_failure_seen(server: &support::Server, reason: &str, before: 
             })
             .map(str::to_string)
     };
-    for _ in 0..50 {
+    for _ in 0..300 {
         if handshakes_failed(server, reason) > before && line(server.log()).is_some() {
             break;
         }
