@@ -460,6 +460,7 @@ impl WheelrailRun {
             total_longitudinal_force_n: l.total_longitudinal_force_n,
             temperature: c.temperature,
             rail_motion: Default::default(),
+            rail_slices: Default::default(),
         };
         ranges::check_motion(
             &input.position,

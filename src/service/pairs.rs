@@ -637,6 +637,7 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
         total_longitudinal_force_n: None,
         temperature: None,
         rail_motion: Default::default(),
+        rail_slices: Default::default(),
     };
     let mut scratch = SearchScratch::default();
     let solution =

@@ -162,19 +162,41 @@ pub fn profile(name: &str) -> String {
 /// type from its extension (ITYPE = -1), mirrored in y with `mirror_y` = 1,
 /// scale factor 1, no smoothing.
 pub fn set_profile_file(ire: i32, path: &str, mirror_y: i32) {
-    let ip = [-1, 0, mirror_y];
-    let rp = [1.0, 0.0];
+    set_profile_file_with(ire, path, &[-1, 0, mirror_y], &[1.0, 0.0]);
+}
+
+/// `cntc_setprofileinputfname` of the file `path` on element `ire` with
+/// `iparam` and `rparam`.
+pub fn set_profile_file_with(ire: i32, path: &str, iparam: &[i32], rparam: &[f64]) {
     unsafe {
         cntc_setprofileinputfname(
             &ire,
             path.as_ptr() as *const std::ffi::c_char,
             &(path.len() as i32),
-            &3,
-            ip.as_ptr(),
-            &2,
-            rp.as_ptr(),
+            &(iparam.len() as i32),
+            iparam.as_ptr(),
+            &(rparam.len() as i32),
+            rparam.as_ptr(),
         )
     }
+}
+
+/// Initializes `ire` as a module 1 (wheel/rail) element in CONTACT's
+/// units with `flags` (code, value) on all its patches.
+pub unsafe fn wheelrail_element(ire: i32, flags: &[(i32, i32)]) {
+    let (mut ifcver, mut ierror) = (0, 0);
+    cntc_initialize(
+        &ire,
+        &1,
+        &mut ifcver,
+        &mut ierror,
+        std::ptr::null(),
+        std::ptr::null(),
+    );
+    assert_eq!(ierror, 0);
+    let mut all = vec![(flags::IF_UNITS, flags::UN_CNTC)];
+    all.extend_from_slice(flags);
+    set_flags(ire, -1, &all);
 }
 
 /// Asserts |ours - contact| <= tol, naming `what`.
