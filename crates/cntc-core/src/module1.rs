@@ -13,6 +13,18 @@
 //! (`sides: vec![side]`), with the exact model (Kalker's theory on the
 //! planar patch) on square elements of size DX.
 //!
+//! * Variable rails: a rail slices file (`.slcs`, CONTACT's switches and
+//!   crossings; the solver's `wheelrail::slices`, NFEAT <= 1 and
+//!   U_INTPOL = 1): the pair's rail is the slices' profile at the
+//!   wheelset's position S (placed again when S moves), and each element
+//!   of a patch adds the rail's change of height between S and its own
+//!   S + x (the solver's `WheelRailInput::rail_slices`). The tangent plane
+//!   and contact angle of a patch are those of the slice at S (CONTACT
+//!   takes them at the weighted centre of the interpenetration over x and
+//!   y: docs/cntc.md, "Variable rails"). The slice profiles are read with
+//!   the call (`Call::SetProfileFile`'s `slice_files`). Features, the
+//!   approximating spline, perturbations, smoothing and wheel slices
+//!   (`.slcw`) are refused.
 //! * Profiles: CONTACT's canonical (right-hand) profiles, in metres here.
 //!   CONTACT multiplies the numbers read by the scale factor `rparam(1)`
 //!   to get millimetres; its default is the unit convention's (1 for
