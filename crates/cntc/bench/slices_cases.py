@@ -30,6 +30,9 @@ CASES = [
     ('s239-ym5', 239.0, -5.0, 0.0, 'uk_crossing_nose.slcs'),
     ('s280', 280.0, 0.81, 0.0, 'uk_crossing_nose.slcs'),
     ('s260-yaw', 260.0, 2.0, 0.003, 'uk_crossing_nose.slcs'),
+    # two patches: the wing rail and the nose
+    ('s300-ym6.8', 300.0, -6.8, 0.0, 'uk_crossing_nose.slcs'),
+    ('s300-ym7', 300.0, -7.0, 0.0, 'uk_crossing_nose.slcs'),
 ]
 
 

@@ -375,3 +375,48 @@ fn what_is_not_built_is_refused_naming_it() {
         cntc_finalize(&ire);
     }
 }
+
+/// Two patches, the wing rail's and the nose's, from the contact search
+/// on the slice at S (`slices_cases.py` cases s300-ym6.8, s300-ym7: S =
+/// 300 mm, Y = -6.8 and -7 mm). CONTACT's library: patch 1 on the wing
+/// rail at YCP_TR 795.29663 and 795.31538 mm, ZCP_TR -1.42651 and
+/// -1.42782; patch 2 on the nose at YCP_TR 724.11102 and 724.12321, ZCP_TR
+/// 2.12274 and 2.12081 mm. Their FN: 5015.8 + 4968.21 N and 7594.99 +
+/// 2431.82 N.
+///
+/// The patches lie where CONTACT's do, within 0.3 mm laterally and 0.09
+/// mm vertically (the tangent planes taken on the slice at S, see
+/// `the_uk_crossing_nose_matches_contacts_library`). How the load is
+/// shared is not held to CONTACT's here: the solver puts 6509 and 3474 N
+/// (8851 and 1167 N) on them, the wing rail carrying 30 % (17 %) more. A
+/// patch's share goes with pen^1.5, so a 9 micrometre difference in the
+/// patches' relative height moves it this much; the surfaces between the
+/// slices (20 mm apart here) are natural cubic splines in u here and
+/// CONTACT's tensor B-spline there, and the nose patch lies 5.5 mm ahead
+/// of the axle on a nose rising along the track.
+#[test]
+fn the_wing_rail_and_the_nose_are_two_patches_where_contacts_are() {
+    let rail = profile("uk_crossing_nose.slcs");
+    // (Y; per patch YCP_TR, ZCP_TR) of CONTACT's library.
+    let cases = [
+        (-6.8, [[795.29663, -1.42651], [724.11102, 2.12274]]),
+        (-7.0, [[795.31538, -1.42782], [724.12321, 2.12081]]),
+    ];
+    for (k, (y, patches)) in cases.iter().enumerate() {
+        let ire = 150 + k as i32;
+        unsafe {
+            assert_eq!(
+                solve(ire, &rail, 1000.0, (300.0, *y, 0.0), Load::Force(1e4)),
+                0
+            );
+        }
+        assert_eq!(npatch(ire), 2, "Y {y}");
+        for (icp, r) in (1..).zip(patches) {
+            let v = results(ire, icp);
+            let what = |name: &str| format!("Y {y}, patch {icp}: {name}");
+            close(&what("YCP_TR"), v[8 + 1], r[0], 0.3);
+            close(&what("ZCP_TR"), v[8 + 2], r[1], 0.09);
+        }
+        unsafe { cntc_finalize(&ire) };
+    }
+}
