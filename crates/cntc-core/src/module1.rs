@@ -1373,6 +1373,26 @@ impl WheelRail {
         }
     }
 
+    /// The profile `p`, or of a variable rail its profile at the wheelset's
+    /// position S.
+    fn at_wheelset<'a>(&self, p: &'a ProfileInput) -> Result<std::borrow::Cow<'a, ProfileInput>> {
+        let Some(slices) = &p.slices else {
+            return Ok(std::borrow::Cow::Borrowed(p));
+        };
+        let s_m = self.position[0];
+        let profile = slices.profile_at(s_m).map_err(|e| {
+            CntcError::Input(format!(
+                "the wheelset's position S = {} (cntc_setwheelsetposition): {e}",
+                self.units().len_out(s_m)
+            ))
+        })?;
+        Ok(std::borrow::Cow::Owned(ProfileInput {
+            profile,
+            smoothing_m: 0.0,
+            slices: None,
+        }))
+    }
+
     /// The placed profiles (built when missing).
     fn build_pair(&self, side: Side) -> Result<Arc<WheelRailPair>> {
         let rail = slot(
@@ -1381,25 +1401,7 @@ impl WheelRail {
              cntc_setprofileinputvalues with ITYPE = 0",
         )
         .map_err(|e| CntcError::Profile(e.to_string()))?;
-        // A variable rail: its profile at the wheelset's position s.
-        let at_s;
-        let rail = match &rail.slices {
-            None => rail,
-            Some(slices) => {
-                let s_m = self.position[0];
-                at_s = ProfileInput {
-                    profile: slices.profile_at(s_m).map_err(|e| {
-                        CntcError::Input(format!(
-                            "the wheelset's position S = {} (cntc_setwheelsetposition): {e}",
-                            self.units().len_out(s_m)
-                        ))
-                    })?,
-                    smoothing_m: 0.0,
-                    slices: None,
-                };
-                &at_s
-            }
-        };
+        let rail = &*self.at_wheelset(rail)?;
         let wheel = slot(
             &self.wheel,
             "the wheel profile has not been set: cntc_setprofileinputfname or \
@@ -2259,7 +2261,8 @@ impl WheelRail {
     // -----------------------------------------------------------------
     // Profiles.
 
-    /// `cntc_getprofilevalues`: a profile as a table of values. Tasks -1
+    /// `cntc_getprofilevalues`: a profile as a table of values (of a
+    /// variable rail, its profile at the wheelset's position S). Tasks -1
     /// (error code), 0 (number of points), 1 (y, z in profile coordinates),
     /// 2 (y, z in track coordinates), 4 (arc length s), 5 (surface
     /// inclination); sampling ISAMPL -1, 0 (the profile's points), 1
@@ -2296,6 +2299,8 @@ impl WheelRail {
                 )))
             }
         };
+        // A variable rail: its profile at the wheelset's position S.
+        let prf = &*self.at_wheelset(prf)?;
         match itask {
             0..=2 | 4 | 5 => {}
             3 => {

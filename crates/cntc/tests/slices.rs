@@ -355,3 +355,61 @@ fn the_wing_rail_and_the_nose_are_two_patches_where_contacts_are() {
         unsafe { cntc_finalize(&ire) };
     }
 }
+
+/// `cntc_getprofilevalues` of a variable rail is its profile at the
+/// wheelset's position S: the rail rising 1 mm per 100 mm, at S = 50 mm,
+/// is the UIC60 rail 0.5 mm higher (z down), point for point (the splines
+/// along u reproduce the linear rise; to the rounding of mm values).
+#[test]
+fn the_profile_values_of_a_variable_rail_are_those_at_the_wheelset() {
+    let dir = scratch("slices-values");
+    write_uic60(&dir, "plain.txt", 0.0);
+    write_uic60(&dir, "low.txt", 1.0);
+    write_uic60(&dir, "high.txt", -1.0);
+    let rising = write_slices(
+        &dir,
+        "rising.slcs",
+        &[(-100.0, "low.txt"), (100.0, "high.txt")],
+    );
+    let plain = dir.join("plain.txt").display().to_string();
+    let values = |ire: i32| {
+        let (ip, rp) = ([0, -1], [0.0]);
+        let mut n = 0.0;
+        unsafe {
+            cntc_getprofilevalues(&ire, &0, &2, ip.as_ptr(), &1, rp.as_ptr(), &1, &mut n);
+            let mut v = vec![0.0; 2 * n as usize];
+            let len = v.len() as i32;
+            cntc_getprofilevalues(
+                &ire,
+                &1,
+                &2,
+                ip.as_ptr(),
+                &1,
+                rp.as_ptr(),
+                &len,
+                v.as_mut_ptr(),
+            );
+            v
+        }
+    };
+    let (a, b) = (160, 161);
+    unsafe {
+        assert_eq!(solve(a, &plain, 1.0, (50.0, 0.0, 0.0), Load::Force(1e4)), 0);
+        assert_eq!(
+            solve(b, &rising, 1.0, (50.0, 0.0, 0.0), Load::Force(1e4)),
+            0
+        );
+    }
+    let (va, vb) = (values(a), values(b));
+    assert_eq!(va.len(), vb.len());
+    let n = va.len() / 2;
+    for i in 0..n {
+        assert!((va[i] - vb[i]).abs() < 1e-12, "y of point {i}");
+        let dz = vb[n + i] - va[n + i];
+        assert!((dz + 0.5).abs() < 1e-12, "z of point {i}: {dz}");
+    }
+    unsafe {
+        cntc_finalize(&a);
+        cntc_finalize(&b);
+    }
+}
