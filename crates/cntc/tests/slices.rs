@@ -13,7 +13,9 @@ mod common;
 
 use std::path::Path;
 
-use common::{close, mbench_locus as solve, profile, scratch, Load};
+use common::{
+    close, mbench_locus as solve, profile, read_inp, scratch, wheel_results, Load, MBENCH_RIGHT_INP,
+};
 use contact_addon::ffi::*;
 use contact_addon::flags;
 use railcontact_solver::wheelrail::load_profile;
@@ -408,6 +410,74 @@ fn the_profile_values_of_a_variable_rail_are_those_at_the_wheelset() {
         let dz = vb[n + i] - va[n + i];
         assert!((dz + 0.5).abs() < 1e-12, "z of point {i}: {dz}");
     }
+    unsafe {
+        cntc_finalize(&a);
+        cntc_finalize(&b);
+    }
+}
+
+/// A module 1 input file naming a rail slices file (RFNAME, CONTACT's
+/// `mbench_locus.inp` on the nose's slices) configures the element as the
+/// calls do: the same results bit for bit.
+#[test]
+fn an_input_file_takes_a_rail_slices_file() {
+    let dir = scratch("slices-inp");
+    let inp = MBENCH_RIGHT_INP
+        .replace(
+            "   14.0     0    1435.0   0.000                 GAUGHT, GAUGSQ, GAUGWD, CANT",
+            "   -1.0   750.0   0.000   0.000                 GAUGHT, RAILY0, RAILZ0, CANT",
+        )
+        .replace(
+            "  'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH",
+            &format!(
+                "  '{}'  0  1000.  0.0  -1   RFNAME",
+                profile("uk_crossing_nose.slcs")
+            ),
+        )
+        .replace(
+            "  'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH",
+            &format!(
+                "  '{}'  0  1.0  0.0  -1   WFNAME",
+                profile("MBench_S1002_v3.prw")
+            ),
+        )
+        .replace(
+            "  0.0  3.0  10000. -0.00018030 0.0072  0.0      S, Y, FZ, ROLL, YAW, PITCH",
+            "  239.0  0.81  10000.  0.0  0.0  0.0      S, Y, FZ, ROLL, YAW, PITCH",
+        )
+        .replace(
+            " 2000. 0.0    0.0   0.0        0.0  -4.34515030 VS,VY,VZ, VROLL,VYAW,VPITCH",
+            " 2000. 0.0    0.0   0.0        0.0  -4.34811810 VS,VY,VZ, VROLL,VYAW,VPITCH",
+        );
+    assert!(inp.contains("uk_crossing_nose.slcs") && inp.contains("239.0"));
+    let path = dir.join("nose.inp");
+    std::fs::write(&path, inp).unwrap();
+    let (a, b) = (170, 171);
+    unsafe {
+        assert_eq!(
+            solve(
+                a,
+                &profile("uk_crossing_nose.slcs"),
+                1000.0,
+                (239.0, 0.81, 0.0),
+                Load::Force(1e4)
+            ),
+            0
+        );
+        let (mut ifcver, mut ierror) = (0, 0);
+        cntc_initialize(
+            &b,
+            &1,
+            &mut ifcver,
+            &mut ierror,
+            std::ptr::null(),
+            std::ptr::null(),
+        );
+    }
+    assert_eq!(read_inp(b, flags::INP_MODUL1, &path), 0);
+    let (ra, rb) = (wheel_results(a), wheel_results(b));
+    assert_eq!(ra.0, 0);
+    assert_eq!(ra, rb);
     unsafe {
         cntc_finalize(&a);
         cntc_finalize(&b);
