@@ -14,7 +14,8 @@ mod common;
 use std::path::Path;
 
 use common::{
-    close, mbench_locus as solve, profile, read_inp, scratch, wheel_results, Load, MBENCH_RIGHT_INP,
+    close, mbench_locus as solve, profile, read_inp, scratch, wheel_results, wheelrail_element,
+    Load, MBENCH_RIGHT_INP,
 };
 use contact_addon::ffi::*;
 use contact_addon::flags;
@@ -464,15 +465,7 @@ fn an_input_file_takes_a_rail_slices_file() {
             ),
             0
         );
-        let (mut ifcver, mut ierror) = (0, 0);
-        cntc_initialize(
-            &b,
-            &1,
-            &mut ifcver,
-            &mut ierror,
-            std::ptr::null(),
-            std::ptr::null(),
-        );
+        wheelrail_element(b, &[]);
     }
     assert_eq!(read_inp(b, flags::INP_MODUL1, &path), 0);
     let (ra, rb) = (wheel_results(a), wheel_results(b));
