@@ -2392,11 +2392,25 @@ fn add_rail_variation(
         })
         .collect();
     let base: Vec<Option<f64>> = ys.iter().map(|y| RailSlices::z_at(&at_s, *y)).collect();
+    // Only the segments reaching into the rows' lateral range can span a
+    // row's y: the same heights as a search of all segments.
+    let (ylo, yhi) = ys
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+            (lo.min(*y), hi.max(*y))
+        });
+    let mut near = Vec::with_capacity(slices.points_per_slice());
     for ix in 0..grid.nx {
         let u = track_s_m + geom.x_m + grid.x_m(ix);
         slices.points_at(u, &mut at_u).ok_or_else(|| outside(u))?;
+        near.clear();
+        near.extend((0..at_u.len().saturating_sub(1)).filter(|&i| {
+            let (a, b) = (at_u[i][0], at_u[i + 1][0]);
+            a.max(b) >= ylo && a.min(b) <= yhi
+        }));
         for (is, (y, z0)) in ys.iter().zip(&base).enumerate() {
-            if let (Some(z0), Some(z)) = (z0, RailSlices::z_at(&at_u, *y)) {
+            let z = RailSlices::z_at_among(&at_u, near.iter().copied(), *y);
+            if let (Some(z0), Some(z)) = (z0, z) {
                 gap_m[grid.index(ix, is)] += (z - z0) * along_normal;
             }
         }

@@ -418,9 +418,19 @@ impl RailSlices {
     /// (from [`RailSlices::points_at`]) over `y_m`: the smallest z of the
     /// segments spanning y; `None` where none does.
     pub fn z_at(pts: &[[f64; 2]], y_m: f64) -> Option<f64> {
+        Self::z_at_among(pts, 0..pts.len().saturating_sub(1), y_m)
+    }
+
+    /// [`RailSlices::z_at`] among the segments (i, i + 1) of `pts` whose
+    /// first points `segments` gives (those that may span `y_m`).
+    pub fn z_at_among(
+        pts: &[[f64; 2]],
+        segments: impl IntoIterator<Item = usize>,
+        y_m: f64,
+    ) -> Option<f64> {
         let mut best: Option<f64> = None;
-        for w in pts.windows(2) {
-            let (a, b) = (w[0], w[1]);
+        for i in segments {
+            let (a, b) = (pts[i], pts[i + 1]);
             let (lo, hi) = if a[0] <= b[0] { (a, b) } else { (b, a) };
             if y_m < lo[0] || y_m > hi[0] {
                 continue;
