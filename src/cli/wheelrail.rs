@@ -7,6 +7,7 @@
 //! the JSON's `warnings` array; the exit code stays 0.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use clap::Args;
 use plotters::prelude::*;
@@ -24,11 +25,12 @@ use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
-    builtin, check_plausibility, load_profile_with, solve_wheelset, FrictionTable, LoadOptions,
-    PatchResult, PlausibilityWarning, Profile, RailPlacement, SearchScratch, Side, SplineOptions,
-    TrackData, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair,
-    WheelRailSettings, WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition,
-    WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, check_plausibility, is_slices_file, load_profile_with, load_slices, solve_wheelset,
+    FrictionTable, LoadOptions, PatchResult, PlausibilityWarning, Profile, RailPlacement,
+    RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -271,6 +273,31 @@ fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Pro
     result.map_err(|e| bad(format!("invalid input `{key}`: {e}")))
 }
 
+/// Reads the rail profile `name` as [`read_profile`] does; a rail slices
+/// file (`.slcs`, a rail varying along the track) gives its profile at
+/// the wheelset's position `track_s_m` and the slices themselves.
+fn read_rail(
+    name: &str,
+    dir: &Path,
+    mirror_y: bool,
+    key: &str,
+    track_s_m: f64,
+) -> Result<(Profile, Option<Arc<RailSlices>>), CliError> {
+    if !is_slices_file(name) {
+        return Ok((read_profile(name, dir, mirror_y, key)?, None));
+    }
+    let options = LoadOptions {
+        mirror_y,
+        ..LoadOptions::default()
+    };
+    let slices = load_slices(dir.join(name), &options)
+        .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
+    let profile = slices
+        .profile_at(track_s_m)
+        .map_err(|e| bad(format!("invalid input `position.track_s_m`: {e}")))?;
+    Ok((profile, Some(slices)))
+}
+
 /// The friction of a wheel/rail case's `[friction]` (Coulomb 0.3 without
 /// one), or its table.
 fn wheelrail_friction(
@@ -358,10 +385,17 @@ impl WheelrailRun {
                 ))
             }
         };
-        let rail_r = read_profile(&t.rail_profile, dir, t.rail_mirror_y, "track.rail_profile")?;
-        let rail_l = match &t.rail_profile_left {
-            Some(n) => read_profile(n, dir, t.rail_mirror_y, "track.rail_profile_left")?,
-            None => rail_r.clone(),
+        let s_m = c.position.track_s_m;
+        let (rail_r, slices_r) = read_rail(
+            &t.rail_profile,
+            dir,
+            t.rail_mirror_y,
+            "track.rail_profile",
+            s_m,
+        )?;
+        let (rail_l, slices_l) = match &t.rail_profile_left {
+            Some(n) => read_rail(n, dir, t.rail_mirror_y, "track.rail_profile_left", s_m)?,
+            None => (rail_r.clone(), slices_r.clone()),
         };
         let wheel_r = read_profile(
             &w.wheel_profile,
@@ -460,6 +494,7 @@ impl WheelrailRun {
             total_longitudinal_force_n: l.total_longitudinal_force_n,
             temperature: c.temperature,
             rail_motion: Default::default(),
+            rail_slices: [slices_l, slices_r],
         };
         ranges::check_motion(
             &input.position,
@@ -878,6 +913,16 @@ element_size_m = 0.0002
         Path::new(env!("CARGO_MANIFEST_DIR"))
     }
 
+    /// The case solved: its one patch (of its one wheel).
+    fn only_patch(run: &WheelrailRun) -> PatchResult {
+        let mut scratch = SearchScratch::default();
+        let sol =
+            solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch).unwrap();
+        let patches = &sol.wheels[0].patches;
+        assert_eq!(patches.len(), 1);
+        patches[0].clone()
+    }
+
     /// test-rollers2.ref_out, Case 1: FN 9.722E+04 N at track y 200 mm.
     /// Within 0.05 %: the patch's grid has no element centred on the
     /// sphere's lowest point (CONTACT's has), whose h(0.1 mm) = 0.1^2 /
@@ -885,15 +930,61 @@ element_size_m = 0.0002
     #[test]
     fn a_rail_placed_by_its_origin_carries_contacts_sphere() {
         let run = WheelrailRun::from_toml(SPHERE_ON_PLANE, root()).unwrap();
-        let mut scratch = SearchScratch::default();
-        let sol =
-            solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch).unwrap();
-        let patches = &sol.wheels[0].patches;
-        assert_eq!(patches.len(), 1);
-        let p = &patches[0];
+        let p = &only_patch(&run);
         assert!((p.track_y_m - 0.2).abs() < 1e-9, "{}", p.track_y_m);
         let fn_n = p.normal_force_n;
         assert!((fn_n - 9.722e4).abs() < 5e-4 * 9.722e4, "{fn_n}");
+    }
+
+    /// The S1002 wheel on the UK crossing nose given as a rail slices file
+    /// (`uk_crossing_nose.slcs`, CONTACT's `mbench_locus.inp` case at S =
+    /// 239 mm): one patch on the nose's top. CONTACT's library on the same
+    /// slices (`crates/cntc/bench/slices_cases.py`, case s239): FN 10076.7,
+    /// FX 2754.59 N, YCP 788.608 mm; the differences, from the tangent plane
+    /// taken on the slice at S, are those of `crates/cntc/tests/slices.rs`
+    /// (FN 0.41 %, FX 0.14 %, YCP 0.36 mm through the CONTACT library).
+    #[test]
+    fn a_rail_given_as_slices_is_the_rail_at_the_wheelsets_position() {
+        let case = r#"
+model = "exact"
+side = "right"
+[track]
+rail_profile = "crates/solver/profiles/uk_crossing_nose.slcs"
+rail_origin_y_m = 0.75
+rail_origin_z_m = 0.0
+[wheelset]
+wheel_profile = "builtin:MBench_S1002_v3.prw"
+flange_back_distance_m = 1.36
+flange_back_y_m = -0.07
+nominal_radius_m = 0.46
+smoothing_wavelength_m = 0.0
+[position]
+lateral_m = 0.00081
+roll_rad = 0.0
+track_s_m = 0.239
+[velocity]
+forward_m_per_s = 2.0
+pitch_rad_per_s = -4.34811810
+[load]
+vertical_force_n = 1.0e4
+[grid]
+element_size_m = 0.0002
+"#;
+        let run = WheelrailRun::from_toml(case, root()).unwrap();
+        assert!(run.input.rail_slices[Side::Right.index()].is_some());
+        let p = &only_patch(&run);
+        assert!(
+            (p.normal_force_n - 10076.7).abs() < 5e-3 * 10076.7,
+            "{}",
+            p.normal_force_n
+        );
+        assert!((p.track_y_m - 0.788608).abs() < 4e-4, "{}", p.track_y_m);
+        let fx = p.force_track_n[0];
+        assert!((fx - 2754.59).abs() < 7e-3 * 2754.59, "{fx}");
+        // Beyond the slices: refused naming the wheelset's position.
+        let far = case.replace("track_s_m = 0.239", "track_s_m = 0.5");
+        let e = WheelrailRun::from_toml(&far, root()).err().unwrap();
+        assert!(e.to_string().contains("position.track_s_m"), "{e}");
     }
 
     /// Both placements, or neither, are refused naming `track`.

@@ -59,9 +59,9 @@ use crate::service::store::PairStore;
 use crate::wheelrail::profile::quote;
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
-    builtin, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile, ProfileFormat,
-    ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError, WheelRailPair,
-    WheelsetData, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, is_slices_file, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile,
+    ProfileFormat, ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError,
+    WheelRailPair, WheelsetData, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 use crate::wheelrail::{
     solve_wheelset, SearchScratch, Side, WheelLoad, WheelRailInput, WheelRailModel,
@@ -595,6 +595,17 @@ fn read(
         mirror_y: src.mirror_y,
         ..LoadOptions::default()
     };
+    if is_slices_file(&f.file_name) {
+        return Err(ServiceError::invalid(
+            field,
+            format!(
+                "{}: a rail slices file (a rail varying along the track) cannot be \
+                 registered as a profile; the command line's case files and the CONTACT \
+                 library take it",
+                quote(&f.file_name)
+            ),
+        ));
+    }
     let p = parse_profile(&f.content, &f.file_name, &options)
         .map_err(|e| ServiceError::profile(field, &e))?;
     if p.len() > limit.max_points {
@@ -637,6 +648,7 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
         total_longitudinal_force_n: None,
         temperature: None,
         rail_motion: Default::default(),
+        rail_slices: Default::default(),
     };
     let mut scratch = SearchScratch::default();
     let solution =
@@ -1352,6 +1364,29 @@ impl PairRegistry {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A rail slices file is refused by name, not read as a profile.
+    #[test]
+    fn a_rail_slices_file_is_refused_naming_the_field() {
+        let src = pb::ProfileSource {
+            source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+                format: pb::ProfileFormat::Unspecified as i32,
+                content: "0 1000\n1\n0 0 0\n1\n0 'a.txt'\n".into(),
+                file_name: "crossing.slcs".into(),
+            })),
+            mirror_y: false,
+        };
+        let limit = PointLimit {
+            max_points: 10_000,
+            metrics: None,
+        };
+        let e = read(&src, ProfileKind::Rail, "rail", limit).err().unwrap();
+        let text = e.to_string();
+        assert!(
+            text.contains("rail") && text.contains("slices file"),
+            "{text}"
+        );
+    }
 
     #[test]
     fn ids_follow_the_canonical_content() {

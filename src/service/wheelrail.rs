@@ -355,6 +355,7 @@ impl QuerySettings {
             total_longitudinal_force_n,
             temperature: self.temperature,
             rail_motion: Default::default(),
+            rail_slices: Default::default(),
         })
     }
 }

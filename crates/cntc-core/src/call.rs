@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::element::Element;
 use crate::error::{CntcError, Result};
+use crate::module1::SliceFile;
 
 /// A configuring call on a result element, its arguments as given.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -137,6 +138,10 @@ pub enum Call {
         fname: String,
         /// The file's bytes, or the reason they could not be read.
         content: std::result::Result<Vec<u8>, String>,
+        /// Of a rail slices file (`.slcs`): the profile files it names, by
+        /// name as written, with their bytes or why they could not be read
+        /// ([`crate::module1::read_slice_files`]); empty for other files.
+        slice_files: Vec<SliceFile>,
         /// `iparam`.
         ints: Vec<i32>,
         /// `rparam`.
@@ -293,11 +298,16 @@ impl Call {
             Call::SetProfileFile {
                 fname,
                 content,
+                slice_files,
                 ints,
                 reals,
-            } => e
-                .wheelrail_mut()?
-                .set_profile_file(fname, content.as_deref(), ints, reals)?,
+            } => e.wheelrail_mut()?.set_profile_file(
+                fname,
+                content.as_deref(),
+                slice_files,
+                ints,
+                reals,
+            )?,
             Call::SetProfileValues {
                 npoint,
                 values,
@@ -473,11 +483,16 @@ fn size_of_call(call: &Call) -> usize {
         Call::SetProfileFile {
             fname,
             content,
+            slice_files,
             ints,
             reals,
         } => {
             fname.len()
                 + content.as_ref().map_or_else(String::len, Vec::len)
+                + slice_files
+                    .iter()
+                    .map(|(n, c)| n.len() + c.as_ref().map_or_else(String::len, Vec::len))
+                    .sum::<usize>()
                 + ints.len() * i
                 + reals.len() * f
         }

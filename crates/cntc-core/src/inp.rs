@@ -27,7 +27,7 @@ use thiserror::Error;
 use crate::call::Call;
 use crate::config::Digits;
 use crate::flags;
-use crate::module1::read_profile_file;
+use crate::module1::{read_profile_file, read_slice_files};
 
 /// The kinds of input file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -1268,6 +1268,7 @@ impl WheelRailInp {
             (
                 p.line,
                 Call::SetProfileFile {
+                    slice_files: read_slice_files(&fname, content.as_deref()),
                     fname,
                     content,
                     ints: p.value.iparam.clone(),

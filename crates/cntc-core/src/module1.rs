@@ -13,6 +13,18 @@
 //! (`sides: vec![side]`), with the exact model (Kalker's theory on the
 //! planar patch) on square elements of size DX.
 //!
+//! * Variable rails: a rail slices file (`.slcs`, CONTACT's switches and
+//!   crossings; the solver's `wheelrail::slices`, NFEAT <= 1 and
+//!   U_INTPOL = 1): the pair's rail is the slices' profile at the
+//!   wheelset's position S (placed again when S moves), and each element
+//!   of a patch adds the rail's change of height between S and its own
+//!   S + x (the solver's `WheelRailInput::rail_slices`). The tangent plane
+//!   and contact angle of a patch are those of the slice at S (CONTACT
+//!   takes them at the weighted centre of the interpenetration over x and
+//!   y: docs/cntc.md, "Variable rails"). The slice profiles are read with
+//!   the call (`Call::SetProfileFile`'s `slice_files`). Features, the
+//!   approximating spline, perturbations, smoothing and wheel slices
+//!   (`.slcw`) are refused.
 //! * Profiles: CONTACT's canonical (right-hand) profiles, in metres here.
 //!   CONTACT multiplies the numbers read by the scale factor `rparam(1)`
 //!   to get millimetres; its default is the unit convention's (1 for
@@ -114,11 +126,13 @@ use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
+use railcontact_solver::wheelrail::slices::parse_slices_file;
 use railcontact_solver::wheelrail::{
-    parse_profile, pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings,
-    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache,
-    PatchResult, Profile, ProfileChecks, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
-    RailPlacement, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailInput,
+    is_slices_file, parse_profile, parse_slices, pitch_force_tolerance, solve_wheelset,
+    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
+    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
+    ProfileKind, ProfileSpline, RailDeviation, RailMotion, RailPlacement, RailSlices,
+    SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad, WheelRailInput,
     WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
     WheelsetPosition, WheelsetVelocity,
 };
@@ -138,10 +152,14 @@ const MM: f64 = 1e-3;
 /// A profile as given (canonical right-hand form, SI), with its smoothing.
 #[derive(Debug, Clone)]
 struct ProfileInput {
-    /// The checked points (metres, CONTACT order).
+    /// The checked points (metres, CONTACT order); of a variable rail, its
+    /// first slice.
     profile: Profile,
     /// Cut-off wavelength of its smoothing spline \[m\] (0: interpolating).
     smoothing_m: f64,
+    /// A rail varying along the track (a `.slcs` file): the pair's rail
+    /// is its profile at the wheelset's position s.
+    slices: Option<Arc<RailSlices>>,
 }
 
 impl ProfileInput {
@@ -304,6 +322,9 @@ pub struct WheelRail {
     /// The pair before the last change, held until the next one is found,
     /// so that inputs set again to equal values find it in the cache.
     pair_before: Option<Arc<WheelRailPair>>,
+    /// The wheelset position s \[m\] the pair was built at (a variable
+    /// rail's pair is its profile there).
+    pair_track_s_m: Option<f64>,
     scratch: SearchScratch,
     solved: Option<Solved>,
     /// Subsurface blocks for every patch without its own (icp = -1).
@@ -519,6 +540,38 @@ pub fn read_profile_file(fname: &str) -> std::result::Result<Vec<u8>, String> {
     })
 }
 
+/// A profile file a rail slices file names: its name as written there,
+/// and its bytes or why they could not be read.
+pub type SliceFile = (String, std::result::Result<Vec<u8>, String>);
+
+/// The profile files of the rail slices file `fname` (`.slcs`; its bytes
+/// `content`), each read relative to the slices file's folder
+/// ([`read_profile_file`]), so that a server applies the file without the
+/// caller's files. Empty for another file, or a slices file that cannot be
+/// read or whose lines are malformed (applying it then says why).
+pub fn read_slice_files(
+    fname: &str,
+    content: std::result::Result<&[u8], &String>,
+) -> Vec<SliceFile> {
+    let (true, Ok(bytes)) = (is_slices_file(fname), content) else {
+        return Vec::new();
+    };
+    let Ok(file) = parse_slices_file(&String::from_utf8_lossy(bytes), fname) else {
+        return Vec::new();
+    };
+    let dir = std::path::Path::new(fname)
+        .parent()
+        .unwrap_or(std::path::Path::new(""));
+    let mut out: Vec<SliceFile> = Vec::with_capacity(file.slices.len());
+    for (_, name, _) in file.slices {
+        if out.iter().all(|(n, _)| *n != name) {
+            let bytes = read_profile_file(&dir.join(&name).to_string_lossy());
+            out.push((name, bytes));
+        }
+    }
+    out
+}
+
 /// The rows of a per-element field in reverse order (a left wheel's grid
 /// mirrored in y), each value times `sign`.
 fn mirrored_rows(v: &[f64], nx: usize, ny: usize, sign: f64) -> Vec<f64> {
@@ -587,6 +640,7 @@ impl WheelRail {
         &mut self,
         fname: &str,
         content: std::result::Result<&[u8], &String>,
+        slice_files: &[SliceFile],
         iparam: &[i32],
         rparam: &[f64],
     ) -> Result<()> {
@@ -595,14 +649,16 @@ impl WheelRail {
         let kind = match itype {
             0 => ProfileKind::Rail,
             1 => ProfileKind::Wheel,
+            // A slices file (.slcs) is a rail's.
+            _ if is_slices_file(fname) => ProfileKind::Rail,
             _ => railcontact_solver::wheelrail::kind_from_extension(fname).ok_or_else(|| {
                 CntcError::Profile(format!(
                     "{CALL}: cannot tell a rail from a wheel profile by the extension of \"{fname}\" \
-                     (.prr, .ban rail; .prw, .whl wheel): give ITYPE = 0 (rail) or 1 (wheel) in iparam(1)"
+                     (.prr, .ban, .slcs rail; .prw, .whl wheel): give ITYPE = 0 (rail) or 1 (wheel) in iparam(1)"
                 ))
             })?,
         };
-        let r = self.read_profile(fname, content, kind, iparam, rparam);
+        let r = self.read_profile(fname, content, slice_files, kind, iparam, rparam);
         self.store_profile(kind, r)
     }
 
@@ -610,6 +666,7 @@ impl WheelRail {
         &self,
         fname: &str,
         content: std::result::Result<&[u8], &String>,
+        slice_files: &[SliceFile],
         kind: ProfileKind,
         iparam: &[i32],
         rparam: &[f64],
@@ -620,6 +677,99 @@ impl WheelRail {
                 "{CALL}: the file name is empty"
             )));
         }
+        let ext = std::path::Path::new(fname)
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match (kind, ext.as_deref()) {
+            (ProfileKind::Rail, Some("slcs")) => {
+                return self.read_rail_slices(fname, content, slice_files, iparam, rparam)
+            }
+            (_, Some("slcw")) => {
+                return Err(CntcError::NotSupported(format!(
+                    "{CALL}: \"{fname}\": wheel slices files (.slcw, out-of-round wheels) \
+                     are not supported"
+                )))
+            }
+            (ProfileKind::Wheel, Some("slcs")) => {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: \"{fname}\" is a rail slices file (.slcs), given as the wheel \
+                     (ITYPE = 1)"
+                )))
+            }
+            _ => {}
+        }
+        let profile = self.scaled_profile(fname, content, kind, iparam, rparam)?;
+        let smooth = rp(rparam, 2, 0.0);
+        if !smooth.is_finite() {
+            return Err(CntcError::Profile(format!(
+                "{CALL}: SMOOTH (rparam(2)) = {smooth} is not a finite number"
+            )));
+        }
+        let smoothing_m = smoothing_wavelength_m(ip(iparam, 6, 0), smooth, profile.points());
+        Ok(ProfileInput {
+            profile,
+            smoothing_m,
+            slices: None,
+        })
+    }
+
+    /// A variable rail from the slices file `fname` (its bytes `content`,
+    /// its profile files' `slice_files`): each slice's profile read and
+    /// scaled as a single profile is.
+    fn read_rail_slices(
+        &self,
+        fname: &str,
+        content: std::result::Result<&[u8], &String>,
+        slice_files: &[SliceFile],
+        iparam: &[i32],
+        rparam: &[f64],
+    ) -> Result<ProfileInput> {
+        const CALL: &str = "cntc_setprofileinputfname";
+        let bytes = content.map_err(|why| CntcError::Profile(format!("{CALL}: {why}")))?;
+        let text = String::from_utf8_lossy(bytes);
+        let not_given = "not among the files read with the slices file".to_string();
+        // Errors of a slice's profile pass through the slices reader as
+        // text (it names the slice's line).
+        let slices = parse_slices(&text, fname, |name| {
+            let bytes = slice_files
+                .iter()
+                .find(|(n, _)| n == name)
+                .map_or(Err(&not_given), |(_, b)| b.as_deref());
+            self.scaled_profile(name, bytes, ProfileKind::Rail, iparam, rparam)
+                .map_err(|e| ProfileError::Format {
+                    at: SourceLocation::new(name, None),
+                    message: e.to_string(),
+                })
+        })
+        .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
+        let profile = slices
+            .profile_at(slices.u_range_m().0)
+            .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
+        let smooth = rp(rparam, 2, 0.0);
+        if !(smooth.is_finite() && smooth <= 0.0) {
+            return Err(CntcError::NotSupported(format!(
+                "{CALL}: SMOOTH (rparam(2)) = {smooth}: smoothing a variable rail \
+                 (a slices file) is not supported; give 0"
+            )));
+        }
+        Ok(ProfileInput {
+            profile,
+            smoothing_m: 0.0,
+            slices: Some(Arc::new(slices)),
+        })
+    }
+
+    /// A profile file read and scaled by SCALE_YZ, as
+    /// `cntc_setprofileinputfname` takes it.
+    fn scaled_profile(
+        &self,
+        fname: &str,
+        content: std::result::Result<&[u8], &String>,
+        kind: ProfileKind,
+        iparam: &[i32],
+        rparam: &[f64],
+    ) -> Result<Profile> {
+        const CALL: &str = "cntc_setprofileinputfname";
         let mirror_z = match ip(iparam, 4, 0) {
             0 => MirrorZ::Auto,
             m if m < 0 => MirrorZ::Keep,
@@ -652,17 +802,7 @@ impl WheelRail {
                 },
             )?
         };
-        let smooth = rp(rparam, 2, 0.0);
-        if !smooth.is_finite() {
-            return Err(CntcError::Profile(format!(
-                "{CALL}: SMOOTH (rparam(2)) = {smooth} is not a finite number"
-            )));
-        }
-        let smoothing_m = smoothing_wavelength_m(ip(iparam, 6, 0), smooth, profile.points());
-        Ok(ProfileInput {
-            profile,
-            smoothing_m,
-        })
+        Ok(profile)
     }
 
     /// `cntc_setprofileinputvalues`: a profile from `npoint` (y, z) pairs.
@@ -726,6 +866,7 @@ impl WheelRail {
             Ok(ProfileInput {
                 profile,
                 smoothing_m,
+                slices: None,
             })
         })();
         self.store_profile(kind, r)
@@ -1220,10 +1361,36 @@ impl WheelRail {
     /// absolutely sits at RAILY0 of its own side, and the pair placed for
     /// the other side does not serve.
     fn fits(&self, pair: &WheelRailPair, side: Side) -> bool {
+        // A variable rail's pair holds its profile at one position s.
+        if matches!(&self.rail, Some(Ok(r)) if r.slices.is_some())
+            && self.pair_track_s_m != Some(self.position[0])
+        {
+            return false;
+        }
         match &self.track {
             Some(Ok(track)) => *pair.track() == track.for_side(side, &self.rail_deviation),
             _ => true,
         }
+    }
+
+    /// The profile `p`, or of a variable rail its profile at the wheelset's
+    /// position S.
+    fn at_wheelset<'a>(&self, p: &'a ProfileInput) -> Result<std::borrow::Cow<'a, ProfileInput>> {
+        let Some(slices) = &p.slices else {
+            return Ok(std::borrow::Cow::Borrowed(p));
+        };
+        let s_m = self.position[0];
+        let profile = slices.profile_at(s_m).map_err(|e| {
+            CntcError::Input(format!(
+                "the wheelset's position S = {} (cntc_setwheelsetposition): {e}",
+                self.units().len_out(s_m)
+            ))
+        })?;
+        Ok(std::borrow::Cow::Owned(ProfileInput {
+            profile,
+            smoothing_m: 0.0,
+            slices: None,
+        }))
     }
 
     /// The placed profiles (built when missing).
@@ -1234,6 +1401,7 @@ impl WheelRail {
              cntc_setprofileinputvalues with ITYPE = 0",
         )
         .map_err(|e| CntcError::Profile(e.to_string()))?;
+        let rail = &*self.at_wheelset(rail)?;
         let wheel = slot(
             &self.wheel,
             "the wheel profile has not been set: cntc_setprofileinputfname or \
@@ -1334,6 +1502,7 @@ impl WheelRail {
             let pair = self.build_pair(side);
             self.pair_before = None;
             self.pair = Some(pair?);
+            self.pair_track_s_m = Some(self.position[0]);
         }
         let input = self.solver_input(side)?;
         let pair = self.pair.as_ref().expect("built above");
@@ -1496,6 +1665,10 @@ impl WheelRail {
             vertical_m_per_s: vz_r,
             roll_rad_per_s: vroll_r,
         };
+        let mut rail_slices: [Option<Arc<RailSlices>>; 2] = Default::default();
+        if let Some(Ok(rail)) = &self.rail {
+            rail_slices[side.index()] = rail.slices.clone();
+        }
         Ok(WheelRailInput {
             position,
             velocity,
@@ -1536,6 +1709,7 @@ impl WheelRail {
             total_longitudinal_force_n: None,
             temperature: None,
             rail_motion,
+            rail_slices,
         })
     }
 
@@ -2087,7 +2261,8 @@ impl WheelRail {
     // -----------------------------------------------------------------
     // Profiles.
 
-    /// `cntc_getprofilevalues`: a profile as a table of values. Tasks -1
+    /// `cntc_getprofilevalues`: a profile as a table of values (of a
+    /// variable rail, its profile at the wheelset's position S). Tasks -1
     /// (error code), 0 (number of points), 1 (y, z in profile coordinates),
     /// 2 (y, z in track coordinates), 4 (arc length s), 5 (surface
     /// inclination); sampling ISAMPL -1, 0 (the profile's points), 1
@@ -2124,6 +2299,8 @@ impl WheelRail {
                 )))
             }
         };
+        // A variable rail: its profile at the wheelset's position S.
+        let prf = &*self.at_wheelset(prf)?;
         match itask {
             0..=2 | 4 | 5 => {}
             3 => {
@@ -2609,7 +2786,7 @@ mod tests {
     /// `cntc_setprofileinputfname` of `path` with CONTACT's defaults.
     fn set_file(w: &mut WheelRail, path: &str) {
         let content = read_profile_file(path);
-        w.set_profile_file(path, content.as_deref(), &[-1, 0, 0], &[1.0, 0.0])
+        w.set_profile_file(path, content.as_deref(), &[], &[-1, 0, 0], &[1.0, 0.0])
             .unwrap();
     }
 
@@ -3016,7 +3193,7 @@ mod tests {
         assert!(e.to_string().contains("CURV"), "{e}");
         let missing = read_profile_file("no-such-file.prr");
         let e = w
-            .set_profile_file("no-such-file.prr", missing.as_deref(), &[], &[])
+            .set_profile_file("no-such-file.prr", missing.as_deref(), &[], &[], &[])
             .unwrap_err();
         assert_eq!(e.ierror(), flags::err::PROFIL);
         assert!(w.calculate(&cache).is_err());

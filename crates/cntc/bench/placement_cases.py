@@ -80,22 +80,30 @@ def cases():
     ]
 
 
-def run(cntc, only):
+def wheelrail_element(cntc, CNTC, ire, c1, norm):
+    """Initializes module 1 element `ire` (wheel side c1, N digit norm):
+    CONTACT's units, steady rolling, the materials and friction of the
+    cases."""
     import numpy as np
     from ctypes import c_int
+    cntc.initialize(ire, 1, ' ', 0)
+    codes = [CNTC['if_units'], CNTC['ic_config'], CNTC['ic_tang'], CNTC['ic_pvtime'],
+             CNTC['ic_norm'], CNTC['ic_discns'], CNTC['if_wrtinp'], CNTC['ic_matfil'],
+             CNTC['ic_output'], CNTC['ic_flow']]
+    values = [CNTC['un_cntc'], c1, 3, 2, norm, 2, 0, 0, 0, 0]
+    cntc.setflags(ire, [], np.array(codes, dtype=c_int), np.array(values, dtype=c_int))
+    cntc.setmaterialparameters(ire, [], 0, [0.28, 0.28, 82000.0, 82000.0])
+    cntc.setfrictionmethod(ire, [], 0, np.array([0.3, 0.3]))
+
+
+def run(cntc, only):
+    import numpy as np
     CNTC, _, ierror = cntc.initlibrary(' ', ' ', ' ', 0)
     assert ierror == 0, ierror
     for ire, (name, c1, norm, zf, rail, wheel, track, pos, vel, flex) in enumerate(cases(), 1):
         if only and name not in only:
             continue
-        cntc.initialize(ire, 1, ' ', 0)
-        codes = [CNTC['if_units'], CNTC['ic_config'], CNTC['ic_tang'], CNTC['ic_pvtime'],
-                 CNTC['ic_norm'], CNTC['ic_discns'], CNTC['if_wrtinp'], CNTC['ic_matfil'],
-                 CNTC['ic_output'], CNTC['ic_flow']]
-        values = [CNTC['un_cntc'], c1, 3, 2, norm, 2, 0, 0, 0, 0]
-        cntc.setflags(ire, [], np.array(codes, dtype=c_int), np.array(values, dtype=c_int))
-        cntc.setmaterialparameters(ire, [], 0, [0.28, 0.28, 82000.0, 82000.0])
-        cntc.setfrictionmethod(ire, [], 0, np.array([0.3, 0.3]))
+        wheelrail_element(cntc, CNTC, ire, c1, norm)
         if norm == 1:
             cntc.setverticalforce(ire, zf)
         cntc.setpotcontact(ire, [], -1, np.array([0.2, 0.2, np.pi / 2, 8.0, 4.0]))
@@ -114,23 +122,27 @@ def run(cntc, only):
         cntc.setwheelsetvelocity(ire, e, np.array(vel, dtype=float))
         if flex:
             cntc.setwheelsetflexibility(ire, e, np.array(flex, dtype=float))
-        ierr = cntc.calculate(ire, -1, 0)
-        npatch = cntc.getnumcontactpatches(ire)
-        print(f'case {name}: ierror {ierr}, {npatch} patch(es)')
-        for icp in range(1, npatch + 1):
-            fn, fx, fs, mz = cntc.getcontactforces(ire, icp)
-            cx, cy, cp = cntc.getcreepages(ire, icp)
-            pen = cntc.getpenetration(ire, icp)
-            loc = cntc.getcontactlocation(ire, icp)
-            print(f'  patch {icp}: FN {fn:.6g} FX {fx:.6g} FS {fs:.6g} MZ {mz:.6g}')
-            grid = cntc.getpotcontact(ire, icp)
-            print('    grid mx {:.0f} my {:.0f} xc1 {:.5f} yc1 {:.5f}'.format(*grid[:4]))
-            print(f'    CKSI {cx:.6g} CETA {cy:.6g} CPHI {cp:.6g} PEN {pen:.6g}')
-            print('    XCP_TR {:.5f} YCP_TR {:.5f} ZCP_TR {:.5f} DELT_TR {:.6f} YCP_R {:.5f} '
-                  'ZCP_R {:.5f} YCP_W {:.5f} ZCP_W {:.5f}'.format(
-                      loc[0], loc[1], loc[2], loc[3], loc[5], loc[6], loc[10], loc[11]))
-            print('    W_TR {:.5f} {:.5f} {:.5f} {:.6f} {:.6f} R_TR {:.5f} {:.5f} {:.6f}'.format(
-                *loc[20:28]))
+        print_patches(cntc, ire, name, cntc.calculate(ire, -1, 0))
+
+
+def print_patches(cntc, ire, name, ierr):
+    """Prints the case's ierror and per patch what the library reports."""
+    npatch = cntc.getnumcontactpatches(ire)
+    print(f'case {name}: ierror {ierr}, {npatch} patch(es)')
+    for icp in range(1, npatch + 1):
+        fn, fx, fs, mz = cntc.getcontactforces(ire, icp)
+        cx, cy, cp = cntc.getcreepages(ire, icp)
+        pen = cntc.getpenetration(ire, icp)
+        loc = cntc.getcontactlocation(ire, icp)
+        print(f'  patch {icp}: FN {fn:.6g} FX {fx:.6g} FS {fs:.6g} MZ {mz:.6g}')
+        grid = cntc.getpotcontact(ire, icp)
+        print('    grid mx {:.0f} my {:.0f} xc1 {:.5f} yc1 {:.5f}'.format(*grid[:4]))
+        print(f'    CKSI {cx:.6g} CETA {cy:.6g} CPHI {cp:.6g} PEN {pen:.6g}')
+        print('    XCP_TR {:.5f} YCP_TR {:.5f} ZCP_TR {:.5f} DELT_TR {:.6f} YCP_R {:.5f} '
+              'ZCP_R {:.5f} YCP_W {:.5f} ZCP_W {:.5f}'.format(
+                  loc[0], loc[1], loc[2], loc[3], loc[5], loc[6], loc[10], loc[11]))
+        print('    W_TR {:.5f} {:.5f} {:.5f} {:.6f} {:.6f} R_TR {:.5f} {:.5f} {:.6f}'.format(
+            *loc[20:28]))
 
 
 if __name__ == '__main__':

@@ -690,8 +690,10 @@ pub unsafe extern "C" fn cntc_setprofileinputfname(
 ) {
     wheelrail_setter("cntc_setprofileinputfname", ire, || {
         let fname = string(c_fname, len_fname, "c_fname")?;
+        let content = crate::module1::read_profile_file(&fname);
         Ok(Call::SetProfileFile {
-            content: crate::module1::read_profile_file(&fname),
+            slice_files: crate::module1::read_slice_files(&fname, content.as_deref()),
+            content,
             fname,
             ints: slice(iparam, len(nints, "nints")?, "iparam")?.to_vec(),
             reals: slice(rparam, len(nreals, "nreals")?, "rparam")?.to_vec(),

@@ -14,8 +14,9 @@ mod common;
 use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use common::{
-    calculate, mbench_right_wheel, mbench_right_wheel_with, mode, patch_values, read_inp,
-    set_flags, tractcurv, wheel_results, InpDir, TestServer, MBENCH_RIGHT_INP,
+    calculate, mbench_locus, mbench_right_wheel, mbench_right_wheel_with, mode, patch_values,
+    profile, read_inp, set_flags, tractcurv, wheel_results, InpDir, Load, TestServer,
+    MBENCH_RIGHT_INP,
 };
 use contact_addon::ffi::*;
 use contact_addon::flags::{self, err};
@@ -218,4 +219,19 @@ fn elements_on_several_threads_forward_at_once() {
     });
     mode(false);
     assert_eq!(got, expected);
+}
+
+/// A variable rail (a rail slices file, the UK crossing nose): the call
+/// carries the slices' profile files, which the server reads from it (it
+/// never opens the caller's files), and both modes give the same bits.
+#[test]
+fn a_rail_slices_file_reaches_the_server_with_its_profiles() {
+    let _turn = turn();
+    let rail = profile("uk_crossing_nose.slcs");
+    both_modes(7, |ire| {
+        let ierror =
+            unsafe { mbench_locus(ire, &rail, 1000.0, (239.0, 0.81, 0.0), Load::Force(1e4)) };
+        assert_eq!(ierror, 0);
+        vec![wheel_results(ire)]
+    });
 }

@@ -11,7 +11,7 @@ mod common;
 
 use std::ptr::null;
 
-use common::{close, profile, set_flags, set_profile_file};
+use common::{close, profile, set_profile_file, wheelrail_element};
 use contact_addon::ffi::*;
 use contact_addon::flags;
 
@@ -31,15 +31,10 @@ struct Case {
 
 /// Sets up result element `ire` with `case` and calculates it: ierror.
 unsafe fn solve(ire: i32, case: &Case) -> i32 {
-    let (mut ifcver, mut ierror) = (0, 0);
-    cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
-    assert_eq!(ierror, 0);
     let icp = -1;
-    set_flags(
+    wheelrail_element(
         ire,
-        icp,
         &[
-            (flags::IF_UNITS, flags::UN_CNTC),
             (flags::IC_CONFIG, case.c1),
             (flags::IC_TANG, 3),
             (flags::IC_PVTIME, 2),

@@ -162,19 +162,41 @@ pub fn profile(name: &str) -> String {
 /// type from its extension (ITYPE = -1), mirrored in y with `mirror_y` = 1,
 /// scale factor 1, no smoothing.
 pub fn set_profile_file(ire: i32, path: &str, mirror_y: i32) {
-    let ip = [-1, 0, mirror_y];
-    let rp = [1.0, 0.0];
+    set_profile_file_with(ire, path, &[-1, 0, mirror_y], &[1.0, 0.0]);
+}
+
+/// `cntc_setprofileinputfname` of the file `path` on element `ire` with
+/// `iparam` and `rparam`.
+pub fn set_profile_file_with(ire: i32, path: &str, iparam: &[i32], rparam: &[f64]) {
     unsafe {
         cntc_setprofileinputfname(
             &ire,
             path.as_ptr() as *const std::ffi::c_char,
             &(path.len() as i32),
-            &3,
-            ip.as_ptr(),
-            &2,
-            rp.as_ptr(),
+            &(iparam.len() as i32),
+            iparam.as_ptr(),
+            &(rparam.len() as i32),
+            rparam.as_ptr(),
         )
     }
+}
+
+/// Initializes `ire` as a module 1 (wheel/rail) element in CONTACT's
+/// units with `flags` (code, value) on all its patches.
+pub unsafe fn wheelrail_element(ire: i32, flags: &[(i32, i32)]) {
+    let (mut ifcver, mut ierror) = (0, 0);
+    cntc_initialize(
+        &ire,
+        &1,
+        &mut ifcver,
+        &mut ierror,
+        std::ptr::null(),
+        std::ptr::null(),
+    );
+    assert_eq!(ierror, 0);
+    let mut all = vec![(flags::IF_UNITS, flags::UN_CNTC)];
+    all.extend_from_slice(flags);
+    set_flags(ire, -1, &all);
 }
 
 /// Asserts |ours - contact| <= tol, naming `what`.
@@ -471,4 +493,74 @@ pub fn read_inp(ire: i32, inp_type: i32, path: &Path) -> i32 {
         )
     };
     ierror
+}
+
+// ---------------------------------------------------------------------
+// A wheel on a rail as CONTACT's mbench_locus.inp sets it up.
+
+/// The wheel's load: a vertical force FZ [N] (N = 1) or the wheelset's
+/// height Z_WS [mm] (N = 0).
+#[derive(Clone, Copy)]
+pub enum Load {
+    /// FZ \[N\].
+    Force(f64),
+    /// Z_WS \[mm\].
+    Height(f64),
+}
+
+/// CONTACT's `mbench_locus.inp` setup on element `ire` (right wheel,
+/// steady rolling, the S1002 wheel, the rail placed absolutely at RAILY0 =
+/// 750 mm; its load FZ = 10 kN), the rail from `rail` (SCALE_YZ `scale`),
+/// the wheelset at S, Y [mm] and yaw [rad] with `load`; calculated:
+/// ierror.
+pub unsafe fn mbench_locus(
+    ire: i32,
+    rail: &str,
+    scale: f64,
+    (s_mm, y_mm, yaw): (f64, f64, f64),
+    load: Load,
+) -> i32 {
+    wheelrail_element(
+        ire,
+        &[
+            (flags::IC_CONFIG, 1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, matches!(load, Load::Force(_)) as i32),
+            (flags::IC_DISCNS, 2),
+        ],
+    );
+    let icp = -1;
+    let ints = [999, 100, 30, 1];
+    cntc_setsolverflags(&ire, &icp, &0, &4, ints.as_ptr(), &1, [1e-5].as_ptr());
+    let mat = [0.28, 0.28, 82000.0, 82000.0];
+    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+    cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+    let z_ws = match load {
+        Load::Force(fz) => {
+            cntc_setverticalforce(&ire, &fz);
+            0.0
+        }
+        Load::Height(z) => z,
+    };
+    let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+    cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+    let track = [-1.0, 750.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
+    set_profile(ire, rail, 0, scale);
+    cntc_setwheelsetdimensions(&ire, &3, &3, [1360.0, -70.0, 460.0].as_ptr());
+    set_profile(ire, &profile("MBench_S1002_v3.prw"), 1, 1.0);
+    let pos = [s_mm, y_mm, z_ws, 0.0, yaw, 0.0];
+    cntc_setwheelsetposition(&ire, &3, &6, pos.as_ptr());
+    let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, -4.34811810];
+    cntc_setwheelsetvelocity(&ire, &3, &6, vel.as_ptr());
+    let mut ierror = -1;
+    cntc_calculate1(&ire, &mut ierror);
+    ierror
+}
+
+/// `cntc_setprofileinputfname` with ITYPE `itype`, MIRRORZ = -1 (z as
+/// given), SCALE_YZ `scale`, no smoothing (as `mbench_locus.inp`).
+fn set_profile(ire: i32, path: &str, itype: i32, scale: f64) {
+    set_profile_file_with(ire, path, &[itype, 0, 0, -1], &[scale, 0.0]);
 }

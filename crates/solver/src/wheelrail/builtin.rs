@@ -114,6 +114,7 @@ pub fn mbench_a22_input(
         total_longitudinal_force_n: None,
         temperature: None,
         rail_motion: Default::default(),
+        rail_slices: Default::default(),
     }
 }
 

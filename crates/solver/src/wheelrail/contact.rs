@@ -67,6 +67,7 @@
 //! times the creep forces' own error at that tolerance.
 
 use std::borrow::Cow;
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -109,6 +110,7 @@ use crate::wheelrail::search::{
     ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
     WheelScratch,
 };
+use crate::wheelrail::slices::RailSlices;
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
     CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition,
@@ -443,6 +445,17 @@ pub struct WheelRailInput {
     /// Each rail's own motion (`[left, right]`, default at rest): its
     /// velocity enters the creepages at the rail's point of each patch.
     pub rail_motion: [RailMotion; 2],
+    /// A rail whose profile varies along the track (`[left, right]`,
+    /// default none: prismatic rails; see [`crate::wheelrail::slices`]).
+    /// The pair's rail of that side must be these slices' profile at
+    /// `position.track_s_m` (the caller places it: the contact search and
+    /// each patch's geometry use it); each element of a patch's grid then
+    /// also sees the rail's change of height between u = s and its own
+    /// u = s + x, along the patch's normal: at a crossing nose the rail
+    /// rises over a patch's length. The wheelset's yaw puts the contact
+    /// locus a few millimetres off x = 0, where the search still takes the
+    /// rail at s. The exact model only (others refuse it).
+    pub rail_slices: [Option<Arc<RailSlices>>; 2],
 }
 
 /// A rail's rigid motion in the track frame (CONTACT's VYRAIL, VZRAIL,
@@ -1860,6 +1873,20 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             ));
         }
     }
+    if input.rail_slices.iter().any(Option::is_some)
+        && !matches!(
+            input.settings.model,
+            WheelRailModel::Exact | WheelRailModel::Auto
+        )
+    {
+        return Err(WheelRailError::invalid(
+            "settings.model",
+            format!(
+                "a rail varying along the track (slices) needs the exact model, not '{}'",
+                input.settings.model.name()
+            ),
+        ));
+    }
     match input.load {
         WheelLoad::VerticalForce(f) => require_positive("load.vertical_force_n", f)?,
         WheelLoad::Approach(d) => require_positive("load.approach_m", d)?,
@@ -2316,6 +2343,81 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
     })
 }
 
+/// Adds to the undeformed distance `gap_m` of a patch on `grid` the
+/// change of the rail along the track (a variable rail's `slices`, placed
+/// as `rail`, whose profile at the wheelset's position `track_s_m` the
+/// patch's geometry used): at element (x, s) the rail lies at u =
+/// `track_s_m` + x (x of the track from the wheelset), and its profile
+/// height there differs from that at `track_s_m` by dz over the element's
+/// lateral position (its point on the tangent plane, in the profile
+/// frame); that height, turned by the rail's inclination, along the
+/// patch's normal is the change of the distance. An element beyond the
+/// slices' lateral extent keeps its distance.
+fn add_rail_variation(
+    gap_m: &mut [f64],
+    grid: &Grid,
+    geom: &PatchGeometry,
+    rail: &PlacedRail,
+    slices: &RailSlices,
+    track_s_m: f64,
+) -> Result<(), WheelRailError> {
+    let outside = |u: f64| {
+        WheelRailError::invalid(
+            "position.track_s_m",
+            format!(
+                "the patch at x = {:.2} mm reaches {}",
+                geom.x_m * 1e3,
+                slices.outside(u)
+            ),
+        )
+    };
+    let mut at_s = Vec::with_capacity(slices.points_per_slice());
+    let mut at_u = Vec::with_capacity(slices.points_per_slice());
+    slices
+        .points_at(track_s_m, &mut at_s)
+        .ok_or_else(|| outside(track_s_m))?;
+    let t = geom.tangent();
+    let n = geom.normal;
+    // A height dz of the profile (z down) in the side frame: (sin, cos) of
+    // the inclination times dz (`PlacedRail::to_side`).
+    let (si, co) = rail.inclination_rad().sin_cos();
+    let along_normal = si * n[0] + co * n[1];
+    // The profile y of each row (its point on the tangent plane).
+    let ys: Vec<f64> = (0..grid.ny)
+        .map(|is| {
+            let s = grid.y_m(is);
+            let q = geom.reference_m[0] + s * t[0];
+            let z = geom.reference_m[1] + s * t[1];
+            rail.to_profile(q, z)[0]
+        })
+        .collect();
+    let base: Vec<Option<f64>> = ys.iter().map(|y| RailSlices::z_at(&at_s, *y)).collect();
+    // Only the segments reaching into the rows' lateral range can span a
+    // row's y: the same heights as a search of all segments.
+    let (ylo, yhi) = ys
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+            (lo.min(*y), hi.max(*y))
+        });
+    let mut near = Vec::with_capacity(slices.points_per_slice());
+    for ix in 0..grid.nx {
+        let u = track_s_m + geom.x_m + grid.x_m(ix);
+        slices.points_at(u, &mut at_u).ok_or_else(|| outside(u))?;
+        near.clear();
+        near.extend((0..at_u.len().saturating_sub(1)).filter(|&i| {
+            let (a, b) = (at_u[i][0], at_u[i + 1][0]);
+            a.max(b) >= ylo && a.min(b) <= yhi
+        }));
+        for (is, (y, z0)) in ys.iter().zip(&base).enumerate() {
+            let z = RailSlices::z_at_among(&at_u, near.iter().copied(), *y);
+            if let (Some(z0), Some(z)) = (z0, z) {
+                gap_m[grid.index(ix, is)] += (z - z0) * along_normal;
+            }
+        }
+    }
+    Ok(())
+}
+
 #[allow(clippy::too_many_arguments)]
 fn build_patch(
     pair: &WheelRailPair,
@@ -2358,6 +2460,16 @@ fn build_patch(
                 for ix in 0..grid.nx {
                     gap_m[grid.index(ix, is)] = geom.gap_at(grid.x_m(ix), s);
                 }
+            }
+            if let Some(slices) = &input.rail_slices[side.index()] {
+                add_rail_variation(
+                    &mut gap_m,
+                    &grid,
+                    &geom,
+                    rail,
+                    slices,
+                    input.position.track_s_m,
+                )?;
             }
             let problem = ContactProblem {
                 material: input.material,

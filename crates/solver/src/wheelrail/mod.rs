@@ -82,6 +82,7 @@ pub mod profile;
 pub mod ranges;
 pub mod readers;
 pub mod search;
+pub mod slices;
 pub mod spline;
 pub mod table;
 pub mod temperature;
@@ -102,6 +103,7 @@ pub use profile::{
 };
 pub use readers::{parse_miniprof, parse_plain, parse_simpack};
 pub use search::{ReferencePoint, SearchScratch, SearchSettings};
+pub use slices::{is_slices_file, load_slices, parse_slices, RailSlices};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
