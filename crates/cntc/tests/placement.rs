@@ -450,15 +450,10 @@ fn a_rail_deviation_is_the_wheelset_moved_the_other_way() {
     }
 }
 
-/// test-rollers2.inp's first case as CONTACT's input file reader takes it
-/// (`cntc_readinpfile`, CNTC_inp_modul1): the file's lines of case 1a
-/// (eve70a/CONTACT, testbank/examples_conformal, Apache-2.0) with the
-/// profiles' paths those of this repository. It sets GAUGHT = -1 with
-/// RAILY0 = 200 (Z = 3) and is solved as `case_1a` is: the `.ref_out`'s
-/// FN 9.722E+04 N within 0.05 % and the contact at track y 200 mm.
-#[test]
-fn case_1a_read_from_contacts_input_file() {
-    let inp = format!(
+/// test-rollers2.inp's case 1a, its profiles' paths those of this
+/// repository.
+fn case_1a_inp() -> String {
+    format!(
         "  1 MODULE
  1203000    C-P-B-T-N-F-S  CONFIG, PVTIME, BOUND, TANG, NORM, FORCE, STRESS
  0022033    V-L-D-C-M-Z-E    FRCLAW, DISCNS, INFLCF, MATER , ZTRACK, EWHEEL
@@ -480,24 +475,77 @@ fn case_1a_read_from_contacts_input_file() {
 ",
         profile("flat_plane.prr"),
         profile("circ_r100.prw")
-    );
-    let path = common::scratch("placement").join("test-rollers2-1a.inp");
+    )
+}
+
+/// test-rollers2.inp's first case as CONTACT's input file reader takes it
+/// (`cntc_readinpfile`, CNTC_inp_modul1): the file's lines of case 1a
+/// (eve70a/CONTACT, testbank/examples_conformal, Apache-2.0) with the
+/// profiles' paths those of this repository. It sets GAUGHT = -1 with
+/// RAILY0 = 200 (Z = 3) and is solved as `case_1a` is: the `.ref_out`'s
+/// FN 9.722E+04 N within 0.05 % and the contact at track y 200 mm.
+#[test]
+fn case_1a_read_from_contacts_input_file() {
+    let inp = case_1a_inp();
+    let mut r = [0.0; 15];
+    r[0] = 9.722e4;
+    r[8] = 200.0;
+    r[14] = -0.16;
+    unsafe { check_inp(55, "test-rollers2-1a.inp", &inp, &r) };
+}
+
+/// Reads `inp` (written to the scratch file `name`) into element `ire`
+/// with `cntc_readinpfile` (CNTC_inp_modul1), calculates it, compares it
+/// with `r` as [`compare`] does and frees the element.
+unsafe fn check_inp(ire: i32, name: &str, inp: &str, r: &Reference) {
+    let path = common::scratch("placement").join(name);
     std::fs::write(&path, inp).unwrap();
-    let ire = 55;
-    unsafe {
-        let (mut ifcver, mut ierror) = (0, 0);
-        cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
-        assert_eq!(common::read_inp(ire, flags::INP_MODUL1, &path), 0);
-        let mut ierror = -1;
-        cntc_calculate1(&ire, &mut ierror);
-        assert_eq!(ierror, 0);
-        let mut r = [0.0; 15];
-        r[0] = 9.722e4;
-        r[8] = 200.0;
-        r[14] = -0.16;
-        compare(ire, &r);
-        cntc_finalize(&ire);
+    let (mut ifcver, mut ierror) = (0, 0);
+    cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
+    assert_eq!(common::read_inp(ire, flags::INP_MODUL1, &path), 0);
+    let mut ierror = -1;
+    cntc_calculate1(&ire, &mut ierror);
+    assert_eq!(ierror, 0);
+    compare(ire, r);
+    cntc_finalize(&ire);
+}
+
+/// test-rollers2.inp case 2a as CONTACT's input file reader takes it: case
+/// 1a's lines ([`case_1a_inp`]) changed to 2a's (C1 = 5, Z = 3 with
+/// NOMRAD_R = 400 mm, the bus's profiles and dimensions, E = 5 with its
+/// zero deviations, VPITCH_ROL = 0.25 rad/s in the place of VS_WS,
+/// VPITCH_WS = -0.75 rad/s), its third control word and solver line
+/// those of case 1a (this file holds 2a alone). Solved as
+/// [`roller_rig_cases_2a_2e_match_contacts_library`]'s 2a (the `.ref_out`'s
+/// Case 6: FN 9.719E+04 N, CKSI -2.500E-08, at track y 200 mm).
+#[test]
+fn case_2a_read_from_contacts_input_file() {
+    let mut inp = case_1a_inp();
+    for (from, to) in [
+        ("flat_plane.prr", "circ_r100.prr"),
+        ("circ_r100.prw", "flat_plane.prw"),
+        (" 1203000 ", " 5203000 "),
+        (" 0022033 ", " 0022035 "),
+        (
+            "0.000   0.000                 GAUGHT, RAILY0, RAILZ0, CANT",
+            "0.000   400.0                 GAUGHT, RAILY0, RAILZ0, NOMRAD_R",
+        ),
+        ("   200.0 -100.0   100.0  ", "   300.0  -50.0   133.33333"),
+        (
+            "   100.0    0.0     0.0                         % VS_WS",
+            "   0.250    0.0     0.0                         % VPITCH_ROL",
+        ),
+        (
+            "-1.000                       % VROLL, VYAW, VPITCH_WS\n",
+            "-0.750                       % VROLL, VYAW, VPITCH_WS\n\
+              0.0 0.0 0.0 0.0 0.0 0.0  DX,DY,DZ, DROLL,DYAW,DPITCH\n\
+              0.0 0.0 0.0 0.0 0.0 0.0  VX,VY,VZ, VROLL,VYAW,VPITCH\n",
+        ),
+    ] {
+        assert!(inp.contains(from), "{from}");
+        inp = inp.replace(from, to);
     }
+    unsafe { check_inp(73, "test-rollers2-2a.inp", &inp, &CASE_2A_REFERENCE) };
 }
 
 /// test-rollers2.inp's roller rig: the rail profile's origin at RAILY0 =
@@ -547,6 +595,13 @@ fn in_a_curve(case: Case, curv: f64, fz: f64) -> Case {
     c
 }
 
+/// CONTACT's library on [`CASE_2A`] (`placement_cases.py` case `2a`).
+#[rustfmt::skip]
+const CASE_2A_REFERENCE: Reference = [
+    97186.9, 0.141092, 1.43397e-07, 0.0, -2.5e-08, 0.0, -7.30257e-15,
+    0.0, 200.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.16,
+];
+
 /// test-rollers2.inp cases 2a and 2e (the roller tilted by DROLL = 0.1 rad
 /// with DZ = 0.4996 mm), against CONTACT's library (`placement_cases.py`,
 /// cases `2a`, `2e`) and the `.ref_out` (Cases 6 and 9: FN 9.719E+04 N,
@@ -558,11 +613,7 @@ fn in_a_curve(case: Case, curv: f64, fz: f64) -> Case {
 #[test]
 fn roller_rig_cases_2a_2e_match_contacts_library() {
     unsafe {
-        #[rustfmt::skip]
-        check(61, &CASE_2A, &[
-            97186.9, 0.141092, 1.43397e-07, 0.0, -2.5e-08, 0.0, -7.30257e-15,
-            0.0, 200.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.16,
-        ]);
+        check(61, &CASE_2A, &CASE_2A_REFERENCE);
         let tilted = Case {
             track: roller_track(200.0, [0.0, 0.4996, 0.1, 0.0, 0.0, 0.0]),
             ..CASE_2A
