@@ -43,9 +43,12 @@
 //!   `RailMotion::roller_rad_per_s`) and the wheelset's forward speed is
 //!   0, as CONTACT decides when the velocity is set. The roller's surface
 //!   curves along x with radius NOMRAD - z at each lateral point, which
-//!   the patch gap adds to the wheel's curvature; the creepages are
-//!   relative to CONTACT's reference speed there, the mean of the two
-//!   surfaces' speeds. The first position value is X_WS, which must be 0
+//!   the patch gap adds to the wheel's curvature; with yaw the contact
+//!   point lies where that gap's minimum along x does (between the wheel's
+//!   closest point to a prismatic rail and the roller's top), on the
+//!   roller's surface, as CONTACT's. The creepages are relative to
+//!   CONTACT's reference speed there, the mean of the two surfaces'
+//!   speeds. The first position value is X_WS, which must be 0
 //!   (the wheelset over the rollers' top). Refused on a roller rig: F = 1
 //!   (FX_WS given), VPITCH_ROL <= 0, X_WS != 0.
 //! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0

@@ -118,6 +118,9 @@ def roller_cases():
         ('2a-left-load', 4, 1, 3.0e4, 'circ_r100.prr', 'flat_plane.prw',
          [-1.0, -200.0, 0.0, 0.0, 400.0] + [0.0] * 6, [0, 0.5, 0.0, 0, 0, 0],
          [0.25, 1.0, 0.0, 0.0, 0.001, -0.751], None, bus),
+        # 3a yawed by 0.02 rad (the contact ahead of the axle on the cone)
+        ('3a-yaw', 5, 1, 5.0e4, 'flat_ang200.prr', 'circ_r100.prw', rig(),
+         [0, 0, 0.0, 0, 0.02, 0], [0.24381, 0.0, 0.0, 0.0, 0.0, -0.75], None, ellipsoid),
         # 2a with a track curvature of 1/(20 m)
         ('2a-curv', 5, 1, 3.0e4, 'circ_r100.prr', 'flat_plane.prw', rig(curv=5.0e-5),
          [0, 0, 0.0, 0, 0, 0], vel, None, bus),

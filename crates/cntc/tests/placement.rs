@@ -679,6 +679,30 @@ fn roller_rig_cases_3a_3b_match_contacts_library() {
     }
 }
 
+/// The ellipsoid of test-rollers2.inp case 3a on the conical roller,
+/// yawed by 0.02 rad and loaded by FZ = 50 kN (`placement_cases.py` case
+/// `3a-yaw`): the wheel's closest point to a prismatic cone would lie 4.13
+/// mm behind the axle; with the roller's curvature along x the gap's
+/// minimum, and CONTACT's contact point, lie at kw / (kw + kr) of that,
+/// -3.12 mm, on the roller's surface there (12 um below its profile).
+/// CKSI within 1e-5: the reference point lies 4 um (lateral) and 0.8 um
+/// (height) from CONTACT's on the 0.2 rad slope, which changes the wheel's
+/// and the roller's surface speeds there by 0.75 x 0.8e-3 and 0.244 x
+/// 0.8e-3 mm/s of 98.4 mm/s: 8e-6, as found. The rest as [`compare`].
+#[test]
+fn a_yawed_wheel_on_a_roller_touches_it_where_contact_does() {
+    let mut yawed = on_the_cone(0.0, 0.0, 0.24381);
+    yawed.position[4] = 0.02;
+    yawed.fz = Some(5.0e4);
+    unsafe {
+        #[rustfmt::skip]
+        check_apart(74, &yawed, &[
+            54258.7, 183.764, -15992.2, 4482.29, -0.000238482, 0.020408, -0.00200431,
+            -3.12064, 180.10358, -4.02115, 0.2, -19.89642, -4.02115, -19.87003, -2.10532,
+        ], &[(4, 1e-5)]);
+    }
+}
+
 /// The bus on the left roller (C1 = 4, RAILY0 = -200 mm) loaded by FZ =
 /// 30 kN, shifted by Y_WS = 0.5 mm, with VY = 1 mm/s, VYAW = 0.001 rad/s
 /// and VPITCH = -0.751 rad/s; and on the right roller in a curve of CURV

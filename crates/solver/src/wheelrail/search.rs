@@ -1435,6 +1435,19 @@ pub fn patch_geometry_about(
             (c.q_m, j, [sa, ca], c.contact_angle_rad, li, lref)
         }
     };
+    // On a roller the gap's minimum along x lies between the wheel's
+    // closest point (the locus, for a prismatic rail) and the roller's top
+    // (x = 0), at kw / (kw + kr) of the locus point's x (CONTACT's
+    // reference point there): the reference is moved to it.
+    let kr = rail.roller_curvature_per_m(&rs[j]);
+    let lref = if kr > 0.0 && lref.kx_per_m + kr > 0.0 {
+        LocusPoint {
+            x_m: lref.x_m * lref.kx_per_m / (lref.kx_per_m + kr),
+            ..lref
+        }
+    } else {
+        lref
+    };
     let zref = gap.rail_z_at(qref);
     let t = [normal[1], -normal[0]];
     let proj = |k: usize| (gap.q_m(k) - qref) * t[0] + (gap.z_rail_m[k] - zref) * t[1];
@@ -1498,8 +1511,11 @@ pub fn patch_geometry_about(
     if lateral.len() < 2 {
         return None;
     }
+    // On a roller the reference lies on its surface at the reference's x
+    // (CONTACT's contact point), below the profile's point.
+    let [dq, dz] = rail.roller_drop_m(origin[0], origin[1], lref.x_m);
     Some(PatchGeometry {
-        reference_m: origin,
+        reference_m: [origin[0] + dq, origin[1] + dz],
         x_m: lref.x_m,
         normal,
         contact_angle_rad,

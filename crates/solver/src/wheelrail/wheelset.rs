@@ -245,7 +245,9 @@ pub struct TrackData {
     /// placement shifts such a rail laterally only). The roller's surface
     /// curves along x as well (radius `roller_radius_m - z` in the rail's
     /// profile frame, turned with a rail's deviation), which adds to the
-    /// wheel's curvature in the gap of each patch, and the roller turns at
+    /// wheel's curvature in the gap of each patch (whose reference point,
+    /// with yaw, moves to that gap's minimum along x, on the roller's
+    /// surface), and the roller turns at
     /// [`RailMotion::roller_rad_per_s`](crate::wheelrail::RailMotion).
     /// No cant on a roller (`cant_rad` must be 0). `None`: a track.
     pub roller_radius_m: Option<f64>,
@@ -485,6 +487,24 @@ impl PlacedRail {
     /// track; see [`TrackData::roller_radius_m`]).
     pub fn roller_radius_m(&self) -> Option<f64> {
         self.roller_radius_m
+    }
+
+    /// Where the roller's surface lies at `x_m` from its top, relative to
+    /// its profile's point (q, z) (side frame) \[m\]: lower by x^2 / (2 r)
+    /// along the profile frame's z (the roller's radius r, the nominal
+    /// radius less the profile's z, turned with the rail). Zero on a
+    /// track.
+    pub fn roller_drop_m(&self, q_m: f64, z_m: f64, x_m: f64) -> [f64; 2] {
+        let Some(radius) = self.roller_radius_m else {
+            return [0.0, 0.0];
+        };
+        let r = radius - self.to_profile(q_m, z_m)[1];
+        if r <= x_m.abs() {
+            return [0.0, 0.0];
+        }
+        let drop = r - (r * r - x_m * x_m).sqrt();
+        let (s, c) = self.cant_rad.sin_cos();
+        [s * drop, c * drop]
     }
 
     /// The profile curvature along x of a roller's surface at the rail
