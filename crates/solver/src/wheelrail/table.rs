@@ -93,8 +93,8 @@ use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::wheelrail::contact::{
     finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch, solve_wheelset_warm,
-    validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
+    validate, validate_on, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
     find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
@@ -973,6 +973,7 @@ pub fn solve_wheelset_tabulated_warm(
     warm: &mut WarmStart,
 ) -> Result<WheelRailSolution, WheelRailError> {
     validate(input)?;
+    validate_on(table.pair(), input)?;
     if input.settings.model != WheelRailModel::HertzFastsim {
         return solve_wheelset_warm(&table.pair, input, cache, scratch, warm);
     }

@@ -245,8 +245,9 @@ fn a_track_curvature_turns_the_rails_under_the_wheelset() {
     }
 }
 
-/// A roller rig's rate without a roller, a roller turning backwards and a
-/// bad roller radius or curvature are refused naming their keys.
+/// A roller rig's rate without a roller, a track without a forward speed,
+/// a roller turning backwards, the conformal model on a roller and a bad
+/// roller radius or curvature are refused naming their keys.
 #[test]
 fn bad_roller_and_curvature_inputs_are_refused_naming_their_keys() {
     let err = |pair: &WheelRailPair, inp: &WheelRailInput| {
@@ -261,6 +262,12 @@ fn bad_roller_and_curvature_inputs_are_refused_naming_their_keys() {
         &input(WheelRailModel::HertzFastsim, 10.0, -100.0, 1.0),
     );
     assert!(e.contains("rail_motion.roller_rad_per_s"), "{e}");
+    // On a track the wheelset must move forwards.
+    let e = err(
+        &track,
+        &input(WheelRailModel::HertzFastsim, 0.0, -100.0, 0.0),
+    );
+    assert!(e.contains("velocity.forward_m_per_s"), "{e}");
     let rig = sphere_pair(Some(RR), 0.0);
     let e = err(&rig, &input(WheelRailModel::HertzFastsim, 0.0, -4.0, -1.0));
     assert!(e.contains("rail_motion.roller_rad_per_s"), "{e}");
