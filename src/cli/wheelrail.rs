@@ -26,10 +26,10 @@ use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, check_plausibility, is_slices_file, load_profile_with, load_slices, solve_wheelset,
-    FrictionTable, LoadOptions, PatchResult, PlausibilityWarning, Profile, RailPlacement,
-    RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    FrictionTable, LoadOptions, PatchResult, PlausibilityWarning, Profile, RailMotion,
+    RailPlacement, RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
+    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
+    WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
     DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
@@ -169,6 +169,10 @@ struct TrackKeys {
     rail_origin_z_m: Option<f64>,
     #[serde(default)]
     cant_rad: f64,
+    roller_radius_m: Option<f64>,
+    roller_rad_per_s: Option<f64>,
+    #[serde(default)]
+    curvature_per_m: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -199,7 +203,7 @@ struct PositionKeys {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct VelocityKeys {
-    forward_m_per_s: f64,
+    forward_m_per_s: Option<f64>,
     #[serde(default)]
     lateral_m_per_s: f64,
     #[serde(default)]
@@ -419,7 +423,33 @@ impl WheelrailRun {
             placement,
             cant_rad: t.cant_rad,
             deviations: Default::default(),
+            roller_radius_m: t.roller_radius_m,
+            curvature_per_m: t.curvature_per_m,
         };
+        // A roller rig turns its rollers (track.roller_rad_per_s) and the
+        // wheelset's forward speed is 0 unless given; on a track the
+        // forward speed is needed.
+        let (forward_m_per_s, roller_rad_per_s) =
+            match (t.roller_radius_m, t.roller_rad_per_s, c.velocity.forward_m_per_s) {
+                (Some(_), Some(w), v) => (v.unwrap_or(0.0), w),
+                (Some(_), None, _) => {
+                    return Err(bad(
+                        "invalid input `track.roller_rad_per_s`: a roller rig                          (track.roller_radius_m) needs its rollers' angular velocity",
+                    ))
+                }
+                (None, Some(_), _) => {
+                    return Err(bad(
+                        "invalid input `track.roller_rad_per_s`: needs a roller rig                          (track.roller_radius_m)",
+                    ))
+                }
+                (None, None, Some(v)) => (v, 0.0),
+                (None, None, None) => {
+                    return Err(bad(
+                        "invalid input `velocity.forward_m_per_s`: missing (the wheelset's \
+                         forward speed on a track)",
+                    ))
+                }
+            };
         let wheelset = WheelsetData {
             flange_back_distance_m: w.flange_back_distance_m,
             nominal_radius_m: w.nominal_radius_m,
@@ -449,7 +479,7 @@ impl WheelrailRun {
                 track_s_m: c.position.track_s_m,
             },
             velocity: WheelsetVelocity {
-                forward_m_per_s: v.forward_m_per_s,
+                forward_m_per_s,
                 lateral_m_per_s: v.lateral_m_per_s,
                 vertical_m_per_s: v.vertical_m_per_s,
                 roll_rad_per_s: v.roll_rad_per_s,
@@ -493,16 +523,46 @@ impl WheelrailRun {
             },
             total_longitudinal_force_n: l.total_longitudinal_force_n,
             temperature: c.temperature,
-            rail_motion: Default::default(),
+            rail_motion: [RailMotion {
+                roller_rad_per_s,
+                ..RailMotion::default()
+            }; 2],
             rail_slices: [slices_l, slices_r],
+        };
+        // On a roller rig the speed checked is the rollers' surface speed,
+        // named by the rollers' key.
+        let checked = match t.roller_radius_m {
+            Some(r) => {
+                if roller_rad_per_s.is_nan() || roller_rad_per_s <= 0.0 {
+                    return Err(bad(format!(
+                        "invalid input `track.roller_rad_per_s`: must be > 0 (forward rolling), \
+                         got {roller_rad_per_s}"
+                    )));
+                }
+                WheelsetVelocity {
+                    forward_m_per_s: forward_m_per_s + r * roller_rad_per_s,
+                    ..input.velocity
+                }
+            }
+            None => input.velocity,
         };
         ranges::check_motion(
             &input.position,
-            &input.velocity,
+            &checked,
             &input.load,
             input.total_longitudinal_force_n,
         )
-        .map_err(|e| bad(e.to_string()))?;
+        .map_err(|e| {
+            let e = e.to_string();
+            bad(match t.roller_radius_m {
+                Some(_) => e.replace(
+                    "velocity.forward_m_per_s",
+                    "track.roller_rad_per_s (the rollers' surface speed, with \
+                     velocity.forward_m_per_s)",
+                ),
+                None => e,
+            })
+        })?;
         Ok(Self {
             pair,
             input,
@@ -923,15 +983,22 @@ element_size_m = 0.0002
         patches[0].clone()
     }
 
+    /// The one patch of the case file `text`, checked to lie at track y =
+    /// 0.2 m.
+    fn one_patch_at_200_mm(text: &str) -> PatchResult {
+        let run = WheelrailRun::from_toml(text, root()).unwrap();
+        let p = only_patch(&run);
+        assert!((p.track_y_m - 0.2).abs() < 1e-9, "{}", p.track_y_m);
+        p
+    }
+
     /// test-rollers2.ref_out, Case 1: FN 9.722E+04 N at track y 200 mm.
     /// Within 0.05 %: the patch's grid has no element centred on the
     /// sphere's lowest point (CONTACT's has), whose h(0.1 mm) = 0.1^2 /
     /// (2 R) = 5e-5 mm of the approach is not loaded.
     #[test]
     fn a_rail_placed_by_its_origin_carries_contacts_sphere() {
-        let run = WheelrailRun::from_toml(SPHERE_ON_PLANE, root()).unwrap();
-        let p = &only_patch(&run);
-        assert!((p.track_y_m - 0.2).abs() < 1e-9, "{}", p.track_y_m);
+        let p = one_patch_at_200_mm(SPHERE_ON_PLANE);
         let fn_n = p.normal_force_n;
         assert!((fn_n - 9.722e4).abs() < 5e-4 * 9.722e4, "{fn_n}");
     }
@@ -985,6 +1052,127 @@ element_size_m = 0.0002
         let far = case.replace("track_s_m = 0.239", "track_s_m = 0.5");
         let e = WheelrailRun::from_toml(&far, root()).err().unwrap();
         assert!(e.to_string().contains("position.track_s_m"), "{e}");
+    }
+
+    /// CONTACT's test-rollers2.inp case 2a as a case file: the "bus" (the
+    /// flat wheel `flat_plane.prw` at a nominal radius of 133.3 mm, a
+    /// cylinder) on a roller of 400 mm whose profile is `circ_r100.prr`
+    /// (an ellipsoid), at an approach of 0.16 mm, the roller turning at
+    /// 2.5 rad/s and the wheel at -7.5 rad/s (both surfaces at 1 m/s, the
+    /// case's 0.25 and -0.75 rad/s ten times: the same creepages, at the
+    /// speed range's lower end): the sphere's case file with the roller's
+    /// keys.
+    fn bus_on_roller() -> String {
+        SPHERE_ON_PLANE
+            .replace("flat_plane.prr", "circ_r100.prr")
+            .replace(
+                "rail_origin_z_m = 0.0",
+                "rail_origin_z_m = 0.0\nroller_radius_m = 0.4\nroller_rad_per_s = 2.5",
+            )
+            .replace("circ_r100.prw", "flat_plane.prw")
+            .replace("nominal_radius_m = 0.1", "nominal_radius_m = 0.13333333")
+            .replace(
+                "forward_m_per_s = 1.0\npitch_rad_per_s = -10.0",
+                "pitch_rad_per_s = -7.5",
+            )
+    }
+
+    /// test-rollers2.ref_out, Case 6 (test 2a): FN 9.719E+04 N, CKSI
+    /// -2.500E-08, at track y 200 mm, VELOC 100.0 mm/s. FN within 0.05 %
+    /// as for the sphere on the plane (an element centred on the contact
+    /// point in CONTACT's grid, not in ours); the creepage to 1e-7 (the
+    /// contact point's radii, 0.08 mm into each surface, differ from the
+    /// nominal ones by 6e-4 and 2e-4 of a percent).
+    #[test]
+    fn a_roller_rig_case_carries_contacts_bus_on_its_roller() {
+        let p = one_patch_at_200_mm(&bus_on_roller());
+        let fn_n = p.normal_force_n;
+        assert!((fn_n - 9.719e4).abs() < 5e-4 * 9.719e4, "{fn_n}");
+        assert!(
+            (p.creepage_long + 2.5e-8).abs() < 1e-7,
+            "{}",
+            p.creepage_long
+        );
+        assert!((p.rolling_speed_m_per_s - 1.0).abs() < 1e-5);
+    }
+
+    /// A roller rig's keys are refused naming them: a negative radius, a
+    /// roller without its rate or a rate without a roller, a cant on a
+    /// roller, a curvature beyond 0.1 /m, a roller turning backwards or
+    /// slower than the speed range (0.5 rad/s on 0.4 m: 0.2 m/s).
+    #[test]
+    fn bad_roller_and_curvature_keys_are_refused_naming_them() {
+        let bus = bus_on_roller();
+        let with = |from: &str, to: &str| bus.replace(from, to);
+        for (text, key) in [
+            (
+                with("roller_radius_m = 0.4", "roller_radius_m = -0.4"),
+                "track.roller_radius_m",
+            ),
+            (
+                with(
+                    "roller_rad_per_s = 2.5
+",
+                    "",
+                ),
+                "track.roller_rad_per_s",
+            ),
+            (
+                with(
+                    "roller_radius_m = 0.4
+",
+                    "",
+                ),
+                "track.roller_rad_per_s",
+            ),
+            (
+                with(
+                    "roller_rad_per_s = 2.5",
+                    "roller_rad_per_s = 2.5
+cant_rad = 0.025",
+                ),
+                "track.cant_rad",
+            ),
+            (
+                with(
+                    "roller_rad_per_s = 2.5",
+                    "roller_rad_per_s = 2.5
+curvature_per_m = 0.5",
+                ),
+                "track.curvature_per_m",
+            ),
+        ] {
+            let e = WheelrailRun::from_toml(&text, root()).err().unwrap();
+            assert!(e.to_string().contains(key), "{key}: {e}");
+        }
+        for rate in ["-2.5", "0.5"] {
+            let text = with(
+                "roller_rad_per_s = 2.5",
+                &format!("roller_rad_per_s = {rate}"),
+            );
+            let e = WheelrailRun::from_toml(&text, root()).err().unwrap();
+            assert!(e.to_string().contains("track.roller_rad_per_s"), "{e}");
+        }
+        // A rail varying along the track is no roller's.
+        let slices = bus
+            .replace(
+                "crates/solver/profiles/circ_r100.prr",
+                "crates/solver/profiles/uk_crossing_nose.slcs",
+            )
+            .replace("roll_rad = 0.0", "roll_rad = 0.0\ntrack_s_m = 0.239");
+        assert_ne!(slices, bus);
+        let e = match WheelrailRun::from_toml(&slices, root()) {
+            Err(e) => e.to_string(),
+            Ok(run) => solve_wheelset(
+                &run.pair,
+                &run.input,
+                KernelCache::global(),
+                &mut SearchScratch::default(),
+            )
+            .unwrap_err()
+            .to_string(),
+        };
+        assert!(e.contains("track.rail_profile"), "{e}");
     }
 
     /// Both placements, or neither, are refused naming `track`.

@@ -1278,6 +1278,7 @@ fn wheelrail_examples_do_not_warn() {
         "wheelset_a22.toml",
         "wheelset_a22_temperature.toml",
         "wheelset_a22_varfric.toml",
+        "roller_rig.toml",
     ] {
         let out = run(&["wheelrail", example(name).to_str().unwrap(), "--json"]);
         assert!(out.status.success(), "{name}");
@@ -1288,6 +1289,57 @@ fn wheelrail_examples_do_not_warn() {
         );
         let v: Value = serde_json::from_slice(&out.stdout).unwrap();
         assert_eq!(v["warnings"], Value::Array(Vec::new()), "{name}: {v}");
+    }
+}
+
+/// `examples/cases/roller_rig.toml` (test-rollers2.inp case 2a at ten
+/// times its speeds): one patch on the right roller at track y 0.2 m, FN
+/// within 0.05 % of the `.ref_out`'s 9.719E+04 N (Case 6; the grids'
+/// alignment, as for the sphere on the plane), free rolling (CKSI
+/// -2.5E-08 there) and the mean surface speed 1 m/s as the rolling speed;
+/// its keys refused by name when bad.
+#[test]
+fn wheelrail_roller_rig_example_and_its_keys() {
+    let v = wheelrail_json(&example("roller_rig.toml"));
+    let patches = v["wheels"]["right"]["patches"].as_array().unwrap();
+    assert_eq!(patches.len(), 1, "{v}");
+    let p = &patches[0];
+    let f = p["normal_force_n"].as_f64().unwrap();
+    assert!((f - 9.719e4).abs() < 5e-4 * 9.719e4, "{f}");
+    let y = p["track_y_m"].as_f64().unwrap();
+    assert!((y - 0.2).abs() < 1e-9, "{y}");
+    let xi = p["creepage_long"].as_f64().unwrap();
+    assert!((xi + 2.5e-8).abs() < 1e-7, "{xi}");
+    let speed = p["rolling_speed_m_per_s"].as_f64().unwrap();
+    assert!((speed - 1.0).abs() < 1e-5, "{speed}");
+    let good = example_text("roller_rig.toml").replace("../../", "");
+    let root = |t: String| {
+        t.replace(
+            "\"crates/",
+            &format!("\"{}/crates/", env!("CARGO_MANIFEST_DIR")),
+        )
+    };
+    for (name, from, to, key) in [
+        (
+            "wr_roller_r.toml",
+            "roller_radius_m = 0.4",
+            "roller_radius_m = -0.4",
+            "track.roller_radius_m",
+        ),
+        (
+            "wr_roller_w.toml",
+            "roller_rad_per_s = 2.5",
+            "roller_rad_per_s = -2.5",
+            "track.roller_rad_per_s",
+        ),
+        (
+            "wr_roller_k.toml",
+            "roller_rad_per_s = 2.5",
+            "roller_rad_per_s = 2.5\ncurvature_per_m = 1.0",
+            "track.curvature_per_m",
+        ),
+    ] {
+        expect_bad_wheelrail(name, &root(good.replace(from, to)), key);
     }
 }
 

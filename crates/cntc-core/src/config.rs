@@ -25,7 +25,7 @@ use crate::units::Units;
 /// them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Digits {
-    /// C1: 0 left rail, 1 right rail (module 1); 4/5 rollers (refused).
+    /// C1: 0 left rail, 1 right rail, 4 left roller, 5 right roller (module 1).
     pub config: i32,
     /// P: 0/1 continue from the previous case, 2/3 start afresh.
     pub pvtime: i32,
@@ -348,9 +348,10 @@ impl Config {
             },
             flags::IC_CONFIG => {
                 d.config = clamp(value, 0, 5);
-                if d.config >= 2 {
+                if d.config == 2 || d.config == 3 {
                     let what = format!(
-                        "C1 = {} (CNTC_ic_config): roller rigs are not supported; 0 left rail, 1 right rail",
+                        "C1 = {} (CNTC_ic_config): 0 left rail, 1 right rail, 4 left roller, 5 \
+                         right roller",
                         d.config
                     );
                     self.mark("cntc_setflags C1", Some(what.clone()));

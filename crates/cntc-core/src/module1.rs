@@ -1,5 +1,6 @@
-//! Module 1: wheel/rail contact of one wheel on its rail (CONTACT's C1
-//! digit: 0 left, 1 right), from profiles, track and wheelset data, the
+//! Module 1: wheel/rail contact of one wheel on its rail or roller
+//! (CONTACT's C1 digit: 0 left rail, 1 right rail, 4 left roller, 5 right
+//! roller), from profiles, track and wheelset data, the
 //! wheelset's position and velocity, and a vertical force or position; the
 //! contact search finds the patches, each solved as a module 3 problem.
 //!
@@ -37,9 +38,31 @@
 //!   profile's origin at (RAILY0, RAILZ0) of the track (RAILY0 a track y,
 //!   positive for a right rail), rotated by the cant about it and not
 //!   shifted to touch the track plane (the solver's `RailPlacement::Origin`, at
-//!   q = sign(side) RAILY0 of the side frame). Track curvature and the
-//!   massless rail (Z = 32, 33) are refused. The roller radius (NOMRAD) is
-//!   for roller rigs and ignored.
+//!   q = sign(side) RAILY0 of the side frame). The massless rail (Z = 32,
+//!   33) is refused. The track curvature CURV (params(6)) is the solver's
+//!   `TrackData::curvature_per_m`: the rails turn at -V CURV under the
+//!   wheelset (V the forward speed, on a roller the roller's surface speed
+//!   at the contact), as CONTACT's `wr_creep_cref`, so the yaw rate VYAW
+//!   is relative to the turning track frame.
+//! * Roller rigs (C1 = 4, 5): the rail profile lies on a roller of radius
+//!   NOMRAD (params(5)) about an axle along y at that distance below the
+//!   track plane (the solver's `TrackData::roller_radius_m`), its z an
+//!   offset to the radius; the gauge point placement shifts it laterally
+//!   only; CANT is ignored (0), as CONTACT does; rail deviations turn and
+//!   shift the roller's profile with its axle. The first value of
+//!   `cntc_setwheelsetvelocity` is then the rollers' angular velocity
+//!   VPITCH_ROL (rad/s, > 0 for forward rolling; the solver's
+//!   `RailMotion::roller_rad_per_s`) and the wheelset's forward speed is
+//!   0, as CONTACT decides when the velocity is set. The roller's surface
+//!   curves along x with radius NOMRAD - z at each lateral point, which
+//!   the patch gap adds to the wheel's curvature; with yaw the contact
+//!   point lies where that gap's minimum along x does (between the wheel's
+//!   closest point to a prismatic rail and the roller's top), on the
+//!   roller's surface, as CONTACT's. The creepages are relative to
+//!   CONTACT's reference speed there, the mean of the two surfaces'
+//!   speeds. The first position value is X_WS, which must be 0
+//!   (the wheelset over the rollers' top). Refused on a roller rig: F = 1
+//!   (FX_WS given), VPITCH_ROL <= 0, X_WS != 0.
 //! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0
 //!   towards the track centre for a left rail) and DROLLR turn and shift
 //!   the placed rail about its profile's origin (the solver's
@@ -134,7 +157,7 @@ use railcontact_solver::wheelrail::{
     ProfileKind, ProfileSpline, RailDeviation, RailMotion, RailPlacement, RailSlices,
     SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad, WheelRailInput,
     WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
-    WheelsetPosition, WheelsetVelocity,
+    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -148,6 +171,15 @@ use crate::units::Units;
 /// Millimetres per metre: CONTACT's profile values and their smoothing
 /// parameters are in millimetres whatever the unit convention.
 const MM: f64 = 1e-3;
+
+/// NOMRADR of the track dimensions set \[m\] (0 when not set: refused by
+/// the roller's checks or by the missing track).
+fn track_roller_radius(track: &Slot<Track>) -> f64 {
+    match track {
+        Some(Ok(t)) => t.roller_radius_m,
+        _ => 0.0,
+    }
+}
 
 /// A profile as given (canonical right-hand form, SI), with its smoothing.
 #[derive(Debug, Clone)]
@@ -194,6 +226,11 @@ fn slot<'a, T>(s: &'a Slot<T>, missing: &str) -> Result<&'a T> {
 struct Track {
     placement: Placement,
     cant_rad: f64,
+    /// NOMRADR \[m\] (params(5)): the rollers' nominal radius, used
+    /// on a roller rig (C1 = 4, 5).
+    roller_radius_m: f64,
+    /// CURV \[1/m\] (params(6)): the signed track curvature.
+    curvature_per_m: f64,
 }
 
 /// The rail placement of `cntc_settrackdimensions`, SI.
@@ -206,8 +243,10 @@ enum Placement {
 }
 
 impl Track {
-    /// The solver's track for the rail of `side`: RAILY0 in the side frame.
-    fn for_side(&self, side: Side, deviation: &[f64; 6]) -> TrackData {
+    /// The solver's track for the rail of `side`: RAILY0 in the side frame;
+    /// on a roller (`roller`) of radius NOMRADR, without cant (CONTACT
+    /// ignores CANT there).
+    fn for_side(&self, side: Side, deviation: &[f64; 6], roller: bool) -> TrackData {
         let placement = match self.placement {
             Placement::GaugePoint {
                 gauge_height_m,
@@ -229,8 +268,10 @@ impl Track {
         };
         TrackData {
             placement,
-            cant_rad: self.cant_rad,
+            cant_rad: if roller { 0.0 } else { self.cant_rad },
             deviations,
+            roller_radius_m: roller.then_some(self.roller_radius_m),
+            curvature_per_m: self.curvature_per_m,
         }
     }
 }
@@ -303,6 +344,8 @@ pub struct WheelRail {
     position: [f64; 6],
     /// vs, vy, vz \[m/s\], vroll, vyaw, vpitch \[rad/s\].
     velocity: [f64; 6],
+    /// VPITCH_ROL \[rad/s\]: the rollers' angular velocity (C1 = 4, 5).
+    roller_rad_per_s: f64,
     /// Flexible wheelset deviations (E = 4, 5), SI: DXWHL, DYWHL, DZWHL
     /// \[m\], DROLLW, DYAWW, DPITCHW \[rad\], VXWHL, VYWHL, VZWHL \[m/s\],
     /// VROLLW, VYAWW, VPITCHW \[rad/s\]; zeros without them.
@@ -909,10 +952,13 @@ impl WheelRail {
             let gaught = u.len(p[0]);
             let curv_index = if ztrack == 1 { 6 } else { 12 };
             let curv = if p.len() >= curv_index { p[5] } else { 0.0 };
-            let track = if curv != 0.0 {
-                Err(CntcError::NotSupported(format!(
-                    "{CALL}: track curvature CURV = {curv} (params(6)) is not supported; \
-                     tangent track (0)"
+            let curvature_per_m = u.per_len(curv);
+            let roller_radius_m = u.len(p[4]);
+            let track = if curvature_per_m.abs() > MAX_TRACK_CURVATURE_PER_M {
+                Err(CntcError::Input(format!(
+                    "{CALL}: track curvature CURV = {curv} (params(6)) is a curve radius below \
+                     {} (the solver's limit)",
+                    u.len_out(1.0 / MAX_TRACK_CURVATURE_PER_M)
                 )))
             } else if gaught <= 0.0 {
                 // Absolute placement: the rail profile's origin at
@@ -923,6 +969,8 @@ impl WheelRail {
                         rail_z_m: u.len(p[2]),
                     },
                     cant_rad: p[3],
+                    roller_radius_m,
+                    curvature_per_m,
                 })
             } else if p[2] <= 0.0 {
                 Err(CntcError::Input(format!(
@@ -936,10 +984,13 @@ impl WheelRail {
                         gauge_m: u.len(p[2]),
                     },
                     cant_rad: p[3],
+                    roller_radius_m,
+                    curvature_per_m,
                 })
             };
             // GAUGSQ (params(2)) is reserved in CONTACT; NOMRAD (params(5))
-            // is the roller radius of roller rigs.
+            // is the roller radius of roller rigs, checked when one is
+            // solved.
             self.invalidate();
             let out = track.as_ref().map(|_| ()).map_err(Clone::clone);
             self.track = Some(track);
@@ -1062,8 +1113,17 @@ impl WheelRail {
         }
         finite(CALL, &["VS", "VY", "VZ", "VROLL", "VYAW", "VPITCH"], p)?;
         let u = self.units();
+        // On a roller rig (C1 = 4, 5 when called, as CONTACT decides) the
+        // first value is the rollers' angular velocity VPITCH_ROL and the
+        // wheelset's forward speed is zero.
+        let (vs, roller) = if self.is_roller() {
+            (0.0, p[0])
+        } else {
+            (p[0], 0.0)
+        };
+        self.roller_rad_per_s = roller;
         self.velocity = [
-            u.velocity(p[0]),
+            u.velocity(vs),
             u.velocity(p[1]),
             u.velocity(p[2]),
             p[3],
@@ -1252,12 +1312,47 @@ impl WheelRail {
     /// The side of the C1 digit.
     fn side(&self) -> Result<Side> {
         match self.config.digits.config {
-            0 => Ok(Side::Left),
-            1 => Ok(Side::Right),
+            0 | 4 => Ok(Side::Left),
+            1 | 5 => Ok(Side::Right),
             c => Err(CntcError::NotSupported(format!(
-                "C1 = {c} (CNTC_ic_config): roller rigs are not supported; 0 left rail, 1 right rail"
+                "C1 = {c} (CNTC_ic_config): 0 left rail, 1 right rail, 4 left roller, 5 right \
+                 roller"
             ))),
         }
+    }
+
+    /// True on a roller rig (C1 = 4, 5).
+    fn is_roller(&self) -> bool {
+        self.config.digits.config >= 4
+    }
+
+    /// What a roller rig needs: NOMRADR > 0, VPITCH_ROL > 0 (forward
+    /// rolling) and the wheelset over the rollers' top (X_WS = 0).
+    fn check_roller(&self, x_ws: f64) -> Result<()> {
+        let u = self.units();
+        let radius = track_roller_radius(&self.track);
+        if radius <= 0.0 {
+            return Err(CntcError::Input(format!(
+                "NOMRADR = {} (cntc_settrackdimensions params(5)) must be > 0 on a roller rig \
+                 (C1 = 4, 5)",
+                u.len_out(radius)
+            )));
+        }
+        if self.roller_rad_per_s <= 0.0 {
+            return Err(CntcError::NotSupported(format!(
+                "VPITCH_ROL = {} (cntc_setwheelsetvelocity params(1)): only forward rolling \
+                 (VPITCH_ROL > 0) is supported",
+                self.roller_rad_per_s
+            )));
+        }
+        if x_ws != 0.0 {
+            return Err(CntcError::NotSupported(format!(
+                "X_WS = {} (cntc_setwheelsetposition params(1)): the wheelset stands over the \
+                 rollers' top (X_WS = 0) only",
+                u.len_out(x_ws)
+            )));
+        }
+        Ok(())
     }
 
     /// Checks the configuration for what this library solves.
@@ -1346,6 +1441,13 @@ impl WheelRail {
                     .into(),
             ));
         }
+        if d.force == 1 && self.is_roller() {
+            return Err(CntcError::NotSupported(
+                "F = 1 (a prescribed total force FX_WS) on a roller rig (C1 = 4, 5) is not \
+                 supported: give the pitch rate VPITCH (F = 0)"
+                    .into(),
+            ));
+        }
         if d.force == 1 && self.flexibility.iter().any(|v| *v != 0.0) {
             return Err(CntcError::NotSupported(
                 "F = 1 (a prescribed total force FX_WS) with flexible wheelset deviations \
@@ -1368,7 +1470,9 @@ impl WheelRail {
             return false;
         }
         match &self.track {
-            Some(Ok(track)) => *pair.track() == track.for_side(side, &self.rail_deviation),
+            Some(Ok(track)) => {
+                *pair.track() == track.for_side(side, &self.rail_deviation, self.is_roller())
+            }
             _ => true,
         }
     }
@@ -1465,7 +1569,7 @@ impl WheelRail {
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
-                track.for_side(side, &self.rail_deviation),
+                track.for_side(side, &self.rail_deviation, self.is_roller()),
                 WheelsetData {
                     flange_back_distance_m: fb_distance_m,
                     nominal_radius_m: dims.nominal_radius_m,
@@ -1588,12 +1692,22 @@ impl WheelRail {
         let dims = slot(&self.wheelset, "the wheelset dimensions have not been set")?;
         let [s_ws, y_ws, z_ws, roll, yaw, _pitch] = self.position;
         let [vs, vy, vz, vroll, vyaw, vpitch] = self.velocity;
-        if vs <= 0.0 {
+        let roller = self.is_roller();
+        if roller {
+            self.check_roller(s_ws)?;
+        } else if vs <= 0.0 {
             return Err(CntcError::NotSupported(format!(
                 "VS_WS = {} (cntc_setwheelsetvelocity): only forward rolling (VS > 0) is supported",
                 u.velocity_out(vs)
             )));
         }
+        // The reference speed of the friction laws: the forward speed, on
+        // a roller its surface speed at the nominal radius.
+        let v_ref = if roller {
+            self.roller_rad_per_s * track_roller_radius(&self.track)
+        } else {
+            vs
+        };
         let load = if self.config.digits.norm == 1 {
             let fz = self.vertical_force_n.ok_or_else(|| {
                 CntcError::Input("N = 1 needs the vertical force: cntc_setverticalforce".into())
@@ -1610,15 +1724,16 @@ impl WheelRail {
         let material = self.config.material.combined()?;
         let start = self.config.solver.start;
         let (friction, friction_table) = match &self.config.friction_by_angle {
-            None => (self.config.friction.friction(vs, start), None),
-            Some((angles, laws)) => friction_by_angle(angles, laws, vs, start)?,
+            None => (self.config.friction.friction(v_ref, start), None),
+            Some((angles, laws)) => friction_by_angle(angles, laws, v_ref, start)?,
         };
         let o = SolverOrientation::of(roll, yaw, vroll, vyaw, vpitch);
         let mut position = WheelsetPosition {
             lateral_m: y_ws,
             yaw_rad: o.yaw_rad,
             roll_rad: Some(o.roll_rad),
-            track_s_m: s_ws,
+            // X_WS on a roller rig (zero, checked), not a track position.
+            track_s_m: if roller { 0.0 } else { s_ws },
         };
         let mut velocity = WheelsetVelocity {
             forward_m_per_s: vs,
@@ -1664,6 +1779,7 @@ impl WheelRail {
             lateral_m_per_s: vy_r,
             vertical_m_per_s: vz_r,
             roll_rad_per_s: vroll_r,
+            roller_rad_per_s: if roller { self.roller_rad_per_s } else { 0.0 },
         };
         let mut rail_slices: [Option<Arc<RailSlices>>; 2] = Default::default();
         if let Some(Ok(rail)) = &self.rail {

@@ -2,7 +2,8 @@
 
 Runs module 1 cases with absolute rail placement, rail deviations and
 wheelset flexibility (CONTACT's test-rollers2.inp cases 1a-1e and variations
-of them) through CONTACT's own Python interface (`python_intfc`, ctypes) on
+of them), roller rigs (C1 = 4, 5: test-rollers2.inp cases 2a, 2e, 3a-3c)
+and track curvature (CURV) through CONTACT's own Python interface (`python_intfc`, ctypes) on
 the library LIBRARY (CONTACT's contact_addon_linux64.so or railcontact's,
 built with crates/cntc/build-lib.sh), and prints per case and patch FN, FX,
 FS, MZ, the creepages, the approach and the contact location (track y, z,
@@ -13,7 +14,8 @@ contact angle; rail y, z; wheel y, z). Run it once per library and compare.
                 in bin/, where python_intfc looks)
 
 The profiles are the repository's (crates/solver/profiles: circ_r100.prw,
-flat_plane.prr, from CONTACT's test bank). Needs numpy.
+circ_r100.prr, flat_plane.prr, flat_plane.prw, flat_ang200.prr, from
+CONTACT's test bank). Needs numpy.
 """
 import os
 import shutil
@@ -35,8 +37,9 @@ def load(intfc, library):
     return cntc
 
 
-# Each case: (name, c1, norm, z_or_fz, track params (Z=3, 11 values),
-# wheelset position (6), velocity (6), flexibility (12) or None).
+# Each case: (name, c1, norm, z_or_fz, track params (Z=3, 11 values, or 12
+# with CURV after NOMRAD), wheelset position (6), velocity (6; on a roller
+# rig VPITCH_ROL first), flexibility (12) or None {, wheelset dimensions}).
 def cases():
     r = 'flat_plane.prr'
     w = 'circ_r100.prw'
@@ -77,6 +80,67 @@ def cases():
         ('dev-mbench', 1, 1, 1.0e4, 'MBench_UIC60_v3.prr', 'MBench_S1002_v3.prw',
          [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 1.0, 0.2, 0.003, 1.0, 0.5, 0.01],
          [0, 2.0, 0.0, 0.0, 0.0, 0], [2000.0, 0.0, 0.0, 0.0, 0.0, -4.34], None),
+    ] + roller_cases() + curvature_cases()
+
+
+def roller_cases():
+    """test-rollers2.inp's roller rig cases (C1 = 5, NOMRAD_R = 400 mm)."""
+    bus = [300.0, -50.0, 133.33333]
+    ellipsoid = [200.0, -100.0, 133.33333]
+
+    def rig(dev=(0.0,) * 6, curv=None):
+        head = [-1.0, 200.0, 0.0, 0.0, 400.0]
+        return head + ([] if curv is None else [curv]) + list(dev)
+    vel = [0.25, 0.0, 0.0, 0.0, 0.0, -0.75]
+    return [
+        # 2a: the bus (a cylinder R 133 mm) on an ellipsoidal roller
+        ('2a', 5, 0, 0.16, 'circ_r100.prr', 'flat_plane.prw', rig(),
+         [0, 0, 0.16, 0, 0, 0], vel, None, bus),
+        # 2e: the roller tilted by the rail deviation DROLL = 0.1 rad
+        ('2e', 5, 0, 0.16, 'circ_r100.prr', 'flat_plane.prw',
+         rig((0.0, 0.4996, 0.1, 0.0, 0.0, 0.0)), [0, 0, 0.16, 0, 0, 0], vel, None, bus),
+        # 3a: an ellipsoid (R 133 mm, lateral 100 mm) on a conical roller
+        ('3a', 5, 0, -1.870, 'flat_ang200.prr', 'circ_r100.prw', rig(),
+         [0, 0, -1.870, 0, 0, 0], [0.24381, 0.0, 0.0, 0.0, 0.0, -0.75], None, ellipsoid),
+        # 3b: on a cylindrical roller tilted by DROLL = 0.2 rad
+        ('3b', 5, 0, -1.870, 'flat_plane.prr', 'circ_r100.prw',
+         rig((0.0, 0.0, 0.2, 0.0, 0.0, 0.0)), [0, 0, -1.870, 0, 0, 0],
+         [0.24381, 0.0, 0.0, 0.0, 0.0, -0.75], None, ellipsoid),
+        # 3c: on the conical roller with a wheelset roll of 0.266667 rad
+        ('3c', 5, 0, -56.60956, 'flat_ang200.prr', 'circ_r100.prw', rig(),
+         [0, 0, -56.60956, 0.266667, 0, 0], [0.2451499, 0.0, 0.0, 0.0, 0.0, -0.75], None,
+         ellipsoid),
+        # 3a on a track: the cone's contact on a prismatic rail
+        ('3a-track', 1, 0, -1.870, 'flat_ang200.prr', 'circ_r100.prw',
+         [-1.0, 200.0, 0.0, 0.0, 0.0] + [0.0] * 6, [0, 0, -1.870, 0, 0, 0],
+         [100.0, 0.0, 0.0, 0.0, 0.0, -0.7623], None, ellipsoid),
+        # 2a on the left roller, with a load, a lateral rate and creepage
+        ('2a-left-load', 4, 1, 3.0e4, 'circ_r100.prr', 'flat_plane.prw',
+         [-1.0, -200.0, 0.0, 0.0, 400.0] + [0.0] * 6, [0, 0.5, 0.0, 0, 0, 0],
+         [0.25, 1.0, 0.0, 0.0, 0.001, -0.751], None, bus),
+        # 3a yawed by 0.02 rad (the contact ahead of the axle on the cone)
+        ('3a-yaw', 5, 1, 5.0e4, 'flat_ang200.prr', 'circ_r100.prw', rig(),
+         [0, 0, 0.0, 0, 0.02, 0], [0.24381, 0.0, 0.0, 0.0, 0.0, -0.75], None, ellipsoid),
+        # 2a with a track curvature of 1/(20 m)
+        ('2a-curv', 5, 1, 3.0e4, 'circ_r100.prr', 'flat_plane.prw', rig(curv=5.0e-5),
+         [0, 0, 0.0, 0, 0, 0], vel, None, bus),
+    ]
+
+
+def curvature_cases():
+    """Track curvature CURV on a track (C1 = 0, 1)."""
+    no_dev = [0.0] * 6
+    vel = [100.0, 0.0, 0.0, 0.0, 0.0, -1.0]
+    return [
+        # 1a with a load and CURV = 1/(100 m), right and left
+        ('curv', 1, 1, 5.0e4, 'flat_plane.prr', 'circ_r100.prw',
+         [-1.0, 200.0, 0.0, 0.0, 0.0, 1.0e-5] + no_dev, [0, 0, 0.0, 0, 0, 0], vel, None),
+        ('curv-left', 0, 1, 5.0e4, 'flat_plane.prr', 'circ_r100.prw',
+         [-1.0, -200.0, 0.0, 0.0, 0.0, 1.0e-5] + no_dev, [0, 0, 0.0, 0, 0, 0], vel, None),
+        # the Manchester benchmark in a left-hand curve of 300 m
+        ('curv-mbench', 1, 1, 1.0e4, 'MBench_UIC60_v3.prr', 'MBench_S1002_v3.prw',
+         [14.0, 0.0, 1435.0, 0.0, 0.0, -1.0 / 300e3] + no_dev, [0, 2.0, 0.0, 0.0, 0.001, 0],
+         [2000.0, 0.0, 0.0, 0.0, 0.0, -4.34], None),
     ]
 
 
@@ -100,7 +164,8 @@ def run(cntc, only):
     import numpy as np
     CNTC, _, ierror = cntc.initlibrary(' ', ' ', ' ', 0)
     assert ierror == 0, ierror
-    for ire, (name, c1, norm, zf, rail, wheel, track, pos, vel, flex) in enumerate(cases(), 1):
+    for ire, case in enumerate(cases(), 1):
+        name, c1, norm, zf, rail, wheel, track, pos, vel, flex = case[:10]
         if only and name not in only:
             continue
         wheelrail_element(cntc, CNTC, ire, c1, norm)
@@ -111,7 +176,12 @@ def run(cntc, only):
         cntc.settrackdimensions(ire, 3, np.array(track, dtype=float))
         rp = [1.0, 0.0]
         cntc.setprofileinputfname(ire, os.path.join(PROFILES, rail), [-1, 0, 0], rp)
-        dims = [1360.0, -70.0, 460.0] if rail.startswith('MBench') else [200.0, -100.0, 100.0]
+        if len(case) > 10:
+            dims = case[10]
+        elif rail.startswith('MBench'):
+            dims = [1360.0, -70.0, 460.0]
+        else:
+            dims = [200.0, -100.0, 100.0]
         cntc.setwheelsetdimensions(ire, 3, np.array(dims))
         cntc.setprofileinputfname(ire, os.path.join(PROFILES, wheel), [-1, 0, 0], rp)
         e = 5 if flex else 3

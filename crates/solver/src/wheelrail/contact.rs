@@ -113,7 +113,7 @@ use crate::wheelrail::search::{
 use crate::wheelrail::slices::RailSlices;
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
-    CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, WheelsetPosition,
+    CurveSample, PlacedRail, Side, TrackData, WheelRailError, WheelRailPair, WheelsetPosition,
     WheelsetVelocity, SAMPLE_SPACING_M,
 };
 
@@ -469,6 +469,14 @@ pub struct RailMotion {
     pub vertical_m_per_s: f64,
     /// Rotation rate about x \[rad/s\] (right-hand rule).
     pub roll_rad_per_s: f64,
+    /// A roller's angular velocity about its axle (track y) \[rad/s\],
+    /// positive for forward rolling (CONTACT's VPITCH_ROL: the roller's top
+    /// moves backwards, as a track does under a wheelset moving forwards);
+    /// only on a roller rig ([`TrackData::roller_radius_m`]), 0 on a
+    /// track. The roller's surface moves at this rate times its radius at
+    /// each point (the nominal radius less the point's z), and the
+    /// wheelset's forward speed is then usually 0.
+    pub roller_rad_per_s: f64,
 }
 
 impl RailMotion {
@@ -487,6 +495,19 @@ impl RailMotion {
             [w, 0.0, 0.0],
         )
     }
+}
+
+/// The reference speed of the creepages when no patch is at hand
+/// \[m/s\]: the wheelset's forward speed, plus on a roller rig the
+/// surface speed at the nominal radius of the first solved side's roller
+/// (free rolling of the wheels, the force-controlled pitch rate and the
+/// slip-velocity laws take it).
+pub(crate) fn nominal_rolling_speed(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
+    let roller = match (pair.track().roller_radius_m, input.sides.first()) {
+        (Some(r), Some(side)) => r * input.rail_motion[side.index()].roller_rad_per_s,
+        _ => 0.0,
+    };
+    input.velocity.forward_m_per_s + roller
 }
 
 impl WheelRailInput {
@@ -1254,7 +1275,7 @@ fn creepages(
     pose: &SidePose,
     side: Side,
     velocity: &WheelsetVelocity,
-    rail: (&RailMotion, &PlacedRail),
+    rail: (&RailMotion, &PlacedRail, &TrackData),
     omega: f64,
     loaded: Option<(f64, f64)>,
 ) -> (Creepages, f64) {
@@ -1275,7 +1296,6 @@ fn creepages(
     let a = pose.axle();
     let spin = cross([omega * a[0], omega * a[1], omega * a[2]], r);
     let rest = cross(w, r);
-    let speed = 0.5 * ((v[0] + rest[0]).abs() + spin[0].abs());
     for k in 0..3 {
         w[k] += omega * a[k];
     }
@@ -1285,14 +1305,21 @@ fn creepages(
         v[2] + rest[2] + spin[2],
     ];
     // The rail's own motion at its point of the patch (CONTACT's), taken
-    // off the wheel's.
-    let (motion, placed) = rail;
-    if *motion != RailMotion::default() {
-        let (vr, wr) = motion.in_side_frame(side, placed.to_side(0.0, 0.0), p[1], p[2]);
-        for k in 0..3 {
-            vw[k] -= vr[k];
-            w[k] -= wr[k];
-        }
+    // off the wheel's: its deviation's rates, a roller's rotation, and the
+    // track frame's turning in a curve.
+    let (motion, placed, track) = rail;
+    let (vr, wr) = rail_point_velocity(motion, placed, track, side, velocity, p);
+    let speed = match track.roller_radius_m {
+        // CONTACT's reference velocity on a roller: the mean of the two
+        // surfaces' speeds along x.
+        Some(_) => 0.5 * (vr[0] + vw[0]).abs(),
+        // On a track: the mean of the wheelset's speed relative to the
+        // rail and the wheel's circumferential speed.
+        None => 0.5 * ((v[0] + rest[0] - vr[0]).abs() + spin[0].abs()),
+    };
+    for k in 0..3 {
+        vw[k] -= vr[k];
+        w[k] -= wr[k];
     }
     let t = geom.tangent();
     let n = [0.0, geom.normal[0], geom.normal[1]];
@@ -1303,6 +1330,51 @@ fn creepages(
         spin_per_m: -dot(w, n) / speed,
     };
     (creep, speed)
+}
+
+/// Velocity and rotation rate (side frame) of the rail's material point
+/// `p` (x, q, z): the rail's deviation rates ([`RailMotion`]), a roller's
+/// rotation about its axle (at z = its nominal radius, x = 0) at
+/// `roller_rad_per_s`, and in a curve the rails' rotation about the
+/// track's z axis at -V k relative to the turning track frame, V the
+/// forward speed (a roller's surface speed at `p`), as CONTACT's
+/// `wr_creep_cref`: the same as the wheelset turning the other way about
+/// the track's centre line, so that its absolute yaw rate is its yaw
+/// rate plus V k.
+fn rail_point_velocity(
+    motion: &RailMotion,
+    placed: &PlacedRail,
+    track: &TrackData,
+    side: Side,
+    velocity: &WheelsetVelocity,
+    p: [f64; 3],
+) -> ([f64; 3], [f64; 3]) {
+    let (mut vr, mut wr) = if *motion == RailMotion::default() {
+        ([0.0; 3], [0.0; 3])
+    } else {
+        motion.in_side_frame(side, placed.to_side(0.0, 0.0), p[1], p[2])
+    };
+    let turning_speed = match track.roller_radius_m {
+        Some(radius) => {
+            // omega e_y x (p - c), c = (0, q, radius): the roller's top
+            // (z < radius) moves backwards for omega > 0.
+            let omega = motion.roller_rad_per_s;
+            vr[0] += omega * (p[2] - radius);
+            vr[2] -= omega * p[0];
+            wr[1] += omega;
+            omega * (radius - p[2])
+        }
+        None => velocity.forward_m_per_s,
+    };
+    let k = track.curvature_per_m;
+    if k != 0.0 {
+        // In the side frame the rotation about z is s times the track's.
+        let psi = -side.sign() * turning_speed * k;
+        vr[0] -= psi * p[1];
+        vr[1] += psi * p[0];
+        wr[2] += psi;
+    }
+    (vr, wr)
 }
 
 /// Curvature B of h(s) ~ h0 + B (s - s0)^2 about the patch minimum [1/m].
@@ -1585,6 +1657,7 @@ pub fn solve_wheelset_warm(
     warm: &mut WarmStart,
 ) -> Result<WheelRailSolution, WheelRailError> {
     validate(input)?;
+    validate_on(pair, input)?;
     let t0 = Instant::now();
     let rigid = rigid_position_from(
         pair,
@@ -1754,7 +1827,7 @@ pub(crate) fn solve_pitch(
         return Ok((omega, wheels_at(omega)?, None));
     };
     let key = TOTAL_LONGITUDINAL_FORCE_KEY;
-    let v = input.velocity.forward_m_per_s;
+    let v = nominal_rolling_speed(pair, input);
     let r0 = pair.wheelset().nominal_radius_m;
     let omega_of = |xi0: f64| -(1.0 + xi0) * v / r0;
     let total = |w: &[WheelResult]| w.iter().map(|w| w.force_track_n[0]).sum::<f64>();
@@ -1838,7 +1911,7 @@ pub(crate) fn pitch_rate(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
     input
         .velocity
         .pitch_rad_per_s
-        .unwrap_or(-input.velocity.forward_m_per_s / pair.wheelset().nominal_radius_m)
+        .unwrap_or(-nominal_rolling_speed(pair, input) / pair.wheelset().nominal_radius_m)
 }
 
 pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
@@ -1855,7 +1928,10 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         ));
     }
     let v = &input.velocity;
-    require_positive("velocity.forward_m_per_s", v.forward_m_per_s)?;
+    require_finite("velocity.forward_m_per_s", v.forward_m_per_s)?;
+    for m in &input.rail_motion {
+        require_finite("rail_motion.roller_rad_per_s", m.roller_rad_per_s)?;
+    }
     require_finite("velocity.lateral_m_per_s", v.lateral_m_per_s)?;
     require_finite("velocity.vertical_m_per_s", v.vertical_m_per_s)?;
     require_finite("velocity.roll_rad_per_s", v.roll_rad_per_s)?;
@@ -1949,9 +2025,10 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
                 ),
             ));
         }
-        // Each patch's own rolling speed replaces the law's.
+        // Each patch's own rolling speed replaces the law's (one > 0 here:
+        // the rolling speed is checked with the pair).
         let at_speed = SlipVelocityLaw {
-            rolling_speed_m_per_s: v.forward_m_per_s,
+            rolling_speed_m_per_s: v.forward_m_per_s.abs().max(1.0),
             ..law
         };
         at_speed.validate()?;
@@ -1977,6 +2054,67 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         return Ok(());
     }
     Ok(f.validate()?)
+}
+
+/// The checks of `input` that need its track: the rolling speed, and a
+/// roller's rate only on a roller rig.
+pub(crate) fn validate_on(
+    pair: &WheelRailPair,
+    input: &WheelRailInput,
+) -> Result<(), WheelRailError> {
+    let v = input.velocity.forward_m_per_s;
+    match pair.track().roller_radius_m {
+        None => {
+            require_positive("velocity.forward_m_per_s", v)?;
+            if input.rail_motion.iter().any(|m| m.roller_rad_per_s != 0.0) {
+                return Err(WheelRailError::invalid(
+                    "rail_motion.roller_rad_per_s",
+                    "a roller's rate needs a roller rig (track.roller_radius_m)",
+                ));
+            }
+        }
+        Some(radius) => {
+            if v < 0.0 {
+                return Err(WheelRailError::invalid(
+                    "velocity.forward_m_per_s",
+                    "must be >= 0 on a roller rig (usually 0: the roller turns)",
+                ));
+            }
+            for side in &input.sides {
+                let w = input.rail_motion[side.index()].roller_rad_per_s;
+                if v + w * radius <= 0.0 {
+                    return Err(WheelRailError::invalid(
+                        "rail_motion.roller_rad_per_s",
+                        format!(
+                            "the {} roller must roll forwards (> 0 rad/s), got {w}",
+                            side.name()
+                        ),
+                    ));
+                }
+            }
+            if matches!(
+                input.settings.model,
+                WheelRailModel::Cect | WheelRailModel::Auto
+            ) {
+                return Err(WheelRailError::invalid(
+                    "model",
+                    format!(
+                        "the conformal method (model \"{}\") lays a prismatic rail's surface, \
+                         not a roller's: give \"exact\" or a Hertz model",
+                        input.settings.model.name()
+                    ),
+                ));
+            }
+            if input.rail_slices.iter().any(Option::is_some) {
+                return Err(WheelRailError::invalid(
+                    "track.rail_profile",
+                    "a rail varying along the track (a slices file) lies on a track, not on \
+                     a roller: give a rail profile file",
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A first estimate of the vertical approach that carries `force` on the
@@ -2437,7 +2575,11 @@ fn build_patch(
     // With `loaded`, the wheel's vertical approach (CONTACT's creepages,
     // see [`creepages`]): the patch's normal interpenetration at it.
     let loaded = loaded.map(|delta| (delta, delta * geom.normal[1] - lateral_curvature(&geom).0));
-    let motion = (&input.rail_motion[side.index()], pair.rail(side));
+    let motion = (
+        &input.rail_motion[side.index()],
+        pair.rail(side),
+        pair.track(),
+    );
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, loaded);
     let rail = pair.rail(side);
     let friction = patch_friction(rail, &geom, input, speed);
@@ -2599,7 +2741,7 @@ fn hertz_curvatures(kx: f64, b: f64) -> (f64, f64) {
 /// and the lateral curvature `b` [1/m].
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn hertz_patch(
-    rail: &PlacedRail,
+    (rail, track): (&PlacedRail, &TrackData),
     geom: PatchGeometry,
     hmin: f64,
     kx: f64,
@@ -2609,7 +2751,7 @@ pub(crate) fn hertz_patch(
     input: &WheelRailInput,
     omega: f64,
 ) -> PatchWork {
-    let motion = (&input.rail_motion[side.index()], rail);
+    let motion = (&input.rail_motion[side.index()], rail, track);
     let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, None);
     PatchWork {
         friction: patch_friction(rail, &geom, input, speed),
@@ -3862,6 +4004,7 @@ mod tests {
             lateral_m_per_s: vy,
             vertical_m_per_s: vz,
             roll_rad_per_s: 0.0,
+            roller_rad_per_s: 0.0,
         }; 2];
         let mut wheelset_moves = base.clone();
         wheelset_moves.velocity.lateral_m_per_s = -vy;

@@ -113,5 +113,5 @@ pub use table::{
 pub use temperature::{PatchTemperatures, WheelRailThermal};
 pub use wheelset::{
     RailDeviation, RailPlacement, Side, TrackData, WheelRailError, WheelRailPair, WheelsetData,
-    WheelsetPosition, WheelsetVelocity,
+    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };

@@ -164,6 +164,8 @@ fn key(
     ] {
         num(&mut k, v);
     }
+    num(&mut k, track.roller_radius_m.unwrap_or(0.0));
+    num(&mut k, track.curvature_per_m);
     match wheelset.flange_back_y_m {
         None => k.push(0),
         Some(y) => {

@@ -1238,6 +1238,30 @@ pub fn split_intervals(
     out
 }
 
+/// A lateral sample of the gap to a prismatic rail, `sample` (the wheel's
+/// closest point at `dx_m` from the reference, which lies at `x_ref_m`),
+/// with a roller's curvature `kr` along x (the roller's top at x = 0)
+/// added: k_w (x - dx)^2 / 2 + k_r (x + x_ref)^2 / 2 is
+/// (k_w + k_r) (x - d)^2 / 2 plus a constant, d = (k_w dx - k_r x_ref) /
+/// (k_w + k_r) and the constant k_w k_r (dx + x_ref)^2 / (2 (k_w + k_r)),
+/// so that the patch's gap keeps its form with the combined curvature
+/// (both bodies curved along x, as two crossed cylinders). The sample
+/// unchanged for kr = 0 (a track).
+fn with_roller(sample: LateralSample, kr: f64, x_ref_m: f64) -> LateralSample {
+    let kw = sample.kx_per_m;
+    let k = kw + kr;
+    if kr == 0.0 || k <= 0.0 {
+        return sample;
+    }
+    let e = sample.dx_m + x_ref_m;
+    LateralSample {
+        gap_m: sample.gap_m + 0.5 * kw * kr * e * e / k,
+        dx_m: (kw * sample.dx_m - kr * x_ref_m) / k,
+        kx_per_m: k,
+        ..sample
+    }
+}
+
 /// Samples (s, lambda) of a curve in the patch frame, increasing s, within
 /// `s_lim`, from its `len` points (`point(i)`: q, z and what rides along):
 /// the run of points through point `start` along which s is
@@ -1411,15 +1435,30 @@ pub fn patch_geometry_about(
             (c.q_m, j, [sa, ca], c.contact_angle_rad, li, lref)
         }
     };
+    // On a roller the gap's minimum along x lies between the wheel's
+    // closest point (the locus, for a prismatic rail) and the roller's top
+    // (x = 0), at kw / (kw + kr) of the locus point's x (CONTACT's
+    // reference point there): the reference is moved to it.
+    let kr = rail.roller_curvature_per_m(&rs[j]);
+    let lref = if kr > 0.0 && lref.kx_per_m + kr > 0.0 {
+        LocusPoint {
+            x_m: lref.x_m * lref.kx_per_m / (lref.kx_per_m + kr),
+            ..lref
+        }
+    } else {
+        lref
+    };
     let zref = gap.rail_z_at(qref);
     let t = [normal[1], -normal[0]];
     let proj = |k: usize| (gap.q_m(k) - qref) * t[0] + (gap.z_rail_m[k] - zref) * t[1];
     let s_range_m = [proj(k0) - margin_m, proj(k1) + margin_m];
     let lim = [s_range_m[0] - 1e-3, s_range_m[1] + 1e-3];
     let origin = [qref, zref];
+    // A roller's curvature along x rides along with its samples (0 on a
+    // track).
     let rail_pts = to_patch_frame(
         rs.len(),
-        |i| (rs[i].q_m, rs[i].z_m, ()),
+        |i| (rs[i].q_m, rs[i].z_m, rail.roller_curvature_per_m(&rs[i])),
         j,
         origin,
         normal,
@@ -1452,24 +1491,31 @@ pub fn patch_geometry_about(
     let mut lateral = Vec::with_capacity(n);
     for i in 0..n {
         let s = (first + i as f64) * ds;
-        let (Some((lr, _, _, _)), Some((lw, pa, pb, f))) =
+        let (Some((lr, ra, rb, fr)), Some((lw, pa, pb, f))) =
             (interp(&rail_pts, s), interp(&wheel_pts, s))
         else {
             continue;
         };
         let mix = |u: f64, v: f64| u + f * (v - u);
-        lateral.push(LateralSample {
-            s_m: s,
-            gap_m: lr - lw + g * normal[1],
-            dx_m: mix(pa.x_m, pb.x_m) - lref.x_m,
-            kx_per_m: mix(pa.kx_per_m, pb.kx_per_m),
-        });
+        lateral.push(with_roller(
+            LateralSample {
+                s_m: s,
+                gap_m: lr - lw + g * normal[1],
+                dx_m: mix(pa.x_m, pb.x_m) - lref.x_m,
+                kx_per_m: mix(pa.kx_per_m, pb.kx_per_m),
+            },
+            ra + fr * (rb - ra),
+            lref.x_m,
+        ));
     }
     if lateral.len() < 2 {
         return None;
     }
+    // On a roller the reference lies on its surface at the reference's x
+    // (CONTACT's contact point), below the profile's point.
+    let [dq, dz] = rail.roller_drop_m(origin[0], origin[1], lref.x_m);
     Some(PatchGeometry {
-        reference_m: origin,
+        reference_m: [origin[0] + dq, origin[1] + dz],
         x_m: lref.x_m,
         normal,
         contact_angle_rad,

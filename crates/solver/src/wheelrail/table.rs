@@ -93,15 +93,15 @@ use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::wheelrail::contact::{
     finish, hertz_patch, load_iteration, normal_per_vertical, solve_pitch, solve_wheelset_warm,
-    validate, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
+    validate, validate_on, wheel_fastsim, LoadResult, PatchWork, Timing, WarmStart, WheelLoad,
+    WheelRailInput, WheelRailModel, WheelRailSolution, WheelResult, CAP_FACTOR,
 };
 use crate::wheelrail::search::{
     find_roll, parabola_vertex, rail_normal_at, wheel_locus, LocusFrame, LocusPoint, PatchGeometry,
     RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
 };
 use crate::wheelrail::wheelset::{
-    CurveSample, PlacedRail, Side, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
+    CurveSample, PlacedRail, Side, TrackData, WheelRailError, WheelRailPair, SAMPLE_SPACING_M,
 };
 
 /// Potential contacts are the minima of the vertical gap up to this far
@@ -299,6 +299,12 @@ impl ContactTable {
     /// Runs the contact search on the grid of `settings` for `pair` (which
     /// the table keeps a copy of), on all cores.
     pub fn build(pair: &WheelRailPair, settings: &TableSettings) -> Result<Self, WheelRailError> {
+        if pair.track().roller_radius_m.is_some() {
+            return Err(WheelRailError::invalid(
+                "track.roller_radius_m",
+                "a contact table is built for a prismatic rail, not a roller rig",
+            ));
+        }
         let t0 = Instant::now();
         let lateral = Axis::new(
             settings.lateral_range_m,
@@ -817,6 +823,7 @@ fn approach_estimate(c: &Evaluated, input: &WheelRailInput, force: f64) -> f64 {
 /// The patch of contact `c` at the rigid position.
 fn patch(
     rail: &PlacedRail,
+    track: &TrackData,
     c: &Evaluated,
     pose: &SidePose,
     side: Side,
@@ -839,7 +846,7 @@ fn patch(
         locus_index: 0,
     };
     hertz_patch(
-        rail,
+        (rail, track),
         geom,
         c.gap_m * cos,
         c.locus.kx_per_m,
@@ -889,7 +896,17 @@ fn solve_wheel_tabulated(
         let tg = Instant::now();
         let mut patches: Vec<_> = reps
             .iter()
-            .map(|&i| patch(pair.rail(side), &contacts[i], pose, side, input, omega))
+            .map(|&i| {
+                patch(
+                    pair.rail(side),
+                    pair.track(),
+                    &contacts[i],
+                    pose,
+                    side,
+                    input,
+                    omega,
+                )
+            })
             .collect();
         timing.geometry_s += tg.elapsed().as_secs_f64();
         let ts = Instant::now();
@@ -956,6 +973,7 @@ pub fn solve_wheelset_tabulated_warm(
     warm: &mut WarmStart,
 ) -> Result<WheelRailSolution, WheelRailError> {
     validate(input)?;
+    validate_on(table.pair(), input)?;
     if input.settings.model != WheelRailModel::HertzFastsim {
         return solve_wheelset_warm(&table.pair, input, cache, scratch, warm);
     }

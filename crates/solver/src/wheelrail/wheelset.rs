@@ -238,7 +238,32 @@ pub struct TrackData {
     /// `droll_rad` about its profile's origin and shifted, as CONTACT's
     /// `wr_set_rail_marker` does.
     pub deviations: [RailDeviation; 2],
+    /// A roller rig (CONTACT's C1 = 4, 5) instead of a track: the rail
+    /// profiles lie on rollers of this nominal radius \[m\] whose axle runs
+    /// along y at that distance below the track plane (z = radius), the
+    /// profile's z an offset to it (see [`RailPlacement`]: the gauge point
+    /// placement shifts such a rail laterally only). The roller's surface
+    /// curves along x as well (radius `roller_radius_m - z` in the rail's
+    /// profile frame, turned with a rail's deviation), which adds to the
+    /// wheel's curvature in the gap of each patch (whose reference point,
+    /// with yaw, moves to that gap's minimum along x, on the roller's
+    /// surface), and the roller turns at
+    /// [`RailMotion::roller_rad_per_s`](crate::wheelrail::RailMotion).
+    /// No cant on a roller (`cant_rad` must be 0). `None`: a track.
+    pub roller_radius_m: Option<f64>,
+    /// Signed track curvature 1/R \[1/m\], positive in a right-hand
+    /// curve (CONTACT's CURV): the track frame turns about z at the rolling
+    /// speed times it, and the wheelset's yaw rate is relative to that
+    /// turning frame. It enters the creepages only (the rails are
+    /// prismatic), as a rotation of the rails about the track's z axis at
+    /// -V k (V the forward speed; on a roller the roller's surface speed
+    /// at the contact point), as CONTACT's `wr_creep_cref` does. 0: tangent
+    /// track.
+    pub curvature_per_m: f64,
 }
+
+/// Largest track curvature accepted \[1/m\] (a radius of 10 m).
+pub const MAX_TRACK_CURVATURE_PER_M: f64 = 0.1;
 
 /// Smallest distance between the rails taken as the roll search's scale
 /// with [`RailPlacement::Origin`] \[m\] (see [`TrackData::rail_spacing_m`]).
@@ -258,6 +283,8 @@ impl TrackData {
                 dz_m: 0.0,
                 droll_rad: 0.0,
             }; 2],
+            roller_radius_m: None,
+            curvature_per_m: 0.0,
         }
     }
 
@@ -294,6 +321,27 @@ impl TrackData {
             }
         }
         require_finite("track.cant_rad", self.cant_rad)?;
+        if let Some(r) = self.roller_radius_m {
+            require_positive("track.roller_radius_m", r)?;
+            if self.cant_rad != 0.0 {
+                return Err(WheelRailError::invalid(
+                    "track.cant_rad",
+                    "a roller rig has no cant (CONTACT ignores it there): give 0 with \
+                     track.roller_radius_m",
+                ));
+            }
+        }
+        require_finite("track.curvature_per_m", self.curvature_per_m)?;
+        if self.curvature_per_m.abs() > MAX_TRACK_CURVATURE_PER_M {
+            return Err(WheelRailError::invalid(
+                "track.curvature_per_m",
+                format!(
+                    "{} 1/m is a curve radius below {} m",
+                    self.curvature_per_m,
+                    1.0 / MAX_TRACK_CURVATURE_PER_M
+                ),
+            ));
+        }
         for d in &self.deviations {
             require_finite("track.rail_deviation.dy_m", d.dy_m)?;
             require_finite("track.rail_deviation.dz_m", d.dz_m)?;
@@ -386,6 +434,8 @@ pub struct PlacedRail {
     /// The surface on the search's lattice, which every contact search
     /// copies instead of sampling the rail again.
     surface: VerticalGap,
+    /// [`TrackData::roller_radius_m`].
+    roller_radius_m: Option<f64>,
 }
 
 /// Its spline, samples and surface.
@@ -431,6 +481,54 @@ impl PlacedRail {
     /// The surface height on the contact search's lattice (no wheel).
     pub fn surface(&self) -> &VerticalGap {
         &self.surface
+    }
+
+    /// The nominal radius of the roller this rail lies on \[m\] (None on a
+    /// track; see [`TrackData::roller_radius_m`]).
+    pub fn roller_radius_m(&self) -> Option<f64> {
+        self.roller_radius_m
+    }
+
+    /// Where the roller's surface lies at `x_m` from its top, relative to
+    /// its profile's point (q, z) (side frame) \[m\]: lower by x^2 / (2 r)
+    /// along the profile frame's z (the roller's radius r, the nominal
+    /// radius less the profile's z, turned with the rail). Zero on a
+    /// track.
+    pub fn roller_drop_m(&self, q_m: f64, z_m: f64, x_m: f64) -> [f64; 2] {
+        let Some(radius) = self.roller_radius_m else {
+            return [0.0, 0.0];
+        };
+        let r = radius - self.to_profile(q_m, z_m)[1];
+        if r <= x_m.abs() {
+            return [0.0, 0.0];
+        }
+        let drop = r - (r * r - x_m * x_m).sqrt();
+        let (s, c) = self.cant_rad.sin_cos();
+        [s * drop, c * drop]
+    }
+
+    /// The profile curvature along x of a roller's surface at the rail
+    /// sample `sample` \[1/m\]: cos(phi) / r, r the distance of
+    /// the point from the roller's axle (the nominal radius less the
+    /// profile's z, in the rail's profile frame) and phi the angle of the
+    /// surface normal from that radius (the normal curvature of a body of
+    /// revolution along its circle). 0 on a track.
+    pub fn roller_curvature_per_m(&self, sample: &CurveSample) -> f64 {
+        let Some(radius) = self.roller_radius_m else {
+            return 0.0;
+        };
+        let [_, z] = self.to_profile(sample.q_m, sample.z_m);
+        let [nq, nz] = sample.outward_normal();
+        let (s, c) = self.cant_rad.sin_cos();
+        // The normal in the profile frame (to_profile without the shift);
+        // the radius points up, -z.
+        let cos_phi = -(s * nq + c * nz);
+        let r = radius - z;
+        if r > 0.0 {
+            cos_phi / r
+        } else {
+            0.0
+        }
     }
 }
 
@@ -615,12 +713,26 @@ fn place_rail(
         offset_m: [0.0, 0.0],
         samples: Vec::new(),
         surface: VerticalGap::default(),
+        roller_radius_m: track.roller_radius_m,
     };
     let [q, z] = match track.placement {
         RailPlacement::GaugePoint {
             gauge_m,
             gauge_height_m,
-        } => gauge_point_offset(&rail, profile.name(), gauge_m, gauge_height_m, side)?,
+        } => {
+            let [q, z] = gauge_point_offset(&rail, profile.name(), gauge_m, gauge_height_m, side)?;
+            // On a roller the gauge places the rail laterally only: its
+            // profile's z = 0 lies at the nominal radius (CONTACT's
+            // `wr_set_rail_marker`, user guide on NOMRADR).
+            [
+                q,
+                if track.roller_radius_m.is_some() {
+                    0.0
+                } else {
+                    z
+                },
+            ]
+        }
         RailPlacement::Origin { q_m, z_m } => [q_m, z_m],
     };
     // The deviation in the side frame: q = s y, a roll about x turns by s
@@ -822,6 +934,8 @@ mod tests {
             },
             cant_rad: 0.05,
             deviations: Default::default(),
+            roller_radius_m: None,
+            curvature_per_m: 0.0,
         };
         let pair = placed(&plane, track).unwrap();
         for side in Side::BOTH {
@@ -848,6 +962,8 @@ mod tests {
             placement: RailPlacement::Origin { q_m, z_m },
             cant_rad: MBENCH_TRACK.cant_rad,
             deviations: Default::default(),
+            roller_radius_m: None,
+            curvature_per_m: 0.0,
         };
         let by_origin = placed(&rail, origin).unwrap();
         for side in Side::BOTH {
@@ -869,6 +985,8 @@ mod tests {
             },
             cant_rad: 0.0,
             deviations: Default::default(),
+            roller_radius_m: None,
+            curvature_per_m: 0.0,
         };
         let e = placed(&rail, track).unwrap_err();
         assert!(e.to_string().contains("track.rail_origin_y_m"), "{e}");

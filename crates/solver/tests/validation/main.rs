@@ -8,8 +8,9 @@
 //! kinetic coefficients against CONTACT (`static_kinetic`) and the
 //! interfacial (third-body) layer, elastic and elasto-plastic, against
 //! CONTACT (`interfacial_layer`), and viscoelastic bodies in steady
-//! rolling against their elastic limits and CONTACT (`viscoelastic`). Each
-//! reference number names its source.
+//! rolling against their elastic limits and CONTACT (`viscoelastic`), and
+//! roller rigs and track curvature against analytic results (`rollers`).
+//! Each reference number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
 /// and source beside it).
@@ -26,6 +27,7 @@ mod perfc_case;
 mod physics;
 mod plausibility;
 mod profiles;
+mod rollers;
 mod rolling_direction;
 mod static_kinetic;
 mod transient;
