@@ -22,8 +22,7 @@ use crate::core::viscoelastic::{Sls, Viscoelastic};
 use crate::problem::case::{
     ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FrictionLawName,
     FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection, MaterialSection,
-    Model, RollingSection, SolverSection, SteadyStartSection, StepSection, SubsurfaceSection,
-    TransientSection,
+    Model, RollingSection, SolverSection, StepSection, SubsurfaceSection, TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepForceReport,
@@ -329,7 +328,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
         transient: match &c.kinematics {
             Some(pb::patch_case::Kinematics::Transient(t)) => Some(TransientSection {
                 rolling_step_m: t.rolling_step_m,
-                steady_start: t.steady_start.as_ref().map(|s| SteadyStartSection {
+                steady_start: t.steady_start.as_ref().map(|s| Creepages {
                     creepage_long: s.creepage_long,
                     creepage_lat: s.creepage_lat,
                     spin_per_m: s.spin_per_m,

@@ -153,8 +153,10 @@ pub struct TransientSection {
     /// instead of the unloaded state (exact model): that state is solved
     /// first, at the `[load]`, and reported as `steady_start` ahead of
     /// the steps (CONTACT's steady case, T = 3, followed by transient
-    /// cases continuing it, T = 2 with P = 0).
-    pub steady_start: Option<SteadyStartSection>,
+    /// cases continuing it, T = 2 with P = 0): `creepage_long`,
+    /// `creepage_lat`, `spin_per_m`, each default 0, ranges as
+    /// `[rolling]`'s (a line contact's `creepage_long` only).
+    pub steady_start: Option<Creepages>,
     /// Distance the contact patch rolls in +x in each rolling step \[m\]
     /// (moving coordinates, see [`crate::core::problem`]): a whole number
     /// of elements `grid.window_x_m / grid.nx`, in (0, 1] m. Needed when a
@@ -162,22 +164,6 @@ pub struct TransientSection {
     pub rolling_step_m: Option<f64>,
     /// The steps, at least one.
     pub steps: Vec<StepSection>,
-}
-
-/// `transient.steady_start`: the creepages of the steady rolling state the
-/// steps start from (each default 0).
-#[derive(Debug, Clone, Copy, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SteadyStartSection {
-    /// Longitudinal creepage xi [-], in [-1, 1].
-    #[serde(default)]
-    pub creepage_long: f64,
-    /// Lateral creepage eta [-], in [-1, 1] (0 for a line contact).
-    #[serde(default)]
-    pub creepage_lat: f64,
-    /// Spin creepage phi \[1/m\], in [-1000, 1000] (0 for a line contact).
-    #[serde(default)]
-    pub spin_per_m: f64,
 }
 
 /// One step in `transient.steps`: a shift step (`shift_*`,
@@ -863,8 +849,8 @@ pub(super) fn case_motion(
             if let Some(dq) = t.rolling_step_m {
                 ranges::ROLLING_STEP.check("transient.rolling_step_m", dq)?;
             }
-            if let Some(s) = &t.steady_start {
-                steady_start = Some(s.creepages(model, line)?);
+            if let Some(c) = t.steady_start {
+                steady_start = Some(steady_start_creepages(c, model, line)?);
             }
             if t.steps.iter().any(|s| s.friction_start.is_some()) {
                 step_slip_starts = t.steps.iter().map(|s| s.friction_start).collect();
@@ -916,39 +902,33 @@ pub(super) fn case_motion(
     })
 }
 
-impl SteadyStartSection {
-    /// The creepages, checked against their ranges (a line contact rolls
-    /// with longitudinal creepage only) and `model` (exact only).
-    fn creepages(&self, model: Model, line: bool) -> Result<Creepages, CaseError> {
-        const KEY: &str = "transient.steady_start";
-        if model != Model::Exact {
-            return Err(bad(
-                KEY,
-                format!(
-                    "a steady rolling start is solved with the exact model only, not {}",
-                    model.name()
-                ),
-            ));
-        }
-        CREEPAGE_RANGE.check(&format!("{KEY}.creepage_long"), self.creepage_long)?;
-        CREEPAGE_RANGE.check(&format!("{KEY}.creepage_lat"), self.creepage_lat)?;
-        SPIN_RANGE.check(&format!("{KEY}.spin_per_m"), self.spin_per_m)?;
-        if line {
-            refuse_lateral(
-                KEY,
-                "rolls",
-                &[
-                    ("creepage_lat", self.creepage_lat != 0.0),
-                    ("spin_per_m", self.spin_per_m != 0.0),
-                ],
-            )?;
-        }
-        Ok(Creepages {
-            creepage_long: self.creepage_long,
-            creepage_lat: self.creepage_lat,
-            spin_per_m: self.spin_per_m,
-        })
+/// `transient.steady_start`'s creepages `c`, checked against their
+/// ranges (a line contact rolls with longitudinal creepage only) and
+/// `model` (exact only).
+fn steady_start_creepages(c: Creepages, model: Model, line: bool) -> Result<Creepages, CaseError> {
+    const KEY: &str = "transient.steady_start";
+    if model != Model::Exact {
+        return Err(bad(
+            KEY,
+            format!(
+                "a steady rolling start is solved with the exact model only, not {}",
+                model.name()
+            ),
+        ));
     }
+    c.check_input()
+        .map_err(|e| e.with_key_prefix("rolling", KEY))?;
+    if line {
+        refuse_lateral(
+            KEY,
+            "rolls",
+            &[
+                ("creepage_lat", c.creepage_lat != 0.0),
+                ("spin_per_m", c.spin_per_m != 0.0),
+            ],
+        )?;
+    }
+    Ok(c)
 }
 
 #[cfg(test)]

@@ -46,7 +46,7 @@ pub use grid::{GridSection, SolverSection};
 use kinematics::{case_motion, extra_rigid_slip, one_load, rolling_direction, CaseMotion};
 pub use kinematics::{
     check_shift_step, transient_step, ExtraRigidSlipSection, LoadSection, RollingSection,
-    SteadyStartSection, StepSection, TransientSection, TransientStep,
+    StepSection, TransientSection, TransientStep,
 };
 pub use materials::MaterialSection;
 use materials::{interfacial_layer, viscoelastic};
