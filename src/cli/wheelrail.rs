@@ -434,12 +434,13 @@ impl WheelrailRun {
                 (Some(_), Some(w), v) => (v.unwrap_or(0.0), w),
                 (Some(_), None, _) => {
                     return Err(bad(
-                        "invalid input `track.roller_rad_per_s`: a roller rig                          (track.roller_radius_m) needs its rollers' angular velocity",
+                        "invalid input `track.roller_rad_per_s`: a roller rig (track.roller_radius_m) needs \
+                         its rollers' angular velocity",
                     ))
                 }
                 (None, Some(_), _) => {
                     return Err(bad(
-                        "invalid input `track.roller_rad_per_s`: needs a roller rig                          (track.roller_radius_m)",
+                        "invalid input `track.roller_rad_per_s`: needs a roller rig (track.roller_radius_m)",
                     ))
                 }
                 (None, None, Some(v)) => (v, 0.0),
@@ -529,40 +530,17 @@ impl WheelrailRun {
             }; 2],
             rail_slices: [slices_l, slices_r],
         };
-        // On a roller rig the speed checked is the rollers' surface speed,
-        // named by the rollers' key.
-        let checked = match t.roller_radius_m {
-            Some(r) => {
-                if roller_rad_per_s.is_nan() || roller_rad_per_s <= 0.0 {
-                    return Err(bad(format!(
-                        "invalid input `track.roller_rad_per_s`: must be > 0 (forward rolling), \
-                         got {roller_rad_per_s}"
-                    )));
-                }
-                WheelsetVelocity {
-                    forward_m_per_s: forward_m_per_s + r * roller_rad_per_s,
-                    ..input.velocity
-                }
-            }
-            None => input.velocity,
-        };
         ranges::check_motion(
             &input.position,
-            &checked,
+            &input.velocity,
             &input.load,
             input.total_longitudinal_force_n,
+            t.roller_radius_m.map(|radius_m| ranges::Rollers {
+                radius_m,
+                rad_per_s: roller_rad_per_s,
+            }),
         )
-        .map_err(|e| {
-            let e = e.to_string();
-            bad(match t.roller_radius_m {
-                Some(_) => e.replace(
-                    "velocity.forward_m_per_s",
-                    "track.roller_rad_per_s (the rollers' surface speed, with \
-                     velocity.forward_m_per_s)",
-                ),
-                None => e,
-            })
-        })?;
+        .map_err(|e| bad(e.to_string()))?;
         Ok(Self {
             pair,
             input,

@@ -342,7 +342,13 @@ impl QuerySettings {
             yaw_rad_per_s: v.yaw_rad_per_s,
             pitch_rad_per_s: v.pitch_rad_per_s,
         };
-        ranges::check_motion(&position, &velocity, &load, total_longitudinal_force_n)?;
+        ranges::check_motion(
+            &position,
+            &velocity,
+            &load,
+            total_longitudinal_force_n,
+            None,
+        )?;
         Ok(WheelRailInput {
             position,
             velocity,

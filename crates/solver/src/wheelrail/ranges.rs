@@ -55,13 +55,30 @@ pub const NOMINAL_RADIUS: Range = Range::closed(0.05, 2.0, "m").hint(UnitHint::M
 /// flange; -0.070 for S1002).
 pub const FLANGE_BACK_Y: Range = Range::symmetric(0.5, "m").hint(UnitHint::Millimetre);
 
+/// The rollers of a roller rig as [`check_motion`] takes them.
+#[derive(Debug, Clone, Copy)]
+pub struct Rollers {
+    /// Nominal radius \[m\] (`track.roller_radius_m`).
+    pub radius_m: f64,
+    /// Angular velocity \[rad/s\], > 0 rolling forwards
+    /// (`track.roller_rad_per_s`).
+    pub rad_per_s: f64,
+}
+
+/// Case files' key of the rollers' angular velocity.
+const ROLLER_RATE_KEY: &str = "track.roller_rad_per_s";
+
 /// Checks a motion and load against their ranges; the error names the
-/// key as a case file and a request both spell it.
+/// key as a case file and a request both spell it. On a roller rig
+/// (`rollers`) the rolling speed checked is the rollers' surface speed
+/// (with the wheelset's forward speed, usually 0), named by the rollers'
+/// rate.
 pub fn check_motion(
     position: &WheelsetPosition,
     velocity: &WheelsetVelocity,
     load: &WheelLoad,
     total_longitudinal_force_n: Option<f64>,
+    rollers: Option<Rollers>,
 ) -> Result<(), ContactError> {
     LATERAL.check("position.lateral_m", position.lateral_m)?;
     YAW.check("position.yaw_rad", position.yaw_rad)?;
@@ -74,7 +91,30 @@ pub fn check_motion(
             format!("must be finite, got {}", position.track_s_m),
         ));
     }
-    FORWARD_SPEED.check("velocity.forward_m_per_s", velocity.forward_m_per_s)?;
+    match rollers {
+        None => FORWARD_SPEED.check("velocity.forward_m_per_s", velocity.forward_m_per_s)?,
+        Some(r) => {
+            if r.rad_per_s.is_nan() || r.rad_per_s <= 0.0 {
+                return Err(ContactError::invalid(
+                    ROLLER_RATE_KEY,
+                    format!("must be > 0 (forward rolling), got {}", r.rad_per_s),
+                ));
+            }
+            let speed = velocity.forward_m_per_s + r.radius_m * r.rad_per_s;
+            FORWARD_SPEED
+                .check(ROLLER_RATE_KEY, speed)
+                .map_err(|e| match e {
+                    ContactError::InvalidInput { key, reason } => ContactError::InvalidInput {
+                        key,
+                        reason: format!(
+                            "the rollers' surface speed (track.roller_radius_m x \
+                             track.roller_rad_per_s, with velocity.forward_m_per_s) {reason}"
+                        ),
+                    },
+                    e => e,
+                })?
+        }
+    };
     TRANSVERSE_SPEED.check("velocity.lateral_m_per_s", velocity.lateral_m_per_s)?;
     TRANSVERSE_SPEED.check("velocity.vertical_m_per_s", velocity.vertical_m_per_s)?;
     TURN_RATE.check("velocity.roll_rad_per_s", velocity.roll_rad_per_s)?;
@@ -155,7 +195,7 @@ mod tests {
             pitch_rad_per_s: None,
         };
         let load = WheelLoad::VerticalForce(1e4);
-        let e = check_motion(&position, &velocity, &load, None)
+        let e = check_motion(&position, &velocity, &load, None, None)
             .unwrap_err()
             .to_string();
         assert!(
@@ -167,7 +207,7 @@ mod tests {
             roll_rad: Some(-0.25),
             ..position
         };
-        let e = check_motion(&rolled, &velocity, &load, None)
+        let e = check_motion(&rolled, &velocity, &load, None, None)
             .unwrap_err()
             .to_string();
         assert!(
