@@ -1956,7 +1956,7 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         )
     {
         return Err(WheelRailError::invalid(
-            "settings.model",
+            "model",
             format!(
                 "a rail varying along the track (slices) needs the exact model, not '{}'",
                 input.settings.model.name()
