@@ -20,7 +20,8 @@
 //! - with TLS, given its handshake here (tokio-rustls, the configuration
 //!   of [`crate::service::tls::server_tls`]), in a task of its own so that
 //!   a slow client holds up no other; a handshake that fails is logged
-//!   (WARN, rate-limited, with the peer and rustls' reason in plain words)
+//!   (WARN, with the peer and rustls' reason in plain words; at most 20
+//!   lines per 10 s of each class, [`HandshakeFailure::log`])
 //!   and counted in `railcontact_tls_handshakes_failed_total{reason}` by
 //!   class ([`HandshakeFailure`]), one that times out too. A peer that
 //!   closes without having sent a byte (a port check) is neither;
@@ -324,7 +325,7 @@ async fn handshake(acceptor: TlsAcceptor, conn: Conn) -> Option<TlsStream<Conn>>
                 return None;
             }
             conn.metrics.tls_handshake_failed(failure.label());
-            if let Some(left_out) = CONNECTIONS_LOG.allow() {
+            if let Some(left_out) = failure.log().allow() {
                 tracing::warn!(
                     peer = %conn.info.remote,
                     reason = failure.label(),

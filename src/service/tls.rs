@@ -17,6 +17,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Duration;
 
 use rustls_pki_types::pem::PemObject;
 use rustls_pki_types::{CertificateDer, PrivateKeyDer};
@@ -26,6 +27,7 @@ use tokio_rustls::rustls::server::WebPkiClientVerifier;
 use tokio_rustls::rustls::{CertificateError, RootCertStore, ServerConfig};
 
 use crate::service::config::ServeConfig;
+use crate::service::quota::LogLimiter;
 
 /// Why the TLS settings cannot be used; each names the setting and its
 /// file.
@@ -264,6 +266,30 @@ pub enum HandshakeFailure {
 }
 
 impl HandshakeFailure {
+    /// Every class, in declaration order ([`HandshakeFailure::log`]
+    /// indexes a limiter per class by it).
+    pub const ALL: [Self; 9] = [
+        Self::NotTls,
+        Self::ClientAlert,
+        Self::NoClientCert,
+        Self::ClientCertUntrusted,
+        Self::ClientCertExpired,
+        Self::Incompatible,
+        Self::Timeout,
+        Self::Closed,
+        Self::Other,
+    ];
+
+    /// The limiter of this class's log lines: 20 per 10 s for each class,
+    /// so that a client that fails its handshake in a loop (one whose
+    /// certificate is refused reconnects at once) hides no failure of
+    /// another class.
+    pub fn log(self) -> &'static LogLimiter {
+        static LOGS: [LogLimiter; HandshakeFailure::ALL.len()] =
+            [const { LogLimiter::new(20, Duration::from_secs(10)) }; HandshakeFailure::ALL.len()];
+        &LOGS[self as usize]
+    }
+
     /// The metric's label.
     pub fn label(self) -> &'static str {
         match self {
@@ -383,6 +409,18 @@ fn alert_name(alert: rustls::AlertDescription) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `ALL` lists each class once, at its own index: each has its own
+    /// log limiter, and a flood of one leaves another's lines logged.
+    #[test]
+    fn each_handshake_failure_class_has_its_own_log_limiter() {
+        for (i, f) in HandshakeFailure::ALL.iter().enumerate() {
+            assert_eq!(*f as usize, i, "{f:?}");
+        }
+        let flood = HandshakeFailure::ClientCertUntrusted;
+        while flood.log().allow().is_some() {}
+        assert!(HandshakeFailure::NoClientCert.log().allow().is_some());
+    }
 
     /// Seconds since 1970 of a date (00:00 UTC).
     fn at(y: i32, m: u8, d: u8) -> i64 {

@@ -549,9 +549,13 @@ async fn silent_connections_are_closed_and_capped() {
     }
     let waited = t0.elapsed();
     assert!(waited >= Duration::from_millis(2900), "{waited:?}");
+    // All seven closed by their timer, none by a refusal: the page says
+    // which if not.
+    let page = metrics_page(server.metrics_addr.expect("a metrics port")).await;
     assert_eq!(
         metric(&server, "railcontact_connections_timed_out_total").await,
-        7.0
+        7.0,
+        "{page}"
     );
     assert!(
         eventually(Duration::from_secs(5), || async {
