@@ -5,8 +5,9 @@
 //! Hertz+FASTSIM, direct and with contact tables; and a co-simulation's
 //! exact steps along a smooth path, with and without the tangential
 //! tractions carried from step to step; and what the flash temperatures
-//! of the exact patches add to a step. Kernels are cached (a long-running
-//! service's steady state). See benches/README.md; run with `cargo bench --bench wheelrail`.
+//! of the exact patches add to a step; and what a roller rig and a rail
+//! varying along the track (rail slices) cost against a plain track. Kernels
+//! are cached (a long-running service's steady state). See benches/README.md; run with `cargo bench --bench wheelrail`.
 
 use std::hint::black_box;
 
@@ -16,11 +17,13 @@ use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Cr
 use railcontact::core::cache::KernelCache;
 use railcontact::core::temperature::ThermalBody;
 use railcontact::wheelrail::builtin::{load_test_input, mbench_a22_input, mbench_pair};
+use railcontact::wheelrail::builtin::{profile, MBENCH_TRACK, MBENCH_WHEELSET};
 use railcontact::wheelrail::temperature::patch_temperatures;
 use railcontact::wheelrail::{
-    solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm, solve_wheelset_warm,
-    ContactTable, SearchScratch, TableSettings, WarmStart, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSolution, WheelRailThermal,
+    load_slices, solve_wheelset, solve_wheelset_tabulated, solve_wheelset_tabulated_warm,
+    solve_wheelset_warm, ContactTable, LoadOptions, RailMotion, RailPlacement, SearchScratch, Side,
+    SplineOptions, TableSettings, TrackData, WarmStart, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSolution, WheelRailThermal, WheelsetVelocity,
 };
 
 fn pair() -> WheelRailPair {
@@ -272,5 +275,118 @@ fn bench_path(
     });
 }
 
-criterion_group!(benches, wheelset_step);
+/// A roller rig and a rail varying along the track, each beside the plain
+/// track it extends (exact model, kernels cached):
+/// - `track_a22_2mm` and `rollers_a22_2mm`: A-2.2 at 2 mm (both wheels,
+///   10 kN each, 2 m/s) on its track, and the same wheelset standing on
+///   rollers of 0.6 m radius whose surfaces move at 2 m/s;
+/// - `crossing_slices_s239` and `crossing_constant_s239`: the S1002 wheel
+///   (right wheel, 10 kN) on the UK crossing nose at S = 239 mm, given as
+///   rail slices (`uk_crossing_nose.slcs`: each element's rail height
+///   taken at its own position along the track), and on the slice at S
+///   alone as a prismatic rail (CONTACT's `mbench_locus.inp` case, as
+///   `crates/cntc/bench/slices_cases.py` runs it).
+fn variable_rail_and_roller(c: &mut Criterion) {
+    let cache = KernelCache::default();
+    let mut scratch = SearchScratch::default();
+    let (_, roll, pitch) = SHIFTS[0];
+    let track = mbench_a22_input(2.0, Some(roll), Some(pitch), WheelRailModel::Exact);
+    let track_pair = pair();
+    let rail = profile("MBench_UIC60_v3.prr", &LoadOptions::default())
+        .expect("built in")
+        .unwrap();
+    let wheel = profile("MBench_S1002_v3.prw", &LoadOptions::default())
+        .expect("built in")
+        .unwrap();
+    let roller_pair = WheelRailPair::new(
+        [&rail, &rail],
+        [&wheel, &wheel],
+        TrackData {
+            roller_radius_m: Some(0.6),
+            ..MBENCH_TRACK
+        },
+        MBENCH_WHEELSET,
+        &SplineOptions::default(),
+    )
+    .unwrap();
+    let mut rollers = track.clone();
+    rollers.velocity.forward_m_per_s = 0.0;
+    rollers.rail_motion = [RailMotion {
+        roller_rad_per_s: 2.0 / 0.6,
+        ..RailMotion::default()
+    }; 2];
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/crates/solver/profiles/uk_crossing_nose.slcs"
+    );
+    let slices = load_slices(path, &LoadOptions::default()).unwrap();
+    let nose = slices.profile_at(0.239).unwrap();
+    let crossing_pair = WheelRailPair::new(
+        [&nose, &nose],
+        [&wheel, &wheel],
+        TrackData {
+            placement: RailPlacement::Origin {
+                q_m: 0.75,
+                z_m: 0.0,
+            },
+            ..MBENCH_TRACK
+        },
+        MBENCH_WHEELSET,
+        &SplineOptions::smoothing(0.0),
+    )
+    .unwrap();
+    let mut constant = mbench_a22_input(0.81, Some(0.0), None, WheelRailModel::Exact);
+    constant.position.yaw_rad = 0.0;
+    constant.position.track_s_m = 0.239;
+    constant.sides = vec![Side::Right];
+    constant.load = WheelLoad::VerticalForce(1e4);
+    constant.velocity = WheelsetVelocity {
+        pitch_rad_per_s: Some(-4.34811810),
+        ..WheelsetVelocity::rolling(2.0)
+    };
+    let mut varying = constant.clone();
+    varying.rail_slices[Side::Right.index()] = Some(slices);
+    let mut g = c.benchmark_group("wheelset_step_roller_and_slices");
+    g.sample_size(20);
+    for (id, pair, input) in [
+        ("track_a22_2mm", &track_pair, &track),
+        ("rollers_a22_2mm", &roller_pair, &rollers),
+        ("crossing_constant_s239", &crossing_pair, &constant),
+        ("crossing_slices_s239", &crossing_pair, &varying),
+    ] {
+        let sol = solve_wheelset(pair, input, &cache, &mut scratch)
+            .unwrap_or_else(|e| panic!("{id}: {e}"));
+        let t = sol.timing;
+        eprintln!(
+            "{id}: patches {:?}, normal forces {:?} N, load iterations {:?}; search {:.2} ms, \
+             geometry {:.2} ms, normal {:.2} ms, tangential and the rest {:.2} ms",
+            sol.wheels
+                .iter()
+                .map(|w| w.patches.iter().map(|p| p.grid).collect::<Vec<_>>())
+                .collect::<Vec<_>>(),
+            sol.wheels
+                .iter()
+                .map(|w| w
+                    .patches
+                    .iter()
+                    .map(|p| p.normal_force_n.round())
+                    .collect::<Vec<_>>())
+                .collect::<Vec<_>>(),
+            sol.wheels
+                .iter()
+                .map(|w| w.load_iterations)
+                .collect::<Vec<_>>(),
+            t.search_s * 1e3,
+            t.geometry_s * 1e3,
+            t.normal_s * 1e3,
+            t.tangential_s * 1e3,
+        );
+        g.bench_function(id, |b| {
+            b.iter(|| black_box(solve_wheelset(pair, input, &cache, &mut scratch).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, wheelset_step, variable_rail_and_roller);
 criterion_main!(benches);
