@@ -253,6 +253,28 @@ fn transient() -> pb::PatchCase {
     }
 }
 
+/// [`transient`] started from steady rolling.
+fn steady_started() -> pb::PatchCase {
+    let mut c = transient();
+    if let Some(pb::patch_case::Kinematics::Transient(t)) = &mut c.kinematics {
+        t.steady_start = Some(pb::SteadyStart {
+            creepage_long: 1e-3,
+            creepage_lat: 0.0,
+            spin_per_m: 0.0,
+        });
+    }
+    c
+}
+
+fn steady_start(c: &mut pb::PatchCase) -> &mut pb::SteadyStart {
+    match &mut c.kinematics {
+        Some(pb::patch_case::Kinematics::Transient(t)) => {
+            t.steady_start.get_or_insert_with(Default::default)
+        }
+        _ => unreachable!("a transient case"),
+    }
+}
+
 fn geometry(c: &mut pb::PatchCase) -> &mut pb::GeometrySection {
     c.geometry.get_or_insert_with(Default::default)
 }
@@ -622,6 +644,24 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
             2e-5,
             m(|c, v| steps(c)[1].approach_m = Some(v)),
         ),
+        (
+            steady_started(),
+            "case.transient.steady_start.creepage_long",
+            1e-3,
+            m(|c, v| steady_start(c).creepage_long = v),
+        ),
+        (
+            steady_started(),
+            "case.transient.steady_start.creepage_lat",
+            1e-3,
+            m(|c, v| steady_start(c).creepage_lat = v),
+        ),
+        (
+            steady_started(),
+            "case.transient.steady_start.spin_per_m",
+            0.1,
+            m(|c, v| steady_start(c).spin_per_m = v),
+        ),
     ]
 }
 
@@ -827,6 +867,15 @@ async fn hostile_values_are_answered_or_refused_by_name() {
         set(&mut req, v);
         let r = client.solve_wheel_rail(req).await;
         out.record(path, format!("{v:e}"), r, wheel_finite);
+    }
+    // The exact model's narrow patches refined to a number of elements
+    // across: any count is answered (refinement is bounded) or refused
+    // by name.
+    for n in [0, 1, 3, 8, 100, u32::MAX] {
+        let mut req = wheel_query(pb::WheelRailModel::Exact);
+        req.min_elements_across = Some(n);
+        let r = client.solve_wheel_rail(req).await;
+        out.record("min_elements_across", n.to_string(), r, wheel_finite);
     }
     let total: usize = out.counts.values().sum();
     eprintln!(
