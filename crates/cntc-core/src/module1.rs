@@ -61,8 +61,9 @@
 //!   roller's surface, as CONTACT's. The creepages are relative to
 //!   CONTACT's reference speed there, the mean of the two surfaces'
 //!   speeds. The first position value is X_WS, which must be 0
-//!   (the wheelset over the rollers' top). Refused on a roller rig: F = 1
-//!   (FX_WS given), VPITCH_ROL <= 0, X_WS != 0.
+//!   (the wheelset over the rollers' top). With F = 1 (FX_WS given) the
+//!   wheelset's pitch rate is found relative to the roller's surface
+//!   speed. Refused on a roller rig: VPITCH_ROL <= 0, X_WS != 0.
 //! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0
 //!   towards the track centre for a left rail) and DROLLR turn and shift
 //!   the placed rail about its profile's origin (the solver's
@@ -70,7 +71,6 @@
 //!   cant alone, as CONTACT's `wr_set_rail_marker` does). VYRAIL, VZRAIL,
 //!   VROLLR move the rail: the solver's `RailMotion`, whose velocity at
 //!   the rail's point of each patch (CONTACT's) it takes off the wheel's.
-//!   F = 1 with VROLLR is refused.
 //! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
 //!   from the wheelset centre) and may lie outside the profile, as in
 //!   CONTACT; the solver is given the same placement from the profile's
@@ -91,7 +91,8 @@
 //!   test-rollers2.inp cases 1b, 1e). The creepages are relative to the
 //!   rolling speed of the deflected wheel about its own axle, CONTACT's to
 //!   that about the wheelset's: 0.15 % apart with DROLLW = 0.02 rad on a
-//!   100 mm wheel. Not with F = 1 (FX_WS given): refused. The solver's
+//!   100 mm wheel. With F = 1 (FX_WS given) the wheelset's pitch rate is
+//!   found as without deviations. The solver's
 //!   limit of 0.2 rad on a wheel's roll and yaw holds for the deflected
 //!   wheel (test-rollers2 case 1b, DYAWW = -0.3 rad, is refused by it).
 //! * Load: N = 1 the vertical force FZ (`cntc_setverticalforce`), N = 0 the
@@ -1433,29 +1434,6 @@ impl WheelRail {
                 "H = 3 (temperatures, cntc_settemperaturedata) in module 1 is not supported".into(),
             ));
         }
-        if d.force == 1 && self.rail_deviation[5] != 0.0 {
-            return Err(CntcError::NotSupported(
-                "F = 1 (a prescribed total force FX_WS) with a rail roll rate VROLLR \
-                 (cntc_settrackdimensions, Z = 2, 3) is not supported: give the pitch rate \
-                 VPITCH (F = 0)"
-                    .into(),
-            ));
-        }
-        if d.force == 1 && self.is_roller() {
-            return Err(CntcError::NotSupported(
-                "F = 1 (a prescribed total force FX_WS) on a roller rig (C1 = 4, 5) is not \
-                 supported: give the pitch rate VPITCH (F = 0)"
-                    .into(),
-            ));
-        }
-        if d.force == 1 && self.flexibility.iter().any(|v| *v != 0.0) {
-            return Err(CntcError::NotSupported(
-                "F = 1 (a prescribed total force FX_WS) with flexible wheelset deviations \
-                 (cntc_setwheelsetflexibility, E = 4, 5) is not supported: give the pitch rate \
-                 VPITCH (F = 0)"
-                    .into(),
-            ));
-        }
         Ok(())
     }
 
@@ -2635,7 +2613,12 @@ impl PitchProblem {
         cache: &KernelCache,
         scratch: &mut SearchScratch,
     ) -> Result<(WheelRailInput, WheelRailSolution, f64)> {
-        let v = input.velocity.forward_m_per_s;
+        // The speed the creepages are relative to: on a roller rig the
+        // roller's surface speed at its nominal radius (the wheelset stands).
+        let roller = pair.track().roller_radius_m.map_or(0.0, |radius| {
+            radius * input.rail_motion[self.side.index()].roller_rad_per_s
+        });
+        let v = input.velocity.forward_m_per_s + roller;
         let r0 = self.nominal_radius_m;
         // The solver's pitch rate is VPITCH plus a term of the roll and yaw
         // rates (SolverOrientation), which does not depend on VPITCH.
@@ -3277,13 +3260,6 @@ mod tests {
         w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3])
             .unwrap();
         let cache = KernelCache::default();
-        // A prescribed FX_WS with deviations.
-        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);
-        w.set_longitudinal_force(-1, 100.0).unwrap();
-        let e = w.calculate(&cache).unwrap_err();
-        assert_eq!(e.ierror(), flags::err::NOT_SUPPORTED);
-        assert!(e.to_string().contains("cntc_setwheelsetflexibility"), "{e}");
-        assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 0), None);
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
         let e = w.calculate(&cache).unwrap_err();

@@ -3,7 +3,9 @@
 Runs module 1 cases with absolute rail placement, rail deviations and
 wheelset flexibility (CONTACT's test-rollers2.inp cases 1a-1e and variations
 of them), roller rigs (C1 = 4, 5: test-rollers2.inp cases 2a, 2e, 3a-3c)
-and track curvature (CURV) through CONTACT's own Python interface (`python_intfc`, ctypes) on
+and track curvature (CURV), and some of them with the total force FX_WS
+prescribed (F = 1: the cases named `-fx`, VPITCH found and printed)
+through CONTACT's own Python interface (`python_intfc`, ctypes) on
 the library LIBRARY (CONTACT's contact_addon_linux64.so or railcontact's,
 built with crates/cntc/build-lib.sh), and prints per case and patch FN, FX,
 FS, MZ, the creepages, the approach and the contact location (track y, z,
@@ -41,6 +43,10 @@ def load(intfc, library):
 # with CURV after NOMRAD), wheelset position (6), velocity (6; on a roller
 # rig VPITCH_ROL first), flexibility (12) or None {, wheelset dimensions}).
 def cases():
+    return cases_flat() + roller_cases() + curvature_cases() + force_cases()
+
+
+def cases_flat():
     r = 'flat_plane.prr'
     w = 'circ_r100.prw'
     no_dev = [0.0] * 6
@@ -80,7 +86,7 @@ def cases():
         ('dev-mbench', 1, 1, 1.0e4, 'MBench_UIC60_v3.prr', 'MBench_S1002_v3.prw',
          [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 1.0, 0.2, 0.003, 1.0, 0.5, 0.01],
          [0, 2.0, 0.0, 0.0, 0.0, 0], [2000.0, 0.0, 0.0, 0.0, 0.0, -4.34], None),
-    ] + roller_cases() + curvature_cases()
+    ]
 
 
 def roller_cases():
@@ -144,6 +150,22 @@ def curvature_cases():
     ]
 
 
+# FX_WS prescribed (F = 1) [N] per case name: the pitch rate is found.
+FX_WS = {'2a-left-load-fx': -2000.0, '3a-yaw-fx': 4000.0, 'flex-fx': 3000.0,
+         'dev-fx': -3000.0}
+
+
+def force_cases():
+    """Cases of the lists above with FX_WS prescribed (F = 1): on a roller
+    rig, with wheelset flexibility and with rail deviation rates."""
+    base = {c[0]: c for c in roller_cases() + cases_without_force()}
+    return [(name,) + base[name[:-3]][1:] for name in FX_WS]
+
+
+def cases_without_force():
+    return [c for c in cases_flat() if c[0] in ('flex', 'dev')]
+
+
 def wheelrail_element(cntc, CNTC, ire, c1, norm):
     """Initializes module 1 element `ire` (wheel side c1, N digit norm):
     CONTACT's units, steady rolling, the materials and friction of the
@@ -162,6 +184,7 @@ def wheelrail_element(cntc, CNTC, ire, c1, norm):
 
 def run(cntc, only):
     import numpy as np
+    from ctypes import c_int
     CNTC, _, ierror = cntc.initlibrary(' ', ' ', ' ', 0)
     assert ierror == 0, ierror
     for ire, case in enumerate(cases(), 1):
@@ -192,7 +215,13 @@ def run(cntc, only):
         cntc.setwheelsetvelocity(ire, e, np.array(vel, dtype=float))
         if flex:
             cntc.setwheelsetflexibility(ire, e, np.array(flex, dtype=float))
+        if name in FX_WS:
+            cntc.setflags(ire, [], np.array([CNTC['ic_force']], dtype=c_int),
+                          np.array([1], dtype=c_int))
+            cntc.settangentialforces(ire, -1, FX_WS[name], 0.0)
         print_patches(cntc, ire, name, cntc.calculate(ire, -1, 0))
+        if name in FX_WS:
+            print('%s VPITCH %.9g' % (name, cntc.getwheelsetvelocity(ire)[5]))
 
 
 def print_patches(cntc, ire, name, ierr):

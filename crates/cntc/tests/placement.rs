@@ -20,7 +20,8 @@ use contact_addon::flags;
 /// One case of `placement_cases.py`: the wheel side `c1`, the track
 /// (Z = 3: 11 values), the wheelset position (its Z_WS the height with
 /// N = 0) and velocity (E = 3, or 5 with the flexibility `flex`), a vertical
-/// force `fz` (N = 1) or none (N = 0).
+/// force `fz` (N = 1) or none (N = 0), and a total longitudinal force
+/// FX_WS `fx_ws` (F = 1: the pitch rate found) or none (F = 0).
 #[derive(Clone, Copy)]
 struct Case {
     c1: i32,
@@ -29,6 +30,7 @@ struct Case {
     velocity: [f64; 6],
     flex: Option<[f64; 12]>,
     fz: Option<f64>,
+    fx_ws: Option<f64>,
     rig: Rig,
 }
 
@@ -71,8 +73,12 @@ unsafe fn solve_unchecked(ire: i32, case: &Case, npatch: &mut i32) -> i32 {
             (flags::IC_PVTIME, 2),
             (flags::IC_NORM, case.fz.is_some() as i32),
             (flags::IC_DISCNS, 2),
+            (flags::IC_FORCE, case.fx_ws.is_some() as i32),
         ],
     );
+    if let Some(fx) = case.fx_ws {
+        cntc_settangentialforces(&ire, &icp, &fx, &0.0);
+    }
     let mat = [0.28, 0.28, 82000.0, 82000.0];
     cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
     cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
@@ -224,6 +230,7 @@ const CASE_1A: Case = Case {
     velocity: [100.0, 0.0, 0.0, 0.0, 0.0, -1.0],
     flex: None,
     fz: None,
+    fx_ws: None,
     rig: SPHERE_ON_PLANE,
 };
 
@@ -774,6 +781,90 @@ fn track_curvature_matches_contacts_library() {
             9943.17, 2759.74, -1108.51, -299.73, -0.00296135, 0.000999389, 0.000176413,
             -0.70207, 740.97180, 0.65025, -0.079930, -19.56076, 0.65025, -11.02787, 0.57692,
         ]);
+    }
+}
+
+/// FX_WS prescribed (F = 1, the pitch rate VPITCH found) on a roller rig,
+/// with flexible wheelset deviations and with rail deviation rates
+/// (VROLLR among them): the cases of
+/// [`a_loaded_left_roller_and_a_curved_roller_match_contacts_library`],
+/// [`a_yawed_wheel_on_a_roller_touches_it_where_contact_does`],
+/// [`flexible_wheelset_deviations_match_contacts_library`] and
+/// [`rail_deviations_match_contacts_library`] with FX_WS = -2000, 4000,
+/// 3000 and -3000 N, against CONTACT's library (`placement_cases.py`, cases
+/// `2a-left-load-fx`, `3a-yaw-fx`, `flex-fx`, `dev-fx`). On a roller the
+/// creepages are relative to the roller's surface speed: the pitch rate is
+/// found from it. FN, FX, FS and MZ as [`compare`]; VPITCH within 1e-5 of
+/// CONTACT's, and 5e-5 on the cone (3a-yaw), where the same case at F = 0
+/// has FX 40 N (0.25 % of mu FN) apart: 4.8e-5 of creepage at this
+/// patch's slope of 8.4e5 N.
+#[test]
+fn a_prescribed_fx_ws_on_rollers_and_moving_rails_matches_contacts_library() {
+    let flex = [
+        0.5, 0.3, -0.2, 0.02, 0.03, 0.1, 0.04, 0.03, 0.02, 0.0001, 0.0002, 0.0003,
+    ];
+    let mut cone = on_the_cone(0.0, 0.0, 0.24381);
+    cone.position[4] = 0.02;
+    let cases = [
+        Case {
+            c1: 4,
+            track: roller_track(-200.0, NO_DEVIATION),
+            position: [0.0, 0.5, 0.0, 0.0, 0.0, 0.0],
+            velocity: [0.25, 1.0, 0.0, 0.0, 0.001, -0.751],
+            fz: Some(3.0e4),
+            fx_ws: Some(-2000.0),
+            ..CASE_2A
+        },
+        Case {
+            fz: Some(5.0e4),
+            fx_ws: Some(4000.0),
+            ..cone
+        },
+        Case {
+            position: [0.0, 1.0, 0.0, 0.002, 0.003, 0.0],
+            velocity: [100.0, 0.02, 0.01, 0.0002, 0.0003, -1.0],
+            flex: Some(flex),
+            fz: Some(5.0e4),
+            fx_ws: Some(3000.0),
+            ..CASE_1A
+        },
+        Case {
+            track: absolute_track(200.0, 0.0, 0.0, [2.0, 0.3, 0.02, 1.0, 0.5, 0.01]),
+            position: [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+            fz: Some(5.0e4),
+            fx_ws: Some(-3000.0),
+            ..CASE_1A
+        },
+    ];
+    // FN, FX, FS, MZ and VPITCH of CONTACT's library.
+    let contact: [([f64; 4], f64, f64); 4] = [
+        ([29999.9, -2000.0, 8769.37, -368.009], -0.753115541, 1e-5),
+        ([54125.6, 4516.55, -15335.6, 4133.73], -0.746146095, 5e-5),
+        ([49999.9, 3021.07, -7119.05, 5367.42], -1.00057141, 1e-5),
+        ([50300.7, -2999.99, -14514.2, 2155.2], -1.00207343, 1e-5),
+    ];
+    for (k, (case, (forces, vpitch, tol))) in cases.iter().zip(contact).enumerate() {
+        let ire = 75 + k as i32;
+        unsafe {
+            assert_eq!(solve(ire, case), 0, "case {k}");
+            let got = ours(ire);
+            let mu_fn = 0.3 * forces[0];
+            for (j, tol) in [
+                5e-4 * forces[0],
+                5e-3 * mu_fn,
+                5e-3 * mu_fn,
+                0.01 * forces[0],
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                close(NAMES[j], got[j], forces[j], tol);
+            }
+            let mut velocity = [0.0; 6];
+            cntc_getwheelsetvelocity(&ire, &6, velocity.as_mut_ptr());
+            close("VPITCH", velocity[5], vpitch, tol * vpitch.abs());
+            cntc_finalize(&ire);
+        }
     }
 }
 
