@@ -104,9 +104,17 @@ impl WheelRailSession {
 
     /// The memory the session holds between steps, its marks aside
     /// \[bytes\]: the search scratch (with each wheel's last exact patch
-    /// solver) and the warm start.
+    /// solver), the warm start and, on a rail varying along the track, the
+    /// pair placed at the last step's position.
     pub fn live_bytes(&self) -> usize {
-        self.scratch.heap_bytes() + self.warm.bytes()
+        self.scratch.heap_bytes() + self.warm.bytes() + self.placed_bytes()
+    }
+
+    /// The memory of the pair placed for a rail varying along the track
+    /// that the session holds \[bytes\] (shared by content with other
+    /// holders, counted whole here).
+    fn placed_bytes(&self) -> usize {
+        self.placed.as_ref().map_or(0, |p| p.heap_bytes())
     }
 
     /// The pair's id.
@@ -248,7 +256,7 @@ impl WheelRailSession {
             marked: step.mark,
         };
         check_response_size(&out, self.max_response_bytes)?;
-        let live = self.scratch.heap_bytes() + warm.bytes();
+        let live = self.scratch.heap_bytes() + warm.bytes() + self.placed_bytes();
         self.marks
             .done(step.index, step.mark, live, warm.bytes(), || warm.clone())?;
         self.warm = warm;
