@@ -325,6 +325,16 @@ pub struct WheelrailRun {
 }
 
 impl WheelrailRun {
+    /// The placed profile pair.
+    pub fn pair(&self) -> &WheelRailPair {
+        &self.pair
+    }
+
+    /// The solver input.
+    pub fn input(&self) -> &WheelRailInput {
+        &self.input
+    }
+
     /// Parses `text` (TOML); profile paths are relative to `dir`.
     pub fn from_toml(text: &str, dir: &Path) -> Result<Self, CliError> {
         let c: WheelrailCase = toml::from_str(text).map_err(|e| bad(e.to_string()))?;
@@ -990,32 +1000,9 @@ element_size_m = 0.0002
     /// (FN 0.41 %, FX 0.14 %, YCP 0.36 mm through the CONTACT library).
     #[test]
     fn a_rail_given_as_slices_is_the_rail_at_the_wheelsets_position() {
-        let case = r#"
-model = "exact"
-side = "right"
-[track]
-rail_profile = "crates/solver/profiles/uk_crossing_nose.slcs"
-rail_origin_y_m = 0.75
-rail_origin_z_m = 0.0
-[wheelset]
-wheel_profile = "builtin:MBench_S1002_v3.prw"
-flange_back_distance_m = 1.36
-flange_back_y_m = -0.07
-nominal_radius_m = 0.46
-smoothing_wavelength_m = 0.0
-[position]
-lateral_m = 0.00081
-roll_rad = 0.0
-track_s_m = 0.239
-[velocity]
-forward_m_per_s = 2.0
-pitch_rad_per_s = -4.34811810
-[load]
-vertical_force_n = 1.0e4
-[grid]
-element_size_m = 0.0002
-"#;
-        let run = WheelrailRun::from_toml(case, root()).unwrap();
+        let cases = root().join("examples/cases");
+        let case = &std::fs::read_to_string(cases.join("crossing_nose.toml")).unwrap();
+        let run = WheelrailRun::from_toml(case, &cases).unwrap();
         assert!(run.input.rail_slices[Side::Right.index()].is_some());
         let p = &only_patch(&run);
         assert!(
@@ -1028,7 +1015,7 @@ element_size_m = 0.0002
         assert!((fx - 2754.59).abs() < 7e-3 * 2754.59, "{fx}");
         // Beyond the slices: refused naming the wheelset's position.
         let far = case.replace("track_s_m = 0.239", "track_s_m = 0.5");
-        let e = WheelrailRun::from_toml(&far, root()).err().unwrap();
+        let e = WheelrailRun::from_toml(&far, &cases).err().unwrap();
         assert!(e.to_string().contains("position.track_s_m"), "{e}");
     }
 

@@ -175,7 +175,7 @@ impl ContactHandlers {
         prefix: &str,
     ) -> Result<pb::WheelRailResult, ServiceError> {
         let entry = self.pairs.lookup(&req.pair_id)?;
-        let input = wheelrail::input(
+        let mut input = wheelrail::input(
             &req,
             &entry.spec.settings,
             self.limits.case.max_grid_elements,
@@ -192,15 +192,19 @@ impl ContactHandlers {
             true => Some(self.pairs.table(&prepared, admission).await?),
             false => None,
         };
+        input.rail_slices = prepared.rail_slices();
         let t0 = StdInstant::now();
         let solved = admission
             .run_on_wide(wheelrail_lane(model), move |wide| {
                 let mut scratch = SearchScratch::default();
                 scratch.parallel_wheels = wide;
                 let cache = KernelCache::global();
+                // A rail varying along the track: placed at the position.
+                let at = prepared.pair_at(input.position.track_s_m)?;
+                let pair = at.as_deref().unwrap_or(&prepared.pair);
                 match &table {
                     Some(t) => solve_wheelset_tabulated(t, &input, cache, &mut scratch),
-                    None => solve_wheelset(&prepared.pair, &input, cache, &mut scratch),
+                    None => solve_wheelset(pair, &input, cache, &mut scratch),
                 }
                 .map(|s| {
                     let w = check_plausibility(&input, &s);
@@ -209,7 +213,7 @@ impl ContactHandlers {
             })
             .await?
             .map_err(|e| {
-                ServiceError::from(e)
+                wheelrail::rollers_rekeyed(ServiceError::from(e))
                     .rekey("grid.element_size_m", "element_size_m")
                     .rename("load", load_field)
                     .within(prefix)

@@ -45,6 +45,7 @@ use prost::Message;
 use sha2::{Digest, Sha256};
 
 use crate::core::cache::KernelCache;
+use crate::core::error::{show, Range, UnitHint};
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::memory::HeapBytes;
 use crate::core::problem::Friction;
@@ -56,15 +57,18 @@ use crate::service::pb;
 use crate::service::pool::Admission;
 use crate::service::status::ServiceError;
 use crate::service::store::PairStore;
-use crate::wheelrail::profile::quote;
+use crate::wheelrail::pair_cache::PairCache;
+use crate::wheelrail::profile::{quote, ProfileError, SourceLocation};
 use crate::wheelrail::ranges;
+use crate::wheelrail::slices::{parse_slices_within, SlicesLimits};
 use crate::wheelrail::{
     builtin, is_slices_file, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile,
-    ProfileFormat, ProfileKind, SplineOptions, TableSettings, TrackData, WheelRailError,
-    WheelRailPair, WheelsetData, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    ProfileFormat, ProfileKind, RailDeviation, RailPlacement, RailSlices, SplineOptions,
+    TableSettings, TrackData, WheelRailError, WheelRailPair, WheelsetData,
+    DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 use crate::wheelrail::{
-    solve_wheelset, SearchScratch, Side, WheelLoad, WheelRailInput, WheelRailModel,
+    solve_wheelset, RailMotion, SearchScratch, Side, WheelLoad, WheelRailInput, WheelRailModel,
     WheelRailSettings, WheelsetPosition, WheelsetVelocity,
 };
 
@@ -93,6 +97,13 @@ pub const FRICTION_RANGE: [f64; 2] = [0.0, 2.0];
 pub const SMOOTHING_WAVELENGTH_RANGE_M: [f64; 2] = [0.0, 0.05];
 /// Most characters of a profile's file name.
 pub const MAX_FILE_NAME_CHARS: usize = 255;
+/// Most slices of a rail given as slices (CONTACT's crossing example has
+/// 148).
+pub const MAX_RAIL_SLICES: usize = 1000;
+/// The points of a rail given as slices, read (its slices' profiles, each
+/// distinct file read once) and of its surface (slices x points along the
+/// interpolation paths), each at most this many times `max_profile_points`.
+pub const SLICES_POINTS_PER_PROFILE_POINTS: usize = 50;
 /// Vertical force per wheel of the trial solve at registration \[N\]: a
 /// static wheel load of a 10 t axle.
 pub const TRIAL_WHEEL_LOAD_N: f64 = 50e3;
@@ -110,6 +121,90 @@ fn check_range(field: &str, v: f64, [lo, hi]: [f64; 2], unit: &str) -> Result<()
     }
 }
 
+/// A rail's deviation from its placement \[m\] (`RailDeviation.dy_m`,
+/// `dz_m`): the wire's range (the case files have no deviations).
+pub const RAIL_DEVIATION_SHIFT: Range = Range::symmetric(0.05, "m").hint(UnitHint::Millimetre);
+/// A rail's deviation's roll \[rad\] (`RailDeviation.droll_rad`): the
+/// range of a rail inclination.
+pub const RAIL_DEVIATION_ROLL: Range = ranges::CANT;
+
+/// The library's track of a wire track, as a case file's `[track]`
+/// becomes it: placed by the gauge or by the rail origins (exactly one),
+/// each rail's deviation, a roller rig, the curvature. Field paths are
+/// relative to the track (`gauge_m`, `rail_deviation_left.dy_m`); the
+/// ranges of placement and cant are checked here
+/// ([`ranges::check_track`]), the rest (a roller's radius and cant, the
+/// curvature) when the pair is placed, as for a case file.
+pub fn track_data(t: &pb::TrackSpec) -> Result<TrackData, ServiceError> {
+    let placement = match (t.rail_origin_y_m, t.rail_origin_z_m) {
+        (None, None) => RailPlacement::GaugePoint {
+            gauge_m: t.gauge_m,
+            gauge_height_m: t.gauge_height_m,
+        },
+        (Some(q_m), Some(z_m)) if t.gauge_m == 0.0 && t.gauge_height_m == 0.0 => {
+            RailPlacement::Origin { q_m, z_m }
+        }
+        (Some(_), Some(_)) => {
+            return Err(ServiceError::invalid(
+                "rail_origin_y_m",
+                "give either gauge_m and gauge_height_m (the rails placed by the gauge point) \
+                 or rail_origin_y_m and rail_origin_z_m (the rail profiles' origins placed \
+                 absolutely), not both",
+            ))
+        }
+        (Some(_), None) => {
+            return Err(ServiceError::invalid(
+                "rail_origin_z_m",
+                "missing: the rails placed by their origins need rail_origin_y_m and \
+                 rail_origin_z_m",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(ServiceError::invalid(
+                "rail_origin_y_m",
+                "missing: the rails placed by their origins need rail_origin_y_m and \
+                 rail_origin_z_m",
+            ))
+        }
+    };
+    let deviation = |d: Option<&pb::RailDeviation>, key: &str| {
+        let Some(d) = d else {
+            return Ok(RailDeviation::default());
+        };
+        let check = |range: Range, field: &str, v: f64| {
+            range
+                .check(&format!("{key}.{field}"), v)
+                .map_err(ServiceError::from)
+        };
+        Ok::<_, ServiceError>(RailDeviation {
+            dy_m: check(RAIL_DEVIATION_SHIFT, "dy_m", d.dy_m)?,
+            dz_m: check(RAIL_DEVIATION_SHIFT, "dz_m", d.dz_m)?,
+            droll_rad: check(RAIL_DEVIATION_ROLL, "droll_rad", d.droll_rad)?,
+        })
+    };
+    let track = TrackData {
+        placement,
+        cant_rad: t.cant_rad,
+        deviations: [
+            deviation(t.rail_deviation_left.as_ref(), "rail_deviation_left")?,
+            deviation(t.rail_deviation_right.as_ref(), "rail_deviation_right")?,
+        ],
+        roller_radius_m: t.roller_radius_m,
+        curvature_per_m: t.curvature_per_m,
+    };
+    ranges::check_track(&track).map_err(|e| ServiceError::from(e).rekey("track.", ""))?;
+    Ok(track)
+}
+
+/// A wire track in canonical form: a deviation of zeros is none, so that
+/// equal tracks give equal ids.
+fn canonical_track(mut t: pb::TrackSpec) -> pb::TrackSpec {
+    let none = |d: Option<pb::RailDeviation>| d.filter(|d| *d != pb::RailDeviation::default());
+    t.rail_deviation_left = none(t.rail_deviation_left);
+    t.rail_deviation_right = none(t.rail_deviation_right);
+    t
+}
+
 /// Checks the numeric fields of a registration's track, wheelset,
 /// material and friction against their physical ranges; `f` makes the
 /// field path.
@@ -119,10 +214,10 @@ fn check_ranges(
 ) -> Result<(), ServiceError> {
     // Track and wheelset: the solver's ranges, which the command line
     // checks too (unset parts are checked when defaulted).
-    let track = spec
-        .track
-        .as_ref()
-        .map(|t| TrackData::gauge_point(t.gauge_m, t.gauge_height_m, t.cant_rad));
+    let track = match &spec.track {
+        Some(t) => Some(track_data(t).map_err(|e| e.within(&f("track")))?),
+        None => None,
+    };
     let wheelset = spec.wheelset.as_ref().map(|w| WheelsetData {
         flange_back_distance_m: w.flange_back_distance_m,
         nominal_radius_m: w.nominal_radius_m,
@@ -238,6 +333,7 @@ fn builtin_spec() -> pb::ProfilePairSpec {
             gauge_m: builtin::MBENCH_GAUGE_M,
             gauge_height_m: builtin::MBENCH_GAUGE_HEIGHT_M,
             cant_rad: t.cant_rad,
+            ..Default::default()
         }),
         wheelset: Some(pb::WheelsetSpec {
             flange_back_distance_m: w.flange_back_distance_m,
@@ -260,13 +356,89 @@ pub fn builtin_registration() -> pb::RegisterProfilePairRequest {
 
 /// A profile source with built-in profiles replaced by their content;
 /// field paths under `field`.
+/// Checks a profile file's name (required, at most
+/// [`MAX_FILE_NAME_CHARS`]) and format; field paths under `field`.
+fn check_file(f: &pb::ProfileFile, field: &str) -> Result<(), ServiceError> {
+    if f.file_name.trim().is_empty() {
+        return Err(ServiceError::invalid(
+            format!("{field}.file_name"),
+            "missing: the file name tells rail from wheel and is named in messages",
+        ));
+    }
+    let chars = f.file_name.chars().count();
+    if chars > MAX_FILE_NAME_CHARS {
+        return Err(ServiceError::invalid(
+            format!("{field}.file_name"),
+            format!("has {chars} characters, more than {MAX_FILE_NAME_CHARS}"),
+        ));
+    }
+    load_format(f.format, &format!("{field}.format"))?;
+    Ok(())
+}
+
+/// Rail slices in canonical form (profiles ordered by name, each once);
+/// field paths under `field` (`spec.rail.slices`).
+fn canonical_slices(sl: &pb::RailSlices, field: &str) -> Result<pb::RailSlices, ServiceError> {
+    check_file(
+        &pb::ProfileFile {
+            format: 0,
+            content: String::new(),
+            file_name: sl.file_name.clone(),
+        },
+        field,
+    )?;
+    if !is_slices_file(&sl.file_name) {
+        return Err(ServiceError::invalid(
+            format!("{field}.file_name"),
+            format!(
+                "{}: a rail slices file's name ends in .slcs",
+                quote(&sl.file_name)
+            ),
+        ));
+    }
+    for (k, f) in sl.profiles.iter().enumerate() {
+        check_file(f, &format!("{field}.profiles[{k}]"))?;
+    }
+    let mut profiles = sl.profiles.clone();
+    profiles.sort_by(|a, b| a.file_name.cmp(&b.file_name));
+    if let Some(w) = profiles
+        .windows(2)
+        .find(|w| w[0].file_name == w[1].file_name)
+    {
+        return Err(ServiceError::invalid(
+            format!("{field}.profiles"),
+            format!("{} is given twice", quote(&w[0].file_name)),
+        ));
+    }
+    Ok(pb::RailSlices {
+        file_name: sl.file_name.clone(),
+        content: sl.content.clone(),
+        profiles,
+    })
+}
+
 fn canonical_source(
     src: Option<&pb::ProfileSource>,
     field: &str,
+    kind: ProfileKind,
 ) -> Result<pb::ProfileSource, ServiceError> {
     use pb::profile_source::Source;
     let src = src.ok_or_else(|| ServiceError::invalid(field, "missing"))?;
     let file = match &src.source {
+        Some(Source::Slices(sl)) => {
+            let slices_field = format!("{field}.slices");
+            if kind != ProfileKind::Rail {
+                return Err(ServiceError::invalid(
+                    slices_field,
+                    "slices make a rail varying along the track: give a wheel profile `file` \
+                     or `builtin_name`",
+                ));
+            }
+            return Ok(pb::ProfileSource {
+                source: Some(Source::Slices(canonical_slices(sl, &slices_field)?)),
+                mirror_y: src.mirror_y,
+            });
+        }
         None => {
             return Err(ServiceError::invalid(
                 field,
@@ -295,20 +467,7 @@ fn canonical_source(
             }
         }
         Some(Source::File(f)) => {
-            if f.file_name.trim().is_empty() {
-                return Err(ServiceError::invalid(
-                    format!("{field}.file.file_name"),
-                    "missing: the file name tells rail from wheel and is named in messages",
-                ));
-            }
-            let chars = f.file_name.chars().count();
-            if chars > MAX_FILE_NAME_CHARS {
-                return Err(ServiceError::invalid(
-                    format!("{field}.file.file_name"),
-                    format!("has {chars} characters, more than {MAX_FILE_NAME_CHARS}"),
-                ));
-            }
-            load_format(f.format, &format!("{field}.file.format"))?;
+            check_file(f, &format!("{field}.file"))?;
             f.clone()
         }
     };
@@ -392,15 +551,25 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
     };
     let f = |name: &str| format!("{prefix}.{name}");
     check_ranges(&spec, &f)?;
-    let wheel = canonical_source(spec.wheel.as_ref(), &f("wheel"))?;
-    let rail = canonical_source(spec.rail.as_ref(), &f("rail"))?;
-    let left = |s: Option<&pb::ProfileSource>, right: &pb::ProfileSource, name: &str| {
-        s.map(|s| canonical_source(Some(s), &f(name)))
+    let wheel = canonical_source(spec.wheel.as_ref(), &f("wheel"), ProfileKind::Wheel)?;
+    let rail = canonical_source(spec.rail.as_ref(), &f("rail"), ProfileKind::Rail)?;
+    let left = |s: Option<&pb::ProfileSource>, right: &pb::ProfileSource, name, kind| {
+        s.map(|s| canonical_source(Some(s), &f(name), kind))
             .transpose()
             .map(|l| l.filter(|l| l != right))
     };
-    let wheel_left = left(spec.wheel_left.as_ref(), &wheel, "wheel_left")?;
-    let rail_left = left(spec.rail_left.as_ref(), &rail, "rail_left")?;
+    let wheel_left = left(
+        spec.wheel_left.as_ref(),
+        &wheel,
+        "wheel_left",
+        ProfileKind::Wheel,
+    )?;
+    let rail_left = left(
+        spec.rail_left.as_ref(),
+        &rail,
+        "rail_left",
+        ProfileKind::Rail,
+    )?;
     let material = spec.material.unwrap_or(pb::MaterialSection {
         shear_modulus_pa: Some(DEFAULT_SHEAR_MODULUS_PA),
         poisson_ratio: Some(DEFAULT_POISSON_RATIO),
@@ -422,9 +591,11 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
     let smoothing_wavelength_m = spec
         .smoothing_wavelength_m
         .unwrap_or(DEFAULT_SMOOTHING_WAVELENGTH_M);
-    let track = spec
-        .track
-        .ok_or_else(|| ServiceError::invalid(f("track"), "missing"))?;
+    let track = canonical_track(
+        spec.track
+            .ok_or_else(|| ServiceError::invalid(f("track"), "missing"))?,
+    );
+    let track_data = track_data(&track).map_err(|e| e.within(&f("track")))?;
     let wheelset = spec
         .wheelset
         .ok_or_else(|| ServiceError::invalid(f("wheelset"), "missing"))?;
@@ -458,7 +629,7 @@ pub fn canonicalize(req: &pb::RegisterProfilePairRequest) -> Result<PairSpec, Se
             friction,
             element_size_m,
             smoothing_wavelength_m,
-            track: TrackData::gauge_point(track.gauge_m, track.gauge_height_m, track.cant_rad),
+            track: track_data,
             wheelset: WheelsetData {
                 flange_back_distance_m: wheelset.flange_back_distance_m,
                 nominal_radius_m: wheelset.nominal_radius_m,
@@ -480,8 +651,12 @@ fn id_of(canonical: &pb::ProfilePairSpec) -> String {
 
 /// A pair ready to solve on.
 pub struct PreparedPair {
-    /// The placed profiles.
+    /// The placed profiles (of a rail given as slices: its profile at the
+    /// slices' first position).
     pub pair: WheelRailPair,
+    /// A rail varying along the track: what places it at each solve's
+    /// position.
+    varying: Option<VaryingRails>,
     /// Wheel, rail, left wheel, left rail (when different).
     summaries: [Option<pb::ProfileSummary>; 4],
     /// Preparation time [s].
@@ -496,11 +671,102 @@ pub struct PreparedPair {
     table_bytes: OnceLock<usize>,
 }
 
+/// A pair whose rails (one or both) vary along the track: the slices and
+/// the profiles, placed again at each solve's position
+/// ([`PreparedPair::pair_at`]).
+struct VaryingRails {
+    /// The rails' slices (`[left, right]`; `None`: a fixed rail).
+    slices: [Option<Arc<RailSlices>>; 2],
+    /// The rails (a varying one's at its first slice) and wheels as read.
+    rails: [Profile; 2],
+    wheels: [Profile; 2],
+    /// The pair's track, wheelset and smoothing.
+    track: TrackData,
+    wheelset: WheelsetData,
+    smoothing_wavelength_m: f64,
+}
+
+/// The memory of a profile's points, weights and source lines \[bytes\].
+fn profile_bytes(p: &Profile) -> usize {
+    p.len() * (std::mem::size_of::<[f64; 2]>() + 8 + std::mem::size_of::<Option<usize>>())
+}
+
+/// The memory of a rail's slices: each slice's points along the
+/// interpolation paths and their second derivatives, and its position
+/// \[bytes\].
+fn slices_bytes(s: &RailSlices) -> usize {
+    s.slice_positions_m().len() * (s.points_per_slice() * 2 * std::mem::size_of::<[f64; 2]>() + 8)
+}
+
+impl VaryingRails {
+    fn bytes(&self) -> usize {
+        let slices = match &self.slices {
+            [Some(l), Some(r)] if Arc::ptr_eq(l, r) => slices_bytes(r),
+            [l, r] => [l, r]
+                .iter()
+                .flat_map(|s| s.as_deref())
+                .map(slices_bytes)
+                .sum(),
+        };
+        slices
+            + self
+                .rails
+                .iter()
+                .chain(&self.wheels)
+                .map(profile_bytes)
+                .sum::<usize>()
+    }
+}
+
 impl PreparedPair {
-    /// Memory it holds: itself, the placed profiles and the contact table
-    /// once built \[bytes\].
+    /// Memory it holds: itself, the placed profiles, a varying rail's
+    /// slices and profiles, and the contact table once built \[bytes\].
     pub fn bytes(&self) -> usize {
-        std::mem::size_of::<Self>() + self.pair_bytes + self.table_bytes.get().copied().unwrap_or(0)
+        std::mem::size_of::<Self>()
+            + self.pair_bytes
+            + self.varying.as_ref().map_or(0, VaryingRails::bytes)
+            + self.table_bytes.get().copied().unwrap_or(0)
+    }
+
+    /// The rails' slices, for the solver input's `rail_slices` (`None`s:
+    /// fixed rails).
+    pub fn rail_slices(&self) -> [Option<Arc<RailSlices>>; 2] {
+        self.varying
+            .as_ref()
+            .map(|v| v.slices.clone())
+            .unwrap_or_default()
+    }
+
+    /// The placed pair at the track position `track_s_m` \[m\]: `None` for
+    /// fixed rails (the prepared [`PreparedPair::pair`] serves), else the
+    /// pair with each varying rail's profile there, shared by content
+    /// ([`PairCache`]: a caller that holds it, a session, makes the next
+    /// call with the same position cheap). As `railcontact wheelrail`
+    /// places a slices rail at its case's `position.track_s_m`; a position
+    /// outside the slices is an error naming `position.track_s_m`.
+    pub fn pair_at(&self, track_s_m: f64) -> Result<Option<Arc<WheelRailPair>>, WheelRailError> {
+        let Some(v) = &self.varying else {
+            return Ok(None);
+        };
+        let at = |k: usize| match &v.slices[k] {
+            Some(s) => s
+                .profile_at(track_s_m)
+                .map_err(|e| WheelRailError::Invalid {
+                    key: "position.track_s_m".into(),
+                    message: e.to_string(),
+                }),
+            None => Ok(v.rails[k].clone()),
+        };
+        let rails = [at(0)?, at(1)?];
+        PairCache::global()
+            .get_or_build(
+                [&rails[0], &rails[1]],
+                [&v.wheels[0], &v.wheels[1]],
+                v.track,
+                v.wheelset,
+                &SplineOptions::smoothing(v.smoothing_wavelength_m),
+            )
+            .map(Some)
     }
 
     /// The pair's contact table (default grid), built on the pool on the
@@ -551,8 +817,12 @@ fn is_builtin(f: &pb::ProfileFile) -> bool {
 /// The summary of a canonical source, with the profile's details when read.
 fn summary(src: &pb::ProfileSource, profile: Option<&Profile>) -> pb::ProfileSummary {
     let file = file_of(src);
+    let file_name = match &src.source {
+        Some(pb::profile_source::Source::Slices(s)) => s.file_name.clone(),
+        _ => file.map(|f| f.file_name.clone()).unwrap_or_default(),
+    };
     pb::ProfileSummary {
-        file_name: file.map(|f| f.file_name.clone()).unwrap_or_default(),
+        file_name,
         builtin: file.is_some_and(is_builtin),
         mirror_y: src.mirror_y,
         format: profile
@@ -580,28 +850,27 @@ pub struct PointLimit<'a> {
     pub metrics: Option<&'a Metrics>,
 }
 
-/// Reads one canonical profile source as `kind`; errors at `field`.
-fn read(
-    src: &pb::ProfileSource,
+/// Reads one profile file as `kind`, mirrored in y when `mirror_y`, of at
+/// most `limit` points; errors at `field`.
+fn read_file(
+    f: &pb::ProfileFile,
+    mirror_y: bool,
     kind: ProfileKind,
     field: &str,
     limit: PointLimit,
 ) -> Result<Profile, ServiceError> {
-    let f = file_of(src)
-        .ok_or_else(|| ServiceError::Internal(format!("{field}: not in canonical form")))?;
     let options = LoadOptions {
         kind: Some(kind),
         format: load_format(f.format, field)?,
-        mirror_y: src.mirror_y,
+        mirror_y,
         ..LoadOptions::default()
     };
     if is_slices_file(&f.file_name) {
         return Err(ServiceError::invalid(
             field,
             format!(
-                "{}: a rail slices file (a rail varying along the track) cannot be \
-                 registered as a profile; the command line's case files and the CONTACT \
-                 library take it",
+                "{}: a rail slices file (a rail varying along the track) is not a profile: \
+                 give it as the rail's `slices` with the profile files it names",
                 quote(&f.file_name)
             ),
         ));
@@ -626,14 +895,145 @@ fn read(
     Ok(p)
 }
 
+/// Reads one canonical profile source as `kind`; errors at `field`.
+fn read(
+    src: &pb::ProfileSource,
+    kind: ProfileKind,
+    field: &str,
+    limit: PointLimit,
+) -> Result<Profile, ServiceError> {
+    let f = file_of(src)
+        .ok_or_else(|| ServiceError::Internal(format!("{field}: not in canonical form")))?;
+    read_file(f, src.mirror_y, kind, field, limit)
+}
+
+/// Reads a rail given as slices (`sl`, canonical), each distinct profile
+/// file once, within this server's limits: [`MAX_RAIL_SLICES`] slices,
+/// each profile within `limit`, the points read and the surface's within
+/// [`SLICES_POINTS_PER_PROFILE_POINTS`] x `limit`. Errors at
+/// `field.slices` (a profile's at `field.slices.profiles[k]`).
+fn read_slices(
+    sl: &pb::RailSlices,
+    mirror_y: bool,
+    field: &str,
+    limit: PointLimit,
+) -> Result<RailSlices, ServiceError> {
+    let field = format!("{field}.slices");
+    let max_points = limit
+        .max_points
+        .saturating_mul(SLICES_POINTS_PER_PROFILE_POINTS);
+    let mut parsed: BTreeMap<usize, Profile> = BTreeMap::new();
+    let mut points_read = 0usize;
+    // A profile's own error, with its field, passes the slices reader as
+    // text; the first is kept to be returned as it is.
+    let mut first: Option<ServiceError> = None;
+    let slices = parse_slices_within(
+        &sl.content,
+        &sl.file_name,
+        |name| {
+            let k = sl
+                .profiles
+                .iter()
+                .position(|f| f.file_name == name)
+                .ok_or_else(|| ProfileError::Format {
+                    at: SourceLocation::new(name, None),
+                    message: "not among the slices' profiles given (RailSlices.profiles)".into(),
+                })?;
+            // Every slice holds its profile while the slices are read.
+            let mut count = |p: &Profile, first: &mut Option<ServiceError>| {
+                points_read += p.len();
+                if points_read <= max_points {
+                    return Ok(());
+                }
+                let e = ServiceError::invalid(
+                    format!("{field}.profiles[{k}]"),
+                    format!(
+                        "the slices' profiles hold {points_read} points or more, more than \
+                         this server's limit of {max_points} ({SLICES_POINTS_PER_PROFILE_POINTS} \
+                         x max_profile_points)"
+                    ),
+                );
+                let message = e.to_string();
+                first.get_or_insert(e);
+                Err(ProfileError::Format {
+                    at: SourceLocation::new(name, None),
+                    message,
+                })
+            };
+            if let Some(p) = parsed.get(&k) {
+                count(p, &mut first)?;
+                return Ok(p.clone());
+            }
+            let pfield = format!("{field}.profiles[{k}]");
+            let refuse = |e: ServiceError, first: &mut Option<ServiceError>| {
+                let message = e.to_string();
+                first.get_or_insert(e);
+                ProfileError::Format {
+                    at: SourceLocation::new(name, None),
+                    message,
+                }
+            };
+            let p = read_file(&sl.profiles[k], mirror_y, ProfileKind::Rail, &pfield, limit)
+                .map_err(|e| refuse(e, &mut first))?;
+            count(&p, &mut first)?;
+            parsed.insert(k, p.clone());
+            Ok(p)
+        },
+        SlicesLimits {
+            max_slices: MAX_RAIL_SLICES,
+            max_path_points: limit.max_points,
+            max_surface_points: max_points,
+        },
+    );
+    match (slices, first) {
+        (Ok(s), _) => Ok(s),
+        (Err(_), Some(e)) => Err(e),
+        (Err(e), None) => Err(ServiceError::profile(&field, &e)),
+    }
+}
+
+/// Reads a canonical rail source: a profile, or slices with their profile
+/// at their first position (the prepared pair's) and the slices.
+fn read_rail(
+    src: &pb::ProfileSource,
+    field: &str,
+    limit: PointLimit,
+) -> Result<(Profile, Option<Arc<RailSlices>>), ServiceError> {
+    let Some(pb::profile_source::Source::Slices(sl)) = &src.source else {
+        return Ok((read(src, ProfileKind::Rail, field, limit)?, None));
+    };
+    let slices = read_slices(sl, src.mirror_y, field, limit)?;
+    let profile = slices
+        .profile_at(slices.u_range_m().0)
+        .map_err(|e| ServiceError::profile(&format!("{field}.slices"), &e))?;
+    Ok((profile, Some(Arc::new(slices))))
+}
+
+/// "gauge 1.435 m" or "rail origin at q = 0.2 m, z = 0 m", each number
+/// short however small or large ([`show`]).
+fn placement(p: &RailPlacement) -> String {
+    match *p {
+        RailPlacement::GaugePoint { gauge_m, .. } => format!("gauge {} m", show(gauge_m)),
+        RailPlacement::Origin { q_m, z_m } => {
+            format!("rail origin at q = {} m, z = {} m", show(q_m), show(z_m))
+        }
+    }
+}
+
 /// Solves the pair once, Hertz+FASTSIM on both wheels at the centred
 /// position (no shift, yaw or roll given) with [`TRIAL_WHEEL_LOAD_N`] on
 /// each: a pair whose profiles do not touch there, or that the contact
 /// search cannot solve, is refused before it is called ready.
 fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceError> {
+    // 1 m/s: the track's under a rolling wheelset, or a roller rig's
+    // surface under a wheelset standing still.
+    let (forward_m_per_s, roller_rad_per_s) = match s.track.roller_radius_m {
+        Some(r) => (0.0, 1.0 / r),
+        None => (1.0, 0.0),
+    };
     let input = WheelRailInput {
         position: WheelsetPosition::default(),
-        velocity: WheelsetVelocity::rolling(1.0),
+        velocity: WheelsetVelocity::rolling(forward_m_per_s),
         load: WheelLoad::VerticalForce(TRIAL_WHEEL_LOAD_N),
         sides: Side::BOTH.to_vec(),
         material: s.material,
@@ -647,7 +1047,10 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
         },
         total_longitudinal_force_n: None,
         temperature: None,
-        rail_motion: Default::default(),
+        rail_motion: [RailMotion {
+            roller_rad_per_s,
+            ..RailMotion::default()
+        }; 2],
         rail_slices: Default::default(),
     };
     let mut scratch = SearchScratch::default();
@@ -660,7 +1063,7 @@ fn trial_solve(pair: &WheelRailPair, s: &PairSettings) -> Result<(), ServiceErro
                     "the wheels do not make contact with their rails at the centred position \
                      ({}, flange backs {} m apart, flange back at wheel profile y = \
                      {}): {e}; check spec.track, spec.wheelset and the profiles' origins",
-                    s.track.placement,
+                    placement(&s.track.placement),
                     s.wheelset.flange_back_distance_m,
                     s.wheelset
                         .flange_back_y_m
@@ -712,13 +1115,30 @@ pub fn prepare_with(
         None => None,
     };
     progress(pb::RegistrationStage::WheelParsed, "wheel profile read");
-    let rail = read(rail_src, ProfileKind::Rail, "spec.rail", limit)?;
-    let rail_left = match &c.rail_left {
-        Some(s) => Some(read(s, ProfileKind::Rail, "spec.rail_left", limit)?),
-        None => None,
+    let (rail, rail_slices) = read_rail(rail_src, "spec.rail", limit)?;
+    let (rail_left, rail_left_slices) = match &c.rail_left {
+        Some(s) => {
+            let (p, slices) = read_rail(s, "spec.rail_left", limit)?;
+            (Some(p), slices)
+        }
+        None => (None, rail_slices.clone()),
     };
     progress(pb::RegistrationStage::RailParsed, "rail profile read");
     let s = &spec.settings;
+    let varying = (rail_slices.is_some() || rail_left_slices.is_some()).then(|| VaryingRails {
+        slices: [rail_left_slices, rail_slices],
+        rails: [
+            rail_left.clone().unwrap_or_else(|| rail.clone()),
+            rail.clone(),
+        ],
+        wheels: [
+            wheel_left.clone().unwrap_or_else(|| wheel.clone()),
+            wheel.clone(),
+        ],
+        track: s.track,
+        wheelset: s.wheelset,
+        smoothing_wavelength_m: s.smoothing_wavelength_m,
+    });
     let pair = WheelRailPair::new(
         [rail_left.as_ref().unwrap_or(&rail), &rail],
         [wheel_left.as_ref().unwrap_or(&wheel), &wheel],
@@ -758,6 +1178,7 @@ pub fn prepare_with(
     Ok(PreparedPair {
         pair_bytes: pair.heap_bytes(),
         pair,
+        varying,
         summaries,
         prepare_time_s,
         table: tokio::sync::OnceCell::new(),

@@ -25,9 +25,9 @@ use crate::service::pb;
 use crate::service::status::ServiceError;
 use crate::wheelrail::temperature::{check_model, TEMPERATURE_KEY};
 use crate::wheelrail::{
-    FrictionAxis, FrictionTable, PatchResult, PlausibilityWarning, Side, WarningKind, WheelLoad,
-    WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelRailThermal,
-    WheelResult, WheelsetPosition, WheelsetVelocity,
+    FrictionAxis, FrictionTable, PatchResult, PlausibilityWarning, RailMotion, Side, WarningKind,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution,
+    WheelRailThermal, WheelResult, WheelsetPosition, WheelsetVelocity,
 };
 
 /// The documented ranges of a wheel/rail query's motion and load (the
@@ -121,6 +121,20 @@ pub struct QuerySettings {
     friction_table: Option<FrictionTable>,
     settings: WheelRailSettings,
     temperature: Option<WheelRailThermal>,
+    /// The pair's roller rig: its rollers' nominal radius \[m\] (`None`:
+    /// a track).
+    roller_radius_m: Option<f64>,
+}
+
+/// The request field of the rollers' rate (a case file's
+/// `track.roller_rad_per_s`, which the solver's checks name).
+pub const ROLLER_RATE_FIELD: &str = "velocity.roller_rad_per_s";
+
+/// A solver error with the case file's and the solver's keys of the
+/// rollers' rate renamed to the request's field.
+pub fn rollers_rekeyed(e: ServiceError) -> ServiceError {
+    e.rekey("track.roller_rad_per_s", ROLLER_RATE_FIELD)
+        .rekey("rail_motion.roller_rad_per_s", ROLLER_RATE_FIELD)
 }
 
 impl QuerySettings {
@@ -156,6 +170,7 @@ impl QuerySettings {
                 ..WheelRailSettings::default()
             },
             temperature: None,
+            roller_radius_m: pair.track.roller_radius_m,
         })
     }
 
@@ -342,13 +357,37 @@ impl QuerySettings {
             yaw_rad_per_s: v.yaw_rad_per_s,
             pitch_rad_per_s: v.pitch_rad_per_s,
         };
+        // A roller rig turns its rollers; a track has none (the case
+        // file's rules for track.roller_rad_per_s).
+        let rollers = match (self.roller_radius_m, v.roller_rad_per_s) {
+            (Some(radius_m), Some(rad_per_s)) => Some(ranges::Rollers {
+                radius_m,
+                rad_per_s,
+            }),
+            (Some(_), None) => {
+                return Err(ServiceError::invalid(
+                    ROLLER_RATE_FIELD,
+                    "missing: the pair is a roller rig (track.roller_radius_m), whose rollers \
+                     need their angular velocity",
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(ServiceError::invalid(
+                    ROLLER_RATE_FIELD,
+                    "needs a roller rig (the pair's track.roller_radius_m): leave it unset on \
+                     a track",
+                ))
+            }
+            (None, None) => None,
+        };
         ranges::check_motion(
             &position,
             &velocity,
             &load,
             total_longitudinal_force_n,
-            None,
-        )?;
+            rollers,
+        )
+        .map_err(|e| rollers_rekeyed(e.into()))?;
         Ok(WheelRailInput {
             position,
             velocity,
@@ -360,7 +399,10 @@ impl QuerySettings {
             settings: self.settings,
             total_longitudinal_force_n,
             temperature: self.temperature,
-            rail_motion: Default::default(),
+            rail_motion: [RailMotion {
+                roller_rad_per_s: rollers.map_or(0.0, |r| r.rad_per_s),
+                ..RailMotion::default()
+            }; 2],
             rail_slices: Default::default(),
         })
     }
@@ -419,6 +461,11 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
             roll_rad_per_s: v.roll_rad_per_s,
             yaw_rad_per_s: v.yaw_rad_per_s,
             pitch_rad_per_s: v.pitch_rad_per_s,
+            roller_rad_per_s: input
+                .rail_motion
+                .iter()
+                .map(|m| m.roller_rad_per_s)
+                .find(|&w| w != 0.0),
         }),
         load: Some(pb::WheelLoad {
             load: Some(match input.load {

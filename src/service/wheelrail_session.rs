@@ -31,7 +31,7 @@ use crate::service::status::ServiceError;
 use crate::service::wheelrail::{self, QuerySettings};
 use crate::wheelrail::{
     check_plausibility, solve_wheelset_tabulated_warm, solve_wheelset_warm, ContactTable,
-    SearchScratch, WarmStart, WheelRailInput, WheelRailModel,
+    SearchScratch, WarmStart, WheelRailInput, WheelRailModel, WheelRailPair,
 };
 
 /// A validated step, ready to solve.
@@ -56,6 +56,10 @@ pub struct WheelRailSession {
     warm: WarmStart,
     marks: Marks<WarmStart>,
     max_response_bytes: usize,
+    /// A rail varying along the track: the pair placed at the last step's
+    /// position, held so that the next step there finds it built
+    /// ([`PreparedPair::pair_at`]).
+    placed: Option<Arc<WheelRailPair>>,
 }
 
 impl WheelRailSession {
@@ -94,14 +98,23 @@ impl WheelRailSession {
             warm,
             marks: Marks::open(limits.memory, live)?,
             max_response_bytes: limits.max_response_bytes,
+            placed: None,
         })
     }
 
     /// The memory the session holds between steps, its marks aside
     /// \[bytes\]: the search scratch (with each wheel's last exact patch
-    /// solver) and the warm start.
+    /// solver), the warm start and, on a rail varying along the track, the
+    /// pair placed at the last step's position.
     pub fn live_bytes(&self) -> usize {
-        self.scratch.heap_bytes() + self.warm.bytes()
+        self.scratch.heap_bytes() + self.warm.bytes() + self.placed_bytes()
+    }
+
+    /// The memory of the pair placed for a rail varying along the track
+    /// that the session holds \[bytes\] (shared by content with other
+    /// holders, counted whole here).
+    fn placed_bytes(&self) -> usize {
+        self.placed.as_ref().map_or(0, |p| p.heap_bytes())
     }
 
     /// The pair's id.
@@ -142,10 +155,11 @@ impl WheelRailSession {
                 format!("must be finite, got {}", s.time_s),
             ));
         }
-        let input = self
+        let mut input = self
             .settings
             .input(s.position, s.velocity, s.load)
             .map_err(|e| e.within("step"))?;
+        input.rail_slices = self.prepared.rail_slices();
         Ok(WheelRailStep {
             index: s.step_index,
             time_s: s.time_s,
@@ -199,20 +213,22 @@ impl WheelRailSession {
     ) -> Result<pb::WheelRailSessionStepResult, ServiceError> {
         let mut warm = self.warm.clone();
         let cache = KernelCache::global();
+        let placed = self
+            .prepared
+            .pair_at(step.input.position.track_s_m)
+            .map_err(|e| ServiceError::from(e).within("step"))?;
+        if placed.is_some() {
+            self.placed = placed;
+        }
+        let pair = self.placed.as_deref().unwrap_or(&self.prepared.pair);
         let solution = match &self.table {
             Some(t) => {
                 solve_wheelset_tabulated_warm(t, &step.input, cache, &mut self.scratch, &mut warm)
             }
-            None => solve_wheelset_warm(
-                &self.prepared.pair,
-                &step.input,
-                cache,
-                &mut self.scratch,
-                &mut warm,
-            ),
+            None => solve_wheelset_warm(pair, &step.input, cache, &mut self.scratch, &mut warm),
         }
         .map_err(|e| {
-            ServiceError::from(e)
+            wheelrail::rollers_rekeyed(ServiceError::from(e))
                 .within("step")
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
@@ -240,7 +256,7 @@ impl WheelRailSession {
             marked: step.mark,
         };
         check_response_size(&out, self.max_response_bytes)?;
-        let live = self.scratch.heap_bytes() + warm.bytes();
+        let live = self.scratch.heap_bytes() + warm.bytes() + self.placed_bytes();
         self.marks
             .done(step.index, step.mark, live, warm.bytes(), || warm.clone())?;
         self.warm = warm;

@@ -21,6 +21,32 @@ pub fn profiles_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/solver/profiles")
 }
 
+/// The rail slices of `crates/solver/profiles/uk_crossing_nose.slcs` (ten
+/// slices of a crossing nose) with the profile files it names, as the wire
+/// takes a rail varying along the track.
+pub fn crossing_slices() -> pb::ProfileSource {
+    let dir = profiles_dir();
+    let content = std::fs::read_to_string(dir.join("uk_crossing_nose.slcs")).unwrap();
+    let profiles = (66..=75)
+        .map(|k| {
+            let name = format!("uk_crossing/Crossing_{k}.txt");
+            pb::ProfileFile {
+                format: pb::ProfileFormat::Unspecified as i32,
+                content: std::fs::read_to_string(dir.join(&name)).unwrap(),
+                file_name: name,
+            }
+        })
+        .collect();
+    pb::ProfileSource {
+        source: Some(pb::profile_source::Source::Slices(pb::RailSlices {
+            file_name: "uk_crossing_nose.slcs".into(),
+            content,
+            profiles,
+        })),
+        mirror_y: false,
+    }
+}
+
 /// The server of `config` on an ephemeral loopback port (10 s shutdown
 /// grace) and a client of it.
 pub async fn serve(config: ServeConfig) -> (RunningServer, Client) {

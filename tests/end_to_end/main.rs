@@ -52,4 +52,5 @@ mod service_security;
 mod service_sessions;
 mod service_store;
 mod service_wheelrail;
+mod service_wheelrail_track;
 mod validation_fuzz;

@@ -86,6 +86,7 @@ fn standard_track(cant_rad: f64) -> pb::ProfilePairSpec {
             gauge_m: 1.435,
             gauge_height_m: 0.014,
             cant_rad,
+            ..Default::default()
         }),
         wheelset: Some(pb::WheelsetSpec {
             flange_back_distance_m: 1.360,

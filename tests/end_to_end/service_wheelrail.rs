@@ -35,11 +35,11 @@ use common::Client;
 
 const BUILTIN: &str = "mbench_s1002_uic60";
 
-fn profile_path(name: &str) -> String {
+pub(crate) fn profile_path(name: &str) -> String {
     common::profile_path(name)
 }
 
-async fn server_in(dir: &Path) -> (RunningServer, Client) {
+pub(crate) async fn server_in(dir: &Path) -> (RunningServer, Client) {
     common::serve(ServeConfig {
         data_dir: dir.to_path_buf(),
         ..ServeConfig::default()
@@ -47,7 +47,7 @@ async fn server_in(dir: &Path) -> (RunningServer, Client) {
     .await
 }
 
-fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {
+pub(crate) fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {
     pb::ProfileSource {
         source: Some(pb::profile_source::Source::File(pb::ProfileFile {
             format: pb::ProfileFormat::Unspecified as i32,
@@ -70,10 +70,11 @@ fn track(t: TrackData) -> pb::TrackSpec {
         gauge_m,
         gauge_height_m,
         cant_rad: t.cant_rad,
+        ..Default::default()
     }
 }
 
-fn wheelset(w: WheelsetData) -> pb::WheelsetSpec {
+pub(crate) fn wheelset(w: WheelsetData) -> pb::WheelsetSpec {
     pb::WheelsetSpec {
         flange_back_distance_m: w.flange_back_distance_m,
         nominal_radius_m: w.nominal_radius_m,
@@ -103,7 +104,7 @@ fn worn_spec() -> pb::ProfilePairSpec {
 
 /// The library's pair of two profile files of `crates/solver/profiles`, read
 /// as `railcontact wheelrail` reads them, with the default smoothing.
-fn library_pair(
+pub(crate) fn library_pair(
     rail: &str,
     rail_mirror_y: bool,
     wheel: &str,
@@ -140,7 +141,10 @@ fn mbench_pair() -> WheelRailPair {
     )
 }
 
-fn spec_request(spec: pb::ProfilePairSpec, label: &str) -> pb::RegisterProfilePairRequest {
+pub(crate) fn spec_request(
+    spec: pb::ProfilePairSpec,
+    label: &str,
+) -> pb::RegisterProfilePairRequest {
     pb::RegisterProfilePairRequest {
         pair: Some(pb::register_profile_pair_request::Pair::Spec(spec)),
         label: label.into(),
@@ -149,7 +153,7 @@ fn spec_request(spec: pb::ProfilePairSpec, label: &str) -> pb::RegisterProfilePa
 
 /// All progress messages of a registration, or the status that ended it
 /// (at the call or in the stream).
-async fn register(
+pub(crate) async fn register(
     client: &mut Client,
     req: pb::RegisterProfilePairRequest,
 ) -> Result<Vec<pb::RegistrationProgress>, tonic::Status> {
@@ -162,7 +166,7 @@ async fn register(
 }
 
 /// Registers and returns the final (READY) message.
-async fn register_ready(
+pub(crate) async fn register_ready(
     client: &mut Client,
     req: pb::RegisterProfilePairRequest,
 ) -> pb::RegistrationProgress {
@@ -173,7 +177,10 @@ async fn register_ready(
     last
 }
 
-async fn solve(client: &mut Client, req: pb::SolveWheelRailRequest) -> pb::WheelRailResult {
+pub(crate) async fn solve(
+    client: &mut Client,
+    req: pb::SolveWheelRailRequest,
+) -> pb::WheelRailResult {
     client
         .solve_wheel_rail(req)
         .await
@@ -183,13 +190,16 @@ async fn solve(client: &mut Client, req: pb::SolveWheelRailRequest) -> pb::Wheel
         .expect("result")
 }
 
-async fn solve_err(client: &mut Client, req: pb::SolveWheelRailRequest) -> tonic::Status {
+pub(crate) async fn solve_err(
+    client: &mut Client,
+    req: pb::SolveWheelRailRequest,
+) -> tonic::Status {
     client.solve_wheel_rail(req).await.expect_err("must fail")
 }
 
 /// The bits of a value; a negative zero counts as zero, since proto3 does
 /// not send zeros and the client decodes a missing field as +0.
-fn bits(v: f64) -> u64 {
+pub(crate) fn bits(v: f64) -> u64 {
     if v == 0.0 {
         0
     } else {
@@ -199,7 +209,7 @@ fn bits(v: f64) -> u64 {
 
 /// Every figure of the wire result equals the library's, bit for bit
 /// (timings aside; the sign of zeros is not sent).
-fn assert_same(what: &str, got: &pb::WheelRailResult, want: &WheelRailSolution) {
+pub(crate) fn assert_same(what: &str, got: &pb::WheelRailResult, want: &WheelRailSolution) {
     assert_eq!(
         bits(got.center_z_m),
         bits(want.center_z_m),
@@ -722,7 +732,7 @@ async fn friction_tables_and_falling_laws_solve_as_the_library() {
     server.shutdown().await;
 }
 
-fn assert_invalid(e: &tonic::Status, needles: &[&str]) {
+pub(crate) fn assert_invalid(e: &tonic::Status, needles: &[&str]) {
     assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
     for n in needles {
         assert!(e.message().contains(n), "{n:?} not in {:?}", e.message());
@@ -989,12 +999,14 @@ fn wr_step(index: u64, mm: f64, mark: bool) -> pb::WheelRailSessionRequest {
     }
 }
 
-fn wr_request(kind: pb::wheel_rail_session_request::Kind) -> pb::WheelRailSessionRequest {
+pub(crate) fn wr_request(
+    kind: pb::wheel_rail_session_request::Kind,
+) -> pb::WheelRailSessionRequest {
     pb::WheelRailSessionRequest { kind: Some(kind) }
 }
 
 /// Runs a whole wheel/rail session; every response (the first is `opened`).
-async fn wr_session(
+pub(crate) async fn wr_session(
     client: &mut Client,
     messages: Vec<pb::WheelRailSessionRequest>,
 ) -> Result<Vec<pb::wheel_rail_session_response::Kind>, tonic::Status> {

@@ -9,6 +9,10 @@
 //! readers on mutations of the real profiles in `crates/solver/profiles`: Ok
 //! or a ProfileError, never a panic. Then random wheel/rail queries with
 //! every input drawn at once, which must also carry their vertical loads.
+//! The track's options of a registration (placement by the rail origins,
+//! deviations, a roller rig, curvature) and the rollers' rate likewise, on
+//! the roller rig's pair; a rail given as slices, its slices file mutated,
+//! and the position along it.
 //! Seeded and bounded (a few hundred requests on 16 x 16 grids, 400
 //! wheel/rail queries); the counts are printed at the end.
 
@@ -55,7 +59,9 @@ fn field_of(message: &str) -> Option<&str> {
 /// on the patch (`grid.window_*`); a wheel/rail placement error names the
 /// lateral shift (`position.lateral_m`) whatever pose it comes from; a
 /// wheel/rail load whose patch needs too many elements names
-/// `element_size_m`; viscoelastic bodies whose final modulus is far below
+/// `element_size_m`; a registration's track that leaves the wheels off
+/// their rails names `spec`; a roller rig's forward speed adds to the
+/// rollers' surface speed, which names their rate; viscoelastic bodies whose final modulus is far below
 /// the initial one (a large relaxation ratio) spread their patch beyond
 /// the window (`grid.window_x_m`).
 fn acceptable(mutated: &str, field: &str) -> bool {
@@ -89,6 +95,17 @@ fn acceptable(mutated: &str, field: &str) -> bool {
     if mutated.starts_with("load.") && field == "element_size_m" {
         return true;
     }
+    // A track whose placement leaves the wheels off their rails fails the
+    // registration's trial solve at the centred position, which names the
+    // spec (its message: "check spec.track, ...").
+    if mutated.starts_with("spec.track.") && field == "spec" {
+        return true;
+    }
+    // On a roller rig the rolling speed checked is the rollers' surface
+    // speed (with the forward speed), named by the rollers' rate.
+    if mutated == "velocity.forward_m_per_s" && field == "velocity.roller_rad_per_s" {
+        return true;
+    }
     mutated.starts_with("position.") && field == "position.lateral_m"
 }
 
@@ -99,6 +116,19 @@ struct Outcomes {
 }
 
 impl Outcomes {
+    /// Prints the counts of the answers (`what`: the test) and fails
+    /// naming every wrong one.
+    fn assert_right(&self, what: &str) {
+        let total: usize = self.counts.values().sum();
+        eprintln!("{what}: {total} requests, outcomes {:?}", self.counts);
+        assert!(
+            self.wrong.is_empty(),
+            "{} of {total} answers are wrong:\n{}",
+            self.wrong.len(),
+            self.wrong.join("\n")
+        );
+    }
+
     fn record<T>(
         &mut self,
         mutated: &str,
@@ -689,6 +719,12 @@ fn patch_count_fields() -> Vec<(&'static str, CountSetter)> {
 
 type WheelMutator = fn(&mut pb::SolveWheelRailRequest, f64);
 
+/// Whether an answered wheel/rail query's numbers are all finite.
+fn wheel_finite(r: &tonic::Response<pb::SolveWheelRailResponse>) -> Result<(), String> {
+    let r = r.get_ref().result.as_ref().ok_or("no result")?;
+    check_wheelrail_finite(r).map_err(|e| e.to_string())
+}
+
 fn wheel_query(model: pb::WheelRailModel) -> pb::SolveWheelRailRequest {
     pb::SolveWheelRailRequest {
         pair_id: "mbench_s1002_uic60".into(),
@@ -777,7 +813,228 @@ fn wheel_fields() -> Vec<(&'static str, f64, WheelMutator)> {
                 ..Default::default()
             })
         }),
+        // On a track (the built-in pair) every value is refused by name;
+        // on a roller rig see `hostile_track_values_*`.
+        ("velocity.roller_rad_per_s", 2.5, |r, v| {
+            velocity(r).roller_rad_per_s = Some(v)
+        }),
     ]
+}
+
+/// A profile file of `crates/solver/profiles` as a wire source.
+fn profile_source(name: &str) -> pb::ProfileSource {
+    let path = crate::common::profile_path(name);
+    pb::ProfileSource {
+        source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+            format: pb::ProfileFormat::Unspecified as i32,
+            content: std::fs::read_to_string(path).unwrap(),
+            file_name: name.into(),
+        })),
+        mirror_y: false,
+    }
+}
+
+/// A pair whose rail profiles' origins are placed at track y =
+/// `rail_origin_y_m`, z = 0 (`track.rail_origin_*`), with the wheelset
+/// `(flange back distance, nominal radius, flange back y)` [m].
+fn placed_by_origin(
+    wheel: pb::ProfileSource,
+    rail: pb::ProfileSource,
+    rail_origin_y_m: f64,
+    (flange_back_distance_m, nominal_radius_m, flange_back_y_m): (f64, f64, f64),
+) -> pb::ProfilePairSpec {
+    pb::ProfilePairSpec {
+        wheel: Some(wheel),
+        rail: Some(rail),
+        track: Some(pb::TrackSpec {
+            rail_origin_y_m: Some(rail_origin_y_m),
+            rail_origin_z_m: Some(0.0),
+            ..Default::default()
+        }),
+        wheelset: Some(pb::WheelsetSpec {
+            flange_back_distance_m,
+            nominal_radius_m,
+            flange_back_y_m: Some(flange_back_y_m),
+        }),
+        ..Default::default()
+    }
+}
+
+/// `examples/cases/roller_rig.toml`'s pair: a flat wheel on a roller of
+/// 0.4 m with a 100 mm section, the rails placed by their origins.
+fn roller_spec() -> pb::ProfilePairSpec {
+    let mut spec = placed_by_origin(
+        profile_source("flat_plane.prw"),
+        profile_source("circ_r100.prr"),
+        0.2,
+        (0.3, 0.13333333, -0.05),
+    );
+    spec.track.as_mut().unwrap().roller_radius_m = Some(0.4);
+    spec
+}
+
+/// A query on the roller pair `pair_id`: the case's approach, the
+/// rollers at 2.5 rad/s.
+fn roller_query(pair_id: &str) -> pb::SolveWheelRailRequest {
+    pb::SolveWheelRailRequest {
+        pair_id: pair_id.into(),
+        model: pb::WheelRailModel::HertzFastsim as i32,
+        sides: pb::WheelSides::Right as i32,
+        position: Some(pb::WheelsetPosition {
+            roll_rad: Some(0.0),
+            ..Default::default()
+        }),
+        velocity: Some(pb::WheelsetVelocity {
+            pitch_rad_per_s: Some(-7.5),
+            roller_rad_per_s: Some(2.5),
+            ..Default::default()
+        }),
+        load: Some(pb::WheelLoad {
+            load: Some(pb::wheel_load::Load::ApproachM(0.16e-3)),
+            ..Default::default()
+        }),
+        ..Default::default()
+    }
+}
+
+type TrackMutator = fn(&mut pb::TrackSpec, f64);
+
+/// The track's options of a registration, each with a typical value.
+fn track_fields() -> Vec<(&'static str, f64, TrackMutator)> {
+    fn deviation(d: &mut Option<pb::RailDeviation>) -> &mut pb::RailDeviation {
+        d.get_or_insert_with(Default::default)
+    }
+    vec![
+        ("spec.track.rail_origin_y_m", 0.2, |t, v| {
+            t.rail_origin_y_m = Some(v)
+        }),
+        ("spec.track.rail_origin_z_m", 1e-3, |t, v| {
+            t.rail_origin_z_m = Some(v)
+        }),
+        ("spec.track.rail_deviation_left.dy_m", 1e-3, |t, v| {
+            deviation(&mut t.rail_deviation_left).dy_m = v
+        }),
+        ("spec.track.rail_deviation_left.dz_m", 1e-3, |t, v| {
+            deviation(&mut t.rail_deviation_left).dz_m = v
+        }),
+        ("spec.track.rail_deviation_right.droll_rad", 1e-3, |t, v| {
+            deviation(&mut t.rail_deviation_right).droll_rad = v
+        }),
+        ("spec.track.roller_radius_m", 0.4, |t, v| {
+            t.roller_radius_m = Some(v)
+        }),
+        ("spec.track.curvature_per_m", 2e-3, |t, v| {
+            t.curvature_per_m = v
+        }),
+    ]
+}
+
+/// A registration's outcome: the READY pair, or the status that ended it
+/// (at the call or in its stream).
+async fn registration(
+    client: &mut crate::common::Client,
+    spec: pb::ProfilePairSpec,
+) -> Result<pb::ProfilePairInfo, tonic::Status> {
+    let mut stream = client
+        .register_profile_pair(pb::RegisterProfilePairRequest {
+            pair: Some(pb::register_profile_pair_request::Pair::Spec(spec)),
+            label: "fuzz".into(),
+        })
+        .await?
+        .into_inner();
+    let mut pair = None;
+    while let Some(m) = stream.message().await? {
+        pair = m.pair.or(pair);
+    }
+    pair.ok_or_else(|| tonic::Status::internal("no READY message"))
+}
+
+/// The track's options of a registration (placement by the origins, each
+/// rail's deviation, the roller's radius, the curvature) and the rollers'
+/// rate of a query, each set to the extreme values on the roller rig's
+/// pair: registered (and a query on it answered finite, or refused
+/// INVALID_ARGUMENT) or refused INVALID_ARGUMENT naming the field.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn hostile_track_values_are_registered_or_refused_by_name() {
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
+    let mut out = Outcomes::default();
+    let track_finite = |p: &pb::ProfilePairInfo| {
+        let t = p.track.as_ref().ok_or("no track")?;
+        let d =
+            |d: &Option<pb::RailDeviation>| d.map_or([0.0; 3], |d| [d.dy_m, d.dz_m, d.droll_rad]);
+        let values = [
+            [t.gauge_m, t.gauge_height_m, t.cant_rad],
+            [
+                t.rail_origin_y_m.unwrap_or(0.0),
+                t.rail_origin_z_m.unwrap_or(0.0),
+                t.roller_radius_m.unwrap_or(0.0),
+            ],
+            d(&t.rail_deviation_left),
+            d(&t.rail_deviation_right),
+            [t.curvature_per_m; 3],
+        ];
+        match values.as_flattened().iter().all(|v| v.is_finite()) {
+            true => Ok(()),
+            false => Err(format!("track {t:?}")),
+        }
+    };
+    let mut queries = 0;
+    for (path, typical, set) in track_fields() {
+        for v in extremes(typical) {
+            let mut spec = roller_spec();
+            set(spec.track.as_mut().unwrap(), v);
+            let r = registration(&mut client, spec).await;
+            let id = r.as_ref().ok().map(|p| p.pair_id.clone());
+            out.record(path, format!("{v:e}"), r, track_finite);
+            // A pair registered is solved on: answered, or refused as
+            // invalid input (its placement may leave no contact), never
+            // another code.
+            if let Some(id) = id {
+                queries += 1;
+                match client.solve_wheel_rail(roller_query(&id)).await {
+                    Ok(r) => {
+                        if let Err(e) = wheel_finite(&r) {
+                            out.wrong.push(format!("{path} = {v:e}: query OK with {e}"));
+                        }
+                    }
+                    Err(s) if s.code() == Code::InvalidArgument => {}
+                    Err(s) => out.wrong.push(format!(
+                        "{path} = {v:e}: query {:?} {}",
+                        s.code(),
+                        s.message()
+                    )),
+                }
+                let _ = client
+                    .delete_profile_pair(pb::DeleteProfilePairRequest { pair_id: id })
+                    .await;
+            }
+        }
+    }
+    // The rollers' rate and the wheelset's forward speed on the roller rig.
+    let pair = registration(&mut client, roller_spec())
+        .await
+        .expect("the roller rig registers");
+    type RollerMutator = fn(&mut pb::WheelsetVelocity, f64);
+    let rollers: [(&str, f64, RollerMutator); 2] = [
+        ("velocity.roller_rad_per_s", 2.5, |w, v| {
+            w.roller_rad_per_s = Some(v)
+        }),
+        ("velocity.forward_m_per_s", 0.5, |w, v| {
+            w.forward_m_per_s = v
+        }),
+    ];
+    for (path, typical, set) in rollers {
+        for v in extremes(typical) {
+            let mut q = roller_query(&pair.pair_id);
+            set(q.velocity.as_mut().unwrap(), v);
+            let r = client.solve_wheel_rail(q).await;
+            out.record(path, format!("{v:e}"), r, wheel_finite);
+        }
+    }
+    server.shutdown().await;
+    out.assert_right(&format!(
+        "track fuzz ({queries} queries on the pairs registered)"
+    ));
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -840,10 +1097,6 @@ async fn hostile_values_are_answered_or_refused_by_name() {
         other => panic!("{other:?}"),
     }
 
-    let wheel_finite = |r: &tonic::Response<pb::SolveWheelRailResponse>| {
-        let r = r.get_ref().result.as_ref().ok_or("no result")?;
-        check_wheelrail_finite(r).map_err(|e| e.to_string())
-    };
     for (path, typical, set) in wheel_fields() {
         for v in extremes(typical) {
             let mut req = wheel_query(pb::WheelRailModel::HertzFastsim);
@@ -853,16 +1106,21 @@ async fn hostile_values_are_answered_or_refused_by_name() {
         }
     }
     // The exact model at the edges of the ranges that set its grids.
-    for (path, v, set) in [
-        ("element_size_m", 6e-5, wheel_fields()[12].2),
-        ("load.center_z_m", 0.0, wheel_fields()[11].2),
-        ("load.center_z_m", -1.5, wheel_fields()[11].2),
-        ("load.approach_m", 2e-3, wheel_fields()[10].2),
-        ("load.vertical_force_n", 1e6, wheel_fields()[9].2),
-        ("position.lateral_m", 0.02, wheel_fields()[0].2),
-        ("position.lateral_m", -0.02, wheel_fields()[0].2),
-        ("velocity.forward_m_per_s", 150.0, wheel_fields()[3].2),
+    for (path, v) in [
+        ("element_size_m", 6e-5),
+        ("load.center_z_m", 0.0),
+        ("load.center_z_m", -1.5),
+        ("load.approach_m", 2e-3),
+        ("load.vertical_force_n", 1e6),
+        ("position.lateral_m", 0.02),
+        ("position.lateral_m", -0.02),
+        ("velocity.forward_m_per_s", 150.0),
     ] {
+        // The field's setter, by its path.
+        let (_, _, set) = wheel_fields()
+            .into_iter()
+            .find(|f| f.0 == path)
+            .expect("a field of wheel_fields");
         let mut req = wheel_query(pb::WheelRailModel::Exact);
         set(&mut req, v);
         let r = client.solve_wheel_rail(req).await;
@@ -877,18 +1135,8 @@ async fn hostile_values_are_answered_or_refused_by_name() {
         let r = client.solve_wheel_rail(req).await;
         out.record("min_elements_across", n.to_string(), r, wheel_finite);
     }
-    let total: usize = out.counts.values().sum();
-    eprintln!(
-        "validation fuzz: {total} requests, outcomes {:?}",
-        out.counts
-    );
     server.shutdown().await;
-    assert!(
-        out.wrong.is_empty(),
-        "{} of {total} answers are wrong:\n{}",
-        out.wrong.len(),
-        out.wrong.join("\n")
-    );
+    out.assert_right("validation fuzz");
 }
 
 /// Wheel/rail session steps: every position, velocity and load field of a
@@ -1126,6 +1374,87 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
     s
 }
 
+/// `crates/solver/profiles/uk_crossing_nose.slcs` with its slices file's
+/// text `text`, placed by its origin under the S1002 wheel.
+fn slices_spec(text: String) -> pb::ProfilePairSpec {
+    let mut rail = crate::common::crossing_slices();
+    if let Some(pb::profile_source::Source::Slices(s)) = rail.source.as_mut() {
+        s.content = text;
+    }
+    let wheel = pb::ProfileSource {
+        source: Some(pb::profile_source::Source::BuiltinName(
+            "MBench_S1002_v3.prw".into(),
+        )),
+        mirror_y: false,
+    };
+    pb::ProfilePairSpec {
+        smoothing_wavelength_m: Some(0.0),
+        ..placed_by_origin(wheel, rail, 0.75, (1.36, 0.46, -0.07))
+    }
+}
+
+/// A rail given as slices: its slices file mutated (as the profiles are
+/// below) is registered or refused INVALID_ARGUMENT naming the rail
+/// (`spec.rail.slices...`, or `spec` when the rail it makes does not
+/// carry the trial solve), never a panic or another code; on the
+/// registered pair, `position.track_s_m` at its extremes is answered or
+/// refused naming it.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn mutated_rail_slices_register_or_are_refused_by_name() {
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
+    let text = std::fs::read_to_string(crate::common::profiles_dir().join("uk_crossing_nose.slcs"))
+        .unwrap();
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let (mut ok, mut refused, mut wrong) = (0usize, 0usize, Vec::new());
+    for k in 0..30 {
+        let mutated = mutate(&text, &mut rng);
+        match registration(&mut client, slices_spec(mutated)).await {
+            Ok(_) => ok += 1,
+            Err(s) if s.code() == Code::InvalidArgument => {
+                refused += 1;
+                let field = field_of(s.message()).unwrap_or("");
+                if !(field.starts_with("spec.rail.slices") || field == "spec") {
+                    wrong.push(format!("mutation {k}: names `{field}`: {}", s.message()));
+                }
+            }
+            Err(s) => wrong.push(format!("mutation {k}: {:?} {}", s.code(), s.message())),
+        }
+    }
+    let pair = registration(&mut client, slices_spec(text))
+        .await
+        .expect("the crossing nose registers");
+    let mut out = Outcomes::default();
+    for v in extremes(0.25).into_iter().chain([0.20875, 0.239, 0.32696]) {
+        let mut q = wheel_query(pb::WheelRailModel::Exact);
+        q.pair_id = pair.pair_id.clone();
+        q.sides = pb::WheelSides::Right as i32;
+        q.position = Some(pb::WheelsetPosition {
+            lateral_m: 0.00081,
+            roll_rad: Some(0.0),
+            track_s_m: v,
+            ..Default::default()
+        });
+        q.velocity = Some(pb::WheelsetVelocity {
+            forward_m_per_s: 2.0,
+            ..Default::default()
+        });
+        q.load = Some(pb::WheelLoad {
+            load: Some(pb::wheel_load::Load::VerticalForceN(1e4)),
+            ..Default::default()
+        });
+        let r = client.solve_wheel_rail(q).await;
+        out.record("position.track_s_m", format!("{v:e}"), r, wheel_finite);
+    }
+    eprintln!(
+        "slices fuzz: 30 mutated slices files, {ok} registered, {refused} refused; \
+         track_s_m outcomes {:?}",
+        out.counts
+    );
+    server.shutdown().await;
+    wrong.extend(out.wrong);
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
 #[test]
 fn mutated_profiles_read_or_fail_without_panicking() {
     let dir = crate::common::profiles_dir();
@@ -1247,6 +1576,7 @@ fn random_wheel_query(rng: &mut Rng, heavy: f64) -> pb::SolveWheelRailRequest {
             roll_rad_per_s: rng.uniform(-0.3, 0.3),
             yaw_rad_per_s: rng.uniform(-0.3, 0.3),
             pitch_rad_per_s,
+            roller_rad_per_s: None,
         }),
         load: Some(pb::WheelLoad {
             load: Some(load),

@@ -65,11 +65,31 @@ GENERATED = {
 }
 
 
+def _example_copy(name: str, tmp_path: pathlib.Path, edit) -> pathlib.Path:
+    """The example case file ``name`` edited by ``edit`` (text to text),
+    written to ``tmp_path`` with its relative paths into the repository
+    made absolute."""
+    text = (CASES / name).read_text().replace("../../crates", str(REPO / "crates"))
+    path = tmp_path / name
+    path.write_text(edit(text))
+    return path
+
+
 def _case_file(name: str, tmp_path: pathlib.Path) -> pathlib.Path:
-    """The case file ``name``: an example's, or one of GENERATED written to
-    ``tmp_path`` beside copies of its profiles (relative paths)."""
+    """The case file ``name``: an example's, ``a22_curved`` (the A-2.2
+    case on a curve of 500 m, its profiles built in), or one of GENERATED
+    written to ``tmp_path`` beside copies of its profiles (relative paths)."""
     if name.endswith(".toml"):
         return CASES / name
+    if name == "crossing_nose":
+        # The example's rail slices at 0.28 m instead of 0.239 m.
+        return _example_copy("crossing_nose.toml", tmp_path, lambda t: t.replace("track_s_m = 0.239", "track_s_m = 0.28"))
+    if name == "a22_curved":
+        text = (CASES / "wheelset_a22.toml").read_text()
+        assert "cant_rad = 0.0\n" in text
+        path = tmp_path / "a22_curved.toml"
+        path.write_text(text.replace("cant_rad = 0.0\n", "cant_rad = 0.0\ncurvature_per_m = 0.002\n"))
+        return path
     (tmp_path / "profiles").mkdir(exist_ok=True)
     for profile in ("avg_HR.BAN", "Car7216_0001r.whl", "avg_wheel.whl"):
         shutil.copy(PROFILES / profile, tmp_path / "profiles" / profile)
@@ -86,7 +106,8 @@ def _cli(path: pathlib.Path) -> dict:
 
 @pytest.mark.parametrize(
     "name",
-    ["wheelset_a22.toml", "wheelset_a22_varfric.toml", "wheelset_a22_temperature.toml", *GENERATED],
+    ["wheelset_a22.toml", "wheelset_a22_varfric.toml", "wheelset_a22_temperature.toml", "roller_rig.toml",
+     "a22_curved", "crossing_nose", *GENERATED],
 )
 def test_a_case_file_gives_the_forces_of_the_command_line(client, name, tmp_path):
     path = _case_file(name, tmp_path)
@@ -170,6 +191,67 @@ def test_load_wheelrail_case_takes_the_file_apart(tmp_path):
     assert varfric.settings["friction_table"]["coefficients"] == [0.3, 0.2]
     # Its summary names the profile file's size, not its text.
     assert "<text: " in repr(case) and "Filename=" not in repr(case)
+
+
+def test_a_slices_rail_is_sent_with_the_profile_files_it_names(tmp_path):
+    case = railcontact.load_wheelrail_case(_case_file("crossing_nose", tmp_path))
+    slices = case.pair["rail"]["slices"]
+    assert slices["file_name"] == "uk_crossing_nose.slcs"
+    names = [p["file_name"] for p in slices["profiles"]]
+    assert names == [f"uk_crossing/Crossing_{k}.txt" for k in range(66, 76)]
+    assert slices["profiles"][0]["content"] == (PROFILES / names[0]).read_text()
+    assert case.motion["position"]["track_s_m"] == 0.28
+
+
+def test_a_roller_rig_case_takes_the_rollers_rate_into_the_velocity(client):
+    # examples/cases/roller_rig.toml: the rails placed by their origins on
+    # rollers (the pair), the rollers' rate with the wheel's (the motion).
+    case = railcontact.load_wheelrail_case(CASES / "roller_rig.toml")
+    assert case.pair["track"] == {"rail_origin_y_m": 0.2, "rail_origin_z_m": 0.0, "roller_radius_m": 0.4}
+    assert case.motion["velocity"] == {"pitch_rad_per_s": -7.5, "roller_rad_per_s": 2.5}
+    r = client.solve_wheelrail_case(case)
+    assert [w.side for w in r.wheels] == ["right"]
+    # CONTACT's test-rollers2 case 2a (.ref_out: FN = 9.719E+04 N), within
+    # the 0.1 % the examples' README gives.
+    normal = sum(p.normal_force_n for p in r.wheel("right").patches)
+    assert normal == pytest.approx(9.719e4, rel=1e-3)
+    info = client.get_pair(r.pair_id)
+    assert info.raw.track.roller_radius_m == 0.4 and info.raw.track.HasField("rail_origin_y_m")
+
+
+@pytest.mark.parametrize(
+    "edit, field",
+    [
+        (lambda t: t.replace("roller_radius_m = 0.4", "roller_radius_m = -0.4"), "spec.track.roller_radius_m"),
+        (lambda t: t.replace("rail_origin_y_m = 0.2", "rail_origin_y_m = 200.0"), "spec.track.rail_origin_y_m"),
+        (lambda t: t.replace("roller_rad_per_s = 2.5", "roller_rad_per_s = -2.5"), "velocity.roller_rad_per_s"),
+        (lambda t: t.replace("[wheelset]", "curvature_per_m = 0.5\n\n[wheelset]"), "spec.track.curvature_per_m"),
+    ],
+)
+def test_a_bad_roller_rig_value_is_refused_naming_the_field(client, tmp_path, edit, field):
+    path = _example_copy("roller_rig.toml", tmp_path, edit)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_wheelrail_case(path)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert e.value.field == field, e.value.message
+
+
+@pytest.mark.parametrize(
+    "edit, field",
+    [
+        (lambda t: t.replace("roller_rad_per_s = 2.5\n", ""), "track.roller_rad_per_s"),
+        (lambda t: t.replace("roller_radius_m = 0.4\n", ""), "track.roller_rad_per_s"),
+        (lambda t: t.replace("rail_origin_z_m = 0.0\n", ""), "track.rail_origin_z_m"),
+        (lambda t: t.replace("rail_origin_z_m = 0.0\n", "rail_origin_z_m = 0.0\ngauge_m = 1.435\n"), "track"),
+        (lambda t: t.replace("roller_rad_per_s = 2.5\n", "roller_rad_per_s = 2.5\nroller = 1\n"), "track.roller"),
+    ],
+)
+def test_a_roller_rig_case_file_names_its_key(tmp_path, edit, field):
+    path = _example_copy("roller_rig.toml", tmp_path, edit)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        railcontact.load_wheelrail_case(path)
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert e.value.field == field, e.value.message
 
 
 def test_a_case_session_steps_as_the_solve(client):

@@ -49,8 +49,9 @@ _TABLES: dict = {
          "coefficients", "track_s_m"),
     ),
     "track": (
-        ("rail_profile", "gauge_m", "gauge_height_m"),
-        ("rail_profile_left", "rail_mirror_y", "cant_rad"),
+        ("rail_profile",),
+        ("rail_profile_left", "rail_mirror_y", "cant_rad", "gauge_m", "gauge_height_m", "rail_origin_y_m",
+         "rail_origin_z_m", "roller_radius_m", "roller_rad_per_s", "curvature_per_m"),
     ),
     "wheelset": (
         ("wheel_profile", "flange_back_distance_m", "nominal_radius_m"),
@@ -58,8 +59,9 @@ _TABLES: dict = {
     ),
     "position": ((), ("lateral_m", "yaw_rad", "roll_rad", "track_s_m")),
     "velocity": (
-        ("forward_m_per_s",),
-        ("lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s", "pitch_rad_per_s"),
+        (),
+        ("forward_m_per_s", "lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s",
+         "pitch_rad_per_s"),
     ),
     "load": ((), ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")),
     "grid": (("element_size_m",), ("min_elements_across",)),
@@ -94,6 +96,16 @@ _MODIFIED_FASTSIM_DEFAULTS = {
 
 #: The vertical load's keys, exactly one of which a case gives.
 _LOAD_KINDS = ("vertical_force_n", "approach_m", "center_z_m")
+
+#: The two ways of placing the rails, one of which a case gives whole: by
+#: the gauge, or by the rail profiles' origins.
+_PLACEMENTS = (("gauge_m", "gauge_height_m"), ("rail_origin_y_m", "rail_origin_z_m"))
+
+#: The keys of ``[track]`` that the pair's ``TrackSpec`` takes as they are.
+_TRACK_SPEC_KEYS = (
+    "gauge_m", "gauge_height_m", "cant_rad", "rail_origin_y_m", "rail_origin_z_m", "roller_radius_m",
+    "curvature_per_m",
+)
 
 
 @dataclass(frozen=True)
@@ -210,21 +222,73 @@ def _profile(name: Any, mirror_y: Any, directory: pathlib.Path, key: str, mirror
     if name.startswith(BUILTIN_PREFIX):
         return {"builtin_name": name[len(BUILTIN_PREFIX):], "mirror_y": mirror_y}
     file = directory / name
+    content = _read_text(file, key)
+    if file.suffix.lower() == ".slcs" and key.startswith("track."):
+        # A rail varying along the track: the slices file with the profile
+        # files it names (relative to it), by the names written there.
+        profiles = [
+            {"content": _read_text(file.parent / n, key), "file_name": n} for n in _slice_profile_names(content)
+        ]
+        return {
+            "slices": {"file_name": file.name, "content": content, "profiles": profiles},
+            "mirror_y": mirror_y,
+        }
+    return {"file": {"content": content, "file_name": file.name}, "mirror_y": mirror_y}
+
+
+def _read_text(file: pathlib.Path, key: str) -> str:
+    """The text of ``file``; one that cannot be read raises naming ``key``."""
     try:
         raw = file.read_bytes()
     except OSError as e:
         raise invalid(key, f"cannot read profile file {file}: {e}") from e
     try:
-        content = raw.decode("utf-8")
+        return raw.decode("utf-8")
     except UnicodeDecodeError:
         # MiniProf files written on Windows: their comments in Latin-1.
-        content = raw.decode("latin-1")
-    return {"file": {"content": content, "file_name": file.name}, "mirror_y": mirror_y}
+        return raw.decode("latin-1")
+
+
+def _slice_profile_names(text: str) -> list:
+    """The profile file names of a rail slices file (CONTACT's ``.slcs``),
+    each once, in order: the second word (quoted with ' or ", or bare) of
+    the lines after the four header lines (U_OFFSET, NSLC, NFEAT, U_INTPOL),
+    skipping blank lines and ``%`` comments. The server reads the file
+    itself and says what is wrong with it."""
+    lines = [line.strip() for line in text.splitlines()]
+    values = [line for line in lines if line and not line.startswith("%")][4:]
+    names: list = []
+    for line in values:
+        rest = line.split(None, 1)[1].lstrip() if len(line.split(None, 1)) == 2 else ""
+        if rest[:1] in ("'", '"'):
+            name = rest[1:].split(rest[0], 1)[0]
+        else:
+            name = rest.split()[0] if rest else ""
+        if name and name not in names:
+            names.append(name)
+    return names
+
+
+def _placement(track: dict) -> None:
+    """Checks that ``[track]`` places the rails one way, whole: by the
+    gauge or by the rail profiles' origins (the command line's rule)."""
+    gauge, origin = ([k for k in keys if k in track] for keys in _PLACEMENTS)
+    if gauge and origin:
+        raise invalid(
+            "track",
+            "give either gauge_m and gauge_height_m (the rails placed by the gauge point) or "
+            "rail_origin_y_m and rail_origin_z_m (the rail profiles' origins placed absolutely)",
+        )
+    for key in _PLACEMENTS[1] if origin else _PLACEMENTS[0]:
+        if key not in track:
+            other = " or ".join(" and ".join(keys) for keys in _PLACEMENTS)
+            raise invalid(_join("track", key), f"missing: the rails are placed by {other}")
 
 
 def _pair(track: dict, wheelset: dict, material: Any, directory: pathlib.Path) -> dict:
     """The ``ProfilePairSpec`` mapping of ``[track]``, ``[wheelset]`` and
     ``[material]``."""
+    _placement(track)
     rail_mirror = track.get("rail_mirror_y", False)
     wheel_mirror = wheelset.get("wheel_mirror_y", False)
     pair: dict = {
@@ -232,7 +296,7 @@ def _pair(track: dict, wheelset: dict, material: Any, directory: pathlib.Path) -
             wheelset["wheel_profile"], wheel_mirror, directory, "wheelset.wheel_profile", "wheelset.wheel_mirror_y"
         ),
         "rail": _profile(track["rail_profile"], rail_mirror, directory, "track.rail_profile", "track.rail_mirror_y"),
-        "track": {k: track[k] for k in ("gauge_m", "gauge_height_m", "cant_rad") if k in track},
+        "track": {k: track[k] for k in _TRACK_SPEC_KEYS if k in track},
         "wheelset": {
             k: wheelset[k] for k in ("flange_back_distance_m", "nominal_radius_m", "flange_back_y_m") if k in wheelset
         },
@@ -283,13 +347,28 @@ def _settings(case: dict, tables: dict) -> dict:
 
 
 def _motion(tables: dict) -> dict:
-    """The step's position, velocity and load of the case file."""
+    """The step's position, velocity and load of the case file. A roller
+    rig's ``track.roller_rad_per_s`` is the velocity's ``roller_rad_per_s``
+    on the wire (a motion, not a property of the pair)."""
     load = tables["load"]
     given = [k for k in _LOAD_KINDS if k in load]
     if len(given) != 1:
         raise invalid("load", "give exactly one of vertical_force_n, approach_m and center_z_m")
+    track, velocity = tables["track"], dict(tables["velocity"])
+    roller = "roller_radius_m" in track
+    if roller != ("roller_rad_per_s" in track):
+        raise invalid(
+            "track.roller_rad_per_s",
+            "a roller rig (track.roller_radius_m) needs its rollers' angular velocity"
+            if roller
+            else "needs a roller rig (track.roller_radius_m)",
+        )
+    if roller:
+        velocity["roller_rad_per_s"] = track["roller_rad_per_s"]
+    elif "forward_m_per_s" not in velocity:
+        raise invalid("velocity.forward_m_per_s", "missing: the wheelset's forward speed on a track")
     return {
         "position": tables.get("position", {}),
-        "velocity": tables["velocity"],
+        "velocity": velocity,
         "load": load,
     }

@@ -397,8 +397,9 @@ class Client:
 
         ``position``: mapping of ``WheelsetPosition`` (``lateral_m``,
         ``yaw_rad``, ``roll_rad``; default centred); ``velocity``: of
-        ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...), or a
-        number: the forward speed; ``load``: of ``WheelLoad``
+        ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...; on a
+        roller rig ``roller_rad_per_s`` required, the forward speed usually
+        0), or a number: the forward speed; ``load``: of ``WheelLoad``
         (``vertical_force_n``, ``approach_m`` or ``center_z_m``, the
         wheelset centre's height as an MBS integrator has it; with
         ``total_longitudinal_force_n`` [N] the pitch rate is found for that

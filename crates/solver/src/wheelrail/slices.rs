@@ -248,7 +248,10 @@ pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, Prof
             ));
         }
     }
-    let mut slices: Vec<(f64, String, usize)> = Vec::with_capacity(nslc as usize);
+    // NSLC is the file's word: room for the lines the text can hold at
+    // most, not for NSLC (a huge NSLC must not reserve memory).
+    let mut slices: Vec<(f64, String, usize)> =
+        Vec::with_capacity((nslc as usize).min(text.lines().count()));
     for k in 0..nslc {
         let l = next(&format!("slice {} of NSLC = {nslc}", k + 1))?;
         let (u, name) = slice_line(f, l)?;
@@ -293,24 +296,16 @@ impl RailSlices {
                 ));
             }
         }
-        let n = slices.iter().map(|s| s.profile.len()).max().unwrap_or(0);
-        if n < 2 {
+        let most = slices.iter().map(|s| s.profile.len()).max().unwrap_or(0);
+        if most < 2 {
             return Err(format_err(
                 name,
                 None,
                 "the slices have fewer than 2 points".into(),
             ));
         }
-        let same = slices.iter().all(|s| s.profile.len() == n);
-        let longest = slices
-            .iter()
-            .map(|s| chord_length(s.profile.points()))
-            .fold(0.0, f64::max);
-        let n = if same {
-            n
-        } else {
-            2 + (longest / RESAMPLE_SPACING_M + 1e-9).floor() as usize
-        };
+        let same = slices.iter().all(|s| s.profile.len() == most);
+        let n = path_points(slices);
         let points: Vec<Vec<[f64; 2]>> = slices
             .iter()
             .map(|s| {
@@ -446,6 +441,21 @@ impl RailSlices {
     }
 }
 
+/// Points along each interpolation path of the surface through `slices`
+/// (module docs): the slices' common count, or as many as the longest
+/// slice needs at [`RESAMPLE_SPACING_M`].
+fn path_points(slices: &[Slice]) -> usize {
+    let most = slices.iter().map(|s| s.profile.len()).max().unwrap_or(0);
+    if slices.iter().all(|s| s.profile.len() == most) {
+        return most;
+    }
+    let longest = slices
+        .iter()
+        .map(|s| chord_length(s.profile.points()))
+        .fold(0.0, f64::max);
+    2 + (longest / RESAMPLE_SPACING_M + 1e-9).floor() as usize
+}
+
 /// The summed chord length of `pts` \[m\].
 fn chord_length(pts: &[[f64; 2]]) -> f64 {
     pts.windows(2)
@@ -536,15 +546,63 @@ fn natural_second_derivatives(u: &[f64], points: &[Vec<[f64; 2]>]) -> Vec<Vec<[f
     second
 }
 
+/// Bounds on what reading a slices file may hold, for a reader of files
+/// it does not trust (a server reading a client's): the slices, the
+/// points along each interpolation path (those of the rail at any u,
+/// [`RailSlices::profile_at`]), and the points of the surface, slices x
+/// points along each path (its memory: 32 bytes a point).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SlicesLimits {
+    /// Most slices (slice lines).
+    pub max_slices: usize,
+    /// Most points along each interpolation path.
+    pub max_path_points: usize,
+    /// Most points of the surface.
+    pub max_surface_points: usize,
+}
+
+impl SlicesLimits {
+    /// No bounds (files of one's own).
+    pub const NONE: Self = Self {
+        max_slices: usize::MAX,
+        max_path_points: usize::MAX,
+        max_surface_points: usize::MAX,
+    };
+}
+
 /// Reads a slices file and its profiles: the slice lines of `text`
 /// ([`parse_slices_file`]), each profile by `read` (given the file name as
 /// written in the slices file).
 pub fn parse_slices(
     text: &str,
     file_name: &str,
+    read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+) -> Result<RailSlices, ProfileError> {
+    parse_slices_within(text, file_name, read, SlicesLimits::NONE)
+}
+
+/// [`parse_slices`] within `limits`: the slices counted before any profile
+/// is read, the surface's points before it is built. `read` may take the
+/// profiles' contents from memory (a server given the files with the
+/// slices file).
+pub fn parse_slices_within(
+    text: &str,
+    file_name: &str,
     mut read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+    limits: SlicesLimits,
 ) -> Result<RailSlices, ProfileError> {
     let file = parse_slices_file(text, file_name)?;
+    if file.slices.len() > limits.max_slices {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "{} slices, more than the limit of {}",
+                file.slices.len(),
+                limits.max_slices
+            ),
+        ));
+    }
     let mut slices = Vec::with_capacity(file.slices.len());
     for (u_m, name, line) in &file.slices {
         let profile = read(name).map_err(|e| {
@@ -555,6 +613,32 @@ pub fn parse_slices(
             )
         })?;
         slices.push(Slice { u_m: *u_m, profile });
+    }
+    let n = path_points(&slices);
+    if n > limits.max_path_points {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "its rail has {n} points along the interpolation paths (the slices resampled \
+                 at {} mm over the longest), more than the limit of {}",
+                RESAMPLE_SPACING_M * 1e3,
+                limits.max_path_points
+            ),
+        ));
+    }
+    let points = n.saturating_mul(slices.len());
+    if points > limits.max_surface_points {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "its surface has {points} points ({} slices of {n} points along the \
+                 interpolation paths), more than the limit of {}",
+                slices.len(),
+                limits.max_surface_points
+            ),
+        ));
     }
     RailSlices::new(file_name, &slices)
 }
@@ -658,6 +742,10 @@ mod tests {
         }
         let e = parse_slices_file(&GOOD.replace("  0.2  c.txt\n", ""), "t.slcs").unwrap_err();
         assert!(e.to_string().contains("ends before slice 3"), "{e}");
+        // A huge NSLC reserves nothing: the file ends first.
+        let huge = GOOD.replace("  3   NSLC", "  1e15   NSLC");
+        let e = parse_slices_file(&huge, "t.slcs").unwrap_err();
+        assert!(e.to_string().contains("ends before slice 4"), "{e}");
     }
 
     #[test]
@@ -675,6 +763,51 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("t.slcs line 9") && e.contains("gone"), "{e}");
+    }
+
+    /// Limits refuse a file with more slices before any profile is read,
+    /// and a rail or a surface with more points before it is built; at the
+    /// limits the file reads as without them.
+    #[test]
+    fn limits_bound_the_slices_and_the_surface() {
+        let mut reads = 0;
+        let limits = SlicesLimits {
+            max_slices: 2,
+            ..SlicesLimits::NONE
+        };
+        let e = parse_slices_within(
+            GOOD,
+            "t.slcs",
+            |_| {
+                reads += 1;
+                Ok(rail(&crown(0.0)))
+            },
+            limits,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("3 slices, more than the limit of 2"), "{e}");
+        assert_eq!(reads, 0);
+        // Three slices of 41 points: 123 points.
+        let read = |_: &str| Ok(rail(&crown(0.0)));
+        let at = |max_path_points, max_surface_points| SlicesLimits {
+            max_slices: 3,
+            max_path_points,
+            max_surface_points,
+        };
+        let e = parse_slices_within(GOOD, "t.slcs", read, at(40, 123))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("41 points") && e.contains("limit of 40"), "{e}");
+        let e = parse_slices_within(GOOD, "t.slcs", read, at(41, 122))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("123 points") && e.contains("limit of 122"),
+            "{e}"
+        );
+        let within = parse_slices_within(GOOD, "t.slcs", read, at(41, 123)).unwrap();
+        assert_eq!(within, parse_slices(GOOD, "t.slcs", read).unwrap());
     }
 
     /// The same profile at every slice is that profile at any u, bit for

@@ -969,14 +969,26 @@ class SessionResponse(_message.Message):
     def __init__(self, opened: _Optional[_Union[SessionOpened, _Mapping]] = ..., step: _Optional[_Union[SessionStepResult, _Mapping]] = ..., rolled_back: _Optional[_Union[SessionRolledBack, _Mapping]] = ..., error: _Optional[_Union[ItemError, _Mapping]] = ...) -> None: ...
 
 class ProfileSource(_message.Message):
-    __slots__ = ("builtin_name", "file", "mirror_y")
+    __slots__ = ("builtin_name", "file", "slices", "mirror_y")
     BUILTIN_NAME_FIELD_NUMBER: _ClassVar[int]
     FILE_FIELD_NUMBER: _ClassVar[int]
+    SLICES_FIELD_NUMBER: _ClassVar[int]
     MIRROR_Y_FIELD_NUMBER: _ClassVar[int]
     builtin_name: str
     file: ProfileFile
+    slices: RailSlices
     mirror_y: bool
-    def __init__(self, builtin_name: _Optional[str] = ..., file: _Optional[_Union[ProfileFile, _Mapping]] = ..., mirror_y: _Optional[bool] = ...) -> None: ...
+    def __init__(self, builtin_name: _Optional[str] = ..., file: _Optional[_Union[ProfileFile, _Mapping]] = ..., slices: _Optional[_Union[RailSlices, _Mapping]] = ..., mirror_y: _Optional[bool] = ...) -> None: ...
+
+class RailSlices(_message.Message):
+    __slots__ = ("file_name", "content", "profiles")
+    FILE_NAME_FIELD_NUMBER: _ClassVar[int]
+    CONTENT_FIELD_NUMBER: _ClassVar[int]
+    PROFILES_FIELD_NUMBER: _ClassVar[int]
+    file_name: str
+    content: str
+    profiles: _containers.RepeatedCompositeFieldContainer[ProfileFile]
+    def __init__(self, file_name: _Optional[str] = ..., content: _Optional[str] = ..., profiles: _Optional[_Iterable[_Union[ProfileFile, _Mapping]]] = ...) -> None: ...
 
 class ProfileFile(_message.Message):
     __slots__ = ("format", "content", "file_name")
@@ -989,14 +1001,36 @@ class ProfileFile(_message.Message):
     def __init__(self, format: _Optional[_Union[ProfileFormat, str]] = ..., content: _Optional[str] = ..., file_name: _Optional[str] = ...) -> None: ...
 
 class TrackSpec(_message.Message):
-    __slots__ = ("gauge_m", "gauge_height_m", "cant_rad")
+    __slots__ = ("gauge_m", "gauge_height_m", "cant_rad", "rail_origin_y_m", "rail_origin_z_m", "rail_deviation_left", "rail_deviation_right", "roller_radius_m", "curvature_per_m")
     GAUGE_M_FIELD_NUMBER: _ClassVar[int]
     GAUGE_HEIGHT_M_FIELD_NUMBER: _ClassVar[int]
     CANT_RAD_FIELD_NUMBER: _ClassVar[int]
+    RAIL_ORIGIN_Y_M_FIELD_NUMBER: _ClassVar[int]
+    RAIL_ORIGIN_Z_M_FIELD_NUMBER: _ClassVar[int]
+    RAIL_DEVIATION_LEFT_FIELD_NUMBER: _ClassVar[int]
+    RAIL_DEVIATION_RIGHT_FIELD_NUMBER: _ClassVar[int]
+    ROLLER_RADIUS_M_FIELD_NUMBER: _ClassVar[int]
+    CURVATURE_PER_M_FIELD_NUMBER: _ClassVar[int]
     gauge_m: float
     gauge_height_m: float
     cant_rad: float
-    def __init__(self, gauge_m: _Optional[float] = ..., gauge_height_m: _Optional[float] = ..., cant_rad: _Optional[float] = ...) -> None: ...
+    rail_origin_y_m: float
+    rail_origin_z_m: float
+    rail_deviation_left: RailDeviation
+    rail_deviation_right: RailDeviation
+    roller_radius_m: float
+    curvature_per_m: float
+    def __init__(self, gauge_m: _Optional[float] = ..., gauge_height_m: _Optional[float] = ..., cant_rad: _Optional[float] = ..., rail_origin_y_m: _Optional[float] = ..., rail_origin_z_m: _Optional[float] = ..., rail_deviation_left: _Optional[_Union[RailDeviation, _Mapping]] = ..., rail_deviation_right: _Optional[_Union[RailDeviation, _Mapping]] = ..., roller_radius_m: _Optional[float] = ..., curvature_per_m: _Optional[float] = ...) -> None: ...
+
+class RailDeviation(_message.Message):
+    __slots__ = ("dy_m", "dz_m", "droll_rad")
+    DY_M_FIELD_NUMBER: _ClassVar[int]
+    DZ_M_FIELD_NUMBER: _ClassVar[int]
+    DROLL_RAD_FIELD_NUMBER: _ClassVar[int]
+    dy_m: float
+    dz_m: float
+    droll_rad: float
+    def __init__(self, dy_m: _Optional[float] = ..., dz_m: _Optional[float] = ..., droll_rad: _Optional[float] = ...) -> None: ...
 
 class WheelsetSpec(_message.Message):
     __slots__ = ("flange_back_distance_m", "nominal_radius_m", "flange_back_y_m")
@@ -1199,20 +1233,22 @@ class FrictionTable(_message.Message):
     def __init__(self, contact_angles_rad: _Optional[_Iterable[float]] = ..., rail_y_m: _Optional[_Iterable[float]] = ..., coefficients: _Optional[_Iterable[float]] = ..., track_s_m: _Optional[_Iterable[float]] = ...) -> None: ...
 
 class WheelsetVelocity(_message.Message):
-    __slots__ = ("forward_m_per_s", "lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s", "pitch_rad_per_s")
+    __slots__ = ("forward_m_per_s", "lateral_m_per_s", "vertical_m_per_s", "roll_rad_per_s", "yaw_rad_per_s", "pitch_rad_per_s", "roller_rad_per_s")
     FORWARD_M_PER_S_FIELD_NUMBER: _ClassVar[int]
     LATERAL_M_PER_S_FIELD_NUMBER: _ClassVar[int]
     VERTICAL_M_PER_S_FIELD_NUMBER: _ClassVar[int]
     ROLL_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
     YAW_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
     PITCH_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
+    ROLLER_RAD_PER_S_FIELD_NUMBER: _ClassVar[int]
     forward_m_per_s: float
     lateral_m_per_s: float
     vertical_m_per_s: float
     roll_rad_per_s: float
     yaw_rad_per_s: float
     pitch_rad_per_s: float
-    def __init__(self, forward_m_per_s: _Optional[float] = ..., lateral_m_per_s: _Optional[float] = ..., vertical_m_per_s: _Optional[float] = ..., roll_rad_per_s: _Optional[float] = ..., yaw_rad_per_s: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ...) -> None: ...
+    roller_rad_per_s: float
+    def __init__(self, forward_m_per_s: _Optional[float] = ..., lateral_m_per_s: _Optional[float] = ..., vertical_m_per_s: _Optional[float] = ..., roll_rad_per_s: _Optional[float] = ..., yaw_rad_per_s: _Optional[float] = ..., pitch_rad_per_s: _Optional[float] = ..., roller_rad_per_s: _Optional[float] = ...) -> None: ...
 
 class WheelLoad(_message.Message):
     __slots__ = ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")
