@@ -25,12 +25,12 @@ use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
-    builtin, check_plausibility, is_slices_file, load_profile_with, load_slices, solve_wheelset,
-    FrictionTable, LoadOptions, PatchResult, PlausibilityWarning, Profile, RailMotion,
-    RailPlacement, RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
-    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
-    WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
-    DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, check_plausibility, is_slices_file, is_wheel_slices_file, load_profile_with,
+    load_slices, load_wheel_slices, solve_wheelset, FrictionTable, LengthUnit, LoadOptions,
+    PatchResult, PlausibilityWarning, Profile, RailMotion, RailPlacement, RailSlices,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelRailThermal,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -198,6 +198,8 @@ struct PositionKeys {
     roll_rad: Option<f64>,
     #[serde(default)]
     track_s_m: f64,
+    #[serde(default)]
+    pitch_rad: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -302,6 +304,42 @@ fn read_rail(
     Ok((profile, Some(slices)))
 }
 
+/// Reads the wheel profile `name` as [`read_profile`] does; a wheel slices
+/// file (`.slcw`, an out-of-round wheel) gives its profile facing the
+/// rail at the wheelset's pitch angle `pitch_rad` on a wheelset of
+/// `nominal_radius_m` (`WheelSlices::profile_facing_rail`) and the slices
+/// themselves; its plain profile tables are in millimetres.
+fn read_wheel(
+    name: &str,
+    dir: &Path,
+    mirror_y: bool,
+    key: &str,
+    pitch_rad: f64,
+    nominal_radius_m: f64,
+) -> Result<(Profile, Option<Arc<WheelSlices>>), CliError> {
+    if !is_wheel_slices_file(name) {
+        return Ok((read_profile(name, dir, mirror_y, key)?, None));
+    }
+    if !pitch_rad.is_finite() {
+        return Err(bad(format!(
+            "invalid input `position.pitch_rad`: must be finite, got {pitch_rad}"
+        )));
+    }
+    // Plain tables in millimetres, CONTACT's unit for them (the example's
+    // S1002_flat slices).
+    let options = LoadOptions {
+        mirror_y,
+        plain_unit: Some(LengthUnit::Millimetre),
+        ..LoadOptions::default()
+    };
+    let slices = load_wheel_slices(dir.join(name), &options)
+        .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
+    let profile = slices
+        .profile_facing_rail(pitch_rad, nominal_radius_m)
+        .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
+    Ok((profile, Some(slices)))
+}
+
 /// The friction of a wheel/rail case's `[friction]` (Coulomb 0.3 without
 /// one), or its table.
 fn wheelrail_friction(
@@ -401,15 +439,25 @@ impl WheelrailRun {
             Some(n) => read_rail(n, dir, t.rail_mirror_y, "track.rail_profile_left", s_m)?,
             None => (rail_r.clone(), slices_r.clone()),
         };
-        let wheel_r = read_profile(
+        let pitch = c.position.pitch_rad;
+        let (wheel_r, oor_r) = read_wheel(
             &w.wheel_profile,
             dir,
             w.wheel_mirror_y,
             "wheelset.wheel_profile",
+            pitch,
+            w.nominal_radius_m,
         )?;
-        let wheel_l = match &w.wheel_profile_left {
-            Some(n) => read_profile(n, dir, w.wheel_mirror_y, "wheelset.wheel_profile_left")?,
-            None => wheel_r.clone(),
+        let (wheel_l, oor_l) = match &w.wheel_profile_left {
+            Some(n) => read_wheel(
+                n,
+                dir,
+                w.wheel_mirror_y,
+                "wheelset.wheel_profile_left",
+                pitch,
+                w.nominal_radius_m,
+            )?,
+            None => (wheel_r.clone(), oor_r.clone()),
         };
         let wavelength = w
             .smoothing_wavelength_m
@@ -458,13 +506,18 @@ impl WheelrailRun {
         };
         // The service's checks: the same ranges, the same keys.
         ranges::check_geometry(&track, &wheelset).map_err(|e| bad(e.to_string()))?;
-        let pair = WheelRailPair::new(
+        let mut pair = WheelRailPair::new(
             [&rail_l, &rail_r],
             [&wheel_l, &wheel_r],
             track,
             wheelset,
             &SplineOptions::smoothing(wavelength),
         )?;
+        for (side, oor) in [(Side::Left, oor_l), (Side::Right, oor_r)] {
+            if let Some(oor) = oor {
+                pair = pair.with_wheel_slices(side, oor, pitch)?;
+            }
+        }
         let material = CombinedMaterial::identical(Material {
             shear_modulus_pa: c.material.shear_modulus_pa,
             poisson_ratio: c.material.poisson_ratio,
