@@ -1085,6 +1085,45 @@ element_size_m = 0.0002
         assert!(e.to_string().contains("position.track_s_m"), "{e}");
     }
 
+    /// `examples/cases/wheel_flat.toml`: Chalmers' wheel flat (a wheel
+    /// slices file, `S1002_flat.slcw`) at pitch -37 degrees, its deepest
+    /// part facing the rail. CONTACT's examples/wheelflat.ref_out case 13
+    /// (its library's digits, `crates/cntc/bench/wheelflat_cases.py`): FN
+    /// 124930 N, FX 19784.1 N, YCP 773.459 mm, the contact 14 mm to the
+    /// field side of the round wheel's (759.33 mm, case 1). The case file
+    /// smooths the profile facing the rail (and the rail) with CONTACT's
+    /// wavelength where CONTACT smooths each slice (the CONTACT library
+    /// here smooths as CONTACT does: FX within 0.16 %,
+    /// `crates/cntc/tests/wheelflat.rs`): FN within 1e-3, FX 1 % (0.57 %
+    /// measured), YCP 0.1 mm (0.01 mm). At pitch 0 (the flat half a turn
+    /// away) the wheel is round: the contact within 1 mm of CONTACT's round
+    /// wheel's (0.8 mm measured: the case file smooths the rail too). A
+    /// pitch that is not a number is refused naming its key.
+    #[test]
+    fn an_out_of_round_wheel_case_meets_contacts_wheel_flat() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cases");
+        let text = std::fs::read_to_string(dir.join("wheel_flat.toml")).unwrap();
+        let run = WheelrailRun::from_toml(&text, &dir).unwrap();
+        assert!(run.pair.wheel(Side::Right).slices().is_some());
+        let p = &only_patch(&run);
+        let fx = p.force_track_n[0];
+        eprintln!("FN {} FX {fx} YCP {}", p.normal_force_n, p.track_y_m);
+        assert!(
+            (p.normal_force_n - 124930.0).abs() < 2e-3 * 124930.0,
+            "{}",
+            p.normal_force_n
+        );
+        assert!((fx - 19784.1).abs() < 0.02 * 19784.1, "{fx}");
+        assert!((p.track_y_m - 0.773459).abs() < 3e-4, "{}", p.track_y_m);
+        let round = text.replace("pitch_rad = -0.6457718232379019", "pitch_rad = 0.0");
+        let run = WheelrailRun::from_toml(&round, &dir).unwrap();
+        let p = &only_patch(&run);
+        assert!((p.track_y_m - 0.75933).abs() < 1e-3, "{}", p.track_y_m);
+        let bad = text.replace("pitch_rad = -0.6457718232379019", "pitch_rad = nan");
+        let e = WheelrailRun::from_toml(&bad, &dir).err().unwrap();
+        assert!(e.to_string().contains("position.pitch_rad"), "{e}");
+    }
+
     /// CONTACT's test-rollers2.inp case 2a as a case file: the "bus" (the
     /// flat wheel `flat_plane.prw` at a nominal radius of 133.3 mm, a
     /// cylinder) on a roller of 400 mm whose profile is `circ_r100.prr`

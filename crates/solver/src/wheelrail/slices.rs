@@ -1410,4 +1410,17 @@ mod tests {
         let a = z_at(&bump, 390.0 * deg, &mut pts);
         assert!((a - 2e-3 / 3.0).abs() < 1e-15, "{a}");
     }
+
+    /// A wheel slices file read as a single profile (as the service's
+    /// profile registration reads files) is refused by name.
+    #[test]
+    fn a_wheel_slices_file_is_no_single_profile() {
+        let e = crate::wheelrail::parse_profile(WHEEL, "flat.slcw", &LoadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("flat.slcw") && e.contains("wheel slices file"),
+            "{e}"
+        );
+    }
 }
