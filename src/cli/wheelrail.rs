@@ -25,12 +25,12 @@ use crate::problem::case::FrictionSection;
 use crate::wheelrail::contact::{PitchControl, Timing, MIN_ELEMENTS_ACROSS};
 use crate::wheelrail::ranges;
 use crate::wheelrail::{
-    builtin, check_plausibility, is_slices_file, load_profile_with, load_slices, solve_wheelset,
-    FrictionTable, LoadOptions, PatchResult, PlausibilityWarning, Profile, RailMotion,
-    RailPlacement, RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad,
-    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
-    WheelRailSolution, WheelRailThermal, WheelsetData, WheelsetPosition, WheelsetVelocity,
-    DEFAULT_SMOOTHING_WAVELENGTH_M,
+    builtin, check_plausibility, is_slices_file, is_wheel_slices_file, load_profile_with,
+    load_slices, load_wheel_slices, solve_wheelset, FrictionTable, LengthUnit, LoadOptions,
+    PatchResult, PlausibilityWarning, Profile, RailMotion, RailPlacement, RailSlices,
+    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelRailThermal,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -198,6 +198,8 @@ struct PositionKeys {
     roll_rad: Option<f64>,
     #[serde(default)]
     track_s_m: f64,
+    #[serde(default)]
+    pitch_rad: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -299,6 +301,42 @@ fn read_rail(
     let profile = slices
         .profile_at(track_s_m)
         .map_err(|e| bad(format!("invalid input `position.track_s_m`: {e}")))?;
+    Ok((profile, Some(slices)))
+}
+
+/// Reads the wheel profile `name` as [`read_profile`] does; a wheel slices
+/// file (`.slcw`, an out-of-round wheel) gives its profile facing the
+/// rail at the wheelset's pitch angle `pitch_rad` on a wheelset of
+/// `nominal_radius_m` (`WheelSlices::profile_facing_rail`) and the slices
+/// themselves; its plain profile tables are in millimetres.
+fn read_wheel(
+    name: &str,
+    dir: &Path,
+    mirror_y: bool,
+    key: &str,
+    pitch_rad: f64,
+    nominal_radius_m: f64,
+) -> Result<(Profile, Option<Arc<WheelSlices>>), CliError> {
+    if !is_wheel_slices_file(name) {
+        return Ok((read_profile(name, dir, mirror_y, key)?, None));
+    }
+    if !pitch_rad.is_finite() {
+        return Err(bad(format!(
+            "invalid input `position.pitch_rad`: must be finite, got {pitch_rad}"
+        )));
+    }
+    // Plain tables in millimetres, CONTACT's unit for them (the example's
+    // S1002_flat slices).
+    let options = LoadOptions {
+        mirror_y,
+        plain_unit: Some(LengthUnit::Millimetre),
+        ..LoadOptions::default()
+    };
+    let slices = load_wheel_slices(dir.join(name), &options)
+        .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
+    let profile = slices
+        .profile_facing_rail(pitch_rad, nominal_radius_m)
+        .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
     Ok((profile, Some(slices)))
 }
 
@@ -411,15 +449,25 @@ impl WheelrailRun {
             Some(n) => read_rail(n, dir, t.rail_mirror_y, "track.rail_profile_left", s_m)?,
             None => (rail_r.clone(), slices_r.clone()),
         };
-        let wheel_r = read_profile(
+        let pitch = c.position.pitch_rad;
+        let (wheel_r, oor_r) = read_wheel(
             &w.wheel_profile,
             dir,
             w.wheel_mirror_y,
             "wheelset.wheel_profile",
+            pitch,
+            w.nominal_radius_m,
         )?;
-        let wheel_l = match &w.wheel_profile_left {
-            Some(n) => read_profile(n, dir, w.wheel_mirror_y, "wheelset.wheel_profile_left")?,
-            None => wheel_r.clone(),
+        let (wheel_l, oor_l) = match &w.wheel_profile_left {
+            Some(n) => read_wheel(
+                n,
+                dir,
+                w.wheel_mirror_y,
+                "wheelset.wheel_profile_left",
+                pitch,
+                w.nominal_radius_m,
+            )?,
+            None => (wheel_r.clone(), oor_r.clone()),
         };
         let wavelength = w
             .smoothing_wavelength_m
@@ -468,13 +516,18 @@ impl WheelrailRun {
         };
         // The service's checks: the same ranges, the same keys.
         ranges::check_geometry(&track, &wheelset).map_err(|e| bad(e.to_string()))?;
-        let pair = WheelRailPair::new(
+        let mut pair = WheelRailPair::new(
             [&rail_l, &rail_r],
             [&wheel_l, &wheel_r],
             track,
             wheelset,
             &SplineOptions::smoothing(wavelength),
         )?;
+        for (side, oor) in [(Side::Left, oor_l), (Side::Right, oor_r)] {
+            if let Some(oor) = oor {
+                pair = pair.with_wheel_slices(side, oor, pitch)?;
+            }
+        }
         let material = CombinedMaterial::identical(Material {
             shear_modulus_pa: c.material.shear_modulus_pa,
             poisson_ratio: c.material.poisson_ratio,
@@ -1017,6 +1070,41 @@ element_size_m = 0.0002
         let far = case.replace("track_s_m = 0.239", "track_s_m = 0.5");
         let e = WheelrailRun::from_toml(&far, &cases).err().unwrap();
         assert!(e.to_string().contains("position.track_s_m"), "{e}");
+    }
+
+    /// `examples/cases/wheel_flat.toml`: Chalmers' wheel flat (a wheel
+    /// slices file, `S1002_flat.slcw`) at pitch -37 degrees, its deepest
+    /// part facing the rail. CONTACT's examples/wheelflat.ref_out case 13
+    /// (its library's digits, `crates/cntc/bench/wheelflat_cases.py`): FN
+    /// 124930 N, FX 19784.1 N, YCP 773.459 mm, the contact 14 mm to the
+    /// field side of the round wheel's (759.33 mm, case 1). The case file
+    /// smooths the profile facing the rail (and the rail) with CONTACT's
+    /// wavelength where CONTACT smooths each slice (the CONTACT library
+    /// here smooths as CONTACT does: FX within 0.16 %,
+    /// `crates/cntc/tests/wheelflat.rs`): FN within 1e-3, FX 1 % (0.57 %
+    /// measured), YCP 0.1 mm (0.01 mm). At pitch 0 (the flat half a turn
+    /// away) the wheel is round: the contact within 1 mm of CONTACT's round
+    /// wheel's (0.8 mm measured: the case file smooths the rail too). A
+    /// pitch that is not a number is refused naming its key.
+    #[test]
+    fn an_out_of_round_wheel_case_meets_contacts_wheel_flat() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cases");
+        let text = std::fs::read_to_string(dir.join("wheel_flat.toml")).unwrap();
+        let run = WheelrailRun::from_toml(&text, &dir).unwrap();
+        assert!(run.pair.wheel(Side::Right).slices().is_some());
+        let p = &only_patch(&run);
+        let fx = p.force_track_n[0];
+        let fn_n = p.normal_force_n;
+        assert!((fn_n - 124930.0).abs() < 1e-3 * 124930.0, "{fn_n}");
+        assert!((fx - 19784.1).abs() < 0.01 * 19784.1, "{fx}");
+        assert!((p.track_y_m - 0.773459).abs() < 1e-4, "{}", p.track_y_m);
+        let round = text.replace("pitch_rad = -0.6457718232379019", "pitch_rad = 0.0");
+        let run = WheelrailRun::from_toml(&round, &dir).unwrap();
+        let p = &only_patch(&run);
+        assert!((p.track_y_m - 0.75933).abs() < 1e-3, "{}", p.track_y_m);
+        let bad = text.replace("pitch_rad = -0.6457718232379019", "pitch_rad = nan");
+        let e = WheelrailRun::from_toml(&bad, &dir).err().unwrap();
+        assert!(e.to_string().contains("position.pitch_rad"), "{e}");
     }
 
     /// CONTACT's test-rollers2.inp case 2a as a case file: the "bus" (the

@@ -24,8 +24,25 @@
 //!   takes them at the weighted centre of the interpenetration over x and
 //!   y: docs/cntc.md, "Variable rails"). The slice profiles are read with
 //!   the call (`Call::SetProfileFile`'s `slice_files`). Features, the
-//!   approximating spline, perturbations, smoothing and wheel slices
-//!   (`.slcw`) are refused.
+//!   approximating spline, perturbations and smoothing are refused.
+//! * Out-of-round wheels: a wheel slices file (`.slcw`, the solver's
+//!   `wheelrail::slices::WheelSlices`, NFEAT <= 1, TH_INTPOL = 1 or 2,
+//!   CONTACT's approximating spline): each slice read, scaled and smoothed
+//!   (SMOOTH, ISMOOTH) as a single wheel profile, as CONTACT smooths each
+//!   slice; the pair's wheel is the profile the wheel shows the rail at
+//!   the pitch PITCH (`cntc_setwheelsetposition`'s sixth value; placed
+//!   again when the pitch changes): per interpolation path the lowest
+//!   point of the wheel within +-0.2 rad of theta = -PITCH, as CONTACT
+//!   searches the wheel's surface over +-0.2 rad (the solver's
+//!   `WheelSlices::profile_facing_rail`); each element of a patch then
+//!   adds the change of radius between that profile and the wheel's
+//!   cross-section at its own angle -PITCH + asin(x / r), and the grid
+//!   reaches along x wherever the true wheel comes near the rail (the
+//!   solver's `WheelRailPair::with_wheel_slices`). The contact search and
+//!   the tangent plane of a patch are those of the profile facing the
+//!   rail, at x = 0.
+//!   The slice profiles are read with the call, as a rail slices file's.
+//!   Features and perturbations are refused.
 //! * Profiles: CONTACT's canonical (right-hand) profiles, in metres here.
 //!   CONTACT multiplies the numbers read by the scale factor `rparam(1)`
 //!   to get millimetres; its default is the unit convention's (1 for
@@ -76,8 +93,9 @@
 //!   CONTACT; the solver is given the same placement from the profile's
 //!   smallest y.
 //! * Wheelset (E digit): flange-back distance and position, nominal
-//!   radius and the optional tape circle; position s, y, z, roll, yaw
-//!   (pitch is stored: a round wheel does not depend on it); velocity.
+//!   radius and the optional tape circle; position s, y, z, roll, yaw,
+//!   pitch (a round wheel does not depend on it; an out-of-round wheel
+//!   does, above); velocity.
 //! * Flexible wheelset deviations (E = 4, 5): the wheel profile's marker
 //!   displaced by DXWHL, DYWHL, DZWHL and the wheel turned about it by
 //!   DROLLW, DYAWW in wheelset coordinates, as CONTACT's
@@ -150,15 +168,15 @@ use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
-use railcontact_solver::wheelrail::slices::parse_slices_file;
+use railcontact_solver::wheelrail::slices::{parse_slices_file_along, SliceAxis};
 use railcontact_solver::wheelrail::{
-    is_slices_file, parse_profile, parse_slices, pitch_force_tolerance, solve_wheelset,
-    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
-    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
-    ProfileKind, ProfileSpline, RailDeviation, RailMotion, RailPlacement, RailSlices,
-    SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelsetData,
-    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    is_slices_file, is_wheel_slices_file, parse_profile, parse_slices, parse_wheel_slices,
+    pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings, ExactTangential,
+    FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
+    ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
+    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -193,6 +211,9 @@ struct ProfileInput {
     /// A rail varying along the track (a `.slcs` file): the pair's rail
     /// is its profile at the wheelset's position s.
     slices: Option<Arc<RailSlices>>,
+    /// An out-of-round wheel (a `.slcw` file): the pair's wheel is its
+    /// profile at theta = -PITCH, `profile` its profile at theta = 0.
+    wheel_slices: Option<Arc<WheelSlices>>,
 }
 
 impl ProfileInput {
@@ -369,6 +390,9 @@ pub struct WheelRail {
     /// The wheelset position s \[m\] the pair was built at (a variable
     /// rail's pair is its profile there).
     pair_track_s_m: Option<f64>,
+    /// The pitch angle whose wheel profile an out-of-round wheel's pair
+    /// holds \[rad\].
+    pair_pitch_rad: Option<f64>,
     scratch: SearchScratch,
     solved: Option<Solved>,
     /// Subsurface blocks for every patch without its own (icp = -1).
@@ -584,11 +608,24 @@ pub fn read_profile_file(fname: &str) -> std::result::Result<Vec<u8>, String> {
     })
 }
 
+/// A slices file as `cntc_setprofileinputfname` gives it: its name, its
+/// bytes (or why they could not be read), its profile files' and the
+/// call's parameters.
+#[derive(Clone, Copy)]
+struct SlicesSource<'a> {
+    fname: &'a str,
+    content: std::result::Result<&'a [u8], &'a String>,
+    slice_files: &'a [SliceFile],
+    iparam: &'a [i32],
+    rparam: &'a [f64],
+}
+
 /// A profile file a rail slices file names: its name as written there,
 /// and its bytes or why they could not be read.
 pub type SliceFile = (String, std::result::Result<Vec<u8>, String>);
 
-/// The profile files of the rail slices file `fname` (`.slcs`; its bytes
+/// The profile files of the rail or wheel slices file `fname` (`.slcs`,
+/// `.slcw`; its bytes
 /// `content`), each read relative to the slices file's folder
 /// ([`read_profile_file`]), so that a server applies the file without the
 /// caller's files. Empty for another file, or a slices file that cannot be
@@ -597,10 +634,18 @@ pub fn read_slice_files(
     fname: &str,
     content: std::result::Result<&[u8], &String>,
 ) -> Vec<SliceFile> {
-    let (true, Ok(bytes)) = (is_slices_file(fname), content) else {
+    let axis = if is_slices_file(fname) {
+        SliceAxis::Track
+    } else {
+        SliceAxis::Wheel
+    };
+    let (true, Ok(bytes)) = (
+        is_slices_file(fname) || is_wheel_slices_file(fname),
+        content,
+    ) else {
         return Vec::new();
     };
-    let Ok(file) = parse_slices_file(&String::from_utf8_lossy(bytes), fname) else {
+    let Ok(file) = parse_slices_file_along(&String::from_utf8_lossy(bytes), fname, axis) else {
         return Vec::new();
     };
     let dir = std::path::Path::new(fname)
@@ -693,8 +738,9 @@ impl WheelRail {
         let kind = match itype {
             0 => ProfileKind::Rail,
             1 => ProfileKind::Wheel,
-            // A slices file (.slcs) is a rail's.
+            // A slices file (.slcs) is a rail's, a .slcw a wheel's.
             _ if is_slices_file(fname) => ProfileKind::Rail,
+            _ if is_wheel_slices_file(fname) => ProfileKind::Wheel,
             _ => railcontact_solver::wheelrail::kind_from_extension(fname).ok_or_else(|| {
                 CntcError::Profile(format!(
                     "{CALL}: cannot tell a rail from a wheel profile by the extension of \"{fname}\" \
@@ -724,14 +770,20 @@ impl WheelRail {
         let ext = std::path::Path::new(fname)
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        let src = SlicesSource {
+            fname,
+            content,
+            slice_files,
+            iparam,
+            rparam,
+        };
         match (kind, ext.as_deref()) {
-            (ProfileKind::Rail, Some("slcs")) => {
-                return self.read_rail_slices(fname, content, slice_files, iparam, rparam)
-            }
-            (_, Some("slcw")) => {
-                return Err(CntcError::NotSupported(format!(
-                    "{CALL}: \"{fname}\": wheel slices files (.slcw, out-of-round wheels) \
-                     are not supported"
+            (ProfileKind::Rail, Some("slcs")) => return self.read_rail_slices(&src),
+            (ProfileKind::Wheel, Some("slcw")) => return self.read_wheel_slices(&src),
+            (ProfileKind::Rail, Some("slcw")) => {
+                return Err(CntcError::Profile(format!(
+                    "{CALL}: \"{fname}\" is a wheel slices file (.slcw), given as the rail \
+                     (ITYPE = 0)"
                 )))
             }
             (ProfileKind::Wheel, Some("slcs")) => {
@@ -754,38 +806,18 @@ impl WheelRail {
             profile,
             smoothing_m,
             slices: None,
+            wheel_slices: None,
         })
     }
 
     /// A variable rail from the slices file `fname` (its bytes `content`,
     /// its profile files' `slice_files`): each slice's profile read and
     /// scaled as a single profile is.
-    fn read_rail_slices(
-        &self,
-        fname: &str,
-        content: std::result::Result<&[u8], &String>,
-        slice_files: &[SliceFile],
-        iparam: &[i32],
-        rparam: &[f64],
-    ) -> Result<ProfileInput> {
+    fn read_rail_slices(&self, src: &SlicesSource) -> Result<ProfileInput> {
         const CALL: &str = "cntc_setprofileinputfname";
-        let bytes = content.map_err(|why| CntcError::Profile(format!("{CALL}: {why}")))?;
-        let text = String::from_utf8_lossy(bytes);
-        let not_given = "not among the files read with the slices file".to_string();
-        // Errors of a slice's profile pass through the slices reader as
-        // text (it names the slice's line).
-        let slices = parse_slices(&text, fname, |name| {
-            let bytes = slice_files
-                .iter()
-                .find(|(n, _)| n == name)
-                .map_or(Err(&not_given), |(_, b)| b.as_deref());
-            self.scaled_profile(name, bytes, ProfileKind::Rail, iparam, rparam)
-                .map_err(|e| ProfileError::Format {
-                    at: SourceLocation::new(name, None),
-                    message: e.to_string(),
-                })
-        })
-        .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
+        let rparam = src.rparam;
+        let rail = ProfileKind::Rail;
+        let slices = self.read_slices(src, rail, &Ok, |t, n, r| parse_slices(t, n, r))?;
         let profile = slices
             .profile_at(slices.u_range_m().0)
             .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
@@ -800,7 +832,88 @@ impl WheelRail {
             profile,
             smoothing_m: 0.0,
             slices: Some(Arc::new(slices)),
+            wheel_slices: None,
         })
+    }
+
+    /// An out-of-round wheel from the wheel slices file `fname` (its bytes
+    /// `content`, its profile files' `slice_files`): each slice's profile
+    /// read, scaled and smoothed (SMOOTH, as a single profile) on its own,
+    /// as CONTACT smooths each slice, and the slices' surface built from
+    /// the smoothed slices.
+    fn read_wheel_slices(&self, src: &SlicesSource) -> Result<ProfileInput> {
+        const CALL: &str = "cntc_setprofileinputfname";
+        let (iparam, rparam) = (src.iparam, src.rparam);
+        let smooth = rp(rparam, 2, 0.0);
+        if !smooth.is_finite() {
+            return Err(CntcError::Profile(format!(
+                "{CALL}: SMOOTH (rparam(2)) = {smooth} is not a finite number"
+            )));
+        }
+        let ismooth = ip(iparam, 6, 0);
+        let smoothed = |profile: Profile| {
+            let smoothing_m = smoothing_wavelength_m(ismooth, smooth, profile.points());
+            presmoothed(&ProfileInput {
+                profile,
+                smoothing_m,
+                slices: None,
+                wheel_slices: None,
+            })
+        };
+        let wheel = ProfileKind::Wheel;
+        let slices =
+            self.read_slices(src, wheel, &smoothed, |t, n, r| parse_wheel_slices(t, n, r))?;
+        let profile = slices
+            .profile_at(0.0)
+            .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
+        Ok(ProfileInput {
+            profile,
+            smoothing_m: 0.0,
+            slices: None,
+            wheel_slices: Some(Arc::new(slices)),
+        })
+    }
+
+    /// The slices of the slices file of `src` (its profile files each read
+    /// and scaled as a single profile of `kind`, then passed through
+    /// `finish`) built by `parse`.
+    fn read_slices<T>(
+        &self,
+        src: &SlicesSource,
+        kind: ProfileKind,
+        finish: &dyn Fn(Profile) -> Result<Profile>,
+        parse: impl FnOnce(
+            &str,
+            &str,
+            &mut dyn FnMut(&str) -> std::result::Result<Profile, ProfileError>,
+        ) -> std::result::Result<T, ProfileError>,
+    ) -> Result<T> {
+        const CALL: &str = "cntc_setprofileinputfname";
+        let SlicesSource {
+            fname,
+            content,
+            slice_files,
+            iparam,
+            rparam,
+        } = *src;
+        let bytes = content.map_err(|why| CntcError::Profile(format!("{CALL}: {why}")))?;
+        let text = String::from_utf8_lossy(bytes);
+        let not_given = "not among the files read with the slices file".to_string();
+        // Errors of a slice's profile pass through the slices reader as
+        // text (it names the slice's line).
+        let mut read = |name: &str| {
+            let bytes = slice_files
+                .iter()
+                .find(|(n, _)| n == name)
+                .map_or(Err(&not_given), |(_, b)| b.as_deref());
+            self.scaled_profile(name, bytes, kind, iparam, rparam)
+                .and_then(finish)
+                .map_err(|e| ProfileError::Format {
+                    at: SourceLocation::new(name, None),
+                    message: e.to_string(),
+                })
+        };
+        parse(&text, fname, &mut read).map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))
     }
 
     /// A profile file read and scaled by SCALE_YZ, as
@@ -911,6 +1024,7 @@ impl WheelRail {
                 profile,
                 smoothing_m,
                 slices: None,
+                wheel_slices: None,
             })
         })();
         self.store_profile(kind, r)
@@ -1447,6 +1561,12 @@ impl WheelRail {
         {
             return false;
         }
+        // An out-of-round wheel's pair holds its profile at one pitch.
+        if matches!(&self.wheel, Some(Ok(w)) if w.wheel_slices.is_some())
+            && self.pair_pitch_rad != Some(self.position[5])
+        {
+            return false;
+        }
         match &self.track {
             Some(Ok(track)) => {
                 *pair.track() == track.for_side(side, &self.rail_deviation, self.is_roller())
@@ -1456,8 +1576,25 @@ impl WheelRail {
     }
 
     /// The profile `p`, or of a variable rail its profile at the wheelset's
-    /// position S.
+    /// position S, or of an out-of-round wheel its profile facing the rail
+    /// at PITCH (`WheelSlices::profile_facing_rail`).
     fn at_wheelset<'a>(&self, p: &'a ProfileInput) -> Result<std::borrow::Cow<'a, ProfileInput>> {
+        if let Some(slices) = &p.wheel_slices {
+            let pitch = self.position[5];
+            let radius =
+                slot(&self.wheelset, "the wheelset dimensions have not been set")?.nominal_radius_m;
+            let profile = slices.profile_facing_rail(pitch, radius).map_err(|e| {
+                CntcError::Input(format!(
+                    "the wheelset's pitch PITCH = {pitch} (cntc_setwheelsetposition): {e}"
+                ))
+            })?;
+            return Ok(std::borrow::Cow::Owned(ProfileInput {
+                profile,
+                smoothing_m: p.smoothing_m,
+                slices: None,
+                wheel_slices: None,
+            }));
+        }
         let Some(slices) = &p.slices else {
             return Ok(std::borrow::Cow::Borrowed(p));
         };
@@ -1472,6 +1609,7 @@ impl WheelRail {
             profile,
             smoothing_m: 0.0,
             slices: None,
+            wheel_slices: None,
         }))
     }
 
@@ -1490,6 +1628,8 @@ impl WheelRail {
              cntc_setprofileinputvalues with ITYPE = 1",
         )
         .map_err(|e| CntcError::Profile(e.to_string()))?;
+        let oor = wheel.wheel_slices.clone();
+        let wheel = &*self.at_wheelset(wheel)?;
         let track = slot(
             &self.track,
             "the track dimensions have not been set: cntc_settrackdimensions with Z = 1 or 3",
@@ -1543,7 +1683,7 @@ impl WheelRail {
                 self.units().len_out(hi)
             )));
         }
-        PairCache::global()
+        let pair = PairCache::global()
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
@@ -1555,7 +1695,18 @@ impl WheelRail {
                 },
                 &options,
             )
-            .map_err(CntcError::from_wheelrail)
+            .map_err(CntcError::from_wheelrail)?;
+        let Some(oor) = oor else {
+            return Ok(pair);
+        };
+        let pitch = self.position[5];
+        let mut out = (*pair).clone();
+        for s in [Side::Left, Side::Right] {
+            out = out
+                .with_wheel_slices(s, oor.clone(), pitch)
+                .map_err(CntcError::from_wheelrail)?;
+        }
+        Ok(Arc::new(out))
     }
 
     /// CONTACT's dr_tape \[m\]: -z_w(Y_TAPE), 0 without a tape circle or
@@ -1585,6 +1736,7 @@ impl WheelRail {
             self.pair_before = None;
             self.pair = Some(pair?);
             self.pair_track_s_m = Some(self.position[0]);
+            self.pair_pitch_rad = Some(self.position[5]);
         }
         let input = self.solver_input(side)?;
         let pair = self.pair.as_ref().expect("built above");

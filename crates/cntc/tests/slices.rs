@@ -55,17 +55,7 @@ fn field(ire: i32, icp: i32, n: usize, ifld: i32) -> Vec<f64> {
 /// Writes a slices file `name` in `dir` with a slice at each u [mm] of
 /// `slices` naming its profile file (relative to `dir`).
 fn write_slices(dir: &Path, name: &str, slices: &[(f64, &str)]) -> String {
-    let mut text = String::from("% test slices\n   0.0   1.0   U_OFFSET, U_SCALE\n");
-    text += &format!(
-        "  {}   NSLC\n  0 0 0   NFEAT, NKINK, NACCEL\n  1   U_INTPOL\n",
-        slices.len()
-    );
-    for (u, f) in slices {
-        text += &format!("  {u}  '{f}'\n");
-    }
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
+    common::write_slices_file(dir, name, "U", 1, slices)
 }
 
 /// Writes the UIC60 rail of the Manchester benchmark as a two-column file

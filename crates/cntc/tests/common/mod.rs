@@ -508,6 +508,54 @@ pub enum Load {
     Height(f64),
 }
 
+/// Writes a slices file `name` in `dir` (`key` "U" for a rail's, "TH"
+/// for a wheel's; offset 0, scale 1, method `intpol`) with a slice at each
+/// position of `slices` naming its profile file (relative to `dir`);
+/// returns its path.
+pub fn write_slices_file(
+    dir: &Path,
+    name: &str,
+    key: &str,
+    intpol: i32,
+    slices: &[(f64, &str)],
+) -> String {
+    let mut text = format!("% test slices\n   0.0   1.0   {key}_OFFSET, {key}_SCALE\n");
+    text += &format!(
+        "  {}   NSLC\n  0 0 0   NFEAT, NKINK, NACCEL\n  {intpol}   {key}_INTPOL\n",
+        slices.len()
+    );
+    for (u, f) in slices {
+        text += &format!("  {u}  '{f}'\n");
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+/// A module 1 element `ire` as CONTACT's examples set it (mbench_locus.inp,
+/// wheelflat.inp): the right wheel (C1 = 1), steady rolling (T = 3),
+/// the grid by DX and DS (D = 2), a vertical force (N = 1, `force`) or
+/// height; CONTACT's solver settings (999, 100, 30, 1; 1e-5), steel
+/// (0.28, 82 GPa) and Coulomb friction 0.3.
+pub unsafe fn rolling_right_wheel(ire: i32, force: bool) {
+    wheelrail_element(
+        ire,
+        &[
+            (flags::IC_CONFIG, 1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, force as i32),
+            (flags::IC_DISCNS, 2),
+        ],
+    );
+    let icp = -1;
+    let ints = [999, 100, 30, 1];
+    cntc_setsolverflags(&ire, &icp, &0, &4, ints.as_ptr(), &1, [1e-5].as_ptr());
+    let mat = [0.28, 0.28, 82000.0, 82000.0];
+    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+    cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+}
+
 /// CONTACT's `mbench_locus.inp` setup on element `ire` (right wheel,
 /// steady rolling, the S1002 wheel, the rail placed absolutely at RAILY0 =
 /// 750 mm; its load FZ = 10 kN), the rail from `rail` (SCALE_YZ `scale`),
@@ -520,22 +568,8 @@ pub unsafe fn mbench_locus(
     (s_mm, y_mm, yaw): (f64, f64, f64),
     load: Load,
 ) -> i32 {
-    wheelrail_element(
-        ire,
-        &[
-            (flags::IC_CONFIG, 1),
-            (flags::IC_TANG, 3),
-            (flags::IC_PVTIME, 2),
-            (flags::IC_NORM, matches!(load, Load::Force(_)) as i32),
-            (flags::IC_DISCNS, 2),
-        ],
-    );
+    rolling_right_wheel(ire, matches!(load, Load::Force(_)));
     let icp = -1;
-    let ints = [999, 100, 30, 1];
-    cntc_setsolverflags(&ire, &icp, &0, &4, ints.as_ptr(), &1, [1e-5].as_ptr());
-    let mat = [0.28, 0.28, 82000.0, 82000.0];
-    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
-    cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
     let z_ws = match load {
         Load::Force(fz) => {
             cntc_setverticalforce(&ire, &fz);

@@ -110,11 +110,11 @@ use crate::wheelrail::search::{
     ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
     WheelScratch,
 };
-use crate::wheelrail::slices::RailSlices;
+use crate::wheelrail::slices::{RailSlices, WheelSlices, FACING_HALF_ANGLE_RAD};
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
 use crate::wheelrail::wheelset::{
-    CurveSample, PlacedRail, Side, TrackData, WheelRailError, WheelRailPair, WheelsetPosition,
-    WheelsetVelocity, SAMPLE_SPACING_M,
+    CurveSample, PlacedRail, PlacedWheel, Side, TrackData, WheelRailError, WheelRailPair,
+    WheelSlicesAt, WheelsetPosition, WheelsetVelocity, SAMPLE_SPACING_M,
 };
 
 /// Contact model per patch.
@@ -1914,6 +1914,24 @@ pub(crate) fn pitch_rate(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
         .unwrap_or(-nominal_rolling_speed(pair, input) / pair.wheelset().nominal_radius_m)
 }
 
+/// Refuses another model than the exact one (or auto) for `what`, which
+/// needs the undeformed distance of every element.
+fn require_exact(input: &WheelRailInput, what: &str) -> Result<(), WheelRailError> {
+    if matches!(
+        input.settings.model,
+        WheelRailModel::Exact | WheelRailModel::Auto
+    ) {
+        return Ok(());
+    }
+    Err(WheelRailError::invalid(
+        "model",
+        format!(
+            "{what} needs the exact model, not '{}'",
+            input.settings.model.name()
+        ),
+    ))
+}
+
 pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     let p = &input.position;
     require_finite("position.lateral_m", p.lateral_m)?;
@@ -1949,19 +1967,8 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             ));
         }
     }
-    if input.rail_slices.iter().any(Option::is_some)
-        && !matches!(
-            input.settings.model,
-            WheelRailModel::Exact | WheelRailModel::Auto
-        )
-    {
-        return Err(WheelRailError::invalid(
-            "model",
-            format!(
-                "a rail varying along the track (slices) needs the exact model, not '{}'",
-                input.settings.model.name()
-            ),
-        ));
+    if input.rail_slices.iter().any(Option::is_some) {
+        require_exact(input, "a rail varying along the track (slices)")?;
     }
     match input.load {
         WheelLoad::VerticalForce(f) => require_positive("load.vertical_force_n", f)?,
@@ -2062,6 +2069,9 @@ pub(crate) fn validate_on(
     pair: &WheelRailPair,
     input: &WheelRailInput,
 ) -> Result<(), WheelRailError> {
+    if Side::BOTH.iter().any(|s| pair.wheel(*s).slices().is_some()) {
+        require_exact(input, "an out-of-round wheel (wheel slices)")?;
+    }
     let v = input.velocity.forward_m_per_s;
     match pair.track().roller_radius_m {
         None => {
@@ -2556,6 +2566,143 @@ fn add_rail_variation(
     Ok(())
 }
 
+/// The true surface of an out-of-round wheel over rows of a patch
+/// (`oor`: its slices at the wheelset's pitch, the pair's `wheel` placed
+/// from [`WheelSlices::facing_rail_points`], the profile the patch's
+/// geometry used as a round wheel's): at (x, s) the wheel's cross-section
+/// at its angle theta0 + asin(x / r) (theta0 = -pitch, x of the track from
+/// the axle, r the patch's rolling radius) has the radius less the nominal
+/// radius z at the row's wheel profile y (its point on the tangent plane,
+/// along the axle of the pose), where the round wheel has that of the
+/// placed profile, z0: the surface lies further out by (z - z0) along the
+/// wheel's radius there, cos(asin(x / r)) of it along the radius at the
+/// lowest point, whose part along the patch's normal closes the
+/// undeformed distance. A row beyond the slices' lateral extent keeps its
+/// distance.
+struct WheelRows<'a> {
+    oor: &'a WheelSlicesAt,
+    /// The rows' wheel profile y \[m\].
+    ys: Vec<f64>,
+    /// z0 of each row.
+    base: Vec<Option<f64>>,
+    ylo: f64,
+    yhi: f64,
+    /// The part along the patch's normal of the radius at the lowest
+    /// point.
+    along_normal: f64,
+    radius_m: f64,
+    /// The cross-section at a column and its segments near the rows.
+    at: Vec<[f64; 2]>,
+    near: Vec<usize>,
+}
+
+impl<'a> WheelRows<'a> {
+    /// The rows at the tangent-plane positions `s_m` of the patch `geom`.
+    fn new(
+        oor: &'a WheelSlicesAt,
+        geom: &PatchGeometry,
+        pose: &SidePose,
+        wheel: &PlacedWheel,
+        s_m: impl Iterator<Item = f64>,
+    ) -> Self {
+        let a = pose.axle();
+        let c = pose.center();
+        // The wheel's radius at its lowest point: down, perpendicular to
+        // the axle ([`LocusFrame`]'s e1).
+        let e1 = [-a[2] * a[0], -a[2] * a[1], 1.0 - a[2] * a[2]];
+        let norm = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+        let along_normal = (e1[1] * geom.normal[0] + e1[2] * geom.normal[1]) / norm;
+        let t = geom.tangent();
+        let ys: Vec<f64> = s_m
+            .map(|s| {
+                let p = [
+                    geom.x_m - c[0],
+                    geom.reference_m[0] + s * t[0] - c[1],
+                    geom.reference_m[1] + s * t[1] - c[2],
+                ];
+                p[0] * a[0] + p[1] * a[1] + p[2] * a[2] - wheel.axial_offset_m()
+            })
+            .collect();
+        let facing = &oor.facing_points;
+        let all = 0..facing.len().saturating_sub(1);
+        let base = ys
+            .iter()
+            .map(|y| WheelSlices::z_at_among(facing, all.clone(), *y))
+            .collect();
+        let (ylo, yhi) = ys
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+                (lo.min(*y), hi.max(*y))
+            });
+        let n = oor.slices.points_per_slice();
+        Self {
+            oor,
+            ys,
+            base,
+            ylo,
+            yhi,
+            along_normal,
+            radius_m: geom.rolling_radius_m,
+            at: Vec::with_capacity(n),
+            near: Vec::with_capacity(n),
+        }
+    }
+
+    /// Calls `f(row, dh)` with the change dh of the undeformed distance of
+    /// each row with one at track x `x_m` (from the axle).
+    fn column(&mut self, x_m: f64, mut f: impl FnMut(usize, f64)) {
+        let phi = (x_m / self.radius_m).clamp(-1.0, 1.0).asin();
+        let theta0 = -self.oor.pitch_rad;
+        self.oor.slices.points_at(theta0 + phi, &mut self.at);
+        let (at, ylo, yhi) = (&self.at, self.ylo, self.yhi);
+        self.near.clear();
+        self.near
+            .extend((0..at.len().saturating_sub(1)).filter(|&i| {
+                let (p, q) = (at[i][0], at[i + 1][0]);
+                p.max(q) >= ylo && p.min(q) <= yhi
+            }));
+        let scale = phi.cos() * self.along_normal;
+        for (row, (y, z0)) in self.ys.iter().zip(&self.base).enumerate() {
+            let z = WheelSlices::z_at_among(at, self.near.iter().copied(), *y);
+            if let (Some(z0), Some(z)) = (z0, z) {
+                f(row, -(z - z0) * scale);
+            }
+        }
+    }
+}
+
+/// The range of track x (from the axle) over which an out-of-round wheel
+/// (`rows` on the lateral samples of `geom`) comes within `dn` of the
+/// rail along the normal, scanned every `step_m` over CONTACT's +-0.2 rad
+/// of the wheel (the whole range where a flat may let the wheel reach the
+/// rail); `None` where it nowhere does.
+fn wheel_reach_x(
+    geom: &PatchGeometry,
+    rows: &mut WheelRows,
+    dn: f64,
+    step_m: f64,
+) -> Option<[f64; 2]> {
+    let half = geom.rolling_radius_m * FACING_HALF_ANGLE_RAD.sin();
+    let n = (half / step_m).ceil() as i64;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in -n..=n {
+        let x = k as f64 * step_m;
+        let mut reaches = false;
+        rows.column(geom.x_m + x, |row, dh| {
+            let l = &geom.lateral[row];
+            let dx = x - l.dx_m;
+            if l.gap_m + 0.5 * l.kx_per_m * dx * dx + dh < dn {
+                reaches = true;
+            }
+        });
+        if reaches {
+            lo = lo.min(x);
+            hi = hi.max(x);
+        }
+    }
+    lo.is_finite().then_some([lo, hi])
+}
+
 #[allow(clippy::too_many_arguments)]
 fn build_patch(
     pair: &WheelRailPair,
@@ -2595,12 +2742,30 @@ fn build_patch(
         | WheelRailModel::HertzFastsimModified => hertz_kind(kx0, b, input.settings.model),
         WheelRailModel::Exact | WheelRailModel::Auto => {
             let across = across_refinement(&geom, expected, input, last);
-            let grid = patch_grid(&geom, cap, across, input, last)?;
+            // An out-of-round wheel may reach the rail off the round
+            // wheel's patch (a flat's edges): the grid reaches there too.
+            let reach = pair.wheel(side).slices().and_then(|oor| {
+                let s = geom.lateral.iter().map(|l| l.s_m);
+                let mut rows = WheelRows::new(oor, &geom, pose, pair.wheel(side), s);
+                let step = input.settings.element_size_m;
+                wheel_reach_x(&geom, &mut rows, cap * geom.normal[1], step)
+            });
+            let grid = patch_grid(&geom, cap, across, input, last, reach)?;
             let mut gap_m = vec![0.0; grid.len()];
             for is in 0..grid.ny {
                 let s = grid.y_m(is);
                 for ix in 0..grid.nx {
                     gap_m[grid.index(ix, is)] = geom.gap_at(grid.x_m(ix), s);
+                }
+            }
+            if let Some(oor) = pair.wheel(side).slices() {
+                let wheel = pair.wheel(side);
+                let mut rows =
+                    WheelRows::new(oor, &geom, pose, wheel, (0..grid.ny).map(|is| grid.y_m(is)));
+                for ix in 0..grid.nx {
+                    rows.column(geom.x_m + grid.x_m(ix), |is, dh| {
+                        gap_m[grid.index(ix, is)] += dh
+                    });
                 }
             }
             if let Some(slices) = &input.rail_slices[side.index()] {
@@ -2649,7 +2814,7 @@ fn build_patch(
         WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom)?,
         WheelRailModel::Cect => {
             let across = across_refinement(&geom, expected, input, None);
-            let grid = patch_grid(&geom, cap, across, input, None)?;
+            let grid = patch_grid(&geom, cap, across, input, None, None)?;
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, pose, grid)?),
                 workspace: Box::default(),
@@ -2825,16 +2990,19 @@ fn across_refinement(
 /// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
 /// direction; such a grid lies whole elements from the last one (within
 /// half an element of the centred place), so that the last tractions fall
-/// on its elements.
+/// on its elements. With `reach_x`, the grid reaches along x over that
+/// range too, with the margin (an out-of-round wheel's,
+/// [`wheel_reach_x`]).
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
     across: usize,
     input: &WheelRailInput,
     last: Option<&PatchTractions>,
+    reach_x: Option<[f64; 2]>,
 ) -> Result<Grid, WheelRailError> {
-    match patch_grid_on(geom, cap, across, input, last) {
-        Err(_) if across > 1 => patch_grid(geom, cap, across - 1, input, last),
+    match patch_grid_on(geom, cap, across, input, last, reach_x) {
+        Err(_) if across > 1 => patch_grid(geom, cap, across - 1, input, last, reach_x),
         r => r,
     }
 }
@@ -2846,6 +3014,7 @@ fn patch_grid_on(
     across: usize,
     input: &WheelRailInput,
     last: Option<&PatchTractions>,
+    reach_x: Option<[f64; 2]>,
 ) -> Result<Grid, WheelRailError> {
     let e = input.settings.element_size_m;
     let ds = e / across as f64;
@@ -2871,6 +3040,9 @@ fn patch_grid_on(
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
             (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
         }
+    }
+    if let Some([lo, hi]) = reach_x {
+        (xlo, xhi) = (xlo.min(lo - margin), xhi.max(hi + margin));
     }
     let too_big = || {
         WheelRailError::invalid(
@@ -3886,7 +4058,7 @@ mod tests {
             .unwrap();
         let e = input.settings.element_size_m;
         let geom = patch_geometry(pair.rail(side), locus, gap, iv, MARGIN_ELEMENTS * e).unwrap();
-        let grid = patch_grid(&geom, cap, 1, &input, None).unwrap();
+        let grid = patch_grid(&geom, cap, 1, &input, None, None).unwrap();
         let cg = conformal_geometry(&pair, side, locus, &geom, &pose, grid).unwrap();
         let lowest = cg.gap_m.iter().copied().fold(f64::INFINITY, f64::min);
         let mut out = Vec::new();

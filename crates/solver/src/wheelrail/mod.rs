@@ -103,7 +103,10 @@ pub use profile::{
 };
 pub use readers::{parse_miniprof, parse_plain, parse_simpack};
 pub use search::{ReferencePoint, SearchScratch, SearchSettings};
-pub use slices::{is_slices_file, load_slices, parse_slices, RailSlices};
+pub use slices::{
+    is_slices_file, is_wheel_slices_file, load_slices, load_wheel_slices, parse_slices,
+    parse_wheel_slices, RailSlices, SliceInterpolation, WheelSlices,
+};
 pub use spline::{
     ProfileSpline, SplineError, SplineOptions, SplinePoint, DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
@@ -112,6 +115,6 @@ pub use table::{
 };
 pub use temperature::{PatchTemperatures, WheelRailThermal};
 pub use wheelset::{
-    RailDeviation, RailPlacement, Side, TrackData, WheelRailError, WheelRailPair, WheelsetData,
-    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    RailDeviation, RailPlacement, Side, TrackData, WheelRailError, WheelRailPair, WheelSlicesAt,
+    WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };

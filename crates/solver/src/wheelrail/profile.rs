@@ -532,13 +532,22 @@ pub fn load_profile_with(
 }
 
 /// Parses profile text; `file_name` is used for the format (by its
-/// extension) and in messages.
+/// extension) and in messages. A wheel slices file (`.slcw`) is refused
+/// by name: it is read by [`crate::wheelrail::load_wheel_slices`].
 pub fn parse_profile(
     text: &str,
     file_name: &str,
     options: &LoadOptions,
 ) -> Result<Profile, ProfileError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if crate::wheelrail::slices::is_wheel_slices_file(file_name) {
+        return Err(ProfileError::Format {
+            at: SourceLocation::new(file_name, None),
+            message: "a wheel slices file (an out-of-round wheel) is not a single profile; \
+                      the command line's case files and the CONTACT library take it"
+                .into(),
+        });
+    }
     let format = options
         .format
         .unwrap_or_else(|| detect_format(file_name, text));

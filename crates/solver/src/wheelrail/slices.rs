@@ -1,6 +1,10 @@
 //! Rails whose profile varies along the track (switches and crossings):
 //! CONTACT's rail slices file (`.slcs`), a list of rail profiles at
-//! positions u along the track, interpolated between them to a surface.
+//! positions u along the track, interpolated between them to a surface;
+//! and out-of-round wheels (wheel flats, polygonisation): CONTACT's wheel
+//! slices file (`.slcw`), wheel profiles at angles theta round the wheel
+//! ([`WheelSlices`], whose docs give the convention of theta and the
+//! wheelset's pitch).
 //!
 //! # The file (CONTACT's user guide, "Rail slices-file")
 //!
@@ -26,6 +30,12 @@
 //! interruptions), U_INTPOL = 2 (the approximating spline) and a nonzero
 //! PERTURB.
 //!
+//! A wheel slices file has the same lines with TH_OFFSET, TH_SCALE
+//! (radians per unit), TH_INTPOL and TH_SLC; its slices at least 0.001
+//! rad apart. Built for wheels: TH_INTPOL = 1 and 2 (CONTACT's
+//! approximating spline, below), NFEAT <= 1; refused as for rails: NFEAT
+//! >= 2 and PERTURB.
+//!
 //! # The surface
 //!
 //! Interpolation paths run along u through corresponding points of the
@@ -41,6 +51,17 @@
 //! lateral y is the visible (highest) surface over y
 //! ([`RailSlices::z_at`]). A slices file whose slices are all one profile
 //! is that profile bit for bit.
+//!
+//! The approximating spline (TH_INTPOL = 2, CONTACT's
+//! `bspline_make_2d_bspline` with `use_approx`): along each path the cubic
+//! B-spline whose control points are the slices' points themselves, on
+//! knots at the slices (three more spaced as the first interval before the
+//! first slice and as the last after the last), with a phantom control
+//! point extrapolating linearly beyond each end. It passes near, not
+//! through, the slices: on equally spaced slices it is (p_(k-1) + 4 p_k +
+//! p_(k+1)) / 6 at slice k and reproduces a path linear in theta; on a
+//! wheel flat sampled every 2 mrad it smooths over about two slices
+//! (4 mm of circumference).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -56,19 +77,70 @@ pub const RESAMPLE_SPACING_M: f64 = 0.5e-3;
 /// Smallest distance between successive slices \[m\] (CONTACT's 0.001 mm).
 pub const MIN_SLICE_SPACING_M: f64 = 1e-6;
 
+/// Half the range of angles round the one facing the rail over which
+/// [`WheelSlices::facing_rail_points`] looks for the wheel's lowest points
+/// \[rad\] (CONTACT's search range round -pitch, 0.2 rad).
+pub const FACING_HALF_ANGLE_RAD: f64 = 0.2;
+
+/// The step of those angles \[rad\] (0.25 mm on a wheel of 490 mm, an
+/// eighth of the 2 mrad between the slices of CONTACT's wheel flat).
+pub const FACING_STEP_RAD: f64 = 5e-4;
+
+/// Smallest angle between successive wheel slices \[rad\] (CONTACT's
+/// 0.001 rad).
+pub const MIN_WHEEL_SLICE_SPACING_RAD: f64 = 1e-3;
+
 /// A rail profile varying along the track: its slices and the paths
 /// between them (module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RailSlices {
     name: String,
-    /// Track positions of the slices \[m\], strictly increasing.
-    u_m: Vec<f64>,
+    /// The slices' paths along u \[m\] (natural cubic splines).
+    paths: SlicePaths,
+}
+
+/// The slices of a surface along one coordinate (u along the track \[m\]
+/// or theta round a wheel \[rad\]) and the paths through them: what rail
+/// and wheel slices share.
+#[derive(Debug, Clone, PartialEq)]
+struct SlicePaths {
+    /// Positions of the slices, strictly increasing.
+    at: Vec<f64>,
     /// Per slice, its points along the interpolation paths (y, z) \[m\],
     /// as many in every slice.
     points: Vec<Vec<[f64; 2]>>,
-    /// Per slice, the second derivatives along u of y and z of every path
-    /// (natural cubic spline; zero at the first and last slice).
-    second: Vec<Vec<[f64; 2]>>,
+    /// How the paths run between the slices.
+    along: Along,
+}
+
+/// The spline of every path along the slices' coordinate.
+#[derive(Debug, Clone, PartialEq)]
+enum Along {
+    /// The natural cubic spline through the slices: per slice, the second
+    /// derivatives of y and z of every path (zero at the first and last).
+    Interpolating { second: Vec<Vec<[f64; 2]>> },
+    /// CONTACT's approximating spline (TH_INTPOL / U_INTPOL = 2): the
+    /// cubic B-spline whose control points are the slices themselves,
+    /// with knots at the slices (module docs).
+    Approximating {
+        /// The knots: three spaced as the first interval before the first
+        /// slice, one at every slice, three after the last.
+        knots: Vec<f64>,
+        /// Control points per path: a phantom before the first slice,
+        /// the slices, a phantom after the last.
+        control: Vec<Vec<[f64; 2]>>,
+    },
+}
+
+/// How the paths of a slices file run between the slices (its U_INTPOL or
+/// TH_INTPOL).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SliceInterpolation {
+    /// 1: a cubic spline through the slices.
+    Interpolating,
+    /// 2: CONTACT's approximating spline, which smooths a little and does
+    /// not pass through the slices.
+    Approximating,
 }
 
 /// One slice as read: its position and profile.
@@ -81,12 +153,79 @@ pub struct Slice {
 }
 
 /// The header and slice lines of a slices file, before the profiles are
-/// read: (u \[m\], profile file name, line) per slice.
+/// read: (position, profile file name, line) per slice.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SlicesFile {
-    /// The slices: position u \[m\], the profile file name as written, the
+    /// The slices: position (u \[m\] of a rail slices file, theta \[rad\]
+    /// of a wheel slices file), the profile file name as written, the
     /// line it is on.
     pub slices: Vec<(f64, String, usize)>,
+    /// U_INTPOL or TH_INTPOL.
+    pub interpolation: SliceInterpolation,
+}
+
+/// What the slices of a file lie along.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SliceAxis {
+    /// A rail slices file (`.slcs`): positions u along the track, U_SCALE
+    /// millimetres per unit.
+    Track,
+    /// A wheel slices file (`.slcw`): angles theta round the wheel,
+    /// TH_SCALE radians per unit.
+    Wheel,
+}
+
+impl SliceAxis {
+    /// The prefix of the file's keywords (U_OFFSET, TH_OFFSET, ...).
+    fn key(self) -> &'static str {
+        match self {
+            SliceAxis::Track => "U",
+            SliceAxis::Wheel => "TH",
+        }
+    }
+
+    /// The name of a slice's profile file in CONTACT's user guide.
+    fn file_key(self) -> &'static str {
+        match self {
+            SliceAxis::Track => "RFNAME",
+            SliceAxis::Wheel => "WFNAME",
+        }
+    }
+
+    /// SI units (m, rad) per unit of the scaled position (mm, rad).
+    fn si_per_unit(self) -> f64 {
+        match self {
+            SliceAxis::Track => 1e-3,
+            SliceAxis::Wheel => 1.0,
+        }
+    }
+
+    /// Smallest distance between successive slices, SI (held to a relative
+    /// 1e-9 below it: slices given exactly that far apart pass whatever the
+    /// rounding of their positions).
+    fn min_spacing(self) -> f64 {
+        match self {
+            SliceAxis::Track => MIN_SLICE_SPACING_M,
+            SliceAxis::Wheel => MIN_WHEEL_SLICE_SPACING_RAD,
+        }
+    }
+
+    /// A position (SI) as the messages give it: `u = 12 mm`, `theta =
+    /// 0.5 rad`.
+    fn show(self, v: f64) -> String {
+        match self {
+            SliceAxis::Track => format!("u = {} mm", v * 1e3),
+            SliceAxis::Wheel => format!("theta = {v} rad"),
+        }
+    }
+
+    /// The profile kind of its slices.
+    fn kind(self) -> ProfileKind {
+        match self {
+            SliceAxis::Track => ProfileKind::Rail,
+            SliceAxis::Wheel => ProfileKind::Wheel,
+        }
+    }
 }
 
 fn syntax(file: &str, line: usize, expected: &str, found: &str) -> ProfileError {
@@ -143,34 +282,55 @@ fn integers(file: &str, l: (usize, &str), n: usize, what: &str) -> Result<Vec<i6
 
 /// A slice line: U_SLC and the profile file name (quoted with ' or ", or
 /// one word).
-fn slice_line(file: &str, (line, text): (usize, &str)) -> Result<(f64, String), ProfileError> {
-    const WHAT: &str = "a slice position U_SLC and a profile file name RFNAME";
+fn slice_line(
+    file: &str,
+    (line, text): (usize, &str),
+    axis: SliceAxis,
+) -> Result<(f64, String), ProfileError> {
+    let what = format!(
+        "a slice position {}_SLC and a profile file name {}",
+        axis.key(),
+        axis.file_key()
+    );
+    let what = what.as_str();
     let mut words = text.splitn(2, char::is_whitespace);
     let u = words
         .next()
         .and_then(|w| w.parse::<f64>().ok())
         .filter(|u| u.is_finite())
-        .ok_or_else(|| syntax(file, line, WHAT, text))?;
+        .ok_or_else(|| syntax(file, line, what, text))?;
     let rest = words.next().unwrap_or("").trim_start();
     let name = match rest.chars().next() {
         Some(q @ ('\'' | '"')) => {
             let body = &rest[1..];
-            let end = body.find(q).ok_or_else(|| syntax(file, line, WHAT, text))?;
+            let end = body.find(q).ok_or_else(|| syntax(file, line, what, text))?;
             &body[..end]
         }
         Some(_) => rest.split_whitespace().next().unwrap_or(""),
         None => "",
     };
     if name.is_empty() {
-        return Err(syntax(file, line, WHAT, text));
+        return Err(syntax(file, line, what, text));
     }
     Ok((u, name.to_string()))
 }
 
-/// Reads the header and slice lines of a slices file named `file_name`
-/// (for messages); see the module docs for what is refused.
+/// Reads the header and slice lines of a rail slices file named
+/// `file_name` (for messages); see the module docs for what is refused.
 pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, ProfileError> {
+    parse_slices_file_along(text, file_name, SliceAxis::Track)
+}
+
+/// Reads the header and slice lines of a slices file named `file_name`
+/// whose slices lie along `axis`; see the module docs for what is
+/// refused.
+pub fn parse_slices_file_along(
+    text: &str,
+    file_name: &str,
+    axis: SliceAxis,
+) -> Result<SlicesFile, ProfileError> {
     let f = file_name;
+    let k = axis.key();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut lines = value_lines(text);
     let mut next = |what: &str| {
@@ -178,14 +338,27 @@ pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, Prof
             .next()
             .ok_or_else(|| format_err(f, None, format!("the file ends before {what}")))
     };
-    let l = next("U_OFFSET, U_SCALE")?;
-    let v = numbers(f, l, 2, "two numbers U_OFFSET [usr], U_SCALE [mm/usr]")?;
+    let l = next(&format!("{k}_OFFSET, {k}_SCALE"))?;
+    let unit = match axis {
+        SliceAxis::Track => "mm",
+        SliceAxis::Wheel => "rad",
+    };
+    let v = numbers(
+        f,
+        l,
+        2,
+        &format!("two numbers {k}_OFFSET [usr], {k}_SCALE [{unit}/usr]"),
+    )?;
     let (offset, scale) = (v[0], v[1]);
     if scale <= 0.0 {
+        let per = match axis {
+            SliceAxis::Track => "millimetres",
+            SliceAxis::Wheel => "radians",
+        };
         return Err(format_err(
             f,
             Some(l.0),
-            format!("U_SCALE = {scale} must be positive (millimetres per unit of U_SLC)"),
+            format!("{k}_SCALE = {scale} must be positive ({per} per unit of {k}_SLC)"),
         ));
     }
     let l = next("NSLC")?;
@@ -216,12 +389,18 @@ pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, Prof
             format!("NFEAT = {nfeat} must be 0 or more"),
         ));
     }
-    let l = next("U_INTPOL")?;
+    let l = next(&format!("{k}_INTPOL"))?;
     let w: Vec<&str> = l.1.split_whitespace().collect();
-    let intpol = integers(f, l, 1, "the method along u U_INTPOL (1 or 2)")?[0];
-    match intpol {
-        1 => {}
-        2 => {
+    let intpol = integers(
+        f,
+        l,
+        1,
+        &format!("the method along the slices {k}_INTPOL (1 or 2)"),
+    )?[0];
+    let interpolation = match (intpol, axis) {
+        (1, _) => SliceInterpolation::Interpolating,
+        (2, SliceAxis::Wheel) => SliceInterpolation::Approximating,
+        (2, SliceAxis::Track) => {
             return Err(format_err(
                 f,
                 Some(l.0),
@@ -230,15 +409,15 @@ pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, Prof
                     .into(),
             ))
         }
-        m => {
+        (m, _) => {
             return Err(format_err(
                 f,
                 Some(l.0),
-                format!("U_INTPOL = {m} does not exist (1 interpolating, 2 approximating)"),
+                format!("{k}_INTPOL = {m} does not exist (1 interpolating, 2 approximating)"),
             ))
         }
-    }
-    // An optional PERTURB after U_INTPOL.
+    };
+    // An optional PERTURB after the method.
     if let Some(p) = w.get(1).and_then(|x| x.parse::<f64>().ok()) {
         if p != 0.0 {
             return Err(format_err(
@@ -252,51 +431,69 @@ pub fn parse_slices_file(text: &str, file_name: &str) -> Result<SlicesFile, Prof
     // most, not for NSLC (a huge NSLC must not reserve memory).
     let mut slices: Vec<(f64, String, usize)> =
         Vec::with_capacity((nslc as usize).min(text.lines().count()));
-    for k in 0..nslc {
-        let l = next(&format!("slice {} of NSLC = {nslc}", k + 1))?;
-        let (u, name) = slice_line(f, l)?;
-        let u_m = scale * (offset + u) * 1e-3;
+    for n in 0..nslc {
+        let l = next(&format!("slice {} of NSLC = {nslc}", n + 1))?;
+        let (u, name) = slice_line(f, l, axis)?;
+        let at = scale * (offset + u) * axis.si_per_unit();
         if let Some((prev, _, pl)) = slices.last() {
-            if u_m - prev < MIN_SLICE_SPACING_M {
+            if at - prev < axis.min_spacing() * (1.0 - 1e-9) {
                 return Err(format_err(
                     f,
                     Some(l.0),
                     format!(
-                        "slice {} at u = {} mm does not follow the slice of line {pl} \
-                         (u = {} mm) by at least 0.001 mm: slices go in increasing u",
-                        k + 1,
-                        u_m * 1e3,
-                        prev * 1e3
+                        "slice {} at {} does not follow the slice of line {pl} ({}) by at \
+                         least 0.001 {unit}: slices go in increasing {}",
+                        n + 1,
+                        axis.show(at),
+                        axis.show(*prev),
+                        match axis {
+                            SliceAxis::Track => "u",
+                            SliceAxis::Wheel => "theta",
+                        }
                     ),
                 ));
             }
         }
-        slices.push((u_m, name, l.0));
+        slices.push((at, name, l.0));
     }
-    Ok(SlicesFile { slices })
+    Ok(SlicesFile {
+        slices,
+        interpolation,
+    })
 }
 
-impl RailSlices {
-    /// The surface through `slices` (increasing u, at least one), named
+impl SlicePaths {
+    /// The paths through `profiles` at positions `at` (increasing by at
+    /// least `axis`'s spacing, at least one), run along as `along`;
     /// `name` in messages.
-    pub fn new(name: &str, slices: &[Slice]) -> Result<Self, ProfileError> {
-        if slices.is_empty() {
+    fn new(
+        name: &str,
+        at: &[f64],
+        profiles: &[&Profile],
+        axis: SliceAxis,
+        along: SliceInterpolation,
+    ) -> Result<Self, ProfileError> {
+        if profiles.is_empty() {
             return Err(format_err(name, None, "no slices".into()));
         }
-        for w in slices.windows(2) {
-            if w[1].u_m - w[0].u_m < MIN_SLICE_SPACING_M {
+        for w in at.windows(2) {
+            if w[1] - w[0] < axis.min_spacing() * (1.0 - 1e-9) {
                 return Err(format_err(
                     name,
                     None,
                     format!(
-                        "slices at u = {} and {} mm are not in increasing u, 0.001 mm apart",
-                        w[0].u_m * 1e3,
-                        w[1].u_m * 1e3
+                        "slices at {} and {} are not in increasing order, 0.001 {} apart",
+                        axis.show(w[0]),
+                        axis.show(w[1]),
+                        match axis {
+                            SliceAxis::Track => "mm",
+                            SliceAxis::Wheel => "rad",
+                        }
                     ),
                 ));
             }
         }
-        let most = slices.iter().map(|s| s.profile.len()).max().unwrap_or(0);
+        let most = profiles.iter().map(|p| p.len()).max().unwrap_or(0);
         if most < 2 {
             return Err(format_err(
                 name,
@@ -304,26 +501,158 @@ impl RailSlices {
                 "the slices have fewer than 2 points".into(),
             ));
         }
-        let same = slices.iter().all(|s| s.profile.len() == most);
-        let n = path_points(slices);
-        let points: Vec<Vec<[f64; 2]>> = slices
+        let same = profiles.iter().all(|p| p.len() == most);
+        let n = path_points(profiles);
+        let points: Vec<Vec<[f64; 2]>> = profiles
             .iter()
-            .map(|s| {
+            .map(|p| {
                 if same {
-                    s.profile.points().to_vec()
+                    p.points().to_vec()
                 } else {
-                    resample(s.profile.points(), n)
+                    resample(p.points(), n)
                 }
             })
             .collect();
-        let u_m: Vec<f64> = slices.iter().map(|s| s.u_m).collect();
-        let second = natural_second_derivatives(&u_m, &points);
+        let along = match along {
+            SliceInterpolation::Interpolating => Along::Interpolating {
+                second: natural_second_derivatives(at, &points),
+            },
+            SliceInterpolation::Approximating => approximating(at, &points),
+        };
+        Ok(Self {
+            at: at.to_vec(),
+            points,
+            along,
+        })
+    }
+
+    /// The range of positions covered.
+    fn range(&self) -> (f64, f64) {
+        (self.at[0], self.at[self.at.len() - 1])
+    }
+
+    /// Writes the points at position `p` (within the range) into `out`.
+    fn points_at(&self, p: f64, out: &mut Vec<[f64; 2]>) {
+        let n = self.points[0].len();
+        out.clear();
+        if self.at.len() == 1 {
+            out.extend_from_slice(&self.points[0]);
+            return;
+        }
+        let k = self
+            .at
+            .partition_point(|u| *u <= p)
+            .clamp(1, self.at.len() - 1)
+            - 1;
+        match &self.along {
+            Along::Interpolating { second } => {
+                let h = self.at[k + 1] - self.at[k];
+                let a = (self.at[k + 1] - p) / h;
+                let b = (p - self.at[k]) / h;
+                let ca = (a * a * a - a) * h * h / 6.0;
+                let cb = (b * b * b - b) * h * h / 6.0;
+                let (p0, p1) = (&self.points[k], &self.points[k + 1]);
+                let (m0, m1) = (&second[k], &second[k + 1]);
+                out.extend((0..n).map(|i| {
+                    // p0 + b (p1 - p0): exactly p0 where a path is constant.
+                    let c = |d: usize| {
+                        p0[i][d] + b * (p1[i][d] - p0[i][d]) + ca * m0[i][d] + cb * m1[i][d]
+                    };
+                    [c(0), c(1)]
+                }));
+            }
+            Along::Approximating { knots, control } => {
+                let w = bspline_weights(knots, k, p);
+                let c = &control[k..k + 4];
+                out.extend((0..n).map(|i| {
+                    let v = |d: usize| {
+                        // c1 + sum w_j (c_j - c1): exactly c1 where a path
+                        // is constant (the weights sum to one).
+                        let base = c[1][i][d];
+                        base + (0..4).map(|j| w[j] * (c[j][i][d] - base)).sum::<f64>()
+                    };
+                    [v(0), v(1)]
+                }));
+            }
+        }
+    }
+}
+
+/// CONTACT's approximating spline along the slices at `at` through the
+/// paths' `points` (its `bspline_make_2d_bspline` with `use_approx`): the
+/// cubic B-spline on the knots at the slices (three more before the first
+/// and after the last, spaced as the first and last intervals), whose
+/// control points are the slices' points, with a phantom point before the
+/// first slice, 2 p_1 - p_2, and after the last, 2 p_n - p_(n-1) (linear
+/// extrapolation; CONTACT's code takes the first slice's point in the
+/// last phantom in place of the last's, which differs only where the
+/// last slices differ from the first).
+fn approximating(at: &[f64], points: &[Vec<[f64; 2]>]) -> Along {
+    let m = at.len();
+    let (h0, h1) = (at[1] - at[0], at[m - 1] - at[m - 2]);
+    let mut knots = Vec::with_capacity(m + 6);
+    knots.extend((1..=3).rev().map(|j| at[0] - j as f64 * h0));
+    knots.extend_from_slice(at);
+    knots.extend((1..=3).map(|j| at[m - 1] + j as f64 * h1));
+    let phantom = |a: &[[f64; 2]], b: &[[f64; 2]]| -> Vec<[f64; 2]> {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| [2.0 * p[0] - q[0], 2.0 * p[1] - q[1]])
+            .collect()
+    };
+    let mut control = Vec::with_capacity(m + 2);
+    control.push(phantom(&points[0], &points[1]));
+    control.extend(points.iter().cloned());
+    control.push(phantom(&points[m - 1], &points[m - 2]));
+    Along::Approximating { knots, control }
+}
+
+/// The weights of the four control points k .. k + 3 of a cubic B-spline
+/// on `knots` (those of [`approximating`]) at `p` in the interval between
+/// slices k and k + 1 (de Boor's recursion on unit control points).
+fn bspline_weights(knots: &[f64], k: usize, p: f64) -> [f64; 4] {
+    // The span: knots[k + 3] <= p < knots[k + 4], the slices k and k + 1.
+    let i = k + 3;
+    let mut w = [0.0; 4];
+    for (j, wj) in w.iter_mut().enumerate() {
+        let mut d = [0.0; 4];
+        d[j] = 1.0;
+        for r in 1..=3 {
+            for jj in (r..=3).rev() {
+                let lo = knots[jj + i - 3];
+                let hi = knots[jj + 1 + i - r];
+                let a = (p - lo) / (hi - lo);
+                d[jj] = (1.0 - a) * d[jj - 1] + a * d[jj];
+            }
+        }
+        *wj = d[3];
+    }
+    w
+}
+
+impl RailSlices {
+    /// The surface through `slices` (increasing u, at least one), named
+    /// `name` in messages.
+    pub fn new(name: &str, slices: &[Slice]) -> Result<Self, ProfileError> {
+        let at: Vec<f64> = slices.iter().map(|s| s.u_m).collect();
+        let profiles: Vec<&Profile> = slices.iter().map(|s| &s.profile).collect();
         Ok(Self {
             name: name.to_string(),
-            u_m,
-            points,
-            second,
+            paths: SlicePaths::new(
+                name,
+                &at,
+                &profiles,
+                SliceAxis::Track,
+                SliceInterpolation::Interpolating,
+            )?,
         })
+    }
+
+    fn of(name: &str, paths: SlicePaths) -> Self {
+        Self {
+            name: name.to_string(),
+            paths,
+        }
     }
 
     /// Name (the slices file's).
@@ -333,17 +662,17 @@ impl RailSlices {
 
     /// Track positions of the slices \[m\].
     pub fn slice_positions_m(&self) -> &[f64] {
-        &self.u_m
+        &self.paths.at
     }
 
     /// The range of u covered \[m\].
     pub fn u_range_m(&self) -> (f64, f64) {
-        (self.u_m[0], self.u_m[self.u_m.len() - 1])
+        self.paths.range()
     }
 
     /// Points per slice (along the interpolation paths).
     pub fn points_per_slice(&self) -> usize {
-        self.points[0].len()
+        self.paths.points[0].len()
     }
 
     /// Writes the points of the rail at `u_m` into `out` (resized to
@@ -354,29 +683,7 @@ impl RailSlices {
         if !(u_m >= lo && u_m <= hi) {
             return None;
         }
-        let n = self.points_per_slice();
-        out.clear();
-        if self.u_m.len() == 1 {
-            out.extend_from_slice(&self.points[0]);
-            return Some(());
-        }
-        let k = self
-            .u_m
-            .partition_point(|u| *u <= u_m)
-            .clamp(1, self.u_m.len() - 1)
-            - 1;
-        let h = self.u_m[k + 1] - self.u_m[k];
-        let a = (self.u_m[k + 1] - u_m) / h;
-        let b = (u_m - self.u_m[k]) / h;
-        let ca = (a * a * a - a) * h * h / 6.0;
-        let cb = (b * b * b - b) * h * h / 6.0;
-        let (p0, p1) = (&self.points[k], &self.points[k + 1]);
-        let (m0, m1) = (&self.second[k], &self.second[k + 1]);
-        out.extend((0..n).map(|i| {
-            // p0 + b (p1 - p0): exactly p0 where a path is constant.
-            let c = |d: usize| p0[i][d] + b * (p1[i][d] - p0[i][d]) + ca * m0[i][d] + cb * m1[i][d];
-            [c(0), c(1)]
-        }));
+        self.paths.points_at(u_m, out);
         Some(())
     }
 
@@ -423,35 +730,213 @@ impl RailSlices {
         segments: impl IntoIterator<Item = usize>,
         y_m: f64,
     ) -> Option<f64> {
-        let mut best: Option<f64> = None;
-        for i in segments {
-            let (a, b) = (pts[i], pts[i + 1]);
-            let (lo, hi) = if a[0] <= b[0] { (a, b) } else { (b, a) };
-            if y_m < lo[0] || y_m > hi[0] {
+        visible_z(pts, segments, y_m, f64::min)
+    }
+}
+
+/// One wheel slice as read: its angle and profile.
+#[derive(Debug, Clone)]
+pub struct WheelSlice {
+    /// Angle theta round the wheel \[rad\] (see [`WheelSlices`]).
+    pub theta_rad: f64,
+    /// The profile (canonical right-hand wheel profile, metres; its z is
+    /// the radius less the nominal radius).
+    pub profile: Profile,
+}
+
+/// An out-of-round wheel: wheel profiles at angles theta round the wheel
+/// and the paths between them (CONTACT's wheel slices file, `.slcw`).
+///
+/// # Angles and the pitch (CONTACT's convention, user guide "Wheel
+/// out-of-roundness")
+///
+/// A slice at angle theta describes the wheel's cross-section through the
+/// axle at theta, its profile z the radius less the nominal radius
+/// (radius = nominal radius + z, as for a round wheel). theta = 0 points
+/// down (track z) when the wheelset's pitch angle is 0, and theta grows
+/// from z towards x: in the wheel's frame the point at theta lies at
+/// x = r sin(theta), z = r cos(theta) from the axle. The wheelset pitched
+/// by `pitch` (right-hand about the axle, which points to the field side
+/// of the right wheel; CONTACT's PITCH, theta_ws) turns it to
+/// x = r sin(theta + pitch): the slice facing the rail (the lowest) is at
+/// theta = -pitch and the surface at x along the track is that at
+/// theta = -pitch + asin(x / r). A wheel rolling forward turns with a
+/// negative pitch rate (-V / r), so the angle at the rail grows: CONTACT's
+/// wheel flat example has the flat at theta from 0.49 to 0.81 rad reach
+/// the rail from ahead (x > 0) at pitch -28 degrees, and leave behind at
+/// pitch -47 degrees.
+///
+/// Outside [-pi, pi) an angle is taken back into it (periodically); within
+/// it, outside the slices' range the wheel is the nearest end slice's
+/// profile (CONTACT's constant extrapolation). A wheel out of round all
+/// round is given on a range covering [-pi, pi) with its slices repeated
+/// periodically by the user (CONTACT's rule).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WheelSlices {
+    name: String,
+    paths: SlicePaths,
+}
+
+impl WheelSlices {
+    /// The surface through `slices` (increasing theta, at least 0.001 rad
+    /// apart, at least one) run along as `along`, named `name` in
+    /// messages.
+    pub fn new(
+        name: &str,
+        slices: &[WheelSlice],
+        along: SliceInterpolation,
+    ) -> Result<Self, ProfileError> {
+        let at: Vec<f64> = slices.iter().map(|s| s.theta_rad).collect();
+        let profiles: Vec<&Profile> = slices.iter().map(|s| &s.profile).collect();
+        Ok(Self {
+            name: name.to_string(),
+            paths: SlicePaths::new(name, &at, &profiles, SliceAxis::Wheel, along)?,
+        })
+    }
+
+    /// Name (the slices file's).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The angles of the slices \[rad\].
+    pub fn slice_angles_rad(&self) -> &[f64] {
+        &self.paths.at
+    }
+
+    /// Points per slice (along the interpolation paths).
+    pub fn points_per_slice(&self) -> usize {
+        self.paths.points[0].len()
+    }
+
+    /// The angle at which the surface is evaluated for `theta_rad`: taken
+    /// into [-pi, pi), then onto the slices' range.
+    pub fn effective_angle_rad(&self, theta_rad: f64) -> f64 {
+        use std::f64::consts::PI;
+        let t = (theta_rad + PI).rem_euclid(2.0 * PI) - PI;
+        let (lo, hi) = self.paths.range();
+        t.clamp(lo, hi)
+    }
+
+    /// Writes the points of the wheel's cross-section at `theta_rad` into
+    /// `out` (resized to [`WheelSlices::points_per_slice`]).
+    pub fn points_at(&self, theta_rad: f64, out: &mut Vec<[f64; 2]>) {
+        self.paths
+            .points_at(self.effective_angle_rad(theta_rad), out);
+    }
+
+    /// The wheel profile at `theta_rad` (checked as any profile).
+    pub fn profile_at(&self, theta_rad: f64) -> Result<Profile, ProfileError> {
+        let mut pts = Vec::new();
+        self.points_at(theta_rad, &mut pts);
+        Profile::from_points(
+            &format!("{} at theta = {theta_rad} rad", self.name),
+            Some(ProfileKind::Wheel),
+            &pts,
+            &ProfileChecks::default(),
+        )
+    }
+
+    /// The profile the wheel shows a prismatic rail at the wheelset's
+    /// pitch `pitch_rad` on a wheelset of `nominal_radius_m`: along each
+    /// interpolation path, the lowest point of the wheel over the angles
+    /// within [`FACING_HALF_ANGLE_RAD`] of theta0 = -pitch (every
+    /// [`FACING_STEP_RAD`]): z = max over phi of (r_n + z(theta0 + phi))
+    /// cos(phi) - r_n, at the path's y at theta0. Of a round wheel, its
+    /// profile; on a flat facing the rail, the flat's edges where they
+    /// reach lower than its centre. The contact search on it finds where
+    /// the wheel comes closest to the rail at any x, which the profile at
+    /// theta0 alone misses when a flat lifts the wheel's lowest point off
+    /// x = 0 (CONTACT searches the surface over +-0.2 rad round theta0).
+    pub fn facing_rail_points(&self, pitch_rad: f64, nominal_radius_m: f64) -> Vec<[f64; 2]> {
+        let theta0 = -pitch_rad;
+        let mut out = Vec::with_capacity(self.points_per_slice());
+        self.points_at(theta0, &mut out);
+        let mut at = Vec::with_capacity(out.len());
+        let steps = (FACING_HALF_ANGLE_RAD / FACING_STEP_RAD).round() as i64;
+        for k in -steps..=steps {
+            if k == 0 {
                 continue;
             }
-            let z = if hi[0] > lo[0] {
-                lo[1] + (y_m - lo[0]) / (hi[0] - lo[0]) * (hi[1] - lo[1])
-            } else {
-                lo[1].min(hi[1])
-            };
-            best = Some(best.map_or(z, |v: f64| v.min(z)));
+            let phi = k as f64 * FACING_STEP_RAD;
+            let c = phi.cos();
+            self.points_at(theta0 + phi, &mut at);
+            for (o, p) in out.iter_mut().zip(&at) {
+                let z = (nominal_radius_m + p[1]) * c - nominal_radius_m;
+                if z > o[1] {
+                    o[1] = z;
+                }
+            }
         }
-        best
+        out
     }
+
+    /// [`WheelSlices::facing_rail_points`] as a profile (checked as any
+    /// profile).
+    pub fn profile_facing_rail(
+        &self,
+        pitch_rad: f64,
+        nominal_radius_m: f64,
+    ) -> Result<Profile, ProfileError> {
+        Profile::from_points(
+            &format!("{} facing the rail at pitch {pitch_rad} rad", self.name),
+            Some(ProfileKind::Wheel),
+            &self.facing_rail_points(pitch_rad, nominal_radius_m),
+            &ProfileChecks::default(),
+        )
+    }
+
+    /// Radius less the nominal radius (the profile z) of the wheel points
+    /// `pts` (from [`WheelSlices::points_at`]) at profile `y_m`: the
+    /// largest z of the segments spanning y (the outermost surface);
+    /// `None` where none does.
+    pub fn z_at_among(
+        pts: &[[f64; 2]],
+        segments: impl IntoIterator<Item = usize>,
+        y_m: f64,
+    ) -> Option<f64> {
+        visible_z(pts, segments, y_m, f64::max)
+    }
+}
+
+/// The height z over `y_m` of the segments (i, i + 1) of `pts` whose
+/// first points `segments` gives, the one `pick` chooses of those
+/// spanning y (of a vertical segment, of its ends); `None` where none
+/// does.
+fn visible_z(
+    pts: &[[f64; 2]],
+    segments: impl IntoIterator<Item = usize>,
+    y_m: f64,
+    pick: fn(f64, f64) -> f64,
+) -> Option<f64> {
+    let mut best: Option<f64> = None;
+    for i in segments {
+        let (a, b) = (pts[i], pts[i + 1]);
+        let (lo, hi) = if a[0] <= b[0] { (a, b) } else { (b, a) };
+        if y_m < lo[0] || y_m > hi[0] {
+            continue;
+        }
+        let z = if hi[0] > lo[0] {
+            lo[1] + (y_m - lo[0]) / (hi[0] - lo[0]) * (hi[1] - lo[1])
+        } else {
+            pick(lo[1], hi[1])
+        };
+        best = Some(best.map_or(z, |v: f64| pick(v, z)));
+    }
+    best
 }
 
 /// Points along each interpolation path of the surface through `slices`
 /// (module docs): the slices' common count, or as many as the longest
 /// slice needs at [`RESAMPLE_SPACING_M`].
-fn path_points(slices: &[Slice]) -> usize {
-    let most = slices.iter().map(|s| s.profile.len()).max().unwrap_or(0);
-    if slices.iter().all(|s| s.profile.len() == most) {
+fn path_points(profiles: &[&Profile]) -> usize {
+    let most = profiles.iter().map(|p| p.len()).max().unwrap_or(0);
+    if profiles.iter().all(|p| p.len() == most) {
         return most;
     }
-    let longest = slices
+    let longest = profiles
         .iter()
-        .map(|s| chord_length(s.profile.points()))
+        .map(|p| chord_length(p.points()))
         .fold(0.0, f64::max);
     2 + (longest / RESAMPLE_SPACING_M + 1e-9).floor() as usize
 }
@@ -570,7 +1055,72 @@ impl SlicesLimits {
     };
 }
 
-/// Reads a slices file and its profiles: the slice lines of `text`
+/// The paths of a slices file along `axis` within `limits`: the slice
+/// lines of `text` ([`parse_slices_file_along`]), counted before any
+/// profile is read, each profile by `read` (given the file name as written
+/// in the slices file; its error names the slice's line), the surface's
+/// points counted before it is built.
+fn read_paths(
+    text: &str,
+    file_name: &str,
+    axis: SliceAxis,
+    mut read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+    limits: SlicesLimits,
+) -> Result<SlicePaths, ProfileError> {
+    let file = parse_slices_file_along(text, file_name, axis)?;
+    if file.slices.len() > limits.max_slices {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "{} slices, more than the limit of {}",
+                file.slices.len(),
+                limits.max_slices
+            ),
+        ));
+    }
+    let mut profiles = Vec::with_capacity(file.slices.len());
+    for (_, name, line) in &file.slices {
+        profiles.push(read(name).map_err(|e| {
+            format_err(
+                file_name,
+                Some(*line),
+                format!("the profile of this slice: {e}"),
+            )
+        })?);
+    }
+    let profiles: Vec<&Profile> = profiles.iter().collect();
+    let n = path_points(&profiles);
+    if n > limits.max_path_points {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "its surface has {n} points along the interpolation paths (the slices \
+                 resampled at {} mm over the longest), more than the limit of {}",
+                RESAMPLE_SPACING_M * 1e3,
+                limits.max_path_points
+            ),
+        ));
+    }
+    let points = n.saturating_mul(profiles.len());
+    if points > limits.max_surface_points {
+        return Err(format_err(
+            file_name,
+            None,
+            format!(
+                "its surface has {points} points ({} slices of {n} points along the \
+                 interpolation paths), more than the limit of {}",
+                profiles.len(),
+                limits.max_surface_points
+            ),
+        ));
+    }
+    let at: Vec<f64> = file.slices.iter().map(|s| s.0).collect();
+    SlicePaths::new(file_name, &at, &profiles, axis, file.interpolation)
+}
+
+/// Reads a rail slices file and its profiles: the slice lines of `text`
 /// ([`parse_slices_file`]), each profile by `read` (given the file name as
 /// written in the slices file).
 pub fn parse_slices(
@@ -588,68 +1138,40 @@ pub fn parse_slices(
 pub fn parse_slices_within(
     text: &str,
     file_name: &str,
-    mut read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+    read: impl FnMut(&str) -> Result<Profile, ProfileError>,
     limits: SlicesLimits,
 ) -> Result<RailSlices, ProfileError> {
-    let file = parse_slices_file(text, file_name)?;
-    if file.slices.len() > limits.max_slices {
-        return Err(format_err(
-            file_name,
-            None,
-            format!(
-                "{} slices, more than the limit of {}",
-                file.slices.len(),
-                limits.max_slices
-            ),
-        ));
-    }
-    let mut slices = Vec::with_capacity(file.slices.len());
-    for (u_m, name, line) in &file.slices {
-        let profile = read(name).map_err(|e| {
-            format_err(
-                file_name,
-                Some(*line),
-                format!("the profile of this slice: {e}"),
-            )
-        })?;
-        slices.push(Slice { u_m: *u_m, profile });
-    }
-    let n = path_points(&slices);
-    if n > limits.max_path_points {
-        return Err(format_err(
-            file_name,
-            None,
-            format!(
-                "its rail has {n} points along the interpolation paths (the slices resampled \
-                 at {} mm over the longest), more than the limit of {}",
-                RESAMPLE_SPACING_M * 1e3,
-                limits.max_path_points
-            ),
-        ));
-    }
-    let points = n.saturating_mul(slices.len());
-    if points > limits.max_surface_points {
-        return Err(format_err(
-            file_name,
-            None,
-            format!(
-                "its surface has {points} points ({} slices of {n} points along the \
-                 interpolation paths), more than the limit of {}",
-                slices.len(),
-                limits.max_surface_points
-            ),
-        ));
-    }
-    RailSlices::new(file_name, &slices)
+    let paths = read_paths(text, file_name, SliceAxis::Track, read, limits)?;
+    Ok(RailSlices::of(file_name, paths))
 }
 
-/// Reads a slices file from disk; its profile files, relative to its
-/// folder, with `options` (the kind is a rail's).
-pub fn load_slices(
-    path: impl AsRef<Path>,
+/// Reads a wheel slices file (`.slcw`) and its profiles: the slice lines
+/// of `text` (as a rail slices file's, with TH_ in place of U_ and
+/// TH_SCALE in radians per unit; TH_INTPOL = 2 built), each profile by
+/// `read` (given the file name as written in the slices file).
+pub fn parse_wheel_slices(
+    text: &str,
+    file_name: &str,
+    read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+) -> Result<WheelSlices, ProfileError> {
+    let name = file_name.to_string();
+    read_paths(text, file_name, SliceAxis::Wheel, read, SlicesLimits::NONE)
+        .map(|paths| WheelSlices { name, paths })
+}
+
+/// Reads the slices file at `path` (along `axis`) with its profile files,
+/// relative to its folder, with `options` (the kind the axis's), into
+/// `build` (the file's text, its name and a reader of its profiles).
+fn load_along<T>(
+    path: &Path,
     options: &LoadOptions,
-) -> Result<Arc<RailSlices>, ProfileError> {
-    let path = path.as_ref();
+    axis: SliceAxis,
+    build: impl FnOnce(
+        &str,
+        &str,
+        &mut dyn FnMut(&str) -> Result<Profile, ProfileError>,
+    ) -> Result<T, ProfileError>,
+) -> Result<Arc<T>, ProfileError> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| ProfileError::Io {
         file: name.clone(),
@@ -658,45 +1180,78 @@ pub fn load_slices(
     let text = String::from_utf8_lossy(&bytes);
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let options = LoadOptions {
-        kind: Some(ProfileKind::Rail),
+        kind: Some(axis.kind()),
         ..*options
     };
-    parse_slices(&text, &name, |f| {
-        crate::wheelrail::load_profile_with(dir.join(f), &options)
+    let mut read = |f: &str| crate::wheelrail::load_profile_with(dir.join(f), &options);
+    build(&text, &name, &mut read).map(Arc::new)
+}
+
+/// Reads a rail slices file from disk; its profile files, relative to its
+/// folder, with `options` (the kind is a rail's).
+pub fn load_slices(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<Arc<RailSlices>, ProfileError> {
+    load_along(path.as_ref(), options, SliceAxis::Track, |t, n, r| {
+        parse_slices(t, n, r)
     })
-    .map(Arc::new)
+}
+
+/// Reads a wheel slices file from disk; its profile files, relative to
+/// its folder, with `options` (the kind is a wheel's).
+pub fn load_wheel_slices(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<Arc<WheelSlices>, ProfileError> {
+    load_along(path.as_ref(), options, SliceAxis::Wheel, |t, n, r| {
+        parse_wheel_slices(t, n, r)
+    })
 }
 
 /// Whether `file_name` names a rail slices file (extension `.slcs`, any
 /// case).
 pub fn is_slices_file(file_name: &str) -> bool {
+    has_extension(file_name, "slcs")
+}
+
+/// Whether `file_name` names a wheel slices file (extension `.slcw`, any
+/// case).
+pub fn is_wheel_slices_file(file_name: &str) -> bool {
+    has_extension(file_name, "slcw")
+}
+
+fn has_extension(file_name: &str, ext: &str) -> bool {
     Path::new(file_name)
         .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("slcs"))
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn checked(kind: ProfileKind, points: &[[f64; 2]]) -> Profile {
+        Profile::from_points("p", Some(kind), points, &ProfileChecks::default()).unwrap()
+    }
+
     fn rail(points: &[[f64; 2]]) -> Profile {
-        Profile::from_points(
-            "r",
-            Some(ProfileKind::Rail),
-            points,
-            &ProfileChecks::default(),
-        )
-        .unwrap()
+        checked(ProfileKind::Rail, points)
+    }
+
+    /// 41 points (y, z(y)) from y = `from` to -`from` [m].
+    fn sampled(from: f64, z: impl Fn(f64) -> f64) -> Vec<[f64; 2]> {
+        (0..41)
+            .map(|i| {
+                let y = from - 2.0 * from * i as f64 / 40.0;
+                [y, z(y)]
+            })
+            .collect()
     }
 
     /// A small crowned rail, heights shifted by `dz` [m].
     fn crown(dz: f64) -> Vec<[f64; 2]> {
-        (0..41)
-            .map(|i| {
-                let y = -0.035 + 0.07 * i as f64 / 40.0;
-                [y, y * y / 0.6 + dz]
-            })
-            .collect()
+        sampled(-0.035, |y| y * y / 0.6 + dz)
     }
 
     const GOOD: &str = "% a test\n\n   0.0  1000.0   U_OFFSET, U_SCALE\n  3   NSLC\n  \
@@ -882,5 +1437,127 @@ mod tests {
             let want = -0.03 + 0.06 * i as f64 / 121.0;
             assert!((p[0] - want).abs() < 1e-15, "{i}: {} against {want}", p[0]);
         }
+    }
+
+    fn wheel(points: &[[f64; 2]]) -> Profile {
+        checked(ProfileKind::Wheel, points)
+    }
+
+    /// A small tread (y descending, a wheel's order), radii grown by `dr`
+    /// [m].
+    fn tread(dr: f64) -> Vec<[f64; 2]> {
+        sampled(0.035, |y| 0.05 * y + dr)
+    }
+
+    const WHEEL: &str = "% wheel\n 0.0 0.0174532925199433  TH_OFFSET, TH_SCALE (degrees)\n 5 NSLC\n \
+                         0 0 0\n 2 TH_INTPOL\n 10 'a.txt'\n 20 'a.txt'\n 30 b.txt\n 40 'a.txt'\n 50 'a.txt'\n";
+
+    #[test]
+    fn a_good_wheel_file_gives_its_slices_in_radians() {
+        let f = parse_slices_file_along(WHEEL, "t.slcw", SliceAxis::Wheel).unwrap();
+        assert_eq!(f.interpolation, SliceInterpolation::Approximating);
+        assert_eq!(f.slices.len(), 5);
+        assert!((f.slices[2].0 - 30f64.to_radians()).abs() < 1e-15);
+        assert_eq!(f.slices[2].1, "b.txt");
+        assert_eq!(f.slices[2].2, 8);
+    }
+
+    /// A wheel file's malformed lines are named with its own keywords.
+    #[test]
+    fn each_malformed_wheel_line_is_named() {
+        let cases: &[(usize, &str, &str)] = &[
+            (2, " x 1.0", "TH_OFFSET"),
+            (2, " 0.0 0", "TH_SCALE = 0"),
+            (4, " 2 0 0", "NFEAT = 2"),
+            (5, " 3", "TH_INTPOL = 3"),
+            (5, " 2 1", "PERTURB"),
+            (6, " 10", "WFNAME"),
+            // 0.0005 degrees after the slice before: less than 0.001 rad.
+            (7, " 10.0005 'a.txt'", "increasing theta"),
+        ];
+        let lines: Vec<&str> = WHEEL.lines().collect();
+        for (at, text, says) in cases {
+            let mut l = lines.clone();
+            l[at - 1] = text;
+            let e = parse_slices_file_along(&l.join("\n"), "t.slcw", SliceAxis::Wheel)
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(&format!("t.slcw line {at}")), "{text}: {e}");
+            assert!(e.contains(says), "{text}: {e}");
+        }
+    }
+
+    /// The same profile at every slice is that profile at any angle, bit
+    /// for bit (the approximating spline too: its weights sum to one).
+    #[test]
+    fn constant_wheel_slices_are_the_profile() {
+        let p = wheel(&tread(0.0));
+        let s = parse_wheel_slices(WHEEL, "t.slcw", |_| Ok(p.clone())).unwrap();
+        for t in [-3.0, 0.0, 0.2, 0.31, 0.5, 0.87, 1.2, 7.0] {
+            assert_eq!(s.profile_at(t).unwrap().points(), p.points(), "theta {t}");
+        }
+    }
+
+    /// The approximating spline on equally spaced slices: a radius linear
+    /// in theta is reproduced (the B-spline's control points lie at its
+    /// Greville abscissae, the slices), and at a slice the spline is
+    /// (p_(k-1) + 4 p_k + p_(k+1)) / 6 (the uniform cubic B-spline), so a
+    /// bump of 1 mm at one slice gives 2/3 mm there and 1/6 mm at its
+    /// neighbours; outside the slices the end slice's profile (constant
+    /// extrapolation), and an angle is taken into [-pi, pi) first.
+    #[test]
+    fn the_approximating_spline_smooths_as_cubic_b_splines() {
+        let deg = 1f64.to_radians();
+        let mk = |dr: &dyn Fn(usize) -> f64| {
+            let slices: Vec<WheelSlice> = (0..5)
+                .map(|k| WheelSlice {
+                    theta_rad: (10 + 10 * k) as f64 * deg,
+                    profile: wheel(&tread(dr(k))),
+                })
+                .collect();
+            WheelSlices::new("t", &slices, SliceInterpolation::Approximating).unwrap()
+        };
+        let mut pts = Vec::new();
+        let z_at = |s: &WheelSlices, theta: f64, pts: &mut Vec<[f64; 2]>| {
+            s.points_at(theta, pts);
+            pts[20][1] - tread(0.0)[20][1]
+        };
+        let lin = mk(&|k| 1e-3 * k as f64);
+        for t in [10.0, 13.0, 27.5, 40.0, 49.9] {
+            let want = 1e-3 * (t - 10.0) / 10.0;
+            let got = z_at(&lin, t * deg, &mut pts);
+            assert!(
+                (got - want).abs() < 1e-15,
+                "theta {t}: {got} against {want}"
+            );
+        }
+        let bump = mk(&|k| if k == 2 { 1e-3 } else { 0.0 });
+        for (t, want) in [(30.0, 2e-3 / 3.0), (20.0, 1e-3 / 6.0), (40.0, 1e-3 / 6.0)] {
+            let got = z_at(&bump, t * deg, &mut pts);
+            assert!(
+                (got - want).abs() < 1e-15,
+                "theta {t}: {got} against {want}"
+            );
+        }
+        // Outside [10, 50] degrees: the end slices (here at the nominal).
+        assert_eq!(z_at(&bump, 5.0 * deg, &mut pts), 0.0);
+        let end = z_at(&lin, 60.0 * deg, &mut pts);
+        assert!((end - 4e-3).abs() < 1e-15, "{end}");
+        // 390 degrees is 30 degrees.
+        let a = z_at(&bump, 390.0 * deg, &mut pts);
+        assert!((a - 2e-3 / 3.0).abs() < 1e-15, "{a}");
+    }
+
+    /// A wheel slices file read as a single profile (as the service's
+    /// profile registration reads files) is refused by name.
+    #[test]
+    fn a_wheel_slices_file_is_no_single_profile() {
+        let e = crate::wheelrail::parse_profile(WHEEL, "flat.slcw", &LoadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("flat.slcw") && e.contains("wheel slices file"),
+            "{e}"
+        );
     }
 }

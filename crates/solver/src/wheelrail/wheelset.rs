@@ -41,9 +41,12 @@
 //!   -V / `nominal_radius_m`: negative, the bottom of the wheel moving
 //!   backwards).
 
+use std::sync::Arc;
+
 use crate::core::error::{require_finite, require_positive, ContactError};
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::wheelrail::search::{LocusSample, VerticalGap};
+use crate::wheelrail::slices::WheelSlices;
 use crate::wheelrail::spline::{ProfileSpline, SplineError, SplineOptions};
 use crate::wheelrail::{Profile, ProfileKind};
 
@@ -544,6 +547,23 @@ pub struct PlacedWheel {
     /// `locus_radius_m`.
     locus_samples: Vec<LocusSample>,
     locus_radius_m: f64,
+    /// An out-of-round wheel ([`WheelRailPair::with_wheel_slices`]).
+    slices: Option<WheelSlicesAt>,
+}
+
+/// An out-of-round wheel on the pair: its slices and the wheelset's pitch
+/// angle, whose slice facing the rail (theta = -pitch) is the pair's
+/// wheel profile.
+#[derive(Debug, Clone)]
+pub struct WheelSlicesAt {
+    /// The wheel's slices.
+    pub slices: Arc<WheelSlices>,
+    /// The wheelset's pitch angle \[rad\] (CONTACT's PITCH, theta_ws; see
+    /// [`WheelSlices`] for the convention).
+    pub pitch_rad: f64,
+    /// The points of the profile the pair's wheel was placed from,
+    /// [`WheelSlices::facing_rail_points`] (profile frame, unsmoothed).
+    pub facing_points: Vec<[f64; 2]>,
 }
 
 /// Its spline and samples.
@@ -573,6 +593,11 @@ impl PlacedWheel {
     /// ([`LocusFrame::point`](crate::wheelrail::search::LocusFrame::point)),
     /// one per sample, on a wheelset of `nominal_radius_m` (None on
     /// another than the one the wheel was placed for).
+    /// The out-of-round wheel's slices and pitch, if any.
+    pub fn slices(&self) -> Option<&WheelSlicesAt> {
+        self.slices.as_ref()
+    }
+
     pub(crate) fn locus_samples(&self, nominal_radius_m: f64) -> Option<&[LocusSample]> {
         (nominal_radius_m.to_bits() == self.locus_radius_m.to_bits())
             .then_some(&self.locus_samples[..])
@@ -662,6 +687,34 @@ impl WheelRailPair {
             track,
             wheelset,
         })
+    }
+
+    /// The pair with the wheel of `side` out of round: `slices` at the
+    /// wheelset's pitch angle `pitch_rad` (CONTACT's PITCH; see
+    /// [`WheelSlices`]). The placed wheel of that side must be the slices'
+    /// profile facing the rail, [`WheelSlices::profile_facing_rail`] at
+    /// this pitch and the wheelset's nominal radius (the caller places it,
+    /// smoothed or not: the contact search and each patch's geometry use
+    /// it as a round wheel's profile); each element (x, s) of a patch's
+    /// grid (exact model) then sees the true wheel: the change of radius
+    /// between that profile and the wheel's cross-section at its own angle
+    /// -pitch + asin(x / r), along the patch's normal (a wheel flat
+    /// changes over a patch's length), and the grid reaches along x as far
+    /// as the true wheel comes within the patch's reach of the rail.
+    pub fn with_wheel_slices(
+        mut self,
+        side: Side,
+        slices: Arc<WheelSlices>,
+        pitch_rad: f64,
+    ) -> Result<Self, WheelRailError> {
+        require_finite("position.pitch_rad", pitch_rad)?;
+        let facing_points = slices.facing_rail_points(pitch_rad, self.wheelset.nominal_radius_m);
+        self.wheels[side.index()].slices = Some(WheelSlicesAt {
+            slices,
+            pitch_rad,
+            facing_points,
+        });
+        Ok(self)
     }
 
     /// The placed rail of `side`.
@@ -835,6 +888,7 @@ fn place_wheel(
         samples,
         locus_samples,
         locus_radius_m: ws.nominal_radius_m,
+        slices: None,
     })
 }
 
