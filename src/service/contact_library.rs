@@ -9,6 +9,7 @@ use railcontact_cntc_core::element::Element;
 use railcontact_cntc_core::error::CntcError;
 use railcontact_cntc_core::remote::{self, Reply, Request, WireError, FORMAT_VERSION};
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::wheelrail::slices::SlicesLimits;
 
 use crate::service::status::ServiceError;
 
@@ -21,11 +22,13 @@ pub struct LibraryElement {
 
 impl LibraryElement {
     /// The copy of an element of module `module` (1 or 3), its grids
-    /// together at most `max_grid_elements` elements.
+    /// together at most `max_grid_elements` elements, the slices files it
+    /// is sent (module 1) within `slices`.
     pub fn open(
         format_version: u32,
         module: i32,
         max_grid_elements: usize,
+        slices: SlicesLimits,
     ) -> Result<Self, ServiceError> {
         if format_version != FORMAT_VERSION {
             return Err(ServiceError::precondition(
@@ -36,9 +39,12 @@ impl LibraryElement {
                 ),
             ));
         }
-        let element = Element::new(module).map_err(|e| {
+        let mut element = Element::new(module).map_err(|e| {
             ServiceError::invalid("open.module", format!("{module}: {}", e.detail()))
         })?;
+        if let Ok(w) = element.wheelrail_mut() {
+            w.set_slices_limits(slices);
+        }
         Ok(LibraryElement {
             element,
             max_grid_elements,

@@ -1128,6 +1128,7 @@ impl ContactHandlers {
             open.format_version,
             open.module,
             self.limits.case.max_grid_elements,
+            self.pairs.slices_limits(),
         )?;
         tracing::info!(label = %escaped(&open.client_label), ire = open.ire, module = element.module(), "contact library element opened");
         let opened = Out::Opened(pb::ContactLibraryOpened {

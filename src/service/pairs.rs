@@ -907,6 +907,18 @@ fn read(
     read_file(f, src.mirror_y, kind, field, limit)
 }
 
+/// The bounds on a slices file read from a client, for a server of
+/// `max_profile_points`: [`MAX_RAIL_SLICES`] slices, `max_profile_points`
+/// along each interpolation path, [`SLICES_POINTS_PER_PROFILE_POINTS`]
+/// times that in the surface.
+pub fn slices_limits(max_profile_points: usize) -> SlicesLimits {
+    SlicesLimits {
+        max_slices: MAX_RAIL_SLICES,
+        max_path_points: max_profile_points,
+        max_surface_points: max_profile_points.saturating_mul(SLICES_POINTS_PER_PROFILE_POINTS),
+    }
+}
+
 /// Reads a rail given as slices (`sl`, canonical), each distinct profile
 /// file once, within this server's limits: [`MAX_RAIL_SLICES`] slices,
 /// each profile within `limit`, the points read and the surface's within
@@ -979,11 +991,7 @@ fn read_slices(
             parsed.insert(k, p.clone());
             Ok(p)
         },
-        SlicesLimits {
-            max_slices: MAX_RAIL_SLICES,
-            max_path_points: limit.max_points,
-            max_surface_points: max_points,
-        },
+        slices_limits(limit.max_points),
     );
     match (slices, first) {
         (Ok(s), _) => Ok(s),
@@ -1392,6 +1400,12 @@ fn damage(id: &str, record: &Result<pb::RegisterProfilePairRequest, String>) -> 
 }
 
 impl PairRegistry {
+    /// The bounds on the slices files clients send this server
+    /// ([`slices_limits`] of its `max_profile_points`).
+    pub fn slices_limits(&self) -> SlicesLimits {
+        slices_limits(self.limits.max_profile_points)
+    }
+
     /// A registry persisting into `store` (none: memory only) with the
     /// stored registrations restored (state STORED). Each record is checked:
     /// one that cannot be decoded, or whose content does not hash to its id,

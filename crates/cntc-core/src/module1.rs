@@ -168,15 +168,18 @@ use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
 use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
-use railcontact_solver::wheelrail::slices::{parse_slices_file_along, SliceAxis};
+use railcontact_solver::wheelrail::slices::{
+    parse_slices_file_along, parse_slices_within, parse_wheel_slices_within, SliceAxis,
+    SlicesLimits,
+};
 use railcontact_solver::wheelrail::{
-    is_slices_file, is_wheel_slices_file, parse_profile, parse_slices, parse_wheel_slices,
-    pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings, ExactTangential,
-    FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
-    ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
-    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
-    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    is_slices_file, is_wheel_slices_file, parse_profile, pitch_force_tolerance, solve_wheelset,
+    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
+    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
+    ProfileKind, ProfileSpline, RailDeviation, RailMotion, RailPlacement, RailSlices,
+    SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad, WheelRailInput,
+    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelSlices, WheelsetData,
+    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -346,6 +349,10 @@ pub struct Solved {
 /// A module 1 result element.
 #[derive(Default)]
 pub struct WheelRail {
+    /// Bounds on the slices files it reads (rail and wheel): none in
+    /// process; a server's ([`WheelRail::set_slices_limits`]) on the files
+    /// a forwarding library sends it.
+    slices_limits: SlicesLimits,
     /// Units, digits, materials, friction, solver parameters (for all its
     /// patches).
     pub config: Config,
@@ -684,6 +691,12 @@ fn mirrored<T: Copy>(v: &[T], nx: usize, ny: usize) -> Vec<T> {
 }
 
 impl WheelRail {
+    /// Bounds the slices files it reads from now on (a server's, on the
+    /// files a forwarding library sends with its calls).
+    pub fn set_slices_limits(&mut self, limits: SlicesLimits) {
+        self.slices_limits = limits;
+    }
+
     fn units(&self) -> Units {
         self.config.units
     }
@@ -817,7 +830,10 @@ impl WheelRail {
         const CALL: &str = "cntc_setprofileinputfname";
         let rparam = src.rparam;
         let rail = ProfileKind::Rail;
-        let slices = self.read_slices(src, rail, &Ok, |t, n, r| parse_slices(t, n, r))?;
+        let limits = self.slices_limits;
+        let slices = self.read_slices(src, rail, &Ok, |t, n, r| {
+            parse_slices_within(t, n, r, limits)
+        })?;
         let profile = slices
             .profile_at(slices.u_range_m().0)
             .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
@@ -861,8 +877,9 @@ impl WheelRail {
             })
         };
         let wheel = ProfileKind::Wheel;
-        let slices =
-            self.read_slices(src, wheel, &smoothed, |t, n, r| parse_wheel_slices(t, n, r))?;
+        let slices = self.read_slices(src, wheel, &smoothed, |t, n, r| {
+            parse_wheel_slices_within(t, n, r, self.slices_limits)
+        })?;
         let profile = slices
             .profile_at(0.0)
             .map_err(|e| CntcError::Profile(format!("{CALL}: {e}")))?;
@@ -3441,6 +3458,43 @@ mod tests {
             .unwrap_err();
         assert_eq!(e.ierror(), flags::err::PROFIL);
         assert!(w.calculate(&cache).is_err());
+    }
+
+    /// A server's bounds on the slices files a library sends it: the UK
+    /// crossing nose's 10 slices are refused under a limit of 5 slices,
+    /// and under one of 1000 surface points (10 slices of their points),
+    /// naming the limit; within bounds it is read.
+    #[test]
+    fn slices_files_are_read_within_the_limits_set() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../solver/profiles");
+        let path = dir.join("uk_crossing_nose.slcs");
+        let path = path.to_str().unwrap();
+        let content = read_profile_file(path);
+        let files = read_slice_files(path, content.as_deref());
+        let read = |limits: SlicesLimits| {
+            let mut w = WheelRail::default();
+            w.set_slices_limits(limits);
+            w.set_profile_file(
+                path,
+                content.as_deref(),
+                &files,
+                &[0, 0, 0, -1],
+                &[1000.0, 0.0],
+            )
+        };
+        let few_slices = SlicesLimits {
+            max_slices: 5,
+            ..SlicesLimits::NONE
+        };
+        let few_points = SlicesLimits {
+            max_surface_points: 1000,
+            ..SlicesLimits::NONE
+        };
+        for limits in [few_slices, few_points] {
+            let e = read(limits).unwrap_err();
+            assert!(e.to_string().contains("more than the limit"), "{e}");
+        }
+        read(SlicesLimits::NONE).unwrap();
     }
 
     /// The sphere of test-rollers2.inp on its plane placed absolutely at

@@ -1055,6 +1055,13 @@ impl SlicesLimits {
     };
 }
 
+/// No bounds ([`SlicesLimits::NONE`]).
+impl Default for SlicesLimits {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
 /// The paths of a slices file along `axis` within `limits`: the slice
 /// lines of `text` ([`parse_slices_file_along`]), counted before any
 /// profile is read, each profile by `read` (given the file name as written
@@ -1154,8 +1161,18 @@ pub fn parse_wheel_slices(
     file_name: &str,
     read: impl FnMut(&str) -> Result<Profile, ProfileError>,
 ) -> Result<WheelSlices, ProfileError> {
+    parse_wheel_slices_within(text, file_name, read, SlicesLimits::NONE)
+}
+
+/// [`parse_wheel_slices`] within `limits`, as [`parse_slices_within`].
+pub fn parse_wheel_slices_within(
+    text: &str,
+    file_name: &str,
+    read: impl FnMut(&str) -> Result<Profile, ProfileError>,
+    limits: SlicesLimits,
+) -> Result<WheelSlices, ProfileError> {
     let name = file_name.to_string();
-    read_paths(text, file_name, SliceAxis::Wheel, read, SlicesLimits::NONE)
+    read_paths(text, file_name, SliceAxis::Wheel, read, limits)
         .map(|paths| WheelSlices { name, paths })
 }
 
