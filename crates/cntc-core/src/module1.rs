@@ -173,13 +173,13 @@ use railcontact_solver::wheelrail::slices::{
     SlicesLimits,
 };
 use railcontact_solver::wheelrail::{
-    is_slices_file, is_wheel_slices_file, parse_profile, pitch_force_tolerance, solve_wheelset,
-    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
-    LoadOptions, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
-    ProfileKind, ProfileSpline, RailDeviation, RailMotion, RailPlacement, RailSlices,
-    SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelSlices, WheelsetData,
-    WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    is_slices_file, is_wheel_slices_file, nominal_rolling_speed, parse_profile,
+    pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings, ExactTangential,
+    FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
+    ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
+    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -2782,12 +2782,9 @@ impl PitchProblem {
         cache: &KernelCache,
         scratch: &mut SearchScratch,
     ) -> Result<(WheelRailInput, WheelRailSolution, f64)> {
-        // The speed the creepages are relative to: on a roller rig the
-        // roller's surface speed at its nominal radius (the wheelset stands).
-        let roller = pair.track().roller_radius_m.map_or(0.0, |radius| {
-            radius * input.rail_motion[self.side.index()].roller_rad_per_s
-        });
-        let v = input.velocity.forward_m_per_s + roller;
+        // The speed of the nominal creepage: on a roller rig the roller's
+        // surface speed at its nominal radius (the wheelset stands).
+        let v = nominal_rolling_speed(pair, &input);
         let r0 = self.nominal_radius_m;
         // The solver's pitch rate is VPITCH plus a term of the roll and yaw
         // rates (SolverOrientation), which does not depend on VPITCH.

@@ -502,7 +502,7 @@ impl RailMotion {
 /// surface speed at the nominal radius of the first solved side's roller
 /// (free rolling of the wheels, the force-controlled pitch rate and the
 /// slip-velocity laws take it).
-pub(crate) fn nominal_rolling_speed(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
+pub fn nominal_rolling_speed(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
     let roller = match (pair.track().roller_radius_m, input.sides.first()) {
         (Some(r), Some(side)) => r * input.rail_motion[side.index()].roller_rad_per_s,
         _ => 0.0,

@@ -89,9 +89,9 @@ pub mod temperature;
 pub mod wheelset;
 
 pub use contact::{
-    pitch_force_tolerance, solve_wheelset, solve_wheelset_warm, wheelrail_solver_settings,
-    ExactTangential, PatchResult, PatchTractions, RailMotion, WarmStart, WheelLoad, WheelRailInput,
-    WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
+    nominal_rolling_speed, pitch_force_tolerance, solve_wheelset, solve_wheelset_warm,
+    wheelrail_solver_settings, ExactTangential, PatchResult, PatchTractions, RailMotion, WarmStart,
+    WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
 pub use pair_cache::{PairCache, PairCacheStats};
