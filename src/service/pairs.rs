@@ -772,6 +772,15 @@ impl PreparedPair {
     /// The pair's contact table (default grid), built on the pool on the
     /// first call; concurrent first calls build it once.
     async fn table(&self, admission: &Admission) -> Result<Arc<ContactTable>, ServiceError> {
+        // A table is of one prismatic rail: none is built for a rail varying
+        // along the track (whose solves refuse the table's model anyway).
+        if self.varying.is_some() {
+            return Err(ServiceError::invalid(
+                "model",
+                "a contact table (model hertz_fastsim_table) is built for a prismatic rail, \
+                 not a rail given as slices",
+            ));
+        }
         self.table
             .get_or_try_init(|| async {
                 let pair = self.pair.clone();
