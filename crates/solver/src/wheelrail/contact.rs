@@ -2501,6 +2501,17 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
 /// frame); that height, turned by the rail's inclination, along the
 /// patch's normal is the change of the distance. An element beyond the
 /// slices' lateral extent keeps its distance.
+/// Into `out`, the segments (i, i + 1) of the section `pts` (y, z) that
+/// reach into the lateral range from `ylo` to `yhi`: the only ones that can span
+/// a row's y there.
+fn segments_reaching(pts: &[[f64; 2]], ylo: f64, yhi: f64, out: &mut Vec<usize>) {
+    out.clear();
+    out.extend((0..pts.len().saturating_sub(1)).filter(|&i| {
+        let (a, b) = (pts[i][0], pts[i + 1][0]);
+        a.max(b) >= ylo && a.min(b) <= yhi
+    }));
+}
+
 fn add_rail_variation(
     gap_m: &mut [f64],
     grid: &Grid,
@@ -2551,11 +2562,7 @@ fn add_rail_variation(
     for ix in 0..grid.nx {
         let u = track_s_m + geom.x_m + grid.x_m(ix);
         slices.points_at(u, &mut at_u).ok_or_else(|| outside(u))?;
-        near.clear();
-        near.extend((0..at_u.len().saturating_sub(1)).filter(|&i| {
-            let (a, b) = (at_u[i][0], at_u[i + 1][0]);
-            a.max(b) >= ylo && a.min(b) <= yhi
-        }));
+        segments_reaching(&at_u, ylo, yhi, &mut near);
         for (is, (y, z0)) in ys.iter().zip(&base).enumerate() {
             let z = RailSlices::z_at_among(&at_u, near.iter().copied(), *y);
             if let (Some(z0), Some(z)) = (z0, z) {
@@ -2655,12 +2662,7 @@ impl<'a> WheelRows<'a> {
         let theta0 = -self.oor.pitch_rad;
         self.oor.slices.points_at(theta0 + phi, &mut self.at);
         let (at, ylo, yhi) = (&self.at, self.ylo, self.yhi);
-        self.near.clear();
-        self.near
-            .extend((0..at.len().saturating_sub(1)).filter(|&i| {
-                let (p, q) = (at[i][0], at[i + 1][0]);
-                p.max(q) >= ylo && p.min(q) <= yhi
-            }));
+        segments_reaching(at, ylo, yhi, &mut self.near);
         let scale = phi.cos() * self.along_normal;
         for (row, (y, z0)) in self.ys.iter().zip(&self.base).enumerate() {
             let z = WheelSlices::z_at_among(at, self.near.iter().copied(), *y);
