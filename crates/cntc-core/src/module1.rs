@@ -949,6 +949,8 @@ impl WheelRail {
             m if m < 0 => MirrorZ::Keep,
             _ => MirrorZ::Flip,
         };
+        let sclfac = self.profile_scale(rparam);
+        let scaled = (sclfac - 1.0).abs() >= 1e-12;
         let options = LoadOptions {
             kind: Some(kind),
             mirror_y: ip(iparam, 3, 0) >= 1,
@@ -956,11 +958,19 @@ impl WheelRail {
             // CONTACT reads a two-column table as numbers in millimetres
             // (times the scale factor).
             plain_unit: Some(LengthUnit::Millimetre),
+            // The width is checked once scaled.
+            checks: ProfileChecks {
+                min_width_m: if scaled {
+                    0.0
+                } else {
+                    ProfileChecks::default().min_width_m
+                },
+                ..ProfileChecks::default()
+            },
             ..LoadOptions::default()
         };
         let read = read_profile_text(fname, content, &options)?;
-        let sclfac = self.profile_scale(rparam);
-        let profile = if (sclfac - 1.0).abs() < 1e-12 {
+        let profile = if !scaled {
             read
         } else {
             let pts: Vec<[f64; 2]> = read

@@ -129,6 +129,10 @@ pub struct ProfileChecks {
     /// Largest extent of the profile in y or z \[m\]; a larger profile is an
     /// error, usually a wrong length unit. Default 1 m.
     pub max_extent_m: f64,
+    /// Smallest extent of the profile in y \[m\]; a narrower profile is an
+    /// error, usually a table in metres read as millimetres. Default 1 mm
+    /// (a rail head or a wheel tread spans 60 to 150 mm).
+    pub min_width_m: f64,
 }
 
 impl Default for ProfileChecks {
@@ -139,6 +143,7 @@ impl Default for ProfileChecks {
             reversal_angle_rad: 120f64.to_radians(),
             max_repair_m: 1e-3,
             max_extent_m: 1.0,
+            min_width_m: 1e-3,
         }
     }
 }
@@ -232,7 +237,8 @@ pub enum CheckKind {
     Backtracking,
     /// A single point sticks out by more than `max_repair_m`.
     Spike,
-    /// The profile is larger than `max_extent_m` (wrong length unit?).
+    /// The profile is larger than `max_extent_m` or narrower than
+    /// `min_width_m` (wrong length unit?).
     Extent,
     /// A point lies farther than [`MAX_COORDINATE_M`] from the origin
     /// (wrong offset or unit factor?).
@@ -352,8 +358,8 @@ impl Profile {
     /// If `kind` is given the points are put in CONTACT order (reversed if
     /// needed). Then, with the limits in `checks`:
     ///
-    /// * more than `max_extent_m` in y or z, or fewer than 2 points, is an
-    ///   error;
+    /// * more than `max_extent_m` in y or z, less than `min_width_m` in y,
+    ///   or fewer than 2 points, is an error;
     /// * successive points closer than `merge_distance_m` are merged;
     /// * a turn of more than `reversal_angle_rad` at two successive points
     ///   marks a pair out of order (backtracking), at a single point a
@@ -649,6 +655,19 @@ pub(crate) fn finish(
             at: at(p.line),
             kind: CheckKind::Coordinate,
             message: format!("{}; wrong offset or length unit?", outside(&p)),
+        });
+    }
+    if yhi - ylo < checks.min_width_m {
+        return Err(ProfileError::Check {
+            at: at(None),
+            kind: CheckKind::Extent,
+            message: format!(
+                "the profile spans {:e} m in y, less than the limit of {} m \
+                 (ProfileChecks::min_width_m); wrong length unit? (a table in metres read as \
+                 millimetres)",
+                yhi - ylo,
+                checks.min_width_m,
+            ),
         });
     }
     merge_close_points(name, &mut raw, checks);
@@ -997,6 +1016,19 @@ mod tests {
                     ..
                 }
             ),
+            "{e}"
+        );
+        // A 60 mm rail head given in metres and read as millimetres: 60 um.
+        let pts: Vec<[f64; 2]> = (0..61).map(|k| [k as f64 * 1e-6, 0.0]).collect();
+        let e = Profile::from_points("mm", None, &pts, &checks).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ProfileError::Check {
+                    kind: CheckKind::Extent,
+                    ..
+                }
+            ) && e.to_string().contains("min_width_m"),
             "{e}"
         );
         let e = Profile::from_points("c", None, &[[0.0, 0.0]], &checks).unwrap_err();
