@@ -27,10 +27,11 @@ use crate::wheelrail::ranges;
 use crate::wheelrail::{
     builtin, check_plausibility, is_slices_file, is_wheel_slices_file, load_profile_with,
     load_slices, load_wheel_slices, solve_wheelset, FrictionTable, LengthUnit, LoadOptions,
-    PatchResult, PlausibilityWarning, Profile, RailMotion, RailPlacement, RailSlices,
-    SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError, WheelRailInput,
-    WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution, WheelRailThermal,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, DEFAULT_SMOOTHING_WAVELENGTH_M,
+    PatchResult, PlausibilityWarning, Profile, RailDeviation, RailMotion, RailPlacement,
+    RailSlices, SearchScratch, Side, SplineOptions, TrackData, WheelLoad, WheelRailError,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelRailThermal, WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
 
 /// Options of `railcontact wheelrail`.
@@ -173,6 +174,50 @@ struct TrackKeys {
     roller_rad_per_s: Option<f64>,
     #[serde(default)]
     curvature_per_m: f64,
+    rail_profile_unit: Option<UnitKey>,
+    #[serde(default)]
+    rail_deviation_left: DeviationKeys,
+    #[serde(default)]
+    rail_deviation_right: DeviationKeys,
+}
+
+/// `track.rail_deviation_left` / `_right`: a rail's shift and roll from its
+/// placement (the wire's `RailDeviation`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct DeviationKeys {
+    dy_m: f64,
+    dz_m: f64,
+    droll_rad: f64,
+}
+
+impl From<&DeviationKeys> for RailDeviation {
+    fn from(d: &DeviationKeys) -> Self {
+        RailDeviation {
+            dy_m: d.dy_m,
+            dz_m: d.dz_m,
+            droll_rad: d.droll_rad,
+        }
+    }
+}
+
+/// `track.rail_profile_unit`, `wheelset.wheel_profile_unit`: the length
+/// unit of plain two-column profile tables.
+#[derive(Debug, Clone, Copy, Deserialize)]
+enum UnitKey {
+    #[serde(rename = "m")]
+    Metre,
+    #[serde(rename = "mm")]
+    Millimetre,
+}
+
+impl From<UnitKey> for LengthUnit {
+    fn from(u: UnitKey) -> Self {
+        match u {
+            UnitKey::Metre => LengthUnit::Metre,
+            UnitKey::Millimetre => LengthUnit::Millimetre,
+        }
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -186,6 +231,7 @@ struct WheelsetKeys {
     flange_back_y_m: Option<f64>,
     nominal_radius_m: f64,
     smoothing_wavelength_m: Option<f64>,
+    wheel_profile_unit: Option<UnitKey>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -261,22 +307,35 @@ impl From<WheelRailError> for CliError {
 }
 
 /// Reads `name` (a path relative to `dir`, or `builtin:NAME`).
-fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Profile, CliError> {
-    let options = LoadOptions {
-        mirror_y,
-        ..LoadOptions::default()
-    };
+fn read_profile(
+    name: &str,
+    dir: &Path,
+    options: &LoadOptions,
+    key: &str,
+) -> Result<Profile, CliError> {
     let result = match name.strip_prefix(builtin::PREFIX) {
-        Some(b) => builtin::profile(b, &options).ok_or_else(|| {
+        Some(b) => builtin::profile(b, options).ok_or_else(|| {
             let names: Vec<&str> = builtin::FILES.iter().map(|(n, _)| *n).collect();
             bad(format!(
                 "invalid input `{key}`: no built-in profile '{b}' (there are: {})",
                 names.join(", ")
             ))
         })?,
-        None => load_profile_with(dir.join(name), &options),
+        None => load_profile_with(dir.join(name), options),
     };
     result.map_err(|e| bad(format!("invalid input `{key}`: {e}")))
+}
+
+/// How a side's profile files are read: mirrored in y or not, plain
+/// tables in `unit` (`track.rail_profile_unit`,
+/// `wheelset.wheel_profile_unit`; unset: the file's own unit line or
+/// column names, else metres), the same for a slices file's tables.
+fn profile_options(mirror_y: bool, unit: Option<UnitKey>) -> LoadOptions {
+    LoadOptions {
+        mirror_y,
+        plain_unit: unit.map(LengthUnit::from),
+        ..LoadOptions::default()
+    }
 }
 
 /// Reads the rail profile `name` as [`read_profile`] does; a rail slices
@@ -285,18 +344,14 @@ fn read_profile(name: &str, dir: &Path, mirror_y: bool, key: &str) -> Result<Pro
 fn read_rail(
     name: &str,
     dir: &Path,
-    mirror_y: bool,
+    options: &LoadOptions,
     key: &str,
     track_s_m: f64,
 ) -> Result<(Profile, Option<Arc<RailSlices>>), CliError> {
     if !is_slices_file(name) {
-        return Ok((read_profile(name, dir, mirror_y, key)?, None));
+        return Ok((read_profile(name, dir, options, key)?, None));
     }
-    let options = LoadOptions {
-        mirror_y,
-        ..LoadOptions::default()
-    };
-    let slices = load_slices(dir.join(name), &options)
+    let slices = load_slices(dir.join(name), options)
         .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
     let profile = slices
         .profile_at(track_s_m)
@@ -308,31 +363,24 @@ fn read_rail(
 /// file (`.slcw`, an out-of-round wheel) gives its profile facing the
 /// rail at the wheelset's pitch angle `pitch_rad` on a wheelset of
 /// `nominal_radius_m` (`WheelSlices::profile_facing_rail`) and the slices
-/// themselves; its plain profile tables are in millimetres.
+/// themselves.
 fn read_wheel(
     name: &str,
     dir: &Path,
-    mirror_y: bool,
+    options: &LoadOptions,
     key: &str,
     pitch_rad: f64,
     nominal_radius_m: f64,
 ) -> Result<(Profile, Option<Arc<WheelSlices>>), CliError> {
     if !is_wheel_slices_file(name) {
-        return Ok((read_profile(name, dir, mirror_y, key)?, None));
+        return Ok((read_profile(name, dir, options, key)?, None));
     }
     if !pitch_rad.is_finite() {
         return Err(bad(format!(
             "invalid input `position.pitch_rad`: must be finite, got {pitch_rad}"
         )));
     }
-    // Plain tables in millimetres, CONTACT's unit for them (the example's
-    // S1002_flat slices).
-    let options = LoadOptions {
-        mirror_y,
-        plain_unit: Some(LengthUnit::Millimetre),
-        ..LoadOptions::default()
-    };
-    let slices = load_wheel_slices(dir.join(name), &options)
+    let slices = load_wheel_slices(dir.join(name), options)
         .map_err(|e| bad(format!("invalid input `{key}`: {e}")))?;
     let profile = slices
         .profile_facing_rail(pitch_rad, nominal_radius_m)
@@ -438,22 +486,24 @@ impl WheelrailRun {
             }
         };
         let s_m = c.position.track_s_m;
+        let rail_options = profile_options(t.rail_mirror_y, t.rail_profile_unit);
         let (rail_r, slices_r) = read_rail(
             &t.rail_profile,
             dir,
-            t.rail_mirror_y,
+            &rail_options,
             "track.rail_profile",
             s_m,
         )?;
         let (rail_l, slices_l) = match &t.rail_profile_left {
-            Some(n) => read_rail(n, dir, t.rail_mirror_y, "track.rail_profile_left", s_m)?,
+            Some(n) => read_rail(n, dir, &rail_options, "track.rail_profile_left", s_m)?,
             None => (rail_r.clone(), slices_r.clone()),
         };
         let pitch = c.position.pitch_rad;
+        let wheel_options = profile_options(w.wheel_mirror_y, w.wheel_profile_unit);
         let (wheel_r, oor_r) = read_wheel(
             &w.wheel_profile,
             dir,
-            w.wheel_mirror_y,
+            &wheel_options,
             "wheelset.wheel_profile",
             pitch,
             w.nominal_radius_m,
@@ -462,7 +512,7 @@ impl WheelrailRun {
             Some(n) => read_wheel(
                 n,
                 dir,
-                w.wheel_mirror_y,
+                &wheel_options,
                 "wheelset.wheel_profile_left",
                 pitch,
                 w.nominal_radius_m,
@@ -480,7 +530,10 @@ impl WheelrailRun {
         let track = TrackData {
             placement,
             cant_rad: t.cant_rad,
-            deviations: Default::default(),
+            deviations: [
+                (&t.rail_deviation_left).into(),
+                (&t.rail_deviation_right).into(),
+            ],
             roller_radius_m: t.roller_radius_m,
             curvature_per_m: t.curvature_per_m,
         };
@@ -1105,6 +1158,72 @@ element_size_m = 0.0002
         let bad = text.replace("pitch_rad = -0.6457718232379019", "pitch_rad = nan");
         let e = WheelrailRun::from_toml(&bad, &dir).err().unwrap();
         assert!(e.to_string().contains("position.pitch_rad"), "{e}");
+    }
+
+    /// The slices' plain tables of `wheel_flat.toml` are in millimetres:
+    /// read in metres (the default, as every plain table's without a unit
+    /// line), the 60 mm wide profiles would be 60 m wide and are refused
+    /// naming the wheel's key.
+    #[test]
+    fn a_slices_files_tables_are_read_in_the_unit_the_case_gives() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cases");
+        let text = std::fs::read_to_string(dir.join("wheel_flat.toml")).unwrap();
+        let metres = text.replace("wheel_profile_unit = \"mm\"", "");
+        assert_ne!(metres, text);
+        let e = WheelrailRun::from_toml(&metres, &dir).err().unwrap();
+        assert!(e.to_string().contains("`wheelset.wheel_profile`"), "{e}");
+        let bad = text.replace("wheel_profile_unit = \"mm\"", "wheel_profile_unit = \"cm\"");
+        let e = WheelrailRun::from_toml(&bad, &dir).err().unwrap();
+        assert!(e.to_string().contains("wheel_profile_unit"), "{e}");
+    }
+
+    /// Both rails shifted 1 mm to the right (`track.rail_deviation_*`)
+    /// under a wheelset shifted 1 mm alike: the same contact as without
+    /// either, 1 mm further right; a deviation beyond its range is refused
+    /// naming its key, as on the wire.
+    #[test]
+    fn rail_deviations_move_the_rails() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cases");
+        let text = std::fs::read_to_string(dir.join("wheelset_a22.toml")).unwrap();
+        let solve = |text: &str| {
+            let run = WheelrailRun::from_toml(text, &dir).unwrap();
+            let mut scratch = SearchScratch::default();
+            solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch).unwrap()
+        };
+        let plain = solve(&text);
+        let shifted = solve(
+            &text
+                .replace("lateral_m = 0.0065", "lateral_m = 0.0075")
+                .replace(
+                    "[wheelset]",
+                    "[track.rail_deviation_left]\ndy_m = 0.001\n\
+                     [track.rail_deviation_right]\ndy_m = 0.001\n\n[wheelset]",
+                ),
+        );
+        for (a, b) in plain.wheels.iter().zip(&shifted.wheels) {
+            assert_eq!(a.patches.len(), b.patches.len());
+            for (p, q) in a.patches.iter().zip(&b.patches) {
+                assert!(
+                    (q.track_y_m - p.track_y_m - 1e-3).abs() < 1e-9,
+                    "{}",
+                    q.track_y_m
+                );
+                for k in 0..3 {
+                    let (f, g) = (p.force_track_n[k], q.force_track_n[k]);
+                    assert!((f - g).abs() < 1e-6 * 1e4, "{k}: {f} {g}");
+                }
+            }
+        }
+        let far = text.replace(
+            "[wheelset]",
+            "[track.rail_deviation_right]\ndy_m = 6.0\n\n[wheelset]",
+        );
+        let e = WheelrailRun::from_toml(&far, &dir).err().unwrap();
+        let m = e.to_string();
+        assert!(
+            m.contains("`track.rail_deviation_right.dy_m`") && m.contains("millimetres"),
+            "{m}"
+        );
     }
 
     /// CONTACT's test-rollers2.inp case 2a as a case file: the "bus" (the

@@ -45,7 +45,7 @@ use prost::Message;
 use sha2::{Digest, Sha256};
 
 use crate::core::cache::KernelCache;
-use crate::core::error::{show, Range, UnitHint};
+use crate::core::error::show;
 use crate::core::material::{CombinedMaterial, Material};
 use crate::core::memory::HeapBytes;
 use crate::core::problem::Friction;
@@ -62,8 +62,8 @@ use crate::wheelrail::profile::{quote, ProfileError, SourceLocation};
 use crate::wheelrail::ranges;
 use crate::wheelrail::slices::{parse_slices_within, SlicesLimits};
 use crate::wheelrail::{
-    builtin, is_slices_file, parse_profile, ContactTable, LoadOptions, MiniProfVariant, Profile,
-    ProfileFormat, ProfileKind, RailDeviation, RailPlacement, RailSlices, SplineOptions,
+    builtin, is_slices_file, parse_profile, ContactTable, LengthUnit, LoadOptions, MiniProfVariant,
+    Profile, ProfileFormat, ProfileKind, RailDeviation, RailPlacement, RailSlices, SplineOptions,
     TableSettings, TrackData, WheelRailError, WheelRailPair, WheelsetData,
     DEFAULT_SMOOTHING_WAVELENGTH_M,
 };
@@ -121,18 +121,11 @@ fn check_range(field: &str, v: f64, [lo, hi]: [f64; 2], unit: &str) -> Result<()
     }
 }
 
-/// A rail's deviation from its placement \[m\] (`RailDeviation.dy_m`,
-/// `dz_m`): the wire's range (the case files have no deviations).
-pub const RAIL_DEVIATION_SHIFT: Range = Range::symmetric(0.05, "m").hint(UnitHint::Millimetre);
-/// A rail's deviation's roll \[rad\] (`RailDeviation.droll_rad`): the
-/// range of a rail inclination.
-pub const RAIL_DEVIATION_ROLL: Range = ranges::CANT;
-
 /// The library's track of a wire track, as a case file's `[track]`
 /// becomes it: placed by the gauge or by the rail origins (exactly one),
 /// each rail's deviation, a roller rig, the curvature. Field paths are
 /// relative to the track (`gauge_m`, `rail_deviation_left.dy_m`); the
-/// ranges of placement and cant are checked here
+/// ranges of placement, cant and deviations are checked here
 /// ([`ranges::check_track`]), the rest (a roller's radius and cant, the
 /// curvature) when the pair is placed, as for a case file.
 pub fn track_data(t: &pb::TrackSpec) -> Result<TrackData, ServiceError> {
@@ -167,27 +160,19 @@ pub fn track_data(t: &pb::TrackSpec) -> Result<TrackData, ServiceError> {
             ))
         }
     };
-    let deviation = |d: Option<&pb::RailDeviation>, key: &str| {
-        let Some(d) = d else {
-            return Ok(RailDeviation::default());
-        };
-        let check = |range: Range, field: &str, v: f64| {
-            range
-                .check(&format!("{key}.{field}"), v)
-                .map_err(ServiceError::from)
-        };
-        Ok::<_, ServiceError>(RailDeviation {
-            dy_m: check(RAIL_DEVIATION_SHIFT, "dy_m", d.dy_m)?,
-            dz_m: check(RAIL_DEVIATION_SHIFT, "dz_m", d.dz_m)?,
-            droll_rad: check(RAIL_DEVIATION_ROLL, "droll_rad", d.droll_rad)?,
+    let deviation = |d: Option<&pb::RailDeviation>| {
+        d.map_or_else(RailDeviation::default, |d| RailDeviation {
+            dy_m: d.dy_m,
+            dz_m: d.dz_m,
+            droll_rad: d.droll_rad,
         })
     };
     let track = TrackData {
         placement,
         cant_rad: t.cant_rad,
         deviations: [
-            deviation(t.rail_deviation_left.as_ref(), "rail_deviation_left")?,
-            deviation(t.rail_deviation_right.as_ref(), "rail_deviation_right")?,
+            deviation(t.rail_deviation_left.as_ref()),
+            deviation(t.rail_deviation_right.as_ref()),
         ],
         roller_radius_m: t.roller_radius_m,
         curvature_per_m: t.curvature_per_m,
@@ -373,6 +358,7 @@ fn check_file(f: &pb::ProfileFile, field: &str) -> Result<(), ServiceError> {
         ));
     }
     load_format(f.format, &format!("{field}.format"))?;
+    plain_unit(f.plain_unit, field)?;
     Ok(())
 }
 
@@ -381,9 +367,8 @@ fn check_file(f: &pb::ProfileFile, field: &str) -> Result<(), ServiceError> {
 fn canonical_slices(sl: &pb::RailSlices, field: &str) -> Result<pb::RailSlices, ServiceError> {
     check_file(
         &pb::ProfileFile {
-            format: 0,
-            content: String::new(),
             file_name: sl.file_name.clone(),
+            ..Default::default()
         },
         field,
     )?;
@@ -464,6 +449,7 @@ fn canonical_source(
                 format: pb::ProfileFormat::Unspecified as i32,
                 content: content.to_string(),
                 file_name: n.to_string(),
+                plain_unit: pb::LengthUnit::Unspecified as i32,
             }
         }
         Some(Source::File(f)) => {
@@ -488,6 +474,19 @@ fn load_format(format: i32, field: &str) -> Result<Option<ProfileFormat>, Servic
         Err(_) => Err(ServiceError::invalid(
             field,
             format!("unknown profile format {format}"),
+        )),
+    }
+}
+
+/// A profile file's `plain_unit` (errors at `field.plain_unit`).
+fn plain_unit(unit: i32, field: &str) -> Result<Option<LengthUnit>, ServiceError> {
+    match pb::LengthUnit::try_from(unit) {
+        Ok(pb::LengthUnit::Unspecified) => Ok(None),
+        Ok(pb::LengthUnit::M) => Ok(Some(LengthUnit::Metre)),
+        Ok(pb::LengthUnit::Mm) => Ok(Some(LengthUnit::Millimetre)),
+        Err(_) => Err(ServiceError::invalid(
+            format!("{field}.plain_unit"),
+            format!("unknown length unit {unit}"),
         )),
     }
 }
@@ -872,6 +871,7 @@ fn read_file(
         kind: Some(kind),
         format: load_format(f.format, field)?,
         mirror_y,
+        plain_unit: plain_unit(f.plain_unit, field)?,
         ..LoadOptions::default()
     };
     if is_slices_file(&f.file_name) {
@@ -1817,6 +1817,7 @@ mod tests {
                 format: pb::ProfileFormat::Unspecified as i32,
                 content: "0 1000\n1\n0 0 0\n1\n0 'a.txt'\n".into(),
                 file_name: "crossing.slcs".into(),
+                ..Default::default()
             })),
             mirror_y: false,
         };
@@ -1830,6 +1831,40 @@ mod tests {
             text.contains("rail") && text.contains("slices file"),
             "{text}"
         );
+    }
+
+    /// A plain table's `plain_unit` scales it; an unknown unit is refused
+    /// naming the field.
+    #[test]
+    fn a_plain_tables_unit_is_the_files_plain_unit() {
+        let file = |plain_unit: i32| pb::ProfileSource {
+            source: Some(pb::profile_source::Source::File(pb::ProfileFile {
+                format: pb::ProfileFormat::Plain as i32,
+                content: (0..16)
+                    .map(|k| format!("{} {}\n", 2 * k, 0.02 * (k * k) as f64))
+                    .collect(),
+                file_name: "rail.txt".into(),
+                plain_unit,
+            })),
+            mirror_y: false,
+        };
+        let limit = || PointLimit {
+            max_points: 10_000,
+            metrics: None,
+        };
+        let mm = read(
+            &file(pb::LengthUnit::Mm as i32),
+            ProfileKind::Rail,
+            "rail",
+            limit(),
+        )
+        .unwrap();
+        let (lo, hi) = (mm.points()[0][0], mm.points()[mm.len() - 1][0]);
+        assert!(((hi - lo).abs() - 0.03).abs() < 1e-12, "{lo} {hi}");
+        let e = read(&file(7), ProfileKind::Rail, "rail", limit())
+            .err()
+            .unwrap();
+        assert!(e.to_string().contains("rail.plain_unit"), "{e}");
     }
 
     #[test]

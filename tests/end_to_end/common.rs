@@ -34,6 +34,7 @@ pub fn crossing_slices() -> pb::ProfileSource {
                 format: pb::ProfileFormat::Unspecified as i32,
                 content: std::fs::read_to_string(dir.join(&name)).unwrap(),
                 file_name: name,
+                ..Default::default()
             }
         })
         .collect();

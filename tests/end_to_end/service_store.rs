@@ -58,6 +58,7 @@ fn file_source(name: &str, mirror_y: bool, extra: &str) -> pb::ProfileSource {
             format: pb::ProfileFormat::Unspecified as i32,
             content,
             file_name: name.into(),
+            ..Default::default()
         })),
         mirror_y,
     }
@@ -411,6 +412,7 @@ fn miniprof_wheel(keys: &str, line: &str) -> pb::ProfileSource {
             format: pb::ProfileFormat::Unspecified as i32,
             content,
             file_name: "w.whl".into(),
+            ..Default::default()
         })),
         mirror_y: false,
     }

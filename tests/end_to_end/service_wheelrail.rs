@@ -53,6 +53,7 @@ pub(crate) fn file_source(name: &str, mirror_y: bool) -> pb::ProfileSource {
             format: pb::ProfileFormat::Unspecified as i32,
             content: std::fs::read_to_string(profile_path(name)).unwrap(),
             file_name: name.into(),
+            ..Default::default()
         })),
         mirror_y,
     }
@@ -751,6 +752,7 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
             format: pb::ProfileFormat::Plain as i32,
             content: "0.000 0.000\n-0.001 0.0001\n-0.002 zero\n".into(),
             file_name: "bad_wheel.txt".into(),
+            ..Default::default()
         })),
         mirror_y: false,
     });
@@ -784,6 +786,7 @@ async fn bad_profiles_and_specs_are_invalid_argument_naming_file_line_and_field(
             format: pb::ProfileFormat::Unspecified as i32,
             content: broken.join("\n"),
             file_name: "broken.prr".into(),
+            ..Default::default()
         })),
         mirror_y: false,
     });

@@ -829,6 +829,7 @@ fn profile_source(name: &str) -> pb::ProfileSource {
             format: pb::ProfileFormat::Unspecified as i32,
             content: std::fs::read_to_string(path).unwrap(),
             file_name: name.into(),
+            ..Default::default()
         })),
         mirror_y: false,
     }

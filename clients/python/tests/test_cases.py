@@ -203,6 +203,61 @@ def test_a_slices_rail_is_sent_with_the_profile_files_it_names(tmp_path):
     assert case.motion["position"]["track_s_m"] == 0.28
 
 
+def test_a_cases_profile_unit_reaches_every_table_of_the_slices(client, tmp_path):
+    # crossing_nose.toml's slices are tables in metres without a unit line:
+    # `rail_profile_unit = "m"` says so (each profile's plain_unit) and
+    # changes no number; "mm" reads them a thousand times smaller, a rail
+    # 0.08 mm wide, which the server refuses naming a slice's profile.
+    base = _example_copy("crossing_nose.toml", tmp_path, lambda t: t)
+    plain = client.solve_wheelrail_case(base)
+    for unit, field in (("m", None), ("mm", "spec.rail.slices")):
+        path = _example_copy(
+            "crossing_nose.toml", tmp_path, lambda t: t.replace("[wheelset]", f'rail_profile_unit = "{unit}"\n\n[wheelset]')
+        )
+        case = railcontact.load_wheelrail_case(path)
+        assert {p["plain_unit"] for p in case.pair["rail"]["slices"]["profiles"]} == {unit}
+        if field is None:
+            r = client.solve_wheelrail_case(case)
+            assert r.wheel("right").patches[0].normal_force_n == plain.wheel("right").patches[0].normal_force_n
+        else:
+            with pytest.raises(railcontact.RailcontactError) as e:
+                client.solve_wheelrail_case(case)
+            assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+            assert e.value.field.startswith(field), e.value.field
+    bad = _example_copy("crossing_nose.toml", tmp_path, lambda t: t.replace("[wheelset]", 'rail_profile_unit = "cm"\n\n[wheelset]'))
+    with pytest.raises(railcontact.RailcontactError) as e:
+        railcontact.load_wheelrail_case(bad)
+    assert e.value.field == "track.rail_profile_unit"
+
+
+def test_rail_deviations_reach_the_pair_and_move_the_rails(client, tmp_path):
+    # Both rails 1 mm to the right under a wheelset 1 mm further right: the
+    # A-2.2 case's forces, as `railcontact wheelrail` finds
+    # (src/cli/wheelrail.rs, rail_deviations_move_the_rails).
+    def shifted(t):
+        return t.replace("lateral_m = 0.0065", "lateral_m = 0.0075").replace(
+            "[wheelset]", "[track.rail_deviation_left]\ndy_m = 0.001\n[track.rail_deviation_right]\ndy_m = 0.001\n\n[wheelset]"
+        )
+
+    case = railcontact.load_wheelrail_case(_example_copy("wheelset_a22.toml", tmp_path, shifted))
+    assert case.pair["track"]["rail_deviation_right"] == {"dy_m": 0.001}
+    a = client.solve_wheelrail_case(CASES / "wheelset_a22.toml")
+    b = client.solve_wheelrail_case(case)
+    for side in ("left", "right"):
+        for p, q in zip(a.wheel(side).patches, b.wheel(side).patches):
+            assert q.normal_force_n == pytest.approx(p.normal_force_n, abs=1e-2)
+    far = _example_copy(
+        "wheelset_a22.toml", tmp_path, lambda t: t.replace("[wheelset]", "[track.rail_deviation_right]\ndy_m = 6.0\n\n[wheelset]")
+    )
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_wheelrail_case(far)
+    assert e.value.field == "spec.track.rail_deviation_right.dy_m"
+    odd = _example_copy("wheelset_a22.toml", tmp_path, lambda t: t.replace("[wheelset]", "[track.rail_deviation_right]\ndx_m = 0.001\n\n[wheelset]"))
+    with pytest.raises(railcontact.RailcontactError) as e:
+        railcontact.load_wheelrail_case(odd)
+    assert e.value.field == "track.rail_deviation_right.dx_m"
+
+
 def test_a_roller_rig_case_takes_the_rollers_rate_into_the_velocity(client):
     # examples/cases/roller_rig.toml: the rails placed by their origins on
     # rollers (the pair), the rollers' rate with the wheel's (the motion).

@@ -22,7 +22,7 @@ import pathlib
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Union
+from typing import Any, Optional, Union
 
 from .errors import invalid
 from .results import summary
@@ -51,11 +51,14 @@ _TABLES: dict = {
     "track": (
         ("rail_profile",),
         ("rail_profile_left", "rail_mirror_y", "cant_rad", "gauge_m", "gauge_height_m", "rail_origin_y_m",
-         "rail_origin_z_m", "roller_radius_m", "roller_rad_per_s", "curvature_per_m"),
+         "rail_origin_z_m", "roller_radius_m", "roller_rad_per_s", "curvature_per_m", "rail_profile_unit",
+         "rail_deviation_left", "rail_deviation_right"),
     ),
+    "track.rail_deviation_left": ((), ("dy_m", "dz_m", "droll_rad")),
     "wheelset": (
         ("wheel_profile", "flange_back_distance_m", "nominal_radius_m"),
-        ("wheel_profile_left", "wheel_mirror_y", "flange_back_y_m", "smoothing_wavelength_m"),
+        ("wheel_profile_left", "wheel_mirror_y", "flange_back_y_m", "smoothing_wavelength_m",
+         "wheel_profile_unit"),
     ),
     "position": ((), ("lateral_m", "yaw_rad", "roll_rad", "track_s_m")),
     "velocity": (
@@ -79,6 +82,11 @@ _TABLES: dict = {
     ),
 }
 _TABLES["temperature.wheel"] = _TABLES["temperature.rail"]
+_TABLES["track.rail_deviation_right"] = _TABLES["track.rail_deviation_left"]
+
+#: The rails' deviations from their placement, the wire's ``TrackSpec``
+#: fields of the same names.
+_DEVIATIONS = ("rail_deviation_left", "rail_deviation_right")
 
 #: The keys of ``[friction]`` that make a friction table (the wire's
 #: ``friction_table``); the others are its law (``friction``).
@@ -181,6 +189,9 @@ def load_wheelrail_case(path: Union[str, os.PathLike]) -> WheelRailCase:
     if "temperature" in tables:
         for body in ("rail", "wheel"):
             _check_table(tables["temperature"][body], f"temperature.{body}")
+    for key in _DEVIATIONS:
+        if key in tables["track"]:
+            _check_table(tables["track"][key], f"track.{key}")
 
     pair = _pair(tables["track"], tables["wheelset"], tables.get("material"), path.parent)
     return WheelRailCase(
@@ -212,9 +223,13 @@ def _join(table: str, key: str) -> str:
     return f"{table}.{key}" if table else key
 
 
-def _profile(name: Any, mirror_y: Any, directory: pathlib.Path, key: str, mirror_key: str) -> dict:
+def _profile(
+    name: Any, mirror_y: Any, unit: Optional[str], directory: pathlib.Path, key: str, mirror_key: str
+) -> dict:
     """A ``ProfileSource`` mapping of the case file's profile ``name`` (a
-    path relative to ``directory`` or ``builtin:NAME``)."""
+    path relative to ``directory`` or ``builtin:NAME``); ``unit``, the
+    case's unit of plain tables (``"m"``, ``"mm"`` or None: the file's
+    own), is each file's ``plain_unit``."""
     if not isinstance(name, str) or not name:
         raise invalid(key, f"expected a file name or `{BUILTIN_PREFIX}NAME`, got {name!r}")
     if not isinstance(mirror_y, bool):
@@ -227,13 +242,29 @@ def _profile(name: Any, mirror_y: Any, directory: pathlib.Path, key: str, mirror
         # A rail varying along the track: the slices file with the profile
         # files it names (relative to it), by the names written there.
         profiles = [
-            {"content": _read_text(file.parent / n, key), "file_name": n} for n in _slice_profile_names(content)
+            _file(_read_text(file.parent / n, key), n, unit) for n in _slice_profile_names(content)
         ]
         return {
             "slices": {"file_name": file.name, "content": content, "profiles": profiles},
             "mirror_y": mirror_y,
         }
-    return {"file": {"content": content, "file_name": file.name}, "mirror_y": mirror_y}
+    return {"file": _file(content, file.name, unit), "mirror_y": mirror_y}
+
+
+def _file(content: str, file_name: str, unit: Optional[str]) -> dict:
+    """A ``ProfileFile`` mapping; ``unit`` (when given) its ``plain_unit``."""
+    file = {"content": content, "file_name": file_name}
+    if unit is not None:
+        file["plain_unit"] = unit
+    return file
+
+
+def _unit(table: dict, key: str, table_name: str) -> Optional[str]:
+    """The profile unit ``table[key]``: ``"m"``, ``"mm"`` or None."""
+    unit = table.get(key)
+    if unit is not None and unit not in ("m", "mm"):
+        raise invalid(f"{table_name}.{key}", f'expected "m" or "mm", got {unit!r}')
+    return unit
 
 
 def _read_text(file: pathlib.Path, key: str) -> str:
@@ -291,24 +322,32 @@ def _pair(track: dict, wheelset: dict, material: Any, directory: pathlib.Path) -
     _placement(track)
     rail_mirror = track.get("rail_mirror_y", False)
     wheel_mirror = wheelset.get("wheel_mirror_y", False)
+    rail_unit = _unit(track, "rail_profile_unit", "track")
+    wheel_unit = _unit(wheelset, "wheel_profile_unit", "wheelset")
     pair: dict = {
         "wheel": _profile(
-            wheelset["wheel_profile"], wheel_mirror, directory, "wheelset.wheel_profile", "wheelset.wheel_mirror_y"
+            wheelset["wheel_profile"], wheel_mirror, wheel_unit, directory, "wheelset.wheel_profile",
+            "wheelset.wheel_mirror_y",
         ),
-        "rail": _profile(track["rail_profile"], rail_mirror, directory, "track.rail_profile", "track.rail_mirror_y"),
-        "track": {k: track[k] for k in _TRACK_SPEC_KEYS if k in track},
+        "rail": _profile(
+            track["rail_profile"], rail_mirror, rail_unit, directory, "track.rail_profile", "track.rail_mirror_y"
+        ),
+        "track": {
+            **{k: track[k] for k in _TRACK_SPEC_KEYS if k in track},
+            **{k: dict(track[k]) for k in _DEVIATIONS if k in track},
+        },
         "wheelset": {
             k: wheelset[k] for k in ("flange_back_distance_m", "nominal_radius_m", "flange_back_y_m") if k in wheelset
         },
     }
     if "wheel_profile_left" in wheelset:
         pair["wheel_left"] = _profile(
-            wheelset["wheel_profile_left"], wheel_mirror, directory, "wheelset.wheel_profile_left",
+            wheelset["wheel_profile_left"], wheel_mirror, wheel_unit, directory, "wheelset.wheel_profile_left",
             "wheelset.wheel_mirror_y",
         )
     if "rail_profile_left" in track:
         pair["rail_left"] = _profile(
-            track["rail_profile_left"], rail_mirror, directory, "track.rail_profile_left", "track.rail_mirror_y"
+            track["rail_profile_left"], rail_mirror, rail_unit, directory, "track.rail_profile_left", "track.rail_mirror_y"
         )
     if "smoothing_wavelength_m" in wheelset:
         pair["smoothing_wavelength_m"] = wheelset["smoothing_wavelength_m"]

@@ -8,7 +8,7 @@
 use crate::core::error::{ContactError, Range, UnitHint};
 use crate::wheelrail::contact::WheelLoad;
 use crate::wheelrail::wheelset::{
-    RailPlacement, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    RailPlacement, Side, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
 };
 
 /// `position.lateral_m` \[m\] (flange contact is at about 8 mm).
@@ -47,6 +47,12 @@ pub const RAIL_ORIGIN_Y: Range = Range::symmetric(3.0, "m").hint(UnitHint::Milli
 pub const RAIL_ORIGIN_Z: Range = Range::symmetric(0.5, "m").hint(UnitHint::Millimetre);
 /// `track.cant_rad` \[rad\]: rail inclination (1:40 is 0.025).
 pub const CANT: Range = Range::symmetric(0.2, "rad");
+/// `track.rail_deviation_left.dy_m`, `.dz_m` (and `_right`) \[m\]: a
+/// rail's shift from its placement.
+pub const RAIL_DEVIATION_SHIFT: Range = Range::symmetric(0.05, "m").hint(UnitHint::Millimetre);
+/// `track.rail_deviation_left.droll_rad` (and `_right`) \[rad\]: a
+/// rail's roll from its placement, the range of a rail inclination.
+pub const RAIL_DEVIATION_ROLL: Range = CANT;
 /// `wheelset.flange_back_distance_m` \[m\].
 pub const FLANGE_BACK_DISTANCE: Range = Range::closed(0.2, 3.0, "m").hint(UnitHint::Millimetre);
 /// `wheelset.nominal_radius_m` \[m\].
@@ -156,6 +162,13 @@ pub fn check_track(track: &TrackData) -> Result<(), ContactError> {
         }
     }
     CANT.check("track.cant_rad", track.cant_rad)?;
+    for side in Side::BOTH {
+        let d = &track.deviations[side.index()];
+        let key = |field: &str| format!("track.rail_deviation_{}.{field}", side.name());
+        RAIL_DEVIATION_SHIFT.check(&key("dy_m"), d.dy_m)?;
+        RAIL_DEVIATION_SHIFT.check(&key("dz_m"), d.dz_m)?;
+        RAIL_DEVIATION_ROLL.check(&key("droll_rad"), d.droll_rad)?;
+    }
     Ok(())
 }
 

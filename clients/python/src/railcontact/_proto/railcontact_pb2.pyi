@@ -65,6 +65,12 @@ class ProfileFormat(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     PROFILE_FORMAT_MINIPROF: _ClassVar[ProfileFormat]
     PROFILE_FORMAT_PLAIN: _ClassVar[ProfileFormat]
 
+class LengthUnit(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    LENGTH_UNIT_UNSPECIFIED: _ClassVar[LengthUnit]
+    LENGTH_UNIT_M: _ClassVar[LengthUnit]
+    LENGTH_UNIT_MM: _ClassVar[LengthUnit]
+
 class RegistrationStage(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     REGISTRATION_STAGE_UNSPECIFIED: _ClassVar[RegistrationStage]
@@ -151,6 +157,9 @@ PROFILE_FORMAT_UNSPECIFIED: ProfileFormat
 PROFILE_FORMAT_SIMPACK: ProfileFormat
 PROFILE_FORMAT_MINIPROF: ProfileFormat
 PROFILE_FORMAT_PLAIN: ProfileFormat
+LENGTH_UNIT_UNSPECIFIED: LengthUnit
+LENGTH_UNIT_M: LengthUnit
+LENGTH_UNIT_MM: LengthUnit
 REGISTRATION_STAGE_UNSPECIFIED: RegistrationStage
 REGISTRATION_STAGE_VALIDATED: RegistrationStage
 REGISTRATION_STAGE_WHEEL_PARSED: RegistrationStage
@@ -991,14 +1000,16 @@ class RailSlices(_message.Message):
     def __init__(self, file_name: _Optional[str] = ..., content: _Optional[str] = ..., profiles: _Optional[_Iterable[_Union[ProfileFile, _Mapping]]] = ...) -> None: ...
 
 class ProfileFile(_message.Message):
-    __slots__ = ("format", "content", "file_name")
+    __slots__ = ("format", "content", "file_name", "plain_unit")
     FORMAT_FIELD_NUMBER: _ClassVar[int]
     CONTENT_FIELD_NUMBER: _ClassVar[int]
     FILE_NAME_FIELD_NUMBER: _ClassVar[int]
+    PLAIN_UNIT_FIELD_NUMBER: _ClassVar[int]
     format: ProfileFormat
     content: str
     file_name: str
-    def __init__(self, format: _Optional[_Union[ProfileFormat, str]] = ..., content: _Optional[str] = ..., file_name: _Optional[str] = ...) -> None: ...
+    plain_unit: LengthUnit
+    def __init__(self, format: _Optional[_Union[ProfileFormat, str]] = ..., content: _Optional[str] = ..., file_name: _Optional[str] = ..., plain_unit: _Optional[_Union[LengthUnit, str]] = ...) -> None: ...
 
 class TrackSpec(_message.Message):
     __slots__ = ("gauge_m", "gauge_height_m", "cant_rad", "rail_origin_y_m", "rail_origin_z_m", "rail_deviation_left", "rail_deviation_right", "roller_radius_m", "curvature_per_m")
