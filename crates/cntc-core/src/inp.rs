@@ -28,6 +28,7 @@ use crate::call::Call;
 use crate::config::Digits;
 use crate::flags;
 use crate::module1::{read_profile_file, read_slice_files};
+use crate::subsurface;
 
 /// The kinds of input file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -162,8 +163,8 @@ pub struct WheelRailInp {
     pub digits: Lined<InpDigits>,
     /// What the digits ask for that no `cntc_set*` call carries and this
     /// library does not have, refused as `CNTC_err_notsupported` before
-    /// anything is applied: subsurface points (S), a gap weighting, a new
-    /// M digit without its material parameters (C3 = 0, 1).
+    /// anything is applied: a gap weighting, a new M digit without its
+    /// material parameters (C3 = 0, 1).
     pub unsupported: Option<Lined<String>>,
     /// G: the solver's parameters.
     pub solver: Option<Lined<SolverInp>>,
@@ -198,6 +199,11 @@ pub struct WheelRailInp {
     pub velocity: Option<Lined<[f64; 6]>>,
     /// E1 = 4, 5: the wheel's position and velocity deviations.
     pub wheel_deviations: Option<Lined<Vec<f64>>>,
+    /// S = 3: the blocks of subsurface points (each as `subs_addblock`
+    /// takes it), replacing the element's; S = 1, 2 keep them (S = 2's
+    /// A and O digits of the subsurface output are read and not used: the
+    /// library writes no files). `subs_calculate` computes the stresses.
+    pub subsurface: Option<Lined<Vec<SubsBlockInp>>>,
 }
 
 /// What an element holds that a file may leave as it is: the digits a
@@ -464,6 +470,7 @@ pub fn parse(
         position: None,
         velocity: None,
         wheel_deviations: None,
+        subsurface: None,
     };
     if d.gausei != 1 {
         inp.solver = Some(read_solver(&mut r, d.gausei)?);
@@ -499,7 +506,126 @@ pub fn parse(
     let kinematics = !(kind == InpType::Simpack && module == 11);
     read_track(&mut r, &d, kinematics, &mut inp)?;
     read_wheelset(&mut r, &d, kinematics, &mut inp)?;
+    if d.stress >= 2 {
+        inp.subsurface = read_subsurface(&mut r, d.stress)?;
+    }
     Ok((inp, warnings))
+}
+
+/// One block of subsurface points read from an input file: ISUBS and the
+/// `xparam`, `yparam`, `zparam` of `subs_addblock`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubsBlockInp {
+    /// ISUBS: 1-3 (z regular), 5-7 (z listed) with all, a regular or a
+    /// listed selection of the grid's elements; 9: x, y and z listed.
+    pub isubs: i32,
+    /// `xparam`: IXL, IXINC, IXH (ISUBS = 2, 6), IX (3, 7), X (9).
+    pub x: Vec<f64>,
+    /// `yparam`: as `x`, in y.
+    pub y: Vec<f64>,
+    /// `zparam`: NZ, ZL, DZ (ISUBS = 1-3), Z (5-7, 9).
+    pub z: Vec<f64>,
+}
+
+/// S >= 2: the A and O digits of the subsurface output, then (S = 3) the
+/// blocks up to ISUBS = 0 (at most [`subsurface::MAX_BLOCKS`]), the
+/// lists sorted (the element numbers also without repeats), as CONTACT
+/// reads them (user guide, "Subsurface-stress input"). `None` for S = 2.
+fn read_subsurface(
+    r: &mut Reader,
+    stress: i32,
+) -> Result<Option<Lined<Vec<SubsBlockInp>>>, InpError> {
+    let ao = r.read("the A, O digits of the subsurface output", "ii")?;
+    if stress < 3 {
+        return Ok(None);
+    }
+    let first = r.read("the subsurface input option ISUBS", "i")?;
+    let mut isubs = first.ints[0];
+    let mut blocks = Vec::new();
+    while isubs != 0 {
+        let line = r.line;
+        check(line, "ISUBS", isubs, &[(1, 3), (5, 7), (9, 9)])?;
+        if blocks.len() == subsurface::MAX_BLOCKS {
+            return Err(InpError {
+                line,
+                message: format!(
+                    "more than {} blocks of subsurface points",
+                    subsurface::MAX_BLOCKS
+                ),
+            });
+        }
+        blocks.push(read_subsurface_block(r, isubs)?);
+        isubs = r.read("the subsurface input option ISUBS", "i")?.ints[0];
+    }
+    Ok(Some(ao.lined(blocks)))
+}
+
+/// A count NX, NY or NZ of subsurface points at `line`: 1 to
+/// [`subsurface::MAX_LIST`].
+fn subs_count(line: usize, name: &str, n: i32) -> Result<usize, InpError> {
+    check(line, name, n, &[(1, subsurface::MAX_LIST as i32)])?;
+    Ok(n as usize)
+}
+
+/// `n` numbers (`what`), sorted; without repeats when `unique`.
+fn sorted_list(r: &mut Reader, what: &str, n: usize, unique: bool) -> Result<Vec<f64>, InpError> {
+    let mut v = r.read(what, &"d".repeat(n))?.reals;
+    v.sort_by(f64::total_cmp);
+    if unique {
+        v.dedup();
+    }
+    Ok(v)
+}
+
+/// One block after its ISUBS: the selection of grid elements (ISUBS 2, 3,
+/// 6, 7), the z values (1-7), or the x, y and z lists (9).
+fn read_subsurface_block(r: &mut Reader, isubs: i32) -> Result<SubsBlockInp, InpError> {
+    let mut b = SubsBlockInp {
+        isubs,
+        x: Vec::new(),
+        y: Vec::new(),
+        z: Vec::new(),
+    };
+    match isubs {
+        2 | 6 => {
+            let range = |r: &mut Reader, what: &str| {
+                r.read(what, "iii")
+                    .map(|v| v.ints.iter().map(|&i| f64::from(i)).collect::<Vec<f64>>())
+            };
+            b.x = range(r, "the grid columns IXL, IXINC, IXH")?;
+            b.y = range(r, "the grid rows IYL, IYINC, IYH")?;
+        }
+        3 | 7 => {
+            let v = r.read("the numbers of grid columns and rows NX, NY", "ii")?;
+            let nx = subs_count(v.line, "NX", v.ints[0])?;
+            let ny = subs_count(v.line, "NY", v.ints[1])?;
+            b.x = sorted_list(r, "the grid columns IX(1..NX)", nx, true)?;
+            b.y = sorted_list(r, "the grid rows IY(1..NY)", ny, true)?;
+        }
+        _ => {}
+    }
+    match isubs {
+        1..=3 => {
+            let v = r.read("the points in z NZ, ZL, DZ", "idd")?;
+            let nz = subs_count(v.line, "NZ", v.ints[0])?;
+            b.z = vec![nz as f64, v.reals[0], v.reals[1]];
+        }
+        5..=7 => {
+            let v = r.read("the number of points in z NZ", "i")?;
+            let nz = subs_count(v.line, "NZ", v.ints[0])?;
+            b.z = sorted_list(r, "the z coordinates Z(1..NZ)", nz, false)?;
+        }
+        _ => {
+            let v = r.read("the numbers of points NX, NY, NZ", "iii")?;
+            let nx = subs_count(v.line, "NX", v.ints[0])?;
+            let ny = subs_count(v.line, "NY", v.ints[1])?;
+            let nz = subs_count(v.line, "NZ", v.ints[2])?;
+            b.x = sorted_list(r, "the x coordinates X(1..NX)", nx, false)?;
+            b.y = sorted_list(r, "the y coordinates Y(1..NY)", ny, false)?;
+            b.z = sorted_list(r, "the z coordinates Z(1..NZ)", nz, false)?;
+        }
+    }
+    Ok(b)
 }
 
 /// The three (four with X = 1) lines of control digits, checked as
@@ -690,7 +816,7 @@ fn read_digits(
             ),
         );
     }
-    let unsupported = unsupported_digits(&d, held, v1.line, v2.line);
+    let unsupported = unsupported_digits(&d, held, v2.line);
     Ok((
         Lined {
             line: v1.line,
@@ -700,24 +826,10 @@ fn read_digits(
     ))
 }
 
-/// What the digits (of the lines C-P-B-T-N-F-S `line1` and V-L-D-C-M-Z-E
-/// `line2`) ask for that no call carries and the library does not have.
-fn unsupported_digits(
-    d: &InpDigits,
-    held: &Held,
-    line1: usize,
-    line2: usize,
-) -> Option<Lined<String>> {
-    let (line, what) = if d.stress != 0 {
-        (
-            line1,
-            format!(
-                "S = {}: subsurface points in the input file are not read; give S = 0 and use \
-             subs_addblock and subs_calculate",
-                d.stress
-            ),
-        )
-    } else if d.gapwgt != 0 {
+/// What the digits (of the line V-L-D-C-M-Z-E `line2`) ask for that no
+/// call carries and the library does not have.
+fn unsupported_digits(d: &InpDigits, held: &Held, line2: usize) -> Option<Lined<String>> {
+    let (line, what) = if d.gapwgt != 0 {
         (
             line2,
             format!(

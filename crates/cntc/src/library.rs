@@ -257,6 +257,17 @@ impl Entry {
                 }
             }
         }
+        if result.is_ok() {
+            if let Some(blocks) = &inp.subsurface {
+                result = self.add_subsurface_blocks(&blocks.value).map_err(|e| {
+                    CntcError::InputFile(format!(
+                        "{} (subs_addblock): {}",
+                        at(blocks.line),
+                        e.detail()
+                    ))
+                });
+            }
+        }
         if units != Units::Contact {
             self.apply(-1, unit_flag(units))?;
         }
@@ -267,6 +278,18 @@ impl Entry {
             ),
             _ => Ok(()),
         }
+    }
+
+    /// An input file's subsurface blocks (S = 3), in CONTACT's units:
+    /// they replace the element's blocks of every patch (`subs_addblock`
+    /// with ICP = -1, IBLK = 0 and then 1, 2, ...).
+    fn add_subsurface_blocks(&mut self, blocks: &[inp::SubsBlockInp]) -> Result<()> {
+        let w = self.element.wheelrail_mut()?;
+        w.subs_add(-1, 0, 0, &[], &[], &[])?;
+        for (k, b) in blocks.iter().enumerate() {
+            w.subs_add(-1, k as i32 + 1, b.isubs, &b.x, &b.y, &b.z)?;
+        }
+        Ok(())
     }
 }
 
