@@ -657,15 +657,29 @@ struct KernelTable {
 }
 
 impl KernelTable {
-    fn new(nx: usize, ny: usize, k: impl Fn(i64, i64) -> f64) -> Self {
+    /// Kernel `kind` (i, j) of `influence` at every offset of an nx x ny
+    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`]).
+    fn of(
+        influence: &HalfSpaceInfluence,
+        kind: KernelKind,
+        i: Component,
+        j: Component,
+        nx: usize,
+        ny: usize,
+    ) -> Self {
         let (wx, wy) = (2 * nx - 1, 2 * ny - 1);
-        let mut values = Vec::with_capacity(wx * wy);
-        for jy in 0..wy {
-            for jx in 0..wx {
-                values.push(k(jx as i64 - (nx as i64 - 1), jy as i64 - (ny as i64 - 1)));
-            }
+        let mut values = vec![0.0; wx * wy];
+        for (jy, row) in values.chunks_exact_mut(wx).enumerate() {
+            let ky = jy as i64 - (ny as i64 - 1);
+            influence.kernel_row(kind, i, j, -(nx as i64 - 1), ky, row);
         }
         Self { nx, ny, values }
+    }
+
+    /// The value at (ox, oy) if the table holds it.
+    fn get(&self, ox: i64, oy: i64) -> Option<f64> {
+        (ox.unsigned_abs() < self.nx as u64 && oy.unsigned_abs() < self.ny as u64)
+            .then(|| self.at(ox, oy))
     }
 
     #[inline]
@@ -760,7 +774,7 @@ impl KernelSet {
                     continue;
                 }
                 index[a][b] = Some(spectra.len());
-                let t = KernelTable::new(nx, ny, |ox, oy| influence.kernel(kind, i, j, ox, oy));
+                let t = KernelTable::of(&influence, kind, i, j, nx, ny);
                 spectra.push(plan.kernel_spectrum(&mut ws, |ox, oy| t.at(ox, oy)));
                 single.push(
                     Spectrum::new(wide.kernel_spectrum(&mut wide_ws, |ox, oy| t.at(ox, oy)))
@@ -794,8 +808,13 @@ impl KernelSet {
                 fast_even_size(nx),
                 periodic_rows(ny, fast_even_size),
             ));
+            // The table's values where it holds them (the same as
+            // `kernel`'s for elastic bodies).
+            let table = normal_table.as_ref();
             spectra.push(periodic_inverse(&pc, |ox, oy| {
-                influence.kernel(kind, Component::N, Component::N, ox, oy)
+                table
+                    .and_then(|t: &KernelTable| t.get(ox, oy))
+                    .unwrap_or_else(|| influence.kernel(kind, Component::N, Component::N, ox, oy))
             }));
             normal_inverse = Some((pc, spectra.len() - 1));
         }

@@ -57,7 +57,9 @@
 
 use crate::core::cancel;
 use crate::core::material::{CombinedMaterial, Material};
-use crate::core::viscoelastic::{relaxed_average, Viscoelastic, QUADRATURE_TOLERANCE};
+use crate::core::viscoelastic::{
+    relaxed_average, relaxed_averages, Viscoelastic, QUADRATURE_TOLERANCE,
+};
 
 /// Traction / displacement components, in matrix order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -564,6 +566,73 @@ impl HalfSpaceInfluence {
             }
         }
     }
+
+    /// [`HalfSpaceInfluence::kernel`] at the offsets (kx_lo + k, ky) for k
+    /// in 0..out.len(). Elastic bodies: each as `kernel` gives it.
+    /// Viscoelastic ones: their relaxation terms in one sweep along x
+    /// ([`relaxed_averages`]), each to the accuracy of a single
+    /// coefficient's quadrature, instead of a quadrature to the tail per
+    /// offset (the kernel build's cost).
+    pub fn kernel_row(
+        &self,
+        kind: KernelKind,
+        i: Component,
+        j: Component,
+        kx_lo: i64,
+        ky: i64,
+        out: &mut [f64],
+    ) {
+        let Some(v) = &self.visc else {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = self.kernel(kind, i, j, kx_lo + k as i64, ky);
+            }
+            return;
+        };
+        let y = ky as f64 * self.dy;
+        let n = out.len() + usize::from(kind == KernelKind::SteadyRolling);
+        let x_at = |k: usize| (kx_lo + k as i64) as f64 * self.dx;
+        let mut c: Vec<f64> = (0..n)
+            .map(|k| self.elastic_coefficient(i, j, x_at(k), y))
+            .collect();
+        // A cancelled caller's kernel build stops integrating, as
+        // `with_relaxation`.
+        if !cancel::requested() {
+            let h = 0.5 * self.dx;
+            let tol = QUADRATURE_TOLERANCE * self.inv_pi_g * self.dx;
+            let mut part = vec![0.0; n];
+            for t in &v.terms[..v.count] {
+                let body = Self {
+                    inv_pi_g: t.inv_pi_g,
+                    nu: t.nu,
+                    k: t.k,
+                    layer: 0.0,
+                    visc: None,
+                    visc_input: None,
+                    ..*self
+                };
+                relaxed_averages(
+                    |s| body.relaxation_integrand(i, j, s, y),
+                    x_at(0),
+                    self.dx,
+                    t.length_m,
+                    &[-h, h],
+                    tol,
+                    &mut part,
+                );
+                for (c, p) in c.iter_mut().zip(&part) {
+                    *c += t.ratio * p;
+                }
+            }
+        }
+        match kind {
+            KernelKind::Displacement => out.copy_from_slice(&c[..out.len()]),
+            KernelKind::SteadyRolling => {
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = (c[k] - c[k + 1]) / self.dx;
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -803,5 +872,56 @@ mod tests {
         }
         // Elastic bodies given as viscoelastic (f_g = 0): the same bits.
         assert_eq!(ic.with_viscoelastic(&m, &visc(0.0, 1.0)), ic);
+    }
+
+    /// A kernel row is its offsets' kernels: the same bits for elastic
+    /// bodies, within twice the quadrature's tolerance (each value's and
+    /// the sweep's) for viscoelastic ones, from a relaxation length below
+    /// an element to 10^4 elements.
+    #[test]
+    fn kernel_rows_are_their_offsets_kernels() {
+        use crate::core::viscoelastic::{Sls, Viscoelastic};
+        use Component::*;
+        let m = steel();
+        let ic = HalfSpaceInfluence::new(0.55e-3, 1.1e-3, &m);
+        let scale = ic.coefficient(N, N, 0.0, 0.0);
+        let mut row = [0.0; 11];
+        for l in [None, Some(1e-4), Some(3e-3), Some(5.0)] {
+            let v = match l {
+                None => ic,
+                Some(l) => ic.with_viscoelastic(
+                    &m,
+                    &Viscoelastic {
+                        rolling_speed_m_per_s: 1.0,
+                        body1: Sls {
+                            relaxation_ratio: 1.0,
+                            creep_relaxation_time_s: l,
+                        },
+                        body2: Sls::default(),
+                    },
+                ),
+            };
+            for kind in [KernelKind::Displacement, KernelKind::SteadyRolling] {
+                let unit = match kind {
+                    KernelKind::Displacement => scale,
+                    KernelKind::SteadyRolling => scale / ic.dx,
+                };
+                for (i, j, ky) in [(X, X, 0), (Y, Y, -2), (N, N, 1), (X, N, 0), (X, Y, 3)] {
+                    v.kernel_row(kind, i, j, -5, ky, &mut row);
+                    for (k, got) in row.iter().enumerate() {
+                        let want = v.kernel(kind, i, j, k as i64 - 5, ky);
+                        if l.is_none() {
+                            assert_eq!(got.to_bits(), want.to_bits());
+                        } else {
+                            assert!(
+                                (got - want).abs() <= 2.0 * QUADRATURE_TOLERANCE * unit,
+                                "{l:?} {kind:?} {i:?}{j:?} ({}, {ky}): {got} vs {want}",
+                                k as i64 - 5
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -209,22 +209,70 @@ pub fn relaxed_average(
     if length_m == 0.0 {
         return f(x);
     }
-    // The edges as u = 1 - exp(-xi/L) in (0, 1), ascending; the domain
-    // ends at TAIL_END (xi = 34.5 L, the weight left out 1e-15).
-    let mut cuts = [0.0, TAIL_END, TAIL_END, TAIL_END];
+    relaxed_part(&f, x, length_m, edges, tol, TAIL_END)
+}
+
+/// [`relaxed_average`] at the points x_k = x0 + k dx, k = 0..out.len(), in
+/// one sweep from the last: the average at x_k is the part over xi in [0,
+/// dx) plus exp(-dx/L) times the average at x_{k+1}, so that only the last
+/// point's integral reaches the tail; each part to `tol` / out.len(), the
+/// sum to `tol` (the sweep damps earlier parts' errors). `f(x_k)` for L =
+/// 0.
+pub fn relaxed_averages(
+    f: impl Fn(f64) -> f64,
+    x0: f64,
+    dx: f64,
+    length_m: f64,
+    edges: &[f64; 2],
+    tol: f64,
+    out: &mut [f64],
+) {
+    let n = out.len();
+    let at = |k: usize| x0 + k as f64 * dx;
+    if length_m == 0.0 {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = f(at(k));
+        }
+        return;
+    }
+    let Some(last) = n.checked_sub(1) else {
+        return;
+    };
+    let tol_part = tol / n as f64;
+    out[last] = relaxed_part(&f, at(last), length_m, edges, tol_part, TAIL_END);
+    // u = 1 - exp(-xi/L) at xi = dx, and the weight beyond it.
+    let u_step = (-(-dx / length_m).exp_m1()).min(TAIL_END);
+    let carry = 1.0 - u_step;
+    for k in (0..last).rev() {
+        out[k] = relaxed_part(&f, at(k), length_m, edges, tol_part, u_step) + carry * out[k + 1];
+    }
+}
+
+/// ∫ f(x + xi(u)) du over u in [0, `u_end`], xi(u) = -L ln(1 - u): the
+/// average's part over xi < -L ln(1 - u_end), split at `edges`.
+fn relaxed_part(
+    f: &impl Fn(f64) -> f64,
+    x: f64,
+    length_m: f64,
+    edges: &[f64; 2],
+    tol: f64,
+    u_end: f64,
+) -> f64 {
+    // The edges as u = 1 - exp(-xi/L) in (0, u_end), ascending.
+    let mut cuts = [0.0, u_end, u_end, u_end];
     let mut n = 1;
     for &e in edges {
         let xi = e - x;
         if xi > 0.0 {
             let u = -(-xi / length_m).exp_m1();
-            if u < TAIL_END {
+            if u < u_end {
                 cuts[n] = u;
                 n += 1;
             }
         }
     }
     cuts[1..n].sort_by(f64::total_cmp);
-    cuts[n] = TAIL_END;
+    cuts[n] = u_end;
     let g = |u: f64| f(x - length_m * (-u).ln_1p());
     let mut sum = 0.0;
     for k in 0..n {
@@ -318,6 +366,25 @@ mod tests {
             relaxed_average(|t| t * t, 3.0, 0.0, &[0.0, 0.0], 1e-14),
             9.0
         );
+    }
+
+    /// The sweep gives each point's own average to the tolerance.
+    #[test]
+    fn the_sweep_gives_each_points_average() {
+        let f = |t: f64| 1.0 / (1.0 + (t - 0.3).powi(2)) + (t + 0.1).abs();
+        let edges = [-0.1, 0.1];
+        for l in [0.0, 0.02, 0.4, 30.0] {
+            let mut out = [0.0; 9];
+            relaxed_averages(f, -0.8, 0.2, l, &edges, 1e-12, &mut out);
+            for (k, v) in out.iter().enumerate() {
+                let x = -0.8 + k as f64 * 0.2;
+                let want = relaxed_average(f, x, l, &edges, 1e-14);
+                assert!(
+                    (v - want).abs() < 2e-12 * want.abs().max(1.0),
+                    "L {l} x {x}: {v} {want}"
+                );
+            }
+        }
     }
 
     #[test]
