@@ -299,6 +299,21 @@ impl HalfSpaceInfluence {
         self.visc.is_some()
     }
 
+    /// The elastic coefficients of the body of relaxation term `t` alone
+    /// (its share of the combined constants), whose average upstream is
+    /// the term.
+    fn relaxing_body(&self, t: &ViscoTerm) -> Self {
+        Self {
+            inv_pi_g: t.inv_pi_g,
+            nu: t.nu,
+            k: t.k,
+            layer: 0.0,
+            visc: None,
+            visc_input: None,
+            ..*self
+        }
+    }
+
     /// The elastic coefficient (i, j) at (x, y) plus the viscoelastic
     /// bodies' relaxation terms.
     fn with_relaxation(&self, i: Component, j: Component, x: f64, y: f64, elastic: f64) -> f64 {
@@ -316,15 +331,7 @@ impl HalfSpaceInfluence {
         let tol = QUADRATURE_TOLERANCE * self.inv_pi_g * self.dx;
         let mut sum = elastic;
         for t in &v.terms[..v.count] {
-            let body = Self {
-                inv_pi_g: t.inv_pi_g,
-                nu: t.nu,
-                k: t.k,
-                layer: 0.0,
-                visc: None,
-                visc_input: None,
-                ..*self
-            };
+            let body = self.relaxing_body(t);
             sum += t.ratio
                 * relaxed_average(
                     |s| body.relaxation_integrand(i, j, s, y),
@@ -601,15 +608,7 @@ impl HalfSpaceInfluence {
             let tol = QUADRATURE_TOLERANCE * self.inv_pi_g * self.dx;
             let mut part = vec![0.0; n];
             for t in &v.terms[..v.count] {
-                let body = Self {
-                    inv_pi_g: t.inv_pi_g,
-                    nu: t.nu,
-                    k: t.k,
-                    layer: 0.0,
-                    visc: None,
-                    visc_input: None,
-                    ..*self
-                };
+                let body = self.relaxing_body(t);
                 relaxed_averages(
                     |s| body.relaxation_integrand(i, j, s, y),
                     x_at(0),
