@@ -327,7 +327,7 @@ impl QuerySettings {
                 "velocity",
                 format!(
                     "missing: give the velocity, forward_m_per_s in {}",
-                    ranges::FORWARD_SPEED.describe()
+                    ranges::describe_forward_speed()
                 ),
             )
         })?;

@@ -1066,6 +1066,50 @@ fn wheelrail_example_reports_every_wheel_and_patch() {
     assert!((delta - 1.159).abs() < 0.01, "right contact angle {delta}");
 }
 
+/// `wheelset_a22_reversing.toml` is `wheelset_a22.toml` mirrored along
+/// the track (rolling backwards): per wheel the same vertical and lateral
+/// forces on the rail and Fx of opposite sign, per patch the same normal
+/// force and contact angle, x and the longitudinal creepage of opposite
+/// sign, rolling direction pi against 0; to 1e-6 of the wheel's load (the
+/// solver's mirror image is within 1.5e-10 of it on at 6 mm,
+/// crates/solver/tests/validation/wheelrail_backward.rs).
+#[test]
+fn wheelrail_reversing_example_is_the_mirror_image_of_a22() {
+    let a = wheelrail_json(&example("wheelset_a22.toml"));
+    let b = wheelrail_json(&example("wheelset_a22_reversing.toml"));
+    let tol = 1e-6 * 1e4;
+    for side in ["left", "right"] {
+        let (wa, wb) = (&a["wheels"][side], &b["wheels"][side]);
+        for (k, sign) in [(0, -1.0), (1, 1.0), (2, 1.0)] {
+            let (x, y) = (
+                wa["force_track_n"][k].as_f64().unwrap(),
+                wb["force_track_n"][k].as_f64().unwrap(),
+            );
+            assert!(
+                (x - sign * y).abs() < tol,
+                "{side} force {k}: {x} against {y}"
+            );
+        }
+        let (pa, pb) = (&wa["patches"][0], &wb["patches"][0]);
+        for (k, sign, t) in [
+            ("normal_force_n", 1.0, tol),
+            ("fx_n", -1.0, tol),
+            ("fs_n", 1.0, tol),
+            ("contact_angle_rad", 1.0, 1e-12),
+            ("track_x_m", -1.0, 1e-12),
+            ("creepage_long", -1.0, 1e-12),
+        ] {
+            let (x, y) = (f(pa, k), f(pb, k));
+            assert!(
+                (x - sign * y).abs() <= t,
+                "{side} patch {k}: {x} against {y}"
+            );
+        }
+        assert_eq!(f(pa, "rolling_direction_rad"), 0.0);
+        assert_eq!(f(pb, "rolling_direction_rad"), std::f64::consts::PI);
+    }
+}
+
 #[test]
 fn wheelrail_plot_and_summary() {
     let png = Path::new(env!("CARGO_TARGET_TMPDIR")).join("wheelrail.png");
@@ -1276,6 +1320,7 @@ fn wheelrail_warns_of_answers_no_elastic_contact_gives_naming_the_key() {
 fn wheelrail_examples_do_not_warn() {
     for name in [
         "wheelset_a22.toml",
+        "wheelset_a22_reversing.toml",
         "wheelset_a22_temperature.toml",
         "wheelset_a22_varfric.toml",
         "roller_rig.toml",

@@ -393,6 +393,47 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
     server.shutdown().await;
 }
 
+/// A wheelset rolling backwards on the wire (forward_m_per_s < 0, the
+/// pitch rate > 0): at 6.5 mm reversed, solved as the library
+/// solves it, bit for bit, for the exact model and two fast ones; its
+/// patches report rolling direction pi through the library. The conformal
+/// model rolls forwards only: INVALID_ARGUMENT naming `model`.
+#[tokio::test]
+async fn a_wheelset_rolling_backwards_solves_as_the_library() {
+    let dir = tempfile::tempdir().unwrap();
+    let (server, mut client) = server_in(dir.path()).await;
+    let pair = mbench_pair();
+    let cache = KernelCache::default();
+    let reversed = |model| {
+        let mut input = mbench_a22_input(6.5, Some(-0.004376), Some(4.2748834), model);
+        input.velocity.forward_m_per_s = -input.velocity.forward_m_per_s;
+        input
+    };
+    for model in [
+        WheelRailModel::Exact,
+        WheelRailModel::HertzFastsim,
+        WheelRailModel::KikPiotrowski,
+    ] {
+        let input = reversed(model);
+        let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+        assert!(want
+            .wheels
+            .iter()
+            .flat_map(|w| &w.patches)
+            .all(|p| p.rolling_direction_rad == std::f64::consts::PI));
+        let got = solve(&mut client, query_of(BUILTIN, &input)).await;
+        assert_same(&format!("{model:?} backwards"), &got, &want);
+    }
+    let e = solve_err(
+        &mut client,
+        query_of(BUILTIN, &reversed(WheelRailModel::Cect)),
+    )
+    .await;
+    assert_eq!(e.code(), Code::InvalidArgument, "{e:?}");
+    assert!(e.message().contains("model"), "{e:?}");
+    server.shutdown().await;
+}
+
 #[tokio::test]
 async fn cect_queries_take_the_rigid_slip_asked_for_as_the_library() {
     let dir = tempfile::tempdir().unwrap();

@@ -1521,8 +1521,9 @@ async fn wheel_rail_patch_grids_obey_the_grid_limit() {
 /// A wheel/rail query of the built-in pair with every input drawn at once
 /// over the range of a wheelset on its track and somewhat beyond: lateral
 /// shift within 12 mm (a sixth of them 20 mm), yaw 20 mrad, roll given in
-/// a fifth, speeds 0.5 to 100 m/s with lateral, vertical, roll and yaw
-/// rates, the pitch rate given in a fifth (2 % about rolling) or a total
+/// a fifth, speeds 0.5 to 100 m/s (a quarter of them backwards) with
+/// lateral, vertical, roll and yaw rates, the pitch rate given in a fifth
+/// (2 % about rolling) or a total
 /// longitudinal force in some others, a vertical load of 1 to 250 kN
 /// (or an approach, or a centre height), friction 0.05 to 0.7; the fast
 /// models mostly, exact, cect and auto in one query of `heavy` on
@@ -1548,7 +1549,9 @@ fn random_wheel_query(rng: &mut Rng, heavy: f64) -> pb::SolveWheelRailRequest {
     let lateral_m = rng.uniform(-reach, reach);
     let yaw_rad = rng.uniform(-20e-3, 20e-3);
     let roll_rad = rng.chance(0.2).then(|| rng.uniform(-5e-3, 5e-3));
-    let forward_m_per_s = rng.log_uniform(0.5, 100.0);
+    // A quarter roll backwards (cect and auto refuse them naming `model`).
+    let sense = if rng.chance(0.25) { -1.0 } else { 1.0 };
+    let forward_m_per_s = sense * rng.log_uniform(0.5, 100.0);
     let pitch_rad_per_s = rng
         .chance(0.2)
         .then(|| -forward_m_per_s / 0.46 * (1.0 + rng.uniform(-0.02, 0.02)));

@@ -249,11 +249,9 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                     let k = &p.get(&icp).expect("config found it").kin;
                     (k.veloc, k.chi, k.dq)
                 }
-                Element::WheelRail(w) => (
-                    w.outcomes.first().map_or(0.0, |o| o.rolling_speed_m_per_s),
-                    0.0,
-                    0.0,
-                ),
+                Element::WheelRail(w) => w.outcomes.first().map_or((0.0, 0.0, 0.0), |o| {
+                    (o.rolling_speed_m_per_s, o.rolling_direction_rad, 0.0)
+                }),
             };
             Ok(vec![
                 u.velocity_out(veloc),

@@ -68,7 +68,7 @@
 //!   only; CANT is ignored (0), as CONTACT does; rail deviations turn and
 //!   shift the roller's profile with its axle. The first value of
 //!   `cntc_setwheelsetvelocity` is then the rollers' angular velocity
-//!   VPITCH_ROL (rad/s, > 0 for forward rolling; the solver's
+//!   VPITCH_ROL (rad/s, > 0 for forward rolling, < 0 backwards; the solver's
 //!   `RailMotion::roller_rad_per_s`) and the wheelset's forward speed is
 //!   0, as CONTACT decides when the velocity is set. The roller's surface
 //!   curves along x with radius NOMRAD - z at each lateral point, which
@@ -80,7 +80,7 @@
 //!   speeds. The first position value is X_WS, which must be 0
 //!   (the wheelset over the rollers' top). With F = 1 (FX_WS given) the
 //!   wheelset's pitch rate is found relative to the roller's surface
-//!   speed. Refused on a roller rig: VPITCH_ROL <= 0, X_WS != 0.
+//!   speed. Refused on a roller rig: VPITCH_ROL = 0, X_WS != 0.
 //! * Rail deviations (Z = 2, 3): DYRAIL, DZRAIL (track y, z: DYRAIL > 0
 //!   towards the track centre for a left rail) and DROLLR turn and shift
 //!   the placed rail about its profile's origin (the solver's
@@ -1468,8 +1468,9 @@ impl WheelRail {
         self.config.digits.config >= 4
     }
 
-    /// What a roller rig needs: NOMRADR > 0, VPITCH_ROL > 0 (forward
-    /// rolling) and the wheelset over the rollers' top (X_WS = 0).
+    /// What a roller rig needs: NOMRADR > 0, VPITCH_ROL != 0 (> 0 rolling
+    /// forwards, < 0 backwards) and the wheelset over the rollers' top
+    /// (X_WS = 0).
     fn check_roller(&self, x_ws: f64) -> Result<()> {
         let u = self.units();
         let radius = track_roller_radius(&self.track);
@@ -1480,10 +1481,11 @@ impl WheelRail {
                 u.len_out(radius)
             )));
         }
-        if self.roller_rad_per_s <= 0.0 {
+        if self.roller_rad_per_s == 0.0 {
             return Err(CntcError::NotSupported(format!(
-                "VPITCH_ROL = {} (cntc_setwheelsetvelocity params(1)): only forward rolling \
-                 (VPITCH_ROL > 0) is supported",
+                "VPITCH_ROL = {} (cntc_setwheelsetvelocity params(1)): the rollers must turn \
+                 (> 0 rolling forwards, < 0 backwards): the creepages are divided by their \
+                 surface speed",
                 self.roller_rad_per_s
             )));
         }
@@ -1852,19 +1854,21 @@ impl WheelRail {
         let roller = self.is_roller();
         if roller {
             self.check_roller(s_ws)?;
-        } else if vs <= 0.0 {
+        } else if vs == 0.0 {
             return Err(CntcError::NotSupported(format!(
-                "VS_WS = {} (cntc_setwheelsetvelocity): only forward rolling (VS > 0) is supported",
+                "VS_WS = {} (cntc_setwheelsetvelocity): the wheelset must roll (> 0 forwards, \
+                 < 0 backwards): the creepages are divided by the rolling speed",
                 u.velocity_out(vs)
             )));
         }
-        // The reference speed of the friction laws: the forward speed, on
-        // a roller its surface speed at the nominal radius.
+        // The reference speed of the friction laws: the forward speed's
+        // size, on a roller its surface speed's at the nominal radius.
         let v_ref = if roller {
             self.roller_rad_per_s * track_roller_radius(&self.track)
         } else {
             vs
-        };
+        }
+        .abs();
         let load = if self.config.digits.norm == 1 {
             let fz = self.vertical_force_n.ok_or_else(|| {
                 CntcError::Input("N = 1 needs the vertical force: cntc_setverticalforce".into())
@@ -2277,6 +2281,7 @@ impl WheelRail {
         };
         o.is_shift = false;
         o.rolling_speed_m_per_s = p.rolling_speed_m_per_s;
+        o.rolling_direction_rad = p.rolling_direction_rad;
         o.max_pressure_pa = p.max_pressure_pa;
         o.max_traction_pa = max_traction;
         o.tgamma_n = if p.rolling_speed_m_per_s > 0.0 {
@@ -2753,7 +2758,7 @@ impl SolverOrientation {
 /// rail along the wheelset's longitudinal axis (CONTACT's FX_WS) is the one
 /// prescribed, found as the solver finds a wheelset's for a prescribed
 /// total longitudinal force ([`decreasing_root`] on the nominal
-/// longitudinal creepage xi0 = -1 - VPITCH r0 / VS, each step a solve of
+/// longitudinal creepage xi0 = -(VS + VPITCH r0) / |VS|, each step a solve of
 /// the wheel at its vertical force), from the VPITCH given; to within
 /// max(EPS, the tangential tolerance) of mu FZ, as CONTACT's EPS mu FZ.
 struct PitchProblem {
@@ -2799,8 +2804,10 @@ impl PitchProblem {
         // The solver's pitch rate is VPITCH plus a term of the roll and yaw
         // rates (SolverOrientation), which does not depend on VPITCH.
         let offset = input.velocity.pitch_rad_per_s.unwrap_or(0.0) - self.vpitch;
-        let vpitch_of = |xi0: f64| -(1.0 + xi0) * v / r0;
-        let xi_start = -1.0 - self.vpitch * r0 / v;
+        // xi0 = -(V + VPITCH r0) / |V| (the solver's nominal creepage,
+        // either way of rolling).
+        let vpitch_of = |xi0: f64| -(v + xi0 * v.abs()) / r0;
+        let xi_start = -(v + self.vpitch * r0) / v.abs();
         let xi_start = if (-0.5..=0.5).contains(&xi_start) {
             xi_start
         } else {

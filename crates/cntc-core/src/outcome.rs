@@ -55,6 +55,10 @@ pub struct Outcome {
     pub is_shift: bool,
     /// Rolling speed \[m/s\].
     pub rolling_speed_m_per_s: f64,
+    /// Rolling direction CHI \[rad\] of a wheel/rail patch: 0, or pi
+    /// rolling backwards (module 1; 0 elsewhere).
+    #[serde(default)]
+    pub rolling_direction_rad: f64,
     /// Largest pressure \[Pa\].
     pub max_pressure_pa: f64,
     /// Largest tangential traction \[Pa\].
@@ -213,6 +217,7 @@ impl Outcome {
             creepages: [0.0; 3],
             is_shift: false,
             rolling_speed_m_per_s: 0.0,
+            rolling_direction_rad: 0.0,
             max_pressure_pa: 0.0,
             max_traction_pa: 0.0,
             areas_m2: [0.0; 3],

@@ -183,45 +183,52 @@ def wheelrail_element(cntc, CNTC, ire, c1, norm):
 
 
 def run(cntc, only):
-    import numpy as np
-    from ctypes import c_int
     CNTC, _, ierror = cntc.initlibrary(' ', ' ', ' ', 0)
     assert ierror == 0, ierror
     for ire, case in enumerate(cases(), 1):
-        name, c1, norm, zf, rail, wheel, track, pos, vel, flex = case[:10]
+        name = case[0]
         if only and name not in only:
             continue
-        wheelrail_element(cntc, CNTC, ire, c1, norm)
-        if norm == 1:
-            cntc.setverticalforce(ire, zf)
-        cntc.setpotcontact(ire, [], -1, np.array([0.2, 0.2, np.pi / 2, 8.0, 4.0]))
-        cntc.setrollingstepsize(ire, [], [], 1.0)
-        cntc.settrackdimensions(ire, 3, np.array(track, dtype=float))
-        rp = [1.0, 0.0]
-        cntc.setprofileinputfname(ire, os.path.join(PROFILES, rail), [-1, 0, 0], rp)
-        if len(case) > 10:
-            dims = case[10]
-        elif rail.startswith('MBench'):
-            dims = [1360.0, -70.0, 460.0]
-        else:
-            dims = [200.0, -100.0, 100.0]
-        cntc.setwheelsetdimensions(ire, 3, np.array(dims))
-        cntc.setprofileinputfname(ire, os.path.join(PROFILES, wheel), [-1, 0, 0], rp)
-        e = 5 if flex else 3
-        p = list(pos)
-        if norm == 0:
-            p[2] = zf
-        cntc.setwheelsetposition(ire, e, np.array(p, dtype=float))
-        cntc.setwheelsetvelocity(ire, e, np.array(vel, dtype=float))
-        if flex:
-            cntc.setwheelsetflexibility(ire, e, np.array(flex, dtype=float))
-        if name in FX_WS:
-            cntc.setflags(ire, [], np.array([CNTC['ic_force']], dtype=c_int),
-                          np.array([1], dtype=c_int))
-            cntc.settangentialforces(ire, -1, FX_WS[name], 0.0)
-        print_patches(cntc, ire, name, cntc.calculate(ire, -1, 0))
+        print_patches(cntc, ire, name, calculate(cntc, CNTC, ire, case, FX_WS.get(name)))
         if name in FX_WS:
             print('%s VPITCH %.9g' % (name, cntc.getwheelsetvelocity(ire)[5]))
+
+
+def calculate(cntc, CNTC, ire, case, fx_ws):
+    """Sets up element `ire` with `case` (a tuple of cases()' form) and, with
+    `fx_ws` not None, F = 1 and that FX_WS; calculates it: ierror."""
+    import numpy as np
+    from ctypes import c_int
+    name, c1, norm, zf, rail, wheel, track, pos, vel, flex = case[:10]
+    wheelrail_element(cntc, CNTC, ire, c1, norm)
+    if norm == 1:
+        cntc.setverticalforce(ire, zf)
+    cntc.setpotcontact(ire, [], -1, np.array([0.2, 0.2, np.pi / 2, 8.0, 4.0]))
+    cntc.setrollingstepsize(ire, [], [], 1.0)
+    cntc.settrackdimensions(ire, 3, np.array(track, dtype=float))
+    rp = [1.0, 0.0]
+    cntc.setprofileinputfname(ire, os.path.join(PROFILES, rail), [-1, 0, 0], rp)
+    if len(case) > 10:
+        dims = case[10]
+    elif rail.startswith('MBench'):
+        dims = [1360.0, -70.0, 460.0]
+    else:
+        dims = [200.0, -100.0, 100.0]
+    cntc.setwheelsetdimensions(ire, 3, np.array(dims))
+    cntc.setprofileinputfname(ire, os.path.join(PROFILES, wheel), [-1, 0, 0], rp)
+    e = 5 if flex else 3
+    p = list(pos)
+    if norm == 0:
+        p[2] = zf
+    cntc.setwheelsetposition(ire, e, np.array(p, dtype=float))
+    cntc.setwheelsetvelocity(ire, e, np.array(vel, dtype=float))
+    if flex:
+        cntc.setwheelsetflexibility(ire, e, np.array(flex, dtype=float))
+    if fx_ws is not None:
+        cntc.setflags(ire, [], np.array([CNTC['ic_force']], dtype=c_int),
+                      np.array([1], dtype=c_int))
+        cntc.settangentialforces(ire, -1, fx_ws, 0.0)
+    return cntc.calculate(ire, -1, 0)
 
 
 def print_patches(cntc, ire, name, ierr):

@@ -868,14 +868,14 @@ fn a_prescribed_fx_ws_on_rollers_and_moving_rails_matches_contacts_library() {
     }
 }
 
-/// What a roller rig refuses: VPITCH_ROL <= 0 (rolling backwards, as
-/// CONTACT's test-rollers2.inp case 2d) and X_WS != 0 with -40 (not
-/// supported); a roll of 0.267 rad (test-rollers2.inp case 3c) with the
-/// solver's limit of 0.2 rad (-25); none of them leaves a patch.
+/// What a roller rig refuses: VPITCH_ROL = 0 (rollers standing: the
+/// creepages are divided by their surface speed) and X_WS != 0 with -40
+/// (not supported); a roll of 0.267 rad (test-rollers2.inp case 3c) with
+/// the solver's limit of 0.2 rad (-25); none of them leaves a patch.
 #[test]
 fn a_roller_rig_refuses_what_it_cannot_solve() {
-    let backwards = Case {
-        velocity: [-0.25, 0.0, 0.0, 0.0, 0.0, 0.75],
+    let standing = Case {
+        velocity: [0.0, 0.0, 0.0, 0.0, 0.0, 0.75],
         ..CASE_2A
     };
     let ahead = Case {
@@ -884,10 +884,120 @@ fn a_roller_rig_refuses_what_it_cannot_solve() {
     };
     let rolled = on_the_cone(-56.60956, 0.266667, 0.2451499);
     unsafe {
-        for (ire, case, code) in [(70, backwards, -40), (71, ahead, -40), (72, rolled, -25)] {
+        for (ire, case, code) in [(70, standing, -40), (71, ahead, -40), (72, rolled, -25)] {
             let mut npatch = -1;
             assert_eq!(solve_unchecked(ire, &case, &mut npatch), code);
             assert_eq!(npatch, 0);
+        }
+    }
+}
+
+/// The Manchester benchmark's right wheel (S1002 on UIC60, gauge point
+/// placement, FZ = 10 kN) at Y_WS = 2 mm rolling backwards at VS = -20 m/s
+/// at VPITCH = `vpitch_over_free` times free rolling (-VS / 460 mm).
+fn mbench_backwards(vpitch_over_free: f64) -> Case {
+    let vs = -20000.0;
+    Case {
+        track: [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        position: [0.0, 2.0, 0.0, 0.0, 0.0, 0.0],
+        velocity: [vs, 0.0, 0.0, 0.0, 0.0, -vpitch_over_free * vs / 460.0],
+        fz: Some(1.0e4),
+        rig: Rig {
+            rail: "MBench_UIC60_v3.prr",
+            wheel: "MBench_S1002_v3.prw",
+            dims: [1360.0, -70.0, 460.0],
+            curv: None,
+        },
+        ..CASE_1A
+    }
+}
+
+/// CHI of patch 1 of `ire` (`cntc_getparameters`, task 1) \[rad\].
+unsafe fn chi(ire: i32) -> f64 {
+    let mut values = [0.0; 6];
+    cntc_getparameters(&ire, &1, &1, &6, values.as_mut_ptr());
+    values[1]
+}
+
+/// Rolling backwards (VS < 0, and VPITCH_ROL < 0 on a roller rig), as
+/// CONTACT accepts it: the creepages the rail's velocity relative to the
+/// wheel's over the positive reference speed, the patch rolling towards
+/// -x (CHI = pi). Against the values CONTACT's library (built from
+/// eve70a/CONTACT at d431cdb, revision 2707) returned through its
+/// `python_intfc` for `crates/cntc/bench/backward_cases.py`, cases
+/// `mb-back-free`, `mb-back-brake` (VPITCH 0.3 % below free rolling:
+/// braking while reversing, FX < 0 on the rail), `mb-back-yaw` (4 mm, yaw
+/// 9.6 mrad), `mb-back-fx` (F = 1, FX_WS = -1500 N) and
+/// `2a-left-load-back` (test-rollers2.inp's bus on the left roller, FZ =
+/// 30 kN, VY = 1 mm/s, VYAW = 0.001 rad/s, run backwards as its case 2d).
+/// All as [`compare`] (creepages within 3e-8, FX within 0.33 % of mu FN,
+/// the location within 0.2 um), but FS of the untilted benchmark wheel,
+/// 16.9 N and 16.4 N (0.56 % and 0.55 % of mu FN) apart in `mb-back-free`
+/// and `mb-back-fx`: the difference of the forward cases, whose mirror
+/// images they are (`mb-fwd-free`: CONTACT FS -534.177 N, ours -517.281
+/// N, the same as backwards in both libraries). VPITCH found within 2.5e-6
+/// relative of CONTACT's.
+#[test]
+fn rolling_backwards_matches_contacts_library() {
+    let free = mbench_backwards(1.0);
+    let braked = mbench_backwards(0.997);
+    let yawed = Case {
+        position: [0.0, 4.0, 0.0, 0.0, 0.0096, 0.0],
+        ..free
+    };
+    let roller = Case {
+        c1: 4,
+        track: roller_track(-200.0, NO_DEVIATION),
+        position: [0.0, 0.5, 0.0, 0.0, 0.0, 0.0],
+        velocity: [-0.25, 1.0, 0.0, 0.0, 0.001, 0.751],
+        fz: Some(3.0e4),
+        ..CASE_2A
+    };
+    let fs_apart = 6e-3 * 0.3 * 1e4;
+    unsafe {
+        #[rustfmt::skip]
+        check_apart(85, &free, &[
+            9989.3, 2429.15, -534.177, 487.752, -0.0013077, 0.0, -0.000173469,
+            0.0, 740.97174, 0.65026, -0.079933, -19.56082, 0.65026, -11.02826, 0.57688,
+        ], &[(2, fs_apart)]);
+        #[rustfmt::skip]
+        check(86, &braked, &[
+            9995.11, -2736.09, -461.305, 443.29, 0.00169681, 0.0, -0.000173209,
+            0.0, 740.97177, 0.65025, -0.079933, -19.56079, 0.65025, -11.02823, 0.57687,
+        ]);
+        #[rustfmt::skip]
+        check(87, &yawed, &[
+            10376.6, 656.843, 3041.51, 68.9834, -0.00205875, -0.0096636, -0.000227967,
+            -6.58847, 738.94854, 0.83786, -0.105172, -21.58402, 0.83786, -15.02208, 0.94455,
+        ]);
+        #[rustfmt::skip]
+        check_apart(88, &roller, &[
+            29999.9, 2999.9, 8479.47, 361.294, -0.00333275, -0.00998334, -9.98334e-06,
+            0.0, -200.0, 0.0, 0.0, 0.0, 0.0, -0.5, -0.07306,
+        ], &[]);
+        for ire in [85, 88] {
+            close("CHI", chi(ire), std::f64::consts::PI, 1e-12);
+        }
+        let fx = Case {
+            fx_ws: Some(-1500.0),
+            ..free
+        };
+        let ire = 89;
+        assert_eq!(solve(ire, &fx), 0);
+        let got = ours(ire);
+        let forces = [9981.59, -1500.01, -629.713, 359.678];
+        let mu_fn = 0.3 * forces[0];
+        for (j, tol) in [5e-4 * forces[0], 5e-3 * mu_fn, fs_apart, 0.01 * forces[0]]
+            .into_iter()
+            .enumerate()
+        {
+            close(NAMES[j], got[j], forces[j], tol);
+        }
+        let mut velocity = [0.0; 6];
+        cntc_getwheelsetvelocity(&ire, &6, velocity.as_mut_ptr());
+        close("VPITCH", velocity[5], 43.3930181, 1e-5 * 43.3930181);
+        for ire in [85, 88, 89] {
+            cntc_finalize(&ire);
         }
     }
 }

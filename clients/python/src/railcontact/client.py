@@ -397,7 +397,8 @@ class Client:
 
         ``position``: mapping of ``WheelsetPosition`` (``lateral_m``,
         ``yaw_rad``, ``roll_rad``; default centred); ``velocity``: of
-        ``WheelsetVelocity`` (``forward_m_per_s`` > 0 required, ...; on a
+        ``WheelsetVelocity`` (``forward_m_per_s`` required, < 0 rolling
+        backwards, ...; on a
         roller rig ``roller_rad_per_s`` required, the forward speed usually
         0), or a number: the forward speed; ``load``: of ``WheelLoad``
         (``vertical_force_n``, ``approach_m`` or ``center_z_m``, the

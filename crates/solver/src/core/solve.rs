@@ -394,18 +394,20 @@ impl ContactSolver {
     /// its static and kinetic ones under Coulomb's law, mu(s_a) under a
     /// slip-velocity law. `scale` has one finite factor > 0 per grid row, or
     /// is empty for the problem's coefficients everywhere (the default).
-    /// Kept for every later solve of this solver; needs rolling in +x
-    /// (`rolling_direction_rad` 0: the rows are the grid's).
+    /// Kept for every later solve of this solver; needs rolling along the
+    /// rows (`rolling_direction_rad` 0 or pi: turned by pi, row `iy` is the
+    /// rolling grid's row `ny - 1 - iy`).
     pub fn set_row_friction_scale(&mut self, scale: &[f64]) -> Result<(), ContactError> {
         const KEY: &str = "row_friction_scale";
         if scale.is_empty() {
             self.row_scale.clear();
             return Ok(());
         }
-        if !self.frame.is_identity() {
+        if !matches!(self.frame.turns(), 0 | 2) {
             return Err(ContactError::invalid(
                 KEY,
-                "friction per grid row needs rolling_direction_rad = 0",
+                "friction per grid row needs rolling_direction_rad = 0 or pi (rolling along \
+                 the rows)",
             ));
         }
         if scale.len() != self.grid.ny || scale.iter().any(|f| !(f.is_finite() && *f > 0.0)) {
@@ -419,7 +421,11 @@ impl ContactSolver {
             ));
         }
         self.row_scale.clear();
-        self.row_scale.extend_from_slice(scale);
+        if self.frame.turns() == 2 {
+            self.row_scale.extend(scale.iter().rev());
+        } else {
+            self.row_scale.extend_from_slice(scale);
+        }
         Ok(())
     }
 

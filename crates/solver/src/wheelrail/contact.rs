@@ -51,8 +51,9 @@
 //! ([`WheelRailInput::total_longitudinal_force_n`], the sum of the wheels'
 //! `force_track_n[0]`): what an MBS model of a drive or brake asks. A
 //! driven wheelset pushes its rails backwards (force < 0), a braked one
-//! forwards (> 0). The unknown is the nominal longitudinal creepage
-//! xi0 = -1 - omega r0 / V (r0 the nominal radius, V the forward speed),
+//! forwards (> 0); rolling backwards, the other way round. The unknown is the nominal longitudinal creepage
+//! xi0 = -(V + omega r0) / |V| (r0 the nominal radius, V the forward speed;
+//! -1 - omega r0 / V rolling forwards),
 //! on which the total force decreases; it is found by [`crate::core::root`]
 //! from xi0 = 0 (free rolling), each step a full solve of the wheels at the
 //! same rigid position (the search is not repeated). A force of magnitude
@@ -65,6 +66,31 @@
 //! with the iterative ones max(1e-6, the tangential tolerance) of mu Fn:
 //! 1e-4 at the wheel/rail default ([`wheelrail_solver_settings`]), ten
 //! times the creep forces' own error at that tolerance.
+//!
+//! # Rolling backwards
+//!
+//! The forward speed V (`velocity.forward_m_per_s`) is > 0 rolling along
+//! the track's +x, < 0 rolling towards -x (a reversing vehicle); on a
+//! roller rig the rollers' rate is > 0 rolling forwards, < 0 backwards.
+//! The creepages keep the definition above, whatever the direction: the
+//! rail's velocity relative to the wheel in the patch frame over the
+//! rolling speed V = (|v_x| + |w r|) / 2 > 0 (CONTACT's, `m_wr_rigslip.f90`,
+//! which divides by that positive speed and turns the rolling direction
+//! instead). Free rolling is omega = -V / r0 (> 0 backwards). A patch
+//! rolls towards -x when the larger of the wheelset's travel along x and
+//! the wheel's circumferential speed -omega r at the point says so
+//! (CONTACT's `CHI` = pi, the same test): the exact patch is posed with
+//! `rolling_direction_rad` = pi (see [`crate::core::frame`]), FASTSIM on an
+//! exact grid integrates from the leading edge at -x, and the fast models
+//! (the Hertz ones, Kik-Piotrowski), which roll along +x only, solve the
+//! patch's mirror image in x (xi and the spin change sign, eta stays) and
+//! turn Fx and Mz back. So the problem mirrored in x (V, yaw, yaw rate and
+//! pitch rate of opposite sign) gives Fx and Mz of opposite sign and the
+//! same Fs and Fn. The conformal method (`cect`, and `auto`, whose patches
+//! may be conformal) rolls forwards only and is refused naming `model`,
+//! and so are the flash temperatures (material entering at large x),
+//! naming `temperature`. A session's carried tractions belong to their
+//! direction: a step that reverses starts its patches cold.
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -471,8 +497,8 @@ pub struct RailMotion {
     pub roll_rad_per_s: f64,
     /// A roller's angular velocity about its axle (track y) \[rad/s\],
     /// positive for forward rolling (CONTACT's VPITCH_ROL: the roller's top
-    /// moves backwards, as a track does under a wheelset moving forwards);
-    /// only on a roller rig ([`TrackData::roller_radius_m`]), 0 on a
+    /// moves backwards, as a track does under a wheelset moving forwards),
+    /// negative for backward rolling, not 0; only on a roller rig ([`TrackData::roller_radius_m`]), 0 on a
     /// track. The roller's surface moves at this rate times its radius at
     /// each point (the nominal radius less the point's z), and the
     /// wheelset's forward speed is then usually 0.
@@ -561,6 +587,10 @@ pub struct PatchResult {
     /// Rolling speed the creepages are relative to [m/s] (see the module
     /// conventions): slip velocity = creepage x this.
     pub rolling_speed_m_per_s: f64,
+    /// The patch's rolling direction \[rad\]: 0 rolling along +x, pi
+    /// towards -x (CONTACT's `CHI`; see "Rolling backwards" in the module
+    /// docs).
+    pub rolling_direction_rad: f64,
     /// Kinetic friction coefficient at the reference point [-]: the
     /// input's, or its friction table's there (an exact patch reads the
     /// table per grid row).
@@ -737,6 +767,10 @@ pub(crate) struct PatchWork {
     creep: Creepages,
     /// Rolling speed the creepages are relative to [m/s].
     speed: f64,
+    /// Whether the patch rolls towards -x ([`creepages`]): the exact
+    /// patch's rolling direction is pi, the fast models solve its mirror
+    /// image ([`mirror_x`]).
+    backward: bool,
     /// Vertical component of the normal, of the lateral tangent.
     nz: f64,
     sz: f64,
@@ -836,6 +870,16 @@ fn fastsim_forces(f: &FastsimOutput) -> TangentialForces {
 }
 
 impl PatchWork {
+    /// The creepages the fast models take: the patch's, or those of its
+    /// mirror image rolling towards +x ([`mirror_x`]).
+    fn forward_creep(&self) -> Creepages {
+        if self.backward {
+            mirror_x(&self.creep)
+        } else {
+            self.creep
+        }
+    }
+
     fn vertical_n(&self) -> f64 {
         match self.out.global_qz_n {
             Some([_, z]) => z,
@@ -862,6 +906,7 @@ impl PatchWork {
                 return Ok(());
             }
         }
+        let (forward_creep, backward) = (self.forward_creep(), self.backward);
         match &mut self.kind {
             PatchKind::Exact { problem, solver } => {
                 let mode = input.settings.exact_tangential;
@@ -898,6 +943,7 @@ impl PatchWork {
                         grid: &problem.grid,
                         creep: &self.creep,
                         speed: self.speed,
+                        backward: self.backward,
                         friction: &self.friction,
                         reduction,
                     };
@@ -1025,7 +1071,7 @@ impl PatchWork {
                 };
                 if frictional {
                     let tangential =
-                        fastsim_input(&self.creep, input, &self.friction, 0.0, 0.0, 0.0);
+                        fastsim_input(&forward_creep, input, &self.friction, 0.0, 0.0, 0.0);
                     let f = method
                         .solve_tangential(&n, &tangential, fastsim)
                         .map_err(|e| {
@@ -1034,9 +1080,8 @@ impl PatchWork {
                                 format!("Kik-Piotrowski's tangential problem: {e}"),
                             )
                         })?;
-                    out.fx_n = f.fx_n;
+                    (out.fx_n, out.mz_nm) = unmirrored(backward, f.fx_n, f.mz_nm);
                     out.fs_n = f.fy_n;
-                    out.mz_nm = f.mz_nm;
                     out.adhesion = f.adhesion_fraction;
                     out.tgamma_n = f.tgamma_n;
                 }
@@ -1069,7 +1114,7 @@ impl PatchWork {
                 };
                 if frictional {
                     let tangential = fastsim_input(
-                        &self.creep,
+                        &forward_creep,
                         input,
                         &self.friction,
                         h.semi_axis_x_m,
@@ -1117,9 +1162,8 @@ impl PatchWork {
                         }
                     };
                     out.fastsim_max_pressure_pa = peak;
-                    out.fx_n = fx;
+                    (out.fx_n, out.mz_nm) = unmirrored(backward, fx, mz);
                     out.fs_n = fs;
-                    out.mz_nm = mz;
                     out.adhesion = adhesion;
                     out.tgamma_n = tgamma;
                 }
@@ -1136,6 +1180,8 @@ struct FastsimOn<'a> {
     creep: &'a Creepages,
     /// The patch's rolling speed \[m/s\].
     speed: f64,
+    /// Rolling towards -x.
+    backward: bool,
     friction: &'a Friction,
     reduction: SlopeReduction,
 }
@@ -1179,8 +1225,12 @@ impl FastsimOn<'_> {
                 friction,
                 reduction: self.reduction,
                 flexibility: GridFlexibility::Kalker { blending: true },
-                // The exact patches roll along +x (rolling direction 0).
-                rolling: RollingSense::PlusX,
+                // The exact patch's rolling direction (0 or pi).
+                rolling: if self.backward {
+                    RollingSense::MinusX
+                } else {
+                    RollingSense::PlusX
+                },
                 creep_table: CreepInterpolation::Contact,
             },
             GridPressure::Given(&fl.pressure_pa),
@@ -1278,7 +1328,7 @@ fn creepages(
     rail: (&RailMotion, &PlacedRail, &TrackData),
     omega: f64,
     loaded: Option<(f64, f64)>,
-) -> (Creepages, f64) {
+) -> (Creepages, f64, bool) {
     let (v, mut w) = side_rates(side, velocity);
     let c = pose.center();
     let p = [geom.x_m, geom.reference_m[0], geom.reference_m[1]];
@@ -1309,13 +1359,22 @@ fn creepages(
     // track frame's turning in a curve.
     let (motion, placed, track) = rail;
     let (vr, wr) = rail_point_velocity(motion, placed, track, side, velocity, p);
-    let speed = match track.roller_radius_m {
+    let (speed, backward) = match track.roller_radius_m {
         // CONTACT's reference velocity on a roller: the mean of the two
-        // surfaces' speeds along x.
-        Some(_) => 0.5 * (vr[0] + vw[0]).abs(),
+        // surfaces' speeds along x; backwards where the faster of them
+        // moves towards +x (the rollers' top moves towards -x rolling
+        // forwards).
+        Some(_) => (0.5 * (vr[0] + vw[0]).abs(), rolls_backward(-vr[0], -vw[0])),
         // On a track: the mean of the wheelset's speed relative to the
-        // rail and the wheel's circumferential speed.
-        None => 0.5 * ((v[0] + rest[0] - vr[0]).abs() + spin[0].abs()),
+        // rail and the wheel's circumferential speed; backwards where the
+        // larger of them says so.
+        None => {
+            let travel = v[0] + rest[0] - vr[0];
+            (
+                0.5 * (travel.abs() + spin[0].abs()),
+                rolls_backward(travel, -spin[0]),
+            )
+        }
     };
     for k in 0..3 {
         vw[k] -= vr[k];
@@ -1329,7 +1388,47 @@ fn creepages(
         creepage_lat: -dot(vw, [0.0, t[0], t[1]]) / speed,
         spin_per_m: -dot(w, n) / speed,
     };
-    (creep, speed)
+    (creep, speed, backward)
+}
+
+/// Whether a patch rolls towards -x, CONTACT's choice of `CHI` = pi
+/// (`m_wr_rigslip.f90`): the larger in size of two rolling speeds, each
+/// positive rolling forwards, is negative (the first when they are
+/// equal). On a track they are the wheelset's travel along x relative to
+/// the rail (the forward speed) and the wheel's circumferential speed at
+/// the point with its sign turned (-omega r); on a roller rig the
+/// roller's and the wheel's surface speeds along x with their signs
+/// turned.
+fn rolls_backward(first: f64, second: f64) -> bool {
+    if first.abs() >= second.abs() {
+        first < 0.0
+    } else {
+        second < 0.0
+    }
+}
+
+/// A fast model's Fx and Mz of a patch's mirror image turned back to the
+/// patch's own when it rolls `backward` ([`mirror_x`]).
+fn unmirrored(backward: bool, fx: f64, mz: f64) -> (f64, f64) {
+    if backward {
+        (-fx, -mz)
+    } else {
+        (fx, mz)
+    }
+}
+
+/// The creepages of a patch's mirror image in x (xi and the spin change
+/// sign, eta stays): a patch rolling towards -x with `c` is the mirror
+/// image of one rolling towards +x with `mirror_x(c)`, whose Fx and Mz
+/// change sign back (Fs, Fn, the adhesion and T-gamma stay). The fast
+/// models roll towards +x only and take a patch symmetric in x (Hertz's
+/// ellipse; Kik-Piotrowski's strips with their centres mirrored).
+fn mirror_x(c: &Creepages) -> Creepages {
+    Creepages {
+        creepage_long: -c.creepage_long,
+        creepage_lat: c.creepage_lat,
+        spin_per_m: -c.spin_per_m,
+    }
 }
 
 /// Velocity and rotation rate (side frame) of the rail's material point
@@ -1556,6 +1655,9 @@ impl WarmStart {
 pub struct PatchTractions {
     /// The grid they are on.
     pub grid: Grid,
+    /// Whether the patch rolled towards -x: a patch rolling the other way
+    /// does not start from them.
+    pub rolling_backward: bool,
     /// Pressure per element \[Pa\].
     pub pressure_pa: Vec<f64>,
     /// Longitudinal and lateral traction per element \[Pa\].
@@ -1788,7 +1890,8 @@ pub struct PitchControl {
     pub target_force_n: f64,
     /// The total longitudinal force of the solution \[N\].
     pub force_n: f64,
-    /// The nominal longitudinal creepage found, -1 - omega r0 / V [-].
+    /// The nominal longitudinal creepage found, -(V + omega r0) / |V|
+    /// (-1 - omega r0 / V rolling forwards) [-].
     pub nominal_creepage: f64,
     /// Steps of the iteration.
     pub iterations: usize,
@@ -1829,7 +1932,10 @@ pub(crate) fn solve_pitch(
     let key = TOTAL_LONGITUDINAL_FORCE_KEY;
     let v = nominal_rolling_speed(pair, input);
     let r0 = pair.wheelset().nominal_radius_m;
-    let omega_of = |xi0: f64| -(1.0 + xi0) * v / r0;
+    // xi0 = -(V + omega r0) / |V|: CONTACT's creepage (the rail's
+    // velocity relative to the wheel's over the rolling speed) of the
+    // nominal circle, either way of rolling.
+    let omega_of = |xi0: f64| -(v + xi0 * v.abs()) / r0;
     let total = |w: &[WheelResult]| w.iter().map(|w| w.force_track_n[0]).sum::<f64>();
     let first = wheels_at(omega_of(0.0))?;
     let patches = || first.iter().flat_map(|w| &w.patches);
@@ -1912,6 +2018,20 @@ pub(crate) fn pitch_rate(pair: &WheelRailPair, input: &WheelRailInput) -> f64 {
         .velocity
         .pitch_rad_per_s
         .unwrap_or(-nominal_rolling_speed(pair, input) / pair.wheelset().nominal_radius_m)
+}
+
+/// The error of a model that rolls forwards only (the conformal method,
+/// and `auto`, whose patches may be conformal), naming `model`.
+fn rolls_forwards_only(model: WheelRailModel) -> WheelRailError {
+    WheelRailError::invalid(
+        "model",
+        format!(
+            "model \"{}\" rolls forwards only (the conformal method's patches roll along +x): \
+             rolling backwards (velocity.forward_m_per_s < 0 or a roller's rate < 0) needs \
+             \"exact\", a Hertz model or \"kik_piotrowski\"",
+            model.name()
+        ),
+    )
 }
 
 /// Refuses another model than the exact one (or auto) for `what`, which
@@ -2075,7 +2195,16 @@ pub(crate) fn validate_on(
     let v = input.velocity.forward_m_per_s;
     match pair.track().roller_radius_m {
         None => {
-            require_positive("velocity.forward_m_per_s", v)?;
+            if !(v.is_finite() && v != 0.0) {
+                return Err(WheelRailError::invalid(
+                    "velocity.forward_m_per_s",
+                    format!(
+                        "must be > 0 (forwards) or < 0 (backwards), got {}: creepages are \
+                         divided by the rolling speed",
+                        show(v)
+                    ),
+                ));
+            }
             if input.rail_motion.iter().any(|m| m.roller_rad_per_s != 0.0) {
                 return Err(WheelRailError::invalid(
                     "rail_motion.roller_rad_per_s",
@@ -2087,16 +2216,18 @@ pub(crate) fn validate_on(
             if v < 0.0 {
                 return Err(WheelRailError::invalid(
                     "velocity.forward_m_per_s",
-                    "must be >= 0 on a roller rig (usually 0: the roller turns)",
+                    "must be >= 0 on a roller rig (usually 0: the roller turns, backwards \
+                     with rail_motion.roller_rad_per_s < 0)",
                 ));
             }
             for side in &input.sides {
                 let w = input.rail_motion[side.index()].roller_rad_per_s;
-                if v + w * radius <= 0.0 {
+                if v + w * radius == 0.0 {
                     return Err(WheelRailError::invalid(
                         "rail_motion.roller_rad_per_s",
                         format!(
-                            "the {} roller must roll forwards (> 0 rad/s), got {w}",
+                            "the {} roller's surface speed with the forward speed is 0: it must \
+                             roll forwards (> 0 rad/s) or backwards (< 0 rad/s)",
                             side.name()
                         ),
                     ));
@@ -2122,6 +2253,22 @@ pub(crate) fn validate_on(
                      a roller: give a rail profile file",
                 ));
             }
+        }
+    }
+    if nominal_rolling_speed(pair, input) < 0.0 {
+        if matches!(
+            input.settings.model,
+            WheelRailModel::Cect | WheelRailModel::Auto
+        ) {
+            return Err(rolls_forwards_only(input.settings.model));
+        }
+        if input.temperature.is_some() {
+            return Err(WheelRailError::invalid(
+                temperature::TEMPERATURE_KEY,
+                "the flash temperatures take material entering the patch at large x (rolling \
+                 forwards): not given rolling backwards (velocity.forward_m_per_s < 0 or a \
+                 roller's rate < 0)",
+            ));
         }
     }
     Ok(())
@@ -2272,8 +2419,14 @@ fn solve_wheel(
             Some(t) => (Some(t), None),
             None => (warm_tractions, earlier_tractions),
         };
+        // Tractions of the other rolling direction start nothing (a
+        // session that reverses starts cold).
+        let earlier =
+            earlier.filter(|e| Some(e.rolling_backward) == warm.map(|t| t.rolling_backward));
         if let ([p], Some(t)) = (patches.as_mut_slice(), warm) {
-            if let PatchKind::Exact { problem, .. } = &p.kind {
+            if let (PatchKind::Exact { problem, .. }, true) =
+                (&p.kind, t.rolling_backward == p.backward)
+            {
                 if let Some([pn, px, py]) = t.start_on(&problem.grid, earlier) {
                     p.warm_pressure = Some(pn);
                     p.warm_tractions = Some([px, py]);
@@ -2347,7 +2500,9 @@ fn solve_wheel(
                             let PatchKind::Exact { problem, .. } = &p.kind else {
                                 unreachable!("model auto builds exact patches")
                             };
-                            (exact_angle_variation(rail, p) > threshold)
+                            // (A patch rolling backwards stays exact: the
+                            // conformal method rolls forwards only.)
+                            (!p.backward && exact_angle_variation(rail, p) > threshold)
                                 .then(|| {
                                     let grid = problem.grid;
                                     conformal_geometry(pair, side, locus, &p.geom, &pose, grid).ok()
@@ -2485,6 +2640,7 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
     };
     Some(PatchTractions {
         grid: problem.grid,
+        rolling_backward: p.backward,
         pressure_pa: f.pressure_pa.clone(),
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
         slip_velocity_m_per_s,
@@ -2729,7 +2885,8 @@ fn build_patch(
         pair.rail(side),
         pair.track(),
     );
-    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, loaded);
+    let (creep, speed, backward) =
+        creepages(&geom, pose, side, &input.velocity, motion, omega, loaded);
     let rail = pair.rail(side);
     let friction = patch_friction(rail, &geom, input, speed);
     let nz = geom.normal[1];
@@ -2788,7 +2945,7 @@ fn build_patch(
                 load: NormalLoad::Approach(0.0),
                 kinematics: Kinematics::SteadyRolling(creep),
                 settings: input.settings.solver,
-                rolling_direction_rad: 0.0,
+                rolling_direction_rad: if backward { std::f64::consts::PI } else { 0.0 },
                 extra_rigid_slip: None,
             };
             // The wheel's last solver renewed (its kernels and buffers).
@@ -2813,7 +2970,8 @@ fn build_patch(
             }
             PatchKind::Exact { problem, solver }
         }
-        WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom)?,
+        WheelRailModel::KikPiotrowski => kik_piotrowski_kind(&geom, backward)?,
+        WheelRailModel::Cect if backward => return Err(rolls_forwards_only(input.settings.model)),
         WheelRailModel::Cect => {
             let across = across_refinement(&geom, expected, input, None);
             let grid = patch_grid(&geom, cap, across, input, None, None)?;
@@ -2840,6 +2998,7 @@ fn build_patch(
         geom,
         creep,
         speed,
+        backward,
         nz,
         sz,
         hmin,
@@ -2857,7 +3016,10 @@ fn build_patch(
 /// A `kik_piotrowski` patch on the lateral samples of `geom`'s undeformed
 /// distance (samples without curvature along `x`, where the wheel's is not
 /// positive, are left out).
-fn kik_piotrowski_kind(geom: &PatchGeometry) -> Result<PatchKind, WheelRailError> {
+/// With `backward` the sections' centres are mirrored in x: the patch
+/// solved is the mirror image of one rolling towards -x ([`mirror_x`]).
+fn kik_piotrowski_kind(geom: &PatchGeometry, backward: bool) -> Result<PatchKind, WheelRailError> {
+    let sign = if backward { -1.0 } else { 1.0 };
     let sections: Vec<KpSection> = geom
         .lateral
         .iter()
@@ -2865,7 +3027,7 @@ fn kik_piotrowski_kind(geom: &PatchGeometry) -> Result<PatchKind, WheelRailError
         .map(|l| KpSection {
             y_m: l.s_m,
             gap_m: l.gap_m,
-            centre_x_m: l.dx_m,
+            centre_x_m: sign * l.dx_m,
             curvature_x_per_m: l.kx_per_m,
         })
         .collect();
@@ -2919,11 +3081,13 @@ pub(crate) fn hertz_patch(
     omega: f64,
 ) -> PatchWork {
     let motion = (&input.rail_motion[side.index()], rail, track);
-    let (creep, speed) = creepages(&geom, pose, side, &input.velocity, motion, omega, None);
+    let (creep, speed, backward) =
+        creepages(&geom, pose, side, &input.velocity, motion, omega, None);
     PatchWork {
         friction: patch_friction(rail, &geom, input, speed),
         creep,
         speed,
+        backward,
         nz: geom.normal[1],
         sz: geom.tangent()[1],
         hmin,
@@ -3998,6 +4162,11 @@ pub(crate) fn finish(
             contact_area_m2: o.area_m2,
             adhesion_fraction: o.adhesion,
             rolling_speed_m_per_s: p.speed,
+            rolling_direction_rad: if p.backward {
+                std::f64::consts::PI
+            } else {
+                0.0
+            },
             friction_coefficient: p.friction.kinetic_coefficient,
             frictional_power_w: o.tgamma_n * p.speed,
             force_track_n: f,
@@ -4532,6 +4701,7 @@ mod tests {
         let old = Grid::new(4, 4, e, e, 0.0, 0.0).unwrap();
         let t = PatchTractions {
             grid: old,
+            rolling_backward: false,
             pressure_pa: (0..16).map(|i| 2.0 * i as f64).collect(),
             traction_pa: [
                 (0..16).map(|i| i as f64).collect(),

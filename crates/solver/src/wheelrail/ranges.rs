@@ -5,7 +5,7 @@
 //! came. A value that fits once read in other units is said to be likely
 //! in millimetres.
 
-use crate::core::error::{ContactError, Range, UnitHint};
+use crate::core::error::{show, ContactError, Range, UnitHint};
 use crate::wheelrail::contact::WheelLoad;
 use crate::wheelrail::wheelset::{
     RailPlacement, Side, TrackData, WheelsetData, WheelsetPosition, WheelsetVelocity,
@@ -17,8 +17,40 @@ pub const LATERAL: Range = Range::symmetric(0.02, "m").hint(UnitHint::Millimetre
 pub const YAW: Range = Range::symmetric(0.05, "rad");
 /// `position.roll_rad` \[rad\].
 pub const ROLL: Range = Range::symmetric(0.05, "rad");
-/// `velocity.forward_m_per_s` \[m/s\].
+/// The magnitude of `velocity.forward_m_per_s` \[m/s\], of either sign
+/// ([`check_forward_speed`]): > 0 rolls forwards (along the track's +x),
+/// < 0 backwards (towards -x: a reversing vehicle, a push-pull train, a
+/// roller rig run backwards). 0 and speeds below 1 m/s are excluded:
+/// creepages are velocities divided by the rolling speed.
 pub const FORWARD_SPEED: Range = Range::closed(1.0, 150.0, "m/s");
+
+/// The forward speed's two ranges as messages write them.
+pub fn describe_forward_speed() -> String {
+    let (lo, hi) = (FORWARD_SPEED.min, FORWARD_SPEED.max);
+    format!(
+        "[{}, {}] m/s (rolling backwards) or {}",
+        show(-hi),
+        show(-lo),
+        FORWARD_SPEED.describe()
+    )
+}
+
+/// `v` if its magnitude is in [`FORWARD_SPEED`] (either sign), else an
+/// error naming `key` that states both ranges and why 0 is excluded.
+pub fn check_forward_speed(key: &str, v: f64) -> Result<f64, ContactError> {
+    if FORWARD_SPEED.contains(v.abs()) {
+        return Ok(v);
+    }
+    Err(ContactError::invalid(
+        key,
+        format!(
+            "must be in {}, got {} (creepages are divided by the rolling speed: it cannot be \
+             about 0)",
+            describe_forward_speed(),
+            show(v)
+        ),
+    ))
+}
 /// `velocity.lateral_m_per_s`, `velocity.vertical_m_per_s` \[m/s\].
 pub const TRANSVERSE_SPEED: Range = Range::symmetric(5.0, "m/s");
 /// `velocity.roll_rad_per_s`, `velocity.yaw_rad_per_s` \[rad/s\].
@@ -66,8 +98,8 @@ pub const FLANGE_BACK_Y: Range = Range::symmetric(0.5, "m").hint(UnitHint::Milli
 pub struct Rollers {
     /// Nominal radius \[m\] (`track.roller_radius_m`).
     pub radius_m: f64,
-    /// Angular velocity \[rad/s\], > 0 rolling forwards
-    /// (`track.roller_rad_per_s`).
+    /// Angular velocity \[rad/s\], > 0 rolling forwards (the rollers'
+    /// top moving towards -x), < 0 backwards (`track.roller_rad_per_s`).
     pub rad_per_s: f64,
 }
 
@@ -98,27 +130,19 @@ pub fn check_motion(
         ));
     }
     match rollers {
-        None => FORWARD_SPEED.check("velocity.forward_m_per_s", velocity.forward_m_per_s)?,
+        None => check_forward_speed("velocity.forward_m_per_s", velocity.forward_m_per_s)?,
         Some(r) => {
-            if r.rad_per_s.is_nan() || r.rad_per_s <= 0.0 {
-                return Err(ContactError::invalid(
-                    ROLLER_RATE_KEY,
-                    format!("must be > 0 (forward rolling), got {}", r.rad_per_s),
-                ));
-            }
             let speed = velocity.forward_m_per_s + r.radius_m * r.rad_per_s;
-            FORWARD_SPEED
-                .check(ROLLER_RATE_KEY, speed)
-                .map_err(|e| match e {
-                    ContactError::InvalidInput { key, reason } => ContactError::InvalidInput {
-                        key,
-                        reason: format!(
-                            "the rollers' surface speed (track.roller_radius_m x \
-                             track.roller_rad_per_s, with velocity.forward_m_per_s) {reason}"
-                        ),
-                    },
-                    e => e,
-                })?
+            check_forward_speed(ROLLER_RATE_KEY, speed).map_err(|e| match e {
+                ContactError::InvalidInput { key, reason } => ContactError::InvalidInput {
+                    key,
+                    reason: format!(
+                        "the rollers' surface speed (track.roller_radius_m x \
+                         track.roller_rad_per_s, with velocity.forward_m_per_s) {reason}"
+                    ),
+                },
+                e => e,
+            })?
         }
     };
     TRANSVERSE_SPEED.check("velocity.lateral_m_per_s", velocity.lateral_m_per_s)?;
@@ -236,6 +260,48 @@ mod tests {
         let e = check_geometry(&track, &wheelset).unwrap_err().to_string();
         assert!(
             e.contains("wheelset.nominal_radius_m") && e.contains("0.46 m"),
+            "{e}"
+        );
+    }
+
+    /// Rolling backwards is a speed in [-150, -1] m/s, on a track and on
+    /// a roller rig; about 0 either way is refused naming the key and
+    /// saying why.
+    #[test]
+    fn forward_speed_takes_either_sign_but_not_about_zero() {
+        let position = WheelsetPosition {
+            lateral_m: 0.0,
+            yaw_rad: 0.0,
+            roll_rad: None,
+            track_s_m: 0.0,
+        };
+        let load = WheelLoad::VerticalForce(1e4);
+        let check = |v: f64, rollers: Option<Rollers>| {
+            let velocity = WheelsetVelocity::rolling(v);
+            check_motion(&position, &velocity, &load, None, rollers)
+        };
+        for v in [-150.0, -20.0, -1.0, 1.0, 150.0] {
+            check(v, None).unwrap();
+        }
+        for v in [-150.5, -0.5, 0.0, 0.5, 151.0, f64::NAN] {
+            let e = check(v, None).unwrap_err().to_string();
+            assert!(
+                e.contains("velocity.forward_m_per_s")
+                    && e.contains("[-150, -1] m/s (rolling backwards) or [1, 150] m/s")
+                    && e.contains("divided by the rolling speed"),
+                "{v}: {e}"
+            );
+        }
+        let rollers = |rad_per_s| {
+            Some(Rollers {
+                radius_m: 0.4,
+                rad_per_s,
+            })
+        };
+        check(0.0, rollers(-50.0)).unwrap();
+        let e = check(0.0, rollers(-1.0)).unwrap_err().to_string();
+        assert!(
+            e.contains(ROLLER_RATE_KEY) && e.contains("surface speed"),
             "{e}"
         );
     }

@@ -911,7 +911,9 @@ pub struct WheelsetPosition {
 /// Wheelset velocity (see the module conventions).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelsetVelocity {
-    /// Forward speed V [m/s], > 0.
+    /// Forward speed V [m/s]: > 0 rolling along the track's +x, < 0
+    /// rolling backwards (see "Rolling backwards" in
+    /// [`crate::wheelrail::contact`]), not 0.
     pub forward_m_per_s: f64,
     /// Lateral speed [m/s].
     pub lateral_m_per_s: f64,

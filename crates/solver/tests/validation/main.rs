@@ -34,4 +34,5 @@ mod transient;
 mod variable_friction;
 mod viscoelastic;
 mod wheelrail;
+mod wheelrail_backward;
 mod wheelrail_temperature;

@@ -247,8 +247,9 @@ fn a_track_curvature_turns_the_rails_under_the_wheelset() {
 }
 
 /// A roller rig's rate without a roller, a track without a forward speed,
-/// a roller turning backwards, the conformal model on a roller and a bad
-/// roller radius or curvature are refused naming their keys.
+/// rollers standing still (either way of rolling is solved, none is not),
+/// the conformal model on a roller and a bad roller radius or curvature
+/// are refused naming their keys.
 #[test]
 fn bad_roller_and_curvature_inputs_are_refused_naming_their_keys() {
     let err = |pair: &WheelRailPair, inp: &WheelRailInput| {
@@ -263,14 +264,14 @@ fn bad_roller_and_curvature_inputs_are_refused_naming_their_keys() {
         &input(WheelRailModel::HertzFastsim, 10.0, -100.0, 1.0),
     );
     assert!(e.contains("rail_motion.roller_rad_per_s"), "{e}");
-    // On a track the wheelset must move forwards.
+    // On a track the wheelset must move (forwards or backwards).
     let e = err(
         &track,
         &input(WheelRailModel::HertzFastsim, 0.0, -100.0, 0.0),
     );
     assert!(e.contains("velocity.forward_m_per_s"), "{e}");
     let rig = sphere_pair(Some(RR), 0.0);
-    let e = err(&rig, &input(WheelRailModel::HertzFastsim, 0.0, -4.0, -1.0));
+    let e = err(&rig, &input(WheelRailModel::HertzFastsim, 0.0, -4.0, 0.0));
     assert!(e.contains("rail_motion.roller_rad_per_s"), "{e}");
     let e = err(&rig, &input(WheelRailModel::Cect, 0.0, -4.0, 1.0));
     assert!(e.contains("model"), "{e}");
@@ -303,5 +304,56 @@ fn bad_roller_and_curvature_inputs_are_refused_naming_their_keys() {
     ] {
         let e = place(roller, cant, k);
         assert!(e.contains(key), "{key}: {e}");
+    }
+}
+
+/// A roller rig run backwards (the rollers' rate and the wheel's pitch
+/// rate of opposite sign: CONTACT's test-rollers2 case "2d" rolls so) is
+/// the mirror image in x of the forward run: xi of opposite sign (the
+/// roller's velocity relative to the wheel's over a positive speed, as
+/// CONTACT defines it), Fx of opposite sign, the same normal and lateral
+/// forces, for the exact model (rolling direction pi) and Hertz+FASTSIM
+/// (its mirror image solved).
+#[test]
+fn a_roller_rig_run_backwards_is_the_mirror_image_of_the_forward_run() {
+    let pair = sphere_pair(Some(RR), 0.0);
+    let w = 2.5;
+    let pitch = -(1.0 + 1e-3) * w * RR / RW;
+    for model in [WheelRailModel::HertzFastsim, WheelRailModel::Exact] {
+        // A yaw rate gives spin, whose lateral force turns over with the
+        // rolling direction: the direction left out fails on the forces.
+        let mut forwards = input(model, 0.0, pitch, w);
+        forwards.velocity.lateral_m_per_s = 2e-3;
+        forwards.velocity.yaw_rad_per_s = 0.5;
+        let mut backwards = input(model, 0.0, -pitch, -w);
+        backwards.velocity.lateral_m_per_s = 2e-3;
+        backwards.velocity.yaw_rad_per_s = -0.5;
+        let (a, b) = (patch(&pair, &forwards), patch(&pair, &backwards));
+        assert!(
+            a.fx_n.abs() > 100.0 && a.fs_n.abs() > 100.0,
+            "{model:?}: {a:?}"
+        );
+        assert!(a.spin_per_m.abs() > 0.1, "{model:?}: spin {}", a.spin_per_m);
+        assert!(
+            (a.creepage_long + b.creepage_long).abs() < 1e-12,
+            "{model:?}: xi {} and {}",
+            a.creepage_long,
+            b.creepage_long
+        );
+        let scale = a.normal_force_n;
+        for (what, x, y) in [
+            ("Fn", a.normal_force_n, b.normal_force_n),
+            ("Fx", a.fx_n, -b.fx_n),
+            ("Fs", a.fs_n, b.fs_n),
+        ] {
+            assert!(
+                (x - y).abs() < 1e-9 * scale,
+                "{model:?} {what}: forwards {x}, backwards mirrored {y}"
+            );
+        }
+        assert_eq!(
+            (a.rolling_direction_rad, b.rolling_direction_rad),
+            (0.0, std::f64::consts::PI)
+        );
     }
 }
