@@ -203,6 +203,28 @@ fn wheelset_step(c: &mut Criterion) {
         |input, warm| solve_wheelset_warm(&pair, input, &cache, &mut two, warm).unwrap(),
     );
     g.finish();
+    // The same warm steps on one thread, each wheel on the coarsest grid
+    // whose forces its checks find within half of 0.5 % of the load of
+    // those on 0.2 mm (`force_tolerance_of_wheel_load`).
+    let sized: Vec<_> = exact
+        .iter()
+        .map(|input| {
+            let mut input = input.clone();
+            input.settings.force_tolerance_of_wheel_load = Some(5e-3);
+            input
+        })
+        .collect();
+    let mut own = SearchScratch::default();
+    let mut g = c.benchmark_group("wheelset_path_exact_load_test_sized_for_forces");
+    g.sample_size(20);
+    bench_path(
+        &mut g,
+        "warm",
+        &sized,
+        |_| {},
+        |input, warm| solve_wheelset_warm(&pair, input, &cache, &mut own, warm).unwrap(),
+    );
+    g.finish();
 }
 
 /// A group `name` of two benches along `path`: `warm`, each step from the

@@ -147,6 +147,13 @@ pub struct LoadtestArgs {
     /// grid).
     #[arg(long, default_value = DEFAULT_MIX)]
     pub mix: String,
+    /// Wheel/rail sessions of the models exact, cect and auto: open them
+    /// with this force_tolerance_of_wheel_load (each wheel's patches on
+    /// the coarsest grid whose forces lie within half this fraction of the
+    /// wheel load of those on the element size; 5e-3 to 0.1). Not set:
+    /// every patch on the element size.
+    #[arg(long, value_name = "FRACTION")]
+    pub force_tolerance_of_wheel_load: Option<f64>,
     /// Print one JSON object instead of the table (no progress bar).
     #[arg(long)]
     pub json: bool,
@@ -670,6 +677,8 @@ pub struct Track {
     pub digests: Vec<Digest32>,
     /// Failures (the track stops at the first).
     pub errors: Vec<String>,
+    /// A wheel/rail session's `force_tolerance_of_wheel_load`.
+    pub force_tolerance_of_wheel_load: Option<f64>,
 }
 
 /// When a track has to stop.
@@ -896,6 +905,7 @@ async fn wheelrail_session(
             model: model as i32,
             sides: pb::WheelSides::Both as i32,
             client_label: label.to_string(),
+            force_tolerance_of_wheel_load: t.force_tolerance_of_wheel_load,
             ..Default::default()
         })),
     };
@@ -1147,6 +1157,8 @@ pub struct Report {
     pub seconds_limit: f64,
     /// The mix asked for.
     pub mix: String,
+    /// The wheel/rail sessions' `force_tolerance_of_wheel_load`.
+    pub force_tolerance_of_wheel_load: Option<f64>,
     /// Wall time of the concurrent run \[s\].
     pub wall_s: f64,
     /// Completed steps and batch calls.
@@ -1380,6 +1392,10 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
             latencies_s: Vec::new(),
             digests: Vec::new(),
             errors: Vec::new(),
+            force_tolerance_of_wheel_load: match kind {
+                Kind::WheelRail(_) => args.force_tolerance_of_wheel_load,
+                _ => None,
+            },
         })
         .collect();
 
@@ -1458,6 +1474,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
         steps_per_session: args.steps,
         seconds_limit: args.seconds,
         mix: args.mix.clone(),
+        force_tolerance_of_wheel_load: args.force_tolerance_of_wheel_load,
         wall_s,
         steps: 0,
         latency: Latency::default(),

@@ -277,6 +277,7 @@ struct LoadKeys {
 struct GridKeys {
     element_size_m: f64,
     min_elements_across: usize,
+    force_tolerance_of_wheel_load: Option<f64>,
 }
 
 impl Default for GridKeys {
@@ -284,6 +285,7 @@ impl Default for GridKeys {
         Self {
             element_size_m: 2.0e-4,
             min_elements_across: MIN_ELEMENTS_ACROSS,
+            force_tolerance_of_wheel_load: None,
         }
     }
 }
@@ -612,6 +614,7 @@ impl WheelrailRun {
                 model,
                 element_size_m: c.grid.element_size_m,
                 min_elements_across: c.grid.min_elements_across,
+                force_tolerance_of_wheel_load: c.grid.force_tolerance_of_wheel_load,
                 polach: match &c.polach {
                     Some(p) => PolachParameters {
                         k_adhesion: p.k_adhesion,
@@ -1391,6 +1394,35 @@ curvature_per_m = 0.5",
             .to_string(),
         };
         assert!(e.contains("track.rail_profile"), "{e}");
+    }
+
+    /// `grid.force_tolerance_of_wheel_load` reaches the settings; one out
+    /// of range is refused naming it.
+    #[test]
+    fn the_force_tolerance_of_a_case_is_read_and_checked() {
+        let with = |t: &str| {
+            let grid = "[grid]\nelement_size_m = 0.0002\n";
+            let text = SPHERE_ON_PLANE.replace(
+                grid,
+                &format!("{grid}force_tolerance_of_wheel_load = {t}\n"),
+            );
+            assert_ne!(text, SPHERE_ON_PLANE);
+            WheelrailRun::from_toml(&text, root()).unwrap()
+        };
+        let run = with("0.01");
+        assert_eq!(run.input.settings.force_tolerance_of_wheel_load, Some(0.01));
+        let run = with("0.001");
+        let e = solve_wheelset(
+            &run.pair,
+            &run.input,
+            KernelCache::global(),
+            &mut SearchScratch::default(),
+        )
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("grid.force_tolerance_of_wheel_load"),
+            "{e}"
+        );
     }
 
     /// Both placements, or neither, are refused naming `track`.

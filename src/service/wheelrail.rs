@@ -23,6 +23,7 @@ use crate::service::convert::{
 use crate::service::pairs::{self, PairSettings};
 use crate::service::pb;
 use crate::service::status::ServiceError;
+use crate::wheelrail::grid_sizing;
 use crate::wheelrail::temperature::{check_model, TEMPERATURE_KEY};
 use crate::wheelrail::{
     FrictionAxis, FrictionTable, PatchResult, PlausibilityWarning, RailMotion, Side, WarningKind,
@@ -181,6 +182,22 @@ impl QuerySettings {
             self.settings.min_elements_across = n as usize;
         }
         self
+    }
+
+    /// The settings with the request's `force_tolerance_of_wheel_load`
+    /// (checked as the solver checks it, for this model; not set: every
+    /// patch on the element size).
+    pub fn with_force_tolerance(mut self, tolerance: Option<f64>) -> Result<Self, ServiceError> {
+        if let Some(t) = tolerance {
+            grid_sizing::validate(t, self.settings.model).map_err(|e| {
+                ServiceError::from(e).rekey(
+                    grid_sizing::FORCE_TOLERANCE_KEY,
+                    "force_tolerance_of_wheel_load",
+                )
+            })?;
+        }
+        self.settings.force_tolerance_of_wheel_load = tolerance;
+        Ok(self)
     }
 
     /// The settings with the request's flash temperatures (field
@@ -429,6 +446,7 @@ pub fn input(
     .with_friction_table(req.friction_table.as_ref())?
     .with_temperature(req.temperature.as_ref())?
     .with_min_elements_across(req.min_elements_across)
+    .with_force_tolerance(req.force_tolerance_of_wheel_load)?
     .with_max_grid_elements(max_grid_elements);
     q.input(req.position, req.velocity, req.load)
 }
@@ -491,6 +509,7 @@ pub fn query_of(pair_id: &str, input: &WheelRailInput) -> pb::SolveWheelRailRequ
         }),
         element_size_m: Some(input.settings.element_size_m),
         min_elements_across: u32::try_from(input.settings.min_elements_across).ok(),
+        force_tolerance_of_wheel_load: input.settings.force_tolerance_of_wheel_load,
         include_fields: false,
         polach: (input.settings.model == WheelRailModel::HertzPolach).then(|| {
             let p = input.settings.polach;

@@ -85,6 +85,7 @@ impl WheelRailSession {
         .with_friction_table(open.friction_table.as_ref())?
         .with_temperature(open.temperature.as_ref())?
         .with_min_elements_across(open.min_elements_across)
+        .with_force_tolerance(open.force_tolerance_of_wheel_load)?
         .with_max_grid_elements(limits.max_grid_elements);
         let (scratch, warm) = (SearchScratch::default(), WarmStart::default());
         let live = scratch.heap_bytes() + warm.bytes();

@@ -373,6 +373,25 @@ async fn builtin_pair_is_ready_at_start_and_solves_as_the_library_bit_for_bit() 
         area(&narrowed)
     );
 
+    // Grids sized for the forces: the library's answer under the same
+    // tolerance; one out of range is refused naming the field.
+    let mut input = mbench_a22_input(
+        6.5,
+        Some(-0.004376),
+        Some(-4.2748834),
+        WheelRailModel::Exact,
+    );
+    input.settings.force_tolerance_of_wheel_load = Some(5e-3);
+    let want = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap();
+    let sized = solve(&mut client, query_of(BUILTIN, &input)).await;
+    assert_same("force_tolerance_of_wheel_load 5e-3", &sized, &want);
+    let mut r = query_of(BUILTIN, &input);
+    r.force_tolerance_of_wheel_load = Some(1e-3);
+    assert_invalid(
+        &solve_err(&mut client, r).await,
+        &["force_tolerance_of_wheel_load", "0.005"],
+    );
+
     // Fields only when asked, for exact patches with friction.
     let input = mbench_a22_input(
         6.5,

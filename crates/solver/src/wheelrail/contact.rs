@@ -130,6 +130,7 @@ use crate::core::solution::{ContactSolution, ElementFields, SolveStatus};
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
+use crate::wheelrail::grid_sizing::{self, solve_sized, GridSizing};
 use crate::wheelrail::search::{
     gap_intervals, interpenetration_centre, patch_geometry_about, rigid_position_from,
     split_intervals, InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry,
@@ -336,8 +337,33 @@ pub enum WheelLoad {
 pub struct WheelRailSettings {
     /// Contact model.
     pub model: WheelRailModel,
-    /// Element size of the patch grids, along x and s \[m\].
+    /// Element size of the patch grids, along x and s \[m\]; with
+    /// `force_tolerance_of_wheel_load`, the finest a wheel's patches are
+    /// solved on and the reference of that tolerance.
     pub element_size_m: f64,
+    /// Models `exact`, `auto` and `cect`: solve each wheel's patches on the
+    /// coarsest of `element_size_m` times [`GRID_COARSENINGS`](grid_sizing::GRID_COARSENINGS) (2.5, 2, 1.5,
+    /// 1.25) whose forces (track x, y, z) differ from those on
+    /// `element_size_m` by at most half this fraction of the wheel's
+    /// vertical force [-] (from 5e-3 to 0.1), `element_size_m` itself where
+    /// none does. Two grid levels measure the error: a check solves the
+    /// wheel on `element_size_m` and on the coarser sizes, coarsest first,
+    /// and keeps the first within half the tolerance (the other half is
+    /// the drift between checks). In a session ([`solve_wheelset_warm`])
+    /// the choice is kept across steps ([`WarmStart::grid_sizing`]) and
+    /// checked again when the wheel's patches change: another number of
+    /// patches (a flange coming into contact), a patch's contact area
+    /// changed by more than a factor
+    /// [`RECHECK_AREA_RATIO`](grid_sizing::RECHECK_AREA_RATIO) or its
+    /// contact angle by more than
+    /// [`RECHECK_ANGLE_RAD`](grid_sizing::RECHECK_ANGLE_RAD). A
+    /// check step costs one solve on `element_size_m` and one or more on
+    /// coarser grids, so a solve without a warm start (every step a check)
+    /// costs more than without the option. The fields of a patch (pressure
+    /// and tractions per element) are then the exact model's fields on the
+    /// coarser grid: coarser pressure detail, the forces within the
+    /// tolerance. `None` (default): every patch on `element_size_m`.
+    pub force_tolerance_of_wheel_load: Option<f64>,
     /// Contact search.
     pub search: SearchSettings,
     /// Core solver settings of the exact and conformal patches (default:
@@ -389,6 +415,7 @@ impl Default for WheelRailSettings {
         Self {
             model: WheelRailModel::Exact,
             element_size_m: 2.0e-4,
+            force_tolerance_of_wheel_load: None,
             search: SearchSettings::default(),
             solver: wheelrail_solver_settings(),
             load_tolerance: 1e-6,
@@ -1545,6 +1572,10 @@ pub struct WarmStart {
     /// shifted by whole elements), the first solve starts from their
     /// extrapolation to this step.
     pub earlier_tractions: [Option<PatchTractions>; 2],
+    /// Per wheel: the element size chosen for
+    /// [`WheelRailSettings::force_tolerance_of_wheel_load`] at its last
+    /// check, kept while the wheel's patches hold ([`GridSizing::holds`]).
+    pub grid_sizing: [Option<GridSizing>; 2],
 }
 
 impl WarmStart {
@@ -1587,6 +1618,7 @@ impl WarmStart {
         tractions: [Option<PatchTractions>; 2],
     ) {
         let earlier_tractions = std::mem::take(&mut self.tractions);
+        let grid_sizing = std::mem::take(&mut self.grid_sizing);
         *self = WarmStart {
             roll_rad: Some(roll_rad),
             roll_earlier_rad: [self.roll_rad, self.roll_earlier_rad[0]],
@@ -1599,6 +1631,7 @@ impl WarmStart {
             ],
             tractions,
             earlier_tractions,
+            grid_sizing,
         };
     }
 }
@@ -1639,7 +1672,9 @@ impl WarmStart {
             .iter()
             .chain(&self.earlier_tractions)
             .flatten();
+        let sizing = self.grid_sizing.iter().flatten();
         std::mem::size_of::<Self>()
+            + sizing.map(GridSizing::heap_bytes).sum::<usize>()
             + tractions
                 .map(|t| {
                     8 * (t.pressure_pa.len() + t.slip_velocity_m_per_s.len())
@@ -1790,17 +1825,43 @@ pub fn solve_wheelset_warm(
         && matches!(input.sides[..], [a, b] if a != b)
         && !input.settings.model.is_fast();
     let mut per_side = scratch.wheels();
+    // Each wheel's element size under `force_tolerance_of_wheel_load`,
+    // checked at the step's first solve of the wheel.
+    let mut sizing = match input.settings.force_tolerance_of_wheel_load {
+        Some(_) => warm.grid_sizing.clone(),
+        None => Default::default(),
+    };
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
     let (omega, mut wheels, pitch_control) = solve_pitch(pair, input, |omega| {
+        let check = !solved;
         let wheel_of = |side: Side,
                         own: &mut WheelScratch,
                         timing: &mut Timing,
                         ratio: Option<f64>,
-                        start: [Option<&PatchTractions>; 2]| {
-            solve_wheel(
-                pair, input, &rigid, side, omega, cache, own, timing, ratio, start,
+                        start: [Option<&PatchTractions>; 2],
+                        sizing: &mut Option<GridSizing>| {
+            let settings = &input.settings;
+            solve_sized(
+                settings.element_size_m,
+                settings.force_tolerance_of_wheel_load,
+                sizing,
+                check,
+                |e| {
+                    let mut solve = |input: &WheelRailInput| {
+                        solve_wheel(
+                            pair, input, &rigid, side, omega, cache, own, timing, ratio, start,
+                        )
+                    };
+                    if e == settings.element_size_m {
+                        solve(input)
+                    } else {
+                        let mut sized = input.clone();
+                        sized.settings.element_size_m = e;
+                        solve(&sized)
+                    }
+                },
             )
         };
         let starts: Vec<_> = input
@@ -1823,15 +1884,16 @@ pub fn solve_wheelset_warm(
             .collect();
         let results = if parallel {
             let [left, right] = &mut per_side;
+            let [size_left, size_right] = &mut sizing;
             let (a, b) = (input.sides[0], input.sides[1]);
-            let (own_a, own_b) = match a {
-                Side::Left => (left, right),
-                Side::Right => (right, left),
+            let ((own_a, size_a), (own_b, size_b)) = match a {
+                Side::Left => ((left, size_left), (right, size_right)),
+                Side::Right => ((right, size_right), (left, size_left)),
             };
             let mut timing_b = Timing::default();
             let (ra, rb) = cancel::join(
-                || wheel_of(a, own_a, &mut timing, starts[0].0, starts[0].1),
-                || wheel_of(b, own_b, &mut timing_b, starts[1].0, starts[1].1),
+                || wheel_of(a, own_a, &mut timing, starts[0].0, starts[0].1, size_a),
+                || wheel_of(b, own_b, &mut timing_b, starts[1].0, starts[1].1, size_b),
             );
             timing.add(&timing_b);
             vec![ra, rb]
@@ -1840,7 +1902,8 @@ pub fn solve_wheelset_warm(
             let mut results = Vec::with_capacity(starts.len());
             for (&side, &(ratio, start)) in input.sides.iter().zip(&starts) {
                 let own = &mut per_side[side.index()];
-                let r = wheel_of(side, own, &mut timing, ratio, start);
+                let size = &mut sizing[side.index()];
+                let r = wheel_of(side, own, &mut timing, ratio, start, size);
                 let failed = r.is_err();
                 results.push(r);
                 if failed {
@@ -1869,6 +1932,7 @@ pub fn solve_wheelset_warm(
         normal_per_vertical,
         tractions,
     );
+    warm.grid_sizing = sizing;
     Ok(WheelRailSolution {
         center_z_m: rigid.center_z_m,
         roll_rad: rigid.roll_rad,
@@ -2101,6 +2165,9 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             "grid.element_size_m",
             format!("must be between 1e-6 and 5e-3 m, got {e}"),
         ));
+    }
+    if let Some(t) = input.settings.force_tolerance_of_wheel_load {
+        grid_sizing::validate(t, input.settings.model)?;
     }
     if let Some(thermal) = &input.temperature {
         temperature::validate(thermal, input.settings.model)?;

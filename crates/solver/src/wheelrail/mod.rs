@@ -76,6 +76,7 @@
 pub mod builtin;
 pub mod contact;
 pub mod friction;
+pub mod grid_sizing;
 pub mod pair_cache;
 pub mod plausibility;
 pub mod profile;
@@ -94,6 +95,7 @@ pub use contact::{
     WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings, WheelRailSolution, WheelResult,
 };
 pub use friction::{FrictionAxis, FrictionTable};
+pub use grid_sizing::{GridSizing, GRID_COARSENINGS, RECHECK_ANGLE_RAD, RECHECK_AREA_RATIO};
 pub use pair_cache::{PairCache, PairCacheStats};
 pub use plausibility::{check_plausibility, PlausibilityWarning, WarningKind};
 pub use profile::{

@@ -1274,7 +1274,7 @@ class WheelLoad(_message.Message):
     def __init__(self, vertical_force_n: _Optional[float] = ..., approach_m: _Optional[float] = ..., center_z_m: _Optional[float] = ..., total_longitudinal_force_n: _Optional[float] = ...) -> None: ...
 
 class SolveWheelRailRequest(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table", "modified_fastsim", "temperature", "min_elements_across")
+    __slots__ = ("pair_id", "model", "sides", "position", "velocity", "load", "friction", "element_size_m", "include_fields", "polach", "conformal", "friction_table", "modified_fastsim", "temperature", "min_elements_across", "force_tolerance_of_wheel_load")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1290,6 +1290,7 @@ class SolveWheelRailRequest(_message.Message):
     MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     MIN_ELEMENTS_ACROSS_FIELD_NUMBER: _ClassVar[int]
+    FORCE_TOLERANCE_OF_WHEEL_LOAD_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1305,7 +1306,8 @@ class SolveWheelRailRequest(_message.Message):
     modified_fastsim: ModifiedFastsimParameters
     temperature: TemperatureSection
     min_elements_across: int
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., min_elements_across: _Optional[int] = ...) -> None: ...
+    force_tolerance_of_wheel_load: float
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., position: _Optional[_Union[WheelsetPosition, _Mapping]] = ..., velocity: _Optional[_Union[WheelsetVelocity, _Mapping]] = ..., load: _Optional[_Union[WheelLoad, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., min_elements_across: _Optional[int] = ..., force_tolerance_of_wheel_load: _Optional[float] = ...) -> None: ...
 
 class TrackForce(_message.Message):
     __slots__ = ("x_n", "y_n", "z_n")
@@ -1492,7 +1494,7 @@ class SolveWheelRailBatchResponse(_message.Message):
     def __init__(self, items: _Optional[_Iterable[_Union[WheelRailBatchItem, _Mapping]]] = ...) -> None: ...
 
 class WheelRailSessionOpen(_message.Message):
-    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table", "modified_fastsim", "temperature", "min_elements_across")
+    __slots__ = ("pair_id", "model", "sides", "friction", "element_size_m", "include_fields", "client_label", "polach", "conformal", "friction_table", "modified_fastsim", "temperature", "min_elements_across", "force_tolerance_of_wheel_load")
     PAIR_ID_FIELD_NUMBER: _ClassVar[int]
     MODEL_FIELD_NUMBER: _ClassVar[int]
     SIDES_FIELD_NUMBER: _ClassVar[int]
@@ -1506,6 +1508,7 @@ class WheelRailSessionOpen(_message.Message):
     MODIFIED_FASTSIM_FIELD_NUMBER: _ClassVar[int]
     TEMPERATURE_FIELD_NUMBER: _ClassVar[int]
     MIN_ELEMENTS_ACROSS_FIELD_NUMBER: _ClassVar[int]
+    FORCE_TOLERANCE_OF_WHEEL_LOAD_FIELD_NUMBER: _ClassVar[int]
     pair_id: str
     model: WheelRailModel
     sides: WheelSides
@@ -1519,7 +1522,8 @@ class WheelRailSessionOpen(_message.Message):
     modified_fastsim: ModifiedFastsimParameters
     temperature: TemperatureSection
     min_elements_across: int
-    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., min_elements_across: _Optional[int] = ...) -> None: ...
+    force_tolerance_of_wheel_load: float
+    def __init__(self, pair_id: _Optional[str] = ..., model: _Optional[_Union[WheelRailModel, str]] = ..., sides: _Optional[_Union[WheelSides, str]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., element_size_m: _Optional[float] = ..., include_fields: _Optional[bool] = ..., client_label: _Optional[str] = ..., polach: _Optional[_Union[PolachParameters, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., friction_table: _Optional[_Union[FrictionTable, _Mapping]] = ..., modified_fastsim: _Optional[_Union[ModifiedFastsimParameters, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., min_elements_across: _Optional[int] = ..., force_tolerance_of_wheel_load: _Optional[float] = ...) -> None: ...
 
 class WheelRailSessionStep(_message.Message):
     __slots__ = ("step_index", "time_s", "position", "velocity", "load", "mark")
