@@ -67,7 +67,7 @@ _TABLES: dict = {
          "pitch_rad_per_s"),
     ),
     "load": ((), ("vertical_force_n", "approach_m", "center_z_m", "total_longitudinal_force_n")),
-    "grid": (("element_size_m",), ("min_elements_across",)),
+    "grid": (("element_size_m",), ("min_elements_across", "force_tolerance_of_wheel_load")),
     "polach": (("k_adhesion", "k_slip", "limit_ratio", "decay_s_per_m"), ()),
     "modified_fastsim": (
         (),
@@ -126,7 +126,7 @@ class WheelRailCase:
     keyword arguments of :meth:`Client.wheelrail_session` (and of
     :meth:`Client.solve_wheelrail`) the case gives: ``model``, ``sides``,
     ``friction``, ``friction_table``, ``element_size_m``,
-    ``min_elements_across``, ``polach``,
+    ``min_elements_across``, ``force_tolerance_of_wheel_load``, ``polach``,
     ``modified_fastsim``, ``conformal``, ``temperature``. ``motion``: those of
     :meth:`WheelRailSession.step`, ``position``, ``velocity`` and ``load``.
     ``label``: the case file's name, the pair's label when it is new.
@@ -371,8 +371,9 @@ def _settings(case: dict, tables: dict) -> dict:
             settings["friction_table"] = table
     if "grid" in tables:
         settings["element_size_m"] = tables["grid"]["element_size_m"]
-        if "min_elements_across" in tables["grid"]:
-            settings["min_elements_across"] = tables["grid"]["min_elements_across"]
+        for key in ("min_elements_across", "force_tolerance_of_wheel_load"):
+            if key in tables["grid"]:
+                settings[key] = tables["grid"][key]
     if "polach" in tables:
         settings["polach"] = tables["polach"]
     if "modified_fastsim" in tables:

@@ -386,6 +386,7 @@ class Client:
         friction=None,
         element_size_m: Optional[float] = None,
         min_elements_across: Optional[int] = None,
+        force_tolerance_of_wheel_load: Optional[float] = None,
         include_fields: bool = False,
         temperature=None,
         friction_table=None,
@@ -428,8 +429,13 @@ class Client:
         ``"auto"``; ``min_elements_across``: a patch of the models
         ``"exact"``, ``"cect"``, ``"auto"`` expected narrower than this many
         elements is solved on elements 2-4 times narrower along s (default
-        8; 0 never narrows them, CONTACT's DX by DS). :meth:`solve_wheelrail_case` takes them all from a case
-        file of ``railcontact wheelrail``.
+        8; 0 never narrows them, CONTACT's DX by DS);
+        ``force_tolerance_of_wheel_load`` (model ``"exact"``, 5e-3 to 0.1):
+        each wheel's patches on elements up to 2.5 times
+        ``element_size_m`` where its forces stay within that fraction of
+        its vertical force of those on ``element_size_m`` (checked on
+        both grids; see the proto's field). :meth:`solve_wheelrail_case`
+        takes them all from a case file of ``railcontact wheelrail``.
         """
         request = wheelrail_request(
             pair_id,
@@ -441,6 +447,7 @@ class Client:
             friction=friction,
             element_size_m=element_size_m,
             min_elements_across=min_elements_across,
+            force_tolerance_of_wheel_load=force_tolerance_of_wheel_load,
             include_fields=include_fields,
             temperature=temperature,
             friction_table=friction_table,
@@ -522,6 +529,7 @@ class Client:
         friction=None,
         element_size_m: Optional[float] = None,
         min_elements_across: Optional[int] = None,
+        force_tolerance_of_wheel_load: Optional[float] = None,
         include_fields: bool = False,
         label: str = "",
         temperature=None,
@@ -542,6 +550,7 @@ class Client:
             friction=friction,
             element_size_m=element_size_m,
             min_elements_across=min_elements_across,
+            force_tolerance_of_wheel_load=force_tolerance_of_wheel_load,
             include_fields=include_fields,
             client_label=label,
             temperature=temperature,
