@@ -1374,7 +1374,7 @@ fn wheelrail_roller_rig_example_and_its_keys() {
         (
             "wr_roller_w.toml",
             "roller_rad_per_s = 2.5",
-            "roller_rad_per_s = -2.5",
+            "roller_rad_per_s = 0.0",
             "track.roller_rad_per_s",
         ),
         (
