@@ -1297,6 +1297,30 @@ element_size_m = 0.0002
             )
     }
 
+    /// The bus with its rollers turning the other way (-2.5 rad/s) under
+    /// the same wheel rate: the surfaces move against each other at the
+    /// contact, the rolling speed nearly 0, and the answer warns naming
+    /// the pitch rate; at the example's rates it does not.
+    #[test]
+    fn rollers_turning_against_the_wheel_warn() {
+        let warnings = |text: &str| {
+            let run = WheelrailRun::from_toml(text, root()).unwrap();
+            let mut scratch = SearchScratch::default();
+            let sol =
+                solve_wheelset(&run.pair, &run.input, KernelCache::global(), &mut scratch).unwrap();
+            check_plausibility(&run.input, &sol)
+        };
+        assert!(warnings(&bus_on_roller()).is_empty());
+        let against = bus_on_roller().replace("roller_rad_per_s = 2.5", "roller_rad_per_s = -2.5");
+        let w = warnings(&against);
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].key, "velocity.pitch_rad_per_s");
+        assert!(
+            w[0].value > 1e3 && w[0].message.contains("against each other"),
+            "{w:?}"
+        );
+    }
+
     /// test-rollers2.ref_out, Case 6 (test 2a): FN 9.719E+04 N, CKSI
     /// -2.500E-08, at track y 200 mm, VELOC 100.0 mm/s. FN within 0.05 %
     /// as for the sphere on the plane (an element centred on the contact

@@ -683,6 +683,7 @@ pub fn warnings(w: &[PlausibilityWarning], prefix: &str) -> Vec<pb::WheelRailWar
                 WarningKind::Approach => pb::WheelRailWarningKind::Approach,
                 WarningKind::LongitudinalForce => pb::WheelRailWarningKind::LongitudinalForce,
                 WarningKind::Unconverged => pb::WheelRailWarningKind::Unconverged,
+                WarningKind::OpposedSurfaces => pb::WheelRailWarningKind::OpposedSurfaces,
             } as i32,
             field: match (prefix, w.kind) {
                 ("", _) => w.key.to_string(),

@@ -674,8 +674,11 @@ class WheelRailWarning(_Result):
     given. ``kind`` is ``"approach"`` (a wheel pressed into its rail far
     beyond the elastic approach of its load), ``"longitudinal_force"``
     (both wheels driven or braked the same way to near saturation by the
-    pitch rate given) or ``"unconverged"`` (patches of the wheel whose exact
-    solver stopped at its iteration limit: ``value`` counts them);
+    pitch rate given), ``"unconverged"`` (patches of the wheel whose exact
+    solver stopped at its iteration limit: ``value`` counts them) or
+    ``"opposed_surfaces"`` (a longitudinal creepage beyond the 2 of a
+    locked wheel: the wheel's and the rail's or roller's surfaces move
+    against each other, e.g. rollers and wheel turning the same way);
     ``field`` the request path of the input at fault
     (``"position.roll_rad"``, ``"velocity.pitch_rad_per_s"``,
     ``"load.vertical_force_n"``, ``"model"``; ``"items[3]."`` before it in

@@ -1,5 +1,5 @@
 //! Element sizes chosen for the forces asked
-//! ([`WheelRailSettings::force_tolerance_of_wheel_load`]).
+//! ([`crate::wheelrail::WheelRailSettings::force_tolerance_of_wheel_load`]).
 //!
 //! A multibody step needs a wheel's forces to a fraction of its load, not
 //! the pressure's detail. Under the option a wheel's patches are solved on

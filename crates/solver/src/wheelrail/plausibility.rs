@@ -82,6 +82,18 @@
 //! iterate ([`PatchResult::unconverged`]); its wheel warns once, naming
 //! [`MODEL_KEY`], with the number of such patches. Seen: none on A-2.2 at
 //! CONTACT's rolls and pitch rates (exact, 0 to 10 mm).
+//!
+//! **Opposed surfaces** ([`WarningKind::OpposedSurfaces`]). The creepages
+//! are relative speeds over the rolling speed, the mean of the two
+//! surfaces' speeds at the contact; a locked wheel on a moving rail
+//! slides at a longitudinal creepage of 2. Beyond
+//! [`SLIDING_CREEPAGE_LIMIT`] the two surfaces move against each other:
+//! on a roller rig the rollers and the wheel turn the same way (a sign
+//! slip in one of the two rates), and the rolling speed tends to 0, the
+//! creepage to infinity (test-rollers2's bus at its rates with the
+//! rollers' reversed: 2.3e8); the patch slides fully, Fx = mu Fn. The
+//! wheel warns once, naming [`PITCH_RATE_KEY`], with the largest
+//! creepage's size.
 
 use std::fmt;
 
@@ -115,6 +127,12 @@ pub const SATURATION_LIMIT: f64 = 0.9;
 /// (see the module docs).
 pub const LONGITUDINAL_SHARE_LIMIT: f64 = 0.25;
 
+/// A patch's longitudinal creepage warns above this size [-]: a locked
+/// wheel (no rotation) on a moving rail slides at 2 (the relative speed
+/// over the mean of the two surfaces' speeds); beyond it the two surfaces
+/// move against each other at the contact.
+pub const SLIDING_CREEPAGE_LIMIT: f64 = 2.0;
+
 /// What a [`PlausibilityWarning`] finds implausible.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -127,15 +145,21 @@ pub enum WarningKind {
     /// A patch's exact or conformal solver stopped at its iteration limit:
     /// the wheel's forces include a last iterate, not a solution.
     Unconverged,
+    /// A patch's longitudinal creepage beyond [`SLIDING_CREEPAGE_LIMIT`]:
+    /// the wheel's and the rail's (a roller's) surfaces move against each
+    /// other at the contact, and the patch slides fully.
+    OpposedSurfaces,
 }
 
 impl WarningKind {
-    /// `"approach"` or `"longitudinal_force"`.
+    /// `"approach"`, `"longitudinal_force"`, `"unconverged"` or
+    /// `"opposed_surfaces"`.
     pub fn name(self) -> &'static str {
         match self {
             WarningKind::Approach => "approach",
             WarningKind::LongitudinalForce => "longitudinal_force",
             WarningKind::Unconverged => "unconverged",
+            WarningKind::OpposedSurfaces => "opposed_surfaces",
         }
     }
 }
@@ -156,8 +180,9 @@ pub struct PlausibilityWarning {
     /// longitudinal force's share of the adhesion the lateral forces leave
     /// ([`WarningKind::LongitudinalForce`]).
     pub value: f64,
-    /// Its limit: [`APPROACH_LIMIT`], [`SATURATION_LIMIT`], or 0 for
-    /// [`WarningKind::Unconverged`] (whose value counts the patches).
+    /// Its limit: [`APPROACH_LIMIT`], [`SATURATION_LIMIT`],
+    /// [`SLIDING_CREEPAGE_LIMIT`], or 0 for [`WarningKind::Unconverged`]
+    /// (whose value counts the patches).
     pub limit: f64,
     /// What was found, with its numbers, why, and what to do.
     pub message: String,
@@ -201,7 +226,40 @@ pub fn check_plausibility(
     }
     out.extend(longitudinal_warning(input, solution));
     out.extend(solution.wheels.iter().filter_map(unconverged_warning));
+    out.extend(solution.wheels.iter().filter_map(opposed_warning));
     out
+}
+
+/// A wheel whose patch with the largest longitudinal creepage exceeds
+/// [`SLIDING_CREEPAGE_LIMIT`] in size: one warning, naming
+/// [`PITCH_RATE_KEY`], its value that creepage's size.
+fn opposed_warning(w: &WheelResult) -> Option<PlausibilityWarning> {
+    let p = w
+        .patches
+        .iter()
+        .max_by(|a, b| a.creepage_long.abs().total_cmp(&b.creepage_long.abs()))?;
+    let size = p.creepage_long.abs();
+    if size.is_nan() || size <= SLIDING_CREEPAGE_LIMIT * (1.0 + 1e-9) {
+        return None;
+    }
+    Some(PlausibilityWarning {
+        kind: WarningKind::OpposedSurfaces,
+        key: PITCH_RATE_KEY,
+        side: Some(w.side),
+        value: size,
+        limit: SLIDING_CREEPAGE_LIMIT,
+        message: format!(
+            "the {} wheel's patch at track y = {:.2} mm has a longitudinal creepage of {:.3e} \
+             at a rolling speed of {:.3e} m/s, beyond the {SLIDING_CREEPAGE_LIMIT} of a locked \
+             wheel: the wheel's surface and the rail's (a roller's) move against each other \
+             at the contact, and the patch slides fully. Check the signs of {PITCH_RATE_KEY}, \
+             velocity.forward_m_per_s and, on a roller rig, velocity.roller_rad_per_s",
+            w.side.name(),
+            p.track_y_m * 1e3,
+            p.creepage_long,
+            p.rolling_speed_m_per_s,
+        ),
+    })
 }
 
 /// A wheel with patches whose iterative solver stopped at its iteration

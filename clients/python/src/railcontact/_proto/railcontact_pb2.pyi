@@ -123,6 +123,7 @@ class WheelRailWarningKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     WHEEL_RAIL_WARNING_KIND_APPROACH: _ClassVar[WheelRailWarningKind]
     WHEEL_RAIL_WARNING_KIND_LONGITUDINAL_FORCE: _ClassVar[WheelRailWarningKind]
     WHEEL_RAIL_WARNING_KIND_UNCONVERGED: _ClassVar[WheelRailWarningKind]
+    WHEEL_RAIL_WARNING_KIND_OPPOSED_SURFACES: _ClassVar[WheelRailWarningKind]
 MODEL_UNSPECIFIED: Model
 MODEL_HERTZ: Model
 MODEL_HERTZ_CORRECTED: Model
@@ -195,6 +196,7 @@ WHEEL_RAIL_WARNING_KIND_UNSPECIFIED: WheelRailWarningKind
 WHEEL_RAIL_WARNING_KIND_APPROACH: WheelRailWarningKind
 WHEEL_RAIL_WARNING_KIND_LONGITUDINAL_FORCE: WheelRailWarningKind
 WHEEL_RAIL_WARNING_KIND_UNCONVERGED: WheelRailWarningKind
+WHEEL_RAIL_WARNING_KIND_OPPOSED_SURFACES: WheelRailWarningKind
 
 class Material(_message.Message):
     __slots__ = ("shear_modulus_pa", "poisson_ratio")
