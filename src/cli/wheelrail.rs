@@ -174,50 +174,11 @@ struct TrackKeys {
     roller_rad_per_s: Option<f64>,
     #[serde(default)]
     curvature_per_m: f64,
-    rail_profile_unit: Option<UnitKey>,
+    rail_profile_unit: Option<LengthUnit>,
     #[serde(default)]
-    rail_deviation_left: DeviationKeys,
+    rail_deviation_left: RailDeviation,
     #[serde(default)]
-    rail_deviation_right: DeviationKeys,
-}
-
-/// `track.rail_deviation_left` / `_right`: a rail's shift and roll from its
-/// placement (the wire's `RailDeviation`).
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-struct DeviationKeys {
-    dy_m: f64,
-    dz_m: f64,
-    droll_rad: f64,
-}
-
-impl From<&DeviationKeys> for RailDeviation {
-    fn from(d: &DeviationKeys) -> Self {
-        RailDeviation {
-            dy_m: d.dy_m,
-            dz_m: d.dz_m,
-            droll_rad: d.droll_rad,
-        }
-    }
-}
-
-/// `track.rail_profile_unit`, `wheelset.wheel_profile_unit`: the length
-/// unit of plain two-column profile tables.
-#[derive(Debug, Clone, Copy, Deserialize)]
-enum UnitKey {
-    #[serde(rename = "m")]
-    Metre,
-    #[serde(rename = "mm")]
-    Millimetre,
-}
-
-impl From<UnitKey> for LengthUnit {
-    fn from(u: UnitKey) -> Self {
-        match u {
-            UnitKey::Metre => LengthUnit::Metre,
-            UnitKey::Millimetre => LengthUnit::Millimetre,
-        }
-    }
+    rail_deviation_right: RailDeviation,
 }
 
 #[derive(Debug, Deserialize)]
@@ -231,7 +192,7 @@ struct WheelsetKeys {
     flange_back_y_m: Option<f64>,
     nominal_radius_m: f64,
     smoothing_wavelength_m: Option<f64>,
-    wheel_profile_unit: Option<UnitKey>,
+    wheel_profile_unit: Option<LengthUnit>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -332,10 +293,10 @@ fn read_profile(
 /// tables in `unit` (`track.rail_profile_unit`,
 /// `wheelset.wheel_profile_unit`; unset: the file's own unit line or
 /// column names, else metres), the same for a slices file's tables.
-fn profile_options(mirror_y: bool, unit: Option<UnitKey>) -> LoadOptions {
+fn profile_options(mirror_y: bool, unit: Option<LengthUnit>) -> LoadOptions {
     LoadOptions {
         mirror_y,
-        plain_unit: unit.map(LengthUnit::from),
+        plain_unit: unit,
         ..LoadOptions::default()
     }
 }
@@ -532,10 +493,7 @@ impl WheelrailRun {
         let track = TrackData {
             placement,
             cant_rad: t.cant_rad,
-            deviations: [
-                (&t.rail_deviation_left).into(),
-                (&t.rail_deviation_right).into(),
-            ],
+            deviations: [t.rail_deviation_left, t.rail_deviation_right],
             roller_radius_m: t.roller_radius_m,
             curvature_per_m: t.curvature_per_m,
         };

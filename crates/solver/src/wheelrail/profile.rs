@@ -71,12 +71,15 @@ impl fmt::Display for ProfileFormat {
     }
 }
 
-/// Length unit of the plain two-column format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+/// Length unit of the plain two-column format (case files: `"m"`,
+/// `"mm"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Deserialize)]
 pub enum LengthUnit {
     /// Metres (the default).
+    #[serde(rename = "m")]
     Metre,
     /// Millimetres.
+    #[serde(rename = "mm")]
     Millimetre,
 }
 

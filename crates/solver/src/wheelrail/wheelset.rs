@@ -214,8 +214,9 @@ impl std::fmt::Display for RailPlacement {
 /// A rail's deviation from its placement (CONTACT's rail irregularities
 /// DYRAIL, DZRAIL, DROLLR), in the track frame: dy > 0 to the right
 /// (towards the track centre for the left rail, to the field side for the
-/// right one).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// right one). Case files: `[track.rail_deviation_left]`, `_right`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct RailDeviation {
     /// Lateral shift of the rail profile's origin \[m\] (track y).
     pub dy_m: f64,
