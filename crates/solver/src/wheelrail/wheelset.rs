@@ -511,6 +511,11 @@ impl PlacedRail {
         [s * drop, c * drop]
     }
 
+    /// Whether the rail is a roller (a roller rig's), not a track's rail.
+    pub fn is_roller(&self) -> bool {
+        self.roller_radius_m.is_some()
+    }
+
     /// The profile curvature along x of a roller's surface at the rail
     /// sample `sample` \[1/m\]: cos(phi) / r, r the distance of
     /// the point from the roller's axle (the nominal radius less the
