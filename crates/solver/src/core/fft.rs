@@ -37,6 +37,7 @@ use rustfft::{Fft, FftNum, FftPlanner};
 
 use crate::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use crate::core::memory::{heap_bytes, HeapBytes};
+use crate::core::numerical_influence::{InfluenceFile, TableKernel};
 use crate::core::simd::multiversion;
 
 /// Smallest even 2-3-5-smooth number >= n (fast FFT sizes in `f64`).
@@ -605,8 +606,13 @@ pub struct KernelSet {
     pub plan: Arc<ConvolutionPlan>,
     /// Which operator this is.
     pub kind: KernelKind,
-    /// The closed-form coefficients the kernels were built from.
+    /// The closed-form coefficients the kernels were built from (with a
+    /// [`KernelSet::table`], its element sizes and materials only).
     pub influence: HalfSpaceInfluence,
+    /// Coefficients from a file of numerical influence coefficients
+    /// ([`crate::core::numerical_influence`]), one matrix, replacing the
+    /// half-space's ([`KernelSet::from_table`]); None: the half-space.
+    pub table: Option<Arc<InfluenceFile>>,
     /// Distinct kernel spectra ([`ConvolutionPlan::kernel_spectrum`]).
     spectra: Vec<Spectrum<f64>>,
     /// `index[i][j]`: the entry of `spectra` holding kernel (i, j), if present.
@@ -657,10 +663,11 @@ struct KernelTable {
 }
 
 impl KernelTable {
-    /// Kernel `kind` (i, j) of `influence` at every offset of an nx x ny
-    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`]).
+    /// Kernel `kind` (i, j) of `source` at every offset of an nx x ny
+    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`] for the
+    /// half-space).
     fn of(
-        influence: &HalfSpaceInfluence,
+        source: &Source<'_>,
         kind: KernelKind,
         i: Component,
         j: Component,
@@ -671,7 +678,15 @@ impl KernelTable {
         let mut values = vec![0.0; wx * wy];
         for (jy, row) in values.chunks_exact_mut(wx).enumerate() {
             let ky = jy as i64 - (ny as i64 - 1);
-            influence.kernel_row(kind, i, j, -(nx as i64 - 1), ky, row);
+            let kx_lo = -(nx as i64 - 1);
+            match &source.table {
+                None => source.influence.kernel_row(kind, i, j, kx_lo, ky, row),
+                Some(t) => {
+                    for (k, o) in row.iter_mut().enumerate() {
+                        *o = t.kernel(kind, i, j, kx_lo + k as i64, ky);
+                    }
+                }
+            }
         }
         Self { nx, ny, values }
     }
@@ -687,6 +702,53 @@ impl KernelTable {
         let jx = (ox + self.nx as i64 - 1) as usize;
         let jy = (oy + self.ny as i64 - 1) as usize;
         self.values[jy * (2 * self.nx - 1) + jx]
+    }
+}
+
+/// Where a set's kernel values come from: the half-space's closed forms,
+/// or a table of numerical coefficients.
+struct Source<'a> {
+    influence: &'a HalfSpaceInfluence,
+    table: Option<TableKernel<'a>>,
+}
+
+impl<'a> Source<'a> {
+    fn new(
+        influence: &'a HalfSpaceInfluence,
+        table: Option<&'a InfluenceFile>,
+        nx: usize,
+        ny: usize,
+    ) -> Self {
+        Self {
+            influence,
+            table: table.map(|file| TableKernel {
+                file,
+                nx,
+                ny,
+                dx_m: influence.dx_m(),
+                shear_modulus_pa: influence.shear_modulus_pa(),
+            }),
+        }
+    }
+
+    fn kernel(&self, kind: KernelKind, i: Component, j: Component, ox: i64, oy: i64) -> f64 {
+        match &self.table {
+            None => self.influence.kernel(kind, i, j, ox, oy),
+            Some(t) => t.kernel(kind, i, j, ox, oy),
+        }
+    }
+
+    /// Whether the normal/tangential coupling kernels are non-zero.
+    fn coupled(&self) -> bool {
+        match &self.table {
+            None => self.influence.coupled(),
+            Some(t) => t.file.coupled(),
+        }
+    }
+
+    /// Whether kernel (y, x) equals kernel (x, y) (one spectrum for both).
+    fn symmetric_xy(&self) -> bool {
+        self.table.as_ref().is_none_or(|t| t.file.symmetric_xy())
     }
 }
 
@@ -718,7 +780,32 @@ impl KernelSet {
         influence: HalfSpaceInfluence,
         kind: KernelKind,
     ) -> Self {
-        Self::build(plan, influence, kind, None)
+        Self::build(plan, influence, kind, None, None)
+    }
+
+    /// [`KernelSet::new`] with the coefficients of a one-matrix file of
+    /// numerical influence coefficients instead of the half-space's
+    /// ([`TableKernel`]); `influence` gives the element sizes and the
+    /// combined shear modulus that scales them. With `other` (a set of the
+    /// same grid, materials and table), its tangential inverse is shared
+    /// as in [`KernelSet::sharing_inverse_of`].
+    pub fn from_table(
+        plan: Arc<ConvolutionPlan>,
+        influence: HalfSpaceInfluence,
+        kind: KernelKind,
+        table: Arc<InfluenceFile>,
+        other: Option<&KernelSet>,
+    ) -> Self {
+        let shared = other
+            .filter(|o| {
+                o.influence == influence
+                    && (o.plan.nx, o.plan.ny) == (plan.nx, plan.ny)
+                    && o.table
+                        .as_ref()
+                        .is_some_and(|t| Arc::ptr_eq(t, &table) || **t == *table)
+            })
+            .map(|o| o.tangential_inverse.clone());
+        Self::build(plan, influence, kind, shared, Some(table))
     }
 
     /// [`KernelSet::new`], taking the tangential inverse (the displacement
@@ -731,13 +818,15 @@ impl KernelSet {
         kind: KernelKind,
         other: &KernelSet,
     ) -> Self {
-        let same =
-            other.influence == influence && (other.plan.nx, other.plan.ny) == (plan.nx, plan.ny);
+        let same = other.influence == influence
+            && other.table.is_none()
+            && (other.plan.nx, other.plan.ny) == (plan.nx, plan.ny);
         Self::build(
             plan,
             influence,
             kind,
             same.then(|| other.tangential_inverse.clone()),
+            None,
         )
     }
 
@@ -746,8 +835,10 @@ impl KernelSet {
         influence: HalfSpaceInfluence,
         kind: KernelKind,
         shared_inverse: Option<Arc<TangentialInverse>>,
+        table: Option<Arc<InfluenceFile>>,
     ) -> Self {
         let (nx, ny) = (plan.nx, plan.ny);
+        let source = Source::new(&influence, table.as_deref(), nx, ny);
         let mut ws = plan.workspace();
         let single_plan = ConvolutionPlan::<f32>::new(nx, ny);
         // The single-precision spectra are transformed in f64 on a plan of
@@ -755,7 +846,8 @@ impl KernelSet {
         // ones) and then rounded.
         let wide = ConvolutionPlan::<f64>::with_padding(nx, ny, single_plan.px, single_plan.py);
         let mut wide_ws = wide.workspace();
-        let coupled = influence.coupled();
+        let coupled = source.coupled();
+        let symmetric_xy = source.symmetric_xy();
         let mut spectra = Vec::new();
         let mut single = Vec::new();
         let mut index = [[None; 3]; 3];
@@ -769,25 +861,29 @@ impl KernelSet {
                 if !needed {
                     continue;
                 }
-                if a == 1 && b == 0 {
+                if a == 1 && b == 0 && symmetric_xy {
                     // A_yx(X) = A_xy(X) (both are nu F_xy): share the spectrum.
                     continue;
                 }
                 index[a][b] = Some(spectra.len());
-                let t = KernelTable::of(&influence, kind, i, j, nx, ny);
+                let t = KernelTable::of(&source, kind, i, j, nx, ny);
                 spectra.push(plan.kernel_spectrum(&mut ws, |ox, oy| t.at(ox, oy)));
                 single.push(
                     Spectrum::new(wide.kernel_spectrum(&mut wide_ws, |ox, oy| t.at(ox, oy)))
                         .narrow(),
                 );
-                if kind == KernelKind::Displacement && a < 2 && b < 2 {
+                if kind == KernelKind::Displacement && a < 2 && b < 2 && !(a == 1 && b == 0) {
+                    // (y, x) of a table that is not symmetric: the
+                    // preconditioner takes (x, y) for both.
                     tangential_tables[a + b] = Some(t);
                 } else if a == 2 && b == 2 {
                     normal_table = Some(t);
                 }
             }
         }
-        index[1][0] = index[0][1];
+        if symmetric_xy {
+            index[1][0] = index[0][1];
+        }
         let mut bound: f64 = 0.0;
         if let (Some(xx), Some(xy), Some(yy)) = (index[0][0], index[0][1], index[1][1]) {
             let (kxx, kxy, kyy) = (&spectra[xx], &spectra[xy], &spectra[yy]);
@@ -814,7 +910,7 @@ impl KernelSet {
             spectra.push(periodic_inverse(&pc, |ox, oy| {
                 table
                     .and_then(|t: &KernelTable| t.get(ox, oy))
-                    .unwrap_or_else(|| influence.kernel(kind, Component::N, Component::N, ox, oy))
+                    .unwrap_or_else(|| source.kernel(kind, Component::N, Component::N, ox, oy))
             }));
             normal_inverse = Some((pc, spectra.len() - 1));
         }
@@ -831,7 +927,7 @@ impl KernelSet {
             let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
                 match &tangential_tables[i as usize + j as usize] {
                     Some(t) => t.at(ox, oy),
-                    None => influence.kernel(KernelKind::Displacement, i, j, ox, oy),
+                    None => source.kernel(KernelKind::Displacement, i, j, ox, oy),
                 }
             });
             Arc::new(TangentialInverse {
@@ -843,10 +939,14 @@ impl KernelSet {
             })
         });
         let spectra = spectra.into_iter().map(Spectrum::new).collect();
+        let diagonal = COMPONENTS.map(|c| source.kernel(kind, c, c, 0, 0));
+        let steady_diagonal = [Component::X, Component::Y]
+            .map(|c| source.kernel(KernelKind::SteadyRolling, c, c, 0, 0));
         Self {
             plan,
             kind,
             influence,
+            table,
             spectra,
             index,
             single: SingleKernels {
@@ -857,9 +957,8 @@ impl KernelSet {
             normal_inverse,
             tangential_inverse,
             normal_table,
-            diagonal: COMPONENTS.map(|c| influence.kernel(kind, c, c, 0, 0)),
-            steady_diagonal: [Component::X, Component::Y]
-                .map(|c| influence.kernel(KernelKind::SteadyRolling, c, c, 0, 0)),
+            diagonal,
+            steady_diagonal,
         }
     }
 
@@ -895,7 +994,13 @@ impl KernelSet {
         if i == j && ox == 0 && oy == 0 {
             return self.diagonal[i as usize];
         }
-        self.influence.kernel(self.kind, i, j, ox, oy)
+        Source::new(
+            &self.influence,
+            self.table.as_deref(),
+            self.plan.nx,
+            self.plan.ny,
+        )
+        .kernel(self.kind, i, j, ox, oy)
     }
 
     /// `out[I - offset] += sum_k A_nn(I, J_k - offset) c_k` over the grid's

@@ -3014,6 +3014,7 @@ fn build_patch(
                 settings: input.settings.solver,
                 rolling_direction_rad: if backward { std::f64::consts::PI } else { 0.0 },
                 extra_rigid_slip: None,
+                numerical_influence: None,
             };
             // The wheel's last solver renewed (its kernels and buffers).
             let mut solver = match spare.take() {
@@ -4366,6 +4367,7 @@ mod tests {
                 settings: Default::default(),
                 rolling_direction_rad: 0.0,
                 extra_rigid_slip: None,
+                numerical_influence: None,
             };
             let boxed = std::mem::size_of::<ContactSolver>();
             let n = grid.len();
