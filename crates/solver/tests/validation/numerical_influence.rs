@@ -10,16 +10,19 @@
 
 use std::sync::Arc;
 
+use railcontact_solver::core::error::ContactError;
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::influence::{Component, HalfSpaceInfluence};
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::numerical_influence::{InfluenceFile, UpperBody};
 use railcontact_solver::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, SolverSettings,
+    ContactProblem, Creepages, Friction, Kinematics, SolverSettings, NUMERICAL_INFLUENCE_KEY,
 };
 use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
 use railcontact_solver::core::solve::solve;
+use railcontact_solver::problem::case::Case;
+use railcontact_solver::problem::CaseError;
 
 use crate::printed;
 
@@ -288,20 +291,94 @@ fn contact_reads_the_same_files() {
         let table = r
             .file
             .map(|f| InfluenceFile::read(std::path::Path::new(&data_path(f))).unwrap());
-        let s = one(&problem(table, 0.0));
-        let ours = printed_totals(&s);
-        let [adh, slip] = counts(&s);
-        eprintln!("{:?}: {ours:?} {adh} {slip}", r.file);
-        for (k, what) in ["FN", "FX", "FY", "MZ", "PMAX", "PEN"].iter().enumerate() {
-            let (value, half) = printed(r.totals[k]);
-            assert!(
-                (ours[k] - value).abs() <= half * (1.0 + 1e-9),
-                "{:?} {what}: {} against CONTACT's {}",
-                r.file,
-                ours[k],
-                r.totals[k]
-            );
+        check_contact(r, &one(&problem(table, 0.0)));
+    }
+}
+
+/// Our solution `s` against CONTACT's printed numbers `r`: each within
+/// half a unit of the last digit printed, the counts equal.
+fn check_contact(r: &Reference, s: &ContactSolution) {
+    let ours = printed_totals(s);
+    let [adh, slip] = counts(s);
+    for (k, what) in ["FN", "FX", "FY", "MZ", "PMAX", "PEN"].iter().enumerate() {
+        let (value, half) = printed(r.totals[k]);
+        assert!(
+            (ours[k] - value).abs() <= half * (1.0 + 1e-9),
+            "{:?} {what}: {} against CONTACT's {}",
+            r.file,
+            ours[k],
+            r.totals[k]
+        );
+    }
+    assert_eq!([adh + slip, adh, slip], r.con_adh_slip, "{:?}", r.file);
+}
+
+/// `examples/cases/numerical_influence.toml`: the case of CONTACT's case 2
+/// as a case file, its `material.influence_file` relative to the case
+/// file's directory.
+fn example_case(text: &str) -> Result<Case, CaseError> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cases");
+    Case::from_toml_in(text, &dir)
+}
+
+#[test]
+fn case_files_name_the_file() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/cases/numerical_influence.toml"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let case = example_case(&text).unwrap();
+    let s = one(&case.problem().unwrap());
+    check_contact(&CONTACT[1], &s);
+    // Errors name the key (and the file's field or line).
+    let err = |t: &str| match example_case(t) {
+        Err(CaseError::BadInput(m)) => m,
+        Err(e) => panic!("{e:?}"),
+        Ok(_) => panic!("accepted"),
+    };
+    let m = err(&text.replace("inflcf_hs.txt", "absent.txt"));
+    assert!(
+        m.contains("material.influence_file") && m.contains("absent.txt"),
+        "{m}"
+    );
+    let m = err(&text.replace("window_x_m = 0.0084", "window_x_m = 0.0088"));
+    assert!(m.contains("material.influence_file: dxfile"), "{m}");
+    let m = err(&text.replace("model = \"exact\"", "model = \"fastsim\""));
+    assert!(
+        m.contains("material.influence_file") && m.contains("fastsim"),
+        "{m}"
+    );
+    let m = err(&text.replacen(
+        "model = \"exact\"",
+        "model = \"exact\"\nrolling_direction_rad = 3.141592653589793",
+        1,
+    ));
+    assert!(
+        m.contains("material.influence_file") && m.contains("+x"),
+        "{m}"
+    );
+}
+
+#[test]
+fn per_row_files_are_refused_naming_the_key() {
+    // One matrix per loaded row (nmatrix = my = 17), each row's scaled: read
+    // and checked, not solved.
+    let rows = half_space_file(NY, (NX, NY), |m| 1.0 + 0.02 * m as f64);
+    assert_eq!(rows.matrices(), NY);
+    match solve(&problem(Some(rows), 0.0)) {
+        Err(ContactError::InvalidInput { key, reason }) => {
+            assert_eq!(key, NUMERICAL_INFLUENCE_KEY);
+            assert!(reason.contains("one matrix per loaded row"), "{reason}");
         }
-        assert_eq!([adh + slip, adh, slip], r.con_adh_slip, "{:?}", r.file);
+        other => panic!("{:?}", other.map(|s| s.len())),
+    }
+    // nmatrix neither 1 nor my: the field is named.
+    let wrong = half_space_file(3, (NX, NY), |_| 1.0);
+    match solve(&problem(Some(wrong), 0.0)) {
+        Err(ContactError::InvalidInput { key, .. }) => {
+            assert_eq!(key, format!("{NUMERICAL_INFLUENCE_KEY}: nmatrix"));
+        }
+        other => panic!("{:?}", other.map(|s| s.len())),
     }
 }

@@ -607,7 +607,7 @@ impl Case {
             // Before any solver integrates the coefficients (seconds).
             check_viscoelastic_grid(visc, nx, ny, geometry.is_line())?;
         }
-        Ok(Case {
+        let case = Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
             extra_rigid_slip,
@@ -640,7 +640,14 @@ impl Case {
             temperature,
             rigid_slip,
             numerical_influence,
-        })
+        };
+        if case.numerical_influence.is_some() {
+            // The file against the grid and the problem (element sizes,
+            // its kind, line contact, layer, rolling direction) when the
+            // case is read, before a solve.
+            case.problem()?.validate()?;
+        }
+        Ok(case)
     }
 
     /// The potential contact grid of the exact model (one row for a line
