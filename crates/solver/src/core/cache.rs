@@ -174,8 +174,8 @@ impl KernelCache {
         self.get_with(grid, material, Bodies::default(), kind, None)
     }
 
-    /// [`KernelCache::get`] with the coefficients of a one-matrix file of
-    /// numerical influence coefficients instead of the half-space's
+    /// [`KernelCache::get`] with the coefficients of a file of numerical
+    /// influence coefficients instead of the half-space's
     /// ([`KernelSet::from_table`]); None is [`KernelCache::get`]'s set.
     /// The caller has checked the file against the grid
     /// ([`InfluenceFile::check_grid`]).

@@ -610,9 +610,13 @@ pub struct KernelSet {
     /// [`KernelSet::table`], its element sizes and materials only).
     pub influence: HalfSpaceInfluence,
     /// Coefficients from a file of numerical influence coefficients
-    /// ([`crate::core::numerical_influence`]), one matrix, replacing the
-    /// half-space's ([`KernelSet::from_table`]); None: the half-space.
+    /// ([`crate::core::numerical_influence`]) replacing the half-space's
+    /// ([`KernelSet::from_table`]); None: the half-space.
     pub table: Option<Arc<InfluenceFile>>,
+    /// With a file of one matrix per loaded row: the set of each row's
+    /// matrix (the products sum them, [`KernelSet::apply_with`]); empty
+    /// otherwise.
+    rows: Vec<KernelSet>,
     /// Distinct kernel spectra ([`ConvolutionPlan::kernel_spectrum`]).
     spectra: Vec<Spectrum<f64>>,
     /// `index[i][j]`: the entry of `spectra` holding kernel (i, j), if present.
@@ -713,16 +717,19 @@ struct Source<'a> {
 }
 
 impl<'a> Source<'a> {
+    /// The half-space's kernels, or (with `table`) those of its matrix
+    /// `matrix`.
     fn new(
         influence: &'a HalfSpaceInfluence,
         table: Option<&'a InfluenceFile>,
-        nx: usize,
-        ny: usize,
+        (nx, ny): (usize, usize),
+        matrix: usize,
     ) -> Self {
         Self {
             influence,
             table: table.map(|file| TableKernel {
                 file,
+                matrix,
                 nx,
                 ny,
                 dx_m: influence.dx_m(),
@@ -770,6 +777,7 @@ impl KernelSet {
                 .normal_table
                 .as_ref()
                 .map_or(0, |t| t.values.len() * std::mem::size_of::<f64>())
+            + self.rows.iter().map(KernelSet::bytes).sum::<usize>()
     }
 
     /// Builds and transforms all kernels (tangential block, normal, and the
@@ -780,15 +788,19 @@ impl KernelSet {
         influence: HalfSpaceInfluence,
         kind: KernelKind,
     ) -> Self {
-        Self::build(plan, influence, kind, None, None)
+        Self::build(plan, influence, kind, None, None, 0)
     }
 
-    /// [`KernelSet::new`] with the coefficients of a one-matrix file of
-    /// numerical influence coefficients instead of the half-space's
-    /// ([`TableKernel`]); `influence` gives the element sizes and the
-    /// combined shear modulus that scales them. With `other` (a set of the
-    /// same grid, materials and table), its tangential inverse is shared
-    /// as in [`KernelSet::sharing_inverse_of`].
+    /// [`KernelSet::new`] with the coefficients of a file of numerical
+    /// influence coefficients instead of the half-space's ([`TableKernel`]);
+    /// `influence` gives the element sizes and the combined shear modulus
+    /// that scales them. With `other` (a set of the same grid, materials
+    /// and table), its tangential inverse is shared as in
+    /// [`KernelSet::sharing_inverse_of`]. A file of one matrix per loaded
+    /// row (as many as the grid's rows, checked by the caller) builds a set
+    /// per row as well, whose products [`KernelSet::apply_with`] sums; its
+    /// own kernels, preconditioners and [`KernelSet::value`] are the middle
+    /// row's.
     pub fn from_table(
         plan: Arc<ConvolutionPlan>,
         influence: HalfSpaceInfluence,
@@ -805,7 +817,36 @@ impl KernelSet {
                         .is_some_and(|t| Arc::ptr_eq(t, &table) || **t == *table)
             })
             .map(|o| o.tangential_inverse.clone());
-        Self::build(plan, influence, kind, shared, Some(table))
+        if table.matrices() == 1 {
+            return Self::build(plan, influence, kind, shared, Some(table), 0);
+        }
+        // One matrix per loaded row: the middle row's set for the
+        // preconditioners and the local scalars, and a set per row for the
+        // products (whose preconditioners are not used: the tangential
+        // inverse is shared).
+        let ny = plan.ny;
+        let mut main = Self::build(
+            plan.clone(),
+            influence,
+            kind,
+            shared,
+            Some(table.clone()),
+            ny / 2,
+        );
+        main.rows = (0..ny)
+            .map(|m| {
+                let inverse = Some(main.tangential_inverse.clone());
+                Self::build(
+                    plan.clone(),
+                    influence,
+                    kind,
+                    inverse,
+                    Some(table.clone()),
+                    m,
+                )
+            })
+            .collect();
+        main
     }
 
     /// [`KernelSet::new`], taking the tangential inverse (the displacement
@@ -827,6 +868,7 @@ impl KernelSet {
             kind,
             same.then(|| other.tangential_inverse.clone()),
             None,
+            0,
         )
     }
 
@@ -836,9 +878,10 @@ impl KernelSet {
         kind: KernelKind,
         shared_inverse: Option<Arc<TangentialInverse>>,
         table: Option<Arc<InfluenceFile>>,
+        matrix: usize,
     ) -> Self {
         let (nx, ny) = (plan.nx, plan.ny);
-        let source = Source::new(&influence, table.as_deref(), nx, ny);
+        let source = Source::new(&influence, table.as_deref(), (nx, ny), matrix);
         let mut ws = plan.workspace();
         let single_plan = ConvolutionPlan::<f32>::new(nx, ny);
         // The single-precision spectra are transformed in f64 on a plan of
@@ -947,6 +990,7 @@ impl KernelSet {
             kind,
             influence,
             table,
+            rows: Vec::new(),
             spectra,
             index,
             single: SingleKernels {
@@ -974,6 +1018,8 @@ impl KernelSet {
                 .map(|(pc, _)| Box::new(Buffers::new(pc))),
             single: Box::new(Buffers::new(&self.single.plan)),
             tangential_pc: Box::new(Buffers::new(&self.tangential_inverse.plan)),
+            rows: (!self.rows.is_empty())
+                .then(|| Box::new(RowScratch::new(self.plan.nx * self.plan.ny))),
         }
     }
 
@@ -982,14 +1028,18 @@ impl KernelSet {
     /// this set has a preconditioner.
     pub fn fits(&self, ws: &OperatorWorkspace) -> bool {
         let (nx, ny, pc) = self.workspace_shape();
-        ws.shape.0 == nx && ws.shape.1 == ny && (ws.shape.2 || !pc)
+        ws.shape.0 == nx
+            && ws.shape.1 == ny
+            && (ws.shape.2 || !pc)
+            && (ws.rows.is_some() || self.rows.is_empty())
     }
 
     fn workspace_shape(&self) -> (usize, usize, bool) {
         (self.plan.nx, self.plan.ny, self.normal_inverse.is_some())
     }
 
-    /// The real-space kernel value (i, j) at element offset (ox, oy).
+    /// The real-space kernel value (i, j) at element offset (ox, oy) (with
+    /// one matrix per loaded row: for a load on the middle row).
     pub fn value(&self, i: Component, j: Component, ox: i64, oy: i64) -> f64 {
         if i == j && ox == 0 && oy == 0 {
             return self.diagonal[i as usize];
@@ -997,8 +1047,8 @@ impl KernelSet {
         Source::new(
             &self.influence,
             self.table.as_deref(),
-            self.plan.nx,
-            self.plan.ny,
+            (self.plan.nx, self.plan.ny),
+            self.rows.len() / 2,
         )
         .kernel(self.kind, i, j, ox, oy)
     }
@@ -1017,6 +1067,14 @@ impl KernelSet {
         offset: usize,
         out: &mut [f64],
     ) -> bool {
+        if !self.rows.is_empty() {
+            // Each column through its row's matrix.
+            let nx = self.plan.nx;
+            return columns.iter().all(|&(j, c)| {
+                let row = &self.rows[((j - offset) / nx).min(self.rows.len() - 1)];
+                row.add_normal_columns(&[(j, c)], offset, out)
+            });
+        }
         let Some(t) = &self.normal_table else {
             return false;
         };
@@ -1064,6 +1122,8 @@ impl KernelSet {
     }
 
     /// [`KernelSet::apply`] in the given precision (see [`Precision`]).
+    /// With one matrix per loaded row: up to ny products
+    /// (`apply_rows`).
     pub fn apply_with(
         &self,
         precision: Precision,
@@ -1071,6 +1131,9 @@ impl KernelSet {
         inputs: &[(Component, &[f64])],
         outputs: &mut [(Component, &mut [f64])],
     ) {
+        if !self.rows.is_empty() {
+            return self.apply_rows(precision, ows, inputs, outputs);
+        }
         let index = &self.index;
         match precision {
             Precision::Double => apply_indexed(
@@ -1093,6 +1156,76 @@ impl KernelSet {
                 )
             }
         }
+    }
+
+    /// [`KernelSet::apply_with`] of a set with one matrix per loaded row:
+    /// the sum over the grid's rows jy of the products of row jy's kernels
+    /// with the inputs restricted to row jy (rows whose inputs are all zero
+    /// skipped): up to ny FFT products, exact. No allocation with a
+    /// workspace of this set ([`KernelSet::workspace`]).
+    fn apply_rows(
+        &self,
+        precision: Precision,
+        ows: &mut OperatorWorkspace,
+        inputs: &[(Component, &[f64])],
+        outputs: &mut [(Component, &mut [f64])],
+    ) {
+        let nx = self.plan.nx;
+        let mut scratch = ows
+            .rows
+            .take()
+            .unwrap_or_else(|| Box::new(RowScratch::new(nx * self.plan.ny)));
+        for (_, o) in outputs.iter_mut() {
+            o.fill(0.0);
+        }
+        let RowScratch { masked, out } = &mut *scratch;
+        for (jy, set) in self.rows.iter().enumerate() {
+            let span = jy * nx..(jy + 1) * nx;
+            if inputs
+                .iter()
+                .all(|(_, v)| v[span.clone()].iter().all(|&x| x == 0.0))
+            {
+                continue;
+            }
+            for ((_, v), m) in inputs.iter().zip(masked.iter_mut()) {
+                m[span.clone()].copy_from_slice(&v[span.clone()]);
+            }
+            {
+                let [m0, m1, m2] = &*masked;
+                let mut ins = [
+                    (Component::X, &m0[..]),
+                    (Component::Y, &m1[..]),
+                    (Component::N, &m2[..]),
+                ];
+                for (k, (c, _)) in inputs.iter().enumerate() {
+                    ins[k].0 = *c;
+                }
+                let [o0, o1, o2] = &mut *out;
+                let mut outs = [
+                    (Component::X, &mut o0[..]),
+                    (Component::Y, &mut o1[..]),
+                    (Component::N, &mut o2[..]),
+                ];
+                for (k, (c, _)) in outputs.iter().enumerate() {
+                    outs[k].0 = *c;
+                }
+                set.apply_with(
+                    precision,
+                    ows,
+                    &ins[..inputs.len()],
+                    &mut outs[..outputs.len()],
+                );
+                for ((_, o), (_, t)) in outputs.iter_mut().zip(outs.iter()) {
+                    for (a, b) in o.iter_mut().zip(t.iter()) {
+                        *a += b;
+                    }
+                }
+            }
+            for m in masked.iter_mut().take(inputs.len()) {
+                m[span.clone()].fill(0.0);
+            }
+        }
+        ows.rows = Some(scratch);
     }
 
     /// `z = C⁻¹ r` on the grid, with C the circulant extension of the normal
@@ -1474,6 +1607,32 @@ pub struct OperatorWorkspace {
     single: Box<Buffers<f32>>,
     /// Buffers of the tangential preconditioner's plan.
     tangential_pc: Box<Buffers<f32>>,
+    /// The row-by-row products of a set with one matrix per loaded row.
+    rows: Option<Box<RowScratch>>,
+}
+
+/// Buffers of [`KernelSet::apply_with`] for a set with one matrix per
+/// loaded row: up to three inputs restricted to one row, and the outputs
+/// of that row's product.
+#[derive(Clone)]
+struct RowScratch {
+    masked: [Vec<f64>; 3],
+    out: [Vec<f64>; 3],
+}
+
+impl RowScratch {
+    fn new(n: usize) -> Self {
+        Self {
+            masked: std::array::from_fn(|_| vec![0.0; n]),
+            out: std::array::from_fn(|_| vec![0.0; n]),
+        }
+    }
+}
+
+impl HeapBytes for RowScratch {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.masked, self.out)
+    }
 }
 
 multiversion! {
@@ -1518,7 +1677,13 @@ fn add_columns_body(
 /// The buffers of all four plans (not the kernels, which the set holds).
 impl HeapBytes for OperatorWorkspace {
     fn heap_bytes(&self) -> usize {
-        heap_bytes!(self.main, self.pc, self.single, self.tangential_pc)
+        heap_bytes!(
+            self.main,
+            self.pc,
+            self.single,
+            self.tangential_pc,
+            self.rows
+        )
     }
 }
 

@@ -33,11 +33,16 @@
 //! values after the first 11 of a line are ignored, as CONTACT does.
 //!
 //! A file of one matrix holds the same coefficients for all loaded
-//! elements (a convolution, the FFT products of the planar solvers); a file
-//! of my matrices, one per loaded row jy = 1 .. my of the case's grid,
-//! coefficients that depend on the loaded row. The solvers take the first
-//! kind; the second is read and checked ([`InfluenceFile::matrices`]) but
-//! refused by [`crate::core::problem::ContactProblem::validate`].
+//! elements: a convolution, the FFT products of the planar solvers, at the
+//! half-space's cost. A file of my matrices, one per loaded row jy = 1 ..
+//! my of the case's grid (my its number of rows), holds coefficients that
+//! depend on the loaded row: no longer a convolution in y. Its product is
+//! the sum over the rows jy of the FFT product of row jy's kernels with the
+//! tractions of row jy alone (rows without tractions skipped): exact, up to
+//! my products instead of one, and my + 1 kernel sets in memory
+//! ([`crate::core::fft::KernelSet::from_table`]). The solvers' local
+//! scalars and preconditioners (self-influence, circulant inverses) take
+//! the middle row's matrix: they change the iterations, not the answer.
 //!
 //! # Grids
 //!
@@ -637,7 +642,7 @@ impl InfluenceFile {
     }
 }
 
-/// The kernels of a one-matrix file on a grid of nx x ny elements of
+/// The kernels of one matrix of a file on a grid of nx x ny elements of
 /// length dx, for materials of combined shear modulus G: the file's
 /// coefficients C \[mm\] · 1e-3 / G \[m/Pa\] at offsets |ox| < min(mxfile,
 /// nx), |oy| < min(myfile, ny), zero elsewhere (CONTACT's padding and
@@ -646,6 +651,8 @@ impl InfluenceFile {
 pub struct TableKernel<'a> {
     /// The file.
     pub file: &'a InfluenceFile,
+    /// Its matrix (0-based; of a one-matrix file: 0).
+    pub matrix: usize,
     /// Elements of the grid along x.
     pub nx: usize,
     /// Elements of the grid along y.
@@ -662,7 +669,7 @@ impl TableKernel<'_> {
         if ox.unsigned_abs() >= self.nx as u64 || oy.unsigned_abs() >= self.ny as u64 {
             return 0.0;
         }
-        self.file.coefficient_mm(0, i, j, ox, oy) * 1e-3 / self.shear_modulus_pa
+        self.file.coefficient_mm(self.matrix, i, j, ox, oy) * 1e-3 / self.shear_modulus_pa
     }
 
     /// The value of kernel `kind` (i, j) at offset (ox, oy), as
@@ -725,6 +732,7 @@ mod tests {
         let f = small(1);
         let k = TableKernel {
             file: &f,
+            matrix: 0,
             nx: 4,
             ny: 1,
             dx_m: 2e-4,

@@ -464,8 +464,8 @@ pub struct ContactProblem {
     /// Influence coefficients from a file of numerical influence
     /// coefficients (CONTACT's C3 = 9, [`crate::core::numerical_influence`])
     /// instead of the half-space's; None: the half-space. The exact model
-    /// takes one-matrix files on a surface grid whose element sizes are
-    /// the file's, elastic bodies in contact (no interfacial layer),
+    /// takes files of one matrix or of one per row of the grid, on a
+    /// surface grid whose element sizes are the file's, elastic bodies in contact (no interfacial layer),
     /// rolling in +x (0): checked by [`ContactProblem::validate`], naming
     /// [`NUMERICAL_INFLUENCE_KEY`]. The materials' combined shear modulus
     /// scales the coefficients.
@@ -675,12 +675,6 @@ fn check_numerical_influence(p: &ContactProblem, file: &InfluenceFile) -> Result
         .map_err(|(field, reason)| {
             ContactError::invalid(format!("{NUMERICAL_INFLUENCE_KEY}: {field}"), reason)
         })?;
-    if file.matrices() > 1 {
-        return refuse(
-            "from files of one matrix; a file of one matrix per loaded row (nmatrix = my) is \
-             not supported by the solvers",
-        );
-    }
     Ok(())
 }
 

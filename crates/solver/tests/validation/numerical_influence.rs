@@ -60,13 +60,23 @@ fn grid() -> Grid {
 }
 
 fn problem(table: Option<InfluenceFile>, spin_per_mm: f64) -> ContactProblem {
-    let grid = grid();
+    problem_on(grid(), 0.0035, FN_N, table, spin_per_mm)
+}
+
+/// [`problem`] on `grid` with B = `b_per_mm` \[1/mm\] and FN = `fn_n`.
+fn problem_on(
+    grid: Grid,
+    b_per_mm: f64,
+    fn_n: f64,
+    table: Option<InfluenceFile>,
+    spin_per_mm: f64,
+) -> ContactProblem {
     ContactProblem {
         material: material(),
         friction: Friction::coulomb(0.3),
-        gap_m: ContactProblem::quadratic_gap(&grid, 0.0025 / MM, 0.0035 / MM),
+        gap_m: ContactProblem::quadratic_gap(&grid, 0.0025 / MM, b_per_mm / MM),
         grid,
-        load: NormalLoad::NormalForce(FN_N),
+        load: NormalLoad::NormalForce(fn_n),
         kinematics: Kinematics::SteadyRolling(Creepages {
             creepage_long: -0.0012,
             creepage_lat: 0.0008,
@@ -179,18 +189,33 @@ fn half_space_file_reproduces_the_half_space() {
     assert!((plain.totals.fx_n - exact.totals.fx_n).abs() > 1e-5 * exact.totals.fx_n.abs());
 }
 
-/// Significant digits of the coefficients in the files given to CONTACT.
+/// Significant digits of the coefficients in the files given to CONTACT
+/// (8 in the per-row file, to keep it small).
 const FILE_DIGITS: usize = 10;
 
 /// The files of `tests/data/inflcf/`: the half-space's coefficients of the
 /// case's grid (`inflcf_hs.txt`), of a smaller grid (13 x 9: CONTACT pads
 /// the offsets beyond it with zeros) and of a larger one (23 x 19: the
-/// offsets beyond the case's grid are not used).
-fn contact_files() -> Vec<(&'static str, InfluenceFile)> {
+/// offsets beyond the case's grid are not used), and a file of one
+/// matrix per row ([`rows_file`]), with their significant digits.
+fn contact_files() -> Vec<(&'static str, InfluenceFile, usize)> {
     vec![
-        ("inflcf_hs.txt", half_space_file(1, (NX, NY), |_| 1.0)),
-        ("inflcf_hs_small.txt", half_space_file(1, (13, 9), |_| 1.0)),
-        ("inflcf_hs_large.txt", half_space_file(1, (23, 19), |_| 1.0)),
+        (
+            "inflcf_hs.txt",
+            half_space_file(1, (NX, NY), |_| 1.0),
+            FILE_DIGITS,
+        ),
+        (
+            "inflcf_hs_small.txt",
+            half_space_file(1, (13, 9), |_| 1.0),
+            FILE_DIGITS,
+        ),
+        (
+            "inflcf_hs_large.txt",
+            half_space_file(1, (23, 19), |_| 1.0),
+            FILE_DIGITS,
+        ),
+        ("inflcf_rows.txt", rows_file(), 8),
     ]
 }
 
@@ -204,16 +229,16 @@ fn data_path(name: &str) -> String {
 #[test]
 #[ignore = "writes the test data; run by hand"]
 fn write_contact_files() {
-    for (name, file) in contact_files() {
-        std::fs::write(data_path(name), file.to_text(FILE_DIGITS)).unwrap();
+    for (name, file, digits) in contact_files() {
+        std::fs::write(data_path(name), file.to_text(digits)).unwrap();
     }
 }
 
 #[test]
 fn committed_files_are_the_generated_ones() {
-    for (name, file) in contact_files() {
+    for (name, file, digits) in contact_files() {
         let committed = InfluenceFile::read(std::path::Path::new(&data_path(name))).unwrap();
-        let printed = InfluenceFile::parse(&file.to_text(FILE_DIGITS)).unwrap();
+        let printed = InfluenceFile::parse(&file.to_text(digits)).unwrap();
         assert!(
             committed == printed,
             "{name} is not what contact_files() writes"
@@ -245,7 +270,8 @@ const HALF_SPACE_COUNTS: [usize; 3] = [133, 63, 70];
 /// (github.com/eve70a/CONTACT revision 2707, 2025-07-23, built by
 /// `/work/shared/contact-kit/build.sh` with gfortran 12.2.0 and FFTW
 /// 3.3.10) on 2026-12-07: `contact_linux64 2 inflcf` in a folder holding
-/// the .inp and the three files; the numbers of its `inflcf.out`.
+/// the .inp and the four files; the numbers of its `inflcf.out`, cases
+/// 1-4 (cases 5-6: [`CONTACT_ROWS`]).
 const CONTACT: [Reference; 4] = [
     // Case 1: the half-space (C3 = 2).
     Reference {
@@ -361,18 +387,22 @@ fn case_files_name_the_file() {
 }
 
 #[test]
-fn per_row_files_are_refused_naming_the_key() {
-    // One matrix per loaded row (nmatrix = my = 17), each row's scaled: read
-    // and checked, not solved.
-    let rows = half_space_file(NY, (NX, NY), |m| 1.0 + 0.02 * m as f64);
+fn per_row_files_sum_the_rows() {
+    // One matrix per loaded row (nmatrix = my = 17), all the half-space's:
+    // the row-by-row products give the one-matrix answer.
+    let rows = half_space_file(NY, (NX, NY), |_| 1.0);
     assert_eq!(rows.matrices(), NY);
-    match solve(&problem(Some(rows), 0.0)) {
-        Err(ContactError::InvalidInput { key, reason }) => {
-            assert_eq!(key, NUMERICAL_INFLUENCE_KEY);
-            assert!(reason.contains("one matrix per loaded row"), "{reason}");
-        }
-        other => panic!("{:?}", other.map(|s| s.len())),
+    let one_matrix = one(&problem(
+        Some(half_space_file(1, (NX, NY), |_| 1.0)),
+        0.0004,
+    ));
+    let per_row = one(&problem(Some(rows), 0.0004));
+    let (a, b) = (printed_totals(&one_matrix), printed_totals(&per_row));
+    eprintln!("one matrix {a:?}\nper row    {b:?}");
+    for k in 0..6 {
+        assert!((a[k] - b[k]).abs() <= 1e-9 * a[k].abs(), "{k}: {a:?} {b:?}");
     }
+    assert_eq!(counts(&one_matrix), counts(&per_row));
     // nmatrix neither 1 nor my: the field is named.
     let wrong = half_space_file(3, (NX, NY), |_| 1.0);
     match solve(&problem(Some(wrong), 0.0)) {
@@ -380,5 +410,47 @@ fn per_row_files_are_refused_naming_the_key() {
             assert_eq!(key, format!("{NUMERICAL_INFLUENCE_KEY}: nmatrix"));
         }
         other => panic!("{:?}", other.map(|s| s.len())),
+    }
+}
+
+/// The grid of `inflcf.inp` case 5: 13 x 9 elements of 0.4 mm.
+fn small_grid() -> Grid {
+    Grid::centered(13, 9, 13.0 * D_MM * MM, 9.0 * D_MM * MM).unwrap()
+}
+
+/// `inflcf_rows.txt`: one matrix per row of the 13 x 9 grid, row jy's
+/// the half-space's times 0.8 + 0.05 jy (0.8 .. 1.2).
+fn rows_file() -> InfluenceFile {
+    half_space_file(9, (13, 9), |m| 0.8 + 0.05 * m as f64)
+}
+
+/// `inflcf.inp` cases 5 and 6 (as [`CONTACT`]): on the 13 x 9 grid, h =
+/// 0.0025 x² + 0.006 y² \[mm\], FN = 3000 N, the per-row file (C3 = 9;
+/// CONTACT skips the four lines that start each matrix, the last of them
+/// the matrix line) and the half-space (C3 = 2): the rows' scaling moves
+/// MZ from 57.77 to 82.72 N mm.
+const CONTACT_ROWS: [Reference; 2] = [
+    Reference {
+        file: Some("inflcf_rows.txt"),
+        totals: ["3000.", "654.6", "-346.1", "82.72", "679.8", "1.658E-02"],
+        con_adh_slip: [42, 14, 28],
+    },
+    Reference {
+        file: None,
+        totals: ["3000.", "653.0", "-351.0", "57.77", "680.8", "1.663E-02"],
+        con_adh_slip: [42, 14, 28],
+    },
+];
+
+#[test]
+fn per_row_file_against_contact() {
+    for r in &CONTACT_ROWS {
+        let table = r
+            .file
+            .map(|f| InfluenceFile::read(std::path::Path::new(&data_path(f))).unwrap());
+        check_contact(
+            r,
+            &one(&problem_on(small_grid(), 0.006, 3000.0, table, 0.0)),
+        );
     }
 }
