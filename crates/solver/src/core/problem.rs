@@ -648,6 +648,12 @@ pub const MAX_VISCOELASTIC_ELEMENTS: usize = 4096;
 /// case file's key).
 pub const NUMERICAL_INFLUENCE_KEY: &str = "material.influence_file";
 
+/// Largest rows x elements of a grid with a file of one matrix per loaded
+/// row: the solver holds a kernel set per row (under 0.5 kB an element
+/// each, 285 B at 21 x 17: 2^20 at most about 0.5 GB) and a product costs
+/// up to a product per row.
+pub const MAX_PER_ROW_WORK: usize = 1 << 20;
+
 /// Refuses a file of numerical influence coefficients the exact model
 /// cannot take with this problem (see
 /// [`ContactProblem::numerical_influence`]), naming
@@ -675,6 +681,18 @@ fn check_numerical_influence(p: &ContactProblem, file: &InfluenceFile) -> Result
         .map_err(|(field, reason)| {
             ContactError::invalid(format!("{NUMERICAL_INFLUENCE_KEY}: {field}"), reason)
         })?;
+    let work = p.grid.ny.saturating_mul(p.grid.len());
+    if file.matrices() > 1 && work > MAX_PER_ROW_WORK {
+        return Err(ContactError::invalid(
+            NUMERICAL_INFLUENCE_KEY,
+            format!(
+                "a file of one matrix per loaded row on a grid of {} x {} elements: rows x \
+                 elements = {work} over {MAX_PER_ROW_WORK} (one kernel set per row: memory and \
+                 the cost of a product grow with it)",
+                p.grid.nx, p.grid.ny
+            ),
+        ));
+    }
     Ok(())
 }
 

@@ -10,9 +10,10 @@
 
 use std::sync::Arc;
 
+use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::ContactError;
 use railcontact_solver::core::grid::Grid;
-use railcontact_solver::core::influence::{Component, HalfSpaceInfluence};
+use railcontact_solver::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::numerical_influence::{InfluenceFile, UpperBody};
@@ -355,6 +356,13 @@ fn case_files_name_the_file() {
     );
     let text = std::fs::read_to_string(path).unwrap();
     let case = example_case(&text).unwrap();
+    assert!(
+        case.notes
+            .iter()
+            .any(|n| n.contains("nmatrix = 1, mxfile x myfile = 21 x 17")),
+        "{:?}",
+        case.notes
+    );
     let s = one(&case.problem().unwrap());
     check_contact(&CONTACT[1], &s);
     // Errors name the key (and the file's field or line).
@@ -403,12 +411,37 @@ fn per_row_files_sum_the_rows() {
         assert!((a[k] - b[k]).abs() <= 1e-9 * a[k].abs(), "{k}: {a:?} {b:?}");
     }
     assert_eq!(counts(&one_matrix), counts(&per_row));
+    // The memory MAX_PER_ROW_WORK bounds: ny + 1 sets of the grid, under
+    // 0.5 kB per element and set.
+    let cache = KernelCache::new(usize::MAX);
+    let table = Arc::new(half_space_file(NY, (NX, NY), |_| 1.0));
+    let set = cache.get_numerical(&grid(), &material(), Some(&table), KernelKind::Displacement);
+    let per_element = set.bytes() as f64 / ((NY + 1) * NX * NY) as f64;
+    eprintln!(
+        "per-row kernels: {} bytes, {per_element:.0} per element and set",
+        set.bytes()
+    );
+    assert!(per_element < 500.0, "{per_element}");
+    // A per-row file on a grid whose rows x elements exceed the limit
+    // (128 x 128 x 128 = 2^21): refused before any kernel is built.
+    let d = D_MM * MM;
+    let big = Grid::centered(128, 128, 128.0 * d, 128.0 * d).unwrap();
+    let tiny =
+        InfluenceFile::from_coefficients(128, (1, 1), (d, d), UpperBody::Rail, |_, _, _, _, _| 0.1)
+            .unwrap();
+    let (key, reason) = refusal(&problem_on(big, 0.0035, FN_N, Some(tiny), 0.0));
+    assert_eq!(key, NUMERICAL_INFLUENCE_KEY);
+    assert!(reason.contains("2097152 over 1048576"), "{reason}");
     // nmatrix neither 1 nor my: the field is named.
     let wrong = half_space_file(3, (NX, NY), |_| 1.0);
-    match solve(&problem(Some(wrong), 0.0)) {
-        Err(ContactError::InvalidInput { key, .. }) => {
-            assert_eq!(key, format!("{NUMERICAL_INFLUENCE_KEY}: nmatrix"));
-        }
+    let (key, _) = refusal(&problem(Some(wrong), 0.0));
+    assert_eq!(key, format!("{NUMERICAL_INFLUENCE_KEY}: nmatrix"));
+}
+
+/// The key and reason of the invalid input `p` is refused for.
+fn refusal(p: &ContactProblem) -> (String, String) {
+    match solve(p) {
+        Err(ContactError::InvalidInput { key, reason }) => (key, reason),
         other => panic!("{:?}", other.map(|s| s.len())),
     }
 }

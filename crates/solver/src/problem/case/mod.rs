@@ -607,7 +607,7 @@ impl Case {
             // Before any solver integrates the coefficients (seconds).
             check_viscoelastic_grid(visc, nx, ny, geometry.is_line())?;
         }
-        let case = Case {
+        let mut case = Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
             extra_rigid_slip,
@@ -641,11 +641,18 @@ impl Case {
             rigid_slip,
             numerical_influence,
         };
-        if case.numerical_influence.is_some() {
+        if let Some(t) = case.numerical_influence.clone() {
             // The file against the grid and the problem (element sizes,
             // its kind, line contact, layer, rolling direction) when the
             // case is read, before a solve.
             case.problem()?.validate()?;
+            let (mx, my) = t.size();
+            let note = format!(
+                "material.influence_file: the influence coefficients are the file's (nmatrix = {}, \
+                 mxfile x myfile = {mx} x {my}), not the half-space's",
+                t.matrices()
+            );
+            case.notes.push(note);
         }
         Ok(case)
     }
