@@ -18,7 +18,8 @@ use railcontact_solver::core::material::{CombinedMaterial, Material};
 use railcontact_solver::core::normal::NormalLoad;
 use railcontact_solver::core::numerical_influence::{InfluenceFile, UpperBody};
 use railcontact_solver::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, SolverSettings, NUMERICAL_INFLUENCE_KEY,
+    ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings,
+    NUMERICAL_INFLUENCE_KEY,
 };
 use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
 use railcontact_solver::core::solve::solve;
@@ -486,4 +487,43 @@ fn per_row_file_against_contact() {
             &one(&problem_on(small_grid(), 0.006, 3000.0, table, 0.0)),
         );
     }
+}
+
+#[test]
+fn transient_steps_take_the_file() {
+    // Two shift steps and one rolling step of one element: the half-space,
+    // its one-matrix file and its per-row file (equal rows) give the same
+    // tractions, to the file's rounding.
+    let step = |shift_mm: f64, rolling_m: f64| ShiftStep {
+        load: NormalLoad::NormalForce(FN_N),
+        shift_x_m: shift_mm * MM,
+        shift_y_m: 0.5 * shift_mm * MM,
+        rotation_rad: 0.0,
+        rolling_m,
+    };
+    let steps = vec![
+        step(-0.004, 0.0),
+        step(-0.004, 0.0),
+        step(-0.002, D_MM * MM),
+    ];
+    let run = |table: Option<InfluenceFile>| {
+        let mut p = problem(table, 0.0);
+        p.kinematics = Kinematics::Transient(steps.clone());
+        let all = solve(&p).unwrap();
+        assert!(all.iter().all(|s| s.info.status == SolveStatus::Converged));
+        all.iter().map(printed_totals).collect::<Vec<_>>()
+    };
+    let exact = run(None);
+    let file = InfluenceFile::parse(&half_space_file(1, (NX, NY), |_| 1.0).to_text(FILE_DIGITS));
+    for totals in [
+        run(Some(file.unwrap())),
+        run(Some(half_space_file(NY, (NX, NY), |_| 1.0))),
+    ] {
+        for (a, b) in exact.iter().zip(&totals) {
+            for k in 0..6 {
+                assert!((a[k] - b[k]).abs() <= 1e-8 * a[k].abs(), "{k}: {a:?} {b:?}");
+            }
+        }
+    }
+    eprintln!("{exact:?}");
 }
