@@ -147,6 +147,7 @@ fn solves(c: &mut Criterion) {
         settings: Default::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     };
     let mut solver = ContactSolver::new(&planar, &cache);
     // The target is a ratio, and this machine's speed changes by up to

@@ -62,6 +62,7 @@ fn circle_on(nx: usize, ny: usize, kinematics: Kinematics) -> ContactProblem {
         settings: Default::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 

@@ -230,10 +230,12 @@ impl CaseKind {
 fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
     let format = args.plot.as_deref().map(plot_format).transpose()?;
     let text = CaseKind::read(&args.case, CaseKind::Patch)?;
-    let case = Case::from_toml(&text).map_err(|e| match e {
-        CaseError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
-        other => other.into(),
-    })?;
+    let case = Case::from_toml_in(&text, args.case.parent().unwrap_or(Path::new("."))).map_err(
+        |e| match e {
+            CaseError::BadInput(m) => CliError::BadInput(format!("{}: {m}", args.case.display())),
+            other => other.into(),
+        },
+    )?;
     if case.model.is_cect() && args.plot.is_some() {
         return Err(CliError::BadInput(format!(
             "invalid option `--plot`: plots of the conformal models are not available yet (model = \"{}\"); \

@@ -313,6 +313,7 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
             poisson_ratio: m.poisson_ratio,
             body1: m.body1.as_ref().map(material),
             body2: m.body2.as_ref().map(material),
+            influence_file: None,
         },
         friction: c.friction.as_ref().map(friction_section).transpose()?,
         geometry: geometry(g)?,

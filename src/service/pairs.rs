@@ -501,6 +501,7 @@ fn cli_material(m: &pb::MaterialSection) -> MaterialSection {
         poisson_ratio: m.poisson_ratio,
         body1: m.body1.as_ref().map(body),
         body2: m.body2.as_ref().map(body),
+        influence_file: None,
     }
 }
 

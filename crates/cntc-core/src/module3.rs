@@ -529,6 +529,7 @@ impl Patch {
             settings,
             rolling_direction_rad: if d.tang == 0 { 0.0 } else { k.chi },
             extra_rigid_slip,
+            numerical_influence: None,
         };
         if self.config.thermal.is_some() && d.tang != 3 {
             return Err(CntcError::NotSupported(format!(
@@ -933,6 +934,7 @@ impl Patch {
             settings,
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         let key = SolverKey {
             grid,

@@ -24,6 +24,7 @@ use crate::core::fft::{ConvolutionPlan, KernelSet};
 use crate::core::grid::Grid;
 use crate::core::influence::{HalfSpaceInfluence, KernelKind};
 use crate::core::material::CombinedMaterial;
+use crate::core::numerical_influence::InfluenceFile;
 use crate::core::viscoelastic::Viscoelastic;
 
 /// Default memory cap of the kernels held \[bytes\]: 1 GiB, some 600 sets of
@@ -42,7 +43,20 @@ struct Key {
     /// Viscoelastic bodies' (f_g, relaxation length) per body (bits;
     /// zeros for elastic bodies).
     visc: [u64; 4],
+    /// A file of numerical influence coefficients' fingerprint (None: the
+    /// half-space).
+    table: Option<u64>,
     kind: KernelKind,
+}
+
+/// What a set depends on beyond the grid and the elastic constants: an
+/// interfacial layer's flexibility \[m/Pa\] (0: none), viscoelastic bodies,
+/// a file of numerical influence coefficients.
+#[derive(Default, Clone, Copy)]
+struct Bodies<'a> {
+    layer: f64,
+    visc: Option<&'a Viscoelastic>,
+    table: Option<&'a Arc<InfluenceFile>>,
 }
 
 /// One entry: the kernels once built, when it was last used, its size.
@@ -157,7 +171,26 @@ impl KernelCache {
         material: &CombinedMaterial,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, 0.0, None, kind, None)
+        self.get_with(grid, material, Bodies::default(), kind, None)
+    }
+
+    /// [`KernelCache::get`] with the coefficients of a file of numerical
+    /// influence coefficients instead of the half-space's
+    /// ([`KernelSet::from_table`]); None is [`KernelCache::get`]'s set.
+    /// The caller has checked the file against the grid
+    /// ([`InfluenceFile::check_grid`]).
+    pub fn get_numerical(
+        &self,
+        grid: &Grid,
+        material: &CombinedMaterial,
+        table: Option<&Arc<InfluenceFile>>,
+        kind: KernelKind,
+    ) -> Arc<KernelSet> {
+        let bodies = Bodies {
+            table,
+            ..Bodies::default()
+        };
+        self.get_with(grid, material, bodies, kind, None)
     }
 
     /// [`KernelCache::get`] with an interfacial layer of tangential
@@ -171,7 +204,7 @@ impl KernelCache {
         layer_flexibility_m_per_pa: f64,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, layer_flexibility_m_per_pa, None, kind, None)
+        self.get_viscoelastic(grid, material, layer_flexibility_m_per_pa, None, kind)
     }
 
     /// [`KernelCache::get_layered`] with viscoelastic bodies in steady
@@ -184,7 +217,13 @@ impl KernelCache {
         visc: Option<&Viscoelastic>,
         kind: KernelKind,
     ) -> Arc<KernelSet> {
-        self.get_with(grid, material, layer_flexibility_m_per_pa, visc, kind, None)
+        let layer = layer_flexibility_m_per_pa;
+        let bodies = Bodies {
+            layer,
+            visc,
+            table: None,
+        };
+        self.get_with(grid, material, bodies, kind, None)
     }
 
     /// [`KernelCache::get`] for a caller that holds the other kind's set of
@@ -201,8 +240,11 @@ impl KernelCache {
         self.get_with(
             grid,
             material,
-            other.influence.layer_flexibility_m_per_pa(),
-            other.influence.viscoelastic().as_ref(),
+            Bodies {
+                layer: other.influence.layer_flexibility_m_per_pa(),
+                visc: other.influence.viscoelastic().as_ref(),
+                table: other.table.as_ref(),
+            },
             kind,
             Some(other),
         )
@@ -212,11 +254,11 @@ impl KernelCache {
         &self,
         grid: &Grid,
         material: &CombinedMaterial,
-        layer: f64,
-        visc: Option<&Viscoelastic>,
+        bodies: Bodies<'_>,
         kind: KernelKind,
         other: Option<&KernelSet>,
     ) -> Arc<KernelSet> {
+        let Bodies { layer, visc, table } = bodies;
         // -0 and 0 are the same layer (none).
         let layer = if layer == 0.0 { 0.0 } else { layer };
         // Elastic bodies given as viscoelastic ones (f_g = 0) are elastic.
@@ -240,6 +282,7 @@ impl KernelCache {
                 relaxation[1].0.to_bits(),
                 relaxation[1].1.to_bits(),
             ],
+            table: table.map(|t| t.fingerprint()),
             kind,
         };
         loop {
@@ -279,9 +322,14 @@ impl KernelCache {
                         Some(v) => influence.with_viscoelastic(material, v),
                         None => influence,
                     };
-                    let set = Arc::new(match other {
-                        Some(other) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
-                        None => KernelSet::new(plan, influence, kind),
+                    let set = Arc::new(match (table, other) {
+                        (Some(t), other) => {
+                            KernelSet::from_table(plan, influence, kind, t.clone(), other)
+                        }
+                        (None, Some(other)) => {
+                            KernelSet::sharing_inverse_of(plan, influence, kind, other)
+                        }
+                        (None, None) => KernelSet::new(plan, influence, kind),
                     });
                     // Cancellation stays once asked: a build it did not cut
                     // short is whole.

@@ -37,6 +37,7 @@ use rustfft::{Fft, FftNum, FftPlanner};
 
 use crate::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use crate::core::memory::{heap_bytes, HeapBytes};
+use crate::core::numerical_influence::{InfluenceFile, TableKernel};
 use crate::core::simd::multiversion;
 
 /// Smallest even 2-3-5-smooth number >= n (fast FFT sizes in `f64`).
@@ -605,8 +606,17 @@ pub struct KernelSet {
     pub plan: Arc<ConvolutionPlan>,
     /// Which operator this is.
     pub kind: KernelKind,
-    /// The closed-form coefficients the kernels were built from.
+    /// The closed-form coefficients the kernels were built from (with a
+    /// [`KernelSet::table`], its element sizes and materials only).
     pub influence: HalfSpaceInfluence,
+    /// Coefficients from a file of numerical influence coefficients
+    /// ([`crate::core::numerical_influence`]) replacing the half-space's
+    /// ([`KernelSet::from_table`]); None: the half-space.
+    pub table: Option<Arc<InfluenceFile>>,
+    /// With a file of one matrix per loaded row: the set of each row's
+    /// matrix (the products sum them, [`KernelSet::apply_with`]); empty
+    /// otherwise.
+    rows: Vec<KernelSet>,
     /// Distinct kernel spectra ([`ConvolutionPlan::kernel_spectrum`]).
     spectra: Vec<Spectrum<f64>>,
     /// `index[i][j]`: the entry of `spectra` holding kernel (i, j), if present.
@@ -657,10 +667,11 @@ struct KernelTable {
 }
 
 impl KernelTable {
-    /// Kernel `kind` (i, j) of `influence` at every offset of an nx x ny
-    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`]).
+    /// Kernel `kind` (i, j) of `source` at every offset of an nx x ny
+    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`] for the
+    /// half-space).
     fn of(
-        influence: &HalfSpaceInfluence,
+        source: &Source<'_>,
         kind: KernelKind,
         i: Component,
         j: Component,
@@ -671,7 +682,15 @@ impl KernelTable {
         let mut values = vec![0.0; wx * wy];
         for (jy, row) in values.chunks_exact_mut(wx).enumerate() {
             let ky = jy as i64 - (ny as i64 - 1);
-            influence.kernel_row(kind, i, j, -(nx as i64 - 1), ky, row);
+            let kx_lo = -(nx as i64 - 1);
+            match &source.table {
+                None => source.influence.kernel_row(kind, i, j, kx_lo, ky, row),
+                Some(t) => {
+                    for (k, o) in row.iter_mut().enumerate() {
+                        *o = t.kernel(kind, i, j, kx_lo + k as i64, ky);
+                    }
+                }
+            }
         }
         Self { nx, ny, values }
     }
@@ -687,6 +706,56 @@ impl KernelTable {
         let jx = (ox + self.nx as i64 - 1) as usize;
         let jy = (oy + self.ny as i64 - 1) as usize;
         self.values[jy * (2 * self.nx - 1) + jx]
+    }
+}
+
+/// Where a set's kernel values come from: the half-space's closed forms,
+/// or a table of numerical coefficients.
+struct Source<'a> {
+    influence: &'a HalfSpaceInfluence,
+    table: Option<TableKernel<'a>>,
+}
+
+impl<'a> Source<'a> {
+    /// The half-space's kernels, or (with `table`) those of its matrix
+    /// `matrix`.
+    fn new(
+        influence: &'a HalfSpaceInfluence,
+        table: Option<&'a InfluenceFile>,
+        (nx, ny): (usize, usize),
+        matrix: usize,
+    ) -> Self {
+        Self {
+            influence,
+            table: table.map(|file| TableKernel {
+                file,
+                matrix,
+                nx,
+                ny,
+                dx_m: influence.dx_m(),
+                shear_modulus_pa: influence.shear_modulus_pa(),
+            }),
+        }
+    }
+
+    fn kernel(&self, kind: KernelKind, i: Component, j: Component, ox: i64, oy: i64) -> f64 {
+        match &self.table {
+            None => self.influence.kernel(kind, i, j, ox, oy),
+            Some(t) => t.kernel(kind, i, j, ox, oy),
+        }
+    }
+
+    /// Whether the normal/tangential coupling kernels are non-zero.
+    fn coupled(&self) -> bool {
+        match &self.table {
+            None => self.influence.coupled(),
+            Some(t) => t.file.coupled(),
+        }
+    }
+
+    /// Whether kernel (y, x) equals kernel (x, y) (one spectrum for both).
+    fn symmetric_xy(&self) -> bool {
+        self.table.as_ref().is_none_or(|t| t.file.symmetric_xy())
     }
 }
 
@@ -708,6 +777,7 @@ impl KernelSet {
                 .normal_table
                 .as_ref()
                 .map_or(0, |t| t.values.len() * std::mem::size_of::<f64>())
+            + self.rows.iter().map(KernelSet::bytes).sum::<usize>()
     }
 
     /// Builds and transforms all kernels (tangential block, normal, and the
@@ -718,7 +788,65 @@ impl KernelSet {
         influence: HalfSpaceInfluence,
         kind: KernelKind,
     ) -> Self {
-        Self::build(plan, influence, kind, None)
+        Self::build(plan, influence, kind, None, None, 0)
+    }
+
+    /// [`KernelSet::new`] with the coefficients of a file of numerical
+    /// influence coefficients instead of the half-space's ([`TableKernel`]);
+    /// `influence` gives the element sizes and the combined shear modulus
+    /// that scales them. With `other` (a set of the same grid, materials
+    /// and table), its tangential inverse is shared as in
+    /// [`KernelSet::sharing_inverse_of`]. A file of one matrix per loaded
+    /// row (as many as the grid's rows, checked by the caller) builds a set
+    /// per row as well, whose products [`KernelSet::apply_with`] sums; its
+    /// own kernels, preconditioners and [`KernelSet::value`] are the middle
+    /// row's.
+    pub fn from_table(
+        plan: Arc<ConvolutionPlan>,
+        influence: HalfSpaceInfluence,
+        kind: KernelKind,
+        table: Arc<InfluenceFile>,
+        other: Option<&KernelSet>,
+    ) -> Self {
+        let shared = other
+            .filter(|o| {
+                o.influence == influence
+                    && (o.plan.nx, o.plan.ny) == (plan.nx, plan.ny)
+                    && o.table
+                        .as_ref()
+                        .is_some_and(|t| Arc::ptr_eq(t, &table) || **t == *table)
+            })
+            .map(|o| o.tangential_inverse.clone());
+        if table.matrices() == 1 {
+            return Self::build(plan, influence, kind, shared, Some(table), 0);
+        }
+        // One matrix per loaded row: the middle row's set for the
+        // preconditioners and the local scalars, and a set per row for the
+        // products (whose preconditioners are not used: the tangential
+        // inverse is shared).
+        let ny = plan.ny;
+        let mut main = Self::build(
+            plan.clone(),
+            influence,
+            kind,
+            shared,
+            Some(table.clone()),
+            ny / 2,
+        );
+        main.rows = (0..ny)
+            .map(|m| {
+                let inverse = Some(main.tangential_inverse.clone());
+                Self::build(
+                    plan.clone(),
+                    influence,
+                    kind,
+                    inverse,
+                    Some(table.clone()),
+                    m,
+                )
+            })
+            .collect();
+        main
     }
 
     /// [`KernelSet::new`], taking the tangential inverse (the displacement
@@ -731,13 +859,16 @@ impl KernelSet {
         kind: KernelKind,
         other: &KernelSet,
     ) -> Self {
-        let same =
-            other.influence == influence && (other.plan.nx, other.plan.ny) == (plan.nx, plan.ny);
+        let same = other.influence == influence
+            && other.table.is_none()
+            && (other.plan.nx, other.plan.ny) == (plan.nx, plan.ny);
         Self::build(
             plan,
             influence,
             kind,
             same.then(|| other.tangential_inverse.clone()),
+            None,
+            0,
         )
     }
 
@@ -746,8 +877,11 @@ impl KernelSet {
         influence: HalfSpaceInfluence,
         kind: KernelKind,
         shared_inverse: Option<Arc<TangentialInverse>>,
+        table: Option<Arc<InfluenceFile>>,
+        matrix: usize,
     ) -> Self {
         let (nx, ny) = (plan.nx, plan.ny);
+        let source = Source::new(&influence, table.as_deref(), (nx, ny), matrix);
         let mut ws = plan.workspace();
         let single_plan = ConvolutionPlan::<f32>::new(nx, ny);
         // The single-precision spectra are transformed in f64 on a plan of
@@ -755,7 +889,8 @@ impl KernelSet {
         // ones) and then rounded.
         let wide = ConvolutionPlan::<f64>::with_padding(nx, ny, single_plan.px, single_plan.py);
         let mut wide_ws = wide.workspace();
-        let coupled = influence.coupled();
+        let coupled = source.coupled();
+        let symmetric_xy = source.symmetric_xy();
         let mut spectra = Vec::new();
         let mut single = Vec::new();
         let mut index = [[None; 3]; 3];
@@ -769,25 +904,29 @@ impl KernelSet {
                 if !needed {
                     continue;
                 }
-                if a == 1 && b == 0 {
+                if a == 1 && b == 0 && symmetric_xy {
                     // A_yx(X) = A_xy(X) (both are nu F_xy): share the spectrum.
                     continue;
                 }
                 index[a][b] = Some(spectra.len());
-                let t = KernelTable::of(&influence, kind, i, j, nx, ny);
+                let t = KernelTable::of(&source, kind, i, j, nx, ny);
                 spectra.push(plan.kernel_spectrum(&mut ws, |ox, oy| t.at(ox, oy)));
                 single.push(
                     Spectrum::new(wide.kernel_spectrum(&mut wide_ws, |ox, oy| t.at(ox, oy)))
                         .narrow(),
                 );
-                if kind == KernelKind::Displacement && a < 2 && b < 2 {
+                if kind == KernelKind::Displacement && a < 2 && b < 2 && !(a == 1 && b == 0) {
+                    // (y, x) of a table that is not symmetric: the
+                    // preconditioner takes (x, y) for both.
                     tangential_tables[a + b] = Some(t);
                 } else if a == 2 && b == 2 {
                     normal_table = Some(t);
                 }
             }
         }
-        index[1][0] = index[0][1];
+        if symmetric_xy {
+            index[1][0] = index[0][1];
+        }
         let mut bound: f64 = 0.0;
         if let (Some(xx), Some(xy), Some(yy)) = (index[0][0], index[0][1], index[1][1]) {
             let (kxx, kxy, kyy) = (&spectra[xx], &spectra[xy], &spectra[yy]);
@@ -814,7 +953,7 @@ impl KernelSet {
             spectra.push(periodic_inverse(&pc, |ox, oy| {
                 table
                     .and_then(|t: &KernelTable| t.get(ox, oy))
-                    .unwrap_or_else(|| influence.kernel(kind, Component::N, Component::N, ox, oy))
+                    .unwrap_or_else(|| source.kernel(kind, Component::N, Component::N, ox, oy))
             }));
             normal_inverse = Some((pc, spectra.len() - 1));
         }
@@ -831,7 +970,7 @@ impl KernelSet {
             let inverse = periodic_inverse_2x2(&wide_pc, |i, j, ox, oy| {
                 match &tangential_tables[i as usize + j as usize] {
                     Some(t) => t.at(ox, oy),
-                    None => influence.kernel(KernelKind::Displacement, i, j, ox, oy),
+                    None => source.kernel(KernelKind::Displacement, i, j, ox, oy),
                 }
             });
             Arc::new(TangentialInverse {
@@ -843,10 +982,15 @@ impl KernelSet {
             })
         });
         let spectra = spectra.into_iter().map(Spectrum::new).collect();
+        let diagonal = COMPONENTS.map(|c| source.kernel(kind, c, c, 0, 0));
+        let steady_diagonal = [Component::X, Component::Y]
+            .map(|c| source.kernel(KernelKind::SteadyRolling, c, c, 0, 0));
         Self {
             plan,
             kind,
             influence,
+            table,
+            rows: Vec::new(),
             spectra,
             index,
             single: SingleKernels {
@@ -857,9 +1001,8 @@ impl KernelSet {
             normal_inverse,
             tangential_inverse,
             normal_table,
-            diagonal: COMPONENTS.map(|c| influence.kernel(kind, c, c, 0, 0)),
-            steady_diagonal: [Component::X, Component::Y]
-                .map(|c| influence.kernel(KernelKind::SteadyRolling, c, c, 0, 0)),
+            diagonal,
+            steady_diagonal,
         }
     }
 
@@ -875,6 +1018,8 @@ impl KernelSet {
                 .map(|(pc, _)| Box::new(Buffers::new(pc))),
             single: Box::new(Buffers::new(&self.single.plan)),
             tangential_pc: Box::new(Buffers::new(&self.tangential_inverse.plan)),
+            rows: (!self.rows.is_empty())
+                .then(|| Box::new(RowScratch::new(self.plan.nx * self.plan.ny))),
         }
     }
 
@@ -883,19 +1028,29 @@ impl KernelSet {
     /// this set has a preconditioner.
     pub fn fits(&self, ws: &OperatorWorkspace) -> bool {
         let (nx, ny, pc) = self.workspace_shape();
-        ws.shape.0 == nx && ws.shape.1 == ny && (ws.shape.2 || !pc)
+        ws.shape.0 == nx
+            && ws.shape.1 == ny
+            && (ws.shape.2 || !pc)
+            && (ws.rows.is_some() || self.rows.is_empty())
     }
 
     fn workspace_shape(&self) -> (usize, usize, bool) {
         (self.plan.nx, self.plan.ny, self.normal_inverse.is_some())
     }
 
-    /// The real-space kernel value (i, j) at element offset (ox, oy).
+    /// The real-space kernel value (i, j) at element offset (ox, oy) (with
+    /// one matrix per loaded row: for a load on the middle row).
     pub fn value(&self, i: Component, j: Component, ox: i64, oy: i64) -> f64 {
         if i == j && ox == 0 && oy == 0 {
             return self.diagonal[i as usize];
         }
-        self.influence.kernel(self.kind, i, j, ox, oy)
+        Source::new(
+            &self.influence,
+            self.table.as_deref(),
+            (self.plan.nx, self.plan.ny),
+            self.rows.len() / 2,
+        )
+        .kernel(self.kind, i, j, ox, oy)
     }
 
     /// `out[I - offset] += sum_k A_nn(I, J_k - offset) c_k` over the grid's
@@ -912,6 +1067,14 @@ impl KernelSet {
         offset: usize,
         out: &mut [f64],
     ) -> bool {
+        if !self.rows.is_empty() {
+            // Each column through its row's matrix.
+            let nx = self.plan.nx;
+            return columns.iter().all(|&(j, c)| {
+                let row = &self.rows[((j - offset) / nx).min(self.rows.len() - 1)];
+                row.add_normal_columns(&[(j, c)], offset, out)
+            });
+        }
         let Some(t) = &self.normal_table else {
             return false;
         };
@@ -959,6 +1122,8 @@ impl KernelSet {
     }
 
     /// [`KernelSet::apply`] in the given precision (see [`Precision`]).
+    /// With one matrix per loaded row: up to ny products
+    /// (`apply_rows`).
     pub fn apply_with(
         &self,
         precision: Precision,
@@ -966,6 +1131,9 @@ impl KernelSet {
         inputs: &[(Component, &[f64])],
         outputs: &mut [(Component, &mut [f64])],
     ) {
+        if !self.rows.is_empty() {
+            return self.apply_rows(precision, ows, inputs, outputs);
+        }
         let index = &self.index;
         match precision {
             Precision::Double => apply_indexed(
@@ -988,6 +1156,76 @@ impl KernelSet {
                 )
             }
         }
+    }
+
+    /// [`KernelSet::apply_with`] of a set with one matrix per loaded row:
+    /// the sum over the grid's rows jy of the products of row jy's kernels
+    /// with the inputs restricted to row jy (rows whose inputs are all zero
+    /// skipped): up to ny FFT products, exact. No allocation with a
+    /// workspace of this set ([`KernelSet::workspace`]).
+    fn apply_rows(
+        &self,
+        precision: Precision,
+        ows: &mut OperatorWorkspace,
+        inputs: &[(Component, &[f64])],
+        outputs: &mut [(Component, &mut [f64])],
+    ) {
+        let nx = self.plan.nx;
+        let mut scratch = ows
+            .rows
+            .take()
+            .unwrap_or_else(|| Box::new(RowScratch::new(nx * self.plan.ny)));
+        for (_, o) in outputs.iter_mut() {
+            o.fill(0.0);
+        }
+        let RowScratch { masked, out } = &mut *scratch;
+        for (jy, set) in self.rows.iter().enumerate() {
+            let span = jy * nx..(jy + 1) * nx;
+            if inputs
+                .iter()
+                .all(|(_, v)| v[span.clone()].iter().all(|&x| x == 0.0))
+            {
+                continue;
+            }
+            for ((_, v), m) in inputs.iter().zip(masked.iter_mut()) {
+                m[span.clone()].copy_from_slice(&v[span.clone()]);
+            }
+            {
+                let [m0, m1, m2] = &*masked;
+                let mut ins = [
+                    (Component::X, &m0[..]),
+                    (Component::Y, &m1[..]),
+                    (Component::N, &m2[..]),
+                ];
+                for (k, (c, _)) in inputs.iter().enumerate() {
+                    ins[k].0 = *c;
+                }
+                let [o0, o1, o2] = &mut *out;
+                let mut outs = [
+                    (Component::X, &mut o0[..]),
+                    (Component::Y, &mut o1[..]),
+                    (Component::N, &mut o2[..]),
+                ];
+                for (k, (c, _)) in outputs.iter().enumerate() {
+                    outs[k].0 = *c;
+                }
+                set.apply_with(
+                    precision,
+                    ows,
+                    &ins[..inputs.len()],
+                    &mut outs[..outputs.len()],
+                );
+                for ((_, o), (_, t)) in outputs.iter_mut().zip(outs.iter()) {
+                    for (a, b) in o.iter_mut().zip(t.iter()) {
+                        *a += b;
+                    }
+                }
+            }
+            for m in masked.iter_mut().take(inputs.len()) {
+                m[span.clone()].fill(0.0);
+            }
+        }
+        ows.rows = Some(scratch);
     }
 
     /// `z = C⁻¹ r` on the grid, with C the circulant extension of the normal
@@ -1369,6 +1607,32 @@ pub struct OperatorWorkspace {
     single: Box<Buffers<f32>>,
     /// Buffers of the tangential preconditioner's plan.
     tangential_pc: Box<Buffers<f32>>,
+    /// The row-by-row products of a set with one matrix per loaded row.
+    rows: Option<Box<RowScratch>>,
+}
+
+/// Buffers of [`KernelSet::apply_with`] for a set with one matrix per
+/// loaded row: up to three inputs restricted to one row, and the outputs
+/// of that row's product.
+#[derive(Clone)]
+struct RowScratch {
+    masked: [Vec<f64>; 3],
+    out: [Vec<f64>; 3],
+}
+
+impl RowScratch {
+    fn new(n: usize) -> Self {
+        Self {
+            masked: std::array::from_fn(|_| vec![0.0; n]),
+            out: std::array::from_fn(|_| vec![0.0; n]),
+        }
+    }
+}
+
+impl HeapBytes for RowScratch {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.masked, self.out)
+    }
 }
 
 multiversion! {
@@ -1413,7 +1677,13 @@ fn add_columns_body(
 /// The buffers of all four plans (not the kernels, which the set holds).
 impl HeapBytes for OperatorWorkspace {
     fn heap_bytes(&self) -> usize {
-        heap_bytes!(self.main, self.pc, self.single, self.tangential_pc)
+        heap_bytes!(
+            self.main,
+            self.pc,
+            self.single,
+            self.tangential_pc,
+            self.rows
+        )
     }
 }
 

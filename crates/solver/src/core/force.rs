@@ -851,6 +851,7 @@ mod tests {
             settings: Default::default(),
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         p.settings.tangential.tolerance = 1e-10;
         p

@@ -344,6 +344,7 @@ impl RollingFrame {
             rolling_direction_rad: direction(p.rolling_direction_rad, p.grid.is_line())
                 .map_or(0.0, |d| d.oblique_rad),
             extra_rigid_slip,
+            numerical_influence: p.numerical_influence.clone(),
         }
     }
 

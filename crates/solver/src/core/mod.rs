@@ -21,6 +21,7 @@ pub mod layer;
 pub mod material;
 pub mod memory;
 pub mod normal;
+pub mod numerical_influence;
 pub mod polach;
 mod predict;
 pub mod problem;

@@ -92,8 +92,10 @@ use crate::core::grid::Grid;
 use crate::core::layer::InterfacialLayer;
 use crate::core::material::CombinedMaterial;
 use crate::core::normal::{NormalLoad, NormalSettings};
+use crate::core::numerical_influence::InfluenceFile;
 use crate::core::tangential::TangentialSettings;
 use crate::core::viscoelastic::Viscoelastic;
+use std::sync::Arc;
 
 /// Friction: Coulomb's law with static and kinetic coefficients, or a
 /// slip-velocity dependent law ([`crate::core::friclaw`]).
@@ -459,6 +461,15 @@ pub struct ContactProblem {
     pub rolling_direction_rad: f64,
     /// Extra rigid slip per element (see the module conventions); None: none.
     pub extra_rigid_slip: Option<ExtraRigidSlip>,
+    /// Influence coefficients from a file of numerical influence
+    /// coefficients (CONTACT's C3 = 9, [`crate::core::numerical_influence`])
+    /// instead of the half-space's; None: the half-space. The exact model
+    /// takes files of one matrix or of one per row of the grid, on a
+    /// surface grid whose element sizes are the file's, elastic bodies in contact (no interfacial layer),
+    /// rolling in +x (0): checked by [`ContactProblem::validate`], naming
+    /// [`NUMERICAL_INFLUENCE_KEY`]. The materials' combined shear modulus
+    /// scales the coefficients.
+    pub numerical_influence: Option<Arc<InfluenceFile>>,
 }
 
 /// An extra rigid slip per element [-] added to the creepages' rigid slip
@@ -633,6 +644,58 @@ pub const INTERFACIAL_LAYER_KEY: &str = "interfacial_layer";
 /// once: [`crate::core::cache`]).
 pub const MAX_VISCOELASTIC_ELEMENTS: usize = 4096;
 
+/// The key of [`ContactProblem::numerical_influence`] in errors (the
+/// case file's key).
+pub const NUMERICAL_INFLUENCE_KEY: &str = "material.influence_file";
+
+/// Largest rows x elements of a grid with a file of one matrix per loaded
+/// row: the solver holds a kernel set per row (under 0.5 kB an element
+/// each, 285 B at 21 x 17: 2^20 at most about 0.5 GB) and a product costs
+/// up to a product per row.
+pub const MAX_PER_ROW_WORK: usize = 1 << 20;
+
+/// Refuses a file of numerical influence coefficients the exact model
+/// cannot take with this problem (see
+/// [`ContactProblem::numerical_influence`]), naming
+/// [`NUMERICAL_INFLUENCE_KEY`] and the file's field at fault.
+fn check_numerical_influence(p: &ContactProblem, file: &InfluenceFile) -> Result<(), ContactError> {
+    let refuse = |what: &str| {
+        Err(ContactError::invalid(
+            NUMERICAL_INFLUENCE_KEY,
+            format!("numerical influence coefficients are taken {what}"),
+        ))
+    };
+    if p.grid.is_line() {
+        return refuse("on a surface grid, not in line contact");
+    }
+    if p.settings.interfacial_layer.is_some() {
+        return refuse("for bodies in contact, not with an interfacial layer");
+    }
+    if p.settings.viscoelastic.is_some() {
+        return refuse("for elastic bodies, not viscoelastic ones");
+    }
+    if p.rolling_direction_rad != 0.0 {
+        return refuse("rolling in +x only (rolling direction 0)");
+    }
+    file.check_grid(p.grid.ny, p.grid.dx_m, p.grid.dy_m)
+        .map_err(|(field, reason)| {
+            ContactError::invalid(format!("{NUMERICAL_INFLUENCE_KEY}: {field}"), reason)
+        })?;
+    let work = p.grid.ny.saturating_mul(p.grid.len());
+    if file.matrices() > 1 && work > MAX_PER_ROW_WORK {
+        return Err(ContactError::invalid(
+            NUMERICAL_INFLUENCE_KEY,
+            format!(
+                "a file of one matrix per loaded row on a grid of {} x {} elements: rows x \
+                 elements = {work} over {MAX_PER_ROW_WORK} (one kernel set per row: memory and \
+                 the cost of a product grow with it)",
+                p.grid.nx, p.grid.ny
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The key of [`SolverSettings::viscoelastic`] in errors.
 pub const VISCOELASTIC_KEY: &str = "viscoelastic";
 
@@ -692,6 +755,9 @@ impl ContactProblem {
             ));
         }
         validate_load("load", &self.load)?;
+        if let Some(file) = &self.numerical_influence {
+            check_numerical_influence(self, file)?;
+        }
         if let Some(layer) = &self.settings.interfacial_layer {
             layer.validate(INTERFACIAL_LAYER_KEY)?;
             layer.check_friction(INTERFACIAL_LAYER_KEY, &self.friction)?;

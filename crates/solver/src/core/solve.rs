@@ -271,13 +271,7 @@ impl ContactSolver {
             direction(problem.rolling_direction_rad, problem.grid.is_line()).map_or(0, |d| d.turns);
         let frame = RollingFrame::new(turns, problem.grid);
         let grid = frame.rolling_grid();
-        let displacement = cache.get_viscoelastic(
-            &grid,
-            &problem.material,
-            layer_flexibility(problem),
-            problem.settings.viscoelastic.as_ref(),
-            KernelKind::Displacement,
-        );
+        let displacement = displacement_kernels(problem, &grid, cache);
         let n = grid.len();
         let z = || vec![0.0; n];
         Self {
@@ -333,13 +327,7 @@ impl ContactSolver {
         let grid = frame.rolling_grid();
         let same_shape = (grid.nx, grid.ny, grid.dx_m, grid.dy_m)
             == (self.grid.nx, self.grid.ny, self.grid.dx_m, self.grid.dy_m);
-        let displacement = cache.get_viscoelastic(
-            &grid,
-            &problem.material,
-            layer_flexibility(problem),
-            problem.settings.viscoelastic.as_ref(),
-            KernelKind::Displacement,
-        );
+        let displacement = displacement_kernels(problem, &grid, cache);
         if !(same_shape && Arc::ptr_eq(&displacement, &self.displacement)) {
             *self = Self::new(problem, cache);
             return;
@@ -1775,6 +1763,31 @@ pub fn layer_flexibility(problem: &ContactProblem) -> f64 {
     }
 }
 
+/// The displacement kernels of `problem` on its rolling frame's `grid`:
+/// the half-space's (with the problem's layer and viscoelastic bodies), or
+/// a file's of numerical influence coefficients.
+fn displacement_kernels(
+    problem: &ContactProblem,
+    grid: &Grid,
+    cache: &KernelCache,
+) -> Arc<KernelSet> {
+    match &problem.numerical_influence {
+        Some(table) => cache.get_numerical(
+            grid,
+            &problem.material,
+            Some(table),
+            KernelKind::Displacement,
+        ),
+        None => cache.get_viscoelastic(
+            grid,
+            &problem.material,
+            layer_flexibility(problem),
+            problem.settings.viscoelastic.as_ref(),
+            KernelKind::Displacement,
+        ),
+    }
+}
+
 /// `problem`'s interfacial layer when it deforms plastically.
 fn plastic_layer(problem: &ContactProblem) -> Option<InterfacialLayer> {
     problem
@@ -1998,6 +2011,7 @@ mod tests {
             settings: Default::default(),
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         }
     }
 

@@ -671,6 +671,7 @@ mod tests {
             settings: Default::default(),
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         let s = solve(&problem).unwrap().pop().unwrap();
         let input = ThermalInput {

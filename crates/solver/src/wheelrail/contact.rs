@@ -3028,6 +3028,7 @@ fn build_patch(
                 settings: input.settings.solver,
                 rolling_direction_rad: if backward { std::f64::consts::PI } else { 0.0 },
                 extra_rigid_slip: None,
+                numerical_influence: None,
             };
             // The wheel's last solver renewed (its kernels and buffers).
             let mut solver = match spare.take() {
@@ -4417,6 +4418,7 @@ mod tests {
                 settings: Default::default(),
                 rolling_direction_rad: 0.0,
                 extra_rigid_slip: None,
+                numerical_influence: None,
             };
             let boxed = std::mem::size_of::<ContactSolver>();
             let n = grid.len();

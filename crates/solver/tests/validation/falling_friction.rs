@@ -68,6 +68,7 @@ fn problem(kinematics: Kinematics, start: SlipStart) -> ContactProblem {
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 
@@ -272,6 +273,7 @@ fn full_sliding_follows_the_law_at_the_rigid_slip_velocity() {
             settings: SolverSettings::default(),
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         let s = railcontact_solver::core::solve::solve(&p)
             .unwrap()

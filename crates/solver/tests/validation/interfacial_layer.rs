@@ -32,22 +32,12 @@ use railcontact_solver::core::problem::{
 use railcontact_solver::core::solution::{ContactSolution, ElementState, SolveStatus};
 use railcontact_solver::core::solve::ContactSolver;
 
+use crate::printed;
+
 /// CONTACT's units: mm, N/mm² (= 1e6 Pa), N/mm³ (= 1e9 Pa/m).
 const MM: f64 = 1e-3;
 const N_PER_MM2: f64 = 1e6;
 const N_PER_MM3: f64 = 1e9;
-
-/// A number CONTACT printed (`"262.4"`, `"-1.680E-02"`) and half a unit
-/// of its last digit: the interval its exact value lies in.
-fn printed(s: &str) -> (f64, f64) {
-    let value: f64 = s.parse().expect("a number");
-    let (mantissa, exponent) = match s.find(['E', 'e']) {
-        Some(i) => (&s[..i], s[i + 1..].parse::<i32>().expect("an exponent")),
-        None => (s, 0),
-    };
-    let decimals = mantissa.find('.').map_or(0, |i| mantissa.len() - i - 1) as i32;
-    (value, 0.5 * 10f64.powi(exponent - decimals))
-}
 
 /// Checks `ours` (in CONTACT's unit) against CONTACT's printed `want`.
 fn check(what: &str, ours: f64, want: &str) {
@@ -92,6 +82,7 @@ fn one_element(layer: Option<InterfacialLayer>, steps: Vec<ShiftStep>) -> Contac
         },
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 
@@ -413,6 +404,7 @@ mod carter_plast {
             },
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         }
     }
 

@@ -51,6 +51,7 @@ fn rolling_line(
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 

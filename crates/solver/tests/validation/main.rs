@@ -18,10 +18,23 @@ pub fn profile_path(name: &str) -> String {
     format!("{}/profiles/{}", env!("CARGO_MANIFEST_DIR"), name)
 }
 
+/// A number CONTACT printed (`"262.4"`, `"-1.680E-02"`) and half a unit
+/// of its last digit: the interval its exact value lies in.
+pub fn printed(s: &str) -> (f64, f64) {
+    let value: f64 = s.parse().expect("a number");
+    let (mantissa, exponent) = match s.find(['E', 'e']) {
+        Some(i) => (&s[..i], s[i + 1..].parse::<i32>().expect("an exponent")),
+        None => (s, 0),
+    };
+    let decimals = mantissa.find('.').map_or(0, |i| mantissa.len() - i - 1) as i32;
+    (value, 0.5 * 10f64.powi(exponent - decimals))
+}
+
 mod conformal;
 mod falling_friction;
 mod interfacial_layer;
 mod line_contact;
+mod numerical_influence;
 mod perfc;
 mod perfc_case;
 mod physics;

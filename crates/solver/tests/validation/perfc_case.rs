@@ -53,6 +53,7 @@ pub fn case(level: usize, heights: &[f64], kinematics: Kinematics) -> ContactPro
         settings: Default::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 

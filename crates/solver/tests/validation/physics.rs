@@ -58,6 +58,7 @@ fn quadratic(
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 
@@ -456,6 +457,7 @@ fn carter_creep_curve_on_a_long_strip() {
             settings: SolverSettings::default(),
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         let probe = one(&make(1e-6));
         let n_line = line(&probe.fields.pressure_pa);
@@ -690,6 +692,7 @@ fn conformal_case_1(n: usize, spin_offset: f64) -> ([f64; 5], [usize; 2]) {
         }),
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
+        numerical_influence: None,
     };
     let s = one(&p);
     let t = &s.totals;

@@ -53,6 +53,7 @@ fn problem(a: f64, b: f64, n: [usize; 2], mu: f64, kin: Kinematics, chi: f64) ->
         settings: SolverSettings::default(),
         rolling_direction_rad: chi,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 

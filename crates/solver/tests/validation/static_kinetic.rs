@@ -58,6 +58,7 @@ fn problem(n: usize, friction: Friction, kinematics: Kinematics) -> ContactProbl
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 

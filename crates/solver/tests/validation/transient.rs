@@ -78,6 +78,7 @@ fn problem() -> ContactProblem {
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 
@@ -285,6 +286,7 @@ fn prescribed_force_shift_matches_contact_cattaneo_case_2() {
         settings: SolverSettings::default(),
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     };
     let mut solver = ContactSolver::new(&problem, &KernelCache::default());
     let target = PrescribedForce {

@@ -89,6 +89,7 @@ fn cylinders(g: f64, visc: Option<Viscoelastic>, grid: Grid, xi: Option<f64>) ->
         },
         rolling_direction_rad: 0.0,
         extra_rigid_slip: None,
+        numerical_influence: None,
     }
 }
 
@@ -395,6 +396,7 @@ fn viscoelastic_ellipse_tends_to_both_elastic_limits() {
             },
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         };
         one(&p).totals.fx_n
     };
@@ -430,6 +432,7 @@ fn viscoelastic_surface_grids_are_bounded() {
             },
             rolling_direction_rad: 0.0,
             extra_rigid_slip: None,
+            numerical_influence: None,
         }
     };
     let e = problem(65, 1.0).validate().unwrap_err().to_string();

@@ -94,6 +94,7 @@ fn a22_patch_temperatures_equal_the_patch_path_on_the_same_patch() {
                 settings: wheelrail_solver_settings(),
                 rolling_direction_rad: 0.0,
                 extra_rigid_slip: None,
+                numerical_influence: None,
             };
             let again = solve(&problem).unwrap().pop().unwrap();
             let patch_path =

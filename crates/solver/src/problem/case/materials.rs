@@ -111,6 +111,14 @@ pub struct MaterialSection {
     pub body1: Option<Material>,
     /// Body 2 (the wheel), same keys.
     pub body2: Option<Material>,
+    /// A file of numerical influence coefficients (CONTACT's C3 = 9 and
+    /// its format, [`crate::core::numerical_influence`]) replacing the
+    /// half-space's, relative to the case file's directory; exact model,
+    /// the grid's element sizes the file's (`grid.window_x_m` = nx dx,
+    /// `grid.window_y_m` = ny dy). The materials' combined shear modulus
+    /// scales the coefficients.
+    #[serde(default)]
+    pub influence_file: Option<String>,
 }
 
 impl MaterialSection {

@@ -5,6 +5,9 @@
 //! [`CaseFile`] for the schema; [`Case::from_toml`] parses and validates a
 //! file into a [`Case`] that the models can run without further checks.
 
+use std::path::Path;
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use crate::conformal::frictional::{ConformalKinematics, ConformalSettings};
@@ -18,9 +21,10 @@ use crate::core::hertz::HertzSolution;
 use crate::core::layer::InterfacialLayer;
 use crate::core::material::{soft_modulus_note, CombinedMaterial};
 use crate::core::normal::NormalLoad;
+use crate::core::numerical_influence::InfluenceFile;
 use crate::core::problem::{
     check_viscoelastic_grid, ContactProblem, Creepages, ExtraRigidSlip, Friction, Kinematics,
-    SolverSettings,
+    SolverSettings, NUMERICAL_INFLUENCE_KEY,
 };
 use crate::core::temperature::ThermalInput;
 use crate::core::viscoelastic::Viscoelastic;
@@ -368,6 +372,9 @@ pub struct Case {
     /// iteration starts (None: `friction.start`); empty when no step
     /// gives one.
     pub step_slip_starts: Vec<Option<SlipStart>>,
+    /// `material.influence_file`: numerical influence coefficients
+    /// replacing the half-space's (exact model); None: the half-space.
+    pub numerical_influence: Option<Arc<InfluenceFile>>,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -378,16 +385,44 @@ impl Case {
     /// Parses and validates a case file's text. Errors are
     /// [`CaseError::BadInput`] and name the offending key.
     pub fn from_toml(text: &str) -> Result<Case, CaseError> {
+        Case::from_toml_in(text, Path::new("."))
+    }
+
+    /// [`Case::from_toml`] for a case file in directory `dir`: the files
+    /// it names (`material.influence_file`) are read relative to it.
+    pub fn from_toml_in(text: &str, dir: &Path) -> Result<Case, CaseError> {
         let file: CaseFile = toml::from_str(text)
             .map_err(|e| CaseError::BadInput(format!("case file: {}", e.to_string().trim_end())))?;
-        Case::from_file(file)
+        let table = match &file.material.influence_file {
+            Some(name) => Some(Arc::new(
+                InfluenceFile::read(&dir.join(name))
+                    .map_err(|e| bad(NUMERICAL_INFLUENCE_KEY, e.to_string()))?,
+            )),
+            None => None,
+        };
+        Case::from_file_with(file, table)
     }
 
     /// Validates a parsed case file. A body softer than rubber gets a note
     /// ([`soft_modulus_note`]), which a refusal of the case also carries:
     /// a modulus in GPa written as Pa is valid physics, but usually makes
     /// the load's patch absurd.
+    /// A file named by `material.influence_file` is refused here (nothing
+    /// is read from disk): case files give it ([`Case::from_toml_in`]).
     pub fn from_file(file: CaseFile) -> Result<Case, CaseError> {
+        if file.material.influence_file.is_some() {
+            return Err(bad(
+                NUMERICAL_INFLUENCE_KEY,
+                "a file of influence coefficients is read from case files only (railcontact solve)",
+            ));
+        }
+        Case::from_file_with(file, None)
+    }
+
+    fn from_file_with(
+        file: CaseFile,
+        table: Option<Arc<InfluenceFile>>,
+    ) -> Result<Case, CaseError> {
         let material = file.material.combine()?;
         let bodies = if file.material.body1.is_some() {
             vec![
@@ -401,7 +436,7 @@ impl Case {
             .into_iter()
             .filter_map(|(key, m)| soft_modulus_note(key, m.shear_modulus_pa))
             .collect();
-        match Case::validate(file, material, soft.clone()) {
+        match Case::validate(file, material, table, soft.clone()) {
             Err(CaseError::BadInput(m)) if !soft.is_empty() => Err(CaseError::BadInput(format!(
                 "{m} (note: {})",
                 soft.join("; ")
@@ -413,9 +448,19 @@ impl Case {
     fn validate(
         file: CaseFile,
         material: CombinedMaterial,
+        numerical_influence: Option<Arc<InfluenceFile>>,
         mut notes: Vec<String>,
     ) -> Result<Case, CaseError> {
         let model = file.model;
+        if numerical_influence.is_some() && model != Model::Exact {
+            return Err(bad(
+                NUMERICAL_INFLUENCE_KEY,
+                format!(
+                    "numerical influence coefficients are taken by model = \"exact\" only, not by \"{}\"",
+                    model.name()
+                ),
+            ));
+        }
 
         let (geometry, a_per_m, b_per_m) = file.geometry.validate()?;
         check_model_geometry(model, &geometry)?;
@@ -562,7 +607,7 @@ impl Case {
             // Before any solver integrates the coefficients (seconds).
             check_viscoelastic_grid(visc, nx, ny, geometry.is_line())?;
         }
-        Ok(Case {
+        let mut case = Case {
             rolling_direction_rad: file.rolling_direction_rad,
             gap_m,
             extra_rigid_slip,
@@ -594,7 +639,22 @@ impl Case {
                 .transpose()?,
             temperature,
             rigid_slip,
-        })
+            numerical_influence,
+        };
+        if let Some(t) = case.numerical_influence.clone() {
+            // The file against the grid and the problem (element sizes,
+            // its kind, line contact, layer, rolling direction) when the
+            // case is read, before a solve.
+            case.problem()?.validate()?;
+            let (mx, my) = t.size();
+            let note = format!(
+                "material.influence_file: the influence coefficients are the file's (nmatrix = {}, \
+                 mxfile x myfile = {mx} x {my}), not the half-space's",
+                t.matrices()
+            );
+            case.notes.push(note);
+        }
+        Ok(case)
     }
 
     /// The potential contact grid of the exact model (one row for a line
@@ -627,6 +687,7 @@ impl Case {
             settings: self.settings,
             rolling_direction_rad: self.rolling_direction_rad,
             extra_rigid_slip: self.extra_rigid_slip.clone(),
+            numerical_influence: self.numerical_influence.clone(),
         })
     }
 
