@@ -2992,9 +2992,12 @@ fn build_patch(
                 let closest = surface.as_mut().and_then(|w| w.normal_position(l.dx_m, s));
                 for ix in 0..grid.nx {
                     let x = grid.x_m(ix);
-                    let exact = closest
-                        .zip(surface.as_mut().and_then(|w| w.normal_position(x, s)))
-                        .map(|(c, w)| l.gap_m + c - w);
+                    let exact = closest.and_then(|c| {
+                        let d = x - l.dx_m;
+                        let guess = c - 0.5 * l.kx_per_m * d * d;
+                        let w = surface.as_mut()?.normal_position_from(x, s, guess)?;
+                        Some(l.gap_m + c - w)
+                    });
                     gap_m[grid.index(ix, is)] = exact.unwrap_or_else(|| geom.gap_at(x, s));
                 }
             }

@@ -1288,6 +1288,17 @@ impl<'a> WheelSurface<'a> {
     /// (`x_m` from the reference along the track, `s_m` along the plane's
     /// lateral tangent) \[m\]; None where Newton's method finds none.
     pub(crate) fn normal_position(&mut self, x_m: f64, s_m: f64) -> Option<f64> {
+        self.normal_position_from(x_m, s_m, 0.0)
+    }
+
+    /// [`WheelSurface::normal_position`] from the guess `lambda_m` (the
+    /// parabola's, which leaves Newton's method a step or two).
+    pub(crate) fn normal_position_from(
+        &mut self,
+        x_m: f64,
+        s_m: f64,
+        lambda_m: f64,
+    ) -> Option<f64> {
         let (o, t, n, c, a) = (
             self.origin,
             self.tangent,
@@ -1302,7 +1313,7 @@ impl<'a> WheelSurface<'a> {
             o[1] + s_m * t[1] - c[1],
             o[2] + s_m * t[2] - c[2],
         ];
-        let mut lambda = 0.0;
+        let mut lambda = lambda_m;
         for _ in 0..12 {
             let w = [
                 p[0] + lambda * n[0],
