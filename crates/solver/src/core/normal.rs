@@ -4,9 +4,13 @@
 //! the load rescaling for approach control), preconditioned as in
 //! Vollebregt's BCCG (J. Comput. Phys. 257 (2014) 333–351) by the inverse of
 //! a circulant approximation of the influence matrix on the free set, and
-//! started from a Hertz-like pressure. With the preconditioner the iteration
-//! count hardly grows with the grid (about 10 for the Hertz circle from 32x32
-//! to 128x128, against 28 to 62 without).
+//! started from a Hertz-like pressure (or from the pressure given: a cold
+//! solve of [`crate::core::solve::ContactSolver`] under force control gives
+//! Hertz's where the gap is Hertzian, [`hertz_start`]). With the
+//! preconditioner the iteration count hardly grows with the grid (about 10
+//! for the Hertz circle from 32x32 to 128x128 from the Hertz-like start,
+//! against 28 to 62 without; 5 or 6 for CONTACT's `tractcurv` ellipse from
+//! 48x44 to 575x647 from Hertz's).
 //!
 //! One operator product an iteration: the displacements A p are carried
 //! along the steps, and after a step that clamped elements to zero pressure
@@ -25,6 +29,8 @@
 
 use crate::core::cancel;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
+use crate::core::grid::Grid;
+use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::influence::{Component, KernelKind};
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::simd::multiversion;
@@ -678,6 +684,90 @@ fn initial_guess(
             }
         }
     }
+}
+
+/// Largest misfit of the quadratic fitted at the gap's minimum over the
+/// Hertz ellipse of [`hertz_start`], relative to Hertz's approach, for
+/// which that start is taken.
+const HERTZ_START_MISFIT: f64 = 0.05;
+
+/// A cold start on a planar grid from Hertz's elliptic pressure: the
+/// curvatures A, B and the vertex of `h` from its second differences at its
+/// smallest element, Hertz's ellipse for them (`e_star_pa` = G / (1 - nu)
+/// of the combined bodies) and `load` (the approach counted from the
+/// fitted minimum), its pressure at the element centres. Taken when `h`
+/// departs from that quadratic by at most [`HERTZ_START_MISFIT`] of
+/// Hertz's approach over the ellipse (a Hertzian gap such as the
+/// `quadratic` geometry, a wheel/rail patch only where it is close to one);
+/// else `pn` is left at zero and false returned, and
+/// [`solve_normal_with`] starts from its Hertz-like pressure on the gap's
+/// level sets, whose aspect differs from Hertz's ellipse (b/a 1.69 against
+/// 2.0 for A/B = 2.84). As CONTACT does for its Hertzian geometries
+/// (`m_sdis.f90`, `use_iestim_hertz`). No allocation.
+///
+/// [`crate::core::solve::ContactSolver`] takes it for cold solves under
+/// force control only: under approach control it moved the cold central
+/// differences of the validation test
+/// `jacobian_in_partial_slip_matches_cold_finite_differences` (Mz per
+/// approach 1.8e-5 off the warm Jacobian against its bound of 1e-5),
+/// which was not looked into.
+pub fn hertz_start(
+    grid: &Grid,
+    h: &[f64],
+    load: NormalLoad,
+    e_star_pa: f64,
+    pn: &mut [f64],
+) -> bool {
+    let (nx, ny) = (grid.nx, grid.ny);
+    if grid.is_line() || h.len() != nx * ny || pn.len() != h.len() {
+        return false;
+    }
+    let Some((i0, &h0)) = h.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)) else {
+        return false;
+    };
+    let (ix, iy) = (i0 % nx, i0 / nx);
+    if ix == 0 || iy == 0 || ix + 1 == nx || iy + 1 == ny {
+        return false;
+    }
+    // Second differences and the parabolas' vertices.
+    let fit = |lo: f64, hi: f64, d: f64| {
+        let c = hi + lo - 2.0 * h0;
+        (c / (2.0 * d * d), -0.5 * d * (hi - lo) / c)
+    };
+    let (a, sx) = fit(h[i0 - 1], h[i0 + 1], grid.dx_m);
+    let (b, sy) = fit(h[i0 - nx], h[i0 + nx], grid.dy_m);
+    let (x0, y0) = (grid.x_m(ix) + sx, grid.y_m(iy) + sy);
+    let hmin = h0 - a * sx * sx - b * sy * sy;
+    let hertz_load = match load {
+        NormalLoad::NormalForce(f) => HertzLoad::NormalForce { normal_force_n: f },
+        NormalLoad::Approach(d) => HertzLoad::Approach {
+            approach_m: d - hmin,
+        },
+    };
+    // Refused for curvatures or loads out of its range (not a start).
+    let Ok(hz) = hertz(a, b, e_star_pa, hertz_load) else {
+        return false;
+    };
+    let mut misfit: f64 = 0.0;
+    let mut loaded = false;
+    for jy in 0..ny {
+        let y = grid.y_m(jy) - y0;
+        for jx in 0..nx {
+            let x = grid.x_m(jx) - x0;
+            let i = grid.index(jx, jy);
+            let p = hz.pressure_at(x, y);
+            pn[i] = p;
+            if p > 0.0 {
+                loaded = true;
+                misfit = misfit.max((h[i] - hmin - a * x * x - b * y * y).abs());
+            }
+        }
+    }
+    if loaded && misfit <= HERTZ_START_MISFIT * hz.approach_m {
+        return true;
+    }
+    pn.fill(0.0);
+    false
 }
 
 /// A Hertz-like start for force control: p = p0 sqrt(1 - (h - hmin)/t) on
@@ -1452,5 +1542,52 @@ mod tests {
             },
         ];
         assert!(BlockNormal::new(parts).is_none());
+    }
+
+    /// On a Hertzian gap (an ellipse off the grid's centre) the start is
+    /// Hertz's pressure; on a gap that is not (a quartic term as large as
+    /// the quadratic over the patch) there is none and `pn` stays zero.
+    #[test]
+    fn the_hertz_start_is_taken_on_hertzian_gaps_only() {
+        use crate::core::hertz::{hertz, HertzLoad};
+        let grid = Grid::centered(48, 40, 0.016, 0.032).unwrap();
+        let (a, b, x0, y0) = (0.8, 0.2814, 3.1e-4, -4.3e-4);
+        let e_star = 82e9 / (1.0 - 0.28);
+        let force = NormalLoad::NormalForce(106_700.0);
+        let gap = |quartic: f64| -> Vec<f64> {
+            let mut h = vec![0.0; grid.len()];
+            for iy in 0..grid.ny {
+                for ix in 0..grid.nx {
+                    let (x, y) = (grid.x_m(ix) - x0, grid.y_m(iy) - y0);
+                    h[grid.index(ix, iy)] = 2e-6 + a * x * x + b * y * y + quartic * y.powi(4);
+                }
+            }
+            h
+        };
+        let hz = hertz(
+            a,
+            b,
+            e_star,
+            HertzLoad::NormalForce {
+                normal_force_n: 106_700.0,
+            },
+        )
+        .unwrap();
+        let mut pn = vec![0.0; grid.len()];
+        assert!(hertz_start(&grid, &gap(0.0), force, e_star, &mut pn));
+        for iy in 0..grid.ny {
+            for ix in 0..grid.nx {
+                let want = hz.pressure_at(grid.x_m(ix) - x0, grid.y_m(iy) - y0);
+                let got = pn[grid.index(ix, iy)];
+                assert!(
+                    (got - want).abs() < 1e-9 * hz.max_pressure_pa,
+                    "{got} {want}"
+                );
+            }
+        }
+        // b y^2 = q y^4 at y = 5 mm, inside the patch (b = 6.3 mm).
+        let q = b / 25e-6;
+        assert!(!hertz_start(&grid, &gap(q), force, e_star, &mut pn));
+        assert!(pn.iter().all(|&p| p == 0.0));
     }
 }

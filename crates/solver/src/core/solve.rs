@@ -19,7 +19,8 @@ use crate::core::layer::{
 };
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{
-    solve_normal_active_set, solve_normal_with, NormalLoad, NormalScratch, PlanarNormal,
+    hertz_start, solve_normal_active_set, solve_normal_with, NormalLoad, NormalScratch,
+    PlanarNormal,
 };
 use crate::core::predict::{PathPoint, WarmPath};
 use crate::core::problem::{
@@ -1062,6 +1063,14 @@ impl ContactSolver {
                 ows: &mut self.ows,
             };
             let (h, pn, scratch) = (&self.h_eff, &mut self.pn, &mut self.normal_scratch);
+            let ic = &self.displacement.influence;
+            if matches!(load, NormalLoad::NormalForce(_)) && pn.iter().all(|&p| p == 0.0) {
+                // A cold start under force control: Hertz's pressure where
+                // the gap is Hertzian (see `hertz_start` for approach
+                // control).
+                let e_star = ic.shear_modulus_pa() / (1.0 - ic.poisson_ratio());
+                hertz_start(&grid, h, load, e_star, pn);
+            }
             let no = if self.displacement.influence.is_viscoelastic() {
                 // Not symmetric: the active-set method.
                 solve_normal_active_set(&mut op, h, area, load, pn, scratch, &s.normal)
