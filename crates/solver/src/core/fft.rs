@@ -668,8 +668,8 @@ struct KernelTable {
 
 impl KernelTable {
     /// Kernel `kind` (i, j) of `source` at every offset of an nx x ny
-    /// grid, row after row ([`HalfSpaceInfluence::kernel_row`] for the
-    /// half-space).
+    /// grid, row after row ([`HalfSpaceInfluence::kernel_table`], else
+    /// [`HalfSpaceInfluence::kernel_row`], for the half-space).
     fn of(
         source: &Source<'_>,
         kind: KernelKind,
@@ -680,6 +680,15 @@ impl KernelTable {
     ) -> Self {
         let (wx, wy) = (2 * nx - 1, 2 * ny - 1);
         let mut values = vec![0.0; wx * wy];
+        // The half-space's whole table at once where it can (its closed
+        // forms once per element corner), else row by row.
+        if source.table.is_none()
+            && source
+                .influence
+                .kernel_table(kind, i, j, [nx, ny], &mut values)
+        {
+            return Self { nx, ny, values };
+        }
         for (jy, row) in values.chunks_exact_mut(wx).enumerate() {
             let ky = jy as i64 - (ny as i64 - 1);
             let kx_lo = -(nx as i64 - 1);

@@ -632,6 +632,91 @@ impl HalfSpaceInfluence {
             }
         }
     }
+
+    /// [`HalfSpaceInfluence::kernel_row`] for every row of an `nx` x `ny`
+    /// grid's offsets at once: `out` holds rows ky = -(ny - 1) ..= ny - 1
+    /// of 2 nx - 1 values each, kx from -(nx - 1). For elastic half-space
+    /// bodies the primitives of the element integrals are evaluated once
+    /// per element corner, on a quarter of the corner lattice (each is
+    /// even or odd in x and in y), instead of at four corners per
+    /// coefficient and again for each component (two logarithms per corner
+    /// instead of about 32 per offset for A_xx, A_yy and A_nn; the same
+    /// closed forms, rounded differently by about 1e-16 of the corner
+    /// values). False, and `out` untouched, for viscoelastic bodies and
+    /// plane strain: [`HalfSpaceInfluence::kernel_row`] then.
+    pub fn kernel_table(
+        &self,
+        kind: KernelKind,
+        i: Component,
+        j: Component,
+        [nx, ny]: [usize; 2],
+        out: &mut [f64],
+    ) -> bool {
+        if self.visc.is_some() || self.elasticity != Elasticity::HalfSpace {
+            return false;
+        }
+        let steady = usize::from(kind == KernelKind::SteadyRolling);
+        // Corner m (any integer) lies at (m - 1/2) d; the lattice holds
+        // m = 1 ..= mx in x, 1 ..= ny in y, the rest by parity.
+        let (mx, my) = (nx + steady, ny);
+        let lattice = |integral: ElementIntegral| -> (Vec<f64>, [f64; 2]) {
+            let (f, parity): (fn(f64, f64) -> f64, [f64; 2]) = match integral {
+                ElementIntegral::One => (prim_1_over_r, [-1.0, -1.0]),
+                ElementIntegral::Xx => (prim_x2_over_r3, [-1.0, -1.0]),
+                ElementIntegral::Yy => (prim_y2_over_r3, [-1.0, -1.0]),
+                ElementIntegral::Xy => (prim_xy_over_r3, [1.0, 1.0]),
+                ElementIntegral::X => (prim_x_over_r2, [1.0, -1.0]),
+                ElementIntegral::Y => (|x, y| prim_x_over_r2(y, x), [-1.0, 1.0]),
+            };
+            let mut v = Vec::with_capacity(mx * my);
+            for b in 1..=my {
+                let cy = (b as f64 - 0.5) * self.dy;
+                v.extend((1..=mx).map(|a| f((a as f64 - 0.5) * self.dx, cy)));
+            }
+            (v, parity)
+        };
+        // The integrals (i, j) combines, each's lattice once.
+        let used = std::cell::Cell::new(0u8);
+        self.half_space_of(i, j, 0.0, 0.0, |k| {
+            used.set(used.get() | 1 << k as u8);
+            0.0
+        });
+        let all = [
+            ElementIntegral::One,
+            ElementIntegral::Xx,
+            ElementIntegral::Yy,
+            ElementIntegral::Xy,
+            ElementIntegral::X,
+            ElementIntegral::Y,
+        ];
+        let lattices: Vec<Option<(Vec<f64>, [f64; 2])>> = all
+            .iter()
+            .map(|&k| (used.get() & 1 << k as u8 != 0).then(|| lattice(k)))
+            .collect();
+        let corner = |(v, [sx, sy]): &(Vec<f64>, [f64; 2]), a: i64, b: i64| {
+            let (a, fx) = if a >= 1 { (a, 1.0) } else { (1 - a, *sx) };
+            let (b, fy) = if b >= 1 { (b, 1.0) } else { (1 - b, *sy) };
+            fx * fy * v[(b as usize - 1) * mx + (a as usize - 1)]
+        };
+        let value = |kx: i64, ky: i64| {
+            self.half_space_of(i, j, kx as f64 * self.dx, ky as f64 * self.dy, |k| {
+                lattices[k as usize].as_ref().map_or(0.0, |l| {
+                    corner(l, kx + 1, ky + 1) - corner(l, kx, ky + 1) - corner(l, kx + 1, ky)
+                        + corner(l, kx, ky)
+                })
+            })
+        };
+        let wx = 2 * nx - 1;
+        for (row, ky) in out.chunks_exact_mut(wx).zip(-(ny as i64 - 1)..) {
+            for (o, kx) in row.iter_mut().zip(-(nx as i64 - 1)..) {
+                *o = match kind {
+                    KernelKind::Displacement => value(kx, ky),
+                    KernelKind::SteadyRolling => (value(kx, ky) - value(kx + 1, ky)) / self.dx,
+                };
+            }
+        }
+        true
+    }
 }
 
 #[cfg(test)]
@@ -715,6 +800,37 @@ mod tests {
             },
         )
         .unwrap()
+    }
+
+    /// The corner-lattice table holds the coefficients `kernel` gives, for
+    /// every component and both kinds, with an interfacial layer.
+    #[test]
+    fn the_corner_lattice_table_matches_the_coefficients() {
+        use Component::*;
+        let ic = HalfSpaceInfluence::new(1e-4, 1.5e-4, &dissimilar()).with_layer_flexibility(2e-15);
+        let (nx, ny) = (6usize, 5usize);
+        let scale = ic.coefficient(X, X, 0.0, 0.0);
+        for kind in [KernelKind::Displacement, KernelKind::SteadyRolling] {
+            let scale = match kind {
+                KernelKind::Displacement => scale,
+                KernelKind::SteadyRolling => scale / ic.dx_m(),
+            };
+            for i in [X, Y, N] {
+                for j in [X, Y, N] {
+                    let mut t = vec![f64::NAN; (2 * nx - 1) * (2 * ny - 1)];
+                    assert!(ic.kernel_table(kind, i, j, [nx, ny], &mut t));
+                    for (r, ky) in t.chunks_exact(2 * nx - 1).zip(-(ny as i64 - 1)..) {
+                        for (&got, kx) in r.iter().zip(-(nx as i64 - 1)..) {
+                            let want = ic.kernel(kind, i, j, kx, ky);
+                            assert!(
+                                (got - want).abs() <= 1e-13 * scale,
+                                "{kind:?} {i:?}{j:?} ({kx}, {ky}): {got:e} vs {want:e}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]

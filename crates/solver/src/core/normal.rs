@@ -696,7 +696,7 @@ const HERTZ_START_MISFIT: f64 = 0.05;
 /// smallest element, Hertz's ellipse for them (`e_star_pa` = G / (1 - nu)
 /// of the combined bodies) and `load` (the approach counted from the
 /// fitted minimum), its pressure at the element centres. Taken when `h`
-/// departs from that quadratic by at most [`HERTZ_START_MISFIT`] of
+/// departs from that quadratic by at most `HERTZ_START_MISFIT` (5 %) of
 /// Hertz's approach over the ellipse (a Hertzian gap such as the
 /// `quadratic` geometry, a wheel/rail patch only where it is close to one);
 /// else `pn` is left at zero and false returned, and

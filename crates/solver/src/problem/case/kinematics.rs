@@ -1163,8 +1163,9 @@ mod step_force_tests {
             text.contains("step 2 prescribed force: shift x, y"),
             "{text}"
         );
-        // Saturation names the step.
-        let c = case("{ shift_x_m = 0.0 }, { force_x_n = -3000.0 }").unwrap();
+        // Saturation names the step (beyond mu Fn = 3000 N: at exactly
+        // 3000 N the refusal hinges on the last bit of the computed Fn).
+        let c = case("{ shift_x_m = 0.0 }, { force_x_n = -3010.0 }").unwrap();
         let e = ExactRun::solve(&c).err().unwrap().to_string();
         assert!(e.contains("transient.steps[1].force_x_n"), "{e}");
     }
