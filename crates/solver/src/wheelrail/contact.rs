@@ -2451,7 +2451,7 @@ fn solve_wheel(
                 .flatten();
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
-            let drop = contacts_geometry(input).then_some(reference_delta);
+            let drop = centred.then_some(reference_delta);
             let Some(geom) =
                 patch_geometry_about(rail, locus, gap, iv, margin, centre.as_ref(), drop)
             else {
@@ -2978,13 +2978,13 @@ fn build_patch(
                 let step = input.settings.element_size_m;
                 wheel_reach_x(&geom, &mut rows, cap * geom.normal[1], step)
             });
-            let align = contacts_geometry(input);
+            let align = centred(input);
             let grid = patch_grid(&geom, cap, across, input, last, reach, align)?;
             let mut gap_m = vec![0.0; grid.len()];
             // CONTACT's geometry: the wheel's own surface along x (not on
             // a roller, whose curvature along x rides in the samples').
             let nominal = pair.wheelset().nominal_radius_m;
-            let mut surface = (contacts_geometry(input) && !rail.is_roller())
+            let mut surface = (centred(input) && !rail.is_roller())
                 .then(|| WheelSurface::new(pair.wheel(side), nominal, pose, &geom));
             for is in 0..grid.ny {
                 let s = grid.y_m(is);
@@ -3245,7 +3245,7 @@ fn across_refinement(
 /// range too, with the margin (an out-of-round wheel's,
 /// [`wheel_reach_x`]). With `align` (and no last grid kept), an element's
 /// centre lies on the reference point (x = s = 0), as in CONTACT's grids
-/// ([`contacts_geometry`]).
+/// ([`centred`]).
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
@@ -3369,18 +3369,13 @@ fn patch_grid_on(
     Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
 }
 
-/// Whether the patches take CONTACT's reference point.
+/// Whether the patches take CONTACT's reference point, and with it
+/// CONTACT's geometry: the undeformed distance with the wheel where the
+/// load puts it, from the wheel's surface of revolution along x (not on a
+/// roller, whose curvature along x rides in the lateral samples), and an
+/// element's centre on the reference point.
 fn centred(input: &WheelRailInput) -> bool {
     input.settings.search.reference_point == ReferencePoint::InterpenetrationCentre
-}
-
-/// Whether the patches take CONTACT's geometry with its reference point:
-/// the undeformed distance with the wheel where the load puts it, from
-/// the wheel's surface of revolution along x (not on a roller, whose
-/// curvature along x rides in the lateral samples), and an element's
-/// centre on the reference point.
-fn contacts_geometry(input: &WheelRailInput) -> bool {
-    centred(input)
 }
 
 fn one_valley(lateral: &[LateralSample], s0: f64, s1: f64) -> bool {
