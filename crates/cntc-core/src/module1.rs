@@ -117,9 +117,12 @@
 //!   wheelset height z_ws (zero at the nominal position, z_tr = -r_nom).
 //! * Discretisation (`cntc_setpotcontact`, icp = -1): DX = DS (square
 //!   elements), D_SEP the distance below which two regions of contact are
-//!   one patch (CONTACT's combined or blended patch); A_SEP, D_COMB,
-//!   D_TURN, G_MISS are stored without effect (the solver has no turning
-//!   or blending of patches).
+//!   one patch, D_COMB the distance below which they are one region: two
+//!   regions between D_COMB and D_SEP apart are CONTACT's blended patch,
+//!   sub-patches of one grid whose pressures act on each other reduced by
+//!   ((D_SEP - d)/(D_SEP - D_COMB))^0.8 in the normal problem
+//!   (`SearchSettings::combine_distance_m`); A_SEP, D_TURN, G_MISS are
+//!   stored without effect (the solver does not turn reference angles).
 //! * Friction: L = 0 and the falling laws L = 2-5 (exact model), V = 0,
 //!   and V = 1 (by contact angle, CONTACT's angles of the right-hand side,
 //!   negative at the gauge face) as the solver's friction table.
@@ -1959,6 +1962,8 @@ impl WheelRail {
                 element_size_m: d.dx_m,
                 search: SearchSettings {
                     merge_distance_m: d.dist_sep_m,
+                    // D_COMB < d <= D_SEP: CONTACT's blended patch.
+                    combine_distance_m: Some(d.dist_comb_m),
                     // CONTACT's reference point: the weighted centre of
                     // the interpenetration, its mean contact angle.
                     reference_point: ReferencePoint::InterpenetrationCentre,

@@ -149,6 +149,51 @@ fn right_wheel_flange_on_the_miniprof_rail() {
     }
 }
 
+/// CONTACT's blended patch: python_mbench.py case 11 of wheel 2 (the right
+/// wheel on the MiniProf rail: y = 5 mm, yaw 12 mrad, roll -0.3554 mrad),
+/// where the tread and the flange root touch in two regions between
+/// D_COMB = 4 mm and D_SEP = 8 mm apart. CONTACT keeps them one patch
+/// whose regions press on each other reduced, and leaves the elements
+/// between them out of contact. Merged into one region instead, the
+/// approach was 2.9 %, FX 4.6 % and MZ 14 % from CONTACT's. Reference:
+/// CONTACT's library in python_mbench.py (CONTACT revision 2707, the
+/// cases of wheel 2 run in order in one result element; its
+/// `cntc_getpenetration`, `cntc_getcontactforces`,
+/// `cntc_getmaximumpressure`, `cntc_getcontactpatchareas`,
+/// `cntc_getcreepages`). Tolerances: 1 % of the approach, the maximum
+/// pressure, the area and CKSI (measured 0.28 %, 0.36 %, 0.26 %, 0.14 %),
+/// 0.1 % of FN for FN, FX and FS (0.01 %), 3 % of MZ (1.7 %: the pressure
+/// centres differ by micrometres, as on the flange, see docs/cntc.md).
+#[test]
+fn the_blended_patch_at_5_mm_is_contacts() {
+    let ire = 36;
+    unsafe {
+        mbench(ire, 2);
+        solve_one_patch(ire, [0.0, 5.0, 0.0, -0.0003554, 0.012, 0.0], -4.3353637);
+        let icp = 1;
+        let fn_ref = 9618.76645577443;
+        let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
+        cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+        close("FN", fn_, fn_ref, 1e-3 * fn_ref);
+        close("FX", fx, -763.2905284645734, 1e-3 * fn_ref);
+        close("FS", fs, -2738.01334626845, 1e-3 * fn_ref);
+        close("MZ", mz, -826.5856870996711, 0.03 * 826.6);
+        let mut pen = 0.0;
+        cntc_getpenetration(&ire, &icp, &mut pen);
+        close("PEN", pen, 0.027189608732256534, 0.01 * 0.02719);
+        let mut pmax = 0.0;
+        cntc_getmaximumpressure(&ire, &icp, &mut pmax);
+        close("PMAX", pmax, 1556.2589693280984, 0.01 * 1556.3);
+        let (mut carea, mut harea, mut sarea) = (0.0, 0.0, 0.0);
+        cntc_getcontactpatchareas(&ire, &icp, &mut carea, &mut harea, &mut sarea);
+        close("CAREA", carea, 15.56, 0.01 * 15.56);
+        let mut c = [0.0; 3];
+        cntc_getcreepages(&ire, &icp, &mut c[0], &mut c[1], &mut c[2]);
+        close("CKSI", c[0], 0.004173902446739483, 0.01 * 0.004174);
+        cntc_finalize(&ire);
+    }
+}
+
 /// The patch's contact reference point, contact angle, creepages and spin
 /// moment (about that point) against CONTACT's library: module 1 places
 /// the point where CONTACT does, at the weighted centre of the

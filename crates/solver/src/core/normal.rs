@@ -28,6 +28,7 @@
 //! `the_default_normal_tolerance_gives_forces_and_p_max_to_seven_digits`).
 
 use crate::core::cancel;
+use crate::core::error::ContactError;
 use crate::core::fft::{KernelSet, OperatorWorkspace};
 use crate::core::grid::Grid;
 use crate::core::hertz::{hertz, HertzLoad};
@@ -312,6 +313,151 @@ impl NormalOperator for PlanarNormal<'_> {
 
     fn column_limit(&self) -> usize {
         self.kernels.normal_column_limit()
+    }
+}
+
+/// Sub-patches of one grid whose pressures act on each other's elements
+/// reduced: CONTACT's blended patch (`m_wr_locatecp.f90`,
+/// `combine_cpatches`; its normal solver's planform IPLAN = 4), two regions
+/// of contact that lie too close together to be separate patches and too
+/// far apart to be one. The displacement of element I in sub-patch k of
+/// the pressure of element J in sub-patch l is A_IJ f_kl, f_kk = 1; an
+/// element in no sub-patch (label 0) takes every sub-patch's displacement
+/// in full, and its pressure acts on nothing (the caller keeps it out of
+/// contact). With f symmetric, the map stays symmetric, and positive
+/// definite where f is (always for two sub-patches with f < 1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalBlend {
+    /// Per element (index `iy * nx + ix`): its sub-patch 1..=n, or 0.
+    labels: Vec<u16>,
+    /// Number of sub-patches n.
+    n: usize,
+    /// f_kl, row-major n x n.
+    factors: Vec<f64>,
+}
+
+impl NormalBlend {
+    /// The blend of sub-patch `labels` (0 for none, else 1..=n) and the
+    /// n x n factors f_kl `factors` (row-major): symmetric, 1 on the
+    /// diagonal, in [0, 1] elsewhere; an error names what is not so.
+    pub fn new(labels: Vec<u16>, factors: Vec<f64>) -> Result<Self, ContactError> {
+        const KEY: &str = "normal_blend";
+        let n = (factors.len() as f64).sqrt().round() as usize;
+        if n * n != factors.len() || n == 0 || n > usize::from(u16::MAX) {
+            return Err(ContactError::invalid(
+                KEY,
+                format!("needs n x n factors, n >= 1, got {} values", factors.len()),
+            ));
+        }
+        for k in 0..n {
+            for l in 0..n {
+                let (f, g) = (factors[k * n + l], factors[l * n + k]);
+                let fine = if k == l {
+                    f == 1.0
+                } else {
+                    (0.0..=1.0).contains(&f) && f == g
+                };
+                if !fine {
+                    return Err(ContactError::invalid(
+                        KEY,
+                        format!(
+                            "factor ({}, {}) = {f}: needs 1 on the diagonal, symmetric values in \
+                             [0, 1] elsewhere",
+                            k + 1,
+                            l + 1
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(i) = labels.iter().position(|&l| usize::from(l) > n) {
+            return Err(ContactError::invalid(
+                KEY,
+                format!("element {i}: sub-patch {} of {n}", labels[i]),
+            ));
+        }
+        Ok(Self { labels, n, factors })
+    }
+
+    /// Per element: its sub-patch 1..=n, or 0.
+    pub fn labels(&self) -> &[u16] {
+        &self.labels
+    }
+
+    /// The number of sub-patches.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// Never true: a blend has at least one sub-patch.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// f_kl of sub-patches `k`, `l` (1-based).
+    pub fn factor(&self, k: usize, l: usize) -> f64 {
+        self.factors[(k - 1) * self.n + (l - 1)]
+    }
+
+    /// The same factors on other labels (the same grid in another frame).
+    pub fn with_labels(&self, labels: Vec<u16>) -> Result<Self, ContactError> {
+        Self::new(labels, self.factors.clone())
+    }
+}
+
+impl HeapBytes for NormalBlend {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.labels, self.factors)
+    }
+}
+
+/// The planar operator of a [`NormalBlend`]: one product per sub-patch
+/// that carries pressure (`part`, `product`: buffers of one value per
+/// element). Preconditioned with the planar operator's inverse; no
+/// columns.
+pub struct BlendedNormal<'a> {
+    /// The operator without the blend.
+    pub planar: PlanarNormal<'a>,
+    /// The sub-patches.
+    pub blend: &'a NormalBlend,
+    /// Buffers.
+    pub part: &'a mut [f64],
+    /// Buffers.
+    pub product: &'a mut [f64],
+}
+
+impl NormalOperator for BlendedNormal<'_> {
+    fn apply_normal(&mut self, p: &[f64], out: &mut [f64]) {
+        let labels = &self.blend.labels;
+        out.fill(0.0);
+        for k in 1..=self.blend.n {
+            let mut loaded = false;
+            for ((q, &v), &l) in self.part.iter_mut().zip(p).zip(labels) {
+                *q = if usize::from(l) == k { v } else { 0.0 };
+                loaded |= *q != 0.0;
+            }
+            if !loaded {
+                continue;
+            }
+            self.planar.apply_normal(self.part, self.product);
+            for ((o, &u), &l) in out.iter_mut().zip(self.product.iter()).zip(labels) {
+                let l = usize::from(l);
+                let f = if l == 0 || l == k {
+                    1.0
+                } else {
+                    self.blend.factor(k, l)
+                };
+                *o += f * u;
+            }
+        }
+    }
+
+    fn diagonal(&self) -> f64 {
+        self.planar.diagonal()
+    }
+
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> bool {
+        self.planar.precondition(r, z)
     }
 }
 
@@ -1542,6 +1688,160 @@ mod tests {
             },
         ];
         assert!(BlockNormal::new(parts).is_none());
+    }
+
+    /// The operator of `blend` on `kernels` with `buffers`.
+    fn blended<'a>(
+        kernels: &'a KernelSet,
+        ows: &'a mut OperatorWorkspace,
+        blend: &'a NormalBlend,
+        buffers: &'a mut [Vec<f64>; 2],
+    ) -> BlendedNormal<'a> {
+        let [part, product] = buffers;
+        BlendedNormal {
+            planar: PlanarNormal { kernels, ows },
+            blend,
+            part,
+            product,
+        }
+    }
+
+    /// A blend of two sub-patches (the grid's left and right halves, a
+    /// paraboloid in each) at a fixed approach: with f = 0 each half's
+    /// pressure is that of its half alone (the other out of contact,
+    /// exactly the same problem); with f = 1 the plain operator's; in
+    /// between the force lies between those two (less interaction, less
+    /// displacement, more force at the same approach). The operator is
+    /// symmetric for any f.
+    #[test]
+    fn a_blend_interpolates_between_separate_and_one_patch() {
+        let mat = CombinedMaterial::identical(Material::STEEL).unwrap();
+        let (nx, ny, d) = (40, 24, 1e-4);
+        let n = nx * ny;
+        let kernels = KernelSet::new(
+            Arc::new(ConvolutionPlan::new(nx, ny)),
+            HalfSpaceInfluence::new(d, d, &mat),
+            KernelKind::Displacement,
+        );
+        let mut ows = kernels.workspace();
+        let x = |i: usize| ((i % nx) as f64 - 0.5 * (nx - 1) as f64) * d;
+        let y = |i: usize| ((i / nx) as f64 - 0.5 * (ny - 1) as f64) * d;
+        let labels: Vec<u16> = (0..n)
+            .map(|i| if i % nx < nx / 2 { 1 } else { 2 })
+            .collect();
+        // Bumps at x = -1 mm and +1 mm, the second 1 um higher.
+        let h: Vec<f64> = (0..n)
+            .map(|i| {
+                let (xc, h0) = if labels[i] == 1 {
+                    (-1e-3, 0.0)
+                } else {
+                    (1e-3, 1e-6)
+                };
+                h0 + (x(i) - xc).powi(2) / 0.6 + y(i).powi(2) / 0.4
+            })
+            .collect();
+        let settings = NormalSettings {
+            tolerance: 1e-10,
+            ..NormalSettings::default()
+        };
+        let approach = NormalLoad::Approach(5e-6);
+        let mut buffers = [vec![0.0; n], vec![0.0; n]];
+        let mut solve_blended = |f: f64, pn: &mut [f64]| {
+            let blend = NormalBlend::new(labels.clone(), vec![1.0, f, f, 1.0]).unwrap();
+            let mut op = blended(&kernels, &mut ows, &blend, &mut buffers);
+            let out = solve_normal_with(
+                &mut op,
+                &h,
+                None,
+                d * d,
+                approach,
+                pn,
+                &mut NormalScratch::new(n),
+                &settings,
+            );
+            assert!(out.converged, "{out:?}");
+            pn.iter().sum::<f64>() * d * d
+        };
+        let mut separate = vec![0.0; n];
+        let f0 = solve_blended(0.0, &mut separate);
+        let mut half = vec![0.0; n];
+        let f_half = solve_blended(0.5, &mut half);
+        let mut one = vec![0.0; n];
+        let f1 = solve_blended(1.0, &mut one);
+        let pmax = one.iter().fold(0.0f64, |m, &v| m.max(v));
+        // The plain operator's solution of gap `h`.
+        let plain = |h: &[f64]| {
+            let mut pn = vec![0.0; n];
+            let out = solve_normal(
+                &kernels,
+                &mut kernels.workspace(),
+                h,
+                d * d,
+                approach,
+                &mut pn,
+                &mut NormalScratch::new(n),
+                &settings,
+            );
+            assert!(out.converged);
+            pn
+        };
+        for (a, b) in one.iter().zip(&plain(&h)) {
+            assert!((a - b).abs() <= 1e-7 * pmax, "f = 1: {a} vs {b}");
+        }
+        for k in [1u16, 2] {
+            let h_alone: Vec<f64> = (0..n)
+                .map(|i| if labels[i] == k { h[i] } else { 1.0 })
+                .collect();
+            let alone = plain(&h_alone);
+            assert!(
+                alone.iter().sum::<f64>() > 0.0,
+                "sub-patch {k} carries load"
+            );
+            for i in (0..n).filter(|&i| labels[i] == k) {
+                assert!(
+                    (alone[i] - separate[i]).abs() <= 1e-7 * pmax,
+                    "f = 0, element {i}: {} vs {}",
+                    alone[i],
+                    separate[i]
+                );
+            }
+        }
+        assert!(f0 > f_half && f_half > f1, "{f0} > {f_half} > {f1}");
+        // Symmetric: q.(A p) = p.(A q).
+        let blend = NormalBlend::new(labels.clone(), vec![1.0, 0.3, 0.3, 1.0]).unwrap();
+        let mut op = blended(&kernels, &mut ows, &blend, &mut buffers);
+        let p: Vec<f64> = (0..n).map(|i| ((i * 37 % 101) as f64).sin()).collect();
+        let q: Vec<f64> = (0..n).map(|i| ((i * 53 % 89) as f64).cos()).collect();
+        let (mut ap, mut aq) = (vec![0.0; n], vec![0.0; n]);
+        op.apply_normal(&p, &mut ap);
+        op.apply_normal(&q, &mut aq);
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>();
+        let (qap, paq) = (dot(&q, &ap), dot(&p, &aq));
+        assert!(
+            (qap - paq).abs() <= 1e-12 * qap.abs().max(paq.abs()),
+            "{qap} vs {paq}"
+        );
+    }
+
+    /// A blend's factors must be symmetric with 1 on the diagonal and in
+    /// [0, 1]; its labels at most the number of sub-patches.
+    #[test]
+    fn a_blend_refuses_factors_and_labels_it_cannot_use() {
+        for (labels, factors, says) in [
+            (vec![1, 2], vec![1.0, 0.5, 0.4, 1.0], "factor (1, 2) = 0.5"),
+            (vec![1, 2], vec![0.9, 0.5, 0.5, 1.0], "factor (1, 1) = 0.9"),
+            (vec![1, 2], vec![1.0, 1.5, 1.5, 1.0], "factor (1, 2) = 1.5"),
+            (
+                vec![1, 3],
+                vec![1.0, 0.5, 0.5, 1.0],
+                "element 1: sub-patch 3 of 2",
+            ),
+            (vec![1, 2], vec![1.0, 0.5, 0.5], "got 3 values"),
+        ] {
+            let e = NormalBlend::new(labels, factors).unwrap_err().to_string();
+            assert!(e.contains("normal_blend") && e.contains(says), "{e}");
+        }
+        assert!(NormalBlend::new(vec![0, 1, 2], vec![1.0, 0.0, 0.0, 1.0]).is_ok());
     }
 
     /// On a Hertzian gap (an ellipse off the grid's centre) the start is

@@ -19,8 +19,8 @@ use crate::core::layer::{
 };
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{
-    hertz_start, solve_normal_active_set, solve_normal_with, NormalLoad, NormalScratch,
-    PlanarNormal,
+    hertz_start, solve_normal_active_set, solve_normal_with, BlendedNormal, NormalBlend,
+    NormalLoad, NormalOperator, NormalScratch, PlanarNormal,
 };
 use crate::core::predict::{PathPoint, WarmPath};
 use crate::core::problem::{
@@ -95,9 +95,28 @@ pub struct ContactSolver {
     /// Factor on the friction coefficients of each grid row (empty: 1
     /// everywhere): [`ContactSolver::set_row_friction_scale`].
     row_scale: Vec<f64>,
+    /// Sub-patches with reduced interaction in the normal problem, in the
+    /// rolling frame, and their buffers:
+    /// [`ContactSolver::set_normal_blend`].
+    blend: Option<Box<BlendState>>,
     /// An elasto-plastic interfacial layer's history and buffers
     /// ([`crate::core::layer`]), allocated at the first solve with one.
     layer: Option<Box<LayerState>>,
+}
+
+/// A [`NormalBlend`] in the rolling frame and the buffers of its operator
+/// ([`BlendedNormal`]).
+#[derive(Clone)]
+struct BlendState {
+    blend: NormalBlend,
+    part: Vec<f64>,
+    product: Vec<f64>,
+}
+
+impl HeapBytes for BlendState {
+    fn heap_bytes(&self) -> usize {
+        heap_bytes!(self.blend, self.part, self.product)
+    }
 }
 
 /// Buffers of a slip-velocity dependent friction law
@@ -246,6 +265,7 @@ impl HeapBytes for ContactSolver {
             law.velocity_new,
             law.bound,
             self.row_scale,
+            self.blend,
             self.layer
         )
     }
@@ -307,6 +327,7 @@ impl ContactSolver {
             path: WarmPath::default(),
             law: LawState::new(n),
             row_scale: Vec::new(),
+            blend: None,
             layer: None,
         }
     }
@@ -370,6 +391,7 @@ impl ContactSolver {
         }
         law.used = false;
         self.row_scale.clear();
+        self.blend = None;
         if let Some(l) = &mut self.layer {
             l.clear();
         }
@@ -427,6 +449,45 @@ impl ContactSolver {
         } else {
             self.row_scale[i / self.grid.nx]
         }
+    }
+
+    /// Sub-patches of the grid whose pressures act on each other reduced
+    /// in the normal problem ([`NormalBlend`], CONTACT's blended patch),
+    /// its labels in the problem's frame; None for none (the default).
+    /// Kept for every later solve of this solver; the tangential problem
+    /// and the displacements reported see the full interaction (as in
+    /// CONTACT, whose blending is in its normal solver alone). The caller
+    /// keeps the elements of label 0 out of contact (a large undeformed
+    /// distance).
+    pub fn set_normal_blend(&mut self, blend: Option<&NormalBlend>) -> Result<(), ContactError> {
+        let Some(b) = blend else {
+            self.blend = None;
+            return Ok(());
+        };
+        let n = self.pn.len();
+        if b.labels().len() != n {
+            return Err(ContactError::invalid(
+                "normal_blend",
+                format!(
+                    "needs {n} labels, one per element, got {}",
+                    b.labels().len()
+                ),
+            ));
+        }
+        let mut labels = vec![0; n];
+        self.frame.field_to_rolling(b.labels(), &mut labels);
+        self.blend = Some(Box::new(BlendState {
+            blend: b.with_labels(labels)?,
+            part: vec![0.0; n],
+            product: vec![0.0; n],
+        }));
+        Ok(())
+    }
+
+    /// Whether the normal problem has sub-patches
+    /// ([`ContactSolver::set_normal_blend`]).
+    pub fn has_normal_blend(&self) -> bool {
+        self.blend.is_some()
     }
 
     /// The planar normal operator of this solver's kernels and buffers: for
@@ -1058,9 +1119,26 @@ impl ContactSolver {
                 }
             }
             let tn = Instant::now();
-            let mut op = PlanarNormal {
+            let mut planar = PlanarNormal {
                 kernels: &self.displacement,
                 ows: &mut self.ows,
+            };
+            let mut blended;
+            let op: &mut dyn NormalOperator = match self.blend.as_deref_mut() {
+                Some(BlendState {
+                    blend,
+                    part,
+                    product,
+                }) => {
+                    blended = BlendedNormal {
+                        planar,
+                        blend,
+                        part,
+                        product,
+                    };
+                    &mut blended
+                }
+                None => &mut planar,
             };
             let (h, pn, scratch) = (&self.h_eff, &mut self.pn, &mut self.normal_scratch);
             let ic = &self.displacement.influence;
@@ -1073,9 +1151,9 @@ impl ContactSolver {
             }
             let no = if self.displacement.influence.is_viscoelastic() {
                 // Not symmetric: the active-set method.
-                solve_normal_active_set(&mut op, h, area, load, pn, scratch, &s.normal)
+                solve_normal_active_set(op, h, area, load, pn, scratch, &s.normal)
             } else {
-                solve_normal_with(&mut op, h, None, area, load, pn, scratch, &s.normal)
+                solve_normal_with(op, h, None, area, load, pn, scratch, &s.normal)
             };
             info.normal_time_s += tn.elapsed().as_secs_f64();
             info.normal_iterations += no.iterations;

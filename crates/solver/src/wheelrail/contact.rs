@@ -120,7 +120,7 @@ use crate::core::hertz::{hertz, HertzLoad};
 use crate::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection, DEFAULT_STRIPS};
 use crate::core::layer::LayerFields;
 use crate::core::material::CombinedMaterial;
-use crate::core::normal::{solve_normal_with, BlockNormal, NormalLoad, NormalScratch};
+use crate::core::normal::{solve_normal_with, BlockNormal, NormalBlend, NormalLoad, NormalScratch};
 use crate::core::polach::{polach, PolachParameters};
 use crate::core::problem::{
     ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
@@ -133,9 +133,9 @@ use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::grid_sizing::{self, solve_sized, GridSizing};
 use crate::wheelrail::search::{
     gap_intervals, interpenetration_centre, patch_geometry_about, rigid_position_from,
-    split_intervals, InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry,
-    ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, VerticalGap,
-    WheelScratch, WheelSurface,
+    split_intervals, sub_patches, InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry,
+    ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, SubPatches,
+    VerticalGap, WheelScratch, WheelSurface,
 };
 use crate::wheelrail::slices::{RailSlices, WheelSlices, FACING_HALF_ANGLE_RAD};
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
@@ -2461,6 +2461,16 @@ fn solve_wheel(
                 centres.push((iv, centre));
             }
             let loaded = centred.then_some(reference_delta);
+            let search = &input.settings.search;
+            let sub = search
+                .combine_distance_m
+                .filter(|_| centred)
+                .and_then(|combine| {
+                    let nominal = pair.wheelset().nominal_radius_m;
+                    let (sep, delta) = (search.merge_distance_m, reference_delta);
+                    sub_patches(locus, gap, (iv.0, iv.1), delta, nominal, combine, sep)
+                        .map(|sub| (sub, combine))
+                });
             patches.push(build_patch(
                 pair,
                 locus,
@@ -2475,6 +2485,7 @@ fn solve_wheel(
                 last,
                 &mut spare,
                 loaded,
+                sub.as_ref(),
             )?);
         }
         if patches.is_empty() {
@@ -2945,6 +2956,7 @@ fn build_patch(
     last: Option<&PatchTractions>,
     spare: &mut Option<Box<ContactSolver>>,
     loaded: Option<f64>,
+    sub: Option<&(SubPatches, f64)>,
 ) -> Result<PatchWork, WheelRailError> {
     // With `loaded`, the wheel's vertical approach (CONTACT's creepages,
     // see [`creepages`]): the patch's normal interpenetration at it.
@@ -3021,6 +3033,20 @@ fn build_patch(
                     input.position.track_s_m,
                 )?;
             }
+            // A blended patch: the elements outside its sub-patches are
+            // out of contact.
+            let blend = match sub {
+                Some((sub, combine)) => {
+                    let labels = sub_patch_labels(&grid, &geom, sub, *combine);
+                    for (h, &l) in gap_m.iter_mut().zip(&labels) {
+                        if l == 0 {
+                            *h = OUTSIDE_SUB_PATCHES_M;
+                        }
+                    }
+                    Some(NormalBlend::new(labels, sub.factors.clone())?)
+                }
+                None => None,
+            };
             let problem = ContactProblem {
                 material: input.material,
                 friction,
@@ -3041,6 +3067,7 @@ fn build_patch(
                 }
                 None => Box::new(ContactSolver::new(&problem, cache)),
             };
+            solver.set_normal_blend(blend.as_ref())?;
             if let Some(table) = &input.friction_table {
                 // The patch's static coefficient is the table's at its
                 // reference point; each row scales it to the row's own.
@@ -3376,6 +3403,56 @@ fn patch_grid_on(
 /// element's centre on the reference point.
 fn centred(input: &WheelRailInput) -> bool {
     input.settings.search.reference_point == ReferencePoint::InterpenetrationCentre
+}
+
+/// The undeformed distance of the elements of a blended patch outside its
+/// sub-patches \[m\]: out of contact (CONTACT takes 1e30 mm).
+const OUTSIDE_SUB_PATCHES_M: f64 = 1.0;
+
+/// The sub-patch (1..=n, 0 for none) of each element of the patch grid
+/// `grid` of `geom`: the last of `sub`'s boxes, widened by 0.4 `combine_m`
+/// (D_COMB) each way, whose element range holds it, the ranges rounded to
+/// the nearest element centre (CONTACT's `wr_ud_planar` and
+/// `eldiv_cpatches`). A box's q is taken to the tangent plane as
+/// (q - q_ref) / cos(contact angle).
+fn sub_patch_labels(
+    grid: &Grid,
+    geom: &PatchGeometry,
+    sub: &SubPatches,
+    combine_m: f64,
+) -> Vec<u16> {
+    let margin = 0.4 * combine_m;
+    let mut labels = vec![0u16; grid.len()];
+    let cos = geom.normal[1];
+    // The index range of the elements whose centres round into [lo, hi].
+    let range = |lo: f64, hi: f64, first: f64, step: f64, n: usize| {
+        let at = |v: f64| ((v - first) / step).round();
+        let i0 = at(lo).max(0.0) as usize;
+        let i1 = at(hi).min(n as f64 - 1.0);
+        (i1 >= 0.0).then_some(i0..=i1 as usize)
+    };
+    for (k, b) in sub.boxes.iter().enumerate() {
+        let x = [b.x_m[0] - geom.x_m - margin, b.x_m[1] - geom.x_m + margin];
+        let s = b.q_m.map(|q| (q - geom.reference_m[0]) / cos);
+        let (Some(ix), Some(is)) = (
+            range(x[0], x[1], grid.x_m(0), grid.dx_m, grid.nx),
+            range(
+                s[0] - margin,
+                s[1] + margin,
+                grid.y_m(0),
+                grid.dy_m,
+                grid.ny,
+            ),
+        ) else {
+            continue;
+        };
+        for iy in is {
+            for jx in ix.clone() {
+                labels[grid.index(jx, iy)] = k as u16 + 1;
+            }
+        }
+    }
+    labels
 }
 
 fn one_valley(lateral: &[LateralSample], s0: f64, s1: f64) -> bool {
@@ -3986,8 +4063,8 @@ fn frictional_steps(
 /// accuracy: the approach [m] and the slope of the vertical force [N/m]
 /// there (from the patches' Hertzian laws, [`laws_slope`]). Each
 /// patch's solver starts its next solve from these pressures. None when a
-/// patch is not exact, the element sizes differ, or the solve did not
-/// converge: the caller then iterates patch by patch.
+/// patch is not exact or blended, the element sizes differ, or the solve
+/// did not converge: the caller then iterates patch by patch.
 fn coupled_frictionless(
     patches: &mut [PatchWork],
     target: f64,
@@ -3999,6 +4076,10 @@ fn coupled_frictionless(
         let PatchKind::Exact { problem, solver } = &mut p.kind else {
             return None;
         };
+        // A blended patch's operator is not the planar one.
+        if solver.has_normal_blend() {
+            return None;
+        }
         let a = problem.grid.element_area_m2();
         if area.is_some_and(|a0| (a - a0).abs() > 1e-12 * a0) {
             return None;

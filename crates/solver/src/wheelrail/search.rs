@@ -650,6 +650,13 @@ pub struct SearchSettings {
     /// forms; contact tables ([`crate::wheelrail::table`]) keep their
     /// tabulated smallest-gap references whatever it says.
     pub reference_point: ReferencePoint,
+    /// With [`ReferencePoint::InterpenetrationCentre`]: regions of
+    /// interpenetration of one patch farther apart than this \[m\] (and
+    /// closer than `merge_distance_m`) are its sub-patches, whose pressures
+    /// act on each other reduced in the normal problem, CONTACT's blended
+    /// patch of D_COMB < d <= D_SEP ([`sub_patches`]). None (the default):
+    /// each patch is one region.
+    pub combine_distance_m: Option<f64>,
 }
 
 impl Default for SearchSettings {
@@ -658,6 +665,7 @@ impl Default for SearchSettings {
             merge_distance_m: 1.0e-3,
             roll_tolerance_m: 1.0e-10,
             reference_point: ReferencePoint::SmallestGap,
+            combine_distance_m: None,
         }
     }
 }
@@ -792,6 +800,171 @@ pub fn interpenetration_centre(
         sums.add(q, pen, x, normal[0].atan2(normal[1]));
     }
     sums.centre()
+}
+
+/// The bounding box of a region of interpenetration (side frame): its
+/// extent along x, its lateral extent along q, and the rail surface's
+/// height at either lateral end (CONTACT's `xsta .. zend` of a contact
+/// patch, `m_wr_locatecp.f90`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RegionBox {
+    /// Longitudinal extent \[m\].
+    pub x_m: [f64; 2],
+    /// Lateral extent \[m\], increasing.
+    pub q_m: [f64; 2],
+    /// The rail surface's height z at `q_m[0]` and `q_m[1]` \[m\].
+    pub z_m: [f64; 2],
+}
+
+impl RegionBox {
+    /// CONTACT's distance of two patches (`cpatch_distance`): the gap
+    /// between the boxes along x, along q, and the difference of the
+    /// rail's heights at their facing ends, in quadrature (0 along an axis
+    /// where they overlap).
+    pub fn distance(&self, other: &Self) -> f64 {
+        let apart = |a: [f64; 2], b: [f64; 2]| {
+            if a[0] > b[1] {
+                a[0] - b[1]
+            } else if b[0] > a[1] {
+                b[0] - a[1]
+            } else {
+                0.0
+            }
+        };
+        let dx = apart(self.x_m, other.x_m);
+        let (dq, dz) = if self.q_m[0] > other.q_m[1] {
+            (self.q_m[0] - other.q_m[1], self.z_m[0] - other.z_m[1])
+        } else if other.q_m[0] > self.q_m[1] {
+            (other.q_m[0] - self.q_m[1], other.z_m[0] - self.z_m[1])
+        } else {
+            (0.0, 0.0)
+        };
+        (dx * dx + dq * dq + dz * dz).sqrt()
+    }
+
+    /// The box of both, the heights those of the outer ends.
+    fn union(&mut self, other: &Self) {
+        self.x_m = [self.x_m[0].min(other.x_m[0]), self.x_m[1].max(other.x_m[1])];
+        if other.q_m[0] < self.q_m[0] {
+            (self.q_m[0], self.z_m[0]) = (other.q_m[0], other.z_m[0]);
+        }
+        if other.q_m[1] > self.q_m[1] {
+            (self.q_m[1], self.z_m[1]) = (other.q_m[1], other.z_m[1]);
+        }
+    }
+}
+
+/// The regions of interpenetration of one patch that lie apart, its
+/// sub-patches: CONTACT's blended patch (`combine_cpatches`), whose
+/// regions are kept one patch with a reduced interaction between them in
+/// the normal problem ([`crate::core::normal::NormalBlend`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubPatches {
+    /// Per sub-patch, its box.
+    pub boxes: Vec<RegionBox>,
+    /// The interaction factors f_kl of the sub-patches, row-major n x n:
+    /// 1 on the diagonal, elsewhere ((d_sep - d)/(d_sep - d_comb))^0.8 for
+    /// the boxes' distance d, 0 from d_sep on.
+    pub factors: Vec<f64>,
+}
+
+/// The sub-patches of the samples `k0..=k1` of `gap` at the vertical
+/// approach `delta_m`, CONTACT's way: each run of interpenetrating
+/// samples is a region, its lateral ends where the interpolated
+/// interpenetration vanishes, its extent along x that of the wheel taken
+/// as pen - a t^2 along x at each sample's locus x (a = 1/(2 r_nom) with
+/// `nominal_radius_m`, CONTACT's `compute_contact_length_1d`); regions
+/// within `combine_m` of each other ([`RegionBox::distance`]) are one
+/// region, and the rest are the sub-patches, their factors from
+/// `separate_m` (d_sep) and `combine_m` (d_comb). None for fewer than two
+/// regions.
+pub fn sub_patches(
+    locus: &[LocusPoint],
+    gap: &VerticalGap,
+    (k0, k1): (usize, usize),
+    delta_m: f64,
+    nominal_radius_m: f64,
+    combine_m: f64,
+    separate_m: f64,
+) -> Option<SubPatches> {
+    let k1 = k1.min(gap.len().checked_sub(1)?);
+    let pen = |k: usize| delta_m - gap.gap_m(k);
+    let inside = |k: usize| pen(k) > 0.0;
+    let a = 0.5 / nominal_radius_m;
+    let mut boxes: Vec<RegionBox> = Vec::new();
+    let mut k = k0;
+    while k <= k1 {
+        if !inside(k) {
+            k += 1;
+            continue;
+        }
+        let start = k;
+        let mut x_m = [f64::INFINITY, f64::NEG_INFINITY];
+        while k <= k1 && inside(k) {
+            let x = locus_on_segment(locus, gap.locus_index[k], gap.q_m(k)).x_m;
+            let t = (pen(k) / a).sqrt();
+            x_m = [x_m[0].min(x - t), x_m[1].max(x + t)];
+            k += 1;
+        }
+        // Where the interpolated interpenetration vanishes between the
+        // end sample `inside` and its neighbour `outside`.
+        let end = |inside: usize, outside: Option<usize>| match outside {
+            Some(o) if o >= k0 && o <= k1 && pen(o).is_finite() => {
+                let f = pen(inside) / (pen(inside) - pen(o));
+                let mix = |u: f64, v: f64| u + f * (v - u);
+                (
+                    mix(gap.q_m(inside), gap.q_m(o)),
+                    mix(gap.z_rail_m[inside], gap.z_rail_m[o]),
+                )
+            }
+            _ => (gap.q_m(inside), gap.z_rail_m[inside]),
+        };
+        let (q0, z0) = end(start, start.checked_sub(1));
+        let (q1, z1) = end(k - 1, Some(k));
+        boxes.push(RegionBox {
+            x_m,
+            q_m: [q0, q1],
+            z_m: [z0, z1],
+        });
+    }
+    // CONTACT's first pass: regions within d_comb are one.
+    let mut i = 0;
+    while i < boxes.len() {
+        let mut j = i + 1;
+        while j < boxes.len() {
+            if boxes[i].distance(&boxes[j]) <= combine_m {
+                let b = boxes.remove(j);
+                boxes[i].union(&b);
+            } else {
+                j += 1;
+            }
+        }
+        i += 1;
+    }
+    if boxes.len() < 2 {
+        return None;
+    }
+    // The rest: its second pass keeps regions within d_sep one patch of
+    // sub-patches, the others separate patches (no interaction: f = 0
+    // from d_sep on, as the distance to a group's box is at most that to
+    // any of its members).
+    let n = boxes.len();
+    let mut factors = vec![0.0; n * n];
+    for k in 0..n {
+        for l in 0..n {
+            let d = boxes[k].distance(&boxes[l]);
+            factors[k * n + l] = if k == l {
+                1.0
+            } else if d < separate_m {
+                ((separate_m - d) / (separate_m - combine_m))
+                    .powf(0.8)
+                    .min(1.0)
+            } else {
+                0.0
+            };
+        }
+    }
+    Some(SubPatches { boxes, factors })
 }
 
 /// [`rail_normal_at`] searching forward from the segment `from` (the
@@ -1918,6 +2091,49 @@ mod tests {
             })
             .collect();
         (gap, rail, locus)
+    }
+
+    /// Two regions of interpenetration 6 mm apart along q (samples of
+    /// -1, then 1, 4, 9, 4, 1 um, -1 elsewhere; the rail flat, the locus at
+    /// x = 0): each region's box runs from the midpoints to its outer
+    /// neighbours (where the interpolated interpenetration vanishes) and
+    /// along x over +-sqrt(2 r_nom pen) of its deepest sample (r_nom 0.46
+    /// m: +-2.877 mm); with D_COMB 4 mm and D_SEP 8 mm they are two
+    /// sub-patches with f = ((8 - 6)/(8 - 4))^0.8 (CONTACT's
+    /// `combine_cpatches`). 3 mm apart they are one region (no
+    /// sub-patches); 9 mm apart, f = 0.
+    #[test]
+    fn regions_between_d_comb_and_d_sep_are_sub_patches() {
+        let bump = [1.0, 4.0, 9.0, 4.0, 1.0];
+        let regions = |apart_samples: usize| {
+            let n = 40 + apart_samples + 10;
+            let mut pens = vec![-1.0; n];
+            pens[20..25].copy_from_slice(&bump);
+            // The first region ends at 24.5, the second starts at b - 0.5.
+            let b = 25 + apart_samples;
+            pens[b..b + 5].copy_from_slice(&bump);
+            let (gap, _, locus) = hand_gap(&pens, 10.0, |_| 0.0, |_| 0.0);
+            sub_patches(&locus, &gap, (0, n - 1), 10e-6, 0.46, 4e-3, 8e-3)
+        };
+        let dq = SAMPLE_SPACING_M;
+        // 6 mm: 120 samples of 50 um.
+        let sub = regions(120).expect("two sub-patches");
+        assert_eq!(sub.boxes.len(), 2);
+        let first = sub.boxes[0];
+        let q0 = (15000.0 + 19.5) * dq;
+        assert!(
+            (first.q_m[0] - q0).abs() < 1e-12 && (first.q_m[1] - (q0 + 5.0 * dq)).abs() < 1e-12
+        );
+        let t = (2.0 * 0.46 * 9e-6f64).sqrt();
+        assert!((first.x_m[0] + t).abs() < 1e-12 && (first.x_m[1] - t).abs() < 1e-12);
+        let d = first.distance(&sub.boxes[1]);
+        assert!((d - 6e-3).abs() < 1e-12, "{d}");
+        let f = 0.5f64.powf(0.8);
+        assert_eq!(sub.factors.len(), 4);
+        assert_eq!((sub.factors[0], sub.factors[3]), (1.0, 1.0));
+        assert!((sub.factors[1] - f).abs() < 1e-12 && sub.factors[2] == sub.factors[1]);
+        assert!(regions(60).is_none(), "3 mm: one region");
+        assert_eq!(regions(180).expect("9 mm").factors[1], 0.0);
     }
 
     /// On a symmetric interpenetration the weighted centre is the point of
