@@ -2043,12 +2043,12 @@ async fn viscoelastic_bodies_on_the_wire_solve_as_the_case_file() {
             },
             "case.viscoelastic",
         ),
-        // A surface grid of 65 x 65 elements: over the 4096 (64 x 64)
-        // whose coefficients are integrated, refused before any work.
+        // A surface grid of 129 x 129 elements: over the 16384 (128 x
+        // 128) whose coefficients are integrated, refused before any work.
         (
             pb::PatchCase {
                 viscoelastic: Some(visc),
-                ..rolling(pb::Model::Exact, 65, 1e-3)
+                ..rolling(pb::Model::Exact, 129, 1e-3)
             },
             "case.viscoelastic",
         ),

@@ -875,7 +875,7 @@ async fn a_trusted_proxy_tells_its_clients_apart() {
     server.shutdown().await;
 }
 
-/// Two viscoelastic 64 x 64 solves (the largest grid: about 0.5 s of
+/// Two viscoelastic 64 x 64 solves (about 0.5 s of
 /// coefficient integration each, one per heavy worker) whose clients give
 /// up after 100 ms: a running one is told to stop (the second may not
 /// have started; a build told so stops integrating: `core::cache`'s

@@ -639,10 +639,12 @@ pub const INTERFACIAL_LAYER_KEY: &str = "interfacial_layer";
 
 /// Most elements of a surface grid (not a line contact) with viscoelastic
 /// bodies: their coefficients are integrated numerically for each element
-/// offset (2 nx x 2 ny of them), about 10 s at 48 x 48 on a 2-core Xeon;
-/// this bounds what one problem costs (a cancelled caller's build stops at
-/// once: [`crate::core::cache`]).
-pub const MAX_VISCOELASTIC_ELEMENTS: usize = 4096;
+/// offset (2 nx x 2 ny of them), a cost proportional to the elements:
+/// 3.0 s at 128 x 128 (0.93 s at 64 x 64, 4.6 s at 160 x 160) on a 2-core
+/// Xeon under a load of 4-6, release build, 2026-12-07; this bounds what
+/// one problem costs (a cancelled caller's build stops at once:
+/// [`crate::core::cache`]).
+pub const MAX_VISCOELASTIC_ELEMENTS: usize = 16384;
 
 /// The key of [`ContactProblem::numerical_influence`] in errors (the
 /// case file's key).
@@ -717,8 +719,8 @@ pub fn check_viscoelastic_grid(
             VISCOELASTIC_KEY,
             format!(
                 "viscoelastic bodies on a grid of {nx} x {ny} = {elements} elements: at most \
-                 {MAX_VISCOELASTIC_ELEMENTS} (64 x 64) on a surface, whose coefficients are \
-                 integrated numerically per element offset (about 10 s at 48 x 48, growing with \
+                 {MAX_VISCOELASTIC_ELEMENTS} (128 x 128) on a surface, whose coefficients are \
+                 integrated numerically per element offset (about 3 s at 128 x 128, growing with \
                  the elements); line contact has no limit"
             ),
         ));

@@ -414,8 +414,8 @@ fn viscoelastic_ellipse_tends_to_both_elastic_limits() {
 
 #[test]
 fn viscoelastic_surface_grids_are_bounded() {
-    // A surface grid beyond 64 x 64 elements is refused naming
-    // `viscoelastic` before any coefficient is integrated; 64 x 64 is
+    // A surface grid beyond 128 x 128 elements is refused naming
+    // `viscoelastic` before any coefficient is integrated; 128 x 128 is
     // valid, and so is a larger grid of elastic bodies (FG = 0).
     let problem = |n: usize, ratio: f64| {
         let grid = Grid::new(n, n, 0.5e-3, 0.5e-3, -16e-3, -16e-3).unwrap();
@@ -435,8 +435,8 @@ fn viscoelastic_surface_grids_are_bounded() {
             numerical_influence: None,
         }
     };
-    let e = problem(65, 1.0).validate().unwrap_err().to_string();
-    assert!(e.contains("viscoelastic") && e.contains("4225"), "{e}");
-    problem(64, 1.0).validate().unwrap();
-    problem(65, 0.0).validate().unwrap();
+    let e = problem(129, 1.0).validate().unwrap_err().to_string();
+    assert!(e.contains("viscoelastic") && e.contains("16641"), "{e}");
+    problem(128, 1.0).validate().unwrap();
+    problem(129, 0.0).validate().unwrap();
 }
