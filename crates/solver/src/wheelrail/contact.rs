@@ -823,6 +823,13 @@ pub(crate) struct PatchWork {
     /// FASTSIM's buffers on an exact patch's grid
     /// ([`ExactTangential::Fastsim`]), built at its first frictional solve.
     grid_fastsim: Option<Box<GridFastsim>>,
+    /// An exact patch of an out-of-round wheel or a varying rail with
+    /// [`ReferencePoint::InterpenetrationCentre`]: how far the centre of
+    /// its interpenetration at the reference's approach lies from the
+    /// reference point, (x, s) in its tangent plane \[m\], beyond where
+    /// the round wheel and the prismatic rail put it
+    /// ([`interpenetration_centroid`]).
+    centre_offset: Option<[f64; 2]>,
 }
 
 // One per patch and few patches per wheel: the size of the exact variant
@@ -2452,11 +2459,6 @@ fn solve_wheel(
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
             let drop = centred.then_some(reference_delta);
-            let Some(geom) =
-                patch_geometry_about(rail, locus, gap, iv, margin, centre.as_ref(), drop)
-            else {
-                continue;
-            };
             if centred {
                 centres.push((iv, centre));
             }
@@ -2471,22 +2473,60 @@ fn solve_wheel(
                     sub_patches(locus, gap, (iv.0, iv.1), delta, nominal, combine, sep)
                         .map(|sub| (sub, combine))
                 });
-            patches.push(build_patch(
-                pair,
-                locus,
-                geom,
-                cap,
-                reference_delta,
-                &pose,
-                side,
-                input,
-                omega,
-                cache,
-                last,
-                &mut spare,
-                loaded,
-                sub.as_ref(),
-            )?);
+            // An out-of-round wheel or a varying rail: the reference moved
+            // from the round wheel's and prismatic rail's centre by its
+            // patch's centre offset (CONTACT's weighted centre of its 2-D
+            // gap), until the offset stays.
+            let mut offset = [0.0, 0.0];
+            let mut moves = 0;
+            let patch = loop {
+                let mut here = centre;
+                if let Some(c) = here.as_mut() {
+                    c.x_m += offset[0];
+                    c.q_m += offset[1];
+                }
+                let Some(geom) =
+                    patch_geometry_about(rail, locus, gap, iv, margin, here.as_ref(), drop)
+                else {
+                    break None;
+                };
+                let tangent = geom.tangent();
+                let patch = build_patch(
+                    pair,
+                    locus,
+                    geom,
+                    cap,
+                    reference_delta,
+                    &pose,
+                    side,
+                    input,
+                    omega,
+                    cache,
+                    last,
+                    &mut spare,
+                    loaded,
+                    sub.as_ref(),
+                )?;
+                // The offset in the side frame (x, q).
+                let next = patch.centre_offset.map(|[dx, ds]| [dx, ds * tangent[0]]);
+                match next.filter(|o| {
+                    moves < MAX_CENTRE_MOVES
+                        && (o[0] - offset[0]).hypot(o[1] - offset[1]) > REFERENCE_TOLERANCE * e
+                }) {
+                    Some(o) => {
+                        offset = o;
+                        moves += 1;
+                        if let PatchKind::Exact { solver, .. } = patch.kind {
+                            spare = Some(solver);
+                        }
+                    }
+                    None => break Some(patch),
+                }
+            };
+            let Some(patch) = patch else {
+                continue;
+            };
+            patches.push(patch);
         }
         if patches.is_empty() {
             return Err(WheelRailError::Geometry {
@@ -2675,6 +2715,33 @@ const REFERENCE_ANGLE_TOLERANCE_RAD: f64 = 1e-6;
 /// and the centre of its interpenetration that placed its reference point
 /// (None: placed at the smallest gap).
 type PatchCentre = ((usize, usize, usize), Option<InterpenetrationCentre>);
+
+/// Moves of an out-of-round wheel's or a varying rail's reference point
+/// by its patch's centre offset (`PatchWork::centre_offset`) in one load
+/// iteration; after them the last placement stays.
+const MAX_CENTRE_MOVES: usize = 4;
+
+/// The weighted centre of the interpenetration of the undeformed
+/// distance `gap_m` on `grid` at the normal approach `dn` \[m\], (x, s)
+/// from the grid's origin \[m\]: the elements' positions weighted by the
+/// square of their interpenetration dn - h (CONTACT's
+/// `compute_wgt_center_2d` with its default squared weighting). None
+/// where nothing interpenetrates.
+fn interpenetration_centroid(grid: &Grid, gap_m: &[f64], dn: f64) -> Option<[f64; 2]> {
+    let (mut w, mut wx, mut ws) = (0.0, 0.0, 0.0);
+    for is in 0..grid.ny {
+        for ix in 0..grid.nx {
+            let pen = dn - gap_m[grid.index(ix, is)];
+            if pen > 0.0 {
+                let p2 = pen * pen;
+                w += p2;
+                wx += p2 * grid.x_m(ix);
+                ws += p2 * grid.y_m(is);
+            }
+        }
+    }
+    (w > 0.0).then(|| [wx / w, ws / w])
+}
 
 /// Whether the centres of the interpenetration of `centres`' intervals at
 /// the approach `delta` \[m\] lie farther from those used (`centres`, per
@@ -2974,6 +3041,7 @@ fn build_patch(
     let sz = geom.tangent()[1];
     let (hmin, b) = lateral_curvature(&geom);
     let kx0 = geom.lateral_at(0.0).kx_per_m;
+    let mut centre_offset = None;
     let kind = match input.settings.model {
         WheelRailModel::HertzFastsim
         | WheelRailModel::HertzPolach
@@ -3013,6 +3081,14 @@ fn build_patch(
                     gap_m[grid.index(ix, is)] = exact.unwrap_or_else(|| geom.gap_at(x, s));
                 }
             }
+            // The centre of the round wheel's and prismatic rail's
+            // interpenetration, for the offset of the true one.
+            let rail_slices = &input.rail_slices[side.index()];
+            let varies = pair.wheel(side).slices().is_some() || rail_slices.is_some();
+            let dn = expected * geom.normal[1];
+            let round_centre = (centred(input) && varies)
+                .then(|| interpenetration_centroid(&grid, &gap_m, dn))
+                .flatten();
             if let Some(oor) = pair.wheel(side).slices() {
                 let wheel = pair.wheel(side);
                 let mut rows =
@@ -3023,7 +3099,7 @@ fn build_patch(
                     });
                 }
             }
-            if let Some(slices) = &input.rail_slices[side.index()] {
+            if let Some(slices) = rail_slices {
                 add_rail_variation(
                     &mut gap_m,
                     &grid,
@@ -3033,6 +3109,10 @@ fn build_patch(
                     input.position.track_s_m,
                 )?;
             }
+            centre_offset = round_centre.and_then(|[x0, s0]| {
+                let [x, s] = interpenetration_centroid(&grid, &gap_m, dn)?;
+                Some([x - x0, s - s0])
+            });
             // A blended patch: the elements outside its sub-patches are
             // out of contact.
             let blend = match sub {
@@ -3122,6 +3202,7 @@ fn build_patch(
         warm_slip_velocity: None,
         solver_s: [0.0; 2],
         grid_fastsim: None,
+        centre_offset,
     })
 }
 
@@ -3211,6 +3292,7 @@ pub(crate) fn hertz_patch(
         warm_slip_velocity: None,
         solver_s: [0.0; 2],
         grid_fastsim: None,
+        centre_offset: None,
     }
 }
 
