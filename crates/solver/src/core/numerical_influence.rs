@@ -595,10 +595,20 @@ impl InfluenceFile {
         (self.dx_mm * 1e-3, self.dy_mm * 1e-3)
     }
 
-    /// A hash of the contents (equal files, equal fingerprints): part of
-    /// the kernel cache's key.
+    /// A 64-bit hash of the contents (equal files, equal fingerprints; not
+    /// the converse): part of the kernel cache's key, whose hits compare
+    /// the contents too.
     pub fn fingerprint(&self) -> u64 {
         self.fingerprint
+    }
+
+    /// This file claiming fingerprint `f` (tests of a collision).
+    #[cfg(test)]
+    pub(crate) fn with_fingerprint(self, f: u64) -> Self {
+        Self {
+            fingerprint: f,
+            ..self
+        }
     }
 
     /// Coefficient C_ij \[mm\] of matrix `matrix` (0-based) at offset (ox, oy):
