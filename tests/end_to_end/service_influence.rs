@@ -349,3 +349,26 @@ async fn influence_text_beyond_the_request_size_is_refused_by_the_transport() {
     assert!(s.message().contains("max_message_bytes"), "{}", s.message());
     server.shutdown().await;
 }
+
+/// A session's memory counts the coefficients it holds: 72 bytes a
+/// coefficient line, (2 x 9 - 1) x 13 = 221 lines of
+/// `inflcf_hs_small.txt`, beside the same case on the half-space.
+#[test]
+fn a_sessions_memory_counts_its_influence_coefficients() {
+    use railcontact::core::cache::KernelCache;
+    use railcontact::service::convert::{validate_case, CaseLimits};
+    use railcontact::service::engine::PatchEngine;
+    let limits = CaseLimits {
+        max_grid_elements: ServeConfig::default().max_grid_elements,
+    };
+    let cache = KernelCache::default();
+    let bytes = |c: &pb::PatchCase| {
+        PatchEngine::new(validate_case(c, limits).unwrap(), &cache)
+            .unwrap()
+            .heap_bytes()
+    };
+    let with = numerical_influence_case(inflcf("inflcf_hs_small.txt"));
+    let mut without = with.clone();
+    without.material.as_mut().unwrap().influence_file_content = None;
+    assert_eq!(bytes(&with) - bytes(&without), 221 * 9 * 8);
+}

@@ -74,6 +74,7 @@ use std::path::Path;
 use thiserror::Error;
 
 use crate::core::influence::{Component, KernelKind};
+use crate::core::memory::HeapBytes;
 
 /// Largest file read \[bytes\].
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
@@ -684,6 +685,13 @@ impl InfluenceFile {
             ));
         }
         Ok(())
+    }
+}
+
+/// The coefficients held (72 bytes a coefficient line).
+impl HeapBytes for InfluenceFile {
+    fn heap_bytes(&self) -> usize {
+        self.values.heap_bytes()
     }
 }
 
