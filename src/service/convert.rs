@@ -7,13 +7,16 @@
 //! solutions and the CLI's reports become [`pb::PatchResult`]s, and a
 //! non-finite total is refused here, never sent.
 
+use std::sync::Arc;
+
 use crate::conformal::geometry::RigidSlipSurface;
 use crate::core::friclaw::SlipStart;
 use crate::core::grid::Grid;
 use crate::core::layer::{InterfacialLayer, LayerFields};
 use crate::core::material::Material;
 use crate::core::normal::NormalLoad;
-use crate::core::problem::Creepages;
+use crate::core::numerical_influence::{InfluenceFile, MAX_FILE_BYTES};
+use crate::core::problem::{Creepages, NUMERICAL_INFLUENCE_KEY};
 use crate::core::sensitivity::ForceJacobian;
 use crate::core::solution::{ContactSolution, ElementFields, ElementState, SolveStatus, Totals};
 use crate::core::subsurface::{BodySubsurface, FieldPeak};
@@ -492,10 +495,76 @@ pub fn subsurface_result(
     }
 }
 
+/// The wire field of numerical influence coefficients (the case files'
+/// `material.influence_file`, [`NUMERICAL_INFLUENCE_KEY`], sent as text).
+pub const INFLUENCE_CONTENT_FIELD: &str = "material.influence_file_content";
+
+/// The numerical influence coefficients of a wire case (None: the
+/// half-space's): its `material.influence_file_content` read by the case
+/// files' reader ([`InfluenceFile::parse`]), at most [`MAX_FILE_BYTES`] of
+/// text as a file. Errors name the field, and the text's line and field.
+fn influence_table(c: &pb::PatchCase) -> Result<Option<Arc<InfluenceFile>>, ServiceError> {
+    let Some(text) = c
+        .material
+        .as_ref()
+        .and_then(|m| m.influence_file_content.as_deref())
+    else {
+        return Ok(None);
+    };
+    if text.len() as u64 > MAX_FILE_BYTES {
+        return Err(ServiceError::invalid(
+            INFLUENCE_CONTENT_FIELD,
+            format!(
+                "has {} bytes, more than {MAX_FILE_BYTES} (a file of influence coefficients)",
+                text.len()
+            ),
+        ));
+    }
+    InfluenceFile::parse(text)
+        .map(|t| Some(Arc::new(t)))
+        .map_err(|e| ServiceError::invalid(INFLUENCE_CONTENT_FIELD, e.to_string()))
+}
+
+/// `text` with the case files' key of the influence coefficients
+/// (`material.influence_file`, alone or followed by `: ` and the file's
+/// field) replaced by the wire's field, when it starts with it.
+fn wire_influence_key(text: &str) -> Option<String> {
+    let rest = text.strip_prefix(NUMERICAL_INFLUENCE_KEY)?;
+    (rest.is_empty() || rest.starts_with(": ")).then(|| format!("{INFLUENCE_CONTENT_FIELD}{rest}"))
+}
+
+/// A case error that names the case files' key of the influence
+/// coefficients named by the wire's field instead (the file's field, as
+/// `dxfile`, goes into the reason).
+fn on_the_wire(e: ServiceError) -> ServiceError {
+    match e {
+        ServiceError::Invalid { field, reason } => match wire_influence_key(&field) {
+            Some(wire) => match wire.split_once(": ") {
+                Some((key, file_field)) => {
+                    ServiceError::invalid(key, format!("{file_field}: {reason}"))
+                }
+                None => ServiceError::invalid(wire, reason),
+            },
+            None => ServiceError::Invalid { field, reason },
+        },
+        e => e,
+    }
+}
+
 /// Validates a wire case: the case file's rules, the server's grid limit
 /// and the extra gap. Field paths are relative to the case.
 pub fn validate_case(c: &pb::PatchCase, limits: CaseLimits) -> Result<ValidCase, ServiceError> {
-    let case = Case::from_file(case_file(c)?)?;
+    let file = case_file(c)?;
+    let mut case = match influence_table(c)? {
+        Some(table) => Case::from_file_with_influence(file, table)
+            .map_err(|e| on_the_wire(ServiceError::from(e)))?,
+        None => Case::from_file(file)?,
+    };
+    for note in &mut case.notes {
+        if let Some(wire) = wire_influence_key(note) {
+            *note = wire;
+        }
+    }
     let elements = case.nx * case.ny;
     if elements > limits.max_grid_elements {
         return Err(ServiceError::invalid(

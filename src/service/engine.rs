@@ -180,13 +180,18 @@ impl PatchEngine {
     }
 
     /// The memory the engine holds between solves \[bytes\]: the exact
-    /// model's solver (its buffers, not the cache's kernels) and gap, the
-    /// conformal models' workspace.
+    /// model's solver (its buffers, not the cache's kernels), gap and
+    /// numerical influence coefficients (sent inline: up to 3.3 times the
+    /// request's text), the conformal models' workspace.
     pub fn heap_bytes(&self) -> usize {
         let exact = self.exact.as_ref().map_or(0, |e| {
             e.solver.heap_bytes()
                 + e.problem.gap_m.heap_bytes()
                 + e.problem.extra_rigid_slip.heap_bytes()
+                + e.problem
+                    .numerical_influence
+                    .as_deref()
+                    .map_or(0, HeapBytes::heap_bytes)
         });
         exact + self.conformal.heap_bytes()
     }

@@ -4,7 +4,8 @@
 //!
 //! A session holds two kinds of memory: its live working state (the exact
 //! solvers' buffers, FFT workspaces and Newton scratch, warm-start
-//! pressures and tractions, the copy a refused step is undone from: what
+//! pressures and tractions, the copy a refused step is undone from, the
+//! gap and numerical influence coefficients sent with the case: what
 //! the solver crate's `HeapBytes` counts, the kernels excepted, which the
 //! kernel cache holds under its own cap) and its marks. Both are counted
 //! here, in one count per server. A session's live bytes are known only

@@ -218,6 +218,13 @@ fn check_ranges(
         return Err(ServiceError::invalid(f(&key), reason));
     }
     if let Some(m) = &spec.material {
+        if m.influence_file_content.is_some() {
+            return Err(ServiceError::invalid(
+                f(convert::INFLUENCE_CONTENT_FIELD),
+                "numerical influence coefficients are taken by patch cases (SolvePatch, \
+                 SolvePatchBatch, CreepCurve, PatchSession), not by wheel/rail contact",
+            ));
+        }
         let body = |prefix: &str, g: Option<f64>, nu: Option<f64>| {
             if let Some(g) = g {
                 let field = f(&format!("{prefix}.shear_modulus_pa"));
@@ -1326,7 +1333,7 @@ impl PairEntry {
             rail_left,
             track: c.track,
             wheelset: c.wheelset,
-            material: c.material,
+            material: c.material.clone(),
             friction: c.friction.clone(),
             element_size_m: self.spec.settings.element_size_m,
             smoothing_wavelength_m: self.spec.settings.smoothing_wavelength_m,

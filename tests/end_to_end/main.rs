@@ -16,13 +16,14 @@
 //! | [`cli`] | `railcontact` subcommands on the example cases |
 //! | [`service`] | SolvePatch, batches, creep curves, queue, deadlines, health, reflection |
 //! | [`service_contact_library`] | `ContactLibrary` (CONTACT's library forwarding) against mismatched and hostile requests |
+//! | [`service_influence`] | numerical influence coefficients (CONTACT's C3 = 9) sent inline: the case file's numbers, errors by field |
 //! | [`service_fairness`] | one client hoarding each resource (solve slots, sessions, streams, connections, token guesses) while another is served |
 //! | [`service_limits`] | per-request and per-solve limits |
 //! | [`service_security`] | TLS, mutual TLS, tokens and roles, loopback-only defaults, escaped logs |
 //! | [`service_sessions`] | co-simulation patch sessions: order, marks, rollback, memory |
 //! | [`service_store`] | the profile-pair store: restart, damage, limits |
 //! | [`service_wheelrail`] | wheel/rail queries and sessions |
-//! | [`validation_fuzz`] | every numeric request field at extreme values; profile readers on mutated profiles |
+//! | [`validation_fuzz`] | every numeric request field at extreme values; profile readers on mutated profiles; mutated influence-coefficient texts |
 //! | [`loadtest`] | `railcontact loadtest` against a server process |
 //! | [`scaleout`] | three replicas, sessions spread by the client |
 //! | [`proxy_fleet`] | nginx (`deploy/nginx.conf`) in front of three replicas: routing, pinning, a drain |
@@ -47,6 +48,7 @@ mod scaleout;
 mod service;
 mod service_contact_library;
 mod service_fairness;
+mod service_influence;
 mod service_limits;
 mod service_security;
 mod service_sessions;

@@ -12,7 +12,8 @@
 //! The track's options of a registration (placement by the rail origins,
 //! deviations, a roller rig, curvature) and the rollers' rate likewise, on
 //! the roller rig's pair; a rail given as slices, its slices file mutated,
-//! and the position along it.
+//! and the position along it. The text of numerical influence
+//! coefficients sent inline, mutated as the profiles are.
 //! Seeded and bounded (a few hundred requests on 16 x 16 grids, 400
 //! wheel/rail queries); the counts are printed at the end.
 
@@ -1454,6 +1455,52 @@ async fn mutated_rail_slices_register_or_are_refused_by_name() {
     server.shutdown().await;
     wrong.extend(out.wrong);
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// Numerical influence coefficients sent inline
+/// (`case.material.influence_file_content`): the text of a real file
+/// (`crates/solver/tests/data/inflcf/inflcf_hs_small.txt`) mutated as the
+/// profiles are (digits, huge/tiny/non-finite numbers, truncation, a
+/// 100 kB line, lines deleted or swapped), and headers declaring huge
+/// grids: solved with every number finite, or INVALID_ARGUMENT naming the
+/// field (at most 600 characters of message), never another code.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn mutated_influence_coefficients_are_solved_or_refused_by_name() {
+    use crate::service_influence::{inflcf, numerical_influence_case};
+    let (server, mut client) = crate::common::server_with(ServeConfig::default()).await;
+    let text = inflcf("inflcf_hs_small.txt");
+    let mut rng = Rng(0xd1b5_4a32_d192_ed03);
+    let mut texts: Vec<String> = (0..40).map(|_| mutate(&text, &mut rng)).collect();
+    for (matrices, mx, my) in [
+        ("1", "1048576", "1048576"),
+        ("1048576", "1", "1"),
+        ("1", "1048576", "1"),
+        ("-1", "13", "9"),
+        ("1", "0", "9"),
+        ("1", "9223372036854775807", "9"),
+    ] {
+        texts.push(format!("{matrices} 1\n0 312\n1 0\n{mx} {my} 0.4 0.4\n"));
+    }
+    let mut out = Outcomes::default();
+    for (k, t) in texts.into_iter().enumerate() {
+        let r = client
+            .solve_patch(pb::SolvePatchRequest {
+                case: Some(numerical_influence_case(t)),
+                ..Default::default()
+            })
+            .await;
+        out.record(
+            "case.material.influence_file_content",
+            format!("text {k}"),
+            r,
+            |r: &tonic::Response<pb::SolvePatchResponse>| {
+                let r = r.get_ref().result.as_ref().ok_or("no result")?;
+                check_finite(r).map_err(|e| e.to_string())
+            },
+        );
+    }
+    server.shutdown().await;
+    out.assert_right("influence-coefficient fuzz");
 }
 
 #[test]

@@ -226,3 +226,42 @@ def test_fastsim_reports_hertz_p0_and_its_bound_peak(client):
     r = client.solve_patch(rolling_case("fastsim", n=24))
     assert r.fastsim_max_pressure_pa == pytest.approx(4 / 3 * r.totals.max_pressure_pa, rel=3e-3)
     assert client.solve_patch(rolling_case("hertz")).fastsim_max_pressure_pa is None
+
+
+def test_influence_coefficients_of_a_case_file_are_sent_inline(client):
+    # examples/cases/numerical_influence.toml names a file of influence
+    # coefficients (CONTACT's C3 = 9): load_case reads it and sends its
+    # text (material.influence_file_content); the forces are the command
+    # line's on the same file, bit for bit, and CONTACT's for its
+    # inflcf.inp case 2: FX 2217 N, FY -1079 N (its printed digits).
+    import json
+
+    from conftest import run_cli
+
+    path = REPO / "examples" / "cases" / "numerical_influence.toml"
+    case = railcontact.load_case(path)
+    text = case["material"]["influence_file_content"]
+    assert "influence_file" not in case["material"] and text.lstrip().startswith("1")
+    r = client.solve_patch(path, include_fields=True)
+    done = run_cli("solve", str(path), "--json")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(done.stdout)
+    for name in ("normal_force_n", "fx_n", "fy_n", "mz_nm", "max_pressure_pa", "approach_m"):
+        assert getattr(r.totals, name) == expected[name], name
+    assert r.totals.fx_n == pytest.approx(2217, abs=0.5)
+    assert r.totals.fy_n == pytest.approx(-1079, abs=0.5)
+    assert any(n.startswith("material.influence_file_content:") for n in r.notes)
+    # A damaged text is refused naming the field, and the line in it.
+    line = text.splitlines()[6]  # line 7, the first coefficient line
+    damaged = text.replace(line, line.replace(line.split()[2], "nan", 1), 1)
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch({**case, "material": {**case["material"], "influence_file_content": damaged}})
+    assert e.value.code == grpc.StatusCode.INVALID_ARGUMENT
+    assert e.value.field == "case.material.influence_file_content"
+    assert "line 7: `Cnn` is not a finite number" in str(e.value)
+    # A file that cannot be read is named before any call.
+    missing = {**case, "material": {**case["material"], "influence_file": "no-such-file.txt"}}
+    del missing["material"]["influence_file_content"]
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(missing)
+    assert e.value.field == "case.material.influence_file" and "no-such-file.txt" in str(e.value)

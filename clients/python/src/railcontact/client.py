@@ -53,15 +53,46 @@ WheelRailCaseLike = Union[WheelRailCase, str, os.PathLike]
 def load_case(path: Union[str, os.PathLike]) -> dict:
     """A case file of ``railcontact solve`` (TOML) as a mapping.
 
+    A file of numerical influence coefficients the case names
+    (``material.influence_file``, relative to the case file's directory)
+    is read here and sent inline: the mapping holds its text as
+    ``material.influence_file_content``, the wire's field (the server reads
+    no file a client names).
+
     A file that cannot be read or is not TOML raises
     :class:`RailcontactError` (INVALID_ARGUMENT, field ``case``), like
-    every other bad input.
+    every other bad input; an influence-coefficient file that cannot be
+    read, the same naming ``case.material.influence_file``.
     """
     try:
         with open(path, "rb") as f:
-            return tomllib.load(f)
+            case = tomllib.load(f)
     except (OSError, tomllib.TOMLDecodeError) as e:
         raise invalid("case", f"cannot read case file {os.fspath(path)}: {e}") from e
+    return _inline_influence_file(case, os.path.dirname(os.fspath(path)))
+
+
+def _inline_influence_file(case: Mapping, directory: Union[str, os.PathLike] = ".", path: str = "case") -> Mapping:
+    """``case`` with the file its ``material.influence_file`` names (a path
+    relative to ``directory``) read into ``material.influence_file_content``
+    (UTF-8 text); ``case`` itself when it names none. Giving both keys, or
+    a file that cannot be read, raises :class:`RailcontactError`
+    (INVALID_ARGUMENT at ``PATH.material.influence_file``)."""
+    material = case.get("material") if isinstance(case, Mapping) else None
+    if not isinstance(material, Mapping) or "influence_file" not in material:
+        return case
+    key = f"{path}.material.influence_file"
+    material = dict(material)
+    name = material.pop("influence_file")
+    if "influence_file_content" in material:
+        raise invalid(key, "give either influence_file (a path) or influence_file_content (its text), not both")
+    file = os.path.join(directory, os.fspath(name))
+    try:
+        with open(file, encoding="utf-8") as f:
+            material["influence_file_content"] = f.read()
+    except (OSError, UnicodeDecodeError, TypeError) as e:
+        raise invalid(key, f"cannot read the influence-coefficient file {file}: {e}") from e
+    return {**case, "material": material}
 
 
 def patch_case(case: CaseLike, path: str = "case") -> pb.PatchCase:
@@ -76,7 +107,7 @@ def patch_case(case: CaseLike, path: str = "case") -> pb.PatchCase:
             "a wheel/rail case (`railcontact wheelrail`, with [track] and [wheelset]): solve it with "
             "Client.solve_wheelrail_case, or read it with railcontact.load_wheelrail_case",
         )
-    return build(pb.PatchCase, case, path)
+    return build(pb.PatchCase, _inline_influence_file(case, ".", path), path)
 
 
 def _call(function, *args, **kwargs):

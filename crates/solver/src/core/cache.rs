@@ -59,6 +59,20 @@ struct Bodies<'a> {
     table: Option<&'a Arc<InfluenceFile>>,
 }
 
+/// Whether `set` holds the kernels of `table` (both None: the closed-form
+/// ones). The key holds a 64-bit fingerprint of a file, and files come
+/// from clients of the service: two different files with one fingerprint
+/// (made on purpose) must not share kernels, so a hit compares the
+/// contents (microseconds for a file of 100 kB); a different file is built
+/// for its caller alone, not cached.
+fn same_table(set: &KernelSet, table: Option<&Arc<InfluenceFile>>) -> bool {
+    match (&set.table, table) {
+        (Some(s), Some(t)) => Arc::ptr_eq(s, t) || **s == **t,
+        (None, None) => true,
+        _ => false,
+    }
+}
+
 /// One entry: the kernels once built, when it was last used, its size.
 /// A build: the set, and whether it is whole (false: a cancelled
 /// caller's viscoelastic build, which stopped integrating).
@@ -285,6 +299,23 @@ impl KernelCache {
             table: table.map(|t| t.fingerprint()),
             kind,
         };
+        let build = |plan: Arc<ConvolutionPlan>| {
+            let influence = if grid.is_line() {
+                HalfSpaceInfluence::plane_strain(grid.dx_m, material)
+            } else {
+                HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
+            }
+            .with_layer_flexibility(layer);
+            let influence = match visc {
+                Some(v) => influence.with_viscoelastic(material, v),
+                None => influence,
+            };
+            Arc::new(match (table, other) {
+                (Some(t), other) => KernelSet::from_table(plan, influence, kind, t.clone(), other),
+                (None, Some(other)) => KernelSet::sharing_inverse_of(plan, influence, kind, other),
+                (None, None) => KernelSet::new(plan, influence, kind),
+            })
+        };
         loop {
             let (cell, plan) = {
                 let mut inner = self.lock();
@@ -297,43 +328,28 @@ impl KernelCache {
                 });
                 entry.last_used = now;
                 let cell = entry.cell.clone();
-                if let Some((set, true)) = cell.get() {
-                    self.hits.fetch_add(1, Relaxed);
-                    return set.clone();
-                }
                 let plan = inner
                     .plans
                     .entry((grid.nx, grid.ny))
                     .or_insert_with(|| Arc::new(ConvolutionPlan::new(grid.nx, grid.ny)))
                     .clone();
+                if let Some((set, true)) = cell.get() {
+                    if !same_table(set, table) {
+                        drop(inner);
+                        return build(plan);
+                    }
+                    self.hits.fetch_add(1, Relaxed);
+                    return set.clone();
+                }
                 (cell, plan)
             };
             let mut built = false;
             let (set, whole) = cell
                 .get_or_init(|| {
                     built = true;
-                    let influence = if grid.is_line() {
-                        HalfSpaceInfluence::plane_strain(grid.dx_m, material)
-                    } else {
-                        HalfSpaceInfluence::new(grid.dx_m, grid.dy_m, material)
-                    }
-                    .with_layer_flexibility(layer);
-                    let influence = match visc {
-                        Some(v) => influence.with_viscoelastic(material, v),
-                        None => influence,
-                    };
-                    let set = Arc::new(match (table, other) {
-                        (Some(t), other) => {
-                            KernelSet::from_table(plan, influence, kind, t.clone(), other)
-                        }
-                        (None, Some(other)) => {
-                            KernelSet::sharing_inverse_of(plan, influence, kind, other)
-                        }
-                        (None, None) => KernelSet::new(plan, influence, kind),
-                    });
                     // Cancellation stays once asked: a build it did not cut
                     // short is whole.
-                    (set, visc.is_none() || !cancel::requested())
+                    (build(plan.clone()), visc.is_none() || !cancel::requested())
                 })
                 .clone();
             if !whole {
@@ -355,6 +371,9 @@ impl KernelCache {
             }
             if !built {
                 // Another thread built it while this one waited.
+                if !same_table(&set, table) {
+                    return build(plan);
+                }
                 self.hits.fetch_add(1, Relaxed);
                 return set;
             }
@@ -469,6 +488,47 @@ mod tests {
         cache.set_max_bytes(1);
         let f = cache.figures();
         assert_eq!(f.entries, 0, "{f:?}");
+    }
+
+    /// Two different files claiming one fingerprint (a collision a client
+    /// could make on purpose) do not share kernels: the second is built
+    /// for its caller and not cached; the first stays a hit.
+    #[test]
+    fn files_with_one_fingerprint_do_not_share_kernels() {
+        use crate::core::influence::Component;
+        use crate::core::numerical_influence::UpperBody;
+        let (m, g, k) = (material(), grid(8), KernelKind::Displacement);
+        let file = |scale: f64| {
+            InfluenceFile::from_coefficients(
+                1,
+                (8, 8),
+                (0.01 / 8.0, 0.01 / 8.0),
+                UpperBody::Rail,
+                |_, i, j, ox, oy| {
+                    let d = if i == j { 1.0 } else { 0.0 };
+                    scale * d / (1.0 + (ox * ox + oy * oy) as f64)
+                        + if (i, j) == (Component::N, Component::N) {
+                            0.1
+                        } else {
+                            0.0
+                        }
+                },
+            )
+            .unwrap()
+        };
+        let a = Arc::new(file(1.0));
+        let b = Arc::new(file(2.0).with_fingerprint(a.fingerprint()));
+        assert_ne!(*a, *b);
+        let cache = KernelCache::default();
+        let sa = cache.get_numerical(&g, &m, Some(&a), k);
+        let sb = cache.get_numerical(&g, &m, Some(&b), k);
+        assert!(!Arc::ptr_eq(&sa, &sb));
+        assert!(Arc::ptr_eq(sb.table.as_ref().unwrap(), &b));
+        let xx = |s: &KernelSet| s.value(Component::X, Component::X, 1, 0).to_bits();
+        assert_ne!(xx(&sa), xx(&sb));
+        assert!(Arc::ptr_eq(&sa, &cache.get_numerical(&g, &m, Some(&a), k)));
+        let f = cache.figures();
+        assert_eq!((f.entries, f.hits, f.misses), (1, 1, 1), "{f:?}");
     }
 
     #[test]

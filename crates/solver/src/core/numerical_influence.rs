@@ -61,7 +61,10 @@
 //!
 //! A file larger than [`MAX_FILE_BYTES`] or holding more than
 //! [`MAX_COEFFICIENT_LINES`] coefficient lines is refused before its
-//! coefficients are stored (72 bytes a line: at most 75 MB).
+//! coefficients are stored (72 bytes a line: at most 75 MB), and so is a
+//! coefficient beyond [`MAX_COEFFICIENT_MM`] in magnitude. Memory is
+//! reserved for the lines the text can hold, not for those its header
+//! declares.
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
@@ -71,11 +74,18 @@ use std::path::Path;
 use thiserror::Error;
 
 use crate::core::influence::{Component, KernelKind};
+use crate::core::memory::HeapBytes;
 
 /// Largest file read \[bytes\].
 pub const MAX_FILE_BYTES: u64 = 256 << 20;
 /// Largest number of coefficient lines, `nmatrix (2 my - 1) mx`.
 pub const MAX_COEFFICIENT_LINES: usize = 1 << 20;
+/// Largest magnitude of a coefficient \[mm\]: the half-space's are below
+/// one element size (0.34 mm, its self-influence Cnn for elements of
+/// 0.4 mm), so 1e6 mm is a body millions of times more compliant than a
+/// half-space: a unit or format error. Far beyond it (1e300 mm) the
+/// solvers' products and norms overflow: non-finite forces.
+pub const MAX_COEFFICIENT_MM: f64 = 1e6;
 /// Largest element size mismatch between the file and the case \[m\]:
 /// CONTACT's 1e-5 mm.
 pub const SPACING_TOLERANCE_M: f64 = 1e-8;
@@ -236,8 +246,16 @@ fn value<T>(
     let w = words
         .get(k)
         .ok_or_else(|| field_error(line, field, "is missing"))?;
-    parse(w).ok_or_else(|| field_error(line, field, format!("is not {kind}: \"{w}\"")))
+    parse(w).ok_or_else(|| {
+        // A word of 100 kB is not quoted whole.
+        let head: String = w.chars().take(MAX_QUOTED_CHARS).collect();
+        let cut = if head.len() < w.len() { "..." } else { "" };
+        field_error(line, field, format!("is not {kind}: \"{head}\"{cut}"))
+    })
 }
+
+/// Most characters of a word an error quotes.
+const MAX_QUOTED_CHARS: usize = 40;
 
 fn integer(
     line: usize,
@@ -386,7 +404,12 @@ impl InfluenceFile {
                     ),
                 )
             })?;
-        let mut values = Vec::with_capacity(count * PER_LINE);
+        // Reserved for the lines the text can hold (a coefficient line has
+        // at least 11 one-character words and 10 separators), not for the
+        // count a header declares: a short text declaring 2^20 lines
+        // reserves nothing near 75 MB.
+        let room = text.len() / 21;
+        let mut values = Vec::with_capacity(count.min(room) * PER_LINE);
         for imat in 1..=matrices {
             if matrices > 1 {
                 let last = lines.last;
@@ -421,7 +444,15 @@ impl InfluenceFile {
                     )?;
                     real(l, &w, 1, "xrel")?;
                     for (k, name) in COLUMN_NAMES.iter().enumerate() {
-                        values.push(real(l, &w, 2 + k, name)?);
+                        let v = real(l, &w, 2 + k, name)?;
+                        if v.abs() > MAX_COEFFICIENT_MM {
+                            return Err(field_error(
+                                l,
+                                name,
+                                format!("must be within +-{MAX_COEFFICIENT_MM:e} mm, got {v:e}"),
+                            ));
+                        }
+                        values.push(v);
                     }
                 }
             }
@@ -565,10 +596,20 @@ impl InfluenceFile {
         (self.dx_mm * 1e-3, self.dy_mm * 1e-3)
     }
 
-    /// A hash of the contents (equal files, equal fingerprints): part of
-    /// the kernel cache's key.
+    /// A 64-bit hash of the contents (equal files, equal fingerprints; not
+    /// the converse): part of the kernel cache's key, whose hits compare
+    /// the contents too.
     pub fn fingerprint(&self) -> u64 {
         self.fingerprint
+    }
+
+    /// This file claiming fingerprint `f` (tests of a collision).
+    #[cfg(test)]
+    pub(crate) fn with_fingerprint(self, f: u64) -> Self {
+        Self {
+            fingerprint: f,
+            ..self
+        }
     }
 
     /// Coefficient C_ij \[mm\] of matrix `matrix` (0-based) at offset (ox, oy):
@@ -644,6 +685,13 @@ impl InfluenceFile {
             ));
         }
         Ok(())
+    }
+}
+
+/// The coefficients held (72 bytes a coefficient line).
+impl HeapBytes for InfluenceFile {
+    fn heap_bytes(&self) -> usize {
+        self.values.heap_bytes()
     }
 }
 
@@ -791,10 +839,20 @@ mod tests {
             (6, "0 0 1 2 3 4 5 6 7 8", (7, "Cyy")),
             (6, "0 0 1 2 3 4 nan 6 7 8 9", (7, "Cxx")),
             (6, "0 0 1 2 3 4 5 z 7 8 9", (7, "Cxy")),
+            (6, "0 0 1 2 3 4 5 6 7 -1.5e6 9", (7, "Cyx")),
+            (6, "0 0 1e300 2 3 4 5 6 7 8 9", (7, "Cnn")),
         ] {
             assert_eq!(line_field(error(&with(k, text))), named, "{text}");
         }
         assert_eq!(lines[6].split_whitespace().next(), Some("0"));
+        // The bound itself is a coefficient; a long word is quoted cut.
+        assert!(InfluenceFile::parse(&with(6, "0 0 1e6 2 3 4 5 6 7 8 -1e6")).is_ok());
+        let long = format!("0 0 {} 2 3 4 5 6 7 8 9", "7".repeat(100_000));
+        let m = error(&with(6, &long)).to_string();
+        assert!(
+            m.len() < 150 && m.ends_with("...") && m.contains("`Cnn`"),
+            "{m}"
+        );
         // Fortran exponents, commas and extra values are read.
         let f = InfluenceFile::parse(&with(6, "0, 0, 1D0 2 3 4 5 6 7 8 9.5d-1 99")).unwrap();
         assert_eq!(f.coefficient_mm(0, Y, Y, 0, -1), 0.95);

@@ -207,16 +207,18 @@ class Material(_message.Message):
     def __init__(self, shear_modulus_pa: _Optional[float] = ..., poisson_ratio: _Optional[float] = ...) -> None: ...
 
 class MaterialSection(_message.Message):
-    __slots__ = ("shear_modulus_pa", "poisson_ratio", "body1", "body2")
+    __slots__ = ("shear_modulus_pa", "poisson_ratio", "body1", "body2", "influence_file_content")
     SHEAR_MODULUS_PA_FIELD_NUMBER: _ClassVar[int]
     POISSON_RATIO_FIELD_NUMBER: _ClassVar[int]
     BODY1_FIELD_NUMBER: _ClassVar[int]
     BODY2_FIELD_NUMBER: _ClassVar[int]
+    INFLUENCE_FILE_CONTENT_FIELD_NUMBER: _ClassVar[int]
     shear_modulus_pa: float
     poisson_ratio: float
     body1: Material
     body2: Material
-    def __init__(self, shear_modulus_pa: _Optional[float] = ..., poisson_ratio: _Optional[float] = ..., body1: _Optional[_Union[Material, _Mapping]] = ..., body2: _Optional[_Union[Material, _Mapping]] = ...) -> None: ...
+    influence_file_content: str
+    def __init__(self, shear_modulus_pa: _Optional[float] = ..., poisson_ratio: _Optional[float] = ..., body1: _Optional[_Union[Material, _Mapping]] = ..., body2: _Optional[_Union[Material, _Mapping]] = ..., influence_file_content: _Optional[str] = ...) -> None: ...
 
 class FrictionSection(_message.Message):
     __slots__ = ("coefficient", "static_coefficient", "kinetic_coefficient", "law", "falling_coefficients", "half_velocities_m_per_s", "rolling_speed_m_per_s", "memory_distance_m", "memory_velocity_m_per_s", "start", "max_iterations")

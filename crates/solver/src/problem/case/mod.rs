@@ -419,6 +419,22 @@ impl Case {
         Case::from_file_with(file, None)
     }
 
+    /// [`Case::from_file`] with numerical influence coefficients already
+    /// read (e.g. sent inline to the service rather than named as a file):
+    /// validated as [`Case::from_toml_in`] validates the file it reads,
+    /// errors naming [`NUMERICAL_INFLUENCE_KEY`]. `file` must name no file
+    /// (`material.influence_file`), which is refused here as by
+    /// [`Case::from_file`].
+    pub fn from_file_with_influence(
+        file: CaseFile,
+        table: Arc<InfluenceFile>,
+    ) -> Result<Case, CaseError> {
+        if file.material.influence_file.is_some() {
+            return Case::from_file(file);
+        }
+        Case::from_file_with(file, Some(table))
+    }
+
     fn from_file_with(
         file: CaseFile,
         table: Option<Arc<InfluenceFile>>,
