@@ -443,7 +443,9 @@ pub fn solve_on_massless_rail(
             wheel.map_or((0.0, 0.0), |w| (w.force_track_n[1], w.vertical_approach_m));
         Ok(RailContact {
             lateral_force_n: fy,
-            center_z_m: sol.center_z_m,
+            // The loaded wheelset: the rigid position's centre lowered by
+            // the wheel's approach.
+            center_z_m: sol.center_z_m + approach,
             // Hertz: F ~ approach^1.5, dc/dF = approach / (1.5 F).
             compliance_m_per_n: approach.max(0.0) / (1.5 * f),
             state: sol,
