@@ -194,7 +194,8 @@ use railcontact_solver::wheelrail::{
     ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion, RailPlacement,
     RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad,
     WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE,
+    MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1863,6 +1864,9 @@ impl WheelRail {
                 (input, sol, None)
             }
         };
+        if let Some(rail) = massless {
+            self.check_balance(side, &rail, &sol)?;
+        }
         let ierror = self.finish(side, &input, &sol)?;
         if let Some(sv) = &mut self.solved {
             sv.vpitch_found = vpitch_found;
@@ -1908,6 +1912,39 @@ impl WheelRail {
             })?;
         self.rail_deflection = found.deflection;
         self.place_pair(side)
+    }
+
+    /// F = 3: the balances of the rail's springs with the wheel's force of
+    /// `sol`, solved on the rail placed with the deflections, to
+    /// [`MASSLESS_RAIL_PLACED_TOLERANCE`] of the force scale (the vertical
+    /// one when KZRAIL > 0); the iteration's rail was placed without them.
+    fn check_balance(
+        &self,
+        side: Side,
+        rail: &MasslessRail,
+        sol: &WheelRailSolution,
+    ) -> Result<()> {
+        let f = sol
+            .wheels
+            .iter()
+            .find(|w| w.side == side)
+            .map_or([0.0; 3], |w| w.force_track_n);
+        let [ry, rz] = rail.residuals_n(self.rail_deflection, [f[1], f[2]]);
+        let rz = if rail.vertical_stiffness_n_per_m > 0.0 {
+            rz
+        } else {
+            0.0
+        };
+        let tolerance = MASSLESS_RAIL_PLACED_TOLERANCE * rail.force_scale_n(f[2]);
+        if ry.abs().max(rz.abs()) > tolerance {
+            return Err(CntcError::ForceIteration(format!(
+                "massless rail: on the rail placed with the deflections found (DY_DEFL {} m, \
+                 DZ_DEFL {} m) the balances miss by {ry} N (lateral) and {rz} N (vertical), \
+                 beyond {tolerance} N: the contact jumps with a shift of the rail here",
+                self.rail_deflection.lateral_m, self.rail_deflection.vertical_m
+            )));
+        }
+        Ok(())
     }
 
     /// The wheel deflected by the flexible wheelset deviations (E = 4, 5)

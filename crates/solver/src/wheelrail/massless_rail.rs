@@ -62,6 +62,14 @@ pub const MASSLESS_RAIL_TOLERANCE: f64 = 1e-5;
 /// hold a vertical iteration).
 pub const MASSLESS_RAIL_MAX_ITERATIONS: usize = 30;
 
+/// Relative tolerance of the balances on the rail placed with the
+/// deflections found (the caller's last solve), of the force scale [-]:
+/// 1e-3. The iteration solves on the rail placed without them, the wheelset
+/// shifted instead, which is the same contact to the discretisation of the
+/// contact search; where the contact jumps with a shift of a micrometre
+/// (a planar patch at a flange root), the two differ by more.
+pub const MASSLESS_RAIL_PLACED_TOLERANCE: f64 = 1e-3;
+
 /// Largest lateral deflection the iteration tries \[m\] (0.1 m: no rail
 /// deflects that far; a step beyond it is an error).
 pub const MAX_LATERAL_DEFLECTION_M: f64 = 0.1;
@@ -172,6 +180,26 @@ pub enum MasslessRailError<E> {
 }
 
 impl MasslessRail {
+    /// The balances' residuals F_y + F*_y - k*_y dy and F_z + F*_z - k*_z dz
+    /// \[N\] of the wheel's force `force_n` (lateral, vertical) on the rail
+    /// deflected by `d`.
+    pub fn residuals_n(&self, d: RailDeflection, force_n: [f64; 2]) -> [f64; 2] {
+        [
+            force_n[0] + self.lateral_force_n - self.lateral_stiffness_n_per_m * d.lateral_m,
+            force_n[1] + self.vertical_force_n - self.vertical_stiffness_n_per_m * d.vertical_m,
+        ]
+    }
+
+    /// The force scale of the tolerances \[N\]: the largest of |F*_y|,
+    /// |F*_z|, the wheel's vertical force `fz_n` and 1 N.
+    pub fn force_scale_n(&self, fz_n: f64) -> f64 {
+        self.lateral_force_n
+            .abs()
+            .max(self.vertical_force_n.abs())
+            .max(fz_n)
+            .max(1.0)
+    }
+
     /// Checks the parameters for `load`.
     pub fn validate<E>(&self, load: RailLoad) -> Result<(), MasslessRailError<E>> {
         let invalid = |field, value, reason| {
@@ -260,13 +288,7 @@ pub fn rail_deflection<S, E>(
             }
         }
     };
-    let scale = rail
-        .lateral_force_n
-        .abs()
-        .max(fz_rail.abs())
-        .max(force_guess)
-        .max(1.0);
-    let tolerance_n = MASSLESS_RAIL_TOLERANCE * scale;
+    let tolerance_n = MASSLESS_RAIL_TOLERANCE * rail.force_scale_n(force_guess);
 
     // The vertical balance at the lateral deflection dy: (F, dz, contact).
     let mut vertical = |dy: f64,
@@ -320,7 +342,11 @@ pub fn rail_deflection<S, E>(
 
     let dy0 = start.lateral_m;
     let lateral_residual = |dy: f64, c: &RailContact<S>| {
-        c.lateral_force_n + rail.lateral_force_n - rail.lateral_stiffness_n_per_m * dy
+        let d = RailDeflection {
+            lateral_m: dy,
+            vertical_m: 0.0,
+        };
+        rail.residuals_n(d, [c.lateral_force_n, 0.0])[0]
     };
     let first = vertical(dy0, &mut force_guess, &mut solves)?;
     let r0 = lateral_residual(dy0, &first.2);

@@ -101,7 +101,7 @@ pub use friction::{FrictionAxis, FrictionTable};
 pub use grid_sizing::{GridSizing, GRID_COARSENINGS, RECHECK_ANGLE_RAD, RECHECK_AREA_RATIO};
 pub use massless_rail::{
     rail_deflection, solve_on_massless_rail, Deflected, MasslessRail, MasslessRailError,
-    RailContact, RailDeflection, RailLoad,
+    RailContact, RailDeflection, RailLoad, MASSLESS_RAIL_PLACED_TOLERANCE,
 };
 pub use pair_cache::{PairCache, PairCacheStats};
 pub use plausibility::{check_plausibility, PlausibilityWarning, WarningKind};
