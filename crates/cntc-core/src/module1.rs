@@ -193,9 +193,9 @@ use railcontact_solver::wheelrail::{
     MasslessRailError, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
     ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion, RailPlacement,
     RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE,
-    MAX_TRACK_CURVATURE_PER_M,
+    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
+    WheelRailSolution, WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    MASSLESS_RAIL_PLACED_TOLERANCE, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1886,9 +1886,10 @@ impl WheelRail {
         Ok(())
     }
 
-    /// F = 3: the massless rail's deflection for `input`, iterated on the
-    /// rail placed without it (from the last deflection with I = 1, else
-    /// from none), then the pair placed with it.
+    /// F = 3: the massless rail's deflection for `input`, iterated with the
+    /// rail placed at each lateral deflection tried (from the last
+    /// deflection with I = 1, else from none), then the pair placed with
+    /// it.
     fn deflect_rail(
         &mut self,
         side: Side,
@@ -1901,15 +1902,32 @@ impl WheelRail {
         } else {
             RailDeflection::default()
         };
-        let base = self.build_pair(side, RailDeflection::default())?;
-        let found = solve_on_massless_rail(&base, input, rail, start, cache, &mut self.scratch)
-            .map_err(|e| match e {
-                MasslessRailError::Contact(e) => CntcError::from_wheelrail(e),
-                MasslessRailError::Invalid { .. } => CntcError::Input(e.to_string()),
-                MasslessRailError::NotConverged { .. } | MasslessRailError::OutOfReach(_) => {
-                    CntcError::ForceIteration(e.to_string())
-                }
-            })?;
+        let mut scratch = std::mem::take(&mut self.scratch);
+        // A pair that cannot be placed stops the iteration with its own
+        // error.
+        let mut place_error = None;
+        let place = |dy: f64| {
+            let d = RailDeflection {
+                lateral_m: dy,
+                vertical_m: 0.0,
+            };
+            self.build_pair(side, d).map_err(|e| {
+                place_error = Some(e);
+                WheelRailError::Cancelled
+            })
+        };
+        let found = solve_on_massless_rail(place, input, rail, start, cache, &mut scratch);
+        self.scratch = scratch;
+        if let Some(e) = place_error {
+            return Err(e);
+        }
+        let found = found.map_err(|e| match e {
+            MasslessRailError::Contact(e) => CntcError::from_wheelrail(e),
+            MasslessRailError::Invalid { .. } => CntcError::Input(e.to_string()),
+            MasslessRailError::NotConverged { .. } | MasslessRailError::OutOfReach(_) => {
+                CntcError::ForceIteration(e.to_string())
+            }
+        })?;
         self.rail_deflection = found.deflection;
         self.place_pair(side)
     }

@@ -15,11 +15,11 @@
 //!
 //! # The iteration
 //!
-//! A shift of the rail is a shift of the wheelset the other way: the
-//! contact is solved on the rail as placed, the wheelset moved by `-dy`
-//! laterally. Each contact solve prescribes the wheel's vertical force `F`
-//! (the solver's [`WheelLoad::VerticalForce`]) and gives the lateral force
-//! and the wheelset's height `c(F)` over the undeflected rail.
+//! Each contact solve places the rail with the lateral deflection `dy`
+//! (not the vertical one: a vertical shift of the rail is one of the
+//! wheelset the other way), prescribes the wheel's vertical force `F` (the
+//! solver's [`WheelLoad::VerticalForce`]) and gives the lateral force and
+//! the wheelset's height `c(F)` over the rail not deflected vertically.
 //!
 //! * Vertically, with the wheelset's height `c_t` prescribed (CONTACT's
 //!   N = 0), the rail's deflection is `dz = c_t - c(F)` and the balance
@@ -40,6 +40,8 @@
 //! start), each within [`MASSLESS_RAIL_MAX_ITERATIONS`] steps; otherwise a
 //! [`MasslessRailError::NotConverged`] names the balance. The lateral
 //! deflection stays within [`MAX_LATERAL_DEFLECTION_M`].
+
+use std::sync::Arc;
 
 use thiserror::Error;
 
@@ -62,12 +64,12 @@ pub const MASSLESS_RAIL_TOLERANCE: f64 = 1e-5;
 /// hold a vertical iteration).
 pub const MASSLESS_RAIL_MAX_ITERATIONS: usize = 30;
 
-/// Relative tolerance of the balances on the rail placed with the
+/// Relative tolerance of the balances on the rail placed with both
 /// deflections found (the caller's last solve), of the force scale [-]:
-/// 1e-3. The iteration solves on the rail placed without them, the wheelset
-/// shifted instead, which is the same contact to the discretisation of the
-/// contact search; where the contact jumps with a shift of a micrometre
-/// (a planar patch at a flange root), the two differ by more.
+/// 1e-3. The iteration's last solve has the vertical deflection as a shift
+/// of the wheelset instead, the same contact to the solver's tolerances and
+/// the contact search's discretisation; where the contact jumps with a
+/// shift of a micrometre, the two may differ by more.
 pub const MASSLESS_RAIL_PLACED_TOLERANCE: f64 = 1e-3;
 
 /// Largest lateral deflection the iteration tries \[m\] (0.1 m: no rail
@@ -426,14 +428,15 @@ fn converged<E>(
 
 /// The deflection of the rail of the wheel `input` solves (one side),
 /// its load the wheelset's centre height (over the rail not deflected
-/// vertically) or the wheel's vertical force, from `start`; the rail of
-/// `pair` is placed without the deflection. Every solve is a warm start
-/// from the one before. The solution returned is that of the last solve,
-/// on `pair` with the wheelset shifted by the lateral deflection's
-/// opposite; the caller solves again on the rail placed with the
-/// deflection for the track frame's positions.
+/// vertically) or the wheel's vertical force, from `start`; `place(dy)`
+/// gives the pair whose rail is placed with the lateral deflection `dy`
+/// \[m\] (track y) and without a vertical one (called again only when dy
+/// changes). Every solve is a warm start from the one before. The solution
+/// returned is that of the last solve, on the rail not deflected
+/// vertically; the caller solves again on the rail placed with both
+/// deflections for the track frame's positions.
 pub fn solve_on_massless_rail(
-    pair: &WheelRailPair,
+    mut place: impl FnMut(f64) -> Result<Arc<WheelRailPair>, WheelRailError>,
     input: &WheelRailInput,
     rail: &MasslessRail,
     start: RailDeflection,
@@ -459,11 +462,19 @@ pub fn solve_on_massless_rail(
         }
     };
     let mut warm = WarmStart::default();
-    let mut shifted = input.clone();
+    let mut loaded = input.clone();
+    let mut placed: Option<(f64, Arc<WheelRailPair>)> = None;
     rail_deflection(rail, load, start, |dy, f| {
-        shifted.position.lateral_m = input.position.lateral_m - dy;
-        shifted.load = WheelLoad::VerticalForce(f);
-        let sol = solve_wheelset_warm(pair, &shifted, cache, scratch, &mut warm)?;
+        let pair = match &placed {
+            Some((at, pair)) if *at == dy => pair.clone(),
+            _ => {
+                let pair = place(dy)?;
+                placed = Some((dy, pair.clone()));
+                pair
+            }
+        };
+        loaded.load = WheelLoad::VerticalForce(f);
+        let sol = solve_wheelset_warm(&pair, &loaded, cache, scratch, &mut warm)?;
         let wheel = sol.wheels.iter().find(|w| w.side == side);
         let (fy, approach) =
             wheel.map_or((0.0, 0.0), |w| (w.force_track_n[1], w.vertical_approach_m));
