@@ -372,10 +372,11 @@ impl Config {
                 } else {
                     clamp(value, 0, 3)
                 };
-                if module == 1 && d.force >= 2 {
+                if module == 1 && d.force == 2 {
                     let what = format!(
                         "F = {} (CNTC_ic_force) in module 1 is not supported: give the pitch rate \
-                         VPITCH (F = 0) or the total force FX_WS (F = 1)",
+                         VPITCH (F = 0), the total force FX_WS (F = 1) or use the massless rail \
+                         (F = 3)",
                         d.force
                     );
                     self.mark("cntc_setflags F", Some(what.clone()));

@@ -352,6 +352,7 @@ pub fn location_values(o: &Outcome, u: Units) -> Vec<f64> {
     put(4, &l.rail, 4);
     put(9, &l.wheel, 4);
     put(14, &l.pressure_centre, 2);
+    put(17, &l.rail_deflection_m, 2);
     put(20, &l.wheel_marker_track, 3);
     put(25, &l.rail_marker_track, 2);
     put(29, &l.wheelset, 3);

@@ -187,6 +187,9 @@ pub struct WheelRailInp {
     /// Z1 = 2, 3 (but Simpack files of module 11): the rail deviations DY, DZ, ROLL, VY,
     /// VZ, VROLL.
     pub rail_deviations: Option<Lined<Vec<f64>>>,
+    /// The massless rail's KY_RAIL, FY_RAIL, KZ_RAIL, FZ_RAIL {, DYSTEP0}
+    /// (Z = 2, 3 with F = 3).
+    pub massless_rail: Option<Lined<Vec<f64>>>,
     /// E1 = 3, 5: FBDIST, FBPOS, NOMRAD {, YTAPE}.
     pub wheelset: Option<Lined<Vec<f64>>>,
     /// E1 = 3, 5: the wheel profile.
@@ -465,6 +468,7 @@ pub fn parse(
         track: None,
         rail_profile: None,
         rail_deviations: None,
+        massless_rail: None,
         wheelset: None,
         wheel_profile: None,
         position: None,
@@ -1138,12 +1142,13 @@ fn read_track(
         let v = r.read("the rail deviations DY, DZ, ROLL, VY, VZ, VROLL", "ddadda")?;
         inp.rail_deviations = Some(v.lined(v.reals.clone()));
         if d.force == 3 {
-            // KY_RAIL, FY_RAIL, KZ_RAIL, FZ_RAIL {, DYSTEP0} of massless
-            // rails (F1 = 3, refused by the F digit).
-            r.read(
+            // KY_RAIL, FY_RAIL, KZ_RAIL, FZ_RAIL {, DYSTEP0} of the massless
+            // rail (F1 = 3): cntc_settrackdimensions with Z = 32.
+            let v = r.read(
                 "the rail deflection parameters KY_RAIL, FY_RAIL, KZ_RAIL, FZ_RAIL {, DYSTEP0}",
                 "ddddD",
             )?;
+            inp.massless_rail = Some(v.lined(v.reals.clone()));
         }
     }
     Ok(())
@@ -1394,6 +1399,15 @@ impl WheelRailInp {
                 t.line,
                 Call::SetTrackDimensions {
                     ztrack: 2,
+                    params: t.value.clone(),
+                },
+            ));
+        }
+        if let Some(t) = &self.massless_rail {
+            out.push((
+                t.line,
+                Call::SetTrackDimensions {
+                    ztrack: 32,
                     params: t.value.clone(),
                 },
             ));

@@ -55,8 +55,7 @@
 //!   profile's origin at (RAILY0, RAILZ0) of the track (RAILY0 a track y,
 //!   positive for a right rail), rotated by the cant about it and not
 //!   shifted to touch the track plane (the solver's `RailPlacement::Origin`, at
-//!   q = sign(side) RAILY0 of the side frame). The massless rail (Z = 32,
-//!   33) is refused. The track curvature CURV (params(6)) is the solver's
+//!   q = sign(side) RAILY0 of the side frame). The track curvature CURV (params(6)) is the solver's
 //!   `TrackData::curvature_per_m`: the rails turn at -V CURV under the
 //!   wheelset (V the forward speed, on a roller the roller's surface speed
 //!   at the contact), as CONTACT's `wr_creep_cref`, so the yaw rate VYAW
@@ -88,6 +87,18 @@
 //!   cant alone, as CONTACT's `wr_set_rail_marker` does). VYRAIL, VZRAIL,
 //!   VROLLR move the rail: the solver's `RailMotion`, whose velocity at
 //!   the rail's point of each patch (CONTACT's) it takes off the wheel's.
+//! * Massless rail (F = 3; Z = 32, 33 set KYRAIL, FYRAIL, KZRAIL, FZRAIL
+//!   in force/length and N, DYSTEP0, default 1 mm): the rail deflections
+//!   DY_DEFL, DZ_DEFL (track y, z) at which the wheel's force on the rail
+//!   balances the springs and the forces prescribed (the solver's
+//!   `wheelrail::massless_rail`), added to the deviations DYRAIL, DZRAIL
+//!   (the pair's rail is placed with them). Iterated on the rail without
+//!   them, from none, or from the last ones with I = 1; with N = 1,
+//!   DZ_DEFL = (FZ + FZRAIL) / KZRAIL (0 when KZRAIL = 0) and the
+//!   wheelset's height is found at FZ over the deflected rail, as CONTACT
+//!   does; N = 0 needs KZRAIL > 0 and keeps Z_WS as given (CONTACT's
+//!   iteration moves it a little: docs/cntc.md). Any other F resets the
+//!   deflections to zero, as CONTACT does.
 //! * FBPOS only places the wheel profile (its y = 0 at FBDIST/2 - FBPOS
 //!   from the wheelset centre) and may lie outside the profile, as in
 //!   CONTACT; the solver is given the same placement from the profile's
@@ -156,8 +167,8 @@
 //! interpenetration with its mean contact angle, and CONTACT's point for
 //! the creepages (the solver's `ReferencePoint::InterpenetrationCentre`).
 //! `location` holds every
-//! value of `cntc_getcontactlocation` except the rail deflections (18, 19:
-//! no massless rail model, always zero).
+//! value of `cntc_getcontactlocation`, the rail deflections (18, 19) those
+//! of the wheel (zero unless F = 3).
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -177,12 +188,14 @@ use railcontact_solver::wheelrail::slices::{
 };
 use railcontact_solver::wheelrail::{
     is_slices_file, is_wheel_slices_file, nominal_rolling_speed, parse_profile,
-    pitch_force_tolerance, solve_wheelset, wheelrail_solver_settings, ExactTangential,
-    FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MirrorZ, PairCache, PatchResult, Profile,
-    ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeviation, RailMotion,
-    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
-    WheelLoad, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MAX_TRACK_CURVATURE_PER_M,
+    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset, wheelrail_solver_settings,
+    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MasslessRail,
+    MasslessRailError, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
+    ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion, RailPlacement,
+    RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad,
+    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
+    WheelRailSolution, WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity,
+    MASSLESS_RAIL_PLACED_TOLERANCE, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -371,6 +384,12 @@ pub struct WheelRail {
     /// Rail deviations (Z = 2, 3), SI: DYRAIL, DZRAIL \[m\], DROLLR
     /// \[rad\], VYRAIL, VZRAIL \[m/s\], VROLLR \[rad/s\] (track frame).
     rail_deviation: [f64; 6],
+    /// The massless rail (Z = 32, 33; used with F = 3), SI.
+    massless_rail: Option<MasslessRail>,
+    /// The rail's deflection found by the last calculation with F = 3
+    /// (zero otherwise): the pair's rail is placed with it on top of the
+    /// deviations.
+    rail_deflection: RailDeflection,
     wheelset: Slot<WheelsetDims>,
     /// s, y, z \[m\], roll, yaw, pitch \[rad\].
     position: [f64; 6],
@@ -1087,12 +1106,38 @@ impl WheelRail {
             )));
         }
         finite(CALL, &[], p)?;
-        if ztrack >= 32 {
-            return Err(CntcError::NotSupported(format!(
-                "{CALL}: Z = {ztrack}, the massless rail model (F = 3), is not supported"
-            )));
-        }
         let u = self.units();
+        if ztrack >= 32 {
+            // KYRAIL, KZRAIL [force/length], FYRAIL, FZRAIL [N],
+            // DYSTEP0 [length] (default 1 mm).
+            let rail = MasslessRail {
+                lateral_stiffness_n_per_m: u.per_len(p[0]),
+                lateral_force_n: p[1],
+                vertical_stiffness_n_per_m: u.per_len(p[2]),
+                vertical_force_n: p[3],
+                first_lateral_step_m: p.get(4).map_or(1e-3, |v| u.len(*v)),
+            };
+            let names = ["KYRAIL", "FYRAIL", "KZRAIL", "FZRAIL", "DYSTEP0"];
+            let bad = |k: usize, what: &str| {
+                Err(CntcError::Input(format!(
+                    "{CALL}: Z = {ztrack}: {} = {} (params({})) must be {what}",
+                    names[k],
+                    p[k],
+                    k + 1
+                )))
+            };
+            if rail.lateral_stiffness_n_per_m <= 0.0 {
+                return bad(0, "> 0");
+            }
+            if rail.vertical_stiffness_n_per_m < 0.0 {
+                return bad(2, ">= 0");
+            }
+            if rail.first_lateral_step_m <= 0.0 {
+                return bad(4, "> 0");
+            }
+            self.massless_rail = Some(rail);
+            return Ok(());
+        }
         if ztrack == 1 || ztrack == 3 {
             let gaught = u.len(p[0]);
             let curv_index = if ztrack == 1 { 6 } else { 12 };
@@ -1538,10 +1583,13 @@ impl WheelRail {
                     ));
                 }
             }
+            // The massless rail: its parameters are checked when solved.
+            3 => {}
             f => {
                 return Err(CntcError::NotSupported(format!(
                     "F = {f} (CNTC_ic_force) in module 1 is not supported: give the pitch rate \
-                     VPITCH (F = 0) or the total force FX_WS (F = 1)"
+                     VPITCH (F = 0), the total force FX_WS (F = 1) or use the massless rail \
+                     (F = 3)"
                 )))
             }
         }
@@ -1601,7 +1649,7 @@ impl WheelRail {
         }
         match &self.track {
             Some(Ok(track)) => {
-                *pair.track() == track.for_side(side, &self.rail_deviation, self.is_roller())
+                *pair.track() == self.placed_track(track, side, self.rail_deflection)
             }
             _ => true,
         }
@@ -1645,8 +1693,18 @@ impl WheelRail {
         }))
     }
 
-    /// The placed profiles (built when missing).
-    fn build_pair(&self, side: Side) -> Result<Arc<WheelRailPair>> {
+    /// The solver's track of the rail of `side`, its deviations and the
+    /// massless rail's `deflection` added.
+    fn placed_track(&self, track: &Track, side: Side, deflection: RailDeflection) -> TrackData {
+        let mut deviation = self.rail_deviation;
+        deviation[0] += deflection.lateral_m;
+        deviation[1] += deflection.vertical_m;
+        track.for_side(side, &deviation, self.is_roller())
+    }
+
+    /// The placed profiles, the rail with the massless rail's
+    /// `deflection`.
+    fn build_pair(&self, side: Side, deflection: RailDeflection) -> Result<Arc<WheelRailPair>> {
         let rail = slot(
             &self.rail,
             "the rail profile has not been set: cntc_setprofileinputfname or \
@@ -1719,7 +1777,7 @@ impl WheelRail {
             .get_or_build(
                 [&rail_p, &rail_p],
                 [&wheel_p, &wheel_p],
-                track.for_side(side, &self.rail_deviation, self.is_roller()),
+                self.placed_track(track, side, deflection),
                 WheelsetData {
                     flange_back_distance_m: fb_distance_m,
                     nominal_radius_m: dims.nominal_radius_m,
@@ -1763,14 +1821,25 @@ impl WheelRail {
         if self.config.digits.ret >= 2 {
             return Ok(0); // R = 2, 3: check the input only
         }
-        if !self.pair.as_ref().is_some_and(|p| self.fits(p, side)) {
-            let pair = self.build_pair(side);
-            self.pair_before = None;
-            self.pair = Some(pair?);
-            self.pair_track_s_m = Some(self.position[0]);
-            self.pair_pitch_rad = Some(self.position[5]);
+        let massless = match (self.config.digits.force, self.massless_rail) {
+            (3, Some(rail)) => Some(rail),
+            (3, None) => {
+                return Err(CntcError::Input(
+                    "F = 3 (the massless rail) needs its parameters: cntc_settrackdimensions \
+                     with Z = 32 or 33"
+                        .into(),
+                ))
+            }
+            _ => None,
+        };
+        if massless.is_none() {
+            self.rail_deflection = RailDeflection::default();
         }
+        self.place_pair(side)?;
         let input = self.solver_input(side)?;
+        if let Some(rail) = massless {
+            self.deflect_rail(side, &rail, &input, cache)?;
+        }
         let pair = self.pair.as_ref().expect("built above");
         let (input, sol, vpitch_found) = match self.longitudinal_force_n {
             Some(target) if self.config.digits.force == 1 => {
@@ -1795,11 +1864,105 @@ impl WheelRail {
                 (input, sol, None)
             }
         };
+        if let Some(rail) = massless {
+            self.check_balance(side, &rail, &sol)?;
+        }
         let ierror = self.finish(side, &input, &sol)?;
         if let Some(sv) = &mut self.solved {
             sv.vpitch_found = vpitch_found;
         }
         Ok(ierror)
+    }
+
+    /// Places the profiles when the pair held does not fit.
+    fn place_pair(&mut self, side: Side) -> Result<()> {
+        if !self.pair.as_ref().is_some_and(|p| self.fits(p, side)) {
+            let pair = self.build_pair(side, self.rail_deflection);
+            self.pair_before = None;
+            self.pair = Some(pair?);
+            self.pair_track_s_m = Some(self.position[0]);
+            self.pair_pitch_rad = Some(self.position[5]);
+        }
+        Ok(())
+    }
+
+    /// F = 3: the massless rail's deflection for `input`, iterated with the
+    /// rail placed at each lateral deflection tried (from the last
+    /// deflection with I = 1, else from none), then the pair placed with
+    /// it.
+    fn deflect_rail(
+        &mut self,
+        side: Side,
+        rail: &MasslessRail,
+        input: &WheelRailInput,
+        cache: &KernelCache,
+    ) -> Result<()> {
+        let start = if self.config.digits.iestim >= 1 {
+            self.rail_deflection
+        } else {
+            RailDeflection::default()
+        };
+        let mut scratch = std::mem::take(&mut self.scratch);
+        // A pair that cannot be placed stops the iteration with its own
+        // error.
+        let mut place_error = None;
+        let place = |dy: f64| {
+            let d = RailDeflection {
+                lateral_m: dy,
+                vertical_m: 0.0,
+            };
+            self.build_pair(side, d).map_err(|e| {
+                place_error = Some(e);
+                WheelRailError::Cancelled
+            })
+        };
+        let found = solve_on_massless_rail(place, input, rail, start, cache, &mut scratch);
+        self.scratch = scratch;
+        if let Some(e) = place_error {
+            return Err(e);
+        }
+        let found = found.map_err(|e| match e {
+            MasslessRailError::Contact(e) => CntcError::from_wheelrail(e),
+            MasslessRailError::Invalid { .. } => CntcError::Input(e.to_string()),
+            MasslessRailError::NotConverged { .. } | MasslessRailError::OutOfReach(_) => {
+                CntcError::ForceIteration(e.to_string())
+            }
+        })?;
+        self.rail_deflection = found.deflection;
+        self.place_pair(side)
+    }
+
+    /// F = 3: the balances of the rail's springs with the wheel's force of
+    /// `sol`, solved on the rail placed with the deflections, to
+    /// [`MASSLESS_RAIL_PLACED_TOLERANCE`] of the force scale (the vertical
+    /// one when KZRAIL > 0); the iteration's rail was placed without them.
+    fn check_balance(
+        &self,
+        side: Side,
+        rail: &MasslessRail,
+        sol: &WheelRailSolution,
+    ) -> Result<()> {
+        let f = sol
+            .wheels
+            .iter()
+            .find(|w| w.side == side)
+            .map_or([0.0; 3], |w| w.force_track_n);
+        let [ry, rz] = rail.residuals_n(self.rail_deflection, [f[1], f[2]]);
+        let rz = if rail.vertical_stiffness_n_per_m > 0.0 {
+            rz
+        } else {
+            0.0
+        };
+        let tolerance = MASSLESS_RAIL_PLACED_TOLERANCE * rail.force_scale_n(f[2]);
+        if ry.abs().max(rz.abs()) > tolerance {
+            return Err(CntcError::ForceIteration(format!(
+                "massless rail: on the rail placed with the deflections found (DY_DEFL {} m, \
+                 DZ_DEFL {} m) the balances miss by {ry} N (lateral) and {rz} N (vertical), \
+                 beyond {tolerance} N: the contact jumps with a shift of the rail here",
+                self.rail_deflection.lateral_m, self.rail_deflection.vertical_m
+            )));
+        }
+        Ok(())
     }
 
     /// The wheel deflected by the flexible wheelset deviations (E = 4, 5)
@@ -2342,6 +2505,10 @@ impl WheelRail {
             wheelset: [dot(dc, ex), s * dot(dc, a), dot(dc, e1), s * delta_ws],
             wheel_marker_wheelset: f.wheel_marker_ws,
             force_track_n: p.force_track_n,
+            rail_deflection_m: [
+                self.rail_deflection.lateral_m,
+                self.rail_deflection.vertical_m,
+            ],
         });
         (o, [force, m_rail, m_wheel])
     }
@@ -2678,7 +2845,7 @@ impl WheelRail {
         let pair = match &self.pair {
             Some(p) if self.fits(p, side) => p,
             _ => {
-                built = self.build_pair(side)?;
+                built = self.build_pair(side, self.rail_deflection)?;
                 &built
             }
         };

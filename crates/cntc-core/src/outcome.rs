@@ -188,6 +188,10 @@ pub struct Location {
     /// The contact patch's forces in the track frame on the rail (x, y,
     /// z) \[N\].
     pub force_track_n: [f64; 3],
+    /// The massless rail's deflection (F = 3; zero otherwise): along track
+    /// y and z \[m\] (CONTACT's DY_DEFL, DZ_DEFL, the same for every
+    /// patch).
+    pub rail_deflection_m: [f64; 2],
 }
 
 impl Outcome {

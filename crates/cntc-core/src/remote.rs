@@ -16,7 +16,7 @@ use crate::error::{CntcError, Result};
 
 /// The version of the payload's encoding (of [`Call`], [`Request`] and
 /// [`Reply`] and the types they hold).
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 
 /// A calculation asked of the server.
 #[derive(Debug, Clone, Serialize, Deserialize)]

@@ -106,6 +106,16 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
         }
         // F = 1: the pitch rate found for a total force FX_WS.
         out.push(mbench_right_wheel(ire, 3.0, Some(1500.0)));
+        // F = 3: the massless rail's deflections (DY_DEFL, DZ_DEFL among
+        // the location values), the second from the first (I = 1).
+        set_flags(ire, -1, &[(flags::IC_FORCE, 3)]);
+        let rail = [20000.0, -2000.0, 20000.0, -5000.0, 0.5];
+        unsafe { cntc_settrackdimensions(&ire, &32, &5, rail.as_ptr()) };
+        out.push(wheel_results(ire));
+        set_flags(ire, -1, &[(flags::IC_IESTIM, 1)]);
+        unsafe { cntc_settrackdimensions(&ire, &32, &4, rail.as_ptr()) };
+        out.push(wheel_results(ire));
+        set_flags(ire, -1, &[(flags::IC_FORCE, 0), (flags::IC_IESTIM, 0)]);
         // M = 3 (modified FASTSIM on each patch): tread and flange; T = 0;
         // M = 4, an elasto-plastic layer on the flange. Every patch getter
         // of the first patch too (fields included).

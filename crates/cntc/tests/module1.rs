@@ -7,53 +7,15 @@ mod common;
 
 use std::ptr::null;
 
-use common::{close, profile, set_profile_file};
+use common::{close, mbench_wheel};
 use contact_addon::ffi::*;
 use contact_addon::flags;
 
 /// Configures result element `ire` as `python_mbench.py` does for its
-/// wheel `iwhe`: 1 the left wheel on the Simpack rail, 2 the right wheel on
-/// the MiniProf rail (mirrored in y: MiniProf measures from the gauge
-/// side).
+/// wheel `iwhe` ([`mbench_wheel`] with N = 1, F = 0), the wheelset not
+/// flexible.
 unsafe fn mbench(ire: i32, iwhe: i32) {
-    let (rail, wheel) = if iwhe == 1 {
-        (
-            profile("MBench_UIC60_v3.prr"),
-            profile("MBench_S1002_v3.prw"),
-        )
-    } else {
-        (
-            profile("MBench_UIC60_v3.ban"),
-            profile("MBench_S1002_v3.prw"),
-        )
-    };
-    let (mut ifcver, mut ierror) = (0, 0);
-    cntc_initialize(&ire, &1, &mut ifcver, &mut ierror, null(), null());
-    assert_eq!(ierror, 0);
-    let icp = -1;
-    let codes = [
-        flags::IF_UNITS,
-        flags::IC_CONFIG,
-        flags::IC_TANG,
-        flags::IC_PVTIME,
-        flags::IC_NORM,
-        flags::IC_DISCNS,
-    ];
-    let values = [flags::UN_CNTC, iwhe - 1, 3, 2, 1, 2];
-    cntc_setflags(&ire, &icp, &6, codes.as_ptr(), values.as_ptr());
-    let mat = [0.28, 0.28, 82000.0, 82000.0];
-    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
-    let mu = [0.3, 0.3];
-    cntc_setfrictionmethod(&ire, &icp, &0, &2, mu.as_ptr());
-    cntc_setverticalforce(&ire, &10000.0);
-    let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
-    cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
-    let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-    cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
-    set_profile_file(ire, &rail, if iwhe == 1 { 0 } else { 1 });
-    let dims = [1360.0, -70.0, 460.0];
-    cntc_setwheelsetdimensions(&ire, &3, &3, dims.as_ptr());
-    set_profile_file(ire, &wheel, 0);
+    mbench_wheel(ire, iwhe, 1, 0);
     let flex = [0.0; 12];
     cntc_setwheelsetflexibility(&ire, &1, &12, flex.as_ptr());
 }

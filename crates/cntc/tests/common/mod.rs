@@ -158,6 +158,45 @@ pub fn profile(name: &str) -> String {
     format!("{}/../solver/profiles/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
+/// Configures result element `ire` as `python_mbench.py` does for its
+/// wheel `iwhe`: 1 the left wheel on the Simpack rail, 2 the right wheel on
+/// the MiniProf rail (mirrored in y: MiniProf measures from the gauge
+/// side), with the N digit `norm` (N = 1: FZ = 10 kN) and the F digit
+/// `force`.
+pub unsafe fn mbench_wheel(ire: i32, iwhe: i32, norm: i32, force: i32) {
+    let (rail, mirror) = if iwhe == 1 {
+        (profile("MBench_UIC60_v3.prr"), 0)
+    } else {
+        (profile("MBench_UIC60_v3.ban"), 1)
+    };
+    wheelrail_element(
+        ire,
+        &[
+            (flags::IC_CONFIG, iwhe - 1),
+            (flags::IC_TANG, 3),
+            (flags::IC_PVTIME, 2),
+            (flags::IC_NORM, norm),
+            (flags::IC_FORCE, force),
+            (flags::IC_DISCNS, 2),
+        ],
+    );
+    let icp = -1;
+    let mat = [0.28, 0.28, 82000.0, 82000.0];
+    cntc_setmaterialparameters(&ire, &icp, &0, &4, mat.as_ptr());
+    cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+    if norm == 1 {
+        // (cntc_setverticalforce sets N = 1.)
+        cntc_setverticalforce(&ire, &10000.0);
+    }
+    let pot = [0.2, 0.2, std::f64::consts::FRAC_PI_2, 8.0, 4.0];
+    cntc_setpotcontact(&ire, &icp, &-1, &5, pot.as_ptr());
+    let track = [14.0, 0.0, 1435.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    cntc_settrackdimensions(&ire, &3, &11, track.as_ptr());
+    set_profile_file(ire, &rail, mirror);
+    cntc_setwheelsetdimensions(&ire, &3, &3, [1360.0, -70.0, 460.0].as_ptr());
+    set_profile_file(ire, &profile("MBench_S1002_v3.prw"), 0);
+}
+
 /// `cntc_setprofileinputfname` of the file `path` on element `ire`: the
 /// type from its extension (ITYPE = -1), mirrored in y with `mirror_y` = 1,
 /// scale factor 1, no smoothing.

@@ -17,6 +17,8 @@
 //!   [`ReferencePoint`]);
 //! * [`contact`]: creepages, the per-patch contact problems and the load
 //!   iteration ([`solve_wheelset`]);
+//! * [`massless_rail`]: CONTACT's massless rail model, the rail's
+//!   deflection that balances the contact force ([`solve_on_massless_rail`]);
 //! * [`ranges`]: the documented ranges of a case's numbers and their one
 //!   check ([`ranges::check_motion`], [`ranges::check_geometry`]), which
 //!   the command line and the service both run;
@@ -77,6 +79,7 @@ pub mod builtin;
 pub mod contact;
 pub mod friction;
 pub mod grid_sizing;
+pub mod massless_rail;
 pub mod pair_cache;
 pub mod plausibility;
 pub mod profile;
@@ -96,6 +99,10 @@ pub use contact::{
 };
 pub use friction::{FrictionAxis, FrictionTable};
 pub use grid_sizing::{GridSizing, GRID_COARSENINGS, RECHECK_ANGLE_RAD, RECHECK_AREA_RATIO};
+pub use massless_rail::{
+    rail_deflection, solve_on_massless_rail, Deflected, MasslessRail, MasslessRailError,
+    RailContact, RailDeflection, RailLoad, MASSLESS_RAIL_PLACED_TOLERANCE,
+};
 pub use pair_cache::{PairCache, PairCacheStats};
 pub use plausibility::{check_plausibility, PlausibilityWarning, WarningKind};
 pub use profile::{
