@@ -2694,9 +2694,9 @@ fn solve_wheel(
 /// estimated approach (Hertz's, 0.1-30 % off), the second at the approach
 /// found, which the change of frame moves by far less. Of
 /// python_mbench.py's 42 wheels 18 repeat none (their estimate was within
-/// the tolerances), 21 once, 2 twice, and one four times: its patch of
-/// two regions 8 mm apart, whose centre's contact angle moves by 3.3e-4,
-/// 1.2e-5, 1.0e-6 rad in the first three.
+/// the tolerances), 21 once, 2 twice, and one four times: its blended
+/// patch (two regions between D_COMB and D_SEP apart), whose weighted
+/// centre moves with the approach.
 const MAX_REFERENCE_PASSES: usize = 4;
 
 /// How far a reference point may lie from the centre of its patch's
