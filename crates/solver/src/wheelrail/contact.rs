@@ -826,7 +826,7 @@ pub(crate) struct PatchWork {
     /// An exact patch of an out-of-round wheel or a varying rail with
     /// [`ReferencePoint::InterpenetrationCentre`]: how far the centre of
     /// its interpenetration at the reference's approach lies from the
-    /// reference point, (x, s) in its tangent plane \[m\], beyond where
+    /// reference point along x and q (side frame) \[m\], beyond where
     /// the round wheel and the prismatic rail put it
     /// ([`interpenetration_centroid`]).
     centre_offset: Option<[f64; 2]>,
@@ -904,6 +904,14 @@ fn fastsim_forces(f: &FastsimOutput) -> TangentialForces {
 }
 
 impl PatchWork {
+    /// Hands an exact patch's solver (its kernels and buffers) to `spare`
+    /// for the next patch built.
+    fn keep_solver(self, spare: &mut Option<Box<ContactSolver>>) {
+        if let PatchKind::Exact { solver, .. } = self.kind {
+            *spare = Some(solver);
+        }
+    }
+
     /// The creepages the fast models take: the patch's, or those of its
     /// mirror image rolling towards +x ([`mirror_x`]).
     fn forward_creep(&self) -> Creepages {
@@ -2458,11 +2466,12 @@ fn solve_wheel(
                 .flatten();
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
-            let drop = centred.then_some(reference_delta);
+            // With the centres: the approach the wheel is sampled and its
+            // creepages taken at.
+            let loaded = centred.then_some(reference_delta);
             if centred {
                 centres.push((iv, centre));
             }
-            let loaded = centred.then_some(reference_delta);
             let search = &input.settings.search;
             let sub = search
                 .combine_distance_m
@@ -2486,11 +2495,10 @@ fn solve_wheel(
                     c.q_m += offset[1];
                 }
                 let Some(geom) =
-                    patch_geometry_about(rail, locus, gap, iv, margin, here.as_ref(), drop)
+                    patch_geometry_about(rail, locus, gap, iv, margin, here.as_ref(), loaded)
                 else {
                     break None;
                 };
-                let tangent = geom.tangent();
                 let patch = build_patch(
                     pair,
                     locus,
@@ -2507,18 +2515,14 @@ fn solve_wheel(
                     loaded,
                     sub.as_ref(),
                 )?;
-                // The offset in the side frame (x, q).
-                let next = patch.centre_offset.map(|[dx, ds]| [dx, ds * tangent[0]]);
-                match next.filter(|o| {
+                match patch.centre_offset.filter(|o| {
                     moves < MAX_CENTRE_MOVES
                         && (o[0] - offset[0]).hypot(o[1] - offset[1]) > REFERENCE_TOLERANCE * e
                 }) {
                     Some(o) => {
                         offset = o;
                         moves += 1;
-                        if let PatchKind::Exact { solver, .. } = patch.kind {
-                            spare = Some(solver);
-                        }
+                        patch.keep_solver(&mut spare);
                     }
                     None => break Some(patch),
                 }
@@ -2602,9 +2606,7 @@ fn solve_wheel(
                     pass_tractions = carried_tractions(&patches);
                     // The exact patch's solver kept for its buffers.
                     for p in patches {
-                        if let PatchKind::Exact { solver, .. } = p.kind {
-                            spare = Some(solver);
-                        }
+                        p.keep_solver(&mut spare);
                     }
                     continue;
                 }
@@ -3109,9 +3111,10 @@ fn build_patch(
                     input.position.track_s_m,
                 )?;
             }
+            // In the side frame (x, q).
             centre_offset = round_centre.and_then(|[x0, s0]| {
                 let [x, s] = interpenetration_centroid(&grid, &gap_m, dn)?;
-                Some([x - x0, s - s0])
+                Some([x - x0, (s - s0) * geom.tangent()[0]])
             });
             // A blended patch: the elements outside its sub-patches are
             // out of contact.
@@ -4458,9 +4461,7 @@ pub(crate) fn finish(
             layer,
             temperature: None,
         });
-        if let PatchKind::Exact { solver, .. } = p.kind {
-            *spare = Some(solver);
-        }
+        p.keep_solver(spare);
     }
     // Field side first: decreasing q.
     out.sort_by(|a, b| (s * b.track_y_m).total_cmp(&(s * a.track_y_m)));
