@@ -499,6 +499,15 @@ pub fn subsurface_result(
 /// `material.influence_file`, [`NUMERICAL_INFLUENCE_KEY`], sent as text).
 pub const INFLUENCE_CONTENT_FIELD: &str = "material.influence_file_content";
 
+/// Whether a wire case carries numerical influence coefficients
+/// (`material.influence_file_content`), whose parse is the costly part of
+/// its validation.
+pub fn carries_influence_content(c: &pb::PatchCase) -> bool {
+    c.material
+        .as_ref()
+        .is_some_and(|m| m.influence_file_content.is_some())
+}
+
 /// The numerical influence coefficients of a wire case (None: the
 /// half-space's): its `material.influence_file_content` read by the case
 /// files' reader ([`InfluenceFile::parse`]), at most [`MAX_FILE_BYTES`] of

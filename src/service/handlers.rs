@@ -124,6 +124,22 @@ impl ContactHandlers {
             .unwrap_or_else(|| format!("r{}", self.next_id.fetch_add(1, Ordering::Relaxed)))
     }
 
+    /// [`convert::validate_case`] of `case`, on a solve worker when it
+    /// carries numerical influence coefficients: their text is parsed at
+    /// about 1 ms per 100 kB, up to a few hundred milliseconds at the
+    /// message limit, which would stall the runtime's threads. Other cases
+    /// validate in microseconds, here.
+    async fn validate_case(&self, case: pb::PatchCase) -> Result<convert::ValidCase, ServiceError> {
+        let limits = self.limits.case;
+        if !convert::carries_influence_content(&case) {
+            return convert::validate_case(&case, limits);
+        }
+        self.pool
+            .internal()
+            .run(move || convert::validate_case(&case, limits))
+            .await?
+    }
+
     /// Validates and solves one patch on an admitted slot; errors carry
     /// field paths under `prefix`.
     async fn solve_one(
@@ -134,10 +150,11 @@ impl ContactHandlers {
     ) -> Result<pb::PatchResult, ServiceError> {
         let case = req
             .case
-            .as_ref()
             .ok_or_else(|| ServiceError::invalid("case", "missing"))
             .map_err(|e| e.within(prefix))?;
-        let valid = convert::validate_case(case, self.limits.case)
+        let valid = self
+            .validate_case(case)
+            .await
             .map_err(|e| e.within(&join(prefix, "case")))?;
         convert::check_fields(&valid.case, req.include_fields).map_err(|e| e.within(prefix))?;
         let jacobian = req.include_sensitivities;
@@ -670,10 +687,8 @@ impl pb::contact_service_server::ContactService for ContactHandlers {
             let points = sweep_points(&req, self.limits.max_curve_points)?;
             let case = req
                 .case
-                .as_ref()
                 .ok_or_else(|| ServiceError::invalid("case", "missing"))?;
-            let valid = convert::validate_case(case, self.limits.case)
-                .map_err(|e| e.within("case"))?;
+            let valid = self.validate_case(case).await.map_err(|e| e.within("case"))?;
             convert::refuse_solve_patch_only(&valid.case, "creep curves")
                 .map_err(|e| e.within("case"))?;
             convert::check_fields(&valid.case, req.include_fields)?;
@@ -1196,10 +1211,11 @@ impl ContactHandlers {
         let _slot = self.session_slot(&client)?;
         let case = open
             .case
-            .as_ref()
             .ok_or_else(|| ServiceError::invalid("open.case", "missing"))?;
-        let valid =
-            convert::validate_case(case, self.limits.case).map_err(|e| e.within("open.case"))?;
+        let valid = self
+            .validate_case(case)
+            .await
+            .map_err(|e| e.within("open.case"))?;
         convert::refuse_solve_patch_only(&valid.case, "sessions")
             .map_err(|e| e.within("open.case"))?;
         let jacobian = open.include_sensitivities;
