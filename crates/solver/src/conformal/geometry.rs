@@ -445,26 +445,59 @@ pub struct WheelYaw {
 const REFERENCE_SAMPLES_PER_ELEMENT: usize = 8;
 
 /// Finds t with (P(t) - c) x n = 0 (the curve point on the line c + lambda n)
-/// by Newton's method from `t0`; returns (t, lambda).
+/// by Newton's method from `t0`; returns (t, lambda). Where Newton's steps
+/// do not settle (they cycle about a root where the curve's tangent turns
+/// sharply, as a wheel's contact locus does at a steep flange) but two of
+/// its iterates lie on both sides of the line, the root between them is
+/// found by bisection.
 fn intersect_normal(
     eval: &dyn Fn(f64) -> ([f64; 2], [f64; 2]),
     c: [f64; 2],
     n: [f64; 2],
     t0: f64,
 ) -> Option<(f64, f64)> {
+    let side = |t: f64| {
+        let (p, d) = eval(t);
+        ((p[0] - c[0]) * n[1] - (p[1] - c[1]) * n[0], d, p)
+    };
+    let along = |p: [f64; 2]| (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1];
+    // The closest iterates seen on either side of the line: (t, f).
+    let mut below: Option<(f64, f64)> = None;
+    let mut above: Option<(f64, f64)> = None;
     let mut t = t0;
     for _ in 0..50 {
-        let (p, d) = eval(t);
-        let f = (p[0] - c[0]) * n[1] - (p[1] - c[1]) * n[0];
+        let (f, d, _) = side(t);
+        if f < 0.0 && below.is_none_or(|(_, g)| f > g) {
+            below = Some((t, f));
+        } else if f > 0.0 && above.is_none_or(|(_, g)| f < g) {
+            above = Some((t, f));
+        }
         let df = d[0] * n[1] - d[1] * n[0];
         if df.abs() < 1e-12 {
-            return None;
+            break;
         }
         let step = f / df;
         t -= step;
         if step.abs() < 1e-15 + 1e-13 * t.abs() {
-            let (p, _) = eval(t);
-            return Some((t, (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1]));
+            return Some((t, along(side(t).2)));
+        }
+    }
+    let (Some((mut lo, _)), Some((mut hi, _))) = (below, above) else {
+        return None;
+    };
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        let (f, _, p) = side(mid);
+        if !f.is_finite() {
+            return None;
+        }
+        if f == 0.0 || (hi - lo).abs() < 1e-15 + 1e-13 * mid.abs() {
+            return Some((mid, along(p)));
+        }
+        if f < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
         }
     }
     None
@@ -848,6 +881,25 @@ pub(crate) mod tests {
         };
         geo.rigid_slip(&creep, surface, approach_m, 0.5, &mut wx, &mut ws);
         (wx, ws)
+    }
+
+    /// Newton's steps on a curve whose crossing of the line is a cusp of
+    /// its parameter (x = sign(t) sqrt|t|: each step lands at -t) cycle
+    /// for ever; the two sides they visit bracket the crossing, which
+    /// bisection finds. Where the steps settle, they give the crossing as
+    /// before (a straight curve: one step).
+    #[test]
+    fn intersect_normal_bisects_where_newton_cycles() {
+        let cusp = |t: f64| ([t.signum() * t.abs().sqrt(), 1.0], [1.0, 0.0]);
+        let (t, lambda) = intersect_normal(&cusp, [0.0, 0.0], [0.0, 1.0], 0.25).unwrap();
+        assert!(t.abs() < 1e-12, "t {t}");
+        assert_eq!(lambda, 1.0);
+        let line = |t: f64| ([t, 2.0], [1.0, 0.0]);
+        let (t, lambda) = intersect_normal(&line, [0.5, 0.0], [0.0, 1.0], 3.0).unwrap();
+        assert_eq!((t, lambda), (0.5, 2.0));
+        // No crossing on either side: none.
+        let away = |t: f64| ([t * t + 1.0, 0.0], [1.0, 0.0]);
+        assert!(intersect_normal(&away, [0.0, 0.0], [0.0, 1.0], 1.0).is_none());
     }
 
     #[test]
