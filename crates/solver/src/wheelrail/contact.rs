@@ -370,7 +370,10 @@ pub struct WheelRailSettings {
     /// [`wheelrail_solver_settings`], tolerances that give forces and
     /// maximum pressures to about five digits).
     pub solver: SolverSettings,
-    /// Relative tolerance on the vertical force [-].
+    /// Relative tolerance on the vertical force [-]; with
+    /// `force_tolerance_of_wheel_load` the larger of it and that tolerance
+    /// over [`LOAD_TOLERANCE_DIVISOR`](grid_sizing::LOAD_TOLERANCE_DIVISOR)
+    /// ([`Self::load_tolerance_in_force`]).
     pub load_tolerance: f64,
     /// Iteration limit of the load iteration (solves of a wheel's
     /// patches). One that reaches it without meeting `load_tolerance`
@@ -408,6 +411,21 @@ pub struct WheelRailSettings {
     /// Model `exact`: how its patches solve the tangential problem
     /// (default Kalker's exact theory).
     pub exact_tangential: ExactTangential,
+}
+
+impl WheelRailSettings {
+    /// The relative tolerance the load iteration meets the vertical force
+    /// to: `load_tolerance`, or with `force_tolerance_of_wheel_load` the
+    /// larger of it and that tolerance over
+    /// [`LOAD_TOLERANCE_DIVISOR`](grid_sizing::LOAD_TOLERANCE_DIVISOR).
+    pub fn load_tolerance_in_force(&self) -> f64 {
+        match self.force_tolerance_of_wheel_load {
+            Some(t) => self
+                .load_tolerance
+                .max(t / grid_sizing::LOAD_TOLERANCE_DIVISOR),
+            None => self.load_tolerance,
+        }
+    }
 }
 
 impl Default for WheelRailSettings {
@@ -3690,7 +3708,7 @@ fn conformal_at_approach(
     input: &WheelRailInput,
     solve_at: &mut impl FnMut(f64) -> Result<ConformalSolution, ContactError>,
 ) -> Result<ConformalSolution, ContactError> {
-    let tol = (input.settings.load_tolerance / 1.5).max(1e-10) * e;
+    let tol = (input.settings.load_tolerance_in_force() / 1.5).max(1e-10) * e;
     let mut g = guess.powf(2.0 / 3.0);
     let mut prev: Option<(f64, f64)> = None;
     let mut it = 0;
@@ -3929,7 +3947,7 @@ pub(crate) fn load_iteration(
         WheelLoad::VerticalForce(f) => f,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by the callers"),
     };
-    let tol = input.settings.load_tolerance * target;
+    let tol = input.settings.load_tolerance_in_force() * target;
     let max_it = input.settings.max_load_iterations;
     if let [p] = patches {
         // One patch: force control of the core; secant steps on the normal
@@ -4104,7 +4122,7 @@ fn frictional_steps(
     fastsim: &mut Fastsim,
     cache: &KernelCache,
 ) -> Result<LoadResult, PatchErr> {
-    let tol = input.settings.load_tolerance * target;
+    let tol = input.settings.load_tolerance_in_force() * target;
     let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
     let mut bracket = LoadBracket::default();

@@ -333,7 +333,7 @@ fn steps_on_grids_sized_for_the_forces_agree_with_cold_solves() {
             let s = solve_wheelset_warm(&pair, &input, &cache, &mut scratch, &mut warm).unwrap();
             let sizes = warm.grid_sizing.iter().flatten();
             coarser += sizes
-                .filter(|g| g.element_size_m > input.settings.element_size_m)
+                .filter(|g| g.element_size_m() > input.settings.element_size_m)
                 .count();
             if k % 10 != 0 {
                 continue;
