@@ -1742,7 +1742,13 @@ impl PatchTractions {
     /// with `earlier`, the tractions of the step before theirs, where both
     /// map onto `grid`, extrapolated along the line through the two
     /// (2 last - earlier, the pressures kept >= 0).
+    /// On a grid of another element size along x (a grid sizing check's),
+    /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
+    /// not extrapolated.
     fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
+        if (self.grid.dx_m - grid.dx_m).abs() > 1e-9 * grid.dx_m {
+            return Some(self.sampled_on(grid));
+        }
         let mut last = self.on(grid)?;
         if let Some(before) = earlier.and_then(|e| e.on(grid)) {
             for (a, b) in last.iter_mut().zip(&before) {
@@ -1770,6 +1776,37 @@ impl PatchTractions {
         let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
         self.shift_onto(grid, &from, &mut out)?;
         Some(out)
+    }
+
+    /// These tractions on `grid` of any element sizes (pressure,
+    /// longitudinal, lateral): each element takes the value of this grid's
+    /// element its centre lies in (zero outside this grid).
+    fn sampled_on(&self, grid: &Grid) -> [Vec<f64>; 3] {
+        let old = &self.grid;
+        let from = [
+            &self.pressure_pa[..],
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ];
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let cell = |v: f64, v0: f64, d: f64, n: usize| {
+            let k = ((v - v0) / d).floor();
+            (k >= 0.0 && k < n as f64).then_some(k as usize)
+        };
+        for iy in 0..grid.ny {
+            let Some(oy) = cell(grid.y_m(iy), old.y0_m, old.dy_m, old.ny) else {
+                continue;
+            };
+            for ix in 0..grid.nx {
+                if let Some(ox) = cell(grid.x_m(ix), old.x0_m, old.dx_m, old.nx) {
+                    let (i, o) = (grid.index(ix, iy), old.index(ox, oy));
+                    for (to, from) in out.iter_mut().zip(from) {
+                        to[i] = from[o];
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The slip velocities on `grid` (as [`Self::on`]; 0 where they do not
@@ -3362,11 +3399,12 @@ fn across_refinement(
 /// `element_size_m` along x and `across` times narrower along s
 /// ([`across_refinement`]; narrowed less where the grid limits allow no
 /// more). With `last`, the last time step's solution of the patch on a
-/// grid of the same element sizes: around where that was loaded,
+/// grid of the same element sizes, or of another `element_size_m` (a grid
+/// sizing check's solves, [`grid_sizing`]): around where that was loaded,
 /// [`LAST_CONTACT_MARGIN`] elements of `element_size_m`
 /// wider on each side (a patch moves by less than an element in a time
 /// step; where the pressure reaches the border, the caller sizes the grid
-/// again without `last`), and of the shape of the last grid (whose
+/// again without `last`), and, of the same element sizes, of the shape of the last grid (whose
 /// tractions then start this step's solves) when that covers the area and
 /// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
 /// direction; such a grid lies whole elements from the last one (within
@@ -3419,8 +3457,12 @@ fn patch_grid_on(
     let (mut xlo, mut xhi) = (xlo - margin, xhi + margin);
     let [mut slo, mut shi] = geom.s_range_m;
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+    // Around the last contact on a grid of these element sizes, or of
+    // another element size (a grid sizing check's, whose solves on the
+    // sizes it compares start from the last step's on the size in force).
+    let boxed = last.filter(|t| same(t.grid.dy_m, ds) || !same(t.grid.dx_m, e));
     let last = last.filter(|t| same(t.grid.dx_m, e) && same(t.grid.dy_m, ds));
-    if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
+    if let Some([x0, x1, s0, s1]) = boxed.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
         let m = LAST_CONTACT_MARGIN * e;
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
             (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
