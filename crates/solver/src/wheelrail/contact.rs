@@ -1901,6 +1901,14 @@ pub fn solve_wheelset_warm(
         Some(_) => warm.grid_sizing.clone(),
         None => Default::default(),
     };
+    // Where the sides are mirror images, each wheel recalls the other's
+    // checks too, as they stood at the step's start (the same with the
+    // wheels solved at once or one after the other).
+    let alike = pair.sides_alike() && input.rail_slices.iter().all(Option::is_none);
+    let others: [Option<GridSizing>; 2] = match alike {
+        true => [sizing[1].clone(), sizing[0].clone()],
+        false => Default::default(),
+    };
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
@@ -1917,6 +1925,7 @@ pub fn solve_wheelset_warm(
                 settings.element_size_m,
                 settings.force_tolerance_of_wheel_load,
                 sizing,
+                others[side.index()].as_ref(),
                 check,
                 |e| {
                     let mut solve = |input: &WheelRailInput| {

@@ -153,12 +153,50 @@ impl GridSizing {
         found.is_some()
     }
 
+    /// Puts in force a copy of the most recent check of `element_size_m` of
+    /// `other` (the other wheel's, made for the same reference size and
+    /// tolerance) whose patches `wheel` has, if any: whether one was found.
+    fn adopt(
+        &mut self,
+        other: Option<&GridSizing>,
+        element_size_m: f64,
+        wheel: &WheelResult,
+    ) -> bool {
+        let found = other
+            .filter(|o| self.same_terms(o))
+            .and_then(|o| {
+                o.checks
+                    .iter()
+                    .rev()
+                    .find(|c| c.element_size_m == element_size_m && c.holds(wheel))
+            })
+            .cloned();
+        found.map(|c| self.push(c)).is_some()
+    }
+
+    /// Whether `other` was chosen for the same reference size and
+    /// tolerance.
+    fn same_terms(&self, other: &GridSizing) -> bool {
+        other.reference_element_size_m == self.reference_element_size_m
+            && other.tolerance == self.tolerance
+    }
+
     /// The size of the most recent check of another size than
-    /// `element_size_m` whose patches `wheel` has.
-    fn recalled_size(&self, element_size_m: f64, wheel: &WheelResult) -> Option<f64> {
-        self.checks
+    /// `element_size_m` whose patches `wheel` has, of this wheel's checks,
+    /// then of `other`'s.
+    fn recalled_size(
+        &self,
+        other: Option<&GridSizing>,
+        element_size_m: f64,
+        wheel: &WheelResult,
+    ) -> Option<f64> {
+        let other = other.filter(|o| self.same_terms(o));
+        let mut found = self
+            .checks
             .iter()
             .rev()
+            .chain(other.into_iter().flat_map(|o| o.checks.iter().rev()));
+        found
             .find(|c| c.element_size_m != element_size_m && c.holds(wheel))
             .map(|c| c.element_size_m)
     }
@@ -232,11 +270,14 @@ pub(crate) type WheelSolved = (WheelResult, Option<f64>, Option<PatchTractions>)
 /// made again. A coarser solve that fails (other than cancelled) ends the
 /// check on the reference, and a kept size that fails is checked again.
 /// Without `check` (the pitch iteration's further solves) the size in
-/// force is kept.
+/// force is kept. With `other`, the other wheel's sizing (of a pair whose
+/// sides are alike, [`crate::wheelrail::WheelRailPair::sides_alike`]), its
+/// checks are recalled too (copied to this wheel's).
 pub(crate) fn solve_sized(
     reference_m: f64,
     tolerance: Option<f64>,
     sizing: &mut Option<GridSizing>,
+    other: Option<&GridSizing>,
     check: bool,
     mut solve_at: impl FnMut(f64) -> Result<WheelSolved, WheelRailError>,
 ) -> Result<WheelSolved, WheelRailError> {
@@ -255,16 +296,16 @@ pub(crate) fn solve_sized(
         Some(s) => {
             let e = s.element_size_m();
             if let Some(solved) = attempt(e, reference_m, &mut solve_at)? {
-                if !check || s.recall(e, &solved.0) {
+                if !check || s.recall(e, &solved.0) || s.adopt(other, e, &solved.0) {
                     return Ok(solved);
                 }
                 // A state an earlier check of another size has seen.
-                if let Some(other) = s.recalled_size(e, &solved.0) {
-                    if let Some(again) = attempt(other, reference_m, &mut solve_at)? {
-                        if s.recall(other, &again.0) {
+                if let Some(size) = s.recalled_size(other, e, &solved.0) {
+                    if let Some(again) = attempt(size, reference_m, &mut solve_at)? {
+                        if s.recall(size, &again.0) || s.adopt(other, size, &again.0) {
                             return Ok(again);
                         }
-                        made.push((other, again));
+                        made.push((size, again));
                     }
                 }
                 made.push((e, solved));
