@@ -356,7 +356,11 @@ pub struct WheelRailSettings {
     /// changed by more than a factor
     /// [`RECHECK_AREA_RATIO`](grid_sizing::RECHECK_AREA_RATIO) or its
     /// contact angle by more than
-    /// [`RECHECK_ANGLE_RAD`](grid_sizing::RECHECK_ANGLE_RAD). A
+    /// [`RECHECK_ANGLE_RAD`](grid_sizing::RECHECK_ANGLE_RAD), unless one
+    /// of the wheel's last [`MAX_CHECKS_KEPT`](grid_sizing::MAX_CHECKS_KEPT)
+    /// checks (or, where the pair's sides are alike, the other wheel's)
+    /// saw such patches. The load iteration then meets the vertical force
+    /// to [`Self::load_tolerance_in_force`]. A
     /// check step costs one solve on `element_size_m` and one or more on
     /// coarser grids, so a solve without a warm start (every step a check)
     /// costs more than without the option. The fields of a patch (pressure

@@ -9,9 +9,13 @@
 //! their difference is the error the tolerance is stated against (the
 //! reference is the solve on the user's grid, so no extrapolation to a
 //! finer one is needed). The check is made when a wheel has no choice yet
-//! and again when its patches change ([`GridSizing::holds`]); between
-//! checks the error drifts with the contact's place on the grid, which the
-//! other half of the tolerance covers. On the load test's path (50 kN a
+//! and again when its patches change ([`GridSizing::holds`]) to patches
+//! none of its remembered checks saw (a periodic motion revisits its
+//! states; where the pair's sides are alike, the other wheel's checks
+//! count too); between checks the error drifts with the contact's place on
+//! the grid, which the other half of the tolerance covers. A check's
+//! solves start from the last step's contact (its box and its tractions
+//! sampled on the other size), not cold. On the load test's path (50 kN a
 //! wheel, lateral 4 mm and yaw 2 mrad at 2 Hz) warm steps on fixed sizes
 //! stay within 5.1e-4 / 7.5e-4 / 1.25e-3 / 2.0e-3 / 3.0e-3 of the load of
 //! cold solves on 0.2 mm at 0.2 / 0.25 / 0.3 / 0.4 / 0.5 mm (every 10th
