@@ -356,7 +356,11 @@ pub struct WheelRailSettings {
     /// changed by more than a factor
     /// [`RECHECK_AREA_RATIO`](grid_sizing::RECHECK_AREA_RATIO) or its
     /// contact angle by more than
-    /// [`RECHECK_ANGLE_RAD`](grid_sizing::RECHECK_ANGLE_RAD). A
+    /// [`RECHECK_ANGLE_RAD`](grid_sizing::RECHECK_ANGLE_RAD), unless one
+    /// of the wheel's last [`MAX_CHECKS_KEPT`](grid_sizing::MAX_CHECKS_KEPT)
+    /// checks (or, where the pair's sides are alike, the other wheel's)
+    /// saw such patches. The load iteration then meets the vertical force
+    /// to [`Self::load_tolerance_in_force`]. A
     /// check step costs one solve on `element_size_m` and one or more on
     /// coarser grids, so a solve without a warm start (every step a check)
     /// costs more than without the option. The fields of a patch (pressure
@@ -370,7 +374,10 @@ pub struct WheelRailSettings {
     /// [`wheelrail_solver_settings`], tolerances that give forces and
     /// maximum pressures to about five digits).
     pub solver: SolverSettings,
-    /// Relative tolerance on the vertical force [-].
+    /// Relative tolerance on the vertical force [-]; with
+    /// `force_tolerance_of_wheel_load` the larger of it and that tolerance
+    /// over [`LOAD_TOLERANCE_DIVISOR`](grid_sizing::LOAD_TOLERANCE_DIVISOR)
+    /// ([`Self::load_tolerance_in_force`]).
     pub load_tolerance: f64,
     /// Iteration limit of the load iteration (solves of a wheel's
     /// patches). One that reaches it without meeting `load_tolerance`
@@ -408,6 +415,21 @@ pub struct WheelRailSettings {
     /// Model `exact`: how its patches solve the tangential problem
     /// (default Kalker's exact theory).
     pub exact_tangential: ExactTangential,
+}
+
+impl WheelRailSettings {
+    /// The relative tolerance the load iteration meets the vertical force
+    /// to: `load_tolerance`, or with `force_tolerance_of_wheel_load` the
+    /// larger of it and that tolerance over
+    /// [`LOAD_TOLERANCE_DIVISOR`](grid_sizing::LOAD_TOLERANCE_DIVISOR).
+    pub fn load_tolerance_in_force(&self) -> f64 {
+        match self.force_tolerance_of_wheel_load {
+            Some(t) => self
+                .load_tolerance
+                .max(t / grid_sizing::LOAD_TOLERANCE_DIVISOR),
+            None => self.load_tolerance,
+        }
+    }
 }
 
 impl Default for WheelRailSettings {
@@ -1724,7 +1746,13 @@ impl PatchTractions {
     /// with `earlier`, the tractions of the step before theirs, where both
     /// map onto `grid`, extrapolated along the line through the two
     /// (2 last - earlier, the pressures kept >= 0).
+    /// On a grid of another element size along x (a grid sizing check's),
+    /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
+    /// not extrapolated.
     fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
+        if (self.grid.dx_m - grid.dx_m).abs() > 1e-9 * grid.dx_m {
+            return Some(self.sampled_on(grid));
+        }
         let mut last = self.on(grid)?;
         if let Some(before) = earlier.and_then(|e| e.on(grid)) {
             for (a, b) in last.iter_mut().zip(&before) {
@@ -1752,6 +1780,37 @@ impl PatchTractions {
         let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
         self.shift_onto(grid, &from, &mut out)?;
         Some(out)
+    }
+
+    /// These tractions on `grid` of any element sizes (pressure,
+    /// longitudinal, lateral): each element takes the value of this grid's
+    /// element its centre lies in (zero outside this grid).
+    fn sampled_on(&self, grid: &Grid) -> [Vec<f64>; 3] {
+        let old = &self.grid;
+        let from = [
+            &self.pressure_pa[..],
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ];
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let cell = |v: f64, v0: f64, d: f64, n: usize| {
+            let k = ((v - v0) / d).floor();
+            (k >= 0.0 && k < n as f64).then_some(k as usize)
+        };
+        for iy in 0..grid.ny {
+            let Some(oy) = cell(grid.y_m(iy), old.y0_m, old.dy_m, old.ny) else {
+                continue;
+            };
+            for ix in 0..grid.nx {
+                if let Some(ox) = cell(grid.x_m(ix), old.x0_m, old.dx_m, old.nx) {
+                    let (i, o) = (grid.index(ix, iy), old.index(ox, oy));
+                    for (to, from) in out.iter_mut().zip(from) {
+                        to[i] = from[o];
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The slip velocities on `grid` (as [`Self::on`]; 0 where they do not
@@ -1846,6 +1905,14 @@ pub fn solve_wheelset_warm(
         Some(_) => warm.grid_sizing.clone(),
         None => Default::default(),
     };
+    // Where the sides are mirror images, each wheel recalls the other's
+    // checks too, as they stood at the step's start (the same with the
+    // wheels solved at once or one after the other).
+    let alike = pair.sides_alike() && input.rail_slices.iter().all(Option::is_none);
+    let others: [Option<GridSizing>; 2] = match alike {
+        true => [sizing[1].clone(), sizing[0].clone()],
+        false => Default::default(),
+    };
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
     let mut solved = false;
@@ -1862,6 +1929,7 @@ pub fn solve_wheelset_warm(
                 settings.element_size_m,
                 settings.force_tolerance_of_wheel_load,
                 sizing,
+                others[side.index()].as_ref(),
                 check,
                 |e| {
                     let mut solve = |input: &WheelRailInput| {
@@ -3344,11 +3412,12 @@ fn across_refinement(
 /// `element_size_m` along x and `across` times narrower along s
 /// ([`across_refinement`]; narrowed less where the grid limits allow no
 /// more). With `last`, the last time step's solution of the patch on a
-/// grid of the same element sizes: around where that was loaded,
+/// grid of the same element sizes, or of another `element_size_m` (a grid
+/// sizing check's solves, [`grid_sizing`]): around where that was loaded,
 /// [`LAST_CONTACT_MARGIN`] elements of `element_size_m`
 /// wider on each side (a patch moves by less than an element in a time
 /// step; where the pressure reaches the border, the caller sizes the grid
-/// again without `last`), and of the shape of the last grid (whose
+/// again without `last`), and, of the same element sizes, of the shape of the last grid (whose
 /// tractions then start this step's solves) when that covers the area and
 /// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
 /// direction; such a grid lies whole elements from the last one (within
@@ -3401,8 +3470,12 @@ fn patch_grid_on(
     let (mut xlo, mut xhi) = (xlo - margin, xhi + margin);
     let [mut slo, mut shi] = geom.s_range_m;
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b;
+    // Around the last contact on a grid of these element sizes, or of
+    // another element size (a grid sizing check's, whose solves on the
+    // sizes it compares start from the last step's on the size in force).
+    let boxed = last.filter(|t| same(t.grid.dy_m, ds) || !same(t.grid.dx_m, e));
     let last = last.filter(|t| same(t.grid.dx_m, e) && same(t.grid.dy_m, ds));
-    if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
+    if let Some([x0, x1, s0, s1]) = boxed.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
         let m = LAST_CONTACT_MARGIN * e;
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
             (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
@@ -3690,7 +3763,7 @@ fn conformal_at_approach(
     input: &WheelRailInput,
     solve_at: &mut impl FnMut(f64) -> Result<ConformalSolution, ContactError>,
 ) -> Result<ConformalSolution, ContactError> {
-    let tol = (input.settings.load_tolerance / 1.5).max(1e-10) * e;
+    let tol = (input.settings.load_tolerance_in_force() / 1.5).max(1e-10) * e;
     let mut g = guess.powf(2.0 / 3.0);
     let mut prev: Option<(f64, f64)> = None;
     let mut it = 0;
@@ -3929,7 +4002,7 @@ pub(crate) fn load_iteration(
         WheelLoad::VerticalForce(f) => f,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by the callers"),
     };
-    let tol = input.settings.load_tolerance * target;
+    let tol = input.settings.load_tolerance_in_force() * target;
     let max_it = input.settings.max_load_iterations;
     if let [p] = patches {
         // One patch: force control of the core; secant steps on the normal
@@ -4104,7 +4177,7 @@ fn frictional_steps(
     fastsim: &mut Fastsim,
     cache: &KernelCache,
 ) -> Result<LoadResult, PatchErr> {
-    let tol = input.settings.load_tolerance * target;
+    let tol = input.settings.load_tolerance_in_force() * target;
     let max_it = input.settings.max_load_iterations;
     let mut last: Option<(f64, f64)> = None;
     let mut bracket = LoadBracket::default();

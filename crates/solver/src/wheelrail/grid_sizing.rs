@@ -9,9 +9,13 @@
 //! their difference is the error the tolerance is stated against (the
 //! reference is the solve on the user's grid, so no extrapolation to a
 //! finer one is needed). The check is made when a wheel has no choice yet
-//! and again when its patches change ([`GridSizing::holds`]); between
-//! checks the error drifts with the contact's place on the grid, which the
-//! other half of the tolerance covers. On the load test's path (50 kN a
+//! and again when its patches change ([`GridSizing::holds`]) to patches
+//! none of its remembered checks saw (a periodic motion revisits its
+//! states; where the pair's sides are alike, the other wheel's checks
+//! count too); between checks the error drifts with the contact's place on
+//! the grid, which the other half of the tolerance covers. A check's
+//! solves start from the last step's contact (its box and its tractions
+//! sampled on the other size), not cold. On the load test's path (50 kN a
 //! wheel, lateral 4 mm and yaw 2 mrad at 2 Hz) warm steps on fixed sizes
 //! stay within 5.1e-4 / 7.5e-4 / 1.25e-3 / 2.0e-3 / 3.0e-3 of the load of
 //! cold solves on 0.2 mm at 0.2 / 0.25 / 0.3 / 0.4 / 0.5 mm (every 10th
@@ -42,52 +46,54 @@ pub const RECHECK_ANGLE_RAD: f64 = 0.05;
 /// 1e-3 (a check on a contact's position instead of its area) 1.41e-3.
 pub const MIN_FORCE_TOLERANCE: f64 = 5e-3;
 
+/// Under `force_tolerance_of_wheel_load` the load iteration meets the
+/// vertical force to this fraction of that tolerance (unless
+/// `load_tolerance` asks for less): 5e-5 of the load at 5e-3, 2.5 N of 50
+/// kN. The first solve of a warm step then meets it in most wheel steps:
+/// on the load test's path (600 steps at 4 mm, 5e-3) 1,052 of 1,200 wheel
+/// steps, against 576 at the default 1e-6; one load iteration costs about
+/// as much as the first (benches/README.md, "Grids sized for the forces
+/// asked").
+pub const LOAD_TOLERANCE_DIVISOR: f64 = 100.0;
+
 /// The largest `force_tolerance_of_wheel_load` [-].
 pub const MAX_FORCE_TOLERANCE: f64 = 0.1;
 
 /// Key of the option (case file `grid` section and the wire).
 pub const FORCE_TOLERANCE_KEY: &str = "grid.force_tolerance_of_wheel_load";
 
-/// One wheel's element size chosen at its last check, kept across a
-/// session's steps while [`Self::holds`].
+/// The most checks a wheel remembers ([`GridSizing::checks`]): a periodic
+/// motion (hunting, a curve's entry and exit) revisits its contact states,
+/// and a state a check has seen needs none again.
+pub const MAX_CHECKS_KEPT: usize = 32;
+
+/// One check of a wheel's element size: the size chosen and the patches it
+/// was chosen for.
 #[derive(Debug, Clone, PartialEq)]
-pub struct GridSizing {
-    /// The element size the wheel's patches are solved on \[m\].
+pub struct SizeCheck {
+    /// The element size chosen \[m\].
     pub element_size_m: f64,
-    /// The `element_size_m` of the settings it was chosen for \[m\].
-    pub reference_element_size_m: f64,
-    /// The `force_tolerance_of_wheel_load` it was chosen for [-].
-    pub tolerance: f64,
-    /// At the check: the largest difference of the forces (track x, y, z)
-    /// from those on `reference_element_size_m`, relative to the wheel's
-    /// vertical force [-] (0 when chosen equal to it).
+    /// The largest difference of the forces (track x, y, z) on it from
+    /// those on the reference size, relative to the wheel's vertical force
+    /// [-] (0 when chosen equal to the reference).
     pub estimate: f64,
-    /// At the check: each patch's contact area \[m^2\] and contact angle
-    /// \[rad\], field side first.
+    /// Each patch's contact area \[m^2\] and contact angle \[rad\],
+    /// field side first.
     pub patches: Vec<[f64; 2]>,
 }
 
-impl GridSizing {
-    fn new(
-        element_size_m: f64,
-        reference: f64,
-        tolerance: f64,
-        estimate: f64,
-        wheel: &WheelResult,
-    ) -> Self {
+impl SizeCheck {
+    fn new(element_size_m: f64, estimate: f64, wheel: &WheelResult) -> Self {
         Self {
             element_size_m,
-            reference_element_size_m: reference,
-            tolerance,
             estimate,
             patches: wheel.patches.iter().map(patch_state).collect(),
         }
     }
 
-    /// Whether `wheel`, solved on this size, has the patches of the check:
-    /// as many, none of a contact area changed by more than a factor
-    /// [`RECHECK_AREA_RATIO`] or a contact angle by more than
-    /// [`RECHECK_ANGLE_RAD`].
+    /// Whether `wheel` has the patches of this check: as many, none of a
+    /// contact area changed by more than a factor [`RECHECK_AREA_RATIO`] or
+    /// a contact angle by more than [`RECHECK_ANGLE_RAD`].
     pub fn holds(&self, wheel: &WheelResult) -> bool {
         wheel.patches.len() == self.patches.len()
             && wheel
@@ -101,10 +107,121 @@ impl GridSizing {
                         && (now - angle).abs() <= RECHECK_ANGLE_RAD
                 })
     }
+}
+
+/// One wheel's element sizes chosen by its checks, kept across a session's
+/// steps: the last check in force while it [`holds`](Self::holds), an
+/// earlier one whose patches the wheel has again recalled instead of a new
+/// check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridSizing {
+    /// The `element_size_m` of the settings the sizes were chosen for \[m\].
+    pub reference_element_size_m: f64,
+    /// The `force_tolerance_of_wheel_load` they were chosen for [-].
+    pub tolerance: f64,
+    /// The wheel's checks, the one in force last; at most
+    /// [`MAX_CHECKS_KEPT`], the least recently used dropped first.
+    pub checks: Vec<SizeCheck>,
+}
+
+impl GridSizing {
+    /// The element size the wheel's patches are solved on \[m\].
+    pub fn element_size_m(&self) -> f64 {
+        self.in_force().element_size_m
+    }
+
+    /// The check in force.
+    pub fn in_force(&self) -> &SizeCheck {
+        self.checks
+            .last()
+            .expect("a sizing holds at least one check")
+    }
+
+    /// Whether `wheel`, solved on [`Self::element_size_m`], has the patches
+    /// of the check in force ([`SizeCheck::holds`]).
+    pub fn holds(&self, wheel: &WheelResult) -> bool {
+        self.in_force().holds(wheel)
+    }
+
+    /// Puts in force the most recent check of `element_size_m` whose
+    /// patches `wheel` has, if any: whether one was found.
+    fn recall(&mut self, element_size_m: f64, wheel: &WheelResult) -> bool {
+        let found = self
+            .checks
+            .iter()
+            .rposition(|c| c.element_size_m == element_size_m && c.holds(wheel));
+        if let Some(k) = found {
+            let c = self.checks.remove(k);
+            self.checks.push(c);
+        }
+        found.is_some()
+    }
+
+    /// Puts in force a copy of the most recent check of `element_size_m` of
+    /// `other` (the other wheel's, made for the same reference size and
+    /// tolerance) whose patches `wheel` has, if any: whether one was found.
+    fn adopt(
+        &mut self,
+        other: Option<&GridSizing>,
+        element_size_m: f64,
+        wheel: &WheelResult,
+    ) -> bool {
+        let found = other
+            .filter(|o| self.same_terms(o))
+            .and_then(|o| {
+                o.checks
+                    .iter()
+                    .rev()
+                    .find(|c| c.element_size_m == element_size_m && c.holds(wheel))
+            })
+            .cloned();
+        found.map(|c| self.push(c)).is_some()
+    }
+
+    /// Whether `other` was chosen for the same reference size and
+    /// tolerance.
+    fn same_terms(&self, other: &GridSizing) -> bool {
+        other.reference_element_size_m == self.reference_element_size_m
+            && other.tolerance == self.tolerance
+    }
+
+    /// The size of the most recent check of another size than
+    /// `element_size_m` whose patches `wheel` has, of this wheel's checks,
+    /// then of `other`'s.
+    fn recalled_size(
+        &self,
+        other: Option<&GridSizing>,
+        element_size_m: f64,
+        wheel: &WheelResult,
+    ) -> Option<f64> {
+        let other = other.filter(|o| self.same_terms(o));
+        let mut found = self
+            .checks
+            .iter()
+            .rev()
+            .chain(other.into_iter().flat_map(|o| o.checks.iter().rev()));
+        found
+            .find(|c| c.element_size_m != element_size_m && c.holds(wheel))
+            .map(|c| c.element_size_m)
+    }
+
+    /// Adds `check` in force, dropping the least recently used beyond
+    /// [`MAX_CHECKS_KEPT`].
+    fn push(&mut self, check: SizeCheck) {
+        if self.checks.len() >= MAX_CHECKS_KEPT {
+            self.checks.remove(0);
+        }
+        self.checks.push(check);
+    }
 
     /// Heap memory it holds \[bytes\].
     pub(crate) fn heap_bytes(&self) -> usize {
-        16 * self.patches.capacity()
+        self.checks.capacity() * std::mem::size_of::<SizeCheck>()
+            + self
+                .checks
+                .iter()
+                .map(|c| 16 * c.patches.capacity())
+                .sum::<usize>()
     }
 }
 
@@ -145,70 +262,121 @@ pub(crate) type WheelSolved = (WheelResult, Option<f64>, Option<PatchTractions>)
 /// One wheel solved under `tolerance` (`force_tolerance_of_wheel_load`,
 /// None: on `reference_m`, the settings' `element_size_m`), `solve_at(e)`
 /// solving it on elements of e. With `check` (a step's first solve of the
-/// wheel) a kept `sizing` that no longer [`GridSizing::holds`], or none,
-/// is chosen again: the wheel solved on `reference_m`, then on each of
-/// [`GRID_COARSENINGS`] coarsest first up to the first whose forces lie
-/// within half the tolerance of the reference's (with as many patches);
-/// that solve is the answer, else the reference's. A coarser solve that
-/// fails (other than cancelled) ends the check on the reference, and a
-/// kept size that fails is checked again. Without `check` (the pitch
-/// iteration's further solves) the size of `sizing` is kept.
+/// wheel) the size in force is solved and kept when its check still
+/// [`holds`](GridSizing::holds) or an earlier check of that size is
+/// recalled; else, where an earlier check of another size holds for the
+/// patches found, that size is solved and kept if its check holds there
+/// too. Otherwise (and with no sizing yet) the size is chosen again: the
+/// wheel solved on `reference_m`, then on each of [`GRID_COARSENINGS`]
+/// coarsest first up to the first whose forces lie within half the
+/// tolerance of the reference's (with as many patches); that solve is the
+/// answer, else the reference's. The step's solves already made are not
+/// made again. A coarser solve that fails (other than cancelled) ends the
+/// check on the reference, and a kept size that fails is checked again.
+/// Without `check` (the pitch iteration's further solves) the size in
+/// force is kept. With `other`, the other wheel's sizing (of a pair whose
+/// sides are alike, [`crate::wheelrail::WheelRailPair::sides_alike`]), its
+/// checks are recalled too (copied to this wheel's).
 pub(crate) fn solve_sized(
     reference_m: f64,
     tolerance: Option<f64>,
     sizing: &mut Option<GridSizing>,
+    other: Option<&GridSizing>,
     check: bool,
     mut solve_at: impl FnMut(f64) -> Result<WheelSolved, WheelRailError>,
 ) -> Result<WheelSolved, WheelRailError> {
     let Some(tol) = tolerance else {
         return solve_at(reference_m);
     };
-    let kept = sizing
+    if sizing
         .as_ref()
-        .filter(|s| s.reference_element_size_m == reference_m && s.tolerance == tol);
-    let mut on_reference = None;
-    match kept {
-        Some(s) => match solve_at(s.element_size_m) {
-            Ok(solved) if !check || s.holds(&solved.0) => return Ok(solved),
-            Ok(solved) if s.element_size_m == reference_m => on_reference = Some(solved),
-            // Checked again: a coarser grid may fail where the reference
-            // does not (a flange patch's load not carried on 0.3 mm and
-            // coarser elements, on the load test's motion at 12 mm).
-            Ok(_) => {}
-            Err(WheelRailError::Cancelled) => return Err(WheelRailError::Cancelled),
-            Err(e) if s.element_size_m == reference_m => return Err(e),
-            Err(_) => {}
-        },
+        .is_some_and(|s| s.reference_element_size_m != reference_m || s.tolerance != tol)
+    {
+        *sizing = None;
+    }
+    // This step's solves by element size, which the check takes up.
+    let mut made: Vec<(f64, WheelSolved)> = Vec::new();
+    match sizing.as_mut() {
+        Some(s) => {
+            let e = s.element_size_m();
+            if let Some(solved) = attempt(e, reference_m, &mut solve_at)? {
+                if !check || s.recall(e, &solved.0) || s.adopt(other, e, &solved.0) {
+                    return Ok(solved);
+                }
+                // A state an earlier check of another size has seen.
+                if let Some(size) = s.recalled_size(other, e, &solved.0) {
+                    if let Some(again) = attempt(size, reference_m, &mut solve_at)? {
+                        if s.recall(size, &again.0) || s.adopt(other, size, &again.0) {
+                            return Ok(again);
+                        }
+                        made.push((size, again));
+                    }
+                }
+                made.push((e, solved));
+            }
+        }
         None if !check => return solve_at(reference_m),
         None => {}
     }
-    let fine = match on_reference {
+    let mut take = |e: f64| {
+        let k = made.iter().position(|(m, _)| *m == e)?;
+        Some(made.swap_remove(k).1)
+    };
+    let fine = match take(reference_m) {
         Some(solved) => solved,
         None => solve_at(reference_m)?,
     };
     let load = fine.0.force_track_n[2].abs();
     if fine.0.patches.is_empty() || load.is_nan() || load <= 0.0 {
         // Nothing to size: checked again at the next step.
-        *sizing = None;
         return Ok(fine);
     }
+    let mut choose = |check: SizeCheck| match sizing {
+        Some(s) => s.push(check),
+        None => {
+            *sizing = Some(GridSizing {
+                reference_element_size_m: reference_m,
+                tolerance: tol,
+                checks: vec![check],
+            })
+        }
+    };
     for m in GRID_COARSENINGS {
         let e = m * reference_m;
-        let coarse = match solve_at(e) {
-            Ok(coarse) => coarse,
-            Err(WheelRailError::Cancelled) => return Err(WheelRailError::Cancelled),
-            Err(_) => break,
+        let coarse = match take(e) {
+            Some(solved) => solved,
+            None => match attempt(e, reference_m, &mut solve_at)? {
+                Some(solved) => solved,
+                None => break,
+            },
         };
         let estimate = (0..3)
             .map(|q| (coarse.0.force_track_n[q] - fine.0.force_track_n[q]).abs() / load)
             .fold(0.0, f64::max);
         if estimate <= 0.5 * tol && coarse.0.patches.len() == fine.0.patches.len() {
-            *sizing = Some(GridSizing::new(e, reference_m, tol, estimate, &coarse.0));
+            choose(SizeCheck::new(e, estimate, &coarse.0));
             return Ok(coarse);
         }
     }
-    *sizing = Some(GridSizing::new(reference_m, reference_m, tol, 0.0, &fine.0));
+    choose(SizeCheck::new(reference_m, 0.0, &fine.0));
     Ok(fine)
+}
+
+/// `solve_at(e)`, None where it fails on a coarser size than `reference_m`:
+/// a coarser grid may fail where the reference does not (a flange patch's
+/// load not carried on 0.3 mm and coarser elements, on the load test's
+/// motion at 12 mm).
+fn attempt(
+    e: f64,
+    reference_m: f64,
+    solve_at: &mut impl FnMut(f64) -> Result<WheelSolved, WheelRailError>,
+) -> Result<Option<WheelSolved>, WheelRailError> {
+    match solve_at(e) {
+        Ok(solved) => Ok(Some(solved)),
+        Err(WheelRailError::Cancelled) => Err(WheelRailError::Cancelled),
+        Err(err) if e == reference_m => Err(err),
+        Err(_) => Ok(None),
+    }
 }
 
 #[cfg(test)]

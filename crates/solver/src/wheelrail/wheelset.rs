@@ -619,6 +619,8 @@ pub struct WheelRailPair {
     wheels: [PlacedWheel; 2],
     track: TrackData,
     wheelset: WheelsetData,
+    /// Whether the two sides are mirror images ([`Self::sides_alike`]).
+    sides_alike: bool,
 }
 
 /// The placed profiles: what a registered pair keeps in memory (1.1 MB
@@ -687,11 +689,18 @@ impl WheelRailPair {
         };
         let (rl, wl) = place(Side::Left)?;
         let (rr, wr) = place(Side::Right)?;
+        let sides_alike = rl.samples == rr.samples
+            && rl.cant_rad == rr.cant_rad
+            && rl.offset_m == rr.offset_m
+            && rl.roller_radius_m() == rr.roller_radius_m()
+            && wl.samples == wr.samples
+            && wl.axial_offset_m == wr.axial_offset_m;
         Ok(Self {
             rails: [rl, rr],
             wheels: [wl, wr],
             track,
             wheelset,
+            sides_alike,
         })
     }
 
@@ -720,7 +729,16 @@ impl WheelRailPair {
             pitch_rad,
             facing_points,
         });
+        self.sides_alike = false;
         Ok(self)
+    }
+
+    /// Whether the two sides are mirror images: the same rail and wheel
+    /// samples in their side frames (the same profiles, cant, placement and
+    /// rollers) and no out-of-round wheel; a contact state of one wheel is
+    /// then the other's mirrored.
+    pub fn sides_alike(&self) -> bool {
+        self.sides_alike
     }
 
     /// The placed rail of `side`.
