@@ -1,9 +1,9 @@
 //! Module 1 transient contact (T = 1 shifts, T = 2 transient rolling)
 //! called as a C caller calls it, step by step, against CONTACT's
 //! reference outputs of eve70a/CONTACT's `testbank/examples_trans`
-//! (`m1_catt_shift`, `m1_totforce`, `m1_trans_roll`; `m1_trans_dqrel`
-//! against CONTACT's library, see there), each `.inp` translated into the
-//! calls below, each value from its `.ref_out`, per case: "TOTAL FORCES" FN, FX, FS, MN, PMAX and "CONTACT
+//! (`m1_catt_shift`, `m1_totforce`, `m1_trans_roll`; `m1_trans_dqrel`'s
+//! wheel against CONTACT's library, see there), each `.inp` translated
+//! into the calls below, each value from its `.ref_out`, per case: "TOTAL FORCES" FN, FX, FS, MN, PMAX and "CONTACT
 //! STATISTICS" NCON, NADH, NSLIP). The rail is the cylinder
 //! `circ_r100.prr`, the wheel `flat_plane.prw` (nominal radius 100 mm),
 //! G = 200 N/mm2, nu = 0.28, mu = 0.4, DX = DS = 0.2 mm.
@@ -217,35 +217,28 @@ fn shifts_under_a_vertical_force_match_contacts_reference() {
     unsafe { compare(72, &seq, &steps, &TOTFORCE, 5e-3) };
 }
 
-/// m1_trans_dqrel's three cases as CONTACT's library (revision 2707)
-/// solves them through `crates/cntc/bench/m1_transient.py` (case
-/// `trans_dqrel`; MN its program's 0, the patch centred on the crown: the
-/// library's is taken about another origin of its super-grid, 152.6 mm
-/// along the profile, -8197 N mm in case 1). CONTACT's program's
-/// m1_trans_dqrel.ref_out gives FX 51.71, 53.14, 54.03 N (NADH 696, 892,
-/// 859) for the same input, 3.7 % below its library's; this library gives
-/// those within 0.01 % when its lateral lattice is moved by 0.035
-/// elements (the arc length counted from the profile's first point
-/// instead of its origin), and its library's within 0.01 % as it is: the
-/// first step's partial slip is that sensitive to where the elements lie
-/// across the crown.
-const TRANS_DQREL: [Reference; 3] = [
-    (237.023, 53.7142, 0.0, 0.0, 7.0752, 1273.0, 731.0, 542.0),
-    (237.023, 55.1987, 0.0, 0.0, 7.0752, 1273.0, 893.0, 380.0),
-    (237.023, 56.147, 0.0, 0.0, 7.0752, 1273.0, 864.0, 409.0),
+/// m1_trans_dqrel.inp's first sequence with DQREL = 1 instead of its 4
+/// (refused here, `unsupported_transient_inputs_are_refused`), as CONTACT's
+/// library (revision 2707) solves it through
+/// `crates/cntc/bench/m1_transient.py` (case `trans_dq1`): no reference
+/// output has it.
+const TRANS_DQ1: [Reference; 3] = [
+    (237.034, 14.7753, 0.0, 0.0, 7.0753, 1273.0, 1137.0, 136.0),
+    (237.034, 15.9892, 0.0, 0.0, 7.0753, 1273.0, 1179.0, 94.0),
+    (237.034, 17.175, 0.0, 0.0, 7.0753, 1273.0, 1171.0, 102.0),
 ];
 
-/// m1_trans_dqrel.inp: T = 2 rolling four elements a step (DQREL = 4),
-/// Z_WS = 0.160 mm, no deviation or yaw (the placement changes nothing),
-/// VS = 100 mm/s, VPITCH -0.960 rad/s in the first step (P = 2) and
-/// -0.996 after.
+/// m1_trans_dqrel.inp's wheel (T = 2, Z_WS = 0.160 mm, no deviation or
+/// yaw: the placement changes nothing), VS = 100 mm/s, VPITCH -0.960
+/// rad/s in the first step (P = 2) and -0.996 after, rolling one element
+/// a step.
 #[test]
-fn transient_rolling_of_four_elements_a_step_matches_contacts_reference() {
+fn transient_rolling_on_the_crown_matches_contacts_library() {
     let seq = Sequence {
         tang: 2,
         fz: None,
         z_ws: 0.160,
-        dqrel: 4.0,
+        dqrel: 1.0,
         drollw: 0.0,
         yaw: 0.0,
     };
@@ -254,7 +247,7 @@ fn transient_rolling_of_four_elements_a_step_matches_contacts_reference() {
         (0, 0.0, 0.0, 100.0, -0.996),
         (0, 0.0, 0.0, 100.0, -0.996),
     ];
-    unsafe { compare(73, &seq, &steps, &TRANS_DQREL, 5e-3) };
+    unsafe { compare(73, &seq, &steps, &TRANS_DQ1, 5e-3) };
 }
 
 /// m1_trans_roll.ref_out, cases 1-10.
@@ -310,8 +303,10 @@ fn a_new_sequence_starts_from_rest() {
 }
 
 /// What transient contact does not take is refused with CONTACT's -40
-/// (not supported): a rolling step of a fraction of an element, a
-/// prescribed total force FX_WS (F = 1).
+/// (not supported): a rolling step of other than one element (DQREL = 4
+/// as in m1_trans_dqrel.inp: FX 53.71 N in its first step against its
+/// reference's 51.71, see `cntc_core::module1`), a prescribed total force
+/// FX_WS (F = 1).
 #[test]
 fn unsupported_transient_inputs_are_refused() {
     let ire = 76;
@@ -319,7 +314,7 @@ fn unsupported_transient_inputs_are_refused() {
         tang: 2,
         fz: Some(237.0),
         z_ws: 0.0,
-        dqrel: 1.5,
+        dqrel: 4.0,
         drollw: 0.0,
         yaw: 0.0,
     };

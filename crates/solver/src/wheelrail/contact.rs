@@ -342,7 +342,11 @@ pub enum TransientContact {
     /// creepages as in steady rolling, the patch rolling `rolled_elements`
     /// elements (CONTACT's `DQREL`) over both bodies in the step; the
     /// previous tractions are carried that far upstream
-    /// ([`crate::core::problem::ShiftStep::rolling`]). At least 1.
+    /// ([`crate::core::problem::ShiftStep::rolling`]). At least 1. With
+    /// more than one, CONTACT's module 1 gives other forces (its
+    /// m1_trans_dqrel, four elements a step: the first step's Fx 3.9 %
+    /// below this one's), for a cause not found; railcontact's CONTACT
+    /// library (`crates/cntc`) refuses them.
     Rolling {
         /// Distance rolled in the step in elements (dq / dx) \[-\].
         rolled_elements: usize,
