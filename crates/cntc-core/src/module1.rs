@@ -153,7 +153,8 @@
 //!   T = 1 the velocities are the step's displacements and the creepages
 //!   the patch's rigid shift (length, rad; `Outcome::is_shift`); T = 2
 //!   rolls one element a step (DQREL = 1; larger steps disagree with
-//!   CONTACT's by up to 4 % for a cause not found, and are refused). MZ is taken about
+//!   CONTACT's by up to 4 %: CONTACT's leading-edge correction, see
+//!   `rolled_elements`, and are refused). MZ is taken about
 //!   the super-grid's origin, as CONTACT's. F = 0, M = 0, L = 0 and V = 0
 //!   only. Agreement with CONTACT's reference outputs: docs/cntc.md.
 //! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
@@ -494,8 +495,13 @@ impl TransientHistory {
 /// must be 1 here. CONTACT's `m1_trans_dqrel` (DQREL = 4) gives a first
 /// step's FX of 51.71 N in its reference output and its library, the
 /// solver's rolling step of four elements 53.71 N (1.2 % apart with
-/// DQREL = 2, 0.003 % with 1; `crates/cntc/bench/m1_transient.py`): the
-/// cause is not found, so larger steps are refused.
+/// DQREL = 2, 0.003 % with 1; `crates/cntc/bench/m1_transient.py`).
+/// CONTACT corrects the leading edge in transient rolling
+/// (`m_leadedge.f90`: an element entering the contact area takes the
+/// rigid shift times the fraction of the step it was in contact, `facdt`,
+/// and the displacement at the estimated edge), the solver's rolling step
+/// does not; the correction grows with the step, so larger steps are
+/// refused.
 fn rolled_elements(dqrel: f64) -> Result<usize> {
     if dqrel != 1.0 {
         return Err(CntcError::NotSupported(format!(
