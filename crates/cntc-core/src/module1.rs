@@ -3751,9 +3751,13 @@ mod tests {
             .unwrap();
         let cache = KernelCache::default();
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
+        // Transient rolling rolls one element a step (DQREL = 1).
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
+        w.set_rolling_step(0.0, 2.0).unwrap();
         let e = w.calculate(&cache).unwrap_err();
-        assert!(e.to_string().contains("T = 2"), "{e}");
+        assert!(e.to_string().contains("DQREL = 2"), "{e}");
+        assert_eq!(e.ierror(), -40);
+        w.set_rolling_step(0.0, 1.0).unwrap();
         // M = 3 takes the exact pressure as its bound (B = 0) only.
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
         w.config
