@@ -25,7 +25,8 @@ two placements agree to the digits printed in the reference outputs):
                then steps (P = 0)
   trans_dqrel  m1_trans_dqrel.inp's first sequence: T = 2, DQREL = 4,
                Z_WS = 0.160 mm, no DROLLW, yaw 0, VPITCH -0.960 in the
-               first step and -0.996 after
+               first step and -0.996 after (railcontact refuses DQREL != 1,
+               -40: CONTACT's leading-edge correction, docs/cntc.md)
   trans_dq1    trans_dqrel with DQREL = 1
   steady_roll  trans_roll's wheel in steady rolling (T = 3): the limit
 
