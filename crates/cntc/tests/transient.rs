@@ -22,7 +22,7 @@
 
 mod common;
 
-use common::{close, profile, set_flags, set_profile_file, wheelrail_element};
+use common::{close, profile, read_inp, set_flags, set_profile_file, wheelrail_element, InpDir};
 use contact_addon::ffi::*;
 use contact_addon::flags;
 
@@ -335,5 +335,51 @@ fn unsupported_transient_inputs_are_refused() {
         set_flags(ire, -1, &[(flags::IC_FORCE, 1)]);
         cntc_settangentialforces(&ire, &-1, &10.0, &0.0);
         assert_eq!(calculate(ire, &seq, step), -40);
+    }
+}
+
+/// m1_catt_shift.inp's first case (with this file's placement, the
+/// profiles named by their paths) read by `cntc_readinpfile` is the same
+/// element as the calls of [`setup`] make: its first shift gives the same
+/// forces, bit for bit.
+#[test]
+fn a_transient_input_file_reads_as_its_calls() {
+    let dir = InpDir::new("transient");
+    let text = format!(
+        "% From Cattaneo to Carter using shift (T=1)\n\
+         \n  1 MODULE\n\
+         \x20 1201000    C-P-B-T-N-F-S\n\
+         \x20 0022035    V-L-D-C-M-Z-E\n\
+         \x20 0001321    H-G-I-A-O-W-R\n\
+         \x20   999     100    30    1     1e-5             MAXGS , MAXIN , MAXNR , MAXOUT, EPS\n\
+         \x20 0.400   0.400                                 FSTAT, FKIN\n\
+         \x20 0.280   0.280   200.0   200.0                 POISS 1,2,  GG 1,2\n\
+         \x20 0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n\
+         \x20  -1.0 200.000   0.000   0.000                 GAUGHT, RAILY0, RAILZ0, CANT\n\
+         \x20 '{}'   0     1.0   0.0             RFNAME, MIRRORY, SCALE, SMOOTH\n\
+         \x20    0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL\n\
+         \x20  200.0 -100.0   100.0                         FBDIST, FBPOS, NOMRAD\n\
+         \x20 '{}'        0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH\n\
+         \x20  0.0   0.0  -0.2201   0.0   0.004  0.0        S, Y, FZ, ROLL, YAW, PITCH\n\
+         \x20 4.000  0.0     0.0    0.0   0.0   -0.03984   DS,DY,DZ, DROLL,DYAW,DPITCH\n\
+         \x20  0.0   0.0     0.0    5.0d  0.0    0.0        DXWHL--DPITCHW\n\
+         \x20  0.0   0.0     0.0    0.0   0.0    0.0        VXWHL--VPITCHW\n\
+         \n  0 MODULE\n",
+        profile("circ_r100.prr"),
+        profile("flat_plane.prw")
+    );
+    let path = dir.write("catt_shift_1.inp", &text);
+    unsafe {
+        let ire = 77;
+        wheelrail_element(ire, &[]);
+        assert_eq!(read_inp(ire, flags::INP_MODUL1, &path), 0);
+        let mut ierror = -1;
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, 0);
+        let from_file = ours(ire);
+        let ire = 78;
+        setup(ire, &CATT);
+        assert_eq!(calculate(ire, &CATT, catt_shift_steps(1)[0]), 0);
+        assert_eq!(from_file, ours(ire));
     }
 }
