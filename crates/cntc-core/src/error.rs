@@ -164,6 +164,10 @@ impl CntcError {
             WheelRailError::Invalid { key, .. } if key.starts_with("position") => {
                 CntcError::Search(msg)
             }
+            // Transient contact of another number of patches than one.
+            WheelRailError::Invalid { key, .. } if key == "exact_tangential" => {
+                CntcError::NotSupported(msg)
+            }
             WheelRailError::Invalid { .. } => CntcError::Input(msg),
             WheelRailError::Spline { .. } => CntcError::Profile(msg),
             WheelRailError::Geometry { .. } => CntcError::Search(msg),

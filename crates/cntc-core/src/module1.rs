@@ -140,7 +140,23 @@
 //! * Steady rolling (T = 3), or the normal problem only (T = 0: the
 //!   solver's `ExactTangential::Frictionless`; zero tractions, creep
 //!   forces and creepages, the contact area all adhesion, as CONTACT
-//!   reports them). Transient contact (T = 1, 2) is refused.
+//!   reports them).
+//! * Transient contact (T = 1 shifts, T = 2 transient rolling; the
+//!   solver's `ExactTangential::Transient`): each calculation is one time
+//!   step of one patch (another number of patches is refused, -40), the
+//!   element keeping the patch's tractions as the next step's history
+//!   (`TransientHistory`: P = 0 continues, P = 1 keeps the pressures only,
+//!   P = 2 starts from rest, P = 3 repeats the last step). The grid lies
+//!   on CONTACT's super-grid (fixed to the track with T = 1, moving with
+//!   the wheelset with T = 2, along the rail profile's arc length from its
+//!   origin laterally); the history moves onto it by whole elements. With
+//!   T = 1 the velocities are the step's displacements and the creepages
+//!   the patch's rigid shift (length, rad; `Outcome::is_shift`); T = 2
+//!   rolls one element a step (DQREL = 1; larger steps disagree with
+//!   CONTACT's by up to 4 %: CONTACT's leading-edge correction, see
+//!   `rolled_elements`, and are refused). MZ is taken about
+//!   the super-grid's origin, as CONTACT's. F = 0, M = 0, L = 0 and V = 0
+//!   only. Agreement with CONTACT's reference outputs: docs/cntc.md.
 //! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
 //!   (CONTACT's modified FASTSIM on each patch, the solver's
 //!   `ExactTangential::Fastsim`): the normal problem of each patch exact
@@ -188,14 +204,15 @@ use railcontact_solver::wheelrail::slices::{
 };
 use railcontact_solver::wheelrail::{
     is_slices_file, is_wheel_slices_file, nominal_rolling_speed, parse_profile,
-    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset, wheelrail_solver_settings,
-    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MasslessRail,
-    MasslessRailError, MirrorZ, PairCache, PatchResult, Profile, ProfileChecks, ProfileError,
-    ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion, RailPlacement,
-    RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData, WheelLoad,
-    WheelRailError, WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings,
-    WheelRailSolution, WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity,
-    MASSLESS_RAIL_PLACED_TOLERANCE, MAX_TRACK_CURVATURE_PER_M,
+    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset, solve_wheelset_warm,
+    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
+    LoadOptions, MasslessRail, MasslessRailError, MirrorZ, PairCache, PatchResult, PatchTractions,
+    Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeflection,
+    RailDeviation, RailMotion, RailPlacement, RailSlices, SearchScratch, Side, SourceLocation,
+    SplineOptions, TrackData, TransientContact, WarmStart, WheelLoad, WheelRailError,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE,
+    MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -433,6 +450,66 @@ pub struct WheelRail {
     /// The most elements a patch's grid may have (a server's limit;
     /// `None`: the solver's).
     max_grid_elements: Option<usize>,
+    /// Transient contact (T = 1, 2): the tractions of the last time steps.
+    transient: TransientHistory,
+}
+
+/// The history of transient contact (T = 1, 2) of a module 1 element: the
+/// tractions of its patch after the last calculation and before it, on
+/// their grids (the solver's [`WarmStart::tractions`]).
+#[derive(Default)]
+struct TransientHistory {
+    /// After the last calculation (None: no contact, or none yet).
+    last: Option<PatchTractions>,
+    /// What the last calculation started from.
+    before: Option<PatchTractions>,
+}
+
+impl TransientHistory {
+    /// The tractions a calculation with CONTACT's P digit `pvtime` starts
+    /// from: P = 0 the last step's, P = 1 its pressures only (the
+    /// tangential tractions zero), P = 2 none (a new sequence), P = 3
+    /// those the last calculation started from (a new iteration of it).
+    fn history(&self, pvtime: i32) -> Option<PatchTractions> {
+        match pvtime {
+            0 => self.last.clone(),
+            1 => self.last.clone().map(|mut t| {
+                t.traction_pa.iter_mut().for_each(|v| v.fill(0.0));
+                t
+            }),
+            3 => self.before.clone(),
+            _ => None,
+        }
+    }
+
+    /// After a calculation that started from `start` and left
+    /// `tractions`: they are the last step's, `start` what a following
+    /// P = 3 (another iteration of the same step) starts from.
+    fn advance(&mut self, start: Option<PatchTractions>, tractions: Option<PatchTractions>) {
+        self.last = tractions;
+        self.before = start;
+    }
+}
+
+/// The rolling step of transient rolling (T = 2) in elements: DQREL, which
+/// must be 1 here. CONTACT's `m1_trans_dqrel` (DQREL = 4) gives a first
+/// step's FX of 51.71 N in its reference output and its library, the
+/// solver's rolling step of four elements 53.71 N (1.2 % apart with
+/// DQREL = 2, 0.003 % with 1; `crates/cntc/bench/m1_transient.py`).
+/// CONTACT corrects the leading edge in transient rolling
+/// (`m_leadedge.f90`: an element entering the contact area takes the
+/// rigid shift times the fraction of the step it was in contact, `facdt`,
+/// and the displacement at the estimated edge), the solver's rolling step
+/// does not; the correction grows with the step, so larger steps are
+/// refused.
+fn rolled_elements(dqrel: f64) -> Result<usize> {
+    if dqrel != 1.0 {
+        return Err(CntcError::NotSupported(format!(
+            "DQREL = {dqrel} (cntc_setrollingstepsize) with T = 2 in module 1 is not supported: \
+             the patch rolls one element a step (DQREL = 1)"
+        )));
+    }
+    Ok(1)
 }
 
 // ---------------------------------------------------------------------
@@ -1551,12 +1628,15 @@ impl WheelRail {
     fn check_configuration(&self) -> Result<()> {
         self.config.check_supported()?;
         let d = &self.config.digits;
-        if d.tang != 0 && d.tang != 3 {
+        if !(0..=3).contains(&d.tang) {
             return Err(CntcError::NotSupported(format!(
-                "T = {} (CNTC_ic_tang, transient contact) in module 1 is not supported: steady \
-                 rolling (T = 3) or the normal problem only (T = 0)",
+                "T = {} (CNTC_ic_tang) in module 1 is not supported: the normal problem only \
+                 (T = 0), a shift (T = 1), transient rolling (T = 2) or steady rolling (T = 3)",
                 d.tang
             )));
+        }
+        if d.tang == 1 || d.tang == 2 {
+            self.check_transient()?;
         }
         match d.force {
             0 => {}
@@ -1627,6 +1707,40 @@ impl WheelRail {
             return Err(CntcError::NotSupported(
                 "H = 3 (temperatures, cntc_settemperaturedata) in module 1 is not supported".into(),
             ));
+        }
+        Ok(())
+    }
+
+    /// What transient contact (T = 1, 2) takes here: the pitch rate given
+    /// (F = 0), Kalker's theory on elastic bodies (M = 0), Coulomb
+    /// friction with one pair of coefficients (L = 0, V = 0), with T = 2
+    /// a rolling step of one element (DQREL = 1, [`rolled_elements`]).
+    fn check_transient(&self) -> Result<()> {
+        let d = &self.config.digits;
+        let t = d.tang;
+        if d.force != 0 {
+            return Err(CntcError::NotSupported(format!(
+                "F = {} (CNTC_ic_force) with T = {t} in module 1 is not supported: transient \
+                 contact takes the pitch rate given (F = 0)",
+                d.force
+            )));
+        }
+        if !matches!(self.config.material.model, MaterialModel::Elastic) {
+            return Err(CntcError::NotSupported(format!(
+                "M = {} (CNTC_ic_mater) with T = {t} in module 1 is not supported: transient \
+                 contact takes Kalker's theory on elastic bodies (M = 0)",
+                d.mater
+            )));
+        }
+        if d.frclaw != 0 || self.config.friction_by_angle.is_some() {
+            return Err(CntcError::NotSupported(format!(
+                "L = {}, V = {} (CNTC_ic_frclaw, CNTC_ic_varfrc) with T = {t} in module 1 is not \
+                 supported: transient contact takes Coulomb friction (L = 0, V = 0)",
+                d.frclaw, d.varfrc
+            )));
+        }
+        if t == 2 {
+            rolled_elements(self.dqrel)?;
         }
         Ok(())
     }
@@ -1857,6 +1971,16 @@ impl WheelRail {
                 };
                 let (input, sol, vpitch) = problem.solve(pair, input, cache, &mut self.scratch)?;
                 (input, sol, Some(vpitch))
+            }
+            _ if matches!(self.config.digits.tang, 1 | 2) => {
+                let start = self.transient.history(self.config.digits.pvtime);
+                let mut warm = WarmStart::default();
+                warm.tractions[side.index()] = start.clone();
+                let sol = solve_wheelset_warm(pair, &input, cache, &mut self.scratch, &mut warm)
+                    .map_err(CntcError::from_wheelrail)?;
+                self.transient
+                    .advance(start, warm.tractions[side.index()].take());
+                (input, sol, None)
             }
             _ => {
                 let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
@@ -2137,6 +2261,10 @@ impl WheelRail {
                 min_elements_across: 0,
                 exact_tangential: match (self.config.digits.tang, self.config.material.model) {
                     (0, _) => ExactTangential::Frictionless,
+                    (1, _) => ExactTangential::Transient(TransientContact::Shift),
+                    (2, _) => ExactTangential::Transient(TransientContact::Rolling {
+                        rolled_elements: rolled_elements(self.dqrel)?,
+                    }),
                     (_, MaterialModel::ModifiedFastsim(reduction)) => {
                         ExactTangential::Fastsim(reduction)
                     }
@@ -2440,14 +2568,21 @@ impl WheelRail {
         o.normal_force_n = p.normal_force_n;
         o.fx_n = p.fx_n;
         o.fy_n = s * p.fs_n;
-        o.mz_nm = s * p.mz_nm;
+        // Transient contact: CONTACT's spin moment is about the origin of
+        // its super-grid (the lattice's), where the reference point lies
+        // at (x0, s0).
+        let mz = match p.lattice_origin_m {
+            Some([x0, s0]) => p.mz_nm + x0 * p.fs_n - s0 * p.fx_n,
+            None => p.mz_nm,
+        };
+        o.mz_nm = s * mz;
         // CONTACT reports zero creepages without a tangential problem.
         o.creepages = if frictionless {
             [0.0; 3]
         } else {
             [p.creepage_long, s * p.creepage_lat, s * p.spin_per_m]
         };
-        o.is_shift = false;
+        o.is_shift = self.config.digits.tang == 1;
         o.rolling_speed_m_per_s = p.rolling_speed_m_per_s;
         o.rolling_direction_rad = p.rolling_direction_rad;
         o.max_pressure_pa = p.max_pressure_pa;
@@ -3616,9 +3751,13 @@ mod tests {
             .unwrap();
         let cache = KernelCache::default();
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
+        // Transient rolling rolls one element a step (DQREL = 1).
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
+        w.set_rolling_step(0.0, 2.0).unwrap();
         let e = w.calculate(&cache).unwrap_err();
-        assert!(e.to_string().contains("T = 2"), "{e}");
+        assert!(e.to_string().contains("DQREL = 2"), "{e}");
+        assert_eq!(e.ierror(), -40);
+        w.set_rolling_step(0.0, 1.0).unwrap();
         // M = 3 takes the exact pressure as its bound (B = 0) only.
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
         w.config

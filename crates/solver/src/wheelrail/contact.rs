@@ -123,7 +123,7 @@ use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalBlend, NormalLoad, NormalScratch};
 use crate::core::polach::{polach, PolachParameters};
 use crate::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, SolverSettings, CREEPAGE_RANGE,
+    ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings, CREEPAGE_RANGE,
 };
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::{ContactSolution, ElementFields, SolveStatus};
@@ -302,6 +302,59 @@ pub enum ExactTangential {
     /// included, as with Kalker's theory. No friction table
     /// ([`WheelRailInput::friction_table`]).
     Fastsim(SlopeReduction),
+    /// Kalker's exact theory, one time step of transient contact
+    /// (CONTACT's `T = 1, 2`; see [`TransientContact`]): the patch starts
+    /// from the previous step's tractions, the history a session hands
+    /// over in [`WarmStart::tractions`] (none: from the unloaded state).
+    Transient(TransientContact),
+}
+
+/// One time step of transient contact of the exact model
+/// ([`ExactTangential::Transient`]), after CONTACT's wheel/rail module
+/// (`m_wr_locatecp.f90`, "super-grid"; `m_wr_rigslip.f90`).
+///
+/// The patch grid lies on a lattice that does not move with the patch:
+/// element centres at whole multiples of the element size from a fixed
+/// origin, longitudinally (`Shift`: fixed to the track, at track x = -s of
+/// the wheelset, so that x + `position.track_s_m` is the lattice
+/// coordinate; `Rolling`: fixed to the wheelset, at track x = 0) and
+/// laterally along the rail profile's arc length from its origin (the
+/// point of profile y = 0). The previous step's pressures and tractions
+/// ([`PatchTractions`], with [`PatchTractions::lattice_origin_m`]) are
+/// moved onto this step's grid by whole elements (zero where the old grid
+/// does not reach; nothing is interpolated), and the grid is enlarged to
+/// cover where they were loaded. Each step solves one patch per wheel (a
+/// wheel with another number of patches is refused naming
+/// `exact_tangential`). The tangent plane turns with the contact angle
+/// from step to step; the tractions are carried by their (x, s)
+/// components, as CONTACT carries them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TransientContact {
+    /// A shift (CONTACT's `T = 1`): the wheelset's velocities are its
+    /// displacements in the step (time step 1 s, so \[m/s\] reads \[m\]
+    /// and \[rad/s\] \[rad\]); each patch's rigid shift is the rail's
+    /// displacement relative to the wheel at its reference point
+    /// (`creepage_long`, `creepage_lat` \[m\] and `spin_per_m` \[rad\]
+    /// of the patch result, its `rolling_speed_m_per_s` 1) and the
+    /// tractions stay where they were on the bodies (Kalker 1990 §5.2).
+    Shift,
+    /// Transient rolling in moving coordinates (CONTACT's `T = 2`): the
+    /// creepages as in steady rolling, the patch rolling `rolled_elements`
+    /// elements (CONTACT's `DQREL`) over both bodies in the step; the
+    /// previous tractions are carried that far upstream
+    /// ([`crate::core::problem::ShiftStep::rolling`]). At least 1. With
+    /// more than one, CONTACT's module 1 gives other forces (its
+    /// m1_trans_dqrel, four elements a step: the first step's Fx 3.9 %
+    /// below this one's): CONTACT corrects the leading edge
+    /// (`m_leadedge.f90`: an element entering the contact area in the step
+    /// takes the rigid shift times the fraction of the step it was in
+    /// contact), which the core's rolling step does not, an effect that
+    /// grows with the step; railcontact's CONTACT library (`crates/cntc`)
+    /// refuses such steps.
+    Rolling {
+        /// Distance rolled in the step in elements (dq / dx) \[-\].
+        rolled_elements: usize,
+    },
 }
 
 /// Strips across a patch of model `kik_piotrowski`
@@ -706,6 +759,11 @@ pub struct PatchResult {
     /// asked for them ([`WheelRailInput::temperature`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub temperature: Option<PatchTemperatures>,
+    /// Transient contact ([`TransientContact`]): where the reference point
+    /// (the grid's origin) lies on the lattice (x, s) \[m\], in the side
+    /// frame ([`PatchTractions::lattice_origin_m`]); None otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lattice_origin_m: Option<[f64; 2]>,
 }
 
 /// One wheel.
@@ -852,6 +910,13 @@ pub(crate) struct PatchWork {
     /// the round wheel and the prismatic rail put it
     /// ([`interpenetration_centroid`]).
     centre_offset: Option<[f64; 2]>,
+    /// Transient contact: the previous step's pressures and tangential
+    /// tractions \[Pa\] on this patch's grid, the history of each of its
+    /// solves (None: from the unloaded state).
+    history: Option<[Vec<f64>; 3]>,
+    /// Transient contact: where the grid's origin lies on the lattice
+    /// ([`PatchTractions::lattice_origin_m`]); None otherwise.
+    lattice_origin_m: Option<[f64; 2]>,
 }
 
 // One per patch and few patches per wheel: the size of the exact variant
@@ -977,6 +1042,10 @@ impl PatchWork {
                 // Kalker's tangential problem in the core solver; else the
                 // normal problem only (FASTSIM follows on its pressure).
                 let kalker = frictional && mode == ExactTangential::Kalker;
+                let transient = match mode {
+                    ExactTangential::Transient(t) if frictional => Some(t),
+                    _ => None,
+                };
                 if let Some(pn) = self.warm_pressure.take() {
                     solver.set_pressure_warm_start(&pn)?;
                 }
@@ -989,18 +1058,36 @@ impl PatchWork {
                     }
                 }
                 problem.load = load;
-                problem.kinematics = if kalker {
-                    Kinematics::SteadyRolling(self.creep)
-                } else {
-                    Kinematics::Frictionless
-                };
                 problem.settings = accuracy.settings(&input.settings.solver);
-                let mut sol = solver
-                    .solve(problem)?
-                    .pop()
-                    .ok_or(ContactError::NoContact {
-                        detail: "no solution".into(),
-                    })?;
+                let mut sol = match transient {
+                    Some(t) => {
+                        // Every solve of the step starts from the history.
+                        match &self.history {
+                            Some([pn, px, py]) => {
+                                solver.set_pressure_warm_start(pn)?;
+                                solver.set_traction_warm_start(px, py)?;
+                                solver.continue_from_last_solution();
+                            }
+                            None => solver.reset(),
+                        }
+                        let step = transient_step(t, load, &self.creep, self.speed, &problem.grid);
+                        problem.kinematics = Kinematics::Transient(vec![step]);
+                        solver.solve_next_step(problem, &step)?
+                    }
+                    None => {
+                        problem.kinematics = if kalker {
+                            Kinematics::SteadyRolling(self.creep)
+                        } else {
+                            Kinematics::Frictionless
+                        };
+                        solver
+                            .solve(problem)?
+                            .pop()
+                            .ok_or(ContactError::NoContact {
+                                detail: "no solution".into(),
+                            })?
+                    }
+                };
                 if let (true, ExactTangential::Fastsim(reduction)) = (frictional, mode) {
                     let t0 = Instant::now();
                     let on = FastsimOn {
@@ -1238,6 +1325,32 @@ impl PatchWork {
     }
 }
 
+/// The core's step of transient contact `t` at normal load `load` of a
+/// patch with creepages `creep` relative to `speed` \[m/s\] on `grid`
+/// ([`TransientContact`]): a shift by the rail's displacement relative to
+/// the wheel in the step (the creepages times the speed, over 1 s), or a
+/// rolling step of `rolled_elements` elements along x.
+fn transient_step(
+    t: TransientContact,
+    load: NormalLoad,
+    creep: &Creepages,
+    speed: f64,
+    grid: &Grid,
+) -> ShiftStep {
+    match t {
+        TransientContact::Shift => ShiftStep {
+            load,
+            shift_x_m: creep.creepage_long * speed,
+            shift_y_m: creep.creepage_lat * speed,
+            rotation_rad: creep.spin_per_m * speed,
+            rolling_m: 0.0,
+        },
+        TransientContact::Rolling { rolled_elements } => {
+            ShiftStep::rolling(load, rolled_elements as f64 * grid.dx_m, creep)
+        }
+    }
+}
+
 /// FASTSIM on an exact patch's grid ([`ExactTangential::Fastsim`]).
 struct FastsimOn<'a> {
     grid: &'a Grid,
@@ -1382,17 +1495,22 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// approach Delta and the patch's normal interpenetration pen \[m\]),
 /// CONTACT's (`m_wr_rigslip.f90`, `wr_creep_cref`): the wheel lowered by
 /// Delta and its point pen from the reference along the normal, into the
-/// rail ([`ReferencePoint::InterpenetrationCentre`]).
+/// rail ([`ReferencePoint::InterpenetrationCentre`]). In a shift
+/// ([`TransientContact::Shift`]) the speed is 1 m/s and the patch rolls
+/// along +x: the creepages are then the rail's displacement relative to
+/// the wheel in a step of 1 s, the velocities being the step's
+/// displacements (CONTACT's `VELOC` = 1, `CHI` = 0 in shifts).
 #[allow(clippy::too_many_arguments)]
 fn creepages(
     geom: &PatchGeometry,
     pose: &SidePose,
     side: Side,
-    velocity: &WheelsetVelocity,
+    input: &WheelRailInput,
     rail: (&RailMotion, &PlacedRail, &TrackData),
     omega: f64,
     loaded: Option<(f64, f64)>,
 ) -> (Creepages, f64, bool) {
+    let velocity = &input.velocity;
     let (v, mut w) = side_rates(side, velocity);
     let c = pose.center();
     let p = [geom.x_m, geom.reference_m[0], geom.reference_m[1]];
@@ -1444,6 +1562,11 @@ fn creepages(
         vw[k] -= vr[k];
         w[k] -= wr[k];
     }
+    let (speed, backward) = if shifts(input) {
+        (1.0, false)
+    } else {
+        (speed, backward)
+    };
     let t = geom.tangent();
     let n = [0.0, geom.normal[0], geom.normal[1]];
     // The rail's velocity relative to the wheel is -vw.
@@ -1673,6 +1796,57 @@ impl WarmStart {
     }
 }
 
+/// What transient contact ([`ExactTangential::Transient`]) does not take.
+/// The transient contact of `input`'s exact patches, if any.
+fn transient_of(input: &WheelRailInput) -> Option<TransientContact> {
+    match input.settings.exact_tangential {
+        ExactTangential::Transient(t) => Some(t),
+        _ => None,
+    }
+}
+
+/// Whether `input` is a transient shift ([`TransientContact::Shift`]).
+fn shifts(input: &WheelRailInput) -> bool {
+    transient_of(input) == Some(TransientContact::Shift)
+}
+
+fn validate_transient(t: TransientContact, input: &WheelRailInput) -> Result<(), WheelRailError> {
+    let refuse = |key: &str, what: &str| {
+        Err(WheelRailError::invalid(
+            key,
+            format!("transient contact (exact_tangential) {what}"),
+        ))
+    };
+    if t == (TransientContact::Rolling { rolled_elements: 0 }) {
+        return refuse(
+            "exact_tangential",
+            "rolls at least one element a step (rolled_elements >= 1)",
+        );
+    }
+    if input.total_longitudinal_force_n.is_some() {
+        return refuse(
+            "total_longitudinal_force_n",
+            "takes the pitch rate given, not a total longitudinal force",
+        );
+    }
+    if input.friction.slip_velocity_law.is_some() || input.friction_table.is_some() {
+        return refuse(
+            "friction.law",
+            "takes Coulomb friction with one pair of coefficients",
+        );
+    }
+    if input.settings.force_tolerance_of_wheel_load.is_some() {
+        return refuse(
+            "grid.force_tolerance_of_wheel_load",
+            "keeps its element size (the history lies on its lattice)",
+        );
+    }
+    if input.temperature.is_some() {
+        return refuse("temperature", "has no flash temperatures");
+    }
+    Ok(())
+}
+
 /// The first normal force per vertical load of a wheel's load iteration
 /// from those of the last three steps (`last`, then `earlier`, the nearer
 /// first): extrapolated by the parabola through the three (the line
@@ -1739,6 +1913,11 @@ pub struct PatchTractions {
     /// iteration on the slip velocities when the law starts from the
     /// previous solve (`SlipStart::Previous`); empty under Coulomb's law.
     pub slip_velocity_m_per_s: Vec<f64>,
+    /// Where the grid's origin (the patch's reference point) lay on the
+    /// lattice of transient contact (x, s) \[m\] ([`TransientContact`]):
+    /// a grid's element centre at (x, s) is at (x, s) + this on the
+    /// lattice. (0, 0) for tractions of other solves.
+    pub lattice_origin_m: [f64; 2],
 }
 
 impl PatchTractions {
@@ -1830,30 +2009,73 @@ impl PatchTractions {
     /// element size.
     fn shift_onto(&self, grid: &Grid, from: &[&[f64]], to: &mut [Vec<f64>]) -> Option<()> {
         let old = &self.grid;
-        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
-        if old.nx != grid.nx
-            || old.ny != grid.ny
-            || !same(old.dx_m, grid.dx_m)
-            || !same(old.dy_m, grid.dy_m)
-        {
+        if old.nx != grid.nx || old.ny != grid.ny || !self.same_elements(grid) {
             return None;
         }
-        // Element (ix, iy) of `grid` is element (ix + sx, iy + sy) of `old`.
-        let sx = ((grid.x0_m - old.x0_m) / grid.dx_m).round() as i64;
-        let sy = ((grid.y0_m - old.y0_m) / grid.dy_m).round() as i64;
-        let (nx, ny) = (grid.nx as i64, grid.ny as i64);
-        for iy in 0..ny {
-            for ix in 0..nx {
-                let (ox, oy) = (ix + sx, iy + sy);
-                if (0..nx).contains(&ox) && (0..ny).contains(&oy) {
-                    let (i, o) = ((iy * nx + ix) as usize, (oy * nx + ox) as usize);
-                    for (to, from) in to.iter_mut().zip(from) {
-                        to[i] = from[o];
-                    }
+        copy_shifted(
+            old,
+            grid,
+            [grid.x0_m - old.x0_m, grid.y0_m - old.y0_m],
+            from,
+            to,
+        );
+        Some(())
+    }
+
+    /// Whether `grid` has this grid's element size.
+    fn same_elements(&self, grid: &Grid) -> bool {
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
+        same(self.grid.dx_m, grid.dx_m) && same(self.grid.dy_m, grid.dy_m)
+    }
+
+    /// The transient history on `grid`, whose origin lies at `origin_m` of
+    /// the lattice ([`TransientContact`]): pressures and tangential
+    /// tractions moved by the whole elements between the two grids on the
+    /// lattice, zero where this grid does not reach; None unless `grid`
+    /// has this grid's element size.
+    fn on_lattice(&self, grid: &Grid, origin_m: [f64; 2]) -> Option<[Vec<f64>; 3]> {
+        if !self.same_elements(grid) {
+            return None;
+        }
+        let old = &self.grid;
+        let from = [
+            &self.pressure_pa[..],
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ];
+        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let at = self.lattice_origin_m;
+        let shift = [
+            grid.x0_m + origin_m[0] - old.x0_m - at[0],
+            grid.y0_m + origin_m[1] - old.y0_m - at[1],
+        ];
+        copy_shifted(old, grid, shift, &from, &mut out);
+        Some(out)
+    }
+}
+
+/// `to[k]` on `grid` = `from[k]` on `old` where element (ix, iy) of `grid`
+/// lies over one of `old`, `shift` \[m\] (x, y) being how far `grid`'s
+/// corner lies from `old`'s, rounded to whole elements of `grid`; the
+/// other elements of `to` are left alone.
+fn copy_shifted(old: &Grid, grid: &Grid, shift: [f64; 2], from: &[&[f64]], to: &mut [Vec<f64>]) {
+    // Element (ix, iy) of `grid` is element (ix + sx, iy + sy) of `old`.
+    let sx = (shift[0] / grid.dx_m).round() as i64;
+    let sy = (shift[1] / grid.dy_m).round() as i64;
+    let (onx, ony) = (old.nx as i64, old.ny as i64);
+    for iy in 0..grid.ny as i64 {
+        for ix in 0..grid.nx as i64 {
+            let (ox, oy) = (ix + sx, iy + sy);
+            if (0..onx).contains(&ox) && (0..ony).contains(&oy) {
+                let (i, o) = (
+                    (iy * grid.nx as i64 + ix) as usize,
+                    (oy * onx + ox) as usize,
+                );
+                for (to, from) in to.iter_mut().zip(from) {
+                    to[i] = from[o];
                 }
             }
         }
-        Some(())
     }
 }
 
@@ -1952,7 +2174,11 @@ pub fn solve_wheelset_warm(
             .iter()
             .map(|side| {
                 let i = side.index();
-                if solved {
+                if solved && transient_of(input).is_some() {
+                    // The transient history is the last step's, whatever
+                    // this step solved before.
+                    (normal_per_vertical[i], [warm.tractions[i].as_ref(), None])
+                } else if solved {
                     (normal_per_vertical[i], [tractions[i].as_ref(), None])
                 } else {
                     (
@@ -2276,11 +2502,14 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
         return Err(WheelRailError::invalid(
             "exact_tangential",
             format!(
-                "a frictionless or FASTSIM tangential problem of exact patches needs model = \
-                 \"exact\", not \"{}\"",
+                "a frictionless, FASTSIM or transient tangential problem of exact patches needs \
+                 model = \"exact\", not \"{}\"",
                 input.settings.model.name()
             ),
         ));
+    }
+    if let ExactTangential::Transient(t) = input.settings.exact_tangential {
+        validate_transient(t, input)?;
     }
     if let ExactTangential::Fastsim(reduction) = input.settings.exact_tangential {
         reduction.validate_as("exact_tangential")?;
@@ -2508,6 +2737,7 @@ fn solve_wheel(
         _ => gmin + (cap - gmin) / CAP_FACTOR,
     };
     let centred = centred(input);
+    let transient = transient_of(input).is_some();
     // The load iterations repeated for the centres (none without them).
     let mut reference_passes = 0;
     let mut start = start;
@@ -2524,7 +2754,8 @@ fn solve_wheel(
         let mut patches = Vec::new();
         // Per patch (with the centres): its interval and centre.
         let mut centres = Vec::new();
-        let last = warm_tractions.filter(|_| from_last && intervals.len() == 1);
+        // Transient contact: the grid always covers the last contact.
+        let last = warm_tractions.filter(|_| (from_last || transient) && intervals.len() == 1);
         for &iv in &intervals {
             let centre = centred
                 .then(|| {
@@ -2606,8 +2837,30 @@ fn solve_wheel(
                 message: "no potential contact found".into(),
             });
         }
+        if transient {
+            if patches.len() != 1 {
+                return Err(WheelRailError::invalid(
+                    "exact_tangential",
+                    format!(
+                        "transient contact solves one contact patch per wheel; the {} wheel has \
+                         {} here",
+                        side.name(),
+                        patches.len()
+                    ),
+                ));
+            }
+            // Every solve of the step starts from the last step's tractions.
+            if let ([p], Some(t)) = (patches.as_mut_slice(), warm_tractions) {
+                if let (PatchKind::Exact { problem, .. }, Some(origin)) =
+                    (&p.kind, p.lattice_origin_m)
+                {
+                    p.history = t.on_lattice(&problem.grid, origin);
+                }
+            }
+        }
         // A repeated load iteration starts from the last one's tractions.
         let (warm, earlier) = match &pass_tractions {
+            _ if transient => (None, None),
             Some(t) => (Some(t), None),
             None => (warm_tractions, earlier_tractions),
         };
@@ -2632,7 +2885,7 @@ fn solve_wheel(
             Ok(r) => r,
             // The pressure reached the edge of a grid sized from the last
             // step's contact: size it for `cap`.
-            Err((_, ContactError::GridTooSmall { .. })) if last.is_some() => {
+            Err((_, ContactError::GridTooSmall { .. })) if last.is_some() && !transient => {
                 from_last = false;
                 timing.add_solves(ts, &patches);
                 continue;
@@ -2861,6 +3114,7 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
         pressure_pa: f.pressure_pa.clone(),
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
         slip_velocity_m_per_s,
+        lattice_origin_m: p.lattice_origin_m.unwrap_or([0.0; 2]),
     })
 }
 
@@ -3103,8 +3357,7 @@ fn build_patch(
         pair.rail(side),
         pair.track(),
     );
-    let (creep, speed, backward) =
-        creepages(&geom, pose, side, &input.velocity, motion, omega, loaded);
+    let (creep, speed, backward) = creepages(&geom, pose, side, input, motion, omega, loaded);
     let rail = pair.rail(side);
     let friction = patch_friction(rail, &geom, input, speed);
     let nz = geom.normal[1];
@@ -3112,6 +3365,7 @@ fn build_patch(
     let (hmin, b) = lateral_curvature(&geom);
     let kx0 = geom.lateral_at(0.0).kx_per_m;
     let mut centre_offset = None;
+    let mut lattice_origin_m = None;
     let kind = match input.settings.model {
         WheelRailModel::HertzFastsim
         | WheelRailModel::HertzPolach
@@ -3129,7 +3383,14 @@ fn build_patch(
                 wheel_reach_x(&geom, &mut rows, cap * geom.normal[1], step)
             });
             let align = centred(input);
-            let grid = patch_grid(&geom, cap, across, input, last, reach, align)?;
+            let grid = match transient_of(input) {
+                Some(t) => {
+                    let origin = lattice_origin(&geom, rail, t, input);
+                    lattice_origin_m = Some(origin);
+                    transient_grid(&geom, cap, input, origin, last)?
+                }
+                None => patch_grid(&geom, cap, across, input, last, reach, align)?,
+            };
             let mut gap_m = vec![0.0; grid.len()];
             // CONTACT's geometry: the wheel's own surface along x (not on
             // a roller, whose curvature along x rides in the samples').
@@ -3274,6 +3535,8 @@ fn build_patch(
         solver_s: [0.0; 2],
         grid_fastsim: None,
         centre_offset,
+        history: None,
+        lattice_origin_m,
     })
 }
 
@@ -3345,8 +3608,7 @@ pub(crate) fn hertz_patch(
     omega: f64,
 ) -> PatchWork {
     let motion = (&input.rail_motion[side.index()], rail, track);
-    let (creep, speed, backward) =
-        creepages(&geom, pose, side, &input.velocity, motion, omega, None);
+    let (creep, speed, backward) = creepages(&geom, pose, side, input, motion, omega, None);
     PatchWork {
         friction: patch_friction(rail, &geom, input, speed),
         creep,
@@ -3364,6 +3626,8 @@ pub(crate) fn hertz_patch(
         solver_s: [0.0; 2],
         grid_fastsim: None,
         centre_offset: None,
+        history: None,
+        lattice_origin_m: None,
     }
 }
 
@@ -3552,6 +3816,114 @@ fn patch_grid_on(
         s0 = k.y0_m + ((s0 - k.y0_m) / ds).round() * ds;
     }
     Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
+}
+
+/// Where the reference point of `geom` lies on the lattice of transient
+/// contact `t` (x, s) \[m\] ([`TransientContact`]): x its track x
+/// (plus the wheelset's track position in a shift), s the rail profile's
+/// arc length at it (its sign that of the patch's s).
+fn lattice_origin(
+    geom: &PatchGeometry,
+    rail: &PlacedRail,
+    t: TransientContact,
+    input: &WheelRailInput,
+) -> [f64; 2] {
+    let x = match t {
+        TransientContact::Shift => geom.x_m + input.position.track_s_m,
+        TransientContact::Rolling { .. } => geom.x_m,
+    };
+    let samples = rail.samples();
+    let c = &samples[geom.rail_index.min(samples.len() - 1)];
+    // The sample's arc length, moved along its tangent to the reference,
+    // from the profile's origin.
+    let [q, z] = geom.reference_m;
+    let arc = c.t_m + (q - c.q_m) * c.tangent[0] + (z - c.z_m) * c.tangent[1]
+        - arc_at_profile_origin(rail);
+    let t_patch = geom.tangent();
+    let sign = if t_patch[0] * c.tangent[0] + t_patch[1] * c.tangent[1] < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    [x, sign * arc]
+}
+
+/// The arc length of `rail`'s samples \[m\] where its profile's y is 0
+/// (CONTACT's rail profile reference s_r = 0), interpolated between the
+/// samples on either side; the first sample's (0) where y does not pass 0.
+fn arc_at_profile_origin(rail: &PlacedRail) -> f64 {
+    let y = |c: &CurveSample| rail.to_profile(c.q_m, c.z_m)[0];
+    rail.samples()
+        .windows(2)
+        .find_map(|w| {
+            let (ya, yb) = (y(&w[0]), y(&w[1]));
+            ((ya <= 0.0) != (yb <= 0.0)).then(|| w[0].t_m + ya / (ya - yb) * (w[1].t_m - w[0].t_m))
+        })
+        .unwrap_or(0.0)
+}
+
+/// The grid of a patch of transient contact ([`TransientContact`]): the
+/// potential contact area of [`patch_grid`] (elements as long as wide),
+/// enlarged over where `last`'s pressures were loaded, on elements whose
+/// centres lie at whole multiples of the element size on the lattice,
+/// the grid's origin lying at `origin_m` of it.
+fn transient_grid(
+    geom: &PatchGeometry,
+    cap: f64,
+    input: &WheelRailInput,
+    origin_m: [f64; 2],
+    last: Option<&PatchTractions>,
+) -> Result<Grid, WheelRailError> {
+    let e = input.settings.element_size_m;
+    let g = patch_grid_on(geom, cap, 1, input, None, None, false)?;
+    let mut lo = [g.x0_m, g.y0_m];
+    let mut hi = [g.x0_m + g.nx as f64 * e, g.y0_m + g.ny as f64 * e];
+    let last = last.filter(|t| t.same_elements(&g));
+    if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
+        // The last contact in this step's local coordinates, an element
+        // to spare.
+        let at = last.map_or([0.0; 2], |t| t.lattice_origin_m);
+        let d = [at[0] - origin_m[0], at[1] - origin_m[1]];
+        lo = [lo[0].min(x0 + d[0] - e), lo[1].min(s0 + d[1] - e)];
+        hi = [hi[0].max(x1 + d[0] + e), hi[1].max(s1 + d[1] + e)];
+    }
+    // Element k (a whole number) has its centre at k e on the lattice.
+    let mut corner = [0.0; 2];
+    let mut n = [0usize; 2];
+    for a in 0..2 {
+        let k_lo = ((lo[a] + origin_m[a]) / e + 0.5).floor();
+        let k_hi = ((hi[a] + origin_m[a]) / e - 0.5).ceil();
+        let need = (k_hi - k_lo + 1.0).max(1.0) as usize;
+        let size = ladder(need).ok_or_else(|| {
+            WheelRailError::invalid(
+                "grid.element_size_m",
+                format!(
+                    "a transient patch's potential contact area of {:.1} x {:.1} mm needs more \
+                     than {} elements per direction; use larger elements",
+                    (hi[0] - lo[0]) * 1e3,
+                    (hi[1] - lo[1]) * 1e3,
+                    GRID_LADDER[GRID_LADDER.len() - 1]
+                ),
+            )
+        })?;
+        let k0 = k_lo - ((size - need) / 2) as f64;
+        corner[a] = (k0 - 0.5) * e - origin_m[a];
+        n[a] = size;
+    }
+    let limit = input.settings.max_grid_elements;
+    if n[0] * n[1] > limit {
+        return Err(WheelRailError::invalid(
+            "grid.element_size_m",
+            format!(
+                "{e} m elements give a transient patch grid of {} x {} = {} elements, more than \
+                 the limit of {limit}; use larger elements",
+                n[0],
+                n[1],
+                n[0] * n[1]
+            ),
+        ));
+    }
+    Ok(Grid::new(n[0], n[1], e, e, corner[0], corner[1])?)
 }
 
 /// Whether the patches take CONTACT's reference point, and with it
@@ -4533,6 +4905,7 @@ pub(crate) fn finish(
             conformal_fields,
             layer,
             temperature: None,
+            lattice_origin_m: p.lattice_origin_m,
         });
         p.keep_solver(spare);
     }
@@ -5063,6 +5436,7 @@ mod tests {
                 (0..16).map(|i| -(i as f64)).collect(),
             ],
             slip_velocity_m_per_s: Vec::new(),
+            lattice_origin_m: [0.0; 2],
         };
         let [pn, px, py] = t.on(&old).unwrap();
         assert_eq!(
@@ -5090,5 +5464,47 @@ mod tests {
         ] {
             assert!(t.on(&other).is_none());
         }
+    }
+
+    /// The transient history moves onto a grid of any shape by the whole
+    /// elements between the two grids' places on the lattice: the grids'
+    /// corners plus their origins' lattice positions.
+    #[test]
+    fn transient_history_moves_by_lattice_positions() {
+        let e = 2e-4;
+        let old = Grid::new(4, 4, e, e, -2.0 * e, -2.0 * e).unwrap();
+        let t = PatchTractions {
+            grid: old,
+            rolling_backward: false,
+            pressure_pa: (1..=16).map(f64::from).collect(),
+            traction_pa: [
+                (1..=16).map(|i| 10.0 * f64::from(i)).collect(),
+                (1..=16).map(|i| -f64::from(i)).collect(),
+            ],
+            slip_velocity_m_per_s: Vec::new(),
+            lattice_origin_m: [5.0 * e, 3.0 * e],
+        };
+        // The patch moved 2 elements along x and 1 back along s on the
+        // lattice, its grid 5 x 4 with its corner elsewhere: lattice
+        // corners (-3 + 7, -2 + 2) = (4, 0) elements, the old (-2 + 5,
+        // -2 + 3) = (3, 1): element (ix, iy) is the old (ix + 1, iy - 1).
+        let origin = [7.0 * e, 2.0 * e];
+        let grid = Grid::new(5, 4, e, e, -3.0 * e, -2.0 * e).unwrap();
+        let [pn, px, py] = t.on_lattice(&grid, origin).unwrap();
+        for iy in 0..4 {
+            for ix in 0..5 {
+                let (ox, oy) = (ix + 1, iy as i64 - 1);
+                let want = if ox < 4 && oy >= 0 {
+                    (oy as usize * 4 + ox + 1) as f64
+                } else {
+                    0.0
+                };
+                let i = 5 * iy + ix;
+                assert_eq!((pn[i], px[i], py[i]), (want, 10.0 * want, -want));
+            }
+        }
+        // Another element size takes nothing.
+        let coarse = Grid::new(4, 4, 2.0 * e, e, 0.0, 0.0).unwrap();
+        assert!(t.on_lattice(&coarse, origin).is_none());
     }
 }
