@@ -1924,8 +1924,8 @@ impl PatchTractions {
     /// The start of a solve on `grid` from these tractions ([`Self::on`]):
     /// with `earlier`, the tractions of the step before theirs, where both
     /// map onto `grid`, extrapolated along the line through the two
-    /// (2 last - earlier, the pressures kept >= 0).
-    /// On a grid of another element size along x (a grid sizing check's),
+    /// (2 last - earlier, the pressures kept >= 0). On a grid of another
+    /// element size along x (a grid sizing check's),
     /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
     /// not extrapolated.
     fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
