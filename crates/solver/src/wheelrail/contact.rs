@@ -1734,7 +1734,7 @@ pub struct WarmStart {
     pub earlier_tractions: [Option<PatchTractions>; 2],
     /// Per wheel: the element size chosen for
     /// [`WheelRailSettings::force_tolerance_of_wheel_load`] at its last
-    /// check, kept while the wheel's patches hold ([`GridSizing::holds`]).
+    /// check, kept while the wheel's patches hold ([`SizeCheck::holds`](grid_sizing::SizeCheck::holds)).
     pub grid_sizing: [Option<GridSizing>; 2],
 }
 
@@ -1929,7 +1929,7 @@ impl PatchTractions {
     /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
     /// not extrapolated.
     fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
-        if (self.grid.dx_m - grid.dx_m).abs() > 1e-9 * grid.dx_m {
+        if !same_size(self.grid.dx_m, grid.dx_m) {
             return Some(self.sampled_on(grid));
         }
         let mut last = self.on(grid)?;
@@ -1951,12 +1951,7 @@ impl PatchTractions {
     /// elements between the two grids' corners (zero where they do not
     /// overlap).
     fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 3]> {
-        let from = [
-            &self.pressure_pa[..],
-            &self.traction_pa[0],
-            &self.traction_pa[1],
-        ];
-        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let (from, mut out) = (self.fields(), zeroed(grid));
         self.shift_onto(grid, &from, &mut out)?;
         Some(out)
     }
@@ -1966,12 +1961,7 @@ impl PatchTractions {
     /// element its centre lies in (zero outside this grid).
     fn sampled_on(&self, grid: &Grid) -> [Vec<f64>; 3] {
         let old = &self.grid;
-        let from = [
-            &self.pressure_pa[..],
-            &self.traction_pa[0],
-            &self.traction_pa[1],
-        ];
-        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let (from, mut out) = (self.fields(), zeroed(grid));
         let cell = |v: f64, v0: f64, d: f64, n: usize| {
             let k = ((v - v0) / d).floor();
             (k >= 0.0 && k < n as f64).then_some(k as usize)
@@ -2024,8 +2014,16 @@ impl PatchTractions {
 
     /// Whether `grid` has this grid's element size.
     fn same_elements(&self, grid: &Grid) -> bool {
-        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs();
-        same(self.grid.dx_m, grid.dx_m) && same(self.grid.dy_m, grid.dy_m)
+        same_size(self.grid.dx_m, grid.dx_m) && same_size(self.grid.dy_m, grid.dy_m)
+    }
+
+    /// Pressure, longitudinal and lateral traction per element.
+    fn fields(&self) -> [&[f64]; 3] {
+        [
+            &self.pressure_pa,
+            &self.traction_pa[0],
+            &self.traction_pa[1],
+        ]
     }
 
     /// The transient history on `grid`, whose origin lies at `origin_m` of
@@ -2038,12 +2036,7 @@ impl PatchTractions {
             return None;
         }
         let old = &self.grid;
-        let from = [
-            &self.pressure_pa[..],
-            &self.traction_pa[0],
-            &self.traction_pa[1],
-        ];
-        let mut out: [Vec<f64>; 3] = std::array::from_fn(|_| vec![0.0; grid.len()]);
+        let (from, mut out) = (self.fields(), zeroed(grid));
         let at = self.lattice_origin_m;
         let shift = [
             grid.x0_m + origin_m[0] - old.x0_m - at[0],
@@ -2052,6 +2045,16 @@ impl PatchTractions {
         copy_shifted(old, grid, shift, &from, &mut out);
         Some(out)
     }
+}
+
+/// Whether two element sizes are the same (to 1e-9 of `a`).
+fn same_size(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs()
+}
+
+/// Three fields of zeros on `grid`.
+fn zeroed(grid: &Grid) -> [Vec<f64>; 3] {
+    std::array::from_fn(|_| vec![0.0; grid.len()])
 }
 
 /// `to[k]` on `grid` = `from[k]` on `old` where element (ix, iy) of `grid`
@@ -2131,9 +2134,9 @@ pub fn solve_wheelset_warm(
     // checks too, as they stood at the step's start (the same with the
     // wheels solved at once or one after the other).
     let alike = pair.sides_alike() && input.rail_slices.iter().all(Option::is_none);
-    let others: [Option<GridSizing>; 2] = match alike {
-        true => [sizing[1].clone(), sizing[0].clone()],
-        false => Default::default(),
+    let others: [Option<&GridSizing>; 2] = match alike {
+        true => [warm.grid_sizing[1].as_ref(), warm.grid_sizing[0].as_ref()],
+        false => [None, None],
     };
     // Each solve of the wheels starts from the last one's (the first from
     // the warm start).
@@ -2151,7 +2154,7 @@ pub fn solve_wheelset_warm(
                 settings.element_size_m,
                 settings.force_tolerance_of_wheel_load,
                 sizing,
-                others[side.index()].as_ref(),
+                others[side.index()],
                 check,
                 |e| {
                     let mut solve = |input: &WheelRailInput| {

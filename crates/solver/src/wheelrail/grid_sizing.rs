@@ -9,7 +9,7 @@
 //! their difference is the error the tolerance is stated against (the
 //! reference is the solve on the user's grid, so no extrapolation to a
 //! finer one is needed). The check is made when a wheel has no choice yet
-//! and again when its patches change ([`GridSizing::holds`]) to patches
+//! and again when its patches change ([`SizeCheck::holds`]) to patches
 //! none of its remembered checks saw (a periodic motion revisits its
 //! states; where the pair's sides are alike, the other wheel's checks
 //! count too); between checks the error drifts with the contact's place on
@@ -110,7 +110,7 @@ impl SizeCheck {
 }
 
 /// One wheel's element sizes chosen by its checks, kept across a session's
-/// steps: the last check in force while it [`holds`](Self::holds), an
+/// steps: the last check in force while it [`holds`](SizeCheck::holds), an
 /// earlier one whose patches the wheel has again recalled instead of a new
 /// check.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,52 +137,36 @@ impl GridSizing {
             .expect("a sizing holds at least one check")
     }
 
-    /// Whether `wheel`, solved on [`Self::element_size_m`], has the patches
-    /// of the check in force ([`SizeCheck::holds`]).
-    pub fn holds(&self, wheel: &WheelResult) -> bool {
-        self.in_force().holds(wheel)
-    }
-
     /// Puts in force the most recent check of `element_size_m` whose
-    /// patches `wheel` has, if any: whether one was found.
-    fn recall(&mut self, element_size_m: f64, wheel: &WheelResult) -> bool {
-        let found = self
-            .checks
-            .iter()
-            .rposition(|c| c.element_size_m == element_size_m && c.holds(wheel));
-        if let Some(k) = found {
-            let c = self.checks.remove(k);
-            self.checks.push(c);
-        }
-        found.is_some()
-    }
-
-    /// Puts in force a copy of the most recent check of `element_size_m` of
-    /// `other` (the other wheel's, made for the same reference size and
-    /// tolerance) whose patches `wheel` has, if any: whether one was found.
-    fn adopt(
+    /// patches `wheel` has ([`SizeCheck::holds`]): of this wheel's checks
+    /// (moved last), else of `other`'s (the other wheel's, made for the
+    /// same reference size and tolerance; copied). Whether one was found.
+    fn recall(
         &mut self,
         other: Option<&GridSizing>,
         element_size_m: f64,
         wheel: &WheelResult,
     ) -> bool {
-        let found = other
-            .filter(|o| self.same_terms(o))
-            .and_then(|o| {
-                o.checks
-                    .iter()
-                    .rev()
-                    .find(|c| c.element_size_m == element_size_m && c.holds(wheel))
-            })
-            .cloned();
-        found.map(|c| self.push(c)).is_some()
+        let fits = |c: &SizeCheck| c.element_size_m == element_size_m && c.holds(wheel);
+        if let Some(k) = self.checks.iter().rposition(fits) {
+            let c = self.checks.remove(k);
+            self.checks.push(c);
+            return true;
+        }
+        let copy = self.others(other).find(|c| fits(c)).cloned();
+        copy.map(|c| self.push(c)).is_some()
     }
 
-    /// Whether `other` was chosen for the same reference size and
-    /// tolerance.
-    fn same_terms(&self, other: &GridSizing) -> bool {
-        other.reference_element_size_m == self.reference_element_size_m
-            && other.tolerance == self.tolerance
+    /// The checks of `other` made for this sizing's reference size and
+    /// tolerance, most recent first.
+    fn others<'a>(&self, other: Option<&'a GridSizing>) -> impl Iterator<Item = &'a SizeCheck> {
+        other
+            .filter(|o| {
+                o.reference_element_size_m == self.reference_element_size_m
+                    && o.tolerance == self.tolerance
+            })
+            .into_iter()
+            .flat_map(|o| o.checks.iter().rev())
     }
 
     /// The size of the most recent check of another size than
@@ -194,13 +178,10 @@ impl GridSizing {
         element_size_m: f64,
         wheel: &WheelResult,
     ) -> Option<f64> {
-        let other = other.filter(|o| self.same_terms(o));
-        let mut found = self
-            .checks
+        self.checks
             .iter()
             .rev()
-            .chain(other.into_iter().flat_map(|o| o.checks.iter().rev()));
-        found
+            .chain(self.others(other))
             .find(|c| c.element_size_m != element_size_m && c.holds(wheel))
             .map(|c| c.element_size_m)
     }
@@ -263,7 +244,7 @@ pub(crate) type WheelSolved = (WheelResult, Option<f64>, Option<PatchTractions>)
 /// None: on `reference_m`, the settings' `element_size_m`), `solve_at(e)`
 /// solving it on elements of e. With `check` (a step's first solve of the
 /// wheel) the size in force is solved and kept when its check still
-/// [`holds`](GridSizing::holds) or an earlier check of that size is
+/// [`holds`](SizeCheck::holds) or an earlier check of that size is
 /// recalled; else, where an earlier check of another size holds for the
 /// patches found, that size is solved and kept if its check holds there
 /// too. Otherwise (and with no sizing yet) the size is chosen again: the
@@ -300,13 +281,13 @@ pub(crate) fn solve_sized(
         Some(s) => {
             let e = s.element_size_m();
             if let Some(solved) = attempt(e, reference_m, &mut solve_at)? {
-                if !check || s.recall(e, &solved.0) || s.adopt(other, e, &solved.0) {
+                if !check || s.recall(other, e, &solved.0) {
                     return Ok(solved);
                 }
                 // A state an earlier check of another size has seen.
                 if let Some(size) = s.recalled_size(other, e, &solved.0) {
                     if let Some(again) = attempt(size, reference_m, &mut solve_at)? {
-                        if s.recall(size, &again.0) || s.adopt(other, size, &again.0) {
+                        if s.recall(other, size, &again.0) {
                             return Ok(again);
                         }
                         made.push((size, again));
