@@ -914,8 +914,8 @@ pub(crate) struct PatchWork {
     /// tractions \[Pa\] on this patch's grid, the history of each of its
     /// solves (None: from the unloaded state).
     history: Option<[Vec<f64>; 3]>,
-    /// Transient contact: where the grid's origin lies on the lattice
-    /// ([`PatchTractions::lattice_origin_m`]); None otherwise.
+    /// An exact patch on a planar grid: where the grid's origin lies on the
+    /// lattice ([`PatchTractions::lattice_origin_m`]); None otherwise.
     lattice_origin_m: Option<[f64; 2]>,
 }
 
@@ -1913,27 +1913,51 @@ pub struct PatchTractions {
     /// iteration on the slip velocities when the law starts from the
     /// previous solve (`SlipStart::Previous`); empty under Coulomb's law.
     pub slip_velocity_m_per_s: Vec<f64>,
-    /// Where the grid's origin (the patch's reference point) lay on the
-    /// lattice of transient contact (x, s) \[m\] ([`TransientContact`]):
-    /// a grid's element centre at (x, s) is at (x, s) + this on the
-    /// lattice. (0, 0) for tractions of other solves.
+    /// Where the grid's origin (the patch's reference point) lay on a
+    /// lattice fixed to the rail profile (x, s) \[m\]: x its track x
+    /// (plus the wheelset's track position in a transient shift), s the
+    /// rail profile's arc length from its origin (transient contact's,
+    /// [`TransientContact`]; other solves take the lattice moving with the
+    /// wheelset): a grid's element centre at
+    /// (x, s) is at (x, s) + this on the lattice. The next step's grid and
+    /// its start are placed by it, so that tractions stay where they were
+    /// on the rail when the reference point moves along the profile (on a
+    /// flat tread it jumps by millimetres between time steps).
     pub lattice_origin_m: [f64; 2],
 }
 
 impl PatchTractions {
-    /// The start of a solve on `grid` from these tractions ([`Self::on`]):
-    /// with `earlier`, the tractions of the step before theirs, where both
+    /// Their grid in the coordinates of a patch whose origin lies at
+    /// `origin_m` on the lattice ([`Self::lattice_origin_m`]).
+    fn grid_at(&self, origin_m: [f64; 2]) -> Grid {
+        let at = self.lattice_origin_m;
+        Grid {
+            x0_m: self.grid.x0_m + at[0] - origin_m[0],
+            y0_m: self.grid.y0_m + at[1] - origin_m[1],
+            ..self.grid
+        }
+    }
+
+    /// The start of a solve on `grid`, whose origin lies at `origin_m` on
+    /// the lattice, from these tractions ([`Self::on`]): with `earlier`,
+    /// the tractions of the step before theirs and the origin they are
+    /// seen from ([`carry_origin`]), where both
     /// map onto `grid`, extrapolated along the line through the two
     /// (2 last - earlier, the pressures kept >= 0). On a grid of another
     /// element size along x (a grid sizing check's),
     /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
     /// not extrapolated.
-    fn start_on(&self, grid: &Grid, earlier: Option<&PatchTractions>) -> Option<[Vec<f64>; 3]> {
+    fn start_on(
+        &self,
+        grid: &Grid,
+        origin_m: [f64; 2],
+        earlier: Option<(&PatchTractions, [f64; 2])>,
+    ) -> Option<[Vec<f64>; 3]> {
         if !same_size(self.grid.dx_m, grid.dx_m) {
-            return Some(self.sampled_on(grid));
+            return Some(self.sampled_on(grid, origin_m));
         }
-        let mut last = self.on(grid)?;
-        if let Some(before) = earlier.and_then(|e| e.on(grid)) {
+        let mut last = self.on(grid, origin_m)?;
+        if let Some(before) = earlier.and_then(|(e, o)| e.on(grid, o)) {
             for (a, b) in last.iter_mut().zip(&before) {
                 for (a, &b) in a.iter_mut().zip(b) {
                     *a = 2.0 * *a - b;
@@ -1946,21 +1970,22 @@ impl PatchTractions {
         Some(last)
     }
 
-    /// These tractions on `grid` (pressure, longitudinal, lateral): None
-    /// unless it has the same shape and element size; shifted by the whole
-    /// elements between the two grids' corners (zero where they do not
-    /// overlap).
-    fn on(&self, grid: &Grid) -> Option<[Vec<f64>; 3]> {
+    /// These tractions on `grid` (pressure, longitudinal, lateral), whose
+    /// origin lies at `origin_m` on the lattice: None unless it has their
+    /// element size; moved by the whole elements between the two grids on
+    /// the lattice (zero where they do not overlap).
+    fn on(&self, grid: &Grid, origin_m: [f64; 2]) -> Option<[Vec<f64>; 3]> {
         let (from, mut out) = (self.fields(), zeroed(grid));
-        self.shift_onto(grid, &from, &mut out)?;
+        self.shift_onto(grid, origin_m, &from, &mut out)?;
         Some(out)
     }
 
     /// These tractions on `grid` of any element sizes (pressure,
-    /// longitudinal, lateral): each element takes the value of this grid's
-    /// element its centre lies in (zero outside this grid).
-    fn sampled_on(&self, grid: &Grid) -> [Vec<f64>; 3] {
-        let old = &self.grid;
+    /// longitudinal, lateral), whose origin lies at `origin_m` on the
+    /// lattice: each element takes the value of this grid's element its
+    /// centre lies in (zero outside this grid).
+    fn sampled_on(&self, grid: &Grid, origin_m: [f64; 2]) -> [Vec<f64>; 3] {
+        let old = &self.grid_at(origin_m);
         let (from, mut out) = (self.fields(), zeroed(grid));
         let cell = |v: f64, v0: f64, d: f64, n: usize| {
             let k = ((v - v0) / d).floor();
@@ -1983,27 +2008,34 @@ impl PatchTractions {
     }
 
     /// The slip velocities on `grid` (as [`Self::on`]; 0 where they do not
-    /// overlap): None under Coulomb's law or on a grid of another shape.
-    fn slip_velocity_on(&self, grid: &Grid) -> Option<Vec<f64>> {
+    /// overlap): None under Coulomb's law or on a grid of another element
+    /// size.
+    fn slip_velocity_on(&self, grid: &Grid, origin_m: [f64; 2]) -> Option<Vec<f64>> {
         if self.slip_velocity_m_per_s.is_empty() {
             return None;
         }
         let mut out = [vec![0.0; grid.len()]];
-        self.shift_onto(grid, &[&self.slip_velocity_m_per_s], &mut out)?;
+        self.shift_onto(grid, origin_m, &[&self.slip_velocity_m_per_s], &mut out)?;
         let [v] = out;
         Some(v)
     }
 
-    /// `to[k]` = `from[k]` of this grid moved onto `grid` ([`Self::on`]);
-    /// None, `to` untouched, unless `grid` has this grid's shape and
-    /// element size.
-    fn shift_onto(&self, grid: &Grid, from: &[&[f64]], to: &mut [Vec<f64>]) -> Option<()> {
-        let old = &self.grid;
-        if old.nx != grid.nx || old.ny != grid.ny || !self.same_elements(grid) {
+    /// `to[k]` = `from[k]` of this grid moved onto `grid`, whose origin
+    /// lies at `origin_m` on the lattice ([`Self::on`]); None, `to`
+    /// untouched, unless `grid` has this grid's element size.
+    fn shift_onto(
+        &self,
+        grid: &Grid,
+        origin_m: [f64; 2],
+        from: &[&[f64]],
+        to: &mut [Vec<f64>],
+    ) -> Option<()> {
+        if !self.same_elements(grid) {
             return None;
         }
+        let old = self.grid_at(origin_m);
         copy_shifted(
-            old,
+            &old,
             grid,
             [grid.x0_m - old.x0_m, grid.y0_m - old.y0_m],
             from,
@@ -2024,26 +2056,6 @@ impl PatchTractions {
             &self.traction_pa[0],
             &self.traction_pa[1],
         ]
-    }
-
-    /// The transient history on `grid`, whose origin lies at `origin_m` of
-    /// the lattice ([`TransientContact`]): pressures and tangential
-    /// tractions moved by the whole elements between the two grids on the
-    /// lattice, zero where this grid does not reach; None unless `grid`
-    /// has this grid's element size.
-    fn on_lattice(&self, grid: &Grid, origin_m: [f64; 2]) -> Option<[Vec<f64>; 3]> {
-        if !self.same_elements(grid) {
-            return None;
-        }
-        let old = &self.grid;
-        let (from, mut out) = (self.fields(), zeroed(grid));
-        let at = self.lattice_origin_m;
-        let shift = [
-            grid.x0_m + origin_m[0] - old.x0_m - at[0],
-            grid.y0_m + origin_m[1] - old.y0_m - at[1],
-        ];
-        copy_shifted(old, grid, shift, &from, &mut out);
-        Some(out)
     }
 }
 
@@ -2857,7 +2869,7 @@ fn solve_wheel(
                 if let (PatchKind::Exact { problem, .. }, Some(origin)) =
                     (&p.kind, p.lattice_origin_m)
                 {
-                    p.history = t.on_lattice(&problem.grid, origin);
+                    p.history = t.on(&problem.grid, origin);
                 }
             }
         }
@@ -2872,13 +2884,17 @@ fn solve_wheel(
         let earlier =
             earlier.filter(|e| Some(e.rolling_backward) == warm.map(|t| t.rolling_backward));
         if let ([p], Some(t)) = (patches.as_mut_slice(), warm) {
-            if let (PatchKind::Exact { problem, .. }, true) =
-                (&p.kind, t.rolling_backward == p.backward)
-            {
-                if let Some([pn, px, py]) = t.start_on(&problem.grid, earlier) {
+            if let (PatchKind::Exact { problem, .. }, Some(origin), true) = (
+                &p.kind,
+                p.lattice_origin_m,
+                t.rolling_backward == p.backward,
+            ) {
+                let earlier = earlier.map(|e| (e, carry_origin(e, origin, input)));
+                let origin = carry_origin(t, origin, input);
+                if let Some([pn, px, py]) = t.start_on(&problem.grid, origin, earlier) {
                     p.warm_pressure = Some(pn);
                     p.warm_tractions = Some([px, py]);
-                    p.warm_slip_velocity = t.slip_velocity_on(&problem.grid);
+                    p.warm_slip_velocity = t.slip_velocity_on(&problem.grid, origin);
                 }
             }
         }
@@ -3386,13 +3402,14 @@ fn build_patch(
                 wheel_reach_x(&geom, &mut rows, cap * geom.normal[1], step)
             });
             let align = centred(input);
+            let origin = lattice_origin(&geom, rail, input);
+            lattice_origin_m = Some(origin);
             let grid = match transient_of(input) {
-                Some(t) => {
-                    let origin = lattice_origin(&geom, rail, t, input);
-                    lattice_origin_m = Some(origin);
-                    transient_grid(&geom, cap, input, origin, last)?
+                Some(_) => transient_grid(&geom, cap, input, origin, last)?,
+                None => {
+                    let last = last.map(|t| (t, carry_origin(t, origin, input)));
+                    patch_grid(&geom, cap, across, input, last, reach, align)?
                 }
-                None => patch_grid(&geom, cap, across, input, last, reach, align)?,
             };
             let mut gap_m = vec![0.0; grid.len()];
             // CONTACT's geometry: the wheel's own surface along x (not on
@@ -3680,7 +3697,9 @@ fn across_refinement(
 /// ([`across_refinement`]; narrowed less where the grid limits allow no
 /// more). With `last`, the last time step's solution of the patch on a
 /// grid of the same element sizes, or of another `element_size_m` (a grid
-/// sizing check's solves, [`grid_sizing`]): around where that was loaded,
+/// sizing check's solves, [`grid_sizing`]), and where this patch's origin
+/// lies on the lattice ([`PatchTractions::lattice_origin_m`]): around
+/// where that was loaded,
 /// [`LAST_CONTACT_MARGIN`] elements of `element_size_m`
 /// wider on each side (a patch moves by less than an element in a time
 /// step; where the pressure reaches the border, the caller sizes the grid
@@ -3699,7 +3718,7 @@ fn patch_grid(
     cap: f64,
     across: usize,
     input: &WheelRailInput,
-    last: Option<&PatchTractions>,
+    last: Option<(&PatchTractions, [f64; 2])>,
     reach_x: Option<[f64; 2]>,
     align: bool,
 ) -> Result<Grid, WheelRailError> {
@@ -3715,7 +3734,7 @@ fn patch_grid_on(
     cap: f64,
     across: usize,
     input: &WheelRailInput,
-    last: Option<&PatchTractions>,
+    last: Option<(&PatchTractions, [f64; 2])>,
     reach_x: Option<[f64; 2]>,
     align: bool,
 ) -> Result<Grid, WheelRailError> {
@@ -3740,9 +3759,13 @@ fn patch_grid_on(
     // Around the last contact on a grid of these element sizes, or of
     // another element size (a grid sizing check's, whose solves on the
     // sizes it compares start from the last step's on the size in force).
-    let boxed = last.filter(|t| same(t.grid.dy_m, ds) || !same(t.grid.dx_m, e));
-    let last = last.filter(|t| same(t.grid.dx_m, e) && same(t.grid.dy_m, ds));
-    if let Some([x0, x1, s0, s1]) = boxed.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
+    // The last grid is taken in this patch's coordinates.
+    let last = last.map(|(t, origin)| (t.grid_at(origin), &t.pressure_pa));
+    let boxed = last.filter(|(g, _)| same(g.dy_m, ds) || !same(g.dx_m, e));
+    let last = last
+        .map(|(g, _)| g)
+        .filter(|g| same(g.dx_m, e) && same(g.dy_m, ds));
+    if let Some([x0, x1, s0, s1]) = boxed.and_then(|(g, p)| g.loaded_box_m(p)) {
         let m = LAST_CONTACT_MARGIN * e;
         if one_valley(&geom.lateral, s0 - m, s1 + m) {
             (xlo, xhi, slo, shi) = (x0 - m, x1 + m, s0 - m, s1 + m);
@@ -3777,9 +3800,7 @@ fn patch_grid_on(
     let fits = |n: usize, need: f64, ladder: usize| {
         n as f64 >= need + 1.0 - spare && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
     };
-    let kept = last
-        .map(|t| &t.grid)
-        .filter(|k| fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns));
+    let kept = last.filter(|k| fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns));
     if let Some(k) = kept {
         (nx, ns) = (k.nx, k.ny);
     }
@@ -3812,28 +3833,26 @@ fn patch_grid_on(
     };
     let mut x0 = place(0.5 * (xlo + xhi), nx, e);
     let mut s0 = place(0.5 * (slo + shi), ns, ds);
-    if let Some(k) = kept {
-        // Whole elements from the last grid: its tractions then fall on
-        // this grid's elements, not half an element off.
+    if let Some(k) = kept.or(last.filter(|_| !align)) {
+        // Whole elements from the last grid (of any shape, unless aligned
+        // on the reference point): its tractions then fall on this grid's
+        // elements, not half an element off (a start half an element off
+        // costs the tangential solve up to ten times its usual iterations).
         x0 = k.x0_m + ((x0 - k.x0_m) / e).round() * e;
         s0 = k.y0_m + ((s0 - k.y0_m) / ds).round() * ds;
     }
     Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
 }
 
-/// Where the reference point of `geom` lies on the lattice of transient
-/// contact `t` (x, s) \[m\] ([`TransientContact`]): x its track x
-/// (plus the wheelset's track position in a shift), s the rail profile's
-/// arc length at it (its sign that of the patch's s).
-fn lattice_origin(
-    geom: &PatchGeometry,
-    rail: &PlacedRail,
-    t: TransientContact,
-    input: &WheelRailInput,
-) -> [f64; 2] {
-    let x = match t {
-        TransientContact::Shift => geom.x_m + input.position.track_s_m,
-        TransientContact::Rolling { .. } => geom.x_m,
+/// Where the reference point of `geom` lies on the lattice of its patch
+/// (x, s) \[m\] ([`TransientContact`], [`PatchTractions::lattice_origin_m`]):
+/// x its track x (plus the wheelset's track position in a transient
+/// shift), s the rail profile's arc length at it (its sign that of the
+/// patch's s).
+fn lattice_origin(geom: &PatchGeometry, rail: &PlacedRail, input: &WheelRailInput) -> [f64; 2] {
+    let x = match shifts(input) {
+        true => geom.x_m + input.position.track_s_m,
+        false => geom.x_m,
     };
     let samples = rail.samples();
     let c = &samples[geom.rail_index.min(samples.len() - 1)];
@@ -3849,6 +3868,26 @@ fn lattice_origin(
         1.0
     };
     [x, sign * arc]
+}
+
+/// The lattice origin from which a patch whose reference point lies at
+/// `origin_m` on it takes the last step's tractions `t` (their grid, and
+/// where the next grid is placed, [`patch_grid`]): `origin_m` in transient
+/// contact, whose tractions stay on the bodies; otherwise, where the
+/// reference point moved by at most [`LAST_CONTACT_MARGIN`] elements, the
+/// tractions' own (the patch moves with its reference point, as it does
+/// along a profile's curved parts), and `origin_m` where it moved further
+/// (the tractions stay where they were on the rail: on a flat tread the
+/// point of least gap jumps by millimetres between steps while the patch
+/// hardly moves).
+fn carry_origin(t: &PatchTractions, origin_m: [f64; 2], input: &WheelRailInput) -> [f64; 2] {
+    let follow = LAST_CONTACT_MARGIN * input.settings.element_size_m;
+    let at = t.lattice_origin_m;
+    let moved = (at[0] - origin_m[0]).abs().max((at[1] - origin_m[1]).abs());
+    match transient_of(input) {
+        None if moved <= follow => at,
+        _ => origin_m,
+    }
 }
 
 /// The arc length of `rail`'s samples \[m\] where its profile's y is 0
@@ -3882,13 +3921,13 @@ fn transient_grid(
     let mut lo = [g.x0_m, g.y0_m];
     let mut hi = [g.x0_m + g.nx as f64 * e, g.y0_m + g.ny as f64 * e];
     let last = last.filter(|t| t.same_elements(&g));
-    if let Some([x0, x1, s0, s1]) = last.and_then(|t| t.grid.loaded_box_m(&t.pressure_pa)) {
+    if let Some([x0, x1, s0, s1]) =
+        last.and_then(|t| t.grid_at(origin_m).loaded_box_m(&t.pressure_pa))
+    {
         // The last contact in this step's local coordinates, an element
         // to spare.
-        let at = last.map_or([0.0; 2], |t| t.lattice_origin_m);
-        let d = [at[0] - origin_m[0], at[1] - origin_m[1]];
-        lo = [lo[0].min(x0 + d[0] - e), lo[1].min(s0 + d[1] - e)];
-        hi = [hi[0].max(x1 + d[0] + e), hi[1].max(s1 + d[1] + e)];
+        lo = [lo[0].min(x0 - e), lo[1].min(s0 - e)];
+        hi = [hi[0].max(x1 + e), hi[1].max(s1 + e)];
     }
     // Element k (a whole number) has its centre at k e on the lattice.
     let mut corner = [0.0; 2];
@@ -4860,6 +4899,9 @@ pub(crate) fn finish(
             total[k] += f[k];
         }
         let [ry, rz] = rail.to_profile(g.reference_m[0], g.reference_m[1]);
+        // Transient contact reports where its grid lay on the lattice.
+        let transient = matches!(&p.kind, PatchKind::Exact { problem, .. }
+            if matches!(problem.kinematics, Kinematics::Transient(_)));
         let (grid_n, grid_geometry) = match &p.kind {
             PatchKind::Exact { problem, .. } => {
                 ([problem.grid.nx, problem.grid.ny], Some(problem.grid))
@@ -4908,7 +4950,7 @@ pub(crate) fn finish(
             conformal_fields,
             layer,
             temperature: None,
-            lattice_origin_m: p.lattice_origin_m,
+            lattice_origin_m: p.lattice_origin_m.filter(|_| transient),
         });
         p.keep_solver(spare);
     }
@@ -5425,7 +5467,7 @@ mod tests {
     }
 
     /// Tractions move with the grid by whole elements, and only to a grid
-    /// of the same shape and element size.
+    /// of the same element size.
     #[test]
     fn carried_tractions_shift_with_the_grid() {
         let e = 2e-4;
@@ -5441,7 +5483,7 @@ mod tests {
             slip_velocity_m_per_s: Vec::new(),
             lattice_origin_m: [0.0; 2],
         };
-        let [pn, px, py] = t.on(&old).unwrap();
+        let [pn, px, py] = t.on(&old, [0.0; 2]).unwrap();
         assert_eq!(
             (pn, [px, py]),
             (t.pressure_pa.clone(), t.traction_pa.clone())
@@ -5449,7 +5491,7 @@ mod tests {
         // One element further in x and 0.4 of one in y: element (ix, iy)
         // is the old (ix + 1, iy); the last column has no old element.
         let moved = Grid::new(4, 4, e, e, e, 0.4 * e).unwrap();
-        let [pn, px, py] = t.on(&moved).unwrap();
+        let [pn, px, py] = t.on(&moved, [0.0; 2]).unwrap();
         for iy in 0..4 {
             for ix in 0..4 {
                 let want = if ix < 3 {
@@ -5462,18 +5504,19 @@ mod tests {
             }
         }
         for other in [
-            Grid::new(5, 4, e, e, 0.0, 0.0).unwrap(),
             Grid::new(4, 4, 1.5 * e, e, 0.0, 0.0).unwrap(),
+            Grid::new(4, 4, e, 0.5 * e, 0.0, 0.0).unwrap(),
         ] {
-            assert!(t.on(&other).is_none());
+            assert!(t.on(&other, [0.0; 2]).is_none());
         }
     }
 
-    /// The transient history moves onto a grid of any shape by the whole
-    /// elements between the two grids' places on the lattice: the grids'
-    /// corners plus their origins' lattice positions.
+    /// Tractions (a warm start, the transient history) move onto a grid of
+    /// any shape by the whole elements between the two grids' places on
+    /// the lattice: the grids' corners plus their origins' lattice
+    /// positions.
     #[test]
-    fn transient_history_moves_by_lattice_positions() {
+    fn tractions_move_by_lattice_positions() {
         let e = 2e-4;
         let old = Grid::new(4, 4, e, e, -2.0 * e, -2.0 * e).unwrap();
         let t = PatchTractions {
@@ -5493,7 +5536,7 @@ mod tests {
         // -2 + 3) = (3, 1): element (ix, iy) is the old (ix + 1, iy - 1).
         let origin = [7.0 * e, 2.0 * e];
         let grid = Grid::new(5, 4, e, e, -3.0 * e, -2.0 * e).unwrap();
-        let [pn, px, py] = t.on_lattice(&grid, origin).unwrap();
+        let [pn, px, py] = t.on(&grid, origin).unwrap();
         for iy in 0..4 {
             for ix in 0..5 {
                 let (ox, oy) = (ix + 1, iy as i64 - 1);
@@ -5508,6 +5551,6 @@ mod tests {
         }
         // Another element size takes nothing.
         let coarse = Grid::new(4, 4, 2.0 * e, e, 0.0, 0.0).unwrap();
-        assert!(t.on_lattice(&coarse, origin).is_none());
+        assert!(t.on(&coarse, origin).is_none());
     }
 }

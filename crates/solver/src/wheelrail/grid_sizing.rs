@@ -50,10 +50,9 @@ pub const MIN_FORCE_TOLERANCE: f64 = 5e-3;
 /// vertical force to this fraction of that tolerance (unless
 /// `load_tolerance` asks for less): 5e-5 of the load at 5e-3, 2.5 N of 50
 /// kN. The first solve of a warm step then meets it in most wheel steps:
-/// on the load test's path (600 steps at 4 mm, 5e-3) 1,052 of 1,200 wheel
-/// steps, against 576 at the default 1e-6; one load iteration costs about
-/// as much as the first (benches/README.md, "Grids sized for the forces
-/// asked").
+/// on the load test's path (600 steps at 4 mm, 5e-3) 1,134 of 1,200 wheel
+/// steps, against 635 at the default 1e-6 (benches/README.md, "Grids
+/// sized for the forces asked").
 pub const LOAD_TOLERANCE_DIVISOR: f64 = 100.0;
 
 /// The largest `force_tolerance_of_wheel_load` [-].
