@@ -1943,7 +1943,9 @@ impl PatchTractions {
     /// the tractions of the step before theirs and the origin they are
     /// seen from ([`carry_origin`]), where both
     /// map onto `grid`, extrapolated along the line through the two
-    /// (2 last - earlier, the pressures kept >= 0). On a grid of another
+    /// (2 last - earlier, the pressures kept >= 0, the tangential
+    /// tractions within the bound the last reached,
+    /// [`Self::largest_traction_ratio`] times the pressure). On a grid of another
     /// element size along x (a grid sizing check's),
     /// these tractions sampled at its elements' centres ([`Self::sampled_on`]),
     /// not extrapolated.
@@ -1963,11 +1965,32 @@ impl PatchTractions {
                     *a = 2.0 * *a - b;
                 }
             }
-            for p in &mut last[0] {
+            let [pn, px, py] = &mut last;
+            // Within the traction bound the last solve reached (its
+            // largest traction over pressure, mu where it slips): an
+            // extrapolated traction beyond it sends the semismooth Newton
+            // method's active set round for up to 18 steps instead of 2.
+            let mu = self.largest_traction_ratio();
+            for ((p, x), y) in pn.iter_mut().zip(px.iter_mut()).zip(py.iter_mut()) {
                 *p = p.max(0.0);
+                let (size, bound) = (x.hypot(*y), mu * *p);
+                if size > bound {
+                    let f = bound / size;
+                    (*x, *y) = (*x * f, *y * f);
+                }
             }
         }
         Some(last)
+    }
+
+    /// The largest tangential traction over pressure of these tractions'
+    /// loaded elements [-] (0 with none).
+    fn largest_traction_ratio(&self) -> f64 {
+        let [pn, px, py] = self.fields();
+        (0..pn.len())
+            .filter(|&i| pn[i] > 0.0)
+            .map(|i| px[i].hypot(py[i]) / pn[i])
+            .fold(0.0, f64::max)
     }
 
     /// These tractions on `grid` (pressure, longitudinal, lateral), whose
@@ -3698,21 +3721,20 @@ fn across_refinement(
 /// more). With `last`, the last time step's solution of the patch on a
 /// grid of the same element sizes, or of another `element_size_m` (a grid
 /// sizing check's solves, [`grid_sizing`]), and where this patch's origin
-/// lies on the lattice ([`PatchTractions::lattice_origin_m`]): around
-/// where that was loaded,
-/// [`LAST_CONTACT_MARGIN`] elements of `element_size_m`
-/// wider on each side (a patch moves by less than an element in a time
-/// step; where the pressure reaches the border, the caller sizes the grid
-/// again without `last`), and, of the same element sizes, of the shape of the last grid (whose
-/// tractions then start this step's solves) when that covers the area and
+/// lies on the lattice from which it takes them ([`carry_origin`]):
+/// around where that was loaded, [`LAST_CONTACT_MARGIN`] elements of
+/// `element_size_m` wider on each side (a patch moves by less than an
+/// element in a time step; where the pressure reaches the border, the
+/// caller sizes the grid again without `last`). A last grid of the same
+/// element sizes fixes where this one lies: unless `align`, whole elements
+/// from it (within half an element of the centred place), so that the
+/// last tractions fall on its elements; and where it covers the area and
 /// is not more than [`KEEP_SHAPE_SLACK`] times the ladder's size in either
-/// direction; such a grid lies whole elements from the last one (within
-/// half an element of the centred place), so that the last tractions fall
-/// on its elements. With `reach_x`, the grid reaches along x over that
-/// range too, with the margin (an out-of-round wheel's,
-/// [`wheel_reach_x`]). With `align` (and no last grid kept), an element's
-/// centre lies on the reference point (x = s = 0), as in CONTACT's grids
-/// ([`centred`]).
+/// direction, its shape, and its place too while that covers the area.
+/// With `reach_x`, the grid reaches along x over that range too, with the
+/// margin (an out-of-round wheel's, [`wheel_reach_x`]). With `align` (and
+/// no last grid kept), an element's centre lies on the reference point
+/// (x = s = 0), as in CONTACT's grids ([`centred`]).
 fn patch_grid(
     geom: &PatchGeometry,
     cap: f64,
@@ -3795,10 +3817,11 @@ fn patch_grid_on(
     );
     let mut nx = ladder(need_x as usize).ok_or_else(too_big)?;
     let mut ns = ladder(need_s as usize).ok_or_else(too_big)?;
-    // The last grid's shape with an element to spare: it may sit half an
-    // element off the centred one, on its own lattice.
+    // The last grid's shape where it holds the area. Moved onto its own
+    // lattice, up to half an element off the centred place, it may leave
+    // half an element of the area's margin out (below).
     let fits = |n: usize, need: f64, ladder: usize| {
-        n as f64 >= need + 1.0 - spare && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
+        n as f64 >= need && n as f64 <= KEEP_SHAPE_SLACK * ladder as f64
     };
     let kept = last.filter(|k| fits(k.nx, need_x, nx) && fits(k.ny, need_s, ns));
     if let Some(k) = kept {
@@ -3841,7 +3864,22 @@ fn patch_grid_on(
         x0 = k.x0_m + ((x0 - k.x0_m) / e).round() * e;
         s0 = k.y0_m + ((s0 - k.y0_m) / ds).round() * ds;
     }
+    if let Some(k) = kept.filter(|k| covers(k, [xlo, xhi, slo, shi])) {
+        // The last grid where it still covers the area: a grid re-centred
+        // each step flickers by an element as the centre passes half an
+        // element, and a solve on a moved grid takes more iterations.
+        (x0, s0) = (k.x0_m, k.y0_m);
+    }
     Ok(Grid::new(nx, ns, e, ds, x0, s0)?)
+}
+
+/// Whether `grid` covers the box [x0, x1, s0, s1] \[m\] of its (x, s)
+/// coordinates.
+fn covers(grid: &Grid, [x0, x1, s0, s1]: [f64; 4]) -> bool {
+    grid.x0_m <= x0
+        && grid.x0_m + grid.nx as f64 * grid.dx_m >= x1
+        && grid.y0_m <= s0
+        && grid.y0_m + grid.ny as f64 * grid.dy_m >= s1
 }
 
 /// Where the reference point of `geom` lies on the lattice of its patch
