@@ -17,6 +17,7 @@ use crate::core::influence::{Component, KernelKind};
 use crate::core::layer::{
     CoulombBound, InterfacialLayer, LayerFields, LayerState, MAX_LAYER_PASSES,
 };
+use crate::core::leading_edge;
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{
     hertz_start, solve_normal_active_set, solve_normal_with, BlendedNormal, NormalBlend,
@@ -866,7 +867,7 @@ impl ContactSolver {
                 let point = PathPoint::of(problem);
                 self.path
                     .predict(&point, [&mut self.pn, &mut self.tr.px, &mut self.tr.py]);
-                let solved = self.solve_one(problem, problem.load, None, 0.0);
+                let solved = self.solve_one(problem, problem.load, None, 0.0, Carry::Whole(0));
                 match &solved {
                     Ok(_) => self.path.push(point),
                     Err(_) => self.path.clear(),
@@ -1010,6 +1011,7 @@ impl ContactSolver {
             step.load,
             Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
             step.rolling_m,
+            carry,
         )?;
         sol.info.matvecs += usize::from(!first);
         self.transient_steps += 1;
@@ -1020,13 +1022,16 @@ impl ContactSolver {
     }
 
     /// One solve: steady (`shift` None) or a transient step of the rigid
-    /// `shift` (x, y, rotation) that rolls `rolling_m` \[m\].
+    /// `shift` (x, y, rotation) that rolls `rolling_m` \[m\], carrying the
+    /// previous tractions by `carry` (the leading-edge correction of
+    /// [`leading_edge::fixed_slip`] with more than one element).
     fn solve_one(
         &mut self,
         problem: &ContactProblem,
         load: NormalLoad,
         shift: Option<(f64, f64, f64)>,
         rolling_m: f64,
+        carry: Carry,
     ) -> Result<ContactSolution, ContactError> {
         let grid = self.grid;
         let n = grid.len();
@@ -1208,10 +1213,13 @@ impl ContactSolver {
                         };
                         add_scaled(factor, [x, y], [&mut self.cx, &mut self.cy]);
                     }
-                    for i in 0..n {
-                        self.cx[i] -= self.old_ux[i];
-                        self.cy[i] -= self.old_uy[i];
-                    }
+                    leading_edge::fixed_slip(
+                        &grid,
+                        carry,
+                        &self.pn,
+                        [&self.old_ux, &self.old_uy],
+                        [&mut self.cx, &mut self.cy],
+                    );
                     if coupled {
                         add_tangential_of_normal(
                             &self.displacement,
