@@ -219,7 +219,7 @@ fn shifts_under_a_vertical_force_match_contacts_reference() {
 }
 
 /// m1_trans_dqrel.inp's first sequence with DQREL = 1 instead of its 4
-/// ([`transient_rolling_four_elements_a_step_matches_contacts_reference`]),
+/// ([`transient_rolling_several_elements_a_step_matches_contact`]),
 /// as CONTACT's library (revision 2707) solves it through
 /// `crates/cntc/bench/m1_transient.py` (case `trans_dq1`): no reference
 /// output has it.
@@ -264,6 +264,16 @@ fn transient_rolling_on_the_crown_matches_contacts_library() {
     };
 }
 
+/// m1_trans_dqrel.inp's first sequence with DQREL = 2 instead of its 4, as
+/// CONTACT's library (revision 2707) solves it through
+/// `crates/cntc/bench/m1_transient.py` (case `trans_dq2`): no reference
+/// output has it.
+const TRANS_DQ2: [Reference; 3] = [
+    (237.034, 28.3572, 0.0, 0.0, 7.0753, 1273.0, 979.0, 294.0),
+    (237.034, 30.2023, 0.0, 0.0, 7.0753, 1273.0, 1097.0, 176.0),
+    (237.034, 31.9248, 0.0, 0.0, 7.0753, 1273.0, 1092.0, 181.0),
+];
+
 /// m1_trans_dqrel.ref_out, cases 1-3 (its "TOTAL FORCES" and "CONTACT
 /// STATISTICS" of each case; FS and MN print as 0).
 const TRANS_DQREL: [Reference; 3] = [
@@ -272,20 +282,15 @@ const TRANS_DQREL: [Reference; 3] = [
     (237.0, 54.03, 0.0, 0.0, 7.075, 1273.0, 859.0, 414.0),
 ];
 
-/// m1_trans_dqrel.inp as it is: [`on_the_crown`] rolling four elements a
-/// step (DQREL = 4), the elements entering the contact area in a step
-/// with CONTACT's leading-edge correction.
+/// [`on_the_crown`] rolling several elements a step, the elements
+/// entering the contact area in a step with CONTACT's leading-edge
+/// correction: four (DQREL = 4, m1_trans_dqrel.inp as it is) against its
+/// reference output, two against CONTACT's library.
 #[test]
-fn transient_rolling_four_elements_a_step_matches_contacts_reference() {
-    unsafe {
-        compare(
-            77,
-            &on_the_crown(4.0),
-            &ON_THE_CROWN_STEPS,
-            &TRANS_DQREL,
-            5e-3,
-        )
-    };
+fn transient_rolling_several_elements_a_step_matches_contact() {
+    for (ire, dqrel, refs) in [(79, 4.0, &TRANS_DQREL), (80, 2.0, &TRANS_DQ2)] {
+        unsafe { compare(ire, &on_the_crown(dqrel), &ON_THE_CROWN_STEPS, refs, 5e-3) };
+    }
 }
 
 /// m1_trans_roll.ref_out, cases 1-10.
