@@ -152,9 +152,9 @@
 //!   origin laterally); the history moves onto it by whole elements. With
 //!   T = 1 the velocities are the step's displacements and the creepages
 //!   the patch's rigid shift (length, rad; `Outcome::is_shift`); T = 2
-//!   rolls one element a step (DQREL = 1; larger steps disagree with
-//!   CONTACT's by up to 4 %: CONTACT's leading-edge correction, see
-//!   `rolled_elements`, and are refused). MZ is taken about
+//!   rolls DQREL elements a step, a whole number (`rolled_elements`;
+//!   larger steps with CONTACT's leading-edge correction, as CONTACT's
+//!   module 1 rolls them). MZ is taken about
 //!   the super-grid's origin, as CONTACT's. F = 0, M = 0, L = 0 and V = 0
 //!   only. Agreement with CONTACT's reference outputs: docs/cntc.md.
 //! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
@@ -424,7 +424,8 @@ pub struct WheelRail {
     /// wheelset's longitudinal axis.
     longitudinal_force_n: Option<f64>,
     discretisation: Option<Discretisation>,
-    /// DQREL (stored: steady rolling takes 1).
+    /// DQREL: transient rolling (T = 2) rolls this many elements a step
+    /// (a whole number); steady rolling takes 1.
     dqrel: f64,
     /// The placed profiles, found at the first calculation after a change:
     /// shared with every element of the process that placed the same
@@ -491,25 +492,21 @@ impl TransientHistory {
     }
 }
 
-/// The rolling step of transient rolling (T = 2) in elements: DQREL, which
-/// must be 1 here. CONTACT's `m1_trans_dqrel` (DQREL = 4) gives a first
-/// step's FX of 51.71 N in its reference output and its library, the
-/// solver's rolling step of four elements 53.71 N (1.2 % apart with
-/// DQREL = 2, 0.003 % with 1; `crates/cntc/bench/m1_transient.py`).
-/// CONTACT corrects the leading edge in transient rolling
-/// (`m_leadedge.f90`: an element entering the contact area takes the
-/// rigid shift times the fraction of the step it was in contact, `facdt`,
-/// and the displacement at the estimated edge), the solver's rolling step
-/// does not; the correction grows with the step, so larger steps are
-/// refused.
+/// The rolling step of transient rolling (T = 2) in elements: DQREL, a
+/// whole number of elements (within 1e-6; CONTACT's grid moves on its
+/// super-grid, so the history moves by whole elements), at least 1.
+/// Steps of several elements take CONTACT's leading-edge correction
+/// (`railcontact_solver::core::leading_edge`). A fraction of an element
+/// is refused (-40).
 fn rolled_elements(dqrel: f64) -> Result<usize> {
-    if dqrel != 1.0 {
+    let whole = dqrel.round();
+    if !(whole >= 1.0 && (dqrel - whole).abs() <= 1e-6 * whole) {
         return Err(CntcError::NotSupported(format!(
             "DQREL = {dqrel} (cntc_setrollingstepsize) with T = 2 in module 1 is not supported: \
-             the patch rolls one element a step (DQREL = 1)"
+             the patch rolls a whole number of elements a step (DQREL = 1, 2, ...)"
         )));
     }
-    Ok(1)
+    Ok(whole as usize)
 }
 
 // ---------------------------------------------------------------------
@@ -1527,7 +1524,7 @@ impl WheelRail {
                 "cntc_setrollingstepsize: DQREL = {dqrel} is not a finite number"
             )));
         }
-        // Steady rolling (the only T supported) takes DQREL = 1.
+        // Steady rolling takes DQREL = 1; T = 2 checks it at the calculation.
         self.dqrel = dqrel;
         Ok(())
     }
@@ -1714,7 +1711,8 @@ impl WheelRail {
     /// What transient contact (T = 1, 2) takes here: the pitch rate given
     /// (F = 0), Kalker's theory on elastic bodies (M = 0), Coulomb
     /// friction with one pair of coefficients (L = 0, V = 0), with T = 2
-    /// a rolling step of one element (DQREL = 1, [`rolled_elements`]).
+    /// a rolling step of whole elements (DQREL = 1, 2, ...,
+    /// [`rolled_elements`]).
     fn check_transient(&self) -> Result<()> {
         let d = &self.config.digits;
         let t = d.tang;
@@ -3751,11 +3749,11 @@ mod tests {
             .unwrap();
         let cache = KernelCache::default();
         w.set_wheelset_flexibility(5, &[0.0; 12]).unwrap();
-        // Transient rolling rolls one element a step (DQREL = 1).
+        // Transient rolling rolls whole elements a step (DQREL = 1, 2, ...).
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 2), None);
-        w.set_rolling_step(0.0, 2.0).unwrap();
+        w.set_rolling_step(0.0, 2.5).unwrap();
         let e = w.calculate(&cache).unwrap_err();
-        assert!(e.to_string().contains("DQREL = 2"), "{e}");
+        assert!(e.to_string().contains("DQREL = 2.5"), "{e}");
         assert_eq!(e.ierror(), -40);
         w.set_rolling_step(0.0, 1.0).unwrap();
         // M = 3 takes the exact pressure as its bound (B = 0) only.

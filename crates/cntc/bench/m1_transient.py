@@ -25,8 +25,9 @@ two placements agree to the digits printed in the reference outputs):
                then steps (P = 0)
   trans_dqrel  m1_trans_dqrel.inp's first sequence: T = 2, DQREL = 4,
                Z_WS = 0.160 mm, no DROLLW, yaw 0, VPITCH -0.960 in the
-               first step and -0.996 after (railcontact refuses DQREL != 1,
-               -40: CONTACT's leading-edge correction, docs/cntc.md)
+               first step and -0.996 after (CONTACT's leading-edge
+               correction, docs/cntc.md)
+  trans_dq2    trans_dqrel with DQREL = 2
   trans_dq1    trans_dqrel with DQREL = 1
   steady_roll  trans_roll's wheel in steady rolling (T = 3): the limit
 
@@ -83,6 +84,7 @@ CASES = {
     'totforce': (1, 1, 237.0, 1.0, np.radians(5.0), 0.004, steps_totforce),
     'trans_roll': (2, 0, -0.2201, 1.0, np.radians(5.0), 0.004, steps_trans_roll),
     'trans_dqrel': (2, 0, 0.160, 4.0, 0.0, 0.0, steps_trans_dqrel),
+    'trans_dq2': (2, 0, 0.160, 2.0, 0.0, 0.0, steps_trans_dqrel),
     'trans_dq1': (2, 0, 0.160, 1.0, 0.0, 0.0, steps_trans_dqrel),
     'steady_roll': (3, 0, -0.2201, 1.0, np.radians(5.0), 0.004, steps_trans_roll),
 }

@@ -1,8 +1,9 @@
 //! Module 1 transient contact (T = 1 shifts, T = 2 transient rolling)
 //! called as a C caller calls it, step by step, against CONTACT's
 //! reference outputs of eve70a/CONTACT's `testbank/examples_trans`
-//! (`m1_catt_shift`, `m1_totforce`, `m1_trans_roll`; `m1_trans_dqrel`'s
-//! wheel against CONTACT's library, see there), each `.inp` translated
+//! (`m1_catt_shift`, `m1_totforce`, `m1_trans_roll`, `m1_trans_dqrel`;
+//! the latter's wheel with DQREL = 1 also against CONTACT's library, see
+//! there), each `.inp` translated
 //! into the calls below, each value from its `.ref_out`, per case: "TOTAL FORCES" FN, FX, FS, MN, PMAX and "CONTACT
 //! STATISTICS" NCON, NADH, NSLIP). The rail is the cylinder
 //! `circ_r100.prr`, the wheel `flat_plane.prw` (nominal radius 100 mm),
@@ -218,8 +219,8 @@ fn shifts_under_a_vertical_force_match_contacts_reference() {
 }
 
 /// m1_trans_dqrel.inp's first sequence with DQREL = 1 instead of its 4
-/// (refused here, `unsupported_transient_inputs_are_refused`), as CONTACT's
-/// library (revision 2707) solves it through
+/// ([`transient_rolling_several_elements_a_step_matches_contact`]),
+/// as CONTACT's library (revision 2707) solves it through
 /// `crates/cntc/bench/m1_transient.py` (case `trans_dq1`): no reference
 /// output has it.
 const TRANS_DQ1: [Reference; 3] = [
@@ -229,25 +230,67 @@ const TRANS_DQ1: [Reference; 3] = [
 ];
 
 /// m1_trans_dqrel.inp's wheel (T = 2, Z_WS = 0.160 mm, no deviation or
-/// yaw: the placement changes nothing), VS = 100 mm/s, VPITCH -0.960
-/// rad/s in the first step (P = 2) and -0.996 after, rolling one element
-/// a step.
-#[test]
-fn transient_rolling_on_the_crown_matches_contacts_library() {
-    let seq = Sequence {
+/// yaw: the placement changes nothing) rolling `dqrel` elements a step.
+fn on_the_crown(dqrel: f64) -> Sequence {
+    Sequence {
         tang: 2,
         fz: None,
         z_ws: 0.160,
-        dqrel: 1.0,
+        dqrel,
         drollw: 0.0,
         yaw: 0.0,
+    }
+}
+
+/// m1_trans_dqrel.inp's steps: VS = 100 mm/s, VPITCH -0.960 rad/s in the
+/// first step (P = 2) and -0.996 after.
+const ON_THE_CROWN_STEPS: [Step; 3] = [
+    (2, 0.0, 0.0, 100.0, -0.960),
+    (0, 0.0, 0.0, 100.0, -0.996),
+    (0, 0.0, 0.0, 100.0, -0.996),
+];
+
+/// [`on_the_crown`] rolling one element a step.
+#[test]
+fn transient_rolling_on_the_crown_matches_contacts_library() {
+    unsafe {
+        compare(
+            73,
+            &on_the_crown(1.0),
+            &ON_THE_CROWN_STEPS,
+            &TRANS_DQ1,
+            5e-3,
+        )
     };
-    let steps = [
-        (2, 0.0, 0.0, 100.0, -0.960),
-        (0, 0.0, 0.0, 100.0, -0.996),
-        (0, 0.0, 0.0, 100.0, -0.996),
-    ];
-    unsafe { compare(73, &seq, &steps, &TRANS_DQ1, 5e-3) };
+}
+
+/// m1_trans_dqrel.inp's first sequence with DQREL = 2 instead of its 4, as
+/// CONTACT's library (revision 2707) solves it through
+/// `crates/cntc/bench/m1_transient.py` (case `trans_dq2`): no reference
+/// output has it.
+const TRANS_DQ2: [Reference; 3] = [
+    (237.034, 28.3572, 0.0, 0.0, 7.0753, 1273.0, 979.0, 294.0),
+    (237.034, 30.2023, 0.0, 0.0, 7.0753, 1273.0, 1097.0, 176.0),
+    (237.034, 31.9248, 0.0, 0.0, 7.0753, 1273.0, 1092.0, 181.0),
+];
+
+/// m1_trans_dqrel.ref_out, cases 1-3 (its "TOTAL FORCES" and "CONTACT
+/// STATISTICS" of each case; FS and MN print as 0).
+const TRANS_DQREL: [Reference; 3] = [
+    (237.0, 51.71, 0.0, 0.0, 7.075, 1273.0, 696.0, 577.0),
+    (237.0, 53.14, 0.0, 0.0, 7.075, 1273.0, 892.0, 381.0),
+    (237.0, 54.03, 0.0, 0.0, 7.075, 1273.0, 859.0, 414.0),
+];
+
+/// [`on_the_crown`] rolling several elements a step, the elements
+/// entering the contact area in a step with CONTACT's leading-edge
+/// correction: four (DQREL = 4, m1_trans_dqrel.inp as it is) against its
+/// reference output, two against CONTACT's library.
+#[test]
+fn transient_rolling_several_elements_a_step_matches_contact() {
+    for (ire, dqrel, refs) in [(79, 4.0, &TRANS_DQREL), (80, 2.0, &TRANS_DQ2)] {
+        unsafe { compare(ire, &on_the_crown(dqrel), &ON_THE_CROWN_STEPS, refs, 5e-3) };
+    }
 }
 
 /// m1_trans_roll.ref_out, cases 1-10.
@@ -311,9 +354,8 @@ fn the_p_digit_picks_the_history() {
 }
 
 /// What transient contact does not take is refused with CONTACT's -40
-/// (not supported): a rolling step of other than one element (DQREL = 4
-/// as in m1_trans_dqrel.inp: FX 53.71 N in its first step against its
-/// reference's 51.71, see `cntc_core::module1`), a prescribed total force
+/// (not supported): a rolling step of a fraction of an element (DQREL =
+/// 2.5; 4 as in m1_trans_dqrel.inp is taken), a prescribed total force
 /// FX_WS (F = 1).
 #[test]
 fn unsupported_transient_inputs_are_refused() {
@@ -322,7 +364,7 @@ fn unsupported_transient_inputs_are_refused() {
         tang: 2,
         fz: Some(237.0),
         z_ws: 0.0,
-        dqrel: 4.0,
+        dqrel: 2.5,
         drollw: 0.0,
         yaw: 0.0,
     };
@@ -330,7 +372,7 @@ fn unsupported_transient_inputs_are_refused() {
         setup(ire, &seq);
         let step = (2, 0.0, 0.0, 100.0, -0.996);
         assert_eq!(calculate(ire, &seq, step), -40);
-        cntc_setrollingstepsize(&ire, &-1, &0.0, &1.0);
+        cntc_setrollingstepsize(&ire, &-1, &0.0, &4.0);
         assert_eq!(calculate(ire, &seq, step), 0);
         set_flags(ire, -1, &[(flags::IC_FORCE, 1)]);
         cntc_settangentialforces(&ire, &-1, &10.0, &0.0);

@@ -18,6 +18,7 @@ pub mod hertz;
 pub mod influence;
 pub mod kikpiotrowski;
 pub mod layer;
+pub mod leading_edge;
 pub mod material;
 pub mod memory;
 pub mod normal;

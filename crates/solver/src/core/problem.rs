@@ -29,7 +29,10 @@
 //!   s(x) = S(x)/dq = w(x) + (u(x) - u'(x + dq))/dq,
 //!   the previous step's tractions carried dq upstream. When the tractions
 //!   no longer change, s = w + (u(x) - u(x + dq))/dq, which tends to the
-//!   steady-rolling s = w - du/dx as dq -> 0. dq = 0 is a shift step.
+//!   steady-rolling s = w - du/dx as dq -> 0. dq = 0 is a shift step. A
+//!   step of more than one element corrects the material that entered the
+//!   contact area during the step as CONTACT does
+//!   ([`crate::core::leading_edge`]: S = facdt W + u - u_bnd).
 //! * Rolling direction: `rolling_direction_rad` = chi is the direction in
 //!   which the patch travels over both bodies, measured from +x towards +y
 //!   (CONTACT's `CHI`); 0, the default, is the +x of the items above. The
@@ -260,7 +263,10 @@ pub struct ShiftStep {
     /// step; otherwise, along an axis, a whole number of elements of the
     /// grid along the rolling direction (`dx_m`, `dy_m` rolling along y),
     /// and any distance below the grid's extent off the axes, checked by
-    /// [`ShiftStep::carry`].
+    /// [`ShiftStep::carry`]. Along an axis a step of more than one element
+    /// takes CONTACT's leading-edge correction for the material that
+    /// entered the contact area during the step
+    /// ([`crate::core::leading_edge`]); one element a step needs none.
     #[serde(default)]
     pub rolling_m: f64,
 }

@@ -17,6 +17,7 @@ use crate::core::influence::{Component, KernelKind};
 use crate::core::layer::{
     CoulombBound, InterfacialLayer, LayerFields, LayerState, MAX_LAYER_PASSES,
 };
+use crate::core::leading_edge;
 use crate::core::memory::{heap_bytes, HeapBytes};
 use crate::core::normal::{
     hertz_start, solve_normal_active_set, solve_normal_with, BlendedNormal, NormalBlend,
@@ -866,7 +867,7 @@ impl ContactSolver {
                 let point = PathPoint::of(problem);
                 self.path
                     .predict(&point, [&mut self.pn, &mut self.tr.px, &mut self.tr.py]);
-                let solved = self.solve_one(problem, problem.load, None, 0.0);
+                let solved = self.solve_one(problem, problem.load, None, 0.0, Carry::Whole(0));
                 match &solved {
                     Ok(_) => self.path.push(point),
                     Err(_) => self.path.clear(),
@@ -1010,6 +1011,7 @@ impl ContactSolver {
             step.load,
             Some((step.shift_x_m, step.shift_y_m, step.rotation_rad)),
             step.rolling_m,
+            carry,
         )?;
         sol.info.matvecs += usize::from(!first);
         self.transient_steps += 1;
@@ -1020,13 +1022,16 @@ impl ContactSolver {
     }
 
     /// One solve: steady (`shift` None) or a transient step of the rigid
-    /// `shift` (x, y, rotation) that rolls `rolling_m` \[m\].
+    /// `shift` (x, y, rotation) that rolls `rolling_m` \[m\], carrying the
+    /// previous tractions by `carry` (the leading-edge correction of
+    /// [`leading_edge::fixed_slip`] with more than one element).
     fn solve_one(
         &mut self,
         problem: &ContactProblem,
         load: NormalLoad,
         shift: Option<(f64, f64, f64)>,
         rolling_m: f64,
+        carry: Carry,
     ) -> Result<ContactSolution, ContactError> {
         let grid = self.grid;
         let n = grid.len();
@@ -1208,10 +1213,13 @@ impl ContactSolver {
                         };
                         add_scaled(factor, [x, y], [&mut self.cx, &mut self.cy]);
                     }
-                    for i in 0..n {
-                        self.cx[i] -= self.old_ux[i];
-                        self.cy[i] -= self.old_uy[i];
-                    }
+                    leading_edge::fixed_slip(
+                        &grid,
+                        carry,
+                        &self.pn,
+                        [&self.old_ux, &self.old_uy],
+                        [&mut self.cx, &mut self.cy],
+                    );
                     if coupled {
                         add_tangential_of_normal(
                             &self.displacement,
@@ -2441,21 +2449,37 @@ mod tests {
         let cache = KernelCache::default();
         let mut p = rolling(1.0, 1.0);
         let c = base_creepages();
-        let dq = 2.0 * p.grid.dx_m;
-        let roll = ShiftStep::rolling(p.load, dq, &c);
-        let shift = ShiftStep {
-            rolling_m: 0.0,
-            ..roll
+        let mut solve_step = |dq: f64, rolls: bool| {
+            let roll = ShiftStep::rolling(p.load, dq, &c);
+            assert_eq!(roll.shift_x_m, c.creepage_long * dq);
+            assert_eq!(roll.rotation_rad, c.spin_per_m * dq);
+            let step = if rolls {
+                roll
+            } else {
+                ShiftStep {
+                    rolling_m: 0.0,
+                    ..roll
+                }
+            };
+            p.kinematics = Kinematics::Transient(vec![step]);
+            solve_last(&mut ContactSolver::new(&p, &cache), &p)
         };
-        assert_eq!(roll.shift_x_m, c.creepage_long * dq);
-        assert_eq!(roll.rotation_rad, c.spin_per_m * dq);
-        p.kinematics = Kinematics::Transient(vec![shift]);
-        let a = solve_last(&mut ContactSolver::new(&p, &cache), &p);
-        p.kinematics = Kinematics::Transient(vec![roll]);
-        let b = solve_last(&mut ContactSolver::new(&p, &cache), &p);
-        // Nothing to carry from rest: the same solve, the same bits.
+        // One element: nothing to carry from rest, the same solve, the
+        // same bits.
+        let dx = rolling(1.0, 1.0).grid.dx_m;
+        let (a, b) = (solve_step(dx, false), solve_step(dx, true));
         assert_eq!(format!("{:?}", a.totals), format!("{:?}", b.totals));
         assert_eq!(a.fields, b.fields);
+        // Two elements: the last element before each row's leading edge
+        // was in contact for half the step and takes half the shift
+        // (CONTACT's leading-edge correction), less force than the shift.
+        let (a, b) = (solve_step(2.0 * dx, false), solve_step(2.0 * dx, true));
+        assert!(
+            b.totals.fx_n.abs() < a.totals.fx_n.abs(),
+            "{:?} {:?}",
+            a.totals,
+            b.totals
+        );
     }
 
     #[test]

@@ -343,14 +343,9 @@ pub enum TransientContact {
     /// elements (CONTACT's `DQREL`) over both bodies in the step; the
     /// previous tractions are carried that far upstream
     /// ([`crate::core::problem::ShiftStep::rolling`]). At least 1. With
-    /// more than one, CONTACT's module 1 gives other forces (its
-    /// m1_trans_dqrel, four elements a step: the first step's Fx 3.9 %
-    /// below this one's): CONTACT corrects the leading edge
-    /// (`m_leadedge.f90`: an element entering the contact area in the step
-    /// takes the rigid shift times the fraction of the step it was in
-    /// contact), which the core's rolling step does not, an effect that
-    /// grows with the step; railcontact's CONTACT library (`crates/cntc`)
-    /// refuses such steps.
+    /// more than one, the elements that entered the contact area during
+    /// the step take CONTACT's leading-edge correction
+    /// ([`crate::core::leading_edge`]).
     Rolling {
         /// Distance rolled in the step in elements (dq / dx) \[-\].
         rolled_elements: usize,

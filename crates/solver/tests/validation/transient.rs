@@ -14,6 +14,10 @@
 //! (and 58-75) and compare our Fx/(mu Fn) with -0.657 (within 1 %), and
 //! our contact, adhesion and slip element counts with CONTACT's (exact but
 //! for one step with ties, see `check_counts`).
+//!
+//! CONTACT's test bank case 17 rolls the same bodies two elements in one
+//! step: the leading-edge correction of steps of several elements
+//! (`railcontact_solver::core::leading_edge`).
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::force::{solve_prescribed_force_step, PrescribedForce};
@@ -520,4 +524,47 @@ fn bodies_travelling_over_a_fixed_grid_match_contact_catt_to_cart() {
         100.0 * worst
     );
     assert_eq!(differ, [69], "cases whose counts differ (by ties)");
+}
+
+/// CONTACT's test bank (github.com/eve70a/CONTACT, `testbank/testbank.inp`
+/// and `testbank/testbank.ref_out`, case 17): catt_to_cart's bodies
+/// ([`problem`]'s material, friction, load and h = 0.002963 (x² + y²) /mm)
+/// on 41 x 41 elements of 0.2 mm from (-4.1, -4.1) mm, one transient
+/// rolling step from rest (P = 2) of DQ = 0.4 mm, two elements, at
+/// Fx/(mu Fn) = 0.657 (F = 1). The elements of each row's last one before
+/// the leading edge entered the contact area in the step: CONTACT's
+/// leading-edge correction gives them half the rigid shift. CONTACT finds
+/// "CREEP X -4.500E-02" with 973 contact, 466 adhesion and 507 slip
+/// elements ("NCON NADH NSLIP").
+#[test]
+fn a_rolling_step_of_two_elements_from_rest_matches_contact_testbank_case_17() {
+    let d = 0.2 * MM;
+    let grid = Grid::new(41, 41, d, d, -4.1 * MM, -4.1 * MM).unwrap();
+    let curvature = 0.002963 / MM;
+    let base = problem();
+    let step = ShiftStep::rolling(base.load, 2.0 * d, &Creepages::default());
+    let problem = ContactProblem {
+        gap_m: ContactProblem::quadratic_gap(&grid, curvature, curvature),
+        grid,
+        kinematics: Kinematics::Transient(vec![step]),
+        ..base
+    };
+    let mut solver = ContactSolver::new(&problem, &KernelCache::default());
+    let target = PrescribedForce {
+        force_x_n: Some(0.657 * 0.4013 * 0.4705),
+        force_y_n: None,
+    };
+    let r = solve_prescribed_force_step(&mut solver, &problem, &step, target, Default::default())
+        .unwrap();
+    assert!(r.converged);
+    let creepage = r.step.shift_x_m / step.rolling_m;
+    println!(
+        "testbank case 17: creepage {creepage:.6e} (CONTACT -4.500e-2), counts {:?}",
+        counts(&r.solution)
+    );
+    assert!(
+        (creepage / -4.5e-2 - 1.0).abs() <= 1e-3,
+        "creepage {creepage:e} against -4.500e-2"
+    );
+    assert_eq!(counts(&r.solution), [973, 466, 507]);
 }
