@@ -3447,7 +3447,7 @@ fn build_patch(
                         let w = surface.as_mut()?.normal_position_from(x, s, guess)?;
                         Some(l.gap_m + c - w)
                     });
-                    gap_m[grid.index(ix, is)] = exact.unwrap_or_else(|| geom.gap_at(x, s));
+                    gap_m[grid.index(ix, is)] = exact.unwrap_or_else(|| l.gap_at(x));
                 }
             }
             // The centre of the round wheel's and prismatic rail's

@@ -1342,9 +1342,16 @@ impl PatchGeometry {
 
     /// Undeformed distance at (x, s) relative to the reference \[m\].
     pub fn gap_at(&self, x_m: f64, s_m: f64) -> f64 {
-        let l = self.lateral_at(s_m);
-        let dx = x_m - l.dx_m;
-        l.gap_m + 0.5 * l.kx_per_m * dx * dx
+        self.lateral_at(s_m).gap_at(x_m)
+    }
+}
+
+impl LateralSample {
+    /// Undeformed distance at `x_m` along its row \[m\]: the wheel a
+    /// parabola along x about its closest point.
+    pub fn gap_at(&self, x_m: f64) -> f64 {
+        let dx = x_m - self.dx_m;
+        self.gap_m + 0.5 * self.kx_per_m * dx * dx
     }
 }
 
