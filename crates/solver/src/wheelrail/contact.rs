@@ -323,11 +323,19 @@ pub enum ExactTangential {
 /// ([`PatchTractions`], with [`PatchTractions::lattice_origin_m`]) are
 /// moved onto this step's grid by whole elements (zero where the old grid
 /// does not reach; nothing is interpolated), and the grid is enlarged to
-/// cover where they were loaded. Each step solves one patch per wheel (a
-/// wheel with another number of patches is refused naming
-/// `exact_tangential`). The tangent plane turns with the contact angle
-/// from step to step; the tractions are carried by their (x, s)
-/// components, as CONTACT carries them.
+/// cover where they were loaded. A wheel may have any number of patches:
+/// its patches' tractions are handed on together, on one grid of the
+/// lattice that holds them all (CONTACT's super-grid; a patch's tangent
+/// plane maps its s to the profile's arc length), and each patch of the
+/// next step takes as its history all of them that lie on its grid, its
+/// grid enlarged over the runs of loaded rows that reach within an
+/// element of its own lateral range. Two patches that merge give the one
+/// patch both; one that splits gives each part the whole of it, as
+/// CONTACT copies the old patch to each (`m_wr_locatecp.f90`,
+/// `wr_update_allcps`; `m_wr_solvecp.f90`, `merge_prev_potcon`); a
+/// patch rows away from another keeps only its own. The tangent plane
+/// turns with the contact angle from step to step; the tractions are
+/// carried by their (x, s) components, as CONTACT carries them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TransientContact {
     /// A shift (CONTACT's `T = 1`): the wheelset's velocities are its
@@ -1720,7 +1728,10 @@ pub struct WarmStart {
     /// patch has a grid of the same shape and element size (shifted by
     /// whole elements to the same place). The patch grid is sized around
     /// where they were loaded and keeps their grid's shape (and lattice)
-    /// while the potential contact area fits it.
+    /// while the potential contact area fits it. In transient contact
+    /// ([`ExactTangential::Transient`]) the history of the step: the last
+    /// step's tractions of all the wheel's exact patches, several on one
+    /// grid of their lattice ([`TransientContact`]).
     pub tractions: [Option<PatchTractions>; 2],
     /// Per wheel: `tractions` of the step before the previous one. Where
     /// both fall on this step's grid (the same shape and element size,
@@ -2787,8 +2798,10 @@ fn solve_wheel(
         let mut patches = Vec::new();
         // Per patch (with the centres): its interval and centre.
         let mut centres = Vec::new();
-        // Transient contact: the grid always covers the last contact.
-        let last = warm_tractions.filter(|_| (from_last || transient) && intervals.len() == 1);
+        // Transient contact: the grid always covers the last contact (of
+        // each patch, the parts across it, [`transient_grid`]).
+        let last = warm_tractions.filter(|_| transient || (from_last && intervals.len() == 1));
+        let alone = intervals.len() == 1;
         for &iv in &intervals {
             let centre = centred
                 .then(|| {
@@ -2843,6 +2856,7 @@ fn solve_wheel(
                     omega,
                     cache,
                     last,
+                    alone,
                     &mut spare,
                     loaded,
                     sub.as_ref(),
@@ -2870,20 +2884,10 @@ fn solve_wheel(
                 message: "no potential contact found".into(),
             });
         }
-        if transient {
-            if patches.len() != 1 {
-                return Err(WheelRailError::invalid(
-                    "exact_tangential",
-                    format!(
-                        "transient contact solves one contact patch per wheel; the {} wheel has \
-                         {} here",
-                        side.name(),
-                        patches.len()
-                    ),
-                ));
-            }
-            // Every solve of the step starts from the last step's tractions.
-            if let ([p], Some(t)) = (patches.as_mut_slice(), warm_tractions) {
+        // Every solve of the step starts from the last step's tractions,
+        // those of all the wheel's patches where they lie on its grid.
+        if let Some(t) = warm_tractions.filter(|_| transient) {
+            for p in &mut patches {
                 if let (PatchKind::Exact { problem, .. }, Some(origin)) =
                     (&p.kind, p.lattice_origin_m)
                 {
@@ -2961,7 +2965,7 @@ fn solve_wheel(
                     reference_passes += 1;
                     reference_delta = delta;
                     start = normal_per_vertical(&patches, input).or(start);
-                    pass_tractions = carried_tractions(&patches);
+                    pass_tractions = carried_tractions(&patches, false);
                     // The exact patch's solver kept for its buffers.
                     for p in patches {
                         p.keep_solver(&mut spare);
@@ -3027,7 +3031,7 @@ fn solve_wheel(
                     }
                 }
                 let ratio = normal_per_vertical(&patches, input);
-                let carried = carried_tractions(&patches);
+                let carried = carried_tractions(&patches, transient);
                 let wheel = finish(pair, side, gmin, delta, iterations, patches, &mut spare);
                 *scratch.solver = spare;
                 return Ok((wheel, ratio, carried));
@@ -3131,9 +3135,27 @@ fn centres_moved(
     })
 }
 
-/// The tractions a single exact patch hands to the next time step.
-fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
-    let [p] = patches else { return None };
+/// The tractions a wheel's exact patches hand to the next time step: a
+/// single patch's on its grid; in transient contact (`transient`) those of
+/// all its patches on one grid of their common lattice
+/// ([`lattice_union`]), CONTACT's super-grid. None otherwise (several
+/// patches out of transient contact, or one that is not exact).
+fn carried_tractions(patches: &[PatchWork], transient: bool) -> Option<PatchTractions> {
+    match patches {
+        [p] => patch_tractions(p),
+        _ if transient => {
+            let parts = patches
+                .iter()
+                .map(patch_tractions)
+                .collect::<Option<Vec<_>>>()?;
+            lattice_union(&parts)
+        }
+        _ => None,
+    }
+}
+
+/// The tractions of one exact patch on its grid.
+fn patch_tractions(p: &PatchWork) -> Option<PatchTractions> {
     let PatchKind::Exact { problem, .. } = &p.kind else {
         return None;
     };
@@ -3152,6 +3174,62 @@ fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
         slip_velocity_m_per_s,
         lattice_origin_m: p.lattice_origin_m.unwrap_or([0.0; 2]),
+    })
+}
+
+/// The tractions of several patches of transient contact on one grid: the
+/// smallest on their lattice ([`PatchTractions::lattice_origin_m`], its
+/// origin the lattice's) that holds all their grids, each patch's loaded
+/// elements (pressure > 0) copied to it by whole elements, zero
+/// elsewhere. None unless they share their element size. Their slip
+/// velocities are not kept (transient contact takes Coulomb friction).
+fn lattice_union(parts: &[PatchTractions]) -> Option<PatchTractions> {
+    let first = parts.first()?;
+    let (dx, dy) = (first.grid.dx_m, first.grid.dy_m);
+    if !parts.iter().all(|t| t.same_elements(&first.grid)) {
+        return None;
+    }
+    // Each grid's corner on the lattice.
+    let corner = |t: &PatchTractions| {
+        let g = t.grid_at([0.0; 2]);
+        [g.x0_m, g.y0_m]
+    };
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for t in parts {
+        let c = corner(t);
+        let n = [t.grid.nx as f64 * dx, t.grid.ny as f64 * dy];
+        for a in 0..2 {
+            lo[a] = lo[a].min(c[a]);
+            hi[a] = hi[a].max(c[a] + n[a]);
+        }
+    }
+    let nx = ((hi[0] - lo[0]) / dx).round() as usize;
+    let ny = ((hi[1] - lo[1]) / dy).round() as usize;
+    let grid = Grid::new(nx, ny, dx, dy, lo[0], lo[1]).ok()?;
+    let [mut pn, mut px, mut py] = zeroed(&grid);
+    for t in parts {
+        let c = corner(t);
+        let sx = ((c[0] - lo[0]) / dx).round() as usize;
+        let sy = ((c[1] - lo[1]) / dy).round() as usize;
+        for iy in 0..t.grid.ny {
+            for ix in 0..t.grid.nx {
+                let o = t.grid.index(ix, iy);
+                if t.pressure_pa[o] > 0.0 {
+                    let i = grid.index(ix + sx, iy + sy);
+                    pn[i] = t.pressure_pa[o];
+                    px[i] = t.traction_pa[0][o];
+                    py[i] = t.traction_pa[1][o];
+                }
+            }
+        }
+    }
+    Some(PatchTractions {
+        grid,
+        rolling_backward: first.rolling_backward,
+        pressure_pa: pn,
+        traction_pa: [px, py],
+        slip_velocity_m_per_s: Vec::new(),
+        lattice_origin_m: [0.0; 2],
     })
 }
 
@@ -3382,6 +3460,7 @@ fn build_patch(
     omega: f64,
     cache: &KernelCache,
     last: Option<&PatchTractions>,
+    alone: bool,
     spare: &mut Option<Box<ContactSolver>>,
     loaded: Option<f64>,
     sub: Option<&(SubPatches, f64)>,
@@ -3423,7 +3502,7 @@ fn build_patch(
             let origin = lattice_origin(&geom, rail, input);
             lattice_origin_m = Some(origin);
             let grid = match transient_of(input) {
-                Some(_) => transient_grid(&geom, cap, input, origin, last)?,
+                Some(_) => transient_grid(&geom, cap, input, origin, last, alone)?,
                 None => {
                     let last = last.map(|t| (t, carry_origin(t, origin, input)));
                     patch_grid(&geom, cap, across, input, last, reach, align)?
@@ -3939,24 +4018,32 @@ fn arc_at_profile_origin(rail: &PlacedRail) -> f64 {
 
 /// The grid of a patch of transient contact ([`TransientContact`]): the
 /// potential contact area of [`patch_grid`] (elements as long as wide),
-/// enlarged over where `last`'s pressures were loaded, on elements whose
-/// centres lie at whole multiples of the element size on the lattice,
-/// the grid's origin lying at `origin_m` of it.
+/// enlarged over where `last`'s pressures were loaded (with several
+/// patches, not `alone`, over the parts of them across this patch,
+/// [`loaded_box_across`]), on elements whose centres lie at whole
+/// multiples of the element size on the lattice, the grid's origin lying
+/// at `origin_m` of it.
 fn transient_grid(
     geom: &PatchGeometry,
     cap: f64,
     input: &WheelRailInput,
     origin_m: [f64; 2],
     last: Option<&PatchTractions>,
+    alone: bool,
 ) -> Result<Grid, WheelRailError> {
     let e = input.settings.element_size_m;
     let g = patch_grid_on(geom, cap, 1, input, None, None, false)?;
     let mut lo = [g.x0_m, g.y0_m];
     let mut hi = [g.x0_m + g.nx as f64 * e, g.y0_m + g.ny as f64 * e];
     let last = last.filter(|t| t.same_elements(&g));
-    if let Some([x0, x1, s0, s1]) =
-        last.and_then(|t| t.grid_at(origin_m).loaded_box_m(&t.pressure_pa))
-    {
+    let loaded = last.and_then(|t| {
+        let old = t.grid_at(origin_m);
+        match alone {
+            true => old.loaded_box_m(&t.pressure_pa),
+            false => loaded_box_across(&old, &t.pressure_pa, [lo[1], hi[1]]),
+        }
+    });
+    if let Some([x0, x1, s0, s1]) = loaded {
         // The last contact in this step's local coordinates, an element
         // to spare.
         lo = [lo[0].min(x0 - e), lo[1].min(s0 - e)];
@@ -3999,6 +4086,53 @@ fn transient_grid(
         ));
     }
     Ok(Grid::new(n[0], n[1], e, e, corner[0], corner[1])?)
+}
+
+/// The box \[x0, x1, s0, s1\] \[m\] of the loaded elements
+/// (`pressure > 0`) of `grid` that lie across the lateral range \[s0,
+/// s1\] of a patch: of each run of loaded rows (rows with a loaded element,
+/// one after the other) that reaches within an element of it. A contact
+/// that split gives each part the whole of it, and of contacts that merged
+/// the patch takes all; another patch's contact, rows away, it leaves out.
+/// None where no run reaches.
+fn loaded_box_across(grid: &Grid, pressure: &[f64], [s0, s1]: [f64; 2]) -> Option<[f64; 4]> {
+    let join = |a: Option<[f64; 4]>, b: [f64; 4]| {
+        Some(a.map_or(b, |a| {
+            [
+                a[0].min(b[0]),
+                a[1].max(b[1]),
+                a[2].min(b[2]),
+                a[3].max(b[3]),
+            ]
+        }))
+    };
+    let (mut found, mut run) = (None, None);
+    for iy in 0..=grid.ny {
+        let row = (iy < grid.ny)
+            .then(|| {
+                let loaded = |&ix: &usize| pressure[grid.index(ix, iy)] > 0.0;
+                let first = (0..grid.nx).find(loaded)?;
+                let last = (0..grid.nx).rev().find(loaded)?;
+                Some([
+                    grid.x0_m + first as f64 * grid.dx_m,
+                    grid.x0_m + (last + 1) as f64 * grid.dx_m,
+                    grid.y0_m + iy as f64 * grid.dy_m,
+                    grid.y0_m + (iy + 1) as f64 * grid.dy_m,
+                ])
+            })
+            .flatten();
+        match row {
+            Some(r) => run = join(run, r),
+            None => {
+                if let Some(r) = run.take() {
+                    if r[3] >= s0 - grid.dy_m && r[2] <= s1 + grid.dy_m {
+                        found = join(found, r);
+                    }
+                }
+            }
+        }
+    }
+    found
 }
 
 /// Whether the patches take CONTACT's reference point, and with it
@@ -5585,5 +5719,53 @@ mod tests {
         // Another element size takes nothing.
         let coarse = Grid::new(4, 4, 2.0 * e, e, 0.0, 0.0).unwrap();
         assert!(t.on(&coarse, origin).is_none());
+    }
+
+    /// Several patches' tractions go onto one grid of their lattice, each
+    /// loaded element where it lay; a patch of the next step takes the
+    /// parts of them across its lateral range.
+    #[test]
+    fn patches_share_one_grid_on_the_lattice() {
+        let e = 2e-4;
+        // Two 4 x 4 patches, the second 7 elements further along s and one
+        // back along x on the lattice, its first element unloaded.
+        let patch = |origin: [f64; 2], pressure: Vec<f64>| PatchTractions {
+            grid: Grid::new(4, 4, e, e, -2.0 * e, -2.0 * e).unwrap(),
+            rolling_backward: false,
+            traction_pa: [pressure.iter().map(|p| 0.5 * p).collect(), vec![-1.0; 16]],
+            pressure_pa: pressure,
+            slip_velocity_m_per_s: Vec::new(),
+            lattice_origin_m: origin,
+        };
+        let a = patch([3.0 * e, 2.0 * e], (1..=16).map(f64::from).collect());
+        let b = patch([2.0 * e, 9.0 * e], (0..16).map(f64::from).collect());
+        let u = lattice_union(&[a.clone(), b.clone()]).unwrap();
+        assert_eq!((u.grid.nx, u.grid.ny), (5, 11));
+        assert_eq!(u.lattice_origin_m, [0.0; 2]);
+        // Each patch's tractions come back from the union where they were
+        // loaded (b's unloaded element, and its traction there, is zero).
+        for t in [&a, &b] {
+            let [pn, px, py] = u.on(&t.grid, t.lattice_origin_m).unwrap();
+            let want_py: Vec<f64> = (t.pressure_pa.iter())
+                .map(|&p| if p > 0.0 { -1.0 } else { 0.0 })
+                .collect();
+            assert_eq!(
+                (&pn, &px[..], py),
+                (&t.pressure_pa, &t.traction_pa[0][..], want_py)
+            );
+        }
+        // Seen from a's grid, the union's loaded rows form two runs, three
+        // empty rows apart: a's range takes a's box only, b's b's, a range
+        // across both both.
+        let seen = u.grid_at(a.lattice_origin_m);
+        let p = &u.pressure_pa;
+        let box_of = |lo: f64, hi: f64| loaded_box_across(&seen, p, [lo * e, hi * e]);
+        let near = |x: Option<[f64; 4]>, y: [f64; 4]| {
+            x.is_some_and(|x| x.iter().zip(y).all(|(x, y)| (x - y * e).abs() < 1e-12))
+        };
+        assert!(near(box_of(-2.0, 2.0), [-2.0, 2.0, -2.0, 2.0]));
+        assert!(near(box_of(6.0, 8.0), [-3.0, 1.0, 5.0, 9.0]));
+        assert!(near(box_of(0.0, 7.0), [-3.0, 2.0, -2.0, 9.0]));
+        assert!(box_of(20.0, 30.0).is_none());
     }
 }
