@@ -1341,12 +1341,10 @@ fn transient_step(
     grid: &Grid,
 ) -> ShiftStep {
     match t {
+        // The shift of a step that rolls `speed` (1 s), without rolling.
         TransientContact::Shift => ShiftStep {
-            load,
-            shift_x_m: creep.creepage_long * speed,
-            shift_y_m: creep.creepage_lat * speed,
-            rotation_rad: creep.spin_per_m * speed,
             rolling_m: 0.0,
+            ..ShiftStep::rolling(load, speed, creep)
         },
         TransientContact::Rolling { rolled_elements } => {
             ShiftStep::rolling(load, rolled_elements as f64 * grid.dx_m, creep)
@@ -3972,7 +3970,7 @@ fn lattice_origin(geom: &PatchGeometry, rail: &PlacedRail, input: &WheelRailInpu
     // from the profile's origin.
     let [q, z] = geom.reference_m;
     let arc = c.t_m + (q - c.q_m) * c.tangent[0] + (z - c.z_m) * c.tangent[1]
-        - arc_at_profile_origin(rail);
+        - rail.arc_at_profile_origin_m();
     let t_patch = geom.tangent();
     let sign = if t_patch[0] * c.tangent[0] + t_patch[1] * c.tangent[1] < 0.0 {
         -1.0
@@ -4000,20 +3998,6 @@ fn carry_origin(t: &PatchTractions, origin_m: [f64; 2], input: &WheelRailInput) 
         None if moved <= follow => at,
         _ => origin_m,
     }
-}
-
-/// The arc length of `rail`'s samples \[m\] where its profile's y is 0
-/// (CONTACT's rail profile reference s_r = 0), interpolated between the
-/// samples on either side; the first sample's (0) where y does not pass 0.
-fn arc_at_profile_origin(rail: &PlacedRail) -> f64 {
-    let y = |c: &CurveSample| rail.to_profile(c.q_m, c.z_m)[0];
-    rail.samples()
-        .windows(2)
-        .find_map(|w| {
-            let (ya, yb) = (y(&w[0]), y(&w[1]));
-            ((ya <= 0.0) != (yb <= 0.0)).then(|| w[0].t_m + ya / (ya - yb) * (w[1].t_m - w[0].t_m))
-        })
-        .unwrap_or(0.0)
 }
 
 /// The grid of a patch of transient contact ([`TransientContact`]): the

@@ -440,6 +440,9 @@ pub struct PlacedRail {
     surface: VerticalGap,
     /// [`TrackData::roller_radius_m`].
     roller_radius_m: Option<f64>,
+    /// The samples' arc length where the profile's y is 0 \[m\]
+    /// ([`Self::arc_at_profile_origin_m`]).
+    arc_at_profile_origin_m: f64,
 }
 
 /// Its spline, samples and surface.
@@ -475,6 +478,14 @@ impl PlacedRail {
     /// Dense samples in the side frame, gauge face first.
     pub fn samples(&self) -> &[CurveSample] {
         &self.samples
+    }
+
+    /// The arc length of the samples \[m\] where the profile's y is 0
+    /// (CONTACT's rail profile reference s_r = 0), interpolated between
+    /// the samples on either side; the first sample's (0) where y does not
+    /// pass 0.
+    pub fn arc_at_profile_origin_m(&self) -> f64 {
+        self.arc_at_profile_origin_m
     }
 
     /// The fitted profile (profile frame).
@@ -791,6 +802,7 @@ fn place_rail(
         samples: Vec::new(),
         surface: VerticalGap::default(),
         roller_radius_m: track.roller_radius_m,
+        arc_at_profile_origin_m: 0.0,
     };
     let [q, z] = match track.placement {
         RailPlacement::GaugePoint {
@@ -820,6 +832,13 @@ fn place_rail(
     rail.cant_rad = track.cant_rad - s * d.droll_rad;
     rail.samples = sample(&rail.spline, |y, z| rail.to_side(y, z));
     rail.surface = VerticalGap::surface_of(&rail.samples);
+    let y = |c: &CurveSample| rail.to_profile(c.q_m, c.z_m)[0];
+    rail.arc_at_profile_origin_m = (rail.samples.windows(2))
+        .find_map(|w| {
+            let (ya, yb) = (y(&w[0]), y(&w[1]));
+            ((ya <= 0.0) != (yb <= 0.0)).then(|| w[0].t_m + ya / (ya - yb) * (w[1].t_m - w[0].t_m))
+        })
+        .unwrap_or(0.0);
     Ok(rail)
 }
 
