@@ -545,7 +545,7 @@ unsafe fn t1_steps(
 /// "PATCH 1 (PREV 1, 2)"), which takes both their tractions as its
 /// history; the flange patch keeps its own ("PATCH 2 (PREV 3)").
 #[test]
-#[ignore = "this library refuses the t1 cases' flange patch (73 deg), whatever T: a potential contact area of 194.8 x 75.3 mm (docs/cntc.md)"]
+#[ignore = "the t1 cases run but differ from CONTACT by up to 6.7 % on their 0.4 mm elements, not yet explained (docs/cntc.md)"]
 fn merging_patches_match_contacts_reference() {
     let first: &[(f64, PatchReference)] = &[
         (0.35, (754.6563, 7.923e4, 1.934e4, -2314., 807.5, 1087.)),
@@ -565,7 +565,7 @@ fn merging_patches_match_contacts_reference() {
 /// the tread patch splits in two, each part taking the whole of its
 /// tractions as history ("PATCH 1 (PREV 1)", "PATCH 2 (PREV 1)").
 #[test]
-#[ignore = "this library refuses the t1 cases' flange patch (73 deg), whatever T: a potential contact area of 194.8 x 75.3 mm (docs/cntc.md)"]
+#[ignore = "the t1 cases run but differ from CONTACT by up to 6.7 % on their 0.4 mm elements, not yet explained (docs/cntc.md)"]
 fn splitting_patches_match_contacts_reference() {
     let first: &[(f64, PatchReference)] = &[
         (0.35, (745.6461, 1.274e5, 2.579e4, -3526., 1701., 1405.)),

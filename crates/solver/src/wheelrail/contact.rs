@@ -847,10 +847,17 @@ pub struct WheelRailSolution {
 }
 
 /// Element-count ladder of patch grids: sizes with small prime factors, so
-/// that grids of similar patches share cached kernels.
-const GRID_LADDER: [usize; 22] = [
+/// that grids of similar patches share cached kernels, up to the most
+/// elements a grid has along a direction
+/// ([`crate::core::grid::MAX_ELEMENTS_PER_DIRECTION`]); the product is
+/// [`WheelRailSettings::max_grid_elements`]'s to limit.
+const GRID_LADDER: [usize; 32] = [
     8, 10, 12, 16, 20, 24, 30, 32, 40, 48, 60, 64, 80, 96, 120, 128, 160, 192, 240, 256, 320, 384,
+    480, 512, 640, 768, 960, 1024, 1280, 1536, 1920, 2048,
 ];
+
+const _: () =
+    assert!(GRID_LADDER[GRID_LADDER.len() - 1] == crate::core::grid::MAX_ELEMENTS_PER_DIRECTION);
 
 fn ladder(n: usize) -> Option<usize> {
     GRID_LADDER.iter().copied().find(|&m| m >= n)
@@ -2786,7 +2793,8 @@ fn solve_wheel(
     let mut pass_tractions = None;
     let mut fastsim = wheel_fastsim(side)?;
     let merge = input.settings.search.merge_distance_m;
-    let mut intervals = gap_intervals(gap, cap, merge);
+    let nominal = pair.wheelset().nominal_radius_m;
+    let mut intervals = gap_intervals(gap, locus, nominal, cap, merge);
     let mut split = false;
     // A single patch's grid is first sized from the last step's contact
     // ([`patch_grid`]); where the pressure reaches its border, from `cap`.
@@ -2820,7 +2828,6 @@ fn solve_wheel(
                 .combine_distance_m
                 .filter(|_| centred)
                 .and_then(|combine| {
-                    let nominal = pair.wheelset().nominal_radius_m;
                     let (sep, delta) = (search.merge_distance_m, reference_delta);
                     sub_patches(locus, gap, (iv.0, iv.1), delta, nominal, combine, sep)
                         .map(|sub| (sub, combine))
@@ -2946,7 +2953,7 @@ fn solve_wheel(
                 // makes separate patches, each with its own tangent plane.
                 if !split {
                     split = true;
-                    let parts = split_intervals(gap, &intervals, delta, merge);
+                    let parts = split_intervals(gap, locus, nominal, &intervals, delta, merge);
                     if parts.len() > intervals.len() {
                         intervals = parts;
                         continue;
@@ -3036,7 +3043,7 @@ fn solve_wheel(
             }
             LoadResult::CapTooSmall if attempt < 4 + reference_passes => {
                 cap = gmin + 2.0 * (cap - gmin);
-                intervals = gap_intervals(gap, cap, merge);
+                intervals = gap_intervals(gap, locus, nominal, cap, merge);
                 split = false;
             }
             LoadResult::CapTooSmall => break,
@@ -5146,7 +5153,8 @@ mod tests {
         let pose = rigid.pose(side, &input.position);
         let cap = rigid.min_gap_m[i] + 1e-4;
         let merge = input.settings.search.merge_distance_m;
-        let iv = gap_intervals(gap, cap, merge)
+        let nominal = pair.wheelset().nominal_radius_m;
+        let iv = gap_intervals(gap, locus, nominal, cap, merge)
             .into_iter()
             .min_by(|a, b| gap.gap_m(a.2).total_cmp(&gap.gap_m(b.2)))
             .unwrap();

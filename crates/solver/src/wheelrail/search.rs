@@ -16,8 +16,9 @@
 //!    puts the smallest gap of each wheel at 0 (rigid contact).
 //! 3. **Patches.** The parts of the q axis where g is below a cap (the
 //!    expected approach with a margin) are the potential contact areas;
-//!    parts closer than `merge_distance_m` are combined, parts farther apart
-//!    are separate patches (tread, flange root, flange).
+//!    parts closer than `merge_distance_m` (in x, q and height, as CONTACT
+//!    measures it) are combined, parts farther apart are separate patches
+//!    (tread, flange root, flange).
 //! 4. **Patch geometry.** Per patch: the reference point where g is
 //!    smallest (between the samples: the vertex of a parabola), the contact
 //!    angle there (angle of the rail normal from the vertical, positive
@@ -639,8 +640,9 @@ impl RigidPosition {
 /// Settings of the contact search.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SearchSettings {
-    /// Potential contact parts closer than this along q are combined into
-    /// one patch \[m\].
+    /// Potential contact parts closer than this are combined into one
+    /// patch \[m\]; the distance is CONTACT's D_SEP's, of the parts' boxes
+    /// along x, along q and in height ([`gap_intervals`]).
     pub merge_distance_m: f64,
     /// Roll iteration: tolerance on the difference of the two smallest gaps \[m\].
     pub roll_tolerance_m: f64,
@@ -854,6 +856,51 @@ impl RegionBox {
     }
 }
 
+/// The box of the region of samples `start..=end` of `gap` whose gap
+/// lies below `level_m`, CONTACT's way: its lateral ends where the
+/// interpolated interpenetration `level_m` - gap vanishes towards the
+/// neighbouring samples (within `bounds`, else at the end samples), its
+/// extent along x that of the wheel taken as pen - a t^2 along x about
+/// each sample's locus x (a = 1/(2 r_nom) with `nominal_radius_m`,
+/// CONTACT's `compute_contact_length_1d`).
+fn region_box(
+    locus: &[LocusPoint],
+    gap: &VerticalGap,
+    bounds: (usize, usize),
+    (start, end): (usize, usize),
+    level_m: f64,
+    nominal_radius_m: f64,
+) -> RegionBox {
+    let pen = |k: usize| level_m - gap.gap_m(k);
+    let a = 0.5 / nominal_radius_m;
+    let mut x_m = [f64::INFINITY, f64::NEG_INFINITY];
+    for k in start..=end {
+        let x = locus_on_segment(locus, gap.locus_index[k], gap.q_m(k)).x_m;
+        let t = (pen(k) / a).sqrt();
+        x_m = [x_m[0].min(x - t), x_m[1].max(x + t)];
+    }
+    // Where the interpolated interpenetration vanishes between the end
+    // sample `inside` and its neighbour `outside`.
+    let at_end = |inside: usize, outside: Option<usize>| match outside {
+        Some(o) if o >= bounds.0 && o <= bounds.1 && pen(o).is_finite() => {
+            let f = pen(inside) / (pen(inside) - pen(o));
+            let mix = |u: f64, v: f64| u + f * (v - u);
+            (
+                mix(gap.q_m(inside), gap.q_m(o)),
+                mix(gap.z_rail_m[inside], gap.z_rail_m[o]),
+            )
+        }
+        _ => (gap.q_m(inside), gap.z_rail_m[inside]),
+    };
+    let (q0, z0) = at_end(start, start.checked_sub(1));
+    let (q1, z1) = at_end(end, Some(end + 1));
+    RegionBox {
+        x_m,
+        q_m: [q0, q1],
+        z_m: [z0, z1],
+    }
+}
+
 /// The regions of interpenetration of one patch that lie apart, its
 /// sub-patches: CONTACT's blended patch (`combine_cpatches`), whose
 /// regions are kept one patch with a reduced interaction between them in
@@ -888,45 +935,18 @@ pub fn sub_patches(
     separate_m: f64,
 ) -> Option<SubPatches> {
     let k1 = k1.min(gap.len().checked_sub(1)?);
-    let pen = |k: usize| delta_m - gap.gap_m(k);
-    let inside = |k: usize| pen(k) > 0.0;
-    let a = 0.5 / nominal_radius_m;
-    let mut boxes: Vec<RegionBox> = Vec::new();
-    let mut k = k0;
-    while k <= k1 {
-        if !inside(k) {
-            k += 1;
-            continue;
-        }
-        let start = k;
-        let mut x_m = [f64::INFINITY, f64::NEG_INFINITY];
-        while k <= k1 && inside(k) {
-            let x = locus_on_segment(locus, gap.locus_index[k], gap.q_m(k)).x_m;
-            let t = (pen(k) / a).sqrt();
-            x_m = [x_m[0].min(x - t), x_m[1].max(x + t)];
-            k += 1;
-        }
-        // Where the interpolated interpenetration vanishes between the
-        // end sample `inside` and its neighbour `outside`.
-        let end = |inside: usize, outside: Option<usize>| match outside {
-            Some(o) if o >= k0 && o <= k1 && pen(o).is_finite() => {
-                let f = pen(inside) / (pen(inside) - pen(o));
-                let mix = |u: f64, v: f64| u + f * (v - u);
-                (
-                    mix(gap.q_m(inside), gap.q_m(o)),
-                    mix(gap.z_rail_m[inside], gap.z_rail_m[o]),
-                )
-            }
-            _ => (gap.q_m(inside), gap.z_rail_m[inside]),
-        };
-        let (q0, z0) = end(start, start.checked_sub(1));
-        let (q1, z1) = end(k - 1, Some(k));
-        boxes.push(RegionBox {
-            x_m,
-            q_m: [q0, q1],
-            z_m: [z0, z1],
-        });
-    }
+    let mut boxes: Vec<RegionBox> = runs_below(gap, k0, k1 + 1, delta_m)
+        .map(|(start, end, _)| {
+            region_box(
+                locus,
+                gap,
+                (k0, k1),
+                (start, end),
+                delta_m,
+                nominal_radius_m,
+            )
+        })
+        .collect();
     // CONTACT's first pass: regions within d_comb are one.
     let mut i = 0;
     while i < boxes.len() {
@@ -1519,43 +1539,98 @@ impl<'a> WheelSurface<'a> {
     }
 }
 
-/// The parts of the q axis where the vertical gap is below `cap_m`, merged
-/// when closer than `merge_m`: (first, last, index of the minimum).
-pub fn gap_intervals(gap: &VerticalGap, cap_m: f64, merge_m: f64) -> Vec<(usize, usize, usize)> {
-    gap_intervals_range(gap, 0, gap.len(), cap_m, merge_m)
+/// The runs of samples `first..n` of `gap` whose gap lies below
+/// `level_m`: (first, last, index of the smallest gap).
+fn runs_below(
+    gap: &VerticalGap,
+    first: usize,
+    n: usize,
+    level_m: f64,
+) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+    let below = move |k: usize| gap.gap_m(k) < level_m;
+    let mut k = first;
+    std::iter::from_fn(move || {
+        while k < n && !below(k) {
+            k += 1;
+        }
+        if k >= n {
+            return None;
+        }
+        let start = k;
+        let mut kmin = k;
+        while k < n && below(k) {
+            if gap.gap_m(k) < gap.gap_m(kmin) {
+                kmin = k;
+            }
+            k += 1;
+        }
+        Some((start, k - 1, kmin))
+    })
+}
+
+/// The potential contact areas of one wheel: the parts of the q axis
+/// where the vertical gap is below `level_m`, those within `merge_m` of
+/// each other taken together (first, last, index of the smallest gap).
+///
+/// Two parts lie within `merge_m` when their boxes at `level_m` do
+/// ([`RegionBox::distance`], CONTACT's `cpatch_distance` with its D_SEP):
+/// apart along x (the wheel's extent along x about its contact locus,
+/// with `locus` and `nominal_radius_m`), along q, and in the rail's height
+/// at their facing ends. A tread and a flange region a few millimetres
+/// apart along q lie farther apart than that when yaw puts them on either
+/// side of the axle or the flange rises steeply between them. The parts
+/// are taken in order along q, each joined to the box of the parts
+/// before it where that lies within `merge_m`; CONTACT also joins parts
+/// that are not neighbours, whose patch then spans the ones between.
+pub fn gap_intervals(
+    gap: &VerticalGap,
+    locus: &[LocusPoint],
+    nominal_radius_m: f64,
+    level_m: f64,
+    merge_m: f64,
+) -> Vec<(usize, usize, usize)> {
+    gap_intervals_range(
+        gap,
+        locus,
+        nominal_radius_m,
+        (0, gap.len()),
+        level_m,
+        merge_m,
+    )
 }
 
 fn gap_intervals_range(
     gap: &VerticalGap,
-    first: usize,
-    n: usize,
-    cap_m: f64,
+    locus: &[LocusPoint],
+    nominal_radius_m: f64,
+    (first, n): (usize, usize),
+    level_m: f64,
     merge_m: f64,
 ) -> Vec<(usize, usize, usize)> {
-    let mut out: Vec<(usize, usize, usize)> = Vec::new();
-    let mut k = first;
-    while k < n {
-        if gap.gap_m(k) < cap_m {
-            let start = k;
-            let mut kmin = k;
-            while k < n && gap.gap_m(k) < cap_m {
-                if gap.gap_m(k) < gap.gap_m(kmin) {
-                    kmin = k;
-                }
-                k += 1;
-            }
-            let end = k - 1;
-            match out.last_mut() {
-                Some(last) if (start - last.1) as f64 * gap.dq_m < merge_m => {
-                    last.1 = end;
-                    if gap.gap_m(kmin) < gap.gap_m(last.2) {
-                        last.2 = kmin;
-                    }
-                }
-                _ => out.push((start, end, kmin)),
+    let mut runs = runs_below(gap, first, n, level_m);
+    let Some(run) = runs.next() else {
+        return Vec::new();
+    };
+    let mut out = vec![run];
+    let bounds = (first, n - 1);
+    let box_of = |(start, end, _): (usize, usize, usize)| {
+        region_box(locus, gap, bounds, (start, end), level_m, nominal_radius_m)
+    };
+    // The box of the last interval, made only where a second run exists.
+    let mut last_box = None;
+    for run in runs {
+        let b = box_of(run);
+        let joined = last_box.get_or_insert_with(|| box_of(out[0]));
+        let last = out.last_mut().expect("one interval at least");
+        if joined.distance(&b) <= merge_m {
+            joined.union(&b);
+            last.1 = run.1;
+            if gap.gap_m(run.2) < gap.gap_m(last.2) {
+                last.2 = run.2;
             }
         } else {
-            k += 1;
+            *joined = b;
+            out.push(run);
         }
     }
     out
@@ -1563,10 +1638,12 @@ fn gap_intervals_range(
 
 /// Splits the intervals of [`gap_intervals`] where, at the vertical
 /// approach `delta_m`, the interpenetration inside one interval falls apart
-/// into parts farther apart than `merge_m`: the cut goes through the largest
-/// gap between the parts.
+/// into parts farther apart than `merge_m` (as [`gap_intervals`] measures
+/// it): the cut goes through the largest gap between the parts.
 pub fn split_intervals(
     gap: &VerticalGap,
+    locus: &[LocusPoint],
+    nominal_radius_m: f64,
     intervals: &[(usize, usize, usize)],
     delta_m: f64,
     merge_m: f64,
@@ -1574,7 +1651,8 @@ pub fn split_intervals(
     let mut out = Vec::new();
     for &iv in intervals {
         let (k0, k1, _) = iv;
-        let mut parts = gap_intervals_range(gap, k0, k1 + 1, delta_m, merge_m);
+        let range = (k0, k1 + 1);
+        let mut parts = gap_intervals_range(gap, locus, nominal_radius_m, range, delta_m, merge_m);
         if parts.len() < 2 {
             out.push(iv);
             continue;
@@ -2143,6 +2221,35 @@ mod tests {
         assert_eq!(regions(180).expect("9 mm").factors[1], 0.0);
     }
 
+    /// Two regions of interpenetration 5 mm apart along q (the bumps of
+    /// `regions_between_d_comb_and_d_sep_are_sub_patches`, each +-2.877 mm
+    /// long along x about its locus x) are one potential contact area
+    /// under CONTACT's D_SEP of 8 mm while they lie side by side (locus x
+    /// -4 and +4 mm: 2.25 mm apart along x, 5.5 mm in all), and two when
+    /// yaw puts them on either side of the axle (x -10 and +12 mm: 16.2
+    /// mm apart along x, 17.0 mm in all), as CONTACT's `cpatch_distance`
+    /// measures them; by q alone they would be one.
+    #[test]
+    fn potential_contact_areas_apart_along_x_are_separate_patches() {
+        let bump = [1.0, 4.0, 9.0, 4.0, 1.0];
+        let n = 160;
+        let mut pens = vec![-1.0; n];
+        pens[20..25].copy_from_slice(&bump);
+        pens[125..130].copy_from_slice(&bump);
+        let areas = |x_first: f64, x_second: f64| {
+            let x = move |k: f64| if k < 70.0 { x_first } else { x_second };
+            let (gap, _, locus) = hand_gap(&pens, 10.0, |_| 0.0, x);
+            gap_intervals(&gap, &locus, 0.46, 10e-6, 8e-3)
+        };
+        let side_by_side = areas(-4e-3, 4e-3);
+        assert_eq!(side_by_side, vec![(20, 129, 22)], "one area");
+        let apart = areas(-10e-3, 12e-3);
+        assert_eq!(apart, vec![(20, 24, 22), (125, 129, 127)], "two areas");
+        // The same under the search's default of 1 mm: two either way.
+        let (gap, _, locus) = hand_gap(&pens, 10.0, |_| 0.0, |_| 0.0);
+        assert_eq!(gap_intervals(&gap, &locus, 0.46, 10e-6, 1e-3).len(), 2);
+    }
+
     /// On a symmetric interpenetration the weighted centre is the point of
     /// smallest gap and its angle the rail's there: penetrations 0, 1, 4,
     /// 1, 0 micrometres (gaps 4, 3, 0, 3, 4 at the approach 4), weights
@@ -2233,7 +2340,8 @@ mod tests {
         let (gap, locus) = (&scratch.gap[side.index()], &scratch.locus[side.index()]);
         let rail = pair.rail(side);
         let delta = 20e-6;
-        let [iv] = gap_intervals(gap, 2.0 * delta, 1e-3)[..] else {
+        let r = pair.wheelset().nominal_radius_m;
+        let [iv] = gap_intervals(gap, locus, r, 2.0 * delta, 1e-3)[..] else {
             panic!("one patch");
         };
         let c = interpenetration_centre(rail.samples(), locus, gap, (iv.0, iv.1), delta).unwrap();
@@ -2285,7 +2393,8 @@ mod tests {
             .flat_map(|side| {
                 let (gap, locus) = (&scratch.gap[side.index()], &scratch.locus[side.index()]);
                 let rail = pair.rail(side);
-                gap_intervals(gap, 4e-5, 1e-3)
+                let r = pair.wheelset().nominal_radius_m;
+                gap_intervals(gap, locus, r, 4e-5, 1e-3)
                     .into_iter()
                     .filter_map(move |iv| patch_geometry(rail, locus, gap, iv, 4e-4))
                     .map(move |g| (side, g))
@@ -2355,7 +2464,8 @@ mod tests {
                 let i = w.side.index();
                 let (gap, locus) = (&look.gap[i], &look.locus[i]);
                 let delta = w.vertical_approach_m;
-                let [iv] = gap_intervals(gap, delta, 1e-3)[..] else {
+                let r = pair.wheelset().nominal_radius_m;
+                let [iv] = gap_intervals(gap, locus, r, delta, 1e-3)[..] else {
                     panic!("one region of interpenetration");
                 };
                 let rail = pair.rail(w.side).samples();
