@@ -19,7 +19,7 @@ The cases (from CONTACT_SRC, a checkout of eve70a/CONTACT, default
                (V = 1), D_SEP 9, D_COMB 6: CONTACT makes two patches (tread
                and flange at -70 degrees)
   mbench-sep4  the same with D_SEP 4, D_COMB 3 (CONTACT's result is the
-               same; this library's search then makes its two patches too)
+               same, and so is this library's: two patches either way)
   tb35         testbank.inp case 35: case 33's worn wheel
                (worn_high_mileage) on site_b_hr, y 14.85 mm, Z_WS 1.17 mm
                given, D_SEP 30, D_COMB 20: one patch over the flange root
