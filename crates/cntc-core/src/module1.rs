@@ -1710,7 +1710,7 @@ impl WheelRail {
 
     /// What transient contact (T = 1, 2) takes here: the pitch rate given
     /// (F = 0), Kalker's theory on elastic bodies (M = 0), Coulomb
-    /// friction with one pair of coefficients (L = 0, V = 0), with T = 2
+    /// friction (L = 0; V = 0, or V = 1 by contact angle), with T = 2
     /// a rolling step of whole elements (DQREL = 1, 2, ...,
     /// [`rolled_elements`]).
     fn check_transient(&self) -> Result<()> {
@@ -1730,11 +1730,11 @@ impl WheelRail {
                 d.mater
             )));
         }
-        if d.frclaw != 0 || self.config.friction_by_angle.is_some() {
+        if d.frclaw != 0 {
             return Err(CntcError::NotSupported(format!(
-                "L = {}, V = {} (CNTC_ic_frclaw, CNTC_ic_varfrc) with T = {t} in module 1 is not \
-                 supported: transient contact takes Coulomb friction (L = 0, V = 0)",
-                d.frclaw, d.varfrc
+                "L = {} (CNTC_ic_frclaw) with T = {t} in module 1 is not supported: transient \
+                 contact takes Coulomb friction (L = 0)",
+                d.frclaw
             )));
         }
         if t == 2 {

@@ -298,6 +298,32 @@ pub fn calculate(ire: i32, c: [f64; 3]) -> i32 {
     ierror
 }
 
+/// A patch's totals as its getters give them (CONTACT's units).
+pub struct PatchTotals {
+    /// FN, FX, FS \[N\], MZ \[N mm\] (`cntc_getcontactforces`).
+    pub forces: [f64; 4],
+    /// PMAX \[N/mm2\] (`cntc_getmaximumpressure`).
+    pub pmax: f64,
+    /// The areas of contact, adhesion and slip \[mm2\]
+    /// (`cntc_getcontactpatchareas`).
+    pub areas: [f64; 3],
+}
+
+/// The totals of patch `icp` of element `ire`.
+pub unsafe fn patch_totals(ire: i32, icp: i32) -> PatchTotals {
+    let [mut fn_, mut fx, mut fs, mut mz] = [0.0; 4];
+    cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
+    let mut pmax = 0.0;
+    cntc_getmaximumpressure(&ire, &icp, &mut pmax);
+    let [mut carea, mut harea, mut sarea] = [0.0; 3];
+    cntc_getcontactpatchareas(&ire, &icp, &mut carea, &mut harea, &mut sarea);
+    PatchTotals {
+        forces: [fn_, fx, fs, mz],
+        pmax,
+        areas: [carea, harea, sarea],
+    }
+}
+
 /// Every value the getters of module 3 patch (ire, 1) give (the
 /// displacement differences too), as bits.
 pub fn patch_values(ire: i32) -> Vec<u64> {

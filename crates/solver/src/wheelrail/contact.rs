@@ -306,6 +306,8 @@ pub enum ExactTangential {
     /// (CONTACT's `T = 1, 2`; see [`TransientContact`]): the patch starts
     /// from the previous step's tractions, the history a session hands
     /// over in [`WarmStart::tractions`] (none: from the unloaded state).
+    /// Coulomb friction: the input's pair of coefficients or its friction
+    /// table ([`WheelRailInput::friction_table`]), not a slip-velocity law.
     Transient(TransientContact),
 }
 
@@ -1840,10 +1842,10 @@ fn validate_transient(t: TransientContact, input: &WheelRailInput) -> Result<(),
             "takes the pitch rate given, not a total longitudinal force",
         );
     }
-    if input.friction.slip_velocity_law.is_some() || input.friction_table.is_some() {
+    if input.friction.slip_velocity_law.is_some() {
         return refuse(
             "friction.law",
-            "takes Coulomb friction with one pair of coefficients",
+            "takes Coulomb friction (a pair of coefficients, or a table of them)",
         );
     }
     if input.settings.force_tolerance_of_wheel_load.is_some() {
