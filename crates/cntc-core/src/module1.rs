@@ -143,10 +143,11 @@
 //!   reports them).
 //! * Transient contact (T = 1 shifts, T = 2 transient rolling; the
 //!   solver's `ExactTangential::Transient`): each calculation is one time
-//!   step of one patch (another number of patches is refused, -40), the
-//!   element keeping the patch's tractions as the next step's history
-//!   (`TransientHistory`: P = 0 continues, P = 1 keeps the pressures only,
-//!   P = 2 starts from rest, P = 3 repeats the last step). The grid lies
+//!   step, the element keeping the patches' tractions as the next step's
+//!   history (`TransientHistory`: P = 0 continues, P = 1 keeps the
+//!   pressures only, P = 2 starts from rest, P = 3 repeats the last step;
+//!   after a steady calculation, T = 3 or 0, its single patch's tractions
+//!   are that history, CONTACT's transient start from steady rolling). The grid lies
 //!   on CONTACT's super-grid (fixed to the track with T = 1, moving with
 //!   the wheelset with T = 2, along the rail profile's arc length from its
 //!   origin laterally); the history moves onto it by whole elements. With
@@ -155,8 +156,9 @@
 //!   rolls DQREL elements a step, a whole number (`rolled_elements`;
 //!   larger steps with CONTACT's leading-edge correction, as CONTACT's
 //!   module 1 rolls them). MZ is taken about
-//!   the super-grid's origin, as CONTACT's. F = 0, M = 0, L = 0 and V = 0
-//!   only. Agreement with CONTACT's reference outputs: docs/cntc.md.
+//!   the super-grid's origin, as CONTACT's. F = 0, M = 0 and L = 0 only
+//!   (V = 1 taken). Agreement with CONTACT's reference outputs:
+//!   docs/cntc.md.
 //! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
 //!   (CONTACT's modified FASTSIM on each patch, the solver's
 //!   `ExactTangential::Fastsim`): the normal problem of each patch exact
@@ -457,22 +459,31 @@ pub struct WheelRail {
 
 /// The history of transient contact (T = 1, 2) of a module 1 element: the
 /// tractions of its patch after the last calculation and before it, on
-/// their grids (the solver's [`WarmStart::tractions`]).
+/// their grids (the solver's [`WarmStart::tractions`]). A steady-rolling
+/// calculation (T = 3, or T = 0's pressures) leaves its tractions too: a
+/// transient step after it starts from that steady state (CONTACT's
+/// transient start from steady rolling).
 #[derive(Default)]
 struct TransientHistory {
     /// After the last calculation (None: no contact, or none yet).
     last: Option<PatchTractions>,
     /// What the last calculation started from.
     before: Option<PatchTractions>,
+    /// The wheelset's track position S \[m\] of the last calculation when
+    /// it was not transient: its tractions lie on the lattice moving with
+    /// the wheelset (as transient rolling's), which a transient shift
+    /// (T = 1, whose lattice is fixed to the track) sees moved by S.
+    steady_at_s_m: Option<f64>,
 }
 
 impl TransientHistory {
-    /// The tractions a calculation with CONTACT's P digit `pvtime` starts
-    /// from: P = 0 the last step's, P = 1 its pressures only (the
-    /// tangential tractions zero), P = 2 none (a new sequence), P = 3
-    /// those the last calculation started from (a new iteration of it).
-    fn history(&self, pvtime: i32) -> Option<PatchTractions> {
-        match pvtime {
+    /// The tractions a calculation with CONTACT's P digit `pvtime` and T
+    /// digit `tang` starts from: P = 0 the last step's, P = 1 its
+    /// pressures only (the tangential tractions zero), P = 2 none (a new
+    /// sequence), P = 3 those the last calculation started from (a new
+    /// iteration of it).
+    fn history(&self, pvtime: i32, tang: i32) -> Option<PatchTractions> {
+        let mut t = match pvtime {
             0 => self.last.clone(),
             1 => self.last.clone().map(|mut t| {
                 t.traction_pa.iter_mut().for_each(|v| v.fill(0.0));
@@ -480,15 +491,28 @@ impl TransientHistory {
             }),
             3 => self.before.clone(),
             _ => None,
+        }?;
+        if let (Some(s), 1, 0 | 1) = (self.steady_at_s_m, tang, pvtime) {
+            t.lattice_origin_m[0] += s;
         }
+        Some(t)
     }
 
-    /// After a calculation that started from `start` and left
+    /// After a transient calculation that started from `start` and left
     /// `tractions`: they are the last step's, `start` what a following
     /// P = 3 (another iteration of the same step) starts from.
     fn advance(&mut self, start: Option<PatchTractions>, tractions: Option<PatchTractions>) {
         self.last = tractions;
         self.before = start;
+        self.steady_at_s_m = None;
+    }
+
+    /// After a calculation that was not transient, at the wheelset's track
+    /// position `s_m`, that left `tractions` (None: none to start from).
+    fn steady(&mut self, tractions: Option<PatchTractions>, s_m: f64) {
+        self.last = tractions;
+        self.before = None;
+        self.steady_at_s_m = Some(s_m);
     }
 }
 
@@ -1968,10 +1992,14 @@ impl WheelRail {
                     eps: self.config.solver.eps,
                 };
                 let (input, sol, vpitch) = problem.solve(pair, input, cache, &mut self.scratch)?;
+                // (Its tractions are not kept: a transient step after it
+                // starts from rest.)
+                self.transient.steady(None, input.position.track_s_m);
                 (input, sol, Some(vpitch))
             }
             _ if matches!(self.config.digits.tang, 1 | 2) => {
-                let start = self.transient.history(self.config.digits.pvtime);
+                let digits = &self.config.digits;
+                let start = self.transient.history(digits.pvtime, digits.tang);
                 let mut warm = WarmStart::default();
                 warm.tractions[side.index()] = start.clone();
                 let sol = solve_wheelset_warm(pair, &input, cache, &mut self.scratch, &mut warm)
@@ -1981,8 +2009,11 @@ impl WheelRail {
                 (input, sol, None)
             }
             _ => {
-                let sol = solve_wheelset(pair, &input, cache, &mut self.scratch)
+                let mut warm = WarmStart::default();
+                let sol = solve_wheelset_warm(pair, &input, cache, &mut self.scratch, &mut warm)
                     .map_err(CntcError::from_wheelrail)?;
+                let tractions = warm.tractions[side.index()].take();
+                self.transient.steady(tractions, input.position.track_s_m);
                 (input, sol, None)
             }
         };
