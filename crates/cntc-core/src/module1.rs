@@ -146,8 +146,8 @@
 //!   step, the element keeping the patches' tractions as the next step's
 //!   history (`TransientHistory`: P = 0 continues, P = 1 keeps the
 //!   pressures only, P = 2 starts from rest, P = 3 repeats the last step;
-//!   after a steady calculation, T = 3 or 0, its single patch's tractions
-//!   are that history, CONTACT's transient start from steady rolling). The grid lies
+//!   after a steady calculation, T = 3 or 0, its patches' tractions are
+//!   that history, CONTACT's transient start from steady rolling). The grid lies
 //!   on CONTACT's super-grid (fixed to the track with T = 1, moving with
 //!   the wheelset with T = 2, along the rail profile's arc length from its
 //!   origin laterally); the history moves onto it by whole elements. With

@@ -208,24 +208,23 @@ fn on_finer_elements_both_patches_agree_within_one_percent() {
 /// contact area and the area of adhesion \[mm2\].
 type Step = (f64, f64, f64, f64, f64);
 
-/// The transient sequence at Y_WS 6.46 mm on 0.1 mm elements with the T
-/// digit `tang` and friction by contact angle: the case read (from the
-/// unloaded state), then three steps (P = 0) of S += 0.1 mm (one element
+/// A sequence at Y_WS 6.46 mm on 0.1 mm elements: the case read with the
+/// T digit `first` and `friction` (a transient one from the unloaded
+/// state), then three steps (T = `tang`, P = 0) of S += 0.1 mm (one element
 /// rolled with T = 2; a shift of 0.1 mm with T = 1) at the same position.
 /// Each step's two patches against `want` (tread side first): FN within
 /// 0.5 %, FX and FS within 1 % of their size, the contact area within 2 %
-/// and the area of adhesion within 2 % of the contact area. The tread
-/// side's patch (-0.46 rad) takes 0.327 at its reference, the flange
-/// root's (-1.22 rad) 0.2.
-fn transient_by_angle(ire: i32, tang: u8, want: &[[Step; 2]; 4]) {
+/// and the area of adhesion within 2 % of the contact area.
+fn sequence(ire: i32, (first, tang): (u8, u8), friction: Friction, want: &[[Step; 2]; 4]) {
     let dir = InpDir::new(&format!("two-point-{ire}"));
-    let path = dir.write("case.inp", &case(6.46, 0.1, tang, Friction::ByAngle));
+    let path = dir.write("case.inp", &case(6.46, 0.1, first, friction));
     unsafe {
         wheelrail_element(ire, &[]);
         assert_eq!(read_inp(ire, flags::INP_MODUL1, &path), 0);
         for (k, want) in want.iter().enumerate() {
             if k > 0 {
-                set_flags(ire, -1, &[(flags::IC_PVTIME, 0)]);
+                let t = i32::from(tang);
+                set_flags(ire, -1, &[(flags::IC_TANG, t), (flags::IC_PVTIME, 0)]);
                 let pos = [0.1 * k as f64, 6.46, Z_WS, 0.0, YAW, 0.0];
                 cntc_setwheelsetposition(&ire, &1, &6, pos.as_ptr());
                 let vel = [0.1, 0.0, 0.0, 0.0, 0.0, VPITCH];
@@ -247,6 +246,13 @@ fn transient_by_angle(ire: i32, tang: u8, want: &[[Step; 2]; 4]) {
             }
         }
     }
+}
+
+/// [`sequence`] of transient steps with friction by contact angle: the
+/// tread side's patch (-0.46 rad) takes 0.327 at its reference, the
+/// flange root's (-1.22 rad) 0.2.
+fn transient_by_angle(ire: i32, tang: u8, want: &[[Step; 2]; 4]) {
+    sequence(ire, (tang, tang), Friction::ByAngle, want);
 }
 
 /// T = 2, one element rolled a step.
@@ -295,4 +301,55 @@ fn transient_shifts_with_friction_by_contact_angle() {
         ],
     ];
     transient_by_angle(122, 1, &want);
+}
+
+/// Steady rolling of the two patches (T = 3), then transient rolling (T =
+/// 2) from that state: the two patches' tractions carried together. Both
+/// patches slide (the yaw's creepage); a transient step from rest gives
+/// the tread patch FX -326 N, not -783 N (CONTACT's library, T = 1).
+#[test]
+fn transient_rolling_starts_from_the_steady_state_of_two_patches() {
+    let want = [
+        [
+            (8401.61, -783.647, -2394.99, 14.150, 0.0),
+            (22332.8, -2319.85, -6278.0, 15.690, 0.0),
+        ],
+        [
+            (8402.42, -782.646, -2395.59, 14.160, 0.0),
+            (22321.6, -2318.4, -6275.03, 15.870, 0.0),
+        ],
+        [
+            (8402.42, -782.939, -2395.49, 14.160, 0.0),
+            (22321.6, -2318.49, -6274.99, 15.870, 0.0),
+        ],
+        [
+            (8402.42, -783.158, -2395.42, 14.160, 0.0),
+            (22321.6, -2318.58, -6274.94, 15.870, 0.0),
+        ],
+    ];
+    sequence(123, (3, 2), Friction::Coulomb, &want);
+}
+
+/// The same with transient shifts (T = 1) after the steady case.
+#[test]
+fn transient_shifts_start_from_the_steady_state_of_two_patches() {
+    let want = [
+        [
+            (8401.61, -783.647, -2394.99, 14.150, 0.0),
+            (22332.8, -2319.85, -6278.0, 15.690, 0.0),
+        ],
+        [
+            (8402.43, -782.777, -2395.54, 14.160, 0.0),
+            (22321.6, -2318.83, -6274.87, 15.860, 0.0),
+        ],
+        [
+            (8402.44, -783.162, -2395.42, 14.160, 0.0),
+            (22321.6, -2319.18, -6274.73, 15.860, 0.0),
+        ],
+        [
+            (8402.45, -783.446, -2395.33, 14.160, 0.0),
+            (22321.6, -2319.44, -6274.61, 15.860, 0.0),
+        ],
+    ];
+    sequence(124, (3, 1), Friction::Coulomb, &want);
 }

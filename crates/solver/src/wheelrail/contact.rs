@@ -1937,6 +1937,11 @@ pub struct PatchTractions {
     /// on the rail when the reference point moves along the profile (on a
     /// flat tread it jumps by millimetres between time steps).
     pub lattice_origin_m: [f64; 2],
+    /// How many patches they hold: 1, or a wheel's several patches on
+    /// one grid of the lattice ([`Self::lattice_origin_m`]'s origin), the
+    /// history of a transient step. A warm start of steady rolling starts
+    /// a patch from one patch's tractions only.
+    pub patch_count: usize,
 }
 
 impl PatchTractions {
@@ -2808,7 +2813,8 @@ fn solve_wheel(
         let mut centres = Vec::new();
         // Transient contact: the grid always covers the last contact (of
         // each patch, the parts across it, [`transient_grid`]).
-        let last = warm_tractions.filter(|_| transient || (from_last && intervals.len() == 1));
+        let last = warm_tractions
+            .filter(|t| transient || (from_last && intervals.len() == 1 && t.patch_count == 1));
         let alone = intervals.len() == 1;
         for &iv in &intervals {
             let centre = centred
@@ -2908,6 +2914,8 @@ fn solve_wheel(
             Some(t) => (Some(t), None),
             None => (warm_tractions, earlier_tractions),
         };
+        // (Several patches' tractions start no patch of steady rolling.)
+        let warm = warm.filter(|t| t.patch_count == 1);
         // Tractions of the other rolling direction start nothing (a
         // session that reverses starts cold).
         let earlier =
@@ -2972,7 +2980,7 @@ fn solve_wheel(
                     reference_passes += 1;
                     reference_delta = delta;
                     start = normal_per_vertical(&patches, input).or(start);
-                    pass_tractions = carried_tractions(&patches, false);
+                    pass_tractions = carried_tractions(&patches);
                     // The exact patch's solver kept for its buffers.
                     for p in patches {
                         p.keep_solver(&mut spare);
@@ -3038,7 +3046,7 @@ fn solve_wheel(
                     }
                 }
                 let ratio = normal_per_vertical(&patches, input);
-                let carried = carried_tractions(&patches, transient);
+                let carried = carried_tractions(&patches);
                 let wheel = finish(pair, side, gmin, delta, iterations, patches, &mut spare);
                 *scratch.solver = spare;
                 return Ok((wheel, ratio, carried));
@@ -3143,21 +3151,21 @@ fn centres_moved(
 }
 
 /// The tractions a wheel's exact patches hand to the next time step: a
-/// single patch's on its grid; in transient contact (`transient`) those of
-/// all its patches on one grid of their common lattice
-/// ([`lattice_union`]), CONTACT's super-grid. None otherwise (several
-/// patches out of transient contact, or one that is not exact).
-fn carried_tractions(patches: &[PatchWork], transient: bool) -> Option<PatchTractions> {
+/// single patch's on its grid; those of several patches on one grid of
+/// their common lattice ([`lattice_union`], CONTACT's super-grid), the
+/// history of a transient step (after steady rolling too: CONTACT's
+/// transient start from a steady state). None where a patch is not
+/// exact.
+fn carried_tractions(patches: &[PatchWork]) -> Option<PatchTractions> {
     match patches {
         [p] => patch_tractions(p),
-        _ if transient => {
+        _ => {
             let parts = patches
                 .iter()
                 .map(patch_tractions)
                 .collect::<Option<Vec<_>>>()?;
             lattice_union(&parts)
         }
-        _ => None,
     }
 }
 
@@ -3181,6 +3189,7 @@ fn patch_tractions(p: &PatchWork) -> Option<PatchTractions> {
         traction_pa: [f.traction_x_pa.clone(), f.traction_y_pa.clone()],
         slip_velocity_m_per_s,
         lattice_origin_m: p.lattice_origin_m.unwrap_or([0.0; 2]),
+        patch_count: 1,
     })
 }
 
@@ -3237,6 +3246,7 @@ fn lattice_union(parts: &[PatchTractions]) -> Option<PatchTractions> {
         traction_pa: [px, py],
         slip_velocity_m_per_s: Vec::new(),
         lattice_origin_m: [0.0; 2],
+        patch_count: parts.len(),
     })
 }
 
@@ -5643,6 +5653,7 @@ mod tests {
             ],
             slip_velocity_m_per_s: Vec::new(),
             lattice_origin_m: [0.0; 2],
+            patch_count: 1,
         };
         let [pn, px, py] = t.on(&old, [0.0; 2]).unwrap();
         assert_eq!(
@@ -5690,6 +5701,7 @@ mod tests {
             ],
             slip_velocity_m_per_s: Vec::new(),
             lattice_origin_m: [5.0 * e, 3.0 * e],
+            patch_count: 1,
         };
         // The patch moved 2 elements along x and 1 back along s on the
         // lattice, its grid 5 x 4 with its corner elsewhere: lattice
@@ -5730,6 +5742,7 @@ mod tests {
             pressure_pa: pressure,
             slip_velocity_m_per_s: Vec::new(),
             lattice_origin_m: origin,
+            patch_count: 1,
         };
         let a = patch([3.0 * e, 2.0 * e], (1..=16).map(f64::from).collect());
         let b = patch([2.0 * e, 9.0 * e], (0..16).map(f64::from).collect());
