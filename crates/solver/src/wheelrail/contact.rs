@@ -132,10 +132,11 @@ use crate::core::strip::strip_theory;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::grid_sizing::{self, solve_sized, GridSizing};
 use crate::wheelrail::search::{
-    gap_intervals, interpenetration_centre, patch_geometry_about, rigid_position_from,
-    split_intervals, sub_patches, InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry,
-    ReferencePoint, RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, SubPatches,
-    VerticalGap, WheelScratch, WheelSurface,
+    gap_intervals, interpenetration_box, interpenetration_centre, patch_geometry_about,
+    rigid_position_from, split_intervals, sub_patches, turn_reference_angles,
+    InterpenetrationCentre, LateralSample, LocusPoint, PatchGeometry, ReferencePoint,
+    RigidPosition, RollStart, SearchScratch, SearchSettings, SidePose, SubPatches, VerticalGap,
+    WheelScratch, WheelSurface,
 };
 use crate::wheelrail::slices::{RailSlices, WheelSlices, FACING_HALF_ANGLE_RAD};
 use crate::wheelrail::temperature::{self, add_temperatures, PatchTemperatures, WheelRailThermal};
@@ -2808,13 +2809,12 @@ fn solve_wheel(
         // each patch, the parts across it, [`transient_grid`]).
         let last = warm_tractions.filter(|_| transient || (from_last && intervals.len() == 1));
         let alone = intervals.len() == 1;
-        for &iv in &intervals {
-            let centre = centred
-                .then(|| {
-                    let rail = pair.rail(side).samples();
-                    interpenetration_centre(rail, locus, gap, (iv.0, iv.1), reference_delta)
-                })
-                .flatten();
+        let here = if centred {
+            patch_centres(pair, side, input, locus, gap, &intervals, reference_delta)
+        } else {
+            vec![None; intervals.len()]
+        };
+        for (&iv, &centre) in intervals.iter().zip(&here) {
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
             // With the centres: the approach the wheel is sampled and its
@@ -2965,7 +2965,7 @@ fn solve_wheel(
                 if centred
                     && reference_passes < MAX_REFERENCE_PASSES
                     && ((delta - reference_delta).abs() > tol
-                        || centres_moved(pair.rail(side), locus, gap, &centres, delta, tol))
+                        || centres_moved(pair, side, input, locus, gap, &centres, delta, tol))
                 {
                     reference_passes += 1;
                     reference_delta = delta;
@@ -3112,22 +3112,62 @@ fn interpenetration_centroid(grid: &Grid, gap_m: &[f64], dn: f64) -> Option<[f64
     (w > 0.0).then(|| [wx / w, ws / w])
 }
 
+/// The centres of the interpenetration of the wheel's patches
+/// (`intervals`) at the vertical approach `delta` \[m\]
+/// ([`interpenetration_centre`]), their contact angles turned towards
+/// their neighbours' as CONTACT turns them where the search settings ask
+/// for it ([`turn_reference_angles`]). None for a patch that does not
+/// interpenetrate.
+fn patch_centres(
+    pair: &WheelRailPair,
+    side: Side,
+    input: &WheelRailInput,
+    locus: &[LocusPoint],
+    gap: &VerticalGap,
+    intervals: &[(usize, usize, usize)],
+    delta: f64,
+) -> Vec<Option<InterpenetrationCentre>> {
+    let rail = pair.rail(side).samples();
+    let centre =
+        |iv: &(usize, usize, usize)| interpenetration_centre(rail, locus, gap, (iv.0, iv.1), delta);
+    let search = &input.settings.search;
+    let Some(turning) = search.angle_turning.filter(|_| intervals.len() > 1) else {
+        return intervals.iter().map(centre).collect();
+    };
+    let nominal = pair.wheelset().nominal_radius_m;
+    let mut patches: Vec<_> = intervals
+        .iter()
+        .map(|iv| {
+            let boxed = interpenetration_box(locus, gap, (iv.0, iv.1), delta, nominal);
+            (centre(iv), boxed)
+        })
+        .collect();
+    turn_reference_angles(&mut patches, search.merge_distance_m, turning);
+    patches.into_iter().map(|(c, _)| c).collect()
+}
+
 /// Whether the centres of the interpenetration of `centres`' intervals at
-/// the approach `delta` \[m\] lie farther from those used (`centres`, per
-/// patch: its interval and centre, None where it had none) than
-/// `tol` \[m\] (or their contact angles by more than
+/// the approach `delta` \[m\] ([`patch_centres`]) lie farther from those
+/// used (`centres`, per patch: its interval and centre, None where it had
+/// none) than `tol` \[m\] (or their contact angles by more than
 /// [`REFERENCE_ANGLE_TOLERANCE_RAD`]).
+#[allow(clippy::too_many_arguments)]
 fn centres_moved(
-    rail: &PlacedRail,
+    pair: &WheelRailPair,
+    side: Side,
+    input: &WheelRailInput,
     locus: &[LocusPoint],
     gap: &VerticalGap,
     centres: &[PatchCentre],
     delta: f64,
     tol: f64,
 ) -> bool {
-    centres.iter().any(|&(iv, used)| {
-        let now = interpenetration_centre(rail.samples(), locus, gap, (iv.0, iv.1), delta);
-        match (used, now) {
+    let intervals: Vec<_> = centres.iter().map(|&(iv, _)| iv).collect();
+    let now = patch_centres(pair, side, input, locus, gap, &intervals, delta);
+    centres
+        .iter()
+        .zip(now)
+        .any(|(&(_, used), now)| match (used, now) {
             (Some(a), Some(b)) => {
                 (a.q_m - b.q_m).abs() > tol
                     || (a.x_m - b.x_m).abs() > tol
@@ -3136,8 +3176,7 @@ fn centres_moved(
             }
             (None, None) => false,
             _ => true,
-        }
-    })
+        })
 }
 
 /// The tractions a wheel's exact patches hand to the next time step: a
