@@ -733,7 +733,9 @@ pub enum ReferencePoint {
     /// iteration is repeated from the approach found until the centres
     /// and that approach stay (within a thousandth of an element, and
     /// 1e-6 rad), at most four more times, usually once (the first places
-    /// them at the estimated approach, or at the given one).
+    /// them at the estimated approach, or at the given one); from the
+    /// third placement on at the secant step's approach where the answers
+    /// converge slowly.
     InterpenetrationCentre,
 }
 
