@@ -2775,7 +2775,11 @@ fn solve_wheel(
             *scratch.solver = spare;
             return Ok((wheel, None, None));
         }
-        WheelLoad::Approach(d) => gmin + d,
+        // The gap below `d` interpenetrates (the solve's level): gmin + d
+        // lay gmin too deep where the other wheel fixed the rigid height
+        // (t1_merge_cp's right wheel: gmin 2.4 mm, potential contact areas
+        // of 205 by 77 mm for a 15 by 20 mm patch).
+        WheelLoad::Approach(d) => d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_warm"),
     };
     // With [`ReferencePoint::InterpenetrationCentre`], the vertical

@@ -1022,11 +1022,13 @@ pub fn interpenetration_box(
     delta_m: f64,
     nominal_radius_m: f64,
 ) -> Option<RegionBox> {
-    let k1 = k1.min(gap.len().checked_sub(1)?);
-    runs_below(gap, k0, k1 + 1, delta_m)
+    let last = gap.len().checked_sub(1)?;
+    runs_below(gap, k0, k1.min(last) + 1, delta_m)
         .map(|(start, end, _)| {
+            // Its ends interpolated towards the samples beyond them,
+            // inside the patch's interval or not.
             let level = delta_m;
-            region_box(locus, gap, (k0, k1), (start, end), level, nominal_radius_m)
+            region_box(locus, gap, (0, last), (start, end), level, nominal_radius_m)
         })
         .reduce(|mut a, b| {
             a.union(&b);
