@@ -434,9 +434,9 @@ fn a_transient_input_file_reads_as_its_calls() {
 // ---------------------------------------------------------------------
 // Several patches per wheel: CONTACT's t1_merge_cp and t1_split_cp.
 
-/// The first case of `testbank/examples_trans/t1_merge_cp.inp` (and
-/// t1_split_cp.inp, with `z_ws` and `p_digit`'s differences: the I digit
-/// 0 or 1, which start the first solve from nothing either way) on elements
+/// The first case of `testbank/examples_trans/t1_merge_cp.inp` (and of
+/// t1_split_cp.inp, which differs in Z_WS and in the I digit, 0 or 1, which
+/// start the first solve from nothing either way) on elements
 /// of `dx_mm` with one change: V = 0 with FSTAT = FKIN = 0.35 for its V = 1
 /// table (friction by contact angle: 0.2 at -30 deg and below, 0.35 at -20
 /// deg and above; the tread patches lie above it, DELTCP -0.196, -0.213,
@@ -448,8 +448,8 @@ fn t1_case(z_ws: f64, dx_mm: f64) -> String {
 }
 
 /// [`t1_case`] with the N digit `n`: N = 1 takes `z_or_fz` as the
-/// vertical force FZ \[N\] (t1_force_cp.inp's first case, V = 0 as
-/// there).
+/// vertical force FZ \[N\] (t1_force_cp.inp's first case, with V = 0 and
+/// 0.35 as [`t1_case`]).
 fn t1_case_as(z_or_fz: f64, dx_mm: f64, n: u8) -> String {
     format!(
         "% t1_merge_cp.inp / t1_split_cp.inp with V = 0\n\
