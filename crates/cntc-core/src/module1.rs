@@ -132,8 +132,11 @@
 //!   regions between D_COMB and D_SEP apart are CONTACT's blended patch,
 //!   sub-patches of one grid whose pressures act on each other reduced by
 //!   ((D_SEP - d)/(D_SEP - D_COMB))^0.8 in the normal problem
-//!   (`SearchSettings::combine_distance_m`); A_SEP, D_TURN, G_MISS are
-//!   stored without effect (the solver does not turn reference angles).
+//!   (`SearchSettings::combine_distance_m`); neighbouring patches
+//!   between D_SEP and D_TURN apart (default 2 D_SEP - D_COMB) whose
+//!   contact angles differ by at most A_SEP turn their angles towards each
+//!   other as CONTACT's do (`SearchSettings::angle_turning`); G_MISS is
+//!   stored without effect.
 //! * Friction: L = 0 and the falling laws L = 2-5 (exact model), V = 0,
 //!   and V = 1 (by contact angle, CONTACT's angles of the right-hand side,
 //!   negative at the gauge face) as the solver's friction table.
@@ -199,7 +202,7 @@ use railcontact_solver::core::layer::LayerFields;
 use railcontact_solver::core::problem::{Friction, SolverSettings};
 use railcontact_solver::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use railcontact_solver::core::solution::{ElementFields, ElementState};
-use railcontact_solver::wheelrail::search::{ReferencePoint, SearchSettings};
+use railcontact_solver::wheelrail::search::{AngleTurning, ReferencePoint, SearchSettings};
 use railcontact_solver::wheelrail::slices::{
     parse_slices_file_along, parse_slices_within, parse_wheel_slices_within, SliceAxis,
     SlicesLimits,
@@ -351,12 +354,16 @@ struct WheelsetDims {
 struct Discretisation {
     dx_m: f64,
     ds_m: f64,
-    /// A_SEP \[rad\] (stored).
+    /// A_SEP \[rad\]: neighbouring patches whose contact angles differ
+    /// by more do not turn them (D_TURN).
     angle_sep_rad: f64,
     /// D_SEP \[m\].
     dist_sep_m: f64,
-    /// D_COMB \[m\] (stored).
+    /// D_COMB \[m\].
     dist_comb_m: f64,
+    /// D_TURN \[m\]: neighbouring patches between D_SEP and D_TURN apart
+    /// turn their contact angles towards each other.
+    dist_turn_m: f64,
 }
 
 /// What a calculation leaves besides the outcomes: the frames of the
@@ -1524,7 +1531,7 @@ impl WheelRail {
             angle_sep_rad: if ipotcn == -1 {
                 p[2].max(0.0)
             } else {
-                old.map_or(std::f64::consts::FRAC_PI_2, |d| d.angle_sep_rad)
+                old.map_or(std::f64::consts::PI, |d| d.angle_sep_rad)
             },
             dist_sep_m: if ipotcn == -1 {
                 u.len(p[3].max(0.0))
@@ -1535,6 +1542,12 @@ impl WheelRail {
                 u.len(p[4].max(0.0))
             } else {
                 old.map_or(4.0 * MM, |d| d.dist_comb_m)
+            },
+            dist_turn_m: match (ipotcn, p.get(5)) {
+                (-1, Some(&t)) => u.len(t.max(0.0)),
+                // CONTACT's default: 2 D_SEP - D_COMB.
+                (-1, None) => u.len(2.0 * p[3].max(0.0) - p[4].max(0.0)),
+                _ => old.map_or(12.0 * MM, |d| d.dist_turn_m),
             },
         };
         self.discretisation = Some(d);
@@ -2280,6 +2293,11 @@ impl WheelRail {
                     merge_distance_m: d.dist_sep_m,
                     // D_COMB < d <= D_SEP: CONTACT's blended patch.
                     combine_distance_m: Some(d.dist_comb_m),
+                    // CONTACT's turning of neighbouring patches' angles.
+                    angle_turning: Some(AngleTurning {
+                        distance_m: d.dist_turn_m,
+                        max_angle_difference_rad: d.angle_sep_rad,
+                    }),
                     // CONTACT's reference point: the weighted centre of
                     // the interpenetration, its mean contact angle.
                     reference_point: ReferencePoint::InterpenetrationCentre,

@@ -434,43 +434,40 @@ fn a_transient_input_file_reads_as_its_calls() {
 // ---------------------------------------------------------------------
 // Several patches per wheel: CONTACT's t1_merge_cp and t1_split_cp.
 
-/// One patch of a `.ref_out`: YCP(TR) \[mm\] (which patch), FN, FX, FS
-/// \[N\], PMAX \[N/mm2\], NCON.
-type PatchReference = (f64, f64, f64, f64, f64, f64);
+/// The first case of `testbank/examples_trans/t1_merge_cp.inp` (and of
+/// t1_split_cp.inp, which differs in Z_WS and in the I digit, 0 or 1, which
+/// start the first solve from nothing either way) on elements
+/// of `dx_mm` with one change: V = 0 with FSTAT = FKIN = 0.35 for its V = 1
+/// table (friction by contact angle: 0.2 at -30 deg and below, 0.35 at -20
+/// deg and above; the tread patches lie above it, DELTCP -0.196, -0.213,
+/// -0.259 rad, the flange patch below, -1.270 rad). The places and
+/// angles of the patches do not depend on the friction; their forces are
+/// compared with CONTACT's library run on this same input.
+fn t1_case(z_ws: f64, dx_mm: f64) -> String {
+    t1_case_as(z_ws, dx_mm, 0)
+}
 
-/// The first case of `testbank/examples_trans/t1_merge_cp.inp` (and
-/// t1_split_cp.inp, with `z_ws` and `p_digit`'s differences: the I digit
-/// 0 or 1, which start the first solve from nothing either way) with one
-/// change: V = 0 with FSTAT = FKIN = `mu` for its V = 1 table (friction by
-/// contact angle: 0.2 at -30 deg and below, 0.35 at -20 deg and above).
-/// Every patch of these cases lies outside the table's slope (DELTCP
-/// -0.196, -0.213, -0.259 rad on the tread, 0.35; -1.270 rad on the flange,
-/// 0.2: the FSTAT the `.ref_out`s print per patch), the patches are solved
-/// apart (N = 0, position given; CONTACT does not couple them), and the
-/// tangential tractions do not act on the pressures (equal materials): run
-/// once with each coefficient, the patches of that coefficient have
-/// CONTACT's answer. CONTACT's library shows it: this file and these steps
-/// with 0.35 give t1_merge_cp.ref_out's tread patches (FN 7.923e4,
-/// 4.797e4, FX 1.934e4, 6526, then 1.274e5, 2.541e4 merged), with 0.2 its
-/// flange patch (FX -698.7, then -696.1), and t1_split_cp's likewise.
-fn t1_case(z_ws: f64, mu: f64) -> String {
+/// [`t1_case`] with the N digit `n`: N = 1 takes `z_or_fz` as the
+/// vertical force FZ \[N\] (t1_force_cp.inp's first case, with V = 0 and
+/// 0.35 as [`t1_case`]).
+fn t1_case_as(z_or_fz: f64, dx_mm: f64, n: u8) -> String {
     format!(
         "% t1_merge_cp.inp / t1_split_cp.inp with V = 0\n\
          \n  1  MODULE\n\
-         \x20 1201000        C-P-B-T-N-F-S\n\
+         \x20 1201{n}00        C-P-B-T-N-F-S\n\
          \x20 0022033        V-L-D-C-M-Z-E\n\
          \x20 0001321        H-G-I-A-O-W-R\n\
          \x20  999   100   30    1    1.0E-06              MAXGS , MAXIN , MAXNR , MAXOUT, EPS\n\
-         \x20 {mu}  {mu}                                      FSTAT, FKIN\n\
+         \x20 0.35  0.35                                      FSTAT, FKIN\n\
          \x20 0.2800      0.2800      0.8200E+05  0.8200E+05  POISS 1,2,  GG 1,2\n\
-         \x20 0.4000      0.4000       1.000      90d      6.0   3.0  DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n\
+         \x20 {dx_mm}  {dx_mm}  1.000   90d   6.0   3.0  DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n\
          \x20 15.8750      0    1435.10   0.000               GAUGHT, GAUGSQ, GAUGWD, CANT\n\
          \x20'{}'   0  1.0   0.0  RFNAME, MIRRORY, SCALE, SMOOTH\n\
          \x20  0.00000       0.00000       0.00000          % DY, DZ, DROLLR\n\
          \x20  0.00000       0.00000       0.00000            VY, VZ, VROLL\n\
          \x20  1347.40       0.00000       444.000            FBDIST, FBPOS, NOMRAD\n\
          \x20'{}'    0  1.0   0.0  WFNAME, MIRRORY, SCALE, SMOOTH\n\
-         \x20 0.0     14.74   {z_ws}   -0.0013   0.0050      0.0       S, Y, Z, ROLL, YAW, PITCH\n\
+         \x20 0.0     14.74   {z_or_fz}   -0.0013   0.0050      0.0       S, Y, Z, ROLL, YAW, PITCH\n\
          \x20 0.400     0.0   0.0      0.0      0.0    -0.00086667    VS, VY, VZ VROLL, VYAW, VPITCH\n\
          \n  0  MODULE\n",
         profile("site_b_hr.prr"),
@@ -478,39 +475,25 @@ fn t1_case(z_ws: f64, mu: f64) -> String {
     )
 }
 
-/// All patches of `ire` as [`PatchReference`]s (NCON from the contact
-/// area over DX DS = 0.16 mm2).
-unsafe fn patches_of(ire: i32) -> Vec<PatchReference> {
-    let mut n = 0;
-    cntc_getnumcontactpatches(&ire, &mut n);
-    (1..=n)
-        .map(|icp| {
-            let (fn_, fx, fs, _, pmax, ncon, _, _) = patch_of(ire, icp, 0.16);
-            let mut loc = [0.0; 3];
-            cntc_getcontactlocation(&ire, &icp, &3, loc.as_mut_ptr());
-            (loc[1], fn_, fx, fs, pmax, ncon)
-        })
-        .collect()
-}
+/// One patch of ours: XCP(TR), YCP(TR) \[mm\], DELTCP(TR) \[rad\], FN, FX,
+/// FS \[N\], PMAX \[N/mm2\].
+type T1Patch = (f64, f64, f64, f64, f64, f64, f64);
 
-/// Runs the two steps of a t1 case with friction `mu` (the first from
+/// Runs the two steps of a t1 case on elements of `dx_mm` (the first from
 /// [`t1_case`], the second P = 0 at S = 0.4 mm, Z_WS `z_second`, shifts VS
-/// = 0.004 mm and VPITCH = -8.6667e-6 rad, as the files' second case) and
-/// compares the patches of that friction with `want` (per step, per
-/// patch: its coefficient and reference; a patch is ours that lies within
-/// 2 mm of YCP(TR)). Prints ours.
+/// = 0.004 mm and VPITCH = -8.6667e-6 rad, as the files' second case): per
+/// step, the patches in the library's order. Prints them.
 unsafe fn t1_steps(
     ire: i32,
     name: &str,
     [z_first, z_second]: [f64; 2],
-    mu: f64,
-    want: [&[(f64, PatchReference)]; 2],
-) {
-    let dir = InpDir::new(name);
-    let path = dir.write(&format!("{name}.inp"), &t1_case(z_first, mu));
+    dx_mm: f64,
+) -> [Vec<T1Patch>; 2] {
+    let dir = InpDir::new(&format!("{name}-{ire}"));
+    let path = dir.write(&format!("{name}.inp"), &t1_case(z_first, dx_mm));
     wheelrail_element(ire, &[]);
     assert_eq!(read_inp(ire, flags::INP_MODUL1, &path), 0);
-    for (step, want) in want.iter().enumerate() {
+    [0, 1].map(|step| {
         if step == 1 {
             set_flags(ire, -1, &[(flags::IC_PVTIME, 0)]);
             let pos = [0.4, 14.74, z_second, -0.0013, 0.005, 0.0];
@@ -520,23 +503,87 @@ unsafe fn t1_steps(
         }
         let mut ierror = -1;
         cntc_calculate1(&ire, &mut ierror);
-        assert_eq!(ierror, 0, "{name} step {}", step + 1);
-        let ours = patches_of(ire);
-        println!("{name} mu {mu} step {}: {ours:?}", step + 1);
-        for &(m, r) in want.iter().filter(|(m, _)| *m == mu) {
-            let p = ours
-                .iter()
-                .find(|p| (p.0 - r.0).abs() < 2.0)
-                .unwrap_or_else(|| panic!("{name} step {}: no patch at y {}", step + 1, r.0));
-            let what = format!("{name} mu {m} step {} patch at y {}", step + 1, r.0);
-            // FN, FX, FS within 1 % of FN (FS is a few % of FN), PMAX 1 %.
-            for (k, (a, b)) in [(p.1, r.1), (p.2, r.2), (p.3, r.3)].into_iter().enumerate() {
-                close(&format!("{what} force {k}"), a, b, 0.01 * r.1);
-            }
-            close(&format!("{what} PMAX"), p.4, r.4, 0.01 * r.4);
-            close(&format!("{what} NCON"), p.5, r.5, 0.02 * r.5);
+        assert_eq!(ierror, 0, "{name} DX {dx_mm} step {}", step + 1);
+        let patches = t1_patches(ire);
+        println!("{name} DX {dx_mm} step {}: {patches:?}", step + 1);
+        patches
+    })
+}
+
+/// The patches of `ire` in the library's order.
+unsafe fn t1_patches(ire: i32) -> Vec<T1Patch> {
+    let mut n = 0;
+    cntc_getnumcontactpatches(&ire, &mut n);
+    (1..=n)
+        .map(|icp| {
+            let (fn_, fx, fs, _, pmax, ..) = patch_of(ire, icp, 1.0);
+            let mut loc = [0.0; 4];
+            cntc_getcontactlocation(&ire, &icp, &4, loc.as_mut_ptr());
+            (loc[0], loc[1], loc[3], fn_, fx, fs, pmax)
+        })
+        .collect()
+}
+
+/// Per step, per patch of a t1 `.ref_out` (CONTACT's 0.4 mm elements):
+/// its "CONTACT REFERENCE LOCATION" XCP(TR), YCP(TR) \[mm\] and DELTCP(TR)
+/// \[rad\].
+type T1Places<'a> = [&'a [(f64, f64, f64)]; 2];
+
+/// Compares the patches of `ours` (0.4 mm) with a `.ref_out`'s: as many
+/// per step, each where CONTACT puts it (XCP, YCP within 0.01 mm; CONTACT
+/// prints 0.1 um) at its contact angle (within 1 mrad; it prints 0.1
+/// mrad). The angles are CONTACT's turned ones: the two tread patches of
+/// t1_merge_cp's first step, their facing ends 6.4 mm apart, between D_SEP
+/// (6 mm) and D_TURN (9 mm), have weighted mean angles of -0.066 and
+/// -0.579 rad and are turned to -0.196 and -0.259 rad.
+fn compare_places(name: &str, ours: &[Vec<T1Patch>; 2], want: T1Places) {
+    per_patch(name, ours, &want, |what, p, r| {
+        close(&what("XCP"), p.0, r.0, 0.01);
+        close(&what("YCP"), p.1, r.1, 0.01);
+        close(&what("DELTCP"), p.2, r.2, 1e-3);
+    });
+}
+
+/// Asserts that `ours` has as many patches per step as `want` and calls
+/// `check` on each with its entry of `want` and the name of a field of it.
+fn per_patch<W>(
+    name: &str,
+    ours: &[Vec<T1Patch>],
+    want: &[&[W]],
+    check: impl Fn(&dyn Fn(&str) -> String, &T1Patch, &W),
+) {
+    for (step, (o, w)) in ours.iter().zip(want).enumerate() {
+        let n = step + 1;
+        assert_eq!(o.len(), w.len(), "{name} step {n}: number of patches");
+        for (k, (p, r)) in o.iter().zip(w.iter()).enumerate() {
+            check(
+                &|field| format!("{name} step {n} patch {} {field}", k + 1),
+                p,
+                r,
+            );
         }
     }
+}
+
+/// Per step, per patch, CONTACT's library on 0.1 mm elements: YCP(TR)
+/// \[mm\] (which patch), FN, FX, FS (None: not compared, see the tests)
+/// \[N\], PMAX \[N/mm2\].
+type T1Library<'a> = [&'a [T1LibraryPatch]; 2];
+
+/// Compares `ours` with CONTACT's library patch by patch: YCP within
+/// 0.01 mm, FN, FX, FS each within 1 % of itself (FX and FS carry the
+/// step's history: a second step started afresh moves t1_merge_cp's merged
+/// patch's FX by 1.5 %), PMAX within 1 %.
+fn compare_library(name: &str, ours: &[Vec<T1Patch>], want: &[&[T1LibraryPatch]]) {
+    per_patch(name, ours, want, |what, p, &(y, fn_, fxs, pmax)| {
+        close(&what("YCP"), p.1, y, 0.01);
+        close(&what("FN"), p.3, fn_, 0.01 * fn_);
+        if let Some([fx, fs]) = fxs {
+            close(&what("FX"), p.4, fx, 0.01 * fx.abs());
+            close(&what("FS"), p.5, fs, 0.01 * fs.abs());
+        }
+        close(&what("PMAX"), p.6, pmax, 0.01 * pmax);
+    });
 }
 
 /// t1_merge_cp.ref_out: Z_WS 1.2110 mm gives three patches (two on the
@@ -544,39 +591,156 @@ unsafe fn t1_steps(
 /// mm); 1 micrometre lower (1.2120) the two tread patches are one (CONTACT's
 /// "PATCH 1 (PREV 1, 2)"), which takes both their tractions as its
 /// history; the flange patch keeps its own ("PATCH 2 (PREV 3)").
+///
+/// The forces on CONTACT's 0.4 mm elements are its discretisation's: its
+/// library on this input moves by up to 2.2 % from 0.4 to 0.1 mm (FN of
+/// the tread patch at 723.39 mm 47969, 47410.6, 47280.1 N on 0.4, 0.2, 0.1
+/// mm; of the flange patch 4394.2, 4473.8, 4493.7 N; its PMAX 633.6,
+/// 620.4, 627.2 N/mm2) where ours moves by 0.4 % (47263.4, 47252.3,
+/// 47244.9 N; 4484.6, 4502.0, 4499.8 N; PMAX 670.2, 627.4, 626.2 on the
+/// flange's few elements): the forces are compared on 0.1 mm with
+/// CONTACT's library there (`cntc_readinpfile` of [`t1_case`] with DX =
+/// DS = 0.1, these steps, then `cntc_getcontactforces`,
+/// `cntc_getmaximumpressure`, `cntc_getcontactlocation` per patch; the
+/// contact-kit build of CONTACT revision 2707, eve70a/CONTACT), its values
+/// printed to the digits below (ours within 0.15 %).
 #[test]
-#[ignore = "the t1 cases run but differ from CONTACT by up to 6.7 % on their 0.4 mm elements, not yet explained (docs/cntc.md)"]
 fn merging_patches_match_contacts_reference() {
-    let first: &[(f64, PatchReference)] = &[
-        (0.35, (754.6563, 7.923e4, 1.934e4, -2314., 807.5, 1087.)),
-        (0.35, (723.3895, 4.797e4, 6526., -1727., 1648., 336.)),
-        (0.2, (714.2580, 4394., -698.7, -517.1, 633.6, 83.)),
+    let ire = 81;
+    let z = [1.211, 1.212];
+    let places: T1Places = [
+        &[
+            (-3.5536, 754.6563, -0.1957),
+            (-2.0554, 723.3895, -0.2589),
+            (4.0759, 714.2580, -1.2698),
+        ],
+        &[(-3.1226, 745.6461, -0.2133), (4.0763, 714.2591, -1.2698)],
     ];
-    let second: &[(f64, PatchReference)] = &[
-        (0.35, (745.6461, 1.274e5, 2.541e4, -4017., 1701., 1406.)),
-        (0.2, (714.2591, 4560., -696.1, -527.7, 640.1, 85.)),
+    let library: T1Library = [
+        &[
+            (754.6563, 79130.7, Some([19320.4, -2311.48]), 807.14),
+            (723.3895, 47280.1, Some([6507.98, -1718.33]), 1646.2),
+            (714.2571, 4493.67, Some([-1237.76, -938.591]), 627.15),
+        ],
+        &[
+            (745.6461, 126698.0, Some([25386.2, -4008.34]), 1684.7),
+            (714.2582, 4658.54, Some([-1216.52, -941.516]), 635.02),
+        ],
     ];
-    for (ire, mu) in [(81, 0.35), (82, 0.2)] {
-        unsafe { t1_steps(ire, "t1_merge_cp", [1.211, 1.212], mu, [first, second]) };
+    unsafe {
+        compare_places("t1_merge_cp", &t1_steps(ire, "t1_merge_cp", z, 0.4), places);
+        let fine = t1_steps(ire + 1, "t1_merge_cp", z, 0.1);
+        compare_library("t1_merge_cp 0.1 mm", &fine, &library);
     }
 }
 
-/// t1_split_cp.ref_out: the other way round, Z_WS 1.2120 then 1.2110 mm:
-/// the tread patch splits in two, each part taking the whole of its
-/// tractions as history ("PATCH 1 (PREV 1)", "PATCH 2 (PREV 1)").
+/// One patch of CONTACT's library in a [`T1Library`].
+type T1LibraryPatch = (f64, f64, Option<[f64; 2]>, f64);
+
+/// t1_split_cp's first step, CONTACT's library on 0.1 mm
+/// ([`merging_patches_match_contacts_reference`] says how).
+const SPLIT_FIRST: [T1LibraryPatch; 2] = [
+    (745.6461, 126698.0, Some([25776.3, -3520.78]), 1684.6),
+    (714.2582, 4658.51, Some([-1282.45, -972.924]), 634.93),
+];
+
+/// t1_split_cp's second step, as [`SPLIT_FIRST`].
+const SPLIT_SECOND: [T1LibraryPatch; 3] = [
+    (754.6563, 79130.8, Some([20161.4, -2314.6]), 807.14),
+    (723.3895, 47280.0, Some([5916.98, -1471.63]), 1646.4),
+    (714.2571, 4493.71, Some([-1208.36, -940.75]), 627.25),
+];
+
+/// t1_split_cp.ref_out's patches: the other way round, Z_WS 1.2120 then
+/// 1.2110 mm: the tread patch splits in two, each part taking the whole of
+/// its tractions as history ("PATCH 1 (PREV 1)", "PATCH 2 (PREV 1)").
+/// Forces as in [`merging_patches_match_contacts_reference`], on 0.1 mm
+/// against CONTACT's library, but for the outer part's FX and FS after the
+/// split ([`outer_part_of_a_split_patch_takes_contacts_history`]).
 #[test]
-#[ignore = "the t1 cases run but differ from CONTACT by up to 6.7 % on their 0.4 mm elements, not yet explained (docs/cntc.md)"]
 fn splitting_patches_match_contacts_reference() {
-    let first: &[(f64, PatchReference)] = &[
-        (0.35, (745.6461, 1.274e5, 2.579e4, -3526., 1701., 1405.)),
-        (0.2, (714.2591, 4562., -725.2, -536.5, 640.2, 85.)),
+    let ire = 83;
+    let z = [1.212, 1.211];
+    let places: T1Places = [
+        &[(-3.1226, 745.6461, -0.2133), (4.0763, 714.2591, -1.2698)],
+        &[
+            (-3.5536, 754.6563, -0.1957),
+            (-2.0554, 723.3895, -0.2589),
+            (4.0759, 714.2580, -1.2698),
+        ],
     ];
-    let second: &[(f64, PatchReference)] = &[
-        (0.35, (754.6563, 7.923e4, 2.018e4, -2319., 807.5, 1087.)),
-        (0.35, (723.3895, 4.797e4, 5919., -1475., 1648., 336.)),
-        (0.2, (714.2580, 4392., -687.3, -522.7, 633.5, 83.)),
+    let mut second = SPLIT_SECOND;
+    second[0].2 = None;
+    let library: T1Library = [&SPLIT_FIRST, &second];
+    unsafe {
+        compare_places("t1_split_cp", &t1_steps(ire, "t1_split_cp", z, 0.4), places);
+        let fine = t1_steps(ire + 1, "t1_split_cp", z, 0.1);
+        compare_library("t1_split_cp 0.1 mm", &fine, &library);
+    }
+}
+
+/// The outer part of t1_split_cp's split tread patch (YCP 754.66 mm) in
+/// the second step against CONTACT's library on 0.1 mm (as in
+/// [`splitting_patches_match_contacts_reference`]): FX 20161.4, FS
+/// -2314.6 N. Ours are 19479.1 and -2071.32 N (3.4 % and 10.5 % apart; on
+/// 0.2 mm 2.0 % and 6.8 %; the inner part agrees within 0.1 %, and the
+/// same patch started afresh within 0.01 %, t1_merge_cp's first step): the
+/// history the outer part takes from the split patch differs from
+/// CONTACT's.
+#[test]
+#[ignore = "the outer part of a split patch takes another history than CONTACT's: FX 3.4 %, FS 10.5 % apart on 0.1 mm (docs/cntc.md)"]
+fn outer_part_of_a_split_patch_takes_contacts_history() {
+    let library: T1Library = [&SPLIT_FIRST, &SPLIT_SECOND];
+    let z = [1.212, 1.211];
+    let ours = unsafe { t1_steps(85, "t1_split_cp", z, 0.1) };
+    compare_library("t1_split_cp 0.1 mm", &ours, &library);
+}
+
+/// t1_force_cp.inp's first case (FZ = 127 kN given, N = 1; V = 0 with
+/// 0.35 as [`t1_case`]) on 0.2 mm elements: two patches, the merged tread
+/// patch and the flange patch, where CONTACT's library puts the wheelset
+/// on them on 0.1 mm elements, its converged answer (Z_WS 1.21364,
+/// 1.21388 mm on 0.2, 0.1 mm, the flange's FN 4915.22, 4974.31 N; on 0.4
+/// mm it lands on the case's other solution, three patches at Z_WS
+/// 1.21097 mm, which the file's comment names; called as
+/// [`merging_patches_match_contacts_reference`] says, with
+/// `cntc_getwheelsetposition`). Ours moves by 0.02 um and 0.1 % from 0.2 to
+/// 0.1 mm and takes a minute there in a debug build: compared on 0.2 mm,
+/// Z_WS within 0.1 um (ours 0.02 um away), FN, FX, FS within 1 % (ours
+/// within 0.05 %); PMAX not (it is the grid's). The wheel's reference
+/// points move fast with the approach here (the tread patch's centre by 18
+/// um per um): placed by plain repetition, four passes left the answer 1.1
+/// um lower with the flange's FN 3.8 % above.
+#[test]
+fn a_vertical_force_finds_contacts_two_patches() {
+    let ire = 86;
+    let dir = InpDir::new("t1_force_cp");
+    let path = dir.write("t1_force_cp.inp", &t1_case_as(127000.0, 0.2, 1));
+    let want = [
+        (745.6853, 126632.0, [25761.1, -3515.25]),
+        (714.2604, 4974.31, [-1367.95, -1038.66]),
     ];
-    for (ire, mu) in [(83, 0.35), (84, 0.2)] {
-        unsafe { t1_steps(ire, "t1_split_cp", [1.212, 1.211], mu, [first, second]) };
+    unsafe {
+        wheelrail_element(ire, &[]);
+        assert_eq!(read_inp(ire, flags::INP_MODUL1, &path), 0);
+        let mut ierror = -1;
+        cntc_calculate1(&ire, &mut ierror);
+        assert_eq!(ierror, 0);
+        let mut ws = [0.0; 6];
+        cntc_getwheelsetposition(&ire, &6, ws.as_mut_ptr());
+        let ours = t1_patches(ire);
+        println!("t1_force_cp 0.2 mm: Z_WS {} {ours:?}", ws[2]);
+        close("t1_force_cp Z_WS", ws[2], 1.21387792, 1e-4);
+        per_patch(
+            "t1_force_cp",
+            &[ours],
+            &[&want],
+            |what, p, &(y, fn_, [fx, fs])| {
+                close(&what("YCP"), p.1, y, 0.01);
+                close(&what("FN"), p.3, fn_, 0.01 * fn_);
+                close(&what("FX"), p.4, fx, 0.01 * fx.abs());
+                close(&what("FS"), p.5, fs, 0.01 * fs.abs());
+            },
+        );
     }
 }

@@ -659,6 +659,27 @@ pub struct SearchSettings {
     /// patch of D_COMB < d <= D_SEP ([`sub_patches`]). None (the default):
     /// each patch is one region.
     pub combine_distance_m: Option<f64>,
+    /// With [`ReferencePoint::InterpenetrationCentre`]: CONTACT's turning
+    /// of the contact angles of neighbouring patches towards each other
+    /// (D_TURN, A_SEP; [`turn_reference_angles`]). None (the default):
+    /// each patch keeps its own mean angle.
+    pub angle_turning: Option<AngleTurning>,
+}
+
+/// CONTACT's turning of the contact reference angles of neighbouring
+/// patches (`turn_cpatch_refangle`, `m_wr_locatecp.f90`): two patches
+/// whose facing ends lie between D_SEP (`SearchSettings::merge_distance_m`)
+/// and D_TURN apart turn their contact angles towards their common mean,
+/// fully at D_SEP, not at all at D_TURN, so that a patch's frame does not
+/// jump where it splits off its neighbour or merges with it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AngleTurning {
+    /// D_TURN \[m\]: patches farther apart do not turn (none turn when it
+    /// is not larger than D_SEP).
+    pub distance_m: f64,
+    /// A_SEP \[rad\]: patches whose contact angles differ by more do not
+    /// turn.
+    pub max_angle_difference_rad: f64,
 }
 
 impl Default for SearchSettings {
@@ -668,6 +689,7 @@ impl Default for SearchSettings {
             roll_tolerance_m: 1.0e-10,
             reference_point: ReferencePoint::SmallestGap,
             combine_distance_m: None,
+            angle_turning: None,
         }
     }
 }
@@ -711,7 +733,9 @@ pub enum ReferencePoint {
     /// iteration is repeated from the approach found until the centres
     /// and that approach stay (within a thousandth of an element, and
     /// 1e-6 rad), at most four more times, usually once (the first places
-    /// them at the estimated approach, or at the given one).
+    /// them at the estimated approach, or at the given one); from the
+    /// third placement on at the secant step's approach where the answers
+    /// converge slowly.
     InterpenetrationCentre,
 }
 
@@ -985,6 +1009,82 @@ pub fn sub_patches(
         }
     }
     Some(SubPatches { boxes, factors })
+}
+
+/// The box of the interpenetration of the samples `k0..=k1` of `gap` at
+/// the vertical approach `delta_m`: the box of all its runs of
+/// interpenetrating samples (each as in [`sub_patches`]). None where no
+/// sample interpenetrates.
+pub fn interpenetration_box(
+    locus: &[LocusPoint],
+    gap: &VerticalGap,
+    (k0, k1): (usize, usize),
+    delta_m: f64,
+    nominal_radius_m: f64,
+) -> Option<RegionBox> {
+    let last = gap.len().checked_sub(1)?;
+    runs_below(gap, k0, k1.min(last) + 1, delta_m)
+        .map(|(start, end, _)| {
+            // Its ends interpolated towards the samples beyond them,
+            // inside the patch's interval or not.
+            let level = delta_m;
+            region_box(locus, gap, (0, last), (start, end), level, nominal_radius_m)
+        })
+        .reduce(|mut a, b| {
+            a.union(&b);
+            a
+        })
+}
+
+/// Turns the contact angles of a wheel's patches as CONTACT does
+/// ([`AngleTurning`]; its `turn_cpatch_refangle`). `patches`: per patch
+/// its interpenetration centre and box (None: it does not
+/// interpenetrate, CONTACT's near miss, which neither turns nor is turned
+/// to). The patches are taken in the order of their centres' q,
+/// decreasing (CONTACT's field side first); each neighbouring pair whose
+/// facing ends lie d apart (their boxes' gap along q and the rail's
+/// heights there, in quadrature: not along x), D_SEP <= d <= D_TURN, and
+/// whose angles differ by at most A_SEP, turns each of its two angles by
+/// f (a_comb - a), f = (D_TURN - d) / (D_TURN - D_SEP), a_comb the mean of
+/// the two weighted by the centres' weights; the angles compared and
+/// combined are those before any turning.
+pub fn turn_reference_angles(
+    patches: &mut [(Option<InterpenetrationCentre>, Option<RegionBox>)],
+    separate_m: f64,
+    turning: AngleTurning,
+) {
+    let turn_m = turning.distance_m;
+    if turn_m <= separate_m + 1e-15 {
+        return;
+    }
+    let mut order: Vec<usize> = (0..patches.len())
+        .filter(|&k| patches[k].0.is_some() && patches[k].1.is_some())
+        .collect();
+    let q = |k: usize| patches[k].0.map_or(f64::NAN, |c| c.q_m);
+    order.sort_by(|&a, &b| q(b).total_cmp(&q(a)));
+    let before: Vec<(f64, f64, RegionBox)> = order
+        .iter()
+        .filter_map(|&k| match patches[k] {
+            (Some(c), Some(b)) => Some((c.contact_angle_rad, c.weight, b)),
+            _ => None,
+        })
+        .collect();
+    for (i, pair) in before.windows(2).enumerate() {
+        let [(a1, w1, outer), (a2, w2, inner)] = [pair[0], pair[1]];
+        let dq = outer.q_m[0] - inner.q_m[1];
+        let dz = outer.z_m[0] - inner.z_m[1];
+        let d = dq.hypot(dz);
+        if (a1 - a2).abs() > turning.max_angle_difference_rad || d < separate_m || d > turn_m {
+            continue;
+        }
+        let comb = (a1 * w1 + a2 * w2) / (w1 + w2);
+        let f = (turn_m - d) / (turn_m - separate_m);
+        for (k, a) in [(order[i], a1), (order[i + 1], a2)] {
+            if let Some(c) = patches[k].0.as_mut() {
+                c.contact_angle_rad += f * (comb - a);
+            }
+        }
+    }
 }
 
 /// [`rail_normal_at`] searching forward from the segment `from` (the
@@ -2481,5 +2581,88 @@ mod tests {
                 assert!(da <= 2e-6, "{:?}: {da}", w.side);
             }
         }
+    }
+
+    /// CONTACT's turning (`turn_cpatch_refangle`) with D_SEP 6 mm, D_TURN
+    /// 9 mm: two patches whose facing ends lie 7.5 mm apart along q turn
+    /// halfway ((9 - 7.5)/(9 - 6)) towards their weighted mean angle, the
+    /// height difference of the ends counting; at 5 and 9.5 mm, across
+    /// more than A_SEP, or with a patch that does not interpenetrate,
+    /// nothing turns; a patch between two turns by both, each from the
+    /// angles before turning.
+    #[test]
+    fn neighbouring_patches_turn_their_angles_as_contacts_do() {
+        let turning = AngleTurning {
+            distance_m: 9e-3,
+            max_angle_difference_rad: 1.0,
+        };
+        let centre = |q_m: f64, contact_angle_rad: f64, weight: f64| InterpenetrationCentre {
+            q_m,
+            x_m: 0.0,
+            contact_angle_rad,
+            weight,
+        };
+        let boxed = |q0: f64, q1: f64, z0: f64, z1: f64| RegionBox {
+            x_m: [-5e-3, 5e-3],
+            q_m: [q0, q1],
+            z_m: [z0, z1],
+        };
+        let pair = |gap_m: f64, dz_m: f64, inner_angle: f64| {
+            // Listed inner (smaller q) first: the order is the centres'.
+            vec![
+                (
+                    Some(centre(0.720, inner_angle, 1.0)),
+                    Some(boxed(0.715, 0.725, 0.0, 0.0)),
+                ),
+                (
+                    Some(centre(0.740, -0.1, 3.0)),
+                    Some(boxed(0.725 + gap_m, 0.750, dz_m, 0.0)),
+                ),
+            ]
+        };
+        let angles = |p: &[(Option<InterpenetrationCentre>, Option<RegionBox>)]| {
+            p.iter()
+                .map(|(c, _)| c.map(|c| c.contact_angle_rad))
+                .collect::<Vec<_>>()
+        };
+        let mut p = pair(7.5e-3, 0.0, -0.5);
+        turn_reference_angles(&mut p, 6e-3, turning);
+        let comb = (-0.5 * 1.0 - 0.1 * 3.0) / 4.0;
+        let [inner, outer] = [-0.5 + 0.5 * (comb + 0.5), -0.1 + 0.5 * (comb + 0.1)];
+        let got = angles(&p);
+        assert!((got[0].unwrap() - inner).abs() < 1e-12, "{got:?}");
+        assert!((got[1].unwrap() - outer).abs() < 1e-12, "{got:?}");
+        // 4.5 mm along q and 6 mm in height: 7.5 mm apart, the same turn.
+        let mut h = pair(4.5e-3, 6e-3, -0.5);
+        turn_reference_angles(&mut h, 6e-3, turning);
+        for (a, b) in angles(&h).into_iter().zip(&got) {
+            assert!((a.unwrap() - b.unwrap()).abs() < 1e-12, "{a:?} {b:?}");
+        }
+        for (gap, inner_angle) in [(5e-3, -0.5), (9.5e-3, -0.5), (7.5e-3, -1.2)] {
+            let mut q = pair(gap, 0.0, inner_angle);
+            turn_reference_angles(&mut q, 6e-3, turning);
+            assert_eq!(
+                angles(&q),
+                [Some(inner_angle), Some(-0.1)],
+                "{gap} {inner_angle}"
+            );
+        }
+        let mut miss = pair(7.5e-3, 0.0, -0.5);
+        miss[0].0 = None;
+        turn_reference_angles(&mut miss, 6e-3, turning);
+        assert_eq!(angles(&miss), [None, Some(-0.1)]);
+        // A third patch 7.5 mm outside the outer one: the outer one turns
+        // towards both from its own angle before either turn.
+        let mut three = pair(7.5e-3, 0.0, -0.5);
+        three.push((
+            Some(centre(0.765, 0.0, 1.0)),
+            Some(boxed(0.7575, 0.770, 0.0, 0.0)),
+        ));
+        turn_reference_angles(&mut three, 6e-3, turning);
+        let comb2 = (-0.1 * 3.0 + 0.0) / 4.0;
+        let got = angles(&three);
+        let outer2 = outer + 0.5 * (comb2 + 0.1);
+        assert!((got[1].unwrap() - outer2).abs() < 1e-12, "{got:?}");
+        assert!((got[2].unwrap() - 0.5 * comb2).abs() < 1e-12, "{got:?}");
     }
 }

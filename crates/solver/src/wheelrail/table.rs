@@ -886,7 +886,8 @@ fn solve_wheel_tabulated(
         WheelLoad::Approach(d) if d <= gmin => {
             return Ok((finish(pair, side, gmin, d, 0, Vec::new(), &mut None), None))
         }
-        WheelLoad::Approach(d) => gmin + d,
+        // The gap below `d` interpenetrates (as the direct path).
+        WheelLoad::Approach(d) => d,
         WheelLoad::CenterHeight(_) => unreachable!("resolved by solve_wheelset_tabulated"),
     };
     let mut fastsim = wheel_fastsim(side)?;
