@@ -23,7 +23,9 @@
 
 mod common;
 
-use common::{close, profile, read_inp, set_flags, set_profile_file, wheelrail_element, InpDir};
+use common::{
+    close, patch_totals, profile, read_inp, set_flags, set_profile_file, wheelrail_element, InpDir,
+};
 use contact_addon::ffi::*;
 use contact_addon::flags;
 
@@ -112,14 +114,10 @@ unsafe fn ours(ire: i32) -> Reference {
 /// Patch `icp` of `ire` in a [`Reference`]'s order, the areas in elements
 /// of `element_mm2`.
 unsafe fn patch_of(ire: i32, icp: i32, element_mm2: f64) -> Reference {
-    let (mut fn_, mut fx, mut fs, mut mz) = (0.0, 0.0, 0.0, 0.0);
-    cntc_getcontactforces(&ire, &icp, &mut fn_, &mut fx, &mut fs, &mut mz);
-    let mut pmax = 0.0;
-    cntc_getmaximumpressure(&ire, &icp, &mut pmax);
-    let (mut carea, mut harea, mut sarea) = (0.0, 0.0, 0.0);
-    cntc_getcontactpatchareas(&ire, &icp, &mut carea, &mut harea, &mut sarea);
-    let a = element_mm2;
-    (fn_, fx, fs, mz, pmax, carea / a, harea / a, sarea / a)
+    let t = patch_totals(ire, icp);
+    let [fn_, fx, fs, mz] = t.forces;
+    let [c, h, s] = t.areas.map(|a| a / element_mm2);
+    (fn_, fx, fs, mz, t.pmax, c, h, s)
 }
 
 /// Runs `steps` of `seq` on `ire` and compares each with its case of the

@@ -2817,27 +2817,24 @@ fn solve_wheel(
     for attempt in 0..6 + if centred { MAX_REFERENCE_PASSES } else { 0 } {
         let tg = Instant::now();
         let mut patches = Vec::new();
-        // Per patch (with the centres): its interval and centre.
-        let mut centres = Vec::new();
         // Transient contact: the grid always covers the last contact (of
         // each patch, the parts across it, [`transient_grid`]).
         let last = warm_tractions
             .filter(|t| transient || (from_last && intervals.len() == 1 && t.patch_count == 1));
         let alone = intervals.len() == 1;
-        let here = if centred {
+        // Per patch (with the centres): the centre of its interpenetration
+        // that places its reference point (None: the smallest gap).
+        let centres = if centred {
             patch_centres(pair, side, input, locus, gap, &intervals, reference_delta)
         } else {
             vec![None; intervals.len()]
         };
-        for (&iv, &centre) in intervals.iter().zip(&here) {
+        for (&iv, &centre) in intervals.iter().zip(&centres) {
             let rail = pair.rail(side);
             let margin = MARGIN_ELEMENTS * e;
             // With the centres: the approach the wheel is sampled and its
             // creepages taken at.
             let loaded = centred.then_some(reference_delta);
-            if centred {
-                centres.push((iv, centre));
-            }
             let search = &input.settings.search;
             let sub = search
                 .combine_distance_m
@@ -2982,7 +2979,11 @@ fn solve_wheel(
                 if centred
                     && reference_passes < MAX_REFERENCE_PASSES
                     && ((delta - reference_delta).abs() > tol
-                        || centres_moved(pair, side, input, locus, gap, &centres, delta, tol))
+                        || centres_moved(
+                            &centres,
+                            &patch_centres(pair, side, input, locus, gap, &intervals, delta),
+                            tol,
+                        ))
                 {
                     reference_passes += 1;
                     let placed = (reference_delta, delta - reference_delta);
@@ -3128,11 +3129,6 @@ const REFERENCE_TOLERANCE: f64 = 1e-3;
 /// turns by 1.5e-5 rad).
 const REFERENCE_ANGLE_TOLERANCE_RAD: f64 = 1e-6;
 
-/// A patch's interval of the vertical gap (first, last, smallest sample)
-/// and the centre of its interpenetration that placed its reference point
-/// (None: placed at the smallest gap).
-type PatchCentre = ((usize, usize, usize), Option<InterpenetrationCentre>);
-
 /// Moves of an out-of-round wheel's or a varying rail's reference point
 /// by its patch's centre offset (`PatchWork::centre_offset`) in one load
 /// iteration; after them the last placement stays.
@@ -3194,37 +3190,24 @@ fn patch_centres(
     patches.into_iter().map(|(c, _)| c).collect()
 }
 
-/// Whether the centres of the interpenetration of `centres`' intervals at
-/// the approach `delta` \[m\] ([`patch_centres`]) lie farther from those
-/// used (`centres`, per patch: its interval and centre, None where it had
-/// none) than `tol` \[m\] (or their contact angles by more than
-/// [`REFERENCE_ANGLE_TOLERANCE_RAD`]).
-#[allow(clippy::too_many_arguments)]
+/// Whether the centres of the patches' interpenetration `now` (at the
+/// approach found, [`patch_centres`]) lie farther from those used
+/// (`used`; None where a patch had none) than `tol` \[m\] (or their
+/// contact angles by more than [`REFERENCE_ANGLE_TOLERANCE_RAD`]).
 fn centres_moved(
-    pair: &WheelRailPair,
-    side: Side,
-    input: &WheelRailInput,
-    locus: &[LocusPoint],
-    gap: &VerticalGap,
-    centres: &[PatchCentre],
-    delta: f64,
+    used: &[Option<InterpenetrationCentre>],
+    now: &[Option<InterpenetrationCentre>],
     tol: f64,
 ) -> bool {
-    let intervals: Vec<_> = centres.iter().map(|&(iv, _)| iv).collect();
-    let now = patch_centres(pair, side, input, locus, gap, &intervals, delta);
-    centres
-        .iter()
-        .zip(now)
-        .any(|(&(_, used), now)| match (used, now) {
-            (Some(a), Some(b)) => {
-                (a.q_m - b.q_m).abs() > tol
-                    || (a.x_m - b.x_m).abs() > tol
-                    || (a.contact_angle_rad - b.contact_angle_rad).abs()
-                        > REFERENCE_ANGLE_TOLERANCE_RAD
-            }
-            (None, None) => false,
-            _ => true,
-        })
+    used.iter().zip(now).any(|(used, now)| match (used, now) {
+        (Some(a), Some(b)) => {
+            (a.q_m - b.q_m).abs() > tol
+                || (a.x_m - b.x_m).abs() > tol
+                || (a.contact_angle_rad - b.contact_angle_rad).abs() > REFERENCE_ANGLE_TOLERANCE_RAD
+        }
+        (None, None) => false,
+        _ => true,
+    })
 }
 
 /// The tractions a wheel's exact patches hand to the next time step: a
@@ -5286,14 +5269,6 @@ mod tests {
         out
     }
 
-    /// What an exact wheel/rail session keeps between steps on at 2
-    /// mm (0.2 mm elements, one patch a wheel): each wheel's last patch
-    /// solver, between a new solver on that patch's grid and one that also
-    /// holds the Newton scratch (`SteadyScratch::new` and a whole GMRES
-    /// basis) and the prediction's three fields; the loci and gaps of the
-    /// search; and the warm start (the pressures and tractions carried to
-    /// the next step).
-    /// Printed with `--nocapture`.
     /// The secant step of [`next_reference_delta`] lands on the root of
     /// a linear residual g(A) = -0.23 (A - 1e-4) (the plain step shrinks
     /// it by 0.77); the first repeat, a rising residual and a step of
@@ -5312,6 +5287,14 @@ mod tests {
         assert_eq!(far, a1 + flat(a1));
     }
 
+    /// What an exact wheel/rail session keeps between steps on at 2
+    /// mm (0.2 mm elements, one patch a wheel): each wheel's last patch
+    /// solver, between a new solver on that patch's grid and one that also
+    /// holds the Newton scratch (`SteadyScratch::new` and a whole GMRES
+    /// basis) and the prediction's three fields; the loci and gaps of the
+    /// search; and the warm start (the pressures and tractions carried to
+    /// the next step).
+    /// Printed with `--nocapture`.
     #[test]
     fn an_exact_wheelset_keeps_its_patch_solvers_between_steps() {
         use crate::core::memory::HeapBytes;

@@ -858,14 +858,21 @@ impl RegionBox {
             }
         };
         let dx = apart(self.x_m, other.x_m);
-        let (dq, dz) = if self.q_m[0] > other.q_m[1] {
-            (self.q_m[0] - other.q_m[1], self.z_m[0] - other.z_m[1])
-        } else if other.q_m[0] > self.q_m[1] {
-            (other.q_m[0] - self.q_m[1], other.z_m[0] - self.z_m[1])
-        } else {
-            (0.0, 0.0)
-        };
+        let [dq, dz] = self.across(other);
         (dx * dx + dq * dq + dz * dz).sqrt()
+    }
+
+    /// How far the boxes lie apart across the track: the gap between them
+    /// along q and the difference of the rail's heights at their facing
+    /// ends (0, 0 where they overlap along q).
+    fn across(&self, other: &Self) -> [f64; 2] {
+        if self.q_m[0] > other.q_m[1] {
+            [self.q_m[0] - other.q_m[1], self.z_m[0] - other.z_m[1]]
+        } else if other.q_m[0] > self.q_m[1] {
+            [other.q_m[0] - self.q_m[1], other.z_m[0] - self.z_m[1]]
+        } else {
+            [0.0, 0.0]
+        }
     }
 
     /// The box of both, the heights those of the outer ends.
@@ -1024,11 +1031,17 @@ pub fn interpenetration_box(
 ) -> Option<RegionBox> {
     let last = gap.len().checked_sub(1)?;
     runs_below(gap, k0, k1.min(last) + 1, delta_m)
+        // Its ends interpolated towards the samples beyond them, inside
+        // the patch's interval or not.
         .map(|(start, end, _)| {
-            // Its ends interpolated towards the samples beyond them,
-            // inside the patch's interval or not.
-            let level = delta_m;
-            region_box(locus, gap, (0, last), (start, end), level, nominal_radius_m)
+            region_box(
+                locus,
+                gap,
+                (0, last),
+                (start, end),
+                delta_m,
+                nominal_radius_m,
+            )
         })
         .reduce(|mut a, b| {
             a.union(&b);
@@ -1071,8 +1084,7 @@ pub fn turn_reference_angles(
         .collect();
     for (i, pair) in before.windows(2).enumerate() {
         let [(a1, w1, outer), (a2, w2, inner)] = [pair[0], pair[1]];
-        let dq = outer.q_m[0] - inner.q_m[1];
-        let dz = outer.z_m[0] - inner.z_m[1];
+        let [dq, dz] = outer.across(&inner);
         let d = dq.hypot(dz);
         if (a1 - a2).abs() > turning.max_angle_difference_rad || d < separate_m || d > turn_m {
             continue;
