@@ -427,6 +427,14 @@ impl Config {
             flags::IC_SBSOUT => d.sbsout = clamp(value, 0, 4),
             flags::IC_FLOW => d.flow = clamp(value, 0, 9),
             flags::IC_XFLOW => {}
+            // CONTACT coarsens a patch of NPOMAX elements or more; every
+            // patch here is solved on the DX asked (docs/cntc.md).
+            flags::IC_NPOMAX => {
+                return Some(format!(
+                    "CNTC_ic_npomax = {value} is not applied: every patch is solved on the DX \
+                     asked (CONTACT doubles DX and DS of a patch of NPOMAX elements or more)"
+                ))
+            }
             flags::IC_RETURN => d.ret = clamp(value, 0, 3),
             flags::IF_WRTINP => d.wrtinp = value,
             flags::IF_NCASE | flags::IF_TIMERS => {}
@@ -747,5 +755,22 @@ impl Config {
             self.thermal = None;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn npomax_is_named_as_not_applied_and_other_codes_as_unknown() {
+        let mut c = Config::default();
+        let warning = c.set_flag(1, flags::IC_NPOMAX, 50_000).expect("a warning");
+        assert!(
+            warning.contains("CNTC_ic_npomax = 50000 is not applied"),
+            "{warning}"
+        );
+        let unknown = c.set_flag(1, 424_242, 1).expect("a warning");
+        assert!(unknown.contains("unknown flag code 424242"), "{unknown}");
     }
 }
