@@ -209,15 +209,14 @@ use railcontact_solver::wheelrail::slices::{
 };
 use railcontact_solver::wheelrail::{
     is_slices_file, is_wheel_slices_file, nominal_rolling_speed, parse_profile,
-    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset, solve_wheelset_warm,
-    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
-    LoadOptions, MasslessRail, MasslessRailError, MirrorZ, PairCache, PatchResult, PatchTractions,
-    Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeflection,
-    RailDeviation, RailMotion, RailPlacement, RailSlices, SearchScratch, Side, SourceLocation,
-    SplineOptions, TrackData, TransientContact, WarmStart, WheelLoad, WheelRailError,
-    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
-    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE,
-    MAX_TRACK_CURVATURE_PER_M,
+    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset_warm, wheelrail_solver_settings,
+    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MasslessRail,
+    MasslessRailError, MirrorZ, PairCache, PatchResult, PatchTractions, Profile, ProfileChecks,
+    ProfileError, ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion,
+    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
+    TransientContact, WarmStart, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel,
+    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelSlices, WheelsetData,
+    WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE, MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -2004,11 +2003,10 @@ impl WheelRail {
                     nominal_radius_m,
                     eps: self.config.solver.eps,
                 };
-                let (input, sol, vpitch) = problem.solve(pair, input, cache, &mut self.scratch)?;
-                // (Its tractions are not kept: a transient step after it
-                // starts from rest.)
-                self.transient.steady(None, input.position.track_s_m);
-                (input, sol, Some(vpitch))
+                let found = problem.solve(pair, input, cache, &mut self.scratch)?;
+                let s_m = found.input.position.track_s_m;
+                self.transient.steady(found.tractions, s_m);
+                (found.input, found.solution, Some(found.vpitch))
             }
             _ if matches!(self.config.digits.tang, 1 | 2) => {
                 let digits = &self.config.digits;
@@ -3143,14 +3141,14 @@ impl PitchProblem {
             .sum()
     }
 
-    /// The solution at the pitch rate found, its input and VPITCH.
+    /// The solution at the pitch rate found.
     fn solve(
         &self,
         pair: &WheelRailPair,
         input: WheelRailInput,
         cache: &KernelCache,
         scratch: &mut SearchScratch,
-    ) -> Result<(WheelRailInput, WheelRailSolution, f64)> {
+    ) -> Result<PitchFound> {
         // The speed of the nominal creepage: on a roller rig the roller's
         // surface speed at its nominal radius (the wheelset stands).
         let v = nominal_rolling_speed(pair, &input);
@@ -3167,12 +3165,16 @@ impl PitchProblem {
         } else {
             0.0
         };
+        // Each solve cold (the root is the same whatever the order of
+        // solves), keeping its tractions for a transient step after it.
         let at = |xi0: f64, scratch: &mut SearchScratch| -> Result<_> {
             let mut inp = input.clone();
             inp.velocity.pitch_rad_per_s = Some(vpitch_of(xi0) + offset);
-            let sol =
-                solve_wheelset(pair, &inp, cache, scratch).map_err(CntcError::from_wheelrail)?;
-            Ok((self.force_n(&sol) - self.target_n, (inp, sol)))
+            let mut warm = WarmStart::default();
+            let sol = solve_wheelset_warm(pair, &inp, cache, scratch, &mut warm)
+                .map_err(CntcError::from_wheelrail)?;
+            let tractions = warm.tractions[self.side.index()].take();
+            Ok((self.force_n(&sol) - self.target_n, (inp, sol, tractions)))
         };
         let (r0_force, first) = at(xi_start, scratch)?;
         let patches = || first.1.wheels.iter().flat_map(|w| &w.patches);
@@ -3220,9 +3222,25 @@ impl PitchProblem {
                 root.residual + self.target_n
             )));
         }
-        let (input, sol) = root.state;
-        Ok((input, sol, vpitch_of(root.x)))
+        let (input, sol, tractions) = root.state;
+        Ok(PitchFound {
+            input,
+            solution: sol,
+            vpitch: vpitch_of(root.x),
+            tractions,
+        })
     }
+}
+
+/// What [`PitchProblem::solve`] found.
+struct PitchFound {
+    /// The input at the pitch rate found.
+    input: WheelRailInput,
+    solution: WheelRailSolution,
+    /// VPITCH \[rad/s\].
+    vpitch: f64,
+    /// The wheel's tractions, the history of a transient step after it.
+    tractions: Option<PatchTractions>,
 }
 
 /// CONTACT's wheelset axes (forward, axle, down) in the side frame of
