@@ -212,7 +212,7 @@ impl ContactHandlers {
         input.rail_slices = prepared.rail_slices();
         let t0 = StdInstant::now();
         let solved = admission
-            .run_on_wide(wheelrail_lane(model), move |wide| {
+            .run_on_wide(wheelrail_lane(model), true, move |wide| {
                 let mut scratch = SearchScratch::default();
                 scratch.parallel_wheels = wide;
                 let cache = KernelCache::global();
@@ -1079,10 +1079,11 @@ impl ContactHandlers {
                             } else {
                                 wheelrail_lane(model)
                             };
+                            let wanted = session.wants_two_threads();
                             let (s, r) = self
                                 .pool
                                 .session(&client)
-                                .run_on_wide(lane, move |wide| {
+                                .run_on_wide(lane, wanted, move |wide| {
                                     let r = session.step(input, wide);
                                     (session, r)
                                 })

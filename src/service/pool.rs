@@ -16,7 +16,11 @@
 //! starts, and holds that worker's permit too ([`Admission::run_on_wide`]):
 //! an idle server answers such a step in about the time of its slower
 //! wheel, a busy one runs it on one thread like every other solve, and the
-//! solve threads never outnumber `workers`. The answer is the same bits
+//! solve threads never outnumber `workers`. A session step goes wide only
+//! after a step of at least
+//! [`TWO_THREADS_MIN_WORK_S`](crate::service::wheelrail_session::TWO_THREADS_MIN_WORK_S)
+//! of work: shorter steps gain nothing from the second thread and lose to
+//! it when another process takes a core. The answer is the same bits
 //! either way.
 //!
 //! Two lanes: the fast models (Hertz, FASTSIM, Hertz+FASTSIM wheelsets:
@@ -462,18 +466,19 @@ impl Admission {
     }
 
     /// [`Admission::run_on`] for a solve that can use a second thread (an
-    /// exact or conformal wheelset's two wheels): `f` is told whether it
-    /// may. It may on the heavy lane when a second worker was free as the
-    /// solve got its own; the solve then holds both permits until it ends,
-    /// so the threads of the solves in flight never outnumber the workers.
-    /// On a busy server, on the other lanes and with one worker such
-    /// solves run on one thread, as every other.
-    pub async fn run_on_wide<T, F>(&self, lane: Lane, f: F) -> Result<T, ServiceError>
+    /// exact or conformal wheelset's two wheels) and `wanted` one: `f` is
+    /// told whether it may. It may on the heavy lane when a second worker
+    /// was free as the solve got its own; the solve then holds both
+    /// permits until it ends, so the threads of the solves in flight never
+    /// outnumber the workers. Not wanted, on a busy server, on the other
+    /// lanes and with one worker such solves run on one thread, as every
+    /// other.
+    pub async fn run_on_wide<T, F>(&self, lane: Lane, wanted: bool, f: F) -> Result<T, ServiceError>
     where
         T: Send + 'static,
         F: FnOnce(bool) -> T + Send + 'static,
     {
-        self.run_spread(lane, true, f).await
+        self.run_spread(lane, wanted, f).await
     }
 
     async fn run_spread<T, F>(&self, lane: Lane, spread: bool, f: F) -> Result<T, ServiceError>
@@ -804,12 +809,24 @@ mod tests {
         // Idle: the second worker is free, and held while the solve runs.
         let workers = pool.workers.clone();
         let (wide, free) = a
-            .run_on_wide(Lane::Heavy, move |wide| (wide, workers.available_permits()))
+            .run_on_wide(Lane::Heavy, true, move |wide| {
+                (wide, workers.available_permits())
+            })
             .await
             .unwrap();
         assert!(wide);
         assert_eq!(free, 0);
         assert_eq!(pool.workers.available_permits(), 2, "both permits back");
+        // Not wanted: one thread, the second worker left free.
+        let workers = pool.workers.clone();
+        let (wide, free) = a
+            .run_on_wide(Lane::Heavy, false, move |wide| {
+                (wide, workers.available_permits())
+            })
+            .await
+            .unwrap();
+        assert!(!wide);
+        assert_eq!(free, 1);
         // A plain solve on the lane leaves none to spare.
         let (release, wait) = std::sync::mpsc::channel::<()>();
         let (started, running) = tokio::sync::oneshot::channel::<()>();
@@ -823,13 +840,19 @@ mod tests {
                 .await
         });
         running.await.unwrap();
-        assert!(!a.run_on_wide(Lane::Heavy, |wide| wide).await.unwrap());
+        assert!(!a.run_on_wide(Lane::Heavy, true, |wide| wide).await.unwrap());
         release.send(()).unwrap();
         busy.await.unwrap().unwrap().unwrap();
         // Other lanes never spread; nor does a pool of one worker.
-        assert!(!a.run_on_wide(Lane::Inline, |wide| wide).await.unwrap());
+        assert!(!a
+            .run_on_wide(Lane::Inline, true, |wide| wide)
+            .await
+            .unwrap());
         let one = SolvePool::new(1, 4).admit(None).unwrap();
-        assert!(!one.run_on_wide(Lane::Heavy, |wide| wide).await.unwrap());
+        assert!(!one
+            .run_on_wide(Lane::Heavy, true, |wide| wide)
+            .await
+            .unwrap());
     }
 
     #[tokio::test]

@@ -60,6 +60,25 @@ pub struct WheelRailSession {
     /// position, held so that the next step there finds it built
     /// ([`PreparedPair::pair_at`]).
     placed: Option<Arc<WheelRailPair>>,
+    /// The work of the last step solved (its search, geometry and solves
+    /// summed over threads) \[s\]; None before the first.
+    last_work_s: Option<f64>,
+}
+
+/// The work of a session's last step \[s\] from which its next step may
+/// solve the two wheels on two threads ([`WheelRailSession::wants_two_threads`]).
+/// Measured through the service on the 2-core machine (benches/README.md,
+/// "Two threads for long steps only"): steps of about 1 ms of work (the
+/// load test with `force_tolerance_of_wheel_load` 5e-3) gain nothing from
+/// the second thread on an idle machine and take 2.5 times as long when
+/// another process uses a core; steps of 6-10 ms (the default 0.2 mm
+/// elements) are not slower on two threads.
+pub const TWO_THREADS_MIN_WORK_S: f64 = 3e-3;
+
+/// Whether a step after one of `last_work_s` of work (None: the first)
+/// should solve the two wheels on two threads.
+fn two_threads_after(last_work_s: Option<f64>) -> bool {
+    last_work_s.is_none_or(|w| w >= TWO_THREADS_MIN_WORK_S)
 }
 
 impl WheelRailSession {
@@ -100,6 +119,7 @@ impl WheelRailSession {
             marks: Marks::open(limits.memory, live)?,
             max_response_bytes: limits.max_response_bytes,
             placed: None,
+            last_work_s: None,
         })
     }
 
@@ -188,6 +208,13 @@ impl WheelRailSession {
             && table.covers(p.lateral_m, roll)
     }
 
+    /// Whether the next step should solve the two wheels on two threads:
+    /// the first step, and after a step of at least
+    /// [`TWO_THREADS_MIN_WORK_S`] of work.
+    pub fn wants_two_threads(&self) -> bool {
+        two_threads_after(self.last_work_s)
+    }
+
     /// Solves a checked step (CPU-bound: run it on the solve pool), the
     /// two wheels at once on two threads when `two_threads` (the same
     /// bits either way, [`SearchScratch::parallel_wheels`]). A refused
@@ -233,6 +260,7 @@ impl WheelRailSession {
                 .within("step")
                 .rekey("step.grid.element_size_m", "open.element_size_m")
         })?;
+        self.last_work_s = Some(solution.timing.work_s());
         let warnings = wheelrail::warnings(&check_plausibility(&step.input, &solution), "step");
         let mut result = wheelrail::result(
             self.pair_id(),
@@ -269,5 +297,18 @@ impl WheelRailSession {
         let (warm, out) = self.marks.rollback(to)?;
         self.warm = warm.clone();
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_threads_for_the_first_step_and_after_long_ones_only() {
+        assert!(two_threads_after(None));
+        assert!(two_threads_after(Some(TWO_THREADS_MIN_WORK_S)));
+        assert!(two_threads_after(Some(8e-3)));
+        assert!(!two_threads_after(Some(1.2e-3)));
     }
 }

@@ -812,6 +812,12 @@ pub struct Timing {
 }
 
 impl Timing {
+    /// The step's work: search, geometry and solves, summed over threads
+    /// \[s\].
+    pub fn work_s(&self) -> f64 {
+        self.search_s + self.geometry_s + self.solve_s
+    }
+
     /// Adds another part's times (the other wheel's, solved at once).
     fn add(&mut self, other: &Timing) {
         self.search_s += other.search_s;
