@@ -806,27 +806,18 @@ mod tests {
     async fn a_wide_solve_takes_a_second_worker_only_when_one_is_free() {
         let pool = SolvePool::new(2, 4);
         let a = pool.admit(None).unwrap();
-        // Idle: the second worker is free, and held while the solve runs.
-        let workers = pool.workers.clone();
-        let (wide, free) = a
-            .run_on_wide(Lane::Heavy, true, move |wide| {
+        // Whether the solve went wide, and the workers left free as it ran.
+        let probe = |wanted: bool| {
+            let workers = pool.workers.clone();
+            a.run_on_wide(Lane::Heavy, wanted, move |wide| {
                 (wide, workers.available_permits())
             })
-            .await
-            .unwrap();
-        assert!(wide);
-        assert_eq!(free, 0);
+        };
+        // Idle: the second worker is free, and held while the solve runs.
+        assert_eq!(probe(true).await.unwrap(), (true, 0));
         assert_eq!(pool.workers.available_permits(), 2, "both permits back");
         // Not wanted: one thread, the second worker left free.
-        let workers = pool.workers.clone();
-        let (wide, free) = a
-            .run_on_wide(Lane::Heavy, false, move |wide| {
-                (wide, workers.available_permits())
-            })
-            .await
-            .unwrap();
-        assert!(!wide);
-        assert_eq!(free, 1);
+        assert_eq!(probe(false).await.unwrap(), (false, 1));
         // A plain solve on the lane leaves none to spare.
         let (release, wait) = std::sync::mpsc::channel::<()>();
         let (started, running) = tokio::sync::oneshot::channel::<()>();
