@@ -10,9 +10,10 @@ fastsim.inp's ellipse with falling friction; SI units), module 1 wheel/rail
 patches (python_mbench.py's tread case 5 of wheel 1 and flange case 16 of
 wheel 2) and a module 1 input file with M = 2 (the benchmark's right wheel
 at y = 3 mm). Prints FN, FX, FY (FS), MZ, the areas and FLX(1:3), K0_MF,
-ALFAMF, BETAMF, k_eff per case with 17 digits: run it once per library and
-compare (crates/cntc/tests/fastsim.rs, module1.rs and readinp.rs quote
-CONTACT's). The profiles are the repository's (crates/solver/profiles).
+ALFAMF, BETAMF, k_eff per case with 17 digits, and a module 3 case's
+displacement differences at a few elements: run it once per library and
+compare (crates/cntc/tests/fastsim.rs, module1.rs, readinp.rs and
+displacements.rs quote CONTACT's). The profiles are the repository's (crates/solver/profiles).
 Needs numpy.
 """
 import os
@@ -154,3 +155,18 @@ print('inp ierr %d npatch %d FX_TR %.17g FY_TR %.17g FZ_TR %.17g' %
 fn, fx, fs, mz = cntc.getcontactforces(ire, 1)
 cr = cntc.getcreepages(ire, 1)
 print('   1 FN %.17g FX %.17g FS %.17g MZ %.17g creep %.17g %.17g %.17g' % ((fn, fx, fs, mz) + tuple(cr)))
+
+# Module 3 displacement differences (cntc_getdisplacements) with M = 2:
+# crates/cntc/tests/common's tractcurv set-up, A = 2 (CONTACT computes the
+# exterior elements too), FLX 5e-5 mm^3/N, k0 0.54, alpha 0.02, beta 0.62,
+# B = 3; UN, UX, UY at elements 0, 1058, 1080, 510, 1500, their max, min.
+ire = 31
+m3_patch(ire, cc, 3, (2, [0.28, 0.28, 82000.0, 82000.0, 5e-5, 0.54, 0.02, 0.62]), (0, [0.33, 0.33]))
+setflags(ire, 1, [('ic_matfil', 2)])
+cntc.setcreepages(ire, 1, 0.0007, -0.0004, 0.00003)
+print('disp ierr', cntc.calculate(ire, 1, 0))
+un, ux, uy = (np.ravel(u) for u in cntc.getdisplacements(ire, 1))
+for i in [0, 1058, 1080, 510, 1500]:
+    print('disp element %d: %r, %r, %r' % (i, float(un[i]), float(ux[i]), float(uy[i])))
+print('disp max: %r, %r, %r' % (float(un.max()), float(ux.max()), float(uy.max())))
+print('disp min: %r, %r, %r' % (float(un.min()), float(ux.min()), float(uy.min())))
