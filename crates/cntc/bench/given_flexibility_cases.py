@@ -111,8 +111,9 @@ def m1_solve(ire, tag, pos, vpitch):
         ca, ha, sa = cntc.getcontactpatchareas(ire, icp)[:3]
         pm = cntc.getmaximumpressure(ire, icp)
         cr = cntc.getcreepages(ire, icp)
-        print('   %d FN %.17g FX %.17g FS %.17g MZ %.17g areas %.9g %.9g %.9g pmax %.9g creep %s' %
-              (icp, fn, fx, fs, mz, ca, ha, sa, pm, ' '.join('%.9g' % c for c in cr)))
+        keff = cntc.getparameters(ire, icp, 2)['k_eff']
+        print('   %d FN %.17g FX %.17g FS %.17g MZ %.17g areas %.9g %.9g %.9g pmax %.9g creep %s keff %.6g' %
+              (icp, fn, fx, fs, mz, ca, ha, sa, pm, ' '.join('%.9g' % c for c in cr), keff))
 
 tread = ([0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0], -4.3459197)
 flange = ([0.0, 7.5, 0.0, -0.007642, 0.018, 0.0], -4.2575747)
