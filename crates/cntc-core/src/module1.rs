@@ -162,7 +162,7 @@
 //!   the super-grid's origin, as CONTACT's. F = 0, M = 0 and L = 0 only
 //!   (V = 1 taken). Agreement with CONTACT's reference outputs:
 //!   docs/cntc.md.
-//! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
+//! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3, 2
 //!   (CONTACT's modified FASTSIM on each patch, the solver's
 //!   `ExactTangential::Fastsim`): the normal problem of each patch exact
 //!   as with M = 0, then FASTSIM on the patch's own grid with that
@@ -170,13 +170,14 @@
 //!   CONTACT's user guide: B = 2-4 are not available in module 1), Kalker's
 //!   three flexibilities of the equivalent ellipse of the loaded elements
 //!   (Kik and Piotrowski's, CONTACT's `equiv_ellipse`: CONTACT's module 1
-//!   patches are non-Hertzian, IPOTCN = 1), blended, with the slope
-//!   reduction k0, alpha_inf, beta and the friction law at the global slip
-//!   velocity, as module 3 runs it on a non-Hertzian grid. As in CONTACT's
+//!   patches are non-Hertzian, IPOTCN = 1), blended (M = 2: the one given
+//!   flexibility FLX instead), with the slope reduction k0, alpha_inf,
+//!   beta and the friction law at the global slip velocity, as module 3
+//!   runs it on a non-Hertzian grid. As in CONTACT's
 //!   `panprc`, FASTSIM's tractions do not act back on the pressure; the
 //!   load iteration meets FZ with FASTSIM's creep forces included (CONTACT
 //!   iterates on the total force in the track frame). V = 1 (friction by
-//!   contact angle) is refused with M = 3.
+//!   contact angle) is refused with M = 2, 3.
 //!
 //! # Outcomes
 //!

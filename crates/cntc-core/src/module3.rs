@@ -728,8 +728,9 @@ impl Patch {
     /// Hertzian problem, or the exact normal problem's pressure (B = 0); the
     /// flexibilities `fastsim`'s (M = 3: those of the Hertz ellipse, a
     /// non-Hertzian grid's of the contact area's equivalent ellipse,
-    /// blended as CONTACT blends them; M = 2: the given one); Coulomb friction or a falling law (L = 2-5) at the global slip
-    /// velocity. The outcome has the per-element fields; with an iteration
+    /// blended as CONTACT blends them; M = 2: the given one); Coulomb
+    /// friction or a falling law (L = 2-5) at the global slip velocity.
+    /// The outcome has the per-element fields; with an iteration
     /// limit of the normal problem (B = 0) its error too.
     #[allow(clippy::too_many_arguments)]
     fn fastsim(

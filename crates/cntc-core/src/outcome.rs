@@ -269,11 +269,13 @@ impl Outcome {
         match self.displacement_source {
             None => return Err(missing("the last calculation did not leave them")),
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
-            Some(DisplacementSource::WheelRailFastsim) => return Err(missing(
-                "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give them \
-                     (CONTACT's are FASTSIM's flexibilities times the tractions, which this \
-                     library does not keep per patch); M = 0 does",
-            )),
+            Some(DisplacementSource::WheelRailFastsim) => {
+                return Err(missing(
+                    "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give \
+                     them (CONTACT's are FASTSIM's flexibilities times the tractions, which \
+                     this library does not keep per patch); M = 0 does",
+                ))
+            }
             Some(_) => {}
         }
         if !p.iter().all(|c| c.len() == n) {
