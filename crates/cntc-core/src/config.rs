@@ -11,6 +11,7 @@
 //! supported value replaces it.
 
 use railcontact_solver::core::fastsim::SlopeReduction;
+use railcontact_solver::core::fastsim_grid::{FastsimMaterial, GridFlexibility};
 use railcontact_solver::core::friclaw::{FallingShape, SlipStart, SlipVelocityLaw};
 use railcontact_solver::core::layer::InterfacialLayer;
 use railcontact_solver::core::material::{CombinedMaterial, Material};
@@ -110,9 +111,11 @@ impl Default for Digits {
 pub enum MaterialModel {
     /// M = 0: elastic half-spaces, Kalker's exact theory.
     Elastic,
-    /// M = 3: FASTSIM with Spiryagin-Polach-Cole's slope reduction (k0,
-    /// alpha_inf, beta); k0 = alpha = beta = 1 is Kalker's FASTSIM.
-    ModifiedFastsim(SlopeReduction),
+    /// M = 3: FASTSIM with Kalker's three flexibilities of the ellipse
+    /// (blended, [`FastsimMaterial::kalker`]), M = 2: with one given
+    /// flexibility FLX; both with Spiryagin-Polach-Cole's slope reduction
+    /// (k0, alpha_inf, beta); k0 = alpha = beta = 1 is Kalker's FASTSIM.
+    ModifiedFastsim(FastsimMaterial),
     /// M = 4: elastic half-spaces with an interfacial (third-body) layer
     /// between them, elastic or elasto-plastic (GG3, LAYTHK, TAU_C0,
     /// K_TAU; [`railcontact_solver::core::layer`]), Kalker's exact theory.
@@ -493,6 +496,16 @@ impl Config {
             return Ok(());
         }
         let u = self.units;
+        // M = 2: FLX [volume/force], refused unless it is > 0 and finite in
+        // SI too (not under- or overflowing).
+        let flx_m_per_pa = if m == 2 { u.flexibility(p[4]) } else { 0.0 };
+        if m == 2 && !(p[4] > 0.0 && flx_m_per_pa > 0.0 && flx_m_per_pa.is_finite()) {
+            return Err(CntcError::Input(format!(
+                "FLX = {} (cntc_setmaterialparameters, M = 2): the flexibility \
+                 [volume/force] must be finite and > 0",
+                p[4]
+            )));
+        }
         self.material.poisson = [p[0], p[1]];
         self.material.shear_modulus_pa = [u.stress(p[2]), u.stress(p[3])];
         self.digits.mater = m;
@@ -501,12 +514,23 @@ impl Config {
                 self.material.model = MaterialModel::Elastic;
                 None
             }
-            3 => {
-                self.material.model = MaterialModel::ModifiedFastsim(SlopeReduction {
-                    initial_factor: p[4].max(1e-6),
-                    limit_ratio: p[5].max(1e-6),
-                    transition_rate: p[6].max(1e-6),
+            2 | 3 => {
+                let k = if m == 2 { 5 } else { 4 };
+                let reduction = SlopeReduction {
+                    initial_factor: p[k].max(1e-6),
+                    limit_ratio: p[k + 1].max(1e-6),
+                    transition_rate: p[k + 2].max(1e-6),
                     ..SlopeReduction::NONE
+                };
+                self.material.model = MaterialModel::ModifiedFastsim(if m == 2 {
+                    FastsimMaterial {
+                        flexibility: GridFlexibility::Given {
+                            flexibility_m_per_pa: flx_m_per_pa,
+                        },
+                        reduction,
+                    }
+                } else {
+                    FastsimMaterial::kalker(reduction)
                 });
                 None
             }
@@ -521,11 +545,6 @@ impl Config {
                     MaterialModel::Viscoelastic([sls(p[4], p[6]), sls(p[5], p[7])]);
                 None
             }
-            2 => Some(
-                "M = 2 (FASTSIM with a given flexibility) is not supported; M = 3 (modified \
-                 FASTSIM with Kalker's flexibilities) is"
-                    .to_string(),
-            ),
             4 => {
                 // GG3, LAYTHK, TAU_C0 and K_TAU, clamped as CONTACT clamps
                 // them; a negative TAU_C0 is refused at calculation

@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::fastsim_grid::{FastsimMaterial, GridFlexibility};
 use serde::{Deserialize, Serialize};
 
 use crate::config::Config;
@@ -267,13 +268,21 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
         2 => {
             let c = m.combined()?;
             let g_out = |g: f64| u.stress_out(g);
-            // M = 4: the layer's flexibility LAYTHK / GG3 in FLX(1:3)
-            // \[length/stress\] and its parameters in values 15-18
+            // FLX(1:3) \[volume/force\]: M = 2's given flexibility; M = 4's
+            // layer, LAYTHK / GG3, with its parameters in values 15-18
             // (CONTACT's k_eff, value 14, is FASTSIM's: 0).
             let layer = m.model.layer();
-            let flx = layer.map_or(0.0, |l| {
-                u.len_out(l.flexibility_m_per_pa()) / u.stress_out(1.0)
-            });
+            let flx_m_per_pa = match m.model {
+                crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                    flexibility:
+                        GridFlexibility::Given {
+                            flexibility_m_per_pa,
+                        },
+                    ..
+                }) => flexibility_m_per_pa,
+                _ => layer.map_or(0.0, |l| l.flexibility_m_per_pa()),
+            };
+            let flx = u.flexibility_out(flx_m_per_pa);
             let mut v = vec![
                 g_out(m.shear_modulus_pa[0]),
                 g_out(m.shear_modulus_pa[1]),
@@ -287,9 +296,10 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 flx,
             ];
             let (k0, a, b) = match m.model {
-                crate::config::MaterialModel::ModifiedFastsim(r) => {
-                    (r.initial_factor, r.limit_ratio, r.transition_rate)
-                }
+                crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                    reduction: r,
+                    ..
+                }) => (r.initial_factor, r.limit_ratio, r.transition_rate),
                 crate::config::MaterialModel::Elastic
                 | crate::config::MaterialModel::InterfacialLayer(_)
                 | crate::config::MaterialModel::Viscoelastic(_) => (1.0, 1.0, 1.0),

@@ -1038,6 +1038,9 @@ fn read_material(r: &mut Reader, d: &InpDigits) -> Result<Lined<Vec<f64>>, InpEr
     if let Some((what, types)) = model {
         let w = r.read(what, types)?;
         line = w.line;
+        if d.mater == 2 {
+            check(line, "FLX", w.reals[0], &[(1e-10, 1e20)])?;
+        }
         if matches!(d.mater, 2 | 3 | 5) {
             let k = if d.mater == 2 { 1 } else { 0 };
             check(line, "K0_MF", w.reals[k], &[(1e-10, 1.0)])?;

@@ -162,7 +162,7 @@
 //!   the super-grid's origin, as CONTACT's. F = 0, M = 0 and L = 0 only
 //!   (V = 1 taken). Agreement with CONTACT's reference outputs:
 //!   docs/cntc.md.
-//! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3
+//! * Materials: M = 0 (Kalker's exact theory on each patch) or M = 3, 2
 //!   (CONTACT's modified FASTSIM on each patch, the solver's
 //!   `ExactTangential::Fastsim`): the normal problem of each patch exact
 //!   as with M = 0, then FASTSIM on the patch's own grid with that
@@ -170,13 +170,14 @@
 //!   CONTACT's user guide: B = 2-4 are not available in module 1), Kalker's
 //!   three flexibilities of the equivalent ellipse of the loaded elements
 //!   (Kik and Piotrowski's, CONTACT's `equiv_ellipse`: CONTACT's module 1
-//!   patches are non-Hertzian, IPOTCN = 1), blended, with the slope
-//!   reduction k0, alpha_inf, beta and the friction law at the global slip
-//!   velocity, as module 3 runs it on a non-Hertzian grid. As in CONTACT's
+//!   patches are non-Hertzian, IPOTCN = 1), blended (M = 2: the one given
+//!   flexibility FLX instead), with the slope reduction k0, alpha_inf,
+//!   beta and the friction law at the global slip velocity, as module 3
+//!   runs it on a non-Hertzian grid. As in CONTACT's
 //!   `panprc`, FASTSIM's tractions do not act back on the pressure; the
 //!   load iteration meets FZ with FASTSIM's creep forces included (CONTACT
 //!   iterates on the total force in the track frame). V = 1 (friction by
-//!   contact angle) is refused with M = 3.
+//!   contact angle) is refused with M = 2, 3.
 //!
 //! # Outcomes
 //!
@@ -1722,18 +1723,18 @@ impl WheelRail {
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(
-                    "B = {} (CNTC_ic_bound) with M = 3 in module 1 is not supported: FASTSIM on \
-                     a wheel/rail patch takes its exact normal problem's pressure as the \
+                    "B = {} (CNTC_ic_bound) with M = {} in module 1 is not supported: FASTSIM \
+                     on a wheel/rail patch takes its exact normal problem's pressure as the \
                      traction bound (B = 0); CONTACT's B = 2-4 are not available in module 1",
-                    d.bound
+                    d.bound, d.mater
                 )));
             }
             if d.tang == 3 && self.config.friction_by_angle.is_some() {
-                return Err(CntcError::NotSupported(
-                    "V = 1 (friction varying with the contact angle) with M = 3 in module 1 is \
-                     not supported: FASTSIM takes one friction law per patch (V = 0)"
-                        .into(),
-                ));
+                return Err(CntcError::NotSupported(format!(
+                    "V = 1 (friction varying with the contact angle) with M = {} in module 1 is \
+                     not supported: FASTSIM takes one friction law per patch (V = 0)",
+                    d.mater
+                )));
             }
         }
         if d.heat == 3 {
@@ -2310,8 +2311,8 @@ impl WheelRail {
                     (2, _) => ExactTangential::Transient(TransientContact::Rolling {
                         rolled_elements: rolled_elements(self.dqrel)?,
                     }),
-                    (_, MaterialModel::ModifiedFastsim(reduction)) => {
-                        ExactTangential::Fastsim(reduction)
+                    (_, MaterialModel::ModifiedFastsim(material)) => {
+                        ExactTangential::Fastsim(material)
                     }
                     _ => ExactTangential::Kalker,
                 },
@@ -3498,7 +3499,7 @@ mod tests {
     }
 
     /// A patch solved with FASTSIM (M = 3) refuses its displacement
-    /// differences, naming M = 3; the exact model's (M = 0) gives them.
+    /// differences, naming M = 2, 3; the exact model's (M = 0) gives them.
     #[test]
     fn displacements_of_fastsim_patches_are_refused_by_name() {
         let cache = KernelCache::default();
@@ -3515,7 +3516,7 @@ mod tests {
         w.calculate(&cache).unwrap();
         let e = w.outcomes[0].displacements_m().unwrap_err();
         assert_eq!(e.ierror(), crate::flags::err::NOT_SUPPORTED, "{e}");
-        assert!(e.detail().contains("M = 3"), "{e}");
+        assert!(e.detail().contains("M = 2, 3"), "{e}");
     }
 
     /// Elements that place the same profiles on the same track share one
@@ -3823,15 +3824,33 @@ mod tests {
         assert!(e.to_string().contains("DQREL = 2.5"), "{e}");
         assert_eq!(e.ierror(), -40);
         w.set_rolling_step(0.0, 1.0).unwrap();
-        // M = 3 takes the exact pressure as its bound (B = 0) only.
+        // M = 3 and M = 2 take the exact pressure as their bound (B = 0)
+        // only, and with T = 1, 2 are refused (Kalker's theory, M = 0).
+        for (m, mat) in [
+            (3, vec![0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0]),
+            (2, vec![0.28, 0.28, 82000.0, 82000.0, 5e-5, 1.0, 1.0, 1.0]),
+        ] {
+            assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
+            w.config.set_material(m, &mat).unwrap();
+            assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 2), None);
+            let e = w.calculate(&cache).unwrap_err();
+            assert!(
+                e.to_string()
+                    .contains(&format!("B = 2 (CNTC_ic_bound) with M = {m}")),
+                "{e}"
+            );
+            assert_eq!(e.ierror(), -40);
+            assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 0), None);
+            assert_eq!(w.config.set_flag(1, flags::IC_TANG, 1), None);
+            let e = w.calculate(&cache).unwrap_err();
+            assert!(
+                e.to_string()
+                    .contains(&format!("M = {m} (CNTC_ic_mater) with T = 1")),
+                "{e}"
+            );
+            assert_eq!(e.ierror(), -40);
+        }
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 3), None);
-        w.config
-            .set_material(3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
-            .unwrap();
-        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 2), None);
-        let e = w.calculate(&cache).unwrap_err();
-        assert!(e.to_string().contains("B = 2"), "{e}");
-        assert_eq!(w.config.set_flag(1, flags::IC_BOUND, 0), None);
         // T = 0 has no creep forces to prescribe.
         assert_eq!(w.config.set_flag(1, flags::IC_TANG, 0), None);
         assert_eq!(w.config.set_flag(1, flags::IC_FORCE, 1), None);

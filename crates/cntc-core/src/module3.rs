@@ -1,16 +1,16 @@
 //! Module 3: one contact patch as CONTACT's basic contact problem states
 //! it: a potential contact area (Hertzian or given), an undeformed distance,
 //! an approach or normal force, creepages, shifts or tangential forces, and
-//! the exact solver (M = 0) or FASTSIM (M = 3) to solve it.
+//! the exact solver (M = 0) or FASTSIM (M = 2, 3) to solve it.
 
 use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::ContactError;
-use railcontact_solver::core::fastsim::{SlopeReduction, TractionBound};
+use railcontact_solver::core::fastsim::TractionBound;
 use railcontact_solver::core::fastsim_grid::{
-    equivalent_ellipse, BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput,
-    GridFlexibility, GridFriction, GridPressure, RollingSense,
+    equivalent_ellipse, BoundScaling, CreepInterpolation, FastsimMaterial, GridFastsim,
+    GridFastsimInput, GridFriction, GridPressure, RollingSense,
 };
 use railcontact_solver::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
@@ -403,9 +403,9 @@ impl Patch {
         let (grid, gap, hertz) = self.geometry(&material, load)?;
         let t0 = Instant::now();
         let mut outcome = match self.config.material.model {
-            MaterialModel::ModifiedFastsim(reduction) => {
+            MaterialModel::ModifiedFastsim(fastsim) => {
                 let (mut outcome, status) =
-                    self.fastsim(cache, &material, load, hertz, grid, gap, reduction)?;
+                    self.fastsim(cache, &material, load, hertz, grid, gap, fastsim)?;
                 if let Some(e) = status {
                     outcome.hertz = hertz;
                     self.outcome = Some(outcome);
@@ -722,14 +722,15 @@ impl Patch {
         Ok((outcome, status))
     }
 
-    /// FASTSIM (M = 3) as CONTACT runs it: on the potential contact grid
+    /// FASTSIM (M = 2, 3) as CONTACT runs it: on the potential contact grid
     /// ([`GridFastsim`]), steady rolling with creepages, the traction bound
     /// Hertz's elliptic (B = 2) or Kalker's parabolic (B = 3) pressure of a
     /// Hertzian problem, or the exact normal problem's pressure (B = 0); the
-    /// flexibilities those of the Hertz ellipse (a non-Hertzian grid: of
-    /// the contact area's equivalent ellipse), blended as CONTACT blends
-    /// them; Coulomb friction or a falling law (L = 2-5) at the global slip
-    /// velocity. The outcome has the per-element fields; with an iteration
+    /// flexibilities `fastsim`'s (M = 3: those of the Hertz ellipse, a
+    /// non-Hertzian grid's of the contact area's equivalent ellipse,
+    /// blended as CONTACT blends them; M = 2: the given one); Coulomb
+    /// friction or a falling law (L = 2-5) at the global slip velocity.
+    /// The outcome has the per-element fields; with an iteration
     /// limit of the normal problem (B = 0) its error too.
     #[allow(clippy::too_many_arguments)]
     fn fastsim(
@@ -740,19 +741,21 @@ impl Patch {
         info: Option<HertzInfo>,
         grid: Grid,
         gap: Vec<f64>,
-        reduction: SlopeReduction,
+        fastsim: FastsimMaterial,
     ) -> Result<(Outcome, Option<CntcError>)> {
         let d = self.config.digits;
+        let m = d.mater;
         if d.tang != 3 || d.force != 0 {
             return Err(CntcError::NotSupported(format!(
-                "FASTSIM (M = 3) with T = {}, F = {}: steady rolling (T = 3) with creepages (F = 0)",
+                "FASTSIM (M = {m}) with T = {}, F = {}: steady rolling (T = 3) with creepages \
+                 (F = 0)",
                 d.tang, d.force
             )));
         }
         if self.kin.extra.is_some() {
-            return Err(CntcError::NotSupported(
-                "FASTSIM (M = 3) with an extra rigid slip (E = 9, cntc_setextrarigidslip)".into(),
-            ));
+            return Err(CntcError::NotSupported(format!(
+                "FASTSIM (M = {m}) with an extra rigid slip (E = 9, cntc_setextrarigidslip)"
+            )));
         }
         let friction = match self.config.friction {
             FrictionLaw::Coulomb(mu) => GridFriction::Coulomb(mu),
@@ -793,7 +796,7 @@ impl Patch {
             }
             (b @ (2 | 3), None) => {
                 return Err(CntcError::NotSupported(format!(
-                    "FASTSIM (M = 3) with B = {b} on a non-Hertzian potential contact area: the \
+                    "FASTSIM (M = {m}) with B = {b} on a non-Hertzian potential contact area: the \
                      {} traction bound needs a Hertzian problem (cntc_sethertzcontact); B = 0 \
                      solves the normal problem",
                     if b == 2 { "elliptical" } else { "parabolic" }
@@ -834,7 +837,7 @@ impl Patch {
             }
             (b, _) => {
                 return Err(CntcError::NotSupported(format!(
-                    "FASTSIM (M = 3) with B = {b}: B = 0 (the normal problem's pressure), 2 \
+                    "FASTSIM (M = {m}) with B = {b}: B = 0 (the normal problem's pressure), 2 \
                      (elliptical) or 3 (parabolic)"
                 )))
             }
@@ -851,8 +854,8 @@ impl Patch {
             spin_per_m: self.kin.creep[2],
             rolling_speed_m_per_s: self.kin.veloc,
             friction,
-            reduction,
-            flexibility: GridFlexibility::Kalker { blending: true },
+            reduction: fastsim.reduction,
+            flexibility: fastsim.flexibility,
             rolling,
             creep_table: CreepInterpolation::Contact,
         };

@@ -271,9 +271,9 @@ impl Outcome {
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
             Some(DisplacementSource::WheelRailFastsim) => {
                 return Err(missing(
-                    "module 1 with M = 3 (FASTSIM on the wheel/rail patches) does not give them \
-                     (CONTACT's are FASTSIM's flexibilities times the tractions, which this \
-                     library does not keep per patch); M = 0 does",
+                    "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give \
+                     them (CONTACT's are FASTSIM's flexibilities times the tractions, which \
+                     this library does not keep per patch); M = 0 does",
                 ))
             }
             Some(_) => {}

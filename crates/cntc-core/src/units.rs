@@ -110,6 +110,17 @@ impl Units {
         v_pa / self.stress_pa()
     }
 
+    /// SI value \[m/Pa\] (= m³/N) of a flexibility (volume/force: length
+    /// per stress, CONTACT's FLX \[mm³/N\]).
+    pub fn flexibility(self, v: f64) -> f64 {
+        v * self.length_m() / self.stress_pa()
+    }
+
+    /// A flexibility \[m/Pa\] in this convention.
+    pub fn flexibility_out(self, v_m_per_pa: f64) -> f64 {
+        v_m_per_pa * self.stress_pa() / self.length_m()
+    }
+
     /// SI value of a velocity (length per second).
     pub fn velocity(self, v: f64) -> f64 {
         self.len(v)

@@ -665,6 +665,36 @@ fn fastsim_matches_contact() {
     }
 }
 
+/// CONTACT's FASTSIM with one given flexibility (M = 2, FLX = 5e-5 mm³/N,
+/// k0 = 0.54, alpha = 0.02, beta = 0.62), B = 3: its library driven by
+/// crates/cntc/bench/given_flexibility_cases.py (the set-up as below, A =
+/// 2).
+const FASTSIM_GIVEN: Reference = Reference {
+    elements: [
+        (0, [0.0, 0.0, 0.0]),
+        (1058, [0.0, -0.0007282144531693811, 0.0004311739330935255]),
+        (1080, [0.0, -0.004389189353781483, 0.0019272636906427147]),
+        (510, [0.0, -0.0031808629806504922, 0.001021184890851243]),
+        (1500, [0.0, -0.004660419904200831, 0.003297905579955135]),
+    ],
+    max: [0.0, 0.0, 0.004405611286148431],
+    min: [0.0, -0.008827029918841227, 0.0],
+};
+
+/// FASTSIM with one given flexibility (M = 2) and a slope reduction: UX, UY
+/// are FLX/k times the tractions (k CONTACT's slope reduction factor).
+/// Measured: within 6.3e-10 of the largest.
+#[test]
+fn fastsim_with_a_given_flexibility_matches_contact() {
+    let ire = 733;
+    tractcurv(ire, 3, 2);
+    let mat = [0.28, 0.28, 82000.0, 82000.0, 5e-5, 0.54, 0.02, 0.62];
+    unsafe { cntc_setmaterialparameters(&ire, &1, &2, &8, mat.as_ptr()) };
+    set_flags(ire, 1, &[(flags::IC_BOUND, 3)]);
+    assert_eq!(calculate(ire, [0.0007, -0.0004, 0.00003]), 0);
+    compare("FASTSIM, M = 2", ire, &FASTSIM_GIVEN, TOL);
+}
+
 /// An elastic interfacial layer (M = 4: G3 = 8200 N/mm², 1.25 mm): its
 /// shear is part of UX, UY.
 #[test]

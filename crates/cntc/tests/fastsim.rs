@@ -1,4 +1,5 @@
-//! FASTSIM (M = 3) through the C calls, against CONTACT's own library.
+//! FASTSIM (M = 3, and M = 2 with one given flexibility) through the C
+//! calls, against CONTACT's own library.
 //!
 //! CONTACT's numbers come from its shared library (`contact_addon_linux64.so`
 //! of CONTACT revision 2707, 2025-07-23, built with gfortran 12 `-O2`):
@@ -19,6 +20,28 @@ use contact_addon::flags::{self, err, field};
 /// 1.1 times the ellipse, FN = 106.7 kN, V = 10 m/s, CONTACT's units) with
 /// M = 3, B = 3 and the slope reduction `k0, alpha, beta`.
 fn tractcurv_fastsim(ire: i32, k0_alpha_beta: [f64; 3]) {
+    let [k0, alpha, beta] = k0_alpha_beta;
+    let mat = [0.28, 0.28, 82000.0, 82000.0, k0, alpha, beta];
+    tractcurv_with(ire, 3, &mat, 3);
+}
+
+/// [`tractcurv_fastsim`] with the M digit `m`, its parameters `mat` and the
+/// B digit `bound`.
+fn tractcurv_with(ire: i32, m: i32, mat: &[f64], bound: i32) {
+    let icp = 1;
+    steady_rolling(ire, flags::UN_CNTC, m, mat, bound);
+    unsafe {
+        let hz = [48.0, 44.0, 0.0008, 0.5, 1.1];
+        cntc_sethertzcontact(&ire, &icp, &-2, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &10000.0);
+        cntc_setnormalforce(&ire, &icp, &106700.0);
+    }
+}
+
+/// Steady rolling of (ire, 1) in the unit convention `units` with a
+/// prescribed normal force, P = 2, the M digit `m` with its parameters
+/// `mat` and the B digit `bound`.
+fn steady_rolling(ire: i32, units: i32, m: i32, mat: &[f64], bound: i32) {
     let icp = 1;
     unsafe {
         let codes = [
@@ -27,16 +50,26 @@ fn tractcurv_fastsim(ire: i32, k0_alpha_beta: [f64; 3]) {
             flags::IC_NORM,
             flags::IC_PVTIME,
         ];
-        let values = [flags::UN_CNTC, 3, 1, 2];
+        let values = [units, 3, 1, 2];
         cntc_setflags(&ire, &icp, &4, codes.as_ptr(), values.as_ptr());
-        let [k0, alpha, beta] = k0_alpha_beta;
-        let mat = [0.28, 0.28, 82000.0, 82000.0, k0, alpha, beta];
-        cntc_setmaterialparameters(&ire, &icp, &3, &7, mat.as_ptr());
-        cntc_setflags(&ire, &icp, &1, &flags::IC_BOUND, &3);
-        let hz = [48.0, 44.0, 0.0008, 0.5, 1.1];
-        cntc_sethertzcontact(&ire, &icp, &-2, &5, hz.as_ptr());
-        cntc_setreferencevelocity(&ire, &icp, &10000.0);
-        cntc_setnormalforce(&ire, &icp, &106700.0);
+        let n = mat.len() as i32;
+        cntc_setmaterialparameters(&ire, &icp, &m, &n, mat.as_ptr());
+        cntc_setflags(&ire, &icp, &1, &flags::IC_BOUND, &bound);
+    }
+}
+
+/// The SI set-up of `combined_creepages_falling_friction_si` (its doc)
+/// with the M digit `m` and its parameters `mat`, on (ire, 1).
+fn si_ellipse(ire: i32, m: i32, mat: &[f64]) {
+    let icp = 1;
+    steady_rolling(ire, flags::UN_SI, m, mat, 2);
+    unsafe {
+        let law = [0.2, 0.15, 2.0, 0.0, 0.0, 0.0, 0.0];
+        cntc_setfrictionmethod(&ire, &icp, &2, &7, law.as_ptr());
+        let hz = [40.0, 36.0, 0.5, 1.2, 1.15];
+        cntc_sethertzcontact(&ire, &icp, &-1, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &20.0);
+        cntc_setnormalforce(&ire, &icp, &60000.0);
     }
 }
 
@@ -179,26 +212,8 @@ fn tractcurv_curve_4() {
 /// adhesion and 296 in slip. Ours agree to 5e-8.
 #[test]
 fn combined_creepages_falling_friction_si() {
-    let (ire, icp) = (303, 1);
-    unsafe {
-        let codes = [
-            flags::IF_UNITS,
-            flags::IC_TANG,
-            flags::IC_NORM,
-            flags::IC_PVTIME,
-        ];
-        let values = [flags::UN_SI, 3, 1, 2];
-        cntc_setflags(&ire, &icp, &4, codes.as_ptr(), values.as_ptr());
-        let mat = [0.28, 0.28, 82e9, 82e9, 0.7, 0.3, 0.8];
-        cntc_setmaterialparameters(&ire, &icp, &3, &7, mat.as_ptr());
-        cntc_setflags(&ire, &icp, &1, &flags::IC_BOUND, &2);
-        let law = [0.2, 0.15, 2.0, 0.0, 0.0, 0.0, 0.0];
-        cntc_setfrictionmethod(&ire, &icp, &2, &7, law.as_ptr());
-        let hz = [40.0, 36.0, 0.5, 1.2, 1.15];
-        cntc_sethertzcontact(&ire, &icp, &-1, &5, hz.as_ptr());
-        cntc_setreferencevelocity(&ire, &icp, &20.0);
-        cntc_setnormalforce(&ire, &icp, &60000.0);
-    }
+    let ire = 303;
+    si_ellipse(ire, 3, &[0.28, 0.28, 82e9, 82e9, 0.7, 0.3, 0.8]);
     let (ierror, f) = solve(ire, [0.002, 0.001, 0.4]);
     assert_eq!(ierror, 0);
     let contact = [
@@ -294,13 +309,20 @@ fn normal_problem_pressure() {
     }
 }
 
-/// What FASTSIM does not do here is refused with CNTC_err_notsupported:
-/// transient rolling (T = 2), prescribed forces (F = 1), an extra rigid
-/// slip (E = 9), the elliptic bound on a non-Hertzian grid.
+/// What FASTSIM (M = 3, and M = 2 alike) does not do here is refused with
+/// CNTC_err_notsupported: transient rolling (T = 2), prescribed forces (F
+/// = 1), an extra rigid slip (E = 9), the elliptic bound on a non-Hertzian
+/// grid.
 #[test]
 fn refusals() {
-    let (ire, icp) = (306, 1);
-    tractcurv_fastsim(ire, [1.0, 1.0, 1.0]);
+    refusals_of(306, 3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0]);
+    refusals_of(307, 2, &[0.28, 0.28, 82000.0, 82000.0, 5e-5, 1.0, 1.0, 1.0]);
+}
+
+/// [`refusals`] of the M digit `m` with its parameters `mat`.
+fn refusals_of(ire: i32, m: i32, mat: &[f64]) {
+    let icp = 1;
+    tractcurv_with(ire, m, mat, 3);
     assert_eq!(solve(ire, [0.001, 0.0, 0.0]).0, 0);
     unsafe {
         cntc_setflags(&ire, &icp, &1, &flags::IC_TANG, &2);
@@ -325,4 +347,226 @@ fn refusals() {
         assert_eq!(ierror, 0);
         assert!(f[1] < 0.0 && f[1].is_finite());
     }
+}
+
+/// One M = 2 case: the creepages CKSI, CETA, CPHI and CONTACT's FX, FY,
+/// MZ and adhesion area there.
+type GivenCase = ([f64; 3], [f64; 3], f64);
+
+/// Solves `cases` on (ire, 1) and compares with CONTACT's: FX and FY
+/// within `tol` FN [N], MZ within `tol` FN [N length-unit], the adhesion
+/// area within 1e-6 of the contact area `carea` (the same elements).
+fn compare_given(ire: i32, fn_n: f64, carea: f64, tol: f64, cases: &[GivenCase]) {
+    for (creep, contact, harea) in cases {
+        let (ierror, f) = solve(ire, *creep);
+        assert_eq!(ierror, 0, "{creep:?}");
+        assert_eq!(f[0], fn_n);
+        for k in 0..3 {
+            let d = (f[k + 1] - contact[k]).abs();
+            assert!(
+                d <= tol * fn_n,
+                "ire {ire} {creep:?} [FX, FY, MZ][{k}]: {} vs CONTACT's {}",
+                f[k + 1],
+                contact[k]
+            );
+        }
+        let (mut ca, mut ha, mut sa) = (0.0, 0.0, 0.0);
+        unsafe { cntc_getcontactpatchareas(&ire, &1, &mut ca, &mut ha, &mut sa) };
+        assert!(
+            (ca - carea).abs() <= 1e-6 * carea && (ha - harea).abs() <= 1e-6 * carea,
+            "ire {ire} {creep:?}: areas {ca}, {ha} vs CONTACT's {carea}, {harea}"
+        );
+    }
+}
+
+/// `cntc_getparameters` task 2's FLX(1:3) (values 8-10) and K0_MF, ALFAMF,
+/// BETAMF (11-13) of (ire, 1).
+fn flx_and_reduction(ire: i32) -> [f64; 6] {
+    let mut v = [0.0; 30];
+    unsafe { cntc_getparameters(&ire, &1, &2, &30, v.as_mut_ptr()) };
+    [v[7], v[8], v[9], v[10], v[11], v[12]]
+}
+
+/// CONTACT's tractcurv set-up's contact area [mm²] (Hertzian option -2,
+/// 48 x 44 elements).
+const TRACTCURV_CAREA: f64 = 250.59753304515812;
+
+// M = 2 (modified FASTSIM with one given flexibility FLX, CONTACT's units
+// mm³/N): CONTACT's library (contact_addon_linux64.so, as above) driven
+// through its python_intfc by crates/cntc/bench/given_flexibility_cases.py
+// (tractcurv's ellipse as in this module's doc, Coulomb mu = 0.33) with
+// cntc_setmaterialparameters(ire, 1, 2, [0.28, 0.28, 82000, 82000, FLX,
+// K0_MF, ALFAMF, BETAMF]) per set-up below; cntc_getcontactforces' FX, FY, MZ and
+// cntc_getcontactpatchareas' adhesion area per creepages CKSI, CETA, CPHI
+// [rad/mm] (the contact area 250.59753304515812 mm² throughout).
+
+/// FLX = 5e-5, no slope reduction (k0 = alpha = beta = 1), B = 3.
+#[rustfmt::skip]
+const GIVEN_B3: [GivenCase; 8] = [
+    ([1e-05, 0.0, 0.0], [-275.461027740807, 0.0, 0.0], 249.86905184444547),
+    ([0.0008, 0.0, 0.0], [-17622.247962267575, 0.0, 0.0], 190.86207458671927),
+    ([0.0016, 0.0, 0.0], [-27865.342970050853, 0.0, 0.0], 133.3120597304184),
+    ([0.0048, 0.0, 0.0], [-35213.807804809905, 0.0, 0.0], 0.0),
+    ([0.0, 0.001, 0.0], [0.0, -20791.89491022598, 20301.076397685996], 176.2924505724659),
+    ([0.0005, 0.0008, 0.0003], [-5679.816262150964, -23247.134466435276, -104056.06185615178], 86.32502228445128),
+    ([0.0, 0.0, 0.0004], [0.0, -14237.359687098346, -136249.11890060114], 97.98072149585397),
+    ([0.002, -0.001, -0.0006], [-12596.02022068342, 21096.77639147867, 120299.33358490102], 0.0),
+];
+
+/// FLX = 5e-5, k0 = 0.54, alpha = 0.02, beta = 0.62, B = 3.
+#[rustfmt::skip]
+const GIVEN_B3_REDUCED: [GivenCase; 8] = [
+    ([1e-05, 0.0, 0.0], [-148.7106668234971, 0.0, 0.0], 250.59753304515812),
+    ([0.0008, 0.0, 0.0], [-9382.77157140722, 0.0, 0.0], 222.18676621736404),
+    ([0.0016, 0.0, 0.0], [-15367.402306383996, 0.0, 0.0], 199.96808959562765),
+    ([0.0048, 0.0, 0.0], [-25939.66224580148, 0.0, 0.0], 146.7889619436028),
+    ([0.0, 0.001, 0.0], [0.0, -11122.854958329266, 15544.13124030852], 215.63043541095),
+    ([0.0005, 0.0008, 0.0003], [-3572.991786206801, -11818.27461676449, -59855.2286290296], 188.67663098458127),
+    ([0.0, 0.0, 0.0004], [0.0, -7058.11959784141, -87412.54692566633], 181.7560595778109),
+    ([0.002, -0.001, -0.0006], [-9275.330580377875, 13352.30007089904, 79589.5828481613], 159.5373829560745),
+];
+
+/// FLX = 1.2e-4, no slope reduction, B = 2.
+#[rustfmt::skip]
+const GIVEN_B2: [GivenCase; 8] = [
+    ([1e-05, 0.0, 0.0], [-114.9511816572132, 0.0, 0.0], 250.59753304515812),
+    ([0.0008, 0.0, 0.0], [-8943.558783725315, 0.0, 0.0], 240.7630368355371),
+    ([0.0016, 0.0, 0.0], [-16637.516031607924, 0.0, 0.0], 215.63043541095),
+    ([0.0048, 0.0, 0.0], [-31258.231944051488, 0.0, 0.0], 97.98072149585397),
+    ([0.0, 0.001, 0.0], [0.0, -11018.616913053951, 18264.60297807461], 234.5709466294794),
+    ([0.0005, 0.0008, 0.0003], [-4236.907524749489, -14214.825101316472, -75818.78994975265], 196.14356329188612),
+    ([0.0, 0.0, 0.0004], [0.0, -8098.17385176071, -109398.53254128103], 187.9481497838686),
+    ([0.002, -0.001, -0.0006], [-10863.427354361427, 17944.065760318408, 109771.5440998392], 122.02060111937206),
+];
+
+/// FLX = 1.2e-4, k0 = 0.7, alpha = 0.3, beta = 0.8, B = 2.
+#[rustfmt::skip]
+const GIVEN_B2_REDUCED: [GivenCase; 8] = [
+    ([1e-05, 0.0, 0.0], [-80.29434353983756, 0.0, 0.0], 250.59753304515812),
+    ([0.0008, 0.0, 0.0], [-5492.336080550037, 0.0, 0.0], 246.95512704159478),
+    ([0.0016, 0.0, 0.0], [-9607.427155785475, 0.0, 0.0], 239.30607443411176),
+    ([0.0048, 0.0, 0.0], [-19521.687521941672, 0.0, 0.0], 200.6965707963403),
+    ([0.0, 0.001, 0.0], [0.0, -6624.879317558846, 11617.149986268085], 244.76968343945677),
+    ([0.0005, 0.0008, 0.0003], [-2512.941336246022, -7273.672124646667, -42223.572180204166], 234.75306692965756),
+    ([0.0, 0.0, 0.0004], [0.0, -4134.786154584146, -65343.850935439965], 229.1073376241344),
+    ([0.002, -0.001, -0.0006], [-7414.6110406893495, 9185.504629349107, 66570.47117774143], 213.08075120845567),
+];
+
+/// M = 2 on tractcurv's ellipse: the one flexibility for all three
+/// creepages (the spin's rigid slip unscaled, no blending), with and
+/// without the slope reduction, the parabolic and the elliptic bound.
+/// Measured: FX, FY within 2.1e-9 FN, MZ within 6.5e-9 FN mm, the same
+/// adhesion elements. Tolerance 2e-8 FN (N; N mm).
+#[test]
+fn given_flexibility_on_tractcurv_matches_contact() {
+    let mat = |flx: f64, [k0, alpha, beta]: [f64; 3]| {
+        [0.28, 0.28, 82000.0, 82000.0, flx, k0, alpha, beta]
+    };
+    for (ire, flx, reduction, bound, cases) in [
+        (311, 5e-5, [1.0; 3], 3, &GIVEN_B3),
+        (312, 5e-5, [0.54, 0.02, 0.62], 3, &GIVEN_B3_REDUCED),
+        (313, 1.2e-4, [1.0; 3], 2, &GIVEN_B2),
+        (314, 1.2e-4, [0.7, 0.3, 0.8], 2, &GIVEN_B2_REDUCED),
+    ] {
+        tractcurv_with(ire, 2, &mat(flx, reduction), bound);
+        unsafe { cntc_setfrictionmethod(&ire, &1, &0, &2, [0.33, 0.33].as_ptr()) };
+        compare_given(ire, 106700.0, TRACTCURV_CAREA, 2e-8, cases);
+        // CONTACT returns FLX in FLX(1:3) and the slope reduction (FLX
+        // to rounding: converted to SI and back).
+        let p = flx_and_reduction(ire);
+        assert!(p[..3].iter().all(|v| rel(*v, flx) < 1e-15), "{p:?}");
+        assert_eq!(p[3..], reduction);
+    }
+}
+
+/// M = 2 with B = 0 (the exact normal problem's pressure as the bound) on
+/// examples/fastsim.inp's ellipse (option -3, AA, BB = 8, 4 mm, 44 x 44
+/// elements over 1.1 times it, FN = 82 kN), FLX = 8e-5 mm³/N, k0 = 0.54,
+/// alpha = 0.02, beta = 0.62, and tractcurv's curve 4 exponential falling
+/// friction at V = 10 m/s. CONTACT's library
+/// (crates/cntc/bench/given_flexibility_cases.py, as above): FX, FY [N],
+/// MZ [N mm], the adhesion area [mm²] (the contact area 102.08 mm²). Measured: forces within 4.6e-8 FN, MZ within 1.4e-7 FN
+/// mm (the normal problem's pressure, solved to its tolerance, as with M
+/// = 3). Tolerance 1e-7 FN (N) and 1e-7 FN a (N mm, a = 8 mm).
+#[test]
+fn given_flexibility_with_the_normal_problem_matches_contact() {
+    let ire = 315;
+    let mat = [0.28, 0.28, 82000.0, 82000.0, 8e-5, 0.54, 0.02, 0.62];
+    tractcurv_with(ire, 2, &mat, 0);
+    let law = [0.1368, 0.2232, 990.0, 0.0, 0.0, 0.003, 1.0];
+    unsafe {
+        cntc_setfrictionmethod(&ire, &1, &4, &7, law.as_ptr());
+        let hz = [44.0, 44.0, 8.0, 4.0, 1.1];
+        cntc_sethertzcontact(&ire, &1, &-3, &5, hz.as_ptr());
+        cntc_setnormalforce(&ire, &1, &82000.0);
+    }
+    #[rustfmt::skip]
+    let cases: [GivenCase; 2] = [
+        ([0.0, -0.000625, 0.000625], [0.0, -2731.747188427035, -11230.183233677173], 100.16000000000003),
+        ([0.003, 0.0005, -0.0002], [-9834.125994776541, 0.27716973296054714, 5540.211690006373], 93.76000000000002),
+    ];
+    for (creep, contact, harea) in cases {
+        let (ierror, f) = solve(ire, creep);
+        assert_eq!(ierror, 0);
+        let tol = [1e-7 * 82000.0, 1e-7 * 82000.0, 1e-7 * 82000.0 * 8.0];
+        for k in 0..3 {
+            let d = (f[k + 1] - contact[k]).abs();
+            assert!(d <= tol[k], "{creep:?} {k}: {} vs {}", f[k + 1], contact[k]);
+        }
+        let (mut ca, mut ha, mut sa) = (0.0, 0.0, 0.0);
+        unsafe { cntc_getcontactpatchareas(&ire, &1, &mut ca, &mut ha, &mut sa) };
+        assert!(
+            (ca - 102.08).abs() < 1e-9 && (ha - harea).abs() < 1e-9,
+            "{ca} {ha}"
+        );
+    }
+}
+
+/// M = 2 in SI units: FLX = 6e-14 m³/N (6e-5 mm³/N) converted once,
+/// CONTACT's library (crates/cntc/bench/given_flexibility_cases.py) on
+/// the set-up of `combined_creepages_falling_friction_si` (B = 2, linear falling
+/// friction) with k0 = 0.7, alpha = 0.3, beta = 0.8: FX, FY [N], MZ [N m],
+/// the adhesion area [m²] (contact area 1.2385898948982465e-4 m²).
+/// Measured: forces within 1.1e-9 FN. Tolerance 2e-8 FN.
+#[test]
+fn given_flexibility_in_si_units_matches_contact() {
+    let ire = 316;
+    si_ellipse(ire, 2, &[0.28, 0.28, 82e9, 82e9, 6e-14, 0.7, 0.3, 0.8]);
+    #[rustfmt::skip]
+    let cases: [GivenCase; 2] = [
+        ([0.002, 0.001, 0.4], [-9799.240736093514, -10682.701558210045, -1.3584234424296537], 8.971095033141505e-05),
+        ([0.0003, 0.0, 0.0], [-2964.608160122917, 0.0, 0.0], 0.00012241203867802765),
+    ];
+    compare_given(ire, 60000.0, 1.2385898948982465e-4, 2e-8, &cases);
+    let p = flx_and_reduction(ire);
+    assert!(p[..3].iter().all(|v| rel(*v, 6e-14) < 1e-15), "{p:?}");
+}
+
+/// A flexibility FLX that is not finite and > 0 is refused by
+/// `cntc_setmaterialparameters` naming FLX (the error the log prints);
+/// the material stays as it was (M = 3 here, which then solves).
+#[test]
+fn a_bad_flexibility_is_refused_naming_it() {
+    use contact_addon::call::Call;
+    use contact_addon::library::{lock, Library};
+    let (ire, icp) = (317, 1);
+    tractcurv_fastsim(ire, [1.0, 1.0, 1.0]);
+    unsafe { cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.33, 0.33].as_ptr()) };
+    for flx in [0.0, -5e-5, f64::NAN, f64::INFINITY, 1e-320] {
+        let params = vec![0.28, 0.28, 82000.0, 82000.0, flx, 1.0, 1.0, 1.0];
+        unsafe { cntc_setmaterialparameters(&ire, &icp, &2, &8, params.as_ptr()) };
+        let entry = Library::get().element(ire, icp).unwrap();
+        let e = lock(&entry)
+            .apply(icp, Call::SetMaterial { mdigit: 2, params })
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("FLX") && e.contains("M = 2"), "{flx}: {e}");
+        let mut m = -1;
+        unsafe { cntc_getflags(&ire, &icp, &1, &flags::IC_MATER, &mut m) };
+        assert_eq!(m, 3, "{flx}");
+    }
+    // Kalker's FASTSIM (M = 3) as before: python_tractcurv.py curve 3.
+    let (ierror, f) = solve(ire, [0.0016, 0.0, 0.0]);
+    assert_eq!(ierror, 0);
+    assert!(rel(f[1], -26480.725658521496) < 1e-7, "{}", f[1]);
 }

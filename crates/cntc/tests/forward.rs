@@ -84,18 +84,23 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
         }
         out
     });
-    // FASTSIM (M = 3) and a prescribed tangential force (F = 1).
+    // FASTSIM (M = 3; M = 2 with FLX given) and a prescribed tangential
+    // force (F = 1).
     both_modes(3, |ire| {
         tractcurv(ire, 3, 2);
         let mat = [0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0];
         unsafe { cntc_setmaterialparameters(&ire, &1, &3, &7, mat.as_ptr()) };
         let fastsim = (calculate(ire, [8e-4, 0.0, 0.0]), patch_values(ire));
+        let mat = [0.28, 0.28, 82000.0, 82000.0, 5e-5, 0.54, 0.02, 0.62];
+        unsafe { cntc_setmaterialparameters(&ire, &1, &2, &8, mat.as_ptr()) };
+        let given = (calculate(ire, [8e-4, 2e-4, 1e-4]), patch_values(ire));
+        assert_eq!(given.0, 0);
         let mat = [0.28, 0.28, 82000.0, 82000.0];
         unsafe { cntc_setmaterialparameters(&ire, &1, &0, &4, mat.as_ptr()) };
         set_flags(ire, 1, &[(flags::IC_FORCE, 1)]);
         unsafe { cntc_settangentialforces(&ire, &1, &-0.4, &0.0) };
         let force = (calculate(ire, [0.0, 0.0, 0.0]), patch_values(ire));
-        vec![fastsim, force]
+        vec![fastsim, given, force]
     });
     // A wheel on its rail (module 1): the Manchester benchmark's right
     // wheel in flange contact, its global forces and patch locations.
@@ -116,14 +121,17 @@ fn forwarded_calculations_equal_the_in_process_ones_bit_for_bit() {
         unsafe { cntc_settrackdimensions(&ire, &32, &4, rail.as_ptr()) };
         out.push(wheel_results(ire));
         set_flags(ire, -1, &[(flags::IC_FORCE, 0), (flags::IC_IESTIM, 0)]);
-        // M = 3 (modified FASTSIM on each patch): tread and flange; T = 0;
-        // M = 4, an elasto-plastic layer on the flange. Every patch getter
-        // of the first patch too (fields included).
+        // M = 3 (modified FASTSIM on each patch): tread and flange; M = 2
+        // (FLX given) on the flange; T = 0; M = 4, an elasto-plastic layer
+        // on the flange. Every patch getter of the first patch too (fields
+        // included).
         let fastsim: &[f64] = &[0.54, 0.02, 0.62];
+        let given: &[f64] = &[1.5e-4, 0.54, 0.02, 0.62];
         let layer: &[f64] = &[500.0, 0.1, 60.0, 0.0];
         for (y, tang, material) in [
             (2.0, 3, Some((3, fastsim))),
             (7.5, 3, Some((3, fastsim))),
+            (7.5, 3, Some((2, given))),
             (7.5, 0, None),
             (7.5, 3, Some((4, layer))),
         ] {

@@ -669,3 +669,75 @@ fn subsurface_points_in_a_file_become_the_elements_blocks() {
         unsafe { cntc_finalize(&ire) };
     }
 }
+
+/// `MBENCH_RIGHT_INP` with M = 2: FLX = 1e-4 mm³/N and the slope reduction
+/// K0_MF, ALFAMF, BETAMF = 0.54, 0.02, 0.62 on the line after the
+/// material's (line 10), as CONTACT's user guide places them.
+fn mbench_m2_inp(flx: &str) -> String {
+    MBENCH_RIGHT_INP
+        .replacen(" 0022033 ", " 0022233 ", 1)
+        .replacen(
+            "GG 1,2\n",
+            &format!("GG 1,2\n  {flx}  0.54    0.02    0.62   FLX, K0_MF, ALFAMF, BETAMF\n"),
+            1,
+        )
+}
+
+/// A module 1 file with M = 2 (FASTSIM with one given flexibility on the
+/// wheel/rail patch), against CONTACT's library reading the same file
+/// (revision 2707 built with gfortran 12.2 -O2, FFTW 3.3.10, through its
+/// python_intfc as above, crates/cntc/bench/given_flexibility_cases.py):
+/// FX_TR, FY_TR, FZ_TR -126.97631307218455, 21.686675988492766, 9999.999383148519; the patch's
+/// FN, FX, FS 9959.391708603784, -126.97631307218455, -900.5413757737036;
+/// CKSI, CETA, CPHI 0.001051791534768606, 0.007234629807507295,
+/// 0.0001998405293896532. Measured: the forces within 0.21 N (FS, FY_TR),
+/// the creepages within 1.5e-5 relative. Tolerances: 1 N (0.01 % of FZ)
+/// and the creepages' of `module_1_files_give_contacts_results`. A FLX
+/// outside CONTACT's range for it, 1e-10 to 1e20 mm³/N, is refused naming
+/// it and its line, as CONTACT's reader refuses it.
+#[test]
+fn a_module_1_file_with_a_given_flexibility_gives_contacts_results() {
+    let dir = InpDir::new("m2");
+    let inp = dir.write("m2.inp", &mbench_m2_inp("1.0e-4"));
+    let ire = 71;
+    assert_eq!(read_inp(ire, flags::INP_MODUL1, &inp), 0);
+    let (mut g, mut f, mut c) = ([0.0; 24], [0.0; 4], [0.0; 3]);
+    let (mut ierror, mut npatch, mut m) = (-1, 0, 0);
+    unsafe {
+        cntc_calculate1(&ire, &mut ierror);
+        cntc_getnumcontactpatches(&ire, &mut npatch);
+        cntc_getflags(&ire, &-1, &1, &flags::IC_MATER, &mut m);
+        cntc_getglobalforces(&ire, &-1, &24, g.as_mut_ptr());
+        let [fn_, fx, fs, mz] = &mut f;
+        cntc_getcontactforces(&ire, &1, fn_, fx, fs, mz);
+        let [cksi, ceta, cphi] = &mut c;
+        cntc_getcreepages(&ire, &1, cksi, ceta, cphi);
+        cntc_finalize(&ire);
+    }
+    assert_eq!((ierror, npatch, m), (0, 1, 2));
+    let global = [-126.97631307218455, 21.686675988492766, 9999.999383148519];
+    let patch = [9959.391708603784, -126.97631307218455, -900.5413757737036];
+    let creep = [
+        0.001051791534768606,
+        0.007234629807507295,
+        0.0001998405293896532,
+    ];
+    for k in 0..3 {
+        assert!((g[k] - global[k]).abs() <= 1.0, "global {k}: {}", g[k]);
+        assert!((f[k] - patch[k]).abs() <= 1.0, "patch {k}: {}", f[k]);
+        let rel = [3.1e-4, 4e-5, 1.6e-4][k];
+        assert!(
+            (c[k] - creep[k]).abs() <= rel * creep[k].abs(),
+            "creepage {k}: {}",
+            c[k]
+        );
+    }
+    for flx in ["0.0", "-1e-4", "5e-11", "2e20"] {
+        let e = refused(&dir, 72, "bad.inp", &mbench_m2_inp(flx), err::INPUT);
+        assert!(
+            e.contains("line 10: FLX = ") && e.contains("is out of range"),
+            "{flx}: {e}"
+        );
+    }
+    unsafe { cntc_finalize(&72) };
+}

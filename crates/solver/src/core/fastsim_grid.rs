@@ -184,6 +184,41 @@ pub enum GridFlexibility {
     },
 }
 
+/// The simplified material of a patch: its flexibilities and slope
+/// reduction (CONTACT's `M = 3` with `K0_MF, ALFAMF, BETAMF`, or `M = 2`
+/// with `FLX` as well).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FastsimMaterial {
+    /// The flexibilities.
+    pub flexibility: GridFlexibility,
+    /// The slope reduction ([`SlopeReduction::NONE`]: Kalker's FASTSIM).
+    pub reduction: SlopeReduction,
+}
+
+impl FastsimMaterial {
+    /// CONTACT's `M = 3`: Kalker's three flexibilities of the ellipse,
+    /// blended as CONTACT blends them, with `reduction`.
+    pub fn kalker(reduction: SlopeReduction) -> Self {
+        FastsimMaterial {
+            flexibility: GridFlexibility::Kalker { blending: true },
+            reduction,
+        }
+    }
+
+    /// Checks the ranges in the field docs; errors name `key.reduction...`
+    /// and `key.flexibility_m_per_pa`.
+    pub fn validate_as(&self, key: &str) -> Result<(), ContactError> {
+        self.reduction.validate_as(&format!("{key}.reduction"))?;
+        if let GridFlexibility::Given {
+            flexibility_m_per_pa,
+        } = self.flexibility
+        {
+            require_positive(&format!("{key}.flexibility_m_per_pa"), flexibility_m_per_pa)?;
+        }
+        Ok(())
+    }
+}
+
 /// Whether the Hertzian pressure is rescaled on the grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum BoundScaling {

@@ -111,7 +111,7 @@ use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
-    equivalent_ellipse, CreepInterpolation, GridFastsim, GridFastsimInput, GridFlexibility,
+    equivalent_ellipse, CreepInterpolation, FastsimMaterial, GridFastsim, GridFastsimInput,
     GridFriction, GridPressure, RollingSense,
 };
 use crate::core::friclaw::SlipVelocityLaw;
@@ -289,20 +289,22 @@ pub enum ExactTangential {
     /// tractions and creep forces zero; the vertical force is the normal
     /// force's part.
     Frictionless,
-    /// CONTACT's modified FASTSIM on the patch's own grid (its `M = 3`
+    /// CONTACT's modified FASTSIM on the patch's own grid (its `M = 2, 3`
     /// with `B = 0` on a non-Hertzian patch, [`crate::core::fastsim_grid`]):
     /// the frictionless normal problem as [`ExactTangential::Frictionless`],
-    /// then FASTSIM with that pressure as its traction bound, Kalker's
-    /// three flexibilities of the loaded elements' equivalent ellipse
-    /// ([`equivalent_ellipse`]) blended as CONTACT blends them, this slope
-    /// reduction, and the patch's friction (Coulomb with its kinetic
+    /// then FASTSIM with that pressure as its traction bound, this
+    /// material's flexibilities (`M = 3`: Kalker's three of the loaded
+    /// elements' equivalent ellipse, [`equivalent_ellipse`], blended as
+    /// CONTACT blends them; `M = 2`: the one given) and slope reduction
+    /// (with the equivalent ellipse's area and creep coefficient), and the
+    /// patch's friction (Coulomb with its kinetic
     /// coefficient, or its slip-velocity law at the global slip velocity
     /// `V sqrt(xi^2 + eta^2)`, `V` the patch's rolling speed). The
     /// tangential tractions do not act back on the pressure; the load
     /// iteration meets the vertical force with FASTSIM's creep forces
     /// included, as with Kalker's theory. No friction table
     /// ([`WheelRailInput::friction_table`]).
-    Fastsim(SlopeReduction),
+    Fastsim(FastsimMaterial),
     /// Kalker's exact theory, one time step of transient contact
     /// (CONTACT's `T = 1, 2`; see [`TransientContact`]): the patch starts
     /// from the previous step's tractions, the history a session hands
@@ -1107,7 +1109,7 @@ impl PatchWork {
                             })?
                     }
                 };
-                if let (true, ExactTangential::Fastsim(reduction)) = (frictional, mode) {
+                if let (true, ExactTangential::Fastsim(material)) = (frictional, mode) {
                     let t0 = Instant::now();
                     let on = FastsimOn {
                         grid: &problem.grid,
@@ -1115,7 +1117,7 @@ impl PatchWork {
                         speed: self.speed,
                         backward: self.backward,
                         friction: &self.friction,
-                        reduction,
+                        material,
                     };
                     on.solve(&mut self.grid_fastsim, &mut sol, input)?;
                     self.solver_s[1] += t0.elapsed().as_secs_f64();
@@ -1377,7 +1379,7 @@ struct FastsimOn<'a> {
     /// Rolling towards -x.
     backward: bool,
     friction: &'a Friction,
-    reduction: SlopeReduction,
+    material: FastsimMaterial,
 }
 
 impl FastsimOn<'_> {
@@ -1417,8 +1419,8 @@ impl FastsimOn<'_> {
                 spin_per_m: self.creep.spin_per_m,
                 rolling_speed_m_per_s: self.speed,
                 friction,
-                reduction: self.reduction,
-                flexibility: GridFlexibility::Kalker { blending: true },
+                reduction: self.material.reduction,
+                flexibility: self.material.flexibility,
                 // The exact patch's rolling direction (0 or pi).
                 rolling: if self.backward {
                     RollingSense::MinusX
@@ -2574,8 +2576,8 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     if let ExactTangential::Transient(t) = input.settings.exact_tangential {
         validate_transient(t, input)?;
     }
-    if let ExactTangential::Fastsim(reduction) = input.settings.exact_tangential {
-        reduction.validate_as("exact_tangential")?;
+    if let ExactTangential::Fastsim(material) = input.settings.exact_tangential {
+        material.validate_as("exact_tangential")?;
         if input.friction_table.is_some() {
             return Err(WheelRailError::invalid(
                 "exact_tangential",
@@ -5407,7 +5409,9 @@ mod tests {
         };
         let kalker = solve(ExactTangential::Kalker);
         let frictionless = solve(ExactTangential::Frictionless);
-        let fastsim = solve(ExactTangential::Fastsim(SlopeReduction::NONE));
+        let fastsim = solve(ExactTangential::Fastsim(FastsimMaterial::kalker(
+            SlopeReduction::NONE,
+        )));
         for (k, ((wk, w0), wf)) in kalker
             .wheels
             .iter()

@@ -10,6 +10,7 @@
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::fastsim::SlopeReduction;
+use railcontact_solver::core::fastsim_grid::FastsimMaterial;
 use railcontact_solver::core::temperature::ThermalBody;
 use railcontact_solver::wheelrail::builtin::{mbench_a22_input, mbench_pair};
 use railcontact_solver::wheelrail::{
@@ -142,7 +143,8 @@ fn rolling_backwards_is_the_mirror_image_of_rolling_forwards() {
     // FASTSIM on the exact patches' grids integrates from the leading
     // edge at -x.
     let mut forwards = moving(WheelRailModel::Exact);
-    forwards.settings.exact_tangential = ExactTangential::Fastsim(SlopeReduction::NONE);
+    forwards.settings.exact_tangential =
+        ExactTangential::Fastsim(FastsimMaterial::kalker(SlopeReduction::NONE));
     let solve = |input: &WheelRailInput| {
         solve_wheelset(&pair, input, &cache, &mut SearchScratch::default()).unwrap()
     };
