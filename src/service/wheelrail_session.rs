@@ -71,8 +71,8 @@ pub struct WheelRailSession {
 /// "Two threads for long steps only"): steps of about 1 ms of work (the
 /// load test with `force_tolerance_of_wheel_load` 5e-3) gain nothing from
 /// the second thread on an idle machine and take 2.5 times as long when
-/// another process uses a core; steps of 6-10 ms (the default 0.2 mm
-/// elements) are not slower on two threads.
+/// another process uses a core; steps of the default 0.2 mm elements
+/// (about 10 ms of work) take a fifth less on two.
 pub const TWO_THREADS_MIN_WORK_S: f64 = 3e-3;
 
 /// Whether a step after one of `last_work_s` of work (None: the first)
