@@ -237,6 +237,10 @@ fn unknown_icp(icp: i32) -> CntcError {
     ))
 }
 
+/// FLX(1:3) \[m/Pa\] that CONTACT's library returns with M = 3 before a
+/// calculation: its initial values (`mater_init`: 1e-5, 1e-5, 0 mm³/N).
+const UNCALCULATED_FLX_M_PER_PA: [f64; 3] = [1e-14, 1e-14, 0.0];
+
 /// `cntc_getparameters`: 1 (VELOC, CHI, DQ, SPINXO, SPINYO, TAU_C0), 2
 /// (materials), 3 (friction), in the caller's units.
 pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
@@ -268,21 +272,38 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
         2 => {
             let c = m.combined()?;
             let g_out = |g: f64| u.stress_out(g);
-            // FLX(1:3) \[volume/force\]: M = 2's given flexibility; M = 4's
-            // layer, LAYTHK / GG3, with its parameters in values 15-18
-            // (CONTACT's k_eff, value 14, is FASTSIM's: 0).
+            // FLX(1:3) \[volume/force\] and K_EFF (value 14) as CONTACT's
+            // gd%mater holds them: M = 2, 3 after a calculation the
+            // flexibilities and slope reduction factor the modified FASTSIM
+            // used; before one M = 2's given FLX, M = 3's CONTACT's initial
+            // values, and K_EFF 0; M = 4's layer, LAYTHK / GG3 (its
+            // parameters in values 15-18); 0 otherwise.
             let layer = m.model.layer();
-            let flx_m_per_pa = match m.model {
-                crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
-                    flexibility:
-                        GridFlexibility::Given {
-                            flexibility_m_per_pa,
-                        },
-                    ..
-                }) => flexibility_m_per_pa,
-                _ => layer.map_or(0.0, |l| l.flexibility_m_per_pa()),
+            let applied = e.outcome(icp).ok().and_then(|o| o.fastsim);
+            let (flx_m_per_pa, k_eff) = match (m.model, applied) {
+                (crate::config::MaterialModel::ModifiedFastsim(_), Some(a)) => {
+                    (a.flexibilities_m_per_pa, a.slope_factor)
+                }
+                (
+                    crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                        flexibility:
+                            GridFlexibility::Given {
+                                flexibility_m_per_pa,
+                            },
+                        ..
+                    }),
+                    None,
+                ) => ([flexibility_m_per_pa; 3], 0.0),
+                (
+                    crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                        flexibility: GridFlexibility::Kalker { .. },
+                        ..
+                    }),
+                    None,
+                ) => (UNCALCULATED_FLX_M_PER_PA, 0.0),
+                _ => ([layer.map_or(0.0, |l| l.flexibility_m_per_pa()); 3], 0.0),
             };
-            let flx = u.flexibility_out(flx_m_per_pa);
+            let [flx1, flx2, flx3] = flx_m_per_pa.map(|l| u.flexibility_out(l));
             let mut v = vec![
                 g_out(m.shear_modulus_pa[0]),
                 g_out(m.shear_modulus_pa[1]),
@@ -291,9 +312,9 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 m.poisson[1],
                 c.poisson_ratio,
                 c.kalker_k,
-                flx,
-                flx,
-                flx,
+                flx1,
+                flx2,
+                flx3,
             ];
             let (k0, a, b) = match m.model {
                 crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
@@ -304,10 +325,9 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 | crate::config::MaterialModel::InterfacialLayer(_)
                 | crate::config::MaterialModel::Viscoelastic(_) => (1.0, 1.0, 1.0),
             };
-            v.extend([k0, a, b]);
+            v.extend([k0, a, b, k_eff]);
             if let Some(l) = layer {
                 v.extend([
-                    0.0,
                     g_out(l.shear_modulus_pa),
                     u.len_out(l.thickness_m),
                     g_out(l.yield_limit_pa),

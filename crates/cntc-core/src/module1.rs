@@ -2633,6 +2633,7 @@ impl WheelRail {
         o.rolling_direction_rad = p.rolling_direction_rad;
         o.max_pressure_pa = p.max_pressure_pa;
         o.max_traction_pa = max_traction;
+        o.fastsim = p.fastsim_flexibility;
         o.tgamma_n = if p.rolling_speed_m_per_s > 0.0 {
             p.frictional_power_w / p.rolling_speed_m_per_s
         } else {

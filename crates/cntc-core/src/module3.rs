@@ -874,7 +874,11 @@ impl Patch {
         o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
         o.rigid_slip = Some(fs.rigid_slip());
-        let [l1, l2, _] = out.flexibilities_m_per_pa.map(|l| l / out.slope_factor);
+        let applied = out.applied;
+        let [l1, l2, _] = applied
+            .flexibilities_m_per_pa
+            .map(|l| l / applied.slope_factor);
+        o.fastsim = Some(applied);
         o.displacement_source = Some(DisplacementSource::Fastsim {
             flexibilities_m_per_pa: [l1, l2],
             normal: pressure

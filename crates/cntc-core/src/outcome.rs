@@ -6,6 +6,7 @@
 use std::sync::OnceLock;
 
 use railcontact_solver::core::cache::KernelCache;
+use railcontact_solver::core::fastsim_grid::AppliedFlexibility;
 use railcontact_solver::core::grid::Grid;
 use railcontact_solver::core::influence::KernelKind;
 use railcontact_solver::core::layer::LayerFields;
@@ -96,6 +97,11 @@ pub struct Outcome {
     displacements: OnceLock<[Vec<f64>; 3]>,
     /// Where a module 1 patch lies (module 3: `None`).
     pub location: Option<Location>,
+    /// The flexibilities and the slope reduction factor of a patch solved
+    /// by the modified FASTSIM (M = 2, 3; `None` otherwise): CONTACT's
+    /// FLX(1:3) and K_EFF after a calculation (`cntc_getparameters` task
+    /// 2).
+    pub fastsim: Option<AppliedFlexibility>,
     /// Wall and CPU time of the calculation \[s\].
     pub time_s: f64,
 }
@@ -153,9 +159,9 @@ pub enum DisplacementSource {
         /// Body 1's and body 2's materials with B = 0.
         normal: Option<[Material; 2]>,
     },
-    /// A module 1 patch solved with FASTSIM (M = 3): the solver does not
-    /// report the flexibilities of its patches, so the getters refuse
-    /// rather than give the exact model's u = A p.
+    /// A module 1 patch solved with FASTSIM (M = 2, 3): the getters
+    /// refuse rather than give the exact model's u = A p (the patch's
+    /// flexibilities are in [`Outcome::fastsim`], not used for it yet).
     WheelRailFastsim,
 }
 
@@ -236,6 +242,7 @@ impl Outcome {
             displacement_source: Some(DisplacementSource::Unloaded),
             displacements: OnceLock::new(),
             location: None,
+            fastsim: None,
             time_s: 0.0,
         }
     }

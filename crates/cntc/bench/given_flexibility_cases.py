@@ -9,8 +9,10 @@ slope reduction, eight creepages with and without spin; B = 0 on
 fastsim.inp's ellipse with falling friction; SI units), module 1 wheel/rail
 patches (python_mbench.py's tread case 5 of wheel 1 and flange case 16 of
 wheel 2) and a module 1 input file with M = 2 (the benchmark's right wheel
-at y = 3 mm). Prints FN, FX, FY (FS), MZ, the areas and FLX(1:3), K0_MF,
-ALFAMF, BETAMF, k_eff per case with 17 digits, and a module 3 case's
+at y = 3 mm); M = 3 on the same ellipse (B = 3, 2, with and without slope
+reduction, cntc_getparameters task 2 before the first calculation too)
+and on the module 1 patches. Prints FN, FX, FY (FS), MZ, the areas and
+FLX(1:3), K0_MF, ALFAMF, BETAMF, K_EFF per case with 17 digits, and a module 3 case's
 displacement differences at a few elements: run it once per library and
 compare (crates/cntc/tests/fastsim.rs, module1.rs, readinp.rs and
 displacements.rs quote CONTACT's). The profiles are the repository's (crates/solver/profiles).
@@ -58,7 +60,7 @@ def m3_solve(ire, tag, creep):
     fn, fx, fy, mz = cntc.getcontactforces(ire, icp)
     ca, ha, sa = cntc.getcontactpatchareas(ire, icp)[:3]
     par = cntc.getparameters(ire, icp, 2)
-    print('%s creep %s ierr %d FN %.17g FX %.17g FY %.17g MZ %.17g areas %.17g %.17g %.17g flx %.6g %.6g %.6g k0ab %.6g %.6g %.6g keff %.9g' %
+    print('%s creep %s ierr %d FN %.17g FX %.17g FY %.17g MZ %.17g areas %.17g %.17g %.17g flx %.17g %.17g %.17g k0ab %.6g %.6g %.6g keff %.17g' %
           (tag, creep, e, fn, fx, fy, mz, ca, ha, sa, par['flx1'], par['flx2'], par['flx3'], par['k0_mf'], par['alfamf'], par['betamf'], par['k_eff']))
 
 cc = CNTC['un_cntc']
@@ -82,6 +84,20 @@ m3_patch(6, CNTC['un_si'], 2, (2, [0.28, 0.28, 82e9, 82e9, 6e-14, 0.7, 0.3, 0.8]
          (2, [0.2, 0.15, 2.0, 0.0, 0.0, 0.0, 0.0]))
 for c in [(0.002, 0.001, 0.4), (0.0003, 0.0, 0.0)]:
     m3_solve(6, 'si', c)
+
+# M = 3 on tractcurv's ellipse (Kalker's three flexibilities, blended), B = 3
+# and B = 2, with and without slope reduction; getparameters task 2 before
+# the first calculation too.
+for tag, ire, bound, red in [('m3-b3', 7, 3, [1.0, 1.0, 1.0]), ('m3-b3-red', 8, 3, [0.54, 0.02, 0.62]),
+                             ('m3-b2-red', 9, 2, [0.7, 0.3, 0.8])]:
+    m3_patch(ire, cc, bound, (3, [0.28, 0.28, 82000.0, 82000.0] + red), (0, [0.33, 0.33]))
+    par = cntc.getparameters(ire, 1, 2)
+    print('%s before flx %.17g %.17g %.17g keff %.17g' % (tag, par['flx1'], par['flx2'], par['flx3'], par['k_eff']))
+    for c in creeps:
+        m3_solve(ire, tag, c)
+m3_patch(10, cc, 3, (2, [0.28, 0.28, 82000.0, 82000.0, 5e-5, 0.54, 0.02, 0.62]), (0, [0.33, 0.33]))
+par = cntc.getparameters(10, 1, 2)
+print('m2 before flx %.17g %.17g %.17g keff %.17g' % (par['flx1'], par['flx2'], par['flx3'], par['k_eff']))
 
 # Module 1: python_mbench.py's wheels (as crates/cntc/tests/common mbench_wheel).
 def mbench(ire, iwhe, mat):
@@ -111,9 +127,11 @@ def m1_solve(ire, tag, pos, vpitch):
         ca, ha, sa = cntc.getcontactpatchareas(ire, icp)[:3]
         pm = cntc.getmaximumpressure(ire, icp)
         cr = cntc.getcreepages(ire, icp)
-        keff = cntc.getparameters(ire, icp, 2)['k_eff']
-        print('   %d FN %.17g FX %.17g FS %.17g MZ %.17g areas %.9g %.9g %.9g pmax %.9g creep %s keff %.6g' %
-              (icp, fn, fx, fs, mz, ca, ha, sa, pm, ' '.join('%.9g' % c for c in cr), keff))
+        par = cntc.getparameters(ire, icp, 2)
+        print('   %d FN %.17g FX %.17g FS %.17g MZ %.17g areas %.9g %.9g %.9g pmax %.9g creep %s' %
+              (icp, fn, fx, fs, mz, ca, ha, sa, pm, ' '.join('%.9g' % c for c in cr)))
+        print('   %d flx %.17g %.17g %.17g keff %.17g' %
+              (icp, par['flx1'], par['flx2'], par['flx3'], par['k_eff']))
 
 tread = ([0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0], -4.3459197)
 flange = ([0.0, 7.5, 0.0, -0.007642, 0.018, 0.0], -4.2575747)
@@ -123,6 +141,13 @@ for k, (flx, red) in enumerate([(5e-5, [1.0, 1.0, 1.0]), (1.5e-4, [0.54, 0.02, 0
     m1_solve(11 + 2 * k, 'm1-tread-%d' % k, *tread)
     mbench(12 + 2 * k, 2, mat)
     m1_solve(12 + 2 * k, 'm1-flange-%d' % k, *flange)
+# The same with M = 3 (Kalker's flexibilities of each patch's equivalent ellipse).
+for k, red in enumerate([[1.0, 1.0, 1.0], [0.54, 0.02, 0.62]]):
+    mat = (3, [0.28, 0.28, 82000.0, 82000.0] + red)
+    mbench(41 + 2 * k, 1, mat)
+    m1_solve(41 + 2 * k, 'm1-m3-tread-%d' % k, *tread)
+    mbench(42 + 2 * k, 2, mat)
+    m1_solve(42 + 2 * k, 'm1-m3-flange-%d' % k, *flange)
 
 # Module 1 input file: crates/cntc/tests/common's MBENCH_RIGHT_INP with M = 2.
 INP = """\

@@ -104,6 +104,7 @@ use crate::core::fastsim::{SlopeReduction, TractionBound};
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
 use crate::core::solution::{ElementFields, ElementState};
+use serde::{Deserialize, Serialize};
 
 /// The spin's lateral rigid slip is evaluated this fraction of an element
 /// towards the leading edge (CONTACT's `FACPHI = 1/6`).
@@ -388,6 +389,18 @@ pub struct GridFastsimInput {
     pub creep_table: CreepInterpolation,
 }
 
+/// The flexibilities and the slope reduction factor one grid FASTSIM solve
+/// used (CONTACT's FLX(1:3) and K_EFF after a calculation).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct AppliedFlexibility {
+    /// `L1`, `L2`, `L3` after blending, before the division by `k`
+    /// \[m/Pa\] (= m^3/N); [`GridFlexibility::Given`]: the given one
+    /// three times.
+    pub flexibilities_m_per_pa: [f64; 3],
+    /// The slope reduction factor `k` [-] (1 without slope reduction).
+    pub slope_factor: f64,
+}
+
 /// The totals of one grid FASTSIM solve.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GridFastsimOutput {
@@ -413,11 +426,8 @@ pub struct GridFastsimOutput {
     pub max_traction_pa: f64,
     /// The friction coefficient used for every element [-].
     pub friction_coefficient: f64,
-    /// The slope reduction factor `k` [-].
-    pub slope_factor: f64,
-    /// `L1`, `L2`, `L3` after blending, before the division by `k`
-    /// \[m/Pa\].
-    pub flexibilities_m_per_pa: [f64; 3],
+    /// The flexibilities and the slope reduction factor the solve used.
+    pub applied: AppliedFlexibility,
     /// Semi-axes of the contact elements' equivalent ellipse \[m\] (zero
     /// without contact).
     pub equivalent_semi_axes_m: [f64; 2],
@@ -741,8 +751,10 @@ impl GridFastsim {
             ));
         }
         out.friction_coefficient = mu;
-        out.slope_factor = k;
-        out.flexibilities_m_per_pa = flexibilities;
+        out.applied = AppliedFlexibility {
+            flexibilities_m_per_pa: flexibilities,
+            slope_factor: k,
+        };
         out.equivalent_semi_axes_m = equivalent;
         Ok(out)
     }
@@ -1016,22 +1028,25 @@ mod tests {
                 flexibility: GridFlexibility::Kalker { blending: false },
                 ..input(a, b, xi, eta, phi)
             };
-            fs.solve(&inp, PARABOLIC).unwrap().flexibilities_m_per_pa
+            fs.solve(&inp, PARABOLIC)
+                .unwrap()
+                .applied
+                .flexibilities_m_per_pa
         };
         let l = plain(&mut fs, 1e-3, 0.0, 0.0);
         let o = fs.solve(&input(a, b, 0.5, 0.0, 0.0), PARABOLIC).unwrap();
-        assert!(rel(o.flexibilities_m_per_pa[0], l[0]) < 1e-15);
+        assert!(rel(o.applied.flexibilities_m_per_pa[0], l[0]) < 1e-15);
         let o = fs.solve(&input(a, b, 0.0, 0.5, 0.0), PARABOLIC).unwrap();
-        assert!(rel(o.flexibilities_m_per_pa[1], l[1]) < 1e-15);
+        assert!(rel(o.applied.flexibilities_m_per_pa[1], l[1]) < 1e-15);
         // Far beyond 3 characteristic creepages: one flexibility.
         let o = fs.solve(&input(a, b, 0.3, 0.4, 0.0), PARABOLIC).unwrap();
         let crss = 0.25 / (0.09 / l[0] + 0.16 / l[1]);
-        for li in o.flexibilities_m_per_pa {
+        for li in o.applied.flexibilities_m_per_pa {
             assert!(rel(li, crss) < 1e-14);
         }
         // Tiny creepage: Kalker's three, to 1e-6.
         let o = fs.solve(&input(a, b, 1e-8, 1e-8, 1e-6), PARABOLIC).unwrap();
-        for (li, k) in o.flexibilities_m_per_pa.iter().zip(l) {
+        for (li, k) in o.applied.flexibilities_m_per_pa.iter().zip(l) {
             assert!(rel(*li, k) < 1e-6);
         }
     }
@@ -1048,7 +1063,7 @@ mod tests {
         let px = fs.traction_x_pa().to_vec();
         let given = GridFastsimInput {
             flexibility: GridFlexibility::Given {
-                flexibility_m_per_pa: kalker.flexibilities_m_per_pa[0],
+                flexibility_m_per_pa: kalker.applied.flexibilities_m_per_pa[0],
             },
             ..inp
         };
@@ -1212,7 +1227,7 @@ mod tests {
             .coefficients(ae / be, 0.28)
             .unwrap()[0];
         let k = r.factor(82e9 * std::f64::consts::PI * ae * be * c11 * xi, 0.3 * 82e3);
-        assert_eq!(o.slope_factor, k);
+        assert_eq!(o.applied.slope_factor, k);
         assert!(rel(o.fx_n, k * plain.fx_n) < 1e-12 && rel(k, 0.54) < 1e-3);
     }
 
@@ -1388,7 +1403,7 @@ mod tests {
         let fresh = GridFastsim::new(grid(a, b, 10, 10)).unwrap();
         assert!(fresh.rigid_slip()[1].iter().all(|w| *w == 0.0));
         let o = fs.solve(&input(a, b, 1e-3, 2e-4, 0.3), PARABOLIC).unwrap();
-        let [l1, l2, l3] = o.flexibilities_m_per_pa;
+        let [l1, l2, l3] = o.applied.flexibilities_m_per_pa;
         let [wx, wy] = fs.rigid_slip();
         let g = *fs.grid();
         let (ix, iy) = (2, 7);

@@ -111,8 +111,8 @@ use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
 use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
-    equivalent_ellipse, CreepInterpolation, FastsimMaterial, GridFastsim, GridFastsimInput,
-    GridFriction, GridPressure, RollingSense,
+    equivalent_ellipse, AppliedFlexibility, CreepInterpolation, FastsimMaterial, GridFastsim,
+    GridFastsimInput, GridFriction, GridPressure, RollingSense,
 };
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
@@ -732,6 +732,11 @@ pub struct PatchResult {
     /// ([`crate::core::fastsim::FastsimOutput::bound_peak_pressure_pa`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fastsim_max_pressure_pa: Option<f64>,
+    /// An exact patch whose tangential problem FASTSIM solved on its grid
+    /// ([`ExactTangential::Fastsim`], with friction): the flexibilities
+    /// and the slope reduction factor it used (None otherwise).
+    #[serde(skip)]
+    pub fastsim_flexibility: Option<AppliedFlexibility>,
     /// Contact area [m^2].
     pub contact_area_m2: f64,
     /// Share of the contact area in adhesion [-].
@@ -983,6 +988,8 @@ struct PatchOutcome {
     max_pressure_pa: f64,
     /// FASTSIM's traction bound's peak pressure (patches it solved).
     fastsim_max_pressure_pa: Option<f64>,
+    /// FASTSIM's flexibilities and slope reduction on an exact patch's grid.
+    fastsim_flexibility: Option<AppliedFlexibility>,
     area_m2: f64,
     adhesion: f64,
     tgamma_n: f64,
@@ -1109,6 +1116,7 @@ impl PatchWork {
                             })?
                     }
                 };
+                let mut fastsim_flexibility = None;
                 if let (true, ExactTangential::Fastsim(material)) = (frictional, mode) {
                     let t0 = Instant::now();
                     let on = FastsimOn {
@@ -1119,7 +1127,7 @@ impl PatchWork {
                         friction: &self.friction,
                         material,
                     };
-                    on.solve(&mut self.grid_fastsim, &mut sol, input)?;
+                    fastsim_flexibility = on.solve(&mut self.grid_fastsim, &mut sol, input)?;
                     self.solver_s[1] += t0.elapsed().as_secs_f64();
                 }
                 let info = &sol.info;
@@ -1137,6 +1145,7 @@ impl PatchWork {
                     adhesion: t.adhesion_fraction,
                     tgamma_n: t.tgamma_n,
                     unconverged: sol.info.status != SolveStatus::Converged,
+                    fastsim_flexibility,
                     solution: frictional.then_some(sol),
                     ..PatchOutcome::default()
                 };
@@ -1385,18 +1394,19 @@ struct FastsimOn<'a> {
 impl FastsimOn<'_> {
     /// Replaces the tangential part of `sol`, a frictionless solution on
     /// the grid, by FASTSIM's with its pressure as the traction bound:
-    /// tractions, slips, element states and the totals they give. Without
-    /// loaded elements it is left as it is. Allocates only the solver's
-    /// buffers at its first use on a grid.
+    /// tractions, slips, element states and the totals they give; returns
+    /// the flexibilities and slope reduction factor it used. Without
+    /// loaded elements it is left as it is (None). Allocates only the
+    /// solver's buffers at its first use on a grid.
     fn solve(
         &self,
         buffers: &mut Option<Box<GridFastsim>>,
         sol: &mut ContactSolution,
         input: &WheelRailInput,
-    ) -> Result<(), ContactError> {
+    ) -> Result<Option<AppliedFlexibility>, ContactError> {
         let fl = &mut sol.fields;
         let Some([a, b]) = equivalent_ellipse(self.grid, &fl.pressure_pa) else {
-            return Ok(());
+            return Ok(None);
         };
         let fs = match buffers {
             Some(fs) if fs.grid() == self.grid => fs,
@@ -1446,7 +1456,7 @@ impl FastsimOn<'_> {
         } else {
             0.0
         };
-        Ok(())
+        Ok(Some(out.applied))
     }
 }
 
@@ -5170,6 +5180,7 @@ pub(crate) fn finish(
             approach_m: o.approach_m,
             max_pressure_pa: o.max_pressure_pa,
             fastsim_max_pressure_pa: o.fastsim_max_pressure_pa,
+            fastsim_flexibility: o.fastsim_flexibility,
             contact_area_m2: o.area_m2,
             adhesion_fraction: o.adhesion,
             rolling_speed_m_per_s: p.speed,
