@@ -433,7 +433,9 @@ pub struct WheelRailSettings {
     pub search: SearchSettings,
     /// Core solver settings of the exact and conformal patches (default:
     /// [`wheelrail_solver_settings`], tolerances that give forces and
-    /// maximum pressures to about five digits).
+    /// maximum pressures to about five digits); with
+    /// `force_tolerance_of_wheel_load` their tolerances loosened as
+    /// [`Self::solver_in_force`] says.
     pub solver: SolverSettings,
     /// Relative tolerance on the vertical force [-]; with
     /// `force_tolerance_of_wheel_load` the larger of it and that tolerance
@@ -490,6 +492,25 @@ impl WheelRailSettings {
                 .max(t / grid_sizing::LOAD_TOLERANCE_DIVISOR),
             None => self.load_tolerance,
         }
+    }
+
+    /// The core solver settings of the exact and conformal patches:
+    /// `solver`, or with `force_tolerance_of_wheel_load` its normal and
+    /// tangential tolerances loosened (never tightened) to
+    /// [`SIZED_NORMAL_TOLERANCE`](grid_sizing::SIZED_NORMAL_TOLERANCE) and
+    /// [`SIZED_TANGENTIAL_TOLERANCE`](grid_sizing::SIZED_TANGENTIAL_TOLERANCE):
+    /// their force errors lie far below the smallest tolerance the option
+    /// takes.
+    pub fn solver_in_force(&self) -> SolverSettings {
+        let mut s = self.solver;
+        if self.force_tolerance_of_wheel_load.is_some() {
+            s.normal.tolerance = s.normal.tolerance.max(grid_sizing::SIZED_NORMAL_TOLERANCE);
+            s.tangential.tolerance = s
+                .tangential
+                .tolerance
+                .max(grid_sizing::SIZED_TANGENTIAL_TOLERANCE);
+        }
+        s
     }
 }
 
@@ -1086,7 +1107,7 @@ impl PatchWork {
                     }
                 }
                 problem.load = load;
-                problem.settings = accuracy.settings(&input.settings.solver);
+                problem.settings = accuracy.settings(&input.settings.solver_in_force());
                 let mut sol = match transient {
                     Some(t) => {
                         // Every solve of the step starts from the history.
@@ -2357,7 +2378,7 @@ pub fn pitch_force_tolerance(settings: &WheelRailSettings) -> f64 {
     if settings.model.is_fast() {
         1e-6
     } else {
-        1e-6_f64.max(settings.solver.tangential.tolerance)
+        1e-6_f64.max(settings.solver_in_force().tangential.tolerance)
     }
 }
 
@@ -3678,7 +3699,7 @@ fn build_patch(
                 gap_m,
                 load: NormalLoad::Approach(0.0),
                 kinematics: Kinematics::SteadyRolling(creep),
-                settings: input.settings.solver,
+                settings: input.settings.solver_in_force(),
                 rolling_direction_rad: if backward { std::f64::consts::PI } else { 0.0 },
                 extra_rigid_slip: None,
                 numerical_influence: None,
@@ -4702,9 +4723,8 @@ pub(crate) fn load_iteration(
             let accuracy = match p.kind {
                 PatchKind::Hertz { .. } | PatchKind::KikPiotrowski { .. } => Accuracy::Final,
                 PatchKind::Exact { .. } if start.is_some() => Accuracy::Final,
-                _ => {
-                    frictional_accuracy(last.is_none(), it, max_it).or_final(&input.settings.solver)
-                }
+                _ => frictional_accuracy(last.is_none(), it, max_it)
+                    .or_final(&input.settings.solver_in_force()),
             };
             let fz = solve_at(p, fn_n, accuracy)?;
             let r = fz - target;
@@ -4845,7 +4865,7 @@ fn frictional_steps(
     let mut bracket = LoadBracket::default();
     for step in 1.. {
         let accuracy = frictional_accuracy(last.is_none(), iterations + 1, max_it)
-            .or_final(&input.settings.solver);
+            .or_final(&input.settings.solver_in_force());
         let mut fz = solve_all(patches, delta, true, accuracy, input, fastsim, cache)?;
         iterations += 1;
         if accuracy == Accuracy::Final {
@@ -4913,7 +4933,9 @@ fn coupled_frictionless(
     let (area, mut op) = (area?, BlockNormal::new(parts)?);
     let n = h.len();
     let mut pn = vec![0.0; n];
-    let settings = Accuracy::Estimate.settings(&input.settings.solver).normal;
+    let settings = Accuracy::Estimate
+        .settings(&input.settings.solver_in_force())
+        .normal;
     let outcome = solve_normal_with(
         &mut op,
         &h,

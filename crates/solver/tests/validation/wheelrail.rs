@@ -314,9 +314,11 @@ fn exact_session_steps_agree_with_cold_solves() {
 /// and 300 at 12 mm (flange contact), each wheel on the coarsest grid its
 /// checks allow; every 10th step's forces within 0.5 % of the wheel load
 /// of a cold solve on the default 0.2 mm grid (fresh warm start, the
-/// core's default tolerances). Measured: 2.72e-3 and 3.78e-3 of the load,
-/// most steps on 0.5 mm elements (the coarsest of the option's sizes;
-/// 1 of the 12 mm path's 600 wheel steps on 0.2 mm).
+/// core's default tolerances; the sized steps at the option's looser
+/// solver tolerances, `WheelRailSettings::solver_in_force`). Measured:
+/// 2.72e-3 and 3.79e-3 of the load, most steps on 0.5 mm elements (the
+/// coarsest of the option's sizes; 1 of the 12 mm path's 600 wheel steps
+/// on 0.2 mm).
 #[test]
 fn steps_on_grids_sized_for_the_forces_agree_with_cold_solves() {
     let pair = mbench_pair();
