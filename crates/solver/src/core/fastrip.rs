@@ -76,8 +76,10 @@
 //! edge, so with spin the results are not the mirror image of `+x`'s
 //! (CONTACT's library on `fastsim.inp`'s ellipse, `eta = -0.000625`, `phi =
 //! -0.625/m` along `-x`: `FY = -16327 N`, all elements sliding, against
-//! `FY = -15829 N` with the spin and direction reversed). Longitudinal and
-//! lateral creepage alone give the same totals both ways.
+//! `FY = -15829 N` with the spin and direction reversed). Longitudinal
+//! creepage alone gives the mirrored totals (CONTACT's library: `FX =
+//! 11705.69 N` for `xi = -0.001` along `-x`, `-11705.69 N` for `0.001`
+//! along `+x`).
 //!
 //! The slip `s` is FASTSIM's where both FASTSIM and strip theory put an
 //! element in slip, zero elsewhere, as CONTACT reports it: an element that
