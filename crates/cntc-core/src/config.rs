@@ -116,6 +116,10 @@ pub enum MaterialModel {
     /// flexibility FLX; both with Spiryagin-Polach-Cole's slope reduction
     /// (k0, alpha_inf, beta); k0 = alpha = beta = 1 is Kalker's FASTSIM.
     ModifiedFastsim(FastsimMaterial),
+    /// M = 5: modified FaStrip ([`railcontact_solver::core::fastrip`]):
+    /// strip theory in the adhesion areas of FASTSIM's rows, Kalker's three
+    /// flexibilities (blended) and the same slope reduction as M = 3.
+    ModifiedFastrip(FastsimMaterial),
     /// M = 4: elastic half-spaces with an interfacial (third-body) layer
     /// between them, elastic or elasto-plastic (GG3, LAYTHK, TAU_C0,
     /// K_TAU; [`railcontact_solver::core::layer`]), Kalker's exact theory.
@@ -455,11 +459,14 @@ impl Config {
     fn check_bound(&mut self) {
         let what = match (self.digits.bound, self.material.model) {
             (0, _) => None,
-            (2 | 3, MaterialModel::ModifiedFastsim(_)) => None,
+            (2 | 3, MaterialModel::ModifiedFastsim(_) | MaterialModel::ModifiedFastrip(_)) => {
+                None
+            }
             (b @ (2 | 3), _) => {
                 Some(format!(
                     "B = {b} (CNTC_ic_bound) with M = {}: a prescribed {} pressure under Kalker's \
-                     exact theory is not supported (B = 2, 3 are for FASTSIM, M = 2, 3)",
+                     exact theory is not supported (B = 2, 3 are for FASTSIM and FaStrip, M = 2, 3, \
+                     5)",
                     self.digits.mater,
                     if b == 2 { "elliptical" } else { "parabolic" }
                 ))
@@ -514,7 +521,7 @@ impl Config {
                 self.material.model = MaterialModel::Elastic;
                 None
             }
-            2 | 3 => {
+            2 | 3 | 5 => {
                 let k = if m == 2 { 5 } else { 4 };
                 let reduction = SlopeReduction {
                     initial_factor: p[k].max(1e-6),
@@ -522,16 +529,16 @@ impl Config {
                     transition_rate: p[k + 2].max(1e-6),
                     ..SlopeReduction::NONE
                 };
-                self.material.model = MaterialModel::ModifiedFastsim(if m == 2 {
-                    FastsimMaterial {
+                self.material.model = match m {
+                    2 => MaterialModel::ModifiedFastsim(FastsimMaterial {
                         flexibility: GridFlexibility::Given {
                             flexibility_m_per_pa: flx_m_per_pa,
                         },
                         reduction,
-                    }
-                } else {
-                    FastsimMaterial::kalker(reduction)
-                });
+                    }),
+                    3 => MaterialModel::ModifiedFastsim(FastsimMaterial::kalker(reduction)),
+                    _ => MaterialModel::ModifiedFastrip(FastsimMaterial::kalker(reduction)),
+                };
                 None
             }
             1 => {
@@ -562,9 +569,9 @@ impl Config {
                 });
                 None
             }
-            5 => Some("M = 5 (FaStrip) is not supported".to_string()),
             _ => Some(format!(
-                "M = {m} (numerical influence coefficients) is not supported"
+                "M = {m} (CONTACT's original FaStrip, for testing) is not supported; M = 5 \
+                 (modified FaStrip) is"
             )),
         };
         self.mark("cntc_setmaterialparameters", what);

@@ -281,9 +281,11 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
             let layer = m.model.layer();
             let applied = e.outcome(icp).ok().and_then(|o| o.fastsim);
             let (flx_m_per_pa, k_eff) = match (m.model, applied) {
-                (crate::config::MaterialModel::ModifiedFastsim(_), Some(a)) => {
-                    (a.flexibilities_m_per_pa, a.slope_factor)
-                }
+                (
+                    crate::config::MaterialModel::ModifiedFastsim(_)
+                    | crate::config::MaterialModel::ModifiedFastrip(_),
+                    Some(a),
+                ) => (a.flexibilities_m_per_pa, a.slope_factor),
                 (
                     crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
                         flexibility:
@@ -296,6 +298,10 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 ) => ([flexibility_m_per_pa; 3], 0.0),
                 (
                     crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                        flexibility: GridFlexibility::Kalker { .. },
+                        ..
+                    })
+                    | crate::config::MaterialModel::ModifiedFastrip(FastsimMaterial {
                         flexibility: GridFlexibility::Kalker { .. },
                         ..
                     }),
@@ -318,6 +324,10 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
             ];
             let (k0, a, b) = match m.model {
                 crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
+                    reduction: r,
+                    ..
+                })
+                | crate::config::MaterialModel::ModifiedFastrip(FastsimMaterial {
                     reduction: r,
                     ..
                 }) => (r.initial_factor, r.limit_ratio, r.transition_rate),

@@ -1720,6 +1720,14 @@ impl WheelRail {
                     .into(),
             ));
         }
+        if let MaterialModel::ModifiedFastrip(_) = self.config.material.model {
+            return Err(CntcError::NotSupported(
+                "M = 5 (modified FaStrip) in module 1 is not supported: module 3 takes it on a \
+                 Hertzian or non-Hertzian patch in steady rolling; M = 3 (modified FASTSIM) \
+                 runs on wheel/rail patches"
+                    .into(),
+            ));
+        }
         if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(

@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::ContactError;
+use railcontact_solver::core::fastrip::GridFastrip;
 use railcontact_solver::core::fastsim::TractionBound;
 use railcontact_solver::core::fastsim_grid::{
     equivalent_ellipse, BoundScaling, CreepInterpolation, FastsimMaterial, GridFastsim,
@@ -403,9 +404,13 @@ impl Patch {
         let (grid, gap, hertz) = self.geometry(&material, load)?;
         let t0 = Instant::now();
         let mut outcome = match self.config.material.model {
-            MaterialModel::ModifiedFastsim(fastsim) => {
+            MaterialModel::ModifiedFastsim(fastsim) | MaterialModel::ModifiedFastrip(fastsim) => {
+                let fastrip = matches!(
+                    self.config.material.model,
+                    MaterialModel::ModifiedFastrip(_)
+                );
                 let (mut outcome, status) =
-                    self.fastsim(cache, &material, load, hertz, grid, gap, fastsim)?;
+                    self.fastsim(cache, &material, load, hertz, grid, gap, fastsim, fastrip)?;
                 if let Some(e) = status {
                     outcome.hertz = hertz;
                     self.outcome = Some(outcome);
@@ -730,6 +735,9 @@ impl Patch {
     /// non-Hertzian grid's of the contact area's equivalent ellipse,
     /// blended as CONTACT blends them; M = 2: the given one); Coulomb
     /// friction or a falling law (L = 2-5) at the global slip velocity.
+    /// With `fastrip` (M = 5) modified FaStrip
+    /// ([`railcontact_solver::core::fastrip`]) on the same grid, pressure,
+    /// flexibilities and slope reduction, the bound the static coefficient.
     /// The outcome has the per-element fields; with an iteration
     /// limit of the normal problem (B = 0) its error too.
     #[allow(clippy::too_many_arguments)]
@@ -742,19 +750,21 @@ impl Patch {
         grid: Grid,
         gap: Vec<f64>,
         fastsim: FastsimMaterial,
+        fastrip: bool,
     ) -> Result<(Outcome, Option<CntcError>)> {
         let d = self.config.digits;
         let m = d.mater;
+        let method = if fastrip { "FaStrip" } else { "FASTSIM" };
         if d.tang != 3 || d.force != 0 {
             return Err(CntcError::NotSupported(format!(
-                "FASTSIM (M = {m}) with T = {}, F = {}: steady rolling (T = 3) with creepages \
+                "{method} (M = {m}) with T = {}, F = {}: steady rolling (T = 3) with creepages \
                  (F = 0)",
                 d.tang, d.force
             )));
         }
         if self.kin.extra.is_some() {
             return Err(CntcError::NotSupported(format!(
-                "FASTSIM (M = {m}) with an extra rigid slip (E = 9, cntc_setextrarigidslip)"
+                "{method} (M = {m}) with an extra rigid slip (E = 9, cntc_setextrarigidslip)"
             )));
         }
         let friction = match self.config.friction {
@@ -778,7 +788,7 @@ impl Patch {
                     NormalLoad::Approach(a) => HertzLoad::Approach { approach_m: a },
                 };
                 let sol = hertz(h.a1_per_m, h.b1_per_m, e_star, hload)
-                    .map_err(|e| CntcError::Input(format!("FASTSIM's Hertz problem: {e}")))?;
+                    .map_err(|e| CntcError::Input(format!("{method}'s Hertz problem: {e}")))?;
                 let bound = if b == 2 {
                     TractionBound::Elliptic
                 } else {
@@ -796,7 +806,7 @@ impl Patch {
             }
             (b @ (2 | 3), None) => {
                 return Err(CntcError::NotSupported(format!(
-                    "FASTSIM (M = {m}) with B = {b} on a non-Hertzian potential contact area: the \
+                    "{method} (M = {m}) with B = {b} on a non-Hertzian potential contact area: the \
                      {} traction bound needs a Hertzian problem (cntc_sethertzcontact); B = 0 \
                      solves the normal problem",
                     if b == 2 { "elliptical" } else { "parabolic" }
@@ -837,12 +847,11 @@ impl Patch {
             }
             (b, _) => {
                 return Err(CntcError::NotSupported(format!(
-                    "FASTSIM (M = {m}) with B = {b}: B = 0 (the normal problem's pressure), 2 \
+                    "{method} (M = {m}) with B = {b}: B = 0 (the normal problem's pressure), 2 \
                      (elliptical) or 3 (parabolic)"
                 )))
             }
         };
-        let mut fs = GridFastsim::new(grid).map_err(CntcError::from_contact)?;
         let input = GridFastsimInput {
             semi_axis_x_m: ellipse[0],
             semi_axis_y_m: ellipse[1],
@@ -866,14 +875,23 @@ impl Patch {
                 scaling: BoundScaling::Analytic,
             },
         };
-        let out = fs
-            .solve(&input, p)
-            .map_err(|e| CntcError::Input(format!("FASTSIM: {e}")))?;
+        let solve_error = |e| CntcError::Input(format!("{method}: {e}"));
+        let (out, fields, border, rigid_slip) = if fastrip {
+            let mut fs = GridFastrip::new(grid).map_err(CntcError::from_contact)?;
+            let out = fs.solve(&input, p).map_err(solve_error)?.totals;
+            let border = grid.loaded_border_elements(fs.pressure_pa());
+            (out, fs.fields(gap), border, fs.rigid_slip())
+        } else {
+            let mut fs = GridFastsim::new(grid).map_err(CntcError::from_contact)?;
+            let out = fs.solve(&input, p).map_err(solve_error)?;
+            let border = grid.loaded_border_elements(fs.pressure_pa());
+            (out, fs.fields(gap), border, fs.rigid_slip())
+        };
         let mut o = Outcome::no_contact(grid, Vec::new(), approach);
-        o.fields = fs.fields(gap);
-        o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
+        o.fields = fields;
+        o.border_elements = border;
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
-        o.rigid_slip = Some(fs.rigid_slip());
+        o.rigid_slip = Some(rigid_slip);
         let applied = out.applied;
         let [l1, l2, _] = applied
             .flexibilities_m_per_pa
@@ -885,8 +903,15 @@ impl Patch {
                 .is_some()
                 .then_some([material.body1, material.body2]),
         });
-        if let GridFriction::SlipVelocity(_) = friction {
-            o.mu = vec![out.friction_coefficient; grid.len()];
+        if let GridFriction::SlipVelocity(law) = friction {
+            // CONTACT's MU field: the coefficient at the global slip
+            // velocity (FaStrip's bound is the static one all the same).
+            let mu_eff = if fastrip {
+                law.coefficient(self.kin.veloc * self.kin.creep[0].hypot(self.kin.creep[1]))
+            } else {
+                out.friction_coefficient
+            };
+            o.mu = vec![mu_eff; grid.len()];
         }
         o.friction_coefficient = self.config.friction.static_coefficient();
         // CONTACT reports a prescribed normal force, else the pressure's sum

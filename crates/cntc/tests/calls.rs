@@ -173,9 +173,10 @@ fn methods_the_library_lacks_are_named_at_calculation() {
     tractcurv(ire);
     let mut ierror = 0;
     unsafe {
-        // M = 5 (modified FaStrip): refused until replaced.
-        let fastrip = [0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0];
-        cntc_setmaterialparameters(&ire, &icp, &5, &7, fastrip.as_ptr());
+        // M = 6 (CONTACT's original FaStrip, for testing): refused until
+        // replaced.
+        let fastrip = [0.28, 0.28, 82000.0, 82000.0];
+        cntc_setmaterialparameters(&ire, &icp, &6, &4, fastrip.as_ptr());
         cntc_calculate(&ire, &icp, &mut ierror);
         assert_eq!(ierror, err::NOT_SUPPORTED);
         let elastic = [0.28, 0.28, 82000.0, 82000.0];

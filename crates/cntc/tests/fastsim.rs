@@ -309,7 +309,8 @@ fn normal_problem_pressure() {
     }
 }
 
-/// What FASTSIM (M = 3, and M = 2 alike) does not do here is refused with
+/// What FASTSIM (M = 3, and M = 2 and FaStrip's M = 5 alike) does not do
+/// here is refused with
 /// CNTC_err_notsupported: transient rolling (T = 2), prescribed forces (F
 /// = 1), an extra rigid slip (E = 9), the elliptic bound on a non-Hertzian
 /// grid.
@@ -317,6 +318,7 @@ fn normal_problem_pressure() {
 fn refusals() {
     refusals_of(306, 3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0]);
     refusals_of(307, 2, &[0.28, 0.28, 82000.0, 82000.0, 5e-5, 1.0, 1.0, 1.0]);
+    refusals_of(308, 5, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0]);
 }
 
 /// [`refusals`] of the M digit `m` with its parameters `mat`.
@@ -729,4 +731,169 @@ fn flexibilities_and_k_eff_match_contact() {
             .collect();
         compare_applied(ire, given, 1e-7, &cases);
     }
+}
+
+/// `examples/fastsim.inp`'s patch on (ire, 1) with M = 5 (modified
+/// FaStrip): Hertzian option -3 (AA, BB = 8, 4 mm, 44 x 44 elements over
+/// 1.1 times the ellipse), FN = 82 kN, G = 82000 N/mm^2, nu = 0.28,
+/// VELOC 30 m/s, steady rolling with CHI `chi` (DQ 0.4 mm), the B digit
+/// `bound`, the slope reduction `red`, the friction method `imeth` with
+/// `law`; CONTACT's units.
+fn fastsim_inp_fastrip(ire: i32, bound: i32, red: [f64; 3], chi: f64, imeth: i32, law: &[f64]) {
+    let icp = 1;
+    let mat = [0.28, 0.28, 82000.0, 82000.0, red[0], red[1], red[2]];
+    steady_rolling(ire, flags::UN_CNTC, 5, &mat, bound);
+    unsafe {
+        let hz = [44.0, 44.0, 8.0, 4.0, 1.1];
+        cntc_sethertzcontact(&ire, &icp, &-3, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &30000.0);
+        cntc_setrollingstepsize(&ire, &icp, &chi, &0.4);
+        cntc_setnormalforce(&ire, &icp, &82000.0);
+        cntc_setfrictionmethod(&ire, &icp, &imeth, &(law.len() as i32), law.as_ptr());
+    }
+}
+
+/// One M = 5 case: name, creepages, slope reduction, B digit, CHI, the
+/// friction method (L = 0 or 4), CONTACT's FX, FY, MZ [N, N mm], adhesion
+/// and slip element counts and K_EFF.
+type FastripCase = (
+    &'static str,
+    [f64; 3],
+    [f64; 3],
+    i32,
+    f64,
+    i32,
+    [f64; 3],
+    [usize; 2],
+    f64,
+);
+
+/// M = 5 (modified FaStrip) against CONTACT's library
+/// (`crates/cntc/bench/fastrip_cases.py`, the same calls through CONTACT's
+/// `python_intfc`; its cases of these names): longitudinal, lateral and
+/// spin creepage alone and combined, from nearly linear to full sliding;
+/// the slope reduction (0.54, 0.02, 0.62) and (0.7, 0.3, 0.8); the
+/// parabolic bound (B = 3) and the normal problem's pressure (B = 0);
+/// rolling along -x (CHI = 180 degrees: CONTACT's strip part keeps its
+/// adhesion zone at +x, `case3-back` slides everywhere); exponential
+/// falling friction (L = 4, python_tractcurv.py's law). The first case is
+/// `fastsim.inp` case 4 (`fastsim.ref_out`: FY -1.583E+04, MZ -4.816E+04,
+/// NADH 626, NSLIP 638). FX, FY, MZ/(8 mm) within 1e-7 mu FN of
+/// CONTACT's (the scheme and grid are CONTACT's; measured: within 3e-8,
+/// B = 0 too), the element counts equal, K_EFF within 1e-7 relative as
+/// M = 3's (the same code; measured 7e-9).
+#[test]
+fn fastrip_against_contacts_library() {
+    const PLAIN: [f64; 3] = [1.0, 1.0, 1.0];
+    const RED1: [f64; 3] = [0.54, 0.02, 0.62];
+    const RED2: [f64; 3] = [0.7, 0.3, 0.8];
+    const PI: f64 = std::f64::consts::PI;
+    #[rustfmt::skip]
+    let cases: [FastripCase; 21] = [
+        ("case4", [0.0, -0.000625, 0.000625], PLAIN, 2, 0.0, 0, [0.0, -15829.428007966377, -48164.809410048954], [626, 638], 1.0),
+        ("xi-tiny", [1e-06, 0.0, 0.0], PLAIN, 2, 0.0, 0, [-12.823028835713535, 0.0, 0.0], [1264, 0], 1.0),
+        ("xi", [0.001, 0.0, 0.0], PLAIN, 2, 0.0, 0, [-11705.693492681163, 0.0, 0.0], [868, 396], 1.0),
+        ("xi-full", [0.05, 0.0, 0.0], PLAIN, 2, 0.0, 0, [-24618.611900975364, 0.0, 0.0], [0, 1264], 1.0),
+        ("eta", [0.0, 0.0005, 0.0], PLAIN, 2, 0.0, 0, [0.0, -6115.537999901721, 16904.585091430974], [1064, 200], 1.0),
+        ("eta-neg", [0.0, -0.002, 0.0], PLAIN, 2, 0.0, 0, [0.0, 18801.797072589634, -20937.014734274886], [568, 696], 1.0),
+        ("phi", [0.0, 0.0, 0.0003], PLAIN, 2, 0.0, 0, [0.0, -12000.949945675542, -16632.104390835277], [972, 292], 1.0),
+        ("phi-neg", [0.0, 0.0, -0.001], PLAIN, 2, 0.0, 0, [0.0, 15186.767113221182, 57487.77397066643], [0, 1264], 1.0),
+        ("phi-large", [0.0, 0.0, 0.004], PLAIN, 2, 0.0, 0, [0.0, -6634.218360787594, -82973.9188524254], [0, 1264], 1.0),
+        ("mixed", [0.0005, 0.0008, 0.0003], PLAIN, 2, 0.0, 0, [-4882.738873060012, -18955.583570236784, -6128.07901622222], [589, 675], 1.0),
+        ("mixed2", [0.002, -0.001, -0.0006], PLAIN, 2, 0.0, 0, [-13042.781885049764, 17764.07643034795, 29170.180350575967], [0, 1264], 1.0),
+        ("case4-red1", [0.0, -0.000625, 0.000625], RED1, 2, 0.0, 0, [0.0, -16711.962661680493, -44330.5667472003], [626, 638], 0.3326120387336499),
+        ("phi-red1", [0.0, 0.0, 0.0003], RED1, 2, 0.0, 0, [0.0, -12025.74391964172, -16502.993774715604], [972, 292], 0.4018229866429141),
+        ("mixed2-red1", [0.002, -0.001, -0.0006], RED1, 2, 0.0, 0, [-11563.556540950365, 20155.049658330732, 18618.683328680523], [0, 1264], 0.28893903209562893),
+        ("mixed-red2", [0.0005, 0.0008, 0.0003], RED2, 2, 0.0, 0, [-4714.580405714607, -19141.494048473847, -4907.527521534329], [589, 675], 0.48267255301729495),
+        ("phi-large-red2", [0.0, 0.0, 0.004], RED2, 2, 0.0, 0, [0.0, -14756.472029000819, -59251.265903548745], [0, 1264], 0.2651746997419732),
+        ("case4-b3", [0.0, -0.000625, 0.000625], PLAIN, 3, 0.0, 0, [0.0, -15830.284405383525, -40206.61189089336], [626, 638], 1.0),
+        ("mixed-b0", [0.0005, 0.0008, 0.0003], PLAIN, 0, 0.0, 0, [-4899.000686558353, -19075.661660375237, -6484.864478151935], [575, 701], 1.0),
+        ("case3-back", [0.0, -0.000625, -0.000625], PLAIN, 2, PI, 0, [0.0, -16327.337767153876, 51138.971932769666], [0, 1264], 1.0),
+        ("mixed-back", [-0.0005, 0.0008, -0.0003], PLAIN, 2, PI, 0, [3906.1700508422396, 895.4524693361723, 41332.31587610504], [918, 346], 1.0),
+        ("mixed-l4", [0.0005, 0.0008, 0.0003], RED1, 2, 0.0, 4, [-5045.638321899365, -20034.871571298965, -871.8312960625844], [750, 514], 0.38826606647031214),
+    ];
+    let ire = 340;
+    let limit = 1e-7 * 0.3 * 82000.0;
+    for (name, creep, red, bound, chi, l, f_ref, [nadh, nslip], keff) in cases {
+        let law: &[f64] = if l == 4 {
+            &[0.1368, 0.2232, 990.0, 0.0, 0.0, 0.003, 1.0]
+        } else {
+            &[0.3, 0.3]
+        };
+        fastsim_inp_fastrip(ire, bound, red, chi, l, law);
+        let (ierror, f) = solve(ire, creep);
+        assert_eq!(ierror, 0, "{name}");
+        assert!(rel(f[0], 82000.0) < 1e-12, "{name}: FN {}", f[0]);
+        for (k, (ours, theirs)) in [f[1], f[2], f[3] / 8.0]
+            .iter()
+            .zip([f_ref[0], f_ref[1], f_ref[2] / 8.0])
+            .enumerate()
+        {
+            assert!(
+                (ours - theirs).abs() < limit,
+                "{name} [{k}]: {ours} vs {theirs}"
+            );
+        }
+        let fl = fields(ire, 44 * 44);
+        assert_eq!(
+            (count(&fl.division, 1), count(&fl.division, 2)),
+            (nadh, nslip),
+            "{name}"
+        );
+        assert!(rel(material_parameters(ire)[13], keff) < 1e-7, "{name}");
+    }
+    unsafe { cntc_finalize(&ire) };
+}
+
+/// M = 5's analytic limits through the C calls: full sliding gives mu
+/// times the grid's pressure sum (CONTACT's pressure is not normalised:
+/// `xi-full`'s FX -24618.611900975364 N is 0.3 times it, 0.08 % above
+/// 0.3 FN); with one creepage the slope reduction changes nothing (module
+/// docs of `core::fastrip`; CONTACT's library alike, `xi-red1`); in SI
+/// units (CNTC_un_spck: forces on body 2) the same numbers turned
+/// (CONTACT's `mixed-si`: FX 4714.580405714607 N). The slip is zero in
+/// adhesion and the tractions within the bound.
+#[test]
+fn fastrip_limits_and_units() {
+    let ire = 341;
+    fastsim_inp_fastrip(ire, 2, [1.0, 1.0, 1.0], 0.0, 0, &[0.3, 0.3]);
+    let (_, f) = solve(ire, [0.05, 0.0, 0.0]);
+    let fl = fields(ire, 44 * 44);
+    let sum_pn: f64 = fl.pn.iter().sum::<f64>() * 0.4 * 0.2;
+    assert!(rel(f[1], -0.3 * sum_pn) < 1e-12, "{} vs {}", f[1], sum_pn);
+    assert!(rel(sum_pn, 82000.0) < 1e-3 && rel(sum_pn, 82000.0) > 1e-4);
+    let (_, plain) = solve(ire, [0.001, 0.0, 0.0]);
+    fastsim_inp_fastrip(ire, 2, [0.54, 0.02, 0.62], 0.0, 0, &[0.3, 0.3]);
+    let (_, reduced) = solve(ire, [0.001, 0.0, 0.0]);
+    assert!(rel(reduced[1], plain[1]) < 1e-14);
+    let fl = fields(ire, 44 * 44);
+    for i in 0..44 * 44 {
+        assert!(fl.px[i].abs() <= 0.3 * fl.pn[i] * (1.0 + 1e-12));
+        if fl.division[i] == 1 {
+            assert_eq!(fl.sx[i], 0.0);
+        }
+    }
+    // SI, CONTACT's Simpack convention.
+    let icp = 1;
+    let mat = [0.28, 0.28, 82e9, 82e9, 0.7, 0.3, 0.8];
+    steady_rolling(ire, flags::UN_SPCK, 5, &mat, 2);
+    unsafe {
+        let hz = [44.0, 44.0, 8e-3, 4e-3, 1.1];
+        cntc_sethertzcontact(&ire, &icp, &-3, &5, hz.as_ptr());
+        cntc_setreferencevelocity(&ire, &icp, &30.0);
+        cntc_setrollingstepsize(&ire, &icp, &0.0, &0.4e-3);
+        cntc_setnormalforce(&ire, &icp, &82000.0);
+        cntc_setfrictionmethod(&ire, &icp, &0, &2, [0.3, 0.3].as_ptr());
+    }
+    let (ierror, f) = solve(ire, [0.0005, 0.0008, 0.3]);
+    assert_eq!(ierror, 0);
+    let limit = 1e-7 * 0.3 * 82000.0;
+    assert!((f[1] - 4714.580405714607).abs() < limit, "{}", f[1]);
+    assert!((f[2] - 19141.494048473847).abs() < limit, "{}", f[2]);
+    assert!(
+        (f[3] * 1e3 - 4907.527521534329).abs() / 8.0 < limit,
+        "{}",
+        f[3]
+    );
+    unsafe { cntc_finalize(&ire) };
 }

@@ -396,21 +396,29 @@ fn input_errors_name_the_file_and_line() {
 fn unsupported_digits_are_refused_naming_the_line() {
     let dir = InpDir::new("unsupported");
     let ire = 41;
-    // M = 1 (viscoelastic bodies) with its four constants: read (the
-    // setter takes M = 1, module 3 solves it), refused when module 1
-    // calculates.
-    let text = MBENCH_RIGHT_INP
-        .replacen(" 0022033 ", " 0022133 ", 1)
-        .replacen(
-            "82000., 82000.                POISS 1,2,  GG 1,2\n",
-            "82000., 82000.                POISS 1,2,  GG 1,2\n  0.5 0.5 0.1 0.1   FG, TC\n",
+    // M = 1 (viscoelastic bodies) with its four constants, M = 5 (modified
+    // FaStrip) with its slope reduction: read (the setter takes them,
+    // module 3 solves them), refused when module 1 calculates.
+    let mut ierror = 0;
+    for (digits, line, name) in [
+        (" 0022133 ", "0.5 0.5 0.1 0.1   FG, TC", "visco.inp"),
+        (
+            " 0022533 ",
+            "1.0 1.0 1.0   K0_MF, ALFAMF, BETAMF",
+            "fastrip.inp",
+        ),
+    ] {
+        let gg = "82000., 82000.                POISS 1,2,  GG 1,2\n";
+        let text = MBENCH_RIGHT_INP.replacen(" 0022033 ", digits, 1).replacen(
+            gg,
+            &format!("{gg}  {line}\n"),
             1,
         );
-    let f = dir.write("visco.inp", &text);
-    assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "visco.inp");
-    let mut ierror = 0;
-    unsafe { cntc_calculate1(&ire, &mut ierror) };
-    assert_eq!(ierror, err::NOT_SUPPORTED);
+        let f = dir.write(name, &text);
+        assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "{name}");
+        unsafe { cntc_calculate1(&ire, &mut ierror) };
+        assert_eq!(ierror, err::NOT_SUPPORTED, "{name}");
+    }
     // A new M digit without its material parameters (C3 = 1 keeps them),
     // on a new element (M = 0).
     let text = MBENCH_RIGHT_INP

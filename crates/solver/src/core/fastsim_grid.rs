@@ -271,7 +271,7 @@ pub enum CreepInterpolation {
 impl CreepInterpolation {
     /// `C11`, `C22`, `C23` at `a_over_b` and `nu` (`C33` is not used);
     /// None outside `[MIN_ASPECT_RATIO, 1/MIN_ASPECT_RATIO]`.
-    fn coefficients(self, a_over_b: f64, nu: f64) -> Option<[f64; 3]> {
+    pub(crate) fn coefficients(self, a_over_b: f64, nu: f64) -> Option<[f64; 3]> {
         if !(MIN_ASPECT_RATIO..=1.0 / MIN_ASPECT_RATIO).contains(&a_over_b) {
             return None;
         }
@@ -450,6 +450,27 @@ pub fn equivalent_ellipse(grid: &Grid, pressure_pa: &[f64]) -> Option<[f64; 2]> 
     Some([r * (len / wid).sqrt(), r * (wid / len).sqrt()])
 }
 
+/// The friction coefficient of the march's traction bound.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum MarchFriction {
+    /// The coefficient at the global slip velocity (CONTACT's FASTSIM).
+    GlobalSlipVelocity,
+    /// The static coefficient (CONTACT's FaStrip, `fstat`).
+    Static,
+}
+
+/// The buffers of a [`GridFastsim`] that a method built on its march
+/// rewrites ([`crate::core::fastrip`]).
+pub(crate) struct MarchBuffers<'a> {
+    pub(crate) grid: Grid,
+    pub(crate) pn: &'a [f64],
+    pub(crate) px: &'a mut [f64],
+    pub(crate) py: &'a mut [f64],
+    pub(crate) sx: &'a mut [f64],
+    pub(crate) sy: &'a mut [f64],
+    pub(crate) state: &'a mut [ElementState],
+}
+
 /// What the march of one solve uses, kept for [`GridFastsim::rigid_slip`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct March {
@@ -557,6 +578,20 @@ impl GridFastsim {
         }
     }
 
+    /// The buffers the last solve filled, the tractions and states to be
+    /// rewritten.
+    pub(crate) fn buffers_mut(&mut self) -> MarchBuffers<'_> {
+        MarchBuffers {
+            grid: self.grid,
+            pn: &self.pn,
+            px: &mut self.px,
+            py: &mut self.py,
+            sx: &mut self.sx,
+            sy: &mut self.sy,
+            state: &mut self.state,
+        }
+    }
+
     /// The rigid slip per element [-] the last solve marched with, as
     /// CONTACT's `M = 3` states it: `(xi - (L1/L3) phi y, eta + (L2/L3) phi
     /// (x + d))` (the spin's terms scaled so that each component over its
@@ -585,6 +620,18 @@ impl GridFastsim {
         &mut self,
         input: &GridFastsimInput,
         pressure: GridPressure<'_>,
+    ) -> Result<GridFastsimOutput, ContactError> {
+        self.solve_with(input, pressure, MarchFriction::GlobalSlipVelocity)
+    }
+
+    /// [`GridFastsim::solve`] with the march's friction coefficient chosen
+    /// by `march` (the slope reduction always uses the coefficient at the
+    /// global slip velocity). No allocation.
+    pub(crate) fn solve_with(
+        &mut self,
+        input: &GridFastsimInput,
+        pressure: GridPressure<'_>,
+        march: MarchFriction,
     ) -> Result<GridFastsimOutput, ContactError> {
         validate(input)?;
         let (a, b) = (input.semi_axis_x_m, input.semi_axis_y_m);
@@ -737,7 +784,11 @@ impl GridFastsim {
             x_offset,
             rolling: input.rolling,
         };
-        let mut out = self.march_rows(mu);
+        let march_mu = match march {
+            MarchFriction::GlobalSlipVelocity => mu,
+            MarchFriction::Static => mu_static,
+        };
+        let mut out = self.march_rows(march_mu);
         let totals = [out.fx_n, out.fy_n, out.mz_nm, out.tgamma_n];
         if !(k > 0.0 && totals.iter().all(|v| v.is_finite())) {
             return Err(ContactError::invalid(
@@ -750,7 +801,7 @@ impl GridFastsim {
                 ),
             ));
         }
-        out.friction_coefficient = mu;
+        out.friction_coefficient = march_mu;
         out.applied = AppliedFlexibility {
             flexibilities_m_per_pa: flexibilities,
             slope_factor: k,
@@ -860,11 +911,16 @@ fn validate(input: &GridFastsimInput) -> Result<(), ContactError> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::core::creep::kalker_linear_forces;
 
-    fn input(a: f64, b: f64, xi: f64, eta: f64, phi: f64) -> GridFastsimInput {
+    /// The input the tests of this module and of
+    /// [`crate::core::fastrip`] start from: ellipse `a`, `b`, FN = 82 kN,
+    /// G = 82 GPa, nu = 0.28, V = 30 m/s, Coulomb 0.3, Kalker's blended
+    /// flexibilities, no slope reduction, rolling along +x, CONTACT's
+    /// creep table.
+    pub(crate) fn input(a: f64, b: f64, xi: f64, eta: f64, phi: f64) -> GridFastsimInput {
         GridFastsimInput {
             semi_axis_x_m: a,
             semi_axis_y_m: b,

@@ -7,6 +7,7 @@ pub mod cancel;
 pub mod coupling;
 pub mod creep;
 pub mod error;
+pub mod fastrip;
 pub mod fastsim;
 pub mod fastsim_grid;
 pub mod fft;
