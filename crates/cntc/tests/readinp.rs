@@ -396,16 +396,19 @@ fn input_errors_name_the_file_and_line() {
 fn unsupported_digits_are_refused_naming_the_line() {
     let dir = InpDir::new("unsupported");
     let ire = 41;
-    // M = 1 (viscoelastic bodies) with its four constants: read (the
-    // setter takes M = 1, module 3 solves it), refused when module 1
-    // calculates.
+    // M = 1 (viscoelastic bodies) with its four constants rolling
+    // backwards: read (the setter takes it), refused when module 1
+    // calculates (the patches take viscoelastic bodies rolling forwards).
     let text = MBENCH_RIGHT_INP
         .replacen(" 0022033 ", " 0022133 ", 1)
         .replacen(
             "82000., 82000.                POISS 1,2,  GG 1,2\n",
             "82000., 82000.                POISS 1,2,  GG 1,2\n  0.5 0.5 0.1 0.1   FG, TC\n",
             1,
-        );
+        )
+        .replacen(" 2000. 0.0", " -2000. 0.0", 1)
+        .replacen("-4.34515030", "4.34515030", 1);
+    assert!(text.contains("-2000.") && text.contains(" 4.34515030"));
     let f = dir.write("visco.inp", &text);
     assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "visco.inp");
     let mut ierror = 0;
