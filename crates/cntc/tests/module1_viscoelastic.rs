@@ -208,7 +208,8 @@ fn module_1_viscoelastic_patches_give_contacts_results() {
 /// `exact_patches_take_viscoelastic_bodies_rolling_forwards`). Refused
 /// with -40: rolling backwards (VS < 0: CONTACT forces CHI = 0 with
 /// viscoelastic bodies, solving a reversing wheel as one rolling
-/// forwards), transient contact (T = 1).
+/// forwards), transient contact (T = 1). T = 0 (the frictionless normal
+/// problem) carries the load without creep forces.
 #[test]
 fn module_1_viscoelastic_limits_and_refusals() {
     let y3 = |m, fg, tc| inp(3.0, -0.00018030, 0.0072, -4.34515030 / 2.0, None, m, fg, tc);
@@ -274,6 +275,20 @@ fn module_1_viscoelastic_limits_and_refusals() {
     let mut e = 0;
     unsafe { cntc_calculate1(&97, &mut e) };
     assert_eq!(e, err::NOT_SUPPORTED);
+    // T = 0: the frictionless normal problem of the viscoelastic bodies,
+    // the load carried, no creep forces.
+    set_flags(97, -1, &[(flags::IC_TANG, 0)]);
+    let (mut g, mut f) = ([0.0; 3], [0.0; 4]);
+    unsafe {
+        cntc_calculate1(&97, &mut e);
+        let [fn_, fx, fs, mz] = &mut f;
+        cntc_getcontactforces(&97, &1, fn_, fx, fs, mz);
+        cntc_getglobalforces(&97, &-1, &3, g.as_mut_ptr());
+    }
+    let fz = g[2];
+    assert_eq!(e, 0);
+    assert!((fz - 1e4).abs() < 0.1 && f[0] > 9e3, "FZ {fz}, FN {}", f[0]);
+    assert_eq!([f[1], f[2]], [0.0; 2]);
     for ire in 91..=97 {
         unsafe { cntc_finalize(&ire) };
     }
