@@ -2,7 +2,7 @@
 //! codes ([`CntcError::ierror`]).
 
 use railcontact_solver::core::error::ContactError;
-use railcontact_solver::wheelrail::{ProfileError, WheelRailError};
+use railcontact_solver::wheelrail::{ProfileError, WheelRailError, VISCOELASTIC_SETTINGS_KEY};
 use thiserror::Error;
 
 use crate::flags::err;
@@ -166,6 +166,11 @@ impl CntcError {
             }
             // Transient contact of another number of patches than one.
             WheelRailError::Invalid { key, .. } if key == "exact_tangential" => {
+                CntcError::NotSupported(msg)
+            }
+            // Viscoelastic bodies (M = 1) where the patches cannot take
+            // them: rolling backwards, too large a grid.
+            WheelRailError::Invalid { key, .. } if key == VISCOELASTIC_SETTINGS_KEY => {
                 CntcError::NotSupported(msg)
             }
             WheelRailError::Invalid { .. } => CntcError::Input(msg),

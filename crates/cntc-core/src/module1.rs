@@ -210,14 +210,15 @@ use railcontact_solver::wheelrail::slices::{
 };
 use railcontact_solver::wheelrail::{
     is_slices_file, is_wheel_slices_file, nominal_rolling_speed, parse_profile,
-    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset_warm, wheelrail_solver_settings,
-    ExactTangential, FrictionAxis, FrictionTable, LengthUnit, LoadOptions, MasslessRail,
-    MasslessRailError, MirrorZ, PairCache, PatchResult, PatchTractions, Profile, ProfileChecks,
-    ProfileError, ProfileKind, ProfileSpline, RailDeflection, RailDeviation, RailMotion,
-    RailPlacement, RailSlices, SearchScratch, Side, SourceLocation, SplineOptions, TrackData,
-    TransientContact, WarmStart, WheelLoad, WheelRailError, WheelRailInput, WheelRailModel,
-    WheelRailPair, WheelRailSettings, WheelRailSolution, WheelSlices, WheelsetData,
-    WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE, MAX_TRACK_CURVATURE_PER_M,
+    pitch_force_tolerance, solve_on_massless_rail, solve_wheelset_warm, viscoelastic_bodies,
+    wheelrail_solver_settings, ExactTangential, FrictionAxis, FrictionTable, LengthUnit,
+    LoadOptions, MasslessRail, MasslessRailError, MirrorZ, PairCache, PatchResult, PatchTractions,
+    Profile, ProfileChecks, ProfileError, ProfileKind, ProfileSpline, RailDeflection,
+    RailDeviation, RailMotion, RailPlacement, RailSlices, SearchScratch, Side, SourceLocation,
+    SplineOptions, TrackData, TransientContact, WarmStart, WheelLoad, WheelRailError,
+    WheelRailInput, WheelRailModel, WheelRailPair, WheelRailSettings, WheelRailSolution,
+    WheelSlices, WheelsetData, WheelsetPosition, WheelsetVelocity, MASSLESS_RAIL_PLACED_TOLERANCE,
+    MAX_TRACK_CURVATURE_PER_M,
 };
 
 use crate::config::{Config, FrictionLaw, MaterialModel};
@@ -1713,13 +1714,6 @@ impl WheelRail {
                 d.discns
             )));
         }
-        if let MaterialModel::Viscoelastic(_) = self.config.material.model {
-            return Err(CntcError::NotSupported(
-                "M = 1 (viscoelastic bodies) in module 1 is not supported: module 3 takes it, in \
-                 steady rolling"
-                    .into(),
-            ));
-        }
         if let MaterialModel::ModifiedFastrip(_) = self.config.material.model {
             return Err(CntcError::NotSupported(
                 "M = 5 (modified FaStrip) in module 1 is not supported: module 3 takes it on a \
@@ -2285,6 +2279,7 @@ impl WheelRail {
         if let Some(Ok(rail)) = &self.rail {
             rail_slices[side.index()] = rail.slices.clone();
         }
+        let forward_speed = velocity.forward_m_per_s.abs();
         Ok(WheelRailInput {
             position,
             velocity,
@@ -2326,9 +2321,14 @@ impl WheelRail {
                 },
                 // M = 4: the layer's flexibility in the patches' tangential
                 // kernels (the normal problem does not see it), its
-                // plasticity in their tangential solvers.
+                // plasticity in their tangential solvers. M = 1: the
+                // viscoelastic bodies in the patches' kernels, rolling at
+                // the wheelset's speed (the solver's
+                // `wheelrail::viscoelastic_bodies`, which replaces this
+                // speed).
                 solver: SolverSettings {
                     interfacial_layer: self.config.material.model.layer(),
+                    viscoelastic: self.config.material.model.viscoelastic(forward_speed),
                     ..wheelrail_solver_settings()
                 },
                 ..WheelRailSettings::default()
@@ -2440,7 +2440,8 @@ impl WheelRail {
                             .solver
                             .interfacial_layer
                             .map_or(0.0, |l| l.flexibility_m_per_pa()),
-                        viscoelastic: None,
+                        // The kernels of the patch's solve.
+                        viscoelastic: viscoelastic_bodies(pair, input),
                     },
                 });
             }

@@ -396,29 +396,38 @@ fn input_errors_name_the_file_and_line() {
 fn unsupported_digits_are_refused_naming_the_line() {
     let dir = InpDir::new("unsupported");
     let ire = 41;
-    // M = 1 (viscoelastic bodies) with its four constants, M = 5 (modified
-    // FaStrip) with its slope reduction: read (the setter takes them,
-    // module 3 solves them), refused when module 1 calculates.
+    // M = 1 (viscoelastic bodies) with its four constants rolling
+    // backwards: read (the setter takes it), refused when module 1
+    // calculates (the patches take viscoelastic bodies rolling forwards).
+    let text = MBENCH_RIGHT_INP
+        .replacen(" 0022033 ", " 0022133 ", 1)
+        .replacen(
+            "82000., 82000.                POISS 1,2,  GG 1,2\n",
+            "82000., 82000.                POISS 1,2,  GG 1,2\n  0.5 0.5 0.1 0.1   FG, TC\n",
+            1,
+        )
+        .replacen(" 2000. 0.0", " -2000. 0.0", 1)
+        .replacen("-4.34515030", "4.34515030", 1);
+    assert!(text.contains("-2000.") && text.contains(" 4.34515030"));
+    let f = dir.write("visco.inp", &text);
+    assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "visco.inp");
     let mut ierror = 0;
-    for (digits, line, name) in [
-        (" 0022133 ", "0.5 0.5 0.1 0.1   FG, TC", "visco.inp"),
-        (
-            " 0022533 ",
-            "1.0 1.0 1.0   K0_MF, ALFAMF, BETAMF",
-            "fastrip.inp",
-        ),
-    ] {
-        let gg = "82000., 82000.                POISS 1,2,  GG 1,2\n";
-        let text = MBENCH_RIGHT_INP.replacen(" 0022033 ", digits, 1).replacen(
+    unsafe { cntc_calculate1(&ire, &mut ierror) };
+    assert_eq!(ierror, err::NOT_SUPPORTED);
+    // M = 5 (modified FaStrip) with its slope reduction: read (the setter
+    // takes it, module 3 solves it), refused when module 1 calculates.
+    let gg = "82000., 82000.                POISS 1,2,  GG 1,2\n";
+    let text = MBENCH_RIGHT_INP
+        .replacen(" 0022033 ", " 0022533 ", 1)
+        .replacen(
             gg,
-            &format!("{gg}  {line}\n"),
+            &format!("{gg}  1.0 1.0 1.0   K0_MF, ALFAMF, BETAMF\n"),
             1,
         );
-        let f = dir.write(name, &text);
-        assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "{name}");
-        unsafe { cntc_calculate1(&ire, &mut ierror) };
-        assert_eq!(ierror, err::NOT_SUPPORTED, "{name}");
-    }
+    let f = dir.write("fastrip.inp", &text);
+    assert_eq!(read_inp(ire, flags::INP_MODUL1, &f), 0, "fastrip.inp");
+    unsafe { cntc_calculate1(&ire, &mut ierror) };
+    assert_eq!(ierror, err::NOT_SUPPORTED, "fastrip.inp");
     // A new M digit without its material parameters (C3 = 1 keeps them),
     // on a new element (M = 0).
     let text = MBENCH_RIGHT_INP

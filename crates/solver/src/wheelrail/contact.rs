@@ -123,12 +123,14 @@ use crate::core::material::CombinedMaterial;
 use crate::core::normal::{solve_normal_with, BlockNormal, NormalBlend, NormalLoad, NormalScratch};
 use crate::core::polach::{polach, PolachParameters};
 use crate::core::problem::{
-    ContactProblem, Creepages, Friction, Kinematics, ShiftStep, SolverSettings, CREEPAGE_RANGE,
+    check_viscoelastic_grid, ContactProblem, Creepages, Friction, Kinematics, ShiftStep,
+    SolverSettings, CREEPAGE_RANGE,
 };
 use crate::core::root::{decreasing_root, RootEnd, RootError, RootSettings};
 use crate::core::solution::{ContactSolution, ElementFields, SolveStatus};
 use crate::core::solve::ContactSolver;
 use crate::core::strip::strip_theory;
+use crate::core::viscoelastic::Viscoelastic;
 use crate::wheelrail::friction::{FrictionAxis, FrictionTable};
 use crate::wheelrail::grid_sizing::{self, solve_sized, GridSizing};
 use crate::wheelrail::search::{
@@ -436,6 +438,20 @@ pub struct WheelRailSettings {
     /// maximum pressures to about five digits); with
     /// `force_tolerance_of_wheel_load` their tolerances loosened as
     /// [`Self::solver_in_force`] says.
+    ///
+    /// Its `viscoelastic` (CONTACT's M = 1: body 1 the rail, body 2 the
+    /// wheel, their shear moduli in `WheelRailInput::material` the glassy
+    /// ones; [`crate::core::viscoelastic`]) is taken by the exact model's
+    /// patches in steady rolling (and frictionless), rolling forwards:
+    /// its `rolling_speed_m_per_s` is replaced by the wheelset's nominal
+    /// rolling speed ([`viscoelastic_bodies`]), whatever it holds. Refused
+    /// naming [`VISCOELASTIC_SETTINGS_KEY`]: with another model than
+    /// `exact` (the conformal method and the Hertz models have no
+    /// viscoelastic form), with FASTSIM or transient contact in
+    /// `exact_tangential`, rolling backwards, and on a patch grid of more
+    /// than
+    /// [`MAX_VISCOELASTIC_ELEMENTS`](crate::core::problem::MAX_VISCOELASTIC_ELEMENTS) elements (before its
+    /// coefficients are integrated).
     pub solver: SolverSettings,
     /// Relative tolerance on the vertical force [-]; with
     /// `force_tolerance_of_wheel_load` the larger of it and that tolerance
@@ -555,6 +571,63 @@ pub fn wheelrail_solver_settings() -> SolverSettings {
     s.normal.tolerance = ESTIMATE_NORMAL_TOLERANCE;
     s.tangential.tolerance = WHEELRAIL_TANGENTIAL_TOLERANCE;
     s
+}
+
+/// The key of the wheel/rail patches' viscoelastic bodies
+/// ([`WheelRailSettings::solver`]'s `viscoelastic`) in errors.
+pub const VISCOELASTIC_SETTINGS_KEY: &str = "solver.viscoelastic";
+
+/// The viscoelastic bodies of `input`'s exact patches
+/// ([`WheelRailSettings::solver`]'s `viscoelastic`; None: elastic) rolling
+/// at the size of the wheelset's nominal rolling speed
+/// ([`nominal_rolling_speed`]): the relaxation lengths are CONTACT's VT =
+/// TC x V. One speed for every patch, the load and the pitch iterations,
+/// so that their kernels are built once per grid; a patch's own
+/// reference speed (the mean of the surfaces' speeds, by which its
+/// creepages are divided) differs from it by about the creepages (1e-3
+/// relative on a tread, 0.9 % on the Manchester benchmark's flange at
+/// 6.5 mm).
+pub fn viscoelastic_bodies(pair: &WheelRailPair, input: &WheelRailInput) -> Option<Viscoelastic> {
+    input.settings.solver.viscoelastic.map(|v| Viscoelastic {
+        rolling_speed_m_per_s: nominal_rolling_speed(pair, input).abs(),
+        ..v
+    })
+}
+
+/// Checks the viscoelastic bodies of `input` ([`WheelRailSettings::solver`])
+/// against its model and tangential problem, naming
+/// [`VISCOELASTIC_SETTINGS_KEY`] (their rolling speed, the wheelset's, is
+/// checked with the track, [`validate_on`]).
+fn validate_viscoelastic(
+    visc: &Viscoelastic,
+    input: &WheelRailInput,
+) -> Result<(), WheelRailError> {
+    let key = VISCOELASTIC_SETTINGS_KEY;
+    visc.body1.validate(&format!("{key}.body1"))?;
+    visc.body2.validate(&format!("{key}.body2"))?;
+    if input.settings.model != WheelRailModel::Exact {
+        return Err(WheelRailError::invalid(
+            key,
+            format!(
+                "viscoelastic bodies need model = \"exact\", not \"{}\" (the conformal \
+                 method and the Hertz models have no viscoelastic form)",
+                input.settings.model.name()
+            ),
+        ));
+    }
+    match input.settings.exact_tangential {
+        ExactTangential::Kalker | ExactTangential::Frictionless => Ok(()),
+        ExactTangential::Fastsim(_) => Err(WheelRailError::invalid(
+            key,
+            "viscoelastic bodies take Kalker's exact theory (exact_tangential), not FASTSIM, \
+             whose flexibilities are elastic",
+        )),
+        ExactTangential::Transient(_) => Err(WheelRailError::invalid(
+            key,
+            "viscoelastic bodies are taken in steady rolling (and its frictionless normal \
+             problem) only, not in transient contact (exact_tangential)",
+        )),
+    }
 }
 
 /// The default tangential tolerance of wheel/rail patches
@@ -1107,7 +1180,12 @@ impl PatchWork {
                     }
                 }
                 problem.load = load;
-                problem.settings = accuracy.settings(&input.settings.solver_in_force());
+                // The patch's viscoelastic bodies (rolling at the wheelset's
+                // speed, `viscoelastic_bodies`) stay those its kernels have.
+                problem.settings = SolverSettings {
+                    viscoelastic: problem.settings.viscoelastic,
+                    ..accuracy.settings(&input.settings.solver_in_force())
+                };
                 let mut sol = match transient {
                     Some(t) => {
                         // Every solve of the step starts from the history.
@@ -2604,6 +2682,9 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
             ),
         ));
     }
+    if let Some(visc) = &input.settings.solver.viscoelastic {
+        validate_viscoelastic(visc, input)?;
+    }
     if let ExactTangential::Transient(t) = input.settings.exact_tangential {
         validate_transient(t, input)?;
     }
@@ -2729,6 +2810,16 @@ pub(crate) fn validate_on(
                 ));
             }
         }
+    }
+    if let Some(visc) = viscoelastic_bodies(pair, input) {
+        if nominal_rolling_speed(pair, input) < 0.0 {
+            return Err(WheelRailError::invalid(
+                VISCOELASTIC_SETTINGS_KEY,
+                "viscoelastic bodies roll forwards only (CONTACT's M = 1 takes CHI = 0): not \
+                 given rolling backwards (velocity.forward_m_per_s < 0 or a roller's rate < 0)",
+            ));
+        }
+        visc.validate(VISCOELASTIC_SETTINGS_KEY)?;
     }
     if nominal_rolling_speed(pair, input) < 0.0 {
         if matches!(
@@ -3692,6 +3783,16 @@ fn build_patch(
                 }
                 None => None,
             };
+            let viscoelastic = viscoelastic_bodies(pair, input);
+            if let Some(v) = &viscoelastic {
+                // Before the coefficients are integrated (in the solver).
+                check_viscoelastic_grid(v, grid.nx, grid.ny, false).map_err(|e| match e {
+                    ContactError::InvalidInput { reason, .. } => {
+                        WheelRailError::invalid(VISCOELASTIC_SETTINGS_KEY, reason)
+                    }
+                    other => other.into(),
+                })?;
+            }
             let problem = ContactProblem {
                 material: input.material,
                 friction,
@@ -3699,7 +3800,10 @@ fn build_patch(
                 gap_m,
                 load: NormalLoad::Approach(0.0),
                 kinematics: Kinematics::SteadyRolling(creep),
-                settings: input.settings.solver_in_force(),
+                settings: SolverSettings {
+                    viscoelastic,
+                    ..input.settings.solver_in_force()
+                },
                 rolling_direction_rad: if backward { std::f64::consts::PI } else { 0.0 },
                 extra_rigid_slip: None,
                 numerical_influence: None,
@@ -5489,6 +5593,127 @@ mod tests {
         input.settings.exact_tangential = ExactTangential::Frictionless;
         let e = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap_err();
         assert!(e.to_string().contains("exact_tangential"), "{e}");
+    }
+
+    /// Viscoelastic bodies on the exact patches (`solver.viscoelastic`):
+    /// elastic ones given as viscoelastic (f_g = 0) are the elastic
+    /// patches bit for bit; relaxing at once (tau_c = 0) they are the
+    /// elastic bodies of the final modulus G/(1 + f_g) to the solvers'
+    /// tolerances (the viscoelastic kernels are (1 + f_g) times the
+    /// elastic ones, their normal problem solved by the active-set method
+    /// instead of conjugate gradients: FN to 1e-5 of the load, the creep
+    /// forces to the tangential tolerance, 1e-4 of mu FN, with margin;
+    /// the area to two border elements);
+    /// the kernels roll at the wheelset's speed. Refused naming
+    /// `solver.viscoelastic`: the other models, FASTSIM and transient
+    /// contact on the exact patches, rolling backwards, a patch grid over
+    /// 128 x 128 elements.
+    #[test]
+    fn exact_patches_take_viscoelastic_bodies_rolling_forwards() {
+        use crate::core::material::Material;
+        use crate::core::viscoelastic::{Sls, Viscoelastic};
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        let visc = |relaxation_ratio: f64, creep_relaxation_time_s: f64| {
+            let body = Sls {
+                relaxation_ratio,
+                creep_relaxation_time_s,
+            };
+            // The speed is replaced by the wheelset's.
+            let (body1, body2, rolling_speed_m_per_s) = (body, body, 123.0);
+            Viscoelastic {
+                rolling_speed_m_per_s,
+                body1,
+                body2,
+            }
+        };
+        let input = |v: Option<Viscoelastic>, g: f64| {
+            let mut input = mbench_a22_input(3.0, None, None, WheelRailModel::Exact);
+            input.sides = vec![Side::Right];
+            input.material = CombinedMaterial::identical(Material {
+                shear_modulus_pa: g,
+                poisson_ratio: 0.28,
+            })
+            .unwrap();
+            input.settings.solver.viscoelastic = v;
+            input
+        };
+        let solve = |input: &WheelRailInput| {
+            solve_wheelset(&pair, input, &cache, &mut SearchScratch::default())
+        };
+        let patch = |s: &WheelRailSolution| s.wheels[0].patches[0].clone();
+        let elastic = patch(&solve(&input(None, 82e9)).unwrap());
+        let zero = patch(&solve(&input(Some(visc(0.0, 1e-3)), 82e9)).unwrap());
+        assert_eq!(
+            [zero.normal_force_n, zero.fx_n, zero.fs_n, zero.mz_nm],
+            [
+                elastic.normal_force_n,
+                elastic.fx_n,
+                elastic.fs_n,
+                elastic.mz_nm
+            ]
+        );
+        let relaxed = patch(&solve(&input(None, 82e9 / 4.0)).unwrap());
+        let at_once = patch(&solve(&input(Some(visc(3.0, 0.0)), 82e9)).unwrap());
+        let mu_fn = 0.3 * relaxed.normal_force_n;
+        assert!((at_once.normal_force_n - relaxed.normal_force_n).abs() < 1e-5 * 1e4);
+        for (a, b) in [(at_once.fx_n, relaxed.fx_n), (at_once.fs_n, relaxed.fs_n)] {
+            assert!((a - b).abs() < 3e-4 * mu_fn, "{a} vs {b}");
+        }
+        // Up to two border elements (0.2 x 0.2 mm) whose pressure is at
+        // the normal tolerance may be in or out.
+        let element = 4e-8;
+        assert!((at_once.contact_area_m2 - relaxed.contact_area_m2).abs() < 2.5 * element);
+        // The kernels of the wheelset's speed.
+        let v = viscoelastic_bodies(&pair, &input(Some(visc(3.0, 1e-3)), 82e9)).unwrap();
+        assert_eq!(v.rolling_speed_m_per_s, 2.0);
+        let refused = |edit: &dyn Fn(&mut WheelRailInput)| {
+            let mut i = input(Some(visc(3.0, 1e-3)), 82e9);
+            edit(&mut i);
+            let e = solve(&i).unwrap_err();
+            assert!(
+                matches!(&e, WheelRailError::Invalid { key, .. } if key == VISCOELASTIC_SETTINGS_KEY),
+                "{e}"
+            );
+            e.to_string()
+        };
+        for model in [
+            WheelRailModel::Auto,
+            WheelRailModel::Cect,
+            WheelRailModel::HertzFastsim,
+        ] {
+            let e = refused(&|i| i.settings.model = model);
+            assert!(e.contains("exact"), "{e}");
+        }
+        let e = refused(&|i| {
+            i.settings.exact_tangential =
+                ExactTangential::Fastsim(FastsimMaterial::kalker(SlopeReduction::NONE))
+        });
+        assert!(e.contains("FASTSIM"), "{e}");
+        let e = refused(&|i| {
+            i.settings.exact_tangential = ExactTangential::Transient(TransientContact::Shift)
+        });
+        assert!(e.contains("transient"), "{e}");
+        let e = refused(&|i| i.velocity.forward_m_per_s = -2.0);
+        assert!(e.contains("backwards"), "{e}");
+        // 0.02 mm elements: a patch of some 500 x 250 of them.
+        let e = refused(&|i| i.settings.element_size_m = 2e-5);
+        assert!(e.contains("at most 16384"), "{e}");
+        // A body's values are named.
+        let mut i = input(Some(visc(-1.0, 1e-3)), 82e9);
+        i.settings
+            .solver
+            .viscoelastic
+            .as_mut()
+            .unwrap()
+            .body2
+            .relaxation_ratio = 1.0;
+        let e = solve(&i).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("solver.viscoelastic.body1.relaxation_ratio"),
+            "{e}"
+        );
     }
 
     /// A wheel on its flange (contact angle 1.05 rad) at a small vertical

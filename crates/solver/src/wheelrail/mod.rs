@@ -94,9 +94,9 @@ pub mod wheelset;
 
 pub use contact::{
     nominal_rolling_speed, pitch_force_tolerance, solve_wheelset, solve_wheelset_warm,
-    wheelrail_solver_settings, ExactTangential, PatchResult, PatchTractions, RailMotion,
-    TransientContact, WarmStart, WheelLoad, WheelRailInput, WheelRailModel, WheelRailSettings,
-    WheelRailSolution, WheelResult,
+    viscoelastic_bodies, wheelrail_solver_settings, ExactTangential, PatchResult, PatchTractions,
+    RailMotion, TransientContact, WarmStart, WheelLoad, WheelRailInput, WheelRailModel,
+    WheelRailSettings, WheelRailSolution, WheelResult, VISCOELASTIC_SETTINGS_KEY,
 };
 pub use friction::{FrictionAxis, FrictionTable};
 pub use grid_sizing::{GridSizing, GRID_COARSENINGS, RECHECK_ANGLE_RAD, RECHECK_AREA_RATIO};
