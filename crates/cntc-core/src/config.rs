@@ -151,6 +151,15 @@ impl MaterialModel {
             _ => None,
         }
     }
+
+    /// The simplified material of M = 2, 3 (modified FASTSIM) and M = 5
+    /// (modified FaStrip).
+    pub fn fastsim(&self) -> Option<FastsimMaterial> {
+        match *self {
+            MaterialModel::ModifiedFastsim(f) | MaterialModel::ModifiedFastrip(f) => Some(f),
+            _ => None,
+        }
+    }
 }
 
 /// CONTACT's smallest layer shear modulus GG3, 1e-6 N/mm² \[Pa\]

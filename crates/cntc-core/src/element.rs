@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use railcontact_solver::core::cache::KernelCache;
-use railcontact_solver::core::fastsim_grid::{FastsimMaterial, GridFlexibility};
+use railcontact_solver::core::fastsim_grid::GridFlexibility;
 use serde::{Deserialize, Serialize};
 
 use crate::config::Config;
@@ -280,34 +280,15 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
             // parameters in values 15-18); 0 otherwise.
             let layer = m.model.layer();
             let applied = e.outcome(icp).ok().and_then(|o| o.fastsim);
-            let (flx_m_per_pa, k_eff) = match (m.model, applied) {
-                (
-                    crate::config::MaterialModel::ModifiedFastsim(_)
-                    | crate::config::MaterialModel::ModifiedFastrip(_),
-                    Some(a),
-                ) => (a.flexibilities_m_per_pa, a.slope_factor),
-                (
-                    crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
-                        flexibility:
-                            GridFlexibility::Given {
-                                flexibility_m_per_pa,
-                            },
-                        ..
-                    }),
-                    None,
-                ) => ([flexibility_m_per_pa; 3], 0.0),
-                (
-                    crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
-                        flexibility: GridFlexibility::Kalker { .. },
-                        ..
-                    })
-                    | crate::config::MaterialModel::ModifiedFastrip(FastsimMaterial {
-                        flexibility: GridFlexibility::Kalker { .. },
-                        ..
-                    }),
-                    None,
-                ) => (UNCALCULATED_FLX_M_PER_PA, 0.0),
-                _ => ([layer.map_or(0.0, |l| l.flexibility_m_per_pa()); 3], 0.0),
+            let (flx_m_per_pa, k_eff) = match (m.model.fastsim(), applied) {
+                (Some(_), Some(a)) => (a.flexibilities_m_per_pa, a.slope_factor),
+                (Some(f), None) => match f.flexibility {
+                    GridFlexibility::Given {
+                        flexibility_m_per_pa,
+                    } => ([flexibility_m_per_pa; 3], 0.0),
+                    GridFlexibility::Kalker { .. } => (UNCALCULATED_FLX_M_PER_PA, 0.0),
+                },
+                (None, _) => ([layer.map_or(0.0, |l| l.flexibility_m_per_pa()); 3], 0.0),
             };
             let [flx1, flx2, flx3] = flx_m_per_pa.map(|l| u.flexibility_out(l));
             let mut v = vec![
@@ -322,19 +303,10 @@ pub fn parameters(e: &Element, icp: i32, itask: i32) -> Result<Vec<f64>> {
                 flx2,
                 flx3,
             ];
-            let (k0, a, b) = match m.model {
-                crate::config::MaterialModel::ModifiedFastsim(FastsimMaterial {
-                    reduction: r,
-                    ..
-                })
-                | crate::config::MaterialModel::ModifiedFastrip(FastsimMaterial {
-                    reduction: r,
-                    ..
-                }) => (r.initial_factor, r.limit_ratio, r.transition_rate),
-                crate::config::MaterialModel::Elastic
-                | crate::config::MaterialModel::InterfacialLayer(_)
-                | crate::config::MaterialModel::Viscoelastic(_) => (1.0, 1.0, 1.0),
-            };
+            let (k0, a, b) = m.model.fastsim().map_or((1.0, 1.0, 1.0), |f| {
+                let r = f.reduction;
+                (r.initial_factor, r.limit_ratio, r.transition_rate)
+            });
             v.extend([k0, a, b, k_eff]);
             if let Some(l) = layer {
                 v.extend([

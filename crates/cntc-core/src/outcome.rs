@@ -98,7 +98,7 @@ pub struct Outcome {
     /// Where a module 1 patch lies (module 3: `None`).
     pub location: Option<Location>,
     /// The flexibilities and the slope reduction factor of a patch solved
-    /// by the modified FASTSIM (M = 2, 3; `None` otherwise): CONTACT's
+    /// by the modified FASTSIM or FaStrip (M = 2, 3, 5; `None` otherwise): CONTACT's
     /// FLX(1:3) and K_EFF after a calculation (`cntc_getparameters` task
     /// 2).
     pub fastsim: Option<AppliedFlexibility>,
@@ -280,7 +280,7 @@ impl Outcome {
                 return Err(missing(
                     "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give \
                      them (CONTACT's are FASTSIM's flexibilities times the tractions, which \
-                     this library does not keep per patch); M = 0 does",
+                     this library does not compute for module 1's patches yet); M = 0 does",
                 ))
             }
             Some(_) => {}

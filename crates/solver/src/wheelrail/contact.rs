@@ -2811,8 +2811,9 @@ pub(crate) fn validate_on(
             }
         }
     }
+    let backwards = nominal_rolling_speed(pair, input) < 0.0;
     if let Some(visc) = viscoelastic_bodies(pair, input) {
-        if nominal_rolling_speed(pair, input) < 0.0 {
+        if backwards {
             return Err(WheelRailError::invalid(
                 VISCOELASTIC_SETTINGS_KEY,
                 "viscoelastic bodies roll forwards only (CONTACT's M = 1 takes CHI = 0): not \
@@ -2821,7 +2822,7 @@ pub(crate) fn validate_on(
         }
         visc.validate(VISCOELASTIC_SETTINGS_KEY)?;
     }
-    if nominal_rolling_speed(pair, input) < 0.0 {
+    if backwards {
         if matches!(
             input.settings.model,
             WheelRailModel::Cect | WheelRailModel::Auto
