@@ -675,6 +675,11 @@ pub struct Track {
     pub latencies_s: Vec<f64>,
     /// Fingerprint of every completed step's answer.
     pub digests: Vec<Digest32>,
+    /// The server's own time of each completed session step that reports
+    /// one \[s\]: a wheel/rail step's search, geometry and solve
+    /// (`WheelRailTiming`, summed over the threads that solved it), a
+    /// patch step's `solve_time_s`.
+    pub server_s: Vec<f64>,
     /// Failures (the track stops at the first).
     pub errors: Vec<String>,
     /// A wheel/rail session's `force_tolerance_of_wheel_load`.
@@ -771,8 +776,9 @@ fn item_error(e: &pb::ItemError) -> String {
 enum Answer {
     /// The session is open.
     Opened,
-    /// A step's result, fingerprinted.
-    Step(Digest32),
+    /// A step's result, fingerprinted, with the server's time in it (the
+    /// solve time it reports, when it reports one) \[s\].
+    Step(Digest32, Option<f64>),
     /// A step refused in-band.
     Refused(String),
     /// Anything else.
@@ -847,7 +853,7 @@ where
                         Answer::Refused(e) | Answer::Unexpected(e) => {
                             return Err(format!("open: {e}"))
                         }
-                        Answer::Step(_) => return Err("open: answered with a step".into()),
+                        Answer::Step(..) => return Err("open: answered with a step".into()),
                     },
                     Ok(None) => return Err("open: the server ended the stream".into()),
                     Err(s) => s,
@@ -872,9 +878,10 @@ where
         let response = stream.message().await;
         let dt = t0.elapsed().as_secs_f64();
         match response.map(|r| r.map(&answer)) {
-            Ok(Some(Answer::Step(d))) => {
+            Ok(Some(Answer::Step(d, server_s))) => {
                 t.latencies_s.push(dt);
                 t.digests.push(d);
+                t.server_s.extend(server_s);
             }
             Ok(Some(Answer::Refused(e) | Answer::Unexpected(e))) => {
                 return Err(format!("step {k}: {e}"))
@@ -928,7 +935,10 @@ async fn wheelrail_session(
         Some(Out::Step(pb::WheelRailSessionStepResult {
             result: Some(result),
             ..
-        })) => Answer::Step(wheelrail_digest(result)),
+        })) => {
+            let server_s = result.timing.map(|t| t.search_s + t.geometry_s + t.solve_s);
+            Answer::Step(wheelrail_digest(result), server_s)
+        }
         Some(Out::Error(e)) => Answer::Refused(item_error(&e)),
         other => Answer::Unexpected(format!("unexpected answer {other:?}")),
     };
@@ -980,7 +990,10 @@ async fn patch_session(
         Some(Out::Step(pb::SessionStepResult {
             result: Some(result),
             ..
-        })) => Answer::Step(step_digest(result)),
+        })) => {
+            let server_s = result.info.as_ref().map(|i| i.solve_time_s);
+            Answer::Step(step_digest(result), server_s)
+        }
         Some(Out::Error(e)) => Answer::Refused(item_error(&e)),
         other => Answer::Unexpected(format!("unexpected answer {other:?}")),
     };
@@ -1132,6 +1145,11 @@ pub struct Breakdown {
     /// Latency.
     #[serde(flatten)]
     pub latency: Latency,
+    /// The server's own time in the steps that report it (sessions:
+    /// [`Track::server_s`]); the latency less it is the transport's and
+    /// the service's share. None where no step reports one (batch calls).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub server: Option<Latency>,
     /// Steps per second of the run's wall time.
     pub throughput_per_s: f64,
     /// Failed sessions or calls.
@@ -1188,11 +1206,12 @@ pub struct Report {
 }
 
 fn breakdown<'a>(tracks: impl Iterator<Item = (&'a Track, usize)>, wall_s: f64) -> Breakdown {
-    let mut samples = Vec::new();
+    let (mut samples, mut server) = (Vec::new(), Vec::new());
     let (mut clients, mut errors, mut mismatches) = (0, 0, 0);
     for (t, m) in tracks {
         clients += 1;
         samples.extend_from_slice(&t.latencies_s);
+        server.extend_from_slice(&t.server_s);
         errors += t.errors.len();
         mismatches += m;
     }
@@ -1200,6 +1219,7 @@ fn breakdown<'a>(tracks: impl Iterator<Item = (&'a Track, usize)>, wall_s: f64) 
         clients,
         steps: samples.len(),
         latency: Latency::of(&samples),
+        server: (!server.is_empty()).then(|| Latency::of(&server)),
         throughput_per_s: if wall_s > 0.0 {
             samples.len() as f64 / wall_s
         } else {
@@ -1267,6 +1287,7 @@ async fn replay_track(
     let steps = t.digests.len() as u64;
     let replay = Track {
         latencies_s: Vec::new(),
+        server_s: Vec::new(),
         digests: Vec::new(),
         errors: Vec::new(),
         ..t.clone()
@@ -1390,6 +1411,7 @@ pub async fn load(args: &LoadtestArgs) -> Result<Report, CliError> {
             kind,
             target: index % targets.len(),
             latencies_s: Vec::new(),
+            server_s: Vec::new(),
             digests: Vec::new(),
             errors: Vec::new(),
             force_tolerance_of_wheel_load: match kind {
@@ -1621,11 +1643,39 @@ pub fn table(r: &Report) -> String {
         clients: r.sessions + r.batch_clients,
         steps: r.steps,
         latency: r.latency.clone(),
+        server: None,
         throughput_per_s: r.throughput_per_s,
         errors: r.errors,
         mismatches: r.mismatches,
     };
     row(&mut out, "all", &all);
+    let served: Vec<_> = r
+        .kinds
+        .iter()
+        .filter_map(|(name, b)| b.server.as_ref().map(|s| (name, s)))
+        .collect();
+    if !served.is_empty() {
+        let _ = writeln!(
+            out,
+            "\nthe server's own time in the session steps (a wheel/rail step's search, geometry \
+             and solve, summed over its threads; a patch step's solve; the round trip less it is \
+             the transport's and the service's):"
+        );
+        for (name, s) in served {
+            let _ = writeln!(
+                out,
+                "{:<32} {:>7} {:>7} {:>9} {:>9} {:>9} {:>9} {:>9}",
+                name,
+                "",
+                "",
+                ms(s.p50_s),
+                ms(s.p90_s),
+                ms(s.p99_s),
+                ms(s.max_s),
+                ms(s.mean_s)
+            );
+        }
+    }
     if r.interrupted {
         let _ = writeln!(
             out,

@@ -35,6 +35,23 @@ fn loadtest_json_has_sane_percentiles_no_errors_and_no_mismatches() {
     assert_eq!(num(&v, "steps"), 60.0);
     assert_eq!(v["kinds"].as_object().unwrap().len(), 6, "{}", v["kinds"]);
     assert_eq!(num(&v["kinds"]["batch:patch:fastsim"], "steps"), 10.0);
+    // The sessions' own server times: a patch step's solve time lies within
+    // its round trip, so every percentile of it within the round trip's; a
+    // wheel/rail step's is its work summed over threads (two on a debug
+    // build's long steps), only positive here. Batch calls report none.
+    let fastsim = &v["kinds"]["patch:fastsim"];
+    for p in ["p50_s", "p90_s", "p99_s", "max_s", "mean_s"] {
+        let server = num(&fastsim["server"], p);
+        assert!(server > 0.0 && server <= num(fastsim, p), "{p}: {fastsim}");
+    }
+    assert!(
+        num(&v["kinds"]["wheelrail:exact"]["server"], "p50_s") > 0.0,
+        "{v}"
+    );
+    assert!(
+        v["kinds"]["batch:patch:fastsim"].get("server").is_none(),
+        "{v}"
+    );
     // No progress bar without a terminal: stderr stays empty.
     assert!(
         out.stderr.is_empty(),
