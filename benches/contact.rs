@@ -7,7 +7,12 @@ use std::sync::Arc;
 use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
 
 use railcontact::core::cache::KernelCache;
+use railcontact::core::fastrip::GridFastrip;
 use railcontact::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
+use railcontact::core::fastsim_grid::{
+    BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput, GridFlexibility, GridFriction,
+    GridPressure, RollingSense,
+};
 use railcontact::core::fft::{ConvolutionPlan, KernelSet, Precision};
 use railcontact::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
@@ -16,6 +21,7 @@ use railcontact::core::grid::Grid;
 use railcontact::core::hertz::{hertz, HertzLoad};
 use railcontact::core::influence::{Component, HalfSpaceInfluence, KernelKind};
 use railcontact::core::kikpiotrowski::{KikPiotrowski, KikPiotrowskiSettings, KpSection};
+use railcontact::core::layer::InterfacialLayer;
 use railcontact::core::material::{CombinedMaterial, Material};
 use railcontact::core::normal::NormalLoad;
 use railcontact::core::polach::{polach, PolachParameters};
@@ -24,6 +30,7 @@ use railcontact::core::sensitivity::exact_jacobian;
 use railcontact::core::solve::{ContactSolver, SolverState};
 use railcontact::core::strip::strip_theory;
 use railcontact::core::subsurface::{subsurface_fields, Body, DepthKernels, SubsurfaceWorkspace};
+use railcontact::core::viscoelastic::{Sls, Viscoelastic};
 
 const SIZES: [usize; 4] = [32, 48, 64, 128];
 /// Steps per period of the warm-start benches' creepage path.
@@ -483,6 +490,108 @@ fn subsurface(c: &mut Criterion) {
     g.finish();
 }
 
+/// FASTSIM and FaStrip on CONTACT's rectangular grid (CONTACT's M = 3 and
+/// M = 5 with B = 2, `core::fastsim_grid`, `core::fastrip`): the patch of
+/// CONTACT's `examples/fastsim.inp` cases 4 and 7 (a, b = 8, 4 mm, FN = 82
+/// kN, G = 82 GPa, nu = 0.28, mu = 0.3, eta = -0.000625, phi = 0.625 /m),
+/// 44 x 44 and 220 x 220 elements over 1.1 times the ellipse.
+fn grid_fastsim(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fastsim_grid");
+    let input = GridFastsimInput {
+        semi_axis_x_m: 8e-3,
+        semi_axis_y_m: 4e-3,
+        normal_force_n: 82e3,
+        shear_modulus_pa: 82e9,
+        poisson_ratio: 0.28,
+        creepage_long: 0.0,
+        creepage_lat: -0.000625,
+        spin_per_m: 0.625,
+        rolling_speed_m_per_s: 30.0,
+        friction: GridFriction::Coulomb(0.3),
+        reduction: SlopeReduction::NONE,
+        flexibility: GridFlexibility::Kalker { blending: true },
+        rolling: RollingSense::PlusX,
+        creep_table: CreepInterpolation::Contact,
+    };
+    let elliptic = GridPressure::Hertz {
+        bound: TractionBound::Elliptic,
+        scaling: BoundScaling::Analytic,
+    };
+    for n in [44, 220] {
+        let grid = Grid::centered(n, n, 2.2 * 8e-3, 2.2 * 4e-3).unwrap();
+        let mut fastsim = GridFastsim::new(grid).unwrap();
+        g.bench_with_input(BenchmarkId::new("fastsim", n), &n, |b, _| {
+            b.iter(|| black_box(fastsim.solve(&input, elliptic).unwrap()))
+        });
+        let mut fastrip = GridFastrip::new(grid).unwrap();
+        g.bench_with_input(BenchmarkId::new("fastrip", n), &n, |b, _| {
+            b.iter(|| black_box(fastrip.solve(&input, elliptic).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+/// Exact steady rolling of `steady_rolling`'s circle (cold, 32 x 32) with
+/// an elasto-plastic third-body layer (CONTACT's M = 4: h = 0.1 mm, G3 = 10
+/// GPa, a flexibility h/G3 near the bodies' own, yield limit 50 MPa, below
+/// mu p0, perfectly plastic) and with viscoelastic bodies (M = 1: body 1
+/// f_g = 1, tau_c = 5 ms at 1 m/s; the solve on cached kernels, and the
+/// kernels built afresh and a solve).
+fn capabilities(c: &mut Criterion) {
+    let mut g = c.benchmark_group("capabilities");
+    g.sample_size(10);
+    let n = 32;
+    let rolling = Kinematics::SteadyRolling(Creepages {
+        creepage_long: 5e-4,
+        creepage_lat: 3e-4,
+        spin_per_m: 0.3,
+    });
+    let mut p = circle(n, rolling.clone());
+    p.settings.interfacial_layer = Some(InterfacialLayer {
+        yield_limit_pa: 50e6,
+        ..InterfacialLayer::elastic(1e-4, 10e9)
+    });
+    let cache = KernelCache::default();
+    let mut s = ContactSolver::new(&p, &cache);
+    print_counts(
+        &format!("capabilities/layer_plastic_steady/{n}"),
+        &mut s,
+        &p,
+    );
+    g.bench_with_input(BenchmarkId::new("layer_plastic_steady", n), &n, |b, _| {
+        b.iter(|| {
+            s.reset();
+            black_box(s.solve(&p).unwrap())
+        })
+    });
+    let mut p = circle(n, rolling);
+    p.settings.viscoelastic = Some(Viscoelastic {
+        rolling_speed_m_per_s: 1.0,
+        body1: Sls {
+            relaxation_ratio: 1.0,
+            creep_relaxation_time_s: 5e-3,
+        },
+        body2: Sls::default(),
+    });
+    let cache = KernelCache::default();
+    let mut s = ContactSolver::new(&p, &cache);
+    print_counts(&format!("capabilities/viscoelastic_steady/{n}"), &mut s, &p);
+    g.bench_with_input(BenchmarkId::new("viscoelastic_steady", n), &n, |b, _| {
+        b.iter(|| {
+            s.reset();
+            black_box(s.solve(&p).unwrap())
+        })
+    });
+    g.bench_with_input(BenchmarkId::new("viscoelastic_cold", n), &n, |b, _| {
+        b.iter(|| {
+            let cache = KernelCache::default();
+            let mut s = ContactSolver::new(&p, &cache);
+            black_box(s.solve(&p).unwrap())
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     kernels,
@@ -490,6 +599,8 @@ criterion_group!(
     normal_solve,
     tangential_solves,
     reference_models,
+    grid_fastsim,
+    capabilities,
     subsurface
 );
 criterion_main!(benches);
