@@ -2430,8 +2430,17 @@ impl WheelRail {
                 // patch's grid with the wheel/rail solver's materials (its
                 // kernels, a hit of the process cache); the interaction of
                 // patches ignored, as CONTACT ignores it.
+                // A FASTSIM patch (M = 2, 3): CONTACT's US = FLX(1:2)/K_EFF
+                // times the tractions, its normal row from the exact normal
+                // problem (B = 0); a frictionless one has no tractions.
                 o.displacement_source = Some(match input.settings.exact_tangential {
-                    ExactTangential::Fastsim(_) => DisplacementSource::WheelRailFastsim,
+                    ExactTangential::Fastsim(_) => DisplacementSource::Fastsim {
+                        flexibilities_m_per_pa: o.fastsim.map_or([0.0; 2], |a| {
+                            let [l1, l2, _] = a.flexibilities_m_per_pa;
+                            [l1 / a.slope_factor, l2 / a.slope_factor]
+                        }),
+                        normal: Some([input.material.body1, input.material.body2]),
+                    },
                     _ => DisplacementSource::Influence {
                         body1: input.material.body1,
                         body2: input.material.body2,
@@ -3508,10 +3517,11 @@ mod tests {
         );
     }
 
-    /// A patch solved with FASTSIM (M = 3) refuses its displacement
-    /// differences, naming M = 2, 3; the exact model's (M = 0) gives them.
+    /// A patch solved with FASTSIM (M = 3) gives its displacement
+    /// differences as CONTACT's: UX, UY its flexibilities L1/k, L2/k times
+    /// the tractions; UN the exact normal problem's, as with M = 0.
     #[test]
-    fn displacements_of_fastsim_patches_are_refused_by_name() {
+    fn displacements_of_fastsim_patches_are_the_flexibilities_times_the_tractions() {
         let cache = KernelCache::default();
         let mut w = mbench(1);
         w.set_wheelset_position(2, &[0.0, 2.5, 0.0, -0.0001457, 0.006, 0.0])
@@ -3519,14 +3529,28 @@ mod tests {
         w.set_wheelset_velocity(2, &[2000.0, 0.0, 0.0, 0.0, 0.0, -4.3455627])
             .unwrap();
         w.calculate(&cache).unwrap();
-        assert!(w.outcomes[0].displacements_m().is_ok());
+        let exact_un = w.outcomes[0].displacements_m().unwrap()[2].clone();
         w.config
             .set_material(3, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
             .unwrap();
         w.calculate(&cache).unwrap();
-        let e = w.outcomes[0].displacements_m().unwrap_err();
-        assert_eq!(e.ierror(), crate::flags::err::NOT_SUPPORTED, "{e}");
-        assert!(e.detail().contains("M = 2, 3"), "{e}");
+        let o = &w.outcomes[0];
+        let a = o.fastsim.expect("FASTSIM's flexibilities");
+        let [ux, uy, un] = o.displacements_m().unwrap();
+        let f = &o.fields;
+        for i in 0..o.grid.len() {
+            let l = a.flexibilities_m_per_pa.map(|l| l / a.slope_factor);
+            assert_eq!(ux[i], l[0] * f.traction_x_pa[i], "{i}");
+            assert_eq!(uy[i], l[1] * f.traction_y_pa[i], "{i}");
+        }
+        assert!(f.traction_x_pa.iter().any(|p| *p != 0.0));
+        // The same normal problem as M = 0's (FASTSIM's tractions do not
+        // act back on the pressure; identical bodies do not couple).
+        let scale = exact_un.iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        assert_eq!(un.len(), exact_un.len());
+        for (a, b) in un.iter().zip(&exact_un) {
+            assert!((a - b).abs() < 2e-3 * scale, "{a} {b}");
+        }
     }
 
     /// Elements that place the same profiles on the same track share one

@@ -148,10 +148,11 @@ pub enum DisplacementSource {
         /// Viscoelastic bodies (M = 1; None: elastic).
         viscoelastic: Option<Viscoelastic>,
     },
-    /// FASTSIM (M = 3), as CONTACT's: u_x, u_y the flexibilities L1/k,
-    /// L2/k times the tractions (zero outside contact); u_n the normal
-    /// row of u = A p with the two materials when the normal problem was
-    /// solved (B = 0), zero with a Hertzian traction bound (B = 2, 3, as
+    /// FASTSIM (M = 2, 3, module 3 and module 1's patches), as CONTACT's:
+    /// u_x, u_y the flexibilities L1/k, L2/k times the tractions (zero
+    /// outside contact); u_n the normal row of u = A p with the two
+    /// materials when the normal problem was solved (B = 0, as module 1
+    /// always does), zero with a Hertzian traction bound (B = 2, 3, as
     /// CONTACT sets it).
     Fastsim {
         /// L1/k, L2/k \[m/Pa\].
@@ -159,10 +160,6 @@ pub enum DisplacementSource {
         /// Body 1's and body 2's materials with B = 0.
         normal: Option<[Material; 2]>,
     },
-    /// A module 1 patch solved with FASTSIM (M = 2, 3): the getters
-    /// refuse rather than give the exact model's u = A p (the patch's
-    /// flexibilities are in [`Outcome::fastsim`], not used for it yet).
-    WheelRailFastsim,
 }
 
 /// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
@@ -276,13 +273,6 @@ impl Outcome {
         match self.displacement_source {
             None => return Err(missing("the last calculation did not leave them")),
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
-            Some(DisplacementSource::WheelRailFastsim) => {
-                return Err(missing(
-                    "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give \
-                     them (CONTACT's are FASTSIM's flexibilities times the tractions, which \
-                     this library does not compute for module 1's patches yet); M = 0 does",
-                ))
-            }
             Some(_) => {}
         }
         if !p.iter().all(|c| c.len() == n) {
@@ -312,9 +302,7 @@ impl Outcome {
                 Ok(u)
             };
         match self.displacement_source {
-            None
-            | Some(DisplacementSource::Unloaded)
-            | Some(DisplacementSource::WheelRailFastsim) => Ok([zero(), zero(), zero()]),
+            None | Some(DisplacementSource::Unloaded) => Ok([zero(), zero(), zero()]),
             Some(DisplacementSource::Influence {
                 body1,
                 body2,

@@ -12,8 +12,8 @@ wheel 2) and a module 1 input file with M = 2 (the benchmark's right wheel
 at y = 3 mm); M = 3 on the same ellipse (B = 3, 2, with and without slope
 reduction, cntc_getparameters task 2 before the first calculation too)
 and on the module 1 patches. Prints FN, FX, FY (FS), MZ, the areas and
-FLX(1:3), K0_MF, ALFAMF, BETAMF, K_EFF per case with 17 digits, and a module 3 case's
-displacement differences at a few elements: run it once per library and
+FLX(1:3), K0_MF, ALFAMF, BETAMF, K_EFF per case with 17 digits, a module 3 case's
+displacement differences at a few elements and the module 1 patches' extremes: run it once per library and
 compare (crates/cntc/tests/fastsim.rs, module1.rs, readinp.rs and
 displacements.rs quote CONTACT's). The profiles are the repository's (crates/solver/profiles).
 Needs numpy.
@@ -148,6 +148,15 @@ for k, red in enumerate([[1.0, 1.0, 1.0], [0.54, 0.02, 0.62]]):
     m1_solve(41 + 2 * k, 'm1-m3-tread-%d' % k, *tread)
     mbench(42 + 2 * k, 2, mat)
     m1_solve(42 + 2 * k, 'm1-m3-flange-%d' % k, *flange)
+
+# Module 1 displacement differences (cntc_getdisplacements) of the M = 3 tread
+# patch without reduction, the M = 3 flange patch with it and the M = 2 tread
+# patch of FLX 1.5e-4 with it: the largest UN and the extremes of UX, UY
+# (crates/cntc/tests/displacements.rs).
+for tag, ire in [('m1-m3-tread-0', 41), ('m1-m3-flange-1', 44), ('m1-tread-1', 13)]:
+    un, ux, uy = (np.ravel(u) for u in cntc.getdisplacements(ire, 1))
+    print('m1 disp %s: UN max %.10g UX min %.10g max %.10g UY min %.10g max %.10g' %
+          (tag, un.max(), ux.min(), ux.max(), uy.min(), uy.max()))
 
 # Module 1 input file: crates/cntc/tests/common's MBENCH_RIGHT_INP with M = 2.
 INP = """\

@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::{calculate, set_flags, tractcurv};
+use common::{calculate, close, set_flags, tractcurv};
 use contact_addon::ffi::*;
 use contact_addon::flags::{self, field};
 
@@ -732,4 +732,115 @@ fn a_wheel_rail_patch_has_the_approach_minus_the_gap_in_contact() {
     }
     eprintln!("module 1: |UN - (PEN - h)| <= {worst:.1e} PEN in contact");
     assert!(worst < 1e-6, "{worst:e}");
+}
+
+/// FASTSIM on a wheel/rail patch (module 1, M = 2 and 3): UX, UY are
+/// FLX(1:2)/K_EFF times the tractions, as CONTACT's, and UN the exact
+/// normal problem's (PEN - h in contact). CONTACT's library (the revision
+/// above, driven with ctypes through the same calls: python_mbench.py's
+/// set-up of wheel `iwhe`, no wheelset flexibility, 2 m/s; printed with
+/// `%.10g` by crates/cntc/bench/given_flexibility_cases.py, "m1 disp") on its own grid of the patch (47 x 52, 83 x 11 elements; ours
+/// are larger, so the extremes are compared): per case the largest UN and
+/// the extremes of UX and UY [mm].
+#[test]
+fn fastsim_wheel_rail_patches_match_contact() {
+    struct Case {
+        ire: i32,
+        iwhe: i32,
+        mater: i32,
+        params: &'static [f64],
+        pos: [f64; 6],
+        vpitch: f64,
+        /// UN max, UX min, UX max, UY min, UY max.
+        contact: [f64; 5],
+    }
+    let tread = [0.0, 2.0, 0.0, -0.0001128, 0.0048, 0.0];
+    let flange = [0.0, 7.5, 0.0, -0.007642, 0.018, 0.0];
+    let cases = [
+        // python_mbench.py case 5 of wheel 1, M = 3, no slope reduction.
+        Case {
+            ire: 761,
+            iwhe: 1,
+            mater: 3,
+            params: &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 1.0],
+            pos: tread,
+            vpitch: -4.3459197,
+            contact: [0.02054395024, 0.0, 0.000707217727, -0.003831495237, 0.0],
+        },
+        // Case 16 of wheel 2 (flange), M = 3 with tractcurv's slope
+        // reduction.
+        Case {
+            ire: 762,
+            iwhe: 2,
+            mater: 3,
+            params: &[0.28, 0.28, 82000.0, 82000.0, 0.54, 0.02, 0.62],
+            pos: flange,
+            vpitch: -4.2575747,
+            contact: [0.0352201402, -0.08414146435, 0.0, -0.1578407044, 0.0],
+        },
+        // Case 5 of wheel 1, M = 2: FLX 1.5e-4 mm^3/N with that reduction.
+        Case {
+            ire: 763,
+            iwhe: 1,
+            mater: 2,
+            params: &[0.28, 0.28, 82000.0, 82000.0, 1.5e-4, 0.54, 0.02, 0.62],
+            pos: tread,
+            vpitch: -4.3459197,
+            contact: [0.02050089078, 0.0, 0.005332112935, -0.02876683564, 0.0],
+        },
+    ];
+    for c in cases {
+        let ire = c.ire;
+        let (mut mx, mut my) = (0, 0);
+        unsafe {
+            common::mbench_wheel(ire, c.iwhe, 1, 0);
+            cntc_setwheelsetflexibility(&ire, &1, &12, [0.0; 12].as_ptr());
+            let n = c.params.len() as i32;
+            cntc_setmaterialparameters(&ire, &-1, &c.mater, &n, c.params.as_ptr());
+            cntc_setwheelsetposition(&ire, &2, &6, c.pos.as_ptr());
+            let vel = [2000.0, 0.0, 0.0, 0.0, 0.0, c.vpitch];
+            cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
+            let mut ierror = -1;
+            cntc_calculate1(&ire, &mut ierror);
+            assert_eq!(ierror, 0, "ire {ire}");
+            cntc_getnumelements(&ire, &1, &mut mx, &mut my);
+        }
+        let n = (mx * my) as usize;
+        let [un, ux, uy] = displacements(ire, 1, n);
+        let [pn, px, py] = [field::PN, field::PX, field::PY].map(|f| field_data(ire, 1, n, f));
+        // FLX(1:2) [mm^3/N] and K_EFF of the patch (cntc_getparameters
+        // task 2, values 8, 9 and 14).
+        let mut v = [0.0; 30];
+        unsafe { cntc_getparameters(&ire, &1, &2, &30, v.as_mut_ptr()) };
+        let (l1, l2) = (v[7] / v[13], v[8] / v[13]);
+        let (pen, h) = (penetration(ire, 1), field_data(ire, 1, n, field::H));
+        for i in 0..n {
+            close(&format!("ire {ire} UX({i})"), ux[i], l1 * px[i], 1e-12);
+            close(&format!("ire {ire} UY({i})"), uy[i], l2 * py[i], 1e-12);
+            if pn[i] > 0.0 {
+                close(&format!("ire {ire} UN({i})"), un[i], pen - h[i], 1e-6 * pen);
+            }
+        }
+        let max = |u: &[f64]| u.iter().fold(f64::MIN, |m, &x| m.max(x));
+        let min = |u: &[f64]| u.iter().fold(f64::MAX, |m, &x| m.min(x));
+        let ours = [max(&un), min(&ux), max(&ux), min(&uy), max(&uy)];
+        eprintln!(
+            "ire {ire}: UN max, UX min/max, UY min/max {ours:?}, CONTACT's {:?}",
+            c.contact
+        );
+        // Within 0.5 % of each component's largest size: the patches'
+        // tractions lie that close to CONTACT's (UX at the flange's gauge
+        // side 0.31 % apart, the others within 0.11 %).
+        for (k, (o, t)) in ours.iter().zip(c.contact).enumerate() {
+            let size = if k == 0 {
+                c.contact[0]
+            } else if k < 3 {
+                c.contact[1].abs().max(c.contact[2].abs())
+            } else {
+                c.contact[3].abs().max(c.contact[4].abs())
+            };
+            close(&format!("ire {ire} extreme {k}"), *o, t, 5e-3 * size);
+        }
+        unsafe { cntc_finalize(&ire) };
+    }
 }
