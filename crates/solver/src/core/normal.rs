@@ -141,6 +141,17 @@ impl NormalScratch {
         self.kept.valid = false;
         self.kept.p.resize(self.u.len(), 0.0);
     }
+
+    /// Starts a solve (its normal/tangential alternation): the
+    /// active-set method's calls within it continue each other
+    /// ([`solve_normal_active_set`]); nothing carries over from an
+    /// earlier solve, so that a solve's answer depends on its own inputs
+    /// and start only.
+    pub fn begin_solve(&mut self) {
+        if let Some(a) = self.active.as_deref_mut() {
+            a.carried = false;
+        }
+    }
 }
 
 impl HeapBytes for NormalScratch {
@@ -979,6 +990,17 @@ struct ActiveSetScratch {
     u: Vec<f64>,
     /// The contact set.
     on: Vec<bool>,
+    /// The set `y` solves the unit-approach system on, to the relative
+    /// residual `y_residual` (infinite: not solved): the system depends on
+    /// the operator and the set only.
+    y_on: Vec<bool>,
+    y_residual: f64,
+    /// The last call's final pressures; `carried` while the calls belong
+    /// to one solve ([`NormalScratch::begin_solve`]), so that a call
+    /// starting from them continues it: its `x` and `y` start from the last
+    /// call's, and `y` is not solved again on the same set.
+    p_end: Vec<f64>,
+    carried: bool,
 }
 
 /// The GMRES buffers of [`gmres_on`].
@@ -1015,6 +1037,10 @@ impl ActiveSetScratch {
             b: vec![0.0; n],
             u: vec![0.0; n],
             on: vec![false; n],
+            y_on: vec![false; n],
+            y_residual: f64::INFINITY,
+            p_end: vec![0.0; n],
+            carried: false,
         }
     }
 }
@@ -1023,7 +1049,8 @@ impl HeapBytes for ActiveSetScratch {
     fn heap_bytes(&self) -> usize {
         let k = &self.krylov;
         heap_bytes!(
-            k.basis, k.hess, k.cs, k.sn, k.rhs, k.w, k.z, self.x, self.y, self.b, self.u, self.on
+            k.basis, k.hess, k.cs, k.sn, k.rhs, k.w, k.z, self.x, self.y, self.b, self.u, self.on,
+            self.y_on, self.p_end
         )
     }
 }
@@ -1188,7 +1215,14 @@ fn gmres_on(
 /// drops the elements of negative pressure from the set and adds those
 /// outside it that penetrate, until the set stays. The same arguments as
 /// [`solve_normal`] (unit approach weights); the residual is GMRES's
-/// relative residual, to a thousandth of `settings.tolerance`.
+/// relative residual, to a thousandth of `settings.tolerance`. A call that
+/// starts from the last call's final pressures continues it (a solve's
+/// normal/tangential alternation): the two systems start from the last
+/// call's solutions, and the unit-approach system, which depends on the
+/// operator and the set only, is not solved again on the same set;
+/// [`NormalScratch::begin_solve`] ends that, so that each solve depends on
+/// its own start only (a viscoelastic steady solve of 32 x 32 elements with
+/// four alternations: 261 operator products instead of 318).
 #[allow(clippy::too_many_arguments)]
 pub fn solve_normal_active_set(
     op: &mut dyn NormalOperator,
@@ -1207,17 +1241,27 @@ pub fn solve_normal_active_set(
         b,
         u,
         on,
+        y_on,
+        y_residual,
+        p_end,
+        carried,
     } = &mut **scratch
         .active
         .get_or_insert_with(|| Box::new(ActiveSetScratch::new(n)));
     let tol = (1e-3 * settings.tolerance).max(1e-14);
+    // A call of the same solve from the last one's pressures continues it.
+    let continued = *carried && p_end[..] == pn[..];
     initial_guess(h, &|_| 1.0, area, load, op.diagonal(), pn);
     for (on, &p) in on.iter_mut().zip(pn.iter()) {
         *on = p > 0.0;
     }
-    // Warm starts of the two solves: the pressures (x), nothing (y).
-    x.copy_from_slice(pn);
-    y.fill(0.0);
+    // Warm starts of the two solves: the last call's solutions, or the
+    // pressures (x) and nothing (y).
+    if !continued {
+        x.copy_from_slice(pn);
+        y.fill(0.0);
+        *y_residual = f64::INFINITY;
+    }
     let mut c = Counts::default();
     // The approach in the gap's system: the prescribed one, or 0 (and
     // the force's approach from the second system).
@@ -1240,11 +1284,16 @@ pub fn solve_normal_active_set(
         }
         residual = gmres_on(op, on, b, x, krylov, tol, settings.max_iterations, &mut c);
         if let Some(f) = force {
-            for i in 0..n {
-                b[i] = if on[i] { 1.0 } else { 0.0 };
+            // The unit-approach system, unless solved on this set already.
+            if !(*y_residual <= tol && y_on[..] == on[..]) {
+                for i in 0..n {
+                    b[i] = if on[i] { 1.0 } else { 0.0 };
+                }
+                let r = gmres_on(op, on, b, y, krylov, tol, settings.max_iterations, &mut c);
+                residual = residual.max(r);
+                y_on.copy_from_slice(on);
+                *y_residual = r;
             }
-            let r = gmres_on(op, on, b, y, krylov, tol, settings.max_iterations, &mut c);
-            residual = residual.max(r);
             let (sx, sy): (f64, f64) = (x.iter().sum(), y.iter().sum());
             delta = (f / area - sx) / sy;
             for i in 0..n {
@@ -1297,6 +1346,8 @@ pub fn solve_normal_active_set(
             break;
         }
     }
+    p_end.copy_from_slice(pn);
+    *carried = true;
     NormalOutcome {
         iterations: outer,
         matvecs: c.matvecs,

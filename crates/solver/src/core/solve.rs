@@ -1104,6 +1104,7 @@ impl ContactSolver {
             (None, None) => {}
         }
         let mut monitor = CouplingMonitor::default();
+        self.normal_scratch.begin_solve();
         for c in 0..cmax {
             cancel::check()?;
             info.coupling_iterations = c + 1;
