@@ -159,7 +159,7 @@ pub enum DisplacementSource {
         /// Body 1's and body 2's materials with B = 0.
         normal: Option<[Material; 2]>,
     },
-    /// A module 1 patch solved with FASTSIM (M = 2, 3): the getters
+    /// A module 1 patch solved with FASTSIM or FaStrip (M = 2, 3, 5): the getters
     /// refuse rather than give the exact model's u = A p (the patch's
     /// flexibilities are in [`Outcome::fastsim`], not used for it yet).
     WheelRailFastsim,
@@ -278,9 +278,10 @@ impl Outcome {
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
             Some(DisplacementSource::WheelRailFastsim) => {
                 return Err(missing(
-                    "module 1 with M = 2, 3 (FASTSIM on the wheel/rail patches) does not give \
-                     them (CONTACT's are FASTSIM's flexibilities times the tractions, which \
-                     this library does not compute for module 1's patches yet); M = 0 does",
+                    "module 1 with M = 2, 3, 5 (FASTSIM or FaStrip on the wheel/rail patches) \
+                     does not give them (CONTACT's are FASTSIM's flexibilities times the \
+                     tractions, which this library does not compute for module 1's patches \
+                     yet); M = 0 does",
                 ))
             }
             Some(_) => {}
