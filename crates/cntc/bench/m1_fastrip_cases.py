@@ -24,7 +24,8 @@ the centred wheelset rolling backwards (VS < 0); a linear falling
 friction law (L = 2). Then through the setters
 (`cntc_setmaterialparameters` with M = 5): python_mbench.py's tread case
 5 of wheel 1 and flange case 16 of wheel 2, with and without slope
-reduction (0.54, 0.02, 0.62).
+reduction (0.54, 0.02, 0.62), and the tread with FX_WS 1500 and -2000 N
+given (F = 1; prints the VPITCH found).
 
   PYTHON_INTFC  CONTACT's python_intfc folder (a checkout of eve70a/CONTACT)
   LIBRARY       the library to load (copied beside a copy of python_intfc,
@@ -111,9 +112,16 @@ SETTER_CASES = [
 ]
 
 
+# The tread with the total force FX_WS [N] given (F = 1) instead of VPITCH.
+FORCE_CASES = [('mbench-tread-fxws%d' % fx,) + SETTER_CASES[0][1:] + (fx,)
+               for fx in (1500, -2000)]
+SETTER_CASES += FORCE_CASES
+
+
 def set_up_mbench(cntc, CNTC, ire, case):
-    """python_mbench.py's wheel of `case` with M = 5 through the setters."""
-    _, iwhe, pos, vpitch, k0, alpha, beta = case
+    """python_mbench.py's wheel of `case` with M = 5 through the setters
+    (with FX_WS: F = 1)."""
+    _, iwhe, pos, vpitch, k0, alpha, beta = case[:7]
     import numpy as np
     from ctypes import c_int
     cntc.initialize(ire, 1, ' ', 0)
@@ -134,6 +142,10 @@ def set_up_mbench(cntc, CNTC, ire, case):
     cntc.setwheelsetflexibility(ire, 1, [0.0] * 12)
     cntc.setwheelsetposition(ire, 2, pos)
     cntc.setwheelsetvelocity(ire, 2, [2000.0, 0.0, 0.0, 0.0, 0.0, vpitch])
+    if len(case) > 7:
+        cntc.setflags(ire, -1, np.array([CNTC['ic_force']], dtype=c_int),
+                      np.array([1], dtype=c_int))
+        cntc.settangentialforces(ire, -1, float(case[7]), 0.0)
 
 
 def main():
@@ -151,6 +163,8 @@ def main():
             ierr = cntc.calculate(ire)
             npatch = cntc.getnumcontactpatches(ire)
             print(f'case {case[0]}: setters, ierror {ierr}, {npatch} patch(es)')
+            if case in FORCE_CASES:
+                print(f'  VPITCH {float(cntc.getwheelsetvelocity(ire)[5])!r}')
         else:
             npatch = solve_file(cntc, CNTC, ire, case[0])
         for icp in range(1, npatch + 1):
@@ -168,4 +182,5 @@ def main():
             print(f'    MX {mx} MY {my} NADH {nadh} NSLIP {nslip}')
 
 
-main()
+if __name__ == '__main__':
+    main()

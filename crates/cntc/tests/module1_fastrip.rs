@@ -110,8 +110,9 @@ enum Setup {
     /// A module 1 input file ([`inp`]).
     File(String),
     /// python_mbench.py's wheel `iwhe` at position (E = 2) and VPITCH
-    /// through the setters, M = 5 with K0_MF, ALFAMF, BETAMF.
-    Setters(i32, [f64; 6], f64, [f64; 3]),
+    /// through the setters, M = 5 with K0_MF, ALFAMF, BETAMF, and with
+    /// Some FX_WS \[N\] given (F = 1, VPITCH its start).
+    Setters(i32, [f64; 6], f64, [f64; 3], Option<f64>),
 }
 
 /// No slope reduction.
@@ -139,10 +140,12 @@ fn setup(name: &str) -> Setup {
         "y6.46-m5" => file(Y6_46, 5, KALKER, 1000.0, COULOMB),
         "y0-xi2-m5-back" => file(y0_xi(0.002), 5, KALKER, -1000.0, COULOMB),
         "y0-xi2-m5-linear" => file(y0_xi(0.002), 5, KALKER, 1000.0, LINEAR),
-        "mbench-tread" => Setup::Setters(1, TREAD.0, TREAD.1, [1.0; 3]),
-        "mbench-flange" => Setup::Setters(2, FLANGE.0, FLANGE.1, [1.0; 3]),
-        "mbench-tread-red" => Setup::Setters(1, TREAD.0, TREAD.1, REDUCED),
-        "mbench-flange-red" => Setup::Setters(2, FLANGE.0, FLANGE.1, REDUCED),
+        "mbench-tread" => Setup::Setters(1, TREAD.0, TREAD.1, [1.0; 3], None),
+        "mbench-flange" => Setup::Setters(2, FLANGE.0, FLANGE.1, [1.0; 3], None),
+        "mbench-tread-red" => Setup::Setters(1, TREAD.0, TREAD.1, REDUCED, None),
+        "mbench-flange-red" => Setup::Setters(2, FLANGE.0, FLANGE.1, REDUCED, None),
+        "mbench-tread-fxws1500" => Setup::Setters(1, TREAD.0, TREAD.1, [1.0; 3], Some(1500.0)),
+        "mbench-tread-fxws-2000" => Setup::Setters(1, TREAD.0, TREAD.1, [1.0; 3], Some(-2000.0)),
         _ => unreachable!("{name}"),
     }
 }
@@ -153,7 +156,7 @@ type Patch = [f64; 8];
 
 /// CONTACT's library per case and patch (see the module docs).
 #[rustfmt::skip]
-const CONTACT: [(&str, &[Patch]); 18] = [
+const CONTACT: [(&str, &[Patch]); 20] = [
     ("y0-m5", &[[9996.878858361024, -31.638313739593936, -252.4525106496746, -4956.371191367163, 2.071140659721038e-05, 1.0, 910.0, 381.0]]),
     ("y0-m3", &[[9996.706385973006, 144.81093984379874, -258.416151503375, -4493.459687155862, 2.0711406273787865e-05, 1.0, 1106.0, 185.0]]),
     ("y0-xi1-m5", &[[9999.441580648474, 2805.648908808183, -164.00978885160413, 159.8427653845556, 2.074198879156933e-05, 1.0, 230.0, 1061.0]]),
@@ -172,6 +175,8 @@ const CONTACT: [(&str, &[Patch]); 18] = [
     ("mbench-flange", &[[13263.5388275506, -2087.577849527574, -3374.429591575201, -564.3831504051234, 1.1999925138279914e-05, 1.0, 0.0, 208.0]]),
     ("mbench-tread-red", &[[10040.747148436156, 539.0636370172847, -2963.4649916172707, 58.60116856778305, 2.786839531475746e-05, 0.22134271487466392, 0.0, 830.0]]),
     ("mbench-flange-red", &[[13145.64046797046, -1900.3112387186834, -3450.0358834590756, -360.97083247349536, 1.1999949602469484e-05, 0.052846676709078125, 0.0, 208.0]]),
+    ("mbench-tread-fxws1500", &[[10035.906156999392, 1513.1601194178816, -2602.791957085275, 82.88117533962375, 2.6921927190586985e-05, 1.0, 0.0, 828.0]]),
+    ("mbench-tread-fxws-2000", &[[10031.271426722426, -1988.5242176602637, -2258.708210066232, -36.184140675107415, 2.620218290456801e-05, 1.0, 0.0, 828.0]]),
 ];
 
 /// python_mbench.py's wheel `iwhe` on `ire` (as crates/cntc/tests/module1.rs
@@ -188,10 +193,12 @@ unsafe fn set_up_mbench(ire: i32, iwhe: i32, pos: [f64; 6], vpitch: f64, red: [f
     cntc_setwheelsetvelocity(&ire, &2, &6, vel.as_ptr());
 }
 
-/// Sets up and solves case `name` on `ire`: ierror and the patches.
-fn solve(ire: i32, name: &str) -> (i32, Vec<Patch>) {
+/// Sets up and solves case `name` on `ire`: ierror, the patches and the
+/// wheelset's VPITCH \[rad/s\].
+fn solve(ire: i32, name: &str) -> (i32, Vec<Patch>, f64) {
     let dir = InpDir::new(&format!("fastrip-{ire}"));
     let mut ierror = -1;
+    let vpitch;
     let mut out = Vec::new();
     unsafe {
         match setup(name) {
@@ -200,7 +207,14 @@ fn solve(ire: i32, name: &str) -> (i32, Vec<Patch>) {
                 let path = dir.write("case.inp", &text);
                 assert_eq!(read_inp(ire, flags::INP_MODUL1, &path), 0, "{name}");
             }
-            Setup::Setters(iwhe, pos, vpitch, red) => set_up_mbench(ire, iwhe, pos, vpitch, red),
+            Setup::Setters(iwhe, pos, vpitch, red, fx_ws) => {
+                set_up_mbench(ire, iwhe, pos, vpitch, red);
+                if let Some(fx) = fx_ws {
+                    let (codes, values) = ([flags::IC_FORCE], [1]);
+                    cntc_setflags(&ire, &-1, &1, codes.as_ptr(), values.as_ptr());
+                    cntc_settangentialforces(&ire, &-1, &fx, &0.0);
+                }
+            }
         }
         cntc_calculate1(&ire, &mut ierror);
         let mut n = 0;
@@ -221,9 +235,12 @@ fn solve(ire: i32, name: &str) -> (i32, Vec<Patch>) {
             (p[6], p[7]) = (count(1), count(2));
             out.push(p);
         }
+        let mut velocity = [0.0; 6];
+        cntc_getwheelsetvelocity(&ire, &6, velocity.as_mut_ptr());
+        vpitch = velocity[5];
         cntc_finalize(&ire);
     }
-    (ierror, out)
+    (ierror, out, vpitch)
 }
 
 /// Tolerances: FN relative; FX, FS of mu FN (mu = 0.3); MZ of mu FN
@@ -271,7 +288,7 @@ fn fastrip_on_wheelrail_patches_matches_contacts_library() {
     let flange_root: Tolerance = [2e-2, 2e-2, 0.015, 1e-2, 6e-3, 1.0, 6.0];
     for (k, (name, contact)) in CONTACT.iter().enumerate() {
         let ire = 50 + k as i32;
-        let (ierror, ours) = solve(ire, name);
+        let (ierror, ours, _) = solve(ire, name);
         assert_eq!(ierror, 0, "{name}");
         assert_eq!(ours.len(), contact.len(), "{name}: patches");
         for (icp, (o, c)) in ours.iter().zip(contact.iter()).enumerate() {
@@ -293,16 +310,16 @@ fn fastrip_on_wheelrail_patches_matches_contacts_library() {
 /// creepage (CONTACT's: FX 2999.05 against -2999.05 N).
 #[test]
 fn fastrip_is_not_fastsim_and_mirrors_backwards() {
-    let (_, m5) = solve(80, "y0-m5");
-    let (_, m3) = solve(81, "y0-m3");
+    let (_, m5, _) = solve(80, "y0-m5");
+    let (_, m3, _) = solve(81, "y0-m3");
     assert!(
         (m5[0][1] - m3[0][1]).abs() > 100.0,
         "{} {}",
         m5[0][1],
         m3[0][1]
     );
-    let (_, fwd) = solve(82, "y0-xi2-m5");
-    let (_, back) = solve(83, "y0-xi2-m5-back");
+    let (_, fwd, _) = solve(82, "y0-xi2-m5");
+    let (_, back, _) = solve(83, "y0-xi2-m5-back");
     close(
         "FX backwards",
         back[0][1],
@@ -343,5 +360,27 @@ fn fastrip_refusals_in_module_1() {
         cntc_calculate1(&ire, &mut ierror);
         assert_eq!(ierror, err::NOT_SUPPORTED);
         cntc_finalize(&ire);
+    }
+}
+
+/// F = 1 (FX_WS given) on python_mbench.py's tread: the VPITCH found.
+/// CONTACT's library: -4.337616762147302 rad/s at FX_WS 1500 N,
+/// -4.368096787890978 at -2000 N (m1_fastrip_cases.py); measured within
+/// 4.8e-8 and 1.6e-7 relative; tolerance 1e-6 (the forces are checked in
+/// `fastrip_on_wheelrail_patches_matches_contacts_library`).
+#[test]
+fn fastrip_with_the_total_force_given_finds_contacts_pitch_rate() {
+    for (ire, name, contact) in [
+        (86, "mbench-tread-fxws1500", -4.337616762147302),
+        (87, "mbench-tread-fxws-2000", -4.368096787890978),
+    ] {
+        let (ierror, _, vpitch) = solve(ire, name);
+        assert_eq!(ierror, 0, "{name}");
+        close(
+            &format!("{name} VPITCH"),
+            vpitch,
+            contact,
+            1e-6 * contact.abs(),
+        );
     }
 }
