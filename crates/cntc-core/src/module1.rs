@@ -176,8 +176,11 @@
 //!   runs it on a non-Hertzian grid. As in CONTACT's
 //!   `panprc`, FASTSIM's tractions do not act back on the pressure; the
 //!   load iteration meets FZ with FASTSIM's creep forces included (CONTACT
-//!   iterates on the total force in the track frame). V = 1 (friction by
-//!   contact angle) is refused with M = 2, 3.
+//!   iterates on the total force in the track frame). M = 5: CONTACT's
+//!   modified FaStrip the same way (the solver's `ExactTangential::Fastrip`:
+//!   FASTSIM bounded by the static coefficient, then strip theory per grid
+//!   row, CONTACT's `modif_fastrip`). V = 1 (friction by contact angle) is
+//!   refused with M = 2, 3, 5.
 //!
 //! # Outcomes
 //!
@@ -1714,18 +1717,14 @@ impl WheelRail {
                 d.discns
             )));
         }
-        if let MaterialModel::ModifiedFastrip(_) = self.config.material.model {
-            return Err(CntcError::NotSupported(
-                "M = 5 (modified FaStrip) in module 1 is not supported: module 3 takes it on a \
-                 Hertzian or non-Hertzian patch in steady rolling; M = 3 (modified FASTSIM) \
-                 runs on wheel/rail patches"
-                    .into(),
-            ));
-        }
-        if let MaterialModel::ModifiedFastsim(_) = self.config.material.model {
+        if self.config.material.model.fastsim().is_some() {
+            let method = match self.config.material.model {
+                MaterialModel::ModifiedFastrip(_) => "FaStrip",
+                _ => "FASTSIM",
+            };
             if d.bound != 0 {
                 return Err(CntcError::NotSupported(format!(
-                    "B = {} (CNTC_ic_bound) with M = {} in module 1 is not supported: FASTSIM \
+                    "B = {} (CNTC_ic_bound) with M = {} in module 1 is not supported: {method} \
                      on a wheel/rail patch takes its exact normal problem's pressure as the \
                      traction bound (B = 0); CONTACT's B = 2-4 are not available in module 1",
                     d.bound, d.mater
@@ -1734,7 +1733,7 @@ impl WheelRail {
             if d.tang == 3 && self.config.friction_by_angle.is_some() {
                 return Err(CntcError::NotSupported(format!(
                     "V = 1 (friction varying with the contact angle) with M = {} in module 1 is \
-                     not supported: FASTSIM takes one friction law per patch (V = 0)",
+                     not supported: {method} takes one friction law per patch (V = 0)",
                     d.mater
                 )));
             }
@@ -2317,6 +2316,9 @@ impl WheelRail {
                     (_, MaterialModel::ModifiedFastsim(material)) => {
                         ExactTangential::Fastsim(material)
                     }
+                    (_, MaterialModel::ModifiedFastrip(material)) => {
+                        ExactTangential::Fastrip(material)
+                    }
                     _ => ExactTangential::Kalker,
                 },
                 // M = 4: the layer's flexibility in the patches' tangential
@@ -2441,6 +2443,7 @@ impl WheelRail {
                         }),
                         normal: Some([input.material.body1, input.material.body2]),
                     },
+                    ExactTangential::Fastrip(_) => DisplacementSource::WheelRailFastrip,
                     _ => DisplacementSource::Influence {
                         body1: input.material.body1,
                         body2: input.material.body2,

@@ -160,6 +160,11 @@ pub enum DisplacementSource {
         /// Body 1's and body 2's materials with B = 0.
         normal: Option<[Material; 2]>,
     },
+    /// A module 1 patch solved with FaStrip (M = 5): the getters refuse.
+    /// CONTACT's are its FASTSIM march's displacements, which the strip
+    /// part's tractions do not give where it rewrote a row (L/k times the
+    /// final tractions lie 14-21 % from CONTACT's UX there).
+    WheelRailFastrip,
 }
 
 /// Where a wheel/rail patch lies (`cntc_getcontactlocation`), SI, in
@@ -273,6 +278,13 @@ impl Outcome {
         match self.displacement_source {
             None => return Err(missing("the last calculation did not leave them")),
             Some(DisplacementSource::Unloaded) => return Ok([zero(), zero(), zero()]),
+            Some(DisplacementSource::WheelRailFastrip) => {
+                return Err(missing(
+                    "module 1 with M = 5 (FaStrip on the wheel/rail patches) does not give them \
+                     (CONTACT's are the FASTSIM march's displacements, which this library does \
+                     not keep); M = 0, 2, 3 do",
+                ))
+            }
             Some(_) => {}
         }
         if !p.iter().all(|c| c.len() == n) {
@@ -302,7 +314,9 @@ impl Outcome {
                 Ok(u)
             };
         match self.displacement_source {
-            None | Some(DisplacementSource::Unloaded) => Ok([zero(), zero(), zero()]),
+            None
+            | Some(DisplacementSource::Unloaded)
+            | Some(DisplacementSource::WheelRailFastrip) => Ok([zero(), zero(), zero()]),
             Some(DisplacementSource::Influence {
                 body1,
                 body2,

@@ -69,6 +69,18 @@ CASES = [
 ]
 
 
+# The lines of the input files from DX to the wheel profile (0.2 mm
+# elements, gauge-point placement, the profiles in the working directory).
+GEOMETRY = (
+    '  0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n'
+    '   14.0     0    1435.0   0.000         GAUGHT, GAUGSQ, GAUGWD, CANT\n'
+    "  'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH\n"
+    '     0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL\n'
+    '  1360.0  -70.0   460.0             FBDIST, FBPOS, NOMRAD\n'
+    "  'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH\n"
+)
+
+
 def inp_text(case):
     """The module 1 input file of `case`."""
     _, pos, m, fg1, fg2, tc1, tc2 = case
@@ -85,29 +97,37 @@ def inp_text(case):
         '  0.300   0.300                                 FSTAT, FKIN\n'
         '  0.280   0.280   82000.  82000.                POISS 1,2,  GG 1,2\n'
         '%s'
-        '  0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n'
-        '   14.0     0    1435.0   0.000                 GAUGHT, GAUGSQ, GAUGWD, CANT\n'
-        "  'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH\n"
-        '     0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL\n'
-        '  1360.0  -70.0   460.0                         FBDIST, FBPOS, NOMRAD\n'
-        "  'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH\n"
+        '%s'
         '  0.0  %.4f  %.4f  %.8f  %.4f  0.0      S, Y, FZ, ROLL, YAW, PITCH\n'
         ' 1000.  0.0   0.0   0.0   0.0  %.9f     VS, VY, VZ, VROLL, VYAW, VPITCH\n'
-    ) % (norm, m, visc, y, z, roll, yaw, vpitch)
+    ) % (norm, m, visc, GEOMETRY, y, z, roll, yaw, vpitch)
 
 
-def load(intfc, library):
-    """placement_cases.py's loader, in a folder holding the cases' input
-    files and their profiles (the working directory)."""
+def load(intfc, library, cases=CASES, text=inp_text, prefix='viscoelastic-'):
+    """placement_cases.py's loader, in a folder holding the input files
+    `text(case)` of `cases` and their profiles (the working directory)."""
     cntc = load_intfc(intfc, library)
-    work = tempfile.mkdtemp(prefix='viscoelastic-')
+    work = tempfile.mkdtemp(prefix=prefix)
     for p in ('MBench_UIC60_v3.prr', 'MBench_S1002_v3.prw'):
         shutil.copy(os.path.join(PROFILES, p), work)
-    for case in CASES:
+    for case in cases:
         with open(os.path.join(work, case[0] + '.inp'), 'w') as f:
-            f.write(inp_text(case))
+            f.write(text(case))
     os.chdir(work)
     return cntc
+
+
+def solve_file(cntc, CNTC, ire, name):
+    """Reads `name`.inp on `ire` and calculates it; prints the errors and
+    returns the number of patches."""
+    cntc.initialize(ire, 1, ' ', 0)
+    t0 = time.time()
+    ierr_read = cntc.readinpfile(ire, CNTC['inp_modul1'], name + '.inp')
+    ierr = cntc.calculate(ire)
+    npatch = cntc.getnumcontactpatches(ire)
+    print(f'case {name}: readinpfile {ierr_read}, ierror {ierr}, {npatch} patch(es), '
+          f'{time.time() - t0:.1f} s')
+    return npatch
 
 
 def main():
@@ -119,14 +139,7 @@ def main():
     assert ierror == 0, ierror
     chosen = [(ire, c) for ire, c in enumerate(CASES, 1) if not only or c[0] in only]
     for ire, case in chosen:
-        name = case[0]
-        cntc.initialize(ire, 1, ' ', 0)
-        t0 = time.time()
-        ierr_read = cntc.readinpfile(ire, CNTC['inp_modul1'], name + '.inp')
-        ierr = cntc.calculate(ire)
-        npatch = cntc.getnumcontactpatches(ire)
-        print(f'case {name}: readinpfile {ierr_read}, ierror {ierr}, {npatch} patch(es), '
-              f'{time.time() - t0:.1f} s')
+        npatch = solve_file(cntc, CNTC, ire, case[0])
         for icp in range(1, npatch + 1):
             fn, fx, fs, mz = cntc.getcontactforces(ire, icp)
             cx, cy, cp = cntc.getcreepages(ire, icp)
@@ -138,4 +151,5 @@ def main():
                   f'PMAX {pmax!r} VELOC {float(veloc)!r}')
 
 
-main()
+if __name__ == '__main__':
+    main()

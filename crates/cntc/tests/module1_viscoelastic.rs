@@ -17,7 +17,7 @@
 
 mod common;
 
-use common::{read_inp, set_flags, wheelrail_element, InpDir};
+use common::{read_inp, set_flags, wheelrail_element, InpDir, MBENCH_M1_GEOMETRY};
 use contact_addon::ffi::*;
 use contact_addon::flags::{self, err};
 
@@ -58,12 +58,7 @@ fn inp(
          \x20 0.300   0.300                                 FSTAT, FKIN\n\
          \x20 0.280   0.280   82000.  82000.                POISS 1,2,  GG 1,2\n\
          {visc}\
-         \x20 0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB\n\
-         \x20  14.0     0    1435.0   0.000                 GAUGHT, GAUGSQ, GAUGWD, CANT\n\
-         \x20 'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH\n\
-         \x20    0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL\n\
-         \x20 1360.0  -70.0   460.0                         FBDIST, FBPOS, NOMRAD\n\
-         \x20 'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH\n\
+         {MBENCH_M1_GEOMETRY}\
          \x20 0.0  {y:.4}  {z:.4}  {roll:.8}  {yaw:.4}  0.0      S, Y, FZ, ROLL, YAW, PITCH\n\
          \x20 1000.  0.0   0.0   0.0   0.0  {vpitch:.9}     VS, VY, VZ, VROLL, VYAW, VPITCH\n"
     )

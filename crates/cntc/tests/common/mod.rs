@@ -511,6 +511,19 @@ pub const MBENCH_RIGHT_INP: &str = "\
  1203100    C-P-B-T-N-F-S
 ";
 
+/// The lines of a module 1 input file from DX to the wheel profile that
+/// the Manchester benchmark's right wheel files share (0.2 mm elements,
+/// gauge-point placement of UIC60 and S1002, the files' names relative to
+/// [`InpDir`]).
+pub const MBENCH_M1_GEOMETRY: &str = "\
+\x20 0.200   0.200   1.000   90d   8.0   4.0       DX, DS, DQREL, A_SEP, D_SEP, D_COMB
+\x20  14.0     0    1435.0   0.000                 GAUGHT, GAUGSQ, GAUGWD, CANT
+\x20 'MBench_UIC60_v3.prr'   0     1.0   0.0       RFNAME, MIRRORY, SCALE, SMOOTH
+\x20    0.0    0.0   0.000   0.0   0.0   0.000     DY, DZ, ROLL, VY, VZ, VROLL
+\x20 1360.0  -70.0   460.0                         FBDIST, FBPOS, NOMRAD
+\x20 'MBench_S1002_v3.prw'   0     1.0   0.0       WFNAME, MIRRORY, SCALE, SMOOTH
+";
+
 /// A scratch folder holding the benchmark's rail and wheel profiles, for
 /// input files that name them relative to their own folder; removed when
 /// dropped.

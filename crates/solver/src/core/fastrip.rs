@@ -164,6 +164,13 @@ impl GridFastrip {
         self.march.pressure_pa()
     }
 
+    /// The FASTSIM march whose buffers hold the last solve's fields (after
+    /// the strip theory: its tractions, slips and states are this
+    /// solver's).
+    pub fn march(&self) -> &GridFastsim {
+        &self.march
+    }
+
     /// Longitudinal traction on body 1 \[Pa\].
     pub fn traction_x_pa(&self) -> &[f64] {
         self.march.traction_x_pa()

@@ -109,10 +109,11 @@ use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
+use crate::core::fastrip::GridFastrip;
 use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
     equivalent_ellipse, AppliedFlexibility, CreepInterpolation, FastsimMaterial, GridFastsim,
-    GridFastsimInput, GridFriction, GridPressure, RollingSense,
+    GridFastsimInput, GridFastsimOutput, GridFriction, GridPressure, RollingSense,
 };
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
@@ -307,6 +308,19 @@ pub enum ExactTangential {
     /// included, as with Kalker's theory. No friction table
     /// ([`WheelRailInput::friction_table`]).
     Fastsim(FastsimMaterial),
+    /// CONTACT's modified FaStrip on the patch's own grid (its `M = 5` on a
+    /// wheel/rail patch, [`crate::core::fastrip`]): as
+    /// [`ExactTangential::Fastsim`] (the frictionless normal problem, then
+    /// on its grid with its pressure, this material's flexibilities and
+    /// slope reduction, no friction table), FASTSIM's tractions then
+    /// replaced row by row by strip theory's in its adhesion zone. The
+    /// traction bound is the patch friction's static coefficient (a
+    /// slip-velocity law's `mu_s(0)`; the slope reduction takes the
+    /// coefficient at the global slip velocity), as CONTACT's FaStrip
+    /// does. The strip formulas take each row about the patch grid's `x =
+    /// 0` (the contact reference point) and its adhesion zone towards
+    /// `+x` whatever the rolling direction, as CONTACT's do.
+    Fastrip(FastsimMaterial),
     /// Kalker's exact theory, one time step of transient contact
     /// (CONTACT's `T = 1, 2`; see [`TransientContact`]): the patch starts
     /// from the previous step's tractions, the history a session hands
@@ -314,6 +328,19 @@ pub enum ExactTangential {
     /// Coulomb friction: the input's pair of coefficients or its friction
     /// table ([`WheelRailInput::friction_table`]), not a slip-velocity law.
     Transient(TransientContact),
+}
+
+impl ExactTangential {
+    /// The simplified theory's material of [`ExactTangential::Fastsim`]
+    /// and [`ExactTangential::Fastrip`] and whether it is FaStrip; None
+    /// for the others.
+    pub(crate) fn simplified(self) -> Option<(FastsimMaterial, bool)> {
+        match self {
+            Self::Fastsim(material) => Some((material, false)),
+            Self::Fastrip(material) => Some((material, true)),
+            _ => None,
+        }
+    }
 }
 
 /// One time step of transient contact of the exact model
@@ -617,10 +644,10 @@ fn validate_viscoelastic(
     }
     match input.settings.exact_tangential {
         ExactTangential::Kalker | ExactTangential::Frictionless => Ok(()),
-        ExactTangential::Fastsim(_) => Err(WheelRailError::invalid(
+        ExactTangential::Fastsim(_) | ExactTangential::Fastrip(_) => Err(WheelRailError::invalid(
             key,
-            "viscoelastic bodies take Kalker's exact theory (exact_tangential), not FASTSIM, \
-             whose flexibilities are elastic",
+            "viscoelastic bodies take Kalker's exact theory (exact_tangential), not FASTSIM or \
+             FaStrip, whose flexibilities are elastic",
         )),
         ExactTangential::Transient(_) => Err(WheelRailError::invalid(
             key,
@@ -1020,9 +1047,10 @@ pub(crate) struct PatchWork {
     /// Time of this patch's exact solves in their normal problems and the
     /// rest \[s\] ([`Timing::normal_s`], [`Timing::tangential_s`]).
     solver_s: [f64; 2],
-    /// FASTSIM's buffers on an exact patch's grid
-    /// ([`ExactTangential::Fastsim`]), built at its first frictional solve.
-    grid_fastsim: Option<Box<GridFastsim>>,
+    /// FASTSIM's or FaStrip's buffers on an exact patch's grid
+    /// ([`ExactTangential::Fastsim`], [`ExactTangential::Fastrip`]), built
+    /// at its first frictional solve.
+    grid_fastsim: Option<Box<PatchGridSolver>>,
     /// An exact patch of an out-of-round wheel or a varying rail with
     /// [`ReferencePoint::InterpenetrationCentre`]: how far the centre of
     /// its interpenetration at the reference's approach lies from the
@@ -1216,7 +1244,7 @@ impl PatchWork {
                     }
                 };
                 let mut fastsim_flexibility = None;
-                if let (true, ExactTangential::Fastsim(material)) = (frictional, mode) {
+                if let (true, Some((material, fastrip))) = (frictional, mode.simplified()) {
                     let t0 = Instant::now();
                     let on = FastsimOn {
                         grid: &problem.grid,
@@ -1225,6 +1253,7 @@ impl PatchWork {
                         backward: self.backward,
                         friction: &self.friction,
                         material,
+                        fastrip,
                     };
                     fastsim_flexibility = on.solve(&mut self.grid_fastsim, &mut sol, input)?;
                     self.solver_s[1] += t0.elapsed().as_secs_f64();
@@ -1478,7 +1507,8 @@ fn transient_step(
     }
 }
 
-/// FASTSIM on an exact patch's grid ([`ExactTangential::Fastsim`]).
+/// FASTSIM or FaStrip on an exact patch's grid
+/// ([`ExactTangential::Fastsim`], [`ExactTangential::Fastrip`]).
 struct FastsimOn<'a> {
     grid: &'a Grid,
     creep: &'a Creepages,
@@ -1488,18 +1518,65 @@ struct FastsimOn<'a> {
     backward: bool,
     friction: &'a Friction,
     material: FastsimMaterial,
+    /// FaStrip rather than FASTSIM.
+    fastrip: bool,
+}
+
+/// The grid solver of an exact patch's simplified theory with its buffers.
+#[derive(Debug)]
+enum PatchGridSolver {
+    Fastsim(GridFastsim),
+    Fastrip(GridFastrip),
+}
+
+impl PatchGridSolver {
+    fn new(grid: Grid, fastrip: bool) -> Result<Self, ContactError> {
+        Ok(if fastrip {
+            Self::Fastrip(GridFastrip::new(grid)?)
+        } else {
+            Self::Fastsim(GridFastsim::new(grid)?)
+        })
+    }
+
+    /// Whether these are buffers of `fastrip` on `grid`.
+    fn fits(&self, grid: &Grid, fastrip: bool) -> bool {
+        match self {
+            Self::Fastsim(fs) => !fastrip && fs.grid() == grid,
+            Self::Fastrip(fs) => fastrip && fs.grid() == grid,
+        }
+    }
+
+    /// The solver's totals ([`GridFastsim::solve`], [`GridFastrip::solve`]).
+    fn solve(
+        &mut self,
+        input: &GridFastsimInput,
+        pressure: GridPressure<'_>,
+    ) -> Result<GridFastsimOutput, ContactError> {
+        match self {
+            Self::Fastsim(fs) => fs.solve(input, pressure),
+            Self::Fastrip(fs) => fs.solve(input, pressure).map(|o| o.totals),
+        }
+    }
+
+    /// The march whose buffers hold the last solve's fields.
+    fn march(&self) -> &GridFastsim {
+        match self {
+            Self::Fastsim(fs) => fs,
+            Self::Fastrip(fs) => fs.march(),
+        }
+    }
 }
 
 impl FastsimOn<'_> {
     /// Replaces the tangential part of `sol`, a frictionless solution on
-    /// the grid, by FASTSIM's with its pressure as the traction bound:
-    /// tractions, slips, element states and the totals they give; returns
-    /// the flexibilities and slope reduction factor it used. Without
-    /// loaded elements it is left as it is (None). Allocates only the
-    /// solver's buffers at its first use on a grid.
+    /// the grid, by FASTSIM's (or FaStrip's) with its pressure as the
+    /// traction bound: tractions, slips, element states and the totals
+    /// they give; returns the flexibilities and slope reduction factor
+    /// FASTSIM used. Without loaded elements it is left as it is (None).
+    /// Allocates only the solver's buffers at its first use on a grid.
     fn solve(
         &self,
-        buffers: &mut Option<Box<GridFastsim>>,
+        buffers: &mut Option<Box<PatchGridSolver>>,
         sol: &mut ContactSolution,
         input: &WheelRailInput,
     ) -> Result<Option<AppliedFlexibility>, ContactError> {
@@ -1507,16 +1584,16 @@ impl FastsimOn<'_> {
         let Some([a, b]) = equivalent_ellipse(self.grid, &fl.pressure_pa) else {
             return Ok(None);
         };
-        let fs = match buffers {
-            Some(fs) if fs.grid() == self.grid => fs,
-            _ => buffers.insert(Box::new(GridFastsim::new(*self.grid)?)),
+        let solver = match buffers {
+            Some(fs) if fs.fits(self.grid, self.fastrip) => fs,
+            _ => buffers.insert(Box::new(PatchGridSolver::new(*self.grid, self.fastrip)?)),
         };
         let friction = match self.friction.slip_velocity_law {
             Some(law) => GridFriction::SlipVelocity(law),
             None => GridFriction::Coulomb(self.friction.kinetic_coefficient),
         };
         let t = &mut sol.totals;
-        let out = fs.solve(
+        let out = solver.solve(
             &GridFastsimInput {
                 semi_axis_x_m: a,
                 semi_axis_y_m: b,
@@ -1540,6 +1617,7 @@ impl FastsimOn<'_> {
             },
             GridPressure::Given(&fl.pressure_pa),
         )?;
+        let fs = solver.march();
         fill(&mut fl.traction_x_pa, fs.traction_x_pa());
         fill(&mut fl.traction_y_pa, fs.traction_y_pa());
         fill(&mut fl.slip_x, fs.slip_x());
@@ -2688,13 +2766,31 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
     if let ExactTangential::Transient(t) = input.settings.exact_tangential {
         validate_transient(t, input)?;
     }
-    if let ExactTangential::Fastsim(material) = input.settings.exact_tangential {
+    if let Some((material, fastrip)) = input.settings.exact_tangential.simplified() {
         material.validate_as("exact_tangential")?;
+        let method = if fastrip { "FaStrip" } else { "FASTSIM" };
         if input.friction_table.is_some() {
             return Err(WheelRailError::invalid(
                 "exact_tangential",
-                "FASTSIM on the exact patches takes one friction law per patch, not a friction \
-                 table",
+                format!(
+                    "{method} on the exact patches takes one friction law per patch, not a \
+                     friction table"
+                ),
+            ));
+        }
+        let r = material.reduction;
+        if fastrip
+            && (r.friction_limit_ratio != SlopeReduction::NONE.friction_limit_ratio
+                || r.friction_decay_s_per_m != SlopeReduction::NONE.friction_decay_s_per_m)
+        {
+            return Err(WheelRailError::invalid(
+                "exact_tangential",
+                format!(
+                    "FaStrip bounds the tractions by the static coefficient: the slope \
+                     reduction's falling friction (A = {}, B = {} s/m) must be off (A = 1, B = 0)",
+                    show(r.friction_limit_ratio),
+                    show(r.friction_decay_s_per_m)
+                ),
             ));
         }
     }
@@ -5536,13 +5632,20 @@ mod tests {
         }
     }
 
+    /// The A-2.2 input at lateral shift `y_mm` with the exact model and
+    /// `tangential` on its patches.
+    fn exact_input(y_mm: f64, tangential: ExactTangential) -> WheelRailInput {
+        let mut input = mbench_a22_input(y_mm, None, None, WheelRailModel::Exact);
+        input.settings.exact_tangential = tangential;
+        input
+    }
+
     #[test]
     fn exact_patches_solve_frictionless_or_with_fastsim() {
         let pair = mbench_pair().unwrap();
         let cache = KernelCache::default();
         let solve = |tangential| {
-            let mut input = mbench_a22_input(2.0, None, None, WheelRailModel::Exact);
-            input.settings.exact_tangential = tangential;
+            let input = exact_input(2.0, tangential);
             solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap()
         };
         let kalker = solve(ExactTangential::Kalker);
@@ -5594,6 +5697,86 @@ mod tests {
         input.settings.exact_tangential = ExactTangential::Frictionless;
         let e = solve_wheelset(&pair, &input, &cache, &mut SearchScratch::default()).unwrap_err();
         assert!(e.to_string().contains("exact_tangential"), "{e}");
+    }
+
+    /// FaStrip on the exact patches (`ExactTangential::Fastrip`, CONTACT's
+    /// M = 5 in module 1; compared with CONTACT's library in
+    /// crates/cntc/tests/module1_fastrip.rs): the same load as FASTSIM's,
+    /// the sliding tractions on the bound, the adhesion elements strip
+    /// theory's (FaStrip's creep forces differ from FASTSIM's), FASTSIM's
+    /// flexibilities reported; the slope reduction's own falling friction
+    /// and viscoelastic bodies refused naming their key.
+    #[test]
+    fn exact_patches_solve_with_fastrip() {
+        let pair = mbench_pair().unwrap();
+        let cache = KernelCache::default();
+        let input = |tangential| exact_input(0.0, tangential);
+        let solve = |input: &WheelRailInput| {
+            solve_wheelset(&pair, input, &cache, &mut SearchScratch::default())
+        };
+        let material = FastsimMaterial::kalker(SlopeReduction::NONE);
+        let fastsim = solve(&input(ExactTangential::Fastsim(material))).unwrap();
+        let fastrip = solve(&input(ExactTangential::Fastrip(material))).unwrap();
+        for (k, (ws, wr)) in fastsim.wheels.iter().zip(&fastrip.wheels).enumerate() {
+            let (ps, pr) = (&ws.patches[0], &wr.patches[0]);
+            assert!((wr.force_track_n[2] - 1e4).abs() < 0.1, "wheel {k}");
+            let fn_ratio = pr.normal_force_n / ps.normal_force_n;
+            assert!(
+                (fn_ratio - 1.0).abs() < 1e-3,
+                "wheel {k}: FN ratio {fn_ratio}"
+            );
+            // Sliding elements on the bound mu pn (strip theory's adhesion
+            // tractions follow its Hertzian pressure, not pn).
+            let fl = &pr.solution.as_ref().unwrap().fields;
+            let mut adhesion = 0;
+            for i in 0..fl.pressure_pa.len() {
+                let t = fl.traction_x_pa[i].hypot(fl.traction_y_pa[i]);
+                match fl.state[i] {
+                    crate::core::solution::ElementState::Slip => assert!(
+                        (t - 0.3 * fl.pressure_pa[i]).abs() <= 1e-9 * t,
+                        "wheel {k}, {i}"
+                    ),
+                    crate::core::solution::ElementState::Adhesion => adhesion += 1,
+                    _ => {}
+                }
+            }
+            assert!(adhesion > 0, "wheel {k}");
+            let scale = 0.3 * pr.normal_force_n;
+            assert!(
+                (pr.fx_n - ps.fx_n).abs() > 0.01 * scale,
+                "wheel {k}: FaStrip {} against FASTSIM {}",
+                pr.fx_n,
+                ps.fx_n
+            );
+            let (fs, fr) = (ps.fastsim_flexibility, pr.fastsim_flexibility);
+            let (fs, fr) = (fs.unwrap(), fr.unwrap());
+            assert!(fr.slope_factor == 1.0 && fr.flexibilities_m_per_pa[0] > 0.0);
+            let l_ratio = fr.flexibilities_m_per_pa[0] / fs.flexibilities_m_per_pa[0];
+            assert!((l_ratio - 1.0).abs() < 1e-2, "wheel {k}: {l_ratio}");
+        }
+        let refused = |i: &WheelRailInput, key: &str, words: &str| {
+            let e = solve(i).unwrap_err();
+            assert!(
+                matches!(&e, WheelRailError::Invalid { key: k, .. } if k == key),
+                "{e}"
+            );
+            assert!(e.to_string().contains(words), "{e}");
+        };
+        let mut falling = material;
+        falling.reduction.friction_limit_ratio = 0.5;
+        falling.reduction.friction_decay_s_per_m = 0.1;
+        refused(
+            &input(ExactTangential::Fastrip(falling)),
+            "exact_tangential",
+            "FaStrip bounds the tractions by the static coefficient",
+        );
+        let mut visc = input(ExactTangential::Fastrip(material));
+        visc.settings.solver.viscoelastic = Some(crate::core::viscoelastic::Viscoelastic {
+            rolling_speed_m_per_s: 1.0,
+            body1: crate::core::viscoelastic::Sls::default(),
+            body2: crate::core::viscoelastic::Sls::default(),
+        });
+        refused(&visc, VISCOELASTIC_SETTINGS_KEY, "FaStrip");
     }
 
     /// Viscoelastic bodies on the exact patches (`solver.viscoelastic`):
