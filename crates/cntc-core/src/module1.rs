@@ -3522,7 +3522,8 @@ mod tests {
 
     /// A patch solved with FASTSIM (M = 3) gives its displacement
     /// differences as CONTACT's: UX, UY its flexibilities L1/k, L2/k times
-    /// the tractions; UN the exact normal problem's, as with M = 0.
+    /// the tractions; UN the exact normal problem's, as with M = 0. One
+    /// solved with FaStrip (M = 5) refuses them.
     #[test]
     fn displacements_of_fastsim_patches_are_the_flexibilities_times_the_tractions() {
         let cache = KernelCache::default();
@@ -3554,6 +3555,14 @@ mod tests {
         for (a, b) in un.iter().zip(&exact_un) {
             assert!((a - b).abs() < 2e-3 * scale, "{a} {b}");
         }
+        // FaStrip (M = 5): refused, naming M = 5.
+        w.config
+            .set_material(5, &[0.28, 0.28, 82000.0, 82000.0, 1.0, 1.0, 0.0])
+            .unwrap();
+        w.calculate(&cache).unwrap();
+        let e = w.outcomes[0].displacements_m().unwrap_err();
+        assert_eq!(e.ierror(), crate::flags::err::NOT_SUPPORTED, "{e}");
+        assert!(e.detail().contains("M = 5"), "{e}");
     }
 
     /// Elements that place the same profiles on the same track share one
