@@ -415,4 +415,38 @@ mod tests {
         let json = serde_json::to_value(&hertz).unwrap();
         assert!(json.get("fastsim_max_pressure_pa").is_none());
     }
+
+    /// On strips, the modified FASTSIM with k0 alone (alpha_inf = 1)
+    /// divides every flexibility by k0: in full adhesion (xi = 1e-7) the
+    /// force is k0 times Kalker's. The elliptic bound leaves that force
+    /// alone, and its peak tends to Hertz's p0 as the strips refine.
+    #[test]
+    fn strips_take_the_slope_reduction_and_the_elliptic_bound() {
+        let case = |n: usize, section: &str| {
+            Case::from_toml(&format!(
+                "model = \"fastsim\"\n[material]\nshear_modulus_pa = 81.0e9\npoisson_ratio = 0.3\n\
+                 [friction]\ncoefficient = 0.3\n[geometry]\nkind = \"quadratic\"\na_per_m = 2.6\n\
+                 b_per_m = 0.92\n[load]\nnormal_force_n = 1e4\n[rolling]\ncreepage_long = 1e-7\n\
+                 [grid]\nnx = {n}\nny = {n}\n{section}"
+            ))
+            .unwrap()
+        };
+        let plain = solve_fastsim(&case(24, "")).unwrap();
+        let reduced = solve_fastsim(&case(24, "[fastsim]\ninitial_factor = 0.54\n")).unwrap();
+        let ratio = reduced.totals.totals.fx_n / plain.totals.totals.fx_n;
+        assert!((ratio - 0.54).abs() < 1e-12, "{ratio}");
+        assert!(reduced.notes.iter().any(|n| n.contains("k0 = 0.54")));
+        let elliptic = "[fastsim]\ntraction_bound = \"elliptic\"\n";
+        let coarse = solve_fastsim(&case(24, elliptic)).unwrap();
+        assert_eq!(coarse.totals.totals.fx_n, plain.totals.totals.fx_n);
+        let deviation = |n: usize| {
+            let r = solve_fastsim(&case(n, elliptic)).unwrap();
+            r.fastsim_max_pressure_pa.unwrap() / r.totals.totals.max_pressure_pa - 1.0
+        };
+        // Measured -3.5e-3, -3.8e-4, -4.5e-5: the scaling's error, like
+        // n^-1.5.
+        let (d24, d96, d384) = (deviation(24), deviation(96), deviation(384));
+        assert!(d384.abs() < d96.abs() && d96.abs() < d24.abs());
+        assert!(d384.abs() < 1e-4, "{d24} {d96} {d384}");
+    }
 }

@@ -19,8 +19,9 @@ use super::{bad, CaseError, Model};
 pub const FASTSIM_KEY: &str = "fastsim";
 
 /// `fastsim.flexibility_m_per_pa` \[m/Pa\]: Kalker's `L = 8a/(3 C11 G)` of
-/// steel wheel/rail patches is about 1e-13 m/Pa.
-const FLEXIBILITY: Range = Range::positive(1e-6, "m/Pa");
+/// steel wheel/rail patches is about 1e-13 m/Pa; far smaller ones overflow
+/// the tractions' increments (`5e-324` did).
+const FLEXIBILITY: Range = Range::closed(1e-20, 1e-6, "m/Pa");
 /// `fastsim.window_scale` [-]: CONTACT's SCALE.
 const WINDOW_SCALE: Range = Range::closed(1.0, 10.0, "");
 /// `fastsim.rolling_speed_m_per_s` \[m/s\].
@@ -91,7 +92,7 @@ pub struct FastsimSection {
     /// Rolling speed `V` \[m/s\] of the slip velocity `V sqrt(xi^2 +
     /// eta^2)` of the falling friction, in (0, 1000]; required with it.
     pub rolling_speed_m_per_s: Option<f64>,
-    /// One flexibility `L` for all three \[m/Pa\], in (0, 1e-6] (CONTACT's
+    /// One flexibility `L` for all three \[m/Pa\], in [1e-20, 1e-6] (CONTACT's
     /// `M = 2`; grid only); absent: Kalker's three.
     pub flexibility_m_per_pa: Option<f64>,
     /// The grid's window over the ellipse's extent [-], in [1, 10]
@@ -380,6 +381,10 @@ mod tests {
             ("[fastsim]\nwindow_scale = 1.1\n", "fastsim.window_scale"),
             (
                 &format!("{grid}flexibility_m_per_pa = 0.0\n"),
+                "fastsim.flexibility_m_per_pa",
+            ),
+            (
+                &format!("{grid}flexibility_m_per_pa = 5e-324\n"),
                 "fastsim.flexibility_m_per_pa",
             ),
             (
