@@ -23,9 +23,10 @@ use crate::core::subsurface::{BodySubsurface, FieldPeak};
 use crate::core::temperature::{SurfaceTemperatures, TemperaturePeak, ThermalBody, ThermalInput};
 use crate::core::viscoelastic::{Sls, Viscoelastic};
 use crate::problem::case::{
-    ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FrictionLawName,
-    FrictionSection, GeometryKind, GeometrySection, GridSection, LoadSection, MaterialSection,
-    Model, RollingSection, SolverSection, StepSection, SubsurfaceSection, TransientSection,
+    ranges, Case, CaseFile, ConformalSection, ExtraRigidSlipSection, FastsimDiscretisation,
+    FastsimMethod, FastsimSection, FrictionLawName, FrictionSection, GeometryKind, GeometrySection,
+    GridSection, LoadSection, MaterialSection, Model, RollingSection, SolverSection, StepSection,
+    SubsurfaceSection, TractionBoundName, TransientSection,
 };
 use crate::problem::report::{
     ConformalFieldsReport, ConformalKeys, Fields, ForceControlReport, Report, StepForceReport,
@@ -401,6 +402,44 @@ pub fn case_file(c: &pb::PatchCase) -> Result<CaseFile, ServiceError> {
                 body2: body(&v.body2),
             }
         }),
+        fastsim: c.fastsim.as_ref().map(fastsim_section).transpose()?,
+    })
+}
+
+/// The case file's `[fastsim]` of a wire section (the values are checked
+/// with the case).
+pub fn fastsim_section(f: &pb::FastsimSection) -> Result<FastsimSection, ServiceError> {
+    let unknown = |key: &str, v: i32| ServiceError::invalid(key, format!("unknown value {v}"));
+    let method = match pb::FastsimMethod::try_from(f.method) {
+        Ok(pb::FastsimMethod::Unspecified) => None,
+        Ok(pb::FastsimMethod::Fastsim) => Some(FastsimMethod::Fastsim),
+        Ok(pb::FastsimMethod::Fastrip) => Some(FastsimMethod::Fastrip),
+        Err(_) => return Err(unknown("fastsim.method", f.method)),
+    };
+    let discretisation = match pb::FastsimDiscretisation::try_from(f.discretisation) {
+        Ok(pb::FastsimDiscretisation::Unspecified) => None,
+        Ok(pb::FastsimDiscretisation::Strips) => Some(FastsimDiscretisation::Strips),
+        Ok(pb::FastsimDiscretisation::Grid) => Some(FastsimDiscretisation::Grid),
+        Err(_) => return Err(unknown("fastsim.discretisation", f.discretisation)),
+    };
+    let traction_bound = match pb::FastsimTractionBound::try_from(f.traction_bound) {
+        Ok(pb::FastsimTractionBound::Unspecified) => None,
+        Ok(pb::FastsimTractionBound::Parabolic) => Some(TractionBoundName::Parabolic),
+        Ok(pb::FastsimTractionBound::Elliptic) => Some(TractionBoundName::Elliptic),
+        Err(_) => return Err(unknown("fastsim.traction_bound", f.traction_bound)),
+    };
+    Ok(FastsimSection {
+        method,
+        discretisation,
+        traction_bound,
+        initial_factor: f.initial_factor,
+        limit_ratio: f.limit_ratio,
+        transition_rate: f.transition_rate,
+        friction_limit_ratio: f.friction_limit_ratio,
+        friction_decay_s_per_m: f.friction_decay_s_per_m,
+        rolling_speed_m_per_s: f.rolling_speed_m_per_s,
+        flexibility_m_per_pa: f.flexibility_m_per_pa,
+        window_scale: f.window_scale,
     })
 }
 

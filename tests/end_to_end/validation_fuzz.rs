@@ -214,7 +214,31 @@ fn rolling(model: pb::Model) -> pb::PatchCase {
         conformal: None,
         interfacial_layer: None,
         viscoelastic: None,
+        fastsim: None,
     }
+}
+
+/// Model FASTSIM on CONTACT's grid (16 x 16 over 1.1 times the ellipse),
+/// the modified FASTSIM with falling friction (`[fastsim]`).
+fn fastsim_grid() -> pb::PatchCase {
+    let mut c = rolling(pb::Model::Fastsim);
+    c.fastsim = Some(pb::FastsimSection {
+        discretisation: pb::FastsimDiscretisation::Grid as i32,
+        traction_bound: pb::FastsimTractionBound::Elliptic as i32,
+        initial_factor: Some(0.54),
+        limit_ratio: Some(0.02),
+        transition_rate: Some(0.62),
+        friction_limit_ratio: Some(0.38),
+        friction_decay_s_per_m: Some(0.7),
+        rolling_speed_m_per_s: Some(10.0),
+        window_scale: Some(1.1),
+        ..Default::default()
+    });
+    c
+}
+
+fn fastsim(c: &mut pb::PatchCase) -> &mut pb::FastsimSection {
+    c.fastsim.get_or_insert_with(Default::default)
 }
 
 /// Two viscoelastic cylinders in steady rolling (CONTACT's `visc_cylindr`
@@ -590,6 +614,54 @@ fn patch_fields() -> Vec<(pb::PatchCase, &'static str, f64, Mutator)> {
             "case.viscoelastic.body1.creep_relaxation_time_s",
             0.045,
             m(|c, v| viscoelastic_body1(c).creep_relaxation_time_s = v),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.initial_factor",
+            0.54,
+            m(|c, v| fastsim(c).initial_factor = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.limit_ratio",
+            0.02,
+            m(|c, v| fastsim(c).limit_ratio = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.transition_rate",
+            0.62,
+            m(|c, v| fastsim(c).transition_rate = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.friction_limit_ratio",
+            0.38,
+            m(|c, v| fastsim(c).friction_limit_ratio = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.friction_decay_s_per_m",
+            0.7,
+            m(|c, v| fastsim(c).friction_decay_s_per_m = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.rolling_speed_m_per_s",
+            10.0,
+            m(|c, v| fastsim(c).rolling_speed_m_per_s = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.flexibility_m_per_pa",
+            1e-13,
+            m(|c, v| fastsim(c).flexibility_m_per_pa = Some(v)),
+        ),
+        (
+            fastsim_grid(),
+            "case.fastsim.window_scale",
+            1.1,
+            m(|c, v| fastsim(c).window_scale = Some(v)),
         ),
         (
             rolling(pb::Model::Fastsim),

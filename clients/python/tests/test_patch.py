@@ -265,3 +265,41 @@ def test_influence_coefficients_of_a_case_file_are_sent_inline(client):
     with pytest.raises(railcontact.RailcontactError) as e:
         client.solve_patch(missing)
     assert e.value.field == "case.material.influence_file" and "no-such-file.txt" in str(e.value)
+
+
+def test_a_fastsim_section_builds_its_enums_by_name():
+    # `[fastsim]` of a case file maps key for key onto PatchCase.fastsim,
+    # its enums by their short names.
+    case = railcontact.load_case(REPO / "examples" / "cases" / "fastsim_contact_grid.toml")
+    message = railcontact.patch_case(case)
+    f = message.fastsim
+    assert f.method == railcontact.pb.FASTSIM_METHOD_FASTRIP
+    assert f.discretisation == railcontact.pb.FASTSIM_DISCRETISATION_GRID
+    assert f.traction_bound == railcontact.pb.FASTSIM_TRACTION_BOUND_ELLIPTIC
+    assert f.window_scale == 1.1
+    assert not f.HasField("initial_factor")
+
+
+def test_a_fastsim_variant_solves_as_contact_on_its_grid(client):
+    # examples/cases/fastsim_contact_grid.toml: CONTACT's fastsim.inp case 4
+    # (modified FaStrip, elliptic bound, 44 x 44 elements), fastsim.ref_out
+    # FY -1.583E+04 N, MZ -4.816E+04 N mm, PMAX 1223. N/mm², 626 elements
+    # in adhesion and 638 in slip.
+    path = REPO / "examples" / "cases" / "fastsim_contact_grid.toml"
+    r = client.solve_patch(path)
+    assert r.totals.fy_n == pytest.approx(-1.583e4, abs=5.0)
+    assert r.totals.mz_nm == pytest.approx(-48.16, abs=0.005)
+    assert r.fastsim_max_pressure_pa == pytest.approx(1223e6, abs=0.5e6)
+    assert any("626 in adhesion, 638 in slip" in n for n in r.notes), r.notes
+    # A bad value is refused naming its field.
+    case = railcontact.load_case(path)
+    case["fastsim"]["window_scale"] = 0.5
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(case)
+    assert e.value.field == "case.fastsim.window_scale", e.value.message
+    # With another model the section is refused naming it.
+    case = railcontact.load_case(path)
+    case["model"] = "exact"
+    with pytest.raises(railcontact.RailcontactError) as e:
+        client.solve_patch(case)
+    assert e.value.field == "case.fastsim", e.value.message

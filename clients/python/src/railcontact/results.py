@@ -468,8 +468,10 @@ class PatchResult(_Result):
     ``force_control`` is set when the case prescribes a force in steady
     rolling (None otherwise). Model ``fastsim``: ``totals.max_pressure_pa``
     is Hertz's p0, ``fastsim_max_pressure_pa`` the peak of FASTSIM's
-    parabolic traction bound, 2 Fn/(pi a b) = 4/3 p0 (the maximum pressure
-    CONTACT's FASTSIM reports); None with the other models.
+    traction bound (the maximum pressure CONTACT's FASTSIM reports): the
+    parabolic one's 2 Fn/(pi a b) = 4/3 p0 by default, the elliptic one's
+    p0 with ``fastsim.traction_bound = "elliptic"``; None with the other
+    models.
     ``steady_start`` is the steady rolling state transient steps started
     from (``transient.steady_start``; None otherwise)."""
 

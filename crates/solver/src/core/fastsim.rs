@@ -280,9 +280,12 @@ impl SlopeReduction {
     /// guide, Section 5.9, fitted to Engel, Beck and Alders' Siemens
     /// Eurosprinter measurements at 10 m/s): `k0 = 0.54`, `alpha_inf =
     /// 0.02`, `beta = 0.62`; Coulomb friction here (`A = 1`, `B = 0`). The
-    /// example's falling friction is CONTACT's per-element law `mu = 0.1368
-    /// + 0.2232 exp(-w/0.99 m/s)` (static 0.36), not this model's global
-    /// one: in this form about `A = 0.38`, `B = 1.01 s/m` with `mu0 = 0.36`.
+    /// example's falling friction is CONTACT's exponential law (L = 4)
+    /// `mu = 0.1368 + 0.2232 exp(-ln2 w/0.99 m/s)` (static 0.36), which
+    /// CONTACT's FASTSIM evaluates at the global slip velocity: in this
+    /// form exactly `A = 0.38`, `B = ln2/0.99 = 0.700 s/m` with `mu0 =
+    /// 0.36` (`tractcurv.inp` cases 91-120 to their printed digits,
+    /// `tests/validation/fastsim_variants.rs`).
     pub const TRACTCURV: Self = Self {
         initial_factor: 0.54,
         limit_ratio: 0.02,

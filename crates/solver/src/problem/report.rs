@@ -174,12 +174,14 @@ pub struct Report<'a> {
     /// Kinetic friction coefficient used [-] (0 for frictionless cases).
     pub friction_coefficient: f64,
     /// Model `fastsim`: the peak of the pressure whose multiple mu p
-    /// bounds FASTSIM's tractions \[Pa\], Kalker's parabolic pressure of
-    /// the simplified theory, 2 Fn/(pi a b) = 4/3 p0 (the maximum pressure
-    /// CONTACT's FASTSIM reports, its PMAX), scaled so that the elements'
-    /// pressures sum to Fn (within O(1/nx + 1/ny) of it). The totals'
-    /// `max_pressure_pa` stays Hertz's p0 = 3 Fn/(2 pi a b). None for the
-    /// other models.
+    /// bounds FASTSIM's tractions \[Pa\] (the maximum pressure CONTACT's
+    /// FASTSIM reports, its PMAX): by default Kalker's parabolic pressure
+    /// of the simplified theory, 2 Fn/(pi a b) = 4/3 p0, with
+    /// `fastsim.traction_bound = "elliptic"` Hertz's, p0; on strips scaled
+    /// so that the elements' pressures sum to Fn (within O(1/nx + 1/ny) of
+    /// it), on CONTACT's grid (`fastsim.discretisation = "grid"`) the
+    /// largest element value, unscaled. The totals' `max_pressure_pa`
+    /// stays Hertz's p0 = 3 Fn/(2 pi a b). None for the other models.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fastsim_max_pressure_pa: Option<f64>,
     /// Grid used: `[nx, ny]` (elements of the exact model, strips x elements of FASTSIM).
@@ -566,7 +568,7 @@ impl Report<'_> {
         if let Some(p) = self.fastsim_max_pressure_pa {
             line(
                 "FASTSIM bound max p [MPa]",
-                format!("{:.2}   (parabolic, 4/3 p0)", mpa(p)),
+                format!("{:.2}   ({:.4} p0)", mpa(p), p / t.max_pressure_pa),
             );
         }
         if tangential && mu > 0.0 {

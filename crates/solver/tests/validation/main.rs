@@ -9,7 +9,9 @@
 //! interfacial (third-body) layer, elastic and elasto-plastic, against
 //! CONTACT (`interfacial_layer`), and viscoelastic bodies in steady
 //! rolling against their elastic limits and CONTACT (`viscoelastic`), and
-//! roller rigs and track curvature against analytic results (`rollers`).
+//! roller rigs and track curvature against analytic results (`rollers`),
+//! and the FASTSIM variants of a case file's `[fastsim]` against CONTACT's
+//! `fastsim.inp` and `tractcurv.inp` reference outputs (`fastsim_variants`).
 //! Each reference number names its source.
 
 /// A profile file of this crate's `profiles/` (test data with its licence
@@ -32,6 +34,7 @@ pub fn printed(s: &str) -> (f64, f64) {
 
 mod conformal;
 mod falling_friction;
+mod fastsim_variants;
 mod interfacial_layer;
 mod line_contact;
 mod numerical_influence;

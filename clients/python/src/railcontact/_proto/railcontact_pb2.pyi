@@ -40,6 +40,24 @@ class GeometryKind(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     GEOMETRY_KIND_CONFORMAL_POINTS: _ClassVar[GeometryKind]
     GEOMETRY_KIND_LINE: _ClassVar[GeometryKind]
 
+class FastsimMethod(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    FASTSIM_METHOD_UNSPECIFIED: _ClassVar[FastsimMethod]
+    FASTSIM_METHOD_FASTSIM: _ClassVar[FastsimMethod]
+    FASTSIM_METHOD_FASTRIP: _ClassVar[FastsimMethod]
+
+class FastsimDiscretisation(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    FASTSIM_DISCRETISATION_UNSPECIFIED: _ClassVar[FastsimDiscretisation]
+    FASTSIM_DISCRETISATION_STRIPS: _ClassVar[FastsimDiscretisation]
+    FASTSIM_DISCRETISATION_GRID: _ClassVar[FastsimDiscretisation]
+
+class FastsimTractionBound(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
+    __slots__ = ()
+    FASTSIM_TRACTION_BOUND_UNSPECIFIED: _ClassVar[FastsimTractionBound]
+    FASTSIM_TRACTION_BOUND_PARABOLIC: _ClassVar[FastsimTractionBound]
+    FASTSIM_TRACTION_BOUND_ELLIPTIC: _ClassVar[FastsimTractionBound]
+
 class RigidSlip(int, metaclass=_enum_type_wrapper.EnumTypeWrapper):
     __slots__ = ()
     RIGID_SLIP_UNSPECIFIED: _ClassVar[RigidSlip]
@@ -145,6 +163,15 @@ GEOMETRY_KIND_QUADRATIC: GeometryKind
 GEOMETRY_KIND_CONFORMAL_CIRCULAR: GeometryKind
 GEOMETRY_KIND_CONFORMAL_POINTS: GeometryKind
 GEOMETRY_KIND_LINE: GeometryKind
+FASTSIM_METHOD_UNSPECIFIED: FastsimMethod
+FASTSIM_METHOD_FASTSIM: FastsimMethod
+FASTSIM_METHOD_FASTRIP: FastsimMethod
+FASTSIM_DISCRETISATION_UNSPECIFIED: FastsimDiscretisation
+FASTSIM_DISCRETISATION_STRIPS: FastsimDiscretisation
+FASTSIM_DISCRETISATION_GRID: FastsimDiscretisation
+FASTSIM_TRACTION_BOUND_UNSPECIFIED: FastsimTractionBound
+FASTSIM_TRACTION_BOUND_PARABOLIC: FastsimTractionBound
+FASTSIM_TRACTION_BOUND_ELLIPTIC: FastsimTractionBound
 RIGID_SLIP_UNSPECIFIED: RigidSlip
 RIGID_SLIP_ACTUAL_SURFACE: RigidSlip
 RIGID_SLIP_REFERENCE_SECTION: RigidSlip
@@ -385,7 +412,7 @@ class SolverSection(_message.Message):
     def __init__(self, normal_tolerance: _Optional[float] = ..., tangential_tolerance: _Optional[float] = ..., max_iterations: _Optional[int] = ..., coupling_tolerance: _Optional[float] = ..., coupling_max_iterations: _Optional[int] = ...) -> None: ...
 
 class PatchCase(_message.Message):
-    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer", "viscoelastic")
+    __slots__ = ("model", "material", "friction", "geometry", "load", "rolling", "transient", "grid", "solver", "subsurface", "temperature", "rolling_direction_rad", "extra_rigid_slip", "conformal", "interfacial_layer", "viscoelastic", "fastsim")
     MODEL_FIELD_NUMBER: _ClassVar[int]
     MATERIAL_FIELD_NUMBER: _ClassVar[int]
     FRICTION_FIELD_NUMBER: _ClassVar[int]
@@ -402,6 +429,7 @@ class PatchCase(_message.Message):
     CONFORMAL_FIELD_NUMBER: _ClassVar[int]
     INTERFACIAL_LAYER_FIELD_NUMBER: _ClassVar[int]
     VISCOELASTIC_FIELD_NUMBER: _ClassVar[int]
+    FASTSIM_FIELD_NUMBER: _ClassVar[int]
     model: Model
     material: MaterialSection
     friction: FrictionSection
@@ -418,7 +446,34 @@ class PatchCase(_message.Message):
     conformal: ConformalSection
     interfacial_layer: InterfacialLayerSection
     viscoelastic: ViscoelasticSection
-    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ..., viscoelastic: _Optional[_Union[ViscoelasticSection, _Mapping]] = ...) -> None: ...
+    fastsim: FastsimSection
+    def __init__(self, model: _Optional[_Union[Model, str]] = ..., material: _Optional[_Union[MaterialSection, _Mapping]] = ..., friction: _Optional[_Union[FrictionSection, _Mapping]] = ..., geometry: _Optional[_Union[GeometrySection, _Mapping]] = ..., load: _Optional[_Union[LoadSection, _Mapping]] = ..., rolling: _Optional[_Union[Creepages, _Mapping]] = ..., transient: _Optional[_Union[TransientSection, _Mapping]] = ..., grid: _Optional[_Union[GridSection, _Mapping]] = ..., solver: _Optional[_Union[SolverSection, _Mapping]] = ..., subsurface: _Optional[_Union[SubsurfaceSection, _Mapping]] = ..., temperature: _Optional[_Union[TemperatureSection, _Mapping]] = ..., rolling_direction_rad: _Optional[float] = ..., extra_rigid_slip: _Optional[_Union[ExtraRigidSlip, _Mapping]] = ..., conformal: _Optional[_Union[ConformalSection, _Mapping]] = ..., interfacial_layer: _Optional[_Union[InterfacialLayerSection, _Mapping]] = ..., viscoelastic: _Optional[_Union[ViscoelasticSection, _Mapping]] = ..., fastsim: _Optional[_Union[FastsimSection, _Mapping]] = ...) -> None: ...
+
+class FastsimSection(_message.Message):
+    __slots__ = ("method", "discretisation", "traction_bound", "initial_factor", "limit_ratio", "transition_rate", "friction_limit_ratio", "friction_decay_s_per_m", "rolling_speed_m_per_s", "flexibility_m_per_pa", "window_scale")
+    METHOD_FIELD_NUMBER: _ClassVar[int]
+    DISCRETISATION_FIELD_NUMBER: _ClassVar[int]
+    TRACTION_BOUND_FIELD_NUMBER: _ClassVar[int]
+    INITIAL_FACTOR_FIELD_NUMBER: _ClassVar[int]
+    LIMIT_RATIO_FIELD_NUMBER: _ClassVar[int]
+    TRANSITION_RATE_FIELD_NUMBER: _ClassVar[int]
+    FRICTION_LIMIT_RATIO_FIELD_NUMBER: _ClassVar[int]
+    FRICTION_DECAY_S_PER_M_FIELD_NUMBER: _ClassVar[int]
+    ROLLING_SPEED_M_PER_S_FIELD_NUMBER: _ClassVar[int]
+    FLEXIBILITY_M_PER_PA_FIELD_NUMBER: _ClassVar[int]
+    WINDOW_SCALE_FIELD_NUMBER: _ClassVar[int]
+    method: FastsimMethod
+    discretisation: FastsimDiscretisation
+    traction_bound: FastsimTractionBound
+    initial_factor: float
+    limit_ratio: float
+    transition_rate: float
+    friction_limit_ratio: float
+    friction_decay_s_per_m: float
+    rolling_speed_m_per_s: float
+    flexibility_m_per_pa: float
+    window_scale: float
+    def __init__(self, method: _Optional[_Union[FastsimMethod, str]] = ..., discretisation: _Optional[_Union[FastsimDiscretisation, str]] = ..., traction_bound: _Optional[_Union[FastsimTractionBound, str]] = ..., initial_factor: _Optional[float] = ..., limit_ratio: _Optional[float] = ..., transition_rate: _Optional[float] = ..., friction_limit_ratio: _Optional[float] = ..., friction_decay_s_per_m: _Optional[float] = ..., rolling_speed_m_per_s: _Optional[float] = ..., flexibility_m_per_pa: _Optional[float] = ..., window_scale: _Optional[float] = ...) -> None: ...
 
 class ViscoelasticSection(_message.Message):
     __slots__ = ("rolling_speed_m_per_s", "body1", "body2")

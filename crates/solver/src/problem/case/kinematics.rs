@@ -412,11 +412,14 @@ pub(super) fn rolling_direction(
     let key = ROLLING_DIRECTION_KEY;
     let d = direction(file.rolling_direction_rad, line)?;
     let along_x = d.turns == 0 && d.is_axis();
-    if !along_x && model != Model::Exact {
+    // Model fastsim rolls along -x on CONTACT's grid (`[fastsim]` checks
+    // the discretisation).
+    let minus_x = d.turns == 2 && d.is_axis() && !line;
+    if !along_x && model != Model::Exact && !(model == Model::Fastsim && minus_x) {
         return Err(bad(
             key,
             format!(
-                "the exact model rolls in other directions than +x, not {}: leave it 0",
+                "the exact model rolls in other directions than +x (model fastsim along -x on its grid), not {}: leave it 0",
                 model.name()
             ),
         ));

@@ -31,6 +31,7 @@ use crate::core::viscoelastic::Viscoelastic;
 use crate::problem::reference_models::hertz_of;
 use crate::problem::CaseError;
 
+mod fastsim;
 mod friction;
 mod geometry;
 mod grid;
@@ -38,6 +39,11 @@ mod kinematics;
 mod materials;
 mod outputs;
 
+use fastsim::fastsim_options;
+pub use fastsim::{
+    FastsimDiscretisation, FastsimMethod, FastsimOptions, FastsimSection, TractionBoundName,
+    DEFAULT_WINDOW_SCALE, FASTSIM_KEY,
+};
 use friction::{case_friction, needs_friction};
 pub use friction::{FrictionLawName, FrictionSection};
 use geometry::{
@@ -297,6 +303,12 @@ pub struct CaseFile {
     /// final ones are G_g/(1 + f_g).
     #[serde(default)]
     pub viscoelastic: Option<Viscoelastic>,
+    /// `[fastsim]`: the variant model `fastsim` solves (method,
+    /// flexibilities, slope reduction and falling friction, traction
+    /// bound, strips or CONTACT's grid; see [`FastsimSection`]). Absent:
+    /// Kalker's FASTSIM on strips with the parabolic bound.
+    #[serde(default)]
+    pub fastsim: Option<FastsimSection>,
 }
 
 /// A validated case, ready to be solved.
@@ -375,6 +387,8 @@ pub struct Case {
     /// `material.influence_file`: numerical influence coefficients
     /// replacing the half-space's (exact model); None: the half-space.
     pub numerical_influence: Option<Arc<InfluenceFile>>,
+    /// Model `fastsim`: the variant it solves (`[fastsim]`).
+    pub fastsim: FastsimOptions,
 }
 
 fn bad(key: impl Into<String>, reason: impl Into<String>) -> CaseError {
@@ -619,6 +633,13 @@ impl Case {
             &kinematics,
             file.rolling_direction_rad,
         )?;
+        let fastsim = fastsim_options(
+            file.fastsim,
+            model,
+            &friction,
+            file.rolling_direction_rad,
+            &mut notes,
+        )?;
         if let Some(visc) = &settings.viscoelastic {
             // Before any solver integrates the coefficients (seconds).
             check_viscoelastic_grid(visc, nx, ny, geometry.is_line())?;
@@ -656,6 +677,7 @@ impl Case {
             temperature,
             rigid_slip,
             numerical_influence,
+            fastsim,
         };
         if let Some(t) = case.numerical_influence.clone() {
             // The file against the grid and the problem (element sizes,
