@@ -68,15 +68,25 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
     let t0 = Instant::now();
     let h = case.hertz()?;
     let totals = StepReport::closed_form(hertz_totals(&h), t0.elapsed().as_secs_f64());
-    Ok(Report {
-        model: Model::Hertz,
+    Ok(closed_form_report(
+        Model::Hertz,
+        totals,
+        vec![NOTE_HERTZ.to_string()],
+    ))
+}
+
+/// The report of a closed-form model: its totals and notes, no grid,
+/// fields or per-step parts.
+fn closed_form_report(model: Model, totals: StepReport, notes: Vec<String>) -> Report<'static> {
+    Report {
+        model,
         totals,
         friction_coefficient: 0.0,
         fastsim_max_pressure_pa: None,
         grid: None,
         window_m: None,
         wfric_lateral: None,
-        notes: vec![NOTE_HERTZ.to_string()],
+        notes,
         steady_start: None,
         steps: None,
         fields: None,
@@ -85,7 +95,7 @@ pub fn solve_hertz(case: &Case) -> Result<Report<'static>, CaseError> {
         subsurface: None,
         temperature: None,
         interfacial_layer: None,
-    })
+    }
 }
 
 /// What the FASTSIM model reports, and which pressure.
@@ -129,23 +139,13 @@ pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
         }
         None => None,
     };
+    let totals = StepReport::closed_form(totals, t0.elapsed().as_secs_f64());
     Ok(Report {
-        model: Model::Fastsim,
-        totals: StepReport::closed_form(totals, t0.elapsed().as_secs_f64()),
         friction_coefficient: out.friction_coefficient,
         fastsim_max_pressure_pa: Some(out.bound_peak_pa),
         grid: Some([case.nx, case.ny]),
         window_m,
-        wfric_lateral: None,
-        notes,
-        steady_start: None,
-        steps: None,
-        fields: None,
-        geometry: None,
-        force_control: None,
-        subsurface: None,
-        temperature: None,
-        interfacial_layer: None,
+        ..closed_form_report(Model::Fastsim, totals, notes)
     })
 }
 
