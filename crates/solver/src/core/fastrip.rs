@@ -126,6 +126,24 @@ pub struct StripParameters {
     pub fastsim_rows: usize,
 }
 
+/// FaStrip bounds the tractions by the static coefficient: an error
+/// naming `key` when `reduction` has falling friction of its own
+/// ([`SlopeReduction::has_falling_friction`]).
+pub fn require_static_bound(reduction: &SlopeReduction, key: &str) -> Result<(), ContactError> {
+    if !reduction.has_falling_friction() {
+        return Ok(());
+    }
+    Err(ContactError::invalid(
+        key,
+        format!(
+            "FaStrip bounds the tractions by the static coefficient: the slope reduction's \
+             falling friction (A = {}, B = {} s/m) must be off (A = 1 or B = 0)",
+            show(reduction.friction_limit_ratio),
+            show(reduction.friction_decay_s_per_m)
+        ),
+    ))
+}
+
 /// The totals of one FaStrip solve.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct GridFastripOutput {
@@ -221,20 +239,7 @@ impl GridFastrip {
         input: &GridFastsimInput,
         pressure: GridPressure<'_>,
     ) -> Result<GridFastripOutput, ContactError> {
-        let r = input.reduction;
-        if r.friction_limit_ratio != SlopeReduction::NONE.friction_limit_ratio
-            || r.friction_decay_s_per_m != SlopeReduction::NONE.friction_decay_s_per_m
-        {
-            return Err(ContactError::invalid(
-                "fastrip.reduction.friction_limit_ratio",
-                format!(
-                    "FaStrip bounds the tractions by the static coefficient: the reduction's \
-                     falling friction (A = {}, B = {} s/m) must be off (A = 1, B = 0)",
-                    show(r.friction_limit_ratio),
-                    show(r.friction_decay_s_per_m)
-                ),
-            ));
-        }
+        require_static_bound(&input.reduction, "fastrip.reduction.friction_limit_ratio")?;
         let fastsim = self
             .march
             .solve_with(input, pressure, MarchFriction::Static)

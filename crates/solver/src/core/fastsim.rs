@@ -294,6 +294,12 @@ impl SlopeReduction {
         friction_decay_s_per_m: 0.0,
     };
 
+    /// Whether the friction falls with the slip velocity (`A < 1` and
+    /// `B > 0`; otherwise the factor `(1 - A) exp(-B w) + A` is 1).
+    pub fn has_falling_friction(&self) -> bool {
+        self.friction_limit_ratio < 1.0 && self.friction_decay_s_per_m > 0.0
+    }
+
     /// [`SlopeReduction::validate`] for an input named `key`: the error
     /// names `key.<field>` (`modified_fastsim.limit_ratio`).
     pub fn validate_as(&self, key: &str) -> Result<(), ContactError> {

@@ -109,7 +109,7 @@ use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastrip::GridFastrip;
+use crate::core::fastrip::{require_static_bound, GridFastrip};
 use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
     equivalent_ellipse, AppliedFlexibility, CreepInterpolation, FastsimMaterial, GridFastsim,
@@ -2778,20 +2778,8 @@ pub(crate) fn validate(input: &WheelRailInput) -> Result<(), WheelRailError> {
                 ),
             ));
         }
-        let r = material.reduction;
-        if fastrip
-            && (r.friction_limit_ratio != SlopeReduction::NONE.friction_limit_ratio
-                || r.friction_decay_s_per_m != SlopeReduction::NONE.friction_decay_s_per_m)
-        {
-            return Err(WheelRailError::invalid(
-                "exact_tangential",
-                format!(
-                    "FaStrip bounds the tractions by the static coefficient: the slope \
-                     reduction's falling friction (A = {}, B = {} s/m) must be off (A = 1, B = 0)",
-                    show(r.friction_limit_ratio),
-                    show(r.friction_decay_s_per_m)
-                ),
-            ));
+        if fastrip {
+            require_static_bound(&material.reduction, "exact_tangential")?;
         }
     }
     if let Some(law) = input.friction.slip_velocity_law {

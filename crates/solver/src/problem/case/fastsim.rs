@@ -143,7 +143,7 @@ impl Default for FastsimOptions {
 impl FastsimOptions {
     /// Whether the reduction has falling friction (`A < 1` and `B > 0`).
     pub fn has_falling_friction(&self) -> bool {
-        self.reduction.friction_limit_ratio < 1.0 && self.reduction.friction_decay_s_per_m > 0.0
+        self.reduction.has_falling_friction()
     }
 
     /// One line naming what solves the case.
