@@ -7,11 +7,11 @@ use std::time::Instant;
 
 use railcontact_solver::core::cache::KernelCache;
 use railcontact_solver::core::error::ContactError;
-use railcontact_solver::core::fastrip::GridFastrip;
+use railcontact_solver::core::fastrip::GridSimplified;
 use railcontact_solver::core::fastsim::TractionBound;
 use railcontact_solver::core::fastsim_grid::{
-    equivalent_ellipse, BoundScaling, CreepInterpolation, FastsimMaterial, GridFastsim,
-    GridFastsimInput, GridFriction, GridPressure, RollingSense,
+    equivalent_ellipse, BoundScaling, CreepInterpolation, FastsimMaterial, GridFastsimInput,
+    GridFriction, GridPressure, RollingSense,
 };
 use railcontact_solver::core::force::{
     solve_prescribed_force, solve_prescribed_force_step, ForceControlSettings, PrescribedForce,
@@ -876,22 +876,14 @@ impl Patch {
             },
         };
         let solve_error = |e| CntcError::Input(format!("{method}: {e}"));
-        let (out, fields, border, rigid_slip) = if fastrip {
-            let mut fs = GridFastrip::new(grid).map_err(CntcError::from_contact)?;
-            let out = fs.solve(&input, p).map_err(solve_error)?.totals;
-            let border = grid.loaded_border_elements(fs.pressure_pa());
-            (out, fs.fields(gap), border, fs.rigid_slip())
-        } else {
-            let mut fs = GridFastsim::new(grid).map_err(CntcError::from_contact)?;
-            let out = fs.solve(&input, p).map_err(solve_error)?;
-            let border = grid.loaded_border_elements(fs.pressure_pa());
-            (out, fs.fields(gap), border, fs.rigid_slip())
-        };
+        let mut solver = GridSimplified::new(grid, fastrip).map_err(CntcError::from_contact)?;
+        let out = solver.solve(&input, p).map_err(solve_error)?;
+        let fs = solver.march();
         let mut o = Outcome::no_contact(grid, Vec::new(), approach);
-        o.fields = fields;
-        o.border_elements = border;
+        o.fields = fs.fields(gap);
+        o.border_elements = grid.loaded_border_elements(fs.pressure_pa());
         o.areas_m2 = [out.contact_area_m2, out.adhesion_area_m2, out.slip_area_m2];
-        o.rigid_slip = Some(rigid_slip);
+        o.rigid_slip = Some(fs.rigid_slip());
         let applied = out.applied;
         let [l1, l2, _] = applied
             .flexibilities_m_per_pa

@@ -126,6 +126,60 @@ pub struct StripParameters {
     pub fastsim_rows: usize,
 }
 
+/// The simplified theory on a grid with its buffers, FASTSIM or FaStrip
+/// (CONTACT's M = 2, 3 or 5), as one solver: the C library's module 3
+/// patches and the wheel/rail exact patches' tangential part
+/// (`ExactTangential::Fastsim`, `Fastrip`) drive it alike.
+#[derive(Debug, Clone)]
+pub enum GridSimplified {
+    /// [`GridFastsim`].
+    Fastsim(GridFastsim),
+    /// [`GridFastrip`].
+    Fastrip(GridFastrip),
+}
+
+impl GridSimplified {
+    /// FaStrip's buffers on `grid` with `fastrip`, else FASTSIM's.
+    pub fn new(grid: Grid, fastrip: bool) -> Result<Self, ContactError> {
+        Ok(if fastrip {
+            Self::Fastrip(GridFastrip::new(grid)?)
+        } else {
+            Self::Fastsim(GridFastsim::new(grid)?)
+        })
+    }
+
+    /// Whether these are the buffers of FaStrip (`fastrip`) or FASTSIM
+    /// on `grid`.
+    pub fn fits(&self, grid: &Grid, fastrip: bool) -> bool {
+        match self {
+            Self::Fastsim(fs) => !fastrip && fs.grid() == grid,
+            Self::Fastrip(fs) => fastrip && fs.grid() == grid,
+        }
+    }
+
+    /// One solve's totals ([`GridFastsim::solve`], [`GridFastrip::solve`]).
+    /// No allocation.
+    pub fn solve(
+        &mut self,
+        input: &GridFastsimInput,
+        pressure: GridPressure<'_>,
+    ) -> Result<GridFastsimOutput, ContactError> {
+        match self {
+            Self::Fastsim(fs) => fs.solve(input, pressure),
+            Self::Fastrip(fs) => fs.solve(input, pressure).map(|o| o.totals),
+        }
+    }
+
+    /// The march whose buffers hold the last solve's fields (FaStrip's
+    /// after its strip part).
+    pub fn march(&self) -> &GridFastsim {
+        match self {
+            Self::Fastsim(fs) => fs,
+            Self::Fastrip(fs) => fs.march(),
+        }
+    }
+}
+
 /// FaStrip bounds the tractions by the static coefficient: an error
 /// naming `key` when `reduction` has falling friction of its own
 /// ([`SlopeReduction::has_falling_friction`]).

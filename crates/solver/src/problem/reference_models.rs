@@ -8,10 +8,10 @@ use std::time::Instant;
 
 use crate::conformal::solve::conformal_hertz;
 use crate::core::error::ContactError;
-use crate::core::fastrip::GridFastrip;
+use crate::core::fastrip::GridSimplified;
 use crate::core::fastsim::{Fastsim, FastsimInput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
-    BoundScaling, CreepInterpolation, GridFastsim, GridFastsimInput, GridFlexibility, GridFriction,
+    BoundScaling, CreepInterpolation, GridFastsimInput, GridFlexibility, GridFriction,
     GridPressure, RollingSense,
 };
 use crate::core::grid::Grid;
@@ -109,8 +109,8 @@ pub const NOTE_FASTSIM_GRID: &str = "on the grid: the bound's pressure at the el
 
 /// Model `fastsim`: the Hertz ellipse, then the simplified theory with the
 /// case's creepages, as `[fastsim]` chooses ([`FastsimOptions`]): on
-/// strips ([`Fastsim`]) or on CONTACT's grid ([`GridFastsim`],
-/// [`GridFastrip`]).
+/// strips ([`Fastsim`]) or on CONTACT's grid
+/// ([`GridSimplified`]: FASTSIM or FaStrip).
 pub fn solve_fastsim(case: &Case) -> Result<Report<'static>, CaseError> {
     let t0 = Instant::now();
     let h = case.hertz()?;
@@ -253,17 +253,9 @@ fn fastsim_on_grid(
         scaling: BoundScaling::Analytic,
     };
     let solve_error = |e: ContactError| CaseError::BadInput(format!("FASTSIM model: {e}"));
-    let out = match o.method {
-        FastsimMethod::Fastsim => GridFastsim::new(grid)?
-            .solve(&input, pressure)
-            .map_err(solve_error)?,
-        FastsimMethod::Fastrip => {
-            GridFastrip::new(grid)?
-                .solve(&input, pressure)
-                .map_err(solve_error)?
-                .totals
-        }
-    };
+    let out = GridSimplified::new(grid, o.method == FastsimMethod::Fastrip)?
+        .solve(&input, pressure)
+        .map_err(solve_error)?;
     let da = grid.element_area_m2();
     let count = |area: f64| (area / da).round() as u64;
     let counts = format!(

@@ -109,11 +109,11 @@ use crate::conformal::operator::InfluenceModel;
 use crate::core::cache::KernelCache;
 use crate::core::cancel;
 use crate::core::error::{require_finite, require_positive, show, ContactError};
-use crate::core::fastrip::{require_static_bound, GridFastrip};
+use crate::core::fastrip::{require_static_bound, GridSimplified};
 use crate::core::fastsim::{Fastsim, FastsimInput, FastsimOutput, SlopeReduction, TractionBound};
 use crate::core::fastsim_grid::{
-    equivalent_ellipse, AppliedFlexibility, CreepInterpolation, FastsimMaterial, GridFastsim,
-    GridFastsimInput, GridFastsimOutput, GridFriction, GridPressure, RollingSense,
+    equivalent_ellipse, AppliedFlexibility, CreepInterpolation, FastsimMaterial, GridFastsimInput,
+    GridFriction, GridPressure, RollingSense,
 };
 use crate::core::friclaw::SlipVelocityLaw;
 use crate::core::grid::Grid;
@@ -1050,7 +1050,7 @@ pub(crate) struct PatchWork {
     /// FASTSIM's or FaStrip's buffers on an exact patch's grid
     /// ([`ExactTangential::Fastsim`], [`ExactTangential::Fastrip`]), built
     /// at its first frictional solve.
-    grid_fastsim: Option<Box<PatchGridSolver>>,
+    grid_fastsim: Option<Box<GridSimplified>>,
     /// An exact patch of an out-of-round wheel or a varying rail with
     /// [`ReferencePoint::InterpenetrationCentre`]: how far the centre of
     /// its interpenetration at the reference's approach lies from the
@@ -1522,51 +1522,6 @@ struct FastsimOn<'a> {
     fastrip: bool,
 }
 
-/// The grid solver of an exact patch's simplified theory with its buffers.
-#[derive(Debug)]
-enum PatchGridSolver {
-    Fastsim(GridFastsim),
-    Fastrip(GridFastrip),
-}
-
-impl PatchGridSolver {
-    fn new(grid: Grid, fastrip: bool) -> Result<Self, ContactError> {
-        Ok(if fastrip {
-            Self::Fastrip(GridFastrip::new(grid)?)
-        } else {
-            Self::Fastsim(GridFastsim::new(grid)?)
-        })
-    }
-
-    /// Whether these are buffers of `fastrip` on `grid`.
-    fn fits(&self, grid: &Grid, fastrip: bool) -> bool {
-        match self {
-            Self::Fastsim(fs) => !fastrip && fs.grid() == grid,
-            Self::Fastrip(fs) => fastrip && fs.grid() == grid,
-        }
-    }
-
-    /// The solver's totals ([`GridFastsim::solve`], [`GridFastrip::solve`]).
-    fn solve(
-        &mut self,
-        input: &GridFastsimInput,
-        pressure: GridPressure<'_>,
-    ) -> Result<GridFastsimOutput, ContactError> {
-        match self {
-            Self::Fastsim(fs) => fs.solve(input, pressure),
-            Self::Fastrip(fs) => fs.solve(input, pressure).map(|o| o.totals),
-        }
-    }
-
-    /// The march whose buffers hold the last solve's fields.
-    fn march(&self) -> &GridFastsim {
-        match self {
-            Self::Fastsim(fs) => fs,
-            Self::Fastrip(fs) => fs.march(),
-        }
-    }
-}
-
 impl FastsimOn<'_> {
     /// Replaces the tangential part of `sol`, a frictionless solution on
     /// the grid, by FASTSIM's (or FaStrip's) with its pressure as the
@@ -1576,7 +1531,7 @@ impl FastsimOn<'_> {
     /// Allocates only the solver's buffers at its first use on a grid.
     fn solve(
         &self,
-        buffers: &mut Option<Box<PatchGridSolver>>,
+        buffers: &mut Option<Box<GridSimplified>>,
         sol: &mut ContactSolution,
         input: &WheelRailInput,
     ) -> Result<Option<AppliedFlexibility>, ContactError> {
@@ -1586,7 +1541,7 @@ impl FastsimOn<'_> {
         };
         let solver = match buffers {
             Some(fs) if fs.fits(self.grid, self.fastrip) => fs,
-            _ => buffers.insert(Box::new(PatchGridSolver::new(*self.grid, self.fastrip)?)),
+            _ => buffers.insert(Box::new(GridSimplified::new(*self.grid, self.fastrip)?)),
         };
         let friction = match self.friction.slip_velocity_law {
             Some(law) => GridFriction::SlipVelocity(law),
